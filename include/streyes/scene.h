@@ -1,0 +1,129 @@
+// The scene description: what the RIB parser produces and the renderer consumes.
+//
+// It is a plain description in object/world space, close to the RIB it came from. Turning it
+// into camera-space spacetime bodies is the next stage (bodies.h); nothing here knows about
+// buckets, frames blocks or rasters. Times are in frames throughout.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "streyes/util/error.h"
+#include "streyes/util/transform.h"
+#include "streyes/util/vecmath.h"
+
+namespace streyes {
+
+// ---- Parameter lists ------------------------------------------------------------------------
+// A RIB parameter with its declared type, e.g. "uniform color Cs" [1 0 0].
+enum class ParamType { Float, Integer, String, Point, Vector, Normal, Color, HPoint, Matrix };
+enum class ParamClass { Constant, Uniform, Varying, Vertex, FaceVarying };
+
+struct Param {
+    std::string name;
+    ParamType type = ParamType::Float;
+    ParamClass cls = ParamClass::Uniform;
+    int arraySize = 1;                  // "float[2]" -> 2
+    std::vector<double> nums;           // every numeric value, flattened
+    std::vector<std::string> strings;   // for String parameters
+    SourceLoc loc;
+
+    int componentsPerItem() const;      // 3 for point/color..., 4 for hpoint, 16 matrix, times arraySize
+};
+
+struct ParamList {
+    std::vector<Param> params;
+    const Param* find(const std::string& name) const;
+    // Convenience readers; return `fallback` when absent. Throw InputError on a type/size mismatch.
+    double getFloat(const std::string& name, double fallback) const;
+    Color getColor(const std::string& name, Color fallback) const;
+    Vec3d getPoint(const std::string& name, Vec3d fallback) const;
+    std::string getString(const std::string& name, const std::string& fallback) const;
+};
+
+// ---- Graphics state -------------------------------------------------------------------------
+struct ShaderDesc {
+    std::string name;   // "constant", "matte", "plastic", "defaultsurface", ...
+    ParamList params;
+    SourceLoc loc;
+};
+
+// The attribute state a primitive was declared with. Shared: many primitives point at one.
+struct Attributes {
+    Color color{1, 1, 1};                        // Color (Cs)
+    Color opacity{1, 1, 1};                      // Opacity (Os)
+    ShaderDesc surface{"defaultsurface", {}, {}};
+    double shadingRate = 1.0;                    // pixels of area per micropolygon
+    std::vector<int> lights;                     // indices into Scene::lights that are on
+    ParamList user;                              // Attribute "category" "name" values, as "category:name"
+};
+using AttributesPtr = std::shared_ptr<const Attributes>;
+
+// ---- Camera and options -------------------------------------------------------------------------
+enum class ProjectionKind { Orthographic, Perspective };
+
+struct CameraDesc {
+    ProjectionKind projection = ProjectionKind::Orthographic;  // RenderMan's default
+    double fov = 90.0;                    // degrees, across the shorter image dimension
+    bool hasScreenWindow = false;
+    double screenWindow[4] = {-1, 1, -1, 1};  // left right bottom top
+    double frameAspect = 0;               // 0: from the resolution
+    int xres = 640, yres = 480;
+    double pixelAspect = 1.0;
+    double nearClip = 1e-4, farClip = 1e30;  // Clipping; see docs/SCENE-FORMAT.md for the default
+    MotionTransform worldToCamera;        // the CTM at WorldBegin
+    SourceLoc loc;
+};
+
+struct FilterDesc {
+    std::string type = "gaussian";  // box | gaussian | catmull-rom
+    double xwidth = 2, ywidth = 2;
+};
+
+struct DisplayDesc {
+    std::string name;   // may hold #### for the frame number
+    std::string type;   // "openexr", "file", "tiff", "framebuffer", ...
+    std::string mode;   // "rgb", "rgba", "rgbaz"
+    SourceLoc loc;
+};
+
+struct RenderSettings {
+    double shutterOpen = 0, shutterClose = 0;  // frame f is exposed during [f+open, f+close]
+    int pixelSamplesX = 2, pixelSamplesY = 2;
+    FilterDesc filter;
+    bool hasFrames = false;                    // Option "streyes" "int frames" [first last]
+    int firstFrame = 0, lastFrame = 0;
+    std::vector<DisplayDesc> displays;
+};
+
+// ---- Lights and geometry --------------------------------------------------------------------------
+struct LightDesc {
+    std::string type;            // "ambientlight" | "distantlight" | "pointlight"
+    ParamList params;
+    MotionTransform lightToWorld;
+    SourceLoc loc;
+};
+
+// A bilinear patch (Patch "bilinear", or a Polygon of 3 or 4 vertices), possibly with motion keys.
+// Corners in RenderMan order: P[0]=(u0,v0) P[1]=(u1,v0) P[2]=(u0,v1) P[3]=(u1,v1).
+struct BilinearPatchDesc {
+    std::vector<double> times;                 // motion keys; one entry (any value) when static
+    std::vector<std::array<Vec3d, 4>> P;       // object space, one set per key
+    bool hasCs = false;                        // varying/uniform Cs given on the primitive
+    std::array<Color, 4> Cs{};
+    MotionTransform objectToWorld;
+    AttributesPtr attributes;
+    SourceLoc loc;
+};
+
+struct Scene {
+    CameraDesc camera;
+    RenderSettings settings;
+    std::vector<LightDesc> lights;
+    std::vector<BilinearPatchDesc> patches;
+    std::string sourceName;  // the scene file, for messages and default output names
+};
+
+}  // namespace streyes

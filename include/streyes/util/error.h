@@ -1,0 +1,56 @@
+// Errors and warnings that name where in the input they come from.
+//
+// InputError is bad input (a malformed scene, a bad option): the CLI prints it as
+// "file:line: error: what" and exits 2. RenderError is a failure while rendering or writing
+// (an unwritable folder, a full disk): exit 1. Warnings go through a Log so that tests can
+// capture them and so that each kind of warning is said once, not once per body.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace streyes {
+
+// A place in the input. `file` is shared: thousands of locations point at one string.
+struct SourceLoc {
+    std::shared_ptr<const std::string> file;
+    int line = 0;
+    std::string str() const;  // "scene.rib:12", or "" when unknown
+};
+
+class InputError : public std::runtime_error {
+  public:
+    InputError(const SourceLoc& loc, const std::string& what);
+    explicit InputError(const std::string& what) : std::runtime_error(what) {}
+    SourceLoc loc;
+};
+
+class RenderError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// Thread-safe sink for warnings. `warnOnce` keys on a category string so that, say, an
+// unsupported request warns the first time only.
+class Log {
+  public:
+    void warn(const SourceLoc& loc, const std::string& what);
+    void warnOnce(const std::string& key, const SourceLoc& loc, const std::string& what);
+    void info(const std::string& what);
+    std::vector<std::string> warnings() const;
+    void setQuiet(bool q) { quiet_ = q; }  // quiet: keep warnings, do not print them
+    void setEcho(bool e) { echo_ = e; }    // echo: print to stderr as they come (CLI)
+
+  private:
+    mutable std::mutex mutex_;
+    std::vector<std::string> warnings_;
+    std::set<std::string> said_;
+    bool quiet_ = false;
+    bool echo_ = false;
+};
+
+}  // namespace streyes
