@@ -15,7 +15,12 @@ static std::string withLoc(const SourceLoc& loc, const std::string& what) {
 }
 
 InputError::InputError(const SourceLoc& l, const std::string& what)
-    : std::runtime_error(withLoc(l, what)), loc(l) {}
+    : std::runtime_error(withLoc(l, what)), loc(l), message(what) {}
+
+std::string InputError::report() const {
+    std::string where = loc.str();
+    return (where.empty() ? std::string("streyes") : where) + ": error: " + message;
+}
 
 void Log::warn(const SourceLoc& loc, const std::string& what) {
     std::string msg = withLoc(loc, "warning: " + what);

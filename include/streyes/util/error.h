@@ -25,8 +25,11 @@ struct SourceLoc {
 class InputError : public std::runtime_error {
   public:
     InputError(const SourceLoc& loc, const std::string& what);
-    explicit InputError(const std::string& what) : std::runtime_error(what) {}
+    explicit InputError(const std::string& what) : std::runtime_error(what), message(what) {}
     SourceLoc loc;
+    std::string message;  // without the location
+    // "file:line: error: message" (or "streyes: error: message" without a location)
+    std::string report() const;
 };
 
 class RenderError : public std::runtime_error {

@@ -63,7 +63,8 @@ template <typename T> constexpr Vec3<T> vmin(Vec3<T> a, Vec3<T> b) {
 template <typename T> constexpr Vec3<T> vmax(Vec3<T> a, Vec3<T> b) {
     return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
-template <typename T, typename S> constexpr T lerp(T a, T b, S s) { return a + (b - a) * s; }
+// (1-s)*a + s*b: exact at both ends, so pieces cut from one motion meet bit for bit.
+template <typename T, typename S> constexpr T lerp(T a, T b, S s) { return a * (S(1) - s) + b * s; }
 template <typename T> bool isFinite(Vec3<T> v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }

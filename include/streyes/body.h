@@ -1,0 +1,102 @@
+// Spacetime bodies: the unit the split loop works on.
+//
+// A body is a piece of surface over a time span [t0, t1] (in frames) whose control points move
+// linearly from t0 to t1, in camera space. It answers what the pipeline asks (DESIGN.md):
+//   bound()        conservative camera-space bound at t0 and at t1 (an LBBox),
+//   measure()      how large it is in raster spacetime, to choose between split and dice,
+//   split(axis)    two halves along u, v or t,
+//   dice(nu, nv)   a grid of micropolygon vertices at t0 and t1.
+// Everything else (culling, the split loop, sampling) is generic over these questions.
+#pragma once
+
+#include <array>
+#include <memory>
+
+#include "streyes/camera.h"
+#include "streyes/util/error.h"
+#include "streyes/util/vecmath.h"
+
+namespace streyes {
+
+struct Grid;
+struct Material;
+
+enum class SplitAxis : unsigned char { U = 0, V = 1, T = 2 };
+
+struct TimeSpan {
+    double t0 = 0, t1 = 0;
+    bool overlaps(double a, double b) const { return t0 <= b && a <= t1; }
+};
+
+// A body's size in raster spacetime (valid only when it lies in front of the eye plane).
+struct RasterMeasure {
+    LBBox3f bound;        // raster x, y and camera z, at t0 and at t1
+    float extentU = 0;    // longest raster length of a u-direction edge, over t0 and t1
+    float extentV = 0;    // the same along v
+    float motion = 0;     // largest raster displacement of a control point from t0 to t1
+};
+
+// The same three extents in camera space, for splits that cannot project (eye splits).
+struct CameraExtents {
+    float u = 0, v = 0, t = 0;
+};
+
+class Body {
+  public:
+    virtual ~Body() = default;
+
+    const TimeSpan& time() const { return time_; }
+    bool moving() const { return moving_; }
+    const Material* material() const { return material_; }
+    // Where in the input the body came from (for warnings); shared by all its pieces.
+    const SourceLoc* source() const { return source_; }
+    void setSource(const SourceLoc* s) { source_ = s; }
+
+    virtual LBBox3f bound() const = 0;
+    virtual RasterMeasure measure(const Camera& camera) const = 0;
+    virtual CameraExtents cameraExtents() const = 0;
+    // Splits into two halves; a T split cuts the time span in half.
+    virtual void split(SplitAxis axis, std::unique_ptr<Body> out[2]) const = 0;
+    // The body over [a, b], a sub-span of time().
+    virtual std::unique_ptr<Body> restrictedTo(double a, double b) const = 0;
+    // Fills grid with (nu+1) x (nv+1) vertices at t0 and t1 (and at t0 only when not moving).
+    virtual void dice(int nu, int nv, Grid& grid) const = 0;
+
+    // How many splits led to this body (regular splits and eye splits), for the limits.
+    unsigned char splitDepth = 0;
+    unsigned char eyeSplitDepth = 0;
+
+  protected:
+    TimeSpan time_;
+    bool moving_ = false;
+    const Material* material_ = nullptr;
+    const SourceLoc* source_ = nullptr;
+};
+
+using BodyPtr = std::unique_ptr<Body>;
+
+// A bilinear patch whose four corners move linearly over [t0, t1]: Catmull's patch in
+// spacetime, the paper's trilinear body (8 control points). Corners in RenderMan order:
+// P[k][0]=(u0,v0) P[k][1]=(u1,v0) P[k][2]=(u0,v1) P[k][3]=(u1,v1), k=0 at t0 and k=1 at t1.
+class TrilinearBody final : public Body {
+  public:
+    using Corners = std::array<Vec3f, 4>;
+    TrilinearBody(TimeSpan time, const Corners& p0, const Corners& p1, const std::array<Color, 4>& cs,
+                  const Material* material);
+
+    const Corners& corners(int k) const { return P_[k]; }
+    const std::array<Color, 4>& colors() const { return Cs_; }
+
+    LBBox3f bound() const override;
+    RasterMeasure measure(const Camera& camera) const override;
+    CameraExtents cameraExtents() const override;
+    void split(SplitAxis axis, std::unique_ptr<Body> out[2]) const override;
+    std::unique_ptr<Body> restrictedTo(double a, double b) const override;
+    void dice(int nu, int nv, Grid& grid) const override;
+
+  private:
+    Corners P_[2];               // camera space at t0 and t1 (equal when static)
+    std::array<Color, 4> Cs_;    // surface colour at the corners, bilinear over the patch
+};
+
+}  // namespace streyes

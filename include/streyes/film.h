@@ -1,0 +1,59 @@
+// Pixel reconstruction: the pixel filter and the frames it resolves samples into.
+//
+// Filters are separable, tabulated products f(dx) * f(dy) over [-xwidth/2, xwidth/2] x
+// [-ywidth/2, ywidth/2] (RenderMan's widths). Colour and alpha are the filter-weighted mean of
+// the samples around the pixel centre; Z is the nearest camera-space depth among the pixel's
+// own samples (+inf where none hit: Z is not filtered).
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "streyes/image_block.h"
+#include "streyes/scene.h"
+
+namespace streyes {
+
+class PixelFilter {
+  public:
+    explicit PixelFilter(const FilterDesc& desc);
+    float radiusX() const { return rx_; }
+    float radiusY() const { return ry_; }
+    // Weight at offset (dx, dy) from the pixel centre; 0 outside the support.
+    float weight(float dx, float dy) const { return lookup(tx_, dx, rx_) * lookup(ty_, dy, ry_); }
+    // Pixels of guard band a bucket needs on each side so its own pixels see every sample.
+    int guardX() const;
+    int guardY() const;
+
+  private:
+    static constexpr int kTableSize = 256;
+    static float lookup(const std::vector<float>& t, float d, float r) {
+        float a = std::fabs(d);
+        if (!(a < r)) return 0.0f;
+        return t[size_t(a / r * kTableSize)];
+    }
+    float rx_, ry_;
+    std::vector<float> tx_, ty_;
+};
+
+// One resolved frame: RGBA and Z per pixel, row-major from the top-left.
+struct FrameImage {
+    int frame = 0;
+    int width = 0, height = 0;
+    std::vector<float> rgba;  // 4 per pixel
+    std::vector<float> z;     // 1 per pixel
+    void resize(int w, int h) {
+        width = w;
+        height = h;
+        rgba.assign(size_t(w) * size_t(h) * 4, 0.0f);
+        z.assign(size_t(w) * size_t(h), 0.0f);
+    }
+};
+
+// Resolves the samples of block frame `fi` into the pixels of `tile` (inside the block's rect,
+// which must include the filter's guard band around it).
+void resolveTile(const ImageBlock& block, int fi, const PixelRect& tile, const PixelFilter& filter,
+                 FrameImage& out, std::vector<float>& scratch);
+
+}  // namespace streyes

@@ -1,0 +1,40 @@
+// Image files in and out, through OpenImageIO. The only part of streyes that links it.
+//
+// Frames are written to a temporary file in the destination folder and renamed into place, so
+// a failed or interrupted write never leaves a partial frame under the final name.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "streyes/film.h"
+
+namespace streyes {
+
+// "rgb", "rgba" or "rgbaz". EXR files store R G B A as half and Z as 32-bit float.
+bool validChannelMode(const std::string& mode);
+
+// Replaces the run of '#' in `pattern` with the zero-padded frame number ("a.####.exr", 7 ->
+// "a.0007.exr"). A pattern without '#' is returned unchanged.
+std::string expandFramePattern(const std::string& pattern, int frame);
+bool hasFrameField(const std::string& pattern);
+// Inserts ".####" before the extension: "out.exr" -> "out.####.exr".
+std::string addFrameField(const std::string& pattern);
+
+// Writes one frame atomically. Throws RenderError with a clear message on failure.
+void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode);
+
+// An image read back: float pixels, interleaved, with its channel names and per-channel formats
+// ("half", "float", "uint8", ...).
+struct ImageData {
+    int width = 0, height = 0;
+    std::vector<std::string> channels;
+    std::vector<std::string> formats;
+    std::vector<float> pixels;  // width * height * channels.size()
+    int channelIndex(const std::string& name) const;
+    float at(int x, int y, int c) const { return pixels[(size_t(y) * size_t(width) + size_t(x)) * channels.size() + size_t(c)]; }
+};
+// Throws RenderError when the file cannot be read.
+ImageData readImage(const std::string& path);
+
+}  // namespace streyes

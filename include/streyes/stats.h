@@ -1,0 +1,43 @@
+// Render statistics: the counters every speed figure is quoted with, and the time per stage.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace streyes {
+
+struct RenderCounters {
+    uint64_t rootBodies = 0;       // bodies made from the scene (one per motion segment)
+    uint64_t splitsU = 0, splitsV = 0, splitsT = 0;
+    uint64_t eyeSplits = 0;        // splits of bodies reaching the eye plane
+    uint64_t culledView = 0;       // bodies outside the bucket's spacetime block (incl. frustum)
+    uint64_t culledClip = 0;       // bodies wholly nearer than the near plane or beyond the far plane
+    uint64_t culledEyeLimit = 0;   // dropped at the eye-split limit
+    uint64_t culledSplitLimit = 0; // dropped at the split-depth limit
+    uint64_t gridsDiced = 0;
+    uint64_t micropolygons = 0;
+    uint64_t sampleTests = 0;
+    uint64_t sampleHits = 0;
+    uint64_t buckets = 0;
+
+    // Seconds, summed over threads (so they add up to CPU time, not wall time).
+    double timeSampleGen = 0, timeSplit = 0, timeDice = 0, timeShade = 0, timeSample = 0, timeResolve = 0;
+
+    RenderCounters& operator+=(const RenderCounters& o);
+    uint64_t splits() const { return splitsU + splitsV + splitsT; }
+};
+
+struct RenderStats {
+    RenderCounters counters;
+    std::string algorithm;
+    int firstFrame = 0, lastFrame = 0, width = 0, height = 0, samplesPerPixel = 0, threads = 0;
+    int frameBlock = 0, bucketSize = 0;
+    double timeParse = 0, timeBuild = 0, timeRender = 0, timeWrite = 0, timeTotal = 0;  // wall seconds
+    uint64_t peakMemoryBytes = 0;  // peak resident set of the process
+
+    std::string toJson() const;
+};
+
+uint64_t peakResidentBytes();
+
+}  // namespace streyes

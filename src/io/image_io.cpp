@@ -1,0 +1,124 @@
+#include "streyes/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "streyes/util/error.h"
+
+namespace streyes {
+
+namespace fs = std::filesystem;
+using OIIO::ImageInput;
+using OIIO::ImageOutput;
+using OIIO::ImageSpec;
+using OIIO::TypeDesc;
+
+bool validChannelMode(const std::string& mode) { return mode == "rgb" || mode == "rgba" || mode == "rgbaz"; }
+
+bool hasFrameField(const std::string& pattern) { return pattern.find('#') != std::string::npos; }
+
+std::string expandFramePattern(const std::string& pattern, int frame) {
+    size_t a = pattern.find('#');
+    if (a == std::string::npos) return pattern;
+    size_t b = pattern.find_first_not_of('#', a);
+    if (b == std::string::npos) b = pattern.size();
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%0*d", int(b - a), frame);
+    return pattern.substr(0, a) + buf + pattern.substr(b);
+}
+
+std::string addFrameField(const std::string& pattern) {
+    fs::path p(pattern);
+    std::string ext = p.extension().string();
+    std::string stem = pattern.substr(0, pattern.size() - ext.size());
+    return stem + ".####" + ext;
+}
+
+void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode) {
+    const fs::path target(path);
+    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        throw RenderError("cannot write '" + path + "': the folder '" + dir.string() +
+                          "' does not exist (create it, or choose another -o)");
+    if (access(dir.c_str(), W_OK) != 0)
+        throw RenderError("cannot write '" + path + "': the folder '" + dir.string() + "' is not writable (" +
+                          std::strerror(errno) + ")");
+
+    const bool alpha = mode != "rgb", z = mode == "rgbaz";
+    const int nch = 3 + (alpha ? 1 : 0) + (z ? 1 : 0);
+    std::string ext = target.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const bool exr = ext == ".exr" || ext.empty();
+
+    ImageSpec spec(image.width, image.height, nch, exr ? TypeDesc::HALF : TypeDesc::FLOAT);
+    spec.channelnames = {"R", "G", "B"};
+    if (alpha) {
+        spec.channelnames.push_back("A");
+        spec.alpha_channel = 3;
+    }
+    if (z) {
+        spec.channelnames.push_back("Z");
+        spec.z_channel = nch - 1;
+    }
+    if (exr) {
+        spec.channelformats.assign(size_t(nch), TypeDesc::HALF);
+        if (z) spec.channelformats.back() = TypeDesc::FLOAT;
+        spec.attribute("compression", "zip");
+    }
+    spec.attribute("DateTime", "2000:01:01 00:00:00");  // fixed: the same render gives the same bytes
+    spec.attribute("Software", "streyes");
+
+    std::vector<float> data(size_t(image.width) * size_t(image.height) * size_t(nch));
+    for (size_t i = 0, n = size_t(image.width) * size_t(image.height); i < n; ++i) {
+        float* d = &data[i * size_t(nch)];
+        for (int c = 0; c < 3 + (alpha ? 1 : 0); ++c) d[c] = image.rgba[i * 4 + size_t(c)];
+        if (z) d[nch - 1] = image.z[i];
+    }
+
+    // Temporary name in the same folder (rename is atomic within a file system); it keeps the
+    // extension so OIIO picks the right format.
+    const fs::path tmp = dir / ("." + target.stem().string() + ".tmp" + std::to_string(getpid()) + target.extension().string());
+    auto fail = [&](const std::string& why) {
+        std::error_code ignore;
+        fs::remove(tmp, ignore);
+        throw RenderError("cannot write '" + path + "': " + why);
+    };
+    {
+        auto out = ImageOutput::create(exr ? std::string("openexr") : tmp.string());
+        if (!out) fail("no image format for '" + ext + "' (" + OIIO::geterror() + ")");
+        if (!out->open(tmp.string(), spec)) fail(out->geterror());
+        if (!out->write_image(TypeDesc::FLOAT, data.data())) fail(out->geterror());
+        if (!out->close()) fail(out->geterror());
+    }
+    fs::rename(tmp, target, ec);
+    if (ec) fail(ec.message());
+}
+
+int ImageData::channelIndex(const std::string& name) const {
+    for (size_t i = 0; i < channels.size(); ++i)
+        if (channels[i] == name) return int(i);
+    return -1;
+}
+
+ImageData readImage(const std::string& path) {
+    auto in = ImageInput::open(path);
+    if (!in) throw RenderError("cannot read '" + path + "': " + OIIO::geterror());
+    const ImageSpec& spec = in->spec();
+    ImageData img;
+    img.width = spec.width;
+    img.height = spec.height;
+    img.channels = spec.channelnames;
+    for (int c = 0; c < spec.nchannels; ++c) img.formats.push_back(spec.channelformat(c).c_str());
+    img.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+    if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, img.pixels.data()))
+        throw RenderError("cannot read '" + path + "': " + in->geterror());
+    return img;
+}
+
+}  // namespace streyes

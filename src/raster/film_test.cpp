@@ -1,0 +1,48 @@
+#include "streyes/film.h"
+
+#include <gtest/gtest.h>
+
+namespace streyes {
+namespace {
+
+TEST(PixelFilter, ShapesAndSupport) {
+    PixelFilter box({"box", 1, 1}), gauss({"gaussian", 2, 2}), cr({"catmull-rom", 4, 4});
+    EXPECT_EQ(box.weight(0.49f, -0.49f), 1.0f);
+    EXPECT_EQ(box.weight(0.51f, 0), 0.0f);
+    EXPECT_EQ(box.guardX(), 0);
+    EXPECT_NEAR(gauss.weight(0, 0), 1.0f, 1e-3f);
+    EXPECT_NEAR(gauss.weight(0.5f, 0), std::exp(-2.0f * 0.25f), 1e-2f);
+    EXPECT_EQ(gauss.weight(1.01f, 0), 0.0f);
+    EXPECT_EQ(gauss.guardX(), 1);
+    EXPECT_EQ(cr.guardX(), 2);
+    EXPECT_LT(cr.weight(1.5f, 0), 0.0f);  // the negative lobe
+}
+
+TEST(Resolve, UniformSamplesGiveTheirValueAndZIsTheNearest) {
+    ImageBlock block;
+    block.reset({0, 0, 9, 9}, 0, 1, SamplePattern{3, 3, 5});
+    for (int k = 0; k < 9; ++k)
+        for (int y = 0; y < 10; ++y)
+            for (int x = 0; x < 10; ++x) {
+                Sample& s = block.row(0, k, y)[x];
+                s.c = {0.25f, 0.5f, 0.75f};
+                s.a = 1;
+                s.z = 3.0f + float(k);
+            }
+    for (const char* type : {"box", "gaussian", "catmull-rom"}) {
+        PixelFilter filter({type, 3, 3});
+        FrameImage img;
+        img.resize(10, 10);
+        std::vector<float> scratch;
+        resolveTile(block, 0, {2, 2, 7, 7}, filter, img, scratch);
+        float* p = &img.rgba[(5 * 10 + 5) * 4];
+        EXPECT_NEAR(p[0], 0.25f, 1e-5f) << type;
+        EXPECT_NEAR(p[1], 0.5f, 1e-5f) << type;
+        EXPECT_NEAR(p[3], 1.0f, 1e-5f) << type;
+        EXPECT_EQ(img.z[5 * 10 + 5], 3.0f);
+        EXPECT_EQ(img.rgba[0], 0.0f);  // outside the tile: untouched
+    }
+}
+
+}  // namespace
+}  // namespace streyes

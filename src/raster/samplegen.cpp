@@ -1,0 +1,50 @@
+// Sample generation: stratified (x, y) jitter, stratified time with a per-pixel shuffle.
+#include <limits>
+
+#include "streyes/image_block.h"
+#include "streyes/util/sampling.h"
+
+namespace streyes {
+
+void generatePixelSamples(int px, int py, int frame, const SamplePattern& pattern, Sample* out) {
+    const int sx = pattern.sx, sy = pattern.sy, n = sx * sy;
+    uint64_t key = hashCombine(hashCombine(hashCombine(mix64(pattern.seed), uint64_t(uint32_t(px))),
+                                           uint64_t(uint32_t(py))),
+                               uint64_t(uint32_t(frame)));
+    HashRng rng(key);
+    // Time strata: a random permutation of 0..n-1 (Fisher-Yates), one per (x, y) stratum.
+    int perm[64 * 64];
+    for (int i = 0; i < n; ++i) perm[i] = i;
+    for (int i = n - 1; i > 0; --i) {
+        int j = int(rng.nextBelow(uint32_t(i + 1)));
+        std::swap(perm[i], perm[j]);
+    }
+    const float invX = 1.0f / float(sx), invY = 1.0f / float(sy), invN = 1.0f / float(n);
+    for (int j = 0; j < n; ++j) {
+        int ix = j % sx, iy = j / sx, k = perm[j];
+        Sample& s = out[k];
+        s.x = float(px) + std::min((float(ix) + rng.nextFloat()) * invX, kOneMinusEpsilon);
+        s.y = float(py) + std::min((float(iy) + rng.nextFloat()) * invY, kOneMinusEpsilon);
+        s.tf = std::min((float(k) + rng.nextFloat()) * invN, kOneMinusEpsilon);
+        s.z = std::numeric_limits<float>::infinity();
+        s.c = {0, 0, 0};
+        s.a = 0;
+    }
+}
+
+void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, const SamplePattern& pattern) {
+    rect_ = rect;
+    firstFrame_ = firstFrame;
+    frameCount_ = frameCount;
+    slices_ = pattern.count();
+    samples_.resize(size_t(rect.area()) * size_t(frameCount) * size_t(slices_));
+    scratch_.resize(size_t(slices_));
+    for (int fi = 0; fi < frameCount; ++fi)
+        for (int y = rect.y0; y <= rect.y1; ++y)
+            for (int x = rect.x0; x <= rect.x1; ++x) {
+                generatePixelSamples(x, y, firstFrame + fi, pattern, scratch_.data());
+                for (int k = 0; k < slices_; ++k) row(fi, k, y)[x - rect.x0] = scratch_[size_t(k)];
+            }
+}
+
+}  // namespace streyes

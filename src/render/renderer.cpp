@@ -1,0 +1,156 @@
+#include "streyes/renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include "bucket.h"
+
+namespace streyes {
+
+const char* algorithmName(Algorithm a) { return a == Algorithm::Frames ? "frames" : "spacetime"; }
+
+bool parseAlgorithm(const std::string& name, Algorithm* out) {
+    if (name == "spacetime") *out = Algorithm::Spacetime;
+    else if (name == "frames") *out = Algorithm::Frames;
+    else return false;
+    return true;
+}
+
+void factorSamples(int samples, int* sx, int* sy) {
+    samples = std::max(1, samples);
+    int a = int(std::sqrt(double(samples)));
+    while (a > 1 && samples % a != 0) --a;
+    *sy = a;
+    *sx = samples / a;
+}
+
+ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& o) {
+    ResolvedSettings r;
+    if (o.hasFrames) {
+        r.firstFrame = o.firstFrame;
+        r.lastFrame = o.lastFrame;
+    } else if (scene.settings.hasFrames) {
+        r.firstFrame = scene.settings.firstFrame;
+        r.lastFrame = scene.settings.lastFrame;
+    }
+    r.width = o.xres > 0 ? o.xres : scene.camera.xres;
+    r.height = o.yres > 0 ? o.yres : scene.camera.yres;
+    if (o.samples > 0) {
+        factorSamples(o.samples, &r.pattern.sx, &r.pattern.sy);
+    } else {
+        r.pattern.sx = scene.settings.pixelSamplesX;
+        r.pattern.sy = scene.settings.pixelSamplesY;
+    }
+    r.pattern.seed = o.seed;
+    return r;
+}
+
+Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
+    : source_(scene), options_(options), log_(log) {
+    settings_ = resolveSettings(scene, options);
+    auto t = std::chrono::steady_clock::now();
+    scene_ = buildRenderScene(scene, settings_.firstFrame, settings_.lastFrame, settings_.width, settings_.height, log);
+    buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+Renderer::~Renderer() = default;
+
+RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    const ResolvedSettings& s = settings_;
+    const PixelFilter filter(source_.settings.filter);
+    const int W = s.width, H = s.height, S = s.pattern.count();
+    const int frames = s.lastFrame - s.firstFrame + 1;
+    const int tileSize = std::max(4, options_.bucketSize);
+    const bool spacetime = options_.algorithm == Algorithm::Spacetime;
+
+    // Frames rendered together: bounded by the option, by ~1 GiB of resolved pixels, and (for
+    // spacetime buckets, which hold every frame of the block) by ~4 M samples per bucket.
+    const double pixelBytes = double(W) * H * sizeof(float) * 5;
+    const double bucketSamplesPerFrame =
+        double(tileSize + 2 * filter.guardX()) * (tileSize + 2 * filter.guardY()) * S;
+    int block = std::min(frames, std::max(1, options_.maxFrameBlock));
+    block = std::min(block, std::max(1, int(double(1 << 30) / pixelBytes)));
+    if (spacetime) block = std::min(block, std::max(1, int(double(1 << 22) / bucketSamplesPerFrame)));
+
+    RenderStats stats;
+    stats.algorithm = algorithmName(options_.algorithm);
+    stats.firstFrame = s.firstFrame;
+    stats.lastFrame = s.lastFrame;
+    stats.width = W;
+    stats.height = H;
+    stats.samplesPerPixel = S;
+    stats.frameBlock = block;
+    stats.bucketSize = tileSize;
+    stats.timeBuild = buildSeconds_;
+    stats.counters.rootBodies = scene_->roots.size();
+
+    // Tiles in scanline order; their count and shape do not depend on the thread count.
+    std::vector<BucketSpec> tiles;
+    for (int y = 0; y < H; y += tileSize)
+        for (int x = 0; x < W; x += tileSize) {
+            BucketSpec b;
+            b.tile = {x, y, std::min(W, x + tileSize) - 1, std::min(H, y + tileSize) - 1};
+            b.rect = {std::max(0, b.tile.x0 - filter.guardX()), std::max(0, b.tile.y0 - filter.guardY()),
+                      std::min(W - 1, b.tile.x1 + filter.guardX()), std::min(H - 1, b.tile.y1 + filter.guardY())};
+            tiles.push_back(b);
+        }
+
+    tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
+    stats.threads = arena.max_concurrency();
+    tbb::enumerable_thread_specific<std::unique_ptr<BucketWorker>> workers;
+    const uint64_t totalBuckets = uint64_t(tiles.size()) * uint64_t(spacetime ? (frames + block - 1) / block : frames);
+    std::atomic<uint64_t> done{0};
+    double renderSeconds = 0, writeSeconds = 0;
+
+    std::vector<FrameImage> images;
+    for (int first = s.firstFrame; first <= s.lastFrame; first += block) {
+        const int count = std::min(block, s.lastFrame - first + 1);
+        images.resize(size_t(count));
+        for (int i = 0; i < count; ++i) {
+            images[size_t(i)].frame = first + i;
+            images[size_t(i)].resize(W, H);
+        }
+        // Spacetime: one bucket per tile spans the block's frames. Frames: one per tile and frame.
+        std::vector<BucketSpec> buckets;
+        for (int f = 0; f < (spacetime ? 1 : count); ++f)
+            for (BucketSpec b : tiles) {
+                b.firstFrame = first + f;
+                b.frameCount = spacetime ? count : 1;
+                buckets.push_back(b);
+            }
+        auto t = Clock::now();
+        arena.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+                std::unique_ptr<BucketWorker>& w = workers.local();
+                if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, log_);
+                for (size_t i = r.begin(); i != r.end(); ++i) {
+                    w->render(buckets[i], images, first);
+                    uint64_t n = ++done;
+                    if (progress) progress(n, totalBuckets);
+                }
+            });
+        });
+        renderSeconds += std::chrono::duration<double>(Clock::now() - t).count();
+        t = Clock::now();
+        for (const FrameImage& img : images) sink(img);
+        writeSeconds += std::chrono::duration<double>(Clock::now() - t).count();
+    }
+    for (const auto& w : workers)
+        if (w) stats.counters += w->counters;
+    stats.counters.rootBodies = scene_->roots.size();
+    stats.timeRender = renderSeconds;
+    stats.timeWrite = writeSeconds;
+    stats.timeTotal = std::chrono::duration<double>(Clock::now() - start).count();
+    stats.peakMemoryBytes = peakResidentBytes();
+    return stats;
+}
+
+}  // namespace streyes

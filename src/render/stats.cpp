@@ -1,0 +1,90 @@
+#include "streyes/stats.h"
+
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <sstream>
+
+namespace streyes {
+
+RenderCounters& RenderCounters::operator+=(const RenderCounters& o) {
+    rootBodies += o.rootBodies;
+    splitsU += o.splitsU;
+    splitsV += o.splitsV;
+    splitsT += o.splitsT;
+    eyeSplits += o.eyeSplits;
+    culledView += o.culledView;
+    culledClip += o.culledClip;
+    culledEyeLimit += o.culledEyeLimit;
+    culledSplitLimit += o.culledSplitLimit;
+    gridsDiced += o.gridsDiced;
+    micropolygons += o.micropolygons;
+    sampleTests += o.sampleTests;
+    sampleHits += o.sampleHits;
+    buckets += o.buckets;
+    timeSampleGen += o.timeSampleGen;
+    timeSplit += o.timeSplit;
+    timeDice += o.timeDice;
+    timeShade += o.timeShade;
+    timeSample += o.timeSample;
+    timeResolve += o.timeResolve;
+    return *this;
+}
+
+uint64_t peakResidentBytes() {
+    struct rusage ru {};
+    getrusage(RUSAGE_SELF, &ru);
+    return uint64_t(ru.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+
+namespace {
+std::string num(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+}  // namespace
+
+std::string RenderStats::toJson() const {
+    const RenderCounters& c = counters;
+    std::ostringstream o;
+    o << "{\n"
+      << "  \"algorithm\": \"" << algorithm << "\",\n"
+      << "  \"frames\": [" << firstFrame << ", " << lastFrame << "],\n"
+      << "  \"resolution\": [" << width << ", " << height << "],\n"
+      << "  \"samples_per_pixel\": " << samplesPerPixel << ",\n"
+      << "  \"threads\": " << threads << ",\n"
+      << "  \"bucket_size\": " << bucketSize << ",\n"
+      << "  \"frame_block\": " << frameBlock << ",\n"
+      << "  \"counters\": {\n"
+      << "    \"root_bodies\": " << c.rootBodies << ",\n"
+      << "    \"buckets\": " << c.buckets << ",\n"
+      << "    \"splits\": {\"u\": " << c.splitsU << ", \"v\": " << c.splitsV << ", \"t\": " << c.splitsT
+      << ", \"total\": " << c.splits() << "},\n"
+      << "    \"eye_splits\": " << c.eyeSplits << ",\n"
+      << "    \"culled_view\": " << c.culledView << ",\n"
+      << "    \"culled_clip\": " << c.culledClip << ",\n"
+      << "    \"culled_eye_split_limit\": " << c.culledEyeLimit << ",\n"
+      << "    \"culled_split_limit\": " << c.culledSplitLimit << ",\n"
+      << "    \"grids_diced\": " << c.gridsDiced << ",\n"
+      << "    \"micropolygons\": " << c.micropolygons << ",\n"
+      << "    \"sample_tests\": " << c.sampleTests << ",\n"
+      << "    \"sample_hits\": " << c.sampleHits << ",\n"
+      << "    \"hit_efficiency\": " << num(c.sampleTests ? double(c.sampleHits) / double(c.sampleTests) : 0)
+      << "\n  },\n"
+      << "  \"seconds\": {\n"
+      << "    \"parse\": " << num(timeParse) << ",\n"
+      << "    \"build_bodies\": " << num(timeBuild) << ",\n"
+      << "    \"render\": " << num(timeRender) << ",\n"
+      << "    \"write\": " << num(timeWrite) << ",\n"
+      << "    \"total\": " << num(timeTotal) << ",\n"
+      << "    \"cpu_by_stage\": {\"sample_generation\": " << num(c.timeSampleGen) << ", \"split_cull\": "
+      << num(c.timeSplit) << ", \"dice\": " << num(c.timeDice) << ", \"shade\": " << num(c.timeShade)
+      << ", \"sample\": " << num(c.timeSample) << ", \"resolve\": " << num(c.timeResolve) << "}\n"
+      << "  },\n"
+      << "  \"peak_memory_bytes\": " << peakMemoryBytes << "\n"
+      << "}\n";
+    return o.str();
+}
+
+}  // namespace streyes

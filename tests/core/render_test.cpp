@@ -1,0 +1,252 @@
+// End-to-end renders checked against analytic answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_util.h"
+
+namespace streyes {
+namespace {
+
+using test::RenderResult;
+using test::renderRib;
+
+// An orthographic camera where one scene unit is one pixel: raster x = x, raster y = H - y.
+std::string orthoHeader(int w, int h, const std::string& extra = "") {
+    return "Format " + std::to_string(w) + " " + std::to_string(h) + " 1\n" +
+           "Projection \"orthographic\"\nScreenWindow 0 " + std::to_string(w) + " 0 " + std::to_string(h) + "\n" +
+           "PixelFilter \"box\" 1 1\n" + extra + "WorldBegin\nSurface \"constant\"\n";
+}
+
+std::string square(double x0, double x1, double y0, double y1, double z) {
+    auto n = [](double v) { return std::to_string(v); };
+    return "Patch \"bilinear\" \"P\" [" + n(x0) + " " + n(y0) + " " + n(z) + "  " + n(x1) + " " + n(y0) + " " + n(z) +
+           "  " + n(x0) + " " + n(y1) + " " + n(z) + "  " + n(x1) + " " + n(y1) + " " + n(z) + "]\n";
+}
+
+// Fraction of pixel [p, p+1] covered by [a, b].
+double overlap(double p, double a, double b) { return std::max(0.0, std::min(p + 1, b) - std::max(p, a)); }
+
+TEST(Render, StaticSquareCoverageIsAnalytic) {
+    // Square x in [8.3, 20.6], y in [4.2, 11.7] -> raster rows [4.3, 11.8].
+    RenderResult r = renderRib(orthoHeader(32, 16, "PixelSamples 8 8\n") + "Color [0.2 0.4 0.6]\n" +
+                               square(8.3, 20.6, 4.2, 11.7, 5) + "WorldEnd\n");
+    const double sx = 1.0 / 8;  // stratified: the estimate is within one stratum of the truth
+    for (int y = 0; y < 16; ++y) {
+        for (int x = 0; x < 32; ++x) {
+            double cover = overlap(x, 8.3, 20.6) * overlap(y, 4.3, 11.8);
+            float a = r.alpha(0, x, y);
+            if (cover == 1.0 || cover == 0.0) {
+                EXPECT_EQ(a, float(cover)) << x << "," << y;
+            } else {
+                EXPECT_NEAR(a, cover, 2 * sx) << x << "," << y;
+            }
+            if (cover == 1.0) {
+                EXPECT_NEAR(r.channel(0, x, y, 0), 0.2f, 1e-5f);
+                EXPECT_NEAR(r.channel(0, x, y, 1), 0.4f, 1e-5f);
+                EXPECT_NEAR(r.channel(0, x, y, 2), 0.6f, 1e-5f);
+                EXPECT_FLOAT_EQ(r.z(0, x, y), 5.0f);
+            }
+            if (cover == 0.0) {
+                EXPECT_TRUE(std::isinf(r.z(0, x, y)));
+            }
+        }
+    }
+    // Interior edge pixels: exactly the stratified error bound.
+    EXPECT_NEAR(r.alpha(0, 8, 7), 0.7, sx);
+    EXPECT_NEAR(r.alpha(0, 20, 7), 0.6, sx);
+    EXPECT_NEAR(r.alpha(0, 12, 4), 0.7, sx);
+    EXPECT_NEAR(r.alpha(0, 12, 11), 0.8, sx);
+}
+
+TEST(Render, SquareMovingOneWidthGivesLinearRamp) {
+    // A 4-pixel square moves 4 pixels (one width) during the shutter [0, 1] of frame 0.
+    const int spp = 256;
+    RenderResult r = renderRib(orthoHeader(32, 4, "PixelSamples 16 16\nShutter 0 1\n") +
+                               "MotionBegin [0 1]\nTranslate 0 0 0\nTranslate 4 0 0\nMotionEnd\n" +
+                               square(8, 12, 0, 4, 5) + "WorldEnd\n");
+    for (int x = 0; x < 32; ++x) {
+        // Time-averaged coverage of pixel x: the ramp 1/8, 3/8, 5/8, 7/8, 7/8, 5/8, 3/8, 1/8.
+        double expected = 0;
+        const int steps = 20000;
+        for (int i = 0; i < steps; ++i) {
+            double t = (i + 0.5) / steps;
+            expected += overlap(x, 8 + 4 * t, 12 + 4 * t) / steps;
+        }
+        double sigma = std::sqrt(expected * (1 - expected) / spp);
+        for (int y = 0; y < 4; ++y) EXPECT_NEAR(r.alpha(0, x, y), expected, 3 * sigma + 1e-6) << "pixel " << x;
+    }
+    EXPECT_NEAR(r.alpha(0, 10, 1), 0.625, 0.1);
+    EXPECT_NEAR(r.alpha(0, 13, 1), 0.625, 0.1);
+}
+
+const char* kTwoDepths = R"(Format 32 32 1
+Projection "perspective" "fov" [90]
+PixelSamples 4 4
+WorldBegin
+Surface "constant"
+AttributeBegin
+  Color [0 1 0]
+  Patch "bilinear" "P" [-8 -8 10  8 -8 10  -8 8 10  8 8 10]
+AttributeEnd
+AttributeBegin
+  Color [1 0 0]
+  Patch "bilinear" "P" [-3 -3 5  3 -3 5  -3 3 5  3 3 5]
+AttributeEnd
+WorldEnd
+)";
+
+TEST(Render, NearerPatchWinsAndZIsItsDepth) {
+    RenderResult r = renderRib(kTwoDepths);
+    // Centre: the red patch at z = 5 in front of the green one at z = 10.
+    EXPECT_NEAR(r.channel(0, 16, 16, 0), 1.0f, 1e-5f);
+    EXPECT_NEAR(r.channel(0, 16, 16, 1), 0.0f, 1e-5f);
+    EXPECT_FLOAT_EQ(r.z(0, 16, 16), 5.0f);
+    // Red spans raster [6.4, 25.6]; green [3.2, 28.8]. Pixel 4 sees only green.
+    EXPECT_NEAR(r.channel(0, 4, 16, 1), 1.0f, 1e-5f);
+    EXPECT_NEAR(r.channel(0, 4, 16, 0), 0.0f, 1e-5f);
+    EXPECT_FLOAT_EQ(r.z(0, 4, 16), 10.0f);
+    // Corner: background.
+    EXPECT_EQ(r.alpha(0, 0, 0), 0.0f);
+    EXPECT_TRUE(std::isinf(r.z(0, 0, 0)));
+}
+
+TEST(Render, DrawOrderDoesNotDecideVisibility) {
+    std::string swapped = kTwoDepths;
+    size_t a = swapped.find("AttributeBegin"), b = swapped.find("AttributeBegin", a + 1), e = swapped.find("WorldEnd");
+    swapped = swapped.substr(0, a) + swapped.substr(b, e - b) + swapped.substr(a, b - a) + swapped.substr(e);
+    RenderResult r1 = renderRib(kTwoDepths), r2 = renderRib(swapped);
+    EXPECT_NEAR(r2.channel(0, 16, 16, 0), 1.0f, 1e-5f);
+    EXPECT_FLOAT_EQ(r2.z(0, 16, 16), 5.0f);
+    EXPECT_LT(test::maxAbsDifference(r1, r2), 1e-5f);
+}
+
+// A small animation with motion in x, y and depth, rotation and a light.
+const char* kMovingScene = R"(Format 48 32 1
+Projection "perspective" "fov" [60]
+PixelSamples 3 3
+Shutter 0 0.5
+Option "streyes" "int frames" [0 5]
+WorldBegin
+LightSource "distantlight" 1 "from" [0 1 -1] "to" [0 0 0]
+LightSource "ambientlight" 2 "intensity" [0.2]
+Surface "matte"
+AttributeBegin
+  Color [0.8 0.7 0.2]
+  Patch "bilinear" "P" [-6 -2 12  6 -2 12  -6 -2 4  6 -2 4]
+AttributeEnd
+AttributeBegin
+  Color [0.2 0.5 0.9]
+  MotionBegin [0 5]
+    Translate -2 0 8
+    Translate 2 1 10
+  MotionEnd
+  MotionBegin [0 5]
+    Rotate 0 0 0 1
+    Rotate 90 0 0 1
+  MotionEnd
+  Patch "bilinear" "P" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]
+AttributeEnd
+WorldEnd
+)";
+
+TEST(Render, ThreadCountDoesNotChangePixels) {
+    RenderOptions one, two;
+    one.threads = 1;
+    two.threads = 2;
+    one.bucketSize = two.bucketSize = 8;
+    RenderResult a = renderRib(kMovingScene, one), b = renderRib(kMovingScene, two);
+    ASSERT_EQ(a.frames.size(), 6u);
+    EXPECT_TRUE(test::identicalPixels(a, b));
+    EXPECT_EQ(a.stats.counters.sampleHits, b.stats.counters.sampleHits);
+    EXPECT_EQ(a.stats.counters.gridsDiced, b.stats.counters.gridsDiced);
+}
+
+TEST(Render, SeedDecidesThePixels) {
+    RenderOptions s1, s1again, s2;
+    s1.seed = s1again.seed = 1;
+    s2.seed = 2;
+    RenderResult a = renderRib(kMovingScene, s1), b = renderRib(kMovingScene, s1again), c = renderRib(kMovingScene, s2);
+    EXPECT_TRUE(test::identicalPixels(a, b));
+    EXPECT_FALSE(test::identicalPixels(a, c));  // the comparison can fail
+}
+
+TEST(Render, SpacetimeAndFramesAgreeWithinSamplingNoise) {
+    RenderOptions st, fr;
+    fr.algorithm = Algorithm::Frames;
+    RenderResult a = renderRib(kMovingScene, st), b = renderRib(kMovingScene, fr);
+    ASSERT_EQ(a.frames.size(), b.frames.size());
+    // The same samples see micropolygons diced differently: edges may move by a fraction of a
+    // micropolygon, nothing more.
+    EXPECT_LT(test::meanAbsDifference(a, b), 0.01f);
+    size_t differ = 0, total = 0;
+    for (size_t f = 0; f < a.frames.size(); ++f)
+        for (size_t i = 0; i < a.frames[f].rgba.size(); i += 4, ++total)
+            if (std::fabs(a.frames[f].rgba[i + 3] - b.frames[f].rgba[i + 3]) > 0.25f) ++differ;
+    EXPECT_LT(double(differ) / double(total), 0.01);
+    EXPECT_GT(a.stats.counters.sampleHits, 0u);
+}
+
+const char* kStillScene = R"(Format 40 30 1
+Projection "perspective" "fov" [50]
+PixelSamples 2 2
+Shutter 0 0.5
+WorldBegin
+Surface "defaultsurface"
+Patch "bilinear" "P" [-6 -2 12  6 -2 12  -6 -2 4  6 -2 4]
+Patch "bilinear" "P" [-1 -1 6  1 -1 6  -1 1 7  1 1 7]
+WorldEnd
+)";
+
+TEST(Render, StillSceneIsSplitOnceInSpacetimeAndPerFrameInFrames) {
+    auto run = [](Algorithm alg, int last) {
+        RenderOptions o;
+        o.algorithm = alg;
+        o.hasFrames = true;
+        o.firstFrame = 0;
+        o.lastFrame = last;
+        return renderRib(kStillScene, o).stats.counters;
+    };
+    RenderCounters st1 = run(Algorithm::Spacetime, 0), st16 = run(Algorithm::Spacetime, 15);
+    RenderCounters fr1 = run(Algorithm::Frames, 0), fr16 = run(Algorithm::Frames, 15);
+    ASSERT_GT(st1.gridsDiced, 0u);
+    ASSERT_GT(st1.splits(), 0u);
+    EXPECT_EQ(st16.gridsDiced, st1.gridsDiced);
+    EXPECT_EQ(st16.splits(), st1.splits());
+    EXPECT_EQ(fr16.gridsDiced, 16 * fr1.gridsDiced);
+    EXPECT_EQ(fr16.splits(), 16 * fr1.splits());
+    EXPECT_EQ(st1.gridsDiced, fr1.gridsDiced);
+    // Sampling is per frame in both: about 16 times the hits (each frame has its own jitter).
+    EXPECT_GT(st16.sampleHits, 15 * st1.sampleHits);
+    EXPECT_LT(st16.sampleHits, 17 * st1.sampleHits);
+}
+
+TEST(Render, PatchThroughTheEyePlaneRendersItsVisiblePart) {
+    // A floor at y = -1 from behind the camera (z = -10) to z = 50.
+    RenderResult r = renderRib(R"(Format 32 32 1
+Projection "perspective" "fov" [90]
+Clipping 0.1 1000
+PixelSamples 2 2
+WorldBegin
+Surface "constant"
+Patch "bilinear" "P" [-20 -1 -10  20 -1 -10  -20 -1 50  20 -1 50]
+WorldEnd
+)");
+    const FrameImage& img = r.frame(0);
+    for (float v : img.rgba) ASSERT_TRUE(std::isfinite(v));
+    EXPECT_GT(r.stats.counters.eyeSplits, 0u);
+    EXPECT_EQ(r.stats.counters.culledEyeLimit, 0u);
+    // The floor fills every row below screen y = -1/50 (raster row 16.32), nothing above the horizon.
+    for (int x = 0; x < 32; ++x) {
+        EXPECT_NEAR(r.alpha(0, x, 31), 1.0f, 1e-6f) << x;
+        EXPECT_NEAR(r.alpha(0, x, 20), 1.0f, 1e-6f) << x;
+        EXPECT_EQ(r.alpha(0, x, 10), 0.0f) << x;
+    }
+    // Bottom row: screen y from -0.9375 to -1, so the floor's depth there is 1/|y| in [1, 1.067];
+    // Z is the nearest of the pixel's samples.
+    EXPECT_GE(r.z(0, 16, 31), 1.0f - 1e-4f);
+    EXPECT_LE(r.z(0, 16, 31), 1.0667f);
+}
+
+}  // namespace
+}  // namespace streyes

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Shared set-up for tools/demo.sh and tools/test.sh: installs the Debian packages streyes needs
+# (when missing), then configures and builds the Release preset into build/.
+# Sourced, not run: it leaves ROOT set to the project folder.
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+
+PACKAGES=(cmake ninja-build g++ pkg-config
+          libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev libosd-dev libtbb-dev
+          libgtest-dev libbenchmark-dev python3 python3-openimageio python3-numpy)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  if [ "$(id -u)" -ne 0 ]; then
+    echo "streyes needs these Debian packages: ${missing[*]}" >&2
+    echo "Install them as root, then run this script again:" >&2
+    echo "  apt-get update && apt-get install -y ${missing[*]}" >&2
+    exit 1
+  fi
+  echo "== Installing ${#missing[@]} Debian packages: ${missing[*]}"
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cd "$ROOT"
+if [ ! -f build/CMakeCache.txt ]; then
+  echo "== Configuring (release preset, build/)"
+  cmake --preset release >/dev/null
+fi
+echo "== Building"
+cmake --build --preset release -j "$(nproc)"
