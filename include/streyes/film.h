@@ -21,19 +21,22 @@ class PixelFilter {
     float radiusX() const { return rx_; }
     float radiusY() const { return ry_; }
     // Weight at offset (dx, dy) from the pixel centre; 0 outside the support.
-    float weight(float dx, float dy) const { return lookup(tx_, dx, rx_) * lookup(ty_, dy, ry_); }
+    float weight(float dx, float dy) const { return weightX(dx) * weightY(dy); }
+    float weightX(float dx) const { return lookup(tx_, dx, sx_); }
+    float weightY(float dy) const { return lookup(ty_, dy, sy_); }
     // Pixels of guard band a bucket needs on each side so its own pixels see every sample.
     int guardX() const;
     int guardY() const;
 
   private:
     static constexpr int kTableSize = 256;
-    static float lookup(const std::vector<float>& t, float d, float r) {
-        float a = std::fabs(d);
-        if (!(a < r)) return 0.0f;
-        return t[size_t(a / r * kTableSize)];
+    // Table entry for |d| * (kTableSize / r); the last entry is 0, so anything at or past the
+    // radius reads 0 without a branch.
+    static float lookup(const std::vector<float>& t, float d, float scale) {
+        float i = std::fabs(d) * scale;
+        return t[size_t(std::min(i, float(kTableSize)))];
     }
-    float rx_, ry_;
+    float rx_, ry_, sx_, sy_;  // radii, and kTableSize / radius
     std::vector<float> tx_, ty_;
 };
 
@@ -51,9 +54,10 @@ struct FrameImage {
     }
 };
 
-// Resolves the samples of block frame `fi` into the pixels of `tile` (inside the block's rect,
-// which must include the filter's guard band around it).
-void resolveTile(const ImageBlock& block, int fi, const PixelRect& tile, const PixelFilter& filter,
-                 FrameImage& out, std::vector<float>& scratch);
+// Resolves the samples of every frame of the block into the pixels of `tile` (inside the
+// block's rect, which must include the filter's guard band around it): frames[fi] receives frame
+// block.firstFrame() + fi. One pass in the block's pixel-major order.
+void resolveTile(const ImageBlock& block, const PixelRect& tile, const PixelFilter& filter, FrameImage* frames,
+                 std::vector<float>& scratch);
 
 }  // namespace streyes

@@ -2,10 +2,14 @@
 // block of frames, S samples per pixel per frame.
 //
 // Each pixel's S samples in a frame are stratified in (x, y) on an sx x sy grid and in time on
-// S strata, with the time strata shuffled against the (x, y) strata (so motion blur does not
-// correlate with position). The samples are stored by time stratum ("slice"): slice k of frame
-// f holds exactly one sample per pixel, so the rasterizer can bound a micropolygon over one
-// slice's time interval and visit only the pixels that bound covers.
+// S strata ("slices"), with the time strata shuffled against the (x, y) strata so that motion
+// blur does not correlate with position.
+//
+// Layout: pixel-major, then frame, then (x, y) stratum j = iy * sx + ix. All samples of one
+// pixel over the block are contiguous, and a still micropolygon visits only the strata its bound
+// overlaps. A moving micropolygon is bounded over one time slice at a time and needs the one
+// sample per pixel in that slice: sliceStratum() maps slice k to its stratum. Positions (read by
+// every test) are kept apart from hit results (written only on a hit).
 #pragma once
 
 #include <cstdint>
@@ -15,9 +19,12 @@
 
 namespace streyes {
 
-struct Sample {
+struct SamplePosition {
     float x, y;   // raster position
     float tf;     // time within the frame's exposure in [0, 1): t = f + open + tf * (close - open)
+};
+
+struct SampleHit {
     float z;      // camera-space depth of the nearest hit so far; +inf when none
     Color c;      // colour of that hit
     float a;      // its coverage (1 for an opaque hit)
@@ -29,34 +36,50 @@ struct SamplePattern {
     int count() const { return sx * sy; }
 };
 
-// The S samples of pixel (px, py) in frame `frame`, written to out[slice] (out has S entries).
-// A pure function of its arguments: the same in every bucket and on every thread.
-void generatePixelSamples(int px, int py, int frame, const SamplePattern& pattern, Sample* out);
+// The S sample positions of pixel (px, py) in frame `frame`, written to out[stratum], and the
+// stratum of each time slice to sliceStratum[slice]. A pure function of its arguments: the same
+// in every bucket and on every thread.
+void generatePixelSamples(int px, int py, int frame, const SamplePattern& pattern, SamplePosition* out,
+                          uint16_t* sliceStratum);
 
 class ImageBlock {
   public:
-    // Sizes the block and fills in the sample positions (reusing memory across buckets).
+    // Sizes the block, fills in the sample positions and clears the hits (reusing memory).
     void reset(const PixelRect& rect, int firstFrame, int frameCount, const SamplePattern& pattern);
 
     const PixelRect& rect() const { return rect_; }
     int firstFrame() const { return firstFrame_; }
     int frameCount() const { return frameCount_; }
+    const SamplePattern& pattern() const { return pattern_; }
     int slices() const { return slices_; }
+    int samplesPerPixel() const { return frameCount_ * slices_; }  // over the whole block
 
-    // Samples of row y (absolute raster row) in slice k of frame index fi; index by x - rect().x0.
-    Sample* row(int fi, int k, int y) {
-        return &samples_[((size_t(fi) * size_t(slices_) + size_t(k)) * size_t(rect_.height()) +
-                          size_t(y - rect_.y0)) * size_t(rect_.width())];
+    // Offset of pixel (x, y)'s first sample; its sample in stratum j of frame fi is at
+    // + fi * slices() + j.
+    size_t pixelOffset(int x, int y) const {
+        return (size_t(y - rect_.y0) * size_t(rect_.width()) + size_t(x - rect_.x0)) * size_t(samplesPerPixel());
     }
-    const Sample* row(int fi, int k, int y) const { return const_cast<ImageBlock*>(this)->row(fi, k, y); }
-    size_t sampleCount() const { return samples_.size(); }
-    size_t bytes() const { return samples_.capacity() * sizeof(Sample); }
+    // The sample of pixel (x, y) in time slice k of frame fi.
+    size_t sliceIndex(int fi, int k, int x, int y) const {
+        size_t frameBase = pixelOffset(x, y) + size_t(fi) * size_t(slices_);
+        return frameBase + sliceStratum_[frameBase + size_t(k)];
+    }
+
+    SamplePosition* positions() { return positions_.data(); }
+    const SamplePosition* positions() const { return positions_.data(); }
+    SampleHit* hits() { return hits_.data(); }
+    const SampleHit* hits() const { return hits_.data(); }
+
+    size_t sampleCount() const { return positions_.size(); }
+    size_t bytes() const { return positions_.capacity() * sizeof(SamplePosition) + hits_.capacity() * sizeof(SampleHit); }
 
   private:
     PixelRect rect_;
     int firstFrame_ = 0, frameCount_ = 0, slices_ = 0;
-    std::vector<Sample> samples_;
-    std::vector<Sample> scratch_;
+    SamplePattern pattern_;
+    std::vector<SamplePosition> positions_;
+    std::vector<SampleHit> hits_;
+    std::vector<uint16_t> sliceStratum_;
 };
 
 }  // namespace streyes

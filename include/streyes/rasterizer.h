@@ -13,6 +13,7 @@
 // share vertices.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -42,13 +43,29 @@ class GridRasterizer {
     struct RasterVertex {
         float x, y, z;
     };
-    template <bool Moving>
-    void sampleSlice(const Grid& grid, const RasterVertex* ra, const RasterVertex* rb, float tfA, float tfB,
-                     float sA, float sB, bool checkTime, int fi, int k, const Camera& camera, ImageBlock& block,
-                     RasterCounters& counters);
+    // One time slice of one frame that the grid's time span meets.
+    struct Slice {
+        int fi, k;          // frame index in the block, slice index
+        double ta, tb;      // the slice clipped to the grid's span (frames)
+        float tfA, tfB;     // the same as fractions of the frame's exposure
+        bool checkTime;     // the grid covers only part of the slice
+    };
+    // The part of one frame's exposure a still grid exists in.
+    struct FrameSpan {
+        int fi;
+        bool whole;
+        float tfA, tfB;
+    };
+    void collectSlices(const Grid& grid, const Shutter& shutter, const ImageBlock& block);
+    void collectFrames(const Grid& grid, const Shutter& shutter, const ImageBlock& block);
+    void sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
+    void sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
     void project(const Grid& grid, double t, const Camera& camera, std::vector<RasterVertex>& out) const;
 
+    // Scratch, reused from grid to grid.
     std::vector<RasterVertex> ra_, rb_;
+    std::vector<Slice> slices_;
+    std::vector<FrameSpan> frames_;
 };
 
 }  // namespace streyes

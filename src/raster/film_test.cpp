@@ -24,7 +24,7 @@ TEST(Resolve, UniformSamplesGiveTheirValueAndZIsTheNearest) {
     for (int k = 0; k < 9; ++k)
         for (int y = 0; y < 10; ++y)
             for (int x = 0; x < 10; ++x) {
-                Sample& s = block.row(0, k, y)[x];
+                SampleHit& s = block.hits()[block.sliceIndex(0, k, x, y)];
                 s.c = {0.25f, 0.5f, 0.75f};
                 s.a = 1;
                 s.z = 3.0f + float(k);
@@ -34,7 +34,7 @@ TEST(Resolve, UniformSamplesGiveTheirValueAndZIsTheNearest) {
         FrameImage img;
         img.resize(10, 10);
         std::vector<float> scratch;
-        resolveTile(block, 0, {2, 2, 7, 7}, filter, img, scratch);
+        resolveTile(block, {2, 2, 7, 7}, filter, &img, scratch);
         float* p = &img.rgba[(5 * 10 + 5) * 4];
         EXPECT_NEAR(p[0], 0.25f, 1e-5f) << type;
         EXPECT_NEAR(p[1], 0.5f, 1e-5f) << type;

@@ -7,194 +7,314 @@
 
 namespace streyes {
 
+// ---- The micropolygon hit test ----------------------------------------------------------------
+// A quad q0 q1 q2 q3 (grid order (0,0) (1,0) (1,1) (0,1)) is two triangles, (q0 q1 q2) and
+// (q0 q2 q3), sharing the diagonal q0-q2. Its five edges are set up once in canonical form
+// (lexicographically smaller endpoint first), so an edge shared with a neighbouring micropolygon,
+// or the diagonal shared by the two triangles, gives exactly opposite values on its two sides.
+
 namespace {
 
-struct V2 {
-    float x, y, z;
+struct Edge {
+    float px, py, dx, dy;  // canonical start point and direction
+    float sign;            // +1 when the quad runs along the edge in canonical direction, else -1
+    bool canonical;
+    float eval(float sx, float sy) const { return sign * (dx * (sy - py) - dy * (sx - px)); }
 };
 
-// Edge function of the directed edge p->q at (sx, sy), computed in the canonical direction of
-// the edge (lexicographically smaller endpoint first) and negated when p->q runs the other way:
-// the two triangles that share an edge see exactly opposite values.
-inline float edgeFn(const V2& p, const V2& q, float sx, float sy, bool& canonical) {
-    canonical = p.x < q.x || (p.x == q.x && p.y < q.y);
-    if (canonical) return (q.x - p.x) * (sy - p.y) - (q.y - p.y) * (sx - p.x);
-    return -((p.x - q.x) * (sy - q.y) - (p.y - q.y) * (sx - q.x));
+inline Edge makeEdge(float ax, float ay, float bx, float by) {
+    bool canonical = ax < bx || (ax == bx && ay < by);
+    if (canonical) return {ax, ay, bx - ax, by - ay, 1.0f, true};
+    return {bx, by, ax - bx, ay - by, -1.0f, false};
 }
 
 // A sample exactly on an edge belongs to the side where the canonical edge function is
-// positive: the side the sample would fall on if nudged by (-e^2, e).
+// positive: the side it would fall on if nudged by (-e^2, e).
 inline bool edgeInside(float e, bool canonical, float orientation) {
     float g = e * orientation;
     if (g != 0) return g > 0;
     return canonical ? orientation > 0 : orientation < 0;
 }
 
-// Inside test with barycentric weights (of a, b, c). Works for either orientation; a
-// zero-area triangle contains nothing.
-inline bool insideTriangle(const V2& a, const V2& b, const V2& c, float sx, float sy, float& la, float& lb,
-                           float& lc) {
-    bool cab, cbc, cca;
-    float eab = edgeFn(a, b, sx, sy, cab);
-    float ebc = edgeFn(b, c, sx, sy, cbc);
-    float eca = edgeFn(c, a, sx, sy, cca);
-    bool anyPos = eab > 0 || ebc > 0 || eca > 0;
-    bool anyNeg = eab < 0 || ebc < 0 || eca < 0;
+// Inside test for a triangle given its three directed edge values; works for either
+// orientation; a zero-area triangle contains nothing.
+inline bool insideTriangle(float e0, bool c0, float e1, bool c1, float e2, bool c2) {
+    bool anyPos = e0 > 0 || e1 > 0 || e2 > 0;
+    bool anyNeg = e0 < 0 || e1 < 0 || e2 < 0;
     if (anyPos == anyNeg) return false;  // mixed signs: outside; all zero: degenerate
-    float orientation = anyPos ? 1.0f : -1.0f;
-    if (!edgeInside(eab, cab, orientation) || !edgeInside(ebc, cbc, orientation) ||
-        !edgeInside(eca, cca, orientation))
-        return false;
-    float inv = 1.0f / (eab + ebc + eca);
-    la = ebc * inv;
-    lb = eca * inv;
-    lc = eab * inv;
+    float o = anyPos ? 1.0f : -1.0f;
+    return edgeInside(e0, c0, o) && edgeInside(e1, c1, o) && edgeInside(e2, c2, o);
+}
+
+struct QuadSetup {
+    float x[4], y[4], z[4];
+    Edge e[5];  // q0q1, q1q2, q2q3, q3q0, q2q0 (the diagonal as triangle 1 runs it)
+    float xmin, xmax, ymin, ymax;
+    int px0, px1, py0, py1;  // pixels the bound touches, clipped to the block
+};
+
+
+inline void setupEdges(QuadSetup& q) {
+    q.e[0] = makeEdge(q.x[0], q.y[0], q.x[1], q.y[1]);
+    q.e[1] = makeEdge(q.x[1], q.y[1], q.x[2], q.y[2]);
+    q.e[2] = makeEdge(q.x[2], q.y[2], q.x[3], q.y[3]);
+    q.e[3] = makeEdge(q.x[3], q.y[3], q.x[0], q.y[0]);
+    q.e[4] = makeEdge(q.x[2], q.y[2], q.x[0], q.y[0]);
+}
+
+struct Hit {
+    int v0, v1, v2;  // corners of the triangle hit (0..3)
+    float l1, l2;    // barycentric weights of v1 and v2
+};
+
+inline bool hitQuad(const QuadSetup& q, float sx, float sy, Hit& h) {
+    const float e01 = q.e[0].eval(sx, sy), e12 = q.e[1].eval(sx, sy), e20 = q.e[4].eval(sx, sy);
+    const bool diagDegenerate = q.e[4].dx == 0 && q.e[4].dy == 0;
+    if (insideTriangle(e01, q.e[0].canonical, e12, q.e[1].canonical, e20, q.e[4].canonical)) {
+        float inv = 1.0f / (e01 + e12 + e20);
+        h = {0, 1, 2, e20 * inv, e01 * inv};  // weight of q1 is its opposite edge q2q0, of q2 is q0q1
+        return true;
+    }
+    // Triangle 2 runs the diagonal the other way: exactly -e20, the opposite canonical flag.
+    const float e02 = -e20, e23 = q.e[2].eval(sx, sy), e30 = q.e[3].eval(sx, sy);
+    const bool c02 = diagDegenerate ? false : !q.e[4].canonical;
+    if (insideTriangle(e02, c02, e23, q.e[2].canonical, e30, q.e[3].canonical)) {
+        float inv = 1.0f / (e02 + e23 + e30);
+        h = {0, 2, 3, e30 * inv, e02 * inv};  // q2 is opposite q3q0, q3 opposite q0q2
+        return true;
+    }
+    return false;
+}
+
+// Bound and pixel range of a quad; false when it misses the block or the clipping range.
+inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const float* z2, const PixelRect& R,
+                      float nearZ, float farZ) {
+    float zmin = q.z[0], zmax = q.z[0];
+    q.xmin = q.xmax = q.x[0];
+    q.ymin = q.ymax = q.y[0];
+    for (int c = 0; c < 4; ++c) {
+        q.xmin = std::min(q.xmin, q.x[c]), q.xmax = std::max(q.xmax, q.x[c]);
+        q.ymin = std::min(q.ymin, q.y[c]), q.ymax = std::max(q.ymax, q.y[c]);
+        zmin = std::min(zmin, q.z[c]), zmax = std::max(zmax, q.z[c]);
+        if (x2) {  // the corners at the other end of a time slice
+            q.xmin = std::min(q.xmin, x2[c]), q.xmax = std::max(q.xmax, x2[c]);
+            q.ymin = std::min(q.ymin, y2[c]), q.ymax = std::max(q.ymax, y2[c]);
+            zmin = std::min(zmin, z2[c]), zmax = std::max(zmax, z2[c]);
+        }
+    }
+    if (zmax < nearZ || zmin > farZ) return false;
+    if (!(q.xmax >= float(R.x0) && q.xmin < float(R.x1 + 1) && q.ymax >= float(R.y0) && q.ymin < float(R.y1 + 1)))
+        return false;  // also rejects NaN
+    q.px0 = std::max(R.x0, int(std::floor(q.xmin)));
+    q.px1 = std::min(R.x1, int(std::floor(q.xmax)));
+    q.py0 = std::max(R.y0, int(std::floor(q.ymin)));
+    q.py1 = std::min(R.y1, int(std::floor(q.ymax)));
     return true;
 }
 
 }  // namespace
 
+// ---- Projection ----------------------------------------------------------------------------------
+
 void GridRasterizer::project(const Grid& grid, double t, const Camera& camera,
                              std::vector<RasterVertex>& out) const {
     const size_t n = size_t(grid.vertexCount());
     out.resize(n);
-    if (!grid.moving) {
-        for (size_t i = 0; i < n; ++i) {
-            Vec3f r = camera.toRaster(grid.P[0][i]);
-            out[i] = {r.x, r.y, r.z};
-        }
-        return;
+    float s = 0;
+    if (grid.moving) {
+        s = float((t - grid.t0) / (grid.t1 - grid.t0));
+        if (t <= grid.t0) s = 0;
+        if (t >= grid.t1) s = 1;
     }
-    float s = float((t - grid.t0) / (grid.t1 - grid.t0));
-    if (t <= grid.t0) s = 0;
-    if (t >= grid.t1) s = 1;
     for (size_t i = 0; i < n; ++i) {
-        Vec3f r = camera.toRaster(lerp(grid.P[0][i], grid.P[1][i], s));
+        Vec3f p = grid.moving ? lerp(grid.P[0][i], grid.P[1][i], s) : grid.P[0][i];
+        Vec3f r = camera.toRaster(p);
         out[i] = {r.x, r.y, r.z};
     }
 }
 
-void GridRasterizer::rasterize(const Grid& grid, const Camera& camera, const Shutter& shutter, ImageBlock& block,
-                               RasterCounters& counters) {
-    counters.micropolygons += uint64_t(grid.nu) * uint64_t(grid.nv);
+// ---- Time slices ---------------------------------------------------------------------------------
+
+void GridRasterizer::collectSlices(const Grid& grid, const Shutter& shutter, const ImageBlock& block) {
+    slices_.clear();
     const double d = shutter.close - shutter.open;
     const int K = block.slices();
-    if (!grid.moving) project(grid, grid.t0, camera, ra_);
-
     for (int fi = 0; fi < block.frameCount(); ++fi) {
         const double e0 = block.firstFrame() + fi + shutter.open, e1 = e0 + d;
         if (grid.t1 < e0 || grid.t0 > e1) continue;
-        double projected = std::numeric_limits<double>::quiet_NaN();  // time rb_ holds
         for (int k = 0; k < K; ++k) {
             // Slice k of this frame's exposure, clipped to the grid's time span.
             const double sa = d > 0 ? e0 + d * k / K : e0;
             const double sb = d > 0 ? e0 + d * (k + 1) / K : e0;
             const double ta = std::max(sa, grid.t0), tb = std::min(sb, grid.t1);
             if (ta > tb) continue;
-            const bool partial = d > 0 && (ta > sa || tb < sb);
-            float tfA = float(k) / float(K), tfB = float(k + 1) / float(K);
-            if (partial) {
-                tfA = float((ta - e0) / d);
-                tfB = float((tb - e0) / d);
-            }
-            if (!grid.moving) {
-                sampleSlice<false>(grid, ra_.data(), ra_.data(), tfA, tfB, 0, 0, partial, fi, k, camera, block,
-                                   counters);
-                continue;
-            }
-            if (projected == ta) std::swap(ra_, rb_);  // the last slice ended where this one starts
-            else project(grid, ta, camera, ra_);
-            project(grid, tb, camera, rb_);
-            projected = tb;
-            const double span = grid.t1 - grid.t0;
-            sampleSlice<true>(grid, ra_.data(), rb_.data(), tfA, tfB, float((ta - grid.t0) / span),
-                              float((tb - grid.t0) / span), partial, fi, k, camera, block, counters);
+            Slice s;
+            s.fi = fi;
+            s.k = k;
+            s.ta = ta;
+            s.tb = tb;
+            s.checkTime = d > 0 && (ta > sa || tb < sb);
+            s.tfA = s.checkTime ? float((ta - e0) / d) : float(k) / float(K);
+            s.tfB = s.checkTime ? float((tb - e0) / d) : float(k + 1) / float(K);
+            slices_.push_back(s);
         }
     }
 }
 
-template <bool Moving>
-void GridRasterizer::sampleSlice(const Grid& grid, const RasterVertex* ra, const RasterVertex* rb, float tfA,
-                                 float tfB, float sA, float sB, bool checkTime, int fi, int k,
-                                 const Camera& camera, ImageBlock& block, RasterCounters& counters) {
+// ---- Sampling --------------------------------------------------------------------------------------
+
+void GridRasterizer::rasterize(const Grid& grid, const Camera& camera, const Shutter& shutter, ImageBlock& block,
+                               RasterCounters& counters) {
+    counters.micropolygons += uint64_t(grid.nu) * uint64_t(grid.nv);
+    if (grid.moving) {
+        collectSlices(grid, shutter, block);
+        if (!slices_.empty()) sampleMoving(grid, camera, block, counters);
+    } else {
+        collectFrames(grid, shutter, block);
+        if (!frames_.empty()) sampleStill(grid, camera, block, counters);
+    }
+}
+
+// The frames a still grid exists in, and the part of each exposure it covers.
+void GridRasterizer::collectFrames(const Grid& grid, const Shutter& shutter, const ImageBlock& block) {
+    frames_.clear();
+    const double d = shutter.close - shutter.open;
+    for (int fi = 0; fi < block.frameCount(); ++fi) {
+        const double e0 = block.firstFrame() + fi + shutter.open, e1 = e0 + d;
+        if (grid.t1 < e0 || grid.t0 > e1) continue;
+        FrameSpan f;
+        f.fi = fi;
+        f.whole = d == 0 || (grid.t0 <= e0 && grid.t1 >= e1);
+        f.tfA = f.whole ? 0.0f : float((std::max(grid.t0, e0) - e0) / d);
+        f.tfB = f.whole ? 1.0f : float((std::min(grid.t1, e1) - e0) / d);
+        frames_.push_back(f);
+    }
+}
+
+// Writes a hit into the sample when it is the nearest so far.
+template <typename ColorAt>
+static inline void resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, ColorAt colorAt) {
+    const float zh = z[h.v0] + h.l1 * (z[h.v1] - z[h.v0]) + h.l2 * (z[h.v2] - z[h.v0]);
+    if (!(zh >= nearZ && zh <= farZ && zh < s.z)) return;
+    // Relative to the first corner: exact where depth or colour is constant.
+    const Color c0 = colorAt(h.v0), c1 = colorAt(h.v1), c2 = colorAt(h.v2);
+    s.z = zh;
+    s.c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
+    s.a = 1.0f;
+}
+
+// A still grid: each quad is projected and set up once, then tested against the samples of
+// every frame it exists in, visiting in each pixel only the (x, y) strata its bound overlaps.
+void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters) {
+    const PixelRect& R = block.rect();
+    const int nu = grid.nu, nv = grid.nv, stride = nu + 1, S = block.slices();
+    const int sx = block.pattern().sx, sy = block.pattern().sy;
+    const float nearZ = camera.nearClip(), farZ = camera.farClip();
+    project(grid, grid.t0, camera, ra_);
+    const SamplePosition* pos = block.positions();
+    SampleHit* hit = block.hits();
+    const Color* ci = grid.Ci[0].data();
+    uint64_t tests = 0, hits = 0;
+    for (int j = 0; j < nv; ++j) {
+        for (int i = 0; i < nu; ++i) {
+            const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
+            QuadSetup q;
+            for (int c = 0; c < 4; ++c) {
+                const RasterVertex& v = ra_[size_t(idx[c])];
+                q.x[c] = v.x, q.y[c] = v.y, q.z[c] = v.z;
+            }
+            if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ)) continue;
+            setupEdges(q);
+            for (int py = q.py0; py <= q.py1; ++py) {
+                const int iy0 = std::max(0, int(std::floor((q.ymin - float(py)) * float(sy))));
+                const int iy1 = std::min(sy - 1, int(std::floor((q.ymax - float(py)) * float(sy))));
+                for (int px = q.px0; px <= q.px1; ++px) {
+                    const int ix0 = std::max(0, int(std::floor((q.xmin - float(px)) * float(sx))));
+                    const int ix1 = std::min(sx - 1, int(std::floor((q.xmax - float(px)) * float(sx))));
+                    const size_t base = block.pixelOffset(px, py);
+                    for (const FrameSpan& fr : frames_) {
+                        const size_t fb = base + size_t(fr.fi) * size_t(S);
+                        for (int iy = iy0; iy <= iy1; ++iy) {
+                            for (int ix = ix0; ix <= ix1; ++ix) {
+                                const size_t si = fb + size_t(iy * sx + ix);
+                                const SamplePosition& s = pos[si];
+                                if (s.x < q.xmin || s.x > q.xmax || s.y < q.ymin || s.y > q.ymax) continue;
+                                if (!fr.whole && (s.tf < fr.tfA || s.tf > fr.tfB)) continue;
+                                ++tests;
+                                Hit h;
+                                if (!hitQuad(q, s.x, s.y, h)) continue;
+                                ++hits;
+                                resolveHit(hit[si], q.z, h, nearZ, farZ, [&](int c) { return ci[idx[c]]; });
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    counters.sampleTests += tests;
+    counters.sampleHits += hits;
+}
+
+// A moving grid: projected at both ends of each slice (exact perspective there); a sample's
+// quad is interpolated linearly in raster space to its time within the slice.
+void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block,
+                                  RasterCounters& counters) {
     const PixelRect& R = block.rect();
     const int nu = grid.nu, nv = grid.nv, stride = nu + 1;
     const float nearZ = camera.nearClip(), farZ = camera.farClip();
-    const float invSpan = tfB > tfA ? 1.0f / (tfB - tfA) : 0.0f;
-    const Color* ci0 = grid.Ci[0].data();
-    const Color* ci1 = Moving ? grid.Ci[1].data() : ci0;
-
-    for (int j = 0; j < nv; ++j) {
-        for (int i = 0; i < nu; ++i) {
-            // Corners around the quad: (0,0) (1,0) (1,1) (0,1).
-            const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
-            float xmin = ra[idx[0]].x, xmax = xmin, ymin = ra[idx[0]].y, ymax = ymin, zmin = ra[idx[0]].z,
-                  zmax = zmin;
-            for (int c = 0; c < 4; ++c) {
-                for (int e = 0; e < (Moving ? 2 : 1); ++e) {
-                    const RasterVertex& v = (e == 0 ? ra : rb)[idx[c]];
-                    xmin = std::min(xmin, v.x), xmax = std::max(xmax, v.x);
-                    ymin = std::min(ymin, v.y), ymax = std::max(ymax, v.y);
-                    zmin = std::min(zmin, v.z), zmax = std::max(zmax, v.z);
+    const double span = grid.t1 - grid.t0;
+    const Color *ci0 = grid.Ci[0].data(), *ci1 = grid.Ci[1].data();
+    double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
+    uint64_t tests = 0, hits = 0;
+    for (const Slice& sl : slices_) {
+        if (projected == sl.ta) std::swap(ra_, rb_);  // the last slice ended where this one starts
+        else project(grid, sl.ta, camera, ra_);
+        project(grid, sl.tb, camera, rb_);
+        projected = sl.tb;
+        const float sA = float((sl.ta - grid.t0) / span), sB = float((sl.tb - grid.t0) / span);
+        const float invSpan = sl.tfB > sl.tfA ? 1.0f / (sl.tfB - sl.tfA) : 0.0f;
+        for (int j = 0; j < nv; ++j) {
+            for (int i = 0; i < nu; ++i) {
+                const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
+                QuadSetup q;
+                float xb[4], yb[4], zb[4];
+                for (int c = 0; c < 4; ++c) {
+                    const RasterVertex &a = ra_[size_t(idx[c])], &b = rb_[size_t(idx[c])];
+                    q.x[c] = a.x, q.y[c] = a.y, q.z[c] = a.z;
+                    xb[c] = b.x, yb[c] = b.y, zb[c] = b.z;
                 }
-            }
-            if (zmax < nearZ || zmin > farZ) continue;
-            if (!(xmax >= float(R.x0) && xmin < float(R.x1 + 1) && ymax >= float(R.y0) && ymin < float(R.y1 + 1)))
-                continue;  // also rejects NaN bounds
-            const int px0 = std::max(R.x0, int(std::floor(xmin))), px1 = std::min(R.x1, int(std::floor(xmax)));
-            const int py0 = std::max(R.y0, int(std::floor(ymin))), py1 = std::min(R.y1, int(std::floor(ymax)));
-
-            for (int py = py0; py <= py1; ++py) {
-                Sample* row = block.row(fi, k, py) - R.x0;
-                for (int px = px0; px <= px1; ++px) {
-                    Sample& s = row[px];
-                    if (s.x < xmin || s.x > xmax || s.y < ymin || s.y > ymax) continue;
-                    if (checkTime && (s.tf < tfA || s.tf > tfB)) continue;
-                    ++counters.sampleTests;
-                    V2 q[4];
-                    float w = 0;
-                    if (Moving) {
-                        w = std::min(1.0f, std::max(0.0f, (s.tf - tfA) * invSpan));
+                if (!boundQuad(q, xb, yb, zb, R, nearZ, farZ)) continue;
+                const float xa[4] = {q.x[0], q.x[1], q.x[2], q.x[3]}, ya[4] = {q.y[0], q.y[1], q.y[2], q.y[3]},
+                            za[4] = {q.z[0], q.z[1], q.z[2], q.z[3]};
+                for (int py = q.py0; py <= q.py1; ++py) {
+                    for (int px = q.px0; px <= q.px1; ++px) {
+                        const size_t si = block.sliceIndex(sl.fi, sl.k, px, py);
+                        const SamplePosition& s = block.positions()[si];
+                        if (s.x < q.xmin || s.x > q.xmax || s.y < q.ymin || s.y > q.ymax) continue;
+                        if (sl.checkTime && (s.tf < sl.tfA || s.tf > sl.tfB)) continue;
+                        ++tests;
+                        const float w = std::min(1.0f, std::max(0.0f, (s.tf - sl.tfA) * invSpan));
+                        QuadSetup qt;
                         for (int c = 0; c < 4; ++c) {
-                            const RasterVertex &a = ra[idx[c]], &b = rb[idx[c]];
-                            q[c] = {lerp(a.x, b.x, w), lerp(a.y, b.y, w), lerp(a.z, b.z, w)};
+                            qt.x[c] = lerp(xa[c], xb[c], w);
+                            qt.y[c] = lerp(ya[c], yb[c], w);
+                            qt.z[c] = lerp(za[c], zb[c], w);
                         }
-                    } else {
-                        for (int c = 0; c < 4; ++c) q[c] = {ra[idx[c]].x, ra[idx[c]].y, ra[idx[c]].z};
+                        setupEdges(qt);
+                        Hit h;
+                        if (!hitQuad(qt, s.x, s.y, h)) continue;
+                        ++hits;
+                        const float sg = lerp(sA, sB, w);  // the grid's own time parameter
+                        resolveHit(block.hits()[si], qt.z, h, nearZ, farZ,
+                                   [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); });
                     }
-                    float l0, l1, l2;
-                    int v0 = 0, v1 = 1, v2 = 2;
-                    if (!insideTriangle(q[0], q[1], q[2], s.x, s.y, l0, l1, l2)) {
-                        if (!insideTriangle(q[0], q[2], q[3], s.x, s.y, l0, l1, l2)) continue;
-                        v1 = 2;
-                        v2 = 3;
-                    }
-                    ++counters.sampleHits;
-                    // Relative to the first vertex: exact where depth or colour is constant.
-                    (void)l0;
-                    const float z = q[v0].z + l1 * (q[v1].z - q[v0].z) + l2 * (q[v2].z - q[v0].z);
-                    if (!(z >= nearZ && z <= farZ && z < s.z)) continue;
-                    Color c0 = ci0[idx[v0]], c1 = ci0[idx[v1]], c2 = ci0[idx[v2]];
-                    if (Moving) {
-                        const float sg = lerp(sA, sB, w);
-                        c0 = lerp(c0, ci1[idx[v0]], sg);
-                        c1 = lerp(c1, ci1[idx[v1]], sg);
-                        c2 = lerp(c2, ci1[idx[v2]], sg);
-                    }
-                    s.z = z;
-                    s.c = c0 + (c1 - c0) * l1 + (c2 - c0) * l2;
-                    s.a = 1.0f;
                 }
             }
         }
     }
+    counters.sampleTests += tests;
+    counters.sampleHits += hits;
 }
-
-template void GridRasterizer::sampleSlice<true>(const Grid&, const RasterVertex*, const RasterVertex*, float, float,
-                                                float, float, bool, int, int, const Camera&, ImageBlock&,
-                                                RasterCounters&);
-template void GridRasterizer::sampleSlice<false>(const Grid&, const RasterVertex*, const RasterVertex*, float,
-                                                 float, float, float, bool, int, int, const Camera&, ImageBlock&,
-                                                 RasterCounters&);
 
 }  // namespace streyes

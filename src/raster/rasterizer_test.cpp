@@ -46,7 +46,8 @@ struct Fixture {
         block.reset({0, 0, size - 1, size - 1}, 0, 1, one);
         counters = {};
     }
-    Sample& sample(int x, int y) { return block.row(0, 0, y)[x]; }
+    SamplePosition& sample(int x, int y) { return block.positions()[block.sliceIndex(0, 0, x, y)]; }
+    SampleHit& hit(int x, int y) { return block.hits()[block.sliceIndex(0, 0, x, y)]; }
 };
 
 TEST(GridRasterizer, SamplesOnSharedEdgesAndVerticesAreHitExactlyOnce) {
@@ -82,7 +83,7 @@ TEST(GridRasterizer, SamplesOnSharedEdgesAndVerticesAreHitExactlyOnce) {
         EXPECT_EQ(f.counters.sampleHits, uint64_t(inside)) << "shift " << shift;
         EXPECT_EQ(inside, 16);
         for (int y = 2; y <= 4; ++y)
-            for (int x = 2; x <= 4; ++x) EXPECT_EQ(f.sample(x, y).a, 1.0f) << x << "," << y;
+            for (int x = 2; x <= 4; ++x) EXPECT_EQ(f.hit(x, y).a, 1.0f) << x << "," << y;
     }
 }
 
@@ -102,7 +103,7 @@ TEST(GridRasterizer, MovingGridIsSampledWhereItIsAtTheSampleTime) {
     for (int y = 0; y < f.size; ++y)
         for (int x = 0; x < f.size; ++x) {
             bool expected = (x == 2 || x == 3) && (y == 2 || y == 3);
-            EXPECT_EQ(f.sample(x, y).a, expected ? 1.0f : 0.0f) << x << "," << y;
+            EXPECT_EQ(f.hit(x, y).a, expected ? 1.0f : 0.0f) << x << "," << y;
         }
     EXPECT_EQ(f.counters.sampleHits, 4u);
     EXPECT_EQ(f.counters.micropolygons, 4u);
@@ -125,9 +126,9 @@ TEST(GridRasterizer, NearerHitWinsAndEqualDepthKeepsTheFirst) {
     tie.Ci[0].assign(tie.P[0].size(), Color{0, 1, 0});
     far.moving = near.moving = tie.moving = false;
     for (Grid* g : {&far, &near, &tie}) f.raster.rasterize(*g, f.cam, Shutter{0, 0}, f.block, f.counters);
-    EXPECT_FLOAT_EQ(f.sample(1, 1).z, 10.0f);
-    EXPECT_EQ(f.sample(1, 1).c.x, 1.0f);  // near (red) drawn before the tie (green) at equal z
-    EXPECT_EQ(f.sample(6, 1).c.y, 1.0f);  // the tie beats the far blue
+    EXPECT_FLOAT_EQ(f.hit(1, 1).z, 10.0f);
+    EXPECT_EQ(f.hit(1, 1).c.x, 1.0f);  // near (red) drawn before the tie (green) at equal z
+    EXPECT_EQ(f.hit(6, 1).c.y, 1.0f);  // the tie beats the far blue
 }
 
 }  // namespace

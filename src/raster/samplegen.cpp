@@ -6,7 +6,8 @@
 
 namespace streyes {
 
-void generatePixelSamples(int px, int py, int frame, const SamplePattern& pattern, Sample* out) {
+void generatePixelSamples(int px, int py, int frame, const SamplePattern& pattern, SamplePosition* out,
+                          uint16_t* sliceStratum) {
     const int sx = pattern.sx, sy = pattern.sy, n = sx * sy;
     uint64_t key = hashCombine(hashCombine(hashCombine(mix64(pattern.seed), uint64_t(uint32_t(px))),
                                            uint64_t(uint32_t(py))),
@@ -22,13 +23,11 @@ void generatePixelSamples(int px, int py, int frame, const SamplePattern& patter
     const float invX = 1.0f / float(sx), invY = 1.0f / float(sy), invN = 1.0f / float(n);
     for (int j = 0; j < n; ++j) {
         int ix = j % sx, iy = j / sx, k = perm[j];
-        Sample& s = out[k];
+        SamplePosition& s = out[j];
+        sliceStratum[k] = uint16_t(j);
         s.x = float(px) + std::min((float(ix) + rng.nextFloat()) * invX, kOneMinusEpsilon);
         s.y = float(py) + std::min((float(iy) + rng.nextFloat()) * invY, kOneMinusEpsilon);
         s.tf = std::min((float(k) + rng.nextFloat()) * invN, kOneMinusEpsilon);
-        s.z = std::numeric_limits<float>::infinity();
-        s.c = {0, 0, 0};
-        s.a = 0;
     }
 }
 
@@ -36,14 +35,17 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     rect_ = rect;
     firstFrame_ = firstFrame;
     frameCount_ = frameCount;
+    pattern_ = pattern;
     slices_ = pattern.count();
-    samples_.resize(size_t(rect.area()) * size_t(frameCount) * size_t(slices_));
-    scratch_.resize(size_t(slices_));
-    for (int fi = 0; fi < frameCount; ++fi)
-        for (int y = rect.y0; y <= rect.y1; ++y)
-            for (int x = rect.x0; x <= rect.x1; ++x) {
-                generatePixelSamples(x, y, firstFrame + fi, pattern, scratch_.data());
-                for (int k = 0; k < slices_; ++k) row(fi, k, y)[x - rect.x0] = scratch_[size_t(k)];
+    const size_t n = size_t(rect.area()) * size_t(frameCount) * size_t(slices_);
+    positions_.resize(n);
+    hits_.assign(n, SampleHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f});
+    sliceStratum_.resize(n);
+    for (int y = rect.y0; y <= rect.y1; ++y)
+        for (int x = rect.x0; x <= rect.x1; ++x)
+            for (int fi = 0; fi < frameCount; ++fi) {
+                const size_t base = pixelOffset(x, y) + size_t(fi) * size_t(slices_);
+                generatePixelSamples(x, y, firstFrame + fi, pattern, &positions_[base], &sliceStratum_[base]);
             }
 }
 

@@ -47,9 +47,7 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
         secondsSince(t) - (counters.timeDice + counters.timeShade + counters.timeSample - diceShadeSampleBefore);
 
     t = Clock::now();
-    for (int fi = 0; fi < bucket.frameCount; ++fi)
-        resolveTile(block_, fi, bucket.tile, filter_, frames[size_t(bucket.firstFrame + fi - framesFirst)],
-                    resolveScratch_);
+    resolveTile(block_, bucket.tile, filter_, &frames[size_t(bucket.firstFrame - framesFirst)], resolveScratch_);
     counters.timeResolve += secondsSince(t);
     counters.micropolygons += rasterCounters_.micropolygons;
     counters.sampleTests += rasterCounters_.sampleTests;
