@@ -1,0 +1,173 @@
+// Google Benchmark kernels of the REYES pipeline. Performance lives here, never in tests.
+//
+//   build/streyes_bench                          all kernels
+//   build/streyes_bench --benchmark_filter=Sampler
+//
+// Counters: micropolygons/s and sample tests/s are per core (single-threaded kernels);
+// hit_efficiency is sample hits / sample tests.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include "streyes/body.h"
+#include "streyes/film.h"
+#include "streyes/grid.h"
+#include "streyes/image_block.h"
+#include "streyes/rasterizer.h"
+#include "streyes/shading.h"
+
+namespace streyes {
+namespace {
+
+// A 16-pixel square centred at (cx, cy) in raster space, turned by 30 degrees so that its
+// micropolygons do not line up with pixels, at camera depth 10.
+TrilinearBody::Corners turnedSquare(float cx, float cy, int size) {
+    const float c = std::cos(0.5236f) * 8, s = std::sin(0.5236f) * 8;
+    auto p = [&](float u, float v) { return Vec3f{cx + u * c - v * s, float(size) - (cy + u * s + v * c), 10}; };
+    return {{p(-1, -1), p(1, -1), p(-1, 1), p(1, 1)}};
+}
+
+// Orthographic camera: raster x = x, raster y = size - y.
+Camera pixelCamera(int size) {
+    CameraDesc cd;
+    cd.xres = cd.yres = size;
+    cd.hasScreenWindow = true;
+    cd.screenWindow[0] = 0;
+    cd.screenWindow[1] = size;
+    cd.screenWindow[2] = 0;
+    cd.screenWindow[3] = size;
+    return Camera(cd);
+}
+
+Camera perspectiveCamera(int w, int h) {
+    CameraDesc cd;
+    cd.projection = ProjectionKind::Perspective;
+    cd.fov = 60;
+    cd.xres = w;
+    cd.yres = h;
+    return Camera(cd);
+}
+
+// The split loop's decision and recursion (as in the bucket), without culling or sampling:
+// a patch seen at an angle, split until each piece dices to at most 256 micropolygons.
+void BM_SplitLoop(benchmark::State& state) {
+    Camera cam = perspectiveCamera(1920, 1080);
+    Material m;
+    TrilinearBody::Corners c{{{-4, -2, 4}, {4, -2, 4}, {-4, -2, 40}, {4, -2, 40}}};
+    TrilinearBody root({0, 1}, c, c, {}, &m);
+    std::vector<BodyPtr> stack;
+    uint64_t splits = 0, dices = 0;
+    for (auto _ : state) {
+        stack.clear();
+        stack.push_back(root.restrictedTo(0, 1));
+        while (!stack.empty()) {
+            BodyPtr b = std::move(stack.back());
+            stack.pop_back();
+            RasterMeasure mm = b->measure(cam);
+            double nu = std::max(1.0, std::ceil(double(mm.extentU))), nv = std::max(1.0, std::ceil(double(mm.extentV)));
+            if (nu * nv <= 256) {
+                ++dices;
+                continue;
+            }
+            BodyPtr h[2];
+            b->split(mm.extentU >= mm.extentV ? SplitAxis::U : SplitAxis::V, h);
+            stack.push_back(std::move(h[1]));
+            stack.push_back(std::move(h[0]));
+            ++splits;
+        }
+    }
+    state.counters["splits/s"] = benchmark::Counter(double(splits), benchmark::Counter::kIsRate);
+    state.counters["grids"] = double(dices) / double(state.iterations());
+}
+BENCHMARK(BM_SplitLoop);
+
+void BM_Dice(benchmark::State& state) {
+    Material m;
+    TrilinearBody::Corners a{{{0, 0, 5}, {16, 0, 5}, {0, 16, 6}, {16, 16, 6}}}, b = a;
+    for (auto& p : b) p.x += 3;
+    TrilinearBody body({0, 1}, a, b, {}, &m);
+    Grid g;
+    for (auto _ : state) {
+        body.dice(16, 16, g);
+        benchmark::DoNotOptimize(g.P[0].data());
+    }
+    state.counters["micropolygons/s"] = benchmark::Counter(256.0 * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_Dice);
+
+// Sampling a 16x16 grid of 1-pixel micropolygons (turned 30 degrees) moving `motion` pixels per frame (diagonally
+// when the second argument is 1), 16 samples per pixel, one frame, shutter open the whole frame.
+void BM_Sampler(benchmark::State& state) {
+    const float motion = float(state.range(0));
+    const bool diagonal = state.range(1) != 0;
+    const int size = 64;
+    Camera cam = pixelCamera(size);
+    Material m;
+    TrilinearBody::Corners a = turnedSquare(24.37f, 24.61f, size), b = a;
+    for (auto& c : b) {
+        c.x += motion;
+        if (diagonal) c.y -= motion;
+    }
+    TrilinearBody body({0, 1}, a, b, {}, &m);
+    Grid g;
+    body.dice(16, 16, g);
+    for (int k = 0; k < 2; ++k) g.Ci[k].assign(g.P[0].size(), Color{1, 1, 1});
+    ImageBlock block;
+    block.reset({0, 0, size - 1, size - 1}, 0, 1, SamplePattern{4, 4, 1});
+    GridRasterizer raster;
+    RasterCounters counters;
+    for (auto _ : state) raster.rasterize(g, cam, Shutter{0, 1}, block, counters);
+    state.counters["micropolygons/s"] = benchmark::Counter(double(counters.micropolygons), benchmark::Counter::kIsRate);
+    state.counters["sample_tests/s"] = benchmark::Counter(double(counters.sampleTests), benchmark::Counter::kIsRate);
+    state.counters["hit_efficiency"] = double(counters.sampleHits) / double(std::max<uint64_t>(1, counters.sampleTests));
+}
+BENCHMARK(BM_Sampler)->ArgNames({"px_per_frame", "diagonal"})->Args({0, 0})->Args({4, 0})->Args({16, 0})->Args({4, 1})->Args({16, 1});
+
+// A still grid over a block of 48 frames: the spacetime case, diced once and sampled per frame.
+void BM_SamplerStillBlock(benchmark::State& state) {
+    const int size = 40, frames = 48;
+    Camera cam = pixelCamera(size);
+    Material m;
+    TrilinearBody::Corners a = turnedSquare(15.37f, 15.61f, size);
+    TrilinearBody body({0, 100}, a, a, {}, &m);
+    Grid g;
+    body.dice(16, 16, g);
+    g.Ci[0].assign(g.P[0].size(), Color{1, 1, 1});
+    ImageBlock block;
+    block.reset({0, 0, 31, 31}, 0, frames, SamplePattern{4, 4, 1});
+    GridRasterizer raster;
+    RasterCounters counters;
+    for (auto _ : state) raster.rasterize(g, cam, Shutter{0, 0.5}, block, counters);
+    state.counters["micropolygons/s"] = benchmark::Counter(double(counters.micropolygons), benchmark::Counter::kIsRate);
+    state.counters["sample_tests/s"] = benchmark::Counter(double(counters.sampleTests), benchmark::Counter::kIsRate);
+    state.counters["hit_efficiency"] = double(counters.sampleHits) / double(std::max<uint64_t>(1, counters.sampleTests));
+}
+BENCHMARK(BM_SamplerStillBlock);
+
+void BM_SampleGeneration(benchmark::State& state) {
+    ImageBlock block;
+    for (auto _ : state) block.reset({0, 0, 33, 33}, 0, 8, SamplePattern{4, 4, 3});
+    state.counters["samples/s"] =
+        benchmark::Counter(double(34 * 34 * 8 * 16) * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_SampleGeneration);
+
+void BM_Resolve(benchmark::State& state) {
+    ImageBlock block;
+    block.reset({0, 0, 33, 33}, 0, 8, SamplePattern{4, 4, 3});
+    for (size_t i = 0; i < block.sampleCount(); i += 3) block.hits()[i] = {5.0f, {0.5f, 0.5f, 0.5f}, 1.0f};
+    PixelFilter filter(FilterDesc{"gaussian", 2, 2});
+    std::vector<FrameImage> frames(8);
+    for (auto& f : frames) f.resize(34, 34);
+    std::vector<float> scratch;
+    for (auto _ : state) resolveTile(block, {1, 1, 32, 32}, filter, frames.data(), scratch);
+    state.counters["samples/s"] =
+        benchmark::Counter(double(block.sampleCount()) * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_Resolve);
+
+}  // namespace
+}  // namespace streyes
+
+BENCHMARK_MAIN();

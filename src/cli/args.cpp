@@ -1,0 +1,52 @@
+#include <cerrno>
+#include <cstdlib>
+
+#include "commands.h"
+
+namespace streyes::cli {
+
+long parseInt(const std::string& opt, const std::string& v, long lo, long hi) {
+    char* end = nullptr;
+    errno = 0;
+    long n = std::strtol(v.c_str(), &end, 10);
+    if (v.empty() || *end != '\0' || errno != 0 || n < lo || n > hi)
+        throw UsageError(opt + " expects a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                         ", not '" + v + "'");
+    return n;
+}
+
+double parseReal(const std::string& opt, const std::string& v, double lo, double hi) {
+    char* end = nullptr;
+    errno = 0;
+    double x = std::strtod(v.c_str(), &end);
+    if (v.empty() || *end != '\0' || errno != 0 || !(x >= lo && x <= hi))
+        throw UsageError(opt + " expects a number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                         ", not '" + v + "'");
+    return x;
+}
+
+const char* kUsage = R"(usage: streyes render SCENE.rib [options]
+       streyes --help | --version
+
+Renders an animation described in RIB as one spacetime scene, one EXR per frame.
+
+render options:
+  --frames A-B        frames to render (or a single frame A); default: the scene's
+                      Option "streyes" "int frames", else frame 0
+  --res WxH           image size in pixels; default: the scene's Format
+  --samples N         samples per pixel per frame; default: the scene's PixelSamples
+  --algorithm NAME    spacetime (default: Algorithm S, split once per block of frames)
+                      frames    (Algorithm C: Catmull's split loop frame by frame)
+  -o PATTERN          output files, #### = frame number (e.g. out/shot.####.exr);
+                      default: the scene's Display, else SCENE-NAME.####.exr
+  --stats FILE        write render statistics as JSON
+  --threads N         worker threads (default: every core); images do not depend on it
+  --seed N            sample pattern seed (default 0)
+  --bucket N          bucket tile size in pixels (default 32)
+  --frame-block N     frames rendered together (default 64; memory grows with it)
+  --quiet             no progress bar, no summary, no warnings on stderr
+
+exit codes: 0 done, 1 render failed, 2 bad input or usage
+)";
+
+}  // namespace streyes::cli

@@ -1,0 +1,189 @@
+// `streyes render SCENE [options]`: parse, render, write one image per frame.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+
+#include "commands.h"
+#include "streyes/image_io.h"
+#include "streyes/renderer.h"
+#include "streyes/rib.h"
+
+namespace streyes::cli {
+
+namespace {
+
+void parseFrames(const std::string& v, RenderOptions& o) {
+    // "A-B" or "A"; A may be negative ("-3-5").
+    size_t dash = v.find('-', 1);
+    std::string a = v.substr(0, dash), b = dash == std::string::npos ? a : v.substr(dash + 1);
+    o.firstFrame = int(parseInt("--frames", a, -1000000, 1000000));
+    o.lastFrame = int(parseInt("--frames", b, -1000000, 1000000));
+    if (o.lastFrame < o.firstFrame) throw UsageError("--frames " + v + ": the last frame comes before the first");
+    o.hasFrames = true;
+}
+
+void parseRes(const std::string& v, RenderOptions& o) {
+    size_t x = v.find('x');
+    if (x == std::string::npos) throw UsageError("--res expects WIDTHxHEIGHT, e.g. 640x360, not '" + v + "'");
+    o.xres = int(parseInt("--res", v.substr(0, x), 1, 65536));
+    o.yres = int(parseInt("--res", v.substr(x + 1), 1, 65536));
+}
+
+// A progress bar with ETA on a terminal; silent otherwise.
+class ProgressBar {
+  public:
+    explicit ProgressBar(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
+    void update(uint64_t done, uint64_t total) {
+        if (!enabled_) return;
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto now = std::chrono::steady_clock::now();
+        if (done < total && now - last_ < std::chrono::milliseconds(100)) return;
+        last_ = now;
+        double elapsed = std::chrono::duration<double>(now - start_).count();
+        double frac = total ? double(done) / double(total) : 1.0;
+        int eta = frac > 0 ? int(elapsed / frac - elapsed + 0.5) : 0;
+        const int width = 30;
+        int filled = int(frac * width);
+        std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %llu/%llu buckets  ETA %d:%02d ", filled,
+                     "##############################", width - filled, "", int(frac * 100),
+                     (unsigned long long)done, (unsigned long long)total, eta / 60, eta % 60);
+        std::fflush(stderr);
+        shown_ = true;
+    }
+    void finish() {
+        if (shown_) std::fprintf(stderr, "\r%*s\r", 80, "");
+    }
+
+  private:
+    bool enabled_;
+    bool shown_ = false;
+    std::mutex mutex_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
+};
+
+struct Output {
+    std::string pattern, mode;
+};
+
+// Where frames go: -o, else the scene's file displays, else SCENE-NAME.####.exr.
+std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPattern, const std::string& scenePath,
+                                  int frames, Log& log) {
+    std::vector<Output> outs;
+    std::string mode = "rgbaz";
+    for (const DisplayDesc& d : scene.settings.displays) {
+        bool file = d.type == "openexr" || d.type == "file" || d.type == "tiff" || d.type == "exr";
+        if (!file) {
+            log.warn(d.loc, "Display type '" + d.type + "' is not supported: '" + d.name + "' skipped");
+            continue;
+        }
+        if (!d.mode.empty()) mode = d.mode;
+        if (oPattern.empty()) outs.push_back({d.name, d.mode.empty() ? "rgbaz" : d.mode});
+    }
+    if (!oPattern.empty()) outs.push_back({oPattern, mode});
+    if (outs.empty()) {
+        std::string stem = std::filesystem::path(scenePath).stem().string();
+        outs.push_back({stem + ".####.exr", "rgbaz"});
+        log.info("no output given (-o) and no file Display in the scene: writing " + outs.back().pattern);
+    }
+    for (Output& o : outs) {
+        if (frames > 1 && !hasFrameField(o.pattern)) {
+            std::string p = addFrameField(o.pattern);
+            log.warn({}, "output '" + o.pattern + "' has no #### frame field and " + std::to_string(frames) +
+                             " frames are rendered: writing '" + p + "'");
+            o.pattern = p;
+        }
+    }
+    return outs;
+}
+
+void writeTextAtomically(const std::string& path, const std::string& text) {
+    std::string tmp = path + ".tmp" + std::to_string(getpid());
+    {
+        std::ofstream f(tmp, std::ios::binary);
+        f << text;
+        f.close();
+        if (!f) {
+            std::remove(tmp.c_str());
+            throw RenderError("cannot write '" + path + "': " + std::strerror(errno));
+        }
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        throw RenderError("cannot write '" + path + "': " + std::strerror(errno));
+    }
+}
+
+}  // namespace
+
+int renderCommand(const std::vector<std::string>& args) {
+    RenderOptions opts;
+    std::string scenePath, outPattern, statsPath;
+    bool quiet = false;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+            return args[++i];
+        };
+        if (a == "--frames") parseFrames(value(), opts);
+        else if (a == "--res") parseRes(value(), opts);
+        else if (a == "--samples") opts.samples = int(parseInt(a, value(), 1, 4096));
+        else if (a == "--algorithm") {
+            std::string v = value();
+            if (!parseAlgorithm(v, &opts.algorithm))
+                throw UsageError("--algorithm expects spacetime or frames, not '" + v + "'");
+        } else if (a == "-o" || a == "--output") outPattern = value();
+        else if (a == "--stats") statsPath = value();
+        else if (a == "--threads") opts.threads = int(parseInt(a, value(), 0, 1024));
+        else if (a == "--seed") opts.seed = uint64_t(parseInt(a, value(), 0, 0x7fffffffL));
+        else if (a == "--bucket") opts.bucketSize = int(parseInt(a, value(), 4, 1024));
+        else if (a == "--frame-block") opts.maxFrameBlock = int(parseInt(a, value(), 1, 100000));
+        else if (a == "--quiet" || a == "-q") quiet = true;
+        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+        else if (scenePath.empty()) scenePath = a;
+        else throw UsageError("more than one scene given ('" + scenePath + "' and '" + a + "')");
+    }
+    if (scenePath.empty()) throw UsageError("no scene given");
+
+    const auto start = std::chrono::steady_clock::now();
+    Log log;
+    log.setEcho(true);
+    log.setQuiet(quiet);
+    Scene scene = parseRibFile(scenePath, log);
+    const double parseSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    Renderer renderer(scene, opts, log);
+    const ResolvedSettings& rs = renderer.settings();
+    const int frames = rs.lastFrame - rs.firstFrame + 1;
+    std::vector<Output> outputs = chooseOutputs(scene, outPattern, scenePath, frames, log);
+
+    ProgressBar bar(!quiet);
+    std::vector<std::string> written;
+    RenderStats stats = renderer.render(
+        [&](const FrameImage& img) {
+            for (const Output& o : outputs) {
+                std::string path = expandFramePattern(o.pattern, img.frame);
+                writeFrame(path, img, o.mode);
+                written.push_back(path);
+            }
+        },
+        [&](uint64_t done, uint64_t total) { bar.update(done, total); });
+    bar.finish();
+    stats.timeParse = parseSeconds;
+    stats.timeTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!statsPath.empty()) writeTextAtomically(statsPath, stats.toJson());
+    if (!quiet) {
+        std::fprintf(stderr, "streyes: %d frame%s %dx%d, %d samples/pixel, %s, %.2f s: %s%s\n", frames,
+                     frames == 1 ? "" : "s", rs.width, rs.height, rs.pattern.count(), algorithmName(opts.algorithm),
+                     stats.timeTotal, written.empty() ? "(nothing written)" : written.front().c_str(),
+                     written.size() > 1 ? (" ... " + written.back()).c_str() : "");
+    }
+    return 0;
+}
+
+}  // namespace streyes::cli
