@@ -20,10 +20,12 @@ class PixelFilter {
     explicit PixelFilter(const FilterDesc& desc);
     float radiusX() const { return rx_; }
     float radiusY() const { return ry_; }
-    // Weight at offset (dx, dy) from the pixel centre; 0 outside the support.
+    // Weight at offset (dx, dy) from the pixel centre; 0 outside the support [-r, r) per axis.
+    // The support is half-open like the pixels: a sample exactly on a pixel's left or top edge
+    // (d = -r for a box of width 1) belongs to that pixel, and to no other.
     float weight(float dx, float dy) const { return weightX(dx) * weightY(dy); }
-    float weightX(float dx) const { return lookup(tx_, dx, sx_); }
-    float weightY(float dy) const { return lookup(ty_, dy, sy_); }
+    float weightX(float dx) const { return lookup(tx_, dx, sx_, rx_); }
+    float weightY(float dy) const { return lookup(ty_, dy, sy_, ry_); }
     // Pixels of guard band a bucket needs on each side so its own pixels see every sample.
     int guardX() const;
     int guardY() const;
@@ -31,10 +33,11 @@ class PixelFilter {
   private:
     static constexpr int kTableSize = 256;
     // Table entry for |d| * (kTableSize / r); the last entry is 0, so anything at or past the
-    // radius reads 0 without a branch.
-    static float lookup(const std::vector<float>& t, float d, float scale) {
-        float i = std::fabs(d) * scale;
-        return t[size_t(std::min(i, float(kTableSize)))];
+    // radius reads 0, except d = -r exactly, which reads the last bin inside.
+    static float lookup(const std::vector<float>& t, float d, float scale, float r) {
+        float i = std::min(std::fabs(d) * scale, float(kTableSize));
+        if (d == -r) i = float(kTableSize - 1);
+        return t[size_t(i)];
     }
     float rx_, ry_, sx_, sy_;  // radii, and kTableSize / radius
     std::vector<float> tx_, ty_;

@@ -16,6 +16,34 @@ TEST(PixelFilter, ShapesAndSupport) {
     EXPECT_EQ(gauss.guardX(), 1);
     EXPECT_EQ(cr.guardX(), 2);
     EXPECT_LT(cr.weight(1.5f, 0), 0.0f);  // the negative lobe
+    // The support is half-open, like a pixel: -r is inside, +r outside.
+    EXPECT_EQ(box.weight(-0.5f, -0.5f), 1.0f);
+    EXPECT_EQ(box.weight(0.5f, 0), 0.0f);
+    EXPECT_GT(gauss.weight(-1.0f, 0), 0.1f);
+    EXPECT_EQ(gauss.weight(1.0f, 0), 0.0f);
+}
+
+// A sample exactly on a pixel's top-left corner belongs to that pixel: with a box filter of
+// one pixel, no pixel is left without samples (it would resolve to black).
+TEST(Resolve, SamplesOnPixelCornersBelongToTheirPixel) {
+    ImageBlock block;
+    block.reset({0, 0, 7, 7}, 0, 1, SamplePattern{1, 1, 0});
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            const size_t i = block.sliceIndex(0, 0, x, y);
+            block.positions()[i].x = float(x);
+            block.positions()[i].y = float(y);
+            block.hits()[i] = {2.0f, {0.5f, 0.5f, 0.5f}, 1.0f};
+        }
+    PixelFilter box({"box", 1, 1});
+    FrameImage img;
+    img.resize(8, 8);
+    std::vector<float> scratch;
+    resolveTile(block, {0, 0, 7, 7}, box, &img, scratch);
+    for (int p = 0; p < 64; ++p) {
+        EXPECT_EQ(img.rgba[size_t(p) * 4 + 3], 1.0f) << p;
+        EXPECT_EQ(img.rgba[size_t(p) * 4], 0.5f) << p;
+    }
 }
 
 TEST(Resolve, UniformSamplesGiveTheirValueAndZIsTheNearest) {
