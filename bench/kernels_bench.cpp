@@ -124,6 +124,35 @@ void BM_Sampler(benchmark::State& state) {
 }
 BENCHMARK(BM_Sampler)->ArgNames({"px_per_frame", "diagonal"})->Args({0, 0})->Args({4, 0})->Args({16, 0})->Args({4, 1})->Args({16, 1});
 
+// The same under a perspective camera: the grid is the turned square at depth 10, moving
+// `motion` pixels right per frame and receding to depth 10.5, so its raster path is not linear
+// in time. Under perspective the sampler projects each tested quad at the sample's time.
+void BM_SamplerPerspective(benchmark::State& state) {
+    const float motion = float(state.range(0));
+    const int size = 64;
+    Camera cam = perspectiveCamera(size, size);
+    Material m;
+    TrilinearBody::Corners r = turnedSquare(24.37f, 24.61f, size), a, b;
+    for (int i = 0; i < 4; ++i) {
+        const float x = r[size_t(i)].x, y = float(size) - r[size_t(i)].y;  // raster position
+        a[size_t(i)] = cam.fromRaster(x, y, 10.0f);
+        b[size_t(i)] = cam.fromRaster(x + motion, y, 10.5f);
+    }
+    TrilinearBody body({0, 1}, a, b, {}, &m);
+    Grid g;
+    body.dice(16, 16, g);
+    for (int k = 0; k < 2; ++k) g.Ci[k].assign(g.P[0].size(), Color{1, 1, 1});
+    ImageBlock block;
+    block.reset({0, 0, size - 1, size - 1}, 0, 1, SamplePattern{4, 4, 1});
+    GridRasterizer raster;
+    RasterCounters counters;
+    for (auto _ : state) raster.rasterize(g, cam, Shutter{0, 1}, block, counters);
+    state.counters["micropolygons/s"] = benchmark::Counter(double(counters.micropolygons), benchmark::Counter::kIsRate);
+    state.counters["sample_tests/s"] = benchmark::Counter(double(counters.sampleTests), benchmark::Counter::kIsRate);
+    state.counters["hit_efficiency"] = double(counters.sampleHits) / double(std::max<uint64_t>(1, counters.sampleTests));
+}
+BENCHMARK(BM_SamplerPerspective)->ArgNames({"px_per_frame"})->Arg(4)->Arg(16);
+
 // A still grid over a block of 48 frames: the spacetime case, diced once and sampled per frame.
 void BM_SamplerStillBlock(benchmark::State& state) {
     const int size = 40, frames = 48;

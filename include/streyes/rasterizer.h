@@ -60,10 +60,13 @@ class GridRasterizer {
     void collectFrames(const Grid& grid, const Shutter& shutter, const ImageBlock& block);
     void sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
     void sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
-    void project(const Grid& grid, double t, const Camera& camera, std::vector<RasterVertex>& out) const;
+    // Raster positions at time t, and optionally the camera-space positions they come from.
+    void project(const Grid& grid, double t, const Camera& camera, std::vector<RasterVertex>& out,
+                 std::vector<Vec3f>* cameraOut = nullptr) const;
 
     // Scratch, reused from grid to grid.
     std::vector<RasterVertex> ra_, rb_;
+    std::vector<Vec3f> ca_, cb_;  // camera space at the ends of a slice (perspective, moving grids)
     std::vector<Slice> slices_;
     std::vector<FrameSpan> frames_;
 };

@@ -116,10 +116,11 @@ inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const floa
 
 // ---- Projection ----------------------------------------------------------------------------------
 
-void GridRasterizer::project(const Grid& grid, double t, const Camera& camera,
-                             std::vector<RasterVertex>& out) const {
+void GridRasterizer::project(const Grid& grid, double t, const Camera& camera, std::vector<RasterVertex>& out,
+                             std::vector<Vec3f>* cameraOut) const {
     const size_t n = size_t(grid.vertexCount());
     out.resize(n);
+    if (cameraOut) cameraOut->resize(n);
     float s = 0;
     if (grid.moving) {
         s = float((t - grid.t0) / (grid.t1 - grid.t0));
@@ -130,6 +131,7 @@ void GridRasterizer::project(const Grid& grid, double t, const Camera& camera,
         Vec3f p = grid.moving ? lerp(grid.P[0][i], grid.P[1][i], s) : grid.P[0][i];
         Vec3f r = camera.toRaster(p);
         out[i] = {r.x, r.y, r.z};
+        if (cameraOut) (*cameraOut)[i] = p;
     }
 }
 
@@ -256,21 +258,31 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     counters.sampleHits += hits;
 }
 
-// A moving grid: projected at both ends of each slice (exact perspective there); a sample's
-// quad is interpolated linearly in raster space to its time within the slice.
+// A moving grid: projected at both ends of each slice to bound its quads over the slice; a
+// sample's quad is the quad at the sample's time. Orthographic projection is linear, so that is
+// the raster quad interpolated linearly. Perspective is not: interpolating raster positions would
+// move a vertex that lies on a neighbouring grid's edge (a T-junction, where grids split to
+// different depths meet) off that edge, and open cracks between the grids. So under perspective
+// the corners are interpolated in camera space, where they move linearly, and projected at the
+// sample's time: vertices on a straight edge stay on its projection.
 void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block,
                                   RasterCounters& counters) {
     const PixelRect& R = block.rect();
     const int nu = grid.nu, nv = grid.nv, stride = nu + 1;
+    const bool perspective = camera.perspective();
     const float nearZ = camera.nearClip(), farZ = camera.farClip();
     const double span = grid.t1 - grid.t0;
     const Color *ci0 = grid.Ci[0].data(), *ci1 = grid.Ci[1].data();
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
     uint64_t tests = 0, hits = 0;
     for (const Slice& sl : slices_) {
-        if (projected == sl.ta) std::swap(ra_, rb_);  // the last slice ended where this one starts
-        else project(grid, sl.ta, camera, ra_);
-        project(grid, sl.tb, camera, rb_);
+        if (projected == sl.ta) {  // the last slice ended where this one starts
+            std::swap(ra_, rb_);
+            std::swap(ca_, cb_);
+        } else {
+            project(grid, sl.ta, camera, ra_, perspective ? &ca_ : nullptr);
+        }
+        project(grid, sl.tb, camera, rb_, perspective ? &cb_ : nullptr);
         projected = sl.tb;
         const float sA = float((sl.ta - grid.t0) / span), sB = float((sl.tb - grid.t0) / span);
         const float invSpan = sl.tfB > sl.tfA ? 1.0f / (sl.tfB - sl.tfA) : 0.0f;
@@ -296,10 +308,17 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         ++tests;
                         const float w = std::min(1.0f, std::max(0.0f, (s.tf - sl.tfA) * invSpan));
                         QuadSetup qt;
-                        for (int c = 0; c < 4; ++c) {
-                            qt.x[c] = lerp(xa[c], xb[c], w);
-                            qt.y[c] = lerp(ya[c], yb[c], w);
-                            qt.z[c] = lerp(za[c], zb[c], w);
+                        if (perspective) {
+                            for (int c = 0; c < 4; ++c) {
+                                const Vec3f r = camera.toRaster(lerp(ca_[size_t(idx[c])], cb_[size_t(idx[c])], w));
+                                qt.x[c] = r.x, qt.y[c] = r.y, qt.z[c] = r.z;
+                            }
+                        } else {
+                            for (int c = 0; c < 4; ++c) {
+                                qt.x[c] = lerp(xa[c], xb[c], w);
+                                qt.y[c] = lerp(ya[c], yb[c], w);
+                                qt.z[c] = lerp(za[c], zb[c], w);
+                            }
                         }
                         setupEdges(qt);
                         Hit h;
