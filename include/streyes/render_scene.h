@@ -32,7 +32,7 @@ struct RenderScene {
 
 // Builds the render scene for frames [firstFrame, lastFrame]. Camera resolution overrides
 // (xres/yres > 0) replace the scene's Format. Primitives whose corners are not finite in camera
-// space warn and are skipped.
+// space, or lie beyond 1e37 (where float overflows when they are split), warn and are skipped.
 std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame, int lastFrame, int xres,
                                               int yres, Log& log);
 

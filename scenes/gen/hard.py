@@ -69,3 +69,158 @@ watertight("sphere_spin.rib", """
 Watertightness: a sphere of 16 x 8 bilinear patches (latitude-longitude, its poles collapsed edges)
 spinning over 64 frames with motion blur. Expected as for cube_spin.rib.
 """, "0 0.5", "4 4", 5.625, sphere(1.4, 16, 8))
+
+
+# ---- Degenerate bodies -------------------------------------------------------------------------
+# An orthographic camera where one unit is one pixel: raster (x, y) = (x, y), y down.
+def pixel_scene(name, what, w, h, body, shutter="0 0", samples="4 4", frames=None):
+    text = ""
+    if frames:
+        text += 'Option "streyes" "int frames" [%d %d]\n' % frames
+    text += ("Format %d %d 1\n"
+             'Projection "orthographic"\n'
+             "ScreenWindow 0 %d %d 0\n"
+             "Shutter %s\n"
+             "PixelSamples %s\n"
+             'PixelFilter "box" 1 1\n'
+             "WorldBegin\n"
+             'Surface "constant"\n' % (w, h, w, h, shutter, samples))
+    write(name, what, text + body + "WorldEnd\n")
+
+
+def quad(p00, p10, p01, p11, z=10.0):
+    return patch(tuple(p00) + (z,), tuple(p10) + (z,), tuple(p01) + (z,), tuple(p11) + (z,))
+
+
+pixel_scene("zero_area.rib", """
+Degenerate bodies of zero area in front of a green background: a patch collapsed to a point, one
+whose corners lie on a line, one folded flat onto a line (two collapsed edges) and a triangle with
+collinear vertices. Expected (tests/core/hard_geometry_test.cpp): they cover no sample (every
+sample is hit once, by the background), no pixel shows red, nothing is split without end.
+""", 48, 48, 'Color [0 1 0]\n' + quad((-4, -4), (52, -4), (-4, 52), (52, 52), 20) +
+    'Color [1 0 0]\n' +
+    quad((24, 24), (24, 24), (24, 24), (24, 24), 5) +
+    quad((6, 6), (18, 18), (30, 30), (42, 42), 5) +
+    quad((6, 40), (42, 10), (6, 40), (42, 10), 5) +
+    'Polygon "P" [4 44 5  24 34 5  44 24 5]\n')
+
+# A disk as a fan of 12 triangles around a pole, each a bilinear patch with a collapsed edge.
+fan = ""
+for i in range(12):
+    a0, a1 = 2 * math.pi * i / 12, 2 * math.pi * (i + 1) / 12
+    fan += 'Polygon "P" [24 24 10  %s %s 10  %s %s 10]\n' % (
+        fmt(24 + 18 * math.cos(a0)), fmt(24 + 18 * math.sin(a0)),
+        fmt(24 + 18 * math.cos(a1)), fmt(24 + 18 * math.sin(a1)))
+pixel_scene("pole_fan.rib", """
+Collapsed edges and a pole: a disk of 12 triangles around its centre, each a bilinear patch with
+one collapsed edge, diced at different rates along the spokes they share. Expected: every sample
+inside the 12-gon is hit exactly once (no crack at the pole or along a spoke), none outside.
+""", 48, 48, fan)
+
+import random  # noqa: E402
+rng = random.Random(6)
+needles = ""
+for i in range(400):
+    cx, cy = rng.uniform(8, 40), rng.uniform(8, 40)
+    a = rng.uniform(0, math.pi)
+    dx, dy = 15 * math.cos(a), 15 * math.sin(a)           # 30 pixels long
+    nx, ny = -0.5e-4 * math.sin(a), 0.5e-4 * math.cos(a)  # 1e-4 wide
+    corners = [(cx - dx - nx, cy - dy - ny), (cx + dx - nx, cy + dy - ny),
+               (cx - dx + nx, cy - dy + ny), (cx + dx + nx, cy + dy + ny)]
+    # Nine digits: the width is far below what fmt's six keep.
+    needles += 'Patch "bilinear" "P" [%s]\n' % "  ".join(
+        "%.9f %.9f %s" % (x, y, fmt(10 + i * 0.01)) for (x, y) in corners)
+pixel_scene("needles.rib", """
+Needles: 400 patches 1e-4 pixels wide and 30 long at random angles (total area 1.2 square pixels),
+with 64 samples per pixel. Expected: each is diced as one column of micropolygons without a hang
+or a split limit, and the samples it covers are exactly those inside it (to 1e-5 pixels).
+""", 48, 48, needles, samples="8 8")
+
+pixel_scene("bowtie.rib", """
+Bow-tie (twisted) patches: a bilinear patch whose corners are given so that its two u-edges cross.
+The patch covers two triangles that meet at the centre, where it folds. The large one is split
+through its fold; the small one (11 micropolygons along v) is diced across it. Expected: every
+sample the twisted surface covers is hit once, none it does not.
+""", 48, 48,
+    quad((4, 4), (28, 4), (28, 28), (4, 28)) +
+    quad((31, 33), (39, 33), (39, 39.9), (31, 39.9)))
+
+pixel_scene("inside_out.rib", """
+A quad that turns inside out during the shutter: its left and right edges swap places between
+t = 0 and t = 1 (frame 0, shutter open the whole frame), passing through zero width at t = 0.5.
+Expected: each sample is covered when it lies inside the quad at its own time, exactly once.
+""", 48, 24, motion([0, 1], [
+    'Patch "bilinear" "P" [8 4 10  40 4 10  8 20 10  40 20 10]',
+    'Patch "bilinear" "P" [40 4 10  8 4 10  40 20 10  8 20 10]']), shutter="0 1")
+
+pixel_scene("fold.rib", """
+A quad that folds during the shutter: its corner (u1, v1) sweeps across the opposite corner's
+edges, so the quad turns concave and then folds over itself (points covered twice). Expected: each
+sample is hit once per sheet of the surface over it, to within the micropolygons that straddle
+the fold.
+""", 48, 48, motion([0, 1], [
+    'Patch "bilinear" "P" [8 8 10  40 8 10  8 40 10  40 40 10]',
+    'Patch "bilinear" "P" [8 8 10  40 8 10  8 40 10  2 2 10]']), shutter="0 1")
+
+
+# ---- The eye plane -----------------------------------------------------------------------------
+write("eye_plane_moving.rib", """
+Geometry moving through the eye plane during the shutter: a wall 100 units wide passes from behind
+the camera (z = -2) to in front of it (z = 6) during frame 0's exposure. A sample sees it when the
+wall lies beyond the near plane (0.1) at the sample's time, t > 0.2625, and then it fills the
+view. Expected (tests/core/hard_geometry_test.cpp): exactly those samples see it, once each; eye
+splits end without reaching their limit; every value is finite.
+""", 'Format 32 32 1\n'
+     'Projection "perspective" "fov" [60]\n'
+     'Clipping 0.1 100\n'
+     'Shutter 0 1\n'
+     'PixelSamples 4 4\n'
+     'PixelFilter "box" 1 1\n'
+     'WorldBegin\n'
+     'Surface "constant"\n' +
+     motion([0, 1], ["Translate 0 0 -2", "Translate 0 0 6"]) +
+     'Patch "bilinear" "P" [-50 -50 0  50 -50 0  -50 50 0  50 50 0]\n'
+     'WorldEnd\n')
+
+faces = [((1, 0.2, 0.2), ((-10, -10, 10), (10, -10, 10), (-10, 10, 10), (10, 10, 10))),    # +z, ahead
+         ((0.2, 1, 0.2), ((10, -10, -10), (10, -10, 10), (10, 10, -10), (10, 10, 10))),    # +x
+         ((0.2, 0.2, 1), ((-10, -10, 10), (-10, -10, -10), (-10, 10, 10), (-10, 10, -10))),  # -x
+         ((1, 1, 0.2), ((-10, 10, -10), (10, 10, -10), (-10, 10, 10), (10, 10, 10))),      # +y
+         ((0.2, 1, 1), ((-10, -10, 10), (10, -10, 10), (-10, -10, -10), (10, -10, -10))),  # -y
+         ((1, 0.2, 1), ((-10, -10, -10), (10, -10, -10), (-10, 10, -10), (10, 10, -10)))]  # -z, behind
+inside = ""
+for colour, corners in faces:
+    inside += "Color [%s]\n" % " ".join(fmt(c) for c in colour) + patch(*corners)
+write("camera_inside_box.rib", """
+The camera inside a closed object: a box 20 units wide around the eye, each face its own colour,
+seen with a 100 degree field of view, so that the four side faces, which reach behind the camera,
+show at the edges of the image. Expected: every sample sees exactly one face, the one its eye ray
+leaves the box through (its colour); the side faces are eye-split without reaching the limit.
+""", 'Format 32 32 1\n'
+     'Projection "perspective" "fov" [100]\n'
+     'Clipping 0.1 100\n'
+     'PixelSamples 2 2\n'
+     'PixelFilter "box" 1 1\n'
+     'WorldBegin\n'
+     'Surface "constant"\n' + inside + 'WorldEnd\n')
+
+
+# ---- Recursion and overflow --------------------------------------------------------------------
+pixel_scene("split_limit.rib", """
+A body that never becomes small enough: a patch reaching 1e25 pixels beyond every side of the
+image, behind a small square. Split after split its pieces that overlap a bucket stay far too
+large to dice; at the split limit (60) they are dropped with one warning. Expected: the warning,
+the counter culled_split_limit, no hang; the square renders exactly; the huge patch shows nowhere.
+""", 32, 32,
+    'Color [0 0 1]\n' + quad((-1e25, -1e25), (1e25, -1e25), (-1e25, 1e25), (1e25, 1e25), 20) +
+    'Color [1 1 1]\n' + quad((8.5, 8.5), (23.5, 8.5), (8.5, 23.5), (23.5, 23.5), 10))
+
+pixel_scene("overflow.rib", """
+Coordinates at the edge of float range and beyond it: a patch reaching 3e38 (finite in float, but
+the midpoints of its splits overflow to infinity) and one translated by 1e300 (finite in double,
+beyond float in camera space). Expected: both are skipped before rendering, each with a warning
+naming its line; the small square in front renders exactly.
+""", 32, 32,
+    'Color [0 0 1]\n' + quad((-3e38, -3e38), (3e38, -3e38), (-3e38, 3e38), (3e38, 3e38), 20) +
+    'AttributeBegin\nTranslate 1e300 0 0\n' + quad((0, 0), (4, 0), (0, 4), (4, 4), 5) + 'AttributeEnd\n' +
+    'Color [1 1 1]\n' + quad((8.5, 8.5), (23.5, 8.5), (8.5, 23.5), (23.5, 23.5), 10))

@@ -1,11 +1,16 @@
 #include "streyes/render_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace streyes {
 
 namespace {
+
+// Camera space is single precision. Corners beyond this magnitude would overflow to infinity
+// when a split adds two of them or a measure squares their distance.
+constexpr double kMaxCameraCoordinate = 1e37;
 
 // The primitive's object-space corners at time t: linear between its keys, held outside.
 std::array<Vec3d, 4> cornersAt(const BilinearPatchDesc& p, double t) {
@@ -63,18 +68,26 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
         MotionTransform objectToCamera = p.objectToWorld.then(cam.worldToCamera);
         std::vector<double> ts = segmentTimes(p, objectToCamera, rs->windowStart, rs->windowEnd);
         std::vector<TrilinearBody::Corners> corners(ts.size());
-        bool finite = true;
+        bool finite = true, fits = true;
         for (size_t i = 0; i < ts.size(); ++i) {
             Matrix4 m = objectToCamera.at(ts[i]);
             std::array<Vec3d, 4> obj = cornersAt(p, ts[i]);
             for (int c = 0; c < 4; ++c) {
-                Vec3f v(m.point(obj[size_t(c)]));
+                // Checked in double: converting a value beyond float's range would be undefined.
+                Vec3d v = m.point(obj[size_t(c)]);
                 finite = finite && isFinite(v);
-                corners[i][size_t(c)] = v;
+                fits = fits && std::fabs(v.x) <= kMaxCameraCoordinate && std::fabs(v.y) <= kMaxCameraCoordinate &&
+                       std::fabs(v.z) <= kMaxCameraCoordinate;
+                if (finite && fits) corners[i][size_t(c)] = Vec3f(v);
             }
         }
         if (!finite) {
             log.warn(p.loc, "primitive has non-finite coordinates in camera space: skipped");
+            continue;
+        }
+        if (!fits) {
+            log.warn(p.loc, "primitive reaches beyond 1e37 in camera space, where single precision overflows when "
+                            "it is split: skipped (scale the scene down)");
             continue;
         }
         rs->sources.push_back(p.loc);

@@ -112,11 +112,11 @@ void expectWatertight(const std::string& scenePath) {
             invert(object.at(t), &inverse);
             cachedTime = t;
         }
-        return object.hits(inverse, x, y);
+        return object.hits(inverse, x, y) ? 2 : 0;  // a front and a back face
     });
-    EXPECT_GT(rep.pixelsInside, 40000);  // the checks are not vacuous
-    EXPECT_GT(rep.pixelsOutside, 100000);
-    test::expectMatchesOracle(rep, 2);
+    EXPECT_GT(rep.pixelsCovered, 40000);  // the checks are not vacuous
+    EXPECT_GT(rep.pixelsUncovered, 100000);
+    test::expectMatchesOracle(rep);
 }
 
 TEST(Watertight, SpinningCube) { expectWatertight("scenes/hard/cube_spin.rib"); }
