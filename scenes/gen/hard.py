@@ -207,12 +207,12 @@ leaves the box through (its colour); the side faces are eye-split without reachi
 
 # ---- Recursion and overflow --------------------------------------------------------------------
 pixel_scene("split_limit.rib", """
-A body that never becomes small enough: a patch reaching 1e25 pixels beyond every side of the
-image, behind a small square. Split after split its pieces that overlap a bucket stay far too
+A body that never becomes small enough: a patch reaching 1e12 pixels beyond every side of the
+image, behind a small square (60 splits, 30 per axis, leave pieces of about 1000 pixels). Split after split its pieces that overlap a bucket stay far too
 large to dice; at the split limit (60) they are dropped with one warning. Expected: the warning,
 the counter culled_split_limit, no hang; the square renders exactly; the huge patch shows nowhere.
 """, 32, 32,
-    'Color [0 0 1]\n' + quad((-1e25, -1e25), (1e25, -1e25), (-1e25, 1e25), (1e25, 1e25), 20) +
+    'Color [0 0 1]\n' + quad((-1e12, -1e12), (1e12, -1e12), (-1e12, 1e12), (1e12, 1e12), 20) +
     'Color [1 1 1]\n' + quad((8.5, 8.5), (23.5, 8.5), (8.5, 23.5), (23.5, 23.5), 10))
 
 pixel_scene("overflow.rib", """
@@ -224,3 +224,69 @@ naming its line; the small square in front renders exactly.
     'Color [0 0 1]\n' + quad((-3e38, -3e38), (3e38, -3e38), (-3e38, 3e38), (3e38, 3e38), 20) +
     'AttributeBegin\nTranslate 1e300 0 0\n' + quad((0, 0), (4, 0), (0, 4), (4, 4), 5) + 'AttributeEnd\n' +
     'Color [1 1 1]\n' + quad((8.5, 8.5), (23.5, 8.5), (8.5, 23.5), (23.5, 23.5), 10))
+
+
+# ---- Coordinates -------------------------------------------------------------------------------
+# One small scene (a floor, a box, a spinning box, a moving ball, a distant and an ambient light,
+# a turned camera, two frames with motion blur), written at the origin, translated far from it
+# with its camera, and scaled down. Lights are direction-only so that scaling does not change
+# them.
+def coordinates_scene(offset=0.0, scale=1.0, clipping=True):
+    s = scale
+    d = (offset, 0.7 * offset, 0.3 * offset)
+    text = ('Option "streyes" "int frames" [1 2]\n'
+            "Format 48 32 1\n"
+            'Projection "perspective" "fov" [45]\n')
+    if clipping:
+        text += "Clipping %s %s\n" % (fmt(0.1 * s), fmt(100 * s))
+    text += ("Shutter 0 0.5\n"
+             "PixelSamples 4 4\n"
+             "Rotate -20 1 0 0\n"
+             "Rotate 25 0 1 0\n"
+             "Translate %s %s %s\n" % (fmt(-1 * s), fmt(-2.5 * s), fmt(8 * s)))
+    if offset:
+        text += "Translate %s %s %s\n" % tuple("%.17g" % -c for c in d)
+    text += "WorldBegin\n"
+    if offset:
+        text += "Translate %s %s %s\n" % tuple("%.17g" % c for c in d)
+    if s != 1:
+        text += "Scale %s %s %s\n" % (fmt(s), fmt(s), fmt(s))
+    text += ('LightSource "ambientlight" 1 "intensity" [0.3]\n'
+             'LightSource "distantlight" 2 "from" [-3 6 -2] "to" [0 0 0]\n'
+             'Surface "matte"\n'
+             "Color [0.7 0.7 0.6]\n" + patch((-4, 0, -4), (4, 0, -4), (-4, 0, 4), (4, 0, 4)) +
+             "Color [0.8 0.3 0.2]\n" + box(-1.5, 0.6, 0, 1.2, 1.2, 1.2) +
+             "AttributeBegin\nColor [0.2 0.4 0.9]\nTranslate 1.2 1 0.5\n" +
+             motion([0, 1, 2, 3], ["Rotate %d 0 1 0" % (20 * t) for t in range(4)]) +
+             box(0, 0, 0, 1, 1, 1) + "AttributeEnd\n"
+             "AttributeBegin\nColor [0.9 0.8 0.2]\n" +
+             motion([0, 3], ["Translate -2 1.5 2", "Translate 2 1.5 2"]) +
+             sphere(0.5, 12, 6) + "AttributeEnd\n"
+             "WorldEnd\n")
+    return text
+
+
+write("coords_origin.rib", """
+The coordinates scene at the origin: the reference for coords_far_1e5.rib, coords_far_1e7.rib and
+coords_tiny.rib (tests/core/hard_coordinates_test.cpp).
+""", coordinates_scene())
+for exp in (5, 7):
+    write("coords_far_1e%d.rib" % exp, """
+coords_origin.rib with the scene and the camera translated by (1, 0.7, 0.3) x 1e%d. Scene input is
+double until camera space, so the camera-space bodies, and the images, are those of the original
+to within float rounding. Expected: every pixel within 1e-3 of the original, on average 1e-5.
+""" % exp, coordinates_scene(offset=10.0 ** exp))
+write("coords_far_1e15.rib", """
+coords_origin.rib translated by (1, 0.7, 0.3) x 1e15 with its camera: double precision keeps about
+16 digits, so camera-space positions are off by several pixels. Expected: the render goes on, and a
+warning says how far things may move and what to do.
+""", coordinates_scene(offset=1e15))
+write("coords_tiny.rib", """
+coords_origin.rib scaled by 1e-6, camera translation and clipping planes included (perspective is
+scale-invariant, and so are the directional lights). Expected: the images of the original to within
+float rounding.
+""", coordinates_scene(scale=1e-6))
+write("coords_tiny_clipped.rib", """
+coords_tiny.rib with the default clipping planes: everything lies between the camera and the
+default near plane (1e-4). Expected: an empty image and a warning that says why and what to change.
+""", coordinates_scene(scale=1e-6, clipping=False))

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
 #include <map>
 
 namespace streyes {
@@ -11,6 +14,36 @@ namespace {
 // Camera space is single precision. Corners beyond this magnitude would overflow to infinity
 // when a split adds two of them or a measure squares their distance.
 constexpr double kMaxCameraCoordinate = 1e37;
+
+// Far from the world's origin, double precision runs out: a point at world distance M comes to
+// camera space with an error of a few units in M's last place (2^-52 M), however near the camera
+// is. Past this error in raster pixels the renderer says so.
+constexpr double kMaxPrecisionPixels = 0.01;
+
+// The largest magnitude a corner passes through on its way to camera space: its world position,
+// or the camera's translation (the world origin in camera space).
+double worldMagnitude(const Matrix4& objectToWorld, const Matrix4& worldToCamera, const std::array<Vec3d, 4>& obj) {
+    double m = std::max({std::fabs(worldToCamera(3, 0)), std::fabs(worldToCamera(3, 1)), std::fabs(worldToCamera(3, 2))});
+    for (const Vec3d& c : obj) {
+        Vec3d w = objectToWorld.point(c);
+        m = std::max({m, std::fabs(w.x), std::fabs(w.y), std::fabs(w.z)});
+    }
+    return m;
+}
+
+// That rounding error (4 ulps of the world magnitude) in raster pixels at camera-space point v.
+double precisionInPixels(const Camera& camera, double worldScale, Vec3d v) {
+    const double error = 4 * worldScale * std::numeric_limits<double>::epsilon();
+    const double scale = std::max(std::fabs(camera.ax()), std::fabs(camera.ay()));
+    if (!camera.perspective()) return error * scale;
+    return v.z > camera.nearClip() ? error * scale / v.z : 0;  // nearer than `near`: clipped anyway
+}
+
+std::string formatShort(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
 
 // The primitive's object-space corners at time t: linear between its keys, held outside.
 std::array<Vec3d, 4> cornersAt(const BilinearPatchDesc& p, double t) {
@@ -69,9 +102,11 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
         std::vector<double> ts = segmentTimes(p, objectToCamera, rs->windowStart, rs->windowEnd);
         std::vector<TrilinearBody::Corners> corners(ts.size());
         bool finite = true, fits = true;
+        double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin, rasterError = 0;
         for (size_t i = 0; i < ts.size(); ++i) {
             Matrix4 m = objectToCamera.at(ts[i]);
             std::array<Vec3d, 4> obj = cornersAt(p, ts[i]);
+            const double worldScale = worldMagnitude(p.objectToWorld.at(ts[i]), cam.worldToCamera.at(ts[i]), obj);
             for (int c = 0; c < 4; ++c) {
                 // Checked in double: converting a value beyond float's range would be undefined.
                 Vec3d v = m.point(obj[size_t(c)]);
@@ -79,6 +114,8 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
                 fits = fits && std::fabs(v.x) <= kMaxCameraCoordinate && std::fabs(v.y) <= kMaxCameraCoordinate &&
                        std::fabs(v.z) <= kMaxCameraCoordinate;
                 if (finite && fits) corners[i][size_t(c)] = Vec3f(v);
+                zmin = std::min(zmin, v.z), zmax = std::max(zmax, v.z);
+                rasterError = std::max(rasterError, precisionInPixels(rs->camera, worldScale, v));
             }
         }
         if (!finite) {
@@ -90,6 +127,17 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
                             "it is split: skipped (scale the scene down)");
             continue;
         }
+        if (zmin > 0 && zmax < cam.nearClip)
+            log.warnOnce("nearclip", p.loc,
+                         "primitive lies wholly between the camera and the near clipping plane (Clipping near = " +
+                             formatShort(cam.nearClip) +
+                             "): it cannot be seen (lower the near plane with Clipping, or scale the scene up)");
+        if (rasterError > kMaxPrecisionPixels)
+            log.warnOnce("precision", p.loc,
+                         "primitive lies so far from the world's origin that double precision moves it by up to " +
+                             formatShort(rasterError) +
+                             " pixels on its way to camera space (translate the scene and the camera nearer the "
+                             "origin)");
         rs->sources.push_back(p.loc);
         const SourceLoc* source = &rs->sources.back();
         auto add = [&](double t0, double t1, const TrilinearBody::Corners& c0, const TrilinearBody::Corners& c1) {
