@@ -23,9 +23,16 @@ struct Material;
 
 enum class SplitAxis : unsigned char { U = 0, V = 1, T = 2 };
 
+// A body's time span. Where another piece of the same surface continues at t1 (a later motion
+// segment, the second half of a time split) the span is half-open, [t0, t1), so that a sample
+// exactly at t1 belongs to one piece only; the last piece is closed, [t0, t1].
 struct TimeSpan {
     double t0 = 0, t1 = 0;
-    bool overlaps(double a, double b) const { return t0 <= b && a <= t1; }
+    bool openEnd = false;
+    // Does the span share a time with [a, b]?
+    bool overlaps(double a, double b) const { return t0 <= b && (a < t1 || (a == t1 && !openEnd)); }
+    // Does it contain time t?
+    bool contains(double t) const { return t0 <= t && (t < t1 || (t == t1 && !openEnd)); }
 };
 
 // A body's size in raster spacetime (valid only when it lies in front of the eye plane).

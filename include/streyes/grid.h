@@ -16,6 +16,7 @@ struct Material;
 struct Grid {
     int nu = 0, nv = 0;           // micropolygons along u and v
     double t0 = 0, t1 = 0;        // time span, in frames
+    bool openEnd = false;         // [t0, t1): a sample exactly at t1 belongs to the next piece
     bool moving = false;          // when false only the [0] arrays are filled
     const Material* material = nullptr;
 

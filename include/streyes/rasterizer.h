@@ -49,11 +49,13 @@ class GridRasterizer {
         double ta, tb;      // the slice clipped to the grid's span (frames)
         float tfA, tfB;     // the same as fractions of the frame's exposure
         bool checkTime;     // the grid covers only part of the slice
+        bool openB;         // ... and ends at tfB half-open
     };
     // The part of one frame's exposure a still grid exists in.
     struct FrameSpan {
         int fi;
         bool whole;
+        bool openB;  // the grid ends at tfB half-open
         float tfA, tfB;
     };
     void collectSlices(const Grid& grid, const Shutter& shutter, const ImageBlock& block);

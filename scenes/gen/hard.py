@@ -290,3 +290,55 @@ write("coords_tiny_clipped.rib", """
 coords_tiny.rib with the default clipping planes: everything lies between the camera and the
 default near plane (1e-4). Expected: an empty image and a warning that says why and what to change.
 """, coordinates_scene(scale=1e-6, clipping=False))
+
+
+# ---- Time --------------------------------------------------------------------------------------
+SQUARE = 'Patch "bilinear" "P" [0 0 10  4 0 10  0 4 10  4 4 10]\n'  # 4 x 4 pixels at the origin
+
+
+def moving_square(times, translates):
+    return "AttributeBegin\n" + motion(times, ["Translate %s" % t for t in translates]) + SQUARE + "AttributeEnd\n"
+
+pixel_scene("time_instant.rib", """
+Shutter open == close (0.25 0.25): each frame is the instant f + 0.25, with no blur, while a square
+moves 2.5 pixels per frame. Expected (tests/core/hard_time_test.cpp): every sample sees the square
+exactly where it is at that instant, once.
+""", 32, 8, moving_square([0, 8], ["0 2 0", "20 2 0"]),
+    shutter="0.25 0.25", frames=(1, 4))
+
+pixel_scene("time_fast.rib", """
+Very fast motion: a 4-pixel square crosses the whole 64-pixel frame, from x = -8 to x = 72, during
+the one exposure of frame 0 (20 times its own size). Expected: it is split in time, not dropped,
+and every sample sees it exactly where it is at the sample's time, once.
+""", 64, 8, moving_square([0, 1], ["-8 2 0", "72 2 0"]),
+    shutter="0 1", samples="8 8")
+
+pixel_scene("time_keys.rib", """
+Motion keys at sampled instants, and bodies that exist for part of the animation: a square moves
+only between frames 2 and 4 of frames 0-6 and is held before and after, so it becomes three root
+bodies, still over [0, 2], moving over [2, 4] and still over [4, 6]. With the shutter closed
+(instants at whole frames), frames 2 and 4 are sampled exactly at the key times, where two bodies
+meet. A second square moves with keys at every frame, so that every frame is sampled at a key.
+Expected: every sample sees each square where it is, once: no sample is lost or hit twice at a
+boundary between bodies.
+""", 40, 16, moving_square([2, 4], ["2 2 0", "30 2 0"]) +
+    moving_square(list(range(0, 7)), ["%d 10 0" % (2 + 5 * k) for k in range(7)]),
+    frames=(0, 6))
+
+pixel_scene("time_keys_blur.rib", """
+time_keys.rib with the shutter open from a quarter frame before each frame to a quarter after, so
+the key times lie inside exposures (at the middle of frames 2 and 4). Expected as for
+time_keys.rib.
+""", 40, 16, moving_square([2, 4], ["2 2 0", "30 2 0"]) +
+    moving_square(list(range(0, 7)), ["%d 10 0" % (2 + 5 * k) for k in range(7)]),
+    frames=(0, 6), shutter="-0.25 0.25")
+
+pixel_scene("time_10000.rib", """
+A 10,000-frame animation (time quantisation): sample times are float fractions of each frame's
+exposure and key times double, so frame 10000 is sampled as finely as frame 0. A square crosses the
+image once, moving 4 pixels a frame between keys 10,000 frames apart (it is in view around frame
+5000); another zig-zags across it with keys every 50 frames, in view in every frame. Expected: in
+every one of the 10,001 frames, each sample sees the squares where they are at its time.
+""", 16, 8, moving_square([0, 10000], ["-19998 0 0", "20002 0 0"]) +
+    moving_square(list(range(0, 10001, 50)), ["%d 4 0" % (0 if k % 2 == 0 else 12) for k in range(201)]),
+    shutter="0 0.5", samples="1 1", frames=(0, 10000))

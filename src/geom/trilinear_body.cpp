@@ -91,6 +91,7 @@ void TrilinearBody::split(SplitAxis axis, std::unique_ptr<Body> out[2]) const {
     if (axis == SplitAxis::T) {
         double tm = 0.5 * (time_.t0 + time_.t1);
         ta.t1 = tb.t0 = tm;
+        ta.openEnd = true;  // a sample exactly at tm belongs to the second half
         for (int i = 0; i < 4; ++i) {
             Vec3f m = mid(P_[0][i], P_[1][i]);
             a[0][i] = P_[0][i];
@@ -139,7 +140,8 @@ std::unique_ptr<Body> TrilinearBody::restrictedTo(double a, double b) const {
             p1[i] = lerp(P_[0][i], P_[1][i], sb);
         }
     }
-    auto body = std::make_unique<TrilinearBody>(TimeSpan{a, b}, p0, p1, Cs_, material_);
+    // Cut short of t1, the piece is closed at b: nothing else covers b within [a, b].
+    auto body = std::make_unique<TrilinearBody>(TimeSpan{a, b, b == time_.t1 && time_.openEnd}, p0, p1, Cs_, material_);
     body->splitDepth = splitDepth;
     body->eyeSplitDepth = eyeSplitDepth;
     body->setSource(source_);
@@ -150,6 +152,7 @@ void TrilinearBody::dice(int nu, int nv, Grid& grid) const {
     grid.resize(nu, nv, moving_);
     grid.t0 = time_.t0;
     grid.t1 = time_.t1;
+    grid.openEnd = time_.openEnd;
     grid.material = material_;
     const float du = 1.0f / float(nu), dv = 1.0f / float(nv);
     for (int j = 0; j <= nv; ++j) {

@@ -105,6 +105,34 @@ TEST(TrilinearBody, RestrictedToKeepsTheMotionLine) {
     EXPECT_EQ(static_cast<const TrilinearBody&>(*whole).corners(1)[3], b[3]);  // exact at the ends
 }
 
+// Pieces of one surface that meet in time share no instant: the earlier is half-open.
+TEST(TrilinearBody, TimePiecesShareNoInstant) {
+    Corners a{{{0, 0, 5}, {1, 0, 5}, {0, 1, 5}, {1, 1, 5}}}, b = a;
+    for (auto& p : b) p.x += 8;
+    for (bool open : {false, true}) {
+        TrilinearBody body({0, 8, open}, a, b, {}, nullptr);
+        BodyPtr h[2];
+        body.split(SplitAxis::T, h);
+        EXPECT_TRUE(h[0]->time().openEnd);
+        EXPECT_EQ(h[1]->time().openEnd, open);  // the second half ends where the body does
+        EXPECT_FALSE(h[0]->time().contains(4));
+        EXPECT_TRUE(h[1]->time().contains(4));
+        EXPECT_EQ(h[1]->time().contains(8), !open);
+        BodyPtr u[2];
+        h[0]->split(SplitAxis::U, u);
+        EXPECT_TRUE(u[0]->time().openEnd);  // splits in space keep the span
+        // Cut short by a bucket's window, a piece is closed at the cut: nothing else covers it there.
+        EXPECT_FALSE(body.restrictedTo(2, 4)->time().openEnd);
+        EXPECT_EQ(body.restrictedTo(2, 8)->time().openEnd, open);
+        Grid g;
+        h[0]->dice(1, 1, g);
+        EXPECT_TRUE(g.openEnd);
+    }
+    // A span that ends half-open at a window's start does not reach into it.
+    EXPECT_FALSE((TimeSpan{0, 2, true}.overlaps(2, 3)));
+    EXPECT_TRUE((TimeSpan{0, 2, false}.overlaps(2, 3)));
+}
+
 TEST(TrilinearBody, DegenerateCornersGiveFiniteNormals) {
     // A triangle as a patch with a collapsed edge, and a zero-area patch.
     Corners tri{{{0, 0, 5}, {1, 0, 5}, {0, 1, 5}, {0, 1, 5}}};

@@ -135,7 +135,26 @@ void GridRasterizer::project(const Grid& grid, double t, const Camera& camera, s
     }
 }
 
-// ---- Time slices ---------------------------------------------------------------------------------
+// ---- Time --------------------------------------------------------------------------------------------
+// A frame's samples lie in [e0, e1) = [f + open, f + close), or at e0 when the shutter is closed.
+// A grid's span is [t0, t1], or [t0, t1) when another piece of the surface continues at t1
+// (grid.openEnd): pieces that meet at a time share no sample, and leave none out.
+
+namespace {
+
+// Does the grid exist at some sample time of the exposure [e0, e1) (at e0 when d == 0)?
+bool meetsExposure(const Grid& grid, double e0, double e1, double d) {
+    const bool fromStart = e0 < grid.t1 || (e0 == grid.t1 && !grid.openEnd);  // still there at e0
+    return d > 0 ? grid.t0 < e1 && fromStart : grid.t0 <= e0 && fromStart;
+}
+
+// Is the sample at fraction tf of the exposure inside the part [tfA, tfB] a grid covers, open at
+// tfB when the grid ends there half-open?
+inline bool inTimeSpan(float tf, float tfA, float tfB, bool openB) {
+    return tf >= tfA && (tf < tfB || (tf == tfB && !openB));
+}
+
+}  // namespace
 
 void GridRasterizer::collectSlices(const Grid& grid, const Shutter& shutter, const ImageBlock& block) {
     slices_.clear();
@@ -143,19 +162,21 @@ void GridRasterizer::collectSlices(const Grid& grid, const Shutter& shutter, con
     const int K = block.slices();
     for (int fi = 0; fi < block.frameCount(); ++fi) {
         const double e0 = block.firstFrame() + fi + shutter.open, e1 = e0 + d;
-        if (grid.t1 < e0 || grid.t0 > e1) continue;
+        if (!meetsExposure(grid, e0, e1, d)) continue;
         for (int k = 0; k < K; ++k) {
-            // Slice k of this frame's exposure, clipped to the grid's time span.
+            // Slice k of this frame's exposure, [sa, sb), clipped to the grid's time span.
             const double sa = d > 0 ? e0 + d * k / K : e0;
             const double sb = d > 0 ? e0 + d * (k + 1) / K : e0;
             const double ta = std::max(sa, grid.t0), tb = std::min(sb, grid.t1);
-            if (ta > tb) continue;
+            const bool endsInside = d > 0 && grid.t1 < sb;  // the grid's end, not the slice's, closes it
+            if (d > 0 && (ta > tb || (ta == tb && (!endsInside || grid.openEnd)))) continue;
             Slice s;
             s.fi = fi;
             s.k = k;
             s.ta = ta;
             s.tb = tb;
             s.checkTime = d > 0 && (ta > sa || tb < sb);
+            s.openB = endsInside && grid.openEnd;
             s.tfA = s.checkTime ? float((ta - e0) / d) : float(k) / float(K);
             s.tfB = s.checkTime ? float((tb - e0) / d) : float(k + 1) / float(K);
             slices_.push_back(s);
@@ -183,10 +204,11 @@ void GridRasterizer::collectFrames(const Grid& grid, const Shutter& shutter, con
     const double d = shutter.close - shutter.open;
     for (int fi = 0; fi < block.frameCount(); ++fi) {
         const double e0 = block.firstFrame() + fi + shutter.open, e1 = e0 + d;
-        if (grid.t1 < e0 || grid.t0 > e1) continue;
+        if (!meetsExposure(grid, e0, e1, d)) continue;
         FrameSpan f;
         f.fi = fi;
         f.whole = d == 0 || (grid.t0 <= e0 && grid.t1 >= e1);
+        f.openB = grid.openEnd;
         f.tfA = f.whole ? 0.0f : float((std::max(grid.t0, e0) - e0) / d);
         f.tfB = f.whole ? 1.0f : float((std::min(grid.t1, e1) - e0) / d);
         frames_.push_back(f);
@@ -241,7 +263,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                                 const size_t si = fb + size_t(iy * sx + ix);
                                 const SamplePosition& s = pos[si];
                                 if (s.x < q.xmin || s.x > q.xmax || s.y < q.ymin || s.y > q.ymax) continue;
-                                if (!fr.whole && (s.tf < fr.tfA || s.tf > fr.tfB)) continue;
+                                if (!fr.whole && !inTimeSpan(s.tf, fr.tfA, fr.tfB, fr.openB)) continue;
                                 ++tests;
                                 Hit h;
                                 if (!hitQuad(q, s.x, s.y, h)) continue;
@@ -304,7 +326,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         const size_t si = block.sliceIndex(sl.fi, sl.k, px, py);
                         const SamplePosition& s = block.positions()[si];
                         if (s.x < q.xmin || s.x > q.xmax || s.y < q.ymin || s.y > q.ymax) continue;
-                        if (sl.checkTime && (s.tf < sl.tfA || s.tf > sl.tfB)) continue;
+                        if (sl.checkTime && !inTimeSpan(s.tf, sl.tfA, sl.tfB, sl.openB)) continue;
                         ++tests;
                         const float w = std::min(1.0f, std::max(0.0f, (s.tf - sl.tfA) * invSpan));
                         QuadSetup qt;

@@ -150,6 +150,77 @@ TEST(GridRasterizer, TJunctionsDoNotCrackUnderPerspectiveMotion) {
     EXPECT_EQ(hits, samples);
 }
 
+// Two pieces of one surface meeting at time `tm` (motion segments meeting at a key, or the halves
+// of a time split): [t0, tm) and [tm, t1], each covering the whole 8x8 image, moving 0.5 pixel
+// per unit of time when `moving`.
+struct TimePieces {
+    Material material;
+    Grid first, second;
+    TimePieces(double t0, double tm, double t1, bool moving) {
+        auto at = [&](double t) {
+            const float dx = moving ? float(0.5 * t) : 0.0f;
+            return TrilinearBody::Corners{{{-4 + dx, -4, 10}, {12 + dx, -4, 10}, {-4 + dx, 12, 10}, {12 + dx, 12, 10}}};
+        };
+        TrilinearBody a({t0, tm, true}, at(t0), at(tm), {}, &material), b({tm, t1, false}, at(tm), at(t1), {}, &material);
+        a.dice(2, 2, first);
+        b.dice(2, 2, second);
+        for (Grid* g : {&first, &second})
+            for (int k = 0; k < 2; ++k) g->Ci[k].assign(g->P[0].size(), Color{1, 1, 1});
+    }
+};
+
+// Samples exactly at the start of the exposure, at a key inside it, at its end (as near as a
+// sample gets) and between: each is hit by exactly one of the two pieces.
+TEST(GridRasterizer, SamplesAtExposureEndsAndKeysAreHitExactlyOnce) {
+    for (bool moving : {false, true}) {
+        Fixture f;
+        f.reset();
+        const float times[] = {0.0f, 0.5f, 0.5f, 0x1.fffffep-1f, 0.25f, 0.75f, 0.49999997f, 0.50000006f};
+        for (int y = 0; y < f.size; ++y)
+            for (int x = 0; x < f.size; ++x) {
+                f.sample(x, y) = {float(x) + 0.5f, float(y) + 0.5f, times[(x + y) % 8]};
+            }
+        TimePieces p(0, 0.5, 1, moving);
+        f.raster.rasterize(p.first, f.cam, Shutter{0, 1}, f.block, f.counters);
+        f.raster.rasterize(p.second, f.cam, Shutter{0, 1}, f.block, f.counters);
+        EXPECT_EQ(f.counters.sampleHits, 64u) << (moving ? "moving" : "still");
+    }
+}
+
+// With the shutter closed, a frame is one instant: at a key exactly, only the piece that starts
+// there is sampled; at the end of the last piece, it is.
+TEST(GridRasterizer, InstantAtAKeyIsSampledOnce) {
+    for (bool moving : {false, true})
+        for (double frameTime : {-1.0, 0.0, 1.0}) {  // the first piece's start, the key, the last piece's end
+            Fixture f;
+            f.reset();
+            TimePieces p(-1, 0, 1, moving);
+            const Shutter instant{frameTime, frameTime};  // frame 0 exposed at frameTime only
+            f.raster.rasterize(p.first, f.cam, instant, f.block, f.counters);
+            f.raster.rasterize(p.second, f.cam, instant, f.block, f.counters);
+            EXPECT_EQ(f.counters.sampleHits, 64u) << (moving ? "moving" : "still") << " at t = " << frameTime;
+        }
+}
+
+// Pieces meeting at a slice boundary (4 slices per frame): a sample of slice 0 whose time rounds
+// to the boundary itself belongs to one piece only.
+TEST(GridRasterizer, PiecesMeetingAtASliceBoundary) {
+    for (bool moving : {false, true}) {
+        ImageBlock block;
+        block.reset({0, 0, 7, 7}, 0, 1, SamplePattern{2, 2, 3});
+        // Every sample of slice 0 exactly at its end, 0.25; the others where they are.
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 8; ++x) block.positions()[block.sliceIndex(0, 0, x, y)].tf = 0.25f;
+        TimePieces p(0, 0.25, 1, moving);
+        GridRasterizer raster;
+        RasterCounters counters;
+        Camera cam = pixelCamera(8);
+        raster.rasterize(p.first, cam, Shutter{0, 1}, block, counters);
+        raster.rasterize(p.second, cam, Shutter{0, 1}, block, counters);
+        EXPECT_EQ(counters.sampleHits, 64u * 4u) << (moving ? "moving" : "still");
+    }
+}
+
 TEST(GridRasterizer, NearerHitWinsAndEqualDepthKeepsTheFirst) {
     Fixture f;
     f.reset();

@@ -140,8 +140,10 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
                              "origin)");
         rs->sources.push_back(p.loc);
         const SourceLoc* source = &rs->sources.back();
+        // Segments meet at their keys: all but the last are half-open, so that a sample exactly
+        // at a key belongs to the segment that starts there.
         auto add = [&](double t0, double t1, const TrilinearBody::Corners& c0, const TrilinearBody::Corners& c1) {
-            auto body = std::make_unique<TrilinearBody>(TimeSpan{t0, t1}, c0, c1, cs, material);
+            auto body = std::make_unique<TrilinearBody>(TimeSpan{t0, t1, t1 < ts.back()}, c0, c1, cs, material);
             body->setSource(source);
             rs->roots.push_back(std::move(body));
         };

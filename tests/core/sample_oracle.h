@@ -75,7 +75,7 @@ OracleReport checkSamples(const Scene& scene, const RenderResult& r, Layers laye
                         ++rep.samplesUncovered, ++uncovered;
                     }
                 }
-                const float a = r.alpha(img.frame, x, y);
+                const float a = img.rgba[(size_t(y) * size_t(img.width) + size_t(x)) * 4 + 3];
                 rep.alphaAboveOne += a > 1.0f;
                 if (covered == int(pos.size())) {
                     ++rep.pixelsCovered;
@@ -91,7 +91,7 @@ OracleReport checkSamples(const Scene& scene, const RenderResult& r, Layers laye
 
 // A primitive's corners in camera space at time t, from the scene description in double
 // precision: its own keys and its transform's, linear between keys and held outside them.
-inline std::array<Vec3d, 4> cameraCorners(const Scene& scene, const BilinearPatchDesc& p, double t) {
+inline std::array<Vec3d, 4> cameraCorners(const BilinearPatchDesc& p, const MotionTransform& objectToCamera, double t) {
     std::array<Vec3d, 4> obj = p.P.front();
     if (p.P.size() > 1 && t >= p.times.back()) obj = p.P.back();
     for (size_t i = 1; i < p.P.size(); ++i)
@@ -99,10 +99,13 @@ inline std::array<Vec3d, 4> cameraCorners(const Scene& scene, const BilinearPatc
             const double s = (t - p.times[i - 1]) / (p.times[i] - p.times[i - 1]);
             for (size_t c = 0; c < 4; ++c) obj[c] = lerp(p.P[i - 1][c], p.P[i][c], s);
         }
-    const Matrix4 m = p.objectToWorld.then(scene.camera.worldToCamera).at(t);
+    const Matrix4 m = objectToCamera.at(t);
     std::array<Vec3d, 4> r;
     for (size_t c = 0; c < 4; ++c) r[c] = m.point(obj[c]);
     return r;
+}
+inline std::array<Vec3d, 4> cameraCorners(const Scene& scene, const BilinearPatchDesc& p, double t) {
+    return cameraCorners(p, p.objectToWorld.then(scene.camera.worldToCamera), t);
 }
 
 // How many times the bilinear patch with these corners (x and y only: seen along z) covers the
@@ -142,13 +145,21 @@ class PatchLayers {
   public:
     explicit PatchLayers(const Scene& scene) : scene_(scene) {
         still_ = scene.camera.worldToCamera.isStatic();
-        for (const BilinearPatchDesc& p : scene.patches) still_ = still_ && p.P.size() == 1 && p.objectToWorld.isStatic();
+        for (const BilinearPatchDesc& p : scene.patches) {
+            still_ = still_ && p.P.size() == 1 && p.objectToWorld.isStatic();
+            objectToCamera_.push_back(p.objectToWorld.then(scene.camera.worldToCamera));
+        }
     }
     int operator()(double x, double y, double t) {
         if (corners_.empty() || (!still_ && t != time_)) update(t);
+        int n = 0;
+        if (!still_) {  // corners change with every sample time: not worth an index
+            for (size_t i = 0; i < corners_.size(); ++i)
+                if (bounds_[i].contains({x, y, 0})) n += bilinearLayers(corners_[i], x, y);
+            return n;
+        }
         const int cx = int(std::floor((x - all_.lo.x) / cell_)), cy = int(std::floor((y - all_.lo.y) / cell_));
         if (cx < 0 || cy < 0 || cx >= kCells || cy >= kCells) return 0;
-        int n = 0;
         for (size_t i : cells_[size_t(cy * kCells + cx)])
             if (bounds_[i].contains({x, y, 0})) n += bilinearLayers(corners_[i], x, y);
         return n;
@@ -160,6 +171,7 @@ class PatchLayers {
     const Scene& scene_;
     bool still_ = false;
     double time_ = 0, cell_ = 1;
+    std::vector<MotionTransform> objectToCamera_;
     std::vector<std::array<Vec3d, 4>> corners_;
     std::vector<Bounds3d> bounds_;  // in x and y (z spans everything)
     Bounds3d all_;
@@ -171,14 +183,15 @@ inline void PatchLayers::update(double t) {
     corners_.clear();
     bounds_.clear();
     all_ = Bounds3d();
-    for (const BilinearPatchDesc& p : scene_.patches) {
-        corners_.push_back(cameraCorners(scene_, p, t));
+    for (size_t i = 0; i < scene_.patches.size(); ++i) {
+        corners_.push_back(cameraCorners(scene_.patches[i], objectToCamera_[i], t));
         Bounds3d b;
         for (const Vec3d& c : corners_.back()) b.extend(c);
         b.lo.z = -1e300, b.hi.z = 1e300;
         bounds_.push_back(b);
         all_.extend(b);
     }
+    if (!still_) return;
     cell_ = std::max(all_.hi.x - all_.lo.x, all_.hi.y - all_.lo.y) / kCells * (1 + 1e-9) + 1e-300;
     cells_.assign(size_t(kCells) * kCells, {});
     auto cellOf = [&](double v, double lo) { return std::clamp(int(std::floor((v - lo) / cell_)), 0, kCells - 1); };
