@@ -32,6 +32,11 @@ struct RenderOptions {
     uint64_t seed = 0;
     int bucketSize = 32;             // tile side in pixels
     int maxFrameBlock = 64;          // frames rendered (and held in memory) together
+    uint64_t maxMemoryBytes = 0;     // --max-memory; 0: defaultMemoryBudget() (memory.h)
+    // --resume: frames already written completely. A block whose frames all are is not rendered
+    // again; the others are rendered whole, so that their pixels are an uninterrupted render's,
+    // and only their missing frames go to the sink.
+    std::function<bool(int frame)> frameDone;
 
     // Split loop (see docs/ARCHITECTURE.md).
     int maxGridSize = 256;           // micropolygons per grid (RenderMan's "limits" "gridsize")

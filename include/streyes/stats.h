@@ -34,6 +34,8 @@ struct RenderStats {
     int frameBlock = 0, bucketSize = 0;
     double timeParse = 0, timeBuild = 0, timeRender = 0, timeWrite = 0, timeTotal = 0;  // wall seconds
     uint64_t peakMemoryBytes = 0;  // peak resident set of the process
+    uint64_t memoryEstimateBytes = 0, memoryBudgetBytes = 0;  // memory.h, before rendering
+    int framesSkipped = 0;         // already complete (--resume)
 
     std::string toJson() const;
 };

@@ -38,6 +38,17 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     pattern_ = pattern;
     slices_ = pattern.count();
     const size_t n = size_t(rect.area()) * size_t(frameCount) * size_t(slices_);
+    // A larger bucket than the last (edge tiles are smaller): free the old arrays before making
+    // new ones, rather than holding both while they are copied (everything is rewritten anyway),
+    // and make them exactly n long (resize() alone may double the capacity). memory.h counts one.
+    if (n > positions_.capacity() || n > hits_.capacity() || n > sliceStratum_.capacity()) {
+        positions_ = {};
+        hits_ = {};
+        sliceStratum_ = {};
+        positions_.reserve(n);
+        hits_.reserve(n);
+        sliceStratum_.reserve(n);
+    }
     positions_.resize(n);
     hits_.assign(n, SampleHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f});
     sliceStratum_.resize(n);

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "bucket.h"
+#include "streyes/memory.h"
 
 namespace streyes {
 
@@ -80,6 +81,15 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     block = std::min(block, std::max(1, int(double(1 << 30) / pixelBytes)));
     if (spacetime) block = std::min(block, std::max(1, int(double(1 << 22) / bucketSamplesPerFrame)));
 
+    // Memory (memory.h), before anything large is allocated: the block shrinks until one worker
+    // fits the budget, then as many workers run as fit; a render that does not fit one frame at
+    // a time is refused (InputError: the request must change).
+    const MemoryShape shape{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, scene_->roots.size()};
+    const uint64_t budget = options_.maxMemoryBytes ? options_.maxMemoryBytes : defaultMemoryBudget();
+    const int threads = options_.threads > 0 ? options_.threads : tbb::this_task_arena::max_concurrency();
+    const MemoryEstimate memory = planMemory(shape, block, threads, budget);
+    block = memory.frameBlock;
+
     RenderStats stats;
     stats.algorithm = algorithmName(options_.algorithm);
     stats.firstFrame = s.firstFrame;
@@ -103,7 +113,9 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
             tiles.push_back(b);
         }
 
-    tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
+    stats.memoryEstimateBytes = memory.total();
+    stats.memoryBudgetBytes = budget;
+    tbb::task_arena arena(memory.workers);
     stats.threads = arena.max_concurrency();
     tbb::enumerable_thread_specific<std::unique_ptr<BucketWorker>> workers;
     const uint64_t totalBuckets = uint64_t(tiles.size()) * uint64_t(spacetime ? (frames + block - 1) / block : frames);
@@ -111,8 +123,19 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     double renderSeconds = 0, writeSeconds = 0;
 
     std::vector<FrameImage> images;
+    const uint64_t bucketsPerBlock = uint64_t(tiles.size()) * uint64_t(spacetime ? 1 : block);
     for (int first = s.firstFrame; first <= s.lastFrame; first += block) {
         const int count = std::min(block, s.lastFrame - first + 1);
+        if (options_.frameDone) {  // --resume: skip a block whose frames are all written
+            int written = 0;
+            for (int f = first; f < first + count; ++f) written += options_.frameDone(f);
+            if (written == count) {
+                stats.framesSkipped += count;
+                uint64_t n = done += spacetime ? bucketsPerBlock : uint64_t(tiles.size()) * uint64_t(count);
+                if (progress) progress(n, totalBuckets);
+                continue;
+            }
+        }
         images.resize(size_t(count));
         for (int i = 0; i < count; ++i) {
             images[size_t(i)].frame = first + i;
@@ -140,7 +163,13 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
         });
         renderSeconds += std::chrono::duration<double>(Clock::now() - t).count();
         t = Clock::now();
-        for (const FrameImage& img : images) sink(img);
+        for (const FrameImage& img : images) {
+            if (options_.frameDone && options_.frameDone(img.frame)) {
+                ++stats.framesSkipped;
+                continue;
+            }
+            sink(img);
+        }
         writeSeconds += std::chrono::duration<double>(Clock::now() - t).count();
     }
     for (const auto& w : workers)

@@ -82,7 +82,10 @@ std::string RenderStats::toJson() const {
       << num(c.timeSplit) << ", \"dice\": " << num(c.timeDice) << ", \"shade\": " << num(c.timeShade)
       << ", \"sample\": " << num(c.timeSample) << ", \"resolve\": " << num(c.timeResolve) << "}\n"
       << "  },\n"
-      << "  \"peak_memory_bytes\": " << peakMemoryBytes << "\n"
+      << "  \"peak_memory_bytes\": " << peakMemoryBytes << ",\n"
+      << "  \"memory_estimate_bytes\": " << memoryEstimateBytes << ",\n"
+      << "  \"memory_budget_bytes\": " << memoryBudgetBytes << ",\n"
+      << "  \"frames_skipped\": " << framesSkipped << "\n"
       << "}\n";
     return o.str();
 }

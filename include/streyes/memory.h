@@ -1,0 +1,57 @@
+// Memory: what a render will hold at once, estimated before anything large is allocated, and the
+// budget it must fit (--max-memory; by default three quarters of the machine's memory).
+//
+// A render holds the frame block's resolved images (RGBA and Z, float) until the block is done,
+// and each worker thread holds one bucket's samples (positions, hits and the slice table, for
+// every frame of the block in spacetime mode) and its filter accumulators. The frame block shrinks
+// until one worker fits; then as many workers run as fit (never more than the threads asked for).
+// Thread count never changes the pixels, so that is the knob turned first; a smaller frame block
+// can change them in the last bits (moving bodies are cut at block boundaries).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace streyes {
+
+// What sets a render's memory.
+struct MemoryShape {
+    int width = 0, height = 0;
+    int samplesPerPixel = 1;
+    int tileSize = 32, guardX = 0, guardY = 0;  // bucket tile and the filter's guard band
+    bool spacetime = true;                      // a bucket holds every frame of the block
+    uint64_t rootBodies = 0;
+};
+
+// Bytes, by what holds them.
+struct MemoryEstimate {
+    uint64_t baseline = 0;       // the executable and its libraries
+    uint64_t scene = 0;          // root bodies
+    uint64_t frameImages = 0;    // the frame block's images
+    uint64_t perWorker = 0;      // one bucket's samples and filter accumulators
+    int workers = 1;
+    uint64_t writer = 0;         // one frame being encoded and written
+    int frameBlock = 1;
+    uint64_t total() const { return baseline + scene + frameImages + perWorker * uint64_t(workers) + writer; }
+    // "2.3 GiB: frame images 1.5 GiB (64 frames of 1920x1080), samples 0.6 GiB (2 workers x ...), ..."
+    std::string describe(const MemoryShape& shape) const;
+};
+
+MemoryEstimate estimateMemory(const MemoryShape& shape, int frameBlock, int workers);
+
+// The largest frame block up to `maxBlock` with which one worker fits `budget`, and as many
+// workers (up to `maxWorkers`) as then fit. Throws InputError, with what a block of one frame would
+// need and what to change, when even that does not fit.
+MemoryEstimate planMemory(const MemoryShape& shape, int maxBlock, int maxWorkers, uint64_t budget);
+
+// Three quarters of the physical memory, or of the control group's limit when that is lower.
+uint64_t defaultMemoryBudget();
+uint64_t physicalMemoryBytes();
+
+// "1.5 GiB", "640 MiB", "12 KiB".
+std::string formatBytes(uint64_t bytes);
+// "8G", "512M", "1.5GiB", "4096" (bytes): binary units K M G T, an optional "B" or "iB".
+// Returns false on anything else or on zero.
+bool parseByteSize(const std::string& text, uint64_t* bytes);
+
+}  // namespace streyes

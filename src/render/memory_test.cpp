@@ -1,0 +1,87 @@
+#include "streyes/memory.h"
+
+#include <gtest/gtest.h>
+
+#include "streyes/util/error.h"
+
+namespace streyes {
+namespace {
+
+TEST(Memory, ByteSizes) {
+    uint64_t b = 0;
+    EXPECT_TRUE(parseByteSize("4096", &b));
+    EXPECT_EQ(b, 4096u);
+    EXPECT_TRUE(parseByteSize("512M", &b));
+    EXPECT_EQ(b, uint64_t(512) << 20);
+    EXPECT_TRUE(parseByteSize("8g", &b));
+    EXPECT_EQ(b, uint64_t(8) << 30);
+    EXPECT_TRUE(parseByteSize("1.5GiB", &b));
+    EXPECT_EQ(b, uint64_t(3) << 29);
+    EXPECT_TRUE(parseByteSize("2KB", &b));
+    EXPECT_EQ(b, 2048u);
+    for (const char* bad : {"", "0", "-1G", "G", "8X", "8 G", "1e3", "8GG", "99999999999T"})
+        EXPECT_FALSE(parseByteSize(bad, &b)) << bad;
+    EXPECT_EQ(formatBytes(512), "512 bytes");
+    EXPECT_EQ(formatBytes(uint64_t(3) << 29), "1.50 GiB");
+    EXPECT_EQ(formatBytes(uint64_t(640) << 20), "640 MiB");
+}
+
+const MemoryShape kHd{1920, 1080, 16, 32, 1, 1, true, 1000};
+
+TEST(Memory, EstimateCountsImagesAndSamplesPerWorker) {
+    const MemoryEstimate e = estimateMemory(kHd, 10, 3);
+    EXPECT_EQ(e.frameImages, uint64_t(10) * 1920 * 1080 * 20);  // RGBA + Z float
+    // A bucket of 34 x 34 pixels (tile and guard band) x 10 frames x 16 samples of 34 bytes, and
+    // its filter accumulators (32 x 32 pixels x 10 frames x 5 floats).
+    EXPECT_EQ(e.perWorker, uint64_t(34 * 34) * 10 * 16 * 34 + uint64_t(32 * 32) * 10 * 20);
+    EXPECT_EQ(e.total(), e.baseline + e.scene + e.frameImages + 3 * e.perWorker + e.writer);
+    // Per-frame buckets (Algorithm C) hold one frame whatever the block.
+    MemoryShape frames = kHd;
+    frames.spacetime = false;
+    EXPECT_EQ(estimateMemory(frames, 10, 1).perWorker, estimateMemory(frames, 1, 1).perWorker);
+}
+
+TEST(Memory, PlanShrinksTheBlockThenTheWorkers) {
+    // Plenty: the block and the threads asked for.
+    MemoryEstimate roomy = planMemory(kHd, 64, 8, uint64_t(64) << 30);
+    EXPECT_EQ(roomy.frameBlock, 64);
+    EXPECT_EQ(roomy.workers, 8);
+    // A budget that fits 20 frames with one worker, not 21: the block is 20, whatever the threads,
+    // and the workers are as many as fit beside it.
+    const uint64_t budget = estimateMemory(kHd, 20, 1).total() + 1000;
+    ASSERT_LT(budget, estimateMemory(kHd, 21, 1).total());
+    for (int threads : {1, 2, 8}) {
+        MemoryEstimate e = planMemory(kHd, 64, threads, budget);
+        EXPECT_EQ(e.frameBlock, 20) << threads;
+        EXPECT_EQ(e.workers, 1);
+        EXPECT_LE(e.total(), budget);
+    }
+    const uint64_t twoWorkers = estimateMemory(kHd, 20, 2).total();
+    EXPECT_EQ(planMemory(kHd, 20, 8, twoWorkers).workers, 2);
+    EXPECT_EQ(planMemory(kHd, 20, 8, twoWorkers - 1).workers, 1);
+}
+
+TEST(Memory, RefusesWhatDoesNotFitOneFrameAtATime) {
+    MemoryShape huge{65536, 65536, 16, 32, 1, 1, true, 10};
+    const uint64_t need = estimateMemory(huge, 1, 1).total();
+    try {
+        planMemory(huge, 64, 8, uint64_t(16) << 30);
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("needs about " + formatBytes(need)), std::string::npos) << m;
+        EXPECT_NE(m.find("frame images 80.0 GiB (1 frame of 65536x65536)"), std::string::npos) << m;
+        EXPECT_NE(m.find("budget of 16.0 GiB"), std::string::npos) << m;
+        EXPECT_NE(m.find("lower --res or --samples"), std::string::npos) << m;
+    }
+    EXPECT_EQ(planMemory(huge, 64, 8, need).frameBlock, 1);  // exactly enough is enough
+}
+
+TEST(Memory, DefaultBudgetIsAShareOfTheMachine) {
+    const uint64_t budget = defaultMemoryBudget();
+    EXPECT_GT(budget, uint64_t(64) << 20);
+    EXPECT_LE(budget, physicalMemoryBytes() / 4 * 3);
+}
+
+}  // namespace
+}  // namespace streyes
