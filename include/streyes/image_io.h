@@ -21,8 +21,22 @@ bool hasFrameField(const std::string& pattern);
 // Inserts ".####" before the extension: "out.exr" -> "out.####.exr".
 std::string addFrameField(const std::string& pattern);
 
-// Writes one frame atomically. Throws RenderError with a clear message on failure.
+// Writes one frame atomically: encoded in memory, written to temporaryFrameName(path, pid) with
+// every write checked and synced, then renamed to `path`. Throws RenderError with a clear message
+// on failure (a full disk, a file size limit, an unwritable folder) and leaves nothing behind.
 void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode);
+
+// The temporary name process `pid` writes `path` under: ".STEM.tmpPID.EXT" in the same folder.
+std::string temporaryFrameName(const std::string& path, int pid);
+
+// Removes the temporary frames that renders which no longer run (killed mid-write) left in the
+// folder of the output `pattern` ("out/f.####.exr"), for names that pattern makes. Temporaries
+// of running processes are left alone. Returns how many were removed.
+int removeStaleTemporaries(const std::string& pattern);
+
+// True when `path` is an image of width x height with exactly the channels of `mode` (R G B,
+// then A, then Z) whose every pixel reads back: a frame a render finished writing.
+bool isCompleteFrame(const std::string& path, int width, int height, const std::string& mode);
 
 // An image read back: float pixels, interleaved, with its channel names and per-channel formats
 // ("half", "float", "uint8", ...).

@@ -44,9 +44,14 @@ render options:
   --seed N            sample pattern seed (default 0)
   --bucket N          bucket tile size in pixels (default 32)
   --frame-block N     frames rendered together (default 64; memory grows with it)
+  --max-memory SIZE   memory budget, e.g. 8G or 512M (default: 3/4 of the machine's);
+                      frame blocks and workers shrink to fit it, and a render that
+                      cannot fit one frame at a time is refused (exit 2)
+  --resume            skip frames whose files are already complete (read back and
+                      checked), render the rest
   --quiet             no progress bar, no summary, no warnings on stderr
 
-exit codes: 0 done, 1 render failed, 2 bad input or usage
+exit codes: 0 done, 1 render failed, 2 bad input or usage (or more memory than the budget)
 )";
 
 }  // namespace streyes::cli

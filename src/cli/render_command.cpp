@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -10,6 +11,7 @@
 
 #include "commands.h"
 #include "streyes/image_io.h"
+#include "streyes/memory.h"
 #include "streyes/renderer.h"
 #include "streyes/rib.h"
 
@@ -123,7 +125,7 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
 int renderCommand(const std::vector<std::string>& args) {
     RenderOptions opts;
     std::string scenePath, outPattern, statsPath;
-    bool quiet = false;
+    bool quiet = false, resume = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> std::string {
@@ -143,6 +145,11 @@ int renderCommand(const std::vector<std::string>& args) {
         else if (a == "--seed") opts.seed = uint64_t(parseInt(a, value(), 0, 0x7fffffffL));
         else if (a == "--bucket") opts.bucketSize = int(parseInt(a, value(), 4, 1024));
         else if (a == "--frame-block") opts.maxFrameBlock = int(parseInt(a, value(), 1, 100000));
+        else if (a == "--max-memory") {
+            std::string v = value();
+            if (!parseByteSize(v, &opts.maxMemoryBytes))
+                throw UsageError("--max-memory expects a size such as 512M, 8G or 1.5GiB, not '" + v + "'");
+        } else if (a == "--resume") resume = true;
         else if (a == "--quiet" || a == "-q") quiet = true;
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
         else if (scenePath.empty()) scenePath = a;
@@ -157,10 +164,28 @@ int renderCommand(const std::vector<std::string>& args) {
     Scene scene = parseRibFile(scenePath, log);
     const double parseSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    Renderer renderer(scene, opts, log);
-    const ResolvedSettings& rs = renderer.settings();
+    // A file size limit kills a process that writes past it (SIGXFSZ); ignored, the write fails
+    // with EFBIG instead, and the frame is reported and removed like any failed write.
+    std::signal(SIGXFSZ, SIG_IGN);
+
+    const ResolvedSettings rs = resolveSettings(scene, opts);
     const int frames = rs.lastFrame - rs.firstFrame + 1;
     std::vector<Output> outputs = chooseOutputs(scene, outPattern, scenePath, frames, log);
+
+    // Temporary files of renders that were killed mid-write go; with --resume, frames whose every
+    // output is a complete image of the right size and channels (read back) are not rendered.
+    int stale = 0;
+    for (const Output& o : outputs) stale += removeStaleTemporaries(o.pattern);
+    if (stale > 0) log.info("removed " + std::to_string(stale) + " temporary file" + (stale == 1 ? "" : "s") +
+                            " left by an interrupted render");
+    if (resume) {
+        opts.frameDone = [&outputs, &rs](int frame) {
+            for (const Output& o : outputs)
+                if (!isCompleteFrame(expandFramePattern(o.pattern, frame), rs.width, rs.height, o.mode)) return false;
+            return true;
+        };
+    }
+    Renderer renderer(scene, opts, log);
 
     ProgressBar bar(!quiet);
     std::vector<std::string> written;
@@ -182,6 +207,9 @@ int renderCommand(const std::vector<std::string>& args) {
                      frames == 1 ? "" : "s", rs.width, rs.height, rs.pattern.count(), algorithmName(opts.algorithm),
                      stats.timeTotal, written.empty() ? "(nothing written)" : written.front().c_str(),
                      written.size() > 1 ? (" ... " + written.back()).c_str() : "");
+        if (stats.framesSkipped > 0)
+            std::fprintf(stderr, "streyes: %d frame%s already complete, not written again (--resume)\n",
+                         stats.framesSkipped, stats.framesSkipped == 1 ? "" : "s");
     }
     return 0;
 }

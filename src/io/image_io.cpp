@@ -1,7 +1,13 @@
 #include "streyes/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
+
+#include <limits>
+#include <regex>
 
 #include <cerrno>
 #include <cstdio>
@@ -81,23 +87,114 @@ void writeFrame(const std::string& path, const FrameImage& image, const std::str
         if (z) d[nch - 1] = image.z[i];
     }
 
-    // Temporary name in the same folder (rename is atomic within a file system); it keeps the
-    // extension so OIIO picks the right format.
-    const fs::path tmp = dir / ("." + target.stem().string() + ".tmp" + std::to_string(getpid()) + target.extension().string());
+    // The file is encoded in memory, then written by us: OpenEXR does not report a failing write
+    // (a full disk, a file size limit), and left truncated frames behind as if all was well. The
+    // bytes go to a temporary name in the same folder (rename is atomic within a file system),
+    // each write checked, synced to disk, and renamed into place.
+    std::vector<unsigned char> bytes;
+    {
+        OIIO::Filesystem::IOVecOutput memory(bytes);
+        OIIO::Filesystem::IOProxy* proxy = &memory;
+        auto out = ImageOutput::create(exr ? std::string("openexr") : target.string());
+        if (!out) throw RenderError("cannot write '" + path + "': no image format for '" + ext + "' (" + OIIO::geterror() + ")");
+        if (!out->supports("ioproxy"))
+            throw RenderError("cannot write '" + path + "': the '" + ext + "' format cannot be written safely (use .exr)");
+        spec.attribute("oiio:ioproxy", TypeDesc::PTR, &proxy);
+        if (!out->open(target.string(), spec) || !out->write_image(TypeDesc::FLOAT, data.data()) || !out->close())
+            throw RenderError("cannot write '" + path + "': " + out->geterror());
+    }
+    const fs::path tmp = temporaryFrameName(path, int(getpid()));
     auto fail = [&](const std::string& why) {
         std::error_code ignore;
         fs::remove(tmp, ignore);
         throw RenderError("cannot write '" + path + "': " + why);
     };
-    {
-        auto out = ImageOutput::create(exr ? std::string("openexr") : tmp.string());
-        if (!out) fail("no image format for '" + ext + "' (" + OIIO::geterror() + ")");
-        if (!out->open(tmp.string(), spec)) fail(out->geterror());
-        if (!out->write_image(TypeDesc::FLOAT, data.data())) fail(out->geterror());
-        if (!out->close()) fail(out->geterror());
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) fail(std::strerror(errno));
+    for (size_t done = 0; done < bytes.size();) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int err = n < 0 ? errno : EIO;
+            ::close(fd);
+            fail(std::strerror(err));
+        }
+        done += size_t(n);
     }
+    if (::fsync(fd) != 0) {
+        const int err = errno;
+        ::close(fd);
+        fail(std::strerror(err));
+    }
+    if (::close(fd) != 0) fail(std::strerror(errno));
     fs::rename(tmp, target, ec);
     if (ec) fail(ec.message());
+}
+
+std::string temporaryFrameName(const std::string& path, int pid) {
+    const fs::path target(path);
+    return (target.parent_path() / ("." + target.stem().string() + ".tmp" + std::to_string(pid) +
+                                    target.extension().string()))
+        .string();
+}
+
+// ".STEM.tmpPID.EXT" for the frames of `pattern`: STEM and EXT as in the pattern, #### any digits.
+int removeStaleTemporaries(const std::string& pattern) {
+    const fs::path p(pattern);
+    const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+    std::string stem = p.stem().string(), ext = p.extension().string(), re = "^\\.";
+    auto quote = [](const std::string& s) {
+        std::string r;
+        for (char c : s) {
+            if (std::strchr("\\^$.|?*+()[]{}", c)) r += '\\';
+            r += c;
+        }
+        return r;
+    };
+    for (size_t i = 0; i < stem.size();) {
+        size_t j = stem.find('#', i);
+        if (j == std::string::npos) j = stem.size();
+        re += quote(stem.substr(i, j - i));
+        size_t k = stem.find_first_not_of('#', j);
+        if (k == std::string::npos) k = stem.size();
+        if (k > j) re += "-?[0-9]{" + std::to_string(k - j) + ",}";
+        i = k;
+    }
+    re += "\\.tmp([0-9]+)" + quote(ext) + "$";
+    const std::regex name(re);
+    int removed = 0;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        std::smatch m;
+        const std::string file = entry.path().filename().string();
+        if (!std::regex_match(file, m, name)) continue;
+        // The writer is gone when no process has its id (a live one, even someone else's, stays).
+        const long pid = std::strtol(m[1].str().c_str(), nullptr, 10);
+        if (pid <= 0 || pid > std::numeric_limits<pid_t>::max() || pid == long(getpid())) continue;
+        if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;
+        if (fs::remove(entry.path(), ec)) ++removed;
+    }
+    return removed;
+}
+
+bool isCompleteFrame(const std::string& path, int width, int height, const std::string& mode) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return false;
+    auto in = ImageInput::open(path);
+    if (!in) {
+        OIIO::geterror();  // clear it
+        return false;
+    }
+    const ImageSpec& spec = in->spec();
+    std::vector<std::string> channels = {"R", "G", "B"};
+    if (mode != "rgb") channels.push_back("A");
+    if (mode == "rgbaz") channels.push_back("Z");
+    if (spec.width != width || spec.height != height || spec.channelnames != channels) return false;
+    // Reading every pixel is what proves the file complete: a truncated EXR has a good header.
+    std::vector<float> pixels(size_t(width) * size_t(height) * channels.size());
+    const bool ok = in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, pixels.data());
+    if (!ok) in->geterror();
+    return ok;
 }
 
 int ImageData::channelIndex(const std::string& name) const {

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "cli_util.h"
 #include "streyes/image_io.h"
 #include "test_util.h"
 
@@ -14,36 +15,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-    int exitCode = -1;
-    std::string output;  // stdout and stderr
-};
+using test::listDir;
+using test::writeFile;
 
-CliRun streyes(const std::string& args) {
-    CliRun r;
-    std::string cmd = std::string(STREYES_EXE) + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-    int status = pclose(p);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
-std::string writeFile(const std::string& dir, const std::string& name, const std::string& text) {
-    std::string path = dir + "/" + name;
-    std::ofstream(path) << text;
-    return path;
-}
-
-std::vector<std::string> listDir(const std::string& dir) {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-}
+test::CliRun streyes(const std::string& args) { return test::runStreyes(args); }
 
 const char* kTiny = R"(Format 16 8 1
 PixelSamples 2 2
@@ -54,18 +29,18 @@ WorldEnd
 )";
 
 TEST(Cli, HelpAndUsageErrors) {
-    CliRun help = streyes("--help");
+    test::CliRun help = streyes("--help");
     EXPECT_EQ(help.exitCode, 0);
     EXPECT_NE(help.output.find("streyes render"), std::string::npos);
-    CliRun bad = streyes("render --bogus x.rib");
+    test::CliRun bad = streyes("render --bogus x.rib");
     EXPECT_EQ(bad.exitCode, 2);
     EXPECT_NE(bad.output.find("unknown option '--bogus'"), std::string::npos);
-    CliRun badFrames = streyes("render x.rib --frames 5-2");
+    test::CliRun badFrames = streyes("render x.rib --frames 5-2");
     EXPECT_EQ(badFrames.exitCode, 2);
 }
 
 TEST(Cli, MissingSceneIsBadInput) {
-    CliRun r = streyes("render /nonexistent/scene.rib -o /tmp/x.exr");
+    test::CliRun r = streyes("render /nonexistent/scene.rib -o /tmp/x.exr");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.output.find("/nonexistent/scene.rib"), std::string::npos) << r.output;
 }
@@ -73,7 +48,7 @@ TEST(Cli, MissingSceneIsBadInput) {
 TEST(Cli, MalformedRibExits2WithFileAndLine) {
     std::string dir = test::makeTempDir("cli-bad");
     std::string scene = writeFile(dir, "bad.rib", "Format 16 8 1\nWorldBegin\nTranslate 1 2\nWorldEnd\n");
-    CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
+    test::CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("bad.rib:3: error:"), std::string::npos) << r.output;
     EXPECT_EQ(listDir(dir), std::vector<std::string>{"bad.rib"});  // nothing written
@@ -84,7 +59,7 @@ TEST(Cli, UnknownRequestWarnsOnceAndRenders) {
     std::string rib = std::string("Hider \"hidden\"\n") + kTiny;
     rib.insert(rib.find("WorldEnd"), "Hider \"hidden\"\n");
     std::string scene = writeFile(dir, "warn.rib", rib);
-    CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
+    test::CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("warn.rib:1: warning:"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("warn.rib:7: warning:"), std::string::npos) << "warned twice: " << r.output;
@@ -96,7 +71,7 @@ TEST(Cli, UnknownRequestWarnsOnceAndRenders) {
 TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
     std::string dir = test::makeTempDir("cli-exr");
     std::string scene = writeFile(dir, "tiny.rib", kTiny);
-    CliRun r = streyes("render " + scene + " --frames 3-4 --res 20x10 -o " + dir + "/f.####.exr --stats " + dir +
+    test::CliRun r = streyes("render " + scene + " --frames 3-4 --res 20x10 -o " + dir + "/f.####.exr --stats " + dir +
                     "/stats.json --quiet");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output, "");  // --quiet
@@ -117,16 +92,16 @@ TEST(Cli, UnwritableOutputFailsCleanly) {
     std::string dir = test::makeTempDir("cli-unwritable");
     std::string scene = writeFile(dir, "tiny.rib", kTiny);
     // A folder that does not exist.
-    CliRun missing = streyes("render " + scene + " -o " + dir + "/no/such/folder/f.####.exr");
+    test::CliRun missing = streyes("render " + scene + " -o " + dir + "/no/such/folder/f.####.exr");
     EXPECT_EQ(missing.exitCode, 1) << missing.output;
     EXPECT_NE(missing.output.find("does not exist"), std::string::npos) << missing.output;
     // A "folder" that is a file.
     writeFile(dir, "afile", "x");
-    CliRun notDir = streyes("render " + scene + " -o " + dir + "/afile/f.####.exr");
+    test::CliRun notDir = streyes("render " + scene + " -o " + dir + "/afile/f.####.exr");
     EXPECT_EQ(notDir.exitCode, 1);
     // The final name is taken by a folder: the write fails at the rename, the temporary is removed.
     fs::create_directory(dir + "/f.0000.exr");
-    CliRun blocked = streyes("render " + scene + " -o " + dir + "/f.####.exr");
+    test::CliRun blocked = streyes("render " + scene + " -o " + dir + "/f.####.exr");
     EXPECT_EQ(blocked.exitCode, 1) << blocked.output;
     EXPECT_NE(blocked.output.find("cannot write"), std::string::npos) << blocked.output;
     EXPECT_EQ(listDir(dir), (std::vector<std::string>{"afile", "f.0000.exr", "tiny.rib"}));
