@@ -1,0 +1,86 @@
+// Resources through the streyes command: a render too large for the memory budget is refused
+// before anything large is allocated (exit 2, with the figure it needs), and --max-memory sets the
+// budget the frame block and the workers shrink to.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+
+#include "cli_util.h"
+#include "streyes/image_io.h"
+#include "test_util.h"
+
+namespace streyes {
+namespace {
+
+using test::CliRun;
+using test::listDir;
+using test::runStreyes;
+using test::writeFile;
+
+const char* kScene = R"(Format 64 64 1
+PixelSamples 8 8
+Option "streyes" "int frames" [1 32]
+WorldBegin
+Surface "constant"
+Patch "bilinear" "P" [-0.5 -0.5 1  0.5 -0.5 1  -0.5 0.5 1  0.5 0.5 1]
+WorldEnd
+)";
+
+uint64_t jsonNumber(const std::string& json, const std::string& key) {
+    std::smatch m;
+    if (!std::regex_search(json, m, std::regex("\"" + key + "\": ([0-9]+)"))) return 0;
+    return std::stoull(m[1].str());
+}
+
+TEST(CliMemory, HugeRenderIsRefusedWithTheFigureItNeeds) {
+    const std::string dir = test::makeTempDir("huge");
+    const std::string scene = writeFile(dir, "s.rib", kScene);
+    // 65536 x 65536: one frame's image alone is 80 GiB.
+    CliRun r = runStreyes("render " + scene + " --res 65536x65536 --max-memory 64G -o " + dir + "/f.####.exr",
+                          "ulimit -v 4000000; ");  // it must not even try: 4 GB of address space
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("streyes: error: this render needs about 200 GiB of memory even one frame at a time "
+                            "(frame images 80.0 GiB (1 frame of 65536x65536)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("more than its budget of 64.0 GiB"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("raise --max-memory"), std::string::npos) << r.output;
+    EXPECT_EQ(listDir(dir), std::vector<std::string>{"s.rib"});
+}
+
+TEST(CliMemory, BudgetBelowTheProgramItselfIsRefused) {
+    const std::string dir = test::makeTempDir("tiny-budget");
+    const std::string scene = writeFile(dir, "s.rib", kScene);
+    CliRun r = runStreyes("render " + scene + " --max-memory 64M -o " + dir + "/f.####.exr");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("more than its budget of 64.0 MiB"), std::string::npos) << r.output;
+    CliRun bad = runStreyes("render " + scene + " --max-memory lots -o " + dir + "/f.####.exr");
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+    EXPECT_NE(bad.output.find("--max-memory expects a size such as 512M"), std::string::npos) << bad.output;
+    EXPECT_EQ(listDir(dir), std::vector<std::string>{"s.rib"});
+}
+
+// A budget that fits a few frames at a time: the render goes on in smaller blocks, the process's
+// peak memory stays within the budget, and every frame is written.
+TEST(CliMemory, MaxMemoryShrinksTheFrameBlock) {
+    const std::string dir = test::makeTempDir("budget");
+    const std::string scene = writeFile(dir, "s.rib", kScene);
+    CliRun r = runStreyes("render " + scene + " --max-memory 140M --threads 2 -o " + dir + "/f.####.exr --stats " +
+                          dir + "/stats.json --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream f(dir + "/stats.json");
+    const std::string json((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const uint64_t budget = uint64_t(140) << 20;
+    EXPECT_EQ(jsonNumber(json, "memory_budget_bytes"), budget);
+    EXPECT_LE(jsonNumber(json, "memory_estimate_bytes"), budget);
+    const uint64_t block = jsonNumber(json, "frame_block");
+    EXPECT_GT(block, 1u);
+    EXPECT_LT(block, 32u);
+    EXPECT_LE(jsonNumber(json, "peak_memory_bytes"), budget + budget / 20);  // the program's own size varies a little
+    for (int frame = 1; frame <= 32; ++frame)
+        EXPECT_TRUE(isCompleteFrame(expandFramePattern(dir + "/f.####.exr", frame), 64, 64, "rgbaz")) << frame;
+}
+
+}  // namespace
+}  // namespace streyes
