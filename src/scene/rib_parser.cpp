@@ -738,6 +738,10 @@ void RibParser::pixelFilter(RibArgs& args) {
     args.expectEnd();
     if (!(w[0] > 0 && w[1] > 0))
         args.fail("filter widths must be positive, got " + formatNumber(w[0]) + " " + formatNumber(w[1]));
+    // The resolver keeps 64 taps a side, and each bucket renders a guard band of half the width.
+    constexpr double kMaxFilterWidth = 32;
+    if (w[0] > kMaxFilterWidth || w[1] > kMaxFilterWidth)
+        args.fail("filter widths must be at most 32 pixels, got " + formatNumber(w[0]) + " " + formatNumber(w[1]));
     if (type == "catmullrom") type = "catmull-rom";
     if (type != "box" && type != "gaussian" && type != "catmull-rom") {
         log_.warnOnce(

@@ -575,6 +575,7 @@ TEST(RibErrors, MalformedInputNamesTheLine) {
         {"bad Clipping", "\n\nClipping 10 1\nWorldBegin\nWorldEnd\n", "far must be greater than near"},
         {"bad Shutter", "\n\nShutter 1 0\nWorldBegin\nWorldEnd\n", "close must not come before open"},
         {"huge PixelSamples", "\n\nPixelSamples 100 1\nWorldBegin\nWorldEnd\n", "at most 64"},
+        {"huge PixelFilter", "\n\nPixelFilter \"box\" 1 1666666666666\nWorldBegin\nWorldEnd\n", "at most 32 pixels"},
         {"bad Projection", "\n\nProjection \"fisheye\"\nWorldBegin\nWorldEnd\n",
          "\"perspective\" or \"orthographic\""},
         {"frames reversed", "\n\nOption \"streyes\" \"int frames\" [5 1]\nWorldBegin\nWorldEnd\n", "comes after"},

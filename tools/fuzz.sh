@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Fuzzes the RIB parser (and what a parsed scene goes through) with libFuzzer: fuzz/rib_fuzz.cpp.
+#
+#   tools/fuzz.sh                      build the fuzzer (cmake --preset fuzz, clang) and run 10 minutes
+#   tools/fuzz.sh --seconds 3600 --jobs 2
+#   tools/fuzz.sh --binary build/fuzz/streyes_fuzz_rib --seconds 10 --seed 1   (what ctest runs)
+#
+# Seeds: scenes/, scenes/hard/, fuzz/seeds/ and fuzz/regressions/ (read only); inputs that reach new
+# code go to WORK/corpus (default build-fuzz/work), crashes to WORK/ as crash-*, leak-*, timeout-*.
+# A crash stops the run with a non-zero exit: add the input to fuzz/regressions/ with the fix
+# (tests/core/fuzz_regression_test.cpp replays every file there).
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+seconds=600 jobs=1 binary="" work="" seed=""
+while (($#)); do
+  case "$1" in
+    --seconds) seconds=$2; shift 2 ;;
+    --jobs) jobs=$2; shift 2 ;;
+    --binary) binary=$2; shift 2 ;;
+    --work) work=$2; shift 2 ;;
+    --seed) seed=$2; shift 2 ;;
+    *) echo "usage: tools/fuzz.sh [--seconds N] [--jobs N] [--binary PATH] [--work DIR] [--seed N]" >&2; exit 2 ;;
+  esac
+done
+if [ -z "$binary" ]; then
+  cd "$ROOT"
+  [ -f build-fuzz/CMakeCache.txt ] || cmake --preset fuzz >/dev/null
+  cmake --build --preset fuzz
+  binary=$ROOT/build-fuzz/streyes_fuzz_rib
+fi
+work=${work:-$ROOT/build-fuzz/work}
+mkdir -p "$work/corpus"
+log=$work/fuzz.log
+args=(-dict="$ROOT/fuzz/rib.dict" -max_total_time="$seconds" -max_len=8192 -timeout=10 -rss_limit_mb=2048
+      -print_final_stats=1 -artifact_prefix="$work/")
+[ -n "$seed" ] && args+=(-seed="$seed")
+if ((jobs > 1)); then args+=(-jobs="$jobs" -workers="$jobs"); fi
+echo "== Fuzzing the RIB parser for $seconds s ($binary)"
+status=0
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  "$binary" "${args[@]}" "$work/corpus" "$ROOT/scenes" "$ROOT/scenes/hard" "$ROOT/fuzz/seeds" \
+  "$ROOT/fuzz/regressions" >"$log" 2>&1 || status=$?
+if ((jobs > 1)); then cat "$work"/fuzz-*.log >>"$log" 2>/dev/null || true; fi
+runs=$( (grep -h "stat::number_of_executed_units" "$log" || true) | awk '{s += $2} END {print s + 0}')
+if ((status != 0)); then
+  grep -E "ERROR|SUMMARY|runtime error|Test unit written|deadly signal" "$log" | head -20 >&2
+  echo "== The fuzzer failed after $runs executions: see $log" >&2
+  exit 1
+fi
+echo "== $runs executions without a crash (corpus: $(ls "$work/corpus" | wc -l) inputs in $work/corpus)"
