@@ -6,8 +6,6 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include <limits>
-#include <regex>
 
 #include <cerrno>
 #include <cstdio>
@@ -138,39 +136,53 @@ std::string temporaryFrameName(const std::string& path, int pid) {
         .string();
 }
 
-// ".STEM.tmpPID.EXT" for the frames of `pattern`: STEM and EXT as in the pattern, #### any digits.
+namespace {
+
+// Does `name` read `pattern`, where a run of '#' stands for a frame number (digits, perhaps a
+// minus sign, at least as many characters as the run, as expandFramePattern writes them)?
+bool matchesFramePattern(const std::string& name, const std::string& pattern) {
+    size_t i = 0, p = 0;
+    while (p < pattern.size()) {
+        if (pattern[p] != '#') {
+            if (i >= name.size() || name[i] != pattern[p]) return false;
+            ++i, ++p;
+            continue;
+        }
+        size_t run = pattern.find_first_not_of('#', p);
+        if (run == std::string::npos) run = pattern.size();
+        const size_t start = i;
+        if (i < name.size() && name[i] == '-') ++i;
+        const size_t digits = i;
+        while (i < name.size() && std::isdigit(static_cast<unsigned char>(name[i]))) ++i;
+        if (i == digits || i - start < run - p) return false;
+        p = run;
+    }
+    return i == name.size();
+}
+
+}  // namespace
+
+// Temporaries are ".STEM.tmpPID.EXT" (temporaryFrameName) for the frames of `pattern`.
 int removeStaleTemporaries(const std::string& pattern) {
     const fs::path p(pattern);
     const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-    std::string stem = p.stem().string(), ext = p.extension().string(), re = "^\\.";
-    auto quote = [](const std::string& s) {
-        std::string r;
-        for (char c : s) {
-            if (std::strchr("\\^$.|?*+()[]{}", c)) r += '\\';
-            r += c;
-        }
-        return r;
-    };
-    for (size_t i = 0; i < stem.size();) {
-        size_t j = stem.find('#', i);
-        if (j == std::string::npos) j = stem.size();
-        re += quote(stem.substr(i, j - i));
-        size_t k = stem.find_first_not_of('#', j);
-        if (k == std::string::npos) k = stem.size();
-        if (k > j) re += "-?[0-9]{" + std::to_string(k - j) + ",}";
-        i = k;
-    }
-    re += "\\.tmp([0-9]+)" + quote(ext) + "$";
-    const std::regex name(re);
+    const std::string prefix = "." + p.stem().string(), ext = p.extension().string();
     int removed = 0;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(dir, ec)) {
-        std::smatch m;
         const std::string file = entry.path().filename().string();
-        if (!std::regex_match(file, m, name)) continue;
+        // Split ".STEM" + ".tmp" + PID + EXT at the last ".tmp".
+        const size_t tmp = file.rfind(".tmp");
+        if (tmp == std::string::npos || file.size() < ext.size() ||
+            file.compare(file.size() - ext.size(), ext.size(), ext) != 0)
+            continue;
+        const std::string pidText = file.substr(tmp + 4, file.size() - ext.size() - tmp - 4);
+        if (pidText.empty() || pidText.find_first_not_of("0123456789") != std::string::npos || pidText.size() > 9)
+            continue;
+        if (!matchesFramePattern(file.substr(0, tmp), prefix)) continue;
         // The writer is gone when no process has its id (a live one, even someone else's, stays).
-        const long pid = std::strtol(m[1].str().c_str(), nullptr, 10);
-        if (pid <= 0 || pid > std::numeric_limits<pid_t>::max() || pid == long(getpid())) continue;
+        const long pid = std::strtol(pidText.c_str(), nullptr, 10);
+        if (pid <= 0 || pid == long(getpid())) continue;
         if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;
         if (fs::remove(entry.path(), ec)) ++removed;
     }

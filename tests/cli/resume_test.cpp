@@ -9,7 +9,6 @@
 
 #include <chrono>
 #include <filesystem>
-#include <regex>
 #include <thread>
 
 #include "cli_util.h"
@@ -44,10 +43,13 @@ Patch "bilinear" "P" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] "Cs" [1 0 0  0 1 0  0 0 1 
 WorldEnd
 )";
 
+// Frames under their final names, f.NNNN.exr.
 std::vector<std::string> framesIn(const std::string& dir) {
     std::vector<std::string> r;
     for (const std::string& n : listDir(dir))
-        if (std::regex_match(n, std::regex("f\\.[0-9]{4}\\.exr"))) r.push_back(n);
+        if (n.size() == 10 && n.compare(0, 2, "f.") == 0 && n.compare(6, 4, ".exr") == 0 &&
+            n.find_first_not_of("0123456789", 2) == 6)
+            r.push_back(n);
     return r;
 }
 
