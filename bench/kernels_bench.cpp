@@ -96,31 +96,35 @@ void BM_Dice(benchmark::State& state) {
 }
 BENCHMARK(BM_Dice);
 
-// Sampling a 16x16 grid of 1-pixel micropolygons (turned 30 degrees) moving `motion` pixels per frame (diagonally
-// when the second argument is 1), 16 samples per pixel, one frame, shutter open the whole frame.
-void BM_Sampler(benchmark::State& state) {
-    const float motion = float(state.range(0));
-    const bool diagonal = state.range(1) != 0;
-    const int size = 64;
-    Camera cam = pixelCamera(size);
-    Material m;
-    TrilinearBody::Corners a = turnedSquare(24.37f, 24.61f, size), b = a;
-    for (auto& c : b) {
-        c.x += motion;
-        if (diagonal) c.y -= motion;
-    }
-    TrilinearBody body({0, 1}, a, b, {}, &m);
+// Samples a 16x16 grid diced from `body` into one frame of a 64x64 block, 16 samples per pixel,
+// shutter open the whole frame.
+void sampleGrid(benchmark::State& state, const Camera& cam, const TrilinearBody& body) {
     Grid g;
     body.dice(16, 16, g);
     for (int k = 0; k < 2; ++k) g.Ci[k].assign(g.P[0].size(), Color{1, 1, 1});
     ImageBlock block;
-    block.reset({0, 0, size - 1, size - 1}, 0, 1, SamplePattern{4, 4, 1});
+    block.reset({0, 0, 63, 63}, 0, 1, SamplePattern{4, 4, 1});
     GridRasterizer raster;
     RasterCounters counters;
     for (auto _ : state) raster.rasterize(g, cam, Shutter{0, 1}, block, counters);
     state.counters["micropolygons/s"] = benchmark::Counter(double(counters.micropolygons), benchmark::Counter::kIsRate);
     state.counters["sample_tests/s"] = benchmark::Counter(double(counters.sampleTests), benchmark::Counter::kIsRate);
     state.counters["hit_efficiency"] = double(counters.sampleHits) / double(std::max<uint64_t>(1, counters.sampleTests));
+}
+
+// Sampling a 16x16 grid of 1-pixel micropolygons (turned 30 degrees) moving `motion` pixels per
+// frame (diagonally when the second argument is 1), orthographic.
+void BM_Sampler(benchmark::State& state) {
+    const float motion = float(state.range(0));
+    const bool diagonal = state.range(1) != 0;
+    const int size = 64;
+    Material m;
+    TrilinearBody::Corners a = turnedSquare(24.37f, 24.61f, size), b = a;
+    for (auto& c : b) {
+        c.x += motion;
+        if (diagonal) c.y -= motion;
+    }
+    sampleGrid(state, pixelCamera(size), TrilinearBody({0, 1}, a, b, {}, &m));
 }
 BENCHMARK(BM_Sampler)->ArgNames({"px_per_frame", "diagonal"})->Args({0, 0})->Args({4, 0})->Args({16, 0})->Args({4, 1})->Args({16, 1});
 
@@ -138,18 +142,7 @@ void BM_SamplerPerspective(benchmark::State& state) {
         a[size_t(i)] = cam.fromRaster(x, y, 10.0f);
         b[size_t(i)] = cam.fromRaster(x + motion, y, 10.5f);
     }
-    TrilinearBody body({0, 1}, a, b, {}, &m);
-    Grid g;
-    body.dice(16, 16, g);
-    for (int k = 0; k < 2; ++k) g.Ci[k].assign(g.P[0].size(), Color{1, 1, 1});
-    ImageBlock block;
-    block.reset({0, 0, size - 1, size - 1}, 0, 1, SamplePattern{4, 4, 1});
-    GridRasterizer raster;
-    RasterCounters counters;
-    for (auto _ : state) raster.rasterize(g, cam, Shutter{0, 1}, block, counters);
-    state.counters["micropolygons/s"] = benchmark::Counter(double(counters.micropolygons), benchmark::Counter::kIsRate);
-    state.counters["sample_tests/s"] = benchmark::Counter(double(counters.sampleTests), benchmark::Counter::kIsRate);
-    state.counters["hit_efficiency"] = double(counters.sampleHits) / double(std::max<uint64_t>(1, counters.sampleTests));
+    sampleGrid(state, cam, TrilinearBody({0, 1}, a, b, {}, &m));
 }
 BENCHMARK(BM_SamplerPerspective)->ArgNames({"px_per_frame"})->Arg(4)->Arg(16);
 

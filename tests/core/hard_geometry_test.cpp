@@ -77,89 +77,52 @@ void expectNoLimitsHit(const RenderResult& r) {
 // ---- Degenerate bodies ------------------------------------------------------------------------
 
 TEST(Degenerate, ZeroAreaPatchesCoverNothing) {
-    const std::string path = "scenes/hard/zero_area.rib";
-    RenderResult r = test::renderFile(test::sourcePath(path));
-    expectFinite(r);
-    expectNoLimitsHit(r);
-    // Only the green background is ever hit: once per sample, and no pixel shows red.
-    const ResolvedSettings s = resolveSettings(loadScene(path), RenderOptions{});
-    EXPECT_EQ(r.stats.counters.sampleHits, uint64_t(s.width) * uint64_t(s.height) * uint64_t(s.pattern.count()));
-    for (int y = 0; y < s.height; ++y)
-        for (int x = 0; x < s.width; ++x) {
-            ASSERT_EQ(r.channel(0, x, y, 0), 0.0f) << x << "," << y;
-            ASSERT_EQ(r.channel(0, x, y, 1), 1.0f) << x << "," << y;
+    // Only the green background is ever hit (the oracle gives zero-area patches no layer): once
+    // per sample, and no pixel shows red.
+    test::CheckedCase c = test::checkHardCase("zero_area.rib");
+    EXPECT_EQ(c.oracle.pixelsCovered, 48 * 48);
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 48; ++x) {
+            ASSERT_EQ(c.render.channel(0, x, y, 0), 0.0f) << x << "," << y;
+            ASSERT_EQ(c.render.channel(0, x, y, 1), 1.0f) << x << "," << y;
         }
-    EXPECT_LT(r.stats.counters.splits(), 100u);  // nothing is split without end
+    EXPECT_LT(c.render.stats.counters.splits(), 100u);  // nothing is split without end
 }
 
 TEST(Degenerate, PoleAndCollapsedEdgesAreWatertight) {
-    const std::string path = "scenes/hard/pole_fan.rib";
-    Scene scene = loadScene(path);
-    RenderResult r = test::renderFile(test::sourcePath(path));
-    expectFinite(r);
-    expectNoLimitsHit(r);
-    test::PatchLayers layers(scene);
-    OracleReport rep = test::checkSamples(scene, r, layers);
-    EXPECT_GT(rep.pixelsCovered, 700);
-    test::expectMatchesOracle(rep);
+    EXPECT_GT(test::checkHardCase("pole_fan.rib").oracle.pixelsCovered, 700);
 }
 
 TEST(Degenerate, NeedlesCoverExactlyTheSamplesInsideThem) {
-    const std::string path = "scenes/hard/needles.rib";
-    Scene scene = loadScene(path);
-    RenderResult r = test::renderFile(test::sourcePath(path));
-    expectFinite(r);
-    expectNoLimitsHit(r);
+    test::CheckedCase c = test::checkHardCase("needles.rib", 1e-5);
     // Each needle (30 px long, 1e-4 wide) is one column of micropolygons: nothing to split.
-    EXPECT_EQ(r.stats.counters.splits(), 0u);
-    OracleReport rep = test::checkSamples(scene, r, test::PatchLayers(scene), 1e-5);
+    EXPECT_EQ(c.render.stats.counters.splits(), 0u);
     // 1.2 square pixels at 64 samples per pixel: about 77 samples inside, many of them clear.
-    EXPECT_GT(rep.samplesCovered, 30u);
-    EXPECT_LT(rep.samplesCovered, 130u);
-    test::expectMatchesOracle(rep);
+    EXPECT_GT(c.oracle.samplesCovered, 30u);
+    EXPECT_LT(c.oracle.samplesCovered, 130u);
 }
 
+// Exact away from the fold; within one micropolygon of it, either way.
+auto foldAware = [](const Scene& s) { return AwayFromFolds(s, 1.0); };
+
 TEST(Degenerate, BowTieCoversItsTwoTrianglesOnce) {
-    const std::string path = "scenes/hard/bowtie.rib";
-    Scene scene = loadScene(path);
-    RenderResult r = test::renderFile(test::sourcePath(path));
-    expectFinite(r);
-    expectNoLimitsHit(r);
-    // Exact away from the fold; within one micropolygon of it, either way.
-    OracleReport rep = test::checkSamples(scene, r, AwayFromFolds(scene, 1.0));
-    EXPECT_GT(rep.pixelsCovered, 250);
-    test::expectMatchesOracle(rep);
+    EXPECT_GT(test::checkHardCase("bowtie.rib", foldAware).oracle.pixelsCovered, 250);
 }
 
 TEST(Degenerate, QuadTurningInsideOutDuringTheShutter) {
-    const std::string path = "scenes/hard/inside_out.rib";
-    Scene scene = loadScene(path);
-    RenderResult r = test::renderFile(test::sourcePath(path));
-    expectFinite(r);
-    expectNoLimitsHit(r);
-    test::PatchLayers layers(scene);
-    OracleReport rep = test::checkSamples(scene, r, layers);
-    EXPECT_GT(rep.samplesCovered, 2000u);
-    test::expectMatchesOracle(rep);
+    test::CheckedCase c = test::checkHardCase("inside_out.rib");
+    EXPECT_GT(c.oracle.samplesCovered, 2000u);
     // Pixel columns near the centre are covered for most of the exposure, the outer ones briefly:
     // the time-averaged coverage of column x is the fraction of t in [0, 1] with
     // |x + 0.5 - 24| < 16 |1 - 2t|, within the stratification error.
     for (int x : {8, 16, 23, 30, 38}) {
         const double d = std::fabs(x + 0.5 - 24) / 16;
-        EXPECT_NEAR(r.alpha(0, x, 12), 1 - d, 0.1) << x;
+        EXPECT_NEAR(c.render.alpha(0, x, 12), 1 - d, 0.1) << x;
     }
 }
 
 TEST(Degenerate, QuadFoldingOverItselfDuringTheShutter) {
-    const std::string path = "scenes/hard/fold.rib";
-    Scene scene = loadScene(path);
-    RenderResult r = test::renderFile(test::sourcePath(path));
-    expectFinite(r);
-    expectNoLimitsHit(r);
-    // Exact away from the fold; within one micropolygon of it, either way.
-    OracleReport rep = test::checkSamples(scene, r, AwayFromFolds(scene, 1.0));
-    EXPECT_GT(rep.samplesCovered, 6000u);
-    test::expectMatchesOracle(rep);
+    EXPECT_GT(test::checkHardCase("fold.rib", foldAware).oracle.samplesCovered, 6000u);
 }
 
 }  // namespace
@@ -204,15 +167,17 @@ TEST(EyePlane, WallMovingThroughTheEyePlaneDuringTheShutter) {
 }
 
 TEST(EyePlane, CameraInsideAClosedBox) {
-    const std::string path = "scenes/hard/camera_inside_box.rib";
-    Scene scene = loadScene(path);
-    RenderResult r = test::renderFile(test::sourcePath(path));
-    expectFinite(r);
-    expectNoLimitsHit(r);
+    // Every sample sees exactly one face...
+    test::CheckedCase c = test::checkHardCase("camera_inside_box.rib", [](const Scene&) {
+        return [](double, double, double) { return 1; };
+    });
+    const Scene& scene = c.scene;
+    const RenderResult& r = c.render;
+    EXPECT_EQ(c.oracle.pixelsCovered, 32 * 32);
     EXPECT_GT(r.stats.counters.eyeSplits, 0u);  // the side faces reach behind the camera
     EXPECT_LT(r.stats.counters.eyeSplits, 20000u);
-    // Every sample sees one face, the one its eye ray (x, y, 1) leaves the box through: the axis
-    // of its largest component. Colours from scenes/gen/hard.py, in the order of the faces.
+    // ... the one its eye ray (x, y, 1) leaves the box through: the axis of its largest component.
+    // Colours from scenes/gen/hard.py, in the order of the faces.
     const Color colours[5] = {{1, 0.2f, 0.2f}, {0.2f, 1, 0.2f}, {0.2f, 0.2f, 1}, {1, 1, 0.2f}, {0.2f, 1, 1}};
     const Camera cam(scene.camera);
     auto faceOf = [&](double x, double y) {
@@ -221,9 +186,6 @@ TEST(EyePlane, CameraInsideAClosedBox) {
         if (std::fabs(dx) >= std::fabs(dy)) return dx > 0 ? 1 : 2;
         return dy > 0 ? 3 : 4;
     };
-    OracleReport rep = test::checkSamples(scene, r, [&](double, double, double) { return 1; });
-    EXPECT_EQ(rep.pixelsCovered, 32 * 32);
-    test::expectMatchesOracle(rep);
     const ResolvedSettings s = resolveSettings(scene, RenderOptions{});
     std::vector<SamplePosition> pos(static_cast<size_t>(s.pattern.count()));
     std::vector<uint16_t> slices(pos.size());
@@ -236,7 +198,7 @@ TEST(EyePlane, CameraInsideAClosedBox) {
             for (const SamplePosition& p : pos) same = same && faceOf(p.x, p.y) == face;
             if (!same) continue;
             ++checked;
-            for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.channel(0, x, y, c), colours[face][c], 1e-6) << x << "," << y;
+            for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(r.channel(0, x, y, ch), colours[face][ch], 1e-6) << x << "," << y;
         }
     EXPECT_GT(checked, 800);
 }

@@ -12,21 +12,9 @@ namespace {
 using test::OracleReport;
 using test::RenderResult;
 
-struct Checked {
-    RenderResult render;
-    OracleReport oracle;
-};
+using Checked = test::CheckedCase;
 
-Checked checkScene(const std::string& name) {
-    Log log;
-    Scene scene = parseRibFile(test::sourcePath("scenes/hard/" + name), log);
-    Checked c;
-    c.render = test::renderFile(test::sourcePath("scenes/hard/" + name));
-    c.oracle = test::checkSamples(scene, c.render, test::PatchLayers(scene));
-    EXPECT_TRUE(c.render.warnings.empty()) << c.render.warnings.front();
-    test::expectMatchesOracle(c.oracle);
-    return c;
-}
+Checked checkScene(const std::string& name) { return test::checkHardCase(name); }
 
 TEST(Time, ShutterOpenEqualsCloseSamplesOneInstant) {
     Checked c = checkScene("time_instant.rib");

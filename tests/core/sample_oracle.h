@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "streyes/image_block.h"
+#include "streyes/rib.h"
 #include "test_util.h"
 
 namespace streyes::test {
@@ -199,6 +200,39 @@ inline void PatchLayers::update(double t) {
         for (int cy = cellOf(bounds_[i].lo.y, all_.lo.y); cy <= cellOf(bounds_[i].hi.y, all_.lo.y); ++cy)
             for (int cx = cellOf(bounds_[i].lo.x, all_.lo.x); cx <= cellOf(bounds_[i].hi.x, all_.lo.x); ++cx)
                 cells_[size_t(cy * kCells + cx)].push_back(i);
+}
+
+// A scene of scenes/hard/, rendered and checked: its values are finite, it reached no split
+// limit and gave no warning, and its samples match the oracle `makeLayers(scene)` builds (by
+// default the layers of its patches, for orthographic scenes).
+struct CheckedCase {
+    Scene scene;
+    RenderResult render;
+    OracleReport oracle;
+};
+
+inline void expectMatchesOracle(const OracleReport& rep);
+
+template <typename MakeLayers>
+CheckedCase checkHardCase(const std::string& name, MakeLayers makeLayers, double hair = 1e-4) {
+    CheckedCase c;
+    Log log;
+    c.scene = parseRibFile(sourcePath("scenes/hard/" + name), log);
+    c.render = renderFile(sourcePath("scenes/hard/" + name));
+    for (const FrameImage& f : c.render.frames) {
+        for (float v : f.rgba) EXPECT_TRUE(std::isfinite(v)) << name;
+        for (float z : f.z) EXPECT_FALSE(std::isnan(z)) << name;
+    }
+    EXPECT_EQ(c.render.stats.counters.culledSplitLimit, 0u);
+    EXPECT_EQ(c.render.stats.counters.culledEyeLimit, 0u);
+    EXPECT_TRUE(c.render.warnings.empty()) << c.render.warnings.front();
+    auto layers = makeLayers(c.scene);
+    c.oracle = checkSamples(c.scene, c.render, layers, hair);
+    expectMatchesOracle(c.oracle);
+    return c;
+}
+inline CheckedCase checkHardCase(const std::string& name, double hair = 1e-4) {
+    return checkHardCase(name, [](const Scene& s) { return PatchLayers(s); }, hair);
 }
 
 // The assertions every hard case shares.
