@@ -57,6 +57,8 @@ std::vector<Malformed> malformedCases() {
     };
 }
 
+void PrintTo(const Malformed& m, std::ostream* os) { *os << m.name; }
+
 class MalformedRib : public ::testing::TestWithParam<Malformed> {};
 
 TEST_P(MalformedRib, Exits2NamingFileAndLineAndWritesNothing) {
