@@ -47,7 +47,9 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     rs->windowEnd = lastFrame + rs->shutter.close;
 
     std::map<const Attributes*, const Material*> materialOf;
+    uint32_t primitiveId = 0;
     for (const BilinearPatchDesc& p : scene.patches) {
+        ++primitiveId;  // scene order, from 1; skipped primitives keep their number
         const Attributes* attr = p.attributes.get();
         static const Attributes kDefault;
         if (!attr) attr = &kDefault;
@@ -82,6 +84,7 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
         auto add = [&](double t0, double t1, const TrilinearBody::Corners& c0, const TrilinearBody::Corners& c1) {
             auto body = std::make_unique<TrilinearBody>(TimeSpan{t0, t1}, c0, c1, cs, material);
             body->setSource(source);
+            body->setPrimitiveId(primitiveId);
             rs->roots.push_back(std::move(body));
         };
         if (ts.size() == 1) {  // a single instant (one frame, shutter open == close)

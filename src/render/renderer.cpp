@@ -8,18 +8,30 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "bucket.h"
 
 namespace streyes {
 
-const char* algorithmName(Algorithm a) { return a == Algorithm::Frames ? "frames" : "spacetime"; }
+const char* algorithmName(Algorithm a) {
+    switch (a) {
+        case Algorithm::Frames: return "frames";
+        case Algorithm::FramesOcclusion: return "frames-occlusion";
+        case Algorithm::Spacetime: return "spacetime";
+        case Algorithm::SpacetimeOcclusion: return "spacetime-occlusion";
+    }
+    return "?";
+}
 
 bool parseAlgorithm(const std::string& name, Algorithm* out) {
-    if (name == "spacetime") *out = Algorithm::Spacetime;
-    else if (name == "frames") *out = Algorithm::Frames;
-    else return false;
-    return true;
+    for (Algorithm a : {Algorithm::Frames, Algorithm::FramesOcclusion, Algorithm::Spacetime,
+                        Algorithm::SpacetimeOcclusion})
+        if (name == algorithmName(a)) {
+            *out = a;
+            return true;
+        }
+    return false;
 }
 
 void factorSamples(int samples, int* sx, int* sy) {
@@ -61,6 +73,26 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
 
 Renderer::~Renderer() = default;
 
+// Boundaries between --layers N layers, spaced geometrically from the nearest to the farthest
+// depth of the scene's bodies (clipped to the clipping range). Empty in adaptive mode.
+std::vector<float> Renderer::geometricLayerDepths() const {
+    std::vector<float> depths;
+    if (options_.layers <= 1) return depths;
+    const Camera& cam = scene_->camera;
+    float zmin = std::numeric_limits<float>::infinity(), zmax = 0;
+    for (const BodyPtr& b : scene_->roots) {
+        Bounds3f box = b->bound().swept();
+        zmin = std::min(zmin, box.lo.z);
+        zmax = std::max(zmax, box.hi.z);
+    }
+    zmin = std::max(zmin, cam.nearClip());
+    zmax = std::min(zmax, cam.farClip());
+    if (!(zmax > zmin)) return depths;
+    for (int i = 1; i < options_.layers; ++i)
+        depths.push_back(float(double(zmin) * std::pow(double(zmax) / double(zmin), double(i) / options_.layers)));
+    return depths;
+}
+
 RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
@@ -69,7 +101,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const int W = s.width, H = s.height, S = s.pattern.count();
     const int frames = s.lastFrame - s.firstFrame + 1;
     const int tileSize = std::max(4, options_.bucketSize);
-    const bool spacetime = options_.algorithm == Algorithm::Spacetime;
+    const bool spacetime = !perFrame(options_.algorithm);
+    const std::vector<float> layerDepths = usesOcclusion(options_.algorithm) ? geometricLayerDepths() : std::vector<float>{};
 
     // Frames rendered together: bounded by the option, by ~1 GiB of resolved pixels, and (for
     // spacetime buckets, which hold every frame of the block) by ~4 M samples per bucket.
@@ -88,6 +121,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.height = H;
     stats.samplesPerPixel = S;
     stats.frameBlock = block;
+    stats.tolerance = options_.tolerance;
+    stats.layers = options_.layers;
     stats.bucketSize = tileSize;
     stats.timeBuild = buildSeconds_;
     stats.counters.rootBodies = scene_->roots.size();
@@ -130,7 +165,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
         arena.execute([&] {
             tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
                 std::unique_ptr<BucketWorker>& w = workers.local();
-                if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, log_);
+                if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, layerDepths, log_);
                 for (size_t i = r.begin(); i != r.end(); ++i) {
                     w->render(buckets[i], images, first);
                     uint64_t n = ++done;
