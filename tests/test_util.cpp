@@ -29,7 +29,15 @@ const FrameImage& RenderResult::frame(int f) const {
 static RenderResult renderWithLog(const Scene& scene, const RenderOptions& options, Log& log) {
     RenderResult r;
     Renderer renderer(scene, options, log);
-    r.stats = renderer.render([&](const FrameImage& img) { r.frames.push_back(img); });
+    // A frame may come again (a second pass for procedurals that outgrew their bounds).
+    r.stats = renderer.render([&](const FrameImage& img) {
+        for (FrameImage& f : r.frames)
+            if (f.frame == img.frame) {
+                f = img;
+                return;
+            }
+        r.frames.push_back(img);
+    });
     r.warnings = log.warnings();
     return r;
 }

@@ -21,6 +21,7 @@ namespace streyes {
 
 struct Grid;
 struct Material;
+class ProceduralBody;
 
 enum class SplitAxis : unsigned char { U = 0, V = 1, T = 2 };
 
@@ -65,6 +66,9 @@ class Body {
         splitDepth = parent.splitDepth;
         eyeSplitDepth = parent.eyeSplitDepth;
     }
+
+    // A procedural expands instead of being split or diced (procedural.h).
+    virtual const ProceduralBody* asProcedural() const { return nullptr; }
 
     virtual LBBox3f bound() const = 0;
     virtual RasterMeasure measure(const Camera& camera) const = 0;

@@ -19,6 +19,7 @@ struct RenderCounters {
     std::vector<uint64_t> culledOcclusionByLayer;  // [layer]: bodies culled while that layer was current
     std::vector<uint64_t> cellsCoveredByLayer;     // [layer]: pixel-frame cells newly covered when it ended
     uint64_t occlusionTables = 0;  // summed-volume (or -area) tables built
+    uint64_t proceduralsExpanded = 0;
     uint64_t gridsDiced = 0;
     uint64_t micropolygons = 0;
     uint64_t sampleTests = 0;
@@ -42,6 +43,9 @@ struct RenderStats {
     int layers = 0;  // 0: adaptive
     double timeParse = 0, timeBuild = 0, timeRender = 0, timeWrite = 0, timeTotal = 0;  // wall seconds
     uint64_t peakMemoryBytes = 0;  // peak resident set of the process
+    uint64_t procedurals = 0;      // procedurals made (declared, and produced by expansions)
+    uint64_t bodiesGenerated = 0;  // bodies made, from the scene and by expansions
+    int passes = 1;                // > 1 when procedurals outgrew their bounds
 
     std::string toJson() const;
 };

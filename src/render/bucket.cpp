@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "streyes/procedural.h"
 #include "streyes/view_cull.h"
 
 namespace streyes {
@@ -185,9 +186,14 @@ void BucketWorker::process(const Body& body) {
 
     // Bodies reaching the eye plane cannot be projected: cull them against the frustum in camera
     // space, or split them until the pieces lie in front of the plane or behind the near plane.
+    // (A procedural that reaches it is expanded instead.)
     if (cam.perspective() && swept.lo.z < cam.eyePlane()) {
         if (outsideFrustum(cam, swept, bucket_.rect)) {
             ++counters.culledView;
+            return;
+        }
+        if (const ProceduralBody* p = body.asProcedural()) {
+            expand(*p);
             return;
         }
         if (body.eyeSplitDepth >= options_.maxEyeSplits) {
@@ -219,6 +225,10 @@ void BucketWorker::process(const Body& body) {
         ++counters.culledOcclusionByLayer[li];
         return;
     }
+    if (const ProceduralBody* p = body.asProcedural()) {
+        expand(*p);  // its bound survived culling: now its children are needed
+        return;
+    }
 
     const float side = std::sqrt(std::max(body.material()->shadingRate, 1e-4f));
     const float size = std::max(m.extentU, m.extentV);
@@ -243,6 +253,15 @@ void BucketWorker::process(const Body& body) {
     }
     (axis == SplitAxis::U ? counters.splitsU : axis == SplitAxis::V ? counters.splitsV : counters.splitsT)++;
     split(body, axis, false);
+}
+
+// The children enter the loop like roots. The expansion itself happens once, in whichever
+// bucket gets there first; the others reuse its children.
+void BucketWorker::expand(const ProceduralBody& procedural) {
+    bool expandedHere = false;
+    const std::vector<BodyPtr>& children = procedural.children(*scene_.factory, scene_.camera, log_, &expandedHere);
+    if (expandedHere) ++counters.proceduralsExpanded;
+    for (const BodyPtr& child : children) pushRoot(*child);
 }
 
 void BucketWorker::split(const Body& body, SplitAxis axis, bool eyeSplit) {

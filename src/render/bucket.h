@@ -49,6 +49,7 @@ class BucketWorker {
     void push(BodyPtr body);
     void pushRoot(const Body& body);
     void process(const Body& body);  // one step of the split loop
+    void expand(const ProceduralBody& procedural);
     bool occluded(const Body& body, const Bounds3f& raster) const;
     void endLayer(float boundary);
     void split(const Body& body, SplitAxis axis, bool eyeSplit);

@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "bucket.h"
+#include "streyes/procedural.h"
 
 namespace streyes {
 
@@ -145,42 +146,59 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     std::atomic<uint64_t> done{0};
     double renderSeconds = 0, writeSeconds = 0;
 
+    // Frame blocks in order. A procedural whose children reach outside its declared bound may
+    // have been culled by that bound where its children are seen: then the render starts again
+    // with the grown bounds (frames already handed to the sink come again; rare, and warned).
+    constexpr int kMaxPasses = 8;
     std::vector<FrameImage> images;
-    for (int first = s.firstFrame; first <= s.lastFrame; first += block) {
-        const int count = std::min(block, s.lastFrame - first + 1);
-        images.resize(size_t(count));
-        for (int i = 0; i < count; ++i) {
-            images[size_t(i)].frame = first + i;
-            images[size_t(i)].resize(W, H);
-        }
-        // Spacetime: one bucket per tile spans the block's frames. Frames: one per tile and frame.
-        std::vector<BucketSpec> buckets;
-        for (int f = 0; f < (spacetime ? 1 : count); ++f)
-            for (BucketSpec b : tiles) {
-                b.firstFrame = first + f;
-                b.frameCount = spacetime ? count : 1;
-                buckets.push_back(b);
+    for (int pass = 1;; ++pass) {
+        bool again = false;
+        for (int first = s.firstFrame; first <= s.lastFrame && !again; first += block) {
+            const int count = std::min(block, s.lastFrame - first + 1);
+            images.resize(size_t(count));
+            for (int i = 0; i < count; ++i) {
+                images[size_t(i)].frame = first + i;
+                images[size_t(i)].resize(W, H);
             }
-        auto t = Clock::now();
-        arena.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
-                std::unique_ptr<BucketWorker>& w = workers.local();
-                if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, layerDepths, log_);
-                for (size_t i = r.begin(); i != r.end(); ++i) {
-                    w->render(buckets[i], images, first);
-                    uint64_t n = ++done;
-                    if (progress) progress(n, totalBuckets);
+            // Spacetime: one bucket per tile spans the block's frames. Frames: one per tile and frame.
+            std::vector<BucketSpec> buckets;
+            for (int f = 0; f < (spacetime ? 1 : count); ++f)
+                for (BucketSpec b : tiles) {
+                    b.firstFrame = first + f;
+                    b.frameCount = spacetime ? count : 1;
+                    buckets.push_back(b);
                 }
+            auto t = Clock::now();
+            arena.execute([&] {
+                tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+                    std::unique_ptr<BucketWorker>& w = workers.local();
+                    if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, layerDepths, log_);
+                    for (size_t i = r.begin(); i != r.end(); ++i) {
+                        w->render(buckets[i], images, first);
+                        uint64_t n = ++done;
+                        if (progress) progress(n, totalBuckets);
+                    }
+                });
             });
-        });
-        renderSeconds += std::chrono::duration<double>(Clock::now() - t).count();
-        t = Clock::now();
-        for (const FrameImage& img : images) sink(img);
-        writeSeconds += std::chrono::duration<double>(Clock::now() - t).count();
+            renderSeconds += std::chrono::duration<double>(Clock::now() - t).count();
+            std::vector<ProceduralBody*> outgrown = scene_->factory->takeOutgrown();
+            if (!outgrown.empty() && pass < kMaxPasses) {
+                for (ProceduralBody* p : outgrown) p->useGrownBound();
+                again = true;
+                break;
+            }
+            t = Clock::now();
+            for (const FrameImage& img : images) sink(img);
+            writeSeconds += std::chrono::duration<double>(Clock::now() - t).count();
+        }
+        if (!again) break;
+        stats.passes = pass + 1;
     }
     for (const auto& w : workers)
         if (w) stats.counters += w->counters;
     stats.counters.rootBodies = scene_->roots.size();
+    stats.procedurals = scene_->factory->proceduralsMade();
+    stats.bodiesGenerated = scene_->factory->bodiesMade();
     stats.timeRender = renderSeconds;
     stats.timeWrite = writeSeconds;
     stats.timeTotal = std::chrono::duration<double>(Clock::now() - start).count();

@@ -19,6 +19,7 @@ RenderCounters& RenderCounters::operator+=(const RenderCounters& o) {
     culledSplitLimit += o.culledSplitLimit;
     culledOcclusion += o.culledOcclusion;
     occlusionTables += o.occlusionTables;
+    proceduralsExpanded += o.proceduralsExpanded;
     auto addVec = [](std::vector<uint64_t>& a, const std::vector<uint64_t>& b) {
         if (a.size() < b.size()) a.resize(b.size(), 0);
         for (size_t i = 0; i < b.size(); ++i) a[i] += b[i];
@@ -87,6 +88,11 @@ std::string RenderStats::toJson() const {
       << "    \"culled_occlusion_by_layer\": " << list(c.culledOcclusionByLayer) << ",\n"
       << "    \"cells_covered_by_layer\": " << list(c.cellsCoveredByLayer) << ",\n"
       << "    \"occlusion_tables\": " << c.occlusionTables << ",\n"
+      << "    \"procedurals\": " << procedurals << ",\n"
+      << "    \"procedurals_expanded\": " << c.proceduralsExpanded << ",\n"
+      << "    \"procedurals_never_expanded\": " << (procedurals - c.proceduralsExpanded) << ",\n"
+      << "    \"bodies_generated\": " << bodiesGenerated << ",\n"
+      << "    \"passes\": " << passes << ",\n"
       << "    \"grids_diced\": " << c.gridsDiced << ",\n"
       << "    \"micropolygons\": " << c.micropolygons << ",\n"
       << "    \"sample_tests\": " << c.sampleTests << ",\n"
