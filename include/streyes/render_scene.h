@@ -54,6 +54,7 @@ class BodyFactory {
 
     uint64_t bodiesMade() const { return bodiesMade_.load(); }
     uint64_t proceduralsMade() const { return proceduralsMade_.load(); }
+    std::vector<uint64_t> proceduralsMadeByDepth() const;
 
   private:
     const Material* material(const AttributesPtr& attributes);
@@ -70,6 +71,7 @@ class BodyFactory {
     std::vector<AttributesPtr> keepAlive_;  // materials point at these
     std::vector<ProceduralBody*> outgrown_;
     std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0};
+    std::vector<uint64_t> proceduralsByDepth_;  // under mutex_
 };
 
 struct RenderScene {

@@ -20,6 +20,7 @@ struct RenderCounters {
     std::vector<uint64_t> cellsCoveredByLayer;     // [layer]: pixel-frame cells newly covered when it ended
     uint64_t occlusionTables = 0;  // summed-volume (or -area) tables built
     uint64_t proceduralsExpanded = 0;
+    std::vector<uint64_t> proceduralsExpandedByDepth;  // [0]: declared in the scene, [1]: their children ...
     uint64_t gridsDiced = 0;
     uint64_t micropolygons = 0;
     uint64_t sampleTests = 0;
@@ -44,6 +45,7 @@ struct RenderStats {
     double timeParse = 0, timeBuild = 0, timeRender = 0, timeWrite = 0, timeTotal = 0;  // wall seconds
     uint64_t peakMemoryBytes = 0;  // peak resident set of the process
     uint64_t procedurals = 0;      // procedurals made (declared, and produced by expansions)
+    std::vector<uint64_t> proceduralsByDepth;
     uint64_t bodiesGenerated = 0;  // bodies made, from the scene and by expansions
     int passes = 1;                // > 1 when procedurals outgrew their bounds
 

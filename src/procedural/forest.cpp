@@ -88,6 +88,8 @@ struct Tree {
     double trunkRadius = 0.2, trunkTop = 9;
     Color bark, leaf;
     double phase = 0;
+    double bushRadius = 1.5, bushHeight = 1.2;  // the undergrowth at the tree's foot
+    Color bush;
     uint64_t key = 0;   // seeds everything random about this tree
 };
 
@@ -136,6 +138,9 @@ Tree makeTree(const ForestParams& f, uint64_t key, double x, double z, int force
         t.crownBase *= k, t.crownRadius *= k, t.trunkTop *= k;
     }
     t.trunkRadius = t.height * (t.species == Species::Birch ? 0.012 : 0.018);
+    t.bushRadius = uniform(r, 1.2, 2.6);
+    t.bushHeight = uniform(r, 0.8, 1.8);
+    t.bush = Color{0.12f, 0.22f, 0.08f} * (0.8f + 0.4f * r.nextFloat());
     return t;
 }
 
@@ -150,7 +155,7 @@ Vec3d crownCentre(const Tree& t) {
 }
 
 Bounds3d treeBound(const ForestParams& f, const Tree& t) {
-    const double reach = 1.15 * t.crownRadius + 2 * f.leafSize;
+    const double reach = std::max(1.15 * t.crownRadius + 2 * f.leafSize, t.bushRadius);
     const double margin = (t.height + reach) * swayAngle(f) + f.leafSize * flutterAngle(f) + 1e-3;
     const double top = std::max(t.height, crownCentre(t).y + reach) + margin;
     return Bounds3d({t.x - reach - margin, -margin, t.z - reach - margin}, {t.x + reach + margin, top, t.z + reach + margin});
@@ -247,7 +252,7 @@ std::vector<Branch> branchesOf(const ForestParams& f, const Tree& t) {
                 const double a = off + 2 * M_PI * k / n;
                 const double len = std::min(reach * uniform(r, 0.8, 1.05), t.crownRadius);
                 add(trunk + Vec3d{0, y, 0}, {std::cos(a), -0.25, std::sin(a)}, len, f.leafSize,
-                    std::max(2, int(len / (f.leafSize * 1.2))) * 2);
+                    std::max(2, int(len / (f.leafSize * 0.7))) * 2);
             }
         }
     } else {
@@ -264,7 +269,7 @@ std::vector<Branch> branchesOf(const ForestParams& f, const Tree& t) {
                                    : trunk + Vec3d{0, t.crownBase + (t.trunkTop - t.crownBase) * uniform(r, 0, 0.8), 0};
             const Vec3d d = target - base;
             const double scale = t.species == Species::Broadleaf ? 1.0 : 0.7;
-            add(base, d, length(d), t.crownRadius * 0.35, int((t.species == Species::Broadleaf ? 40 : 28) * scale));
+            add(base, d, length(d), t.crownRadius * 0.35, int((t.species == Species::Broadleaf ? 110 : 70) * scale));
         }
     }
     return bs;
@@ -318,7 +323,7 @@ class BranchGenerator final : public ProceduralGenerator {
                 const double side = (i % 2) ? 1 : -1;
                 attach = b.base + b.dir * at;
                 along = normalize(u * side + b.dir * 0.6 + Vec3d{0, -0.2, 0});
-                across = normalize(cross(along, v)) * (s * 0.35);
+                across = normalize(cross(along, v)) * (s * 0.5);
             } else {
                 const double at = b.length * uniform(r, 0.45, 1.0);
                 Vec3d off{uniform(r, -1, 1), uniform(r, -1, 1), uniform(r, -1, 1)};
@@ -372,6 +377,17 @@ class TreeGenerator final : public ProceduralGenerator {
             return;
         }
         const bool near = size >= 40 * f.detail;
+        // Undergrowth: a still, solid half-ellipsoid at the tree's foot.
+        for (int k = 0; k < 8; ++k)
+            for (int j = 0; j < 3; ++j) {
+                const double a0 = 2 * M_PI * k / 8, a1 = 2 * M_PI * (k + 1) / 8;
+                const double b0 = 0.5 * M_PI * j / 3, b1 = 0.5 * M_PI * (j + 1) / 3;
+                auto p = [&](double a, double b) {
+                    return trunk + Vec3d{t.bushRadius * std::cos(b) * std::cos(a), t.bushHeight * std::sin(b),
+                                         t.bushRadius * std::cos(b) * std::sin(a)};
+                };
+                emitStill(out, ctx, {p(a0, b0), p(a1, b0), p(a0, b1), p(a1, b1)}, t.bush * (0.8f + 0.15f * float(j)));
+            }
         for (const Quad& q : tube(trunk, trunk + Vec3d{0, near ? t.trunkTop : t.crownBase, 0}, t.trunkRadius,
                                   t.trunkRadius * 0.6, near ? 6 : 4))
             emitStill(out, ctx, q, t.bark);

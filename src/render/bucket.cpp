@@ -23,6 +23,7 @@ struct FartherFirst {
 };
 
 constexpr size_t kMaxLayerStats = 64;  // per-layer counters beyond this go to the last entry
+constexpr float kAdaptiveDepthGrowth = 1.25f;  // adaptive layers: at most this depth ratio apart
 }  // namespace
 
 BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& options, const PixelFilter& filter,
@@ -115,6 +116,8 @@ void BucketWorker::runNearToFar() {
     const uint64_t adaptiveHits = uint64_t(options_.adaptiveLayerHits * double(block_.sampleCount())) + 1;
     for (const BodyPtr& root : scene_.roots) pushRoot(*root);
     float lastZmin = -std::numeric_limits<float>::infinity();
+    float lastBoundary = 0;  // of the last table
+    const Camera& cam = scene_.camera;
     while (!heap_.empty()) {
         const float zmin = heap_.front().zmin;
         bool layerEnds;
@@ -122,10 +125,16 @@ void BucketWorker::runNearToFar() {
             layerEnds = nextDepth_ < layerDepths_.size() && zmin >= layerDepths_[nextDepth_];
             while (nextDepth_ < layerDepths_.size() && zmin >= layerDepths_[nextDepth_]) ++nextDepth_;
         } else {
-            // Only once depth has moved on from the bodies just drawn: a boundary equal to their
-            // depth would cover none of their samples (coverage needs z < boundary).
-            layerEnds = zmin > lastZmin && rasterCounters_.firstHits - firstHitsAtTable_ >= adaptiveHits;
+            // Adaptive: once enough samples got their first hit since the last table, or once
+            // depth has grown by kAdaptiveDepthGrowth (surfaces already drawn may now lie nearer
+            // than the boundary, which adds coverage without new first hits). Only when depth
+            // has moved on from the bodies just drawn: a boundary equal to their depth would
+            // cover none of their samples (coverage needs z < boundary).
+            const bool newHits = rasterCounters_.firstHits - firstHitsAtTable_ >= adaptiveHits;
+            const bool deeper = zmin >= std::max(lastBoundary, cam.nearClip()) * kAdaptiveDepthGrowth;
+            layerEnds = zmin > lastZmin && (newHits || deeper);
         }
+        if (layerEnds) lastBoundary = zmin;
         if (layerEnds) endLayer(zmin);
         std::pop_heap(heap_.begin(), heap_.end(), FartherFirst());
         WorkItem item = std::move(heap_.back());
@@ -260,7 +269,12 @@ void BucketWorker::process(const Body& body) {
 void BucketWorker::expand(const ProceduralBody& procedural) {
     bool expandedHere = false;
     const std::vector<BodyPtr>& children = procedural.children(*scene_.factory, scene_.camera, log_, &expandedHere);
-    if (expandedHere) ++counters.proceduralsExpanded;
+    if (expandedHere) {
+        ++counters.proceduralsExpanded;
+        const size_t d = size_t(procedural.depth());
+        if (counters.proceduralsExpandedByDepth.size() <= d) counters.proceduralsExpandedByDepth.resize(d + 1, 0);
+        ++counters.proceduralsExpandedByDepth[d];
+    }
     for (const BodyPtr& child : children) pushRoot(*child);
 }
 

@@ -136,6 +136,14 @@ void BodyFactory::addProcedural(const ProceduralDesc& p, uint32_t primitiveId, i
     body->setPrimitiveId(primitiveId);
     out.push_back(std::move(body));
     ++proceduralsMade_;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (proceduralsByDepth_.size() <= size_t(depth)) proceduralsByDepth_.resize(size_t(depth) + 1, 0);
+    ++proceduralsByDepth_[size_t(depth)];
+}
+
+std::vector<uint64_t> BodyFactory::proceduralsMadeByDepth() const {
+    std::lock_guard<std::mutex> lock(const_cast<std::mutex&>(mutex_));
+    return proceduralsByDepth_;
 }
 
 void BodyFactory::addChildren(const Scene& fragment, uint32_t parentId, int depth, std::vector<BodyPtr>& out) {

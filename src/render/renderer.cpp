@@ -198,6 +198,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
         if (w) stats.counters += w->counters;
     stats.counters.rootBodies = scene_->roots.size();
     stats.procedurals = scene_->factory->proceduralsMade();
+    stats.proceduralsByDepth = scene_->factory->proceduralsMadeByDepth();
     stats.bodiesGenerated = scene_->factory->bodiesMade();
     stats.timeRender = renderSeconds;
     stats.timeWrite = writeSeconds;

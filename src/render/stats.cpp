@@ -26,6 +26,7 @@ RenderCounters& RenderCounters::operator+=(const RenderCounters& o) {
     };
     addVec(culledOcclusionByLayer, o.culledOcclusionByLayer);
     addVec(cellsCoveredByLayer, o.cellsCoveredByLayer);
+    addVec(proceduralsExpandedByDepth, o.proceduralsExpandedByDepth);
     timeOcclusion += o.timeOcclusion;
     gridsDiced += o.gridsDiced;
     micropolygons += o.micropolygons;
@@ -90,6 +91,8 @@ std::string RenderStats::toJson() const {
       << "    \"occlusion_tables\": " << c.occlusionTables << ",\n"
       << "    \"procedurals\": " << procedurals << ",\n"
       << "    \"procedurals_expanded\": " << c.proceduralsExpanded << ",\n"
+      << "    \"procedurals_by_depth\": " << list(proceduralsByDepth) << ",\n"
+      << "    \"procedurals_expanded_by_depth\": " << list(c.proceduralsExpandedByDepth) << ",\n"
       << "    \"procedurals_never_expanded\": " << (procedurals - c.proceduralsExpanded) << ",\n"
       << "    \"bodies_generated\": " << bodiesGenerated << ",\n"
       << "    \"passes\": " << passes << ",\n"

@@ -192,6 +192,36 @@ TEST(OcclusionRender, CullsAtLeastNinetyPercentOfTheHiddenGeometry) {
                               << culled - culledVisibleOnly << " with";
 }
 
+// A wall tilted in depth (10 at the bottom of the view, 40 at the top) covers every pixel; small
+// patches tiling the whole view hide behind it at depths 45 to 60. Once the wall has hit every
+// sample no first hits come any more, yet the table must keep up as depth passes the wall's far
+// rows: every hidden patch is culled, none is diced. (Adaptive layers once stalled here.)
+TEST(OcclusionRender, EverythingBehindATiltedWallIsCulled) {
+    std::string wall = R"(Format 64 48 1
+Projection "perspective" "fov" [60]
+PixelSamples 2 2
+WorldBegin
+Surface "constant"
+Patch "bilinear" "P" [-60 -30 10  60 -30 10  -60 40 40  60 40 40]
+)";
+    std::string hidden;
+    for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 10; ++i) {
+            // A 10 x 8 tiling of the view (x/z in [-0.77, 0.77], y/z in [-0.58, 0.58]) at depth z.
+            const double z = 45 + 15.0 * ((i + j) % 5) / 4;
+            const double x0 = (-0.8 + 0.16 * i) * z, x1 = x0 + 0.17 * z, y0 = (-0.6 + 0.15 * j) * z, y1 = y0 + 0.16 * z;
+            auto v = [](double a) { return std::to_string(a); };
+            hidden += "Patch \"bilinear\" \"P\" [" + v(x0) + " " + v(y0) + " " + v(z) + "  " + v(x1) + " " + v(y0) + " " +
+                      v(z) + "  " + v(x0) + " " + v(y1) + " " + v(z) + "  " + v(x1) + " " + v(y1) + " " + v(z) + "]\n";
+        }
+    RenderOptions o = with(Algorithm::SpacetimeOcclusion);
+    RenderResult wallOnly = test::renderRib(wall + "WorldEnd\n", o);
+    RenderResult both = test::renderRib(wall + hidden + "WorldEnd\n", o);
+    EXPECT_EQ(both.stats.counters.gridsDiced, wallOnly.stats.counters.gridsDiced);
+    EXPECT_GE(both.stats.counters.culledOcclusion, 80u);
+    EXPECT_TRUE(test::identicalPixels(both, test::renderRib(wall + hidden + "WorldEnd\n", with(Algorithm::Spacetime))));
+}
+
 TEST(OcclusionRender, HigherToleranceCullsMoreAndChangesLittle) {
     RenderResult exact = test::renderRib(kLayered, with(Algorithm::SpacetimeOcclusion));
     uint64_t last = exact.stats.counters.culledOcclusion;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 
 #include "streyes/rib.h"
 #include "test_util.h"
@@ -145,6 +146,38 @@ TEST(Procedural, ReadArchiveIncludesInPlace) {
     RenderResult r = test::renderRib(header() + "Color [0 0 1]\nTranslate 20 2 5\nReadArchive \"" + archive + "\"\nWorldEnd\n");
     EXPECT_NEAR(r.channel(0, 21, 12, 2), 1.0f, 1e-5f);
     EXPECT_EQ(r.stats.procedurals, 0u);
+}
+
+// A tilted wall between the camera and the small forest: once the wall has hit every sample, no
+// first hits come any more, yet coverage must still grow as depth passes the wall, so nothing of
+// the forest (all behind the wall) may expand. (Adaptive layers once stalled here.)
+TEST(Procedural, NothingOfAForestBehindAWallExpands) {
+    Log log;
+    std::string rib;
+    {
+        std::ifstream in(test::sourcePath("scenes/forest-small.rib"));
+        rib.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    const std::string wall = "WorldBegin\nAttributeBegin\nPatch \"bilinear\" \"P\" "
+                             "[-60 -20 -44  60 -20 -44  -60 80 -42  60 80 -42]\nAttributeEnd\n";
+    rib.replace(rib.find("WorldBegin\n"), 11, wall);
+    // Move the forest 20 m back, so that every cell's bound (trees' reach and sway included) lies
+    // behind the wall.
+    rib.replace(rib.find("Procedural"), 10, "Translate 0 0 20\nProcedural");
+    Scene scene = parseRibString(rib, "wall.rib", log);
+    RenderOptions o;
+    o.xres = 96;
+    o.yres = 54;
+    o.hasFrames = true;
+    o.firstFrame = o.lastFrame = 1;
+    RenderResult r = test::renderScene(scene, o);
+    EXPECT_EQ(r.stats.counters.proceduralsExpanded, 0u);  // not even the forest: it is all behind the wall
+    EXPECT_GT(r.stats.counters.culledOcclusion, 0u);
+    o.algorithm = Algorithm::Spacetime;  // without culling every cell in view expands
+    RenderResult open = test::renderScene(scene, o);
+    ASSERT_GE(open.stats.counters.proceduralsExpandedByDepth.size(), 3u);
+    EXPECT_GT(open.stats.counters.proceduralsExpandedByDepth[1], 5u);
+    EXPECT_TRUE(test::identicalPixels(r, open));
 }
 
 TEST(Procedural, ForestIsTheSameWhateverTheThreadCount) {
