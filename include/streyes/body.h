@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "streyes/camera.h"
 #include "streyes/util/error.h"
@@ -69,6 +70,9 @@ class Body {
 
     // A procedural expands instead of being split or diced (procedural.h).
     virtual const ProceduralBody* asProcedural() const { return nullptr; }
+    // False while the body must be split in time before it can be diced (a body with more than
+    // two motion keys: a grid's corners move linearly from t0 to t1 only).
+    virtual bool diceableInTime() const { return true; }
 
     virtual LBBox3f bound() const = 0;
     virtual RasterMeasure measure(const Camera& camera) const = 0;
@@ -116,6 +120,35 @@ class TrilinearBody final : public Body {
   private:
     Corners P_[2];               // camera space at t0 and t1 (equal when static)
     std::array<Color, 4> Cs_;    // surface colour at the corners, bilinear over the patch
+};
+
+// A bilinear patch whose corners move through several motion keys, linearly between them: a
+// chain of trilinear bodies kept as one (a swaying leaf over 64 frames is one body, not 16).
+// Its bound covers every key; the split loop cuts it in time at its middle key until two keys
+// remain, which makes a TrilinearBody.
+class KeyedPatchBody final : public Body {
+  public:
+    using Corners = TrilinearBody::Corners;
+    KeyedPatchBody(std::vector<double> times, std::vector<Corners> keys, const std::array<Color, 4>& cs,
+                   const Material* material);
+
+    bool diceableInTime() const override { return false; }
+    LBBox3f bound() const override;
+    RasterMeasure measure(const Camera& camera) const override;
+    CameraExtents cameraExtents() const override;
+    void split(SplitAxis axis, std::unique_ptr<Body> out[2]) const override;
+    std::unique_ptr<Body> restrictedTo(double a, double b) const override;
+    void dice(int nu, int nv, Grid& grid) const override;  // not diceable: throws
+
+    size_t keyCount() const { return times_.size(); }
+
+  private:
+    // The pieces over keys [i, j]: a KeyedPatchBody, or a TrilinearBody for two keys.
+    std::unique_ptr<Body> piece(size_t i, size_t j) const;
+
+    std::vector<double> times_;
+    std::vector<Corners> keys_;
+    std::array<Color, 4> Cs_;
 };
 
 }  // namespace streyes

@@ -215,7 +215,7 @@ void BucketWorker::process(const Body& body) {
         }
         CameraExtents e = body.cameraExtents();
         SplitAxis axis = e.u >= e.v ? SplitAxis::U : SplitAxis::V;
-        if (body.moving() && e.t > std::max(e.u, e.v)) axis = SplitAxis::T;
+        if ((body.moving() && e.t > std::max(e.u, e.v)) || !body.diceableInTime()) axis = SplitAxis::T;
         ++counters.eyeSplits;
         split(body, axis, true);
         return;
@@ -242,7 +242,9 @@ void BucketWorker::process(const Body& body) {
     const float side = std::sqrt(std::max(body.material()->shadingRate, 1e-4f));
     const float size = std::max(m.extentU, m.extentV);
     SplitAxis axis;
-    if (body.moving() && m.motion > std::max(options_.timeSplitRatio * size, options_.timeSplitMinMotion)) {
+    if (!body.diceableInTime()) {
+        axis = SplitAxis::T;  // more than two motion keys: cut at a key first
+    } else if (body.moving() && m.motion > std::max(options_.timeSplitRatio * size, options_.timeSplitMinMotion)) {
         axis = SplitAxis::T;  // the swept bound is much larger than the body: split its time span
     } else {
         const double nu = std::max(1.0, std::ceil(double(m.extentU) / side));

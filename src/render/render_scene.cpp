@@ -98,6 +98,17 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint32_t primitiveId, std
         add(ts[0], ts[0], corners[0], corners[0]);
         return;
     }
+    bool moves = false;
+    for (size_t i = 1; i < ts.size() && !moves; ++i) moves = corners[i] != corners[0];
+    if (moves && ts.size() > 2) {
+        // Several keys: one body for all of them; the split loop cuts it in time where needed.
+        auto body = std::make_unique<KeyedPatchBody>(std::move(ts), std::move(corners), cs, mat);
+        body->setSource(src);
+        body->setPrimitiveId(primitiveId);
+        out.push_back(std::move(body));
+        ++bodiesMade_;
+        return;
+    }
     // One body per segment between keys; a run of still segments is one still body.
     for (size_t i = 0; i + 1 < ts.size();) {
         size_t j = i + 1;
