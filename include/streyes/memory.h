@@ -3,7 +3,8 @@
 //
 // A render holds the frame block's resolved images (RGBA and Z, float) until the block is done,
 // and each worker thread holds one bucket's samples (positions, hits and the slice table, for
-// every frame of the block in spacetime mode) and its filter accumulators. The frame block shrinks
+// every frame of the block in spacetime mode), its filter accumulators and, with occlusion
+// culling, its coverage volume and summed-volume table. The frame block shrinks
 // until one worker fits; then as many workers run as fit (never more than the threads asked for).
 // Thread count never changes the pixels, so that is the knob turned first; a smaller frame block
 // can change them in the last bits (moving bodies are cut at block boundaries).
@@ -21,6 +22,7 @@ struct MemoryShape {
     int tileSize = 32, guardX = 0, guardY = 0;  // bucket tile and the filter's guard band
     bool spacetime = true;                      // a bucket holds every frame of the block
     uint64_t rootBodies = 0;
+    bool occlusion = false;                     // buckets keep coverage and a summed-volume table
 };
 
 // Bytes, by what holds them.

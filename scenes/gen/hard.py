@@ -315,9 +315,9 @@ and every sample sees it exactly where it is at the sample's time, once.
 
 pixel_scene("time_keys.rib", """
 Motion keys at sampled instants, and bodies that exist for part of the animation: a square moves
-only between frames 2 and 4 of frames 0-6 and is held before and after, so it becomes three root
-bodies, still over [0, 2], moving over [2, 4] and still over [4, 6]. With the shutter closed
-(instants at whole frames), frames 2 and 4 are sampled exactly at the key times, where two bodies
+only between frames 2 and 4 of frames 0-6 and is held before and after, so it is cut into three
+pieces, still over [0, 2], moving over [2, 4] and still over [4, 6]. With the shutter closed
+(instants at whole frames), frames 2 and 4 are sampled exactly at the key times, where two pieces
 meet. A second square moves with keys at every frame, so that every frame is sampled at a key.
 Expected: every sample sees each square where it is, once: no sample is lost or hit twice at a
 boundary between bodies.

@@ -33,7 +33,7 @@ TEST(Resolve, SamplesOnPixelCornersBelongToTheirPixel) {
             const size_t i = block.sliceIndex(0, 0, x, y);
             block.positions()[i].x = float(x);
             block.positions()[i].y = float(y);
-            block.hits()[i] = {2.0f, {0.5f, 0.5f, 0.5f}, 1.0f};
+            block.hits()[i] = {2.0f, {0.5f, 0.5f, 0.5f}, 1.0f, 1};
         }
     PixelFilter box({"box", 1, 1});
     FrameImage img;

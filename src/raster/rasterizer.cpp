@@ -105,10 +105,10 @@ inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const floa
     if (zmax < nearZ || zmin > farZ) return false;
     if (!(q.xmax >= float(R.x0) && q.xmin < float(R.x1 + 1) && q.ymax >= float(R.y0) && q.ymin < float(R.y1 + 1)))
         return false;  // also rejects NaN
-    q.px0 = std::max(R.x0, int(std::floor(q.xmin)));
-    q.px1 = std::min(R.x1, int(std::floor(q.xmax)));
-    q.py0 = std::max(R.y0, int(std::floor(q.ymin)));
-    q.py1 = std::min(R.y1, int(std::floor(q.ymax)));
+    q.px0 = floorClamped(q.xmin, R.x0, R.x1);
+    q.px1 = floorClamped(q.xmax, R.x0, R.x1);
+    q.py0 = floorClamped(q.ymin, R.y0, R.y1);
+    q.py1 = floorClamped(q.ymax, R.y0, R.y1);
     return true;
 }
 
@@ -215,16 +215,24 @@ void GridRasterizer::collectFrames(const Grid& grid, const Shutter& shutter, con
     }
 }
 
-// Writes a hit into the sample when it is the nearest so far.
+// Writes a hit into the sample when it beats the one there (nearer, or equal depth and an
+// earlier primitive: see SampleHit::beatenBy).
+// Returns 1 when the sample had no hit before.
 template <typename ColorAt>
-static inline void resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, ColorAt colorAt) {
+static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, uint32_t id,
+                             ColorAt colorAt) {
     const float zh = z[h.v0] + h.l1 * (z[h.v1] - z[h.v0]) + h.l2 * (z[h.v2] - z[h.v0]);
-    if (!(zh >= nearZ && zh <= farZ && zh < s.z)) return;
+    if (!(zh >= nearZ && zh <= farZ && zh <= s.z)) return 0;
     // Relative to the first corner: exact where depth or colour is constant.
     const Color c0 = colorAt(h.v0), c1 = colorAt(h.v1), c2 = colorAt(h.v2);
+    const Color c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
+    if (zh == s.z && !s.beatenBy(zh, id, c)) return 0;
+    const int first = s.a == 0 ? 1 : 0;
     s.z = zh;
-    s.c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
+    s.c = c;
     s.a = 1.0f;
+    s.id = id;
+    return first;
 }
 
 // A still grid: each quad is projected and set up once, then tested against the samples of
@@ -238,7 +246,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const SamplePosition* pos = block.positions();
     SampleHit* hit = block.hits();
     const Color* ci = grid.Ci[0].data();
-    uint64_t tests = 0, hits = 0;
+    uint64_t tests = 0, hits = 0, firstHits = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
             const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
@@ -250,11 +258,11 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
             if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ)) continue;
             setupEdges(q);
             for (int py = q.py0; py <= q.py1; ++py) {
-                const int iy0 = std::max(0, int(std::floor((q.ymin - float(py)) * float(sy))));
-                const int iy1 = std::min(sy - 1, int(std::floor((q.ymax - float(py)) * float(sy))));
+                const int iy0 = floorClamped((q.ymin - float(py)) * float(sy), 0, sy - 1);
+                const int iy1 = floorClamped((q.ymax - float(py)) * float(sy), 0, sy - 1);
                 for (int px = q.px0; px <= q.px1; ++px) {
-                    const int ix0 = std::max(0, int(std::floor((q.xmin - float(px)) * float(sx))));
-                    const int ix1 = std::min(sx - 1, int(std::floor((q.xmax - float(px)) * float(sx))));
+                    const int ix0 = floorClamped((q.xmin - float(px)) * float(sx), 0, sx - 1);
+                    const int ix1 = floorClamped((q.xmax - float(px)) * float(sx), 0, sx - 1);
                     const size_t base = block.pixelOffset(px, py);
                     for (const FrameSpan& fr : frames_) {
                         const size_t fb = base + size_t(fr.fi) * size_t(S);
@@ -268,7 +276,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                                 Hit h;
                                 if (!hitQuad(q, s.x, s.y, h)) continue;
                                 ++hits;
-                                resolveHit(hit[si], q.z, h, nearZ, farZ, [&](int c) { return ci[idx[c]]; });
+                                firstHits += resolveHit(hit[si], q.z, h, nearZ, farZ, grid.primitiveId, [&](int c) { return ci[idx[c]]; });
                             }
                         }
                     }
@@ -278,6 +286,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     }
     counters.sampleTests += tests;
     counters.sampleHits += hits;
+    counters.firstHits += firstHits;
 }
 
 // A moving grid: projected at both ends of each slice to bound its quads over the slice; a
@@ -296,7 +305,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const double span = grid.t1 - grid.t0;
     const Color *ci0 = grid.Ci[0].data(), *ci1 = grid.Ci[1].data();
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
-    uint64_t tests = 0, hits = 0;
+    uint64_t tests = 0, hits = 0, firstHits = 0;
     for (const Slice& sl : slices_) {
         if (projected == sl.ta) {  // the last slice ended where this one starts
             std::swap(ra_, rb_);
@@ -347,7 +356,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         if (!hitQuad(qt, s.x, s.y, h)) continue;
                         ++hits;
                         const float sg = lerp(sA, sB, w);  // the grid's own time parameter
-                        resolveHit(block.hits()[si], qt.z, h, nearZ, farZ,
+                        firstHits += resolveHit(block.hits()[si], qt.z, h, nearZ, farZ, grid.primitiveId,
                                    [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); });
                     }
                 }
@@ -356,6 +365,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     }
     counters.sampleTests += tests;
     counters.sampleHits += hits;
+    counters.firstHits += firstHits;
 }
 
 }  // namespace streyes

@@ -21,6 +21,8 @@ constexpr uint64_t kBaselineBytes = uint64_t(128) << 20;
 constexpr uint64_t kBytesPerRootBody = 256;
 // Per sample: its position, its hit and its entry in the slice table.
 constexpr uint64_t kBytesPerSample = sizeof(SamplePosition) + sizeof(SampleHit) + sizeof(uint16_t);
+// Per pixel and frame of a bucket, with occlusion culling: its coverage cell and table entry.
+constexpr uint64_t kOcclusionBytesPerCell = sizeof(uint8_t) + sizeof(uint32_t);
 // Per pixel of a resolved frame: RGBA and Z as float.
 constexpr uint64_t kBytesPerPixel = 5 * sizeof(float);
 // Per pixel of a frame being written: up to five float channels, then the encoded file (at most
@@ -56,7 +58,8 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     e.scene = s.rootBodies * kBytesPerRootBody;
     e.frameImages = uint64_t(e.frameBlock) * pixels * kBytesPerPixel;
     e.perWorker = bucketPixels(s) * framesPerBucket * uint64_t(std::max(1, s.samplesPerPixel)) * kBytesPerSample +
-                  tilePixels(s) * framesPerBucket * 5 * sizeof(float);
+                  tilePixels(s) * framesPerBucket * 5 * sizeof(float) +
+                  (s.occlusion ? bucketPixels(s) * framesPerBucket * kOcclusionBytesPerCell : 0);
     e.writer = pixels * kWriterBytesPerPixel;
     return e;
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "streyes/image_block.h"
 #include "streyes/util/error.h"
 
 namespace streyes {
@@ -31,9 +32,14 @@ const MemoryShape kHd{1920, 1080, 16, 32, 1, 1, true, 1000};
 TEST(Memory, EstimateCountsImagesAndSamplesPerWorker) {
     const MemoryEstimate e = estimateMemory(kHd, 10, 3);
     EXPECT_EQ(e.frameImages, uint64_t(10) * 1920 * 1080 * 20);  // RGBA + Z float
-    // A bucket of 34 x 34 pixels (tile and guard band) x 10 frames x 16 samples of 34 bytes, and
-    // its filter accumulators (32 x 32 pixels x 10 frames x 5 floats).
-    EXPECT_EQ(e.perWorker, uint64_t(34 * 34) * 10 * 16 * 34 + uint64_t(32 * 32) * 10 * 20);
+    // A bucket of 34 x 34 pixels (tile and guard band) x 10 frames x 16 samples (position, hit,
+    // slice table), and its filter accumulators (32 x 32 pixels x 10 frames x 5 floats).
+    const uint64_t sample = sizeof(SamplePosition) + sizeof(SampleHit) + sizeof(uint16_t);
+    EXPECT_EQ(e.perWorker, uint64_t(34 * 34) * 10 * 16 * sample + uint64_t(32 * 32) * 10 * 20);
+    // With occlusion culling, a coverage byte and a 32-bit table entry per pixel and frame more.
+    MemoryShape culled = kHd;
+    culled.occlusion = true;
+    EXPECT_EQ(estimateMemory(culled, 10, 3).perWorker, e.perWorker + uint64_t(34 * 34) * 10 * 5);
     EXPECT_EQ(e.total(), e.baseline + e.scene + e.frameImages + 3 * e.perWorker + e.writer);
     // Per-frame buckets (Algorithm C) hold one frame whatever the block.
     MemoryShape frames = kHd;

@@ -8,19 +8,32 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "bucket.h"
 #include "streyes/memory.h"
+#include "streyes/procedural.h"
 
 namespace streyes {
 
-const char* algorithmName(Algorithm a) { return a == Algorithm::Frames ? "frames" : "spacetime"; }
+const char* algorithmName(Algorithm a) {
+    switch (a) {
+        case Algorithm::Frames: return "frames";
+        case Algorithm::FramesOcclusion: return "frames-occlusion";
+        case Algorithm::Spacetime: return "spacetime";
+        case Algorithm::SpacetimeOcclusion: return "spacetime-occlusion";
+    }
+    return "?";
+}
 
 bool parseAlgorithm(const std::string& name, Algorithm* out) {
-    if (name == "spacetime") *out = Algorithm::Spacetime;
-    else if (name == "frames") *out = Algorithm::Frames;
-    else return false;
-    return true;
+    for (Algorithm a : {Algorithm::Frames, Algorithm::FramesOcclusion, Algorithm::Spacetime,
+                        Algorithm::SpacetimeOcclusion})
+        if (name == algorithmName(a)) {
+            *out = a;
+            return true;
+        }
+    return false;
 }
 
 void factorSamples(int samples, int* sx, int* sy) {
@@ -62,6 +75,26 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
 
 Renderer::~Renderer() = default;
 
+// Boundaries between --layers N layers, spaced geometrically from the nearest to the farthest
+// depth of the scene's bodies (clipped to the clipping range). Empty in adaptive mode.
+std::vector<float> Renderer::geometricLayerDepths() const {
+    std::vector<float> depths;
+    if (options_.layers <= 1) return depths;
+    const Camera& cam = scene_->camera;
+    float zmin = std::numeric_limits<float>::infinity(), zmax = 0;
+    for (const BodyPtr& b : scene_->roots) {
+        Bounds3f box = b->bound().swept();
+        zmin = std::min(zmin, box.lo.z);
+        zmax = std::max(zmax, box.hi.z);
+    }
+    zmin = std::max(zmin, cam.nearClip());
+    zmax = std::min(zmax, cam.farClip());
+    if (!(zmax > zmin)) return depths;
+    for (int i = 1; i < options_.layers; ++i)
+        depths.push_back(float(double(zmin) * std::pow(double(zmax) / double(zmin), double(i) / options_.layers)));
+    return depths;
+}
+
 RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
@@ -70,7 +103,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const int W = s.width, H = s.height, S = s.pattern.count();
     const int frames = s.lastFrame - s.firstFrame + 1;
     const int tileSize = std::max(4, options_.bucketSize);
-    const bool spacetime = options_.algorithm == Algorithm::Spacetime;
+    const bool spacetime = !perFrame(options_.algorithm);
+    const std::vector<float> layerDepths = usesOcclusion(options_.algorithm) ? geometricLayerDepths() : std::vector<float>{};
 
     // Frames rendered together: bounded by the option, by ~1 GiB of resolved pixels, and (for
     // spacetime buckets, which hold every frame of the block) by ~4 M samples per bucket.
@@ -84,7 +118,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     // Memory (memory.h), before anything large is allocated: the block shrinks until one worker
     // fits the budget, then as many workers run as fit; a render that does not fit one frame at
     // a time is refused (InputError: the request must change).
-    const MemoryShape shape{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, scene_->roots.size()};
+    const MemoryShape shape{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, scene_->roots.size(),
+                            usesOcclusion(options_.algorithm)};
     const uint64_t budget = options_.maxMemoryBytes ? options_.maxMemoryBytes : defaultMemoryBudget();
     const int threads = options_.threads > 0 ? options_.threads : tbb::this_task_arena::max_concurrency();
     const MemoryEstimate memory = planMemory(shape, block, threads, budget);
@@ -98,6 +133,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.height = H;
     stats.samplesPerPixel = S;
     stats.frameBlock = block;
+    stats.tolerance = options_.tolerance;
+    stats.layers = options_.layers;
     stats.bucketSize = tileSize;
     stats.timeBuild = buildSeconds_;
     stats.counters.rootBodies = scene_->roots.size();
@@ -122,59 +159,84 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     std::atomic<uint64_t> done{0};
     double renderSeconds = 0, writeSeconds = 0;
 
+    // Frame blocks in order. A procedural whose children reach outside its declared bound may
+    // have been culled by that bound where its children are seen: then the render starts again
+    // with the grown bounds (frames already handed to the sink come again; rare, and warned).
+    constexpr int kMaxPasses = 8;
     std::vector<FrameImage> images;
+    // --resume: the frames already written, asked once before rendering (a second pass must not
+    // take the frames of the first for finished ones).
+    std::vector<char> written(size_t(frames), 0);
+    if (options_.frameDone)
+        for (int f = s.firstFrame; f <= s.lastFrame; ++f) written[size_t(f - s.firstFrame)] = options_.frameDone(f);
+    auto alreadyWritten = [&](int f) { return written[size_t(f - s.firstFrame)] != 0; };
     const uint64_t bucketsPerBlock = uint64_t(tiles.size()) * uint64_t(spacetime ? 1 : block);
-    for (int first = s.firstFrame; first <= s.lastFrame; first += block) {
-        const int count = std::min(block, s.lastFrame - first + 1);
-        if (options_.frameDone) {  // --resume: skip a block whose frames are all written
-            int written = 0;
-            for (int f = first; f < first + count; ++f) written += options_.frameDone(f);
-            if (written == count) {
-                stats.framesSkipped += count;
-                uint64_t n = done += spacetime ? bucketsPerBlock : uint64_t(tiles.size()) * uint64_t(count);
-                if (progress) progress(n, totalBuckets);
-                continue;
-            }
-        }
-        images.resize(size_t(count));
-        for (int i = 0; i < count; ++i) {
-            images[size_t(i)].frame = first + i;
-            images[size_t(i)].resize(W, H);
-        }
-        // Spacetime: one bucket per tile spans the block's frames. Frames: one per tile and frame.
-        std::vector<BucketSpec> buckets;
-        for (int f = 0; f < (spacetime ? 1 : count); ++f)
-            for (BucketSpec b : tiles) {
-                b.firstFrame = first + f;
-                b.frameCount = spacetime ? count : 1;
-                buckets.push_back(b);
-            }
-        auto t = Clock::now();
-        arena.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
-                std::unique_ptr<BucketWorker>& w = workers.local();
-                if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, log_);
-                for (size_t i = r.begin(); i != r.end(); ++i) {
-                    w->render(buckets[i], images, first);
-                    uint64_t n = ++done;
+    for (int pass = 1;; ++pass) {
+        bool again = false;
+        stats.framesSkipped = 0;
+        for (int first = s.firstFrame; first <= s.lastFrame && !again; first += block) {
+            const int count = std::min(block, s.lastFrame - first + 1);
+            {  // --resume: skip a block whose frames are all written
+                int n = 0;
+                for (int f = first; f < first + count; ++f) n += alreadyWritten(f);
+                if (n == count) {
+                    stats.framesSkipped += count;
+                    uint64_t n = done += spacetime ? bucketsPerBlock : uint64_t(tiles.size()) * uint64_t(count);
                     if (progress) progress(n, totalBuckets);
+                    continue;
                 }
-            });
-        });
-        renderSeconds += std::chrono::duration<double>(Clock::now() - t).count();
-        t = Clock::now();
-        for (const FrameImage& img : images) {
-            if (options_.frameDone && options_.frameDone(img.frame)) {
-                ++stats.framesSkipped;
-                continue;
             }
-            sink(img);
+            images.resize(size_t(count));
+            for (int i = 0; i < count; ++i) {
+                images[size_t(i)].frame = first + i;
+                images[size_t(i)].resize(W, H);
+            }
+            // Spacetime: one bucket per tile spans the block's frames. Frames: one per tile and frame.
+            std::vector<BucketSpec> buckets;
+            for (int f = 0; f < (spacetime ? 1 : count); ++f)
+                for (BucketSpec b : tiles) {
+                    b.firstFrame = first + f;
+                    b.frameCount = spacetime ? count : 1;
+                    buckets.push_back(b);
+                }
+            auto t = Clock::now();
+            arena.execute([&] {
+                tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+                    std::unique_ptr<BucketWorker>& w = workers.local();
+                    if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, layerDepths, log_);
+                    for (size_t i = r.begin(); i != r.end(); ++i) {
+                        w->render(buckets[i], images, first);
+                        uint64_t n = ++done;
+                        if (progress) progress(n, totalBuckets);
+                    }
+                });
+            });
+            renderSeconds += std::chrono::duration<double>(Clock::now() - t).count();
+            std::vector<ProceduralBody*> outgrown = scene_->factory->takeOutgrown();
+            if (!outgrown.empty() && pass < kMaxPasses) {
+                for (ProceduralBody* p : outgrown) p->useGrownBound();
+                again = true;
+                break;
+            }
+            t = Clock::now();
+            for (const FrameImage& img : images) {
+                if (alreadyWritten(img.frame)) {
+                    ++stats.framesSkipped;
+                    continue;
+                }
+                sink(img);
+            }
+            writeSeconds += std::chrono::duration<double>(Clock::now() - t).count();
         }
-        writeSeconds += std::chrono::duration<double>(Clock::now() - t).count();
+        if (!again) break;
+        stats.passes = pass + 1;
     }
     for (const auto& w : workers)
         if (w) stats.counters += w->counters;
     stats.counters.rootBodies = scene_->roots.size();
+    stats.procedurals = scene_->factory->proceduralsMade();
+    stats.proceduralsByDepth = scene_->factory->proceduralsMadeByDepth();
+    stats.bodiesGenerated = scene_->factory->bodiesMade();
     stats.timeRender = renderSeconds;
     stats.timeWrite = writeSeconds;
     stats.timeTotal = std::chrono::duration<double>(Clock::now() - start).count();

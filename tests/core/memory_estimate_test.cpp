@@ -41,7 +41,7 @@ TEST(MemoryEstimate, MatchesWhatTheRenderHolds) {
     Renderer renderer(scene, o, log);
     RenderStats stats = renderer.render([](const FrameImage&) {});
     ASSERT_EQ(stats.frameBlock, 24);
-    const MemoryShape shape{32, 32, 64, 32, 0, 0, true, 1};
+    const MemoryShape shape{32, 32, 64, 32, 0, 0, true, 1, usesOcclusion(RenderOptions{}.algorithm)};
     const MemoryEstimate e = estimateMemory(shape, 24, 1);
     EXPECT_EQ(stats.memoryEstimateBytes, e.total());
     const double counted = double(e.frameImages + e.perWorker), grown = double(stats.peakMemoryBytes - before);
@@ -54,7 +54,7 @@ TEST(MemoryEstimate, MatchesWhatTheRenderHolds) {
 // A budget that fits only a few frames at a time shrinks the frame block; the pixels stay the
 // same whatever the thread count, and close to the unconstrained render's.
 TEST(MemoryEstimate, BudgetShrinksTheFrameBlock) {
-    const MemoryShape shape{32, 32, 64, 32, 0, 0, true, 1};
+    const MemoryShape shape{32, 32, 64, 32, 0, 0, true, 1, usesOcclusion(RenderOptions{}.algorithm)};
     RenderOptions tight;
     tight.maxMemoryBytes = estimateMemory(shape, 6, 1).total();
     RenderOptions tightTwo = tight;

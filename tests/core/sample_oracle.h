@@ -38,7 +38,26 @@ struct OracleReport {
     int crackedPixels = 0;                       // ... of which alpha is not 1
     int strayPixels = 0;                         // ... of which alpha is not 0
     int alphaAboveOne = 0;
+    // Per frame and pixel (in the render's order): 1 all samples covered, 0 none, -1 neither.
+    std::vector<signed char> pixelClass;
 };
+
+// Checks another render of the same scene and samples against the pixel classes of `rep`:
+// cracked and stray pixels, counted into a copy of it (its hits are the other render's).
+inline OracleReport recheckPixels(const OracleReport& rep, const RenderResult& r) {
+    OracleReport again = rep;
+    again.crackedPixels = again.strayPixels = again.alphaAboveOne = 0;
+    again.hits = r.stats.counters.sampleHits;
+    size_t i = 0;
+    for (const FrameImage& img : r.frames)
+        for (size_t p = 0; p < size_t(img.width) * size_t(img.height); ++p, ++i) {
+            const float a = img.rgba[p * 4 + 3];
+            again.alphaAboveOne += a > 1.0f;
+            again.crackedPixels += rep.pixelClass[i] == 1 && a != 1.0f;
+            again.strayPixels += rep.pixelClass[i] == 0 && a != 0.0f;
+        }
+    return again;
+}
 
 template <typename Layers>
 OracleReport checkSamples(const Scene& scene, const RenderResult& r, Layers layers, double hair = 1e-4) {
@@ -81,9 +100,13 @@ OracleReport checkSamples(const Scene& scene, const RenderResult& r, Layers laye
                 if (covered == int(pos.size())) {
                     ++rep.pixelsCovered;
                     rep.crackedPixels += a != 1.0f;
+                    rep.pixelClass.push_back(1);
                 } else if (uncovered == int(pos.size())) {
                     ++rep.pixelsUncovered;
                     rep.strayPixels += a != 0.0f;
+                    rep.pixelClass.push_back(0);
+                } else {
+                    rep.pixelClass.push_back(-1);
                 }
             }
     }

@@ -68,6 +68,13 @@ template <typename T, typename S> constexpr T lerp(T a, T b, S s) { return a * (
 template <typename T> bool isFinite(Vec3<T> v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
+// floor(v) clamped to [lo, hi] (lo for NaN), without converting a float beyond int's range,
+// which is undefined: raster bounds of huge or degenerate bodies reach far past any image.
+inline int floorClamped(float v, int lo, int hi) {
+    if (!(v >= float(lo))) return lo;
+    if (v >= float(hi)) return hi;
+    return std::min(hi, std::max(lo, int(std::floor(v))));
+}
 
 // Axis-aligned box; empty when lo > hi on any axis.
 template <typename T>
