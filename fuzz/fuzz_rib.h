@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "streyes/procedural.h"
 #include "streyes/renderer.h"
 #include "streyes/rib.h"
 
@@ -18,6 +19,12 @@ namespace streyes::fuzz {
 enum class Outcome { Rendered, BadInput };
 
 inline Outcome parseAndRender(std::string_view text) {
+    // Inputs are mutated scenes: they must not run programs or read other files.
+    struct Restricted {
+        SceneAccess before = sceneAccess();
+        Restricted() { setSceneAccess({false, false}); }
+        ~Restricted() { setSceneAccess(before); }
+    } restricted;
     Log log;
     log.setQuiet(true);
     try {
@@ -26,6 +33,7 @@ inline Outcome parseAndRender(std::string_view text) {
         o.xres = o.yres = 8;
         o.samples = 1;
         o.threads = 1;
+        o.maxSplitsPerPrimitive = 1 << 14;  // hard inputs need not take seconds each
         o.hasFrames = true;
         o.firstFrame = o.lastFrame = scene.settings.hasFrames ? scene.settings.firstFrame : 0;
         Renderer renderer(scene, o, log);

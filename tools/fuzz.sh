@@ -3,15 +3,16 @@
 #
 #   tools/fuzz.sh                      build the fuzzer (cmake --preset fuzz, clang) and run 10 minutes
 #   tools/fuzz.sh --seconds 3600 --jobs 2
-#   tools/fuzz.sh --binary build/fuzz/streyes_fuzz_rib --seconds 10 --seed 1   (what ctest runs)
+#   tools/fuzz.sh --binary build/fuzz/streyes_fuzz_rib --seconds 10 --seed 1 --fresh   (what ctest runs)
 #
 # Seeds: scenes/, scenes/hard/, fuzz/seeds/ and fuzz/regressions/ (read only); inputs that reach new
 # code go to WORK/corpus (default build-fuzz/work), crashes to WORK/ as crash-*, leak-*, timeout-*.
 # A crash stops the run with a non-zero exit: add the input to fuzz/regressions/ with the fix
-# (tests/core/fuzz_regression_test.cpp replays every file there).
+# (tests/core/fuzz_regression_test.cpp replays every file there). --fresh starts from the seeds
+# alone (libFuzzer's time limit does not cut short its first pass over the corpus, which grows).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-seconds=600 jobs=1 binary="" work="" seed=""
+seconds=600 jobs=1 binary="" work="" seed="" fresh=0
 while (($#)); do
   case "$1" in
     --seconds) seconds=$2; shift 2 ;;
@@ -19,7 +20,8 @@ while (($#)); do
     --binary) binary=$2; shift 2 ;;
     --work) work=$2; shift 2 ;;
     --seed) seed=$2; shift 2 ;;
-    *) echo "usage: tools/fuzz.sh [--seconds N] [--jobs N] [--binary PATH] [--work DIR] [--seed N]" >&2; exit 2 ;;
+    --fresh) fresh=1; shift ;;
+    *) echo "usage: tools/fuzz.sh [--seconds N] [--jobs N] [--binary PATH] [--work DIR] [--seed N] [--fresh]" >&2; exit 2 ;;
   esac
 done
 if [ -z "$binary" ]; then
@@ -29,6 +31,7 @@ if [ -z "$binary" ]; then
   binary=$ROOT/build-fuzz/streyes_fuzz_rib
 fi
 work=${work:-$ROOT/build-fuzz/work}
+((fresh)) && rm -rf "$work"
 mkdir -p "$work/corpus"
 log=$work/fuzz.log
 args=(-dict="$ROOT/fuzz/rib.dict" -max_total_time="$seconds" -max_len=8192 -timeout=10 -rss_limit_mb=2048

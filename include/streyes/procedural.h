@@ -103,6 +103,17 @@ std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const std::st
                                                                     const std::string& directory,
                                                                     const SourceLoc& loc);
 
+// What a scene may reach outside itself for: run programs (RunProgram) and read other files
+// (ReadArchive, DelayedReadArchive). Both by default; a scene asking for what is not allowed is an
+// InputError. The RIB fuzzer allows neither: its inputs are mutated scenes, which could name any
+// program or a file that never ends (/dev/zero).
+struct SceneAccess {
+    bool programs = true;
+    bool files = true;
+};
+void setSceneAccess(SceneAccess access);  // for the whole process
+SceneAccess sceneAccess();
+
 // Limits, documented in docs/SCENE-FORMAT.md.
 constexpr int kMaxProceduralDepth = 32;  // nested expansions; deeper ones warn and are dropped
 

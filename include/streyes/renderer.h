@@ -51,6 +51,7 @@ struct RenderOptions {
     int maxGridSize = 256;           // micropolygons per grid (RenderMan's "limits" "gridsize")
     int maxSplitDepth = 60;          // a body split this often and still too large is dropped
     int maxEyeSplits = 40;           // the same for splits at the eye plane
+    int maxSplitsPerPrimitive = 1 << 20;  // splits of one primitive in one bucket (bounds the work)
     float timeSplitRatio = 2.0f;     // split t when motion > ratio * size ...
     float timeSplitMinMotion = 16.0f;  // ... and motion > this many pixels
 };

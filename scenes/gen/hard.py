@@ -342,3 +342,22 @@ every one of the 10,001 frames, each sample sees the squares where they are at i
 """, 16, 8, moving_square([0, 10000], ["-19998 0 0", "20002 0 0"]) +
     moving_square(list(range(0, 10001, 50)), ["%d 4 0" % (0 if k % 2 == 0 else 12) for k in range(201)]),
     shutter="0 0.5", samples="1 1", frames=(0, 10000))
+
+write("split_budget.rib", """
+A body whose pieces never get small and are never culled (found by the fuzzer): a sliver with one
+corner moving from 5.6e22 pixels away into the image during the shutter. Every piece sweeps across
+the whole image, so both halves of every split survive, and the depth limit alone would allow 2^60
+pieces. Expected: the primitive's splits in a bucket stop at the split budget
+(RenderOptions::maxSplitsPerPrimitive), with one warning, and the render ends; the square in
+front renders exactly.
+""", 'Format 48 24 1\n'
+     'Projection "orthographic"\n'
+     'ScreenWindow 1 48 24 0\n'
+     'Shutter 0 9\n'
+     'PixelSamples 2 2\n'
+     'PixelFilter "box" 1 1\n'
+     'WorldBegin\n'
+     'Surface "constant"\n' +
+     motion([0, 1], ['Patch "bilinear" "P" [8 4 10  40 4 10  5.5555555555555555e22 20 10  40 20 10]',
+                     'Patch "bilinear" "P" [79 4 10  8 4 10  40 20 5  8 20 10]']) +
+     'Color [1 0 0]\n' + quad((20.5, 8.5), (27.5, 8.5), (20.5, 15.5), (27.5, 15.5), 1) + 'WorldEnd\n')

@@ -1,4 +1,5 @@
 // The procedurals a RIB file can name: archives, helper programs and the built-in generators.
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -59,13 +60,25 @@ class ProgramGenerator final : public ProceduralGenerator {
     std::string command_, datablock_;
 };
 
+std::atomic<bool> programsAllowed{true}, filesAllowed{true};
+
 }  // namespace
+
+void setSceneAccess(SceneAccess access) {
+    programsAllowed = access.programs;
+    filesAllowed = access.files;
+}
+
+SceneAccess sceneAccess() { return {programsAllowed.load(), filesAllowed.load()}; }
 
 std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const std::string& kind,
                                                                     const std::vector<std::string>& args,
                                                                     const std::string& directory,
                                                                     const SourceLoc& loc) {
     namespace fs = std::filesystem;
+    if ((kind == "DelayedReadArchive" && !filesAllowed) || (kind == "RunProgram" && !programsAllowed))
+        throw InputError(loc, "Procedural \"" + kind + "\" is not allowed here (" +
+                                  (kind == "RunProgram" ? "no programs are run" : "no other files are read") + ")");
     if (kind == "DelayedReadArchive") {
         if (args.size() != 1) throw InputError(loc, "Procedural \"DelayedReadArchive\" takes one file name: [\"file.rib\"]");
         // Relative to the folder of the declaring file, else to the current folder. A missing

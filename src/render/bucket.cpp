@@ -39,6 +39,7 @@ BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& option
 void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& frames, int framesFirst) {
     bucket_ = bucket;
     ++counters.buckets;
+    splitsOf_.clear();
     auto t = Clock::now();
     block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, pattern_);
     counters.timeSampleGen += secondsSince(t);
@@ -216,6 +217,7 @@ void BucketWorker::process(const Body& body) {
         CameraExtents e = body.cameraExtents();
         SplitAxis axis = e.u >= e.v ? SplitAxis::U : SplitAxis::V;
         if ((body.moving() && e.t > std::max(e.u, e.v)) || !body.diceableInTime()) axis = SplitAxis::T;
+        if (!withinSplitBudget(body)) return;
         ++counters.eyeSplits;
         split(body, axis, true);
         return;
@@ -262,6 +264,7 @@ void BucketWorker::process(const Body& body) {
                           " splits (degenerate or huge geometry): dropped");
         return;
     }
+    if (!withinSplitBudget(body)) return;
     (axis == SplitAxis::U ? counters.splitsU : axis == SplitAxis::V ? counters.splitsV : counters.splitsT)++;
     split(body, axis, false);
 }
@@ -278,6 +281,25 @@ void BucketWorker::expand(const ProceduralBody& procedural) {
         ++counters.proceduralsExpandedByDepth[d];
     }
     for (const BodyPtr& child : children) pushRoot(*child);
+}
+
+// The split limits bound how deeply a body is split, not how many pieces it makes: a body whose
+// pieces all keep overlapping the bucket without getting small doubles with every split (the
+// fuzzer found a moving sliver reaching 5e22 pixels whose bucket never finished). So a primitive
+// is split at most maxSplitsPerPrimitive times in one bucket; past that its pieces are dropped,
+// with one warning. The split loop's order is fixed, so which pieces go does not depend on threads.
+bool BucketWorker::withinSplitBudget(const Body& body) {
+    uint32_t& n = splitsOf_[body.primitiveId()];
+    if (n < uint32_t(options_.maxSplitsPerPrimitive)) {
+        ++n;
+        return true;
+    }
+    ++counters.culledSplitLimit;
+    log_.warnOnce("splitbudget", body.source() ? *body.source() : SourceLoc{},
+                  "geometry needed more than " + std::to_string(options_.maxSplitsPerPrimitive) +
+                      " splits in one bucket without getting small enough to dice (degenerate or huge moving "
+                      "geometry): the rest of it was dropped");
+    return false;
 }
 
 void BucketWorker::split(const Body& body, SplitAxis axis, bool eyeSplit) {

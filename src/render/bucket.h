@@ -3,6 +3,7 @@
 // workspace; nothing in its hot path allocates once its vectors are warm.
 #pragma once
 
+#include <unordered_map>
 #include <vector>
 
 #include "streyes/film.h"
@@ -49,6 +50,7 @@ class BucketWorker {
     void push(BodyPtr body);
     void pushRoot(const Body& body);
     void process(const Body& body);  // one step of the split loop
+    bool withinSplitBudget(const Body& body);  // counts a split of the body's primitive
     void expand(const ProceduralBody& procedural);
     bool occluded(const Body& body, const Bounds3f& raster) const;
     void endLayer(float boundary);
@@ -70,6 +72,7 @@ class BucketWorker {
     GridRasterizer rasterizer_;
     RasterCounters rasterCounters_;
     std::vector<BodyPtr> stack_;
+    std::unordered_map<uint32_t, uint32_t> splitsOf_;  // splits per primitive in this bucket
     std::vector<WorkItem> heap_;
     uint64_t arrivals_ = 0;
     std::vector<CameraLight> lightScratch_;

@@ -1301,6 +1301,7 @@ std::string RibParser::resolveArchive(const std::string& name, const SourceLoc& 
 void RibParser::readArchive(RibArgs& args) {
     const std::string name = args.string("archive file name");
     args.expectEnd();
+    if (!sceneAccess().files) args.fail("reading other files is not allowed here");
     const std::string path = resolveArchive(name, args.loc());
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(args.loc(), "ReadArchive: cannot open '" + name + "': " + std::strerror(errno));

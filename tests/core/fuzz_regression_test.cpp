@@ -34,5 +34,20 @@ TEST(FuzzRegression, SeedsRender) { EXPECT_GE(replay("fuzz/seeds"), 1); }
 
 TEST(FuzzRegression, WhatTheFuzzerFoundStaysFixed) { EXPECT_GE(replay("fuzz/regressions"), 1); }
 
+// Fuzzed scenes may name any program or file: the fuzzer runs no program and reads no other file.
+TEST(FuzzRegression, FuzzedScenesRunNoProgramAndReadNoFile) {
+    const std::string world = "WorldBegin\n", end = "\nWorldEnd\n";
+    const std::string marker = test::makeTempDir("fuzz-access") + "/ran";
+    for (const std::string& request :
+         {"Procedural \"RunProgram\" [\"/usr/bin/touch " + marker + "\" \"\"] [-1 1 -1 1 1 2]",
+          "ReadArchive \"" + test::sourcePath("scenes/ramp.rib") + "\"",
+          "Procedural \"DelayedReadArchive\" [\"" + test::sourcePath("scenes/ramp.rib") + "\"] [-1 1 -1 1 1 2]"})
+        EXPECT_EQ(fuzz::parseAndRender(world + request + end), fuzz::Outcome::BadInput) << request;
+    EXPECT_FALSE(fs::exists(marker));
+    // Outside the fuzzer, scenes may again.
+    EXPECT_TRUE(sceneAccess().programs);
+    EXPECT_TRUE(sceneAccess().files);
+}
+
 }  // namespace
 }  // namespace streyes

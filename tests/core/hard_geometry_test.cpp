@@ -230,6 +230,29 @@ TEST(SplitLimit, BodyThatNeverGetsSmallStopsWithOneWarning) {
     test::expectMatchesOracle(rep);
 }
 
+TEST(SplitLimit, PiecesThatNeverGetSmallStopAtTheSplitBudget) {
+    // The depth limit alone would allow 2^60 pieces here; a small budget keeps the test quick.
+    RenderOptions o;
+    o.maxSplitsPerPrimitive = 1 << 14;
+    RenderResult r = test::renderFile(test::sourcePath("scenes/hard/split_budget.rib"), o);
+    expectFinite(r);
+    const RenderCounters& n = r.stats.counters;
+    EXPECT_GT(n.culledSplitLimit, 0u);
+    EXPECT_LE(n.splits(), (uint64_t(o.maxSplitsPerPrimitive) + 100) * n.buckets);
+    bool warned = false;
+    for (const std::string& w : r.warnings)
+        warned = warned || w.find("split_budget.rib:17: warning: geometry needed more than 16384 splits in one bucket") !=
+                               std::string::npos;
+    EXPECT_TRUE(warned) << ::testing::PrintToString(r.warnings);
+    // The red square in front of it, x in [20.5, 27.5], y in [8.5, 15.5], is whole.
+    for (int y = 9; y < 15; ++y)
+        for (int x = 21; x < 27; ++x) {
+            EXPECT_EQ(r.alpha(0, x, y), 1.0f) << x << "," << y;
+            EXPECT_EQ(r.channel(0, x, y, 0), 1.0f) << x << "," << y;
+            EXPECT_EQ(r.channel(0, x, y, 1), 0.0f) << x << "," << y;
+        }
+}
+
 TEST(Overflow, CoordinatesBeyondFloatAreSkippedWithAWarning) {
     const std::string path = "scenes/hard/overflow.rib";
     Scene scene = loadScene(path);
