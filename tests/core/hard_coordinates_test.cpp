@@ -55,24 +55,23 @@ TEST(Coordinates, TinySceneRendersLikeTheOriginal) {
     expectLikeTheOriginal(render("coords_tiny.rib"), render("coords_origin.rib"), 1e6);
 }
 
+// The render gave exactly one warning, and it says `what`.
+void expectOneWarning(const RenderResult& r, const std::string& what) {
+    ASSERT_EQ(r.warnings.size(), 1u) << ::testing::PrintToString(r.warnings);
+    EXPECT_NE(r.warnings[0].find(what), std::string::npos) << r.warnings[0];
+}
+
 TEST(Coordinates, TinySceneInsideTheDefaultNearPlaneSaysWhyItIsEmpty) {
     RenderResult r = render("coords_tiny_clipped.rib");
-    ASSERT_EQ(r.warnings.size(), 1u);
-    EXPECT_NE(r.warnings[0].find("coords_tiny_clipped.rib:18: warning: primitive lies wholly between the camera and "
-                                 "the near clipping plane (Clipping near = 0.0001)"),
-              std::string::npos)
-        << r.warnings[0];
+    expectOneWarning(r, "coords_tiny_clipped.rib:18: warning: primitive lies wholly between the camera and the near "
+                        "clipping plane (Clipping near = 0.0001)");
     for (const FrameImage& f : r.frames)
         for (size_t i = 0; i < f.z.size(); ++i) ASSERT_EQ(f.rgba[i * 4 + 3], 0.0f);
 }
 
 TEST(Coordinates, BeyondDoublePrecisionTheRendererSaysSo) {
     RenderResult r = render("coords_far_1e15.rib");
-    ASSERT_EQ(r.warnings.size(), 1u);
-    EXPECT_NE(r.warnings[0].find("warning: primitive lies so far from the world's origin that double precision moves "
-                                 "it by up to"),
-              std::string::npos)
-        << r.warnings[0];
+    expectOneWarning(r, "warning: primitive lies so far from the world's origin that double precision moves it by up to");
     EXPECT_GT(r.stats.counters.sampleHits, 10000u);  // and it still renders
     // A scene nearer the origin gives no such warning (checked above at 1e7); at 1e15 the image
     // is no longer the original's.
