@@ -38,6 +38,10 @@ class GridRasterizer {
     // Samples every micropolygon of a shaded grid into the block's frames and slices.
     void rasterize(const Grid& grid, const Camera& camera, const Shutter& shutter, ImageBlock& block,
                    RasterCounters& counters);
+    // For tests of watertightness: when set, every hit (before the depth test) adds to
+    // counts[sample index in the block] the number of the micropolygon's triangles holding the
+    // sample (2 where a micropolygon folded at a silhouette covers it twice).
+    void countHitsInto(uint32_t* counts) { hitCounts_ = counts; }
 
   private:
     struct RasterVertex {
@@ -66,6 +70,7 @@ class GridRasterizer {
     std::vector<RasterVertex> ra_, rb_;
     std::vector<Slice> slices_;
     std::vector<FrameSpan> frames_;
+    uint32_t* hitCounts_ = nullptr;
 };
 
 }  // namespace streyes

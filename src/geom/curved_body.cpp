@@ -142,7 +142,8 @@ void latticePoints(const LineContext& ctx, const PieceSide& side, std::vector<do
 // side's two corners (which, by the same rule, lie on it), so the new corner goes halfway
 // between them. Either way the position depends only on the line and the segment, so every
 // piece that makes this corner makes the same bits.
-PieceCorner cornerOnSide(const LineContext& ctx, PieceSide& side, const PieceCorner& end0, const PieceCorner& end1) {
+PieceCorner cornerOnSide(const LineContext& ctx, PieceSide& side, const PieceCorner& end0, const PieceCorner& end1,
+                         int face, double u, double v) {
     resolveState(ctx, side);
     const double s = 0.5 * (side.a + side.b);
     PieceCorner c;
@@ -158,7 +159,15 @@ PieceCorner cornerOnSide(const LineContext& ctx, PieceSide& side, const PieceCor
         }
         return c;
     }
-    for (int k = 0; k < ctx.keys; ++k) evalLine(ctx.mesh, side.line, s, k, &c.P[k], &c.N[k]);
+    for (int k = 0; k < ctx.keys; ++k) {
+        evalLine(ctx.mesh, side.line, s, k, &c.P[k], &c.N[k]);
+        // The position is the owner's; the normal is this face's own (faces meet at an angle
+        // along a crease).
+        if (side.line.kind == SurfaceLine::Edge) {
+            Vec3f unused;
+            ctx.mesh.evaluate(face, u, v, k, &unused, &c.N[k]);
+        }
+    }
     if (ctx.keys == 1) c.P[1] = c.P[0], c.N[1] = c.N[0];
     return c;
 }
@@ -182,6 +191,12 @@ struct SideVertices {
     std::vector<double> params; // scratch: line parameters
     std::vector<int> map;       // grid column -> vertex
     size_t count() const { return along.size(); }
+    // Columns that fit the side's smallest step (a power-of-two fraction of the side) exactly.
+    int columnsNeeded() const {
+        float step = 1;
+        for (size_t m = 1; m < along.size(); ++m) step = std::min(step, along[m] - along[m - 1]);
+        return int(std::ceil(1.0f / step - 1e-3f));
+    }
     void clear() {
         for (int k = 0; k < 2; ++k) P[k].clear(), N[k].clear();
         u.clear(), v.clear(), along.clear(), params.clear(), map.clear();
@@ -227,7 +242,11 @@ CurvedBody::CurvedBody(const SurfaceMesh* mesh, int face) : mesh_(mesh), face_(f
         double u, v;
         cornerParam(c, &u, &v);
         PieceCorner& pc = corner_[c];
-        for (int k = 0; k < 2; ++k) mesh->evaluatePoint(face, u, v, mesh->moving() ? k : 0, &pc.P[k], &pc.N[k]);
+        for (int k = 0; k < 2; ++k) {
+            Vec3f unused;
+            mesh->evaluatePoint(face, u, v, mesh->moving() ? k : 0, &pc.P[k], nullptr);
+            mesh->evaluate(face, u, v, mesh->moving() ? k : 0, &unused, &pc.N[k]);
+        }
     }
     for (int k = 0; k < 4; ++k) {
         side_[k].line = {SurfaceLine::Edge, f.side[size_t(k)], 0};
@@ -407,16 +426,17 @@ void CurvedBody::split(SplitAxis axis, std::unique_ptr<Body> out[2]) const {
     // Their corners: side 0 runs from corner 0 to 1, side 2 from 2 to 3, side 3 from 0 to 2 and
     // side 1 from 1 to 3.
     PieceSide crossA = side_[sa], crossB = side_[sb];
-    const PieceCorner ca = cornerOnSide(ctx, crossA, corner_[0], corner_[alongU ? 1 : 2]);
-    const PieceCorner cb = cornerOnSide(ctx, crossB, corner_[alongU ? 2 : 1], corner_[3]);
+    const double um = 0.5 * (rect_.u0 + rect_.u1), vm = 0.5 * (rect_.v0 + rect_.v1);
+    const PieceCorner ca = alongU ? cornerOnSide(ctx, crossA, corner_[0], corner_[1], face_, um, rect_.v0)
+                                  : cornerOnSide(ctx, crossA, corner_[0], corner_[2], face_, rect_.u0, vm);
+    const PieceCorner cb = alongU ? cornerOnSide(ctx, crossB, corner_[2], corner_[3], face_, um, rect_.v1)
+                                  : cornerOnSide(ctx, crossB, corner_[1], corner_[3], face_, rect_.u1, vm);
     PieceSide mid;
     if (alongU) {
-        const double um = 0.5 * (rect_.u0 + rect_.u1);
         mid.line = {SurfaceLine::IsoU, face_, um};
         mid.a = rect_.v0, mid.b = rect_.v1;
         lo->rect_.u1 = hi->rect_.u0 = um;
     } else {
-        const double vm = 0.5 * (rect_.v0 + rect_.v1);
         mid.line = {SurfaceLine::IsoV, face_, vm};
         mid.a = rect_.u0, mid.b = rect_.u1;
         lo->rect_.v1 = hi->rect_.v0 = vm;
@@ -497,17 +517,26 @@ void CurvedBody::dice(int nu, int nv, Grid& grid) const {
         sv.add(first.P, first.N, pu, pv, 0);
         for (double p : sv.params) {
             const float t = float(s.reversed ? (s.b - p) / (s.b - s.a) : (p - s.a) / (s.b - s.a));
-            Vec3f P[2], N[2];
-            for (int key = 0; key < keys; ++key) evalLine(*mesh_, s.line, p, key, &P[key], &N[key]);
-            if (keys == 1) P[1] = P[0], N[1] = N[0];
             faceParam(t, &pu, &pv);
+            Vec3f P[2], N[2];
+            for (int key = 0; key < keys; ++key) {
+                evalLine(*mesh_, s.line, p, key, &P[key], &N[key]);
+                if (s.line.kind == SurfaceLine::Edge) {  // the owner's position, this face's normal
+                    Vec3f unused;
+                    mesh_->evaluate(face_, pu, pv, key, &unused, &N[key]);
+                }
+            }
+            if (keys == 1) P[1] = P[0], N[1] = N[0];
             sv.add(P, N, pu, pv, t);
         }
         faceParam(1, &pu, &pv);
         sv.add(last.P, last.N, pu, pv, 1);
     }
-    const int NU = std::max({nu, int(sides[0].count()) - 1, int(sides[2].count()) - 1});
-    const int NV = std::max({nv, int(sides[1].count()) - 1, int(sides[3].count()) - 1});
+    // Enough columns (rows) for each side's finest step, so that every side vertex sits at the
+    // column of its own parameter (within half a column) and the first row of micropolygons does
+    // not fold over.
+    const int NU = std::max({nu, sides[0].columnsNeeded(), sides[2].columnsNeeded()});
+    const int NV = std::max({nv, sides[1].columnsNeeded(), sides[3].columnsNeeded()});
     columnMap(sides[0], NU);
     columnMap(sides[2], NU);
     columnMap(sides[1], NV);

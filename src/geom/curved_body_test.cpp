@@ -15,6 +15,7 @@
 #include "streyes/patch_mesh.h"
 #include "streyes/quadric.h"
 #include "streyes/shading.h"
+#include "streyes/subdivision.h"
 
 namespace streyes {
 namespace {
@@ -43,6 +44,24 @@ struct Fixture {
         meshes.push_back(std::make_unique<BezierMesh>(shape.topology(), TimeSpan{0, 1}, &material, &camera,
                                                       shape.patches(d.P[0]), k1,
                                                       shape.colors(d.Cs, Color{1, 1, 1})));
+        return meshes.back().get();
+    }
+    // A cube with one corner pulled out and a semi-sharp crease, moved by `shift` at key 1.
+    const SurfaceMesh* subdivisionCube(Vec3d shift = {}) {
+        SubdivisionMeshDesc d;
+        d.faceSizes = {4, 4, 4, 4, 4, 4};
+        d.faceVertices = {0, 1, 3, 2, 2, 3, 5, 4, 4, 5, 7, 6, 6, 7, 1, 0, 1, 7, 5, 3, 6, 0, 2, 4};
+        d.vertexCount = 8;
+        d.P = {{{-1, -1, 1}, {1, -1, 1}, {-1, 1, 1}, {2.4, 1.8, 1.6}, {-1, 1, -1}, {1, 1, -1}, {-1, -1, -1}, {1, -1, -1}}};
+        for (Vec3d& p : d.P[0]) p = p * 25.0 + Vec3d{64, 64, 100};
+        d.creaseEdges = {1, 3};
+        d.creaseSharpness = {1.5f};
+        auto shape = std::make_shared<SubdivisionShape>(d);
+        std::vector<Vec3d> moved = d.P[0];
+        for (Vec3d& p : moved) p += shift;
+        auto k0 = shape->key(d.P[0]), k1 = shift == Vec3d{} ? k0 : shape->key(moved);
+        meshes.push_back(std::make_unique<SubdivisionMesh>(shape, k0, k1, TimeSpan{0, 1}, &material, &camera,
+                                                           shape->colors({}, Color{1, 1, 1})));
         return meshes.back().get();
     }
     const SurfaceMesh* quadric(QuadricKind kind, QuadricMesh::Params p, const Matrix4& m0, const Matrix4& m1) {
@@ -182,23 +201,29 @@ void expectWatertight(const SurfaceMesh& mesh, uint32_t seed, int keys) {
             const float len = length(d), t = dot(p - a, d) / (len * len);
             return t >= -1e-4f && t <= 1 + 1e-4f && length(a + d * t - p) <= 1e-4f * len + 1e-5f;
         };
+        // Two grids that share a whole segment share it bit for bit, so a segment that is only
+        // nearly matched (by one segment of about its length) is a crack.
         for (const auto& [a, b] : odd) {
             const float len = length(b - a);
             float covered = 0;
+            int pieces = 0;
             bool onChord = false;
             for (const auto& [c, e] : odd) {
                 if ((c == a && e == b) || (c == b && e == a)) continue;
-                if (onSegment(a, b, c) && onSegment(a, b, e)) covered += length(e - c);
-                onChord = onChord || (onSegment(c, e, a) && onSegment(c, e, b));
+                if (onSegment(a, b, c) && onSegment(a, b, e)) covered += length(e - c), ++pieces;
+                onChord = onChord || (onSegment(c, e, a) && onSegment(c, e, b) && length(e - c) > 1.5f * len);
             }
-            EXPECT_TRUE(onChord || std::fabs(covered - len) <= 1e-3f * len)
-                << "a crack along a segment of length " << len << " (covered " << covered << ")";
+            EXPECT_TRUE(onChord || (pieces >= 2 && std::fabs(covered - len) <= 1e-3f * len))
+                << "a crack along a segment of length " << len << " (covered " << covered << " by " << pieces << ")";
         }
     }
 }
 
+// Coarse shading rates make long lattice steps, so that random splits often cut sides where the
+// neighbour has no lattice point (the corner then goes on the neighbour's chord).
 TEST(CurvedBody, ClosedPatchMeshDicesIntoAWatertightMesh) {
     Fixture fx;
+    fx.material.shadingRate = 30;
     const SurfaceMesh* still = fx.patchMesh(torusMesh(6, 5));
     const SurfaceMesh* moving = fx.patchMesh(torusMesh(6, 5), {7, -3, 2});
     EXPECT_EQ(still->faceCount(), 30);
@@ -210,6 +235,7 @@ TEST(CurvedBody, ClosedPatchMeshDicesIntoAWatertightMesh) {
 
 TEST(CurvedBody, ClosedQuadricsDiceIntoWatertightMeshes) {
     Fixture fx;
+    fx.material.shadingRate = 30;
     const Matrix4 m0 = Matrix4::translate({64, 64, 100}) , m1 = Matrix4::rotate(30, {1, 1, 0}) * m0;
     for (uint32_t seed : {4u, 5u}) {
         expectWatertight(*fx.quadric(QuadricKind::Sphere, {40, -40, 40, 360}, m0, m0), seed, 1);
@@ -218,11 +244,21 @@ TEST(CurvedBody, ClosedQuadricsDiceIntoWatertightMeshes) {
     }
 }
 
+TEST(CurvedBody, ClosedSubdivisionSurfaceDicesIntoAWatertightMesh) {
+    Fixture fx;
+    fx.material.shadingRate = 30;
+    for (uint32_t seed : {6u, 7u}) {
+        expectWatertight(*fx.subdivisionCube(), seed, 1);
+        expectWatertight(*fx.subdivisionCube({5, 2, -4}), seed, 2);
+    }
+}
+
 TEST(CurvedBody, BoundsHoldTheDicedSurfaceAtEveryTime) {
     Fixture fx;
     const Matrix4 m0 = Matrix4::translate({64, 64, 100}), m1 = Matrix4::rotate(40, {0, 1, 1}) * Matrix4::translate({60, 70, 90});
     std::vector<const SurfaceMesh*> meshes = {
         fx.patchMesh(wavyMesh(6, 5), {4, 9, -3}),
+        fx.subdivisionCube({6, -5, 3}),
         fx.quadric(QuadricKind::Sphere, {30, -20, 25, 300}, m0, m1),
         fx.quadric(QuadricKind::Cylinder, {20, -10, 30, 270}, m0, m1),
         fx.quadric(QuadricKind::Cone, {30, 20, 360}, m0, m1),
@@ -234,7 +270,7 @@ TEST(CurvedBody, BoundsHoldTheDicedSurfaceAtEveryTime) {
     std::mt19937 rng(23);
     for (const SurfaceMesh* mesh : meshes) {
         for (int trial = 0; trial < 6; ++trial) {
-            BodyPtr b = std::make_unique<CurvedBody>(mesh, 0);
+            BodyPtr b = std::make_unique<CurvedBody>(mesh, int(rng() % unsigned(mesh->faceCount())));
             for (int s = 0; s < int(rng() % 5); ++s) {
                 BodyPtr h[2];
                 b->split(SplitAxis(rng() % 3), h);
