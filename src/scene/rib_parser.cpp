@@ -1387,6 +1387,8 @@ const RibValue& takeArray(RibArgs& args, const std::string& what, bool strings) 
     return v;
 }
 
+std::string indexCount(size_t n) { return std::to_string(n) + (n == 1 ? " index" : " indices"); }
+
 size_t sum(const std::vector<int>& v) {
     size_t s = 0;
     for (int x : v) s += size_t(x);
@@ -1501,7 +1503,7 @@ bool RibParser::readSubdivisionKey(RibArgs& args, SubdivisionMeshDesc* d) {
     d->faceSizes = intArray(args, "nvertices", 3);
     d->faceVertices = intArray(args, "vertices", 0);
     if (d->faceVertices.size() != sum(d->faceSizes))
-        args.fail("vertices has " + plural(d->faceVertices.size(), "index") + " but the faces in nvertices need " +
+        args.fail("vertices has " + indexCount(d->faceVertices.size()) + " but the faces in nvertices need " +
                   std::to_string(sum(d->faceSizes)));
     d->vertexCount = 0;
     for (int v : d->faceVertices) d->vertexCount = std::max(d->vertexCount, v + 1);
@@ -1663,7 +1665,7 @@ bool RibParser::readPolygonsKey(RibArgs& args, std::vector<Vec3d>* points,
     }
     if (!indices.empty() || name == "PointsPolygons" || name == "PointsGeneralPolygons")
         if (indices.size() != sum(loopSizes))
-            args.fail("vertices has " + plural(indices.size(), "index") + " but nvertices asks for " +
+            args.fail("vertices has " + indexCount(indices.size()) + " but nvertices asks for " +
                       std::to_string(sum(loopSizes)));
     ParamList params = readParams(args);
     const Param& pos = positionParam(args, params);
