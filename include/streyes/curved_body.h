@@ -88,6 +88,11 @@ class CurvedBody final : public Body {
     bool hasBezier_ = false;
     BezierPatch cp_[2];      // at t0 and t1 (when hasBezier_)
     Bounds3f box_[2];        // at t0 and t1 (otherwise)
+    // A whole face is culled in every bucket it misses: its bound and raster measure are
+    // computed once, when it is made (they do not change, and the camera is the mesh's).
+    bool cached_ = false;
+    LBBox3f cachedBound_;
+    RasterMeasure cachedMeasure_;
 };
 
 }  // namespace streyes

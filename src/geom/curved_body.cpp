@@ -253,6 +253,9 @@ CurvedBody::CurvedBody(const SurfaceMesh* mesh, int face) : mesh_(mesh), face_(f
         side_[k].reversed = f.reversed[size_t(k)];
     }
     setPayload();
+    cachedBound_ = bound();
+    cachedMeasure_ = measure(mesh->camera());
+    cached_ = true;
 }
 
 float CurvedBody::keyFraction(double t) const {
@@ -299,6 +302,7 @@ std::unique_ptr<CurvedBody> CurvedBody::child() const {
 
 // ---- Bound and measures -----------------------------------------------------------------------------
 LBBox3f CurvedBody::bound() const {
+    if (cached_) return cachedBound_;
     LBBox3f b;
     const float s[2] = {keyFraction(time_.t0), keyFraction(time_.t1)};
     for (int t = 0; t < 2; ++t) {
@@ -320,6 +324,7 @@ void CurvedBody::sampleGrid(int n, Vec3f* out, int k) const {
 }
 
 RasterMeasure CurvedBody::measure(const Camera& camera) const {
+    if (cached_ && &camera == &mesh_->camera()) return cachedMeasure_;
     RasterMeasure m;
     const int times = moving_ ? 2 : 1;
     const float s[2] = {keyFraction(time_.t0), keyFraction(time_.t1)};

@@ -312,5 +312,18 @@ WorldEnd
     EXPECT_GT(a.stats.counters.sampleHits, 1000u);
 }
 
+TEST(CurvedRender, ExampleScenesRenderWithoutWarnings) {
+    for (const char* name : {"scenes/creature.rib", "scenes/vase.rib", "scenes/quadrics.rib"}) {
+        RenderOptions o;
+        o.xres = 64, o.yres = 36, o.samples = 1;
+        o.hasFrames = true, o.firstFrame = 1, o.lastFrame = 2;
+        RenderResult r = test::renderFile(test::sourcePath(name), o);
+        EXPECT_TRUE(r.warnings.empty()) << name << ": " << (r.warnings.empty() ? "" : r.warnings[0]);
+        ASSERT_EQ(r.frames.size(), 2u);
+        EXPECT_GT(alphaSum(r, 2), 0.2 * 64 * 36) << name;  // the ground and the objects
+        EXPECT_GT(r.stats.counters.gridsDiced, 50u) << name;
+    }
+}
+
 }  // namespace
 }  // namespace streyes
