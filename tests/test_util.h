@@ -5,11 +5,16 @@
 #include <string>
 #include <vector>
 
+#include "streyes/camera.h"
 #include "streyes/film.h"
 #include "streyes/renderer.h"
 #include "streyes/stats.h"
 
 namespace streyes::test {
+
+// Orthographic camera of size x size pixels where one unit is one pixel: raster x = x,
+// raster y = size - y.
+Camera pixelCamera(int size);
 
 // Absolute path of a file in the source tree, e.g. sourcePath("scenes/ramp.rib").
 std::string sourcePath(const std::string& relative);

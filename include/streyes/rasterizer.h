@@ -40,8 +40,12 @@ class GridRasterizer {
                    RasterCounters& counters);
     // For tests of watertightness: when set, every hit (before the depth test) adds to
     // counts[sample index in the block] the number of the micropolygon's triangles holding the
-    // sample (2 where a micropolygon folded at a silhouette covers it twice).
-    void countHitsInto(uint32_t* counts) { hitCounts_ = counts; }
+    // sample (2 where a micropolygon folded at a silhouette covers it twice), and to windings[]
+    // their orientations in raster space (+1 or -1 each): 0 for a closed surface.
+    void countHitsInto(uint32_t* counts, int32_t* windings) {
+        hitCounts_ = counts;
+        windings_ = windings;
+    }
 
   private:
     struct RasterVertex {
@@ -71,6 +75,7 @@ class GridRasterizer {
     std::vector<Slice> slices_;
     std::vector<FrameSpan> frames_;
     uint32_t* hitCounts_ = nullptr;
+    int32_t* windings_ = nullptr;
 };
 
 }  // namespace streyes

@@ -12,7 +12,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(__file__))
-from ribgen import fmt, patch  # noqa: E402
+from ribgen import attribute_block, fmt, patch, points, write_scene  # noqa: E402
 
 FRAMES = 48
 
@@ -188,10 +188,7 @@ def main():
     w('LightSource "ambientlight" 1 "intensity" [0.25]\n')
     w('LightSource "distantlight" 2 "intensity" [0.95] "from" [-3 8 -6] "to" [0 0 0]\n')
     w('LightSource "pointlight" 3 "intensity" [25] "lightcolor" [1 0.85 0.7] "from" [6 5 -4]\n')
-    w("AttributeBegin\n")
-    w('Surface "matte"\nColor [0.55 0.6 0.5]\n')
-    w(patch((-20, 0, -14), (30, 0, -14), (-20, 0, 30), (30, 0, 30)))
-    w("AttributeEnd\n")
+    w(attribute_block('Surface "matte"', (0.55, 0.6, 0.5), patch((-20, 0, -14), (30, 0, -14), (-20, 0, 30), (30, 0, 30))))
     w("AttributeBegin\n")
     w('Surface "plastic" "Ks" [0.45] "roughness" [0.12]\n')
     w("Color [0.85 0.45 0.2]\n")
@@ -204,14 +201,11 @@ def main():
     topo = "[%s] [%s] [%s] [%s] [%s] [%s]" % (" ".join(map(str, nverts)), " ".join(map(str, verts)),
                                              tag_names, nargs, intargs, floatargs)
     for t in keys:
-        pts = " ".join(fmt(round(x, 5)) for p in pose(c, t) for x in p)
-        w('SubdivisionMesh "catmull-clark" %s "P" [%s]\n' % (topo, pts))
+        w('SubdivisionMesh "catmull-clark" %s "P" [%s]\n' % (topo, points(pose(c, t))))
     w("MotionEnd\n")
     w("AttributeEnd\n")
     w("WorldEnd\n")
-    path = os.path.join(os.path.dirname(__file__), "..", "creature.rib")
-    with open(path, "w") as f:
-        f.write("".join(out))
+    write_scene("creature.rib", "".join(out))
 
 
 if __name__ == "__main__":

@@ -10,7 +10,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(__file__))
-from ribgen import fmt, motion  # noqa: E402
+from ribgen import attribute_block, fmt, motion, write_scene  # noqa: E402
 
 FRAMES = 48
 
@@ -36,11 +36,7 @@ def main():
     w('LightSource "pointlight" 3 "intensity" [35] "lightcolor" [1 0.9 0.8] "from" [6 7 -4]\n')
 
     def block(color, surface, body):
-        w("AttributeBegin\n")
-        w(surface + "\n")
-        w("Color [%s]\n" % " ".join(fmt(c) for c in color))
-        w(body)
-        w("AttributeEnd\n")
+        w(attribute_block(surface, color, body))
 
     # Floor: a disk lying in the xz plane (a Disk lies in a z = height plane).
     block((0.5, 0.55, 0.5), 'Surface "matte"', "Rotate 90 1 0 0\nDisk 0 12 360\n")
@@ -85,9 +81,7 @@ def main():
           "Translate 2.2 0.9 4.5\n" +
           "MotionBegin [1 %d]\n  Sphere 0.4 -0.4 0.4 360\n  Sphere 0.9 -0.9 0.9 360\nMotionEnd\n" % (FRAMES + 1))
     w("WorldEnd\n")
-    path = os.path.join(os.path.dirname(__file__), "..", "quadrics.rib")
-    with open(path, "w") as f:
-        f.write("".join(out))
+    write_scene("quadrics.rib", "".join(out))
 
 
 if __name__ == "__main__":

@@ -9,13 +9,9 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(__file__))
-from ribgen import fmt, motion, patch  # noqa: E402
+from ribgen import attribute_block, fmt, motion, patch, points, write_scene  # noqa: E402
 
 FRAMES = 48
-
-
-def pts(points):
-    return " ".join(fmt(round(c, 5)) for p in points for c in p)
 
 
 def vase_mesh():
@@ -94,16 +90,13 @@ def main():
     w(motion(keys, ["Rotate %s 0 1 0" % fmt(90.0 * (t - 1) / FRAMES) for t in keys]))
     w('Basis "b-spline" 1 "b-spline" 1\n')
     nu, nv, P = vase_mesh()
-    w('PatchMesh "bicubic" %d "periodic" %d "nonperiodic" "P" [%s]\n' % (nu, nv, pts(P)))
+    w('PatchMesh "bicubic" %d "periodic" %d "nonperiodic" "P" [%s]\n' % (nu, nv, points(P)))
     w("AttributeEnd\n")
     # The bowl: still, split and diced once for all frames.
-    w("AttributeBegin\n")
-    w('Surface "plastic" "Ks" [0.4] "roughness" [0.15]\n')
-    w("Color [0.85 0.8 0.7]\n")
-    w("Translate 2.3 0 -0.6\n")
     nu, nv, P = bowl_mesh()
-    w('PatchMesh "bicubic" %d "nonperiodic" %d "nonperiodic" "P" [%s]\n' % (nu, nv, pts(P)))
-    w("AttributeEnd\n")
+    w(attribute_block('Surface "plastic" "Ks" [0.4] "roughness" [0.15]', (0.85, 0.8, 0.7),
+                      "Translate 2.3 0 -0.6\n"
+                      'PatchMesh "bicubic" %d "nonperiodic" %d "nonperiodic" "P" [%s]\n' % (nu, nv, points(P))))
     # The cloth: Catmull-Rom, keys every 6 frames.
     w("AttributeBegin\n")
     w('Surface "matte"\nColor [0.8 0.25 0.3]\n')
@@ -112,21 +105,17 @@ def main():
     ckeys = list(range(1, FRAMES + 2, 6))
     w("MotionBegin [%s]\n" % " ".join(str(t) for t in ckeys))
     for t in ckeys:
-        w('  PatchMesh "bicubic" 7 "nonperiodic" 6 "nonperiodic" "P" [%s]\n' % pts(cloth(t)))
+        w('  PatchMesh "bicubic" 7 "nonperiodic" 6 "nonperiodic" "P" [%s]\n' % points(cloth(t)))
     w("MotionEnd\n")
     w("AttributeEnd\n")
-    # A single Bezier patch: a curved tile leaning on the vase.
-    w("AttributeBegin\n")
-    w('Surface "plastic"\nColor [0.9 0.75 0.2]\n')
-    w("Translate -4.2 0.05 -0.5\n")
+    # A single Bezier patch: a curved tile beside the vase.
     tile = [(x, 0.6 * math.sin(math.pi * x / 3) * math.sin(math.pi * z / 3) + 0.3 * z, z)
             for z in (0, 1, 2, 3) for x in (0, 1, 2, 3)]
-    w('Patch "bicubic" "P" [%s]\n' % pts((x * 0.6, y, z * 0.6) for x, y, z in tile))
-    w("AttributeEnd\n")
+    w(attribute_block('Surface "plastic"', (0.9, 0.75, 0.2),
+                      "Translate -4.2 0.05 -0.5\n"
+                      'Patch "bicubic" "P" [%s]\n' % points((x * 0.6, y, z * 0.6) for x, y, z in tile)))
     w("WorldEnd\n")
-    path = os.path.join(os.path.dirname(__file__), "..", "vase.rib")
-    with open(path, "w") as f:
-        f.write("".join(out))
+    write_scene("vase.rib", "".join(out))
 
 
 if __name__ == "__main__":

@@ -15,22 +15,14 @@
 #include "streyes/patch_mesh.h"
 #include "streyes/quadric.h"
 #include "streyes/shading.h"
+#include "test_util.h"
 #include "streyes/subdivision.h"
 
 namespace streyes {
 namespace {
 
-// Orthographic camera with raster x = x and raster y = size - y: lengths in pixels.
-Camera pixelCamera(int size) {
-    CameraDesc cd;
-    cd.xres = cd.yres = size;
-    cd.hasScreenWindow = true;
-    cd.screenWindow[0] = 0, cd.screenWindow[1] = size, cd.screenWindow[2] = 0, cd.screenWindow[3] = size;
-    return Camera(cd);
-}
-
 struct Fixture {
-    Camera camera = pixelCamera(128);
+    Camera camera = test::pixelCamera(128);
     Material material;
     std::vector<std::unique_ptr<SurfaceMesh>> meshes;
 
@@ -114,6 +106,42 @@ std::vector<Vec3f> sideOf(const Grid& g, int side, int k = 0) {
 }
 
 CurvedBody& asCurved(BodyPtr& b) { return static_cast<CurvedBody&>(*b); }
+
+TEST(CurvedBody, DicedBSplineMeshLiesOnTheBSplineSurface) {
+    // Every interior grid vertex of every patch, and every patch corner, against the uniform
+    // cubic B-spline formula over the mesh's control points.
+    Fixture fx;
+    const PatchMeshDesc d = wavyMesh(6, 5);
+    const SurfaceMesh* mesh = fx.patchMesh(d);
+    ASSERT_EQ(mesh->faceCount(), 3 * 2);
+    auto basis = [](double t, double w[4]) {
+        w[0] = (1 - t) * (1 - t) * (1 - t) / 6;
+        w[1] = (3 * t * t * t - 6 * t * t + 4) / 6;
+        w[2] = (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6;
+        w[3] = t * t * t / 6;
+    };
+    auto direct = [&](int pi, int pj, double u, double v) {
+        double wu[4], wv[4];
+        basis(u, wu);
+        basis(v, wv);
+        Vec3d p;
+        for (int l = 0; l < 4; ++l)
+            for (int k = 0; k < 4; ++k) p += d.P[0][size_t((pj + l) * d.nu + pi + k)] * (wu[k] * wv[l]);
+        return Vec3f(p);
+    };
+    for (int f = 0; f < mesh->faceCount(); ++f) {
+        const int pi = f % 3, pj = f / 3;
+        Grid g;
+        CurvedBody(mesh, f).dice(7, 5, g);
+        for (int j = 0; j <= g.nv; ++j)
+            for (int i = 0; i <= g.nu; ++i) {
+                const bool corner = (i == 0 || i == g.nu) && (j == 0 || j == g.nv);
+                if (!corner && (i == 0 || j == 0 || i == g.nu || j == g.nv)) continue;  // side lattices
+                const Vec3f want = direct(pi, pj, double(i) / g.nu, double(j) / g.nv);
+                EXPECT_NEAR(length(g.P[0][size_t(g.index(i, j))] - want), 0.0f, 2e-4f) << "face " << f;
+            }
+    }
+}
 
 TEST(CurvedBody, SplitPiecesShareTheirCommonEdgeBitForBit) {
     Fixture fx;

@@ -130,17 +130,19 @@ std::shared_ptr<const SurfaceTopology> quadricTopology(QuadricKind kind, const Q
     return SurfaceTopology::build({f}, 4, 4);
 }
 
+// Whether the quadric differs between the keys of a segment.
+bool quadricMoves(const QuadricMesh::Params params[2], const Matrix4 objectToCamera[2], TimeSpan keys) {
+    return keys.t1 > keys.t0 && (params[0] != params[1] || objectToCamera[0] != objectToCamera[1]);
+}
+
 }  // namespace
 
 QuadricMesh::QuadricMesh(QuadricKind kind, const Params params[2], const Matrix4 objectToCamera[2], TimeSpan keys,
                          const Material* material, const Camera* camera, const std::array<Color, 4>& colors)
-    : SurfaceMesh(quadricTopology(kind, params,
-                                  keys.t1 > keys.t0 && (params[0] != params[1] || objectToCamera[0] != objectToCamera[1])
-                                      ? 2
-                                      : 1),
-                  keys, material, camera),
+    : SurfaceMesh(quadricTopology(kind, params, quadricMoves(params, objectToCamera, keys) ? 2 : 1), keys, material,
+                  camera),
       kind_(kind) {
-    moving_ = keys.t1 > keys.t0 && (params[0] != params[1] || objectToCamera[0] != objectToCamera[1]);
+    moving_ = quadricMoves(params, objectToCamera, keys);
     for (int k = 0; k < 2; ++k) {
         params_[k] = params[moving_ ? k : 0];
         toCamera_[k] = objectToCamera[moving_ ? k : 0];

@@ -11,17 +11,10 @@
 #include "streyes/curved_body.h"
 #include "streyes/grid.h"
 #include "streyes/shading.h"
+#include "test_util.h"
 
 namespace streyes {
 namespace {
-
-Camera pixelCamera(int size) {
-    CameraDesc cd;
-    cd.xres = cd.yres = size;
-    cd.hasScreenWindow = true;
-    cd.screenWindow[0] = -1, cd.screenWindow[1] = 1, cd.screenWindow[2] = -1, cd.screenWindow[3] = 1;
-    return Camera(cd);
-}
 
 // The unit cube [-1/2, 1/2]^3, faces facing out.
 SubdivisionMeshDesc cube() {
@@ -35,7 +28,7 @@ SubdivisionMeshDesc cube() {
 }
 
 struct Surface {
-    Camera camera = pixelCamera(256);
+    Camera camera = test::pixelCamera(256);
     Material material;
     std::shared_ptr<const SubdivisionShape> shape;
     std::unique_ptr<SubdivisionMesh> mesh;

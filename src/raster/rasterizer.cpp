@@ -86,15 +86,22 @@ inline bool hitQuad(const QuadSetup& q, float sx, float sy, Hit& h) {
     return false;
 }
 
-// How many of the quad's two triangles hold the sample: 2 where a quad folded along its
-// diagonal (at a silhouette) covers it twice. Rendering takes one hit per quad; tests that check
+// How many of the quad's two triangles hold the sample (2 where a quad folded along its
+// diagonal at a silhouette covers it twice), and their windings summed (+1 for a triangle that
+// runs one way round in raster space, -1 the other). Rendering takes one hit per quad; tests of
 // watertightness count coverage (GridRasterizer::countHitsInto).
-inline int trianglesCovering(const QuadSetup& q, float sx, float sy) {
+inline void trianglesCovering(const QuadSetup& q, float sx, float sy, uint32_t* count, int32_t* winding) {
     const float e01 = q.e[0].eval(sx, sy), e12 = q.e[1].eval(sx, sy), e20 = q.e[4].eval(sx, sy);
     const float e23 = q.e[2].eval(sx, sy), e30 = q.e[3].eval(sx, sy);
     const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
-    return int(insideTriangle(e01, q.e[0].canonical, e12, q.e[1].canonical, e20, q.e[4].canonical)) +
-           int(insideTriangle(-e20, c02, e23, q.e[2].canonical, e30, q.e[3].canonical));
+    if (insideTriangle(e01, q.e[0].canonical, e12, q.e[1].canonical, e20, q.e[4].canonical)) {
+        ++*count;
+        *winding += e01 + e12 + e20 > 0 ? 1 : -1;
+    }
+    if (insideTriangle(-e20, c02, e23, q.e[2].canonical, e30, q.e[3].canonical)) {
+        ++*count;
+        *winding += -e20 + e23 + e30 > 0 ? 1 : -1;
+    }
 }
 
 // Bound and pixel range of a quad; false when it misses the block or the clipping range.
@@ -255,7 +262,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                                 Hit h;
                                 if (!hitQuad(q, s.x, s.y, h)) continue;
                                 ++hits;
-                                if (hitCounts_) hitCounts_[si] += uint32_t(trianglesCovering(q, s.x, s.y));
+                                if (hitCounts_) trianglesCovering(q, s.x, s.y, &hitCounts_[si], &windings_[si]);
                                 resolveHit(hit[si], q.z, h, nearZ, farZ, [&](int c) { return ci[idx[c]]; });
                             }
                         }
@@ -317,7 +324,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         Hit h;
                         if (!hitQuad(qt, s.x, s.y, h)) continue;
                         ++hits;
-                        if (hitCounts_) hitCounts_[si] += uint32_t(trianglesCovering(qt, s.x, s.y));
+                        if (hitCounts_) trianglesCovering(qt, s.x, s.y, &hitCounts_[si], &windings_[si]);
                         const float sg = lerp(sA, sB, w);  // the grid's own time parameter
                         resolveHit(block.hits()[si], qt.z, h, nearZ, farZ,
                                    [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); });

@@ -138,69 +138,70 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
         rs->sources.push_back(loc);
         return &rs->sources.back();
     };
+    // What every primitive given by points needs: its material, the times of its motion
+    // segments and its camera-space points at each (false, with a warning, when not finite).
+    struct Keyed {
+        const Material* material;
+        std::vector<double> ts;
+        std::vector<std::vector<Vec3d>> points;
+    };
+    auto keyed = [&](const PrimitiveDesc& p, const std::vector<std::vector<Vec3d>>& P, Keyed* k) {
+        k->material = materialFor(p.attributes);
+        const MotionTransform objectToCamera = p.objectToWorld.then(cam.worldToCamera);
+        k->ts = segmentTimes(p.times, P.size() > 1, objectToCamera, ws, we);
+        return cameraPoints(k->ts, p, P, objectToCamera, &k->points, log);
+    };
 
     // Bilinear patches and small polygons: a TrilinearBody per segment.
     for (const BilinearPatchDesc& p : scene.patches) {
-        const Material* material = materialFor(p.attributes);
         std::array<Color, 4> cs;
         for (int c = 0; c < 4; ++c) cs[size_t(c)] = p.hasCs ? p.Cs[size_t(c)] : attributesOf(p.attributes).color;
-        const MotionTransform objectToCamera = p.objectToWorld.then(cam.worldToCamera);
-        const std::vector<double> ts = segmentTimes(p.times, p.P.size() > 1, objectToCamera, ws, we);
-        std::vector<std::vector<Vec3d>> keys, points;
-        for (const auto& key : p.P) keys.emplace_back(key.begin(), key.end());
-        PrimitiveDesc common{p.times, p.objectToWorld, p.attributes, p.loc};
-        if (!cameraPoints(ts, common, keys, objectToCamera, &points, log)) continue;
-        std::vector<TrilinearBody::Corners> corners(ts.size());
-        for (size_t i = 0; i < ts.size(); ++i)
-            for (size_t c = 0; c < 4; ++c) corners[i][c] = Vec3f(points[i][c]);
-        addBilinearBodies(ts, corners, cs, material, sourceFor(p.loc), *rs);
+        std::vector<std::vector<Vec3d>> P;
+        for (const auto& key : p.P) P.emplace_back(key.begin(), key.end());
+        Keyed k;
+        if (!keyed(PrimitiveDesc{p.times, p.objectToWorld, p.attributes, p.loc}, P, &k)) continue;
+        std::vector<TrilinearBody::Corners> corners(k.ts.size());
+        for (size_t i = 0; i < k.ts.size(); ++i)
+            for (size_t c = 0; c < 4; ++c) corners[i][c] = Vec3f(k.points[i][c]);
+        addBilinearBodies(k.ts, corners, cs, k.material, sourceFor(p.loc), *rs);
     }
 
     // Polygon meshes: each face (a triangle or a convex quad) like a bilinear patch.
     for (const PolygonMeshDesc& p : scene.polygonMeshes) {
-        const Material* material = materialFor(p.attributes);
-        const MotionTransform objectToCamera = p.objectToWorld.then(cam.worldToCamera);
-        const std::vector<double> ts = segmentTimes(p.times, p.P.size() > 1, objectToCamera, ws, we);
-        std::vector<std::vector<Vec3d>> points;
-        if (!cameraPoints(ts, p, p.P, objectToCamera, &points, log)) continue;
+        Keyed k;
+        if (!keyed(p, p.P, &k)) continue;
         const SourceLoc* source = sourceFor(p.loc);
-        std::vector<TrilinearBody::Corners> corners(ts.size());
+        std::vector<TrilinearBody::Corners> corners(k.ts.size());
         for (size_t f = 0; f < p.faces.size(); ++f) {
-            for (size_t i = 0; i < ts.size(); ++i)
-                for (size_t c = 0; c < 4; ++c) corners[i][c] = Vec3f(points[i][size_t(p.faces[f][c])]);
+            for (size_t i = 0; i < k.ts.size(); ++i)
+                for (size_t c = 0; c < 4; ++c) corners[i][c] = Vec3f(k.points[i][size_t(p.faces[f][c])]);
             std::array<Color, 4> cs;
             cs.fill(attributesOf(p.attributes).color);
             if (!p.faceCs.empty()) cs = p.faceCs[f];
-            addBilinearBodies(ts, corners, cs, material, source, *rs);
+            addBilinearBodies(k.ts, corners, cs, k.material, source, *rs);
         }
     }
 
     // Patch meshes: a BezierMesh per segment.
     for (const PatchMeshDesc& p : scene.patchMeshes) {
-        const Material* material = materialFor(p.attributes);
-        const MotionTransform objectToCamera = p.objectToWorld.then(cam.worldToCamera);
-        const std::vector<double> ts = segmentTimes(p.times, p.P.size() > 1, objectToCamera, ws, we);
-        std::vector<std::vector<Vec3d>> points;
-        if (!cameraPoints(ts, p, p.P, objectToCamera, &points, log)) continue;
+        Keyed k;
+        if (!keyed(p, p.P, &k)) continue;
         const PatchMeshShape shape(p);
         const std::vector<std::array<Color, 4>> colors = shape.colors(p.Cs, attributesOf(p.attributes).color);
         const SourceLoc* source = sourceFor(p.loc);
-        forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
+        forEachSegment(k.ts, k.points, [&](double t0, double t1, size_t i, size_t j) {
             std::vector<BezierPatch> k1;
-            if (j != i) k1 = shape.patches(points[j]);
-            addSurface(std::make_unique<BezierMesh>(shape.topology(), TimeSpan{t0, t1}, material, &rs->camera,
-                                                    shape.patches(points[i]), std::move(k1), colors),
+            if (j != i) k1 = shape.patches(k.points[j]);
+            addSurface(std::make_unique<BezierMesh>(shape.topology(), TimeSpan{t0, t1}, k.material, &rs->camera,
+                                                    shape.patches(k.points[i]), std::move(k1), colors),
                        source, *rs);
         });
     }
 
     // Subdivision meshes: the topology once, the limit surface per key, a SubdivisionMesh per segment.
     for (const SubdivisionMeshDesc& p : scene.subdivisionMeshes) {
-        const Material* material = materialFor(p.attributes);
-        const MotionTransform objectToCamera = p.objectToWorld.then(cam.worldToCamera);
-        const std::vector<double> ts = segmentTimes(p.times, p.P.size() > 1, objectToCamera, ws, we);
-        std::vector<std::vector<Vec3d>> points;
-        if (!cameraPoints(ts, p, p.P, objectToCamera, &points, log)) continue;
+        Keyed k;
+        if (!keyed(p, p.P, &k)) continue;
         auto shape = std::make_shared<const SubdivisionShape>(p);
         if (shape->faceCount() == 0) {
             log.warn(p.loc, "SubdivisionMesh has no face with a limit surface (is it all boundary? see "
@@ -209,13 +210,13 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
         }
         const std::vector<std::array<Color, 4>> colors = shape->colors(p.Cs, attributesOf(p.attributes).color);
         const SourceLoc* source = sourceFor(p.loc);
-        std::vector<std::shared_ptr<const SubdivisionKey>> keys(ts.size());
+        std::vector<std::shared_ptr<const SubdivisionKey>> keys(k.ts.size());
         auto keyAt = [&](size_t i) {
-            if (!keys[i]) keys[i] = shape->key(points[i]);
+            if (!keys[i]) keys[i] = shape->key(k.points[i]);
             return keys[i];
         };
-        forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
-            addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), TimeSpan{t0, t1}, material,
+        forEachSegment(k.ts, k.points, [&](double t0, double t1, size_t i, size_t j) {
+            addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), TimeSpan{t0, t1}, k.material,
                                                          &rs->camera, colors),
                        source, *rs);
         });

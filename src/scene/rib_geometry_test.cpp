@@ -179,6 +179,11 @@ TEST(RibCurved, PolygonsBeyondFourVerticesAreCut) {
             if (pp.faces[f][k] == 1) found = found || pp.faceCs[f][k] == Color{12, 13, 14};
     EXPECT_TRUE(found);
     EXPECT_EQ(s.polygonMeshes[2].faces.size(), 7u);  // a square with a triangular hole
+    // A concave quad is cut too; a convex one stays a bilinear patch.
+    Scene quads = parse("Polygon \"P\" [0 0 0 2 0 0 0.5 0.5 0 0 2 0]\nPolygon \"P\" [0 0 0 2 0 0 2 2 0 0 2 0]\n");
+    ASSERT_EQ(quads.polygonMeshes.size(), 1u);
+    EXPECT_EQ(quads.polygonMeshes[0].faces.size(), 2u);
+    EXPECT_EQ(quads.patches.size(), 1u);
     Log log;
     EXPECT_TRUE(parse("Polygon \"P\" [0 0 0 1 1 1 2 2 2 3 3 3 4 4 4]\n", log).polygonMeshes.empty());
     ASSERT_EQ(log.warnings().size(), 1u);

@@ -152,6 +152,7 @@ struct RibParser::PatchKey {
     bool hasCs = false;
     std::array<Color, 4> Cs{};
     int vertices = 4;
+    bool asMesh = false;  // not a bilinear patch: a bicubic patch, or a polygon to cut into faces
 };
 
 // ---- Declarations -------------------------------------------------------------------------------
@@ -930,7 +931,7 @@ void RibParser::motionEnd(RibArgs& args) {
             RibArgs keyArgs(block.requests[i], block.usage);
             if (!readPatchKey(keyArgs, &keys[i])) {
                 // A bicubic patch or a larger polygon: the curved/polygon-mesh path.
-                if (keys[i].vertices > 4) geometry(block.times, block.requests, block.usage);
+                if (keys[i].asMesh) geometry(block.times, block.requests, block.usage);
                 return;
             }
         }
@@ -1174,7 +1175,7 @@ bool RibParser::readPatchKey(RibArgs& args, PatchKey* key) {
         const RibValue* typeValue = args.peek();
         std::string type = args.string("type");
         if (type == "bicubic") {
-            key->vertices = 16;  // not a bilinear patch: read as a patch mesh
+            key->asMesh = true;  // read as a patch mesh
             return false;
         }
         if (type != "bilinear")
@@ -1204,7 +1205,7 @@ bool RibParser::readPatchKey(RibArgs& args, PatchKey* key) {
         vertices = int(pos.nums.size() / perVertex);
         if (vertices < 3) args.fail("a polygon needs at least 3 vertices, got " + std::to_string(vertices));
         if (vertices > 4) {
-            key->vertices = vertices;  // not a bilinear patch: read as a polygon mesh
+            key->asMesh = true;  // cut into faces as a polygon mesh
             return false;
         }
     }
@@ -1223,6 +1224,13 @@ bool RibParser::readPatchKey(RibArgs& args, PatchKey* key) {
         } else {
             points[i] = Vec3d(v[0], v[1], v[2]);
         }
+    }
+
+    // A concave quad would fold as a bilinear patch: it is cut into triangles instead.
+    std::vector<std::array<int, 4>> faces;
+    if (args.name() == "Polygon" && vertices == 4 && cutPolygon(points, {{0, 1, 2, 3}}, &faces) && faces.size() > 1) {
+        key->asMesh = true;
+        return false;
     }
 
     // Corner c takes vertex order[c]. A quad's vertices go around its edge (0 1 2 3), a patch's
@@ -1280,7 +1288,7 @@ void RibParser::addPatch(const std::vector<double>& times, const std::vector<Pat
 void RibParser::patchOrPolygon(RibArgs& args) {
     PatchKey key;
     if (readPatchKey(args, &key)) addPatch({0.0}, {key}, args.loc());
-    else if (key.vertices > 4)
+    else if (key.asMesh)
         geometry({0.0}, {args.request()},
                  args.name() == "Patch" ? "Patch \"bicubic\" \"P\" [48 numbers]" : "Polygon \"P\" [x y z ...]");
 }
@@ -1716,12 +1724,6 @@ void RibParser::geometry(const std::vector<double>& times, const std::vector<Rib
     auto differ = [&](const std::string& what) {
         throw InputError(loc, "the " + name + " requests of a motion block must have the same " + what);
     };
-    // Times and key positions: one key when nothing moves.
-    auto keyTimes = [&](auto& keys, auto same) {
-        bool moves = false;
-        for (size_t i = 1; i < keys.size(); ++i) moves = moves || !same(keys[i], keys[0]);
-        return moves ? times : std::vector<double>{times.front()};
-    };
     auto place = [&](PrimitiveDesc& d, std::vector<double> t) {
         d.times = std::move(t);
         d.objectToWorld = ctm_;
@@ -1732,41 +1734,47 @@ void RibParser::geometry(const std::vector<double>& times, const std::vector<Rib
         if (a.cls != b.cls || a.values != b.values)
             log_.warnOnce("motion:Cs", loc, "Cs does not change over motion keys: using the first key's");
     };
+    // Reads every key with `read` and checks that it has the first key's shape (what may not
+    // change is named by `what`); false when the primitive is skipped.
+    auto readKeys = [&](auto& keys, auto read, auto sameShape, const char* what) {
+        for (size_t i = 0; i < keys.size(); ++i) {
+            RibArgs a(requests[i], usage);
+            if (!(this->*read)(a, &keys[i])) return false;
+            if (!sameShape(keys[i], keys[0])) differ(what);
+            colorsDiffer(keys[i].Cs, keys[0].Cs);
+        }
+        return true;
+    };
+    // The first key's primitive with the positions of every key (`positions` picks the member
+    // that moves), or of the first alone when they are all equal.
+    auto mergeKeys = [&](auto& keys, auto positions) {
+        auto d = keys[0];
+        bool moves = false;
+        for (size_t i = 1; i < keys.size(); ++i) moves = moves || positions(keys[i]) != positions(keys[0]);
+        place(d, moves ? times : std::vector<double>{times.front()});
+        positions(d).clear();
+        for (size_t i = 0; i < d.times.size(); ++i) positions(d).push_back(positions(keys[i])[0]);
+        return d;
+    };
 
     if (name == "Patch" || name == "PatchMesh") {
         std::vector<PatchMeshDesc> keys(requests.size());
-        for (size_t i = 0; i < keys.size(); ++i) {
-            RibArgs a(requests[i], usage);
-            if (!readPatchMeshKey(a, &keys[i])) return;
-            const PatchMeshDesc &k = keys[i], &f = keys[0];
-            if (k.bicubic != f.bicubic || k.nu != f.nu || k.nv != f.nv || k.uPeriodic != f.uPeriodic ||
-                k.vPeriodic != f.vPeriodic)
-                differ("type, size and wrap");
-            colorsDiffer(k.Cs, f.Cs);
-        }
-        PatchMeshDesc d = keys[0];
-        place(d, keyTimes(keys, [](const PatchMeshDesc& a, const PatchMeshDesc& b) { return a.P == b.P; }));
-        d.P.clear();
-        for (size_t i = 0; i < d.times.size(); ++i) d.P.push_back(keys[i].P[0]);
-        scene_.patchMeshes.push_back(std::move(d));
+        auto same = [](const PatchMeshDesc& k, const PatchMeshDesc& f) {
+            return k.bicubic == f.bicubic && k.nu == f.nu && k.nv == f.nv && k.uPeriodic == f.uPeriodic &&
+                   k.vPeriodic == f.vPeriodic;
+        };
+        if (!readKeys(keys, &RibParser::readPatchMeshKey, same, "type, size and wrap")) return;
+        scene_.patchMeshes.push_back(mergeKeys(keys, [](PatchMeshDesc& d) -> auto& { return d.P; }));
     } else if (name == "SubdivisionMesh") {
         std::vector<SubdivisionMeshDesc> keys(requests.size());
-        for (size_t i = 0; i < keys.size(); ++i) {
-            RibArgs a(requests[i], usage);
-            if (!readSubdivisionKey(a, &keys[i])) return;
-            const SubdivisionMeshDesc &k = keys[i], &f = keys[0];
-            if (k.faceSizes != f.faceSizes || k.faceVertices != f.faceVertices || k.creaseEdges != f.creaseEdges ||
-                k.creaseSharpness != f.creaseSharpness || k.corners != f.corners ||
-                k.cornerSharpness != f.cornerSharpness || k.holes != f.holes ||
-                k.interpolateBoundary != f.interpolateBoundary)
-                differ("topology and tags (only \"P\" may change)");
-            colorsDiffer(k.Cs, f.Cs);
-        }
-        SubdivisionMeshDesc d = keys[0];
-        place(d, keyTimes(keys, [](const SubdivisionMeshDesc& a, const SubdivisionMeshDesc& b) { return a.P == b.P; }));
-        d.P.clear();
-        for (size_t i = 0; i < d.times.size(); ++i) d.P.push_back(keys[i].P[0]);
-        scene_.subdivisionMeshes.push_back(std::move(d));
+        auto same = [](const SubdivisionMeshDesc& k, const SubdivisionMeshDesc& f) {
+            return k.faceSizes == f.faceSizes && k.faceVertices == f.faceVertices && k.creaseEdges == f.creaseEdges &&
+                   k.creaseSharpness == f.creaseSharpness && k.corners == f.corners &&
+                   k.cornerSharpness == f.cornerSharpness && k.holes == f.holes &&
+                   k.interpolateBoundary == f.interpolateBoundary;
+        };
+        if (!readKeys(keys, &RibParser::readSubdivisionKey, same, "topology and tags (only \"P\" may change)")) return;
+        scene_.subdivisionMeshes.push_back(mergeKeys(keys, [](SubdivisionMeshDesc& d) -> auto& { return d.P; }));
     } else if (name == "Polygon" || name == "GeneralPolygon" || name == "PointsPolygons" ||
                name == "PointsGeneralPolygons") {
         std::vector<std::vector<Vec3d>> P(requests.size());
@@ -1785,7 +1793,9 @@ void RibParser::geometry(const std::vector<double>& times, const std::vector<Rib
             if (i > 0) colorsDiffer(Cs, firstCs);
         }
         PolygonMeshDesc d;
-        place(d, keyTimes(P, [](const std::vector<Vec3d>& a, const std::vector<Vec3d>& b) { return a == b; }));
+        bool moves = false;
+        for (size_t i = 1; i < P.size(); ++i) moves = moves || P[i] != P[0];
+        place(d, moves ? times : std::vector<double>{times.front()});
         for (size_t i = 0; i < d.times.size(); ++i) d.P.push_back(P[i]);
         // Cut every polygon once (at the first key) into triangles and convex quads.
         size_t faceVertex = 0;
@@ -1818,16 +1828,8 @@ void RibParser::geometry(const std::vector<double>& times, const std::vector<Rib
         if (!d.faces.empty()) scene_.polygonMeshes.push_back(std::move(d));
     } else {
         std::vector<QuadricDesc> keys(requests.size());
-        for (size_t i = 0; i < keys.size(); ++i) {
-            RibArgs a(requests[i], usage);
-            readQuadricKey(a, &keys[i]);
-            if (i > 0) colorsDiffer(keys[i].Cs, keys[0].Cs);
-        }
-        QuadricDesc d = keys[0];
-        place(d, keyTimes(keys, [](const QuadricDesc& a, const QuadricDesc& b) { return a.params == b.params; }));
-        d.params.clear();
-        for (size_t i = 0; i < d.times.size(); ++i) d.params.push_back(keys[i].params[0]);
-        scene_.quadrics.push_back(std::move(d));
+        readKeys(keys, &RibParser::readQuadricKey, [](const QuadricDesc&, const QuadricDesc&) { return true; }, "");
+        scene_.quadrics.push_back(mergeKeys(keys, [](QuadricDesc& d) -> auto& { return d.params; }));
     }
 }
 

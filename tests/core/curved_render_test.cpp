@@ -133,11 +133,10 @@ TEST(CurvedRender, DeformingSubdivisionSurfaceLeavesNoCracks) {
 
 // ---- Counting hits per sample -------------------------------------------------------------------
 // The renderer's split loop (src/render/bucket.cpp) over one bucket that covers the image, with
-// the rasterizer counting every hit on every sample. A closed surface in front of the camera is
-// hit an even number of times by every sample (in and out), and a convex-looking one exactly 0
-// or 2 times: a crack shows as 1, an overlap between pieces as 3 or 4.
+// the rasterizer counting every hit on every sample and the winding of what it hit.
 struct HitCount {
     std::vector<uint32_t> counts;
+    std::vector<int32_t> windings;
     ImageBlock block;
 };
 
@@ -151,8 +150,9 @@ HitCount countHits(const std::string& rib, int firstFrame, int frames, int maxGr
     HitCount h;
     h.block.reset({0, 0, settings.width - 1, settings.height - 1}, firstFrame, frames, settings.pattern);
     h.counts.assign(h.block.sampleCount(), 0);
+    h.windings.assign(h.block.sampleCount(), 0);
     GridRasterizer raster;
-    raster.countHitsInto(h.counts.data());
+    raster.countHitsInto(h.counts.data(), h.windings.data());
     RasterCounters counters;
     Grid grid;
     const Camera& cam = rs->camera;
@@ -190,16 +190,20 @@ HitCount countHits(const std::string& rib, int firstFrame, int frames, int maxGr
     return h;
 }
 
-// Every sample is hit an even number of times (in and out of the closed surface), and many are
-// hit: a crack leaves a sample hit once, an overlap between pieces three times.
+// Every sample is hit an even number of times (in and out of the closed surface), as many
+// times by micropolygons facing one way as the other (their winding in raster space), and many
+// samples are hit: a crack leaves a sample hit once, an overlap between pieces three times, and a
+// piece drawn twice unbalances the windings.
 void expectClosed(const std::string& rib, int frames, int maxGridSize = 256) {
     const HitCount h = countHits(rib, 0, frames, maxGridSize);
-    size_t hit = 0, odd = 0;
-    for (uint32_t c : h.counts) {
-        hit += c > 0;
-        odd += c % 2;
+    size_t hit = 0, odd = 0, unwound = 0;
+    for (size_t i = 0; i < h.counts.size(); ++i) {
+        hit += h.counts[i] > 0;
+        odd += h.counts[i] % 2;
+        unwound += h.windings[i] != 0;
     }
     EXPECT_EQ(odd, 0u) << "samples hit an odd number of times: a crack or an overlap";
+    EXPECT_EQ(unwound, 0u) << "samples crossed more times one way than the other: a crack or a piece twice";
     EXPECT_GT(hit, h.counts.size() / 8);
 }
 
