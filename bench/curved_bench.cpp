@@ -66,7 +66,8 @@ struct Meshes {
     }
 };
 
-// Dicing one whole face into a 16 x 16 grid (more where its edges' lattices ask for it).
+// Dicing a grid-sized piece of a face (its first half, split until it dices to at most 256
+// micropolygons, as in the bucket) at the rate its measure asks for.
 // Arguments: 0 Bezier patch, 1 sphere, 2 regular subdivision face, 3 irregular subdivision face.
 void BM_CurvedDice(benchmark::State& state) {
     static Meshes meshes;
@@ -79,15 +80,25 @@ void BM_CurvedDice(benchmark::State& state) {
         for (int f = 0; f < sd.faceCount(); ++f)
             if (sd.regular(f) == (state.range(0) == 2)) face = f;
     }
-    CurvedBody body(mesh, face);
+    BodyPtr piece = CurvedBody(mesh, face).restrictedTo(0, 1);
+    int nu = 1, nv = 1;
+    while (true) {
+        const RasterMeasure m = piece->measure(meshes.camera);
+        nu = std::max(1, int(std::ceil(m.extentU))), nv = std::max(1, int(std::ceil(m.extentV)));
+        if (nu * nv <= 256) break;
+        BodyPtr h[2];
+        piece->split(m.extentU >= m.extentV ? SplitAxis::U : SplitAxis::V, h);
+        piece = std::move(h[0]);
+    }
     Grid g;
     uint64_t micropolygons = 0;
     for (auto _ : state) {
-        body.dice(16, 16, g);
+        piece->dice(nu, nv, g);
         micropolygons += uint64_t(g.nu * g.nv);
         benchmark::DoNotOptimize(g.P[0].data());
     }
     state.counters["micropolygons/s"] = benchmark::Counter(double(micropolygons), benchmark::Counter::kIsRate);
+    state.counters["grid"] = double(g.nu * g.nv);
 }
 BENCHMARK(BM_CurvedDice)->ArgName("kind")->Arg(0)->Arg(1)->Arg(2)->Arg(3);
 
