@@ -128,6 +128,18 @@ struct BilinearPatchDesc {
     SourceLoc loc;
 };
 
+class ProceduralGenerator;
+
+// A procedural primitive (Procedural "DelayedReadArchive" | "RunProgram" | "DynamicLoad"): a
+// bound in object space now, children when the bound is seen (procedural.h).
+struct ProceduralDesc {
+    std::shared_ptr<const ProceduralGenerator> generator;
+    Bounds3d bound;                 // object space, as declared
+    MotionTransform objectToWorld;
+    AttributesPtr attributes;
+    SourceLoc loc;
+};
+
 // ---- Curved and polygonal primitives ----------------------------------------------------------
 // What every primitive below has: motion keys (one entry, any value, when static), its
 // object-to-world transform, attributes and the place it was declared. Positions are given per key.
@@ -200,6 +212,7 @@ struct Scene {
     RenderSettings settings;
     std::vector<LightDesc> lights;
     std::vector<BilinearPatchDesc> patches;
+    std::vector<ProceduralDesc> procedurals;
     std::vector<PatchMeshDesc> patchMeshes;
     std::vector<SubdivisionMeshDesc> subdivisionMeshes;
     std::vector<QuadricDesc> quadrics;

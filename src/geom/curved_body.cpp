@@ -285,14 +285,11 @@ void CurvedBody::setPayload() {
 
 std::unique_ptr<CurvedBody> CurvedBody::child() const {
     std::unique_ptr<CurvedBody> c(new CurvedBody());
+    c->inheritFrom(*this);
     c->mesh_ = mesh_;
     c->face_ = face_;
     c->time_ = time_;
     c->moving_ = moving_;
-    c->material_ = material_;
-    c->source_ = source_;
-    c->splitDepth = splitDepth;
-    c->eyeSplitDepth = eyeSplitDepth;
     c->rect_ = rect_;
     std::copy(corner_, corner_ + 4, c->corner_);
     std::copy(side_, side_ + 4, c->side_);
@@ -551,6 +548,7 @@ void CurvedBody::dice(int nu, int nv, Grid& grid) const {
     grid.t0 = time_.t0;
     grid.t1 = time_.t1;
     grid.material = material_;
+    grid.primitiveId = primitiveId_;
     const float s[2] = {keyFraction(time_.t0), keyFraction(time_.t1)};
     const std::array<Color, 4>& cs = mesh_->faceColors(face_);
     for (int j = 0; j <= NV; ++j) {

@@ -1,18 +1,47 @@
 #include "streyes/render_scene.h"
 
 #include <algorithm>
-#include <map>
 
 #include "streyes/curved_body.h"
 #include "streyes/patch_mesh.h"
+#include "streyes/procedural.h"
 #include "streyes/quadric.h"
 #include "streyes/subdivision.h"
+#include "streyes/util/sampling.h"
 
 namespace streyes {
 
 namespace {
 
-// ---- Motion segments, for every kind of primitive --------------------------------------------------
+// The primitive's object-space corners at time t: linear between its keys, held outside.
+std::array<Vec3d, 4> cornersAt(const BilinearPatchDesc& p, double t) {
+    if (p.P.size() == 1 || t <= p.times.front()) return p.P.front();
+    if (t >= p.times.back()) return p.P.back();
+    size_t i = size_t(std::upper_bound(p.times.begin(), p.times.end(), t) - p.times.begin());
+    double s = (t - p.times[i - 1]) / (p.times[i] - p.times[i - 1]);
+    std::array<Vec3d, 4> r;
+    for (int c = 0; c < 4; ++c) r[size_t(c)] = lerp(p.P[i - 1][size_t(c)], p.P[i][size_t(c)], s);
+    return r;
+}
+
+// Key times of a motion inside (a, b), plus a and b.
+std::vector<double> segmentTimes(const std::vector<double>& keys, double a, double b) {
+    std::vector<double> ts{a};
+    for (double t : keys)
+        if (t > a && t < b) ts.push_back(t);
+    if (b > a) ts.push_back(b);
+    return ts;
+}
+
+std::vector<double> keysOf(const MotionTransform& m) { return m.isStatic() ? std::vector<double>{} : m.times(); }
+
+// Child ids: a hash of the parent's id and the child's index (never 0 or the "no hit" value).
+uint32_t childId(uint32_t parent, uint64_t index) {
+    uint32_t id = uint32_t(mix64((uint64_t(parent) << 32) ^ (index + 1)) >> 32);
+    return id == 0 || id == UINT32_MAX ? 1 : id;
+}
+
+// ---- Motion segments of curved primitives ----------------------------------------------------------
 // Where time t falls among a primitive's keys: between key i and i + 1 at fraction s (held
 // before the first key and after the last, where s = 0).
 void keyInterval(const std::vector<double>& times, size_t keys, double t, size_t* i, double* s) {
@@ -38,18 +67,6 @@ std::vector<Vec3d> pointsAt(const std::vector<double>& times, const std::vector<
     return r;
 }
 
-// Key times of everything that moves the primitive in camera space, inside (a, b), plus a and b.
-std::vector<double> segmentTimes(const std::vector<double>& ownTimes, bool ownMoves,
-                                 const MotionTransform& objectToCamera, double a, double b) {
-    std::vector<double> keys = objectToCamera.isStatic() ? std::vector<double>{} : objectToCamera.times();
-    if (ownMoves) keys = unionTimes(keys, ownTimes);
-    std::vector<double> ts{a};
-    for (double t : keys)
-        if (t > a && t < b) ts.push_back(t);
-    if (b > a) ts.push_back(b);
-    return ts;
-}
-
 // Calls add(t0, t1, i, j) for each segment between consecutive times, with i and j the indices
 // of its keys in `keys`; a run of segments over which the keys do not change is one still
 // segment; a single time (one frame, no shutter) is a segment of length zero.
@@ -68,18 +85,115 @@ void forEachSegment(const std::vector<double>& ts, const std::vector<Key>& keys,
     }
 }
 
-// Camera-space points of a primitive at each time; false (with a warning) when any is not finite.
-bool cameraPoints(const std::vector<double>& ts, const PrimitiveDesc& p, const std::vector<std::vector<Vec3d>>& P,
-                  const MotionTransform& objectToCamera, std::vector<std::vector<Vec3d>>* out, Log& log) {
-    out->resize(ts.size());
+}  // namespace
+
+BodyFactory::BodyFactory(const MotionTransform& worldToCamera, double windowStart, double windowEnd, Log& log)
+    : worldToCamera_(worldToCamera), windowStart_(windowStart), windowEnd_(windowEnd), log_(log) {}
+
+const Material* BodyFactory::material(const AttributesPtr& attributes) {
+    static const AttributesPtr kDefault = std::make_shared<const Attributes>();
+    const AttributesPtr& a = attributes ? attributes : kDefault;
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = materialOf_.find(a.get());
+    if (it != materialOf_.end()) return it->second;
+    keepAlive_.push_back(a);
+    materials_.push_back(makeMaterial(*a));
+    return materialOf_.emplace(a.get(), &materials_.back()).first->second;
+}
+
+const SourceLoc* BodyFactory::source(const SourceLoc& loc) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto key = std::make_pair(loc.file.get(), loc.line);
+    auto it = sourceOf_.find(key);
+    if (it != sourceOf_.end()) return it->second;
+    sources_.push_back(loc);
+    return sourceOf_.emplace(key, &sources_.back()).first->second;
+}
+
+void BodyFactory::addPatch(const BilinearPatchDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    const Material* mat = material(p.attributes);
+    std::array<Color, 4> cs;
+    for (int c = 0; c < 4; ++c) cs[size_t(c)] = p.hasCs ? p.Cs[size_t(c)] : mat->Cs;
+
+    MotionTransform objectToCamera = p.objectToWorld.then(worldToCamera_);
+    std::vector<double> keys = keysOf(objectToCamera);
+    if (p.P.size() > 1) keys = unionTimes(keys, p.times);
+    std::vector<double> ts = segmentTimes(keys, windowStart_, windowEnd_);
+    std::vector<TrilinearBody::Corners> corners(ts.size());
+    bool finite = true;
     for (size_t i = 0; i < ts.size(); ++i) {
-        const Matrix4 m = objectToCamera.at(ts[i]);
-        std::vector<Vec3d>& pts = (*out)[i];
-        pts = pointsAt(p.times, P, ts[i]);
+        Matrix4 m = objectToCamera.at(ts[i]);
+        std::array<Vec3d, 4> obj = cornersAt(p, ts[i]);
+        for (int c = 0; c < 4; ++c) {
+            Vec3f v(m.point(obj[size_t(c)]));
+            finite = finite && isFinite(v);
+            corners[i][size_t(c)] = v;
+        }
+    }
+    if (!finite) {
+        log_.warn(p.loc, "primitive has non-finite coordinates in camera space: skipped");
+        return;
+    }
+    const SourceLoc* src = source(p.loc);
+    auto add = [&](double t0, double t1, const TrilinearBody::Corners& c0, const TrilinearBody::Corners& c1) {
+        auto body = std::make_unique<TrilinearBody>(TimeSpan{t0, t1}, c0, c1, cs, mat);
+        body->setSource(src);
+        body->setPrimitiveId(primitiveId);
+        out.push_back(std::move(body));
+        ++bodiesMade_;
+    };
+    if (ts.size() == 1) {  // a single instant (one frame, shutter open == close)
+        add(ts[0], ts[0], corners[0], corners[0]);
+        return;
+    }
+    bool moves = false;
+    for (size_t i = 1; i < ts.size() && !moves; ++i) moves = corners[i] != corners[0];
+    if (moves && ts.size() > 2) {
+        // Several keys: one body for all of them; the split loop cuts it in time where needed.
+        auto body = std::make_unique<KeyedPatchBody>(std::move(ts), std::move(corners), cs, mat);
+        body->setSource(src);
+        body->setPrimitiveId(primitiveId);
+        out.push_back(std::move(body));
+        ++bodiesMade_;
+        return;
+    }
+    // One body per segment between keys; a run of still segments is one still body.
+    for (size_t i = 0; i + 1 < ts.size();) {
+        size_t j = i + 1;
+        if (corners[j] == corners[i])
+            while (j + 1 < ts.size() && corners[j + 1] == corners[i]) ++j;
+        add(ts[i], ts[j], corners[i], corners[j]);
+        i = j;
+    }
+}
+
+Bounds3f BodyFactory::cameraBound(const Bounds3d& b, const MotionTransform& objectToWorld) const {
+    MotionTransform objectToCamera = objectToWorld.then(worldToCamera_);
+    Bounds3f r;
+    for (double t : segmentTimes(keysOf(objectToCamera), windowStart_, windowEnd_)) {
+        Matrix4 m = objectToCamera.at(t);
+        for (int i = 0; i < 8; ++i)
+            r.extend(Vec3f(m.point({(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z})));
+    }
+    return r;
+}
+
+// ---- Curved and polygon-mesh primitives ------------------------------------------------------------
+bool BodyFactory::keyedPoints(const PrimitiveDesc& p, const std::vector<std::vector<Vec3d>>& P,
+                              std::vector<double>* ts, std::vector<std::vector<Vec3d>>* points) {
+    const MotionTransform objectToCamera = p.objectToWorld.then(worldToCamera_);
+    std::vector<double> keys = keysOf(objectToCamera);
+    if (P.size() > 1) keys = unionTimes(keys, p.times);
+    *ts = segmentTimes(keys, windowStart_, windowEnd_);
+    points->resize(ts->size());
+    for (size_t i = 0; i < ts->size(); ++i) {
+        const Matrix4 m = objectToCamera.at((*ts)[i]);
+        std::vector<Vec3d>& pts = (*points)[i];
+        pts = pointsAt(p.times, P, (*ts)[i]);
         for (Vec3d& q : pts) {
             q = m.point(q);
             if (!isFinite(Vec3f(q))) {
-                log.warn(p.loc, "primitive has non-finite coordinates in camera space: skipped");
+                log_.warn(p.loc, "primitive has non-finite coordinates in camera space: skipped");
                 return false;
             }
         }
@@ -87,25 +201,165 @@ bool cameraPoints(const std::vector<double>& ts, const PrimitiveDesc& p, const s
     return true;
 }
 
-// One TrilinearBody per segment of a bilinear patch whose camera-space corners are given per time.
-void addBilinearBodies(const std::vector<double>& ts, const std::vector<TrilinearBody::Corners>& corners,
-                       const std::array<Color, 4>& cs, const Material* material, const SourceLoc* source,
-                       RenderScene& rs) {
-    forEachSegment(ts, corners, [&](double t0, double t1, size_t i, size_t j) {
-        auto body = std::make_unique<TrilinearBody>(TimeSpan{t0, t1}, corners[i], corners[j], cs, material);
-        body->setSource(source);
-        rs.roots.push_back(std::move(body));
+void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint32_t primitiveId,
+                             std::vector<BodyPtr>& out) {
+    mesh->setSource(src);
+    for (int f = 0; f < mesh->faceCount(); ++f) {
+        auto body = std::make_unique<CurvedBody>(mesh.get(), f);
+        body->setPrimitiveId(primitiveId);
+        out.push_back(std::move(body));
+        ++bodiesMade_;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    surfaces_.push_back(std::move(mesh));
+}
+
+void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    std::vector<double> ts;
+    std::vector<std::vector<Vec3d>> points;
+    if (!keyedPoints(p, p.P, &ts, &points)) return;
+    const Material* mat = material(p.attributes);
+    const PatchMeshShape shape(p);
+    const std::vector<std::array<Color, 4>> colors = shape.colors(p.Cs, mat->Cs);
+    const SourceLoc* src = source(p.loc);
+    forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
+        std::vector<BezierPatch> k1;
+        if (j != i) k1 = shape.patches(points[j]);
+        addSurface(std::make_unique<BezierMesh>(shape.topology(), TimeSpan{t0, t1}, mat, camera_,
+                                                shape.patches(points[i]), std::move(k1), colors),
+                   src, primitiveId, out);
     });
 }
 
-// The bodies of a segment's surface mesh: one per face, the mesh kept alive by the scene.
-void addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* source, RenderScene& rs) {
-    mesh->setSource(source);
-    for (int f = 0; f < mesh->faceCount(); ++f) rs.roots.push_back(std::make_unique<CurvedBody>(mesh.get(), f));
-    rs.surfaces.push_back(std::move(mesh));
+// The topology once, the limit surface per key, a SubdivisionMesh per segment.
+void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    std::vector<double> ts;
+    std::vector<std::vector<Vec3d>> points;
+    if (!keyedPoints(p, p.P, &ts, &points)) return;
+    auto shape = std::make_shared<const SubdivisionShape>(p);
+    if (shape->faceCount() == 0) {
+        log_.warn(p.loc, "SubdivisionMesh has no face with a limit surface (is it all boundary? see "
+                         "\"interpolateboundary\"): skipped");
+        return;
+    }
+    const Material* mat = material(p.attributes);
+    const std::vector<std::array<Color, 4>> colors = shape->colors(p.Cs, mat->Cs);
+    const SourceLoc* src = source(p.loc);
+    std::vector<std::shared_ptr<const SubdivisionKey>> keys(ts.size());
+    auto keyAt = [&](size_t i) {
+        if (!keys[i]) keys[i] = shape->key(points[i]);
+        return keys[i];
+    };
+    forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
+        addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), TimeSpan{t0, t1}, mat, camera_,
+                                                     colors),
+                   src, primitiveId, out);
+    });
 }
 
-}  // namespace
+// A QuadricMesh per segment: the quadric's arguments and transform at both ends.
+void BodyFactory::addQuadric(const QuadricDesc& q, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    const MotionTransform objectToCamera = q.objectToWorld.then(worldToCamera_);
+    std::vector<double> keyTimes = keysOf(objectToCamera);
+    if (q.params.size() > 1) keyTimes = unionTimes(keyTimes, q.times);
+    const std::vector<double> ts = segmentTimes(keyTimes, windowStart_, windowEnd_);
+    struct Key {
+        QuadricMesh::Params params;
+        Matrix4 toCamera;
+        bool operator==(const Key& o) const { return params == o.params && toCamera == o.toCamera; }
+    };
+    std::vector<Key> keys(ts.size());
+    for (size_t i = 0; i < ts.size(); ++i) {
+        size_t k;
+        double s;
+        keyInterval(q.times, q.params.size(), ts[i], &k, &s);
+        for (size_t a = 0; a < 7; ++a)
+            keys[i].params[a] = s == 0 ? q.params[k][a] : (1 - s) * q.params[k][a] + s * q.params[k + 1][a];
+        keys[i].toCamera = objectToCamera.at(ts[i]);
+        if (!keys[i].toCamera.isFinite()) {
+            log_.warn(q.loc, "primitive has non-finite coordinates in camera space: skipped");
+            return;
+        }
+    }
+    const Material* mat = material(q.attributes);
+    std::array<Color, 4> colors;
+    colors.fill(mat->Cs);
+    if (q.Cs.given())
+        for (size_t c = 0; c < 4; ++c) colors[c] = q.Cs.values[q.Cs.values.size() == 4 ? c : 0];
+    const SourceLoc* src = source(q.loc);
+    forEachSegment(ts, keys, [&](double t0, double t1, size_t i, size_t j) {
+        const QuadricMesh::Params params[2] = {keys[i].params, keys[j].params};
+        const Matrix4 toCamera[2] = {keys[i].toCamera, keys[j].toCamera};
+        addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, TimeSpan{t0, t1}, mat, camera_, colors),
+                   src, primitiveId, out);
+    });
+}
+
+// Each face (a triangle or a convex quad) as the bilinear patch it is.
+void BodyFactory::addPolygonMesh(const PolygonMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    BilinearPatchDesc face;
+    face.times = p.times;
+    face.objectToWorld = p.objectToWorld;
+    face.attributes = p.attributes;
+    face.loc = p.loc;
+    face.P.resize(p.P.size());
+    for (size_t f = 0; f < p.faces.size(); ++f) {
+        for (size_t k = 0; k < p.P.size(); ++k)
+            for (size_t c = 0; c < 4; ++c) face.P[k][c] = p.P[k][size_t(p.faces[f][c])];
+        face.hasCs = !p.faceCs.empty();
+        if (face.hasCs) face.Cs = p.faceCs[f];
+        addPatch(face, primitiveId, out);
+    }
+}
+
+void BodyFactory::addProcedural(const ProceduralDesc& p, uint32_t primitiveId, int depth, std::vector<BodyPtr>& out) {
+    if (depth > kMaxProceduralDepth) {
+        log_.warnOnce("procedural-depth", p.loc,
+                      "procedurals nested more than " + std::to_string(kMaxProceduralDepth) +
+                          " deep (does a procedural produce itself?): the deeper ones are dropped");
+        return;
+    }
+    Bounds3f b = cameraBound(p.bound, p.objectToWorld);
+    if (!isFinite(b.lo) || !isFinite(b.hi)) {
+        log_.warn(p.loc, "procedural bound is not finite in camera space: skipped");
+        return;
+    }
+    auto body = std::make_unique<ProceduralBody>(p, b, TimeSpan{windowStart_, windowEnd_}, depth);
+    body->setSource(source(p.loc));
+    body->setPrimitiveId(primitiveId);
+    out.push_back(std::move(body));
+    ++proceduralsMade_;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (proceduralsByDepth_.size() <= size_t(depth)) proceduralsByDepth_.resize(size_t(depth) + 1, 0);
+    ++proceduralsByDepth_[size_t(depth)];
+}
+
+std::vector<uint64_t> BodyFactory::proceduralsMadeByDepth() const {
+    std::lock_guard<std::mutex> lock(const_cast<std::mutex&>(mutex_));
+    return proceduralsByDepth_;
+}
+
+void BodyFactory::addChildren(const Scene& fragment, uint32_t parentId, int depth, std::vector<BodyPtr>& out) {
+    uint64_t index = 0;
+    for (const BilinearPatchDesc& p : fragment.patches) addPatch(p, childId(parentId, index++), out);
+    for (const ProceduralDesc& p : fragment.procedurals) addProcedural(p, childId(parentId, index++), depth, out);
+    for (const PatchMeshDesc& p : fragment.patchMeshes) addPatchMesh(p, childId(parentId, index++), out);
+    for (const SubdivisionMeshDesc& p : fragment.subdivisionMeshes) addSubdivisionMesh(p, childId(parentId, index++), out);
+    for (const QuadricDesc& q : fragment.quadrics) addQuadric(q, childId(parentId, index++), out);
+    for (const PolygonMeshDesc& p : fragment.polygonMeshes) addPolygonMesh(p, childId(parentId, index++), out);
+}
+
+void BodyFactory::reportOutgrown(ProceduralBody* p) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    outgrown_.push_back(p);
+}
+
+std::vector<ProceduralBody*> BodyFactory::takeOutgrown() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<ProceduralBody*> r;
+    r.swap(outgrown_);
+    return r;
+}
 
 std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame, int lastFrame, int xres, int yres,
                                               Log& log) {
@@ -120,146 +374,17 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     rs->lights = LightSet(scene.lights, cam.worldToCamera);
     rs->windowStart = firstFrame + rs->shutter.open;
     rs->windowEnd = lastFrame + rs->shutter.close;
-    const double ws = rs->windowStart, we = rs->windowEnd;
-
-    static const Attributes kDefault;
-    std::map<const Attributes*, const Material*> materialOf;
-    auto attributesOf = [&](const AttributesPtr& a) -> const Attributes& { return a ? *a : kDefault; };
-    auto materialFor = [&](const AttributesPtr& a) {
-        const Attributes* attr = &attributesOf(a);
-        auto it = materialOf.find(attr);
-        if (it == materialOf.end()) {
-            rs->materials.push_back(makeMaterial(*attr));
-            it = materialOf.emplace(attr, &rs->materials.back()).first;
-        }
-        return it->second;
-    };
-    auto sourceFor = [&](const SourceLoc& loc) {
-        rs->sources.push_back(loc);
-        return &rs->sources.back();
-    };
-    // What every primitive given by points needs: its material, the times of its motion
-    // segments and its camera-space points at each (false, with a warning, when not finite).
-    struct Keyed {
-        const Material* material;
-        std::vector<double> ts;
-        std::vector<std::vector<Vec3d>> points;
-    };
-    auto keyed = [&](const PrimitiveDesc& p, const std::vector<std::vector<Vec3d>>& P, Keyed* k) {
-        k->material = materialFor(p.attributes);
-        const MotionTransform objectToCamera = p.objectToWorld.then(cam.worldToCamera);
-        k->ts = segmentTimes(p.times, P.size() > 1, objectToCamera, ws, we);
-        return cameraPoints(k->ts, p, P, objectToCamera, &k->points, log);
-    };
-
-    // Bilinear patches and small polygons: a TrilinearBody per segment.
-    for (const BilinearPatchDesc& p : scene.patches) {
-        std::array<Color, 4> cs;
-        for (int c = 0; c < 4; ++c) cs[size_t(c)] = p.hasCs ? p.Cs[size_t(c)] : attributesOf(p.attributes).color;
-        std::vector<std::vector<Vec3d>> P;
-        for (const auto& key : p.P) P.emplace_back(key.begin(), key.end());
-        Keyed k;
-        if (!keyed(PrimitiveDesc{p.times, p.objectToWorld, p.attributes, p.loc}, P, &k)) continue;
-        std::vector<TrilinearBody::Corners> corners(k.ts.size());
-        for (size_t i = 0; i < k.ts.size(); ++i)
-            for (size_t c = 0; c < 4; ++c) corners[i][c] = Vec3f(k.points[i][c]);
-        addBilinearBodies(k.ts, corners, cs, k.material, sourceFor(p.loc), *rs);
-    }
-
-    // Polygon meshes: each face (a triangle or a convex quad) like a bilinear patch.
-    for (const PolygonMeshDesc& p : scene.polygonMeshes) {
-        Keyed k;
-        if (!keyed(p, p.P, &k)) continue;
-        const SourceLoc* source = sourceFor(p.loc);
-        std::vector<TrilinearBody::Corners> corners(k.ts.size());
-        for (size_t f = 0; f < p.faces.size(); ++f) {
-            for (size_t i = 0; i < k.ts.size(); ++i)
-                for (size_t c = 0; c < 4; ++c) corners[i][c] = Vec3f(k.points[i][size_t(p.faces[f][c])]);
-            std::array<Color, 4> cs;
-            cs.fill(attributesOf(p.attributes).color);
-            if (!p.faceCs.empty()) cs = p.faceCs[f];
-            addBilinearBodies(k.ts, corners, cs, k.material, source, *rs);
-        }
-    }
-
-    // Patch meshes: a BezierMesh per segment.
-    for (const PatchMeshDesc& p : scene.patchMeshes) {
-        Keyed k;
-        if (!keyed(p, p.P, &k)) continue;
-        const PatchMeshShape shape(p);
-        const std::vector<std::array<Color, 4>> colors = shape.colors(p.Cs, attributesOf(p.attributes).color);
-        const SourceLoc* source = sourceFor(p.loc);
-        forEachSegment(k.ts, k.points, [&](double t0, double t1, size_t i, size_t j) {
-            std::vector<BezierPatch> k1;
-            if (j != i) k1 = shape.patches(k.points[j]);
-            addSurface(std::make_unique<BezierMesh>(shape.topology(), TimeSpan{t0, t1}, k.material, &rs->camera,
-                                                    shape.patches(k.points[i]), std::move(k1), colors),
-                       source, *rs);
-        });
-    }
-
-    // Subdivision meshes: the topology once, the limit surface per key, a SubdivisionMesh per segment.
-    for (const SubdivisionMeshDesc& p : scene.subdivisionMeshes) {
-        Keyed k;
-        if (!keyed(p, p.P, &k)) continue;
-        auto shape = std::make_shared<const SubdivisionShape>(p);
-        if (shape->faceCount() == 0) {
-            log.warn(p.loc, "SubdivisionMesh has no face with a limit surface (is it all boundary? see "
-                            "\"interpolateboundary\"): skipped");
-            continue;
-        }
-        const std::vector<std::array<Color, 4>> colors = shape->colors(p.Cs, attributesOf(p.attributes).color);
-        const SourceLoc* source = sourceFor(p.loc);
-        std::vector<std::shared_ptr<const SubdivisionKey>> keys(k.ts.size());
-        auto keyAt = [&](size_t i) {
-            if (!keys[i]) keys[i] = shape->key(k.points[i]);
-            return keys[i];
-        };
-        forEachSegment(k.ts, k.points, [&](double t0, double t1, size_t i, size_t j) {
-            addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), TimeSpan{t0, t1}, k.material,
-                                                         &rs->camera, colors),
-                       source, *rs);
-        });
-    }
-
-    // Quadrics: a QuadricMesh per segment (its shape and transform at both ends).
-    for (const QuadricDesc& q : scene.quadrics) {
-        const Material* material = materialFor(q.attributes);
-        const MotionTransform objectToCamera = q.objectToWorld.then(cam.worldToCamera);
-        const std::vector<double> ts = segmentTimes(q.times, q.params.size() > 1, objectToCamera, ws, we);
-        struct Key {
-            QuadricMesh::Params params;
-            Matrix4 toCamera;
-            bool operator==(const Key& o) const { return params == o.params && toCamera == o.toCamera; }
-        };
-        std::vector<Key> keys(ts.size());
-        bool finite = true;
-        for (size_t i = 0; i < ts.size(); ++i) {
-            size_t k;
-            double s;
-            keyInterval(q.times, q.params.size(), ts[i], &k, &s);
-            for (size_t a = 0; a < 7; ++a)
-                keys[i].params[a] = s == 0 ? q.params[k][a] : (1 - s) * q.params[k][a] + s * q.params[k + 1][a];
-            keys[i].toCamera = objectToCamera.at(ts[i]);
-            finite = finite && keys[i].toCamera.isFinite();
-        }
-        if (!finite) {
-            log.warn(q.loc, "primitive has non-finite coordinates in camera space: skipped");
-            continue;
-        }
-        std::array<Color, 4> colors;
-        colors.fill(attributesOf(q.attributes).color);
-        if (q.Cs.given())
-            for (size_t c = 0; c < 4; ++c) colors[c] = q.Cs.values[q.Cs.values.size() == 4 ? c : 0];
-        const SourceLoc* source = sourceFor(q.loc);
-        forEachSegment(ts, keys, [&](double t0, double t1, size_t i, size_t j) {
-            const QuadricMesh::Params params[2] = {keys[i].params, keys[j].params};
-            const Matrix4 toCamera[2] = {keys[i].toCamera, keys[j].toCamera};
-            addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, TimeSpan{t0, t1}, material,
-                                                     &rs->camera, colors),
-                       source, *rs);
-        });
-    }
+    rs->factory = std::make_unique<BodyFactory>(cam.worldToCamera, rs->windowStart, rs->windowEnd, log);
+    rs->factory->setCamera(&rs->camera);
+    // Primitive ids in scene order from 1: patches, then procedurals, then the curved and
+    // polygon-mesh primitives.
+    uint32_t id = 0;
+    for (const BilinearPatchDesc& p : scene.patches) rs->factory->addPatch(p, ++id, rs->roots);
+    for (const ProceduralDesc& p : scene.procedurals) rs->factory->addProcedural(p, ++id, 0, rs->roots);
+    for (const PatchMeshDesc& p : scene.patchMeshes) rs->factory->addPatchMesh(p, ++id, rs->roots);
+    for (const SubdivisionMeshDesc& p : scene.subdivisionMeshes) rs->factory->addSubdivisionMesh(p, ++id, rs->roots);
+    for (const QuadricDesc& q : scene.quadrics) rs->factory->addQuadric(q, ++id, rs->roots);
+    for (const PolygonMeshDesc& p : scene.polygonMeshes) rs->factory->addPolygonMesh(p, ++id, rs->roots);
     return rs;
 }
 
