@@ -5,6 +5,8 @@
 // body that does not move is split, diced and shaded once for all of them. Algorithm C
 // ("frames"): Catmull's per-frame loop, the baseline; a bucket is a tile times one frame, with the
 // same samples, so the two differ only in how often geometry is processed.
+// Ray tracing ("raytrace", "raytrace-frames"): the same buckets and samples, traced through
+// Glassner's spacetime hierarchy (one for the whole render) or a 3D hierarchy per frame (trace.h).
 #pragma once
 
 #include <cstdint>
@@ -14,11 +16,12 @@
 #include "streyes/film.h"
 #include "streyes/render_scene.h"
 #include "streyes/scene.h"
+#include "streyes/spacetime_bvh.h"
 #include "streyes/stats.h"
 
 namespace streyes {
 
-enum class Algorithm { Spacetime, Frames };
+enum class Algorithm { Spacetime, Frames, Raytrace, RaytraceFrames };
 const char* algorithmName(Algorithm a);
 bool parseAlgorithm(const std::string& name, Algorithm* out);
 
@@ -39,6 +42,12 @@ struct RenderOptions {
     int maxEyeSplits = 40;           // the same for splits at the eye plane
     float timeSplitRatio = 2.0f;     // split t when motion > ratio * size ...
     float timeSplitMinMotion = 16.0f;  // ... and motion > this many pixels
+
+    // Ray tracing and shadows (see spacetime_bvh.h).
+    HierarchyOptions hierarchy;
+    // For tests and tools: sees each bucket's samples (hits before the filter) and the tile it
+    // resolves. Called from worker threads, one bucket at a time each.
+    std::function<void(const ImageBlock& block, const PixelRect& tile)> sampleObserver;
 };
 
 // Frame range, resolution and sample pattern after applying options over the scene.

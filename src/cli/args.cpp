@@ -37,6 +37,8 @@ render options:
   --samples N         samples per pixel per frame; default: the scene's PixelSamples
   --algorithm NAME    spacetime (default: Algorithm S, split once per block of frames)
                       frames    (Algorithm C: Catmull's split loop frame by frame)
+                      raytrace  (ray tracing through one spacetime hierarchy: the reference)
+                      raytrace-frames (ray tracing with a 3D hierarchy per frame)
   -o PATTERN          output files, #### = frame number (e.g. out/shot.####.exr);
                       default: the scene's Display, else SCENE-NAME.####.exr
   --stats FILE        write render statistics as JSON

@@ -136,7 +136,7 @@ int renderCommand(const std::vector<std::string>& args) {
         else if (a == "--algorithm") {
             std::string v = value();
             if (!parseAlgorithm(v, &opts.algorithm))
-                throw UsageError("--algorithm expects spacetime or frames, not '" + v + "'");
+                throw UsageError("--algorithm expects spacetime, frames, raytrace or raytrace-frames, not '" + v + "'");
         } else if (a == "-o" || a == "--output") outPattern = value();
         else if (a == "--stats") statsPath = value();
         else if (a == "--threads") opts.threads = int(parseInt(a, value(), 0, 1024));

@@ -191,16 +191,26 @@ void GridRasterizer::collectFrames(const Grid& grid, const Shutter& shutter, con
     }
 }
 
-// Writes a hit into the sample when it is the nearest so far.
+// Writes a hit into the sample when it is the nearest so far; true when it was.
 template <typename ColorAt>
-static inline void resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, ColorAt colorAt) {
+static inline bool resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, ColorAt colorAt) {
     const float zh = z[h.v0] + h.l1 * (z[h.v1] - z[h.v0]) + h.l2 * (z[h.v2] - z[h.v0]);
-    if (!(zh >= nearZ && zh <= farZ && zh < s.z)) return;
+    if (!(zh >= nearZ && zh <= farZ && zh < s.z)) return false;
     // Relative to the first corner: exact where depth or colour is constant.
     const Color c0 = colorAt(h.v0), c1 = colorAt(h.v1), c2 = colorAt(h.v2);
     s.z = zh;
     s.c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
     s.a = 1.0f;
+    return true;
+}
+
+// With the hit, the K contributions of lights that cast shadows, interpolated the same way.
+template <typename PartAt>
+static inline void writeShadowed(Color* out, int K, const Hit& h, PartAt partAt) {
+    for (int k = 0; k < K; ++k) {
+        const Color c0 = partAt(h.v0, k), c1 = partAt(h.v1, k), c2 = partAt(h.v2, k);
+        out[k] = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
+    }
 }
 
 // A still grid: each quad is projected and set up once, then tested against the samples of
@@ -214,6 +224,8 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const SamplePosition* pos = block.positions();
     SampleHit* hit = block.hits();
     const Color* ci = grid.Ci[0].data();
+    const int K = grid.shadowSlots;
+    const Color* cl = grid.Cl[0].data();
     uint64_t tests = 0, hits = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
@@ -244,7 +256,9 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                                 Hit h;
                                 if (!hitQuad(q, s.x, s.y, h)) continue;
                                 ++hits;
-                                resolveHit(hit[si], q.z, h, nearZ, farZ, [&](int c) { return ci[idx[c]]; });
+                                if (resolveHit(hit[si], q.z, h, nearZ, farZ, [&](int c) { return ci[idx[c]]; }) && K)
+                                    writeShadowed(block.shadowed(si), K, h,
+                                                  [&](int c, int k) { return cl[size_t(idx[c] * K + k)]; });
                             }
                         }
                     }
@@ -265,6 +279,8 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const float nearZ = camera.nearClip(), farZ = camera.farClip();
     const double span = grid.t1 - grid.t0;
     const Color *ci0 = grid.Ci[0].data(), *ci1 = grid.Ci[1].data();
+    const int K = grid.shadowSlots;
+    const Color *cl0 = grid.Cl[0].data(), *cl1 = grid.Cl[1].data();
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
     uint64_t tests = 0, hits = 0;
     for (const Slice& sl : slices_) {
@@ -306,8 +322,12 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         if (!hitQuad(qt, s.x, s.y, h)) continue;
                         ++hits;
                         const float sg = lerp(sA, sB, w);  // the grid's own time parameter
-                        resolveHit(block.hits()[si], qt.z, h, nearZ, farZ,
-                                   [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); });
+                        if (resolveHit(block.hits()[si], qt.z, h, nearZ, farZ,
+                                       [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); }) && K)
+                            writeShadowed(block.shadowed(si), K, h, [&](int c, int k) {
+                                const size_t i = size_t(idx[c] * K + k);
+                                return lerp(cl0[i], cl1[i], sg);
+                            });
                     }
                 }
             }

@@ -16,11 +16,18 @@ BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& option
                            const SamplePattern& pattern, Log& log)
     : scene_(scene), options_(options), filter_(filter), pattern_(pattern), log_(log) {}
 
+void BucketWorker::setTrace(const TraceScene* trace) {
+    trace_ = trace;
+    traceEyeRays_ = trace && (options_.algorithm == Algorithm::Raytrace || options_.algorithm == Algorithm::RaytraceFrames);
+    shadowSlots_ = trace && !traceEyeRays_ ? scene_.lights.shadowSlots() : 0;
+    grid_.shadowSlots = shadowSlots_;
+}
+
 void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& frames, int framesFirst) {
     bucket_ = bucket;
     ++counters.buckets;
     auto t = Clock::now();
-    block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, pattern_);
+    block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, pattern_, shadowSlots_);
     counters.timeSampleGen += secondsSince(t);
 
     // The bucket's block of spacetime: its frames' exposures.
@@ -28,7 +35,8 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     const double wb = bucket.firstFrame + bucket.frameCount - 1 + scene_.shutter.close;
     t = Clock::now();
     const double diceShadeSampleBefore = counters.timeDice + counters.timeShade + counters.timeSample;
-    for (const BodyPtr& root : scene_.roots) {
+    static const std::vector<BodyPtr> kNothingToSplit;  // the ray tracer traces the samples instead
+    for (const BodyPtr& root : traceEyeRays_ ? kNothingToSplit : scene_.roots) {
         const TimeSpan& span = root->time();
         if (!span.overlaps(wa, wb)) continue;
         if (root->moving() && (span.t0 < wa || span.t1 > wb)) {
@@ -45,6 +53,14 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     }
     counters.timeSplit +=
         secondsSince(t) - (counters.timeDice + counters.timeShade + counters.timeSample - diceShadeSampleBefore);
+
+    if (trace_) {  // eye rays (raytrace*), or the shadow rays of the rasterizer's hits
+        t = Clock::now();
+        if (traceEyeRays_) tracer_.traceSamples(block_, *trace_, counters);
+        else if (shadowSlots_) tracer_.shadeShadows(block_, *trace_, counters);
+        counters.timeTrace += secondsSince(t);
+    }
+    if (options_.sampleObserver) options_.sampleObserver(block_, bucket.tile);
 
     t = Clock::now();
     resolveTile(block_, bucket.tile, filter_, &frames[size_t(bucket.firstFrame - framesFirst)], resolveScratch_);

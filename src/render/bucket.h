@@ -12,6 +12,7 @@
 #include "streyes/render_scene.h"
 #include "streyes/renderer.h"
 #include "streyes/stats.h"
+#include "streyes/trace.h"
 
 namespace streyes {
 
@@ -29,6 +30,9 @@ class BucketWorker {
 
     // Renders the bucket and resolves its tile into frames[f - framesFirst] for each of its frames.
     void render(const BucketSpec& bucket, std::vector<FrameImage>& frames, int framesFirst);
+    // The ray tracer's scene (null when nothing is ray traced): eye rays replace the split loop
+    // for --algorithm raytrace*; otherwise it traces the shadow rays of lights that cast shadows.
+    void setTrace(const TraceScene* trace);
 
     RenderCounters counters;
 
@@ -51,6 +55,10 @@ class BucketWorker {
     std::vector<BodyPtr> stack_;
     std::vector<CameraLight> lightScratch_;
     std::vector<float> resolveScratch_;
+    const TraceScene* trace_ = nullptr;
+    bool traceEyeRays_ = false;
+    int shadowSlots_ = 0;  // the rasterizer's shadowed light parts per sample
+    SampleTracer tracer_;
 };
 
 }  // namespace streyes

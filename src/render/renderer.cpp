@@ -10,14 +10,24 @@
 #include <cmath>
 
 #include "bucket.h"
+#include "streyes/trace.h"
 
 namespace streyes {
 
-const char* algorithmName(Algorithm a) { return a == Algorithm::Frames ? "frames" : "spacetime"; }
+const char* algorithmName(Algorithm a) {
+    switch (a) {
+        case Algorithm::Frames: return "frames";
+        case Algorithm::Raytrace: return "raytrace";
+        case Algorithm::RaytraceFrames: return "raytrace-frames";
+        default: return "spacetime";
+    }
+}
 
 bool parseAlgorithm(const std::string& name, Algorithm* out) {
     if (name == "spacetime") *out = Algorithm::Spacetime;
     else if (name == "frames") *out = Algorithm::Frames;
+    else if (name == "raytrace") *out = Algorithm::Raytrace;
+    else if (name == "raytrace-frames") *out = Algorithm::RaytraceFrames;
     else return false;
     return true;
 }
@@ -69,7 +79,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const int W = s.width, H = s.height, S = s.pattern.count();
     const int frames = s.lastFrame - s.firstFrame + 1;
     const int tileSize = std::max(4, options_.bucketSize);
-    const bool spacetime = options_.algorithm == Algorithm::Spacetime;
+    const bool spacetime = options_.algorithm == Algorithm::Spacetime || options_.algorithm == Algorithm::Raytrace;
 
     // Frames rendered together: bounded by the option, by ~1 GiB of resolved pixels, and (for
     // spacetime buckets, which hold every frame of the block) by ~4 M samples per bucket.
@@ -105,6 +115,14 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
 
     tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
     stats.threads = arena.max_concurrency();
+    // The ray tracer's bodies and hierarchies: for eye rays, and for shadow rays when a light
+    // casts shadows. raytrace-frames builds a 3D hierarchy per frame with each frame block.
+    const bool traceFrames = options_.algorithm == Algorithm::RaytraceFrames;
+    std::unique_ptr<TraceScene> trace;
+    if (options_.algorithm == Algorithm::Raytrace || traceFrames || scene_->lights.shadowSlots() > 0) {
+        trace = std::make_unique<TraceScene>(*scene_, log_);
+        if (!traceFrames) trace->buildSpacetime(options_.hierarchy);
+    }
     tbb::enumerable_thread_specific<std::unique_ptr<BucketWorker>> workers;
     const uint64_t totalBuckets = uint64_t(tiles.size()) * uint64_t(spacetime ? (frames + block - 1) / block : frames);
     std::atomic<uint64_t> done{0};
@@ -127,10 +145,12 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                 buckets.push_back(b);
             }
         auto t = Clock::now();
+        if (traceFrames) arena.execute([&] { trace->buildFrames(first, count, options_.hierarchy); });
         arena.execute([&] {
             tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
                 std::unique_ptr<BucketWorker>& w = workers.local();
                 if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, log_);
+                w->setTrace(trace.get());
                 for (size_t i = r.begin(); i != r.end(); ++i) {
                     w->render(buckets[i], images, first);
                     uint64_t n = ++done;
@@ -146,6 +166,10 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     for (const auto& w : workers)
         if (w) stats.counters += w->counters;
     stats.counters.rootBodies = scene_->roots.size();
+    if (trace) {
+        stats.counters.boundingVolumes = trace->boundingVolumes;
+        stats.counters.timeHierarchy = trace->buildSeconds;
+    }
     stats.timeRender = renderSeconds;
     stats.timeWrite = writeSeconds;
     stats.timeTotal = std::chrono::duration<double>(Clock::now() - start).count();

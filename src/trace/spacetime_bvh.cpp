@@ -1,0 +1,380 @@
+#include "streyes/spacetime_bvh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+
+namespace streyes {
+
+namespace {
+
+// ---- Bound requests -------------------------------------------------------------------------------
+
+// Widens a box by a few float ulps of its size, so that points computed at a time inside the
+// box's interval (a lerp, rounded) stay inside it.
+Bounds3f padded(Bounds3f b) {
+    for (int k = 0; k < 3; ++k) {
+        const float m = std::max({std::fabs(b.lo[k]), std::fabs(b.hi[k]), b.hi[k] - b.lo[k]});
+        const float e = m * 4e-6f + std::numeric_limits<float>::min();
+        b.lo[k] -= e;
+        b.hi[k] += e;
+    }
+    return b;
+}
+
+Bounds3f intersection(const Bounds3f& a, const Bounds3f& b) { return {vmax(a.lo, b.lo), vmin(a.hi, b.hi)}; }
+
+double surfaceArea(const Bounds3f& b) {
+    if (b.empty()) return 0;
+    const Vec3f d = b.diagonal();
+    return 2.0 * (double(d.x) * d.y + double(d.y) * d.z + double(d.z) * d.x);
+}
+
+// A body's share of one spacetime cell: its bound inside the cell's box, and the part of the
+// cell's time during which it can be inside that box.
+struct CellItem {
+    uint32_t body;
+    Bounds3f box;
+    double ta, tb;
+};
+
+// The bound of a cell's items: a box and a time interval.
+struct ItemsBound {
+    Bounds3f box;
+    double ta = std::numeric_limits<double>::infinity(), tb = -std::numeric_limits<double>::infinity();
+    explicit ItemsBound(const std::vector<CellItem>& items) {
+        for (const CellItem& it : items) {
+            box.extend(it.box);
+            ta = std::min(ta, it.ta);
+            tb = std::max(tb, it.tb);
+        }
+    }
+    // How likely a ray that meets this 4D volume (at a uniform time within it) is to meet `inner`
+    // inside it: the ratio of box surface areas times the ratio of time lengths.
+    double chanceOf(const ItemsBound& inner) const {
+        const double sa = surfaceArea(box), len = tb - ta;
+        const double ps = sa > 0 ? surfaceArea(inner.box) / sa : 1.0;
+        const double pt = len > 0 ? (inner.tb - inner.ta) / len : 1.0;
+        return ps * pt;
+    }
+};
+
+// Cost of visiting a node's children, in ray/body tests (a body test and the slab tests of a
+// node's children cost about the same).
+constexpr double kTraversalCost = 1.0;
+
+// Asks body b for its bound inside the cell `cell` x [ca, cb]; false when it is not there.
+// A moving body's linear bound (its LBBox, lerped) meets the cell's box during one interval of
+// time, found from the six linear inequalities; the body is asked for its bound over that
+// interval only, and the answer is clipped to the cell.
+bool clipToCell(const TrilinearBody& b, uint32_t index, const Bounds3f& cell, double ca, double cb, CellItem* out) {
+    double a = std::max(ca, b.time().t0), e = std::min(cb, b.time().t1);
+    if (a > e) return false;
+    if (b.moving()) {
+        const LBBox3f lb = b.bound();
+        const double t0 = b.time().t0, span = b.time().t1 - t0;
+        double sa = (a - t0) / span, se = (e - t0) / span;
+        // f0 + s (f1 - f0) <= limit, or >= limit when `atLeast`.
+        auto restrict = [&](double f0, double f1, double limit, bool atLeast) {
+            double slope = f1 - f0, rhs = limit - f0;
+            if (atLeast) slope = -slope, rhs = -rhs;
+            if (slope == 0) {
+                if (rhs < 0) se = -1;  // never
+            } else if (slope > 0) {
+                se = std::min(se, rhs / slope);
+            } else {
+                sa = std::max(sa, rhs / slope);
+            }
+        };
+        for (int k = 0; k < 3; ++k) {
+            restrict(lb.b0.lo[k], lb.b1.lo[k], cell.hi[k], false);
+            restrict(lb.b0.hi[k], lb.b1.hi[k], cell.lo[k], true);
+        }
+        const double slack = 1e-7;  // rounding of the lerps above and in cornersAt
+        if (sa > se + slack) return false;
+        a = std::max(a, t0 + (sa - slack) * span);
+        e = std::min(e, t0 + (se + slack) * span);
+        if (a > e) a = e = 0.5 * (a + e);  // the slack crossed over: one instant
+    }
+    const Bounds3f box = intersection(padded(b.boundDuring(a, e)), cell);
+    if (box.empty()) return false;
+    *out = {index, box, a, e};
+    return true;
+}
+
+// ---- Build ------------------------------------------------------------------------------------------
+
+struct BuildNode {
+    Bounds3f box;
+    double ta = 0, tb = 0;
+    bool leaf = true;
+    std::vector<uint32_t> bodies;      // leaf
+    std::vector<BuildNode> children;   // interior
+};
+
+class Builder {
+  public:
+    Builder(const std::vector<const TrilinearBody*>& bodies, const HierarchyOptions& o) : bodies_(bodies), o_(o) {}
+
+    // Subdivision down, bounding volumes up, for one cell and the bodies in it.
+    BuildNode build(const Bounds3f& cell, double ca, double cb, std::vector<CellItem>& items, int depth) {
+        maxDepth = std::max(maxDepth, depth);
+        if (int(items.size()) <= o_.maxLeafBodies || depth >= o_.maxDepth) return leaf(items);
+
+        const bool cutTime = o_.splitTime && (o_.alwaysSplitTime || timeCutTightens(cell, ca, cb, items));
+        const int n = cutTime ? 16 : 8;
+        const Vec3f mid = (cell.lo + cell.hi) * 0.5f;
+        const double tm = 0.5 * (ca + cb);
+
+        std::vector<std::vector<CellItem>> childItems(static_cast<size_t>(n));
+        std::vector<Bounds3f> childCells(static_cast<size_t>(n));
+        int nonEmpty = 0;
+        bool progress = false;
+        for (int c = 0; c < n; ++c) {
+            Bounds3f cc = cell;
+            for (int k = 0; k < 3; ++k) {
+                if (c & (1 << k)) cc.lo[k] = mid[k];
+                else cc.hi[k] = mid[k];
+            }
+            const double cta = (c & 8) ? tm : ca, ctb = n == 16 && !(c & 8) ? tm : cb;
+            childCells[size_t(c)] = cc;
+            std::vector<CellItem>& ci = childItems[size_t(c)];
+            for (const CellItem& it : items) {
+                CellItem out;
+                if (clipToCell(*bodies_[it.body], it.body, cc, cta, ctb, &out)) ci.push_back(out);
+            }
+            if (!ci.empty()) ++nonEmpty;
+            if (!ci.empty() && ci.size() < items.size()) progress = true;
+        }
+        // Every body reaches every occupied child: cutting only copies them. Stop here.
+        if (nonEmpty > 1 && !progress) return leaf(items);
+        // Cut only when it pays: the tests a ray can expect in the children (each child's body
+        // count times the chance that a ray through this cell's bound meets the child's bound)
+        // must be fewer than in a leaf. Without this, cells keep splitting along the faces of
+        // overlapping boxes (a sphere's pole, where thin patches meet) to the depth limit.
+        const ItemsBound parent(items);
+        double cost = kTraversalCost;
+        for (const std::vector<CellItem>& ci : childItems)
+            if (!ci.empty()) cost += parent.chanceOf(ItemsBound(ci)) * double(ci.size());
+        if (cost >= double(items.size())) return leaf(items);
+
+        BuildNode node;
+        node.leaf = false;
+        node.ta = std::numeric_limits<double>::infinity();
+        node.tb = -node.ta;
+        for (int c = 0; c < n; ++c) {
+            std::vector<CellItem>& ci = childItems[size_t(c)];
+            if (ci.empty()) continue;
+            const double cta = (c & 8) ? tm : ca, ctb = n == 16 && !(c & 8) ? tm : cb;
+            BuildNode child = build(childCells[size_t(c)], cta, ctb, ci, depth + 1);
+            std::vector<CellItem>().swap(ci);
+            node.box.extend(child.box);
+            node.ta = std::min(node.ta, child.ta);
+            node.tb = std::max(node.tb, child.tb);
+            node.children.push_back(std::move(child));
+        }
+        if (node.children.size() == 1) return std::move(node.children.front());  // one child replaces its parent
+        return node;
+    }
+
+    int maxDepth = 0;
+
+  private:
+    // Whether halving the cell's time makes its bodies' bounds tighter: their bounds over the
+    // two halves, summed, are at most kTimeCutGain of their bounds over the whole span
+    // (box surface area times time length). Still bodies that last the whole span gain nothing,
+    // so a cell where they dominate is cut in space only and they are not copied into every
+    // time slice of the moving bodies near them.
+    bool timeCutTightens(const Bounds3f& cell, double ca, double cb, const std::vector<CellItem>& items) const {
+        constexpr double kTimeCutGain = 0.8;
+        const double tm = 0.5 * (ca + cb);
+        double whole = 0, halves = 0;
+        for (const CellItem& it : items) {
+            whole += surfaceArea(it.box) * (it.tb - it.ta);
+            for (int h = 0; h < 2; ++h) {
+                CellItem part;
+                if (clipToCell(*bodies_[it.body], it.body, cell, h ? tm : ca, h ? cb : tm, &part))
+                    halves += surfaceArea(part.box) * (part.tb - part.ta);
+            }
+        }
+        return halves < kTimeCutGain * whole;
+    }
+
+    static BuildNode leaf(const std::vector<CellItem>& items) {
+        BuildNode node;
+        node.ta = std::numeric_limits<double>::infinity();
+        node.tb = -node.ta;
+        for (const CellItem& it : items) {
+            node.bodies.push_back(it.body);
+            node.box.extend(it.box);
+            node.ta = std::min(node.ta, it.ta);
+            node.tb = std::max(node.tb, it.tb);
+        }
+        return node;
+    }
+
+    const std::vector<const TrilinearBody*>& bodies_;
+    const HierarchyOptions& o_;
+};
+
+// Float time bounds that contain the double ones (so float(t) of any t inside tests inside).
+float roundDown(double t) {
+    float f = float(t);
+    return double(f) > t ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+float roundUp(double t) {
+    float f = float(t);
+    return double(f) < t ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+}  // namespace
+
+void SpacetimeBVH::build(const std::vector<const TrilinearBody*>& all, double ta, double tb, const Bounds3f& include,
+                         const HierarchyOptions& options) {
+    bodies_.clear();
+    nodes_.clear();
+    refs_.clear();
+    depth_ = 0;
+    // The root cell: every body over the window, the eye and the lights.
+    Bounds3f root = include;
+    for (const TrilinearBody* b : all) {
+        if (!b->time().overlaps(ta, tb)) continue;
+        root.extend(b->boundDuring(std::max(ta, b->time().t0), std::min(tb, b->time().t1)));
+        bodies_.push_back(b);
+    }
+    if (bodies_.empty()) return;
+    root = padded(root);
+    std::vector<CellItem> items;
+    items.reserve(bodies_.size());
+    for (uint32_t i = 0; i < uint32_t(bodies_.size()); ++i) {
+        CellItem it;
+        if (clipToCell(*bodies_[i], i, root, ta, tb, &it)) items.push_back(it);
+    }
+    if (items.empty()) return;
+    Builder builder(bodies_, options);
+    BuildNode tree = builder.build(root, ta, tb, items, 0);
+    depth_ = builder.maxDepth;
+
+    // Flatten breadth first, so that each node's children are contiguous.
+    std::deque<std::pair<const BuildNode*, uint32_t>> queue{{&tree, 0}};
+    nodes_.push_back({});
+    while (!queue.empty()) {
+        auto [b, index] = queue.front();
+        queue.pop_front();
+        Node n;
+        n.box = b->box;
+        n.ta = roundDown(b->ta);
+        n.tb = roundUp(b->tb);
+        n.leaf = b->leaf;
+        if (b->leaf) {
+            n.first = uint32_t(refs_.size());
+            n.count = uint32_t(b->bodies.size());
+            refs_.insert(refs_.end(), b->bodies.begin(), b->bodies.end());
+        } else {
+            n.first = uint32_t(nodes_.size());
+            n.count = uint32_t(b->children.size());
+            for (const BuildNode& c : b->children) {
+                queue.emplace_back(&c, uint32_t(nodes_.size()));
+                nodes_.push_back({});
+            }
+        }
+        nodes_[index] = n;
+    }
+}
+
+// ---- Traversal ----------------------------------------------------------------------------------------
+
+namespace {
+
+// Slab test of the ray against a box within [t0, t1]; NaN from 0 * inf (a ray in a slab's plane)
+// leaves the interval alone. The far distance is widened by a few ulps (as in pbrt) so that
+// rounding never rejects a box the ray grazes.
+inline bool enterBox(const Bounds3f& b, const Ray& r, const Vec3f& inv, float t0, float t1, float* tEnter) {
+    for (int k = 0; k < 3; ++k) {
+        float tNear = (b.lo[k] - r.o[k]) * inv[k];
+        float tFar = (b.hi[k] - r.o[k]) * inv[k];
+        if (tNear > tFar) std::swap(tNear, tFar);
+        tFar *= 1 + 4 * std::numeric_limits<float>::epsilon();
+        t0 = tNear > t0 ? tNear : t0;
+        t1 = tFar < t1 ? tFar : t1;
+        if (t0 > t1) return false;
+    }
+    *tEnter = t0;
+    return true;
+}
+
+}  // namespace
+
+template <bool AnyHit>
+bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit,
+                            TraceContext& ctx) const {
+    if (nodes_.empty()) return false;
+    if (ctx.mailbox.size() < bodies_.size()) ctx.mailbox.resize(bodies_.size(), 0);
+    if (++ctx.rayId == 0) {  // wrapped: forget every mark
+        std::fill(ctx.mailbox.begin(), ctx.mailbox.end(), 0u);
+        ctx.rayId = 1;
+    }
+    const uint32_t rayId = ctx.rayId;
+    const float tf = float(time);
+    const Vec3f inv{1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z};
+    float best = tMax;
+    bool found = false;
+
+    auto& stack = ctx.stack;
+    stack.clear();
+    float tEnter;
+    const Node& root = nodes_[0];
+    if (tf < root.ta || tf > root.tb || !enterBox(root.box, ray, inv, tMin, best, &tEnter)) return false;
+    stack.push_back({0, tEnter});
+    while (!stack.empty()) {
+        const TraceContext::Entry e = stack.back();
+        stack.pop_back();
+        if (e.tEnter > best) continue;  // a nearer hit was found since it was pushed
+        const Node& n = nodes_[e.node];
+        if (n.leaf) {
+            for (uint32_t r = n.first; r < n.first + n.count; ++r) {
+                const uint32_t bi = refs_[r];
+                if (ctx.mailbox[bi] == rayId) continue;
+                ctx.mailbox[bi] = rayId;
+                const TrilinearBody& b = *bodies_[bi];
+                if (time < b.time().t0 || time > b.time().t1) continue;
+                ++ctx.bodyTests;
+                PatchHit h;
+                if (!intersectBilinearPatch(b.cornersAt(time), ray, tMin, best, &h)) continue;
+                if constexpr (AnyHit) {
+                    return true;
+                } else {
+                    best = h.t;
+                    *hit = {h.t, h.u, h.v, bi};
+                }
+                found = true;
+            }
+            continue;
+        }
+        // Children the ray enters at this time, pushed farthest first so the nearest comes next.
+        TraceContext::Entry kids[16];
+        int k = 0;
+        for (uint32_t c = n.first; c < n.first + n.count; ++c) {
+            const Node& cn = nodes_[c];
+            if (tf < cn.ta || tf > cn.tb || !enterBox(cn.box, ray, inv, tMin, best, &tEnter)) continue;
+            TraceContext::Entry entry{c, tEnter};
+            int j = k++;
+            for (; j > 0 && kids[j - 1].tEnter < entry.tEnter; --j) kids[j] = kids[j - 1];
+            kids[j] = entry;
+        }
+        stack.insert(stack.end(), kids, kids + k);
+    }
+    return found;
+}
+
+bool SpacetimeBVH::intersect(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit,
+                             TraceContext& ctx) const {
+    return traverse<false>(ray, time, tMin, tMax, hit, ctx);
+}
+
+bool SpacetimeBVH::occluded(const Ray& ray, double time, float tMin, float tMax, TraceContext& ctx) const {
+    return traverse<true>(ray, time, tMin, tMax, nullptr, ctx);
+}
+
+}  // namespace streyes

@@ -1,0 +1,163 @@
+#include "streyes/trace.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace streyes {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+}  // namespace
+
+// ---- TraceScene -------------------------------------------------------------------------------------
+
+TraceScene::TraceScene(const RenderScene& scene, Log& log) : scene_(scene) {
+    for (const BodyPtr& root : scene.roots) {
+        // The place for other kinds of body: an exact intersector, or a tessellation into patches.
+        if (const auto* patch = dynamic_cast<const TrilinearBody*>(root.get())) {
+            bodies_.push_back(patch);
+        } else {
+            log.warnOnce("trace:body", root->source() ? *root->source() : SourceLoc{},
+                         "the ray tracer intersects bilinear patches only: other surfaces are left out of ray "
+                         "tracing and shadows");
+        }
+    }
+    include_.extend(Vec3f{0, 0, 0});  // the eye
+    std::vector<CameraLight> lights;
+    for (double t : {scene.windowStart, scene.windowEnd}) {
+        scene.lights.at(t, lights);
+        for (const CameraLight& l : lights)
+            if (l.kind == LightKind::Point && isFinite(l.position)) include_.extend(l.position);
+    }
+}
+
+void TraceScene::buildSpacetime(const HierarchyOptions& options) {
+    const auto t = Clock::now();  // one thread builds it
+    frames_.clear();
+    spacetime_.build(bodies_, scene_.windowStart, scene_.windowEnd, include_, options);
+    boundingVolumes += spacetime_.nodeCount();
+    buildSeconds += secondsSince(t);
+}
+
+void TraceScene::buildFrames(int first, int count, const HierarchyOptions& options) {
+    HierarchyOptions o = options;
+    o.splitTime = false;
+    frames_.clear();  // release the previous block's hierarchies first
+    frames_.resize(size_t(count));
+    framesFirst_ = first;
+    std::vector<double> seconds(size_t(count), 0.0);
+    tbb::parallel_for(0, count, [&](int i) {
+        const auto t = Clock::now();
+        const double e0 = first + i + scene_.shutter.open, e1 = first + i + scene_.shutter.close;
+        frames_[size_t(i)].build(bodies_, e0, e1, include_, o);
+        seconds[size_t(i)] = secondsSince(t);
+    });
+    for (int i = 0; i < count; ++i) {
+        boundingVolumes += frames_[size_t(i)].nodeCount();
+        buildSeconds += seconds[size_t(i)];
+    }
+}
+
+float TraceScene::shadowBias(float z) const {
+    const Camera& cam = scene_.camera;
+    const float pixel = 1.0f / std::min(std::fabs(cam.ax()), std::fabs(cam.ay()));  // screen units
+    return cam.perspective() ? pixel * std::fabs(z) : pixel;
+}
+
+// ---- SampleTracer ------------------------------------------------------------------------------------
+
+const std::vector<CameraLight>& SampleTracer::lightsAt(const LightSet& lights, double t) {
+    if (!lightsValid_ || (!lights.isStatic() && t != lightsTime_)) {
+        lights.at(t, lights_);
+        lightsTime_ = t;
+        lightsValid_ = true;
+    }
+    return lights_;
+}
+
+Color SampleTracer::addVisibleLights(Color c, Vec3f p, double time, const Color* shadowed, const TraceScene& trace,
+                                     const SpacetimeBVH& bvh, RenderCounters& counters) {
+    const LightSet& lights = trace.scene().lights;
+    const float bias = trace.shadowBias(p.z);
+    for (int k = 0; k < lights.shadowSlots(); ++k) {
+        const Color part = shadowed[k];
+        if (part.x == 0 && part.y == 0 && part.z == 0) continue;  // the light does not reach p anyway
+        const CameraLight& l = lightsAt(lights, time)[size_t(lights.shadowLight(k))];
+        Ray ray{p, l.direction};
+        float tMax = std::numeric_limits<float>::infinity();
+        if (l.kind == LightKind::Point) {
+            const Vec3f d = l.position - p;
+            const float dist = length(d);
+            if (!(dist > 2 * bias)) {  // the light sits on the surface: nothing between
+                c += part;
+                continue;
+            }
+            ray.d = d / dist;
+            tMax = dist - bias;
+        }
+        ++counters.shadowRays;
+        if (!bvh.occluded(ray, time, bias, tMax, ctx_)) c += part;
+    }
+    return c;
+}
+
+// Eye rays: from the eye through the sample's raster position (perspective) or parallel to +z
+// (orthographic). Either way the direction has z = 1, so the ray parameter is camera-space z
+// and the near and far planes clip it directly.
+void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, RenderCounters& counters) {
+    const RenderScene& scene = trace.scene();
+    const Camera& cam = scene.camera;
+    const bool ortho = !cam.perspective();
+    const int S = block.slices(), F = block.frameCount(), K = scene.lights.shadowSlots();
+    shadowed_.resize(size_t(K));
+    const double open = scene.shutter.open, exposure = scene.shutter.close - scene.shutter.open;
+    const SamplePosition* pos = block.positions();
+    SampleHit* hits = block.hits();
+    const uint64_t testsBefore = ctx_.bodyTests;
+    for (size_t si = 0; si < block.sampleCount(); ++si) {
+        const SamplePosition& s = pos[si];
+        const int frame = block.firstFrame() + int((si / size_t(S)) % size_t(F));
+        const double time = frame + open + double(s.tf) * exposure;
+        const Ray ray = ortho ? Ray{cam.fromRaster(s.x, s.y, 0), {0, 0, 1}} : Ray{{0, 0, 0}, cam.fromRaster(s.x, s.y, 1)};
+        const SpacetimeBVH& bvh = trace.hierarchy(frame);
+        ++counters.eyeRays;
+        TraceHit h;
+        if (!bvh.intersect(ray, time, cam.nearClip(), cam.farClip(), &h, ctx_)) continue;
+        const TrilinearBody& body = *bvh.bodies()[h.body];
+        const Vec3f p = ray.o + ray.d * h.t;
+        const Vec3f n = bilinearNormal(body.cornersAt(time), h.u, h.v);
+        const Color cs = bilerp(body.colors(), h.u, h.v);
+        const std::vector<CameraLight>& lights =
+            lightsAt(scene.lights, time);  // refreshed per sample only when lights or camera move
+        Color c = shadePoint(*body.material(), cs, p, n, ortho, lights, K ? shadowed_.data() : nullptr, K);
+        if (K) c = addVisibleLights(c, p, time, shadowed_.data(), trace, bvh, counters);
+        hits[si] = {p.z, c, 1.0f};
+    }
+    counters.rayBodyTests += ctx_.bodyTests - testsBefore;
+}
+
+// The rasterizer's hit point is rebuilt from the sample's raster position and depth.
+void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, RenderCounters& counters) {
+    const RenderScene& scene = trace.scene();
+    const int S = block.slices(), F = block.frameCount();
+    const double open = scene.shutter.open, exposure = scene.shutter.close - scene.shutter.open;
+    const SamplePosition* pos = block.positions();
+    SampleHit* hits = block.hits();
+    const uint64_t testsBefore = ctx_.bodyTests;
+    for (size_t si = 0; si < block.sampleCount(); ++si) {
+        SampleHit& hit = hits[si];
+        if (hit.a == 0) continue;
+        const SamplePosition& s = pos[si];
+        const int frame = block.firstFrame() + int((si / size_t(S)) % size_t(F));
+        const double time = frame + open + double(s.tf) * exposure;
+        const Vec3f p = scene.camera.fromRaster(s.x, s.y, hit.z);
+        hit.c = addVisibleLights(hit.c, p, time, block.shadowed(si), trace, trace.hierarchy(frame), counters);
+    }
+    counters.rayBodyTests += ctx_.bodyTests - testsBefore;
+}
+
+}  // namespace streyes
