@@ -23,6 +23,7 @@ struct RenderCounters {
     uint64_t boundingVolumes = 0;  // hierarchy nodes built (summed over frames for raytrace-frames)
     uint64_t eyeRays = 0, shadowRays = 0;
     uint64_t rayBodyTests = 0;     // ray/body intersection tests (each body once per ray)
+    uint64_t rayBoxTests = 0;      // ray/bounding-volume tests
 
     // Seconds, summed over threads (so they add up to CPU time, not wall time).
     double timeSampleGen = 0, timeSplit = 0, timeDice = 0, timeShade = 0, timeSample = 0, timeResolve = 0;

@@ -46,7 +46,8 @@ class TraceScene {
     // Shadow rays start this far (camera-space units) from a surface at depth z: one pixel.
     float shadowBias(float z) const;
 
-    // Totals over every build so far: nodes built, and CPU seconds spent building.
+    // Totals over every build so far: nodes built, and CPU seconds spent building (builds run
+    // in parallel, alone).
     uint64_t boundingVolumes = 0;
     double buildSeconds = 0;
 

@@ -121,7 +121,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     std::unique_ptr<TraceScene> trace;
     if (options_.algorithm == Algorithm::Raytrace || traceFrames || scene_->lights.shadowSlots() > 0) {
         trace = std::make_unique<TraceScene>(*scene_, log_);
-        if (!traceFrames) trace->buildSpacetime(options_.hierarchy);
+        if (!traceFrames) arena.execute([&] { trace->buildSpacetime(options_.hierarchy); });
     }
     tbb::enumerable_thread_specific<std::unique_ptr<BucketWorker>> workers;
     const uint64_t totalBuckets = uint64_t(tiles.size()) * uint64_t(spacetime ? (frames + block - 1) / block : frames);

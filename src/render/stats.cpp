@@ -26,6 +26,7 @@ RenderCounters& RenderCounters::operator+=(const RenderCounters& o) {
     eyeRays += o.eyeRays;
     shadowRays += o.shadowRays;
     rayBodyTests += o.rayBodyTests;
+    rayBoxTests += o.rayBoxTests;
     timeSampleGen += o.timeSampleGen;
     timeSplit += o.timeSplit;
     timeDice += o.timeDice;
@@ -78,7 +79,8 @@ std::string RenderStats::toJson() const {
       << "    \"sample_hits\": " << c.sampleHits << ",\n"
       << "    \"hit_efficiency\": " << num(c.sampleTests ? double(c.sampleHits) / double(c.sampleTests) : 0) << ",\n"
       << "    \"trace\": {\"bounding_volumes\": " << c.boundingVolumes << ", \"eye_rays\": " << c.eyeRays
-      << ", \"shadow_rays\": " << c.shadowRays << ", \"ray_body_tests\": " << c.rayBodyTests << "}\n"
+      << ", \"shadow_rays\": " << c.shadowRays << ", \"ray_body_tests\": " << c.rayBodyTests
+      << ", \"ray_box_tests\": " << c.rayBoxTests << "}\n"
       << "  },\n"
       << "  \"seconds\": {\n"
       << "    \"parse\": " << num(timeParse) << ",\n"

@@ -1,6 +1,9 @@
 #include "streyes/spacetime_bvh.h"
 
+#include <tbb/task_group.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -60,20 +63,42 @@ struct ItemsBound {
     }
 };
 
+// Subtrees above this depth are built as parallel tasks.
+constexpr int kParallelDepth = 3;
+
 // Cost of visiting a node's children, in ray/body tests (a body test and the slab tests of a
 // node's children cost about the same).
 constexpr double kTraversalCost = 1.0;
+
+// What the build asks of a body again and again, asked once.
+struct BodyInfo {
+    const TrilinearBody* body;
+    double t0, t1;
+    bool moving;
+    LBBox3f lb;        // its bound at t0 and t1 (lerped: a bound at any time between)
+    Bounds3f still;    // a still body's bound (the same over any interval), padded
+    explicit BodyInfo(const TrilinearBody* b)
+        : body(b), t0(b->time().t0), t1(b->time().t1), moving(b->moving()), lb(b->bound()) {
+        if (!moving) still = padded(b->boundDuring(t0, t1));
+    }
+};
 
 // Asks body b for its bound inside the cell `cell` x [ca, cb]; false when it is not there.
 // A moving body's linear bound (its LBBox, lerped) meets the cell's box during one interval of
 // time, found from the six linear inequalities; the body is asked for its bound over that
 // interval only, and the answer is clipped to the cell.
-bool clipToCell(const TrilinearBody& b, uint32_t index, const Bounds3f& cell, double ca, double cb, CellItem* out) {
-    double a = std::max(ca, b.time().t0), e = std::min(cb, b.time().t1);
+bool clipToCell(const BodyInfo& b, uint32_t index, const Bounds3f& cell, double ca, double cb, CellItem* out) {
+    double a = std::max(ca, b.t0), e = std::min(cb, b.t1);
     if (a > e) return false;
-    if (b.moving()) {
-        const LBBox3f lb = b.bound();
-        const double t0 = b.time().t0, span = b.time().t1 - t0;
+    if (!b.moving) {
+        const Bounds3f box = intersection(b.still, cell);
+        if (box.empty()) return false;
+        *out = {index, box, a, e};
+        return true;
+    }
+    {
+        const LBBox3f& lb = b.lb;
+        const double t0 = b.t0, span = b.t1 - t0;
         double sa = (a - t0) / span, se = (e - t0) / span;
         // f0 + s (f1 - f0) <= limit, or >= limit when `atLeast`.
         auto restrict = [&](double f0, double f1, double limit, bool atLeast) {
@@ -97,126 +122,13 @@ bool clipToCell(const TrilinearBody& b, uint32_t index, const Bounds3f& cell, do
         e = std::min(e, t0 + (se + slack) * span);
         if (a > e) a = e = 0.5 * (a + e);  // the slack crossed over: one instant
     }
-    const Bounds3f box = intersection(padded(b.boundDuring(a, e)), cell);
+    const Bounds3f box = intersection(padded(b.body->boundDuring(a, e)), cell);
     if (box.empty()) return false;
     *out = {index, box, a, e};
     return true;
 }
 
 // ---- Build ------------------------------------------------------------------------------------------
-
-struct BuildNode {
-    Bounds3f box;
-    double ta = 0, tb = 0;
-    bool leaf = true;
-    std::vector<uint32_t> bodies;      // leaf
-    std::vector<BuildNode> children;   // interior
-};
-
-class Builder {
-  public:
-    Builder(const std::vector<const TrilinearBody*>& bodies, const HierarchyOptions& o) : bodies_(bodies), o_(o) {}
-
-    // Subdivision down, bounding volumes up, for one cell and the bodies in it.
-    BuildNode build(const Bounds3f& cell, double ca, double cb, std::vector<CellItem>& items, int depth) {
-        maxDepth = std::max(maxDepth, depth);
-        if (int(items.size()) <= o_.maxLeafBodies || depth >= o_.maxDepth) return leaf(items);
-
-        const bool cutTime = o_.splitTime && (o_.alwaysSplitTime || timeCutTightens(cell, ca, cb, items));
-        const int n = cutTime ? 16 : 8;
-        const Vec3f mid = (cell.lo + cell.hi) * 0.5f;
-        const double tm = 0.5 * (ca + cb);
-
-        std::vector<std::vector<CellItem>> childItems(static_cast<size_t>(n));
-        std::vector<Bounds3f> childCells(static_cast<size_t>(n));
-        int nonEmpty = 0;
-        bool progress = false;
-        for (int c = 0; c < n; ++c) {
-            Bounds3f cc = cell;
-            for (int k = 0; k < 3; ++k) {
-                if (c & (1 << k)) cc.lo[k] = mid[k];
-                else cc.hi[k] = mid[k];
-            }
-            const double cta = (c & 8) ? tm : ca, ctb = n == 16 && !(c & 8) ? tm : cb;
-            childCells[size_t(c)] = cc;
-            std::vector<CellItem>& ci = childItems[size_t(c)];
-            for (const CellItem& it : items) {
-                CellItem out;
-                if (clipToCell(*bodies_[it.body], it.body, cc, cta, ctb, &out)) ci.push_back(out);
-            }
-            if (!ci.empty()) ++nonEmpty;
-            if (!ci.empty() && ci.size() < items.size()) progress = true;
-        }
-        // Every body reaches every occupied child: cutting only copies them. Stop here.
-        if (nonEmpty > 1 && !progress) return leaf(items);
-        // Cut only when it pays: the tests a ray can expect in the children (each child's body
-        // count times the chance that a ray through this cell's bound meets the child's bound)
-        // must be fewer than in a leaf. Without this, cells keep splitting along the faces of
-        // overlapping boxes (a sphere's pole, where thin patches meet) to the depth limit.
-        const ItemsBound parent(items);
-        double cost = kTraversalCost;
-        for (const std::vector<CellItem>& ci : childItems)
-            if (!ci.empty()) cost += parent.chanceOf(ItemsBound(ci)) * double(ci.size());
-        if (cost >= double(items.size())) return leaf(items);
-
-        BuildNode node;
-        node.leaf = false;
-        node.ta = std::numeric_limits<double>::infinity();
-        node.tb = -node.ta;
-        for (int c = 0; c < n; ++c) {
-            std::vector<CellItem>& ci = childItems[size_t(c)];
-            if (ci.empty()) continue;
-            const double cta = (c & 8) ? tm : ca, ctb = n == 16 && !(c & 8) ? tm : cb;
-            BuildNode child = build(childCells[size_t(c)], cta, ctb, ci, depth + 1);
-            std::vector<CellItem>().swap(ci);
-            node.box.extend(child.box);
-            node.ta = std::min(node.ta, child.ta);
-            node.tb = std::max(node.tb, child.tb);
-            node.children.push_back(std::move(child));
-        }
-        if (node.children.size() == 1) return std::move(node.children.front());  // one child replaces its parent
-        return node;
-    }
-
-    int maxDepth = 0;
-
-  private:
-    // Whether halving the cell's time makes its bodies' bounds tighter: their bounds over the
-    // two halves, summed, are at most kTimeCutGain of their bounds over the whole span
-    // (box surface area times time length). Still bodies that last the whole span gain nothing,
-    // so a cell where they dominate is cut in space only and they are not copied into every
-    // time slice of the moving bodies near them.
-    bool timeCutTightens(const Bounds3f& cell, double ca, double cb, const std::vector<CellItem>& items) const {
-        constexpr double kTimeCutGain = 0.8;
-        const double tm = 0.5 * (ca + cb);
-        double whole = 0, halves = 0;
-        for (const CellItem& it : items) {
-            whole += surfaceArea(it.box) * (it.tb - it.ta);
-            for (int h = 0; h < 2; ++h) {
-                CellItem part;
-                if (clipToCell(*bodies_[it.body], it.body, cell, h ? tm : ca, h ? cb : tm, &part))
-                    halves += surfaceArea(part.box) * (part.tb - part.ta);
-            }
-        }
-        return halves < kTimeCutGain * whole;
-    }
-
-    static BuildNode leaf(const std::vector<CellItem>& items) {
-        BuildNode node;
-        node.ta = std::numeric_limits<double>::infinity();
-        node.tb = -node.ta;
-        for (const CellItem& it : items) {
-            node.bodies.push_back(it.body);
-            node.box.extend(it.box);
-            node.ta = std::min(node.ta, it.ta);
-            node.tb = std::max(node.tb, it.tb);
-        }
-        return node;
-    }
-
-    const std::vector<const TrilinearBody*>& bodies_;
-    const HierarchyOptions& o_;
-};
 
 // Float time bounds that contain the double ones (so float(t) of any t inside tests inside).
 float roundDown(double t) {
@@ -227,6 +139,162 @@ float roundUp(double t) {
     float f = float(t);
     return double(f) < t ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
 }
+
+struct BuildNode {
+    Bounds3f box;
+    double ta = 0, tb = 0;
+    bool leaf = true;
+    std::vector<SpacetimeBVH::Reference> bodies;  // leaf
+    std::vector<BuildNode> children;   // interior
+};
+
+// One way of cutting a cell: its children (8 in space, or 16 in space and time), the bodies
+// in each, and what a ray can expect to test below it.
+struct Cut {
+    int n = 0;
+    std::vector<std::vector<CellItem>> items;
+    std::vector<Bounds3f> cells;
+    std::vector<double> ta, tb;
+    double cost = 0;        // expected ray/body tests: traversal plus, per child, its bodies
+                            // times the chance that a ray through the cell's bound meets the child's
+};
+
+class Builder {
+  public:
+    Builder(const std::vector<BodyInfo>& bodies, const HierarchyOptions& o) : bodies_(bodies), o_(o) {}
+
+    // Subdivision down, bounding volumes up, for one cell and the bodies in it.
+    BuildNode build(const Bounds3f& cell, double ca, double cb, std::vector<CellItem>& items, int depth) {
+        for (int seen = maxDepth.load(); seen < depth && !maxDepth.compare_exchange_weak(seen, depth);) {
+        }
+        if (int(items.size()) <= o_.maxLeafBodies || depth >= o_.maxDepth) return leaf(items);
+
+        // Cut in space; cut time as well (Glassner's 16 children) where that pays: where bodies
+        // move or begin or end inside the cell, and the expected tests drop by a fifth. A time
+        // cut copies every body that lasts across it, so still geometry is cut in space only.
+        Cut cut = cutCell(cell, ca, cb, items, 8);
+        if (o_.splitTime && cb - ca > o_.minTimeCut && (o_.alwaysSplitTime || timeMatters(ca, cb, items))) {
+            constexpr double kTimeCutGain = 0.8;
+            Cut timeCut = cutCell(cell, ca, cb, items, 16);
+            if (o_.alwaysSplitTime || timeCut.cost < kTimeCutGain * cut.cost) cut = std::move(timeCut);
+        }
+        // Cut only when it pays against a leaf. Without that, cells keep splitting along the
+        // faces of overlapping boxes (a sphere's pole, where thin patches meet) to the depth
+        // limit; and where every body reaches every child, the children cost more than the cell.
+        if (cut.cost >= double(items.size())) return leaf(items);
+
+        // The children's subtrees are independent: near the root they are built in parallel
+        // (the tree does not depend on the order they finish in).
+        std::vector<BuildNode> children(size_t(cut.n));
+        std::vector<char> occupied(size_t(cut.n));
+        for (int c = 0; c < cut.n; ++c) occupied[size_t(c)] = !cut.items[size_t(c)].empty();
+        auto buildChild = [&](int c) {
+            std::vector<CellItem>& ci = cut.items[size_t(c)];
+            children[size_t(c)] = build(cut.cells[size_t(c)], cut.ta[size_t(c)], cut.tb[size_t(c)], ci, depth + 1);
+            std::vector<CellItem>().swap(ci);
+        };
+        tbb::task_group group;
+        for (int c = 0; c < cut.n; ++c) {
+            if (!occupied[size_t(c)]) continue;
+            if (depth < kParallelDepth) group.run([&buildChild, c] { buildChild(c); });
+            else buildChild(c);
+        }
+        group.wait();
+
+        BuildNode node;
+        node.leaf = false;
+        node.ta = std::numeric_limits<double>::infinity();
+        node.tb = -node.ta;
+        for (int c = 0; c < cut.n; ++c) {
+            if (!occupied[size_t(c)]) continue;
+            BuildNode& child = children[size_t(c)];
+            node.box.extend(child.box);
+            node.ta = std::min(node.ta, child.ta);
+            node.tb = std::max(node.tb, child.tb);
+            node.children.push_back(std::move(child));
+        }
+        if (node.children.size() == 1) return std::move(node.children.front());  // one child replaces its parent
+        return node;
+    }
+
+    std::atomic<int> maxDepth{0};
+
+  private:
+    // Halving x, y and z (n = 8), and t (n = 16); each child asks the bodies for their bounds.
+    Cut cutCell(const Bounds3f& cell, double ca, double cb, const std::vector<CellItem>& items, int n) const {
+        Cut cut;
+        cut.n = n;
+        cut.items.resize(size_t(n));
+        cut.cells.resize(size_t(n));
+        cut.ta.resize(size_t(n));
+        cut.tb.resize(size_t(n));
+        const Vec3f mid = (cell.lo + cell.hi) * 0.5f;
+        const double tm = 0.5 * (ca + cb);
+        for (int c = 0; c < n; ++c) {
+            Bounds3f cc = cell;
+            for (int k = 0; k < 3; ++k) {
+                if (c & (1 << k)) cc.lo[k] = mid[k];
+                else cc.hi[k] = mid[k];
+            }
+            const size_t i = size_t(c);
+            cut.cells[i] = cc;
+            cut.ta[i] = c & 8 ? tm : ca;
+            cut.tb[i] = n == 16 && !(c & 8) ? tm : cb;
+        }
+        // Each body is asked only by the children its bound in this cell reaches (on which side
+        // of each halving plane it lies); children keep the cell's order of bodies.
+        for (const CellItem& it : items) {
+            int lo[4], hi[4];
+            for (int k = 0; k < 3; ++k) {
+                lo[k] = it.box.lo[k] <= mid[k] ? 0 : 1;
+                hi[k] = it.box.hi[k] >= mid[k] ? 1 : 0;
+            }
+            lo[3] = n == 16 && it.ta > tm ? 1 : 0;
+            hi[3] = n == 16 && it.tb >= tm ? 1 : 0;
+            for (int t = lo[3]; t <= hi[3]; ++t)
+                for (int z = lo[2]; z <= hi[2]; ++z)
+                    for (int y = lo[1]; y <= hi[1]; ++y)
+                        for (int x = lo[0]; x <= hi[0]; ++x) {
+                            const size_t i = size_t(x | y << 1 | z << 2 | t << 3);
+                            CellItem out;
+                            if (clipToCell(bodies_[it.body], it.body, cut.cells[i], cut.ta[i], cut.tb[i], &out))
+                                cut.items[i].push_back(out);
+                        }
+        }
+        const ItemsBound parent(items);
+        cut.cost = kTraversalCost;
+        for (const std::vector<CellItem>& ci : cut.items)
+            if (!ci.empty()) cut.cost += parent.chanceOf(ItemsBound(ci)) * double(ci.size());
+        return cut;
+    }
+
+    // Whether anything in the cell changes over its time span: a moving body, or one that
+    // begins or ends inside it.
+    bool timeMatters(double ca, double cb, const std::vector<CellItem>& items) const {
+        for (const CellItem& it : items) {
+            const BodyInfo& b = bodies_[it.body];
+            if (b.moving || b.t0 > ca || b.t1 < cb) return true;
+        }
+        return false;
+    }
+
+    static BuildNode leaf(const std::vector<CellItem>& items) {
+        BuildNode node;
+        node.ta = std::numeric_limits<double>::infinity();
+        node.tb = -node.ta;
+        for (const CellItem& it : items) {
+            node.bodies.push_back({it.body, roundDown(it.ta), roundUp(it.tb)});
+            node.box.extend(it.box);
+            node.ta = std::min(node.ta, it.ta);
+            node.tb = std::max(node.tb, it.tb);
+        }
+        return node;
+    }
+
+    const std::vector<BodyInfo>& bodies_;
+    const HierarchyOptions& o_;
+};
+
 
 }  // namespace
 
@@ -247,14 +315,17 @@ void SpacetimeBVH::build(const std::vector<const TrilinearBody*>& all, double ta
     root = padded(root);
     std::vector<CellItem> items;
     items.reserve(bodies_.size());
+    std::vector<BodyInfo> info;
+    info.reserve(bodies_.size());
     for (uint32_t i = 0; i < uint32_t(bodies_.size()); ++i) {
+        info.emplace_back(bodies_[i]);
         CellItem it;
-        if (clipToCell(*bodies_[i], i, root, ta, tb, &it)) items.push_back(it);
+        if (clipToCell(info.back(), i, root, ta, tb, &it)) items.push_back(it);
     }
     if (items.empty()) return;
-    Builder builder(bodies_, options);
+    Builder builder(info, options);
     BuildNode tree = builder.build(root, ta, tb, items, 0);
-    depth_ = builder.maxDepth;
+    depth_ = builder.maxDepth.load();
 
     // Flatten breadth first, so that each node's children are contiguous.
     std::deque<std::pair<const BuildNode*, uint32_t>> queue{{&tree, 0}};
@@ -321,20 +392,22 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
     float best = tMax;
     bool found = false;
 
-    auto& stack = ctx.stack;
-    stack.clear();
+    if (ctx.stack.size() < size_t(16 * (depth_ + 2))) ctx.stack.resize(size_t(16 * (depth_ + 2)));
+    TraceContext::Entry* stack = ctx.stack.data();
+    int top = 0;
     float tEnter;
     const Node& root = nodes_[0];
     if (tf < root.ta || tf > root.tb || !enterBox(root.box, ray, inv, tMin, best, &tEnter)) return false;
-    stack.push_back({0, tEnter});
-    while (!stack.empty()) {
-        const TraceContext::Entry e = stack.back();
-        stack.pop_back();
+    stack[top++] = {0, tEnter};
+    while (top > 0) {
+        const TraceContext::Entry e = stack[--top];
         if (e.tEnter > best) continue;  // a nearer hit was found since it was pushed
         const Node& n = nodes_[e.node];
         if (n.leaf) {
             for (uint32_t r = n.first; r < n.first + n.count; ++r) {
-                const uint32_t bi = refs_[r];
+                const Reference& ref = refs_[r];
+                if (tf < ref.ta || tf > ref.tb) continue;  // the body is elsewhere at this time
+                const uint32_t bi = ref.body;
                 if (ctx.mailbox[bi] == rayId) continue;
                 ctx.mailbox[bi] = rayId;
                 const TrilinearBody& b = *bodies_[bi];
@@ -352,18 +425,21 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
             }
             continue;
         }
-        // Children the ray enters at this time, pushed farthest first so the nearest comes next.
-        TraceContext::Entry kids[16];
+        // Children the ray enters at this time, pushed farthest first so the nearest comes next
+        // (a shadow ray takes any hit: no order).
+        TraceContext::Entry* kids = stack + top;
         int k = 0;
         for (uint32_t c = n.first; c < n.first + n.count; ++c) {
             const Node& cn = nodes_[c];
+            ++ctx.boxTests;
             if (tf < cn.ta || tf > cn.tb || !enterBox(cn.box, ray, inv, tMin, best, &tEnter)) continue;
-            TraceContext::Entry entry{c, tEnter};
+            const TraceContext::Entry entry{c, tEnter};
             int j = k++;
-            for (; j > 0 && kids[j - 1].tEnter < entry.tEnter; --j) kids[j] = kids[j - 1];
+            if constexpr (!AnyHit)
+                for (; j > 0 && kids[j - 1].tEnter < entry.tEnter; --j) kids[j] = kids[j - 1];
             kids[j] = entry;
         }
-        stack.insert(stack.end(), kids, kids + k);
+        top += k;
     }
     return found;
 }

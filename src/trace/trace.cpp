@@ -1,16 +1,22 @@
 #include "streyes/trace.h"
 
+#include <sys/resource.h>
 #include <tbb/parallel_for.h>
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 
 namespace streyes {
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+// CPU seconds of the whole process. Hierarchies are built (in parallel) while nothing else
+// runs, so the difference around a build is its CPU time, comparable between the two modes.
+double processCpuSeconds() {
+    struct rusage ru {};
+    getrusage(RUSAGE_SELF, &ru);
+    auto sec = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+    return sec(ru.ru_utime) + sec(ru.ru_stime);
+}
 }  // namespace
 
 // ---- TraceScene -------------------------------------------------------------------------------------
@@ -36,11 +42,11 @@ TraceScene::TraceScene(const RenderScene& scene, Log& log) : scene_(scene) {
 }
 
 void TraceScene::buildSpacetime(const HierarchyOptions& options) {
-    const auto t = Clock::now();  // one thread builds it
+    const double cpu = processCpuSeconds();
     frames_.clear();
     spacetime_.build(bodies_, scene_.windowStart, scene_.windowEnd, include_, options);
     boundingVolumes += spacetime_.nodeCount();
-    buildSeconds += secondsSince(t);
+    buildSeconds += processCpuSeconds() - cpu;
 }
 
 void TraceScene::buildFrames(int first, int count, const HierarchyOptions& options) {
@@ -49,17 +55,13 @@ void TraceScene::buildFrames(int first, int count, const HierarchyOptions& optio
     frames_.clear();  // release the previous block's hierarchies first
     frames_.resize(size_t(count));
     framesFirst_ = first;
-    std::vector<double> seconds(size_t(count), 0.0);
+    const double cpu = processCpuSeconds();
     tbb::parallel_for(0, count, [&](int i) {
-        const auto t = Clock::now();
         const double e0 = first + i + scene_.shutter.open, e1 = first + i + scene_.shutter.close;
         frames_[size_t(i)].build(bodies_, e0, e1, include_, o);
-        seconds[size_t(i)] = secondsSince(t);
     });
-    for (int i = 0; i < count; ++i) {
-        boundingVolumes += frames_[size_t(i)].nodeCount();
-        buildSeconds += seconds[size_t(i)];
-    }
+    for (int i = 0; i < count; ++i) boundingVolumes += frames_[size_t(i)].nodeCount();
+    buildSeconds += processCpuSeconds() - cpu;
 }
 
 float TraceScene::shadowBias(float z) const {
@@ -117,7 +119,7 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
     const double open = scene.shutter.open, exposure = scene.shutter.close - scene.shutter.open;
     const SamplePosition* pos = block.positions();
     SampleHit* hits = block.hits();
-    const uint64_t testsBefore = ctx_.bodyTests;
+    const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
     for (size_t si = 0; si < block.sampleCount(); ++si) {
         const SamplePosition& s = pos[si];
         const int frame = block.firstFrame() + int((si / size_t(S)) % size_t(F));
@@ -138,6 +140,7 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
         hits[si] = {p.z, c, 1.0f};
     }
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
+    counters.rayBoxTests += ctx_.boxTests - boxesBefore;
 }
 
 // The rasterizer's hit point is rebuilt from the sample's raster position and depth.
@@ -147,7 +150,7 @@ void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, Rend
     const double open = scene.shutter.open, exposure = scene.shutter.close - scene.shutter.open;
     const SamplePosition* pos = block.positions();
     SampleHit* hits = block.hits();
-    const uint64_t testsBefore = ctx_.bodyTests;
+    const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
     for (size_t si = 0; si < block.sampleCount(); ++si) {
         SampleHit& hit = hits[si];
         if (hit.a == 0) continue;
@@ -158,6 +161,7 @@ void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, Rend
         hit.c = addVisibleLights(hit.c, p, time, block.shadowed(si), trace, trace.hierarchy(frame), counters);
     }
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
+    counters.rayBoxTests += ctx_.boxTests - boxesBefore;
 }
 
 }  // namespace streyes
