@@ -168,10 +168,14 @@ void GridRasterizer::rasterize(const Grid& grid, const Camera& camera, const Shu
     counters.micropolygons += uint64_t(grid.nu) * uint64_t(grid.nv);
     if (grid.moving) {
         collectSlices(grid, shutter, block);
-        if (!slices_.empty()) sampleMoving(grid, camera, block, counters);
+        if (slices_.empty()) return;
+        if (grid.shadowSlots) sampleMoving<true>(grid, camera, block, counters);
+        else sampleMoving<false>(grid, camera, block, counters);
     } else {
         collectFrames(grid, shutter, block);
-        if (!frames_.empty()) sampleStill(grid, camera, block, counters);
+        if (frames_.empty()) return;
+        if (grid.shadowSlots) sampleStill<true>(grid, camera, block, counters);
+        else sampleStill<false>(grid, camera, block, counters);
     }
 }
 
@@ -215,6 +219,7 @@ static inline void writeShadowed(Color* out, int K, const Hit& h, PartAt partAt)
 
 // A still grid: each quad is projected and set up once, then tested against the samples of
 // every frame it exists in, visiting in each pixel only the (x, y) strata its bound overlaps.
+template <bool Shadowed>
 void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters) {
     const PixelRect& R = block.rect();
     const int nu = grid.nu, nv = grid.nv, stride = nu + 1, S = block.slices();
@@ -256,7 +261,8 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                                 Hit h;
                                 if (!hitQuad(q, s.x, s.y, h)) continue;
                                 ++hits;
-                                if (resolveHit(hit[si], q.z, h, nearZ, farZ, [&](int c) { return ci[idx[c]]; }) && K)
+                                if (resolveHit(hit[si], q.z, h, nearZ, farZ, [&](int c) { return ci[idx[c]]; }) &&
+                                    Shadowed)
                                     writeShadowed(block.shadowed(si), K, h,
                                                   [&](int c, int k) { return cl[size_t(idx[c] * K + k)]; });
                             }
@@ -272,6 +278,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
 
 // A moving grid: projected at both ends of each slice (exact perspective there); a sample's
 // quad is interpolated linearly in raster space to its time within the slice.
+template <bool Shadowed>
 void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block,
                                   RasterCounters& counters) {
     const PixelRect& R = block.rect();
@@ -323,7 +330,8 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         ++hits;
                         const float sg = lerp(sA, sB, w);  // the grid's own time parameter
                         if (resolveHit(block.hits()[si], qt.z, h, nearZ, farZ,
-                                       [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); }) && K)
+                                       [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); }) &&
+                            Shadowed)
                             writeShadowed(block.shadowed(si), K, h, [&](int c, int k) {
                                 const size_t i = size_t(idx[c] * K + k);
                                 return lerp(cl0[i], cl1[i], sg);
