@@ -95,6 +95,11 @@ class SpacetimeBVH {
         uint32_t first;        // first child in nodes_, or first reference in refs_
         uint32_t count;        // children or references
         bool leaf;
+        // A cut in time: the first `before` children end by tSplitLo, the others begin at
+        // tSplitHi or later (tSplit rounded down and up), so a ray visits one half.
+        bool timeCut;
+        uint16_t before;
+        float tSplitLo, tSplitHi;
     };
     const std::vector<Node>& nodes() const { return nodes_; }
     const std::vector<Reference>& references() const { return refs_; }

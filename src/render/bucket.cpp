@@ -18,7 +18,8 @@ BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& option
 
 void BucketWorker::setTrace(const TraceScene* trace) {
     trace_ = trace;
-    traceEyeRays_ = trace && (options_.algorithm == Algorithm::Raytrace || options_.algorithm == Algorithm::RaytraceFrames);
+    const Algorithm a = options_.algorithm;
+    traceEyeRays_ = trace && (a == Algorithm::Raytrace || a == Algorithm::RaytraceFrames);
     shadowSlots_ = trace && !traceEyeRays_ ? scene_.lights.shadowSlots() : 0;
     grid_.shadowSlots = shadowSlots_;
 }

@@ -146,6 +146,9 @@ struct BuildNode {
     bool leaf = true;
     std::vector<SpacetimeBVH::Reference> bodies;  // leaf
     std::vector<BuildNode> children;   // interior
+    bool timeCut = false;              // children before `before` lie before tSplit, the rest after
+    uint16_t before = 0;
+    double tSplit = 0;
 };
 
 // One way of cutting a cell: its children (8 in space, or 16 in space and time), the bodies
@@ -205,8 +208,11 @@ class Builder {
         node.leaf = false;
         node.ta = std::numeric_limits<double>::infinity();
         node.tb = -node.ta;
+        node.timeCut = cut.n == 16;
+        node.tSplit = 0.5 * (ca + cb);
         for (int c = 0; c < cut.n; ++c) {
             if (!occupied[size_t(c)]) continue;
+            if (c < 8) ++node.before;  // children 0-7 hold the first half of the time
             BuildNode& child = children[size_t(c)];
             node.box.extend(child.box);
             node.ta = std::min(node.ta, child.ta);
@@ -279,15 +285,12 @@ class Builder {
     }
 
     static BuildNode leaf(const std::vector<CellItem>& items) {
+        const ItemsBound bound(items);
         BuildNode node;
-        node.ta = std::numeric_limits<double>::infinity();
-        node.tb = -node.ta;
-        for (const CellItem& it : items) {
-            node.bodies.push_back({it.body, roundDown(it.ta), roundUp(it.tb)});
-            node.box.extend(it.box);
-            node.ta = std::min(node.ta, it.ta);
-            node.tb = std::max(node.tb, it.tb);
-        }
+        node.box = bound.box;
+        node.ta = bound.ta;
+        node.tb = bound.tb;
+        for (const CellItem& it : items) node.bodies.push_back({it.body, roundDown(it.ta), roundUp(it.tb)});
         return node;
     }
 
@@ -338,6 +341,10 @@ void SpacetimeBVH::build(const std::vector<const TrilinearBody*>& all, double ta
         n.ta = roundDown(b->ta);
         n.tb = roundUp(b->tb);
         n.leaf = b->leaf;
+        n.timeCut = b->timeCut;
+        n.before = b->before;
+        n.tSplitLo = roundDown(b->tSplit);
+        n.tSplitHi = roundUp(b->tSplit);
         if (b->leaf) {
             n.first = uint32_t(refs_.size());
             n.count = uint32_t(b->bodies.size());
@@ -429,7 +436,12 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
         // (a shadow ray takes any hit: no order).
         TraceContext::Entry* kids = stack + top;
         int k = 0;
-        for (uint32_t c = n.first; c < n.first + n.count; ++c) {
+        uint32_t c0 = n.first, c1 = n.first + n.count;
+        if (n.timeCut) {  // only the half of the children that holds this time
+            if (tf < n.tSplitLo) c1 = n.first + n.before;
+            else if (tf > n.tSplitHi) c0 = n.first + n.before;
+        }
+        for (uint32_t c = c0; c < c1; ++c) {
             const Node& cn = nodes_[c];
             ++ctx.boxTests;
             if (tf < cn.ta || tf > cn.tb || !enterBox(cn.box, ray, inv, tMin, best, &tEnter)) continue;

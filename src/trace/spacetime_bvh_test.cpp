@@ -127,10 +127,11 @@ TEST(SpacetimeBVH, BoundsAreNestedClippedAndDisjoint) {
     bvh.build(scene.bodies, 0, 8, Bounds3f{}, HierarchyOptions{});
     const auto& nodes = bvh.nodes();
     const float pad = 1e-3f;
-    int interior = 0;
+    int interior = 0, timeCuts = 0;
     for (const SpacetimeBVH::Node& n : nodes) {
         if (n.leaf) continue;
         ++interior;
+        timeCuts += n.timeCut;
         EXPECT_GE(n.count, 2u);
         for (uint32_t i = n.first; i < n.first + n.count; ++i) {
             const SpacetimeBVH::Node& a = nodes[i];
@@ -140,6 +141,10 @@ TEST(SpacetimeBVH, BoundsAreNestedClippedAndDisjoint) {
             }
             EXPECT_GE(a.ta, n.ta);
             EXPECT_LE(a.tb, n.tb);
+            if (n.timeCut) {  // the halves a ray chooses between by its time
+                if (i < n.first + n.before) EXPECT_LE(a.tb, n.tSplitHi);
+                else EXPECT_GE(a.ta, n.tSplitLo);
+            }
             for (uint32_t j = i + 1; j < n.first + n.count; ++j) {
                 const SpacetimeBVH::Node& b = nodes[j];
                 bool apart = a.tb <= b.ta + 1e-5f || b.tb <= a.ta + 1e-5f;
@@ -150,6 +155,7 @@ TEST(SpacetimeBVH, BoundsAreNestedClippedAndDisjoint) {
         }
     }
     EXPECT_GT(interior, 5);
+    EXPECT_GT(timeCuts, 0);
 }
 
 TEST(SpacetimeBVH, StillSceneIsCutInSpaceOnly) {

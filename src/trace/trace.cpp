@@ -17,6 +17,26 @@ double processCpuSeconds() {
     auto sec = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
     return sec(ru.ru_utime) + sec(ru.ru_stime);
 }
+
+// Calls fn(sample index, time) for every sample of the block, frame by frame, then pixel by
+// pixel: consecutive rays share their frame's part of the hierarchy, which stays in cache (the
+// block's own order, pixel then frame, jumps through time from one ray to the next).
+template <typename Fn>
+void forEachSampleByFrame(const ImageBlock& block, const Shutter& shutter, Fn fn) {
+    const PixelRect& R = block.rect();
+    const size_t S = size_t(block.slices());
+    const SamplePosition* pos = block.positions();
+    const double exposure = shutter.close - shutter.open;
+    for (int fi = 0; fi < block.frameCount(); ++fi) {
+        const double start = block.firstFrame() + fi + shutter.open;
+        for (int y = R.y0; y <= R.y1; ++y)
+            for (int x = R.x0; x <= R.x1; ++x) {
+                const size_t base = block.pixelOffset(x, y) + size_t(fi) * S;
+                for (size_t si = base; si < base + S; ++si)
+                    fn(si, block.firstFrame() + fi, start + double(pos[si].tf) * exposure);
+            }
+    }
+}
 }  // namespace
 
 // ---- TraceScene -------------------------------------------------------------------------------------
@@ -114,21 +134,19 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
     const RenderScene& scene = trace.scene();
     const Camera& cam = scene.camera;
     const bool ortho = !cam.perspective();
-    const int S = block.slices(), F = block.frameCount(), K = scene.lights.shadowSlots();
+    const int K = scene.lights.shadowSlots();
     shadowed_.resize(size_t(K));
-    const double open = scene.shutter.open, exposure = scene.shutter.close - scene.shutter.open;
     const SamplePosition* pos = block.positions();
     SampleHit* hits = block.hits();
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
-    for (size_t si = 0; si < block.sampleCount(); ++si) {
+    forEachSampleByFrame(block, scene.shutter, [&](size_t si, int frame, double time) {
         const SamplePosition& s = pos[si];
-        const int frame = block.firstFrame() + int((si / size_t(S)) % size_t(F));
-        const double time = frame + open + double(s.tf) * exposure;
-        const Ray ray = ortho ? Ray{cam.fromRaster(s.x, s.y, 0), {0, 0, 1}} : Ray{{0, 0, 0}, cam.fromRaster(s.x, s.y, 1)};
+        const Ray ray =
+            ortho ? Ray{cam.fromRaster(s.x, s.y, 0), {0, 0, 1}} : Ray{{0, 0, 0}, cam.fromRaster(s.x, s.y, 1)};
         const SpacetimeBVH& bvh = trace.hierarchy(frame);
         ++counters.eyeRays;
         TraceHit h;
-        if (!bvh.intersect(ray, time, cam.nearClip(), cam.farClip(), &h, ctx_)) continue;
+        if (!bvh.intersect(ray, time, cam.nearClip(), cam.farClip(), &h, ctx_)) return;
         const TrilinearBody& body = *bvh.bodies()[h.body];
         const Vec3f p = ray.o + ray.d * h.t;
         const Vec3f n = bilinearNormal(body.cornersAt(time), h.u, h.v);
@@ -138,7 +156,7 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
         Color c = shadePoint(*body.material(), cs, p, n, ortho, lights, K ? shadowed_.data() : nullptr, K);
         if (K) c = addVisibleLights(c, p, time, shadowed_.data(), trace, bvh, counters);
         hits[si] = {p.z, c, 1.0f};
-    }
+    });
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
 }
@@ -146,20 +164,16 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
 // The rasterizer's hit point is rebuilt from the sample's raster position and depth.
 void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, RenderCounters& counters) {
     const RenderScene& scene = trace.scene();
-    const int S = block.slices(), F = block.frameCount();
-    const double open = scene.shutter.open, exposure = scene.shutter.close - scene.shutter.open;
     const SamplePosition* pos = block.positions();
     SampleHit* hits = block.hits();
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
-    for (size_t si = 0; si < block.sampleCount(); ++si) {
+    forEachSampleByFrame(block, scene.shutter, [&](size_t si, int frame, double time) {
         SampleHit& hit = hits[si];
-        if (hit.a == 0) continue;
+        if (hit.a == 0) return;
         const SamplePosition& s = pos[si];
-        const int frame = block.firstFrame() + int((si / size_t(S)) % size_t(F));
-        const double time = frame + open + double(s.tf) * exposure;
         const Vec3f p = scene.camera.fromRaster(s.x, s.y, hit.z);
         hit.c = addVisibleLights(hit.c, p, time, block.shadowed(si), trace, trace.hierarchy(frame), counters);
-    }
+    });
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
 }

@@ -23,8 +23,11 @@ RenderOptions withAlgorithm(Algorithm a) {
 
 // ---- The ray tracer and the rasterizer see the same surfaces through the same samples --------------
 
-const std::string kStaticSquare =
-    orthoHeader(32, 16, "PixelSamples 8 8\n") + "Color [0.2 0.4 0.6]\n" + square(8.3, 20.6, 4.2, 11.7, 5) + "WorldEnd\n";
+// The square of render_test's StaticSquareCoverageIsAnalytic, `shift` pixels to the right.
+std::string staticSquare(double shift = 0) {
+    return orthoHeader(32, 16, "PixelSamples 8 8\n") + "Color [0.2 0.4 0.6]\n" +
+           square(8.3 + shift, 20.6 + shift, 4.2, 11.7, 5) + "WorldEnd\n";
+}
 
 std::string readSourceFile(const std::string& relative) {
     FILE* f = std::fopen(test::sourcePath(relative).c_str(), "rb");
@@ -49,7 +52,7 @@ void expectSamplesAgree(const std::string& rib, const char* what) {
     EXPECT_GT(hits, agree.samples / 10) << what;  // the scenes are not empty
 }
 
-TEST(Raytrace, StaticSquareSamplesAgreeWithTheRasterizer) { expectSamplesAgree(kStaticSquare, "static square"); }
+TEST(Raytrace, StaticSquareSamplesAgreeWithTheRasterizer) { expectSamplesAgree(staticSquare(), "static square"); }
 
 TEST(Raytrace, MovingRampSamplesAgreeWithTheRasterizer) {
     expectSamplesAgree(readSourceFile("scenes/ramp.rib"), "scenes/ramp.rib");
@@ -61,15 +64,14 @@ TEST(Raytrace, OverlappingPatchSamplesAgreeWithTheRasterizer) {
 
 // The comparison can fail: a square moved by a pixel disagrees on far more than 0.1% of samples.
 TEST(Raytrace, SampleComparisonSeesAMovedSquare) {
-    const std::string moved =
-        orthoHeader(32, 16, "PixelSamples 8 8\n") + "Color [0.2 0.4 0.6]\n" + square(9.3, 21.6, 4.2, 11.7, 5) + "WorldEnd\n";
-    test::SampleAgreement agree =
-        test::compareSamples(test::renderSamples(kStaticSquare), test::renderSamples(moved, withAlgorithm(Algorithm::Raytrace)));
+    test::SampleAgreement agree = test::compareSamples(
+        test::renderSamples(staticSquare()), test::renderSamples(staticSquare(1), withAlgorithm(Algorithm::Raytrace)));
     EXPECT_LT(agree.share(), 0.99);
 }
 
-// A perspective animation with a still floor, a moving and turning patch, a patch that exists
-// only in later frames (motion keys from frame 3) and lights; shadows on.
+// A perspective animation with a still floor, a twisted patch moving on a bent path and
+// turning, a triangle that starts moving at frame 3 (keys 3 and 5, held before: a still body
+// and a moving one) and lights; shadows on.
 const char* kAnimation = R"(Format 40 30 1
 Projection "perspective" "fov" [60]
 PixelSamples 3 3
@@ -87,15 +89,16 @@ AttributeBegin
 AttributeEnd
 AttributeBegin
   Color [0.2 0.5 0.9]
-  MotionBegin [0 5]
-    Translate -2 0 8
-    Translate 2 1 10
+  MotionBegin [0 2.5 5]
+    Translate -3 0.5 9
+    Translate 0 -0.5 7
+    Translate 3 0.5 10
   MotionEnd
   MotionBegin [0 5]
-    Rotate 0 0 0 1
-    Rotate 90 0 0 1
+    Rotate -30 1 0 0
+    Rotate 60 1 0.5 0
   MotionEnd
-  Patch "bilinear" "P" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]
+  Patch "bilinear" "P" [-1.2 -1 0.3  1 -1 0  -1 1 0  1 1.2 -0.3]
 AttributeEnd
 AttributeBegin
   Color [0.9 0.2 0.2]
@@ -196,7 +199,8 @@ std::string shadowScene(bool moving) {
            "Attribute \"light\" \"shadows\" \"on\"\n"
            "LightSource \"distantlight\" 1 \"intensity\" [1.41421356] \"from\" [0 0 0] \"to\" [1 0 1]\n"
            "Surface \"matte\" \"Ka\" [0]\n" + square(0, 32, 0, 4, 10) +
-           "Color [0.5 0.5 0.5]\n" + (moving ? "MotionBegin [0 1]\nTranslate 0 0 0\nTranslate 4 0 0\nMotionEnd\n" : "") +
+           "Color [0.5 0.5 0.5]\n" +
+           (moving ? "MotionBegin [0 1]\nTranslate 0 0 0\nTranslate 4 0 0\nMotionEnd\n" : "") +
            square(8, 12, 0, 4, 5) + "WorldEnd\n";
 }
 
@@ -222,7 +226,10 @@ TEST_P(ShadowAlgorithm, MovingOccluderShadowIsTheAnalyticBlurRamp) {
     for (int x = 16; x <= 21; ++x) {  // floor the occluder never hides; its shadow passes over
         double shadowed = 0;
         const int steps = 20000;
-        for (int i = 0; i < steps; ++i) shadowed += overlap(x, 13 + 4 * ((i + 0.5) / steps), 17 + 4 * ((i + 0.5) / steps)) / steps;
+        for (int i = 0; i < steps; ++i) {
+            const double t = (i + 0.5) / steps;
+            shadowed += overlap(x, 13 + 4 * t, 17 + 4 * t) / steps;
+        }
         const double expected = 1 - shadowed;
         const double sigma = std::sqrt(expected * (1 - expected) / spp);
         for (int y = 0; y < 4; ++y) {
