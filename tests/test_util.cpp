@@ -28,10 +28,18 @@ const FrameImage& RenderResult::frame(int f) const {
     throw std::runtime_error("frame " + std::to_string(f) + " was not rendered");
 }
 
-static RenderResult renderScene(const Scene& scene, const RenderOptions& options, Log& log) {
+static RenderResult renderWithLog(const Scene& scene, const RenderOptions& options, Log& log) {
     RenderResult r;
     Renderer renderer(scene, options, log);
-    r.stats = renderer.render([&](const FrameImage& img) { r.frames.push_back(img); });
+    // A frame may come again (a second pass for procedurals that outgrew their bounds).
+    r.stats = renderer.render([&](const FrameImage& img) {
+        for (FrameImage& f : r.frames)
+            if (f.frame == img.frame) {
+                f = img;
+                return;
+            }
+        r.frames.push_back(img);
+    });
     r.warnings = log.warnings();
     return r;
 }
@@ -39,13 +47,18 @@ static RenderResult renderScene(const Scene& scene, const RenderOptions& options
 RenderResult renderRib(const std::string& rib, const RenderOptions& options) {
     Log log;
     Scene scene = parseRibString(rib, "test.rib", log);
-    return renderScene(scene, options, log);
+    return renderWithLog(scene, options, log);
+}
+
+RenderResult renderScene(const Scene& scene, const RenderOptions& options) {
+    Log log;
+    return renderWithLog(scene, options, log);
 }
 
 RenderResult renderFile(const std::string& path, const RenderOptions& options) {
     Log log;
     Scene scene = parseRibFile(path, log);
-    return renderScene(scene, options, log);
+    return renderWithLog(scene, options, log);
 }
 
 bool identicalPixels(const RenderResult& a, const RenderResult& b) {
@@ -168,7 +181,8 @@ SampleAgreement compareSamples(const SampleRecord& a, const SampleRecord& b, flo
             continue;
         }
         const float dc = std::max({std::fabs(x.c.x - y.c.x), std::fabs(x.c.y - y.c.y), std::fabs(x.c.z - y.c.z)});
-        if (dc <= colorTolerance && std::fabs(x.z - y.z) <= depthTolerance * std::max(std::fabs(x.z), std::fabs(y.z)))
+        if (x.id == y.id && dc <= colorTolerance &&
+            std::fabs(x.z - y.z) <= depthTolerance * std::max(std::fabs(x.z), std::fabs(y.z)))
             ++r.sameSurface;
     }
     return r;

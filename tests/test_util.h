@@ -7,6 +7,7 @@
 
 #include "streyes/film.h"
 #include "streyes/renderer.h"
+#include "streyes/scene.h"
 #include "streyes/stats.h"
 
 namespace streyes::test {
@@ -30,6 +31,7 @@ struct RenderResult {
 };
 
 RenderResult renderRib(const std::string& rib, const RenderOptions& options = {});
+RenderResult renderScene(const Scene& scene, const RenderOptions& options = {});
 RenderResult renderFile(const std::string& path, const RenderOptions& options = {});
 
 // True when every pixel of every frame is bit-identical (RGBA and Z).
@@ -64,8 +66,8 @@ struct SampleAgreement {
     size_t sameSurface = 0; // that, and where both hit, the same surface (colour and depth agree)
     double share() const { return samples ? double(sameSurface) / double(samples) : 0; }
 };
-// Same surface: colours within colorTolerance (max over channels) and depths within a relative
-// depthTolerance. Throws when the two do not hold the same sample positions.
+// Same surface: the same primitive, colours within colorTolerance (max over channels) and depths
+// within a relative depthTolerance. Throws when the two do not hold the same sample positions.
 SampleAgreement compareSamples(const SampleRecord& a, const SampleRecord& b, float colorTolerance = 1e-3f,
                                float depthTolerance = 1e-3f);
 

@@ -13,7 +13,9 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "streyes/camera.h"
 #include "streyes/util/error.h"
@@ -23,6 +25,7 @@ namespace streyes {
 
 struct Grid;
 struct Material;
+class ProceduralBody;
 
 enum class SplitAxis : unsigned char { U = 0, V = 1, T = 2 };
 
@@ -54,11 +57,30 @@ class Body {
     // Where in the input the body came from (for warnings); shared by all its pieces.
     const SourceLoc* source() const { return source_; }
     void setSource(const SourceLoc* s) { source_ = s; }
+    // The primitive it came from, in scene order: breaks exact depth ties between surfaces so
+    // that the image does not depend on the order bodies are drawn in.
+    uint32_t primitiveId() const { return primitiveId_; }
+    void setPrimitiveId(uint32_t id) { primitiveId_ = id; }
+    // Copies what a piece shares with the body it was cut from (material, source, primitive,
+    // split counts); every kind of body calls it on its pieces.
+    void inheritFrom(const Body& parent) {
+        material_ = parent.material_;
+        source_ = parent.source_;
+        primitiveId_ = parent.primitiveId_;
+        splitDepth = parent.splitDepth;
+        eyeSplitDepth = parent.eyeSplitDepth;
+    }
+
+    // A procedural expands instead of being split or diced (procedural.h).
+    virtual const ProceduralBody* asProcedural() const { return nullptr; }
+    // False while the body must be split in time before it can be diced (a body with more than
+    // two motion keys: a grid's corners move linearly from t0 to t1 only).
+    virtual bool diceableInTime() const { return true; }
 
     virtual LBBox3f bound() const = 0;
-    // Camera-space bound of the body during [a, b], a sub-span of time(). Control points move
-    // linearly, so the LBBox at a and at b bounds everything in between; bodies override this
-    // with something tighter when they can.
+    // Camera-space bound of the body during [a, b], a sub-span of time(). The LBBox lerped to a
+    // and to b bounds everything in between (control points that move linearly, or a bound that
+    // holds at every time); bodies override this with something tighter when they can.
     virtual Bounds3f boundDuring(double a, double b) const {
         const LBBox3f b01 = bound();
         if (!moving_) return b01.b0;
@@ -83,6 +105,7 @@ class Body {
     bool moving_ = false;
     const Material* material_ = nullptr;
     const SourceLoc* source_ = nullptr;
+    uint32_t primitiveId_ = 0;
 };
 
 using BodyPtr = std::unique_ptr<Body>;
@@ -119,6 +142,35 @@ class TrilinearBody final : public Body {
   private:
     Corners P_[2];               // camera space at t0 and t1 (equal when static)
     std::array<Color, 4> Cs_;    // surface colour at the corners, bilinear over the patch
+};
+
+// A bilinear patch whose corners move through several motion keys, linearly between them: a
+// chain of trilinear bodies kept as one (a swaying leaf over 64 frames is one body, not 16).
+// Its bound covers every key; the split loop cuts it in time at its middle key until two keys
+// remain, which makes a TrilinearBody.
+class KeyedPatchBody final : public Body {
+  public:
+    using Corners = TrilinearBody::Corners;
+    KeyedPatchBody(std::vector<double> times, std::vector<Corners> keys, const std::array<Color, 4>& cs,
+                   const Material* material);
+
+    bool diceableInTime() const override { return false; }
+    LBBox3f bound() const override;
+    RasterMeasure measure(const Camera& camera) const override;
+    CameraExtents cameraExtents() const override;
+    void split(SplitAxis axis, std::unique_ptr<Body> out[2]) const override;
+    std::unique_ptr<Body> restrictedTo(double a, double b) const override;
+    void dice(int nu, int nv, Grid& grid) const override;  // not diceable: throws
+
+    size_t keyCount() const { return times_.size(); }
+
+  private:
+    // The pieces over keys [i, j]: a KeyedPatchBody, or a TrilinearBody for two keys.
+    std::unique_ptr<Body> piece(size_t i, size_t j) const;
+
+    std::vector<double> times_;
+    std::vector<Corners> keys_;
+    std::array<Color, 4> Cs_;
 };
 
 // Point, colour or normal of a bilinear patch at (u, v), corners in RenderMan order. The normal

@@ -27,8 +27,11 @@ namespace streyes {
 // The bodies the ray tracer can intersect and the hierarchies over them, for one render.
 class TraceScene {
   public:
-    // Takes the scene's root bodies. Only bilinear patches (TrilinearBody) can be intersected
-    // exactly so far; other kinds of body are left out with one warning.
+    // Takes the scene's root bodies: trilinear bodies as they are, keyed patches as their
+    // trilinear segments (cut at their keys, as the split loop cuts them), procedurals expanded
+    // (all of them: rays go anywhere, shadow rays off screen too). Other kinds of body cannot be
+    // intersected yet and are left out with one warning. Throws what a procedural's expansion
+    // throws.
     TraceScene(const RenderScene& scene, Log& log);
 
     // One 4D hierarchy over the render's whole window [windowStart, windowEnd].
@@ -50,10 +53,15 @@ class TraceScene {
     // in parallel, alone).
     uint64_t boundingVolumes = 0;
     double buildSeconds = 0;
+    // Procedurals this expanded (first), by nesting depth, for the render's counters.
+    std::vector<uint64_t> proceduralsExpandedByDepth;
 
   private:
+    void collect(const Body& body, Log& log);
+
     const RenderScene& scene_;
     std::vector<const TrilinearBody*> bodies_;
+    std::vector<BodyPtr> pieces_;  // segments of keyed patches
     Bounds3f include_;  // the eye and the point lights: part of the root cell, as in the paper
     SpacetimeBVH spacetime_;
     std::vector<SpacetimeBVH> frames_;

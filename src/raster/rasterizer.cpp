@@ -195,17 +195,24 @@ void GridRasterizer::collectFrames(const Grid& grid, const Shutter& shutter, con
     }
 }
 
-// Writes a hit into the sample when it is the nearest so far; true when it was.
+// Writes a hit into the sample when it beats the one there (nearer, or equal depth and an
+// earlier primitive: see SampleHit::beatenBy). Returns 0 when it does not, 1 when it does, 2
+// when it does and the sample had no hit before.
 template <typename ColorAt>
-static inline bool resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, ColorAt colorAt) {
+static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, uint32_t id,
+                             ColorAt colorAt) {
     const float zh = z[h.v0] + h.l1 * (z[h.v1] - z[h.v0]) + h.l2 * (z[h.v2] - z[h.v0]);
-    if (!(zh >= nearZ && zh <= farZ && zh < s.z)) return false;
+    if (!(zh >= nearZ && zh <= farZ && zh <= s.z)) return 0;
     // Relative to the first corner: exact where depth or colour is constant.
     const Color c0 = colorAt(h.v0), c1 = colorAt(h.v1), c2 = colorAt(h.v2);
+    const Color c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
+    if (zh == s.z && !s.beatenBy(zh, id, c)) return 0;
+    const int first = s.a == 0 ? 2 : 1;
     s.z = zh;
-    s.c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
+    s.c = c;
     s.a = 1.0f;
-    return true;
+    s.id = id;
+    return first;
 }
 
 // With the hit, the K contributions of lights that cast shadows, interpolated the same way.
@@ -231,7 +238,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const Color* ci = grid.Ci[0].data();
     const int K = grid.shadowSlots;
     const Color* cl = grid.Cl[0].data();
-    uint64_t tests = 0, hits = 0;
+    uint64_t tests = 0, hits = 0, firstHits = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
             const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
@@ -261,8 +268,10 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                                 Hit h;
                                 if (!hitQuad(q, s.x, s.y, h)) continue;
                                 ++hits;
-                                if (resolveHit(hit[si], q.z, h, nearZ, farZ, [&](int c) { return ci[idx[c]]; }) &&
-                                    Shadowed)
+                                const int r = resolveHit(hit[si], q.z, h, nearZ, farZ, grid.primitiveId,
+                                                         [&](int c) { return ci[idx[c]]; });
+                                firstHits += r == 2;
+                                if (Shadowed && r)
                                     writeShadowed(block.shadowed(si), K, h,
                                                   [&](int c, int k) { return cl[size_t(idx[c] * K + k)]; });
                             }
@@ -274,6 +283,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     }
     counters.sampleTests += tests;
     counters.sampleHits += hits;
+    counters.firstHits += firstHits;
 }
 
 // A moving grid: projected at both ends of each slice (exact perspective there); a sample's
@@ -289,7 +299,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const int K = grid.shadowSlots;
     const Color *cl0 = grid.Cl[0].data(), *cl1 = grid.Cl[1].data();
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
-    uint64_t tests = 0, hits = 0;
+    uint64_t tests = 0, hits = 0, firstHits = 0;
     for (const Slice& sl : slices_) {
         if (projected == sl.ta) std::swap(ra_, rb_);  // the last slice ended where this one starts
         else project(grid, sl.ta, camera, ra_);
@@ -329,9 +339,10 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         if (!hitQuad(qt, s.x, s.y, h)) continue;
                         ++hits;
                         const float sg = lerp(sA, sB, w);  // the grid's own time parameter
-                        if (resolveHit(block.hits()[si], qt.z, h, nearZ, farZ,
-                                       [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); }) &&
-                            Shadowed)
+                        const int r = resolveHit(block.hits()[si], qt.z, h, nearZ, farZ, grid.primitiveId,
+                                                 [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); });
+                        firstHits += r == 2;
+                        if (Shadowed && r)
                             writeShadowed(block.shadowed(si), K, h, [&](int c, int k) {
                                 const size_t i = size_t(idx[c] * K + k);
                                 return lerp(cl0[i], cl1[i], sg);
@@ -343,6 +354,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     }
     counters.sampleTests += tests;
     counters.sampleHits += hits;
+    counters.firstHits += firstHits;
 }
 
 }  // namespace streyes

@@ -40,7 +40,7 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     slices_ = pattern.count();
     const size_t n = size_t(rect.area()) * size_t(frameCount) * size_t(slices_);
     positions_.resize(n);
-    hits_.assign(n, SampleHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f});
+    hits_.assign(n, SampleHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f, UINT32_MAX});
     sliceStratum_.resize(n);
     shadowSlots_ = shadowSlots;
     if (shadowSlots > 0) shadowed_.resize(n * size_t(shadowSlots));

@@ -382,6 +382,9 @@ inline bool enterBox(const Bounds3f& b, const Ray& r, const Vec3f& inv, float t0
     return true;
 }
 
+// Just above t: a hit at exactly the nearest distance so far still comes back (for ties).
+inline float tieLimit(float t) { return std::nextafter(t, std::numeric_limits<float>::infinity()); }
+
 }  // namespace
 
 template <bool AnyHit>
@@ -421,14 +424,17 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
                 if (time < b.time().t0 || time > b.time().t1) continue;
                 ++ctx.bodyTests;
                 PatchHit h;
-                if (!intersectBilinearPatch(b.cornersAt(time), ray, tMin, best, &h)) continue;
                 if constexpr (AnyHit) {
-                    return true;
+                    if (intersectBilinearPatch(b.cornersAt(time), ray, tMin, best, &h)) return true;
                 } else {
+                    // At equal distance the primitive declared first wins, as in the rasterizer
+                    // (SampleHit::beatenBy): the result does not depend on traversal order.
+                    if (!intersectBilinearPatch(b.cornersAt(time), ray, tMin, tieLimit(best), &h)) continue;
+                    if (found && h.t == best && b.primitiveId() >= bodies_[hit->body]->primitiveId()) continue;
                     best = h.t;
                     *hit = {h.t, h.u, h.v, bi};
+                    found = true;
                 }
-                found = true;
             }
             continue;
         }

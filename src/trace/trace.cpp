@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "streyes/procedural.h"
+
 namespace streyes {
 
 namespace {
@@ -42,22 +44,40 @@ void forEachSampleByFrame(const ImageBlock& block, const Shutter& shutter, Fn fn
 // ---- TraceScene -------------------------------------------------------------------------------------
 
 TraceScene::TraceScene(const RenderScene& scene, Log& log) : scene_(scene) {
-    for (const BodyPtr& root : scene.roots) {
-        // The place for other kinds of body: an exact intersector, or a tessellation into patches.
-        if (const auto* patch = dynamic_cast<const TrilinearBody*>(root.get())) {
-            bodies_.push_back(patch);
-        } else {
-            log.warnOnce("trace:body", root->source() ? *root->source() : SourceLoc{},
-                         "the ray tracer intersects bilinear patches only: other surfaces are left out of ray "
-                         "tracing and shadows");
-        }
-    }
+    for (const BodyPtr& root : scene.roots) collect(*root, log);
     include_.extend(Vec3f{0, 0, 0});  // the eye
     std::vector<CameraLight> lights;
     for (double t : {scene.windowStart, scene.windowEnd}) {
         scene.lights.at(t, lights);
         for (const CameraLight& l : lights)
             if (l.kind == LightKind::Point && isFinite(l.position)) include_.extend(l.position);
+    }
+}
+
+void TraceScene::collect(const Body& body, Log& log) {
+    if (const auto* patch = dynamic_cast<const TrilinearBody*>(&body)) {
+        bodies_.push_back(patch);
+    } else if (const ProceduralBody* p = body.asProcedural()) {
+        bool expandedHere = false;
+        const std::vector<BodyPtr>& children = p->children(*scene_.factory, scene_.camera, log, &expandedHere);
+        if (expandedHere) {
+            const size_t d = size_t(p->depth());
+            if (proceduralsExpandedByDepth.size() <= d) proceduralsExpandedByDepth.resize(d + 1, 0);
+            ++proceduralsExpandedByDepth[d];
+        }
+        for (const BodyPtr& child : children) collect(*child, log);
+    } else if (!body.diceableInTime()) {  // several motion keys: cut at the middle key
+        BodyPtr halves[2];
+        body.split(SplitAxis::T, halves);
+        for (BodyPtr& h : halves) {
+            collect(*h, log);
+            pieces_.push_back(std::move(h));
+        }
+    } else {
+        // The place for other kinds of body: an exact intersector, or a tessellation into patches.
+        log.warnOnce("trace:body", body.source() ? *body.source() : SourceLoc{},
+                     "the ray tracer intersects bilinear patches only: other surfaces are left out of ray tracing "
+                     "and shadows");
     }
 }
 
@@ -155,7 +175,7 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
             lightsAt(scene.lights, time);  // refreshed per sample only when lights or camera move
         Color c = shadePoint(*body.material(), cs, p, n, ortho, lights, K ? shadowed_.data() : nullptr, K);
         if (K) c = addVisibleLights(c, p, time, shadowed_.data(), trace, bvh, counters);
-        hits[si] = {p.z, c, 1.0f};
+        hits[si] = {p.z, c, 1.0f, body.primitiveId()};
     });
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;

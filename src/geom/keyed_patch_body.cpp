@@ -1,0 +1,129 @@
+#include <stdexcept>
+
+#include "streyes/body.h"
+
+namespace streyes {
+
+KeyedPatchBody::KeyedPatchBody(std::vector<double> times, std::vector<Corners> keys, const std::array<Color, 4>& cs,
+                               const Material* material)
+    : times_(std::move(times)), keys_(std::move(keys)), Cs_(cs) {
+    time_ = {times_.front(), times_.back()};
+    material_ = material;
+    moving_ = false;
+    for (size_t i = 1; i < keys_.size() && !moving_; ++i) moving_ = keys_[i] != keys_[0];
+}
+
+LBBox3f KeyedPatchBody::bound() const {
+    Bounds3f b;
+    for (const Corners& k : keys_)
+        for (const Vec3f& p : k) b.extend(p);
+    return {b, b};  // the union over all keys bounds every instant
+}
+
+RasterMeasure KeyedPatchBody::measure(const Camera& camera) const {
+    RasterMeasure m;
+    Corners prev{};
+    for (size_t k = 0; k < keys_.size(); ++k) {
+        Corners r;
+        for (int i = 0; i < 4; ++i) r[size_t(i)] = camera.toRaster(keys_[k][size_t(i)]);
+        auto d = [](Vec3f a, Vec3f b) { return std::hypot(a.x - b.x, a.y - b.y); };
+        m.extentU = std::max({m.extentU, d(r[0], r[1]), d(r[2], r[3])});
+        m.extentV = std::max({m.extentV, d(r[0], r[2]), d(r[1], r[3])});
+        for (int i = 0; i < 4; ++i) {
+            m.bound.b0.extend(r[size_t(i)]);
+            if (k > 0) m.motion = std::max(m.motion, d(prev[size_t(i)], r[size_t(i)]));
+        }
+        prev = r;
+    }
+    m.bound.b1 = m.bound.b0;
+    return m;
+}
+
+CameraExtents KeyedPatchBody::cameraExtents() const {
+    CameraExtents e;
+    for (size_t k = 0; k < keys_.size(); ++k) {
+        const Corners& p = keys_[k];
+        e.u = std::max({e.u, length(p[1] - p[0]), length(p[3] - p[2])});
+        e.v = std::max({e.v, length(p[2] - p[0]), length(p[3] - p[1])});
+        if (k > 0)
+            for (int i = 0; i < 4; ++i) e.t = std::max(e.t, length(p[size_t(i)] - keys_[k - 1][size_t(i)]));
+    }
+    return e;
+}
+
+std::unique_ptr<Body> KeyedPatchBody::piece(size_t i, size_t j) const {
+    std::unique_ptr<Body> b;
+    if (j - i == 1) {
+        b = std::make_unique<TrilinearBody>(TimeSpan{times_[i], times_[j]}, keys_[i], keys_[j], Cs_, material_);
+    } else {
+        b = std::make_unique<KeyedPatchBody>(std::vector<double>(times_.begin() + long(i), times_.begin() + long(j) + 1),
+                                             std::vector<Corners>(keys_.begin() + long(i), keys_.begin() + long(j) + 1),
+                                             Cs_, material_);
+    }
+    b->inheritFrom(*this);
+    return b;
+}
+
+void KeyedPatchBody::split(SplitAxis axis, std::unique_ptr<Body> out[2]) const {
+    const size_t last = keys_.size() - 1;
+    if (axis == SplitAxis::T) {
+        const size_t mid = last / 2 + (last % 2);  // the middle key: the pieces share it exactly
+        out[0] = piece(0, mid);
+        out[1] = piece(mid, last);
+        return;
+    }
+    // u or v: every key's corners, as TrilinearBody splits them (midpoints of the same edges).
+    const int pairs[2][2][2] = {{{0, 1}, {2, 3}}, {{0, 2}, {1, 3}}};
+    const auto& pr = pairs[axis == SplitAxis::U ? 0 : 1];
+    std::vector<Corners> a(keys_), b(keys_);
+    for (size_t k = 0; k < keys_.size(); ++k)
+        for (const auto& e : pr) {
+            const Vec3f m = (keys_[k][size_t(e[0])] + keys_[k][size_t(e[1])]) * 0.5f;
+            a[k][size_t(e[1])] = m;
+            b[k][size_t(e[0])] = m;
+        }
+    std::array<Color, 4> ca = Cs_, cb = Cs_;
+    for (const auto& e : pr) {
+        const Color m = (Cs_[size_t(e[0])] + Cs_[size_t(e[1])]) * 0.5f;
+        ca[size_t(e[1])] = m;
+        cb[size_t(e[0])] = m;
+    }
+    out[0] = std::make_unique<KeyedPatchBody>(times_, std::move(a), ca, material_);
+    out[1] = std::make_unique<KeyedPatchBody>(times_, std::move(b), cb, material_);
+    out[0]->inheritFrom(*this);
+    out[1]->inheritFrom(*this);
+}
+
+// The keys inside (a, b), plus the corners at a and b.
+std::unique_ptr<Body> KeyedPatchBody::restrictedTo(double a, double b) const {
+    auto at = [&](double t) {
+        size_t i = size_t(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
+        if (i == 0) return keys_.front();
+        if (i >= times_.size()) return keys_.back();
+        if (t == times_[i - 1]) return keys_[i - 1];
+        const float s = float((t - times_[i - 1]) / (times_[i] - times_[i - 1]));
+        Corners c;
+        for (int k = 0; k < 4; ++k) c[size_t(k)] = lerp(keys_[i - 1][size_t(k)], keys_[i][size_t(k)], s);
+        return c;
+    };
+    std::vector<double> ts{a};
+    std::vector<Corners> ks{at(a)};
+    for (size_t i = 0; i < times_.size(); ++i)
+        if (times_[i] > a && times_[i] < b) {
+            ts.push_back(times_[i]);
+            ks.push_back(keys_[i]);
+        }
+    ts.push_back(b);
+    ks.push_back(at(b));
+    std::unique_ptr<Body> r;
+    if (ts.size() == 2) r = std::make_unique<TrilinearBody>(TimeSpan{a, b}, ks[0], ks[1], Cs_, material_);
+    else r = std::make_unique<KeyedPatchBody>(std::move(ts), std::move(ks), Cs_, material_);
+    r->inheritFrom(*this);
+    return r;
+}
+
+void KeyedPatchBody::dice(int, int, Grid&) const {
+    throw std::logic_error("a body with more than two motion keys is split in time before it is diced");
+}
+
+}  // namespace streyes
