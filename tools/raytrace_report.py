@@ -82,7 +82,7 @@ def table(name, st, fr):
         row("total time (wall s)", ss["total"], sf["total"], "{:.1f}"),
         row("eye rays", ts["eye_rays"], tf["eye_rays"]),
         row("shadow rays", ts["shadow_rays"], tf["shadow_rays"]),
-        row("root bodies", cs["root_bodies"], cf["root_bodies"]),
+        row("bodies (patch segments between motion keys)", ts["bodies"], tf["bodies"]),
         row("peak memory (MiB)", st["peak_memory_bytes"] / 2**20, fr["peak_memory_bytes"] / 2**20, "{:.0f}"),
     ]
     return "\n".join(lines)

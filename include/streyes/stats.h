@@ -27,6 +27,7 @@ struct RenderCounters {
     uint64_t sampleHits = 0;
     uint64_t buckets = 0;
     // Ray tracing (--algorithm raytrace*, and shadow rays): the paper's Tables 1 and 2.
+    uint64_t traceBodies = 0;      // bodies the ray tracer holds (trilinear segments)
     uint64_t boundingVolumes = 0;  // hierarchy nodes built (summed over frames for raytrace-frames)
     uint64_t eyeRays = 0, shadowRays = 0;
     uint64_t rayBodyTests = 0;     // ray/body intersection tests (each body once per ray)

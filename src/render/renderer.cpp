@@ -212,6 +212,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.counters.rootBodies = scene_->roots.size();
     if (trace) {
         RenderCounters c;
+        c.traceBodies = trace->bodyCount();
         c.boundingVolumes = trace->boundingVolumes;
         c.timeHierarchy = trace->buildSeconds;
         c.proceduralsExpandedByDepth = trace->proceduralsExpandedByDepth;  // expanded for rays first

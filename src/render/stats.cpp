@@ -33,6 +33,7 @@ RenderCounters& RenderCounters::operator+=(const RenderCounters& o) {
     sampleTests += o.sampleTests;
     sampleHits += o.sampleHits;
     buckets += o.buckets;
+    traceBodies += o.traceBodies;
     boundingVolumes += o.boundingVolumes;
     eyeRays += o.eyeRays;
     shadowRays += o.shadowRays;
@@ -108,7 +109,8 @@ std::string RenderStats::toJson() const {
       << "    \"sample_tests\": " << c.sampleTests << ",\n"
       << "    \"sample_hits\": " << c.sampleHits << ",\n"
       << "    \"hit_efficiency\": " << num(c.sampleTests ? double(c.sampleHits) / double(c.sampleTests) : 0) << ",\n"
-      << "    \"trace\": {\"bounding_volumes\": " << c.boundingVolumes << ", \"eye_rays\": " << c.eyeRays
+      << "    \"trace\": {\"bodies\": " << c.traceBodies << ", \"bounding_volumes\": " << c.boundingVolumes
+      << ", \"eye_rays\": " << c.eyeRays
       << ", \"shadow_rays\": " << c.shadowRays << ", \"ray_body_tests\": " << c.rayBodyTests
       << ", \"ray_box_tests\": " << c.rayBoxTests << "}\n"
       << "  },\n"
