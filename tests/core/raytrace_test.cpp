@@ -209,8 +209,8 @@ std::string shadowScene(bool moving) {
 
 class ShadowAlgorithm : public ::testing::TestWithParam<Algorithm> {};
 INSTANTIATE_TEST_SUITE_P(Raytrace, ShadowAlgorithm,
-                         ::testing::Values(Algorithm::Spacetime, Algorithm::Frames, Algorithm::Raytrace,
-                                           Algorithm::RaytraceFrames),
+                         ::testing::Values(Algorithm::Spacetime, Algorithm::SpacetimeOcclusion, Algorithm::Frames,
+                                           Algorithm::FramesOcclusion, Algorithm::Raytrace, Algorithm::RaytraceFrames),
                          [](const ::testing::TestParamInfo<Algorithm>& info) { return test::testName(info.param); });
 
 TEST_P(ShadowAlgorithm, StillOccluderCastsAHardShadow) {

@@ -24,8 +24,8 @@ class EveryAlgorithm : public ::testing::TestWithParam<Algorithm> {
     }
 };
 INSTANTIATE_TEST_SUITE_P(Render, EveryAlgorithm,
-                         ::testing::Values(Algorithm::Spacetime, Algorithm::Frames, Algorithm::Raytrace,
-                                           Algorithm::RaytraceFrames),
+                         ::testing::Values(Algorithm::Spacetime, Algorithm::SpacetimeOcclusion, Algorithm::Frames,
+                                           Algorithm::FramesOcclusion, Algorithm::Raytrace, Algorithm::RaytraceFrames),
                          [](const ::testing::TestParamInfo<Algorithm>& info) { return test::testName(info.param); });
 
 TEST_P(EveryAlgorithm, StaticSquareCoverageIsAnalytic) {
