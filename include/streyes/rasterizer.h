@@ -67,7 +67,11 @@ class GridRasterizer {
     };
     void collectSlices(const Grid& grid, const Shutter& shutter, const ImageBlock& block);
     void collectFrames(const Grid& grid, const Shutter& shutter, const ImageBlock& block);
+    // Shadowed: the grid carries the contributions of lights that cast shadows (Grid::Cl), kept
+    // with each hit; a separate instance, so that scenes without them pay nothing.
+    template <bool Shadowed>
     void sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
+    template <bool Shadowed>
     void sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
     void project(const Grid& grid, double t, const Camera& camera, std::vector<RasterVertex>& out) const;
 

@@ -114,6 +114,7 @@ struct LightDesc {
     ParamList params;
     MotionTransform lightToWorld;
     SourceLoc loc;
+    bool castsShadows = false;   // Attribute "light" "shadows" "on" where it was declared
 };
 
 // A bilinear patch (Patch "bilinear", or a Polygon of 3 or 4 vertices), possibly with motion keys.

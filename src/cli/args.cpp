@@ -39,6 +39,9 @@ render options:
                       spacetime:          Algorithm S, split once per block of frames
                       frames-occlusion:   Algorithm C', Catmull per frame with occlusion culling
                       frames:             Algorithm C, Catmull per frame (the baseline)
+                      raytrace:           ray tracing through one spacetime hierarchy
+                                          (Glassner's; the reference for the rasterizer's error)
+                      raytrace-frames:    ray tracing with a 3D hierarchy per frame
   --tolerance EPS     occlusion tolerance: drop a body when at most EPS of its pixel-frame
                       block is uncovered (default 0: the image does not change by a bit)
   --layers N|adaptive depth layers between occlusion tables (default adaptive)

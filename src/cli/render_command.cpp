@@ -136,8 +136,8 @@ int renderCommand(const std::vector<std::string>& args) {
         else if (a == "--algorithm") {
             std::string v = value();
             if (!parseAlgorithm(v, &opts.algorithm))
-                throw UsageError("--algorithm expects spacetime-occlusion, spacetime, frames-occlusion or frames, not '" +
-                                 v + "'");
+                throw UsageError("--algorithm expects spacetime-occlusion, spacetime, frames-occlusion, frames, "
+                                 "raytrace or raytrace-frames, not '" + v + "'");
         } else if (a == "--tolerance") {
             opts.tolerance = parseReal(a, value(), 0.0, 1.0);
             toleranceGiven = true;

@@ -136,10 +136,9 @@ class Child {
     std::string failed(const SourceLoc& loc, const std::string& answer, const std::string& why) {
         int status = finish();
         if (why.empty() && WIFEXITED(status) && WEXITSTATUS(status) == 0) return answer;
-        std::string how = why;
-        if (how.empty())
-            how = WIFEXITED(status) ? "it exited with status " + std::to_string(WEXITSTATUS(status))
-                                    : "it was killed by signal " + std::to_string(WTERMSIG(status));
+        std::string how = WIFEXITED(status) ? "it exited with status " + std::to_string(WEXITSTATUS(status))
+                                            : "it was killed by signal " + std::to_string(WTERMSIG(status));
+        if (!why.empty()) how = why + " (" + how + ")";  // a program that exits early may do either
         throw InputError(loc, "RunProgram '" + commandLine_ + "' failed: " + how + " (its messages, if any, are above)");
     }
 

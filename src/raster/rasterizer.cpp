@@ -186,10 +186,14 @@ void GridRasterizer::rasterize(const Grid& grid, const Camera& camera, const Shu
     counters.micropolygons += uint64_t(grid.nu) * uint64_t(grid.nv);
     if (grid.moving) {
         collectSlices(grid, shutter, block);
-        if (!slices_.empty()) sampleMoving(grid, camera, block, counters);
+        if (slices_.empty()) return;
+        if (grid.shadowSlots) sampleMoving<true>(grid, camera, block, counters);
+        else sampleMoving<false>(grid, camera, block, counters);
     } else {
         collectFrames(grid, shutter, block);
-        if (!frames_.empty()) sampleStill(grid, camera, block, counters);
+        if (frames_.empty()) return;
+        if (grid.shadowSlots) sampleStill<true>(grid, camera, block, counters);
+        else sampleStill<false>(grid, camera, block, counters);
     }
 }
 
@@ -210,8 +214,8 @@ void GridRasterizer::collectFrames(const Grid& grid, const Shutter& shutter, con
 }
 
 // Writes a hit into the sample when it beats the one there (nearer, or equal depth and an
-// earlier primitive: see SampleHit::beatenBy).
-// Returns 1 when the sample had no hit before.
+// earlier primitive: see SampleHit::beatenBy). Returns 0 when it does not, 1 when it does, 2
+// when it does and the sample had no hit before.
 template <typename ColorAt>
 static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, uint32_t id,
                              ColorAt colorAt) {
@@ -221,7 +225,7 @@ static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float n
     const Color c0 = colorAt(h.v0), c1 = colorAt(h.v1), c2 = colorAt(h.v2);
     const Color c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
     if (zh == s.z && !s.beatenBy(zh, id, c)) return 0;
-    const int first = s.a == 0 ? 1 : 0;
+    const int first = s.a == 0 ? 2 : 1;
     s.z = zh;
     s.c = c;
     s.a = 1.0f;
@@ -229,8 +233,18 @@ static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float n
     return first;
 }
 
+// With the hit, the K contributions of lights that cast shadows, interpolated the same way.
+template <typename PartAt>
+static inline void writeShadowed(Color* out, int K, const Hit& h, PartAt partAt) {
+    for (int k = 0; k < K; ++k) {
+        const Color c0 = partAt(h.v0, k), c1 = partAt(h.v1, k), c2 = partAt(h.v2, k);
+        out[k] = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
+    }
+}
+
 // A still grid: each quad is projected and set up once, then tested against the samples of
 // every frame it exists in, visiting in each pixel only the (x, y) strata its bound overlaps.
+template <bool Shadowed>
 void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters) {
     const PixelRect& R = block.rect();
     const int nu = grid.nu, nv = grid.nv, stride = nu + 1, S = block.slices();
@@ -240,6 +254,8 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const SamplePosition* pos = block.positions();
     SampleHit* hit = block.hits();
     const Color* ci = grid.Ci[0].data();
+    const int K = grid.shadowSlots;
+    const Color* cl = grid.Cl[0].data();
     uint64_t tests = 0, hits = 0, firstHits = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
@@ -271,7 +287,12 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                                 if (!hitQuad(q, s.x, s.y, h)) continue;
                                 ++hits;
                                 if (hitCounts_) trianglesCovering(q, s.x, s.y, &hitCounts_[si], &windings_[si]);
-                                firstHits += resolveHit(hit[si], q.z, h, nearZ, farZ, grid.primitiveId, [&](int c) { return ci[idx[c]]; });
+                                const int r = resolveHit(hit[si], q.z, h, nearZ, farZ, grid.primitiveId,
+                                                         [&](int c) { return ci[idx[c]]; });
+                                firstHits += r == 2;
+                                if (Shadowed && r)
+                                    writeShadowed(block.shadowed(si), K, h,
+                                                  [&](int c, int k) { return cl[size_t(idx[c] * K + k)]; });
                             }
                         }
                     }
@@ -286,6 +307,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
 
 // A moving grid: projected at both ends of each slice (exact perspective there); a sample's
 // quad is interpolated linearly in raster space to its time within the slice.
+template <bool Shadowed>
 void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block,
                                   RasterCounters& counters) {
     const PixelRect& R = block.rect();
@@ -293,6 +315,8 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const float nearZ = camera.nearClip(), farZ = camera.farClip();
     const double span = grid.t1 - grid.t0;
     const Color *ci0 = grid.Ci[0].data(), *ci1 = grid.Ci[1].data();
+    const int K = grid.shadowSlots;
+    const Color *cl0 = grid.Cl[0].data(), *cl1 = grid.Cl[1].data();
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
     uint64_t tests = 0, hits = 0, firstHits = 0;
     for (const Slice& sl : slices_) {
@@ -335,8 +359,14 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         ++hits;
                         if (hitCounts_) trianglesCovering(qt, s.x, s.y, &hitCounts_[si], &windings_[si]);
                         const float sg = lerp(sA, sB, w);  // the grid's own time parameter
-                        firstHits += resolveHit(block.hits()[si], qt.z, h, nearZ, farZ, grid.primitiveId,
-                                   [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); });
+                        const int r = resolveHit(block.hits()[si], qt.z, h, nearZ, farZ, grid.primitiveId,
+                                                 [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); });
+                        firstHits += r == 2;
+                        if (Shadowed && r)
+                            writeShadowed(block.shadowed(si), K, h, [&](int c, int k) {
+                                const size_t i = size_t(idx[c] * K + k);
+                                return lerp(cl0[i], cl1[i], sg);
+                            });
                     }
                 }
             }

@@ -36,21 +36,38 @@ BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& option
       log_(log),
       occlusion_(usesOcclusion(options.algorithm)) {}
 
+void BucketWorker::setTrace(const TraceScene* trace) {
+    trace_ = trace;
+    traceEyeRays_ = trace && raytraces(options_.algorithm);
+    shadowSlots_ = trace && !traceEyeRays_ ? scene_.lights.shadowSlots() : 0;
+    grid_.shadowSlots = shadowSlots_;
+}
+
 void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& frames, int framesFirst) {
     bucket_ = bucket;
     ++counters.buckets;
     auto t = Clock::now();
-    block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, pattern_);
+    block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, pattern_, shadowSlots_);
     counters.timeSampleGen += secondsSince(t);
 
     windowStart_ = bucket.firstFrame + scene_.shutter.open;
     windowEnd_ = bucket.firstFrame + bucket.frameCount - 1 + scene_.shutter.close;
     t = Clock::now();
     const double before = counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion;
-    if (occlusion_) runNearToFar();
-    else runDepthFirst();
+    if (!traceEyeRays_) {  // the ray tracer traces the samples instead (below)
+        if (occlusion_) runNearToFar();
+        else runDepthFirst();
+    }
     counters.timeSplit +=
         secondsSince(t) - (counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion - before);
+
+    if (trace_) {  // eye rays (raytrace*), or the shadow rays of the rasterizer's hits
+        t = Clock::now();
+        if (traceEyeRays_) tracer_.traceSamples(block_, *trace_, counters);
+        else if (shadowSlots_) tracer_.shadeShadows(block_, *trace_, counters);
+        counters.timeTrace += secondsSince(t);
+    }
+    if (options_.sampleObserver) options_.sampleObserver(block_, bucket.tile);
 
     t = Clock::now();
     resolveTile(block_, bucket.tile, filter_, &frames[size_t(bucket.firstFrame - framesFirst)], resolveScratch_);

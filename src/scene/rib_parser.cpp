@@ -1081,6 +1081,11 @@ void RibParser::attribute(RibArgs& args) {
             throw InputError(p.loc, "Attribute \"" + category + "\": parameter '" + p.name + "' has " +
                                         plural(p.nums.size() + p.strings.size(), "value") +
                                         ", not a whole number of " + paramTypeName(p.type) + "s");
+        if (category == "light" && p.name == "shadows" && p.type == ParamType::String) {
+            const std::string v = p.strings.empty() ? "" : p.strings.front();
+            if (v != "on" && v != "off")
+                throw InputError(p.loc, "Attribute \"light\" \"shadows\": expected \"on\" or \"off\", not \"" + v + "\"");
+        }
         p.name = category + ":" + p.name;
         auto same = std::find_if(a.user.params.begin(), a.user.params.end(),
                                  [&](const Param& q) { return q.name == p.name; });
@@ -1128,7 +1133,8 @@ void RibParser::lightSource(RibArgs& args) {
     warnUnusedParams(params, shader->second, "LightSource \"" + name + "\"");
 
     int index = int(scene_.lights.size());
-    scene_.lights.push_back(LightDesc{name, std::move(params), ctm_, args.loc()});
+    const bool shadows = attributes_->user.getString("light:shadows", "off") == "on";
+    scene_.lights.push_back(LightDesc{name, std::move(params), ctm_, args.loc(), shadows});
     mutableAttributes().lights.push_back(index);
     if (!handle.empty()) {
         lightHandles_[handle] = index;

@@ -496,6 +496,29 @@ TEST(RibAttributes, LightsAttachToTheirAttributeScope) {
     EXPECT_EQ(scene.patches[3].attributes->lights, (std::vector<int>{0, 1}));  // turned on by handle
 }
 
+TEST(RibAttributes, LightShadowsAttributeMarksTheLightsDeclaredUnderIt) {
+    Scene scene = parse("WorldBegin\n"
+                        "LightSource \"distantlight\" 1\n"
+                        "AttributeBegin\n"
+                        "  Attribute \"light\" \"shadows\" \"on\"\n"
+                        "  LightSource \"distantlight\" 2\n"
+                        "  LightSource \"pointlight\" 3\n"
+                        "  Attribute \"light\" \"string shadows\" [\"off\"]\n"
+                        "  LightSource \"pointlight\" 4\n"
+                        "AttributeEnd\n"
+                        "LightSource \"pointlight\" 5\n"
+                        "WorldEnd\n");
+    ASSERT_EQ(scene.lights.size(), 5u);
+    const bool expected[5] = {false, true, true, false, false};  // AttributeEnd restores "off"
+    for (size_t i = 0; i < 5; ++i) EXPECT_EQ(scene.lights[i].castsShadows, expected[i]) << "light " << i + 1;
+}
+
+TEST(RibErrors, LightShadowsMustBeOnOrOff) {
+    std::string e = errorOf("WorldBegin\n\nAttribute \"light\" \"shadows\" \"yes\"\nWorldEnd\n");
+    EXPECT_NE(e.find("bad.rib:3: "), std::string::npos) << e;
+    EXPECT_NE(e.find("expected \"on\" or \"off\", not \"yes\""), std::string::npos) << e;
+}
+
 // ---- Reuse: parsing more input into the same scene ------------------------------------------------
 TEST(RibParserReuse, SecondStringContinuesWithCurrentState) {
     Scene scene;

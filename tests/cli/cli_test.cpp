@@ -113,6 +113,27 @@ TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
     EXPECT_NE(json.find("\"frames\": [3, 4]"), std::string::npos);
 }
 
+TEST(Cli, RaytraceWritesTheSameFramesAndItsCounters) {
+    std::string dir = test::makeTempDir("cli-raytrace");
+    std::string scene = writeFile(dir, "tiny.rib", kTiny);
+    for (const char* alg : {"raytrace", "raytrace-frames"}) {
+        CliRun r = streyes("render " + scene + " --algorithm " + alg + " -o " + dir + "/" + alg + ".####.exr --stats " +
+                           dir + "/" + alg + ".json --quiet");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        ImageData img = readImage(dir + "/" + alg + ".0000.exr");
+        EXPECT_FLOAT_EQ(img.at(8, 4, img.channelIndex("Z")), 1.0f) << alg;
+        EXPECT_FLOAT_EQ(img.at(8, 4, img.channelIndex("A")), 1.0f) << alg;
+        std::ifstream f(dir + "/" + alg + ".json");
+        std::string json((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+        EXPECT_NE(json.find(std::string("\"algorithm\": \"") + alg + "\""), std::string::npos) << json;
+        EXPECT_NE(json.find("\"bounding_volumes\": 1,"), std::string::npos) << json;
+        EXPECT_NE(json.find("\"eye_rays\": 512,"), std::string::npos) << json;  // 16 x 8 pixels x 4 samples
+    }
+    CliRun bad = streyes("render " + scene + " --algorithm raytraced");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.output.find("frames, raytrace or raytrace-frames"), std::string::npos) << bad.output;
+}
+
 TEST(Cli, UnwritableOutputFailsCleanly) {
     std::string dir = test::makeTempDir("cli-unwritable");
     std::string scene = writeFile(dir, "tiny.rib", kTiny);
