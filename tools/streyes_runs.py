@@ -12,6 +12,7 @@ import json
 import os
 import platform
 import re
+import resource
 import shutil
 import statistics
 import subprocess
@@ -92,21 +93,26 @@ class Streyes:
         return Capabilities(out.stdout)
 
     def render(self, scene, args, out_dir):
-        """One render into out_dir (emptied first). Returns (wall seconds, stats dict)."""
+        """One render into out_dir (emptied first). Returns (wall seconds, CPU seconds, stats dict):
+        wall time is what a user waits for; CPU time (user + system of the process) is less
+        disturbed by other work on the machine."""
         if os.path.isdir(out_dir):
             shutil.rmtree(out_dir)
         os.makedirs(out_dir)
         stats_path = os.path.join(out_dir, "stats.json")
         cmd = [self.exe, "render", scene, "-o", os.path.join(out_dir, "f.####.exr"), "--stats", stats_path,
                "--quiet"] + list(args)
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
         start = time.perf_counter()
         out = subprocess.run(cmd, capture_output=True, text=True)
         wall = time.perf_counter() - start
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
         if out.returncode != 0:
             raise ToolError("render failed (exit %d): %s\n%s" % (out.returncode, " ".join(cmd), out.stderr.strip()),
                             out.returncode)
         with open(stats_path) as f:
-            return wall, json.load(f)
+            return wall, cpu, json.load(f)
 
     def compare(self, reference_dir, test_dir, resize=False):
         """`streyes compare --json` of every frame in test_dir against reference_dir."""
@@ -119,16 +125,13 @@ class Streyes:
         return json.loads(out.stdout)
 
 
-def median_render(streyes, scene, args, out_dir, runs):
-    """Renders `runs` times; the median wall time, every time, and the largest peak memory.
-    Images do not change between runs (streyes is deterministic), so the last run's frames stay."""
-    times, stats = [], None
-    peak = 0
-    for _ in range(runs):
-        wall, stats = streyes.render(scene, args, out_dir)
-        times.append(wall)
-        peak = max(peak, stats.get("peak_memory_bytes", 0))
-    return {"seconds": statistics.median(times), "all_seconds": times, "peak_memory_bytes": peak, "stats": stats}
+    def sheet(self, frames_dir, out_png, every=1, columns=0, cell_width=0):
+        """`streyes sheet` of the frames in frames_dir (as written by render)."""
+        cmd = [self.exe, "sheet", os.path.join(frames_dir, "f.####.exr"), "-o", out_png, "--every", str(every)] + \
+            (["--columns", str(columns)] if columns else []) + (["--cell-width", str(cell_width)] if cell_width else [])
+        out = subprocess.run(cmd, capture_output=True, text=True)
+        if out.returncode != 0:
+            raise ToolError("sheet failed (exit %d): %s\n%s" % (out.returncode, " ".join(cmd), out.stderr.strip()), 1)
 
 
 def counter_value(value):

@@ -50,7 +50,8 @@ OCCLUSION_HELP = """render options:
 
 
 def point(knob, setting, value, seconds, rmse, **extra):
-    p = {"knob": knob, "setting": setting, "value": value, "seconds": seconds, "all_seconds": [seconds],
+    p = {"knob": knob, "setting": setting, "value": value, "seconds": seconds, "time": seconds,
+         "all_seconds": [seconds],
          "peak_memory_bytes": 2**20, "counters": {}, "error": {"rmse_rgb": rmse, "rmse_a": rmse, "psnr": 30.0,
                                                                "share_over_threshold": 0.1, "nonfinite": 0,
                                                                "threshold": 0.01}}
@@ -63,9 +64,9 @@ def dataset(tolerance_points, samples_points, knobs=("samples", "tolerance")):
     base = point("base", "base", None, 10.0, 0.010)
     pts = [base] + [point("samples", "%d spp" % n, n, t, e) for n, t, e in samples_points] + \
         [point("tolerance", "ε=%g" % v, v, t, e) for v, t, e in tolerance_points]
-    return {"scene": "scenes/x.rib", "base": {"samples": 16, "width": 64, "height": 32,
-                                              "algorithm": "spacetime-occlusion"},
-            "knobs": list(knobs), "points": pts}
+    return sve.use_time({"scene": "scenes/x.rib", "base": {"samples": 16, "width": 64, "height": 32,
+                                                          "algorithm": "spacetime-occlusion"},
+                         "knobs": list(knobs), "points": pts}, "wall")
 
 
 class Capabilities(unittest.TestCase):
@@ -124,6 +125,14 @@ class Answers(unittest.TestCase):
         self.assertIn("**No**", text)
         self.assertIn("| ε=0.05 | 9.5 s | 0.03 | ≤ 3 s | samples |", text)
 
+    def test_the_chosen_time_measure_decides(self):
+        # In wall time the tolerance loses (9.5 s against samples' 3 s); in CPU time it wins (1 s against 6 s).
+        d = dataset([(0.05, 9.5, 0.03)], [(4, 3.0, 0.02)])
+        for p, cpu in zip(d["points"], [12.0, 6.0, 1.0]):
+            p["cpu_seconds"] = cpu
+        self.assertIn("**No**", sve.answer_tolerance(sve.use_time(d, "wall")))
+        self.assertIn("**Yes**", sve.answer_tolerance(sve.use_time(d, "cpu")))
+
     def test_without_tolerance_it_says_so(self):
         d = dataset([], [(4, 3.0, 0.02)], knobs=("samples",))
         text = sve.answer_tolerance(d)
@@ -134,8 +143,9 @@ class Answers(unittest.TestCase):
         d = dataset([], [(4, 3.0, 0.02)], knobs=("samples",))
         d["points"].append(point("algorithm", "frames", "frames", 20.0, 0.010,
                                  vs_base={"share_differing": 0, "rmse_rgb": 0}))
+        sve.use_time(d, "wall")
         text = sve.answer_algorithms(d)
-        self.assertIn("**frames**: 20 s (2.00× the base algorithm's time)", text)
+        self.assertIn("**frames**: 20 s (2.00× the base algorithm's wall time)", text)
         self.assertIn("bit-identical to spacetime-occlusion's", text)
         self.assertIn("behind", text.split("**frames**")[1])
         self.assertIn("on the front", text.split("**spacetime-occlusion**")[1].split("\n")[0])
@@ -195,7 +205,16 @@ class EndToEnd(unittest.TestCase):
         self.assertIn("| samples | 1 spp |", md)
         with open(os.path.join(self.dir, "ramp.png"), "rb") as f:
             self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
-        self.assertFalse(os.path.exists(os.path.join(self.dir, "work", "ramp", "run00")))  # frames cleaned up
+        self.assertIn("![frames of the base render](ramp-sheet.png)", md)
+        self.assertTrue(os.path.exists(os.path.join(self.dir, "ramp-sheet.png")))
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "work", "ramp", "run01")))  # frames cleaned up
+        # --replot rewrites the page from the measurements alone.
+        os.remove(os.path.join(self.dir, "ramp.md"))
+        r = run([os.path.join(TOOLS, "speed-vs-error"), "--replot", os.path.join(ROOT, "scenes/ramp.rib"), "--out",
+                 self.dir, "--quiet"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(self.dir, "ramp.md")) as f:
+            self.assertEqual(f.read(), md)
 
     def test_bench_on_the_ramp(self):
         out = os.path.join(self.dir, "bench.md")
