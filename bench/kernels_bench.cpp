@@ -156,7 +156,7 @@ BENCHMARK(BM_SampleGeneration);
 void BM_Resolve(benchmark::State& state) {
     ImageBlock block;
     block.reset({0, 0, 33, 33}, 0, 8, SamplePattern{4, 4, 3});
-    for (size_t i = 0; i < block.sampleCount(); i += 3) block.hits()[i] = {5.0f, {0.5f, 0.5f, 0.5f}, 1.0f};
+    for (size_t i = 0; i < block.sampleCount(); i += 3) block.hits()[i] = {5.0f, {0.5f, 0.5f, 0.5f}, 1.0f, 1};
     PixelFilter filter(FilterDesc{"gaussian", 2, 2});
     std::vector<FrameImage> frames(8);
     for (auto& f : frames) f.resize(34, 34);

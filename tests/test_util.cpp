@@ -26,10 +26,18 @@ const FrameImage& RenderResult::frame(int f) const {
     throw std::runtime_error("frame " + std::to_string(f) + " was not rendered");
 }
 
-static RenderResult renderScene(const Scene& scene, const RenderOptions& options, Log& log) {
+static RenderResult renderWithLog(const Scene& scene, const RenderOptions& options, Log& log) {
     RenderResult r;
     Renderer renderer(scene, options, log);
-    r.stats = renderer.render([&](const FrameImage& img) { r.frames.push_back(img); });
+    // A frame may come again (a second pass for procedurals that outgrew their bounds).
+    r.stats = renderer.render([&](const FrameImage& img) {
+        for (FrameImage& f : r.frames)
+            if (f.frame == img.frame) {
+                f = img;
+                return;
+            }
+        r.frames.push_back(img);
+    });
     r.warnings = log.warnings();
     return r;
 }
@@ -37,13 +45,18 @@ static RenderResult renderScene(const Scene& scene, const RenderOptions& options
 RenderResult renderRib(const std::string& rib, const RenderOptions& options) {
     Log log;
     Scene scene = parseRibString(rib, "test.rib", log);
-    return renderScene(scene, options, log);
+    return renderWithLog(scene, options, log);
+}
+
+RenderResult renderScene(const Scene& scene, const RenderOptions& options) {
+    Log log;
+    return renderWithLog(scene, options, log);
 }
 
 RenderResult renderFile(const std::string& path, const RenderOptions& options) {
     Log log;
     Scene scene = parseRibFile(path, log);
-    return renderScene(scene, options, log);
+    return renderWithLog(scene, options, log);
 }
 
 bool identicalPixels(const RenderResult& a, const RenderResult& b) {

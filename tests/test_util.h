@@ -7,6 +7,7 @@
 
 #include "streyes/film.h"
 #include "streyes/renderer.h"
+#include "streyes/scene.h"
 #include "streyes/stats.h"
 
 namespace streyes::test {
@@ -30,6 +31,7 @@ struct RenderResult {
 };
 
 RenderResult renderRib(const std::string& rib, const RenderOptions& options = {});
+RenderResult renderScene(const Scene& scene, const RenderOptions& options = {});
 RenderResult renderFile(const std::string& path, const RenderOptions& options = {});
 
 // True when every pixel of every frame is bit-identical (RGBA and Z).

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 
 #include "streyes/camera.h"
@@ -20,6 +21,7 @@ namespace streyes {
 
 struct Grid;
 struct Material;
+class ProceduralBody;
 
 enum class SplitAxis : unsigned char { U = 0, V = 1, T = 2 };
 
@@ -51,6 +53,22 @@ class Body {
     // Where in the input the body came from (for warnings); shared by all its pieces.
     const SourceLoc* source() const { return source_; }
     void setSource(const SourceLoc* s) { source_ = s; }
+    // The primitive it came from, in scene order: breaks exact depth ties between surfaces so
+    // that the image does not depend on the order bodies are drawn in.
+    uint32_t primitiveId() const { return primitiveId_; }
+    void setPrimitiveId(uint32_t id) { primitiveId_ = id; }
+    // Copies what a piece shares with the body it was cut from (material, source, primitive,
+    // split counts); every kind of body calls it on its pieces.
+    void inheritFrom(const Body& parent) {
+        material_ = parent.material_;
+        source_ = parent.source_;
+        primitiveId_ = parent.primitiveId_;
+        splitDepth = parent.splitDepth;
+        eyeSplitDepth = parent.eyeSplitDepth;
+    }
+
+    // A procedural expands instead of being split or diced (procedural.h).
+    virtual const ProceduralBody* asProcedural() const { return nullptr; }
 
     virtual LBBox3f bound() const = 0;
     virtual RasterMeasure measure(const Camera& camera) const = 0;
@@ -71,6 +89,7 @@ class Body {
     bool moving_ = false;
     const Material* material_ = nullptr;
     const SourceLoc* source_ = nullptr;
+    uint32_t primitiveId_ = 0;
 };
 
 using BodyPtr = std::unique_ptr<Body>;

@@ -5,6 +5,7 @@
 // keep their capacity and dicing allocates nothing once warm.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "streyes/util/vecmath.h"
@@ -18,6 +19,7 @@ struct Grid {
     double t0 = 0, t1 = 0;        // time span, in frames
     bool moving = false;          // when false only the [0] arrays are filled
     const Material* material = nullptr;
+    uint32_t primitiveId = 0;     // the body's primitive: breaks exact depth ties
 
     std::vector<Vec3f> P[2];      // camera-space positions at t0, t1
     std::vector<Vec3f> N[2];      // geometric normals (not normalised)

@@ -31,6 +31,7 @@ struct RasterCounters {
     uint64_t micropolygons = 0;
     uint64_t sampleTests = 0;    // samples given the full inside test (after bound and time checks)
     uint64_t sampleHits = 0;     // tests that found the sample inside
+    uint64_t firstHits = 0;      // samples that had no hit before (adaptive depth layers use it)
 };
 
 class GridRasterizer {

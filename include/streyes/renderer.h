@@ -4,7 +4,9 @@
 // Algorithm S ("spacetime"): one split loop per bucket covers every frame of the block, so a
 // body that does not move is split, diced and shaded once for all of them. Algorithm C
 // ("frames"): Catmull's per-frame loop, the baseline; a bucket is a tile times one frame, with the
-// same samples, so the two differ only in how often geometry is processed.
+// same samples, so the two differ only in how often geometry is processed. The "-occlusion"
+// variants (C' and S with culling) process bodies near to far in depth layers and drop those a
+// summed-volume table of nearer coverage says are hidden (occlusion.h).
 #pragma once
 
 #include <cstdint>
@@ -18,12 +20,14 @@
 
 namespace streyes {
 
-enum class Algorithm { Spacetime, Frames };
+enum class Algorithm { Frames, FramesOcclusion, Spacetime, SpacetimeOcclusion };
+inline bool usesOcclusion(Algorithm a) { return a == Algorithm::FramesOcclusion || a == Algorithm::SpacetimeOcclusion; }
+inline bool perFrame(Algorithm a) { return a == Algorithm::Frames || a == Algorithm::FramesOcclusion; }
 const char* algorithmName(Algorithm a);
 bool parseAlgorithm(const std::string& name, Algorithm* out);
 
 struct RenderOptions {
-    Algorithm algorithm = Algorithm::Spacetime;
+    Algorithm algorithm = Algorithm::SpacetimeOcclusion;
     bool hasFrames = false;          // --frames; otherwise the scene's, otherwise frame 0
     int firstFrame = 0, lastFrame = 0;
     int xres = 0, yres = 0;          // --res; 0: the scene's Format
@@ -32,6 +36,11 @@ struct RenderOptions {
     uint64_t seed = 0;
     int bucketSize = 32;             // tile side in pixels
     int maxFrameBlock = 64;          // frames rendered (and held in memory) together
+
+    // Occlusion culling (the -occlusion algorithms).
+    double tolerance = 0;            // epsilon: drop a body when uncovered <= epsilon * its block
+    int layers = 0;                  // depth layers with geometric spacing; 0: adaptive
+    double adaptiveLayerHits = 0.05; // adaptive: a layer ends once this share of samples got a first hit
 
     // Split loop (see docs/ARCHITECTURE.md).
     int maxGridSize = 256;           // micropolygons per grid (RenderMan's "limits" "gridsize")
@@ -63,6 +72,8 @@ class Renderer {
     const ResolvedSettings& settings() const { return settings_; }
 
   private:
+    std::vector<float> geometricLayerDepths() const;
+
     const Scene& source_;
     RenderOptions options_;
     Log& log_;

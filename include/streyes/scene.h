@@ -118,11 +118,24 @@ struct BilinearPatchDesc {
     SourceLoc loc;
 };
 
+class ProceduralGenerator;
+
+// A procedural primitive (Procedural "DelayedReadArchive" | "RunProgram" | "DynamicLoad"): a
+// bound in object space now, children when the bound is seen (procedural.h).
+struct ProceduralDesc {
+    std::shared_ptr<const ProceduralGenerator> generator;
+    Bounds3d bound;                 // object space, as declared
+    MotionTransform objectToWorld;
+    AttributesPtr attributes;
+    SourceLoc loc;
+};
+
 struct Scene {
     CameraDesc camera;
     RenderSettings settings;
     std::vector<LightDesc> lights;
     std::vector<BilinearPatchDesc> patches;
+    std::vector<ProceduralDesc> procedurals;
     std::string sourceName;  // the scene file, for messages and default output names
 };
 

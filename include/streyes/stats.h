@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace streyes {
 
@@ -14,6 +15,12 @@ struct RenderCounters {
     uint64_t culledClip = 0;       // bodies wholly nearer than the near plane or beyond the far plane
     uint64_t culledEyeLimit = 0;   // dropped at the eye-split limit
     uint64_t culledSplitLimit = 0; // dropped at the split-depth limit
+    uint64_t culledOcclusion = 0;  // dropped because nearer layers cover their block
+    std::vector<uint64_t> culledOcclusionByLayer;  // [layer]: bodies culled while that layer was current
+    std::vector<uint64_t> cellsCoveredByLayer;     // [layer]: pixel-frame cells newly covered when it ended
+    uint64_t occlusionTables = 0;  // summed-volume (or -area) tables built
+    uint64_t proceduralsExpanded = 0;
+    std::vector<uint64_t> proceduralsExpandedByDepth;  // [0]: declared in the scene, [1]: their children ...
     uint64_t gridsDiced = 0;
     uint64_t micropolygons = 0;
     uint64_t sampleTests = 0;
@@ -22,6 +29,7 @@ struct RenderCounters {
 
     // Seconds, summed over threads (so they add up to CPU time, not wall time).
     double timeSampleGen = 0, timeSplit = 0, timeDice = 0, timeShade = 0, timeSample = 0, timeResolve = 0;
+    double timeOcclusion = 0;  // building coverage and tables
 
     RenderCounters& operator+=(const RenderCounters& o);
     uint64_t splits() const { return splitsU + splitsV + splitsT; }
@@ -32,8 +40,14 @@ struct RenderStats {
     std::string algorithm;
     int firstFrame = 0, lastFrame = 0, width = 0, height = 0, samplesPerPixel = 0, threads = 0;
     int frameBlock = 0, bucketSize = 0;
+    double tolerance = 0;
+    int layers = 0;  // 0: adaptive
     double timeParse = 0, timeBuild = 0, timeRender = 0, timeWrite = 0, timeTotal = 0;  // wall seconds
     uint64_t peakMemoryBytes = 0;  // peak resident set of the process
+    uint64_t procedurals = 0;      // procedurals made (declared, and produced by expansions)
+    std::vector<uint64_t> proceduralsByDepth;
+    uint64_t bodiesGenerated = 0;  // bodies made, from the scene and by expansions
+    int passes = 1;                // > 1 when procedurals outgrew their bounds
 
     std::string toJson() const;
 };

@@ -59,8 +59,15 @@ render options:
                       Option "streyes" "int frames", else frame 0
   --res WxH           image size in pixels; default: the scene's Format
   --samples N         samples per pixel per frame; default: the scene's PixelSamples
-  --algorithm NAME    spacetime (default: Algorithm S, split once per block of frames)
-                      frames    (Algorithm C: Catmull's split loop frame by frame)
+  --algorithm NAME    spacetime-occlusion (default): Algorithm S with occlusion culling
+                      spacetime:          Algorithm S, split once per block of frames
+                      frames-occlusion:   Algorithm C', Catmull per frame with occlusion culling
+                      frames:             Algorithm C, Catmull per frame (the baseline)
+  --tolerance EPS     occlusion tolerance: drop a body when at most EPS of its pixel-frame
+                      block is uncovered (default 0: the image does not change by a bit)
+  --layers N|adaptive depth layers between occlusion tables (default adaptive)
+  --preview           quick look: --tolerance 0.05 --samples 4 and half resolution
+                      (options given explicitly win)
   -o PATTERN          output files, #### = frame number (e.g. out/shot.####.exr);
                       default: the scene's Display, else SCENE-NAME.####.exr
   --stats FILE        write render statistics as JSON

@@ -118,7 +118,7 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
 int renderCommand(const std::vector<std::string>& args) {
     RenderOptions opts;
     std::string scenePath, outPattern, statsPath;
-    bool quiet = false;
+    bool quiet = false, preview = false, toleranceGiven = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> std::string {
@@ -131,7 +131,16 @@ int renderCommand(const std::vector<std::string>& args) {
         else if (a == "--algorithm") {
             std::string v = value();
             if (!parseAlgorithm(v, &opts.algorithm))
-                throw UsageError("--algorithm expects spacetime or frames, not '" + v + "'");
+                throw UsageError("--algorithm expects spacetime-occlusion, spacetime, frames-occlusion or frames, not '" +
+                                 v + "'");
+        } else if (a == "--tolerance") {
+            opts.tolerance = parseReal(a, value(), 0.0, 1.0);
+            toleranceGiven = true;
+        } else if (a == "--layers") {
+            std::string v = value();
+            opts.layers = v == "adaptive" ? 0 : int(parseInt(a, v, 1, 1024));
+        } else if (a == "--preview") {
+            preview = true;
         } else if (a == "-o" || a == "--output") outPattern = value();
         else if (a == "--stats") statsPath = value();
         else if (a == "--threads") opts.threads = int(parseInt(a, value(), 0, 1024));
@@ -144,6 +153,12 @@ int renderCommand(const std::vector<std::string>& args) {
         else throw UsageError("more than one scene given ('" + scenePath + "' and '" + a + "')");
     }
     if (scenePath.empty()) throw UsageError("no scene given");
+    const bool resGiven = opts.xres > 0;
+    if (preview) {
+        // Chosen from the speed-against-error measurements (docs/results/): see docs/ARCHITECTURE.md.
+        if (!toleranceGiven) opts.tolerance = 0.05;
+        if (opts.samples == 0) opts.samples = 4;
+    }
 
     const auto start = std::chrono::steady_clock::now();
     Log log;
@@ -152,6 +167,10 @@ int renderCommand(const std::vector<std::string>& args) {
     Scene scene = parseRibFile(scenePath, log);
     const double parseSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
+    if (preview && !resGiven) {
+        opts.xres = std::max(1, scene.camera.xres / 2);
+        opts.yres = std::max(1, scene.camera.yres / 2);
+    }
     Renderer renderer(scene, opts, log);
     const ResolvedSettings& rs = renderer.settings();
     const int frames = rs.lastFrame - rs.firstFrame + 1;
@@ -173,8 +192,9 @@ int renderCommand(const std::vector<std::string>& args) {
     stats.timeTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!statsPath.empty()) writeTextAtomically(statsPath, stats.toJson());
     if (!quiet) {
-        std::fprintf(stderr, "streyes: %d frame%s %dx%d, %d samples/pixel, %s, %.2f s: %s%s\n", frames,
+        std::fprintf(stderr, "streyes: %d frame%s %dx%d, %d samples/pixel, %s%s, %.2f s: %s%s\n", frames,
                      frames == 1 ? "" : "s", rs.width, rs.height, rs.pattern.count(), algorithmName(opts.algorithm),
+                     opts.tolerance > 0 ? (" (tolerance " + std::to_string(opts.tolerance).substr(0, 6) + ")").c_str() : "",
                      stats.timeTotal, written.empty() ? "(nothing written)" : written.front().c_str(),
                      written.size() > 1 ? (" ... " + written.back()).c_str() : "");
     }

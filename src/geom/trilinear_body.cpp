@@ -118,9 +118,7 @@ void TrilinearBody::split(SplitAxis axis, std::unique_ptr<Body> out[2]) const {
     }
     auto make = [&](TimeSpan t, const Corners* c, const std::array<Color, 4>& cs) {
         auto body = std::make_unique<TrilinearBody>(t, c[0], c[1], cs, material_);
-        body->splitDepth = splitDepth;  // the split loop counts the kind of split
-        body->eyeSplitDepth = eyeSplitDepth;
-        body->setSource(source_);
+        body->inheritFrom(*this);  // the split loop counts the kind of split
         return body;
     };
     out[0] = make(ta, a, ca);
@@ -140,9 +138,7 @@ std::unique_ptr<Body> TrilinearBody::restrictedTo(double a, double b) const {
         }
     }
     auto body = std::make_unique<TrilinearBody>(TimeSpan{a, b}, p0, p1, Cs_, material_);
-    body->splitDepth = splitDepth;
-    body->eyeSplitDepth = eyeSplitDepth;
-    body->setSource(source_);
+    body->inheritFrom(*this);
     return body;
 }
 
@@ -151,6 +147,7 @@ void TrilinearBody::dice(int nu, int nv, Grid& grid) const {
     grid.t0 = time_.t0;
     grid.t1 = time_.t1;
     grid.material = material_;
+    grid.primitiveId = primitiveId_;
     const float du = 1.0f / float(nu), dv = 1.0f / float(nv);
     for (int j = 0; j <= nv; ++j) {
         // Exact 0 and 1 on the borders so that neighbouring grids share edge vertices.

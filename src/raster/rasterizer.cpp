@@ -191,16 +191,24 @@ void GridRasterizer::collectFrames(const Grid& grid, const Shutter& shutter, con
     }
 }
 
-// Writes a hit into the sample when it is the nearest so far.
+// Writes a hit into the sample when it beats the one there (nearer, or equal depth and an
+// earlier primitive: see SampleHit::beatenBy).
+// Returns 1 when the sample had no hit before.
 template <typename ColorAt>
-static inline void resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, ColorAt colorAt) {
+static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, uint32_t id,
+                             ColorAt colorAt) {
     const float zh = z[h.v0] + h.l1 * (z[h.v1] - z[h.v0]) + h.l2 * (z[h.v2] - z[h.v0]);
-    if (!(zh >= nearZ && zh <= farZ && zh < s.z)) return;
+    if (!(zh >= nearZ && zh <= farZ && zh <= s.z)) return 0;
     // Relative to the first corner: exact where depth or colour is constant.
     const Color c0 = colorAt(h.v0), c1 = colorAt(h.v1), c2 = colorAt(h.v2);
+    const Color c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
+    if (zh == s.z && !s.beatenBy(zh, id, c)) return 0;
+    const int first = s.a == 0 ? 1 : 0;
     s.z = zh;
-    s.c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
+    s.c = c;
     s.a = 1.0f;
+    s.id = id;
+    return first;
 }
 
 // A still grid: each quad is projected and set up once, then tested against the samples of
@@ -214,7 +222,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const SamplePosition* pos = block.positions();
     SampleHit* hit = block.hits();
     const Color* ci = grid.Ci[0].data();
-    uint64_t tests = 0, hits = 0;
+    uint64_t tests = 0, hits = 0, firstHits = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
             const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
@@ -244,7 +252,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                                 Hit h;
                                 if (!hitQuad(q, s.x, s.y, h)) continue;
                                 ++hits;
-                                resolveHit(hit[si], q.z, h, nearZ, farZ, [&](int c) { return ci[idx[c]]; });
+                                firstHits += resolveHit(hit[si], q.z, h, nearZ, farZ, grid.primitiveId, [&](int c) { return ci[idx[c]]; });
                             }
                         }
                     }
@@ -254,6 +262,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     }
     counters.sampleTests += tests;
     counters.sampleHits += hits;
+    counters.firstHits += firstHits;
 }
 
 // A moving grid: projected at both ends of each slice (exact perspective there); a sample's
@@ -266,7 +275,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const double span = grid.t1 - grid.t0;
     const Color *ci0 = grid.Ci[0].data(), *ci1 = grid.Ci[1].data();
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
-    uint64_t tests = 0, hits = 0;
+    uint64_t tests = 0, hits = 0, firstHits = 0;
     for (const Slice& sl : slices_) {
         if (projected == sl.ta) std::swap(ra_, rb_);  // the last slice ended where this one starts
         else project(grid, sl.ta, camera, ra_);
@@ -306,7 +315,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         if (!hitQuad(qt, s.x, s.y, h)) continue;
                         ++hits;
                         const float sg = lerp(sA, sB, w);  // the grid's own time parameter
-                        resolveHit(block.hits()[si], qt.z, h, nearZ, farZ,
+                        firstHits += resolveHit(block.hits()[si], qt.z, h, nearZ, farZ, grid.primitiveId,
                                    [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); });
                     }
                 }
@@ -315,6 +324,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     }
     counters.sampleTests += tests;
     counters.sampleHits += hits;
+    counters.firstHits += firstHits;
 }
 
 }  // namespace streyes

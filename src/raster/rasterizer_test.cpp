@@ -109,26 +109,34 @@ TEST(GridRasterizer, MovingGridIsSampledWhereItIsAtTheSampleTime) {
     EXPECT_EQ(f.counters.micropolygons, 4u);
 }
 
-TEST(GridRasterizer, NearerHitWinsAndEqualDepthKeepsTheFirst) {
-    Fixture f;
-    f.reset();
-    for (int y = 0; y < f.size; ++y)
-        for (int x = 0; x < f.size; ++x) {
-            f.sample(x, y).x = float(x) + 0.5f;
-            f.sample(x, y).y = float(y) + 0.5f;
-        }
+TEST(GridRasterizer, NearerHitWinsAndEqualDepthGoesToTheEarlierPrimitiveInAnyOrder) {
     Grid far, near, tie;
-    diceSquare(0, 0, 8, 8, 20, 0, 4, &f.material, f.size, far);
-    diceSquare(0, 0, 4, 8, 10, 0, 4, &f.material, f.size, near);
-    diceSquare(0, 0, 8, 8, 10, 0, 4, &f.material, f.size, tie);
+    Material material;
+    diceSquare(0, 0, 8, 8, 20, 0, 4, &material, 8, far);
+    diceSquare(0, 0, 4, 8, 10, 0, 4, &material, 8, near);
+    diceSquare(0, 0, 8, 8, 10, 0, 4, &material, 8, tie);
     far.Ci[0].assign(far.P[0].size(), Color{0, 0, 1});
     near.Ci[0].assign(near.P[0].size(), Color{1, 0, 0});
     tie.Ci[0].assign(tie.P[0].size(), Color{0, 1, 0});
-    far.moving = near.moving = tie.moving = false;
-    for (Grid* g : {&far, &near, &tie}) f.raster.rasterize(*g, f.cam, Shutter{0, 0}, f.block, f.counters);
-    EXPECT_FLOAT_EQ(f.hit(1, 1).z, 10.0f);
-    EXPECT_EQ(f.hit(1, 1).c.x, 1.0f);  // near (red) drawn before the tie (green) at equal z
-    EXPECT_EQ(f.hit(6, 1).c.y, 1.0f);  // the tie beats the far blue
+    far.primitiveId = 3;
+    near.primitiveId = 1;  // declared first: wins the tie at z = 10
+    tie.primitiveId = 2;
+    const std::vector<std::vector<Grid*>> orders = {{&far, &near, &tie}, {&tie, &near, &far}, {&near, &tie, &far}};
+    for (const auto& order : orders) {
+        Fixture f;
+        f.reset();
+        for (int y = 0; y < f.size; ++y)
+            for (int x = 0; x < f.size; ++x) {
+                f.sample(x, y).x = float(x) + 0.5f;
+                f.sample(x, y).y = float(y) + 0.5f;
+            }
+        for (Grid* g : order) f.raster.rasterize(*g, f.cam, Shutter{0, 0}, f.block, f.counters);
+        EXPECT_FLOAT_EQ(f.hit(1, 1).z, 10.0f);
+        EXPECT_EQ(f.hit(1, 1).c.x, 1.0f);  // near (red, primitive 1) beats the tie (green, primitive 2)
+        EXPECT_EQ(f.hit(1, 1).id, 1u);
+        EXPECT_EQ(f.hit(6, 1).c.y, 1.0f);  // the tie beats the far blue
+        EXPECT_EQ(f.hit(6, 1).id, 2u);
+    }
 }
 
 }  // namespace

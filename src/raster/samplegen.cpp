@@ -39,7 +39,7 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     slices_ = pattern.count();
     const size_t n = size_t(rect.area()) * size_t(frameCount) * size_t(slices_);
     positions_.resize(n);
-    hits_.assign(n, SampleHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f});
+    hits_.assign(n, SampleHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f, UINT32_MAX});
     sliceStratum_.resize(n);
     for (int y = rect.y0; y <= rect.y1; ++y)
         for (int x = rect.x0; x <= rect.x1; ++x)

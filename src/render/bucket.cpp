@@ -1,8 +1,11 @@
 #include "bucket.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
+#include "streyes/procedural.h"
 #include "streyes/view_cull.h"
 
 namespace streyes {
@@ -10,11 +13,28 @@ namespace streyes {
 namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Heap order: nearest first; equal depths in arrival order (deterministic).
+struct FartherFirst {
+    template <typename T>
+    bool operator()(const T& a, const T& b) const {
+        return a.zmin != b.zmin ? a.zmin > b.zmin : a.order > b.order;
+    }
+};
+
+constexpr size_t kMaxLayerStats = 64;  // per-layer counters beyond this go to the last entry
+constexpr float kAdaptiveDepthGrowth = 1.25f;  // adaptive layers: at most this depth ratio apart
 }  // namespace
 
 BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& options, const PixelFilter& filter,
-                           const SamplePattern& pattern, Log& log)
-    : scene_(scene), options_(options), filter_(filter), pattern_(pattern), log_(log) {}
+                           const SamplePattern& pattern, const std::vector<float>& layerDepths, Log& log)
+    : scene_(scene),
+      options_(options),
+      filter_(filter),
+      pattern_(pattern),
+      layerDepths_(layerDepths),
+      log_(log),
+      occlusion_(usesOcclusion(options.algorithm)) {}
 
 void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& frames, int framesFirst) {
     bucket_ = bucket;
@@ -23,28 +43,14 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, pattern_);
     counters.timeSampleGen += secondsSince(t);
 
-    // The bucket's block of spacetime: its frames' exposures.
-    const double wa = bucket.firstFrame + scene_.shutter.open;
-    const double wb = bucket.firstFrame + bucket.frameCount - 1 + scene_.shutter.close;
+    windowStart_ = bucket.firstFrame + scene_.shutter.open;
+    windowEnd_ = bucket.firstFrame + bucket.frameCount - 1 + scene_.shutter.close;
     t = Clock::now();
-    const double diceShadeSampleBefore = counters.timeDice + counters.timeShade + counters.timeSample;
-    for (const BodyPtr& root : scene_.roots) {
-        const TimeSpan& span = root->time();
-        if (!span.overlaps(wa, wb)) continue;
-        if (root->moving() && (span.t0 < wa || span.t1 > wb)) {
-            // Only the part of the motion inside this bucket's frames matters here.
-            stack_.push_back(root->restrictedTo(std::max(span.t0, wa), std::min(span.t1, wb)));
-        } else {
-            process(*root);
-        }
-        while (!stack_.empty()) {
-            BodyPtr b = std::move(stack_.back());
-            stack_.pop_back();
-            process(*b);
-        }
-    }
+    const double before = counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion;
+    if (occlusion_) runNearToFar();
+    else runDepthFirst();
     counters.timeSplit +=
-        secondsSince(t) - (counters.timeDice + counters.timeShade + counters.timeSample - diceShadeSampleBefore);
+        secondsSince(t) - (counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion - before);
 
     t = Clock::now();
     resolveTile(block_, bucket.tile, filter_, &frames[size_t(bucket.firstFrame - framesFirst)], resolveScratch_);
@@ -55,8 +61,130 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     rasterCounters_ = {};
 }
 
-// Algorithm S, one body: cull against the bucket's spacetime block, then dice it if it is
-// small enough or split it along its longest direction in raster spacetime (u, v or t).
+// ---- Drivers ---------------------------------------------------------------------------------------
+
+// Each root whose time span meets the bucket's frames enters the loop; a moving root is first
+// restricted to those frames (only that part of its motion matters here).
+void BucketWorker::pushRoot(const Body& root) {
+    const TimeSpan& span = root.time();
+    if (!span.overlaps(windowStart_, windowEnd_)) return;
+    if (root.moving() && (span.t0 < windowStart_ || span.t1 > windowEnd_)) {
+        push(root.restrictedTo(std::max(span.t0, windowStart_), std::min(span.t1, windowEnd_)));
+    } else if (occlusion_) {
+        heap_.push_back({root.bound().swept().lo.z, arrivals_++, &root, nullptr});
+        std::push_heap(heap_.begin(), heap_.end(), FartherFirst());
+    } else {
+        process(root);
+    }
+}
+
+void BucketWorker::push(BodyPtr body) {
+    if (!occlusion_) {
+        stack_.push_back(std::move(body));
+        return;
+    }
+    const float zmin = body->bound().swept().lo.z;
+    const Body* raw = body.get();
+    heap_.push_back({zmin, arrivals_++, raw, std::move(body)});
+    std::push_heap(heap_.begin(), heap_.end(), FartherFirst());
+}
+
+// Algorithms S and C: depth first from a stack, root by root.
+void BucketWorker::runDepthFirst() {
+    for (const BodyPtr& root : scene_.roots) {
+        pushRoot(*root);
+        while (!stack_.empty()) {
+            BodyPtr b = std::move(stack_.back());
+            stack_.pop_back();
+            process(*b);
+        }
+    }
+}
+
+// With occlusion: every body in one heap, nearest depth first (a piece is never nearer than the
+// body it was cut from). A depth layer ends when the next body lies beyond the next geometric
+// boundary (--layers N), or, adaptively, once enough samples have had their first hit; then the
+// coverage of everything drawn so far, nearer than the next body, becomes the table that later
+// (farther) bodies are tested against.
+void BucketWorker::runNearToFar() {
+    layer_ = 0;
+    nextDepth_ = 0;
+    haveTable_ = false;
+    arrivals_ = 0;
+    firstHitsAtTable_ = 0;
+    coverage_.assign(size_t(bucket_.rect.area()) * size_t(bucket_.frameCount), 0);
+    const uint64_t adaptiveHits = uint64_t(options_.adaptiveLayerHits * double(block_.sampleCount())) + 1;
+    for (const BodyPtr& root : scene_.roots) pushRoot(*root);
+    float lastZmin = -std::numeric_limits<float>::infinity();
+    float lastBoundary = 0;  // of the last table
+    const Camera& cam = scene_.camera;
+    while (!heap_.empty()) {
+        const float zmin = heap_.front().zmin;
+        bool layerEnds;
+        if (options_.layers > 0) {
+            layerEnds = nextDepth_ < layerDepths_.size() && zmin >= layerDepths_[nextDepth_];
+            while (nextDepth_ < layerDepths_.size() && zmin >= layerDepths_[nextDepth_]) ++nextDepth_;
+        } else {
+            // Adaptive: once enough samples got their first hit since the last table, or once
+            // depth has grown by kAdaptiveDepthGrowth (surfaces already drawn may now lie nearer
+            // than the boundary, which adds coverage without new first hits). Only when depth
+            // has moved on from the bodies just drawn: a boundary equal to their depth would
+            // cover none of their samples (coverage needs z < boundary).
+            const bool newHits = rasterCounters_.firstHits - firstHitsAtTable_ >= adaptiveHits;
+            const bool deeper = zmin >= std::max(lastBoundary, cam.nearClip()) * kAdaptiveDepthGrowth;
+            layerEnds = zmin > lastZmin && (newHits || deeper);
+        }
+        if (layerEnds) lastBoundary = zmin;
+        if (layerEnds) endLayer(zmin);
+        std::pop_heap(heap_.begin(), heap_.end(), FartherFirst());
+        WorkItem item = std::move(heap_.back());
+        heap_.pop_back();
+        lastZmin = item.zmin;
+        process(*item.body);
+    }
+}
+
+// Cells covered by hits nearer than `boundary` join the coverage volume; its summed-volume table
+// replaces the last. Every body still to come has zmin >= boundary: strictly farther than what
+// covers those cells, so culling against the table never hides a surface that would be seen.
+void BucketWorker::endLayer(float boundary) {
+    auto t = Clock::now();
+    const uint64_t added = updateCoverage(block_, boundary, coverage_);
+    const size_t li = std::min<size_t>(size_t(layer_), kMaxLayerStats - 1);
+    if (counters.cellsCoveredByLayer.size() <= li) counters.cellsCoveredByLayer.resize(li + 1, 0);
+    counters.cellsCoveredByLayer[li] += added;
+    if (added > 0 || !haveTable_) {
+        table_.build(coverage_.data(), bucket_.rect.width(), bucket_.rect.height(), bucket_.frameCount);
+        ++counters.occlusionTables;
+        haveTable_ = true;
+    }
+    ++layer_;
+    firstHitsAtTable_ = rasterCounters_.firstHits;
+    counters.timeOcclusion += secondsSince(t);
+}
+
+// ---- The split loop ----------------------------------------------------------------------------------
+
+// The body's raster-spacetime block (pixels containing its bound, frames whose exposure meets its
+// time span) against the table of nearer coverage: B - A <= epsilon * B drops it.
+bool BucketWorker::occluded(const Body& body, const Bounds3f& raster) const {
+    const PixelRect& R = bucket_.rect;
+    CellBlock b;
+    b.x0 = std::max(R.x0, int(std::floor(raster.lo.x))) - R.x0;
+    b.x1 = std::min(R.x1, int(std::floor(raster.hi.x))) - R.x0;
+    b.y0 = std::max(R.y0, int(std::floor(raster.lo.y))) - R.y0;
+    b.y1 = std::min(R.y1, int(std::floor(raster.hi.y))) - R.y0;
+    const double open = scene_.shutter.open, close = scene_.shutter.close;
+    const TimeSpan& span = body.time();
+    // Frames f with [f + open, f + close] meeting [t0, t1]: f in [t0 - close, t1 - open].
+    b.f0 = std::max(0, int(std::ceil(span.t0 - close)) - bucket_.firstFrame);
+    b.f1 = std::min(bucket_.frameCount - 1, int(std::floor(span.t1 - open)) - bucket_.firstFrame);
+    if (b.x0 > b.x1 || b.y0 > b.y1 || b.f0 > b.f1) return false;
+    return occludedWithin(b.volume(), table_.sum(b), options_.tolerance);
+}
+
+// One body: cull against the bucket's spacetime block and the nearer coverage, then dice it if
+// it is small enough or split it along its longest direction in raster spacetime (u, v or t).
 void BucketWorker::process(const Body& body) {
     const Camera& cam = scene_.camera;
     const Bounds3f swept = body.bound().swept();
@@ -67,9 +195,14 @@ void BucketWorker::process(const Body& body) {
 
     // Bodies reaching the eye plane cannot be projected: cull them against the frustum in camera
     // space, or split them until the pieces lie in front of the plane or behind the near plane.
+    // (A procedural that reaches it is expanded instead.)
     if (cam.perspective() && swept.lo.z < cam.eyePlane()) {
         if (outsideFrustum(cam, swept, bucket_.rect)) {
             ++counters.culledView;
+            return;
+        }
+        if (const ProceduralBody* p = body.asProcedural()) {
+            expand(*p);
             return;
         }
         if (body.eyeSplitDepth >= options_.maxEyeSplits) {
@@ -84,13 +217,25 @@ void BucketWorker::process(const Body& body) {
         SplitAxis axis = e.u >= e.v ? SplitAxis::U : SplitAxis::V;
         if (body.moving() && e.t > std::max(e.u, e.v)) axis = SplitAxis::T;
         ++counters.eyeSplits;
-        pushSplit(body, axis, true);
+        split(body, axis, true);
         return;
     }
 
     const RasterMeasure m = body.measure(cam);
-    if (rasterOutside(m.bound.swept(), bucket_.rect)) {
+    const Bounds3f raster = m.bound.swept();
+    if (rasterOutside(raster, bucket_.rect)) {
         ++counters.culledView;
+        return;
+    }
+    if (haveTable_ && occluded(body, raster)) {
+        ++counters.culledOcclusion;
+        const size_t li = std::min<size_t>(size_t(layer_), kMaxLayerStats - 1);
+        if (counters.culledOcclusionByLayer.size() <= li) counters.culledOcclusionByLayer.resize(li + 1, 0);
+        ++counters.culledOcclusionByLayer[li];
+        return;
+    }
+    if (const ProceduralBody* p = body.asProcedural()) {
+        expand(*p);  // its bound survived culling: now its children are needed
         return;
     }
 
@@ -116,17 +261,31 @@ void BucketWorker::process(const Body& body) {
         return;
     }
     (axis == SplitAxis::U ? counters.splitsU : axis == SplitAxis::V ? counters.splitsV : counters.splitsT)++;
-    pushSplit(body, axis, false);
+    split(body, axis, false);
 }
 
-void BucketWorker::pushSplit(const Body& body, SplitAxis axis, bool eyeSplit) {
+// The children enter the loop like roots. The expansion itself happens once, in whichever
+// bucket gets there first; the others reuse its children.
+void BucketWorker::expand(const ProceduralBody& procedural) {
+    bool expandedHere = false;
+    const std::vector<BodyPtr>& children = procedural.children(*scene_.factory, scene_.camera, log_, &expandedHere);
+    if (expandedHere) {
+        ++counters.proceduralsExpanded;
+        const size_t d = size_t(procedural.depth());
+        if (counters.proceduralsExpandedByDepth.size() <= d) counters.proceduralsExpandedByDepth.resize(d + 1, 0);
+        ++counters.proceduralsExpandedByDepth[d];
+    }
+    for (const BodyPtr& child : children) pushRoot(*child);
+}
+
+void BucketWorker::split(const Body& body, SplitAxis axis, bool eyeSplit) {
     BodyPtr halves[2];
     body.split(axis, halves);
-    // Second half below the first: the first half is processed next (depth first).
+    // Second half first: on the stack, the first half is processed next (depth first).
     for (int i = 1; i >= 0; --i) {
         if (eyeSplit) halves[i]->eyeSplitDepth = static_cast<unsigned char>(body.eyeSplitDepth + 1);
         else halves[i]->splitDepth = static_cast<unsigned char>(body.splitDepth + 1);
-        stack_.push_back(std::move(halves[i]));
+        push(std::move(halves[i]));
     }
 }
 

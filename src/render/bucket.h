@@ -1,6 +1,6 @@
-// One bucket's work: the split loop (Algorithm S or C) over a tile times a block of frames,
-// then the pixel filter. A BucketWorker is one thread's reusable workspace; nothing in its hot
-// path allocates once its vectors are warm.
+// One bucket's work: the split loop (Algorithm S or C, with or without occlusion culling) over a
+// tile times a block of frames, then the pixel filter. A BucketWorker is one thread's reusable
+// workspace; nothing in its hot path allocates once its vectors are warm.
 #pragma once
 
 #include <vector>
@@ -8,6 +8,7 @@
 #include "streyes/film.h"
 #include "streyes/grid.h"
 #include "streyes/image_block.h"
+#include "streyes/occlusion.h"
 #include "streyes/rasterizer.h"
 #include "streyes/render_scene.h"
 #include "streyes/renderer.h"
@@ -24,8 +25,10 @@ struct BucketSpec {
 
 class BucketWorker {
   public:
+    // layerDepths: boundaries between the geometric depth layers of --layers N (unused when
+    // options.layers == 0: adaptive layers).
     BucketWorker(const RenderScene& scene, const RenderOptions& options, const PixelFilter& filter,
-                 const SamplePattern& pattern, Log& log);
+                 const SamplePattern& pattern, const std::vector<float>& layerDepths, Log& log);
 
     // Renders the bucket and resolves its tile into frames[f - framesFirst] for each of its frames.
     void render(const BucketSpec& bucket, std::vector<FrameImage>& frames, int framesFirst);
@@ -33,24 +36,52 @@ class BucketWorker {
     RenderCounters counters;
 
   private:
+    // A body waiting in the split loop: a root (not owned) or a piece (owned).
+    struct WorkItem {
+        float zmin;           // nearest camera depth over its time span: the heap's key
+        uint64_t order;       // arrival order: makes the heap deterministic on equal depths
+        const Body* body;
+        BodyPtr owned;
+    };
+
+    void runDepthFirst();     // Algorithms S and C: a stack, no layers
+    void runNearToFar();      // with occlusion: a heap by depth, tables between layers
+    void push(BodyPtr body);
+    void pushRoot(const Body& body);
     void process(const Body& body);  // one step of the split loop
-    void pushSplit(const Body& body, SplitAxis axis, bool eyeSplit);
+    void expand(const ProceduralBody& procedural);
+    bool occluded(const Body& body, const Bounds3f& raster) const;
+    void endLayer(float boundary);
+    void split(const Body& body, SplitAxis axis, bool eyeSplit);
     void diceShadeSample(const Body& body, int nu, int nv);
 
     const RenderScene& scene_;
     const RenderOptions& options_;
     const PixelFilter& filter_;
     SamplePattern pattern_;
+    const std::vector<float>& layerDepths_;
     Log& log_;
+    const bool occlusion_;
 
     BucketSpec bucket_;
+    double windowStart_ = 0, windowEnd_ = 0;  // the bucket's frames' exposures
     ImageBlock block_;
     Grid grid_;
     GridRasterizer rasterizer_;
     RasterCounters rasterCounters_;
     std::vector<BodyPtr> stack_;
+    std::vector<WorkItem> heap_;
+    uint64_t arrivals_ = 0;
     std::vector<CameraLight> lightScratch_;
     std::vector<float> resolveScratch_;
+
+    // Occlusion state of the current bucket.
+    int layer_ = 0;                   // tables built so far in this bucket
+    size_t nextDepth_ = 0;            // next geometric boundary in layerDepths_
+    uint64_t firstHitsAtTable_ = 0;   // rasterCounters_.firstHits when the last table was built
+    bool haveTable_ = false;
+    std::vector<uint8_t> coverage_;
+    SummedVolumeTable<uint32_t> table_;
 };
 
 }  // namespace streyes

@@ -8,18 +8,31 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "bucket.h"
+#include "streyes/procedural.h"
 
 namespace streyes {
 
-const char* algorithmName(Algorithm a) { return a == Algorithm::Frames ? "frames" : "spacetime"; }
+const char* algorithmName(Algorithm a) {
+    switch (a) {
+        case Algorithm::Frames: return "frames";
+        case Algorithm::FramesOcclusion: return "frames-occlusion";
+        case Algorithm::Spacetime: return "spacetime";
+        case Algorithm::SpacetimeOcclusion: return "spacetime-occlusion";
+    }
+    return "?";
+}
 
 bool parseAlgorithm(const std::string& name, Algorithm* out) {
-    if (name == "spacetime") *out = Algorithm::Spacetime;
-    else if (name == "frames") *out = Algorithm::Frames;
-    else return false;
-    return true;
+    for (Algorithm a : {Algorithm::Frames, Algorithm::FramesOcclusion, Algorithm::Spacetime,
+                        Algorithm::SpacetimeOcclusion})
+        if (name == algorithmName(a)) {
+            *out = a;
+            return true;
+        }
+    return false;
 }
 
 void factorSamples(int samples, int* sx, int* sy) {
@@ -61,6 +74,26 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
 
 Renderer::~Renderer() = default;
 
+// Boundaries between --layers N layers, spaced geometrically from the nearest to the farthest
+// depth of the scene's bodies (clipped to the clipping range). Empty in adaptive mode.
+std::vector<float> Renderer::geometricLayerDepths() const {
+    std::vector<float> depths;
+    if (options_.layers <= 1) return depths;
+    const Camera& cam = scene_->camera;
+    float zmin = std::numeric_limits<float>::infinity(), zmax = 0;
+    for (const BodyPtr& b : scene_->roots) {
+        Bounds3f box = b->bound().swept();
+        zmin = std::min(zmin, box.lo.z);
+        zmax = std::max(zmax, box.hi.z);
+    }
+    zmin = std::max(zmin, cam.nearClip());
+    zmax = std::min(zmax, cam.farClip());
+    if (!(zmax > zmin)) return depths;
+    for (int i = 1; i < options_.layers; ++i)
+        depths.push_back(float(double(zmin) * std::pow(double(zmax) / double(zmin), double(i) / options_.layers)));
+    return depths;
+}
+
 RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
@@ -69,7 +102,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const int W = s.width, H = s.height, S = s.pattern.count();
     const int frames = s.lastFrame - s.firstFrame + 1;
     const int tileSize = std::max(4, options_.bucketSize);
-    const bool spacetime = options_.algorithm == Algorithm::Spacetime;
+    const bool spacetime = !perFrame(options_.algorithm);
+    const std::vector<float> layerDepths = usesOcclusion(options_.algorithm) ? geometricLayerDepths() : std::vector<float>{};
 
     // Frames rendered together: bounded by the option, by ~1 GiB of resolved pixels, and (for
     // spacetime buckets, which hold every frame of the block) by ~4 M samples per bucket.
@@ -88,6 +122,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.height = H;
     stats.samplesPerPixel = S;
     stats.frameBlock = block;
+    stats.tolerance = options_.tolerance;
+    stats.layers = options_.layers;
     stats.bucketSize = tileSize;
     stats.timeBuild = buildSeconds_;
     stats.counters.rootBodies = scene_->roots.size();
@@ -110,42 +146,60 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     std::atomic<uint64_t> done{0};
     double renderSeconds = 0, writeSeconds = 0;
 
+    // Frame blocks in order. A procedural whose children reach outside its declared bound may
+    // have been culled by that bound where its children are seen: then the render starts again
+    // with the grown bounds (frames already handed to the sink come again; rare, and warned).
+    constexpr int kMaxPasses = 8;
     std::vector<FrameImage> images;
-    for (int first = s.firstFrame; first <= s.lastFrame; first += block) {
-        const int count = std::min(block, s.lastFrame - first + 1);
-        images.resize(size_t(count));
-        for (int i = 0; i < count; ++i) {
-            images[size_t(i)].frame = first + i;
-            images[size_t(i)].resize(W, H);
-        }
-        // Spacetime: one bucket per tile spans the block's frames. Frames: one per tile and frame.
-        std::vector<BucketSpec> buckets;
-        for (int f = 0; f < (spacetime ? 1 : count); ++f)
-            for (BucketSpec b : tiles) {
-                b.firstFrame = first + f;
-                b.frameCount = spacetime ? count : 1;
-                buckets.push_back(b);
+    for (int pass = 1;; ++pass) {
+        bool again = false;
+        for (int first = s.firstFrame; first <= s.lastFrame && !again; first += block) {
+            const int count = std::min(block, s.lastFrame - first + 1);
+            images.resize(size_t(count));
+            for (int i = 0; i < count; ++i) {
+                images[size_t(i)].frame = first + i;
+                images[size_t(i)].resize(W, H);
             }
-        auto t = Clock::now();
-        arena.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
-                std::unique_ptr<BucketWorker>& w = workers.local();
-                if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, log_);
-                for (size_t i = r.begin(); i != r.end(); ++i) {
-                    w->render(buckets[i], images, first);
-                    uint64_t n = ++done;
-                    if (progress) progress(n, totalBuckets);
+            // Spacetime: one bucket per tile spans the block's frames. Frames: one per tile and frame.
+            std::vector<BucketSpec> buckets;
+            for (int f = 0; f < (spacetime ? 1 : count); ++f)
+                for (BucketSpec b : tiles) {
+                    b.firstFrame = first + f;
+                    b.frameCount = spacetime ? count : 1;
+                    buckets.push_back(b);
                 }
+            auto t = Clock::now();
+            arena.execute([&] {
+                tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+                    std::unique_ptr<BucketWorker>& w = workers.local();
+                    if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, layerDepths, log_);
+                    for (size_t i = r.begin(); i != r.end(); ++i) {
+                        w->render(buckets[i], images, first);
+                        uint64_t n = ++done;
+                        if (progress) progress(n, totalBuckets);
+                    }
+                });
             });
-        });
-        renderSeconds += std::chrono::duration<double>(Clock::now() - t).count();
-        t = Clock::now();
-        for (const FrameImage& img : images) sink(img);
-        writeSeconds += std::chrono::duration<double>(Clock::now() - t).count();
+            renderSeconds += std::chrono::duration<double>(Clock::now() - t).count();
+            std::vector<ProceduralBody*> outgrown = scene_->factory->takeOutgrown();
+            if (!outgrown.empty() && pass < kMaxPasses) {
+                for (ProceduralBody* p : outgrown) p->useGrownBound();
+                again = true;
+                break;
+            }
+            t = Clock::now();
+            for (const FrameImage& img : images) sink(img);
+            writeSeconds += std::chrono::duration<double>(Clock::now() - t).count();
+        }
+        if (!again) break;
+        stats.passes = pass + 1;
     }
     for (const auto& w : workers)
         if (w) stats.counters += w->counters;
     stats.counters.rootBodies = scene_->roots.size();
+    stats.procedurals = scene_->factory->proceduralsMade();
+    stats.proceduralsByDepth = scene_->factory->proceduralsMadeByDepth();
+    stats.bodiesGenerated = scene_->factory->bodiesMade();
     stats.timeRender = renderSeconds;
     stats.timeWrite = writeSeconds;
     stats.timeTotal = std::chrono::duration<double>(Clock::now() - start).count();

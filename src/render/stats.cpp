@@ -17,6 +17,17 @@ RenderCounters& RenderCounters::operator+=(const RenderCounters& o) {
     culledClip += o.culledClip;
     culledEyeLimit += o.culledEyeLimit;
     culledSplitLimit += o.culledSplitLimit;
+    culledOcclusion += o.culledOcclusion;
+    occlusionTables += o.occlusionTables;
+    proceduralsExpanded += o.proceduralsExpanded;
+    auto addVec = [](std::vector<uint64_t>& a, const std::vector<uint64_t>& b) {
+        if (a.size() < b.size()) a.resize(b.size(), 0);
+        for (size_t i = 0; i < b.size(); ++i) a[i] += b[i];
+    };
+    addVec(culledOcclusionByLayer, o.culledOcclusionByLayer);
+    addVec(cellsCoveredByLayer, o.cellsCoveredByLayer);
+    addVec(proceduralsExpandedByDepth, o.proceduralsExpandedByDepth);
+    timeOcclusion += o.timeOcclusion;
     gridsDiced += o.gridsDiced;
     micropolygons += o.micropolygons;
     sampleTests += o.sampleTests;
@@ -38,6 +49,12 @@ uint64_t peakResidentBytes() {
 }
 
 namespace {
+std::string list(const std::vector<uint64_t>& v) {
+    std::string s = "[";
+    for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + std::to_string(v[i]);
+    return s + "]";
+}
+
 std::string num(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -56,6 +73,8 @@ std::string RenderStats::toJson() const {
       << "  \"threads\": " << threads << ",\n"
       << "  \"bucket_size\": " << bucketSize << ",\n"
       << "  \"frame_block\": " << frameBlock << ",\n"
+      << "  \"tolerance\": " << num(tolerance) << ",\n"
+      << "  \"layers\": " << (layers > 0 ? std::to_string(layers) : std::string("\"adaptive\"")) << ",\n"
       << "  \"counters\": {\n"
       << "    \"root_bodies\": " << c.rootBodies << ",\n"
       << "    \"buckets\": " << c.buckets << ",\n"
@@ -66,6 +85,17 @@ std::string RenderStats::toJson() const {
       << "    \"culled_clip\": " << c.culledClip << ",\n"
       << "    \"culled_eye_split_limit\": " << c.culledEyeLimit << ",\n"
       << "    \"culled_split_limit\": " << c.culledSplitLimit << ",\n"
+      << "    \"culled_occlusion\": " << c.culledOcclusion << ",\n"
+      << "    \"culled_occlusion_by_layer\": " << list(c.culledOcclusionByLayer) << ",\n"
+      << "    \"cells_covered_by_layer\": " << list(c.cellsCoveredByLayer) << ",\n"
+      << "    \"occlusion_tables\": " << c.occlusionTables << ",\n"
+      << "    \"procedurals\": " << procedurals << ",\n"
+      << "    \"procedurals_expanded\": " << c.proceduralsExpanded << ",\n"
+      << "    \"procedurals_by_depth\": " << list(proceduralsByDepth) << ",\n"
+      << "    \"procedurals_expanded_by_depth\": " << list(c.proceduralsExpandedByDepth) << ",\n"
+      << "    \"procedurals_never_expanded\": " << (procedurals - c.proceduralsExpanded) << ",\n"
+      << "    \"bodies_generated\": " << bodiesGenerated << ",\n"
+      << "    \"passes\": " << passes << ",\n"
       << "    \"grids_diced\": " << c.gridsDiced << ",\n"
       << "    \"micropolygons\": " << c.micropolygons << ",\n"
       << "    \"sample_tests\": " << c.sampleTests << ",\n"
@@ -80,7 +110,8 @@ std::string RenderStats::toJson() const {
       << "    \"total\": " << num(timeTotal) << ",\n"
       << "    \"cpu_by_stage\": {\"sample_generation\": " << num(c.timeSampleGen) << ", \"split_cull\": "
       << num(c.timeSplit) << ", \"dice\": " << num(c.timeDice) << ", \"shade\": " << num(c.timeShade)
-      << ", \"sample\": " << num(c.timeSample) << ", \"resolve\": " << num(c.timeResolve) << "}\n"
+      << ", \"sample\": " << num(c.timeSample) << ", \"occlusion_tables\": " << num(c.timeOcclusion)
+      << ", \"resolve\": " << num(c.timeResolve) << "}\n"
       << "  },\n"
       << "  \"peak_memory_bytes\": " << peakMemoryBytes << "\n"
       << "}\n";

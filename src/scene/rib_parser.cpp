@@ -1,5 +1,7 @@
 #include "scene/rib_parser.h"
 
+#include "streyes/procedural.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -429,6 +431,11 @@ void RibParser::dispatch(const RibRequest& request) {
             {"Patch",
              {&RibParser::patchOrPolygon, "Patch \"bilinear\" \"P\" [12 numbers]", P::World, M::Geometry}},
             {"Polygon", {&RibParser::patchOrPolygon, "Polygon \"P\" [x y z ...]", P::World, M::Geometry}},
+            // Procedurals and archives.
+            {"Procedural",
+             {&RibParser::procedural, "Procedural \"DelayedReadArchive\" [\"file\"] [xmin xmax ymin ymax zmin zmax]",
+              P::World, M::None}},
+            {"ReadArchive", {&RibParser::readArchive, "ReadArchive \"file\"", P::Anywhere, M::None}},
             // Retained geometry and inline archives: their contents are skipped.
             {"ObjectBegin", {&RibParser::skippedBlockBegin, "ObjectBegin handle", P::Anywhere, M::None}},
             {"ArchiveBegin", {&RibParser::skippedBlockBegin, "ArchiveBegin \"name\"", P::Anywhere, M::None}},
@@ -446,13 +453,13 @@ void RibParser::dispatch(const RibRequest& request) {
               "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
               "System", "Shader", "Bxdf", "Pattern", "Integrator", "DisplayFilter", "SampleFilter",
               "DisplayChannel", "PixelSampleImager", "EditBegin", "EditEnd", "EditAttributeBegin",
-              "EditAttributeEnd", "EditWorldBegin", "EditWorldEnd", "ReadArchive"})
+              "EditAttributeEnd", "EditWorldBegin", "EditWorldEnd"})
             r.emplace(name, RequestInfo{&RibParser::unsupported, "", P::Anywhere, M::None});
         // Geometry outside the subset: skipped with a warning (later features add them).
         for (const char* name :
              {"PatchMesh", "NuPatch", "TrimCurve", "SubdivisionMesh", "HierarchicalSubdivisionMesh", "Sphere",
               "Cone", "Cylinder", "Hyperboloid", "Paraboloid", "Disk", "Torus", "Points", "Curves", "Blobby",
-              "Procedural", "Procedural2", "GeneralPolygon", "PointsPolygons",
+              "Procedural2", "GeneralPolygon", "PointsPolygons",
               "PointsGeneralPolygons", "Geometry", "Volume", "ObjectInstance"})
             r.emplace(name, RequestInfo{&RibParser::unsupportedGeometry, "", P::World, M::Geometry});
         // clang-format on
@@ -794,6 +801,7 @@ void RibParser::option(RibArgs& args) {
 // WorldBegin fixes the camera: the CTM so far is world-to-camera, and the world starts at identity.
 void RibParser::worldBegin(RibArgs& args) {
     args.expectEnd();
+    if (fragment_) args.fail("a procedural's output is inside the world already: it cannot begin one");
     if (worldState_ != WorldState::BeforeWorld)
         args.fail("only one WorldBegin ... WorldEnd block per file is supported (the first began at line " +
                   std::to_string(worldBegin_.line) + ")");
@@ -826,6 +834,7 @@ const char* endName(int kind) {
 
 void RibParser::worldEnd(RibArgs& args) {
     args.expectEnd();
+    if (fragment_) args.fail("a procedural's output cannot end the world block");
     if (worldState_ != WorldState::InWorld) args.fail("WorldEnd without WorldBegin");
     const Block& open = blocks_.back();
     if (open.kind != BlockKind::World)
@@ -1246,6 +1255,72 @@ void RibParser::addPatch(const std::vector<double>& times, const std::vector<Pat
 void RibParser::patchOrPolygon(RibArgs& args) {
     PatchKey key;
     if (readPatchKey(args, &key)) addPatch({0.0}, {key}, args.loc());
+}
+
+// Procedural "kind" [args] [xmin xmax ymin ymax zmin zmax]: a bound now, children when the
+// bound is seen (procedural.h).
+void RibParser::procedural(RibArgs& args) {
+    ProceduralDesc p;
+    const std::string kind = args.string("procedural kind");
+    if (args.done()) args.fail("missing the argument array");
+    const RibValue& a = args.take();
+    std::vector<std::string> strings;
+    if (a.isString()) strings = a.strings;
+    else if (a.isStringArray()) strings = a.strings;
+    else args.fail(a, "the arguments must be an array of strings, got " + describeValue(a));
+    std::vector<double> b = args.numbers(6, "bound: xmin xmax ymin ymax zmin zmax");
+    args.expectEnd();
+    if (b[0] > b[1] || b[2] > b[3] || b[4] > b[5])
+        args.fail("the bound must be xmin xmax ymin ymax zmin zmax with each min <= max");
+    p.bound = Bounds3d({b[0], b[2], b[4]}, {b[1], b[3], b[5]});
+    std::string directory;
+    if (args.loc().file) directory = std::filesystem::path(*args.loc().file).parent_path().string();
+    p.generator = makeProceduralGenerator(kind, strings, directory, args.loc());
+    p.objectToWorld = ctm_;
+    p.attributes = attributes_;
+    p.loc = args.loc();
+    scene_.procedurals.push_back(std::move(p));
+}
+
+// An archive path: relative to the folder of the file that names it, else as given.
+std::string RibParser::resolveArchive(const std::string& name, const SourceLoc& loc) const {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (fs::path(name).is_relative() && loc.file) {
+        fs::path beside = fs::path(*loc.file).parent_path() / name;
+        if (fs::exists(beside, ec)) return beside.string();
+    }
+    return name;
+}
+
+// ReadArchive "file": the file's requests, here and now, under the current state.
+void RibParser::readArchive(RibArgs& args) {
+    const std::string name = args.string("archive file name");
+    args.expectEnd();
+    const std::string path = resolveArchive(name, args.loc());
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(args.loc(), "ReadArchive: cannot open '" + name + "': " + std::strerror(errno));
+    std::ostringstream text;
+    text << in.rdbuf();
+    parseString(text.str(), path);
+}
+
+void RibParser::beginFragment(const MotionTransform& ctm, const AttributesPtr& attributes) {
+    worldState_ = WorldState::InWorld;
+    ctm_ = ctm;
+    attributes_ = std::make_shared<Attributes>(attributes ? *attributes : Attributes());
+    fragment_ = true;
+}
+
+void RibParser::finishFragment() {
+    if (motion_) throw InputError(motion_->begin, "MotionBegin is never closed: missing MotionEnd");
+    if (skipping_)
+        throw InputError(skipping_->begin, skipping_->beginName + " is never closed: missing " + skipping_->endName);
+    if (!blocks_.empty()) {
+        const Block& open = blocks_.back();
+        throw InputError(open.begin, std::string(open.kind == BlockKind::Attribute ? "AttributeBegin" : "TransformBegin") +
+                                         " is never closed in the procedural's output");
+    }
 }
 
 void RibParser::unsupportedGeometry(RibArgs& args) {

@@ -77,6 +77,12 @@ class RibParser {
     // Attribute/Transform/Motion block closed. Call once, after the top-level file.
     void finish();
 
+    // A procedural's output is a fragment: requests inside the world block, starting from the
+    // procedural's transform and attributes. beginFragment sets that state; finishFragment checks
+    // that every block the fragment opened is closed.
+    void beginFragment(const MotionTransform& ctm, const AttributesPtr& attributes);
+    void finishFragment();
+
     // The graphics state where parsing stands, for requests that create geometry themselves.
     const MotionTransform& currentTransform() const { return ctm_; }
     AttributesPtr currentAttributes() const { return attributes_; }
@@ -144,6 +150,9 @@ class RibParser {
     bool readPatchKey(RibArgs& args, PatchKey* key);
     void addPatch(const std::vector<double>& times, const std::vector<PatchKey>& keys, const SourceLoc& loc);
     void unsupportedGeometry(RibArgs& args);
+    void procedural(RibArgs& args);
+    void readArchive(RibArgs& args);
+    std::string resolveArchive(const std::string& name, const SourceLoc& loc) const;
 
     // ---- State
     enum class WorldState { BeforeWorld, InWorld, AfterWorld };
@@ -181,6 +190,7 @@ class RibParser {
     std::set<std::string> skippedLightHandles_;  // handles of lights of unsupported types
     SourceLoc lastLoc_;                          // last line read, for "missing ..." at the end
     int nesting_ = 0;                            // parseFile/parseString calls in progress
+    bool fragment_ = false;                      // parsing a procedural's output
 };
 
 }  // namespace streyes

@@ -1,0 +1,542 @@
+#include "procedural/forest.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <sstream>
+
+#include "streyes/util/sampling.h"
+
+namespace streyes {
+
+namespace {
+
+// ---- Parameters ---------------------------------------------------------------------------------
+
+std::vector<double> numbersOf(const std::string& key, const std::string& value, size_t n, const SourceLoc& loc) {
+    std::vector<double> r;
+    std::stringstream in(value);
+    std::string part;
+    while (std::getline(in, part, ',')) {
+        char* end = nullptr;
+        double v = std::strtod(part.c_str(), &end);
+        if (part.empty() || *end != '\0' || !std::isfinite(v))
+            throw InputError(loc, "forest: '" + key + "=" + value + "' is not " + std::to_string(n) + " number(s)");
+        r.push_back(v);
+    }
+    if (r.size() != n)
+        throw InputError(loc, "forest: '" + key + "' takes " + std::to_string(n) + " comma-separated number(s), got '" +
+                                  value + "'");
+    return r;
+}
+
+// Reads key=value pairs; `extra` handles keys only a single tree takes.
+template <typename Extra>
+ForestParams parseParams(const std::string& datablock, const SourceLoc& loc, Extra extra) {
+    ForestParams f;
+    std::istringstream in(datablock);
+    std::string item;
+    while (in >> item) {
+        size_t eq = item.find('=');
+        if (eq == std::string::npos || eq == 0)
+            throw InputError(loc, "forest: expected key=value, got '" + item + "'");
+        const std::string key = item.substr(0, eq), value = item.substr(eq + 1);
+        auto one = [&](double lo, double hi) {
+            double v = numbersOf(key, value, 1, loc)[0];
+            if (!(v >= lo && v <= hi))
+                throw InputError(loc, "forest: " + key + " must lie in [" + std::to_string(lo) + ", " +
+                                          std::to_string(hi) + "], got " + value);
+            return v;
+        };
+        if (key == "count") f.count = int(one(0, 1e8));
+        else if (key == "seed") f.seed = uint64_t(one(0, 1e15));
+        else if (key == "area") {
+            auto a = numbersOf(key, value, 2, loc);
+            if (!(a[0] > 0 && a[1] > 0)) throw InputError(loc, "forest: area must be positive");
+            f.areaX = a[0], f.areaZ = a[1];
+        } else if (key == "species") {
+            auto m = numbersOf(key, value, 3, loc);
+            double sum = m[0] + m[1] + m[2];
+            if (!(m[0] >= 0 && m[1] >= 0 && m[2] >= 0 && sum > 0))
+                throw InputError(loc, "forest: species takes three non-negative shares (conifer,broadleaf,birch)");
+            for (int i = 0; i < 3; ++i) f.mix[i] = m[size_t(i)] / sum;
+        } else if (key == "leafsize") f.leafSize = one(1e-4, 100);
+        else if (key == "wind") f.wind = one(0, 10);
+        else if (key == "winddir") {
+            auto d = numbersOf(key, value, 2, loc);
+            double l = std::hypot(d[0], d[1]);
+            if (!(l > 0)) throw InputError(loc, "forest: winddir must not be zero");
+            f.windX = d[0] / l, f.windZ = d[1] / l;
+        } else if (key == "period") f.period = one(1e-3, 1e9);
+        else if (key == "keystep") f.keyStep = one(1e-3, 1e9);
+        else if (key == "detail") f.detail = one(1e-6, 1e9);
+        else if (key == "cell") f.treesPerCell = int(one(1, 1e6));
+        else if (!extra(key, value)) throw InputError(loc, "forest: unknown parameter '" + key + "'");
+    }
+    return f;
+}
+
+// ---- Trees ----------------------------------------------------------------------------------------
+
+enum class Species { Conifer, Broadleaf, Birch };
+
+struct Tree {
+    Species species = Species::Conifer;
+    double x = 0, z = 0;
+    double height = 10;
+    double crownBase = 3, crownRadius = 2.5;
+    double trunkRadius = 0.2, trunkTop = 9;
+    Color bark, leaf;
+    double phase = 0;
+    double bushRadius = 1.5, bushHeight = 1.2;  // the undergrowth at the tree's foot
+    Color bush;
+    uint64_t key = 0;   // seeds everything random about this tree
+};
+
+double uniform(HashRng& r, double lo, double hi) { return lo + (hi - lo) * double(r.nextFloat()); }
+
+Tree makeTree(const ForestParams& f, uint64_t key, double x, double z, int forceSpecies, double forceHeight) {
+    HashRng r(key);
+    Tree t;
+    t.key = key;
+    t.x = x;
+    t.z = z;
+    double s = double(r.nextFloat());
+    t.species = s < f.mix[0] ? Species::Conifer : s < f.mix[0] + f.mix[1] ? Species::Broadleaf : Species::Birch;
+    if (forceSpecies >= 0) t.species = Species(forceSpecies);
+    t.phase = uniform(r, 0, 2 * M_PI);
+    const float v = r.nextFloat();  // colour variation
+    switch (t.species) {
+        case Species::Conifer:
+            t.height = uniform(r, 8, 22);
+            t.crownBase = t.height * uniform(r, 0.15, 0.3);
+            t.crownRadius = t.height * uniform(r, 0.17, 0.25);
+            t.trunkTop = t.height * 0.97;
+            t.bark = {0.22f, 0.16f, 0.11f};
+            t.leaf = {0.08f + 0.08f * v, 0.22f + 0.12f * v, 0.07f + 0.06f * v};
+            break;
+        case Species::Broadleaf:
+            t.height = uniform(r, 8, 18);
+            t.crownBase = t.height * uniform(r, 0.35, 0.5);
+            t.crownRadius = t.height * uniform(r, 0.25, 0.33);
+            t.trunkTop = t.crownBase;
+            t.bark = {0.3f, 0.22f, 0.15f};
+            t.leaf = {0.18f + 0.15f * v, 0.4f + 0.18f * v, 0.08f + 0.1f * v};
+            break;
+        case Species::Birch:
+            t.height = uniform(r, 10, 20);
+            t.crownBase = t.height * uniform(r, 0.35, 0.5);
+            t.crownRadius = t.height * uniform(r, 0.13, 0.18);
+            t.trunkTop = t.height * 0.85;
+            t.bark = {0.82f, 0.82f, 0.78f};
+            t.leaf = {0.42f + 0.15f * v, 0.58f + 0.1f * v, 0.14f + 0.1f * v};
+            break;
+    }
+    if (forceHeight > 0) {
+        const double k = forceHeight / t.height;
+        t.height = forceHeight;
+        t.crownBase *= k, t.crownRadius *= k, t.trunkTop *= k;
+    }
+    t.trunkRadius = t.height * (t.species == Species::Birch ? 0.012 : 0.018);
+    t.bushRadius = uniform(r, 1.2, 2.6);
+    t.bushHeight = uniform(r, 0.8, 1.8);
+    t.bush = Color{0.12f, 0.22f, 0.08f} * (0.8f + 0.4f * r.nextFloat());
+    return t;
+}
+
+// Sway: a branch leans and swings about its base by up to swayAngle; leaves flutter about their
+// stems by up to flutterAngle. Points r from the base move at most r * angle (an arc's chord).
+double swayAngle(const ForestParams& f) { return f.wind * 0.12; }
+double flutterAngle(const ForestParams& f) { return f.wind * 0.35; }
+
+// Crown centre and half-sizes: everything of the crown lies within it (branches and leaves).
+Vec3d crownCentre(const Tree& t) {
+    return {t.x, t.species == Species::Conifer ? (t.crownBase + t.height) / 2 : t.crownBase + 0.55 * (t.height - t.crownBase), t.z};
+}
+
+Bounds3d treeBound(const ForestParams& f, const Tree& t) {
+    const double reach = std::max(1.15 * t.crownRadius + 2 * f.leafSize, t.bushRadius);
+    const double margin = (t.height + reach) * swayAngle(f) + f.leafSize * flutterAngle(f) + 1e-3;
+    const double top = std::max(t.height, crownCentre(t).y + reach) + margin;
+    return Bounds3d({t.x - reach - margin, -margin, t.z - reach - margin}, {t.x + reach + margin, top, t.z + reach + margin});
+}
+
+// Times of the sway keys covering the render window.
+std::vector<double> swayTimes(const ForestParams& f, const ExpandContext& ctx) {
+    if (f.wind == 0 || !(ctx.windowEnd > ctx.windowStart)) return {ctx.windowStart};
+    std::vector<double> ts;
+    for (double t = std::floor(ctx.windowStart / f.keyStep) * f.keyStep; t < ctx.windowEnd + f.keyStep; t += f.keyStep)
+        ts.push_back(t);
+    return ts;
+}
+
+// Rotation of p about the axis `a` (unit) through `c` by `angle` (Rodrigues).
+Vec3d rotateAbout(Vec3d p, Vec3d c, Vec3d a, double angle) {
+    const Vec3d v = p - c;
+    const double cs = std::cos(angle), sn = std::sin(angle);
+    return c + v * cs + cross(a, v) * sn + a * (dot(a, v) * (1 - cs));
+}
+
+// ---- Geometry output --------------------------------------------------------------------------------
+
+using Quad = std::array<Vec3d, 4>;  // RenderMan patch corner order
+
+void emit(Scene& out, const ExpandContext& ctx, std::vector<double> times, std::vector<Quad> keys, Color cs) {
+    BilinearPatchDesc p;
+    p.times = std::move(times);
+    p.P = std::move(keys);
+    p.hasCs = true;
+    p.Cs = {cs, cs, cs, cs};
+    p.objectToWorld = ctx.objectToWorld;
+    p.attributes = ctx.attributes;
+    p.loc = ctx.loc;
+    out.patches.push_back(std::move(p));
+}
+
+void emitStill(Scene& out, const ExpandContext& ctx, const Quad& q, Color cs) { emit(out, ctx, {0.0}, {q}, cs); }
+
+// Two unit vectors perpendicular to `d` and to each other.
+void basis(Vec3d d, Vec3d& u, Vec3d& v) {
+    u = normalize(std::fabs(d.y) < 0.9 ? cross(d, Vec3d{0, 1, 0}) : cross(d, Vec3d{1, 0, 0}));
+    v = cross(d, u);
+}
+
+// A tube (prism frustum) of `sides` bilinear strips around the axis p0 -> p1.
+std::vector<Quad> tube(Vec3d p0, Vec3d p1, double r0, double r1, int sides) {
+    Vec3d u, v;
+    basis(normalize(p1 - p0), u, v);
+    std::vector<Quad> qs;
+    for (int k = 0; k < sides; ++k) {
+        double a0 = 2 * M_PI * k / sides, a1 = 2 * M_PI * (k + 1) / sides;
+        Vec3d d0 = u * std::cos(a0) + v * std::sin(a0), d1 = u * std::cos(a1) + v * std::sin(a1);
+        qs.push_back({p0 + d0 * r0, p0 + d1 * r0, p1 + d0 * r1, p1 + d1 * r1});
+    }
+    return qs;
+}
+
+// ---- A branch with its leaves ------------------------------------------------------------------------
+
+struct Branch {
+    Vec3d base, dir;
+    double length = 1, radius = 0.05;
+    double spread = 0.3;  // how far leaves sit from the branch
+    int leaves = 10;
+    double phase = 0;
+    uint64_t key = 0;
+};
+
+std::vector<Branch> branchesOf(const ForestParams& f, const Tree& t) {
+    HashRng r(hashCombine(t.key, 0xb5a9c4));
+    std::vector<Branch> bs;
+    const Vec3d trunk{t.x, 0, t.z};
+    auto add = [&](Vec3d base, Vec3d dir, double length, double spread, int leaves) {
+        Branch b;
+        b.base = base;
+        b.dir = normalize(dir);
+        b.length = length;
+        b.radius = std::max(0.01, t.trunkRadius * 0.35 * std::min(1.0, length / t.crownRadius));
+        b.spread = spread;
+        b.leaves = leaves;
+        b.phase = t.phase + uniform(r, -0.8, 0.8);
+        b.key = hashCombine(t.key, bs.size() + 1);
+        bs.push_back(b);
+    };
+    if (t.species == Species::Conifer) {
+        const int tiers = 6 + int(t.height / 3);
+        for (int i = 0; i < tiers; ++i) {
+            const double y = t.crownBase + (t.height * 0.95 - t.crownBase) * i / tiers;
+            const double reach = t.crownRadius * (1 - (y - t.crownBase) / (t.height - t.crownBase)) + 0.2;
+            const int n = 5 + int(r.nextBelow(3));
+            const double off = uniform(r, 0, 2 * M_PI);
+            for (int k = 0; k < n; ++k) {
+                const double a = off + 2 * M_PI * k / n;
+                const double len = std::min(reach * uniform(r, 0.8, 1.05), t.crownRadius);
+                add(trunk + Vec3d{0, y, 0}, {std::cos(a), -0.25, std::sin(a)}, len, f.leafSize,
+                    std::max(2, int(len / (f.leafSize * 0.7))) * 2);
+            }
+        }
+    } else {
+        const Vec3d c = crownCentre(t);
+        const int n = t.species == Species::Broadleaf ? 4 + int(r.nextBelow(3)) : 6 + int(r.nextBelow(4));
+        for (int k = 0; k < n; ++k) {
+            // Towards a point in the outer crown; leaves cluster around the outer part.
+            const double a = 2 * M_PI * (k + uniform(r, -0.3, 0.3)) / n;
+            const double up = uniform(r, -0.2, 0.8);
+            const Vec3d target = c + Vec3d{std::cos(a) * std::sqrt(1 - up * up), up, std::sin(a) * std::sqrt(1 - up * up)} *
+                                         (t.crownRadius * 0.7);
+            const Vec3d base = t.species == Species::Broadleaf
+                                   ? trunk + Vec3d{0, t.trunkTop, 0}
+                                   : trunk + Vec3d{0, t.crownBase + (t.trunkTop - t.crownBase) * uniform(r, 0, 0.8), 0};
+            const Vec3d d = target - base;
+            const double scale = t.species == Species::Broadleaf ? 1.0 : 0.7;
+            add(base, d, length(d), t.crownRadius * 0.35, int((t.species == Species::Broadleaf ? 110 : 70) * scale));
+        }
+    }
+    return bs;
+}
+
+Bounds3d branchBound(const ForestParams& f, const Branch& b) {
+    Bounds3d box;
+    box.extend(b.base);
+    box.extend(b.base + b.dir * b.length);
+    const double reach = b.length + b.spread + f.leafSize;
+    const double grow = b.spread + f.leafSize + reach * swayAngle(f) + f.leafSize * flutterAngle(f) + 1e-3;
+    return {box.lo - Vec3d{grow, grow, grow}, box.hi + Vec3d{grow, grow, grow}};
+}
+
+class BranchGenerator final : public ProceduralGenerator {
+  public:
+    BranchGenerator(std::shared_ptr<const ForestParams> f, const Tree& tree, const Branch& b)
+        : f_(std::move(f)), tree_(tree), branch_(b) {}
+
+    std::string describe() const override { return "forest branch"; }
+
+    void expand(const ExpandContext& ctx, Scene& out) const override {
+        const ForestParams& f = *f_;
+        const Branch& b = branch_;
+        const std::vector<double> times = swayTimes(f, ctx);
+        // The sway axis: horizontal, across the wind, so branches swing along it.
+        const Vec3d axis = normalize(Vec3d{-f.windZ, 0, f.windX});
+        std::vector<double> angle(times.size());
+        for (size_t k = 0; k < times.size(); ++k)
+            angle[k] = swayAngle(f) * 0.5 * (1 + std::sin(2 * M_PI * times[k] / f.period + b.phase));
+        auto swaying = [&](const Quad& q, const std::function<Quad(const Quad&, size_t)>& local) {
+            std::vector<Quad> keys(times.size());
+            for (size_t k = 0; k < times.size(); ++k) {
+                Quad lq = local ? local(q, k) : q;
+                for (int c = 0; c < 4; ++c) keys[k][size_t(c)] = rotateAbout(lq[size_t(c)], b.base, axis, angle[k]);
+            }
+            return keys;
+        };
+        for (const Quad& q : tube(b.base, b.base + b.dir * b.length, b.radius, b.radius * 0.4, 3))
+            emit(out, ctx, times, swaying(q, nullptr), tree_.bark);
+
+        HashRng r(b.key);
+        Vec3d u, v;
+        basis(b.dir, u, v);
+        const double s = f.leafSize;
+        for (int i = 0; i < b.leaves; ++i) {
+            Vec3d attach, along, across;
+            if (tree_.species == Species::Conifer) {
+                // Needle sprays on both sides along the branch.
+                const double at = b.length * (0.15 + 0.85 * double(i / 2) / std::max(1, b.leaves / 2));
+                const double side = (i % 2) ? 1 : -1;
+                attach = b.base + b.dir * at;
+                along = normalize(u * side + b.dir * 0.6 + Vec3d{0, -0.2, 0});
+                across = normalize(cross(along, v)) * (s * 0.5);
+            } else {
+                const double at = b.length * uniform(r, 0.45, 1.0);
+                Vec3d off{uniform(r, -1, 1), uniform(r, -1, 1), uniform(r, -1, 1)};
+                if (length(off) > 1) off = normalize(off);
+                attach = b.base + b.dir * at + off * b.spread;
+                along = normalize(Vec3d{uniform(r, -1, 1), uniform(r, -0.6, 1), uniform(r, -1, 1)});
+                Vec3d pu, pv;
+                basis(along, pu, pv);
+                across = pu * (s * 0.6);
+            }
+            const Quad leaf{attach - across * 0.5, attach + across * 0.5, attach + along * s - across * 0.5,
+                            attach + along * s + across * 0.5};
+            const Vec3d stem = along;
+            const double phase = uniform(r, 0, 2 * M_PI);
+            const float shade = 0.85f + 0.3f * r.nextFloat();
+            auto flutter = [&](const Quad& q, size_t k) {
+                const double a = flutterAngle(f) * std::sin(2 * M_PI * 3 * times[k] / f.period + phase);
+                Quad o;
+                for (int c = 0; c < 4; ++c) o[size_t(c)] = rotateAbout(q[size_t(c)], attach, stem, a);
+                return o;
+            };
+            emit(out, ctx, times, swaying(leaf, flutter), tree_.leaf * shade);
+        }
+    }
+
+  private:
+    std::shared_ptr<const ForestParams> f_;
+    Tree tree_;
+    Branch branch_;
+};
+
+// ---- A tree, by level of detail ---------------------------------------------------------------------
+
+class TreeGenerator final : public ProceduralGenerator {
+  public:
+    TreeGenerator(std::shared_ptr<const ForestParams> f, const Tree& t) : f_(std::move(f)), tree_(t) {}
+    std::string describe() const override { return "forest tree"; }
+
+    void expand(const ExpandContext& ctx, Scene& out) const override {
+        const ForestParams& f = *f_;
+        const Tree& t = tree_;
+        const double size = std::sqrt(std::max(0.0, ctx.detail));  // pixels across the bound
+        const Vec3d trunk{t.x, 0, t.z};
+        const Vec3d c = crownCentre(t);
+        const double R = t.crownRadius;
+        if (size < 4 / f.detail) {
+            // Far: two crossed quads the size of the crown.
+            const double y0 = t.crownBase * 0.6, y1 = t.height;
+            emitStill(out, ctx, {Vec3d{t.x - R, y0, t.z}, Vec3d{t.x + R, y0, t.z}, Vec3d{t.x - R, y1, t.z}, Vec3d{t.x + R, y1, t.z}}, t.leaf);
+            emitStill(out, ctx, {Vec3d{t.x, y0, t.z - R}, Vec3d{t.x, y0, t.z + R}, Vec3d{t.x, y1, t.z - R}, Vec3d{t.x, y1, t.z + R}}, t.leaf);
+            return;
+        }
+        const bool near = size >= 40 * f.detail;
+        // Undergrowth: a still, solid half-ellipsoid at the tree's foot.
+        for (int k = 0; k < 8; ++k)
+            for (int j = 0; j < 3; ++j) {
+                const double a0 = 2 * M_PI * k / 8, a1 = 2 * M_PI * (k + 1) / 8;
+                const double b0 = 0.5 * M_PI * j / 3, b1 = 0.5 * M_PI * (j + 1) / 3;
+                auto p = [&](double a, double b) {
+                    return trunk + Vec3d{t.bushRadius * std::cos(b) * std::cos(a), t.bushHeight * std::sin(b),
+                                         t.bushRadius * std::cos(b) * std::sin(a)};
+                };
+                emitStill(out, ctx, {p(a0, b0), p(a1, b0), p(a0, b1), p(a1, b1)}, t.bush * (0.8f + 0.15f * float(j)));
+            }
+        for (const Quad& q : tube(trunk, trunk + Vec3d{0, near ? t.trunkTop : t.crownBase, 0}, t.trunkRadius,
+                                  t.trunkRadius * 0.6, near ? 6 : 4))
+            emitStill(out, ctx, q, t.bark);
+        if (!near) {
+            // Middle: a still crown proxy.
+            const int n = 8;
+            for (int k = 0; k < n; ++k) {
+                const double a0 = 2 * M_PI * k / n, a1 = 2 * M_PI * (k + 1) / n;
+                if (t.species == Species::Conifer) {
+                    const Vec3d apex{t.x, t.height, t.z};
+                    emitStill(out, ctx, {trunk + Vec3d{R * std::cos(a0), t.crownBase, R * std::sin(a0)},
+                                         trunk + Vec3d{R * std::cos(a1), t.crownBase, R * std::sin(a1)}, apex, apex},
+                              t.leaf);
+                } else {
+                    const double ry = (t.height - t.crownBase) * 0.5;
+                    for (int j = 0; j < 4; ++j) {
+                        const double b0 = M_PI * j / 4 - M_PI / 2, b1 = M_PI * (j + 1) / 4 - M_PI / 2;
+                        auto p = [&](double a, double b) {
+                            return c + Vec3d{R * std::cos(b) * std::cos(a), ry * std::sin(b), R * std::cos(b) * std::sin(a)};
+                        };
+                        emitStill(out, ctx, {p(a0, b0), p(a1, b0), p(a0, b1), p(a1, b1)}, t.leaf * (0.8f + 0.1f * float(j)));
+                    }
+                }
+            }
+            return;
+        }
+        // Near: every branch a procedural of its own, so unseen branches never grow leaves.
+        for (const Branch& b : branchesOf(f, t)) {
+            ProceduralDesc p;
+            p.generator = std::make_shared<BranchGenerator>(f_, t, b);
+            p.bound = branchBound(f, b);
+            p.objectToWorld = ctx.objectToWorld;
+            p.attributes = ctx.attributes;
+            p.loc = ctx.loc;
+            out.procedurals.push_back(std::move(p));
+        }
+    }
+
+  private:
+    std::shared_ptr<const ForestParams> f_;
+    Tree tree_;
+};
+
+// ---- Cells and the forest ------------------------------------------------------------------------------
+
+struct CellGrid {
+    int nx = 1, nz = 1;
+    double sx = 1, sz = 1;  // cell size
+};
+
+CellGrid cellGrid(const ForestParams& f) {
+    const double cells = std::max(1.0, std::ceil(double(f.count) / f.treesPerCell));
+    CellGrid g;
+    g.nx = std::max(1, int(std::ceil(std::sqrt(cells * f.areaX / f.areaZ))));
+    g.nz = std::max(1, int(std::ceil(cells / g.nx)));
+    g.sx = f.areaX / g.nx;
+    g.sz = f.areaZ / g.nz;
+    return g;
+}
+
+// Trees j with j % cells == cell, placed uniformly in the cell.
+template <typename Fn>
+void forEachTreeInCell(const ForestParams& f, const CellGrid& g, int cell, Fn fn) {
+    const int cells = g.nx * g.nz;
+    const int cx = cell % g.nx, cz = cell / g.nx;
+    for (int j = cell; j < f.count; j += cells) {
+        const uint64_t key = hashCombine(mix64(f.seed), uint64_t(j));
+        HashRng r(hashCombine(key, 0x9e37));
+        const double x = -f.areaX / 2 + g.sx * (cx + double(r.nextFloat()));
+        const double z = -f.areaZ / 2 + g.sz * (cz + double(r.nextFloat()));
+        fn(makeTree(f, key, x, z, -1, 0));
+    }
+}
+
+class CellGenerator final : public ProceduralGenerator {
+  public:
+    CellGenerator(std::shared_ptr<const ForestParams> f, int cell) : f_(std::move(f)), cell_(cell) {}
+    std::string describe() const override { return "forest cell"; }
+    void expand(const ExpandContext& ctx, Scene& out) const override {
+        forEachTreeInCell(*f_, cellGrid(*f_), cell_, [&](const Tree& t) {
+            ProceduralDesc p;
+            p.generator = std::make_shared<TreeGenerator>(f_, t);
+            p.bound = treeBound(*f_, t);
+            p.objectToWorld = ctx.objectToWorld;
+            p.attributes = ctx.attributes;
+            p.loc = ctx.loc;
+            out.procedurals.push_back(std::move(p));
+        });
+    }
+
+  private:
+    std::shared_ptr<const ForestParams> f_;
+    int cell_;
+};
+
+class ForestGenerator final : public ProceduralGenerator {
+  public:
+    explicit ForestGenerator(ForestParams f) : f_(std::make_shared<const ForestParams>(f)) {}
+    std::string describe() const override { return "DynamicLoad forest"; }
+    void expand(const ExpandContext& ctx, Scene& out) const override {
+        const CellGrid g = cellGrid(*f_);
+        for (int cell = 0; cell < g.nx * g.nz; ++cell) {
+            Bounds3d bound;
+            forEachTreeInCell(*f_, g, cell, [&](const Tree& t) { bound.extend(treeBound(*f_, t)); });
+            if (bound.empty()) continue;
+            ProceduralDesc p;
+            p.generator = std::make_shared<CellGenerator>(f_, cell);
+            p.bound = bound;
+            p.objectToWorld = ctx.objectToWorld;
+            p.attributes = ctx.attributes;
+            p.loc = ctx.loc;
+            out.procedurals.push_back(std::move(p));
+        }
+    }
+
+  private:
+    std::shared_ptr<const ForestParams> f_;
+};
+
+}  // namespace
+
+ForestParams parseForestParams(const std::string& datablock, const SourceLoc& loc) {
+    return parseParams(datablock, loc, [](const std::string&, const std::string&) { return false; });
+}
+
+std::shared_ptr<const ProceduralGenerator> makeForestGenerator(const std::string& datablock, const SourceLoc& loc) {
+    return std::make_shared<ForestGenerator>(parseForestParams(datablock, loc));
+}
+
+std::shared_ptr<const ProceduralGenerator> makeTreeGenerator(const std::string& datablock, const SourceLoc& loc) {
+    int species = -1;
+    double height = 0;
+    ForestParams f = parseParams(datablock, loc, [&](const std::string& key, const std::string& value) {
+        if (key == "kind") {
+            if (value == "conifer") species = 0;
+            else if (value == "broadleaf") species = 1;
+            else if (value == "birch") species = 2;
+            else throw InputError(loc, "tree: kind must be conifer, broadleaf or birch, not '" + value + "'");
+            return true;
+        }
+        if (key == "height") {
+            height = numbersOf(key, value, 1, loc)[0];
+            if (!(height > 0)) throw InputError(loc, "tree: height must be positive");
+            return true;
+        }
+        return false;
+    });
+    Tree t = makeTree(f, hashCombine(mix64(f.seed), 0), 0, 0, species, height);
+    return std::make_shared<TreeGenerator>(std::make_shared<const ForestParams>(f), t);
+}
+
+}  // namespace streyes

@@ -1,0 +1,110 @@
+// The procedurals a RIB file can name: archives, helper programs and the built-in generators.
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "procedural/forest.h"
+#include "procedural/run_program.h"
+#include "scene/rib_parser.h"
+#include "streyes/procedural.h"
+
+namespace streyes {
+
+namespace {
+
+// A procedural's RIB output, parsed under its transform and attributes.
+void parseFragment(const std::string& text, const std::string& name, const ExpandContext& ctx, Scene& out) {
+    RibParser parser(out, *ctx.log);
+    parser.beginFragment(ctx.objectToWorld, ctx.attributes);
+    parser.parseString(text, name);
+    parser.finishFragment();
+    if (!out.lights.empty()) {
+        ctx.log->warnOnce("procedural-lights", ctx.loc, "lights declared by a procedural are ignored");
+        out.lights.clear();
+    }
+}
+
+// Procedural "DelayedReadArchive" ["file.rib"]: the file's requests, when the bound is seen.
+class ArchiveGenerator final : public ProceduralGenerator {
+  public:
+    explicit ArchiveGenerator(std::string path) : path_(std::move(path)) {}
+    std::string describe() const override { return "DelayedReadArchive '" + path_ + "'"; }
+    void expand(const ExpandContext& ctx, Scene& out) const override {
+        std::ifstream in(path_, std::ios::binary);
+        if (!in) throw InputError(ctx.loc, "DelayedReadArchive: cannot open '" + path_ + "': " + std::strerror(errno));
+        std::ostringstream text;
+        text << in.rdbuf();
+        parseFragment(text.str(), path_, ctx, out);
+    }
+
+  private:
+    std::string path_;
+};
+
+// Procedural "RunProgram" ["program args" "datablock"]: the program's answer to the detail and
+// the datablock (run_program.h).
+class ProgramGenerator final : public ProceduralGenerator {
+  public:
+    ProgramGenerator(std::string command, std::string datablock)
+        : command_(std::move(command)), datablock_(std::move(datablock)) {}
+    std::string describe() const override { return "RunProgram '" + command_ + "'"; }
+    void expand(const ExpandContext& ctx, Scene& out) const override {
+        const std::string rib = runProgramRequest(command_, ctx.detail, datablock_, ctx.loc);
+        parseFragment(rib, "RunProgram '" + command_ + "' output", ctx, out);
+    }
+
+  private:
+    std::string command_, datablock_;
+};
+
+}  // namespace
+
+std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const std::string& kind,
+                                                                    const std::vector<std::string>& args,
+                                                                    const std::string& directory,
+                                                                    const SourceLoc& loc) {
+    namespace fs = std::filesystem;
+    if (kind == "DelayedReadArchive") {
+        if (args.size() != 1) throw InputError(loc, "Procedural \"DelayedReadArchive\" takes one file name: [\"file.rib\"]");
+        // Relative to the folder of the declaring file, else to the current folder. A missing
+        // archive is reported now, where the mistake is, not when (or if) it is first seen.
+        std::string path = args[0];
+        std::error_code ec;
+        if (fs::path(path).is_relative() && !directory.empty() && fs::exists(fs::path(directory) / path, ec))
+            path = (fs::path(directory) / path).string();
+        if (!fs::is_regular_file(path, ec))
+            throw InputError(loc, "DelayedReadArchive: no archive '" + args[0] + "' (looked beside this file and in the current folder)");
+        return std::make_shared<ArchiveGenerator>(path);
+    }
+    if (kind == "RunProgram") {
+        if (args.empty() || args.size() > 2)
+            throw InputError(loc, "Procedural \"RunProgram\" takes [\"program arguments\" \"datablock\"]");
+        std::vector<std::string> words = splitCommandLine(args[0]);
+        if (words.empty()) throw InputError(loc, "RunProgram: no program given");
+        // A relative program path is looked up beside the declaring file first.
+        if (words[0].find('/') != std::string::npos && fs::path(words[0]).is_relative() && !directory.empty()) {
+            std::error_code ec;
+            fs::path beside = fs::path(directory) / words[0];
+            if (fs::exists(beside, ec)) words[0] = beside.string();
+        }
+        if (findProgram(words[0]).empty())
+            throw InputError(loc, "RunProgram: cannot run '" + words[0] + "': no such program (give a path, or put it on PATH)");
+        std::string command;
+        for (const std::string& w : words) command += (command.empty() ? "" : " ") + w;
+        return std::make_shared<ProgramGenerator>(command, args.size() > 1 ? args[1] : "");
+    }
+    if (kind == "DynamicLoad") {
+        if (args.empty() || args.size() > 2)
+            throw InputError(loc, "Procedural \"DynamicLoad\" takes [\"name\" \"parameters\"]");
+        const std::string block = args.size() > 1 ? args[1] : "";
+        if (args[0] == "forest") return makeForestGenerator(block, loc);
+        if (args[0] == "tree") return makeTreeGenerator(block, loc);
+        throw InputError(loc, "DynamicLoad '" + args[0] +
+                                  "': streyes loads no shared objects; its built-in generators are \"forest\" and \"tree\"");
+    }
+    throw InputError(loc, "unknown procedural '" + kind + "': use DelayedReadArchive, RunProgram or DynamicLoad");
+}
+
+}  // namespace streyes

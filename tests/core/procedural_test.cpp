@@ -1,0 +1,203 @@
+// Procedurals end to end: lazy expansion (never for what is culled), RunProgram, archives,
+// depth limits, bounds that are too small, and the forest's determinism.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iterator>
+
+#include "streyes/rib.h"
+#include "test_util.h"
+
+namespace streyes {
+namespace {
+
+using test::RenderResult;
+
+std::string writeArchive(const std::string& dir, const std::string& name, const std::string& text) {
+    std::string path = dir + "/" + name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+// An orthographic camera where one unit is one pixel (raster x = x, raster y = 16 - y).
+std::string header(const std::string& extra = "") {
+    return "Format 32 16 1\nProjection \"orthographic\"\nScreenWindow 0 32 0 16\nPixelSamples 2 2\n"
+           "PixelFilter \"box\" 1 1\n" + extra + "WorldBegin\nSurface \"constant\"\n";
+}
+
+const char* kSquare = "Patch \"bilinear\" \"P\" [0 0 0  4 0 0  0 4 0  4 4 0]\n";
+
+RenderOptions algorithm(Algorithm a) {
+    RenderOptions o;
+    o.algorithm = a;
+    return o;
+}
+
+TEST(Procedural, ExpandsOnlyWhenItsBoundIsInView) {
+    std::string dir = test::makeTempDir("proc-view");
+    std::string archive = writeArchive(dir, "square.rib", kSquare);
+    // Seen: bound [2, 6] x [2, 6]; translated so the square lands there. Unseen: far to the right.
+    RenderResult r = test::renderRib(header() + "Color [1 0 0]\nTranslate 2 2 5\n"
+                                     "Procedural \"DelayedReadArchive\" [\"" + archive + "\"] [0 4 0 4 0 0]\n"
+                                     "Translate 100 0 0\n"
+                                     "Procedural \"DelayedReadArchive\" [\"" + archive + "\"] [0 4 0 4 0 0]\nWorldEnd\n");
+    EXPECT_EQ(r.stats.procedurals, 2u);
+    EXPECT_EQ(r.stats.counters.proceduralsExpanded, 1u);
+    // The children inherit the colour in force at the Procedural request: red at (4, 12).
+    EXPECT_NEAR(r.channel(0, 3, 12, 0), 1.0f, 1e-5f);
+    EXPECT_NEAR(r.alpha(0, 3, 12), 1.0f, 1e-5f);
+    EXPECT_EQ(r.alpha(0, 10, 12), 0.0f);
+}
+
+TEST(Procedural, HiddenBehindAWallExpandsOnlyWithoutOcclusionCulling) {
+    std::string dir = test::makeTempDir("proc-wall");
+    std::string archive = writeArchive(dir, "square.rib", kSquare);
+    const std::string rib = header() + "Patch \"bilinear\" \"P\" [0 0 1  32 0 1  0 16 1  32 16 1]\n"
+                            "Translate 4 4 5\nProcedural \"DelayedReadArchive\" [\"" + archive + "\"] [0 4 0 4 0 0]\nWorldEnd\n";
+    RenderResult culled = test::renderRib(rib, algorithm(Algorithm::SpacetimeOcclusion));
+    RenderResult open = test::renderRib(rib, algorithm(Algorithm::Spacetime));
+    EXPECT_EQ(culled.stats.counters.proceduralsExpanded, 0u);
+    EXPECT_GT(culled.stats.counters.culledOcclusion, 0u);
+    EXPECT_EQ(open.stats.counters.proceduralsExpanded, 1u);
+    EXPECT_TRUE(test::identicalPixels(culled, open));
+    RenderResult c2 = test::renderRib(rib, algorithm(Algorithm::FramesOcclusion));
+    EXPECT_EQ(c2.stats.counters.proceduralsExpanded, 0u);
+}
+
+TEST(Procedural, ChildrenOutsideTheDeclaredBoundAreNotLost) {
+    std::string dir = test::makeTempDir("proc-bound");
+    std::string archive = writeArchive(dir, "big.rib", "Patch \"bilinear\" \"P\" [0 0 0  20 0 0  0 10 0  20 10 0]\n");
+    // The patch spans raster x [4, 24] but the procedural declares only [4, 5]: with 4-pixel
+    // buckets, most of the buckets it covers never see the declared bound.
+    auto scene = [&](const char* bound) {
+        return header() + "Translate 4 4 5\nProcedural \"DelayedReadArchive\" [\"" + archive + "\"] [" + bound +
+               "]\nWorldEnd\n";
+    };
+    RenderOptions o;
+    o.bucketSize = 4;
+    RenderResult tooSmall = test::renderRib(scene("0 1 0 1 0 0"), o);
+    RenderResult right = test::renderRib(scene("0 20 0 10 0 0"), o);
+    EXPECT_TRUE(test::identicalPixels(tooSmall, right));
+    EXPECT_EQ(tooSmall.stats.passes, 2);
+    EXPECT_EQ(right.stats.passes, 1);
+    EXPECT_NEAR(tooSmall.alpha(0, 20, 4), 1.0f, 1e-6f);  // far outside the declared bound
+    bool warned = false;
+    for (const std::string& w : tooSmall.warnings) warned = warned || w.find("outside the declared bound") != std::string::npos;
+    EXPECT_TRUE(warned);
+}
+
+TEST(Procedural, SelfGeneratingStopsAtTheDepthLimitWithAWarning) {
+    std::string dir = test::makeTempDir("proc-self");
+    std::string path = dir + "/self.rib";
+    writeArchive(dir, "self.rib", std::string(kSquare) + "Translate 0.01 0 0\nProcedural \"DelayedReadArchive\" [\"" +
+                                      path + "\"] [0 5 0 4 0 0]\n");
+    RenderResult r = test::renderRib(header() + "Translate 2 2 5\nProcedural \"DelayedReadArchive\" [\"" + path +
+                                     "\"] [0 5 0 4 0 0]\nWorldEnd\n");
+    bool warned = false;
+    for (const std::string& w : r.warnings) warned = warned || w.find("nested more than 32") != std::string::npos;
+    EXPECT_TRUE(warned);
+    EXPECT_EQ(r.stats.counters.proceduralsExpanded, 33u);  // depths 0..32
+    EXPECT_NEAR(r.alpha(0, 3, 12), 1.0f, 1e-6f);
+}
+
+TEST(Procedural, RunProgramInPythonWorksEndToEnd) {
+    const std::string script = test::sourcePath("tests/data/squares.py");
+    // Two requests to the same program (it stays running): 3 and 2 squares of 2 pixels.
+    RenderResult r = test::renderRib(header() + "Color [0 1 0]\n"
+                                     "Procedural \"RunProgram\" [\"/usr/bin/python3 " + script + "\" \"3 1 1 2 5\"] [1 11 1 3 5 5]\n"
+                                     "Procedural \"RunProgram\" [\"/usr/bin/python3 " + script + "\" \"2 1 9 2 5\"] [1 7 9 11 5 5]\nWorldEnd\n");
+    EXPECT_EQ(r.stats.counters.proceduralsExpanded, 2u);
+    // Squares at x in [1,3], [5,7], [9,11] on rows y in [1,3] (raster rows 13..14), and two more at y in [9, 11].
+    for (int x : {1, 2, 5, 6, 9, 10}) EXPECT_NEAR(r.alpha(0, x, 14), 1.0f, 1e-6f) << x;
+    for (int x : {3, 4, 7, 8, 11, 12}) EXPECT_EQ(r.alpha(0, x, 14), 0.0f) << x;
+    EXPECT_NEAR(r.channel(0, 5, 6, 1), 1.0f, 1e-5f);
+    EXPECT_EQ(r.alpha(0, 9, 6), 0.0f);
+}
+
+// The line number of `needle` in `text`, from 1.
+int lineOf(const std::string& text, const std::string& needle) {
+    size_t at = text.find(needle);
+    return 1 + int(std::count(text.begin(), text.begin() + long(at), '\n'));
+}
+
+TEST(Procedural, RunProgramErrorsNameTheProcedural) {
+    Log log;
+    const std::string missing = header() + "Procedural \"RunProgram\" [\"no-such-program-xyz\" \"\"] [0 1 0 1 0 1]\nWorldEnd\n";
+    try {
+        parseRibString(missing, "test.rib", log);
+        FAIL() << "a missing program must be an error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("test.rib:" + std::to_string(lineOf(missing, "Procedural"))), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("no-such-program-xyz"), std::string::npos);
+    }
+    const std::string failing = header() + "Procedural \"RunProgram\" [\"/bin/false\" \"\"] [0 4 0 4 0 1]\nWorldEnd\n";
+    try {
+        test::renderRib(failing);
+        FAIL() << "a failing program must be an error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("test.rib:" + std::to_string(lineOf(failing, "Procedural"))), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("exited with status 1"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Procedural, ReadArchiveIncludesInPlace) {
+    std::string dir = test::makeTempDir("proc-read");
+    std::string archive = writeArchive(dir, "square.rib", kSquare);
+    RenderResult r = test::renderRib(header() + "Color [0 0 1]\nTranslate 20 2 5\nReadArchive \"" + archive + "\"\nWorldEnd\n");
+    EXPECT_NEAR(r.channel(0, 21, 12, 2), 1.0f, 1e-5f);
+    EXPECT_EQ(r.stats.procedurals, 0u);
+}
+
+// A tilted wall between the camera and the small forest: once the wall has hit every sample, no
+// first hits come any more, yet coverage must still grow as depth passes the wall, so nothing of
+// the forest (all behind the wall) may expand. (Adaptive layers once stalled here.)
+TEST(Procedural, NothingOfAForestBehindAWallExpands) {
+    Log log;
+    std::string rib;
+    {
+        std::ifstream in(test::sourcePath("scenes/forest-small.rib"));
+        rib.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    const std::string wall = "WorldBegin\nAttributeBegin\nPatch \"bilinear\" \"P\" "
+                             "[-60 -20 -44  60 -20 -44  -60 80 -42  60 80 -42]\nAttributeEnd\n";
+    rib.replace(rib.find("WorldBegin\n"), 11, wall);
+    // Move the forest 20 m back, so that every cell's bound (trees' reach and sway included) lies
+    // behind the wall.
+    rib.replace(rib.find("Procedural"), 10, "Translate 0 0 20\nProcedural");
+    Scene scene = parseRibString(rib, "wall.rib", log);
+    RenderOptions o;
+    o.xres = 96;
+    o.yres = 54;
+    o.hasFrames = true;
+    o.firstFrame = o.lastFrame = 1;
+    RenderResult r = test::renderScene(scene, o);
+    EXPECT_EQ(r.stats.counters.proceduralsExpanded, 0u);  // not even the forest: it is all behind the wall
+    EXPECT_GT(r.stats.counters.culledOcclusion, 0u);
+    o.algorithm = Algorithm::Spacetime;  // without culling every cell in view expands
+    RenderResult open = test::renderScene(scene, o);
+    ASSERT_GE(open.stats.counters.proceduralsExpandedByDepth.size(), 3u);
+    EXPECT_GT(open.stats.counters.proceduralsExpandedByDepth[1], 5u);
+    EXPECT_TRUE(test::identicalPixels(r, open));
+}
+
+TEST(Procedural, ForestIsTheSameWhateverTheThreadCount) {
+    Log log;
+    Scene scene = parseRibFile(test::sourcePath("scenes/forest-small.rib"), log);
+    RenderOptions o;
+    o.xres = 96;
+    o.yres = 54;
+    o.hasFrames = true;
+    o.firstFrame = 1;
+    o.lastFrame = 3;
+    o.threads = 1;
+    RenderResult one = test::renderScene(scene, o);
+    o.threads = 2;
+    RenderResult two = test::renderScene(scene, o);
+    EXPECT_TRUE(test::identicalPixels(one, two));
+    EXPECT_EQ(one.stats.counters.proceduralsExpanded, two.stats.counters.proceduralsExpanded);
+    EXPECT_EQ(one.stats.bodiesGenerated, two.stats.bodiesGenerated);
+    EXPECT_GT(one.stats.counters.proceduralsExpanded, 10u);
+}
+
+}  // namespace
+}  // namespace streyes
