@@ -7,7 +7,8 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 PACKAGES=(cmake ninja-build g++ pkg-config
           libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev libosd-dev libtbb-dev
-          libgtest-dev libbenchmark-dev python3 python3-openimageio python3-numpy)
+          libgtest-dev libbenchmark-dev python3 python3-openimageio python3-numpy
+          gnuplot-nox)
 
 missing=()
 for p in "${PACKAGES[@]}"; do

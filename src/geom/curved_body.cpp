@@ -222,11 +222,6 @@ void columnMap(SideVertices& s, int n) {
     s.map[size_t(n)] = M;
 }
 
-template <typename T>
-T bilerp(const std::array<T, 4>& c, float u, float v) {
-    return lerp(lerp(c[0], c[1], u), lerp(c[2], c[3], u), v);
-}
-
 Bounds3f lerpBox(const Bounds3f& a, const Bounds3f& b, float s) { return {lerp(a.lo, b.lo, s), lerp(a.hi, b.hi, s)}; }
 
 }  // namespace

@@ -1,11 +1,11 @@
 // The streyes command as a user runs it: exit codes, messages, files written.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include "cli_run.h"
 #include "streyes/image_io.h"
 #include "test_util.h"
 
@@ -14,29 +14,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-    int exitCode = -1;
-    std::string output;  // stdout and stderr
-};
+using test::CliRun;
+using test::writeFile;
 
-CliRun streyes(const std::string& args) {
-    CliRun r;
-    std::string cmd = std::string(STREYES_EXE) + " " + args + " 2>&1";
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-    int status = pclose(p);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
-std::string writeFile(const std::string& dir, const std::string& name, const std::string& text) {
-    std::string path = dir + "/" + name;
-    std::ofstream(path) << text;
-    return path;
-}
+CliRun streyes(const std::string& args) { return test::runStreyes(args); }
 
 std::vector<std::string> listDir(const std::string& dir) {
     std::vector<std::string> names;
