@@ -85,6 +85,11 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
 void BucketWorker::pushRoot(const Body& root) {
     const TimeSpan& span = root.time();
     if (!span.overlaps(windowStart_, windowEnd_)) return;
+    // Motion segments meet at keys: a segment that only touches the window at its start is left
+    // to the next segment, which covers that instant too (the render's last instant has no next
+    // one); one that starts where the window ends is never reached (sample times stay below it).
+    if (span.t1 == windowStart_ && span.t0 < span.t1 && span.t1 < scene_.windowEnd) return;
+    if (span.t0 == windowEnd_ && windowStart_ < windowEnd_) return;
     if (root.moving() && (span.t0 < windowStart_ || span.t1 > windowEnd_)) {
         push(root.restrictedTo(std::max(span.t0, windowStart_), std::min(span.t1, windowEnd_)));
     } else if (occlusion_) {

@@ -224,6 +224,24 @@ TEST(Render, StillSceneIsSplitOnceInSpacetimeAndPerFrameInFrames) {
     EXPECT_LT(st16.sampleHits, 17 * st1.sampleHits);
 }
 
+TEST(Render, MotionSegmentsAreDicedOnlyInTheFramesTheyReach) {
+    // Keys at every frame, shutter [0, 0.5]: frame f sees the segment [f, f+1] only. The segment
+    // [f-1, f] touches frame f's exposure at its start but is left to [f, f+1].
+    std::string rib = "Format 16 16 1\nProjection \"orthographic\"\nScreenWindow 0 16 0 16\nShutter 0 0.5\n"
+                      "PixelSamples 2 2\nWorldBegin\nSurface \"constant\"\nMotionBegin [0 1 2 3 4 5 6 7 8]\n";
+    for (int k = 0; k <= 8; ++k) rib += "Translate " + std::to_string(k % 2) + " 0 0\n";
+    rib += "MotionEnd\nPatch \"bilinear\" \"P\" [4 4 5  8 4 5  4 8 5  8 8 5]\nWorldEnd\n";
+    RenderOptions o;
+    o.algorithm = Algorithm::Frames;
+    o.hasFrames = true;
+    o.firstFrame = 0;
+    o.lastFrame = 7;
+    o.bucketSize = 32;  // one bucket
+    RenderResult r = renderRib(rib, o);
+    EXPECT_EQ(r.stats.counters.gridsDiced, 8u);  // one per frame, not two
+    EXPECT_GT(r.alpha(3, 6, 10), 0.99f);
+}
+
 TEST(Render, PatchThroughTheEyePlaneRendersItsVisiblePart) {
     // A floor at y = -1 from behind the camera (z = -10) to z = 50.
     RenderResult r = renderRib(R"(Format 32 32 1
