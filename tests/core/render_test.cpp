@@ -225,12 +225,14 @@ TEST(Render, StillSceneIsSplitOnceInSpacetimeAndPerFrameInFrames) {
 }
 
 TEST(Render, MotionSegmentsAreDicedOnlyInTheFramesTheyReach) {
-    // Keys at every frame, shutter [0, 0.5]: frame f sees the segment [f, f+1] only. The segment
-    // [f-1, f] touches frame f's exposure at its start but is left to [f, f+1].
-    std::string rib = "Format 16 16 1\nProjection \"orthographic\"\nScreenWindow 0 16 0 16\nShutter 0 0.5\n"
-                      "PixelSamples 2 2\nWorldBegin\nSurface \"constant\"\nMotionBegin [0 1 2 3 4 5 6 7 8]\n";
-    for (int k = 0; k <= 8; ++k) rib += "Translate " + std::to_string(k % 2) + " 0 0\n";
-    rib += "MotionEnd\nPatch \"bilinear\" \"P\" [4 4 5  8 4 5  4 8 5  8 8 5]\nWorldEnd\n";
+    // A sphere moves during frames 0-4, then holds still: two roots (curved primitives keep one
+    // mesh per motion segment), [0, 4] moving and [4, 7.5] still. With shutter [0, 0.5], frame 4's
+    // exposure [4, 4.5] touches the moving one only at its end, which the still one covers: it
+    // must not be diced again there.
+    const std::string rib = "Format 16 16 1\nProjection \"orthographic\"\nScreenWindow 0 16 0 16\nShutter 0 0.5\n"
+                            "PixelSamples 2 2\nWorldBegin\nSurface \"constant\"\n"
+                            "MotionBegin [0 4]\nTranslate 0 0 0\nTranslate 4 0 0\nMotionEnd\n"
+                            "Translate 4 6 5\nSphere 1.5 -1.5 1.5 360\nWorldEnd\n";
     RenderOptions o;
     o.algorithm = Algorithm::Frames;
     o.hasFrames = true;
@@ -238,8 +240,10 @@ TEST(Render, MotionSegmentsAreDicedOnlyInTheFramesTheyReach) {
     o.lastFrame = 7;
     o.bucketSize = 32;  // one bucket
     RenderResult r = renderRib(rib, o);
-    EXPECT_EQ(r.stats.counters.gridsDiced, 8u);  // one per frame, not two
-    EXPECT_GT(r.alpha(3, 6, 10), 0.99f);
+    EXPECT_EQ(r.stats.counters.rootBodies, 2u);
+    EXPECT_EQ(r.stats.counters.gridsDiced, 8u);  // one per frame, not two in frame 4
+    EXPECT_GT(r.alpha(4, 8, 10), 0.5f);          // held at x = 8 from frame 4 on
+    EXPECT_EQ(r.alpha(4, 4, 10), 0.0f);
 }
 
 TEST(Render, PatchThroughTheEyePlaneRendersItsVisiblePart) {
