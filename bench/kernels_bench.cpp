@@ -16,6 +16,7 @@
 #include "streyes/image_block.h"
 #include "streyes/rasterizer.h"
 #include "streyes/shading.h"
+#include "split_loop.h"
 
 namespace streyes {
 namespace {
@@ -58,25 +59,7 @@ void BM_SplitLoop(benchmark::State& state) {
     TrilinearBody root({0, 1}, c, c, {}, &m);
     std::vector<BodyPtr> stack;
     uint64_t splits = 0, dices = 0;
-    for (auto _ : state) {
-        stack.clear();
-        stack.push_back(root.restrictedTo(0, 1));
-        while (!stack.empty()) {
-            BodyPtr b = std::move(stack.back());
-            stack.pop_back();
-            RasterMeasure mm = b->measure(cam);
-            double nu = std::max(1.0, std::ceil(double(mm.extentU))), nv = std::max(1.0, std::ceil(double(mm.extentV)));
-            if (nu * nv <= 256) {
-                ++dices;
-                continue;
-            }
-            BodyPtr h[2];
-            b->split(mm.extentU >= mm.extentV ? SplitAxis::U : SplitAxis::V, h);
-            stack.push_back(std::move(h[1]));
-            stack.push_back(std::move(h[0]));
-            ++splits;
-        }
-    }
+    for (auto _ : state) splitToGrids(root, cam, stack, splits, dices);
     state.counters["splits/s"] = benchmark::Counter(double(splits), benchmark::Counter::kIsRate);
     state.counters["grids"] = double(dices) / double(state.iterations());
 }

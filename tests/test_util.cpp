@@ -2,15 +2,25 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <functional>
 #include <filesystem>
+#include <functional>
+#include <mutex>
 #include <stdexcept>
 
 #include "streyes/rib.h"
 
 namespace streyes::test {
+
+Camera pixelCamera(int size) {
+    CameraDesc cd;
+    cd.xres = cd.yres = size;
+    cd.hasScreenWindow = true;
+    cd.screenWindow[0] = 0, cd.screenWindow[1] = size, cd.screenWindow[2] = 0, cd.screenWindow[3] = size;
+    return Camera(cd);
+}
 
 std::string sourcePath(const std::string& relative) { return std::string(STREYES_SOURCE_DIR) + "/" + relative; }
 
@@ -92,6 +102,98 @@ float meanAbsDifference(const RenderResult& a, const RenderResult& b) {
         ++n;
     });
     return n ? float(s / double(n)) : 0.0f;
+}
+
+}  // namespace streyes::test
+
+namespace streyes::test {
+
+std::string orthoHeader(int w, int h, const std::string& extra) {
+    return "Format " + std::to_string(w) + " " + std::to_string(h) + " 1\n" +
+           "Projection \"orthographic\"\nScreenWindow 0 " + std::to_string(w) + " 0 " + std::to_string(h) + "\n" +
+           "PixelFilter \"box\" 1 1\n" + extra + "WorldBegin\nSurface \"constant\"\n";
+}
+
+std::string square(double x0, double x1, double y0, double y1, double z) {
+    auto n = [](double v) { return std::to_string(v); };
+    return "Patch \"bilinear\" \"P\" [" + n(x0) + " " + n(y0) + " " + n(z) + "  " + n(x1) + " " + n(y0) + " " + n(z) +
+           "  " + n(x0) + " " + n(y1) + " " + n(z) + "  " + n(x1) + " " + n(y1) + " " + n(z) + "]\n";
+}
+
+double overlap(double p, double a, double b) { return std::max(0.0, std::min(p + 1, b) - std::max(p, a)); }
+
+std::string testName(Algorithm a) {
+    std::string n = algorithmName(a);
+    std::replace(n.begin(), n.end(), '-', '_');
+    return n;
+}
+
+SampleRecord renderSamples(const std::string& rib, RenderOptions options) {
+    struct Taken {
+        int frame, x, y;
+        std::vector<SamplePosition> positions;
+        std::vector<SampleHit> hits;
+    };
+    std::vector<Taken> taken;
+    std::mutex mutex;
+    // Each bucket's own tile (its guard band belongs to its neighbours).
+    options.sampleObserver = [&](const ImageBlock& block, const PixelRect& tile) {
+        const size_t S = size_t(block.slices());
+        std::vector<Taken> mine;
+        for (int y = tile.y0; y <= tile.y1; ++y)
+            for (int x = tile.x0; x <= tile.x1; ++x)
+                for (int fi = 0; fi < block.frameCount(); ++fi) {
+                    const size_t base = block.pixelOffset(x, y) + size_t(fi) * S;
+                    mine.push_back({block.firstFrame() + fi, x, y,
+                                    {block.positions() + base, block.positions() + base + S},
+                                    {block.hits() + base, block.hits() + base + S}});
+                }
+        std::lock_guard<std::mutex> lock(mutex);
+        for (Taken& t : mine) taken.push_back(std::move(t));
+    };
+    RenderResult r = renderRib(rib, options);
+    SampleRecord rec;
+    rec.width = r.stats.width;
+    rec.height = r.stats.height;
+    rec.frames = r.stats.lastFrame - r.stats.firstFrame + 1;
+    rec.samplesPerPixel = r.stats.samplesPerPixel;
+    const size_t S = size_t(rec.samplesPerPixel);
+    const size_t n = size_t(rec.width) * size_t(rec.height) * size_t(rec.frames) * S;
+    rec.positions.resize(n);
+    rec.hits.resize(n);
+    if (taken.size() * S != n) throw std::runtime_error("the buckets did not cover the image exactly once");
+    for (const Taken& t : taken) {
+        const size_t at = ((size_t(t.frame - r.stats.firstFrame) * size_t(rec.height) + size_t(t.y)) *
+                               size_t(rec.width) + size_t(t.x)) * S;
+        std::copy(t.positions.begin(), t.positions.end(), rec.positions.begin() + long(at));
+        std::copy(t.hits.begin(), t.hits.end(), rec.hits.begin() + long(at));
+    }
+    return rec;
+}
+
+SampleAgreement compareSamples(const SampleRecord& a, const SampleRecord& b, float colorTolerance,
+                               float depthTolerance) {
+    if (a.positions.size() != b.positions.size())
+        throw std::runtime_error("the renders hold different numbers of samples");
+    SampleAgreement r;
+    r.samples = a.hits.size();
+    for (size_t i = 0; i < a.hits.size(); ++i) {
+        const SamplePosition &p = a.positions[i], &q = b.positions[i];
+        if (p.x != q.x || p.y != q.y || p.tf != q.tf) throw std::runtime_error("the renders used different samples");
+        const SampleHit &x = a.hits[i], &y = b.hits[i];
+        const bool hx = x.a > 0, hy = y.a > 0;
+        if (hx != hy) continue;
+        ++r.hitOrMiss;
+        if (!hx) {
+            ++r.sameSurface;
+            continue;
+        }
+        const float dc = std::max({std::fabs(x.c.x - y.c.x), std::fabs(x.c.y - y.c.y), std::fabs(x.c.z - y.c.z)});
+        if (x.id == y.id && dc <= colorTolerance &&
+            std::fabs(x.z - y.z) <= depthTolerance * std::max(std::fabs(x.z), std::fabs(y.z)))
+            ++r.sameSurface;
+    }
+    return r;
 }
 
 }  // namespace streyes::test

@@ -5,12 +5,17 @@
 #include <string>
 #include <vector>
 
+#include "streyes/camera.h"
 #include "streyes/film.h"
 #include "streyes/renderer.h"
 #include "streyes/scene.h"
 #include "streyes/stats.h"
 
 namespace streyes::test {
+
+// Orthographic camera of size x size pixels where one unit is one pixel: raster x = x,
+// raster y = size - y.
+Camera pixelCamera(int size);
 
 // Absolute path of a file in the source tree, e.g. sourcePath("scenes/ramp.rib").
 std::string sourcePath(const std::string& relative);
@@ -39,5 +44,36 @@ bool identicalPixels(const RenderResult& a, const RenderResult& b);
 // Largest absolute RGBA difference over all frames and pixels.
 float maxAbsDifference(const RenderResult& a, const RenderResult& b);
 float meanAbsDifference(const RenderResult& a, const RenderResult& b);
+
+// An orthographic camera where one scene unit is one pixel (raster x = x, raster y = h - y), a
+// box filter one pixel wide, then `extra` options, WorldBegin and Surface "constant".
+std::string orthoHeader(int w, int h, const std::string& extra = "");
+// Patch "bilinear" of the axis-aligned square [x0, x1] x [y0, y1] at depth z.
+std::string square(double x0, double x1, double y0, double y1, double z);
+// Fraction of pixel [p, p+1] covered by [a, b].
+double overlap(double p, double a, double b);
+// The algorithm's name as a test name ("raytrace_frames").
+std::string testName(Algorithm a);
+
+// Every sample of a render as the buckets left it before the pixel filter, in image order:
+// ((frame - first) * height + y) * width + x, then stratum.
+struct SampleRecord {
+    int width = 0, height = 0, frames = 0, samplesPerPixel = 0;
+    std::vector<SamplePosition> positions;
+    std::vector<SampleHit> hits;
+};
+SampleRecord renderSamples(const std::string& rib, RenderOptions options = {});
+
+// Sample by sample: how many samples two renders of the same samples agree on.
+struct SampleAgreement {
+    size_t samples = 0;
+    size_t hitOrMiss = 0;   // both hit or both missed
+    size_t sameSurface = 0; // that, and where both hit, the same surface (colour and depth agree)
+    double share() const { return samples ? double(sameSurface) / double(samples) : 0; }
+};
+// Same surface: the same primitive, colours within colorTolerance (max over channels) and depths
+// within a relative depthTolerance. Throws when the two do not hold the same sample positions.
+SampleAgreement compareSamples(const SampleRecord& a, const SampleRecord& b, float colorTolerance = 1e-3f,
+                               float depthTolerance = 1e-3f);
 
 }  // namespace streyes::test

@@ -8,7 +8,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 PACKAGES=(cmake ninja-build g++ pkg-config
           libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev libosd-dev libtbb-dev
           libgtest-dev libbenchmark-dev python3 python3-openimageio python3-numpy
-          clang libclang-rt-14-dev)
+          gnuplot-nox clang libclang-rt-14-dev)
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -6,6 +6,9 @@
 //   measure()      how large it is in raster spacetime, to choose between split and dice,
 //   split(axis)    two halves along u, v or t,
 //   dice(nu, nv)   a grid of micropolygon vertices at t0 and t1.
+//   boundDuring()  a bound over a sub-interval of its time span (the ray tracer's hierarchy asks
+//                  this for every spacetime cell it holds the body in: Glassner's "intelligent
+//                  objects" answer bound requests themselves).
 // Everything else (culling, the split loop, sampling) is generic over these questions.
 #pragma once
 
@@ -82,6 +85,15 @@ class Body {
     virtual bool diceableInTime() const { return true; }
 
     virtual LBBox3f bound() const = 0;
+    // Camera-space bound of the body during [a, b], a sub-span of time(). The LBBox lerped to a
+    // and to b bounds everything in between (control points that move linearly, or a bound that
+    // holds at every time); bodies override this with something tighter when they can.
+    virtual Bounds3f boundDuring(double a, double b) const {
+        const LBBox3f b01 = bound();
+        if (!moving_) return b01.b0;
+        const double len = time_.t1 - time_.t0;
+        return unionOf(b01.at(float((a - time_.t0) / len)), b01.at(float((b - time_.t0) / len)));
+    }
     virtual RasterMeasure measure(const Camera& camera) const = 0;
     virtual CameraExtents cameraExtents() const = 0;
     // Splits into two halves; a T split cuts the time span in half.
@@ -116,8 +128,18 @@ class TrilinearBody final : public Body {
 
     const Corners& corners(int k) const { return P_[k]; }
     const std::array<Color, 4>& colors() const { return Cs_; }
+    // The corners at time t (held outside [t0, t1]); the ray tracer's view of the body.
+    Corners cornersAt(double t) const {
+        if (!moving_ || t <= time_.t0) return P_[0];
+        if (t >= time_.t1) return P_[1];
+        const float s = float((t - time_.t0) / (time_.t1 - time_.t0));
+        Corners c;
+        for (size_t i = 0; i < 4; ++i) c[i] = lerp(P_[0][i], P_[1][i], s);
+        return c;
+    }
 
     LBBox3f bound() const override;
+    Bounds3f boundDuring(double a, double b) const override;
     RasterMeasure measure(const Camera& camera) const override;
     CameraExtents cameraExtents() const override;
     void split(SplitAxis axis, std::unique_ptr<Body> out[2]) const override;
@@ -158,5 +180,13 @@ class KeyedPatchBody final : public Body {
     std::vector<Corners> keys_;
     std::array<Color, 4> Cs_;
 };
+
+// Point, colour or normal of a bilinear patch at (u, v), corners in RenderMan order. The normal
+// is dP/du x dP/dv, not normalised; at collapsed edges it falls back to the mean normal.
+template <typename T>
+T bilerp(const std::array<T, 4>& c, float u, float v) {
+    return lerp(lerp(c[0], c[1], u), lerp(c[2], c[3], u), v);
+}
+Vec3f bilinearNormal(const TrilinearBody::Corners& p, float u, float v);
 
 }  // namespace streyes

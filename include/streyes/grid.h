@@ -26,6 +26,10 @@ struct Grid {
     std::vector<Vec3f> N[2];      // geometric normals (not normalised)
     std::vector<Color> Cs;        // surface colour per vertex
     std::vector<Color> Ci[2];     // shaded colour at t0, t1 (written by the shading stage)
+    // Lights that cast shadows: their contribution per vertex (shadowSlots colours a vertex, at
+    // t0 and t1), kept out of Ci for the per-sample shadow test. Set shadowSlots before dicing.
+    int shadowSlots = 0;
+    std::vector<Color> Cl[2];
 
     int vertexCount() const { return (nu + 1) * (nv + 1); }
     int index(int i, int j) const { return j * (nu + 1) + i; }  // i along u, j along v
@@ -38,6 +42,7 @@ struct Grid {
             P[k].resize(n);
             N[k].resize(n);
             Ci[k].resize(n);
+            if (shadowSlots) Cl[k].resize(n * size_t(shadowSlots));
         }
         Cs.resize(n);
     }

@@ -57,7 +57,10 @@ void generatePixelSamples(int px, int py, int frame, const SamplePattern& patter
 class ImageBlock {
   public:
     // Sizes the block, fills in the sample positions and clears the hits (reusing memory).
-    void reset(const PixelRect& rect, int firstFrame, int frameCount, const SamplePattern& pattern);
+    // shadowSlots > 0 also keeps, with each sample's hit, the contribution of each light that
+    // casts shadows before its shadow test (shadowed()), for the shadow pass (trace.h).
+    void reset(const PixelRect& rect, int firstFrame, int frameCount, const SamplePattern& pattern,
+               int shadowSlots = 0);
 
     const PixelRect& rect() const { return rect_; }
     int firstFrame() const { return firstFrame_; }
@@ -81,9 +84,14 @@ class ImageBlock {
     const SamplePosition* positions() const { return positions_.data(); }
     SampleHit* hits() { return hits_.data(); }
     const SampleHit* hits() const { return hits_.data(); }
+    int shadowSlots() const { return shadowSlots_; }
+    Color* shadowed(size_t sample) { return &shadowed_[sample * size_t(shadowSlots_)]; }
 
     size_t sampleCount() const { return positions_.size(); }
-    size_t bytes() const { return positions_.capacity() * sizeof(SamplePosition) + hits_.capacity() * sizeof(SampleHit); }
+    size_t bytes() const {
+        return positions_.capacity() * sizeof(SamplePosition) + hits_.capacity() * sizeof(SampleHit) +
+               shadowed_.capacity() * sizeof(Color);
+    }
 
   private:
     PixelRect rect_;
@@ -92,6 +100,8 @@ class ImageBlock {
     std::vector<SamplePosition> positions_;
     std::vector<SampleHit> hits_;
     std::vector<uint16_t> sliceStratum_;
+    int shadowSlots_ = 0;
+    std::vector<Color> shadowed_;  // shadowSlots_ per sample, valid where the sample has a hit
 };
 
 }  // namespace streyes

@@ -20,6 +20,10 @@ std::string expandFramePattern(const std::string& pattern, int frame);
 bool hasFrameField(const std::string& pattern);
 // Inserts ".####" before the extension: "out.exr" -> "out.####.exr".
 std::string addFrameField(const std::string& pattern);
+// The frames whose files exist for `pattern`, ascending: frame f is listed when the file
+// expandFramePattern(pattern, f) exists. The '#' run must be in the file name, not in a folder
+// name (InputError otherwise). An unreadable or missing folder gives no frames.
+std::vector<int> findFrames(const std::string& pattern);
 
 // Writes one frame atomically: encoded in memory, written to temporaryFrameName(path, pid) with
 // every write checked and synced, then renamed to `path`. Throws RenderError with a clear message

@@ -39,6 +39,14 @@ class GridRasterizer {
     // Samples every micropolygon of a shaded grid into the block's frames and slices.
     void rasterize(const Grid& grid, const Camera& camera, const Shutter& shutter, ImageBlock& block,
                    RasterCounters& counters);
+    // For tests of watertightness: when set, every hit (before the depth test) adds to
+    // counts[sample index in the block] the number of the micropolygon's triangles holding the
+    // sample (2 where a micropolygon folded at a silhouette covers it twice), and to windings[]
+    // their orientations in raster space (+1 or -1 each): 0 for a closed surface.
+    void countHitsInto(uint32_t* counts, int32_t* windings) {
+        hitCounts_ = counts;
+        windings_ = windings;
+    }
 
   private:
     struct RasterVertex {
@@ -61,7 +69,11 @@ class GridRasterizer {
     };
     void collectSlices(const Grid& grid, const Shutter& shutter, const ImageBlock& block);
     void collectFrames(const Grid& grid, const Shutter& shutter, const ImageBlock& block);
+    // Shadowed: the grid carries the contributions of lights that cast shadows (Grid::Cl), kept
+    // with each hit; a separate instance, so that scenes without them pay nothing.
+    template <bool Shadowed>
     void sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
+    template <bool Shadowed>
     void sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
     // Raster positions at time t, and optionally the camera-space positions they come from.
     void project(const Grid& grid, double t, const Camera& camera, std::vector<RasterVertex>& out,
@@ -72,6 +84,8 @@ class GridRasterizer {
     std::vector<Vec3f> ca_, cb_;  // camera space at the ends of a slice (perspective, moving grids)
     std::vector<Slice> slices_;
     std::vector<FrameSpan> frames_;
+    uint32_t* hitCounts_ = nullptr;
+    int32_t* windings_ = nullptr;
 };
 
 }  // namespace streyes

@@ -7,6 +7,8 @@
 // same samples, so the two differ only in how often geometry is processed. The "-occlusion"
 // variants (C' and S with culling) process bodies near to far in depth layers and drop those a
 // summed-volume table of nearer coverage says are hidden (occlusion.h).
+// Ray tracing ("raytrace", "raytrace-frames"): the same buckets and samples, traced through
+// Glassner's spacetime hierarchy (one for the whole render) or a 3D hierarchy per frame (trace.h).
 #pragma once
 
 #include <cstdint>
@@ -16,13 +18,17 @@
 #include "streyes/film.h"
 #include "streyes/render_scene.h"
 #include "streyes/scene.h"
+#include "streyes/spacetime_bvh.h"
 #include "streyes/stats.h"
 
 namespace streyes {
 
-enum class Algorithm { Frames, FramesOcclusion, Spacetime, SpacetimeOcclusion };
+enum class Algorithm { Frames, FramesOcclusion, Spacetime, SpacetimeOcclusion, Raytrace, RaytraceFrames };
 inline bool usesOcclusion(Algorithm a) { return a == Algorithm::FramesOcclusion || a == Algorithm::SpacetimeOcclusion; }
-inline bool perFrame(Algorithm a) { return a == Algorithm::Frames || a == Algorithm::FramesOcclusion; }
+inline bool perFrame(Algorithm a) {
+    return a == Algorithm::Frames || a == Algorithm::FramesOcclusion || a == Algorithm::RaytraceFrames;
+}
+inline bool raytraces(Algorithm a) { return a == Algorithm::Raytrace || a == Algorithm::RaytraceFrames; }
 const char* algorithmName(Algorithm a);
 bool parseAlgorithm(const std::string& name, Algorithm* out);
 
@@ -54,6 +60,12 @@ struct RenderOptions {
     int maxSplitsPerPrimitive = 1 << 20;  // splits of one primitive in one bucket (bounds the work)
     float timeSplitRatio = 2.0f;     // split t when motion > ratio * size ...
     float timeSplitMinMotion = 16.0f;  // ... and motion > this many pixels
+
+    // Ray tracing and shadows (see spacetime_bvh.h).
+    HierarchyOptions hierarchy;
+    // For tests and tools: sees each bucket's samples (hits before the filter) and the tile it
+    // resolves. Called from worker threads, one bucket at a time each.
+    std::function<void(const ImageBlock& block, const PixelRect& tile)> sampleObserver;
 };
 
 // Frame range, resolution and sample pattern after applying options over the scene.

@@ -50,6 +50,15 @@ struct ShaderDesc {
     SourceLoc loc;
 };
 
+// A RenderMan basis (Basis request): P(u) = [u^3 u^2 u 1] * m * [P0 P1 P2 P3]^T, and `step`, the
+// control points from one patch of a PatchMesh to the next. The default is Bezier, step 3.
+struct BasisDesc {
+    std::array<double, 16> m{-1, 3, -3, 1, 3, -6, 3, 0, -3, 3, 0, 0, 1, 0, 0, 0};  // row-major
+    int step = 3;
+};
+// The named bases: "bezier", "b-spline", "catmull-rom", "hermite", "power". False for other names.
+bool basisFromName(const std::string& name, BasisDesc* out);
+
 // The attribute state a primitive was declared with. Shared: many primitives point at one.
 struct Attributes {
     Color color{1, 1, 1};                        // Color (Cs)
@@ -58,6 +67,7 @@ struct Attributes {
     double shadingRate = 1.0;                    // pixels of area per micropolygon
     std::vector<int> lights;                     // indices into Scene::lights that are on
     ParamList user;                              // Attribute "category" "name" values, as "category:name"
+    BasisDesc uBasis, vBasis;                    // Basis, for bicubic patches
 };
 using AttributesPtr = std::shared_ptr<const Attributes>;
 
@@ -104,6 +114,7 @@ struct LightDesc {
     ParamList params;
     MotionTransform lightToWorld;
     SourceLoc loc;
+    bool castsShadows = false;   // Attribute "light" "shadows" "on" where it was declared
 };
 
 // A bilinear patch (Patch "bilinear", or a Polygon of 3 or 4 vertices), possibly with motion keys.
@@ -130,12 +141,83 @@ struct ProceduralDesc {
     SourceLoc loc;
 };
 
+// ---- Curved and polygonal primitives ----------------------------------------------------------
+// What every primitive below has: motion keys (one entry, any value, when static), its
+// object-to-world transform, attributes and the place it was declared. Positions are given per key.
+struct PrimitiveDesc {
+    std::vector<double> times;
+    MotionTransform objectToWorld;
+    AttributesPtr attributes;
+    SourceLoc loc;
+};
+
+// A colour primitive variable ("Cs") as given: its storage class and values. Empty when the
+// primitive gives none (the attribute Color applies). Uniform values are one per face; varying
+// ones one per corner of the primitive's varying grid (see each primitive); vertex ones one per
+// control point.
+struct ColorPrimvar {
+    ParamClass cls = ParamClass::Constant;
+    std::vector<Color> values;
+    bool given() const { return !values.empty(); }
+};
+
+// Patch "bicubic" (a 4x4 mesh) and PatchMesh "bicubic" | "bilinear". Control points row by row,
+// u fastest: P[key][j * nu + i]. Bicubic patches use the Basis in force at the request.
+struct PatchMeshDesc : PrimitiveDesc {
+    bool bicubic = true;
+    int nu = 4, nv = 4;                       // control points along u and v
+    bool uPeriodic = false, vPeriodic = false;
+    BasisDesc uBasis, vBasis;
+    std::vector<std::vector<Vec3d>> P;        // object space, one set per key
+    ColorPrimvar Cs;                          // varying: one per corner of the patch grid
+
+    int uPatches() const;                     // patches along u (RenderMan's nupatches)
+    int vPatches() const;
+    int uVarying() const { return uPatches() + (uPeriodic ? 0 : 1); }
+    int vVarying() const { return vPatches() + (vPeriodic ? 0 : 1); }
+};
+
+// SubdivisionMesh "catmull-clark": faces as vertex-index loops, RenderMan's tags.
+struct SubdivisionMeshDesc : PrimitiveDesc {
+    std::vector<int> faceSizes, faceVertices;
+    int vertexCount = 0;                      // largest index + 1
+    std::vector<int> creaseEdges;             // vertex pairs of sharp edges ("crease" chains, split)
+    std::vector<float> creaseSharpness;       // one per pair
+    std::vector<int> corners;                 // "corner" vertices
+    std::vector<float> cornerSharpness;
+    std::vector<int> holes;                   // "hole" faces
+    int interpolateBoundary = 0;              // 0 none, 1 edges and corners, 2 edges only
+    std::vector<std::vector<Vec3d>> P;        // vertexCount points per key
+    ColorPrimvar Cs;                          // varying/vertex: per vertex; uniform: per face
+};
+
+// Sphere, Cylinder, Cone, Disk, Paraboloid, Hyperboloid, Torus: the request's arguments per key,
+// in the order RenderMan gives them (angles in degrees).
+enum class QuadricKind { Sphere, Cylinder, Cone, Disk, Paraboloid, Hyperboloid, Torus };
+struct QuadricDesc : PrimitiveDesc {
+    QuadricKind kind = QuadricKind::Sphere;
+    std::vector<std::array<double, 7>> params;  // per key
+    ColorPrimvar Cs;                            // varying: the 4 corners of the (u, v) domain
+};
+
+// Polygons beyond four vertices, GeneralPolygon, PointsPolygons and PointsGeneralPolygons, cut
+// when read into triangles and convex quads that share the points.
+struct PolygonMeshDesc : PrimitiveDesc {
+    std::vector<std::vector<Vec3d>> P;            // object space, one set per key
+    std::vector<std::array<int, 4>> faces;        // indices into P in patch order (triangles: 0 1 2 2)
+    std::vector<std::array<Color, 4>> faceCs;     // per face corner; empty: the attribute Color
+};
+
 struct Scene {
     CameraDesc camera;
     RenderSettings settings;
     std::vector<LightDesc> lights;
     std::vector<BilinearPatchDesc> patches;
     std::vector<ProceduralDesc> procedurals;
+    std::vector<PatchMeshDesc> patchMeshes;
+    std::vector<SubdivisionMeshDesc> subdivisionMeshes;
+    std::vector<QuadricDesc> quadrics;
+    std::vector<PolygonMeshDesc> polygonMeshes;
     std::string sourceName;  // the scene file, for messages and default output names
 };
 

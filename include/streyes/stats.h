@@ -26,10 +26,17 @@ struct RenderCounters {
     uint64_t sampleTests = 0;
     uint64_t sampleHits = 0;
     uint64_t buckets = 0;
+    // Ray tracing (--algorithm raytrace*, and shadow rays): the paper's Tables 1 and 2.
+    uint64_t traceBodies = 0;      // bodies the ray tracer holds (trilinear segments)
+    uint64_t boundingVolumes = 0;  // hierarchy nodes built (summed over frames for raytrace-frames)
+    uint64_t eyeRays = 0, shadowRays = 0;
+    uint64_t rayBodyTests = 0;     // ray/body intersection tests (each body once per ray)
+    uint64_t rayBoxTests = 0;      // ray/bounding-volume tests
 
     // Seconds, summed over threads (so they add up to CPU time, not wall time).
     double timeSampleGen = 0, timeSplit = 0, timeDice = 0, timeShade = 0, timeSample = 0, timeResolve = 0;
     double timeOcclusion = 0;  // building coverage and tables
+    double timeHierarchy = 0, timeTrace = 0;  // building hierarchies; tracing and shading rays
 
     RenderCounters& operator+=(const RenderCounters& o);
     uint64_t splits() const { return splitsU + splitsV + splitsT; }

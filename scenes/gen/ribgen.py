@@ -47,3 +47,20 @@ def motion(times, requests):
     assert len(times) == len(requests)
     return "MotionBegin [%s]\n%sMotionEnd\n" % (
         " ".join(fmt(t) for t in times), "".join("  " + r + "\n" for r in requests))
+
+
+def points(seq, digits=5):
+    """Points as RIB numbers, rounded: "x y z x y z ..."."""
+    return " ".join(fmt(round(c, digits)) for p in seq for c in p)
+
+
+def attribute_block(surface, color, body):
+    """AttributeBegin, a surface shader line, a Color, the body, AttributeEnd."""
+    return "AttributeBegin\n%s\nColor [%s]\n%sAttributeEnd\n" % (surface, " ".join(fmt(c) for c in color), body)
+
+
+def write_scene(name, text):
+    """Writes scenes/<name> (the folder above scenes/gen)."""
+    import os
+    with open(os.path.join(os.path.dirname(__file__), "..", name), "w") as f:
+        f.write(text)

@@ -2,6 +2,8 @@
 #include <cstdlib>
 
 #include "commands.h"
+#include "streyes/image_io.h"
+#include "streyes/util/error.h"
 
 namespace streyes::cli {
 
@@ -25,7 +27,29 @@ double parseReal(const std::string& opt, const std::string& v, double lo, double
     return x;
 }
 
+void parseFrameRange(const std::string& opt, const std::string& v, int* first, int* last) {
+    // "A-B" or "A"; A may be negative ("-3-5").
+    size_t dash = v.find('-', 1);
+    std::string a = v.substr(0, dash), b = dash == std::string::npos ? a : v.substr(dash + 1);
+    *first = int(parseInt(opt, a, -1000000, 1000000));
+    *last = int(parseInt(opt, b, -1000000, 1000000));
+    if (*last < *first) throw UsageError(opt + " " + v + ": the last frame comes before the first");
+}
+
+std::vector<int> selectFrames(const std::string& pattern, bool hasRange, int first, int last) {
+    std::vector<int> frames;
+    if (hasRange) {
+        for (int f = first; f <= last; ++f) frames.push_back(f);
+    } else {
+        frames = findFrames(pattern);
+        if (frames.empty()) throw InputError("no frames found for '" + pattern + "'");
+    }
+    return frames;
+}
+
 const char* kUsage = R"(usage: streyes render SCENE.rib [options]
+       streyes compare A B [options]        (streyes compare --help)
+       streyes sheet PATTERN -o FILE [options]   (streyes sheet --help)
        streyes --help | --version
 
 Renders an animation described in RIB as one spacetime scene, one EXR per frame.
@@ -39,6 +63,9 @@ render options:
                       spacetime:          Algorithm S, split once per block of frames
                       frames-occlusion:   Algorithm C', Catmull per frame with occlusion culling
                       frames:             Algorithm C, Catmull per frame (the baseline)
+                      raytrace:           ray tracing through one spacetime hierarchy
+                                          (Glassner's; the reference for the rasterizer's error)
+                      raytrace-frames:    ray tracing with a 3D hierarchy per frame
   --tolerance EPS     occlusion tolerance: drop a body when at most EPS of its pixel-frame
                       block is uncovered (default 0: the image does not change by a bit)
   --layers N|adaptive depth layers between occlusion tables (default adaptive)

@@ -17,9 +17,22 @@ struct UsageError : std::runtime_error {
 long parseInt(const std::string& opt, const std::string& value, long lo, long hi);
 // A real number in [lo, hi].
 double parseReal(const std::string& opt, const std::string& value, double lo, double hi);
+// A frame range "A-B" or a single frame "A" (A may be negative: "-3-5").
+void parseFrameRange(const std::string& opt, const std::string& value, int* first, int* last);
+// The frames of a #### pattern: every frame of the range when given (the caller checks that the
+// files exist), else those on disk (InputError when there are none).
+std::vector<int> selectFrames(const std::string& pattern, bool hasRange, int first, int last);
 
 extern const char* kUsage;
 
 int renderCommand(const std::vector<std::string>& args);
+
+// `streyes compare A B`: error of B against the reference A (compare_command.cpp).
+extern const char* kCompareUsage;
+int compareCommand(const std::vector<std::string>& args);
+
+// `streyes sheet PATTERN -o FILE`: frames laid out on one contact sheet (sheet_command.cpp).
+extern const char* kSheetUsage;
+int sheetCommand(const std::vector<std::string>& args);
 
 }  // namespace streyes::cli

@@ -9,8 +9,17 @@
 using namespace streyes;
 using namespace streyes::cli;
 
+namespace {
+bool asksForHelp(const std::vector<std::string>& args) {
+    for (const std::string& a : args)
+        if (a == "--help" || a == "-h") return true;
+    return false;
+}
+}  // namespace
+
 int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
+    const char* usage = kUsage;  // printed with a usage error: the command's own, once it is known
     try {
         if (args.empty()) throw UsageError("no command given");
         if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
@@ -30,9 +39,19 @@ int main(int argc, char** argv) {
                 }
             return renderCommand(rest);
         }
+        if (args[0] == "compare" || args[0] == "sheet") {
+            const bool compare = args[0] == "compare";
+            usage = compare ? kCompareUsage : kSheetUsage;
+            std::vector<std::string> rest(args.begin() + 1, args.end());
+            if (asksForHelp(rest)) {
+                std::fputs(usage, stdout);
+                return 0;
+            }
+            return compare ? compareCommand(rest) : sheetCommand(rest);
+        }
         throw UsageError("unknown command '" + args[0] + "'");
     } catch (const UsageError& e) {
-        std::fprintf(stderr, "streyes: %s\n\n%s", e.what(), kUsage);
+        std::fprintf(stderr, "streyes: %s\n\n%s", e.what(), usage);
         return 2;
     } catch (const InputError& e) {
         std::fprintf(stderr, "%s\n", e.report().c_str());

@@ -20,12 +20,7 @@ namespace streyes::cli {
 namespace {
 
 void parseFrames(const std::string& v, RenderOptions& o) {
-    // "A-B" or "A"; A may be negative ("-3-5").
-    size_t dash = v.find('-', 1);
-    std::string a = v.substr(0, dash), b = dash == std::string::npos ? a : v.substr(dash + 1);
-    o.firstFrame = int(parseInt("--frames", a, -1000000, 1000000));
-    o.lastFrame = int(parseInt("--frames", b, -1000000, 1000000));
-    if (o.lastFrame < o.firstFrame) throw UsageError("--frames " + v + ": the last frame comes before the first");
+    parseFrameRange("--frames", v, &o.firstFrame, &o.lastFrame);
     o.hasFrames = true;
 }
 
@@ -138,8 +133,8 @@ int renderCommand(const std::vector<std::string>& args) {
         else if (a == "--algorithm") {
             std::string v = value();
             if (!parseAlgorithm(v, &opts.algorithm))
-                throw UsageError("--algorithm expects spacetime-occlusion, spacetime, frames-occlusion or frames, not '" +
-                                 v + "'");
+                throw UsageError("--algorithm expects spacetime-occlusion, spacetime, frames-occlusion, frames, "
+                                 "raytrace or raytrace-frames, not '" + v + "'");
         } else if (a == "--tolerance") {
             opts.tolerance = parseReal(a, value(), 0.0, 1.0);
             toleranceGiven = true;

@@ -7,11 +7,6 @@ namespace streyes {
 
 namespace {
 
-template <typename T>
-T bilerp(const std::array<T, 4>& c, float u, float v) {
-    return lerp(lerp(c[0], c[1], u), lerp(c[2], c[3], u), v);
-}
-
 float dist2(Vec3f a, Vec3f b) {
     float dx = a.x - b.x, dy = a.y - b.y;
     return dx * dx + dy * dy;
@@ -19,9 +14,11 @@ float dist2(Vec3f a, Vec3f b) {
 
 Vec3f mid(Vec3f a, Vec3f b) { return (a + b) * 0.5f; }
 
+}  // namespace
+
 // Normal of a bilinear patch at (u, v). At collapsed edges and poles the derivatives vanish;
 // fall back to the cross product of the diagonals, which is the patch's mean normal.
-Vec3f patchNormal(const TrilinearBody::Corners& p, float u, float v) {
+Vec3f bilinearNormal(const TrilinearBody::Corners& p, float u, float v) {
     Vec3f dPdu = lerp(p[1] - p[0], p[3] - p[2], v);
     Vec3f dPdv = lerp(p[2] - p[0], p[3] - p[1], u);
     Vec3f n = cross(dPdu, dPdv);
@@ -31,8 +28,6 @@ Vec3f patchNormal(const TrilinearBody::Corners& p, float u, float v) {
     if (dot(d, d) > 0) return d;
     return {0, 0, -1};  // zero-area patch: face the camera
 }
-
-}  // namespace
 
 TrilinearBody::TrilinearBody(TimeSpan time, const Corners& p0, const Corners& p1,
                              const std::array<Color, 4>& cs, const Material* material)
@@ -50,6 +45,22 @@ LBBox3f TrilinearBody::bound() const {
         b.b1.extend(P_[1][i]);
     }
     return b;
+}
+
+// The corners move on straight lines, so the box of the corners at a and at b holds the patch
+// at every time in between (a bilinear patch lies in the convex hull of its corners).
+Bounds3f TrilinearBody::boundDuring(double a, double b) const {
+    Bounds3f box;
+    if (!moving_) {
+        for (const Vec3f& p : P_[0]) box.extend(p);
+        return box;
+    }
+    const Corners ca = cornersAt(a), cb = cornersAt(b);
+    for (int i = 0; i < 4; ++i) {
+        box.extend(ca[size_t(i)]);
+        box.extend(cb[size_t(i)]);
+    }
+    return box;
 }
 
 RasterMeasure TrilinearBody::measure(const Camera& camera) const {
@@ -160,7 +171,7 @@ void TrilinearBody::dice(int nu, int nv, Grid& grid) const {
             int idx = grid.index(i, j);
             for (int k = 0; k < (moving_ ? 2 : 1); ++k) {
                 grid.P[k][idx] = bilerp(P_[k], u, v);
-                grid.N[k][idx] = patchNormal(P_[k], u, v);
+                grid.N[k][idx] = bilinearNormal(P_[k], u, v);
             }
             grid.Cs[idx] = bilerp(Cs_, u, v);
         }

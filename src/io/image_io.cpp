@@ -6,9 +6,10 @@
 #include <signal.h>
 #include <unistd.h>
 
-
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -41,6 +42,36 @@ std::string addFrameField(const std::string& pattern) {
     std::string ext = p.extension().string();
     std::string stem = pattern.substr(0, pattern.size() - ext.size());
     return stem + ".####" + ext;
+}
+
+std::vector<int> findFrames(const std::string& pattern) {
+    const fs::path p(pattern);
+    const std::string name = p.filename().string();
+    if (pattern.find('#') < pattern.size() - name.size())
+        throw InputError("frame pattern '" + pattern + "': the #### frame field must be in the file name, not a folder");
+    const size_t a = name.find('#');
+    if (a == std::string::npos) return {};
+    const size_t b = std::min(name.find_first_not_of('#', a), name.size());
+    const std::string prefix = name.substr(0, a), suffix = name.substr(b);
+    std::vector<int> frames;
+    std::error_code ec;
+    for (fs::directory_iterator it(p.has_parent_path() ? p.parent_path() : fs::path("."), ec), end; !ec && it != end;
+         it.increment(ec)) {
+        // A candidate is prefix + [-]digits + suffix; expanding the pattern again must give the
+        // same name, which rejects "a.7.exr" for "a.####.exr" and out-of-range numbers.
+        const std::string n = it->path().filename().string();
+        if (n.size() <= prefix.size() + suffix.size() || n.compare(0, prefix.size(), prefix) != 0 ||
+            n.compare(n.size() - suffix.size(), suffix.size(), suffix) != 0)
+            continue;
+        const std::string digits = n.substr(prefix.size(), n.size() - prefix.size() - suffix.size());
+        if (digits.size() > 9 || digits.find_first_not_of("-0123456789") != std::string::npos) continue;
+        char* rest = nullptr;
+        const long f = std::strtol(digits.c_str(), &rest, 10);
+        if (*rest != '\0' || expandFramePattern(name, int(f)) != n) continue;
+        frames.push_back(int(f));
+    }
+    std::sort(frames.begin(), frames.end());
+    return frames;
 }
 
 void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode) {

@@ -441,7 +441,11 @@ struct CellGrid {
 CellGrid cellGrid(const ForestParams& f) {
     const double cells = std::max(1.0, std::ceil(double(f.count) / f.treesPerCell));
     CellGrid g;
-    g.nx = std::max(1, int(std::ceil(std::sqrt(cells * f.areaX / f.areaZ))));
+    // Between 1 and the number of cells, in double first: a very long, thin area would overflow an
+    // int (the fuzzer found area=1e50,1000).
+    double nx = std::ceil(std::sqrt(cells * f.areaX / f.areaZ));
+    if (!(nx >= 1)) nx = 1;
+    g.nx = int(std::min(nx, cells));
     g.nz = std::max(1, int(std::ceil(cells / g.nx)));
     g.sx = f.areaX / g.nx;
     g.sz = f.areaZ / g.nz;

@@ -136,11 +136,14 @@ class Child {
     std::string failed(const SourceLoc& loc, const std::string& answer, const std::string& why) {
         int status = finish();
         if (why.empty() && WIFEXITED(status) && WEXITSTATUS(status) == 0) return answer;
-        // How it ended, also when it stopped reading first (a program that exits at once may do
-        // so before or after the request is written: say the same either way).
-        std::string how = WIFEXITED(status) ? "it exited with status " + std::to_string(WEXITSTATUS(status))
-                                            : "it was killed by signal " + std::to_string(WTERMSIG(status));
-        if (!why.empty()) how = why + ": " + how;
+        // A program that ended before reading its request (why: "it stopped reading") also says how
+        // it ended, when that was not cleanly.
+        std::string how = why;
+        if (how.empty() || !(WIFEXITED(status) && WEXITSTATUS(status) == 0)) {
+            const std::string end = WIFEXITED(status) ? "it exited with status " + std::to_string(WEXITSTATUS(status))
+                                                      : "it was killed by signal " + std::to_string(WTERMSIG(status));
+            how = how.empty() ? end : how + "; " + end;
+        }
         throw InputError(loc, "RunProgram '" + commandLine_ + "' failed: " + how + " (its messages, if any, are above)");
     }
 

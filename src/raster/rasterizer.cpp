@@ -86,6 +86,24 @@ inline bool hitQuad(const QuadSetup& q, float sx, float sy, Hit& h) {
     return false;
 }
 
+// How many of the quad's two triangles hold the sample (2 where a quad folded along its
+// diagonal at a silhouette covers it twice), and their windings summed (+1 for a triangle that
+// runs one way round in raster space, -1 the other). Rendering takes one hit per quad; tests of
+// watertightness count coverage (GridRasterizer::countHitsInto).
+inline void trianglesCovering(const QuadSetup& q, float sx, float sy, uint32_t* count, int32_t* winding) {
+    const float e01 = q.e[0].eval(sx, sy), e12 = q.e[1].eval(sx, sy), e20 = q.e[4].eval(sx, sy);
+    const float e23 = q.e[2].eval(sx, sy), e30 = q.e[3].eval(sx, sy);
+    const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
+    if (insideTriangle(e01, q.e[0].canonical, e12, q.e[1].canonical, e20, q.e[4].canonical)) {
+        ++*count;
+        *winding += e01 + e12 + e20 > 0 ? 1 : -1;
+    }
+    if (insideTriangle(-e20, c02, e23, q.e[2].canonical, e30, q.e[3].canonical)) {
+        ++*count;
+        *winding += -e20 + e23 + e30 > 0 ? 1 : -1;
+    }
+}
+
 // Bound and pixel range of a quad; false when it misses the block or the clipping range.
 inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const float* z2, const PixelRect& R,
                       float nearZ, float farZ) {
@@ -191,10 +209,14 @@ void GridRasterizer::rasterize(const Grid& grid, const Camera& camera, const Shu
     counters.micropolygons += uint64_t(grid.nu) * uint64_t(grid.nv);
     if (grid.moving) {
         collectSlices(grid, shutter, block);
-        if (!slices_.empty()) sampleMoving(grid, camera, block, counters);
+        if (slices_.empty()) return;
+        if (grid.shadowSlots) sampleMoving<true>(grid, camera, block, counters);
+        else sampleMoving<false>(grid, camera, block, counters);
     } else {
         collectFrames(grid, shutter, block);
-        if (!frames_.empty()) sampleStill(grid, camera, block, counters);
+        if (frames_.empty()) return;
+        if (grid.shadowSlots) sampleStill<true>(grid, camera, block, counters);
+        else sampleStill<false>(grid, camera, block, counters);
     }
 }
 
@@ -216,8 +238,8 @@ void GridRasterizer::collectFrames(const Grid& grid, const Shutter& shutter, con
 }
 
 // Writes a hit into the sample when it beats the one there (nearer, or equal depth and an
-// earlier primitive: see SampleHit::beatenBy).
-// Returns 1 when the sample had no hit before.
+// earlier primitive: see SampleHit::beatenBy). Returns 0 when it does not, 1 when it does, 2
+// when it does and the sample had no hit before.
 template <typename ColorAt>
 static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, uint32_t id,
                              ColorAt colorAt) {
@@ -227,7 +249,7 @@ static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float n
     const Color c0 = colorAt(h.v0), c1 = colorAt(h.v1), c2 = colorAt(h.v2);
     const Color c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
     if (zh == s.z && !s.beatenBy(zh, id, c)) return 0;
-    const int first = s.a == 0 ? 1 : 0;
+    const int first = s.a == 0 ? 2 : 1;
     s.z = zh;
     s.c = c;
     s.a = 1.0f;
@@ -235,8 +257,18 @@ static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float n
     return first;
 }
 
+// With the hit, the K contributions of lights that cast shadows, interpolated the same way.
+template <typename PartAt>
+static inline void writeShadowed(Color* out, int K, const Hit& h, PartAt partAt) {
+    for (int k = 0; k < K; ++k) {
+        const Color c0 = partAt(h.v0, k), c1 = partAt(h.v1, k), c2 = partAt(h.v2, k);
+        out[k] = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
+    }
+}
+
 // A still grid: each quad is projected and set up once, then tested against the samples of
 // every frame it exists in, visiting in each pixel only the (x, y) strata its bound overlaps.
+template <bool Shadowed>
 void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters) {
     const PixelRect& R = block.rect();
     const int nu = grid.nu, nv = grid.nv, stride = nu + 1, S = block.slices();
@@ -246,6 +278,8 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const SamplePosition* pos = block.positions();
     SampleHit* hit = block.hits();
     const Color* ci = grid.Ci[0].data();
+    const int K = grid.shadowSlots;
+    const Color* cl = grid.Cl[0].data();
     uint64_t tests = 0, hits = 0, firstHits = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
@@ -276,7 +310,13 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                                 Hit h;
                                 if (!hitQuad(q, s.x, s.y, h)) continue;
                                 ++hits;
-                                firstHits += resolveHit(hit[si], q.z, h, nearZ, farZ, grid.primitiveId, [&](int c) { return ci[idx[c]]; });
+                                if (hitCounts_) trianglesCovering(q, s.x, s.y, &hitCounts_[si], &windings_[si]);
+                                const int r = resolveHit(hit[si], q.z, h, nearZ, farZ, grid.primitiveId,
+                                                         [&](int c) { return ci[idx[c]]; });
+                                firstHits += r == 2;
+                                if (Shadowed && r)
+                                    writeShadowed(block.shadowed(si), K, h,
+                                                  [&](int c, int k) { return cl[size_t(idx[c] * K + k)]; });
                             }
                         }
                     }
@@ -296,6 +336,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
 // different depths meet) off that edge, and open cracks between the grids. So under perspective
 // the corners are interpolated in camera space, where they move linearly, and projected at the
 // sample's time: vertices on a straight edge stay on its projection.
+template <bool Shadowed>
 void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block,
                                   RasterCounters& counters) {
     const PixelRect& R = block.rect();
@@ -304,6 +345,8 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const float nearZ = camera.nearClip(), farZ = camera.farClip();
     const double span = grid.t1 - grid.t0;
     const Color *ci0 = grid.Ci[0].data(), *ci1 = grid.Ci[1].data();
+    const int K = grid.shadowSlots;
+    const Color *cl0 = grid.Cl[0].data(), *cl1 = grid.Cl[1].data();
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
     uint64_t tests = 0, hits = 0, firstHits = 0;
     for (const Slice& sl : slices_) {
@@ -355,9 +398,16 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         Hit h;
                         if (!hitQuad(qt, s.x, s.y, h)) continue;
                         ++hits;
+                        if (hitCounts_) trianglesCovering(qt, s.x, s.y, &hitCounts_[si], &windings_[si]);
                         const float sg = lerp(sA, sB, w);  // the grid's own time parameter
-                        firstHits += resolveHit(block.hits()[si], qt.z, h, nearZ, farZ, grid.primitiveId,
-                                   [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); });
+                        const int r = resolveHit(block.hits()[si], qt.z, h, nearZ, farZ, grid.primitiveId,
+                                                 [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); });
+                        firstHits += r == 2;
+                        if (Shadowed && r)
+                            writeShadowed(block.shadowed(si), K, h, [&](int c, int k) {
+                                const size_t i = size_t(idx[c] * K + k);
+                                return lerp(cl0[i], cl1[i], sg);
+                            });
                     }
                 }
             }

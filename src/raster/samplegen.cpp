@@ -31,7 +31,8 @@ void generatePixelSamples(int px, int py, int frame, const SamplePattern& patter
     }
 }
 
-void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, const SamplePattern& pattern) {
+void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, const SamplePattern& pattern,
+                       int shadowSlots) {
     rect_ = rect;
     firstFrame_ = firstFrame;
     frameCount_ = frameCount;
@@ -52,6 +53,8 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     positions_.resize(n);
     hits_.assign(n, SampleHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f, UINT32_MAX});
     sliceStratum_.resize(n);
+    shadowSlots_ = shadowSlots;
+    if (shadowSlots > 0) shadowed_.resize(n * size_t(shadowSlots));
     for (int y = rect.y0; y <= rect.y1; ++y)
         for (int x = rect.x0; x <= rect.x1; ++x)
             for (int fi = 0; fi < frameCount; ++fi) {

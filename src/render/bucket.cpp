@@ -36,22 +36,39 @@ BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& option
       log_(log),
       occlusion_(usesOcclusion(options.algorithm)) {}
 
+void BucketWorker::setTrace(const TraceScene* trace) {
+    trace_ = trace;
+    traceEyeRays_ = trace && raytraces(options_.algorithm);
+    shadowSlots_ = trace && !traceEyeRays_ ? scene_.lights.shadowSlots() : 0;
+    grid_.shadowSlots = shadowSlots_;
+}
+
 void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& frames, int framesFirst) {
     bucket_ = bucket;
     ++counters.buckets;
     splitsOf_.clear();
     auto t = Clock::now();
-    block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, pattern_);
+    block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, pattern_, shadowSlots_);
     counters.timeSampleGen += secondsSince(t);
 
     windowStart_ = bucket.firstFrame + scene_.shutter.open;
     windowEnd_ = bucket.firstFrame + bucket.frameCount - 1 + scene_.shutter.close;
     t = Clock::now();
     const double before = counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion;
-    if (occlusion_) runNearToFar();
-    else runDepthFirst();
+    if (!traceEyeRays_) {  // the ray tracer traces the samples instead (below)
+        if (occlusion_) runNearToFar();
+        else runDepthFirst();
+    }
     counters.timeSplit +=
         secondsSince(t) - (counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion - before);
+
+    if (trace_) {  // eye rays (raytrace*), or the shadow rays of the rasterizer's hits
+        t = Clock::now();
+        if (traceEyeRays_) tracer_.traceSamples(block_, *trace_, counters);
+        else if (shadowSlots_) tracer_.shadeShadows(block_, *trace_, counters);
+        counters.timeTrace += secondsSince(t);
+    }
+    if (options_.sampleObserver) options_.sampleObserver(block_, bucket.tile);
 
     t = Clock::now();
     resolveTile(block_, bucket.tile, filter_, &frames[size_t(bucket.firstFrame - framesFirst)], resolveScratch_);
@@ -69,6 +86,11 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
 void BucketWorker::pushRoot(const Body& root) {
     const TimeSpan& span = root.time();
     if (!span.overlaps(windowStart_, windowEnd_)) return;
+    // Motion segments meet at keys: a segment that only touches the window at its start is left
+    // to the next segment, which covers that instant too (the render's last instant has no next
+    // one); one that starts where the window ends is never reached (sample times stay below it).
+    if (span.t1 == windowStart_ && span.t0 < span.t1 && span.t1 < scene_.windowEnd) return;
+    if (span.t0 == windowEnd_ && windowStart_ < windowEnd_) return;
     if (root.moving() && (span.t0 < windowStart_ || span.t1 > windowEnd_)) {
         push(root.restrictedTo(std::max(span.t0, windowStart_), std::min(span.t1, windowEnd_)));
     } else if (occlusion_) {

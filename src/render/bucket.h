@@ -14,6 +14,7 @@
 #include "streyes/render_scene.h"
 #include "streyes/renderer.h"
 #include "streyes/stats.h"
+#include "streyes/trace.h"
 
 namespace streyes {
 
@@ -33,6 +34,9 @@ class BucketWorker {
 
     // Renders the bucket and resolves its tile into frames[f - framesFirst] for each of its frames.
     void render(const BucketSpec& bucket, std::vector<FrameImage>& frames, int framesFirst);
+    // The ray tracer's scene (null when nothing is ray traced): eye rays replace the split loop
+    // for --algorithm raytrace*; otherwise it traces the shadow rays of lights that cast shadows.
+    void setTrace(const TraceScene* trace);
 
     RenderCounters counters;
 
@@ -85,6 +89,11 @@ class BucketWorker {
     bool haveTable_ = false;
     std::vector<uint8_t> coverage_;
     SummedVolumeTable<uint32_t> table_;
+
+    const TraceScene* trace_ = nullptr;
+    bool traceEyeRays_ = false;
+    int shadowSlots_ = 0;  // the rasterizer's shadowed light parts per sample
+    SampleTracer tracer_;
 };
 
 }  // namespace streyes

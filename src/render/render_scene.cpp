@@ -6,7 +6,11 @@
 #include <limits>
 #include <string>
 
+#include "streyes/curved_body.h"
+#include "streyes/patch_mesh.h"
 #include "streyes/procedural.h"
+#include "streyes/quadric.h"
+#include "streyes/subdivision.h"
 #include "streyes/util/sampling.h"
 
 namespace streyes {
@@ -16,6 +20,16 @@ namespace {
 // Camera space is single precision. Corners beyond this magnitude would overflow to infinity
 // when a split adds two of them or a measure squares their distance.
 constexpr double kMaxCameraCoordinate = 1e37;
+
+// Checked in double: converting a value beyond float's range would be undefined.
+bool fitsCameraSpace(Vec3d v) {
+    return std::fabs(v.x) <= kMaxCameraCoordinate && std::fabs(v.y) <= kMaxCameraCoordinate &&
+           std::fabs(v.z) <= kMaxCameraCoordinate;
+}
+
+const char* kTooLargeWarning =
+    "primitive reaches beyond 1e37 in camera space, where single precision overflows when it is split: skipped "
+    "(scale the scene down)";
 
 // Far from the world's origin, double precision runs out: a point at world distance M comes to
 // camera space with an error of a few units in M's last place (2^-52 M), however near the camera
@@ -75,11 +89,58 @@ uint32_t childId(uint32_t parent, uint64_t index) {
     return id == 0 || id == UINT32_MAX ? 1 : id;
 }
 
+// Segments meet at their keys: all but the last are half-open (TimeSpan), so that a sample exactly
+// at a key belongs to the segment that starts there.
+TimeSpan segmentSpan(double t0, double t1, const std::vector<double>& ts) { return {t0, t1, t1 < ts.back()}; }
+
+// ---- Motion segments of curved primitives ----------------------------------------------------------
+// Where time t falls among a primitive's keys: between key i and i + 1 at fraction s (held
+// before the first key and after the last, where s = 0).
+void keyInterval(const std::vector<double>& times, size_t keys, double t, size_t* i, double* s) {
+    *s = 0;
+    if (keys == 1 || t <= times.front()) {
+        *i = 0;
+    } else if (t >= times.back()) {
+        *i = keys - 1;
+    } else {
+        *i = size_t(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
+        *s = (t - times[*i]) / (times[*i + 1] - times[*i]);
+    }
+}
+
+// Points at time t: linear between the keys.
+std::vector<Vec3d> pointsAt(const std::vector<double>& times, const std::vector<std::vector<Vec3d>>& keys, double t) {
+    size_t i;
+    double s;
+    keyInterval(times, keys.size(), t, &i, &s);
+    if (s == 0) return keys[i];
+    std::vector<Vec3d> r(keys[i].size());
+    for (size_t c = 0; c < r.size(); ++c) r[c] = lerp(keys[i][c], keys[i + 1][c], s);
+    return r;
+}
+
+// Calls add(t0, t1, i, j) for each segment between consecutive times, with i and j the indices
+// of its keys in `keys`; a run of segments over which the keys do not change is one still
+// segment; a single time (one frame, no shutter) is a segment of length zero.
+template <typename Key, typename Add>
+void forEachSegment(const std::vector<double>& ts, const std::vector<Key>& keys, Add add) {
+    if (ts.size() == 1) {
+        add(ts[0], ts[0], size_t(0), size_t(0));
+        return;
+    }
+    for (size_t i = 0; i + 1 < ts.size();) {
+        size_t j = i + 1;
+        if (keys[j] == keys[i])
+            while (j + 1 < ts.size() && keys[j + 1] == keys[i]) ++j;
+        add(ts[i], ts[j], i, j);
+        i = j;
+    }
+}
+
 }  // namespace
 
-BodyFactory::BodyFactory(const MotionTransform& worldToCamera, double windowStart, double windowEnd, Log& log,
-                         const Camera* camera)
-    : worldToCamera_(worldToCamera), windowStart_(windowStart), windowEnd_(windowEnd), log_(log), camera_(camera) {}
+BodyFactory::BodyFactory(const MotionTransform& worldToCamera, double windowStart, double windowEnd, Log& log)
+    : worldToCamera_(worldToCamera), windowStart_(windowStart), windowEnd_(windowEnd), log_(log) {}
 
 const Material* BodyFactory::material(const AttributesPtr& attributes) {
     static const AttributesPtr kDefault = std::make_shared<const Attributes>();
@@ -118,11 +179,9 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint32_t primitiveId, std
         std::array<Vec3d, 4> obj = cornersAt(p, ts[i]);
         const double worldScale = camera_ ? worldMagnitude(p.objectToWorld.at(ts[i]), worldToCamera_.at(ts[i]), obj) : 0;
         for (int c = 0; c < 4; ++c) {
-            // Checked in double: converting a value beyond float's range would be undefined.
             Vec3d v = m.point(obj[size_t(c)]);
             finite = finite && isFinite(v);
-            fits = fits && std::fabs(v.x) <= kMaxCameraCoordinate && std::fabs(v.y) <= kMaxCameraCoordinate &&
-                   std::fabs(v.z) <= kMaxCameraCoordinate;
+            fits = fits && fitsCameraSpace(v);
             if (finite && fits) corners[i][size_t(c)] = Vec3f(v);
             zmin = std::min(zmin, v.z), zmax = std::max(zmax, v.z);
             if (camera_) rasterError = std::max(rasterError, precisionInPixels(*camera_, worldScale, v));
@@ -133,8 +192,7 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint32_t primitiveId, std
         return;
     }
     if (!fits) {
-        log_.warn(p.loc, "primitive reaches beyond 1e37 in camera space, where single precision overflows when it is "
-                         "split: skipped (scale the scene down)");
+        log_.warn(p.loc, kTooLargeWarning);
         return;
     }
     if (camera_ && zmin > 0 && zmax < camera_->nearClip())
@@ -148,10 +206,8 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint32_t primitiveId, std
                           formatShort(rasterError) +
                           " pixels on its way to camera space (translate the scene and the camera nearer the origin)");
     const SourceLoc* src = source(p.loc);
-    // Segments meet at their keys: all but the last are half-open, so that a sample exactly at a
-    // key belongs to the segment that starts there.
     auto add = [&](double t0, double t1, const TrilinearBody::Corners& c0, const TrilinearBody::Corners& c1) {
-        auto body = std::make_unique<TrilinearBody>(TimeSpan{t0, t1, t1 < ts.back()}, c0, c1, cs, mat);
+        auto body = std::make_unique<TrilinearBody>(segmentSpan(t0, t1, ts), c0, c1, cs, mat);
         body->setSource(src);
         body->setPrimitiveId(primitiveId);
         out.push_back(std::move(body));
@@ -200,6 +256,144 @@ Bounds3f BodyFactory::cameraBound(const Bounds3d& b, const MotionTransform& obje
     return Bounds3f(toFloat(r.lo), toFloat(r.hi));
 }
 
+// ---- Curved and polygon-mesh primitives ------------------------------------------------------------
+bool BodyFactory::keyedPoints(const PrimitiveDesc& p, const std::vector<std::vector<Vec3d>>& P,
+                              std::vector<double>* ts, std::vector<std::vector<Vec3d>>* points) {
+    const MotionTransform objectToCamera = p.objectToWorld.then(worldToCamera_);
+    std::vector<double> keys = keysOf(objectToCamera);
+    if (P.size() > 1) keys = unionTimes(keys, p.times);
+    *ts = segmentTimes(keys, windowStart_, windowEnd_);
+    points->resize(ts->size());
+    for (size_t i = 0; i < ts->size(); ++i) {
+        const Matrix4 m = objectToCamera.at((*ts)[i]);
+        std::vector<Vec3d>& pts = (*points)[i];
+        pts = pointsAt(p.times, P, (*ts)[i]);
+        for (Vec3d& q : pts) {
+            q = m.point(q);
+            if (!isFinite(q)) {
+                log_.warn(p.loc, "primitive has non-finite coordinates in camera space: skipped");
+                return false;
+            }
+            if (!fitsCameraSpace(q)) {
+                log_.warn(p.loc, kTooLargeWarning);
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint32_t primitiveId,
+                             std::vector<BodyPtr>& out) {
+    mesh->setSource(src);
+    for (int f = 0; f < mesh->faceCount(); ++f) {
+        auto body = std::make_unique<CurvedBody>(mesh.get(), f);
+        body->setPrimitiveId(primitiveId);
+        out.push_back(std::move(body));
+        ++bodiesMade_;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    surfaces_.push_back(std::move(mesh));
+}
+
+void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    std::vector<double> ts;
+    std::vector<std::vector<Vec3d>> points;
+    if (!keyedPoints(p, p.P, &ts, &points)) return;
+    const Material* mat = material(p.attributes);
+    const PatchMeshShape shape(p);
+    const std::vector<std::array<Color, 4>> colors = shape.colors(p.Cs, mat->Cs);
+    const SourceLoc* src = source(p.loc);
+    forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
+        std::vector<BezierPatch> k1;
+        if (j != i) k1 = shape.patches(points[j]);
+        addSurface(std::make_unique<BezierMesh>(shape.topology(), segmentSpan(t0, t1, ts), mat, camera_,
+                                                shape.patches(points[i]), std::move(k1), colors),
+                   src, primitiveId, out);
+    });
+}
+
+// The topology once, the limit surface per key, a SubdivisionMesh per segment.
+void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    std::vector<double> ts;
+    std::vector<std::vector<Vec3d>> points;
+    if (!keyedPoints(p, p.P, &ts, &points)) return;
+    auto shape = std::make_shared<const SubdivisionShape>(p);
+    if (shape->faceCount() == 0) {
+        log_.warn(p.loc, "SubdivisionMesh has no face with a limit surface (is it all boundary? see "
+                         "\"interpolateboundary\"): skipped");
+        return;
+    }
+    const Material* mat = material(p.attributes);
+    const std::vector<std::array<Color, 4>> colors = shape->colors(p.Cs, mat->Cs);
+    const SourceLoc* src = source(p.loc);
+    std::vector<std::shared_ptr<const SubdivisionKey>> keys(ts.size());
+    auto keyAt = [&](size_t i) {
+        if (!keys[i]) keys[i] = shape->key(points[i]);
+        return keys[i];
+    };
+    forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
+        addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), segmentSpan(t0, t1, ts), mat, camera_,
+                                                     colors),
+                   src, primitiveId, out);
+    });
+}
+
+// A QuadricMesh per segment: the quadric's arguments and transform at both ends.
+void BodyFactory::addQuadric(const QuadricDesc& q, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    const MotionTransform objectToCamera = q.objectToWorld.then(worldToCamera_);
+    std::vector<double> keyTimes = keysOf(objectToCamera);
+    if (q.params.size() > 1) keyTimes = unionTimes(keyTimes, q.times);
+    const std::vector<double> ts = segmentTimes(keyTimes, windowStart_, windowEnd_);
+    struct Key {
+        QuadricMesh::Params params;
+        Matrix4 toCamera;
+        bool operator==(const Key& o) const { return params == o.params && toCamera == o.toCamera; }
+    };
+    std::vector<Key> keys(ts.size());
+    for (size_t i = 0; i < ts.size(); ++i) {
+        size_t k;
+        double s;
+        keyInterval(q.times, q.params.size(), ts[i], &k, &s);
+        for (size_t a = 0; a < 7; ++a)
+            keys[i].params[a] = s == 0 ? q.params[k][a] : (1 - s) * q.params[k][a] + s * q.params[k + 1][a];
+        keys[i].toCamera = objectToCamera.at(ts[i]);
+        if (!keys[i].toCamera.isFinite()) {
+            log_.warn(q.loc, "primitive has non-finite coordinates in camera space: skipped");
+            return;
+        }
+    }
+    const Material* mat = material(q.attributes);
+    std::array<Color, 4> colors;
+    colors.fill(mat->Cs);
+    if (q.Cs.given())
+        for (size_t c = 0; c < 4; ++c) colors[c] = q.Cs.values[q.Cs.values.size() == 4 ? c : 0];
+    const SourceLoc* src = source(q.loc);
+    forEachSegment(ts, keys, [&](double t0, double t1, size_t i, size_t j) {
+        const QuadricMesh::Params params[2] = {keys[i].params, keys[j].params};
+        const Matrix4 toCamera[2] = {keys[i].toCamera, keys[j].toCamera};
+        addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, segmentSpan(t0, t1, ts), mat, camera_, colors),
+                   src, primitiveId, out);
+    });
+}
+
+// Each face (a triangle or a convex quad) as the bilinear patch it is.
+void BodyFactory::addPolygonMesh(const PolygonMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    BilinearPatchDesc face;
+    face.times = p.times;
+    face.objectToWorld = p.objectToWorld;
+    face.attributes = p.attributes;
+    face.loc = p.loc;
+    face.P.resize(p.P.size());
+    for (size_t f = 0; f < p.faces.size(); ++f) {
+        for (size_t k = 0; k < p.P.size(); ++k)
+            for (size_t c = 0; c < 4; ++c) face.P[k][c] = p.P[k][size_t(p.faces[f][c])];
+        face.hasCs = !p.faceCs.empty();
+        if (face.hasCs) face.Cs = p.faceCs[f];
+        addPatch(face, primitiveId, out);
+    }
+}
+
 void BodyFactory::addProcedural(const ProceduralDesc& p, uint32_t primitiveId, int depth, std::vector<BodyPtr>& out) {
     if (depth > kMaxProceduralDepth) {
         log_.warnOnce("procedural-depth", p.loc,
@@ -231,6 +425,10 @@ void BodyFactory::addChildren(const Scene& fragment, uint32_t parentId, int dept
     uint64_t index = 0;
     for (const BilinearPatchDesc& p : fragment.patches) addPatch(p, childId(parentId, index++), out);
     for (const ProceduralDesc& p : fragment.procedurals) addProcedural(p, childId(parentId, index++), depth, out);
+    for (const PatchMeshDesc& p : fragment.patchMeshes) addPatchMesh(p, childId(parentId, index++), out);
+    for (const SubdivisionMeshDesc& p : fragment.subdivisionMeshes) addSubdivisionMesh(p, childId(parentId, index++), out);
+    for (const QuadricDesc& q : fragment.quadrics) addQuadric(q, childId(parentId, index++), out);
+    for (const PolygonMeshDesc& p : fragment.polygonMeshes) addPolygonMesh(p, childId(parentId, index++), out);
 }
 
 void BodyFactory::reportOutgrown(ProceduralBody* p) {
@@ -258,11 +456,17 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     rs->lights = LightSet(scene.lights, cam.worldToCamera);
     rs->windowStart = firstFrame + rs->shutter.open;
     rs->windowEnd = lastFrame + rs->shutter.close;
-    rs->factory = std::make_unique<BodyFactory>(cam.worldToCamera, rs->windowStart, rs->windowEnd, log, &rs->camera);
-    // Primitive ids in scene order from 1: patches, then procedurals.
+    rs->factory = std::make_unique<BodyFactory>(cam.worldToCamera, rs->windowStart, rs->windowEnd, log);
+    rs->factory->setCamera(&rs->camera);
+    // Primitive ids in scene order from 1: patches, then procedurals, then the curved and
+    // polygon-mesh primitives.
     uint32_t id = 0;
     for (const BilinearPatchDesc& p : scene.patches) rs->factory->addPatch(p, ++id, rs->roots);
     for (const ProceduralDesc& p : scene.procedurals) rs->factory->addProcedural(p, ++id, 0, rs->roots);
+    for (const PatchMeshDesc& p : scene.patchMeshes) rs->factory->addPatchMesh(p, ++id, rs->roots);
+    for (const SubdivisionMeshDesc& p : scene.subdivisionMeshes) rs->factory->addSubdivisionMesh(p, ++id, rs->roots);
+    for (const QuadricDesc& q : scene.quadrics) rs->factory->addQuadric(q, ++id, rs->roots);
+    for (const PolygonMeshDesc& p : scene.polygonMeshes) rs->factory->addPolygonMesh(p, ++id, rs->roots);
     return rs;
 }
 

@@ -13,6 +13,7 @@
 #include "bucket.h"
 #include "streyes/memory.h"
 #include "streyes/procedural.h"
+#include "streyes/trace.h"
 
 namespace streyes {
 
@@ -22,13 +23,15 @@ const char* algorithmName(Algorithm a) {
         case Algorithm::FramesOcclusion: return "frames-occlusion";
         case Algorithm::Spacetime: return "spacetime";
         case Algorithm::SpacetimeOcclusion: return "spacetime-occlusion";
+        case Algorithm::Raytrace: return "raytrace";
+        case Algorithm::RaytraceFrames: return "raytrace-frames";
     }
     return "?";
 }
 
 bool parseAlgorithm(const std::string& name, Algorithm* out) {
     for (Algorithm a : {Algorithm::Frames, Algorithm::FramesOcclusion, Algorithm::Spacetime,
-                        Algorithm::SpacetimeOcclusion})
+                        Algorithm::SpacetimeOcclusion, Algorithm::Raytrace, Algorithm::RaytraceFrames})
         if (name == algorithmName(a)) {
             *out = a;
             return true;
@@ -154,6 +157,14 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.memoryBudgetBytes = budget;
     tbb::task_arena arena(memory.workers);
     stats.threads = arena.max_concurrency();
+    // The ray tracer's bodies and hierarchies: for eye rays, and for shadow rays when a light
+    // casts shadows. raytrace-frames builds a 3D hierarchy per frame with each frame block.
+    const bool traceFrames = options_.algorithm == Algorithm::RaytraceFrames;
+    std::unique_ptr<TraceScene> trace;
+    if (raytraces(options_.algorithm) || scene_->lights.shadowSlots() > 0) {
+        trace = std::make_unique<TraceScene>(*scene_, log_);
+        if (!traceFrames) arena.execute([&] { trace->buildSpacetime(options_.hierarchy); });
+    }
     tbb::enumerable_thread_specific<std::unique_ptr<BucketWorker>> workers;
     const uint64_t totalBuckets = uint64_t(tiles.size()) * uint64_t(spacetime ? (frames + block - 1) / block : frames);
     std::atomic<uint64_t> done{0};
@@ -200,10 +211,12 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                     buckets.push_back(b);
                 }
             auto t = Clock::now();
+            if (traceFrames) arena.execute([&] { trace->buildFrames(first, count, options_.hierarchy); });
             arena.execute([&] {
                 tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
                     std::unique_ptr<BucketWorker>& w = workers.local();
                     if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, layerDepths, log_);
+                    w->setTrace(trace.get());
                     for (size_t i = r.begin(); i != r.end(); ++i) {
                         w->render(buckets[i], images, first);
                         uint64_t n = ++done;
@@ -234,6 +247,15 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     for (const auto& w : workers)
         if (w) stats.counters += w->counters;
     stats.counters.rootBodies = scene_->roots.size();
+    if (trace) {
+        RenderCounters c;
+        c.traceBodies = trace->bodyCount();
+        c.boundingVolumes = trace->boundingVolumes;
+        c.timeHierarchy = trace->buildSeconds;
+        c.proceduralsExpandedByDepth = trace->proceduralsExpandedByDepth;  // expanded for rays first
+        for (uint64_t n : c.proceduralsExpandedByDepth) c.proceduralsExpanded += n;
+        stats.counters += c;
+    }
     stats.procedurals = scene_->factory->proceduralsMade();
     stats.proceduralsByDepth = scene_->factory->proceduralsMadeByDepth();
     stats.bodiesGenerated = scene_->factory->bodiesMade();

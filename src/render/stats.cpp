@@ -33,12 +33,20 @@ RenderCounters& RenderCounters::operator+=(const RenderCounters& o) {
     sampleTests += o.sampleTests;
     sampleHits += o.sampleHits;
     buckets += o.buckets;
+    traceBodies += o.traceBodies;
+    boundingVolumes += o.boundingVolumes;
+    eyeRays += o.eyeRays;
+    shadowRays += o.shadowRays;
+    rayBodyTests += o.rayBodyTests;
+    rayBoxTests += o.rayBoxTests;
     timeSampleGen += o.timeSampleGen;
     timeSplit += o.timeSplit;
     timeDice += o.timeDice;
     timeShade += o.timeShade;
     timeSample += o.timeSample;
     timeResolve += o.timeResolve;
+    timeHierarchy += o.timeHierarchy;
+    timeTrace += o.timeTrace;
     return *this;
 }
 
@@ -100,8 +108,12 @@ std::string RenderStats::toJson() const {
       << "    \"micropolygons\": " << c.micropolygons << ",\n"
       << "    \"sample_tests\": " << c.sampleTests << ",\n"
       << "    \"sample_hits\": " << c.sampleHits << ",\n"
-      << "    \"hit_efficiency\": " << num(c.sampleTests ? double(c.sampleHits) / double(c.sampleTests) : 0)
-      << "\n  },\n"
+      << "    \"hit_efficiency\": " << num(c.sampleTests ? double(c.sampleHits) / double(c.sampleTests) : 0) << ",\n"
+      << "    \"trace\": {\"bodies\": " << c.traceBodies << ", \"bounding_volumes\": " << c.boundingVolumes
+      << ", \"eye_rays\": " << c.eyeRays
+      << ", \"shadow_rays\": " << c.shadowRays << ", \"ray_body_tests\": " << c.rayBodyTests
+      << ", \"ray_box_tests\": " << c.rayBoxTests << "}\n"
+      << "  },\n"
       << "  \"seconds\": {\n"
       << "    \"parse\": " << num(timeParse) << ",\n"
       << "    \"build_bodies\": " << num(timeBuild) << ",\n"
@@ -111,7 +123,8 @@ std::string RenderStats::toJson() const {
       << "    \"cpu_by_stage\": {\"sample_generation\": " << num(c.timeSampleGen) << ", \"split_cull\": "
       << num(c.timeSplit) << ", \"dice\": " << num(c.timeDice) << ", \"shade\": " << num(c.timeShade)
       << ", \"sample\": " << num(c.timeSample) << ", \"occlusion_tables\": " << num(c.timeOcclusion)
-      << ", \"resolve\": " << num(c.timeResolve) << "}\n"
+      << ", \"resolve\": " << num(c.timeResolve) << ", \"hierarchy_build\": " << num(c.timeHierarchy)
+      << ", \"trace\": " << num(c.timeTrace) << "}\n"
       << "  },\n"
       << "  \"peak_memory_bytes\": " << peakMemoryBytes << ",\n"
       << "  \"memory_estimate_bytes\": " << memoryEstimateBytes << ",\n"

@@ -11,9 +11,12 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 
+#include "scene/triangulate.h"
 #include "streyes/rib.h"
 
 namespace streyes {
@@ -61,6 +64,8 @@ class RibArgs {
 
     const std::string& name() const { return request_.name; }
     const SourceLoc& loc() const { return request_.loc; }
+    const RibRequest& request() const { return request_; }
+    const char* usage() const { return usage_; }
     SourceLoc locAt(int line) const { return {request_.loc.file, line}; }
 
     bool done() const { return next_ >= request_.args.size(); }
@@ -149,6 +154,7 @@ struct RibParser::PatchKey {
     bool hasCs = false;
     std::array<Color, 4> Cs{};
     int vertices = 4;
+    bool asMesh = false;  // not a bilinear patch: a bicubic patch, or a polygon to cut into faces
 };
 
 // ---- Declarations -------------------------------------------------------------------------------
@@ -431,6 +437,31 @@ void RibParser::dispatch(const RibRequest& request) {
             {"Patch",
              {&RibParser::patchOrPolygon, "Patch \"bilinear\" \"P\" [12 numbers]", P::World, M::Geometry}},
             {"Polygon", {&RibParser::patchOrPolygon, "Polygon \"P\" [x y z ...]", P::World, M::Geometry}},
+            {"Basis", {&RibParser::basis, "Basis ubasis ustep vbasis vstep", P::Anywhere, M::None}},
+            {"PatchMesh",
+             {&RibParser::curvedGeometry, "PatchMesh \"bicubic\"|\"bilinear\" nu \"nonperiodic\"|\"periodic\" nv "
+              "\"nonperiodic\"|\"periodic\" \"P\" [...]", P::World, M::Geometry}},
+            {"SubdivisionMesh",
+             {&RibParser::curvedGeometry, "SubdivisionMesh \"catmull-clark\" [nvertices] [vertices] [tags] [nargs] "
+              "[intargs] [floatargs] \"P\" [...]", P::World, M::Geometry}},
+            {"Sphere", {&RibParser::curvedGeometry, "Sphere radius zmin zmax thetamax", P::World, M::Geometry}},
+            {"Cylinder", {&RibParser::curvedGeometry, "Cylinder radius zmin zmax thetamax", P::World, M::Geometry}},
+            {"Cone", {&RibParser::curvedGeometry, "Cone height radius thetamax", P::World, M::Geometry}},
+            {"Disk", {&RibParser::curvedGeometry, "Disk height radius thetamax", P::World, M::Geometry}},
+            {"Paraboloid",
+             {&RibParser::curvedGeometry, "Paraboloid rmax zmin zmax thetamax", P::World, M::Geometry}},
+            {"Hyperboloid",
+             {&RibParser::curvedGeometry, "Hyperboloid x1 y1 z1 x2 y2 z2 thetamax", P::World, M::Geometry}},
+            {"Torus",
+             {&RibParser::curvedGeometry, "Torus majorradius minorradius phimin phimax thetamax", P::World,
+              M::Geometry}},
+            {"GeneralPolygon",
+             {&RibParser::curvedGeometry, "GeneralPolygon [nvertices per loop] \"P\" [...]", P::World, M::Geometry}},
+            {"PointsPolygons",
+             {&RibParser::curvedGeometry, "PointsPolygons [nvertices] [vertices] \"P\" [...]", P::World, M::Geometry}},
+            {"PointsGeneralPolygons",
+             {&RibParser::curvedGeometry, "PointsGeneralPolygons [nloops] [nvertices] [vertices] \"P\" [...]", P::World,
+              M::Geometry}},
             // Procedurals and archives.
             {"Procedural",
              {&RibParser::procedural, "Procedural \"DelayedReadArchive\" [\"file\"] [xmin xmax ymin ymax zmin zmax]",
@@ -447,7 +478,7 @@ void RibParser::dispatch(const RibRequest& request) {
               "ReverseOrientation", "ColorSamples", "CropWindow", "DepthOfField", "RelativeDetail",
               "PixelVariance", "Atmosphere", "Interior", "Exterior", "Displacement", "Deformation", "TextureCoordinates", "Matte",
               "Bound", "Detail", "DetailRange", "Perspective", "Skew", "CoordinateSystem", "CoordSysTransform",
-              "ScopedCoordinateSystem", "Basis", "ShadingInterpolation", "AreaLightSource", "SolidBegin",
+              "ScopedCoordinateSystem", "ShadingInterpolation", "AreaLightSource", "SolidBegin",
               "SolidEnd", "ObjectEnd", "ArchiveEnd", "MakeTexture", "MakeBump", "MakeLatLongEnvironment",
               "MakeCubeFaceEnvironment", "MakeShadow", "MakeBrickMap", "ErrorHandler", "ArchiveRecord",
               "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
@@ -457,10 +488,8 @@ void RibParser::dispatch(const RibRequest& request) {
             r.emplace(name, RequestInfo{&RibParser::unsupported, "", P::Anywhere, M::None});
         // Geometry outside the subset: skipped with a warning (later features add them).
         for (const char* name :
-             {"PatchMesh", "NuPatch", "TrimCurve", "SubdivisionMesh", "HierarchicalSubdivisionMesh", "Sphere",
-              "Cone", "Cylinder", "Hyperboloid", "Paraboloid", "Disk", "Torus", "Points", "Curves", "Blobby",
-              "Procedural2", "GeneralPolygon", "PointsPolygons",
-              "PointsGeneralPolygons", "Geometry", "Volume", "ObjectInstance"})
+             {"NuPatch", "TrimCurve", "HierarchicalSubdivisionMesh", "Points", "Curves", "Blobby", "Procedural2",
+              "Geometry", "Volume", "ObjectInstance"})
             r.emplace(name, RequestInfo{&RibParser::unsupportedGeometry, "", P::World, M::Geometry});
         // clang-format on
         return r;
@@ -508,8 +537,8 @@ void RibParser::dispatch(const RibRequest& request) {
         if (info.motion == MotionRole::None)
             throw InputError(request.loc, name + " cannot appear inside a motion block (" + block +
                                               " has no MotionEnd yet): only transforms (Translate, Rotate, Scale, "
-                                              "ConcatTransform, Transform, Identity) or geometry (Patch, Polygon) "
-                                              "can move");
+                                              "ConcatTransform, Transform, Identity) or geometry (Patch, PatchMesh, "
+                                              "Polygon, SubdivisionMesh, a quadric, ...) can move");
         checkPhase();
         const std::vector<RibRequest>& held = motion_->requests;
         if (!held.empty() && name != held.front().name)
@@ -913,7 +942,11 @@ void RibParser::motionEnd(RibArgs& args) {
         std::vector<PatchKey> keys(block.requests.size());
         for (size_t i = 0; i < keys.size(); ++i) {
             RibArgs keyArgs(block.requests[i], block.usage);
-            if (!readPatchKey(keyArgs, &keys[i])) return;  // unsupported: skipped with a warning
+            if (!readPatchKey(keyArgs, &keys[i])) {
+                // A bicubic patch or a larger polygon: the curved/polygon-mesh path.
+                if (keys[i].asMesh) geometry(block.times, block.requests, block.usage);
+                return;
+            }
         }
         addPatch(block.times, keys, block.requests.front().loc);
     } else if (name == "Identity" || name == "Transform" || name == "ConcatTransform" || name == "Translate" ||
@@ -925,6 +958,10 @@ void RibParser::motionEnd(RibArgs& args) {
             keys.push_back(readTransformMatrix(keyArgs, &replaces));
         }
         applyTransform(MotionTransform(block.times, std::move(keys)), replaces, block.requests.front().loc);
+    } else if (name == "PatchMesh" || name == "SubdivisionMesh" || name == "Sphere" || name == "Cylinder" ||
+               name == "Cone" || name == "Disk" || name == "Paraboloid" || name == "Hyperboloid" || name == "Torus" ||
+               name == "GeneralPolygon" || name == "PointsPolygons" || name == "PointsGeneralPolygons") {
+        geometry(block.times, block.requests, block.usage);
     } else {
         RibArgs first(block.requests.front(), block.usage);
         unsupportedGeometry(first);
@@ -1048,6 +1085,11 @@ void RibParser::attribute(RibArgs& args) {
             throw InputError(p.loc, "Attribute \"" + category + "\": parameter '" + p.name + "' has " +
                                         plural(p.nums.size() + p.strings.size(), "value") +
                                         ", not a whole number of " + paramTypeName(p.type) + "s");
+        if (category == "light" && p.name == "shadows" && p.type == ParamType::String) {
+            const std::string v = p.strings.empty() ? "" : p.strings.front();
+            if (v != "on" && v != "off")
+                throw InputError(p.loc, "Attribute \"light\" \"shadows\": expected \"on\" or \"off\", not \"" + v + "\"");
+        }
         p.name = category + ":" + p.name;
         auto same = std::find_if(a.user.params.begin(), a.user.params.end(),
                                  [&](const Param& q) { return q.name == p.name; });
@@ -1095,7 +1137,8 @@ void RibParser::lightSource(RibArgs& args) {
     warnUnusedParams(params, shader->second, "LightSource \"" + name + "\"");
 
     int index = int(scene_.lights.size());
-    scene_.lights.push_back(LightDesc{name, std::move(params), ctm_, args.loc()});
+    const bool shadows = attributes_->user.getString("light:shadows", "off") == "on";
+    scene_.lights.push_back(LightDesc{name, std::move(params), ctm_, args.loc(), shadows});
     mutableAttributes().lights.push_back(index);
     if (!handle.empty()) {
         lightHandles_[handle] = index;
@@ -1151,8 +1194,7 @@ bool RibParser::readPatchKey(RibArgs& args, PatchKey* key) {
         const RibValue* typeValue = args.peek();
         std::string type = args.string("type");
         if (type == "bicubic") {
-            log_.warnOnce("request:Patch bicubic", args.loc(), "Patch \"bicubic\" is not supported yet: skipped");
-            args.skipRest();
+            key->asMesh = true;  // read as a patch mesh
             return false;
         }
         if (type != "bilinear")
@@ -1182,8 +1224,7 @@ bool RibParser::readPatchKey(RibArgs& args, PatchKey* key) {
         vertices = int(pos.nums.size() / perVertex);
         if (vertices < 3) args.fail("a polygon needs at least 3 vertices, got " + std::to_string(vertices));
         if (vertices > 4) {
-            log_.warnOnce("polygon:vertices", args.loc(),
-                          "Polygon with " + std::to_string(vertices) + " vertices not supported yet: skipped");
+            key->asMesh = true;  // cut into faces as a polygon mesh
             return false;
         }
     }
@@ -1202,6 +1243,13 @@ bool RibParser::readPatchKey(RibArgs& args, PatchKey* key) {
         } else {
             points[i] = Vec3d(v[0], v[1], v[2]);
         }
+    }
+
+    // A concave quad would fold as a bilinear patch: it is cut into triangles instead.
+    std::vector<std::array<int, 4>> faces;
+    if (args.name() == "Polygon" && vertices == 4 && cutPolygon(points, {{0, 1, 2, 3}}, &faces) && faces.size() > 1) {
+        key->asMesh = true;
+        return false;
     }
 
     // Corner c takes vertex order[c]. A quad's vertices go around its edge (0 1 2 3), a patch's
@@ -1259,6 +1307,9 @@ void RibParser::addPatch(const std::vector<double>& times, const std::vector<Pat
 void RibParser::patchOrPolygon(RibArgs& args) {
     PatchKey key;
     if (readPatchKey(args, &key)) addPatch({0.0}, {key}, args.loc());
+    else if (key.asMesh)
+        geometry({0.0}, {args.request()},
+                 args.name() == "Patch" ? "Patch \"bicubic\" \"P\" [48 numbers]" : "Polygon \"P\" [x y z ...]");
 }
 
 // Procedural "kind" [args] [xmin xmax ymin ymax zmin zmax]: a bound now, children when the
@@ -1332,6 +1383,540 @@ void RibParser::unsupportedGeometry(RibArgs& args) {
     log_.warnOnce("request:" + args.name(), args.loc(),
                   "unsupported request '" + args.name() + "' ignored (not supported yet)");
     args.skipRest();
+}
+
+// ---- Curved and polygon-mesh geometry ---------------------------------------------------------------
+// PatchMesh and Patch "bicubic", SubdivisionMesh, the quadrics, and polygons beyond four vertices
+// (Polygon, GeneralPolygon, PointsPolygons, PointsGeneralPolygons). Each reader takes one request
+// (one motion key); geometry() checks that the keys of a motion block agree and adds the
+// primitive to the scene.
+namespace {
+
+// How many items a parameter of each storage class has on one primitive.
+struct ClassCounts {
+    size_t uniform = 1, varying = 1, vertex = 1, faceVarying = 1;
+    size_t of(ParamClass c) const {
+        switch (c) {
+        case ParamClass::Constant: return 1;
+        case ParamClass::Uniform: return uniform;
+        case ParamClass::Varying: return varying;
+        case ParamClass::Vertex: return vertex;
+        case ParamClass::FaceVarying: return faceVarying;
+        }
+        return 1;
+    }
+};
+
+// The positions: "P" (x y z) or "Pw" (x y z w) per vertex, declared as such.
+const Param& positionParam(const RibArgs& args, const ParamList& params) {
+    if (const Param* pz = params.find("Pz"))
+        args.failAt(pz->loc.line, "\"Pz\" is not supported: give \"P\" with x y z for every vertex", false);
+    const Param* P = params.find("P");
+    const Param* Pw = params.find("Pw");
+    if (P && Pw) args.failAt(Pw->loc.line, "give either \"P\" or \"Pw\", not both", false);
+    if (!P && !Pw) args.fail("missing \"P\": give x y z for every vertex (or \"Pw\" with x y z w)");
+    const Param& pos = P ? *P : *Pw;
+    if (pos.type != (P ? ParamType::Point : ParamType::HPoint) || pos.arraySize != 1)
+        args.failAt(pos.loc.line, "\"" + pos.name + "\" must be declared as " + (P ? "point" : "hpoint"), false);
+    return pos;
+}
+
+std::vector<Vec3d> pointsOf(const RibArgs& args, const Param& pos) {
+    const size_t per = size_t(pos.componentsPerItem());
+    std::vector<Vec3d> points(pos.nums.size() / per);
+    for (size_t i = 0; i < points.size(); ++i) {
+        const double* v = &pos.nums[i * per];
+        if (per == 4 && v[3] == 0)
+            args.failAt(pos.loc.line, "\"Pw\" vertex " + std::to_string(i) + " has w = 0", false);
+        points[i] = per == 4 ? Vec3d(v[0] / v[3], v[1] / v[3], v[2] / v[3]) : Vec3d(v[0], v[1], v[2]);
+    }
+    return points;
+}
+
+// "Cs", if given: a color with as many values as its class has items here.
+ColorPrimvar readColors(const RibArgs& args, const ParamList& params, const ClassCounts& counts) {
+    ColorPrimvar c;
+    const Param* cs = params.find("Cs");
+    if (!cs) return c;
+    if (cs->type != ParamType::Color || cs->arraySize != 1)
+        args.failAt(cs->loc.line, "\"Cs\" must be declared as a color", false);
+    checkCount(args, *cs, counts.of(cs->cls));
+    c.cls = cs->cls;
+    for (size_t i = 0; i + 2 < cs->nums.size(); i += 3)
+        c.values.emplace_back(float(cs->nums[i]), float(cs->nums[i + 1]), float(cs->nums[i + 2]));
+    return c;
+}
+
+// Parameters other than positions and Cs: checked for size, then ignored with a warning.
+void otherParams(const RibArgs& args, const ParamList& params, const ClassCounts& counts, Log& log) {
+    for (const Param& p : params.params) {
+        if (p.name == "P" || p.name == "Pw" || p.name == "Cs") continue;
+        checkCount(args, p, counts.of(p.cls));
+        log.warnOnce("geometry-param:" + p.name, p.loc,
+                     "parameter '" + p.name + "' on " + args.name() + " is not supported yet: ignored");
+    }
+}
+
+// A bracketed array of whole numbers, each at least `min`.
+std::vector<int> intArray(RibArgs& args, const std::string& what, int min) {
+    if (args.done()) args.fail("missing " + what + " (an array of whole numbers)");
+    const RibValue& v = args.take();
+    if (v.kind != RibValue::Kind::Array || !v.isNumericArray())
+        args.fail(v, what + " must be an array of whole numbers, got " + describeValue(v));
+    std::vector<int> out;
+    for (double x : v.nums) {
+        if (!isWholeInt(x) || x < min)
+            args.fail(v, what + " must hold whole numbers of at least " + std::to_string(min) + ", got " +
+                             formatNumber(x));
+        out.push_back(int(x));
+    }
+    return out;
+}
+
+const RibValue& takeArray(RibArgs& args, const std::string& what, bool strings) {
+    if (args.done()) args.fail("missing " + what);
+    const RibValue& v = args.take();
+    if (v.kind != RibValue::Kind::Array || (strings ? !v.isStringArray() : !v.isNumericArray()))
+        args.fail(v, what + " must be an array of " + (strings ? "strings" : "numbers") + ", got " + describeValue(v));
+    return v;
+}
+
+std::string indexCount(size_t n) { return std::to_string(n) + (n == 1 ? " index" : " indices"); }
+
+size_t sum(const std::vector<int>& v) {
+    size_t s = 0;
+    for (int x : v) s += size_t(x);
+    return s;
+}
+
+bool wrapMode(RibArgs& args, const char* what) {
+    const RibValue* v = args.peek();
+    std::string mode = args.string(what);
+    if (mode != "periodic" && mode != "nonperiodic")
+        args.fail(*v, std::string(what) + " must be \"periodic\" or \"nonperiodic\", got \"" + mode + "\"");
+    return mode == "periodic";
+}
+
+}  // namespace
+
+void RibParser::basis(RibArgs& args) {
+    BasisDesc b[2];
+    for (int i = 0; i < 2; ++i) {
+        const char* which = i == 0 ? "ubasis" : "vbasis";
+        if (args.done()) args.fail(std::string("missing ") + which);
+        const RibValue& v = *args.peek();
+        if (v.kind == RibValue::Kind::Array && v.isNumericArray() && v.nums.size() == 16) {
+            std::copy(v.nums.begin(), v.nums.end(), b[i].m.begin());
+            args.take();
+        } else {
+            std::string name = args.string(which);
+            if (!basisFromName(name, &b[i]))
+                args.fail(v, "unknown basis \"" + name +
+                                 "\": use bezier, b-spline, catmull-rom, hermite, power or 16 numbers");
+        }
+        const RibValue* stepValue = args.peek();
+        const int step = args.integer(i == 0 ? "ustep" : "vstep");
+        if (step < 1) args.fail(*stepValue, "the step must be at least 1, got " + std::to_string(step));
+        b[i].step = step;
+    }
+    args.expectEnd();
+    Attributes& a = mutableAttributes();
+    a.uBasis = b[0];
+    a.vBasis = b[1];
+}
+
+void RibParser::curvedGeometry(RibArgs& args) {
+    geometry({0.0}, {args.request()}, args.usage());
+    args.skipRest();
+}
+
+bool RibParser::readPatchMeshKey(RibArgs& args, PatchMeshDesc* d) {
+    const RibValue* typeValue = args.peek();
+    const std::string type = args.string("type");
+    if (args.name() == "Patch") {
+        d->nu = d->nv = 4;
+    } else {
+        if (type != "bicubic" && type != "bilinear")
+            args.fail(*typeValue, "the patch type must be \"bilinear\" or \"bicubic\", got \"" + type + "\"");
+        const RibValue* nuValue = args.peek();
+        d->nu = args.integer("nu");
+        d->uPeriodic = wrapMode(args, "uwrap");
+        const RibValue* nvValue = args.peek();
+        d->nv = args.integer("nv");
+        d->vPeriodic = wrapMode(args, "vwrap");
+        d->bicubic = type == "bicubic";
+        d->uBasis = attributes_->uBasis;
+        d->vBasis = attributes_->vBasis;
+        // The control points must make whole patches (RenderMan's rule).
+        auto check = [&](const RibValue* at, int n, bool periodic, int step, const char* axis) {
+            const std::string name(axis);
+            if (!d->bicubic) {
+                if (n < 2) args.fail(*at, "a bilinear patch mesh needs at least 2 points along " + name);
+                return;
+            }
+            if (periodic ? n < 1 || n % step != 0 : n < 4 || (n - 4) % step != 0)
+                args.fail(*at, std::to_string(n) + " points along " + name + " do not make whole " +
+                                   (periodic ? "periodic" : "nonperiodic") + " patches with a basis step of " +
+                                   std::to_string(step) +
+                                   (periodic ? " (the count must be a multiple of the step)"
+                                             : " (the count must be 4 plus a multiple of the step)"));
+        };
+        check(nuValue, d->nu, d->uPeriodic, d->uBasis.step, "u");
+        check(nvValue, d->nv, d->vPeriodic, d->vBasis.step, "v");
+    }
+    if (args.name() == "Patch") {
+        d->bicubic = true;
+        d->uBasis = attributes_->uBasis;
+        d->vBasis = attributes_->vBasis;
+    }
+    ParamList params = readParams(args);
+    const Param& pos = positionParam(args, params);
+    checkCount(args, pos, size_t(d->nu) * size_t(d->nv));
+    ClassCounts counts;
+    counts.uniform = size_t(d->uPatches()) * size_t(d->vPatches());
+    counts.varying = counts.faceVarying = size_t(d->uVarying()) * size_t(d->vVarying());
+    counts.vertex = size_t(d->nu) * size_t(d->nv);
+    d->P = {pointsOf(args, pos)};
+    d->Cs = readColors(args, params, counts);
+    otherParams(args, params, counts, log_);
+    return true;
+}
+
+bool RibParser::readSubdivisionKey(RibArgs& args, SubdivisionMeshDesc* d) {
+    const RibValue* schemeValue = args.peek();
+    const std::string scheme = args.string("scheme");
+    if (scheme != "catmull-clark") {
+        if (scheme == "loop" || scheme == "bilinear") {
+            log_.warnOnce("subdivision:" + scheme, args.loc(),
+                          "SubdivisionMesh \"" + scheme + "\" is not supported (only \"catmull-clark\"): skipped");
+            args.skipRest();
+            return false;
+        }
+        args.fail(*schemeValue, "unknown subdivision scheme \"" + scheme + "\" (use \"catmull-clark\")");
+    }
+    d->faceSizes = intArray(args, "nvertices", 3);
+    d->faceVertices = intArray(args, "vertices", 0);
+    if (d->faceVertices.size() != sum(d->faceSizes))
+        args.fail("vertices has " + indexCount(d->faceVertices.size()) + " but the faces in nvertices need " +
+                  std::to_string(sum(d->faceSizes)));
+    d->vertexCount = 0;
+    for (int v : d->faceVertices) d->vertexCount = std::max(d->vertexCount, v + 1);
+    // A face that names a vertex twice has no sensible limit surface.
+    std::set<std::pair<int, int>> edges;
+    for (size_t f = 0, at = 0; f < d->faceSizes.size(); at += size_t(d->faceSizes[f]), ++f) {
+        const int n = d->faceSizes[f];
+        for (int i = 0; i < n; ++i) {
+            const int a = d->faceVertices[at + size_t(i)], b = d->faceVertices[at + size_t((i + 1) % n)];
+            for (int j = i + 1; j < n; ++j)
+                if (d->faceVertices[at + size_t(j)] == a)
+                    args.fail("face " + std::to_string(f) + " uses vertex " + std::to_string(a) + " twice");
+            edges.insert({std::min(a, b), std::max(a, b)});
+        }
+    }
+
+    // Tags, if any: [tags] [nargs] [intargs] [floatargs] (and [stringargs] with 3 counts per tag).
+    if (!args.done() && args.peek()->kind == RibValue::Kind::Array) {
+        const std::vector<std::string> tags = takeArray(args, "tags", true).strings;
+        const std::vector<int> nargs = intArray(args, "nargs", 0);
+        const std::vector<double> ints = takeArray(args, "intargs", false).nums;
+        const std::vector<double> floats = takeArray(args, "floatargs", false).nums;
+        const size_t per = tags.empty() ? 2 : nargs.size() / tags.size();
+        if ((per != 2 && per != 3) || nargs.size() != per * tags.size())
+            args.fail("nargs must hold 2 (or 3) counts per tag: " + plural(tags.size(), "tag") + " and " +
+                      plural(nargs.size(), "count"));
+        if (per == 3) takeArray(args, "stringargs", true);
+        size_t ii = 0, fi = 0;
+        for (size_t t = 0; t < tags.size(); ++t) {
+            const size_t ni = size_t(nargs[t * per]), nf = size_t(nargs[t * per + 1]);
+            if (ii + ni > ints.size() || fi + nf > floats.size())
+                args.fail("the tag \"" + tags[t] + "\" (tag " + std::to_string(t) +
+                          ") asks for more intargs or floatargs than given");
+            std::vector<int> iv;
+            for (size_t k = 0; k < ni; ++k) {
+                const double x = ints[ii + k];
+                if (!isWholeInt(x)) args.fail("intargs must be whole numbers, got " + formatNumber(x));
+                iv.push_back(int(x));
+            }
+            const std::vector<double> fv(floats.begin() + long(fi), floats.begin() + long(fi + nf));
+            ii += ni, fi += nf;
+            const std::string& tag = tags[t];
+            auto fail = [&](const std::string& what) { args.fail("tag \"" + tag + "\": " + what); };
+            auto checkVertex = [&](int v) {
+                if (v < 0 || v >= d->vertexCount)
+                    fail("vertex " + std::to_string(v) + " is not in the mesh (vertices 0 to " +
+                         std::to_string(d->vertexCount - 1) + ")");
+            };
+            for (double s : fv)
+                if (!(s >= 0)) fail("sharpness must not be negative, got " + formatNumber(s));
+            if (tag == "crease") {
+                if (iv.size() < 2 || fv.size() != 1)
+                    fail("give a chain of at least 2 vertices in intargs and one sharpness in floatargs");
+                for (size_t k = 0; k + 1 < iv.size(); ++k) {
+                    checkVertex(iv[k]);
+                    checkVertex(iv[k + 1]);
+                    if (!edges.count({std::min(iv[k], iv[k + 1]), std::max(iv[k], iv[k + 1])}))
+                        fail("vertices " + std::to_string(iv[k]) + " and " + std::to_string(iv[k + 1]) +
+                             " are not joined by an edge of the mesh");
+                    d->creaseEdges.push_back(iv[k]);
+                    d->creaseEdges.push_back(iv[k + 1]);
+                    d->creaseSharpness.push_back(float(fv[0]));
+                }
+            } else if (tag == "corner") {
+                if (iv.empty() || (fv.size() != 1 && fv.size() != iv.size()))
+                    fail("give the vertices in intargs and one sharpness (or one per vertex) in floatargs");
+                for (size_t k = 0; k < iv.size(); ++k) {
+                    checkVertex(iv[k]);
+                    d->corners.push_back(iv[k]);
+                    d->cornerSharpness.push_back(float(fv[fv.size() == 1 ? 0 : k]));
+                }
+            } else if (tag == "interpolateboundary") {
+                if (iv.size() > 1 || !fv.empty()) fail("takes at most one integer (0, 1 or 2)");
+                const int mode = iv.empty() ? 1 : iv[0];
+                if (mode < 0 || mode > 2) fail("the mode must be 0, 1 or 2, got " + std::to_string(mode));
+                d->interpolateBoundary = mode;
+            } else if (tag == "hole") {
+                for (int f : iv) {
+                    if (f < 0 || size_t(f) >= d->faceSizes.size())
+                        fail("face " + std::to_string(f) + " is not in the mesh (" +
+                             plural(d->faceSizes.size(), "face") + ")");
+                    d->holes.push_back(f);
+                }
+            } else {
+                log_.warnOnce("subdivision-tag:" + tag, args.loc(),
+                              "SubdivisionMesh tag \"" + tag + "\" is not supported: ignored");
+            }
+        }
+    }
+    ParamList params = readParams(args);
+    const Param& pos = positionParam(args, params);
+    checkCount(args, pos, size_t(d->vertexCount));
+    ClassCounts counts;
+    counts.uniform = d->faceSizes.size();
+    counts.varying = counts.vertex = size_t(d->vertexCount);
+    counts.faceVarying = d->faceVertices.size();
+    d->P = {pointsOf(args, pos)};
+    d->Cs = readColors(args, params, counts);
+    if (d->Cs.given() && d->Cs.cls == ParamClass::FaceVarying) {
+        log_.warnOnce("subdivision:facevarying", args.loc(),
+                      "facevarying \"Cs\" on SubdivisionMesh is not supported: using the Color attribute");
+        d->Cs = {};
+    }
+    otherParams(args, params, counts, log_);
+    return true;
+}
+
+bool RibParser::readQuadricKey(RibArgs& args, QuadricDesc* d) {
+    struct Kind {
+        QuadricKind kind;
+        size_t count;
+        const char* what;
+    };
+    static const std::map<std::string, Kind> kinds = {
+        {"Sphere", {QuadricKind::Sphere, 4, "radius zmin zmax thetamax"}},
+        {"Cylinder", {QuadricKind::Cylinder, 4, "radius zmin zmax thetamax"}},
+        {"Cone", {QuadricKind::Cone, 3, "height radius thetamax"}},
+        {"Disk", {QuadricKind::Disk, 3, "height radius thetamax"}},
+        {"Paraboloid", {QuadricKind::Paraboloid, 4, "rmax zmin zmax thetamax"}},
+        {"Hyperboloid", {QuadricKind::Hyperboloid, 7, "x1 y1 z1 x2 y2 z2 thetamax"}},
+        {"Torus", {QuadricKind::Torus, 5, "majorradius minorradius phimin phimax thetamax"}}};
+    const Kind& k = kinds.at(args.name());
+    std::vector<double> v = args.numbers(k.count, k.what);
+    // thetamax is the last argument; RenderMan clamps it to a full turn.
+    v.back() = std::max(-360.0, std::min(360.0, v.back()));
+    if (k.kind == QuadricKind::Paraboloid && !(v[2] > 0 && v[1] >= 0 && v[1] <= v[2]))
+        args.fail("needs 0 <= zmin <= zmax and zmax > 0, got zmin " + formatNumber(v[1]) + " and zmax " +
+                  formatNumber(v[2]));
+    d->kind = k.kind;
+    std::array<double, 7> params{};
+    std::copy(v.begin(), v.end(), params.begin());
+    d->params = {params};
+    ParamList list = readParams(args);
+    ClassCounts counts;
+    counts.varying = counts.vertex = counts.faceVarying = 4;
+    d->Cs = readColors(args, list, counts);
+    otherParams(args, list, counts, log_);
+    return true;
+}
+
+bool RibParser::readPolygonsKey(RibArgs& args, std::vector<Vec3d>* points,
+                                std::vector<std::vector<std::vector<int>>>* polygons, ColorPrimvar* Cs) {
+    const std::string& name = args.name();
+    std::vector<int> loopsPerPolygon, loopSizes, indices;
+    if (name == "GeneralPolygon") {
+        loopSizes = intArray(args, "nvertices", 3);
+        loopsPerPolygon = {int(loopSizes.size())};
+    } else if (name == "PointsPolygons") {
+        loopSizes = intArray(args, "nvertices", 3);
+        loopsPerPolygon.assign(loopSizes.size(), 1);
+        indices = intArray(args, "vertices", 0);
+    } else if (name == "PointsGeneralPolygons") {
+        loopsPerPolygon = intArray(args, "nloops", 1);
+        loopSizes = intArray(args, "nvertices", 3);
+        if (loopSizes.size() != sum(loopsPerPolygon))
+            args.fail("nvertices has " + plural(loopSizes.size(), "loop") + " but nloops asks for " +
+                      std::to_string(sum(loopsPerPolygon)));
+        indices = intArray(args, "vertices", 0);
+    }
+    if (!indices.empty() || name == "PointsPolygons" || name == "PointsGeneralPolygons")
+        if (indices.size() != sum(loopSizes))
+            args.fail("vertices has " + indexCount(indices.size()) + " but nvertices asks for " +
+                      std::to_string(sum(loopSizes)));
+    ParamList params = readParams(args);
+    const Param& pos = positionParam(args, params);
+    const size_t per = size_t(pos.componentsPerItem());
+    size_t npoints = 0;
+    if (name == "Polygon") {
+        if (pos.nums.size() % per != 0)
+            args.failAt(pos.loc.line,
+                        "parameter '" + pos.name + "' has " + plural(pos.nums.size(), "number") +
+                            ", which is not a whole number of vertices (" + std::to_string(per) + " numbers each)",
+                        false);
+        npoints = pos.nums.size() / per;
+        loopSizes = {int(npoints)};
+        loopsPerPolygon = {1};
+    } else if (name == "GeneralPolygon") {
+        npoints = sum(loopSizes);
+    } else {
+        for (int i : indices) npoints = std::max(npoints, size_t(i) + 1);
+    }
+    checkCount(args, pos, npoints);
+    *points = pointsOf(args, pos);
+    // Loops as indices into the points.
+    polygons->clear();
+    for (size_t p = 0, loop = 0, at = 0; p < loopsPerPolygon.size(); ++p) {
+        std::vector<std::vector<int>> loops;
+        for (int l = 0; l < loopsPerPolygon[p]; ++l, ++loop) {
+            std::vector<int> ring;
+            for (int k = 0; k < loopSizes[loop]; ++k, ++at) ring.push_back(indices.empty() ? int(at) : indices[at]);
+            loops.push_back(std::move(ring));
+        }
+        polygons->push_back(std::move(loops));
+    }
+    ClassCounts counts;
+    counts.uniform = polygons->size();
+    counts.varying = counts.vertex = npoints;
+    counts.faceVarying = sum(loopSizes);
+    *Cs = readColors(args, params, counts);
+    otherParams(args, params, counts, log_);
+    return true;
+}
+
+// Reads every key of a curved or polygon-mesh primitive, checks that they describe the same
+// shape, and adds it. Keys whose positions are all equal make a static primitive.
+void RibParser::geometry(const std::vector<double>& times, const std::vector<RibRequest>& requests,
+                         const char* usage) {
+    const std::string& name = requests.front().name;
+    const SourceLoc& loc = requests.front().loc;
+    auto differ = [&](const std::string& what) {
+        throw InputError(loc, "the " + name + " requests of a motion block must have the same " + what);
+    };
+    auto place = [&](PrimitiveDesc& d, std::vector<double> t) {
+        d.times = std::move(t);
+        d.objectToWorld = ctm_;
+        d.attributes = attributes_;
+        d.loc = loc;
+    };
+    auto colorsDiffer = [&](const ColorPrimvar& a, const ColorPrimvar& b) {
+        if (a.cls != b.cls || a.values != b.values)
+            log_.warnOnce("motion:Cs", loc, "Cs does not change over motion keys: using the first key's");
+    };
+    // Reads every key with `read` and checks that it has the first key's shape (what may not
+    // change is named by `what`); false when the primitive is skipped.
+    auto readKeys = [&](auto& keys, auto read, auto sameShape, const char* what) {
+        for (size_t i = 0; i < keys.size(); ++i) {
+            RibArgs a(requests[i], usage);
+            if (!(this->*read)(a, &keys[i])) return false;
+            if (!sameShape(keys[i], keys[0])) differ(what);
+            colorsDiffer(keys[i].Cs, keys[0].Cs);
+        }
+        return true;
+    };
+    // The first key's primitive with the positions of every key (`positions` picks the member
+    // that moves), or of the first alone when they are all equal.
+    auto mergeKeys = [&](auto& keys, auto positions) {
+        auto d = keys[0];
+        bool moves = false;
+        for (size_t i = 1; i < keys.size(); ++i) moves = moves || positions(keys[i]) != positions(keys[0]);
+        place(d, moves ? times : std::vector<double>{times.front()});
+        positions(d).clear();
+        for (size_t i = 0; i < d.times.size(); ++i) positions(d).push_back(positions(keys[i])[0]);
+        return d;
+    };
+
+    if (name == "Patch" || name == "PatchMesh") {
+        std::vector<PatchMeshDesc> keys(requests.size());
+        auto same = [](const PatchMeshDesc& k, const PatchMeshDesc& f) {
+            return k.bicubic == f.bicubic && k.nu == f.nu && k.nv == f.nv && k.uPeriodic == f.uPeriodic &&
+                   k.vPeriodic == f.vPeriodic;
+        };
+        if (!readKeys(keys, &RibParser::readPatchMeshKey, same, "type, size and wrap")) return;
+        scene_.patchMeshes.push_back(mergeKeys(keys, [](PatchMeshDesc& d) -> auto& { return d.P; }));
+    } else if (name == "SubdivisionMesh") {
+        std::vector<SubdivisionMeshDesc> keys(requests.size());
+        auto same = [](const SubdivisionMeshDesc& k, const SubdivisionMeshDesc& f) {
+            return k.faceSizes == f.faceSizes && k.faceVertices == f.faceVertices && k.creaseEdges == f.creaseEdges &&
+                   k.creaseSharpness == f.creaseSharpness && k.corners == f.corners &&
+                   k.cornerSharpness == f.cornerSharpness && k.holes == f.holes &&
+                   k.interpolateBoundary == f.interpolateBoundary;
+        };
+        if (!readKeys(keys, &RibParser::readSubdivisionKey, same, "topology and tags (only \"P\" may change)")) return;
+        scene_.subdivisionMeshes.push_back(mergeKeys(keys, [](SubdivisionMeshDesc& d) -> auto& { return d.P; }));
+    } else if (name == "Polygon" || name == "GeneralPolygon" || name == "PointsPolygons" ||
+               name == "PointsGeneralPolygons") {
+        std::vector<std::vector<Vec3d>> P(requests.size());
+        std::vector<std::vector<std::vector<int>>> polygons, first;
+        ColorPrimvar Cs, firstCs;
+        for (size_t i = 0; i < requests.size(); ++i) {
+            RibArgs a(requests[i], usage);
+            readPolygonsKey(a, &P[i], i == 0 ? &first : &polygons, i == 0 ? &firstCs : &Cs);
+            if (i > 0 && polygons != first) {
+                if (name == "Polygon")
+                    throw InputError(loc, "the polygons in a motion block must have the same number of vertices (" +
+                                              std::to_string(first[0][0].size()) + " and " +
+                                              std::to_string(polygons[0][0].size()) + ")");
+                differ("polygons and vertex indices (only \"P\" may change)");
+            }
+            if (i > 0) colorsDiffer(Cs, firstCs);
+        }
+        PolygonMeshDesc d;
+        bool moves = false;
+        for (size_t i = 1; i < P.size(); ++i) moves = moves || P[i] != P[0];
+        place(d, moves ? times : std::vector<double>{times.front()});
+        for (size_t i = 0; i < d.times.size(); ++i) d.P.push_back(P[i]);
+        // Cut every polygon once (at the first key) into triangles and convex quads.
+        size_t faceVertex = 0;
+        for (size_t p = 0; p < first.size(); ++p) {
+            std::vector<std::array<int, 4>> faces;
+            if (!cutPolygon(P[0], first[p], &faces)) {
+                log_.warnOnce("polygon:degenerate", loc,
+                              name + ": a polygon has no area (its points are on one line): skipped");
+            }
+            // Facevarying colours: the polygon's own corners, by point.
+            std::map<int, size_t> cornerOf;
+            for (const std::vector<int>& loop : first[p])
+                for (int v : loop) cornerOf.emplace(v, faceVertex++);
+            for (const std::array<int, 4>& f : faces) {
+                d.faces.push_back(f);
+                if (!firstCs.given()) continue;
+                std::array<Color, 4> c;
+                for (size_t k = 0; k < 4; ++k) {
+                    const int v = f[k];
+                    switch (firstCs.cls) {
+                    case ParamClass::Constant: c[k] = firstCs.values[0]; break;
+                    case ParamClass::Uniform: c[k] = firstCs.values[p]; break;
+                    case ParamClass::FaceVarying: c[k] = firstCs.values[cornerOf[v]]; break;
+                    default: c[k] = firstCs.values[size_t(v)];
+                    }
+                }
+                d.faceCs.push_back(c);
+            }
+        }
+        if (!d.faces.empty()) scene_.polygonMeshes.push_back(std::move(d));
+    } else {
+        std::vector<QuadricDesc> keys(requests.size());
+        readKeys(keys, &RibParser::readQuadricKey, [](const QuadricDesc&, const QuadricDesc&) { return true; }, "");
+        scene_.quadrics.push_back(mergeKeys(keys, [](QuadricDesc& d) -> auto& { return d.params; }));
+    }
 }
 
 // ---- End of input -------------------------------------------------------------------------------

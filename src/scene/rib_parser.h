@@ -150,6 +150,16 @@ class RibParser {
     bool readPatchKey(RibArgs& args, PatchKey* key);
     void addPatch(const std::vector<double>& times, const std::vector<PatchKey>& keys, const SourceLoc& loc);
     void unsupportedGeometry(RibArgs& args);
+    // Curved and polygon-mesh geometry (PatchMesh, Patch "bicubic", SubdivisionMesh, quadrics,
+    // polygons beyond four vertices): one request, or one per motion key.
+    void basis(RibArgs& args);
+    void curvedGeometry(RibArgs& args);
+    void geometry(const std::vector<double>& times, const std::vector<RibRequest>& requests, const char* usage);
+    bool readPatchMeshKey(RibArgs& args, PatchMeshDesc* out);
+    bool readSubdivisionKey(RibArgs& args, SubdivisionMeshDesc* out);
+    bool readQuadricKey(RibArgs& args, QuadricDesc* out);
+    bool readPolygonsKey(RibArgs& args, std::vector<Vec3d>* points,
+                         std::vector<std::vector<std::vector<int>>>* polygons, ColorPrimvar* Cs);
     void procedural(RibArgs& args);
     void readArchive(RibArgs& args);
     std::string resolveArchive(const std::string& name, const SourceLoc& loc) const;

@@ -344,17 +344,16 @@ TEST(RibGeometry, PwDividesByW) {
 TEST(RibGeometry, UnsupportedGeometryIsSkippedWithOneWarning) {
     Log log;
     Scene scene = parse(
-        "WorldBegin\nSphere 1 -1 1 360\nSphere 2 -2 2 360\n"
-        "Polygon \"P\" [0 0 0 1 0 0 1 1 0 0 1 0 0 2 0]\n"
-        "Patch \"bicubic\" \"P\" [0 0 0 1 0 0 2 0 0 3 0 0 0 1 0 1 1 0 2 1 0 3 1 0 0 2 0 1 2 0 2 2 0 3 2 0 "
-        "0 3 0 1 3 0 2 3 0 3 3 0]\nWorldEnd\n",
+        "WorldBegin\nPoints \"P\" [0 0 0]\nPoints \"P\" [1 1 1]\n"
+        "Curves \"linear\" [2] \"nonperiodic\" \"P\" [0 0 0 1 1 1]\nWorldEnd\n",
         log);
     EXPECT_TRUE(scene.patches.empty());
+    EXPECT_TRUE(scene.patchMeshes.empty());
+    EXPECT_TRUE(scene.polygonMeshes.empty());
     std::vector<std::string> w = log.warnings();
-    ASSERT_EQ(w.size(), 3u);
-    EXPECT_NE(w[0].find("test.rib:2: warning: unsupported request 'Sphere'"), std::string::npos) << w[0];
-    EXPECT_NE(w[1].find("Polygon with 5 vertices not supported yet"), std::string::npos) << w[1];
-    EXPECT_NE(w[2].find("bicubic"), std::string::npos) << w[2];
+    ASSERT_EQ(w.size(), 2u);
+    EXPECT_NE(w[0].find("test.rib:2: warning: unsupported request 'Points'"), std::string::npos) << w[0];
+    EXPECT_NE(w[1].find("test.rib:4: warning: unsupported request 'Curves'"), std::string::npos) << w[1];
 }
 
 // ---- Declarations ---------------------------------------------------------------------------------
@@ -495,6 +494,29 @@ TEST(RibAttributes, LightsAttachToTheirAttributeScope) {
     EXPECT_EQ(scene.patches[1].attributes->lights, (std::vector<int>{1}));     // ambient turned off
     EXPECT_EQ(scene.patches[2].attributes->lights, (std::vector<int>{0}));     // back outside the block
     EXPECT_EQ(scene.patches[3].attributes->lights, (std::vector<int>{0, 1}));  // turned on by handle
+}
+
+TEST(RibAttributes, LightShadowsAttributeMarksTheLightsDeclaredUnderIt) {
+    Scene scene = parse("WorldBegin\n"
+                        "LightSource \"distantlight\" 1\n"
+                        "AttributeBegin\n"
+                        "  Attribute \"light\" \"shadows\" \"on\"\n"
+                        "  LightSource \"distantlight\" 2\n"
+                        "  LightSource \"pointlight\" 3\n"
+                        "  Attribute \"light\" \"string shadows\" [\"off\"]\n"
+                        "  LightSource \"pointlight\" 4\n"
+                        "AttributeEnd\n"
+                        "LightSource \"pointlight\" 5\n"
+                        "WorldEnd\n");
+    ASSERT_EQ(scene.lights.size(), 5u);
+    const bool expected[5] = {false, true, true, false, false};  // AttributeEnd restores "off"
+    for (size_t i = 0; i < 5; ++i) EXPECT_EQ(scene.lights[i].castsShadows, expected[i]) << "light " << i + 1;
+}
+
+TEST(RibErrors, LightShadowsMustBeOnOrOff) {
+    std::string e = errorOf("WorldBegin\n\nAttribute \"light\" \"shadows\" \"yes\"\nWorldEnd\n");
+    EXPECT_NE(e.find("bad.rib:3: "), std::string::npos) << e;
+    EXPECT_NE(e.find("expected \"on\" or \"off\", not \"yes\""), std::string::npos) << e;
 }
 
 // ---- Reuse: parsing more input into the same scene ------------------------------------------------

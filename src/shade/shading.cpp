@@ -46,6 +46,8 @@ LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& 
         l.from = d.params.getPoint("from", {0, 0, 0});
         l.to = d.params.getPoint("to", {0, 0, 1});
         l.lightToWorld = d.lightToWorld;
+        l.castsShadows = d.castsShadows && l.kind != LightKind::Ambient;
+        if (l.castsShadows) shadowLights_.push_back(int(lights_.size()));
         static_ = static_ && l.lightToWorld.isStatic();
         lights_.push_back(l);
     }
@@ -59,9 +61,10 @@ void LightSet::at(double t, std::vector<CameraLight>& out) const {
     }
     out.clear();
     Matrix4 w2c = worldToCamera_.at(t);
+    int slot = 0;
     for (const Light& l : lights_) {
         Matrix4 m = l.lightToWorld.at(t) * w2c;
-        CameraLight c{l.kind, l.color, {}, {}};
+        CameraLight c{l.kind, l.color, {}, {}, l.castsShadows ? slot++ : -1};
         Vec3d from = m.point(l.from);
         if (l.kind == LightKind::Point) c.position = Vec3f(from);
         if (l.kind == LightKind::Distant) c.direction = Vec3f(normalize(from - m.point(l.to)));
@@ -74,8 +77,11 @@ namespace {
 // RenderMan's faceforward(N, I): N turned to face against the incident direction I.
 inline Vec3f faceForward(Vec3f n, Vec3f i) { return dot(n, i) < 0 ? n : -n; }
 
-Color shadeVertex(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthographic,
-                  const std::vector<CameraLight>& lights) {
+}  // namespace
+
+Color shadePoint(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthographic,
+                 const std::vector<CameraLight>& lights, Color* shadowed, int slots) {
+    for (int k = 0; k < slots; ++k) shadowed[k] = {0, 0, 0};
     if (m.kind == SurfaceKind::Constant) return cs * m.Os;
     Vec3f I = orthographic ? Vec3f{0, 0, 1} : normalize(p);
     Vec3f Nf = faceForward(normalize(n), I);
@@ -104,6 +110,16 @@ Color shadeVertex(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthograph
         }
         float ndl = dot(Nf, L);
         if (ndl <= 0) continue;
+        if (shadowed && l.shadowSlot >= 0) {  // this light's share, kept apart for its shadow test
+            Color part = cs * (cl * ndl) * m.Kd;
+            if (m.kind == SurfaceKind::Plastic) {
+                Vec3f H = normalize(L + V);
+                float ndh = std::max(0.0f, dot(Nf, H));
+                part += m.specularColor * (cl * std::pow(ndh, 1.0f / std::max(m.roughness, 1e-4f))) * m.Ks;
+            }
+            shadowed[l.shadowSlot] = part * m.Os;
+            continue;
+        }
         diffuse += cl * ndl;
         if (m.kind == SurfaceKind::Plastic) {
             Vec3f H = normalize(L + V);
@@ -116,17 +132,16 @@ Color shadeVertex(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthograph
     return c * m.Os;
 }
 
-}  // namespace
-
 void shadeGrid(Grid& grid, const LightSet& lights, bool orthographic, std::vector<CameraLight>& scratch) {
     const Material& m = *grid.material;
     const int n = grid.vertexCount();
     for (int k = 0; k < (grid.moving ? 2 : 1); ++k) {
         if (m.kind != SurfaceKind::Constant && m.kind != SurfaceKind::Default && !m.lights.empty())
             lights.at(k == 0 ? grid.t0 : grid.t1, scratch);
+        const int K = grid.shadowSlots;
         for (int i = 0; i < n; ++i)
-            grid.Ci[k][size_t(i)] = shadeVertex(m, grid.Cs[size_t(i)], grid.P[k][size_t(i)],
-                                                grid.N[k][size_t(i)], orthographic, scratch);
+            grid.Ci[k][size_t(i)] = shadePoint(m, grid.Cs[size_t(i)], grid.P[k][size_t(i)], grid.N[k][size_t(i)],
+                                               orthographic, scratch, K ? &grid.Cl[k][size_t(i) * size_t(K)] : nullptr, K);
     }
 }
 

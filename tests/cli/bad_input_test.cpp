@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "cli_util.h"
+#include "cli_run.h"
 #include "streyes/image_io.h"
 #include "test_util.h"
 
@@ -16,6 +16,7 @@ namespace fs = std::filesystem;
 using test::CliRun;
 using test::listDir;
 using test::runStreyes;
+using test::runStreyesWith;
 using test::writeFile;
 
 // ---- Malformed RIB: exit 2, "bad.rib:3: error: ...", no frame written ----------------------------
@@ -99,7 +100,7 @@ TEST(Files, UnreadableSceneIsBadInput) {
                              fs::perms::others_read | fs::perms::others_exec);
     const std::string scene = writeFile(dir, "secret.rib", kTwoFrames);
     fs::permissions(scene, fs::perms::owner_write);  // no one may read it (but root)
-    CliRun r = runStreyes("render " + scene + " -o /tmp/never.####.exr", unprivileged());
+    CliRun r = runStreyesWith(unprivileged(), "render " + scene + " -o /tmp/never.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("cannot open scene '" + scene + "': Permission denied"), std::string::npos) << r.output;
 }
@@ -121,7 +122,7 @@ TEST(Files, OutputFolderWithoutWritePermissionFailsCleanly) {
         fs::permissions(d, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
                                fs::perms::others_read | fs::perms::others_exec);
     if (geteuid() != 0) fs::permissions(dir + "/out", fs::perms::owner_read | fs::perms::owner_exec);
-    CliRun r = runStreyes("render " + scene + " -o " + dir + "/out/f.####.exr", unprivileged());
+    CliRun r = runStreyesWith(unprivileged(), "render " + scene + " -o " + dir + "/out/f.####.exr");
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("cannot write '" + dir + "/out/f.0001.exr': the folder '" + dir +
                             "/out' is not writable (Permission denied)"),
@@ -149,7 +150,7 @@ Patch "bilinear" "P" [-2 -2 1  2 -2 1  -2 2 1  2 2 1] "Cs" [1 0 0  0 1 0  0 0 1 
 WorldEnd
 )";
     const std::string scene = writeFile(dir, "two.rib", rib);
-    CliRun r = runStreyes("render " + scene + " -o " + dir + "/f.####.exr", "ulimit -f 4; ");
+    CliRun r = runStreyesWith("ulimit -f 4; ", "render " + scene + " -o " + dir + "/f.####.exr");
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("cannot write '" + dir + "/f.0002.exr': File too large"), std::string::npos) << r.output;
     EXPECT_EQ(listDir(dir), (std::vector<std::string>{"f.0001.exr", "two.rib"}));

@@ -1,12 +1,11 @@
 // The streyes command as a user runs it: exit codes, messages, files written.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
-#include "cli_util.h"
+#include "cli_run.h"
 #include "streyes/image_io.h"
 #include "test_util.h"
 
@@ -15,10 +14,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using test::listDir;
+using test::CliRun;
 using test::writeFile;
 
-test::CliRun streyes(const std::string& args) { return test::runStreyes(args); }
+CliRun streyes(const std::string& args) { return test::runStreyes(args); }
+
+std::vector<std::string> listDir(const std::string& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
 
 const char* kTiny = R"(Format 16 8 1
 PixelSamples 2 2
@@ -29,18 +35,18 @@ WorldEnd
 )";
 
 TEST(Cli, HelpAndUsageErrors) {
-    test::CliRun help = streyes("--help");
+    CliRun help = streyes("--help");
     EXPECT_EQ(help.exitCode, 0);
     EXPECT_NE(help.output.find("streyes render"), std::string::npos);
-    test::CliRun bad = streyes("render --bogus x.rib");
+    CliRun bad = streyes("render --bogus x.rib");
     EXPECT_EQ(bad.exitCode, 2);
     EXPECT_NE(bad.output.find("unknown option '--bogus'"), std::string::npos);
-    test::CliRun badFrames = streyes("render x.rib --frames 5-2");
+    CliRun badFrames = streyes("render x.rib --frames 5-2");
     EXPECT_EQ(badFrames.exitCode, 2);
 }
 
 TEST(Cli, MissingSceneIsBadInput) {
-    test::CliRun r = streyes("render /nonexistent/scene.rib -o /tmp/x.exr");
+    CliRun r = streyes("render /nonexistent/scene.rib -o /tmp/x.exr");
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.output.find("/nonexistent/scene.rib"), std::string::npos) << r.output;
 }
@@ -48,7 +54,7 @@ TEST(Cli, MissingSceneIsBadInput) {
 TEST(Cli, MalformedRibExits2WithFileAndLine) {
     std::string dir = test::makeTempDir("cli-bad");
     std::string scene = writeFile(dir, "bad.rib", "Format 16 8 1\nWorldBegin\nTranslate 1 2\nWorldEnd\n");
-    test::CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
+    CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("bad.rib:3: error:"), std::string::npos) << r.output;
     EXPECT_EQ(listDir(dir), std::vector<std::string>{"bad.rib"});  // nothing written
@@ -59,7 +65,7 @@ TEST(Cli, UnknownRequestWarnsOnceAndRenders) {
     std::string rib = std::string("Hider \"hidden\"\n") + kTiny;
     rib.insert(rib.find("WorldEnd"), "Hider \"hidden\"\n");
     std::string scene = writeFile(dir, "warn.rib", rib);
-    test::CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
+    CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("warn.rib:1: warning:"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("warn.rib:7: warning:"), std::string::npos) << "warned twice: " << r.output;
@@ -71,7 +77,7 @@ TEST(Cli, UnknownRequestWarnsOnceAndRenders) {
 TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
     std::string dir = test::makeTempDir("cli-exr");
     std::string scene = writeFile(dir, "tiny.rib", kTiny);
-    test::CliRun r = streyes("render " + scene + " --frames 3-4 --res 20x10 -o " + dir + "/f.####.exr --stats " + dir +
+    CliRun r = streyes("render " + scene + " --frames 3-4 --res 20x10 -o " + dir + "/f.####.exr --stats " + dir +
                     "/stats.json --quiet");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output, "");  // --quiet
@@ -88,20 +94,41 @@ TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
     EXPECT_NE(json.find("\"frames\": [3, 4]"), std::string::npos);
 }
 
+TEST(Cli, RaytraceWritesTheSameFramesAndItsCounters) {
+    std::string dir = test::makeTempDir("cli-raytrace");
+    std::string scene = writeFile(dir, "tiny.rib", kTiny);
+    for (const char* alg : {"raytrace", "raytrace-frames"}) {
+        CliRun r = streyes("render " + scene + " --algorithm " + alg + " -o " + dir + "/" + alg + ".####.exr --stats " +
+                           dir + "/" + alg + ".json --quiet");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        ImageData img = readImage(dir + "/" + alg + ".0000.exr");
+        EXPECT_FLOAT_EQ(img.at(8, 4, img.channelIndex("Z")), 1.0f) << alg;
+        EXPECT_FLOAT_EQ(img.at(8, 4, img.channelIndex("A")), 1.0f) << alg;
+        std::ifstream f(dir + "/" + alg + ".json");
+        std::string json((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+        EXPECT_NE(json.find(std::string("\"algorithm\": \"") + alg + "\""), std::string::npos) << json;
+        EXPECT_NE(json.find("\"bounding_volumes\": 1,"), std::string::npos) << json;
+        EXPECT_NE(json.find("\"eye_rays\": 512,"), std::string::npos) << json;  // 16 x 8 pixels x 4 samples
+    }
+    CliRun bad = streyes("render " + scene + " --algorithm raytraced");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.output.find("frames, raytrace or raytrace-frames"), std::string::npos) << bad.output;
+}
+
 TEST(Cli, UnwritableOutputFailsCleanly) {
     std::string dir = test::makeTempDir("cli-unwritable");
     std::string scene = writeFile(dir, "tiny.rib", kTiny);
     // A folder that does not exist.
-    test::CliRun missing = streyes("render " + scene + " -o " + dir + "/no/such/folder/f.####.exr");
+    CliRun missing = streyes("render " + scene + " -o " + dir + "/no/such/folder/f.####.exr");
     EXPECT_EQ(missing.exitCode, 1) << missing.output;
     EXPECT_NE(missing.output.find("does not exist"), std::string::npos) << missing.output;
     // A "folder" that is a file.
     writeFile(dir, "afile", "x");
-    test::CliRun notDir = streyes("render " + scene + " -o " + dir + "/afile/f.####.exr");
+    CliRun notDir = streyes("render " + scene + " -o " + dir + "/afile/f.####.exr");
     EXPECT_EQ(notDir.exitCode, 1);
     // The final name is taken by a folder: the write fails at the rename, the temporary is removed.
     fs::create_directory(dir + "/f.0000.exr");
-    test::CliRun blocked = streyes("render " + scene + " -o " + dir + "/f.####.exr");
+    CliRun blocked = streyes("render " + scene + " -o " + dir + "/f.####.exr");
     EXPECT_EQ(blocked.exitCode, 1) << blocked.output;
     EXPECT_NE(blocked.output.find("cannot write"), std::string::npos) << blocked.output;
     EXPECT_EQ(listDir(dir), (std::vector<std::string>{"afile", "f.0000.exr", "tiny.rib"}));

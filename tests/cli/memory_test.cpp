@@ -5,7 +5,7 @@
 
 #include <fstream>
 
-#include "cli_util.h"
+#include "cli_run.h"
 #include "streyes/image_io.h"
 #include "test_util.h"
 
@@ -15,6 +15,7 @@ namespace {
 using test::CliRun;
 using test::listDir;
 using test::runStreyes;
+using test::runStreyesWith;
 using test::writeFile;
 
 const char* kScene = R"(Format 64 64 1
@@ -44,8 +45,8 @@ TEST(CliMemory, HugeRenderIsRefusedWithTheFigureItNeeds) {
     const std::string scene = writeFile(dir, "s.rib", kScene);
     // 65536 x 65536: one frame's image alone is 80 GiB.
     // It must not even try: with 4 GB of address space, allocating the image would fail.
-    CliRun r = runStreyes("render " + scene + " --res 65536x65536 --max-memory 64G -o " + dir + "/f.####.exr",
-                          kSanitized ? "" : "ulimit -v 4000000; ");
+    CliRun r = runStreyesWith(kSanitized ? "" : "ulimit -v 4000000; ",
+                              "render " + scene + " --res 65536x65536 --max-memory 64G -o " + dir + "/f.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("streyes: error: this render needs about 200 GiB of memory even one frame at a time "
                             "(frame images 80.0 GiB (1 frame of 65536x65536)"),

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <thread>
 
-#include "cli_util.h"
+#include "cli_run.h"
 #include "streyes/image_io.h"
 #include "test_util.h"
 

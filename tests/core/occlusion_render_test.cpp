@@ -2,6 +2,8 @@
 // geometry of scenes/occluded.rib is culled.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
 
 #include "streyes/rib.h"
@@ -131,32 +133,47 @@ TEST(OcclusionRender, ToleranceZeroIsBitIdenticalOnLayeredScenes) {
     }
 }
 
-TEST(OcclusionRender, ToleranceZeroIsBitIdenticalOnEverySceneInScenes) {
+// Every scene in scenes/, one test each (so that ctest runs them side by side).
+std::vector<std::string> sceneFiles() {
     namespace fs = std::filesystem;
-    int scenes = 0;
-    for (const auto& entry : fs::directory_iterator(test::sourcePath("scenes"))) {
-        if (entry.path().extension() != ".rib") continue;
-        ++scenes;
-        Log log;
-        Scene scene = parseRibFile(entry.path().string(), log);
-        // Small and short: the first three frames at about 96 pixels wide.
-        RenderOptions o = with(Algorithm::Spacetime);
-        o.xres = 96;
-        o.yres = std::max(1, scene.camera.yres * 96 / scene.camera.xres);
-        o.hasFrames = true;
-        o.firstFrame = scene.settings.hasFrames ? scene.settings.firstFrame : 0;
-        o.lastFrame = o.firstFrame + 2;
-        o.samples = 4;
-        RenderResult base = test::renderScene(scene, o);
-        o.algorithm = Algorithm::SpacetimeOcclusion;
-        EXPECT_TRUE(test::identicalPixels(base, test::renderScene(scene, o))) << entry.path();
-        o.algorithm = Algorithm::Frames;
-        RenderResult frames = test::renderScene(scene, o);
-        o.algorithm = Algorithm::FramesOcclusion;
-        EXPECT_TRUE(test::identicalPixels(frames, test::renderScene(scene, o))) << entry.path();
-    }
-    EXPECT_GE(scenes, 3);
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(test::sourcePath("scenes")))
+        if (entry.path().extension() == ".rib") files.push_back(entry.path().filename().string());
+    std::sort(files.begin(), files.end());
+    return files;
 }
+
+class EveryScene : public testing::TestWithParam<std::string> {};
+
+TEST_P(EveryScene, ToleranceZeroIsBitIdentical) {
+    Log log;
+    Scene scene = parseRibFile(test::sourcePath("scenes/" + GetParam()), log);
+    // Small and short: the first two frames at 64 pixels wide (with motion blur across them).
+    RenderOptions o = with(Algorithm::Spacetime);
+    o.xres = 64;
+    o.yres = std::max(1, scene.camera.yres * 64 / scene.camera.xres);
+    o.hasFrames = true;
+    o.firstFrame = scene.settings.hasFrames ? scene.settings.firstFrame : 0;
+    o.lastFrame = o.firstFrame + 1;
+    o.samples = 4;
+    RenderResult base = test::renderScene(scene, o);
+    o.algorithm = Algorithm::SpacetimeOcclusion;
+    EXPECT_TRUE(test::identicalPixels(base, test::renderScene(scene, o)));
+    o.algorithm = Algorithm::Frames;
+    RenderResult frames = test::renderScene(scene, o);
+    o.algorithm = Algorithm::FramesOcclusion;
+    EXPECT_TRUE(test::identicalPixels(frames, test::renderScene(scene, o)));
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, EveryScene, testing::ValuesIn(sceneFiles()),
+                         [](const testing::TestParamInfo<std::string>& info) {
+                             std::string name = info.param.substr(0, info.param.size() - 4);
+                             for (char& c : name)
+                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                             return name;
+                         });
+
+TEST(OcclusionRender, ThereAreScenesToCheck) { EXPECT_GE(sceneFiles().size(), 3u); }
 
 // Micropolygons of the occluded scene, with only the primitives whose identifier does not start
 // with `drop` (empty: all).

@@ -8,29 +8,31 @@
 namespace streyes {
 namespace {
 
+using test::orthoHeader;
+using test::overlap;
 using test::RenderResult;
 using test::renderRib;
+using test::square;
 
-// An orthographic camera where one scene unit is one pixel: raster x = x, raster y = H - y.
-std::string orthoHeader(int w, int h, const std::string& extra = "") {
-    return "Format " + std::to_string(w) + " " + std::to_string(h) + " 1\n" +
-           "Projection \"orthographic\"\nScreenWindow 0 " + std::to_string(w) + " 0 " + std::to_string(h) + "\n" +
-           "PixelFilter \"box\" 1 1\n" + extra + "WorldBegin\nSurface \"constant\"\n";
-}
+// The analytic answers hold for every algorithm: the rasterizer's and the ray tracer's.
+class EveryAlgorithm : public ::testing::TestWithParam<Algorithm> {
+  protected:
+    RenderOptions options() const {
+        RenderOptions o;
+        o.algorithm = GetParam();
+        return o;
+    }
+};
+INSTANTIATE_TEST_SUITE_P(Render, EveryAlgorithm,
+                         ::testing::Values(Algorithm::Spacetime, Algorithm::SpacetimeOcclusion, Algorithm::Frames,
+                                           Algorithm::FramesOcclusion, Algorithm::Raytrace, Algorithm::RaytraceFrames),
+                         [](const ::testing::TestParamInfo<Algorithm>& info) { return test::testName(info.param); });
 
-std::string square(double x0, double x1, double y0, double y1, double z) {
-    auto n = [](double v) { return std::to_string(v); };
-    return "Patch \"bilinear\" \"P\" [" + n(x0) + " " + n(y0) + " " + n(z) + "  " + n(x1) + " " + n(y0) + " " + n(z) +
-           "  " + n(x0) + " " + n(y1) + " " + n(z) + "  " + n(x1) + " " + n(y1) + " " + n(z) + "]\n";
-}
-
-// Fraction of pixel [p, p+1] covered by [a, b].
-double overlap(double p, double a, double b) { return std::max(0.0, std::min(p + 1, b) - std::max(p, a)); }
-
-TEST(Render, StaticSquareCoverageIsAnalytic) {
+TEST_P(EveryAlgorithm, StaticSquareCoverageIsAnalytic) {
     // Square x in [8.3, 20.6], y in [4.2, 11.7] -> raster rows [4.3, 11.8].
     RenderResult r = renderRib(orthoHeader(32, 16, "PixelSamples 8 8\n") + "Color [0.2 0.4 0.6]\n" +
-                               square(8.3, 20.6, 4.2, 11.7, 5) + "WorldEnd\n");
+                                   square(8.3, 20.6, 4.2, 11.7, 5) + "WorldEnd\n",
+                               options());
     const double sx = 1.0 / 8;  // stratified: the estimate is within one stratum of the truth
     for (int y = 0; y < 16; ++y) {
         for (int x = 0; x < 32; ++x) {
@@ -59,12 +61,13 @@ TEST(Render, StaticSquareCoverageIsAnalytic) {
     EXPECT_NEAR(r.alpha(0, 12, 11), 0.8, sx);
 }
 
-TEST(Render, SquareMovingOneWidthGivesLinearRamp) {
+TEST_P(EveryAlgorithm, SquareMovingOneWidthGivesLinearRamp) {
     // A 4-pixel square moves 4 pixels (one width) during the shutter [0, 1] of frame 0.
     const int spp = 256;
     RenderResult r = renderRib(orthoHeader(32, 4, "PixelSamples 16 16\nShutter 0 1\n") +
-                               "MotionBegin [0 1]\nTranslate 0 0 0\nTranslate 4 0 0\nMotionEnd\n" +
-                               square(8, 12, 0, 4, 5) + "WorldEnd\n");
+                                   "MotionBegin [0 1]\nTranslate 0 0 0\nTranslate 4 0 0\nMotionEnd\n" +
+                                   square(8, 12, 0, 4, 5) + "WorldEnd\n",
+                               options());
     for (int x = 0; x < 32; ++x) {
         // Time-averaged coverage of pixel x: the ramp 1/8, 3/8, 5/8, 7/8, 7/8, 5/8, 3/8, 1/8.
         double expected = 0;
@@ -96,8 +99,8 @@ AttributeEnd
 WorldEnd
 )";
 
-TEST(Render, NearerPatchWinsAndZIsItsDepth) {
-    RenderResult r = renderRib(kTwoDepths);
+TEST_P(EveryAlgorithm, NearerPatchWinsAndZIsItsDepth) {
+    RenderResult r = renderRib(kTwoDepths, options());
     // Centre: the red patch at z = 5 in front of the green one at z = 10.
     EXPECT_NEAR(r.channel(0, 16, 16, 0), 1.0f, 1e-5f);
     EXPECT_NEAR(r.channel(0, 16, 16, 1), 0.0f, 1e-5f);
@@ -150,8 +153,8 @@ AttributeEnd
 WorldEnd
 )";
 
-TEST(Render, ThreadCountDoesNotChangePixels) {
-    RenderOptions one, two;
+TEST_P(EveryAlgorithm, ThreadCountDoesNotChangePixels) {
+    RenderOptions one = options(), two = options();
     one.threads = 1;
     two.threads = 2;
     one.bucketSize = two.bucketSize = 8;
@@ -219,6 +222,28 @@ TEST(Render, StillSceneIsSplitOnceInSpacetimeAndPerFrameInFrames) {
     // Sampling is per frame in both: about 16 times the hits (each frame has its own jitter).
     EXPECT_GT(st16.sampleHits, 15 * st1.sampleHits);
     EXPECT_LT(st16.sampleHits, 17 * st1.sampleHits);
+}
+
+TEST(Render, MotionSegmentsAreDicedOnlyInTheFramesTheyReach) {
+    // A sphere moves during frames 0-4, then holds still: two roots (curved primitives keep one
+    // mesh per motion segment), [0, 4] moving and [4, 7.5] still. With shutter [0, 0.5], frame 4's
+    // exposure [4, 4.5] touches the moving one only at its end, which the still one covers: it
+    // must not be diced again there.
+    const std::string rib = "Format 16 16 1\nProjection \"orthographic\"\nScreenWindow 0 16 0 16\nShutter 0 0.5\n"
+                            "PixelSamples 2 2\nWorldBegin\nSurface \"constant\"\n"
+                            "MotionBegin [0 4]\nTranslate 0 0 0\nTranslate 4 0 0\nMotionEnd\n"
+                            "Translate 4 6 5\nSphere 1.5 -1.5 1.5 360\nWorldEnd\n";
+    RenderOptions o;
+    o.algorithm = Algorithm::Frames;
+    o.hasFrames = true;
+    o.firstFrame = 0;
+    o.lastFrame = 7;
+    o.bucketSize = 32;  // one bucket
+    RenderResult r = renderRib(rib, o);
+    EXPECT_EQ(r.stats.counters.rootBodies, 2u);
+    EXPECT_EQ(r.stats.counters.gridsDiced, 8u);  // one per frame, not two in frame 4
+    EXPECT_GT(r.alpha(4, 8, 10), 0.5f);          // held at x = 8 from frame 4 on
+    EXPECT_EQ(r.alpha(4, 4, 10), 0.0f);
 }
 
 TEST(Render, PatchThroughTheEyePlaneRendersItsVisiblePart) {

@@ -1,4 +1,5 @@
-// Running the streyes command in tests: its exit code and output, files in a folder.
+// Running the streyes executable from a test: exit code and everything it printed.
+// Header-only, for the tests in tests/cli/ (which know STREYES_EXE).
 #pragma once
 
 #include <sys/wait.h>
@@ -17,11 +18,12 @@ struct CliRun {
     std::string output;  // stdout and stderr
 };
 
-// Runs `STREYES_EXE args` through the shell (args may redirect or hold shell syntax), with
-// `prefix` before the command (an environment, a privilege drop).
-inline CliRun runStreyes(const std::string& args, const std::string& prefix = "") {
+// Runs the shell command `prefix` `streyes ARGS` (the prefix may set a limit, an environment or
+// drop privileges: "ulimit -f 4; ", "setpriv ... "). The output holds stdout, and stderr too
+// unless `withStderr` is false.
+inline CliRun runStreyesWith(const std::string& prefix, const std::string& args, bool withStderr = true) {
     CliRun r;
-    std::string cmd = prefix + std::string(STREYES_EXE) + " " + args + " 2>&1";
+    std::string cmd = prefix + std::string(STREYES_EXE) + " " + args + (withStderr ? " 2>&1" : " 2>/dev/null");
     FILE* p = popen(cmd.c_str(), "r");
     if (!p) return r;
     char buf[4096];
@@ -31,6 +33,10 @@ inline CliRun runStreyes(const std::string& args, const std::string& prefix = ""
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
 }
+
+// Runs `streyes ARGS` through the shell. The output holds stdout, and stderr too unless
+// `withStderr` is false (then stderr is dropped: for parsing --json output).
+inline CliRun runStreyes(const std::string& args, bool withStderr = true) { return runStreyesWith("", args, withStderr); }
 
 inline std::string writeFile(const std::string& dir, const std::string& name, const std::string& text) {
     std::string path = dir + "/" + name;

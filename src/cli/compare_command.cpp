@@ -1,0 +1,213 @@
+// `streyes compare A B [options]`: the error of B against the reference A, for two image files
+// or two frame patterns, per frame and over all frames; a table or JSON; exit 1 above --fail.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "streyes/compare.h"
+#include "streyes/image_io.h"
+#include "streyes/util/error.h"
+
+namespace streyes::cli {
+
+const char* kCompareUsage = R"(usage: streyes compare A B [options]
+
+Measures the error of B against the reference A: two image files, or two frame patterns
+(ref.####.exr test.####.exr) compared frame by frame and over all frames.
+
+options:
+  --frames A-B       frames to compare (patterns only); default: every frame of A's pattern on
+                     disk, each of which must exist for B too
+  --threshold X      a pixel is "over" when any of R G B A differs by more than X (default 0.01)
+  --z-tolerance X    relative depth difference that counts as a Z disagreement (default 0.001)
+  --resize           resample B bilinearly to A's size first (a preview rendered at a lower
+                     --res); Z is then not compared
+  --fail X           exit 1 when a frame's RMSE of RGB or of A exceeds X, or when any value is
+                     NaN or infinite (Z = +inf is background and allowed)
+  --json             print the figures as JSON on stdout instead of a table
+
+figures: RMSE of RGB and of A; PSNR in dB (peak 1); mean and max absolute RGB error; share of
+pixels that differ at all and by more than the threshold; Z disagreement (surface against
+background, and depth beyond the tolerance); NaN and Inf counts in each image.
+
+exit codes: 0 compared (within --fail), 1 above --fail, 2 bad input or usage (a missing or
+unreadable file, images of different sizes or channels)
+)";
+
+namespace {
+
+struct FramePair {
+    bool hasFrame = false;
+    int frame = 0;
+    std::string a, b;
+};
+
+// The files to compare, frame by frame for patterns.
+std::vector<FramePair> pairFrames(const std::string& a, const std::string& b, bool hasRange, int first, int last) {
+    if (hasFrameField(a) != hasFrameField(b))
+        throw UsageError("A and B must both be frame patterns (with ####) or both single files: '" + a + "', '" + b +
+                         "'");
+    if (!hasFrameField(a)) {
+        if (hasRange) throw UsageError("--frames needs frame patterns (with ####) for A and B");
+        return {{false, 0, a, b}};
+    }
+    std::vector<FramePair> pairs;
+    for (int f : selectFrames(a, hasRange, first, last)) {
+        FramePair p{true, f, expandFramePattern(a, f), expandFramePattern(b, f)};
+        for (const std::string& path : {p.a, p.b})
+            if (!std::filesystem::exists(path))
+                throw InputError("frame " + std::to_string(f) + ": '" + path +
+                                 "' does not exist (choose the frames to compare with --frames)");
+        pairs.push_back(p);
+    }
+    return pairs;
+}
+
+// An image named on the command line is input: an unreadable one is bad input (exit 2).
+ImageData readInput(const std::string& path) {
+    if (!std::filesystem::exists(path)) throw InputError("'" + path + "' does not exist");
+    try {
+        return readImage(path);
+    } catch (const RenderError& e) {
+        throw InputError(e.what());
+    }
+}
+
+std::string num(double v) {
+    if (std::isinf(v)) return "null";  // PSNR of identical images; JSON has no infinity
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
+}
+
+std::string jsonString(const std::string& s) {
+    std::string q = "\"";
+    for (char c : s) {
+        if (c == '"' || c == '\\') q += '\\';
+        if (static_cast<unsigned char>(c) < 0x20) continue;
+        q += c;
+    }
+    return q + "\"";
+}
+
+std::string nonFiniteJson(const NonFiniteCounts& n) {
+    return "{\"color_nan\": " + std::to_string(n.colorNaN) + ", \"color_inf\": " + std::to_string(n.colorInf) +
+           ", \"z_nan\": " + std::to_string(n.zNaN) + ", \"z_neg_inf\": " + std::to_string(n.zNegInf) + "}";
+}
+
+std::string errorsJson(const ImageErrors& e) {
+    return "\"pixels\": " + std::to_string(e.pixels) + ", \"pixels_skipped\": " + std::to_string(e.pixelsSkipped) +
+           ", \"rmse_rgb\": " + num(e.rmseRGB()) + ", \"rmse_a\": " + num(e.rmseA()) + ", \"psnr\": " + num(e.psnr()) +
+           ", \"mean_abs\": " + num(e.meanAbsRGB()) + ", \"max_abs\": " + num(e.maxAbsRGB) +
+           ", \"max_abs_a\": " + num(e.maxAbsA) + ", \"share_differing\": " + num(e.shareDiffering()) +
+           ", \"share_over_threshold\": " + num(e.shareOverThreshold()) + ", \"z\": {\"compared\": " +
+           (e.zCompared ? "true" : "false") + ", \"coverage_mismatch\": " + std::to_string(e.zCoverageMismatch) +
+           ", \"depth_mismatch\": " + std::to_string(e.zDepthMismatch) + ", \"max_rel_diff\": " + num(e.zMaxRelDiff) +
+           "}, \"nonfinite\": {\"a\": " + nonFiniteJson(e.nonFiniteA) + ", \"b\": " + nonFiniteJson(e.nonFiniteB) + "}";
+}
+
+void printRow(const char* label, const ImageErrors& e) {
+    const std::string z = e.zCompared ? std::to_string(e.zCoverageMismatch) + "/" + std::to_string(e.zDepthMismatch)
+                                      : std::string("-");
+    std::printf("%-8s %10.6f %10.6f %8.2f %10.6f %9.5f %7.3f%% %7.3f%% %12s %8llu\n", label, e.rmseRGB(), e.rmseA(),
+                e.psnr(), e.meanAbsRGB(), e.maxAbsRGB, 100 * e.shareDiffering(), 100 * e.shareOverThreshold(),
+                z.c_str(), (unsigned long long)(e.nonFiniteA.total() + e.nonFiniteB.total()));
+}
+
+void warnNonFinite(const FramePair& p, const ImageErrors& e) {
+    auto say = [](const std::string& path, const NonFiniteCounts& n) {
+        if (n.total())
+            std::fprintf(stderr,
+                         "streyes compare: '%s' holds %llu NaN and %llu infinite values in R G B A, %llu NaN and "
+                         "%llu -inf in Z\n",
+                         path.c_str(), (unsigned long long)n.colorNaN, (unsigned long long)n.colorInf,
+                         (unsigned long long)n.zNaN, (unsigned long long)n.zNegInf);
+    };
+    say(p.a, e.nonFiniteA);
+    say(p.b, e.nonFiniteB);
+}
+
+}  // namespace
+
+int compareCommand(const std::vector<std::string>& args) {
+    CompareOptions opts;
+    std::vector<std::string> files;
+    bool json = false, hasRange = false, hasFail = false;
+    int first = 0, last = 0;
+    double fail = 0;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+            return args[++i];
+        };
+        if (a == "--frames") {
+            parseFrameRange(a, value(), &first, &last);
+            hasRange = true;
+        } else if (a == "--threshold") opts.threshold = parseReal(a, value(), 0, 1e30);
+        else if (a == "--z-tolerance") opts.zTolerance = parseReal(a, value(), 0, 1e30);
+        else if (a == "--resize") opts.resize = true;
+        else if (a == "--fail") {
+            fail = parseReal(a, value(), 0, 1e30);
+            hasFail = true;
+        } else if (a == "--json") json = true;
+        else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+        else files.push_back(a);
+    }
+    if (files.size() != 2) throw UsageError("compare needs two images or frame patterns, A (the reference) and B");
+
+    const std::vector<FramePair> pairs = pairFrames(files[0], files[1], hasRange, first, last);
+    std::vector<ImageErrors> perFrame;
+    ImageErrors overall;
+    std::string failure;
+    for (const FramePair& p : pairs) {
+        ImageErrors e = compareImages(readInput(p.a), readInput(p.b), opts, p.a, p.b);
+        warnNonFinite(p, e);
+        const std::string which = p.hasFrame ? "frame " + std::to_string(p.frame) : "'" + p.b + "'";
+        if (hasFail && failure.empty()) {
+            char buf[160];
+            if (e.rmseRGB() > fail || e.rmseA() > fail)
+                std::snprintf(buf, sizeof buf, "%s: RMSE of RGB %.6g, of A %.6g, above --fail %.6g", which.c_str(),
+                              e.rmseRGB(), e.rmseA(), fail);
+            else if (e.hasNonFinite())
+                std::snprintf(buf, sizeof buf, "%s: NaN or infinite values", which.c_str());
+            else
+                buf[0] = '\0';
+            failure = buf;
+        }
+        overall += e;
+        perFrame.push_back(e);
+    }
+
+    if (json) {
+        std::string o = "{\n  \"a\": " + jsonString(files[0]) + ",\n  \"b\": " + jsonString(files[1]) +
+                        ",\n  \"threshold\": " + num(opts.threshold) + ",\n  \"z_tolerance\": " + num(opts.zTolerance) +
+                        ",\n  \"resized\": " + (opts.resize ? "true" : "false") + ",\n  \"frames\": [\n";
+        for (size_t i = 0; i < pairs.size(); ++i)
+            o += "    {\"frame\": " + (pairs[i].hasFrame ? std::to_string(pairs[i].frame) : std::string("null")) +
+                 ", \"a\": " + jsonString(pairs[i].a) + ", \"b\": " + jsonString(pairs[i].b) + ", " + errorsJson(perFrame[i]) +
+                 "}" + (i + 1 < pairs.size() ? ",\n" : "\n");
+        o += "  ],\n  \"overall\": {\"frames\": " + std::to_string(pairs.size()) + ", " + errorsJson(overall) +
+             "},\n  \"fail\": {\"threshold\": " + (hasFail ? num(fail) : std::string("null")) +
+             ", \"failed\": " + (failure.empty() ? "false" : "true") + ", \"reason\": " + jsonString(failure) + "}\n}\n";
+        std::fputs(o.c_str(), stdout);
+    } else {
+        std::printf("%-8s %10s %10s %8s %10s %9s %8s %8s %12s %8s\n", "frame", "rmse_rgb", "rmse_a", "psnr_dB",
+                    "mean_abs", "max_abs", "differ", "over", "z_cover/depth", "nan_inf");
+        if (pairs.size() > 1 || pairs[0].hasFrame)
+            for (size_t i = 0; i < pairs.size(); ++i) printRow(std::to_string(pairs[i].frame).c_str(), perFrame[i]);
+        printRow("all", overall);
+        std::printf("(over: a channel differs by more than %g; z: surface against background / depth beyond %g)\n",
+                    opts.threshold, opts.zTolerance);
+    }
+    if (!failure.empty()) {
+        std::fprintf(stderr, "streyes compare: FAIL: %s\n", failure.c_str());
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace streyes::cli

@@ -1,0 +1,36 @@
+// Scene-description helpers for the curved primitives: RenderMan's named bases and the patch
+// counts of a PatchMesh.
+#include "streyes/scene.h"
+
+namespace streyes {
+
+bool basisFromName(const std::string& name, BasisDesc* out) {
+    // RenderMan's RiBezierBasis, RiBSplineBasis, RiCatmullRomBasis, RiHermiteBasis, RiPowerBasis
+    // with their standard steps.
+    if (name == "bezier") {
+        *out = BasisDesc{};
+    } else if (name == "b-spline" || name == "bspline") {
+        *out = {{-1.0 / 6, 0.5, -0.5, 1.0 / 6, 0.5, -1, 0.5, 0, -0.5, 0, 0.5, 0, 1.0 / 6, 2.0 / 3, 1.0 / 6, 0}, 1};
+    } else if (name == "catmull-rom" || name == "catmullrom") {
+        *out = {{-0.5, 1.5, -1.5, 0.5, 1, -2.5, 2, -0.5, -0.5, 0, 0.5, 0, 0, 1, 0, 0}, 1};
+    } else if (name == "hermite") {
+        *out = {{2, 1, -2, 1, -3, -2, 3, -1, 0, 1, 0, 0, 1, 0, 0, 0}, 2};
+    } else if (name == "power") {
+        *out = {{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}, 4};
+    } else {
+        return false;
+    }
+    return true;
+}
+
+int PatchMeshDesc::uPatches() const {
+    if (!bicubic) return uPeriodic ? nu : nu - 1;
+    return uPeriodic ? nu / uBasis.step : (nu - 4) / uBasis.step + 1;
+}
+
+int PatchMeshDesc::vPatches() const {
+    if (!bicubic) return vPeriodic ? nv : nv - 1;
+    return vPeriodic ? nv / vBasis.step : (nv - 4) / vBasis.step + 1;
+}
+
+}  // namespace streyes

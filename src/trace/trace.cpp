@@ -1,0 +1,201 @@
+#include "streyes/trace.h"
+
+#include <sys/resource.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <limits>
+
+#include "streyes/procedural.h"
+
+namespace streyes {
+
+namespace {
+// CPU seconds of the whole process. Hierarchies are built (in parallel) while nothing else
+// runs, so the difference around a build is its CPU time, comparable between the two modes.
+double processCpuSeconds() {
+    struct rusage ru {};
+    getrusage(RUSAGE_SELF, &ru);
+    auto sec = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+    return sec(ru.ru_utime) + sec(ru.ru_stime);
+}
+
+// Calls fn(sample index, time) for every sample of the block, frame by frame, then pixel by
+// pixel: consecutive rays share their frame's part of the hierarchy, which stays in cache (the
+// block's own order, pixel then frame, jumps through time from one ray to the next).
+template <typename Fn>
+void forEachSampleByFrame(const ImageBlock& block, const Shutter& shutter, Fn fn) {
+    const PixelRect& R = block.rect();
+    const size_t S = size_t(block.slices());
+    const SamplePosition* pos = block.positions();
+    const double exposure = shutter.close - shutter.open;
+    for (int fi = 0; fi < block.frameCount(); ++fi) {
+        const double start = block.firstFrame() + fi + shutter.open;
+        for (int y = R.y0; y <= R.y1; ++y)
+            for (int x = R.x0; x <= R.x1; ++x) {
+                const size_t base = block.pixelOffset(x, y) + size_t(fi) * S;
+                for (size_t si = base; si < base + S; ++si)
+                    fn(si, block.firstFrame() + fi, start + double(pos[si].tf) * exposure);
+            }
+    }
+}
+}  // namespace
+
+// ---- TraceScene -------------------------------------------------------------------------------------
+
+TraceScene::TraceScene(const RenderScene& scene, Log& log) : scene_(scene) {
+    for (const BodyPtr& root : scene.roots) collect(*root, log);
+    include_.extend(Vec3f{0, 0, 0});  // the eye
+    std::vector<CameraLight> lights;
+    for (double t : {scene.windowStart, scene.windowEnd}) {
+        scene.lights.at(t, lights);
+        for (const CameraLight& l : lights)
+            if (l.kind == LightKind::Point && isFinite(l.position)) include_.extend(l.position);
+    }
+}
+
+void TraceScene::collect(const Body& body, Log& log) {
+    if (const auto* patch = dynamic_cast<const TrilinearBody*>(&body)) {
+        bodies_.push_back(patch);
+    } else if (const ProceduralBody* p = body.asProcedural()) {
+        bool expandedHere = false;
+        const std::vector<BodyPtr>& children = p->children(*scene_.factory, scene_.camera, log, &expandedHere);
+        if (expandedHere) {
+            const size_t d = size_t(p->depth());
+            if (proceduralsExpandedByDepth.size() <= d) proceduralsExpandedByDepth.resize(d + 1, 0);
+            ++proceduralsExpandedByDepth[d];
+        }
+        for (const BodyPtr& child : children) collect(*child, log);
+    } else if (!body.diceableInTime()) {  // several motion keys: cut at the middle key
+        BodyPtr halves[2];
+        body.split(SplitAxis::T, halves);
+        for (BodyPtr& h : halves) {
+            collect(*h, log);
+            pieces_.push_back(std::move(h));
+        }
+    } else {
+        // The place for other kinds of body: an exact intersector, or a tessellation into patches.
+        log.warnOnce("trace:body", body.source() ? *body.source() : SourceLoc{},
+                     "the ray tracer intersects bilinear patches only: other surfaces are left out of ray tracing "
+                     "and shadows");
+    }
+}
+
+void TraceScene::buildSpacetime(const HierarchyOptions& options) {
+    const double cpu = processCpuSeconds();
+    frames_.clear();
+    spacetime_.build(bodies_, scene_.windowStart, scene_.windowEnd, include_, options);
+    boundingVolumes += spacetime_.nodeCount();
+    buildSeconds += processCpuSeconds() - cpu;
+}
+
+void TraceScene::buildFrames(int first, int count, const HierarchyOptions& options) {
+    HierarchyOptions o = options;
+    o.splitTime = false;
+    frames_.clear();  // release the previous block's hierarchies first
+    frames_.resize(size_t(count));
+    framesFirst_ = first;
+    const double cpu = processCpuSeconds();
+    tbb::parallel_for(0, count, [&](int i) {
+        const double e0 = first + i + scene_.shutter.open, e1 = first + i + scene_.shutter.close;
+        frames_[size_t(i)].build(bodies_, e0, e1, include_, o);
+    });
+    for (int i = 0; i < count; ++i) boundingVolumes += frames_[size_t(i)].nodeCount();
+    buildSeconds += processCpuSeconds() - cpu;
+}
+
+float TraceScene::shadowBias(float z) const {
+    const Camera& cam = scene_.camera;
+    const float pixel = 1.0f / std::min(std::fabs(cam.ax()), std::fabs(cam.ay()));  // screen units
+    return cam.perspective() ? pixel * std::fabs(z) : pixel;
+}
+
+// ---- SampleTracer ------------------------------------------------------------------------------------
+
+const std::vector<CameraLight>& SampleTracer::lightsAt(const LightSet& lights, double t) {
+    if (!lightsValid_ || (!lights.isStatic() && t != lightsTime_)) {
+        lights.at(t, lights_);
+        lightsTime_ = t;
+        lightsValid_ = true;
+    }
+    return lights_;
+}
+
+Color SampleTracer::addVisibleLights(Color c, Vec3f p, double time, const Color* shadowed, const TraceScene& trace,
+                                     const SpacetimeBVH& bvh, RenderCounters& counters) {
+    const LightSet& lights = trace.scene().lights;
+    const float bias = trace.shadowBias(p.z);
+    for (int k = 0; k < lights.shadowSlots(); ++k) {
+        const Color part = shadowed[k];
+        if (part.x == 0 && part.y == 0 && part.z == 0) continue;  // the light does not reach p anyway
+        const CameraLight& l = lightsAt(lights, time)[size_t(lights.shadowLight(k))];
+        Ray ray{p, l.direction};
+        float tMax = std::numeric_limits<float>::infinity();
+        if (l.kind == LightKind::Point) {
+            const Vec3f d = l.position - p;
+            const float dist = length(d);
+            if (!(dist > 2 * bias)) {  // the light sits on the surface: nothing between
+                c += part;
+                continue;
+            }
+            ray.d = d / dist;
+            tMax = dist - bias;
+        }
+        ++counters.shadowRays;
+        if (!bvh.occluded(ray, time, bias, tMax, ctx_)) c += part;
+    }
+    return c;
+}
+
+// Eye rays: from the eye through the sample's raster position (perspective) or parallel to +z
+// (orthographic). Either way the direction has z = 1, so the ray parameter is camera-space z
+// and the near and far planes clip it directly.
+void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, RenderCounters& counters) {
+    const RenderScene& scene = trace.scene();
+    const Camera& cam = scene.camera;
+    const bool ortho = !cam.perspective();
+    const int K = scene.lights.shadowSlots();
+    shadowed_.resize(size_t(K));
+    const SamplePosition* pos = block.positions();
+    SampleHit* hits = block.hits();
+    const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
+    forEachSampleByFrame(block, scene.shutter, [&](size_t si, int frame, double time) {
+        const SamplePosition& s = pos[si];
+        const Ray ray =
+            ortho ? Ray{cam.fromRaster(s.x, s.y, 0), {0, 0, 1}} : Ray{{0, 0, 0}, cam.fromRaster(s.x, s.y, 1)};
+        const SpacetimeBVH& bvh = trace.hierarchy(frame);
+        ++counters.eyeRays;
+        TraceHit h;
+        if (!bvh.intersect(ray, time, cam.nearClip(), cam.farClip(), &h, ctx_)) return;
+        const TrilinearBody& body = *bvh.bodies()[h.body];
+        const Vec3f p = ray.o + ray.d * h.t;
+        const Vec3f n = bilinearNormal(body.cornersAt(time), h.u, h.v);
+        const Color cs = bilerp(body.colors(), h.u, h.v);
+        const std::vector<CameraLight>& lights =
+            lightsAt(scene.lights, time);  // refreshed per sample only when lights or camera move
+        Color c = shadePoint(*body.material(), cs, p, n, ortho, lights, K ? shadowed_.data() : nullptr, K);
+        if (K) c = addVisibleLights(c, p, time, shadowed_.data(), trace, bvh, counters);
+        hits[si] = {p.z, c, 1.0f, body.primitiveId()};
+    });
+    counters.rayBodyTests += ctx_.bodyTests - testsBefore;
+    counters.rayBoxTests += ctx_.boxTests - boxesBefore;
+}
+
+// The rasterizer's hit point is rebuilt from the sample's raster position and depth.
+void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, RenderCounters& counters) {
+    const RenderScene& scene = trace.scene();
+    const SamplePosition* pos = block.positions();
+    SampleHit* hits = block.hits();
+    const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
+    forEachSampleByFrame(block, scene.shutter, [&](size_t si, int frame, double time) {
+        SampleHit& hit = hits[si];
+        if (hit.a == 0) return;
+        const SamplePosition& s = pos[si];
+        const Vec3f p = scene.camera.fromRaster(s.x, s.y, hit.z);
+        hit.c = addVisibleLights(hit.c, p, time, block.shadowed(si), trace, trace.hierarchy(frame), counters);
+    });
+    counters.rayBodyTests += ctx_.bodyTests - testsBefore;
+    counters.rayBoxTests += ctx_.boxTests - boxesBefore;
+}
+
+}  // namespace streyes

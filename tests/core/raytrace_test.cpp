@@ -1,0 +1,270 @@
+// The ray tracer against analytic answers and against the rasterizer, sample by sample; shadows
+// (motion-blurred on still geometry) in both; the paper's counters.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_util.h"
+
+namespace streyes {
+namespace {
+
+using test::orthoHeader;
+using test::overlap;
+using test::RenderResult;
+using test::renderRib;
+using test::square;
+
+RenderOptions withAlgorithm(Algorithm a) {
+    RenderOptions o;
+    o.algorithm = a;
+    return o;
+}
+
+// ---- The ray tracer and the rasterizer see the same surfaces through the same samples --------------
+
+// The square of render_test's StaticSquareCoverageIsAnalytic, `shift` pixels to the right.
+std::string staticSquare(double shift = 0) {
+    return orthoHeader(32, 16, "PixelSamples 8 8\n") + "Color [0.2 0.4 0.6]\n" +
+           square(8.3 + shift, 20.6 + shift, 4.2, 11.7, 5) + "WorldEnd\n";
+}
+
+std::string readSourceFile(const std::string& relative) {
+    FILE* f = std::fopen(test::sourcePath(relative).c_str(), "rb");
+    std::string text;
+    char buf[4096];
+    size_t n;
+    while (f && (n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
+    if (f) std::fclose(f);
+    return text;
+}
+
+void expectSamplesAgree(const std::string& rib, const char* what) {
+    test::SampleRecord raster = test::renderSamples(rib, withAlgorithm(Algorithm::Spacetime));
+    test::SampleRecord traced = test::renderSamples(rib, withAlgorithm(Algorithm::Raytrace));
+    test::SampleAgreement agree = test::compareSamples(raster, traced);
+    ASSERT_GT(agree.samples, 1000u) << what;
+    EXPECT_GE(double(agree.hitOrMiss) / double(agree.samples), 0.999) << what;
+    EXPECT_GE(agree.share(), 0.999) << what << ": " << agree.samples - agree.sameSurface << " of " << agree.samples
+                                    << " samples differ";
+    size_t hits = 0;
+    for (const SampleHit& h : traced.hits) hits += h.a > 0;
+    EXPECT_GT(hits, agree.samples / 10) << what;  // the scenes are not empty
+}
+
+TEST(Raytrace, StaticSquareSamplesAgreeWithTheRasterizer) { expectSamplesAgree(staticSquare(), "static square"); }
+
+TEST(Raytrace, MovingRampSamplesAgreeWithTheRasterizer) {
+    expectSamplesAgree(readSourceFile("scenes/ramp.rib"), "scenes/ramp.rib");
+}
+
+TEST(Raytrace, OverlappingPatchSamplesAgreeWithTheRasterizer) {
+    expectSamplesAgree(readSourceFile("scenes/overlap.rib"), "scenes/overlap.rib");
+}
+
+// The comparison can fail: a square moved by a pixel disagrees on far more than 0.1% of samples.
+TEST(Raytrace, SampleComparisonSeesAMovedSquare) {
+    test::SampleAgreement agree = test::compareSamples(
+        test::renderSamples(staticSquare()), test::renderSamples(staticSquare(1), withAlgorithm(Algorithm::Raytrace)));
+    EXPECT_LT(agree.share(), 0.99);
+}
+
+// A perspective animation with a still floor, a twisted patch moving on a bent path and
+// turning, a triangle that starts moving at frame 3 (keys 3 and 5, held before: a still body
+// and a moving one) and lights; shadows on.
+const char* kAnimation = R"(Format 40 30 1
+Projection "perspective" "fov" [60]
+PixelSamples 3 3
+Shutter 0 0.5
+Option "streyes" "int frames" [0 5]
+WorldBegin
+LightSource "ambientlight" 1 "intensity" [0.2]
+Attribute "light" "shadows" "on"
+LightSource "distantlight" 2 "from" [1 4 -1] "to" [0 0 0]
+LightSource "pointlight" 3 "from" [-3 3 2] "intensity" [8]
+Surface "plastic"
+AttributeBegin
+  Color [0.8 0.7 0.2]
+  Patch "bilinear" "P" [-6 -2 12  6 -2 12  -6 -2 4  6 -2 4]
+AttributeEnd
+AttributeBegin
+  Color [0.2 0.5 0.9]
+  MotionBegin [0 2.5 5]
+    Translate -3 0.5 9
+    Translate 0 -0.5 7
+    Translate 3 0.5 10
+  MotionEnd
+  MotionBegin [0 5]
+    Rotate -30 1 0 0
+    Rotate 60 1 0.5 0
+  MotionEnd
+  Patch "bilinear" "P" [-1.2 -1 0.3  1 -1 0  -1 1 0  1 1.2 -0.3]
+AttributeEnd
+AttributeBegin
+  Color [0.9 0.2 0.2]
+  MotionBegin [3 5]
+    Translate 1 -1 7
+    Translate 0 -1 7
+  MotionEnd
+  Polygon "P" [0 0 0  1 0 0  0.5 1 0.5]
+AttributeEnd
+WorldEnd
+)";
+
+TEST(Raytrace, AnimationSamplesAgreeWithTheRasterizer) {
+    // Shading differs (vertices against hits): compare hit or miss and depth only. Depth within
+    // 1%: the rasterizer interpolates z linearly in raster space across a micropolygon, which
+    // is 0.2-0.3% off on the floor where it recedes fastest.
+    test::SampleRecord raster = test::renderSamples(kAnimation, withAlgorithm(Algorithm::Spacetime));
+    test::SampleRecord traced = test::renderSamples(kAnimation, withAlgorithm(Algorithm::Raytrace));
+    test::SampleAgreement agree = test::compareSamples(raster, traced, 1e9f, 1e-2f);
+    EXPECT_GE(agree.share(), 0.995) << agree.samples - agree.sameSurface << " of " << agree.samples;
+    // Same samples, so the images agree closely too.
+    EXPECT_LT(test::meanAbsDifference(renderRib(kAnimation, withAlgorithm(Algorithm::Spacetime)),
+                                      renderRib(kAnimation, withAlgorithm(Algorithm::Raytrace))),
+              0.01f);
+}
+
+// One spacetime hierarchy or one per frame: the same exact nearest hits, the same pixels.
+TEST(Raytrace, FrameByFrameHierarchiesGiveTheSamePixels) {
+    RenderResult st = renderRib(kAnimation, withAlgorithm(Algorithm::Raytrace));
+    RenderResult fr = renderRib(kAnimation, withAlgorithm(Algorithm::RaytraceFrames));
+    ASSERT_EQ(st.frames.size(), 6u);
+    EXPECT_TRUE(test::identicalPixels(st, fr));
+    EXPECT_EQ(st.stats.counters.eyeRays, fr.stats.counters.eyeRays);
+    EXPECT_EQ(st.stats.counters.shadowRays, fr.stats.counters.shadowRays);
+    EXPECT_GT(st.stats.counters.shadowRays, 0u);
+    EXPECT_GT(st.stats.counters.rayBodyTests, 0u);
+    // Patches with more than two motion keys are one body each in the split loop; the ray
+    // tracer holds their segments.
+    EXPECT_GT(st.stats.counters.traceBodies, st.stats.counters.rootBodies);
+}
+
+TEST(Raytrace, ThreadCountDoesNotChangePixelsWithShadows) {
+    for (Algorithm a : {Algorithm::Raytrace, Algorithm::RaytraceFrames, Algorithm::Spacetime}) {
+        RenderOptions one = withAlgorithm(a), two = withAlgorithm(a);
+        one.threads = 1;
+        two.threads = 2;
+        one.bucketSize = two.bucketSize = 8;
+        RenderResult r1 = renderRib(kAnimation, one), r2 = renderRib(kAnimation, two);
+        EXPECT_TRUE(test::identicalPixels(r1, r2)) << algorithmName(a);
+        EXPECT_EQ(r1.stats.counters.rayBodyTests, r2.stats.counters.rayBodyTests) << algorithmName(a);
+    }
+}
+
+// ---- The paper's counters ------------------------------------------------------------------------------
+
+const char* kStillScene = R"(Format 40 30 1
+Projection "perspective" "fov" [50]
+PixelSamples 2 2
+Shutter 0 0.5
+WorldBegin
+Surface "defaultsurface"
+Patch "bilinear" "P" [-6 -2 12  6 -2 12  -6 -2 4  6 -2 4]
+Patch "bilinear" "P" [-1 -1 6  1 -1 6  -1 1 7  1 1 7]
+Patch "bilinear" "P" [-3 -1 8  -2 -1 8  -3 1 8  -2 1 8]
+Patch "bilinear" "P" [2 -1 9  3 -1 9  2 1 9  3 1 9]
+Patch "bilinear" "P" [0 1.5 9  1 1.5 9  0 2.5 9  1 2.5 9]
+Patch "bilinear" "P" [-2 1 10  -1 1 10  -2 2 10  -1 2 10]
+WorldEnd
+)";
+
+TEST(Raytrace, StillSceneHierarchyIsBuiltOnceInSpacetimeAndPerFrameInFrames) {
+    auto run = [](Algorithm a) {
+        RenderOptions o = withAlgorithm(a);
+        o.hasFrames = true;
+        o.firstFrame = 0;
+        o.lastFrame = 7;
+        o.hierarchy.maxLeafBodies = 1;  // six bodies: make the hierarchy more than one node
+        return renderRib(kStillScene, o).stats.counters;
+    };
+    RenderCounters st = run(Algorithm::Raytrace), fr = run(Algorithm::RaytraceFrames);
+    ASSERT_GT(st.boundingVolumes, 1u);
+    EXPECT_EQ(fr.boundingVolumes, 8 * st.boundingVolumes);  // the same 3D hierarchy, 8 times
+    EXPECT_EQ(st.eyeRays, fr.eyeRays);
+    EXPECT_EQ(st.rayBodyTests, fr.rayBodyTests);  // and so the same tests
+    EXPECT_GT(st.rayBodyTests, 0u);
+    EXPECT_LT(st.rayBodyTests, 2 * st.eyeRays);   // the hierarchy spares most of 6 tests a ray
+    EXPECT_EQ(st.shadowRays, 0u);
+    EXPECT_EQ(st.gridsDiced, 0u);                 // no split loop
+}
+
+// ---- Shadows ---------------------------------------------------------------------------------------------
+
+// A white matte floor at z = 10 facing an orthographic camera (one unit a pixel), lit by a
+// distant light travelling along (1, 0, 1) with intensity sqrt 2: exactly 1 where lit. A square
+// at z = 5 casts its shadow 5 pixels to the right of itself; it moves 4 pixels during the
+// shutter, so the shadow sweeps [13, 17] -> [17, 21] and each floor pixel's brightness is one
+// minus the time-averaged coverage of the shadow: a linear blur ramp. The floor is one still
+// patch, shaded once per vertex by the rasterizer: only the per-sample shadow ray can blur it.
+std::string shadowScene(bool moving) {
+    return orthoHeader(32, 4, "PixelSamples 16 16\nShutter 0 1\n") +
+           "Attribute \"light\" \"shadows\" \"on\"\n"
+           "LightSource \"distantlight\" 1 \"intensity\" [1.41421356] \"from\" [0 0 0] \"to\" [1 0 1]\n"
+           "Surface \"matte\" \"Ka\" [0]\n" + square(0, 32, 0, 4, 10) +
+           "Color [0.5 0.5 0.5]\n" +
+           (moving ? "MotionBegin [0 1]\nTranslate 0 0 0\nTranslate 4 0 0\nMotionEnd\n" : "") +
+           square(8, 12, 0, 4, 5) + "WorldEnd\n";
+}
+
+class ShadowAlgorithm : public ::testing::TestWithParam<Algorithm> {};
+INSTANTIATE_TEST_SUITE_P(Raytrace, ShadowAlgorithm,
+                         ::testing::Values(Algorithm::Spacetime, Algorithm::SpacetimeOcclusion, Algorithm::Frames,
+                                           Algorithm::FramesOcclusion, Algorithm::Raytrace, Algorithm::RaytraceFrames),
+                         [](const ::testing::TestParamInfo<Algorithm>& info) { return test::testName(info.param); });
+
+TEST_P(ShadowAlgorithm, StillOccluderCastsAHardShadow) {
+    RenderResult r = renderRib(shadowScene(false), withAlgorithm(GetParam()));
+    for (int y = 0; y < 4; ++y) {
+        for (int x : {0, 5, 7, 17, 20, 31}) EXPECT_NEAR(r.channel(0, x, y, 0), 1.0f, 1e-5f) << x;  // lit floor
+        for (int x : {13, 14, 15, 16}) EXPECT_EQ(r.channel(0, x, y, 0), 0.0f) << x;      // its shadow
+        for (int x : {8, 11}) EXPECT_NEAR(r.channel(0, x, y, 0), 0.5f, 1e-5f) << x;      // the occluder, lit
+    }
+}
+
+TEST_P(ShadowAlgorithm, MovingOccluderShadowIsTheAnalyticBlurRamp) {
+    RenderResult r = renderRib(shadowScene(true), withAlgorithm(GetParam()));
+    const int spp = 256;
+    double worst = 0;
+    for (int x = 16; x <= 21; ++x) {  // floor the occluder never hides; its shadow passes over
+        double shadowed = 0;
+        const int steps = 20000;
+        for (int i = 0; i < steps; ++i) {
+            const double t = (i + 0.5) / steps;
+            shadowed += overlap(x, 13 + 4 * t, 17 + 4 * t) / steps;
+        }
+        const double expected = 1 - shadowed;
+        const double sigma = std::sqrt(expected * (1 - expected) / spp);
+        for (int y = 0; y < 4; ++y) {
+            EXPECT_NEAR(r.channel(0, x, y, 0), expected, 3 * sigma + 1e-6) << "pixel " << x;
+            worst = std::max(worst, std::fabs(r.channel(0, x, y, 0) - expected));
+        }
+    }
+    // The ramp is 1/8 3/8 5/8 7/8 in shadow from x = 17 to 20 (pixel 16 is 7/8 shadowed too).
+    EXPECT_NEAR(r.channel(0, 18, 1, 0), 1 - 0.625, 0.1);
+    EXPECT_NEAR(r.channel(0, 20, 1, 0), 1 - 0.125, 0.1);
+    EXPECT_GT(r.stats.counters.shadowRays, 0u);
+}
+
+// A light that casts shadows but has nothing in its way gives the light it gives without them:
+// the shading split into shadowed parts adds back up.
+TEST(Raytrace, UnblockedShadowLightAddsUpToThePlainLight) {
+    const std::string lit = std::string(kAnimation), shadowsOn = "Attribute \"light\" \"shadows\" \"on\"\n";
+    std::string plain = lit;
+    plain.replace(plain.find(shadowsOn), shadowsOn.size(), "");
+    // Only the floor and a light above it: nothing can shadow the floor.
+    auto floorOnly = [](std::string s) {
+        const size_t a = s.find("AttributeBegin\n  Color [0.2"), e = s.find("WorldEnd");
+        return s.substr(0, a) + s.substr(e);
+    };
+    for (Algorithm a : {Algorithm::Spacetime, Algorithm::Raytrace}) {
+        RenderResult withShadows = renderRib(floorOnly(lit), withAlgorithm(a));
+        RenderResult without = renderRib(floorOnly(plain), withAlgorithm(a));
+        EXPECT_GT(withShadows.stats.counters.shadowRays, 0u) << algorithmName(a);
+        EXPECT_EQ(without.stats.counters.shadowRays, 0u) << algorithmName(a);
+        EXPECT_LT(test::maxAbsDifference(withShadows, without), 1e-5f) << algorithmName(a);
+    }
+}
+
+}  // namespace
+}  // namespace streyes

@@ -1,0 +1,237 @@
+#!/usr/bin/env python3
+"""Tests of the report tools (tools/speed-vs-error, tools/bench): the logic that turns
+measurements into answers, on synthetic data; which knobs the help text switches on; argument
+handling; and one tiny end-to-end run of each on scenes/ramp.rib. Full benchmark runs are not
+tests (performance lives in tools/).
+
+Run by ctest with STREYES_EXE set to the built executable."""
+import importlib.machinery
+import importlib.util
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+TOOLS = os.path.join(ROOT, "tools")
+EXE = os.environ.get("STREYES_EXE", os.path.join(ROOT, "build", "streyes"))
+sys.path.insert(0, TOOLS)
+import streyes_runs as sr  # noqa: E402
+
+
+def load_script(name):
+    loader = importlib.machinery.SourceFileLoader(name.replace("-", "_"), os.path.join(TOOLS, name))
+    spec = importlib.util.spec_from_loader(loader.name, loader)
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
+
+
+sve = load_script("speed-vs-error")
+
+TODAY_HELP = """render options:
+  --frames A-B        frames to render
+  --samples N         samples per pixel per frame
+  --algorithm NAME    spacetime (default: Algorithm S, split once per block of frames)
+                      frames    (Algorithm C: Catmull's split loop frame by frame)
+  -o PATTERN          output files
+"""
+OCCLUSION_HELP = """render options:
+  --res WxH           image size
+  --samples N         samples per pixel per frame
+  --algorithm NAME    spacetime-occlusion (default: Algorithm S with occlusion culling)
+                      spacetime, frames, frames-occlusion
+  --tolerance EPS     occlusion culling tolerance (default 0)
+  --layers N          depth layers
+"""
+
+
+def point(knob, setting, value, seconds, rmse, **extra):
+    p = {"knob": knob, "setting": setting, "value": value, "seconds": seconds, "time": seconds,
+         "all_seconds": [seconds],
+         "peak_memory_bytes": 2**20, "counters": {}, "error": {"rmse_rgb": rmse, "rmse_a": rmse, "psnr": 30.0,
+                                                               "share_over_threshold": 0.1, "nonfinite": 0,
+                                                               "threshold": 0.01}}
+    p.update(extra)
+    return p
+
+
+def dataset(tolerance_points, samples_points, knobs=("samples", "tolerance")):
+    """A sweep result: base 16 spp at 10 s and RMSE 0.010, spacetime-occlusion."""
+    base = point("base", "base", None, 10.0, 0.010)
+    pts = [base] + [point("samples", "%d spp" % n, n, t, e) for n, t, e in samples_points] + \
+        [point("tolerance", "ε=%g" % v, v, t, e) for v, t, e in tolerance_points]
+    return sve.use_time({"scene": "scenes/x.rib", "base": {"samples": 16, "width": 64, "height": 32,
+                                                          "algorithm": "spacetime-occlusion"},
+                         "knobs": list(knobs), "points": pts}, "wall")
+
+
+class Capabilities(unittest.TestCase):
+    def test_todays_help_offers_no_occlusion_knobs(self):
+        c = sr.Capabilities(TODAY_HELP)
+        self.assertEqual(c.algorithms, ["spacetime", "frames"])
+        self.assertTrue(c.has("--samples"))
+        self.assertFalse(c.has("--tolerance"))
+        self.assertEqual([k.name for k in sve.active_knobs(c)], ["samples"])  # no --res in this help
+
+    def test_occlusion_knobs_and_algorithms_join_when_listed(self):
+        c = sr.Capabilities(OCCLUSION_HELP)
+        self.assertEqual(c.algorithms, ["spacetime", "frames", "spacetime-occlusion", "frames-occlusion"])
+        self.assertEqual([k.name for k in sve.active_knobs(c)], ["samples", "resolution", "tolerance", "layers"])
+        self.assertEqual(sve.base_algorithm(c), "spacetime-occlusion")
+        base = {"samples": 16, "width": 640, "height": 360, "algorithm": "spacetime-occlusion"}
+        plan = sve.plan_points(c, base)
+        settings = [(k, label) for k, _, label, _, _ in plan]
+        self.assertIn(("tolerance", "ε=0.05"), settings)
+        self.assertIn(("layers", "4 layers"), settings)
+        self.assertIn(("resolution", "160x90"), settings)
+        self.assertIn(("algorithm", "frames-occlusion"), settings)
+        self.assertNotIn(("algorithm", "spacetime-occlusion"), settings)  # the base itself
+        self.assertNotIn(("samples", "16 spp"), settings)
+        resize = {label: r for k, _, label, _, r in plan}
+        self.assertTrue(resize["320x180"])
+        self.assertFalse(resize["4 spp"])
+        only = sve.plan_points(c, base, ["tolerance"])
+        self.assertEqual({k for k, *_ in only}, {"tolerance"})
+
+
+class TimeAtError(unittest.TestCase):
+    def test_interpolates_in_log_log_and_bounds(self):
+        # A knob on the line error = 0.1 / time: at error 0.02 the time is 5 s.
+        pts = [point("k", "a", 1, 1.0, 0.1), point("k", "b", 2, 10.0, 0.01), point("k", "c", 3, 3.0, 0.2)]
+        t, how = sve.time_at_error(pts, 0.02)
+        self.assertEqual(how, "interpolated")
+        self.assertAlmostEqual(t, 5.0, places=9)
+        self.assertEqual(sve.time_at_error(pts, 0.5), (1.0, "at most"))  # the 3 s point is dominated
+        self.assertEqual(sve.time_at_error(pts, 0.01), (10.0, "measured"))
+        self.assertIsNone(sve.time_at_error(pts, 0.005))
+
+
+class Answers(unittest.TestCase):
+    def test_tolerance_wins_when_it_is_faster_at_equal_error(self):
+        # Samples: 4 spp at 3 s and RMSE 0.02; tolerance 0.05 reaches RMSE 0.011 in 6 s, where samples
+        # (interpolated between 16 spp and 4 spp) needs about 8.6 s.
+        d = dataset([(0.05, 6.0, 0.011)], [(4, 3.0, 0.02)])
+        text = sve.answer_tolerance(d)
+        self.assertIn("**Yes**", text)
+        self.assertIn("at 1 of the 1 tolerances", text)
+
+    def test_tolerance_loses_when_samples_are_faster(self):
+        d = dataset([(0.05, 9.5, 0.03)], [(4, 3.0, 0.02)])
+        text = sve.answer_tolerance(d)
+        self.assertIn("**No**", text)
+        self.assertIn("| ε=0.05 | 9.5 s | 0.03 | ≤ 3 s | samples |", text)
+
+    def test_the_chosen_time_measure_decides(self):
+        # In wall time the tolerance loses (9.5 s against samples' 3 s); in CPU time it wins (1 s against 6 s).
+        d = dataset([(0.05, 9.5, 0.03)], [(4, 3.0, 0.02)])
+        for p, cpu in zip(d["points"], [12.0, 6.0, 1.0]):
+            p["cpu_seconds"] = cpu
+        self.assertIn("**No**", sve.answer_tolerance(sve.use_time(d, "wall")))
+        self.assertIn("**Yes**", sve.answer_tolerance(sve.use_time(d, "cpu")))
+
+    def test_without_tolerance_it_says_so(self):
+        d = dataset([], [(4, 3.0, 0.02)], knobs=("samples",))
+        text = sve.answer_tolerance(d)
+        self.assertIn("Not measured yet", text)
+        self.assertNotIn("**Yes**", text)
+
+    def test_algorithms_are_placed_from_their_numbers(self):
+        d = dataset([], [(4, 3.0, 0.02)], knobs=("samples",))
+        d["points"].append(point("algorithm", "frames", "frames", 20.0, 0.010,
+                                 vs_base={"share_differing": 0, "rmse_rgb": 0}))
+        sve.use_time(d, "wall")
+        text = sve.answer_algorithms(d)
+        self.assertIn("**frames**: 20 s (2.00× the base algorithm's wall time)", text)
+        self.assertIn("bit-identical to spacetime-occlusion's", text)
+        self.assertIn("behind", text.split("**frames**")[1])
+        self.assertIn("on the front", text.split("**spacetime-occlusion**")[1].split("\n")[0])
+
+
+def run(args):
+    return subprocess.run([sys.executable] + args, capture_output=True, text=True)
+
+
+class CommandLines(unittest.TestCase):
+    def test_usage_errors_exit_2(self):
+        for tool, args, message in [
+            ("speed-vs-error", [], "give scene files or --all"),
+            ("speed-vs-error", ["--all", "scenes/demo.rib"], "give scene files or --all"),
+            ("speed-vs-error", ["x.rib", "--knobs", "colour"], "unknown knob colour"),
+            ("speed-vs-error", ["x.rib", "--frames", "1-x"], "--frames expects"),
+            ("speed-vs-error", ["/no/such/scene.rib", "--exe", EXE], "'/no/such/scene.rib' does not exist"),
+            ("bench", ["--no-kernels", "--no-renders"], "leave nothing to do"),
+            ("bench", ["/no/such/scene.rib", "--no-kernels", "--exe", EXE], "does not exist"),
+            ("bench", ["--bogus"], "unrecognized arguments"),
+        ]:
+            r = run([os.path.join(TOOLS, tool)] + args)
+            self.assertEqual(r.returncode, 2, (tool, args, r.stderr))
+            self.assertIn(message, r.stderr, (tool, args))
+
+    def test_help(self):
+        for tool in ("speed-vs-error", "bench"):
+            r = run([os.path.join(TOOLS, tool), "--help"])
+            self.assertEqual(r.returncode, 0)
+            self.assertIn("usage: tools/" + tool, r.stdout)
+
+
+@unittest.skipUnless(shutil.which("gnuplot") and os.access(EXE, os.X_OK), "needs gnuplot and the streyes executable")
+class EndToEnd(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="streyes-tools-")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def test_speed_vs_error_on_the_ramp(self):
+        r = run([os.path.join(TOOLS, "speed-vs-error"), os.path.join(ROOT, "scenes/ramp.rib"), "--knobs",
+                 "samples", "--runs", "1", "--ref-samples", "1024", "--exe", EXE, "--out", self.dir, "--work",
+                 os.path.join(self.dir, "work"), "--quiet"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(self.dir, "ramp.json")) as f:
+            data = json.load(f)
+        err = {p["setting"]: p["error"]["rmse_rgb"] for p in data["points"]}
+        self.assertEqual(set(err), {"base", "1 spp", "2 spp", "4 spp", "9 spp"})
+        # The ramp's noise falls as samples rise: 1 spp is far from the 1024-spp reference, 256 close.
+        self.assertGreater(err["1 spp"], 4 * err["9 spp"])
+        self.assertGreater(err["9 spp"], err["base"])
+        self.assertGreater(err["base"], 0)
+        with open(os.path.join(self.dir, "ramp.md")) as f:
+            md = f.read()
+        self.assertIn("![time against error](ramp.png)", md)
+        self.assertIn("| samples | 1 spp |", md)
+        with open(os.path.join(self.dir, "ramp.png"), "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+        self.assertIn("![frames of the base render](ramp-sheet.png)", md)
+        self.assertTrue(os.path.exists(os.path.join(self.dir, "ramp-sheet.png")))
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "work", "ramp", "run01")))  # frames cleaned up
+        # --replot rewrites the page from the measurements alone.
+        os.remove(os.path.join(self.dir, "ramp.md"))
+        r = run([os.path.join(TOOLS, "speed-vs-error"), "--replot", os.path.join(ROOT, "scenes/ramp.rib"), "--out",
+                 self.dir, "--quiet"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(os.path.join(self.dir, "ramp.md")) as f:
+            self.assertEqual(f.read(), md)
+
+    def test_bench_on_the_ramp(self):
+        out = os.path.join(self.dir, "bench.md")
+        r = run([os.path.join(TOOLS, "bench"), os.path.join(ROOT, "scenes/ramp.rib"), "--no-kernels", "--exe", EXE,
+                 "--out", out, "--work", os.path.join(self.dir, "work"), "--quiet"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out[:-3] + ".json") as f:
+            data = json.load(f)
+        rows = {a["algorithm"]: a for a in data["scenes"][0]["algorithms"]}
+        self.assertEqual(data["scenes"][0]["baseline"], "frames")
+        self.assertIn("spacetime", rows)
+        # Both algorithms dice the same still patch: the counters agree, and so do the pixels.
+        self.assertEqual(rows["spacetime"]["counters"]["micropolygons"], rows["frames"]["counters"]["micropolygons"])
+        self.assertIn("vs_baseline", rows["spacetime"])
+        with open(out) as f:
+            self.assertIn("### scenes/ramp.rib", f.read())
+
+
+if __name__ == "__main__":
+    unittest.main()
