@@ -23,6 +23,17 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 # The benchmark scenes, in report order; those not in the tree yet are skipped with a note.
 BENCHMARK_SCENES = ["scenes/demo.rib", "scenes/occluded.rib", "scenes/forest.rib"]
+# Settings a benchmark scene needs to keep a sweep within an hour on two cores; the command
+# line's --frames and --ref-samples win. "why" is quoted in the reports.
+SCENE_SETTINGS = {
+    "scenes/forest.rib": {"frames": "1-8", "ref_samples": 36,
+                          "why": "8 of its 64 frames and a 36-sample reference (9 times its 4 samples per pixel) keep "
+                                 "the sweep within an hour on two cores"},
+}
+
+
+def scene_settings(path):
+    return SCENE_SETTINGS.get(scene_label(path), {})
 
 # Every algorithm the tools know; one is used when `streyes render --help` lists it.
 ALGORITHMS = ["spacetime", "frames", "spacetime-occlusion", "frames-occlusion"]
@@ -150,17 +161,18 @@ def counter_value(value):
 KNOWN_COUNTERS = [("splits", "splits"), ("grids_diced", "grids"), ("micropolygons", "micropolygons"),
                   ("sample_tests", "sample tests"), ("hit_efficiency", "hit eff.")]
 SKIPPED_COUNTERS = {"root_bodies", "buckets", "sample_hits", "culled_eye_split_limit", "culled_split_limit",
-                    "eye_splits", "culled_clip", "culled_view"}
+                    "eye_splits", "culled_clip", "culled_view", "passes"}
 
 
 def counter_columns(stats_list):
-    """(key, heading) pairs for the counters of these stats: the known ones, then the rest."""
+    """(key, heading) pairs for the counters of these stats: the known ones, then any other that is
+    not zero in every one of them."""
     cols = list(KNOWN_COUNTERS)
     known = {k for k, _ in cols} | SKIPPED_COUNTERS
     extra = []
     for s in stats_list:
         for k, v in s.get("counters", {}).items():
-            if k not in known and k not in extra and counter_value(v) is not None:
+            if k not in known and k not in extra and counter_value(v):
                 extra.append(k)
     return cols + [(k, k.replace("_", " ")) for k in extra]
 

@@ -86,7 +86,7 @@ class Capabilities(unittest.TestCase):
         plan = sve.plan_points(c, base)
         settings = [(k, label) for k, _, label, _, _ in plan]
         self.assertIn(("tolerance", "ε=0.05"), settings)
-        self.assertIn(("layers", "4 layers"), settings)
+        self.assertIn(("layers", "layers=4"), settings)
         self.assertIn(("resolution", "160x90"), settings)
         self.assertIn(("algorithm", "frames-occlusion"), settings)
         self.assertNotIn(("algorithm", "spacetime-occlusion"), settings)  # the base itself
@@ -124,6 +124,14 @@ class Answers(unittest.TestCase):
         text = sve.answer_tolerance(d)
         self.assertIn("**No**", text)
         self.assertIn("| ε=0.05 | 9.5 s | 0.03 | ≤ 3 s | samples |", text)
+
+    def test_times_within_two_percent_tie(self):
+        # Tolerance 0.01 leaves the image as it is (the base error) and takes 10.1 s against the base's 10 s.
+        d = dataset([(0.01, 10.1, 0.010)], [(4, 3.0, 0.02)])
+        text = sve.answer_tolerance(d)
+        self.assertIn("**No**", text)
+        self.assertIn("tied (times within 2%) at 1", text)
+        self.assertIn("| tie: tolerance, samples |", text)
 
     def test_the_chosen_time_measure_decides(self):
         # In wall time the tolerance loses (9.5 s against samples' 3 s); in CPU time it wins (1 s against 6 s).
