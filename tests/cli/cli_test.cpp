@@ -52,7 +52,8 @@ TEST(Cli, MissingSceneIsBadInput) {
 }
 
 TEST(Cli, MalformedRibExits2WithFileAndLine) {
-    std::string dir = test::makeTempDir("cli-bad");
+    const test::TempDir tempDir("cli-bad");
+    const std::string& dir = tempDir.path();
     std::string scene = writeFile(dir, "bad.rib", "Format 16 8 1\nWorldBegin\nTranslate 1 2\nWorldEnd\n");
     CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
@@ -61,7 +62,8 @@ TEST(Cli, MalformedRibExits2WithFileAndLine) {
 }
 
 TEST(Cli, UnknownRequestWarnsOnceAndRenders) {
-    std::string dir = test::makeTempDir("cli-warn");
+    const test::TempDir tempDir("cli-warn");
+    const std::string& dir = tempDir.path();
     std::string rib = std::string("Hider \"hidden\"\n") + kTiny;
     rib.insert(rib.find("WorldEnd"), "Hider \"hidden\"\n");
     std::string scene = writeFile(dir, "warn.rib", rib);
@@ -75,7 +77,8 @@ TEST(Cli, UnknownRequestWarnsOnceAndRenders) {
 }
 
 TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
-    std::string dir = test::makeTempDir("cli-exr");
+    const test::TempDir tempDir("cli-exr");
+    const std::string& dir = tempDir.path();
     std::string scene = writeFile(dir, "tiny.rib", kTiny);
     CliRun r = streyes("render " + scene + " --frames 3-4 --res 20x10 -o " + dir + "/f.####.exr --stats " + dir +
                     "/stats.json --quiet");
@@ -95,7 +98,8 @@ TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
 }
 
 TEST(Cli, RaytraceWritesTheSameFramesAndItsCounters) {
-    std::string dir = test::makeTempDir("cli-raytrace");
+    const test::TempDir tempDir("cli-raytrace");
+    const std::string& dir = tempDir.path();
     std::string scene = writeFile(dir, "tiny.rib", kTiny);
     for (const char* alg : {"raytrace", "raytrace-frames"}) {
         CliRun r = streyes("render " + scene + " --algorithm " + alg + " -o " + dir + "/" + alg + ".####.exr --stats " +
@@ -116,7 +120,8 @@ TEST(Cli, RaytraceWritesTheSameFramesAndItsCounters) {
 }
 
 TEST(Cli, UnwritableOutputFailsCleanly) {
-    std::string dir = test::makeTempDir("cli-unwritable");
+    const test::TempDir tempDir("cli-unwritable");
+    const std::string& dir = tempDir.path();
     std::string scene = writeFile(dir, "tiny.rib", kTiny);
     // A folder that does not exist.
     CliRun missing = streyes("render " + scene + " -o " + dir + "/no/such/folder/f.####.exr");
