@@ -86,7 +86,8 @@ render options:
   --quiet             no progress (a bar on a terminal, else a line per 10%), no summary,
                       no warnings on stderr
 
-exit codes: 0 done, 1 render failed, 2 bad input or usage (or more memory than the budget)
+exit codes: 0 done, 1 render failed (e.g. an output folder missing or not writable, found
+            before rendering; a full disk), 2 bad input or usage (or more memory than the budget)
 )";
 
 }  // namespace streyes::cli

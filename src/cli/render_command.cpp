@@ -214,6 +214,13 @@ int renderCommand(const std::vector<std::string>& args) {
     const int frames = rs.lastFrame - rs.firstFrame + 1;
     std::vector<Output> outputs = chooseOutputs(scene, outPattern, scenePath, frames, log);
 
+    // Before anything is rendered, every output's folder and the --stats file's folder must take a
+    // file: a missing or read-only folder would otherwise be found only when the first frame block
+    // is done, perhaps minutes in (exit 1, as then). Writes failing later (a full disk) are still
+    // caught, and the frame removed, by writeFrame.
+    for (const Output& o : outputs) checkWritableFolder(expandFramePattern(o.pattern, rs.firstFrame), "-o");
+    if (!statsPath.empty()) checkWritableFolder(statsPath, "--stats");
+
     // Temporary files of renders that were killed mid-write go; with --resume, frames whose every
     // output is a complete image of the right size and channels (read back) are not rendered.
     int stale = 0;

@@ -132,7 +132,43 @@ TEST(Files, OutputFolderWithoutWritePermissionFailsCleanly) {
                             "/out' is not writable (Permission denied)"),
               std::string::npos)
         << r.output;
+    EXPECT_EQ(r.output.find("buckets"), std::string::npos) << r.output;  // found before rendering
     EXPECT_TRUE(listDir(dir + "/out").empty());
+}
+
+// Missing output folders are found before anything is rendered, not when the first frame block is
+// done: here 8 frames of 1920x1080 at 64 samples per pixel, minutes of work. Off a terminal the
+// render logs a line per tenth of its buckets (cli_test.cpp), and every frame block is at least an
+// eighth of them: no such line means no bucket was rendered.
+TEST(Files, MissingOutputFolderFailsBeforeRendering) {
+    const test::TempDir tempDir("preflight");
+    const std::string& dir = tempDir.path();
+    const std::string scene = writeFile(dir, "two.rib", kTwoFrames);
+    // Exit 1 with `message` and no progress line.
+    auto expectRefusedBeforeRendering = [&](const std::string& outputs, const std::string& message) {
+        CliRun r = runStreyes("render " + scene + " --frames 1-8 --res 1920x1080 --samples 64 " + outputs);
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("buckets"), std::string::npos) << r.output;
+    };
+    expectRefusedBeforeRendering("-o " + dir + "/no/such/f.####.exr --stats " + dir + "/stats.json",
+                                 "cannot write '" + dir + "/no/such/f.0001.exr': the folder '" + dir +
+                                     "/no/such' does not exist (create it, or choose another -o)");
+    EXPECT_EQ(listDir(dir), std::vector<std::string>{"two.rib"});
+
+    // The --stats file's folder too, while the frames' folder is fine.
+    fs::create_directory(dir + "/out");
+    expectRefusedBeforeRendering("-o " + dir + "/out/f.####.exr --stats " + dir + "/none/stats.json",
+                                 "cannot write '" + dir + "/none/stats.json': the folder '" + dir +
+                                     "/none' does not exist (create it, or choose another --stats)");
+    EXPECT_TRUE(listDir(dir + "/out").empty());
+
+    // A file where the folder should be.
+    writeFile(dir, "afile", "x");
+    expectRefusedBeforeRendering("-o " + dir + "/afile/f.####.exr",
+                                 "cannot write '" + dir + "/afile/f.0001.exr': '" + dir +
+                                     "/afile' is not a folder (choose another -o)");
+    EXPECT_EQ(listDir(dir), (std::vector<std::string>{"afile", "out", "two.rib"}));
 }
 
 // A disk that fills up mid-render, simulated by a file size limit (ulimit -f, in 512-byte
