@@ -24,10 +24,24 @@ Camera pixelCamera(int size) {
 
 std::string sourcePath(const std::string& relative) { return std::string(STREYES_SOURCE_DIR) + "/" + relative; }
 
-std::string makeTempDir(const std::string& tag) {
+TempDir::TempDir(const std::string& tag) {
     std::string tmpl = (std::filesystem::temp_directory_path() / ("streyes-" + tag + "-XXXXXX")).string();
     if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed for " + tmpl);
-    return tmpl;
+    path_ = tmpl;
+}
+
+TempDir::~TempDir() {
+    if (path_.empty()) return;
+    namespace fs = std::filesystem;
+    // Tests take permissions away (read-only folders, unreadable files): given back first, so that
+    // the folder can be emptied without root. Errors are ignored; a destructor does not throw.
+    std::error_code ec, ignore;
+    const fs::perms all = fs::perms::owner_all;
+    fs::permissions(path_, all, fs::perm_options::add, ignore);
+    for (fs::recursive_directory_iterator it(path_, ec), end; !ec && it != end; it.increment(ec))
+        if (!it->is_symlink(ignore) && it->is_directory(ignore))
+            fs::permissions(it->path(), all, fs::perm_options::add, ignore);
+    fs::remove_all(path_, ignore);
 }
 
 const FrameImage& RenderResult::frame(int f) const {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "streyes/camera.h"
@@ -20,8 +21,22 @@ Camera pixelCamera(int size);
 // Absolute path of a file in the source tree, e.g. sourcePath("scenes/ramp.rib").
 std::string sourcePath(const std::string& relative);
 
-// A fresh, empty temporary directory for one test.
-std::string makeTempDir(const std::string& tag);
+// A fresh, empty temporary folder for one test, /tmp/streyes-TAG-XXXXXX, removed with all it holds
+// when the TempDir goes (at the end of the test that holds it), so that test runs leave nothing
+// in /tmp. Movable, not copyable.
+class TempDir {
+  public:
+    explicit TempDir(const std::string& tag);
+    ~TempDir();
+    TempDir(TempDir&& other) noexcept : path_(std::move(other.path_)) { other.path_.clear(); }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    TempDir& operator=(TempDir&&) = delete;
+    const std::string& path() const { return path_; }
+
+  private:
+    std::string path_;
+};
 
 struct RenderResult {
     std::vector<FrameImage> frames;

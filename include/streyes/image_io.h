@@ -25,6 +25,12 @@ std::string addFrameField(const std::string& pattern);
 // name (InputError otherwise). An unreadable or missing folder gives no frames.
 std::vector<int> findFrames(const std::string& pattern);
 
+// Before rendering: can a file be written at `path`? Its folder must exist, be a folder, and take
+// a probe file (".STEM.probePID", created and removed at once). Throws RenderError naming `path`,
+// the folder and what to do (`option`, "-o" or "--stats", is where the path came from), as
+// writeFrame does when it finds the same; nothing is left behind.
+void checkWritableFolder(const std::string& path, const std::string& option);
+
 // Writes one frame atomically: encoded in memory, written to temporaryFrameName(path, pid) with
 // every write checked and synced, then renamed to `path`. Throws RenderError with a clear message
 // on failure (a full disk, a file size limit, an unwritable folder) and leaves nothing behind.

@@ -83,9 +83,11 @@ render options:
                       cannot fit one frame at a time is refused (exit 2)
   --resume            skip frames whose files are already complete (read back and
                       checked), render the rest
-  --quiet             no progress bar, no summary, no warnings on stderr
+  --quiet             no progress (a bar on a terminal, else a line per 10%), no summary,
+                      no warnings on stderr
 
-exit codes: 0 done, 1 render failed, 2 bad input or usage (or more memory than the budget)
+exit codes: 0 done, 1 render failed (e.g. an output folder missing or not writable, found
+            before rendering; a full disk), 2 bad input or usage (or more memory than the budget)
 )";
 
 }  // namespace streyes::cli

@@ -1,6 +1,7 @@
 // `streyes render SCENE [options]`: parse, render, write one image per frame.
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -31,24 +32,49 @@ void parseRes(const std::string& v, RenderOptions& o) {
     o.yres = int(parseInt("--res", v.substr(x + 1), 1, 65536));
 }
 
-// A progress bar with ETA on a terminal; silent otherwise.
+// A duration as m:ss, or h:mm:ss from an hour on.
+std::string clockTime(int seconds) {
+    char buf[32];
+    if (seconds >= 3600)
+        std::snprintf(buf, sizeof buf, "%d:%02d:%02d", seconds / 3600, seconds / 60 % 60, seconds % 60);
+    else
+        std::snprintf(buf, sizeof buf, "%d:%02d", seconds / 60, seconds % 60);
+    return buf;
+}
+
+// Progress on stderr. On a terminal, a bar with an ETA redrawn in place. Elsewhere (a log file, a
+// pipe, a render farm) one plain line at each 10% of buckets done, so that a long render shows
+// signs of life where carriage returns would not: "streyes: 30% (412/1373 buckets), 1:05
+// elapsed, ETA 2:31". Buckets finish on several threads and report out of order; a line is
+// printed only for a tenth not reached before, so the percentages only rise, ending with 100%.
 class ProgressBar {
   public:
-    explicit ProgressBar(bool enabled) : enabled_(enabled && isatty(STDERR_FILENO)) {}
+    explicit ProgressBar(bool enabled) : enabled_(enabled), terminal_(isatty(STDERR_FILENO) != 0) {}
     void update(uint64_t done, uint64_t total) {
         if (!enabled_) return;
         std::lock_guard<std::mutex> lock(mutex_);
         auto now = std::chrono::steady_clock::now();
+        done = std::min(done, total);  // a second pass (grown procedurals) counts its buckets again
+        const double elapsed = std::chrono::duration<double>(now - start_).count();
+        const double frac = total ? double(done) / double(total) : 1.0;
+        const int eta = frac > 0 ? int(elapsed / frac - elapsed + 0.5) : 0;
+        if (!terminal_) {
+            const int tenth = total ? int(done * 10 / total) : 10;
+            if (tenth <= lastTenth_) return;
+            lastTenth_ = tenth;
+            std::fprintf(stderr, "streyes: %d%% (%llu/%llu buckets), %s elapsed, ETA %s\n",
+                         total ? int(done * 100 / total) : 100, (unsigned long long)done, (unsigned long long)total,
+                         clockTime(int(elapsed)).c_str(), clockTime(eta).c_str());
+            std::fflush(stderr);
+            return;
+        }
         if (done < total && now - last_ < std::chrono::milliseconds(100)) return;
         last_ = now;
-        double elapsed = std::chrono::duration<double>(now - start_).count();
-        double frac = total ? double(done) / double(total) : 1.0;
-        int eta = frac > 0 ? int(elapsed / frac - elapsed + 0.5) : 0;
         const int width = 30;
         int filled = int(frac * width);
-        std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %llu/%llu buckets  ETA %d:%02d ", filled,
+        std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %llu/%llu buckets  ETA %s ", filled,
                      "##############################", width - filled, "", int(frac * 100),
-                     (unsigned long long)done, (unsigned long long)total, eta / 60, eta % 60);
+                     (unsigned long long)done, (unsigned long long)total, clockTime(eta).c_str());
         std::fflush(stderr);
         shown_ = true;
     }
@@ -57,8 +83,9 @@ class ProgressBar {
     }
 
   private:
-    bool enabled_;
+    bool enabled_, terminal_;
     bool shown_ = false;
+    int lastTenth_ = 0;  // plain lines: the tenths of the buckets already reported
     std::mutex mutex_;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
 };
@@ -186,6 +213,13 @@ int renderCommand(const std::vector<std::string>& args) {
     const ResolvedSettings rs = resolveSettings(scene, opts);
     const int frames = rs.lastFrame - rs.firstFrame + 1;
     std::vector<Output> outputs = chooseOutputs(scene, outPattern, scenePath, frames, log);
+
+    // Before anything is rendered, every output's folder and the --stats file's folder must take a
+    // file: a missing or read-only folder would otherwise be found only when the first frame block
+    // is done, perhaps minutes in (exit 1, as then). Writes failing later (a full disk) are still
+    // caught, and the frame removed, by writeFrame.
+    for (const Output& o : outputs) checkWritableFolder(expandFramePattern(o.pattern, rs.firstFrame), "-o");
+    if (!statsPath.empty()) checkWritableFolder(statsPath, "--stats");
 
     // Temporary files of renders that were killed mid-write go; with --resume, frames whose every
     // output is a complete image of the right size and channels (read back) are not rendered.

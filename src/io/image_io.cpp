@@ -74,16 +74,51 @@ std::vector<int> findFrames(const std::string& pattern) {
     return frames;
 }
 
+namespace {
+
+fs::path folderOf(const fs::path& target) { return target.has_parent_path() ? target.parent_path() : fs::path("."); }
+
+// Throws, saying what to do, unless `dir` (where `path` goes, chosen by `option`) is a folder.
+void requireFolder(const std::string& path, const fs::path& dir, const std::string& option) {
+    std::error_code ec;
+    const fs::file_status st = fs::status(dir, ec);
+    if (fs::is_directory(st)) return;
+    const std::string what = "cannot write '" + path + "': ";
+    if (fs::exists(st)) throw RenderError(what + "'" + dir.string() + "' is not a folder (choose another " + option + ")");
+    if (ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory)
+        throw RenderError(what + "cannot reach the folder '" + dir.string() + "' (" + ec.message() + ")");
+    throw RenderError(what + "the folder '" + dir.string() + "' does not exist (create it, or choose another " + option +
+                      ")");
+}
+
+RenderError notWritable(const std::string& path, const fs::path& dir, int err) {
+    return RenderError("cannot write '" + path + "': the folder '" + dir.string() + "' is not writable (" +
+                       std::strerror(err) + ")");
+}
+
+}  // namespace
+
+void checkWritableFolder(const std::string& path, const std::string& option) {
+    const fs::path target(path);
+    const fs::path dir = folderOf(target);
+    requireFolder(path, dir, option);
+    // Permission bits do not say (root ignores them; a read-only mount, a full inode table): a
+    // file is created and removed.
+    const fs::path probe = dir / ("." + target.stem().string() + ".probe" + std::to_string(getpid()));
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) throw notWritable(path, dir, errno);
+    ::close(fd);
+    if (::unlink(probe.c_str()) != 0)
+        throw RenderError("cannot write '" + path + "': the probe file '" + probe.string() + "' cannot be removed (" +
+                          std::strerror(errno) + "; remove it, or choose another " + option + ")");
+}
+
 void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode) {
     const fs::path target(path);
-    const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+    const fs::path dir = folderOf(target);
     std::error_code ec;
-    if (!fs::is_directory(dir, ec))
-        throw RenderError("cannot write '" + path + "': the folder '" + dir.string() +
-                          "' does not exist (create it, or choose another -o)");
-    if (access(dir.c_str(), W_OK) != 0)
-        throw RenderError("cannot write '" + path + "': the folder '" + dir.string() + "' is not writable (" +
-                          std::strerror(errno) + ")");
+    requireFolder(path, dir, "-o");
+    if (access(dir.c_str(), W_OK) != 0) throw notWritable(path, dir, errno);
 
     const bool alpha = mode != "rgb", z = mode == "rgbaz";
     const int nch = 3 + (alpha ? 1 : 0) + (z ? 1 : 0);

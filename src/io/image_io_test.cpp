@@ -12,7 +12,8 @@ namespace streyes {
 namespace {
 
 TEST(FramePatterns, FindFramesListsExactlyTheFilesThePatternNames) {
-    std::string dir = test::makeTempDir("find-frames");
+    const test::TempDir tempDir("find-frames");
+    const std::string& dir = tempDir.path();
     for (const char* name : {"a.0001.exr", "a.0002.exr", "a.12345.exr", "a.-003.exr",  // frames 1, 2, 12345, -3
                              "a.7.exr", "a.0004.exr.tmp", "b.0005.exr", "a.00x6.exr", "a.0007.EXR"})
         std::ofstream(dir + "/" + name) << "x";

@@ -64,7 +64,8 @@ class MalformedRib : public ::testing::TestWithParam<Malformed> {};
 
 TEST_P(MalformedRib, Exits2NamingFileAndLineAndWritesNothing) {
     const Malformed& c = GetParam();
-    const std::string dir = test::makeTempDir("bad-rib");
+    const test::TempDir tempDir("bad-rib");
+    const std::string& dir = tempDir.path();
     const std::string scene = writeFile(dir, "bad.rib", c.text);
     CliRun r = runStreyes("render " + scene + " -o " + dir + "/f.####.exr --stats " + dir + "/stats.json");
     EXPECT_EQ(r.exitCode, 2) << r.output;
@@ -95,7 +96,8 @@ WorldEnd
 std::string unprivileged() { return geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups " : ""; }
 
 TEST(Files, UnreadableSceneIsBadInput) {
-    const std::string dir = test::makeTempDir("unreadable");
+    const test::TempDir tempDir("unreadable");
+    const std::string& dir = tempDir.path();
     fs::permissions(dir, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
                              fs::perms::others_read | fs::perms::others_exec);
     const std::string scene = writeFile(dir, "secret.rib", kTwoFrames);
@@ -106,7 +108,8 @@ TEST(Files, UnreadableSceneIsBadInput) {
 }
 
 TEST(Files, SceneThatIsAFolderIsBadInput) {
-    const std::string dir = test::makeTempDir("scene-folder");
+    const test::TempDir tempDir("scene-folder");
+    const std::string& dir = tempDir.path();
     CliRun r = runStreyes("render " + dir + " -o " + dir + "/f.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("cannot open scene '" + dir + "': Is a directory"), std::string::npos) << r.output;
@@ -114,7 +117,8 @@ TEST(Files, SceneThatIsAFolderIsBadInput) {
 }
 
 TEST(Files, OutputFolderWithoutWritePermissionFailsCleanly) {
-    const std::string dir = test::makeTempDir("readonly");
+    const test::TempDir tempDir("readonly");
+    const std::string& dir = tempDir.path();
     const std::string scene = writeFile(dir, "two.rib", kTwoFrames);
     fs::create_directory(dir + "/out");
     // Readable and searchable by everyone, writable by no one but its owner (root).
@@ -128,14 +132,51 @@ TEST(Files, OutputFolderWithoutWritePermissionFailsCleanly) {
                             "/out' is not writable (Permission denied)"),
               std::string::npos)
         << r.output;
+    EXPECT_EQ(r.output.find("buckets"), std::string::npos) << r.output;  // found before rendering
     EXPECT_TRUE(listDir(dir + "/out").empty());
+}
+
+// Missing output folders are found before anything is rendered, not when the first frame block is
+// done: here 8 frames of 1920x1080 at 64 samples per pixel, minutes of work. Off a terminal the
+// render logs a line per tenth of its buckets (cli_test.cpp), and every frame block is at least an
+// eighth of them: no such line means no bucket was rendered.
+TEST(Files, MissingOutputFolderFailsBeforeRendering) {
+    const test::TempDir tempDir("preflight");
+    const std::string& dir = tempDir.path();
+    const std::string scene = writeFile(dir, "two.rib", kTwoFrames);
+    // Exit 1 with `message` and no progress line.
+    auto expectRefusedBeforeRendering = [&](const std::string& outputs, const std::string& message) {
+        CliRun r = runStreyes("render " + scene + " --frames 1-8 --res 1920x1080 --samples 64 " + outputs);
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("buckets"), std::string::npos) << r.output;
+    };
+    expectRefusedBeforeRendering("-o " + dir + "/no/such/f.####.exr --stats " + dir + "/stats.json",
+                                 "cannot write '" + dir + "/no/such/f.0001.exr': the folder '" + dir +
+                                     "/no/such' does not exist (create it, or choose another -o)");
+    EXPECT_EQ(listDir(dir), std::vector<std::string>{"two.rib"});
+
+    // The --stats file's folder too, while the frames' folder is fine.
+    fs::create_directory(dir + "/out");
+    expectRefusedBeforeRendering("-o " + dir + "/out/f.####.exr --stats " + dir + "/none/stats.json",
+                                 "cannot write '" + dir + "/none/stats.json': the folder '" + dir +
+                                     "/none' does not exist (create it, or choose another --stats)");
+    EXPECT_TRUE(listDir(dir + "/out").empty());
+
+    // A file where the folder should be.
+    writeFile(dir, "afile", "x");
+    expectRefusedBeforeRendering("-o " + dir + "/afile/f.####.exr",
+                                 "cannot write '" + dir + "/afile/f.0001.exr': '" + dir +
+                                     "/afile' is not a folder (choose another -o)");
+    EXPECT_EQ(listDir(dir), (std::vector<std::string>{"afile", "out", "two.rib"}));
 }
 
 // A disk that fills up mid-render, simulated by a file size limit (ulimit -f, in 512-byte
 // blocks): frame 1 (empty) fits, frame 2 does not. Before, OpenEXR swallowed the failing write and
 // a truncated frame 2 was renamed into place with exit status 0.
 TEST(Files, FullDiskLeavesOnlyCompleteFrames) {
-    const std::string dir = test::makeTempDir("full-disk");
+    const test::TempDir tempDir("full-disk");
+    const std::string& dir = tempDir.path();
     // Frame 1 is empty (the square is behind the camera); in frame 2 a coloured square fills it.
     const std::string rib = R"(Format 48 32 1
 PixelSamples 3 3

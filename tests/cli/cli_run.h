@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -37,6 +39,19 @@ inline CliRun runStreyesWith(const std::string& prefix, const std::string& args,
 // Runs `streyes ARGS` through the shell. The output holds stdout, and stderr too unless
 // `withStderr` is false (then stderr is dropped: for parsing --json output).
 inline CliRun runStreyes(const std::string& args, bool withStderr = true) { return runStreyesWith("", args, withStderr); }
+
+// Runs `streyes ARGS` with stderr going to the file `stderrPath` (neither a terminal nor a pipe,
+// as in a render farm's log) and stdout dropped. Returns the exit code, -1 when it did not exit.
+inline int runStreyesLogged(const std::string& args, const std::string& stderrPath) {
+    const std::string cmd = std::string(STREYES_EXE) + " " + args + " >/dev/null 2>" + stderrPath;
+    const int status = std::system(cmd.c_str());
+    return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+inline std::string readFile(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
 
 inline std::string writeFile(const std::string& dir, const std::string& name, const std::string& text) {
     std::string path = dir + "/" + name;

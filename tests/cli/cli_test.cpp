@@ -1,9 +1,11 @@
 // The streyes command as a user runs it: exit codes, messages, files written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "cli_run.h"
 #include "streyes/image_io.h"
@@ -52,7 +54,8 @@ TEST(Cli, MissingSceneIsBadInput) {
 }
 
 TEST(Cli, MalformedRibExits2WithFileAndLine) {
-    std::string dir = test::makeTempDir("cli-bad");
+    const test::TempDir tempDir("cli-bad");
+    const std::string& dir = tempDir.path();
     std::string scene = writeFile(dir, "bad.rib", "Format 16 8 1\nWorldBegin\nTranslate 1 2\nWorldEnd\n");
     CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
@@ -61,7 +64,8 @@ TEST(Cli, MalformedRibExits2WithFileAndLine) {
 }
 
 TEST(Cli, UnknownRequestWarnsOnceAndRenders) {
-    std::string dir = test::makeTempDir("cli-warn");
+    const test::TempDir tempDir("cli-warn");
+    const std::string& dir = tempDir.path();
     std::string rib = std::string("Hider \"hidden\"\n") + kTiny;
     rib.insert(rib.find("WorldEnd"), "Hider \"hidden\"\n");
     std::string scene = writeFile(dir, "warn.rib", rib);
@@ -75,7 +79,8 @@ TEST(Cli, UnknownRequestWarnsOnceAndRenders) {
 }
 
 TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
-    std::string dir = test::makeTempDir("cli-exr");
+    const test::TempDir tempDir("cli-exr");
+    const std::string& dir = tempDir.path();
     std::string scene = writeFile(dir, "tiny.rib", kTiny);
     CliRun r = streyes("render " + scene + " --frames 3-4 --res 20x10 -o " + dir + "/f.####.exr --stats " + dir +
                     "/stats.json --quiet");
@@ -94,8 +99,65 @@ TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
     EXPECT_NE(json.find("\"frames\": [3, 4]"), std::string::npos);
 }
 
+// "streyes: P% (D/32 buckets), M:SS elapsed, ETA M:SS", exactly.
+bool isProgressLine(const std::string& line) {
+    int percent = 0, done = 0, total = 0, em = 0, es = 0, rm = 0, rs = 0, end = 0;
+    if (std::sscanf(line.c_str(), "streyes: %d%% (%d/%d buckets), %d:%d elapsed, ETA %d:%d%n", &percent, &done, &total,
+                    &em, &es, &rm, &rs, &end) != 7)
+        return false;
+    char again[128];
+    std::snprintf(again, sizeof again, "streyes: %d%% (%d/%d buckets), %d:%02d elapsed, ETA %d:%02d", percent, done,
+                  total, em, es, rm, rs);
+    return size_t(end) == line.size() && line == again && total == 32 && es < 60 && rs < 60;
+}
+
+// Off a terminal, progress is one plain line per tenth of the buckets done, without carriage
+// returns: 64x32 pixels in 8-pixel buckets are 32 buckets, each under a tenth of the render. On one
+// thread buckets finish in order, so the lines are those of the first bucket past each tenth
+// (4/32 = 12%, 7/32 = 21%, ...); on two they may finish out of order, and still the percentages
+// only rise, one line per tenth, ending with 100%.
+TEST(Cli, ProgressOffATerminalIsOneLinePerTenth) {
+    const test::TempDir tempDir("cli-progress");
+    const std::string& dir = tempDir.path();
+    std::string scene = writeFile(dir, "tiny.rib", kTiny);
+    for (const char* threads : {"1", "2"}) {
+        const std::string log = dir + "/stderr" + threads + ".txt";
+        ASSERT_EQ(test::runStreyesLogged("render " + scene + " --res 64x32 --bucket 8 --threads " + threads + " -o " +
+                                             dir + "/f.####.exr",
+                                         log),
+                  0);
+        const std::string text = test::readFile(log);
+        EXPECT_EQ(text.find('\r'), std::string::npos) << text;
+        std::vector<int> percents, tenths;
+        std::istringstream lines(text);
+        for (std::string l; std::getline(lines, l);) {
+            if (!isProgressLine(l)) continue;
+            int percent = 0, done = 0;
+            std::sscanf(l.c_str(), "streyes: %d%% (%d/32 buckets)", &percent, &done);
+            EXPECT_EQ(percent, done * 100 / 32) << l;
+            percents.push_back(percent);
+            tenths.push_back(done * 10 / 32);
+        }
+        EXPECT_EQ(tenths, (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10})) << text;
+        EXPECT_TRUE(std::is_sorted(percents.begin(), percents.end())) << text;
+        if (std::string(threads) == "1") {
+            EXPECT_EQ(percents, (std::vector<int>{12, 21, 31, 40, 50, 62, 71, 81, 90, 100})) << text;
+        }
+        // Then the summary, after the last progress line.
+        const size_t summary = text.find("streyes: 1 frame 64x32");
+        ASSERT_NE(summary, std::string::npos) << text;
+        EXPECT_LT(text.find("streyes: 100% (32/32 buckets)"), summary) << text;
+    }
+    // --quiet: no progress either.
+    const std::string quiet = dir + "/quiet.txt";
+    ASSERT_EQ(test::runStreyesLogged("render " + scene + " --res 64x32 --bucket 8 -q -o " + dir + "/f.####.exr", quiet),
+              0);
+    EXPECT_EQ(test::readFile(quiet), "");
+}
+
 TEST(Cli, RaytraceWritesTheSameFramesAndItsCounters) {
-    std::string dir = test::makeTempDir("cli-raytrace");
+    const test::TempDir tempDir("cli-raytrace");
+    const std::string& dir = tempDir.path();
     std::string scene = writeFile(dir, "tiny.rib", kTiny);
     for (const char* alg : {"raytrace", "raytrace-frames"}) {
         CliRun r = streyes("render " + scene + " --algorithm " + alg + " -o " + dir + "/" + alg + ".####.exr --stats " +
@@ -116,7 +178,8 @@ TEST(Cli, RaytraceWritesTheSameFramesAndItsCounters) {
 }
 
 TEST(Cli, UnwritableOutputFailsCleanly) {
-    std::string dir = test::makeTempDir("cli-unwritable");
+    const test::TempDir tempDir("cli-unwritable");
+    const std::string& dir = tempDir.path();
     std::string scene = writeFile(dir, "tiny.rib", kTiny);
     // A folder that does not exist.
     CliRun missing = streyes("render " + scene + " -o " + dir + "/no/such/folder/f.####.exr");

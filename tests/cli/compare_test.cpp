@@ -54,7 +54,8 @@ double jsonNumber(const std::string& json, const std::string& section, const std
 }
 
 TEST(Compare, IdenticalImagesGiveZero) {
-    std::string dir = test::makeTempDir("cmp-same");
+    const test::TempDir tempDir("cmp-same");
+    const std::string& dir = tempDir.path();
     std::string a = write(dir, "a.exr", baseFrame()), b = write(dir, "b.exr", baseFrame());
     CliRun r = runStreyes("compare " + a + " " + b + " --json --fail 0", false);
     ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -67,7 +68,8 @@ TEST(Compare, IdenticalImagesGiveZero) {
 }
 
 TEST(Compare, KnownChangeGivesItsKnownErrors) {
-    std::string dir = test::makeTempDir("cmp-known");
+    const test::TempDir tempDir("cmp-known");
+    const std::string& dir = tempDir.path();
     FrameImage fb = baseFrame();
     px(fb, 1, 1, 0) = 1.0f;   // R +0.5
     px(fb, 2, 3, 1) = 0.0f;   // G -0.25
@@ -98,7 +100,8 @@ TEST(Compare, KnownChangeGivesItsKnownErrors) {
 }
 
 TEST(Compare, NaNAndInfAreCountedAndFail) {
-    std::string dir = test::makeTempDir("cmp-nan");
+    const test::TempDir tempDir("cmp-nan");
+    const std::string& dir = tempDir.path();
     FrameImage fb = baseFrame();
     px(fb, 0, 0, 0) = std::nanf("");
     px(fb, 1, 0, 1) = kInf;
@@ -125,7 +128,8 @@ TEST(Compare, NaNAndInfAreCountedAndFail) {
 }
 
 TEST(Compare, SizeOrChannelMismatchIsAnError) {
-    std::string dir = test::makeTempDir("cmp-mismatch");
+    const test::TempDir tempDir("cmp-mismatch");
+    const std::string& dir = tempDir.path();
     FrameImage wide;
     wide.resize(16, 8);
     std::string a = write(dir, "a.exr", baseFrame()), big = write(dir, "big.exr", wide);
@@ -149,7 +153,8 @@ TEST(Compare, SizeOrChannelMismatchIsAnError) {
 
 TEST(Compare, ResizeMeasuresALowerResolutionAtTheReferenceSize) {
     // A preview at half the size, uniformly the same colour: resampled, it matches exactly.
-    std::string dir = test::makeTempDir("cmp-resize");
+    const test::TempDir tempDir("cmp-resize");
+    const std::string& dir = tempDir.path();
     FrameImage full, half;
     full.resize(8, 4);
     half.resize(4, 2);
@@ -164,7 +169,8 @@ TEST(Compare, ResizeMeasuresALowerResolutionAtTheReferenceSize) {
 }
 
 TEST(Compare, FramePatternsPerFrameAndOverall) {
-    std::string dir = test::makeTempDir("cmp-frames");
+    const test::TempDir tempDir("cmp-frames");
+    const std::string& dir = tempDir.path();
     FrameImage changed = baseFrame();
     px(changed, 0, 0, 2) = 0.25f;  // B -0.5 in frame 2 only
     for (int f = 1; f <= 3; ++f) {

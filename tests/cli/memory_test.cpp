@@ -41,7 +41,8 @@ uint64_t jsonNumber(const std::string& json, const std::string& key) {
 }
 
 TEST(CliMemory, HugeRenderIsRefusedWithTheFigureItNeeds) {
-    const std::string dir = test::makeTempDir("huge");
+    const test::TempDir tempDir("huge");
+    const std::string& dir = tempDir.path();
     const std::string scene = writeFile(dir, "s.rib", kScene);
     // 65536 x 65536: one frame's image alone is 80 GiB.
     // It must not even try: with 4 GB of address space, allocating the image would fail.
@@ -58,7 +59,8 @@ TEST(CliMemory, HugeRenderIsRefusedWithTheFigureItNeeds) {
 }
 
 TEST(CliMemory, BudgetBelowTheProgramItselfIsRefused) {
-    const std::string dir = test::makeTempDir("tiny-budget");
+    const test::TempDir tempDir("tiny-budget");
+    const std::string& dir = tempDir.path();
     const std::string scene = writeFile(dir, "s.rib", kScene);
     CliRun r = runStreyes("render " + scene + " --max-memory 64M -o " + dir + "/f.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
@@ -72,7 +74,8 @@ TEST(CliMemory, BudgetBelowTheProgramItselfIsRefused) {
 // A budget that fits a few frames at a time: the render goes on in smaller blocks, the process's
 // peak memory stays within the budget, and every frame is written.
 TEST(CliMemory, MaxMemoryShrinksTheFrameBlock) {
-    const std::string dir = test::makeTempDir("budget");
+    const test::TempDir tempDir("budget");
+    const std::string& dir = tempDir.path();
     const std::string scene = writeFile(dir, "s.rib", kScene);
     CliRun r = runStreyes("render " + scene + " --max-memory 140M --threads 2 -o " + dir + "/f.####.exr --stats " +
                           dir + "/stats.json --quiet");

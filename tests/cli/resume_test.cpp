@@ -97,7 +97,8 @@ bool renderAndKill(const std::vector<std::string>& args, const std::string& dir,
 }
 
 TEST(Interrupt, KilledRenderLeavesCompleteFramesAndResumeFinishesIt) {
-    const std::string dir = test::makeTempDir("killed"), ref = test::makeTempDir("uninterrupted");
+    const test::TempDir tempDir("killed"), refTempDir("uninterrupted");
+    const std::string &dir = tempDir.path(), &ref = refTempDir.path();
     const std::string scene = writeFile(dir, "anim.rib", kAnimation);
     const std::vector<std::string> args = {"render", scene, "-o", dir + "/f.####.exr", "--frame-block", "1",
                                            "--threads", "1", "--quiet"};
@@ -131,7 +132,8 @@ TEST(Interrupt, KilledRenderLeavesCompleteFramesAndResumeFinishesIt) {
 
 // A frame counts as done only when it is a complete image of the right size and channels.
 TEST(Resume, RendersAgainWhatIsMissingTruncatedOrWrong) {
-    const std::string dir = test::makeTempDir("resume"), ref = test::makeTempDir("resume-ref");
+    const test::TempDir tempDir("resume"), refTempDir("resume-ref");
+    const std::string &dir = tempDir.path(), &ref = refTempDir.path();
     std::string rib = kAnimation;
     rib.replace(rib.find("PixelSamples 16 16"), 18, "PixelSamples 2 2");
     rib.replace(rib.find("[1 10]"), 6, "[1 6]");
@@ -168,7 +170,8 @@ TEST(Resume, RendersAgainWhatIsMissingTruncatedOrWrong) {
 // Temporaries of writers that no longer run are removed before rendering; those of a running
 // process, and files of other names, are left alone.
 TEST(Resume, StaleTemporariesOfDeadRendersAreRemoved) {
-    const std::string dir = test::makeTempDir("stale");
+    const test::TempDir tempDir("stale");
+    const std::string& dir = tempDir.path();
     std::string rib = kAnimation;
     rib.replace(rib.find("PixelSamples 16 16"), 18, "PixelSamples 1 1");
     const std::string scene = writeFile(dir, "anim.rib", rib);

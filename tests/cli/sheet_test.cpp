@@ -33,15 +33,18 @@ float srgb8(float c) {
     return std::round(e * 255) / 255;
 }
 
-std::string animation(const std::string& tag, int frames, int w, int h) {
-    std::string dir = test::makeTempDir(tag);
+// A folder of `frames` flat frames f.01.exr, ... of w x h pixels, removed with the returned TempDir.
+test::TempDir animation(const std::string& tag, int frames, int w, int h) {
+    test::TempDir tempDir(tag);
+    const std::string& dir = tempDir.path();
     for (int k = 1; k <= frames; ++k)
         writeFlat(dir + "/f." + std::to_string(100 + k).substr(1) + ".exr", w, h, colour(k, 0), colour(k, 1), colour(k, 2));
-    return dir;
+    return tempDir;
 }
 
 TEST(Sheet, LaysFramesOutLikeABook) {
-    std::string dir = animation("sheet-book", 5, 8, 4);
+    const test::TempDir tempDir = animation("sheet-book", 5, 8, 4);
+    const std::string& dir = tempDir.path();
     CliRun r = runStreyes("sheet " + dir + "/f.##.exr --columns 2 --gap 2 --no-labels -o " + dir + "/sheet.png");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     ImageData s = readImage(dir + "/sheet.png");
@@ -63,7 +66,8 @@ TEST(Sheet, LaysFramesOutLikeABook) {
 }
 
 TEST(Sheet, EveryNthFrameAndScaledCells) {
-    std::string dir = animation("sheet-every", 5, 8, 4);
+    const test::TempDir tempDir = animation("sheet-every", 5, 8, 4);
+    const std::string& dir = tempDir.path();
     CliRun r = runStreyes("sheet " + dir + "/f.##.exr --every 2 --cell-width 4 --gap 0 --no-labels -o " + dir + "/s.png");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     ImageData s = readImage(dir + "/s.png");
@@ -76,7 +80,8 @@ TEST(Sheet, EveryNthFrameAndScaledCells) {
 }
 
 TEST(Sheet, LabelsShowTheFrameNumber) {
-    std::string dir = test::makeTempDir("sheet-label");
+    const test::TempDir tempDir("sheet-label");
+    const std::string& dir = tempDir.path();
     writeFlat(dir + "/f.12.exr", 64, 48, 0.5f, 0.5f, 0.5f);
     ASSERT_EQ(runStreyes("sheet " + dir + "/f.##.exr --gap 0 -o " + dir + "/s.png").exitCode, 0);
     ImageData s = readImage(dir + "/s.png");
@@ -89,7 +94,8 @@ TEST(Sheet, LabelsShowTheFrameNumber) {
 }
 
 TEST(Sheet, BadInputIsAnError) {
-    std::string dir = animation("sheet-bad", 2, 8, 4);
+    const test::TempDir tempDir = animation("sheet-bad", 2, 8, 4);
+    const std::string& dir = tempDir.path();
     CliRun noOut = runStreyes("sheet " + dir + "/f.##.exr");
     EXPECT_EQ(noOut.exitCode, 2);
     EXPECT_NE(noOut.output.find("-o sheet.png"), std::string::npos) << noOut.output;

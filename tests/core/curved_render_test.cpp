@@ -328,7 +328,8 @@ SubdivisionMesh "catmull-clark" [4 4 4 4 4 4] [0 1 3 2 2 3 5 4 4 5 7 6 6 7 1 0 1
   "P" [-1 -1 1  1 -1 1  -1 1 1  1 1 1  -1 1 -1  1 1 -1  -1 -1 -1  1 -1 -1]
 Polygon "P" [0 -2 0  1 -1.5 0  1 -1 0  0 -0.5 0  -1 -1.2 0]
 )";
-    const std::string dir = test::makeTempDir("curved-proc");
+    const test::TempDir tempDir("curved-proc");
+    const std::string& dir = tempDir.path();
     const std::string archive = dir + "/curved.rib";
     std::ofstream(archive) << content;
     const std::string header = "Format 48 24 1\nProjection \"perspective\" \"fov\" 60\nPixelSamples 2 2\n"

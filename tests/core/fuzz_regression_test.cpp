@@ -37,7 +37,8 @@ TEST(FuzzRegression, WhatTheFuzzerFoundStaysFixed) { EXPECT_GE(replay("fuzz/regr
 // Fuzzed scenes may name any program or file: the fuzzer runs no program and reads no other file.
 TEST(FuzzRegression, FuzzedScenesRunNoProgramAndReadNoFile) {
     const std::string world = "WorldBegin\n", end = "\nWorldEnd\n";
-    const std::string marker = test::makeTempDir("fuzz-access") + "/ran";
+    const test::TempDir tempDir("fuzz-access");
+    const std::string marker = tempDir.path() + "/ran";
     for (const std::string& request :
          {"Procedural \"RunProgram\" [\"/usr/bin/touch " + marker + "\" \"\"] [-1 1 -1 1 1 2]",
           "ReadArchive \"" + test::sourcePath("scenes/ramp.rib") + "\"",

@@ -34,7 +34,8 @@ RenderOptions algorithm(Algorithm a) {
 }
 
 TEST(Procedural, ExpandsOnlyWhenItsBoundIsInView) {
-    std::string dir = test::makeTempDir("proc-view");
+    const test::TempDir tempDir("proc-view");
+    const std::string& dir = tempDir.path();
     std::string archive = writeArchive(dir, "square.rib", kSquare);
     // Seen: bound [2, 6] x [2, 6]; translated so the square lands there. Unseen: far to the right.
     RenderResult r = test::renderRib(header() + "Color [1 0 0]\nTranslate 2 2 5\n"
@@ -50,7 +51,8 @@ TEST(Procedural, ExpandsOnlyWhenItsBoundIsInView) {
 }
 
 TEST(Procedural, HiddenBehindAWallExpandsOnlyWithoutOcclusionCulling) {
-    std::string dir = test::makeTempDir("proc-wall");
+    const test::TempDir tempDir("proc-wall");
+    const std::string& dir = tempDir.path();
     std::string archive = writeArchive(dir, "square.rib", kSquare);
     const std::string rib = header() + "Patch \"bilinear\" \"P\" [0 0 1  32 0 1  0 16 1  32 16 1]\n"
                             "Translate 4 4 5\nProcedural \"DelayedReadArchive\" [\"" + archive + "\"] [0 4 0 4 0 0]\nWorldEnd\n";
@@ -65,7 +67,8 @@ TEST(Procedural, HiddenBehindAWallExpandsOnlyWithoutOcclusionCulling) {
 }
 
 TEST(Procedural, ChildrenOutsideTheDeclaredBoundAreNotLost) {
-    std::string dir = test::makeTempDir("proc-bound");
+    const test::TempDir tempDir("proc-bound");
+    const std::string& dir = tempDir.path();
     std::string archive = writeArchive(dir, "big.rib", "Patch \"bilinear\" \"P\" [0 0 0  20 0 0  0 10 0  20 10 0]\n");
     // The patch spans raster x [4, 24] but the procedural declares only [4, 5]: with 4-pixel
     // buckets, most of the buckets it covers never see the declared bound.
@@ -87,7 +90,8 @@ TEST(Procedural, ChildrenOutsideTheDeclaredBoundAreNotLost) {
 }
 
 TEST(Procedural, SelfGeneratingStopsAtTheDepthLimitWithAWarning) {
-    std::string dir = test::makeTempDir("proc-self");
+    const test::TempDir tempDir("proc-self");
+    const std::string& dir = tempDir.path();
     std::string path = dir + "/self.rib";
     writeArchive(dir, "self.rib", std::string(kSquare) + "Translate 0.01 0 0\nProcedural \"DelayedReadArchive\" [\"" +
                                       path + "\"] [0 5 0 4 0 0]\n");
@@ -141,7 +145,8 @@ TEST(Procedural, RunProgramErrorsNameTheProcedural) {
 }
 
 TEST(Procedural, ReadArchiveIncludesInPlace) {
-    std::string dir = test::makeTempDir("proc-read");
+    const test::TempDir tempDir("proc-read");
+    const std::string& dir = tempDir.path();
     std::string archive = writeArchive(dir, "square.rib", kSquare);
     RenderResult r = test::renderRib(header() + "Color [0 0 1]\nTranslate 20 2 5\nReadArchive \"" + archive + "\"\nWorldEnd\n");
     EXPECT_NEAR(r.channel(0, 21, 12, 2), 1.0f, 1e-5f);
