@@ -116,6 +116,28 @@ TEST(Files, SceneThatIsAFolderIsBadInput) {
     EXPECT_TRUE(listDir(dir).empty());
 }
 
+// A missing archive is bad input naming the request's line, whether it is read at once
+// (ReadArchive, while parsing) or lazily (DelayedReadArchive, when its bound is first seen).
+TEST(Files, MissingArchiveIsBadInputNamingTheLine) {
+    const test::TempDir tempDir("missing-archive");
+    const std::string& dir = tempDir.path();
+    const std::string head = "Format 16 16 1\nProjection \"perspective\" \"fov\" [40]\nWorldBegin\nTranslate 0 0 5\n";
+    const struct {
+        const char* request;
+        const char* message;
+    } cases[] = {
+        {"ReadArchive \"nosuch.rib\"", "ReadArchive: cannot open 'nosuch.rib'"},
+        {"Procedural \"DelayedReadArchive\" [\"nosuch.rib\"] [-1 1 -1 1 -1 1]", "DelayedReadArchive: no archive 'nosuch.rib'"},
+    };
+    for (const auto& c : cases) {
+        const std::string scene = writeFile(dir, "archive.rib", head + c.request + "\nWorldEnd\n");
+        CliRun r = runStreyes("render " + scene + " -o " + dir + "/f.####.exr");
+        EXPECT_EQ(r.exitCode, 2) << r.output;
+        EXPECT_NE(r.output.find(scene + ":5: error: " + c.message), std::string::npos) << r.output;
+        EXPECT_EQ(listDir(dir), std::vector<std::string>{"archive.rib"}) << c.request;
+    }
+}
+
 TEST(Files, OutputFolderWithoutWritePermissionFailsCleanly) {
     const test::TempDir tempDir("readonly");
     const std::string& dir = tempDir.path();
