@@ -376,7 +376,7 @@ class TreeGenerator final : public ProceduralGenerator {
             emitStill(out, ctx, {Vec3d{t.x, y0, t.z - R}, Vec3d{t.x, y0, t.z + R}, Vec3d{t.x, y1, t.z - R}, Vec3d{t.x, y1, t.z + R}}, t.leaf);
             return;
         }
-        const bool near = size >= 40 * f.detail;
+        const bool near = size >= 40 / f.detail;
         // Undergrowth: a still, solid half-ellipsoid at the tree's foot.
         for (int k = 0; k < 8; ++k)
             for (int j = 0; j < 3; ++j) {

@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <iterator>
+#include <sstream>
 
 #include "streyes/rib.h"
 #include "test_util.h"
@@ -183,6 +184,32 @@ TEST(Procedural, NothingOfAForestBehindAWallExpands) {
     ASSERT_GE(open.stats.counters.proceduralsExpandedByDepth.size(), 3u);
     EXPECT_GT(open.stats.counters.proceduralsExpandedByDepth[1], 5u);
     EXPECT_TRUE(test::identicalPixels(r, open));
+}
+
+// The forest's `detail` scales its level-of-detail thresholds: more detail may only ever add
+// bodies, for a tree of any projected size. (Once the near threshold grew with `detail`, so a
+// tree 60 pixels across lost its branches at detail=4.)
+TEST(Procedural, MoreDetailNeverMeansFewerBodies) {
+    const double distances[] = {300, 100, 30, 15};  // the tree's bound about 3, 10, 30, 60 pixels across
+    const double details[] = {0.25, 1, 4};
+    bool detailMatters = false;
+    for (double d : distances) {
+        uint64_t previous = 0;
+        for (double detail : details) {
+            std::ostringstream rib;
+            rib << "Format 64 64 1\nProjection \"perspective\" \"fov\" [40]\nPixelSamples 1 1\n"
+                << "Translate 0 -5 " << d << "\nWorldBegin\n"
+                << "Procedural \"DynamicLoad\" [\"tree\" \"kind=broadleaf height=10 seed=3 detail=" << detail
+                << "\"] [-10 10 0 20 -10 10]\nWorldEnd\n";
+            RenderOptions o;
+            o.algorithm = Algorithm::Spacetime;
+            const uint64_t bodies = test::renderRib(rib.str(), o).stats.bodiesGenerated;
+            EXPECT_GE(bodies, previous) << "distance " << d << ", detail " << detail;
+            detailMatters |= previous > 0 && bodies > previous;
+            previous = bodies;
+        }
+    }
+    EXPECT_TRUE(detailMatters);
 }
 
 TEST(Procedural, ForestIsTheSameWhateverTheThreadCount) {
