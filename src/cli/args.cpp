@@ -69,7 +69,7 @@ render options:
   --tolerance EPS     occlusion tolerance: drop a body when at most EPS of its pixel-frame
                       block is uncovered (default 0: the image does not change by a bit)
   --layers N|adaptive depth layers between occlusion tables (default adaptive)
-  --preview           quick look: --tolerance 0.05 --samples 4 and half resolution
+  --preview           quick look: half resolution and at most 4 samples per pixel
                       (options given explicitly win)
   -o PATTERN          output files, #### = frame number (e.g. out/shot.####.exr);
                       default: the scene's Display, else SCENE-NAME.####.exr

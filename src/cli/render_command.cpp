@@ -20,6 +20,9 @@ namespace streyes::cli {
 
 namespace {
 
+// --preview's samples per pixel (at most the scene's own).
+constexpr int kPreviewSamples = 4;
+
 void parseFrames(const std::string& v, RenderOptions& o) {
     parseFrameRange("--frames", v, &o.firstFrame, &o.lastFrame);
     o.hasFrames = true;
@@ -147,7 +150,7 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
 int renderCommand(const std::vector<std::string>& args) {
     RenderOptions opts;
     std::string scenePath, outPattern, statsPath;
-    bool quiet = false, resume = false, preview = false, toleranceGiven = false;
+    bool quiet = false, resume = false, preview = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> std::string {
@@ -164,7 +167,6 @@ int renderCommand(const std::vector<std::string>& args) {
                                  "raytrace or raytrace-frames, not '" + v + "'");
         } else if (a == "--tolerance") {
             opts.tolerance = parseReal(a, value(), 0.0, 1.0);
-            toleranceGiven = true;
         } else if (a == "--layers") {
             std::string v = value();
             opts.layers = v == "adaptive" ? 0 : int(parseInt(a, v, 1, 1024));
@@ -188,11 +190,6 @@ int renderCommand(const std::vector<std::string>& args) {
     }
     if (scenePath.empty()) throw UsageError("no scene given");
     const bool resGiven = opts.xres > 0;
-    if (preview) {
-        // Chosen from the speed-against-error measurements (docs/results/): see docs/ARCHITECTURE.md.
-        if (!toleranceGiven) opts.tolerance = 0.05;
-        if (opts.samples == 0) opts.samples = 4;
-    }
 
     const auto start = std::chrono::steady_clock::now();
     Log log;
@@ -201,9 +198,15 @@ int renderCommand(const std::vector<std::string>& args) {
     Scene scene = parseRibFile(scenePath, log);
     const double parseSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    if (preview && !resGiven) {
-        opts.xres = std::max(1, scene.camera.xres / 2);
-        opts.yres = std::max(1, scene.camera.yres / 2);
+    if (preview) {
+        // Chosen from the speed-against-error measurements (docs/results/, docs/ARCHITECTURE.md):
+        // fewer samples and half the resolution reach a given error fastest; the occlusion
+        // tolerance never did, so it stays exact.
+        if (!resGiven) {
+            opts.xres = std::max(1, scene.camera.xres / 2);
+            opts.yres = std::max(1, scene.camera.yres / 2);
+        }
+        if (opts.samples == 0) opts.samples = std::min(kPreviewSamples, scene.settings.pixelSamplesX * scene.settings.pixelSamplesY);
     }
 
     // A file size limit kills a process that writes past it (SIGXFSZ); ignored, the write fails

@@ -99,6 +99,33 @@ TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
     EXPECT_NE(json.find("\"frames\": [3, 4]"), std::string::npos);
 }
 
+// --preview: half the scene's resolution, at most 4 samples per pixel, exact culling; options
+// given explicitly win.
+TEST(Cli, PreviewHalvesResolutionAndCapsSamples) {
+    const test::TempDir tempDir("cli-preview");
+    const std::string& dir = tempDir.path();
+    auto statsOf = [&](const std::string& pixelSamples, const std::string& options) {
+        std::string rib = kTiny;
+        rib.replace(rib.find("PixelSamples 2 2"), 16, "PixelSamples " + pixelSamples);
+        const std::string scene = writeFile(dir, "tiny.rib", rib);
+        CliRun r = streyes("render " + scene + " --preview " + options + " -o " + dir + "/f.####.exr --stats " + dir +
+                           "/stats.json --quiet");
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        std::ifstream f(dir + "/stats.json");
+        return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    };
+    std::string s = statsOf("4 4", "");
+    EXPECT_NE(s.find("\"resolution\": [8, 4]"), std::string::npos) << s;  // the scene's 16x8, halved
+    EXPECT_NE(s.find("\"samples_per_pixel\": 4,"), std::string::npos) << s;
+    EXPECT_NE(s.find("\"tolerance\": 0,"), std::string::npos) << s;
+    s = statsOf("1 1", "");  // never more samples than the scene's own
+    EXPECT_NE(s.find("\"samples_per_pixel\": 1,"), std::string::npos) << s;
+    s = statsOf("4 4", "--res 12x6 --samples 9 --tolerance 0.1");
+    EXPECT_NE(s.find("\"resolution\": [12, 6]"), std::string::npos) << s;
+    EXPECT_NE(s.find("\"samples_per_pixel\": 9,"), std::string::npos) << s;
+    EXPECT_NE(s.find("\"tolerance\": 0.1,"), std::string::npos) << s;
+}
+
 // "streyes: P% (D/32 buckets), M:SS elapsed, ETA M:SS", exactly.
 bool isProgressLine(const std::string& line) {
     int percent = 0, done = 0, total = 0, em = 0, es = 0, rm = 0, rs = 0, end = 0;
