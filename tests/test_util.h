@@ -50,6 +50,13 @@ struct RenderResult {
     float z(int f, int x, int y) const { return frame(f).z[size_t(y) * size_t(frame(f).width) + size_t(x)]; }
 };
 
+// Default render options but for the algorithm.
+inline RenderOptions optionsFor(Algorithm a) {
+    RenderOptions o;
+    o.algorithm = a;
+    return o;
+}
+
 RenderResult renderRib(const std::string& rib, const RenderOptions& options = {});
 RenderResult renderScene(const Scene& scene, const RenderOptions& options = {});
 RenderResult renderFile(const std::string& path, const RenderOptions& options = {});

@@ -195,6 +195,18 @@ void emit(Scene& out, const ExpandContext& ctx, std::vector<double> times, std::
 
 void emitStill(Scene& out, const ExpandContext& ctx, const Quad& q, Color cs) { emit(out, ctx, {0.0}, {q}, cs); }
 
+// A nested procedural under the expanding one's transform and attributes.
+void emitProcedural(Scene& out, const ExpandContext& ctx, std::shared_ptr<const ProceduralGenerator> generator,
+                    const Bounds3d& bound) {
+    ProceduralDesc p;
+    p.generator = std::move(generator);
+    p.bound = bound;
+    p.objectToWorld = ctx.objectToWorld;
+    p.attributes = ctx.attributes;
+    p.loc = ctx.loc;
+    out.procedurals.push_back(std::move(p));
+}
+
 // Two unit vectors perpendicular to `d` and to each other.
 void basis(Vec3d d, Vec3d& u, Vec3d& v) {
     u = normalize(std::fabs(d.y) < 0.9 ? cross(d, Vec3d{0, 1, 0}) : cross(d, Vec3d{1, 0, 0}));
@@ -415,15 +427,8 @@ class TreeGenerator final : public ProceduralGenerator {
             return;
         }
         // Near: every branch a procedural of its own, so unseen branches never grow leaves.
-        for (const Branch& b : branchesOf(f, t)) {
-            ProceduralDesc p;
-            p.generator = std::make_shared<BranchGenerator>(f_, t, b);
-            p.bound = branchBound(f, b);
-            p.objectToWorld = ctx.objectToWorld;
-            p.attributes = ctx.attributes;
-            p.loc = ctx.loc;
-            out.procedurals.push_back(std::move(p));
-        }
+        for (const Branch& b : branchesOf(f, t))
+            emitProcedural(out, ctx, std::make_shared<BranchGenerator>(f_, t, b), branchBound(f, b));
     }
 
   private:
@@ -472,13 +477,7 @@ class CellGenerator final : public ProceduralGenerator {
     std::string describe() const override { return "forest cell"; }
     void expand(const ExpandContext& ctx, Scene& out) const override {
         forEachTreeInCell(*f_, cellGrid(*f_), cell_, [&](const Tree& t) {
-            ProceduralDesc p;
-            p.generator = std::make_shared<TreeGenerator>(f_, t);
-            p.bound = treeBound(*f_, t);
-            p.objectToWorld = ctx.objectToWorld;
-            p.attributes = ctx.attributes;
-            p.loc = ctx.loc;
-            out.procedurals.push_back(std::move(p));
+            emitProcedural(out, ctx, std::make_shared<TreeGenerator>(f_, t), treeBound(*f_, t));
         });
     }
 
@@ -497,13 +496,7 @@ class ForestGenerator final : public ProceduralGenerator {
             Bounds3d bound;
             forEachTreeInCell(*f_, g, cell, [&](const Tree& t) { bound.extend(treeBound(*f_, t)); });
             if (bound.empty()) continue;
-            ProceduralDesc p;
-            p.generator = std::make_shared<CellGenerator>(f_, cell);
-            p.bound = bound;
-            p.objectToWorld = ctx.objectToWorld;
-            p.attributes = ctx.attributes;
-            p.loc = ctx.loc;
-            out.procedurals.push_back(std::move(p));
+            emitProcedural(out, ctx, std::make_shared<CellGenerator>(f_, cell), bound);
         }
     }
 

@@ -15,8 +15,7 @@ namespace {
 using test::RenderResult;
 
 RenderOptions with(Algorithm a, int layers = 0, double tolerance = 0) {
-    RenderOptions o;
-    o.algorithm = a;
+    RenderOptions o = test::optionsFor(a);
     o.layers = layers;
     o.tolerance = tolerance;
     o.bucketSize = 16;

@@ -28,12 +28,6 @@ std::string header(const std::string& extra = "") {
 
 const char* kSquare = "Patch \"bilinear\" \"P\" [0 0 0  4 0 0  0 4 0  4 4 0]\n";
 
-RenderOptions algorithm(Algorithm a) {
-    RenderOptions o;
-    o.algorithm = a;
-    return o;
-}
-
 TEST(Procedural, ExpandsOnlyWhenItsBoundIsInView) {
     const test::TempDir tempDir("proc-view");
     const std::string& dir = tempDir.path();
@@ -57,13 +51,13 @@ TEST(Procedural, HiddenBehindAWallExpandsOnlyWithoutOcclusionCulling) {
     std::string archive = writeArchive(dir, "square.rib", kSquare);
     const std::string rib = header() + "Patch \"bilinear\" \"P\" [0 0 1  32 0 1  0 16 1  32 16 1]\n"
                             "Translate 4 4 5\nProcedural \"DelayedReadArchive\" [\"" + archive + "\"] [0 4 0 4 0 0]\nWorldEnd\n";
-    RenderResult culled = test::renderRib(rib, algorithm(Algorithm::SpacetimeOcclusion));
-    RenderResult open = test::renderRib(rib, algorithm(Algorithm::Spacetime));
+    RenderResult culled = test::renderRib(rib, test::optionsFor(Algorithm::SpacetimeOcclusion));
+    RenderResult open = test::renderRib(rib, test::optionsFor(Algorithm::Spacetime));
     EXPECT_EQ(culled.stats.counters.proceduralsExpanded, 0u);
     EXPECT_GT(culled.stats.counters.culledOcclusion, 0u);
     EXPECT_EQ(open.stats.counters.proceduralsExpanded, 1u);
     EXPECT_TRUE(test::identicalPixels(culled, open));
-    RenderResult c2 = test::renderRib(rib, algorithm(Algorithm::FramesOcclusion));
+    RenderResult c2 = test::renderRib(rib, test::optionsFor(Algorithm::FramesOcclusion));
     EXPECT_EQ(c2.stats.counters.proceduralsExpanded, 0u);
 }
 

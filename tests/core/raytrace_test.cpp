@@ -15,12 +15,6 @@ using test::RenderResult;
 using test::renderRib;
 using test::square;
 
-RenderOptions withAlgorithm(Algorithm a) {
-    RenderOptions o;
-    o.algorithm = a;
-    return o;
-}
-
 // ---- The ray tracer and the rasterizer see the same surfaces through the same samples --------------
 
 // The square of render_test's StaticSquareCoverageIsAnalytic, `shift` pixels to the right.
@@ -40,8 +34,8 @@ std::string readSourceFile(const std::string& relative) {
 }
 
 void expectSamplesAgree(const std::string& rib, const char* what) {
-    test::SampleRecord raster = test::renderSamples(rib, withAlgorithm(Algorithm::Spacetime));
-    test::SampleRecord traced = test::renderSamples(rib, withAlgorithm(Algorithm::Raytrace));
+    test::SampleRecord raster = test::renderSamples(rib, test::optionsFor(Algorithm::Spacetime));
+    test::SampleRecord traced = test::renderSamples(rib, test::optionsFor(Algorithm::Raytrace));
     test::SampleAgreement agree = test::compareSamples(raster, traced);
     ASSERT_GT(agree.samples, 1000u) << what;
     EXPECT_GE(double(agree.hitOrMiss) / double(agree.samples), 0.999) << what;
@@ -65,7 +59,7 @@ TEST(Raytrace, OverlappingPatchSamplesAgreeWithTheRasterizer) {
 // The comparison can fail: a square moved by a pixel disagrees on far more than 0.1% of samples.
 TEST(Raytrace, SampleComparisonSeesAMovedSquare) {
     test::SampleAgreement agree = test::compareSamples(
-        test::renderSamples(staticSquare()), test::renderSamples(staticSquare(1), withAlgorithm(Algorithm::Raytrace)));
+        test::renderSamples(staticSquare()), test::renderSamples(staticSquare(1), test::optionsFor(Algorithm::Raytrace)));
     EXPECT_LT(agree.share(), 0.99);
 }
 
@@ -115,20 +109,20 @@ TEST(Raytrace, AnimationSamplesAgreeWithTheRasterizer) {
     // Shading differs (vertices against hits): compare hit or miss and depth only. Depth within
     // 1%: the rasterizer interpolates z linearly in raster space across a micropolygon, which
     // is 0.2-0.3% off on the floor where it recedes fastest.
-    test::SampleRecord raster = test::renderSamples(kAnimation, withAlgorithm(Algorithm::Spacetime));
-    test::SampleRecord traced = test::renderSamples(kAnimation, withAlgorithm(Algorithm::Raytrace));
+    test::SampleRecord raster = test::renderSamples(kAnimation, test::optionsFor(Algorithm::Spacetime));
+    test::SampleRecord traced = test::renderSamples(kAnimation, test::optionsFor(Algorithm::Raytrace));
     test::SampleAgreement agree = test::compareSamples(raster, traced, 1e9f, 1e-2f);
     EXPECT_GE(agree.share(), 0.995) << agree.samples - agree.sameSurface << " of " << agree.samples;
     // Same samples, so the images agree closely too.
-    EXPECT_LT(test::meanAbsDifference(renderRib(kAnimation, withAlgorithm(Algorithm::Spacetime)),
-                                      renderRib(kAnimation, withAlgorithm(Algorithm::Raytrace))),
+    EXPECT_LT(test::meanAbsDifference(renderRib(kAnimation, test::optionsFor(Algorithm::Spacetime)),
+                                      renderRib(kAnimation, test::optionsFor(Algorithm::Raytrace))),
               0.01f);
 }
 
 // One spacetime hierarchy or one per frame: the same exact nearest hits, the same pixels.
 TEST(Raytrace, FrameByFrameHierarchiesGiveTheSamePixels) {
-    RenderResult st = renderRib(kAnimation, withAlgorithm(Algorithm::Raytrace));
-    RenderResult fr = renderRib(kAnimation, withAlgorithm(Algorithm::RaytraceFrames));
+    RenderResult st = renderRib(kAnimation, test::optionsFor(Algorithm::Raytrace));
+    RenderResult fr = renderRib(kAnimation, test::optionsFor(Algorithm::RaytraceFrames));
     ASSERT_EQ(st.frames.size(), 6u);
     EXPECT_TRUE(test::identicalPixels(st, fr));
     EXPECT_EQ(st.stats.counters.eyeRays, fr.stats.counters.eyeRays);
@@ -142,7 +136,7 @@ TEST(Raytrace, FrameByFrameHierarchiesGiveTheSamePixels) {
 
 TEST(Raytrace, ThreadCountDoesNotChangePixelsWithShadows) {
     for (Algorithm a : {Algorithm::Raytrace, Algorithm::RaytraceFrames, Algorithm::Spacetime}) {
-        RenderOptions one = withAlgorithm(a), two = withAlgorithm(a);
+        RenderOptions one = test::optionsFor(a), two = test::optionsFor(a);
         one.threads = 1;
         two.threads = 2;
         one.bucketSize = two.bucketSize = 8;
@@ -171,7 +165,7 @@ WorldEnd
 
 TEST(Raytrace, StillSceneHierarchyIsBuiltOnceInSpacetimeAndPerFrameInFrames) {
     auto run = [](Algorithm a) {
-        RenderOptions o = withAlgorithm(a);
+        RenderOptions o = test::optionsFor(a);
         o.hasFrames = true;
         o.firstFrame = 0;
         o.lastFrame = 7;
@@ -214,7 +208,7 @@ INSTANTIATE_TEST_SUITE_P(Raytrace, ShadowAlgorithm,
                          [](const ::testing::TestParamInfo<Algorithm>& info) { return test::testName(info.param); });
 
 TEST_P(ShadowAlgorithm, StillOccluderCastsAHardShadow) {
-    RenderResult r = renderRib(shadowScene(false), withAlgorithm(GetParam()));
+    RenderResult r = renderRib(shadowScene(false), test::optionsFor(GetParam()));
     for (int y = 0; y < 4; ++y) {
         for (int x : {0, 5, 7, 17, 20, 31}) EXPECT_NEAR(r.channel(0, x, y, 0), 1.0f, 1e-5f) << x;  // lit floor
         for (int x : {13, 14, 15, 16}) EXPECT_EQ(r.channel(0, x, y, 0), 0.0f) << x;      // its shadow
@@ -223,7 +217,7 @@ TEST_P(ShadowAlgorithm, StillOccluderCastsAHardShadow) {
 }
 
 TEST_P(ShadowAlgorithm, MovingOccluderShadowIsTheAnalyticBlurRamp) {
-    RenderResult r = renderRib(shadowScene(true), withAlgorithm(GetParam()));
+    RenderResult r = renderRib(shadowScene(true), test::optionsFor(GetParam()));
     const int spp = 256;
     double worst = 0;
     for (int x = 16; x <= 21; ++x) {  // floor the occluder never hides; its shadow passes over
@@ -258,8 +252,8 @@ TEST(Raytrace, UnblockedShadowLightAddsUpToThePlainLight) {
         return s.substr(0, a) + s.substr(e);
     };
     for (Algorithm a : {Algorithm::Spacetime, Algorithm::Raytrace}) {
-        RenderResult withShadows = renderRib(floorOnly(lit), withAlgorithm(a));
-        RenderResult without = renderRib(floorOnly(plain), withAlgorithm(a));
+        RenderResult withShadows = renderRib(floorOnly(lit), test::optionsFor(a));
+        RenderResult without = renderRib(floorOnly(plain), test::optionsFor(a));
         EXPECT_GT(withShadows.stats.counters.shadowRays, 0u) << algorithmName(a);
         EXPECT_EQ(without.stats.counters.shadowRays, 0u) << algorithmName(a);
         EXPECT_LT(test::maxAbsDifference(withShadows, without), 1e-5f) << algorithmName(a);

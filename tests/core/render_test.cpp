@@ -17,11 +17,7 @@ using test::square;
 // The analytic answers hold for every algorithm: the rasterizer's and the ray tracer's.
 class EveryAlgorithm : public ::testing::TestWithParam<Algorithm> {
   protected:
-    RenderOptions options() const {
-        RenderOptions o;
-        o.algorithm = GetParam();
-        return o;
-    }
+    RenderOptions options() const { return test::optionsFor(GetParam()); }
 };
 INSTANTIATE_TEST_SUITE_P(Render, EveryAlgorithm,
                          ::testing::Values(Algorithm::Spacetime, Algorithm::SpacetimeOcclusion, Algorithm::Frames,
