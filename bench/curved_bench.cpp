@@ -8,12 +8,12 @@
 #include <memory>
 #include <vector>
 
-#include "streyes/curved_body.h"
-#include "streyes/grid.h"
-#include "streyes/patch_mesh.h"
-#include "streyes/quadric.h"
-#include "streyes/shading.h"
-#include "streyes/subdivision.h"
+#include "geom/curved_body.h"
+#include "geom/grid.h"
+#include "geom/patch_mesh.h"
+#include "geom/quadric.h"
+#include "shade/shading.h"
+#include "geom/subdivision.h"
 #include "split_loop.h"
 
 namespace streyes {

@@ -10,12 +10,12 @@
 #include <cmath>
 #include <vector>
 
-#include "streyes/body.h"
-#include "streyes/film.h"
-#include "streyes/grid.h"
-#include "streyes/image_block.h"
-#include "streyes/rasterizer.h"
-#include "streyes/shading.h"
+#include "geom/body.h"
+#include "film/film.h"
+#include "geom/grid.h"
+#include "raster/image_block.h"
+#include "raster/rasterizer.h"
+#include "shade/shading.h"
 #include "split_loop.h"
 
 namespace streyes {

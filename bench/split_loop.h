@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "streyes/body.h"
+#include "geom/body.h"
 
 namespace streyes {
 

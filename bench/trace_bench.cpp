@@ -11,8 +11,8 @@
 #include <memory>
 
 #include "streyes/rib.h"
-#include "streyes/trace.h"
-#include "streyes/util/sampling.h"
+#include "trace/trace.h"
+#include "util/sampling.h"
 
 namespace streyes {
 namespace {

@@ -10,7 +10,6 @@
 #include <string>
 #include <string_view>
 
-#include "streyes/procedural.h"
 #include "streyes/renderer.h"
 #include "streyes/rib.h"
 

@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "streyes/camera.h"
-#include "streyes/film.h"
+#include "geom/camera.h"
+#include "film/film.h"
 #include "streyes/renderer.h"
 #include "streyes/scene.h"
 #include "streyes/stats.h"

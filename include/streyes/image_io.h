@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "streyes/film.h"
+#include "streyes/frame_image.h"
 
 namespace streyes {
 

@@ -12,4 +12,21 @@ namespace streyes {
 Scene parseRibFile(const std::string& path, Log& log);
 Scene parseRibString(const std::string& text, const std::string& sourceName, Log& log);
 
+// A procedural's RIB output (DelayedReadArchive, RunProgram): requests inside a world block,
+// read under the procedural's transform and attributes into a scene of their own. Every block
+// the text opens must be closed.
+Scene parseRibFragment(const std::string& text, const std::string& sourceName, const MotionTransform& ctm,
+                       const AttributesPtr& attributes, Log& log);
+
+// What a scene may reach outside itself for: run programs (RunProgram) and read other files
+// (ReadArchive, DelayedReadArchive). Both by default; a scene asking for what is not allowed is an
+// InputError. The RIB fuzzer allows neither: its inputs are mutated scenes, which could name any
+// program or a file that never ends (/dev/zero).
+struct SceneAccess {
+    bool programs = true;
+    bool files = true;
+};
+void setSceneAccess(SceneAccess access);  // for the whole process
+SceneAccess sceneAccess();
+
 }  // namespace streyes

@@ -1,7 +1,7 @@
 // The scene description: what the RIB parser produces and the renderer consumes.
 //
 // It is a plain description in object/world space, close to the RIB it came from. Turning it
-// into camera-space spacetime bodies is the next stage (bodies.h); nothing here knows about
+// into camera-space spacetime bodies is the next stage (src/bodies/); nothing here knows about
 // buckets, frames blocks or rasters. Times are in frames throughout.
 #pragma once
 
@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "streyes/util/error.h"
-#include "streyes/util/transform.h"
-#include "streyes/util/vecmath.h"
+#include "streyes/error.h"
+#include "streyes/transform.h"
+#include "streyes/vecmath.h"
 
 namespace streyes {
 
@@ -129,12 +129,13 @@ struct BilinearPatchDesc {
     SourceLoc loc;
 };
 
-class ProceduralGenerator;
-
-// A procedural primitive (Procedural "DelayedReadArchive" | "RunProgram" | "DynamicLoad"): a
-// bound in object space now, children when the bound is seen (procedural.h).
+// A procedural primitive as declared: Procedural "DelayedReadArchive" | "RunProgram" |
+// "DynamicLoad" with its arguments and a bound in object space. The description is data: the
+// procedural stage makes the generator behind it when bodies are made from the scene.
 struct ProceduralDesc {
-    std::shared_ptr<const ProceduralGenerator> generator;
+    std::string kind;               // "DelayedReadArchive", "RunProgram" or "DynamicLoad"
+    std::vector<std::string> args;  // the request's string arguments
+    std::string directory;          // folder of the declaring file: relative names are looked up there first
     Bounds3d bound;                 // object space, as declared
     MotionTransform objectToWorld;
     AttributesPtr attributes;

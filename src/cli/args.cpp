@@ -3,7 +3,7 @@
 
 #include "commands.h"
 #include "streyes/image_io.h"
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 namespace streyes::cli {
 

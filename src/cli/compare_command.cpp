@@ -9,7 +9,7 @@
 #include "commands.h"
 #include "streyes/compare.h"
 #include "streyes/image_io.h"
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 namespace streyes::cli {
 

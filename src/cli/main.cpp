@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 using namespace streyes;
 using namespace streyes::cli;

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "commands.h"
-#include "streyes/contact_sheet.h"
+#include "io/contact_sheet.h"
 #include "streyes/image_io.h"
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 namespace streyes::cli {
 

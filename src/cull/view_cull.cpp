@@ -1,4 +1,4 @@
-#include "streyes/view_cull.h"
+#include "cull/view_cull.h"
 
 namespace streyes {
 

@@ -1,4 +1,4 @@
-#include "streyes/bezier.h"
+#include "geom/bezier.h"
 
 namespace streyes {
 

@@ -1,6 +1,6 @@
 // Bezier form of bicubic patches: every RenderMan basis converts exactly, fitting recovers a
 // bicubic, and de Casteljau's halves and sub-patches are the same surface.
-#include "streyes/bezier.h"
+#include "geom/bezier.h"
 
 #include <gtest/gtest.h>
 

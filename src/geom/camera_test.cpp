@@ -1,4 +1,4 @@
-#include "streyes/camera.h"
+#include "geom/camera.h"
 
 #include <gtest/gtest.h>
 

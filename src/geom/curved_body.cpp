@@ -1,10 +1,9 @@
-#include "streyes/curved_body.h"
+#include "geom/curved_body.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "streyes/grid.h"
-#include "streyes/shading.h"
+#include "geom/grid.h"
 
 namespace streyes {
 
@@ -27,8 +26,7 @@ struct LineContext {
 };
 
 LineContext contextOf(const SurfaceMesh& mesh) {
-    const float rate = mesh.material() ? mesh.material()->shadingRate : 1.0f;
-    return {mesh, mesh.camera(), std::sqrt(std::max(rate, 1e-4f)), mesh.moving() ? 2 : 1};
+    return {mesh, mesh.camera(), std::sqrt(std::max(mesh.shadingRate(), 1e-4f)), mesh.moving() ? 2 : 1};
 }
 
 // Points on a line are evaluated as points of a face, canonically (through the owner of the

@@ -1,7 +1,7 @@
 // CurvedBody over patch meshes and quadrics: bounds hold what is diced, neighbouring pieces put
 // the same bits on their common edges however deeply each was split and at whatever rate it was
 // diced, and closed surfaces dice into watertight meshes.
-#include "streyes/curved_body.h"
+#include "geom/curved_body.h"
 
 #include <gtest/gtest.h>
 
@@ -11,12 +11,12 @@
 #include <map>
 #include <random>
 
-#include "streyes/grid.h"
-#include "streyes/patch_mesh.h"
-#include "streyes/quadric.h"
-#include "streyes/shading.h"
+#include "geom/grid.h"
+#include "geom/patch_mesh.h"
+#include "geom/quadric.h"
+#include "shade/shading.h"
 #include "test_util.h"
-#include "streyes/subdivision.h"
+#include "geom/subdivision.h"
 
 namespace streyes {
 namespace {
@@ -36,6 +36,7 @@ struct Fixture {
         meshes.push_back(std::make_unique<BezierMesh>(shape.topology(), TimeSpan{0, 1}, &material, &camera,
                                                       shape.patches(d.P[0]), k1,
                                                       shape.colors(d.Cs, Color{1, 1, 1})));
+        meshes.back()->setShadingRate(material.shadingRate);
         return meshes.back().get();
     }
     // A cube with one corner pulled out and a semi-sharp crease, moved by `shift` at key 1.
@@ -54,6 +55,7 @@ struct Fixture {
         auto k0 = shape->key(d.P[0]), k1 = shift == Vec3d{} ? k0 : shape->key(moved);
         meshes.push_back(std::make_unique<SubdivisionMesh>(shape, k0, k1, TimeSpan{0, 1}, &material, &camera,
                                                            shape->colors({}, Color{1, 1, 1})));
+        meshes.back()->setShadingRate(material.shadingRate);
         return meshes.back().get();
     }
     const SurfaceMesh* quadric(QuadricKind kind, QuadricMesh::Params p, const Matrix4& m0, const Matrix4& m1) {
@@ -61,6 +63,7 @@ struct Fixture {
         const Matrix4 m[2] = {m0, m1};
         meshes.push_back(
             std::make_unique<QuadricMesh>(kind, params, m, TimeSpan{0, 1}, &material, &camera, std::array<Color, 4>{}));
+        meshes.back()->setShadingRate(material.shadingRate);
         return meshes.back().get();
     }
 };

@@ -1,6 +1,6 @@
 #include <stdexcept>
 
-#include "streyes/body.h"
+#include "geom/body.h"
 
 namespace streyes {
 

@@ -1,4 +1,4 @@
-#include "streyes/patch_mesh.h"
+#include "geom/patch_mesh.h"
 
 namespace streyes {
 

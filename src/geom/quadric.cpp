@@ -1,4 +1,4 @@
-#include "streyes/quadric.h"
+#include "geom/quadric.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "streyes/subdivision.h"
+#include "geom/subdivision.h"
 
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>

@@ -1,16 +1,16 @@
 // Catmull-Clark surfaces through OpenSubdiv, checked against closed forms: the limit of a cube,
 // the B-spline surface of a regular mesh, a crease's curve, and bounds that hold what Bfr
 // evaluates.
-#include "streyes/subdivision.h"
+#include "geom/subdivision.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "streyes/curved_body.h"
-#include "streyes/grid.h"
-#include "streyes/shading.h"
+#include "geom/curved_body.h"
+#include "geom/grid.h"
+#include "shade/shading.h"
 #include "test_util.h"
 
 namespace streyes {

@@ -1,4 +1,4 @@
-#include "streyes/surface_mesh.h"
+#include "geom/surface_mesh.h"
 
 #include <cmath>
 #include <map>

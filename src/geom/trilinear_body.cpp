@@ -1,7 +1,7 @@
 #include <cmath>
 
-#include "streyes/body.h"
-#include "streyes/grid.h"
+#include "geom/body.h"
+#include "geom/grid.h"
 
 namespace streyes {
 

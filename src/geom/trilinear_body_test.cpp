@@ -2,8 +2,8 @@
 
 #include <random>
 
-#include "streyes/body.h"
-#include "streyes/grid.h"
+#include "geom/body.h"
+#include "geom/grid.h"
 
 namespace streyes {
 namespace {

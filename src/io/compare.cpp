@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 namespace streyes {
 

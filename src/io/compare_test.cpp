@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 namespace streyes {
 namespace {

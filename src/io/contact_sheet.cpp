@@ -1,4 +1,4 @@
-#include "streyes/contact_sheet.h"
+#include "io/contact_sheet.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
@@ -8,9 +8,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "streyes/film.h"
+#include "film/film.h"
 #include "streyes/image_io.h"
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 namespace streyes {
 

@@ -13,7 +13,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 namespace streyes {
 

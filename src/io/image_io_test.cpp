@@ -5,7 +5,7 @@
 
 #include <fstream>
 
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 #include "test_util.h"
 
 namespace streyes {

@@ -5,7 +5,7 @@
 #include <functional>
 #include <sstream>
 
-#include "streyes/util/sampling.h"
+#include "util/sampling.h"
 
 namespace streyes {
 
@@ -181,7 +181,7 @@ Vec3d rotateAbout(Vec3d p, Vec3d c, Vec3d a, double angle) {
 
 using Quad = std::array<Vec3d, 4>;  // RenderMan patch corner order
 
-void emit(Scene& out, const ExpandContext& ctx, std::vector<double> times, std::vector<Quad> keys, Color cs) {
+void emit(ProceduralOutput& out, const ExpandContext& ctx, std::vector<double> times, std::vector<Quad> keys, Color cs) {
     BilinearPatchDesc p;
     p.times = std::move(times);
     p.P = std::move(keys);
@@ -190,21 +190,23 @@ void emit(Scene& out, const ExpandContext& ctx, std::vector<double> times, std::
     p.objectToWorld = ctx.objectToWorld;
     p.attributes = ctx.attributes;
     p.loc = ctx.loc;
-    out.patches.push_back(std::move(p));
+    out.scene.patches.push_back(std::move(p));
 }
 
-void emitStill(Scene& out, const ExpandContext& ctx, const Quad& q, Color cs) { emit(out, ctx, {0.0}, {q}, cs); }
+void emitStill(ProceduralOutput& out, const ExpandContext& ctx, const Quad& q, Color cs) { emit(out, ctx, {0.0}, {q}, cs); }
 
 // A nested procedural under the expanding one's transform and attributes.
-void emitProcedural(Scene& out, const ExpandContext& ctx, std::shared_ptr<const ProceduralGenerator> generator,
+void emitProcedural(ProceduralOutput& out, const ExpandContext& ctx, std::shared_ptr<const ProceduralGenerator> generator,
                     const Bounds3d& bound) {
-    ProceduralDesc p;
-    p.generator = std::move(generator);
+    GeneratedProcedural g;
+    g.generator = std::move(generator);
+    ProceduralDesc& p = g.desc;
+    p.kind = "DynamicLoad";
     p.bound = bound;
     p.objectToWorld = ctx.objectToWorld;
     p.attributes = ctx.attributes;
     p.loc = ctx.loc;
-    out.procedurals.push_back(std::move(p));
+    out.procedurals.push_back(std::move(g));
 }
 
 // Two unit vectors perpendicular to `d` and to each other.
@@ -303,7 +305,7 @@ class BranchGenerator final : public ProceduralGenerator {
 
     std::string describe() const override { return "forest branch"; }
 
-    void expand(const ExpandContext& ctx, Scene& out) const override {
+    void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
         const ForestParams& f = *f_;
         const Branch& b = branch_;
         const std::vector<double> times = swayTimes(f, ctx);
@@ -374,7 +376,7 @@ class TreeGenerator final : public ProceduralGenerator {
     TreeGenerator(std::shared_ptr<const ForestParams> f, const Tree& t) : f_(std::move(f)), tree_(t) {}
     std::string describe() const override { return "forest tree"; }
 
-    void expand(const ExpandContext& ctx, Scene& out) const override {
+    void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
         const ForestParams& f = *f_;
         const Tree& t = tree_;
         const double size = std::sqrt(std::max(0.0, ctx.detail));  // pixels across the bound
@@ -475,7 +477,7 @@ class CellGenerator final : public ProceduralGenerator {
   public:
     CellGenerator(std::shared_ptr<const ForestParams> f, int cell) : f_(std::move(f)), cell_(cell) {}
     std::string describe() const override { return "forest cell"; }
-    void expand(const ExpandContext& ctx, Scene& out) const override {
+    void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
         forEachTreeInCell(*f_, cellGrid(*f_), cell_, [&](const Tree& t) {
             emitProcedural(out, ctx, std::make_shared<TreeGenerator>(f_, t), treeBound(*f_, t));
         });
@@ -490,7 +492,7 @@ class ForestGenerator final : public ProceduralGenerator {
   public:
     explicit ForestGenerator(ForestParams f) : f_(std::make_shared<const ForestParams>(f)) {}
     std::string describe() const override { return "DynamicLoad forest"; }
-    void expand(const ExpandContext& ctx, Scene& out) const override {
+    void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
         const CellGrid g = cellGrid(*f_);
         for (int cell = 0; cell < g.nx * g.nz; ++cell) {
             Bounds3d bound;

@@ -13,7 +13,7 @@
 #include <memory>
 #include <string>
 
-#include "streyes/procedural.h"
+#include "procedural/procedural.h"
 
 namespace streyes {
 

@@ -1,5 +1,4 @@
 // The procedurals a RIB file can name: archives, helper programs and the built-in generators.
-#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -8,19 +7,16 @@
 
 #include "procedural/forest.h"
 #include "procedural/run_program.h"
-#include "scene/rib_parser.h"
-#include "streyes/procedural.h"
+#include "procedural/procedural.h"
 
 namespace streyes {
 
 namespace {
 
 // A procedural's RIB output, parsed under its transform and attributes.
-void parseFragment(const std::string& text, const std::string& name, const ExpandContext& ctx, Scene& out) {
-    RibParser parser(out, *ctx.log);
-    parser.beginFragment(ctx.objectToWorld, ctx.attributes);
-    parser.parseString(text, name);
-    parser.finishFragment();
+void parseFragment(const std::string& text, const std::string& name, const ExpandContext& ctx, ProceduralOutput& output) {
+    Scene& out = output.scene;
+    out = parseRibFragment(text, name, ctx.objectToWorld, ctx.attributes, *ctx.log);
     if (!out.lights.empty()) {
         ctx.log->warnOnce("procedural-lights", ctx.loc, "lights declared by a procedural are ignored");
         out.lights.clear();
@@ -32,7 +28,7 @@ class ArchiveGenerator final : public ProceduralGenerator {
   public:
     explicit ArchiveGenerator(std::string path) : path_(std::move(path)) {}
     std::string describe() const override { return "DelayedReadArchive '" + path_ + "'"; }
-    void expand(const ExpandContext& ctx, Scene& out) const override {
+    void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
         std::ifstream in(path_, std::ios::binary);
         if (!in) throw InputError(ctx.loc, "DelayedReadArchive: cannot open '" + path_ + "': " + std::strerror(errno));
         std::ostringstream text;
@@ -51,7 +47,7 @@ class ProgramGenerator final : public ProceduralGenerator {
     ProgramGenerator(std::string command, std::string datablock)
         : command_(std::move(command)), datablock_(std::move(datablock)) {}
     std::string describe() const override { return "RunProgram '" + command_ + "'"; }
-    void expand(const ExpandContext& ctx, Scene& out) const override {
+    void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
         const std::string rib = runProgramRequest(command_, ctx.detail, datablock_, ctx.loc);
         parseFragment(rib, "RunProgram '" + command_ + "' output", ctx, out);
     }
@@ -60,23 +56,16 @@ class ProgramGenerator final : public ProceduralGenerator {
     std::string command_, datablock_;
 };
 
-std::atomic<bool> programsAllowed{true}, filesAllowed{true};
-
 }  // namespace
 
-void setSceneAccess(SceneAccess access) {
-    programsAllowed = access.programs;
-    filesAllowed = access.files;
-}
-
-SceneAccess sceneAccess() { return {programsAllowed.load(), filesAllowed.load()}; }
-
-std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const std::string& kind,
-                                                                    const std::vector<std::string>& args,
-                                                                    const std::string& directory,
-                                                                    const SourceLoc& loc) {
+std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const ProceduralDesc& desc) {
     namespace fs = std::filesystem;
-    if ((kind == "DelayedReadArchive" && !filesAllowed) || (kind == "RunProgram" && !programsAllowed))
+    const std::string& kind = desc.kind;
+    const std::vector<std::string>& args = desc.args;
+    const std::string& directory = desc.directory;
+    const SourceLoc& loc = desc.loc;
+    const SceneAccess access = sceneAccess();
+    if ((kind == "DelayedReadArchive" && !access.files) || (kind == "RunProgram" && !access.programs))
         throw InputError(loc, "Procedural \"" + kind + "\" is not allowed here (" +
                                   (kind == "RunProgram" ? "no programs are run" : "no other files are read") + ")");
     if (kind == "DelayedReadArchive") {

@@ -2,13 +2,13 @@
 #include <limits>
 #include <stdexcept>
 
-#include "streyes/procedural.h"
-#include "streyes/render_scene.h"
+#include "procedural/procedural.h"
 
 namespace streyes {
 
-ProceduralBody::ProceduralBody(ProceduralDesc desc, const Bounds3f& cameraBound, TimeSpan window, int depth)
-    : desc_(std::move(desc)), bound_(cameraBound), depth_(depth) {
+ProceduralBody::ProceduralBody(ProceduralDesc desc, std::shared_ptr<const ProceduralGenerator> generator,
+                               const Bounds3f& cameraBound, TimeSpan window, int depth)
+    : desc_(std::move(desc)), generator_(std::move(generator)), bound_(cameraBound), depth_(depth) {
     time_ = window;
     moving_ = false;  // the bound covers the whole animation
 }
@@ -57,12 +57,12 @@ std::unique_ptr<Body> ProceduralBody::restrictedTo(double, double) const {
 
 void ProceduralBody::dice(int, int, Grid&) const { throw std::logic_error("a procedural is expanded, not diced"); }
 
-const std::vector<BodyPtr>& ProceduralBody::children(BodyFactory& factory, const Camera& camera, Log& log,
+const std::vector<BodyPtr>& ProceduralBody::children(ChildBodyMaker& maker, const Camera& camera, Log& log,
                                                      bool* expandedHere) const {
     std::call_once(once_, [&] {
         if (expandedHere) *expandedHere = true;
         try {
-            expand(factory, camera, log);
+            expand(maker, camera, log);
         } catch (...) {
             error_ = std::current_exception();
         }
@@ -72,7 +72,7 @@ const std::vector<BodyPtr>& ProceduralBody::children(BodyFactory& factory, const
     return children_;
 }
 
-void ProceduralBody::expand(BodyFactory& factory, const Camera& camera, Log& log) const {
+void ProceduralBody::expand(ChildBodyMaker& maker, const Camera& camera, Log& log) const {
     ExpandContext ctx;
     // RenderMan's detail: the raster area of the bound; unbounded when it reaches the eye plane.
     if (camera.perspective() && bound_.lo.z < camera.eyePlane()) {
@@ -84,15 +84,15 @@ void ProceduralBody::expand(BodyFactory& factory, const Camera& camera, Log& log
     ctx.objectToWorld = desc_.objectToWorld;
     ctx.attributes = desc_.attributes;
     ctx.loc = desc_.loc;
-    ctx.windowStart = factory.windowStart();
-    ctx.windowEnd = factory.windowEnd();
+    ctx.windowStart = maker.windowStart();
+    ctx.windowEnd = maker.windowEnd();
     ctx.depth = depth_;
     ctx.log = &log;
-    Scene fragment;
-    desc_.generator->expand(ctx, fragment);
-    factory.addChildren(fragment, primitiveId(), depth_ + 1, children_);
+    ProceduralOutput output;
+    generator_->expand(ctx, output);
+    maker.addChildren(output, primitiveId(), depth_ + 1, children_);
     for (const BodyPtr& c : children_)
-        if (const ProceduralBody* p = c->asProcedural()) p->parent_ = this;
+        if (c->expands()) static_cast<const ProceduralBody&>(*c).parent_ = this;
 
     // Children reaching outside the declared bound are not lost: the renderer renders again
     // with the grown bound (see Renderer::render).
@@ -105,10 +105,10 @@ void ProceduralBody::expand(BodyFactory& factory, const Camera& camera, Log& log
                grown_.hi.y > bound_.hi.y + slack || grown_.hi.z > bound_.hi.z + slack;
     if (outgrew_) {
         log.warnOnce("procedural-bound:" + desc_.loc.str(), desc_.loc,
-                     desc_.generator->describe() +
+                     generator_->describe() +
                          ": its children reach outside the declared bound; the frames are rendered again with "
                          "the bound they need (declare a larger bound to avoid the extra work)");
-        factory.reportOutgrown(const_cast<ProceduralBody*>(this));
+        maker.reportOutgrown(const_cast<ProceduralBody*>(this));
     }
 }
 

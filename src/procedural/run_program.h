@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 namespace streyes {
 

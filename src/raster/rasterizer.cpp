@@ -1,9 +1,9 @@
-#include "streyes/rasterizer.h"
+#include "raster/rasterizer.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "streyes/grid.h"
+#include "geom/grid.h"
 
 namespace streyes {
 

@@ -1,11 +1,11 @@
-#include "streyes/rasterizer.h"
+#include "raster/rasterizer.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "streyes/body.h"
-#include "streyes/shading.h"
+#include "geom/body.h"
+#include "shade/shading.h"
 
 namespace streyes {
 namespace {

@@ -1,8 +1,8 @@
 // Sample generation: stratified (x, y) jitter, stratified time with a per-pixel shuffle.
 #include <limits>
 
-#include "streyes/image_block.h"
-#include "streyes/util/sampling.h"
+#include "raster/image_block.h"
+#include "util/sampling.h"
 
 namespace streyes {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <set>
 
-#include "streyes/image_block.h"
+#include "raster/image_block.h"
 
 namespace streyes {
 namespace {

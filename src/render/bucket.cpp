@@ -1,12 +1,14 @@
-#include "bucket.h"
+#include "render/bucket.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 
-#include "streyes/procedural.h"
-#include "streyes/view_cull.h"
+#include "cull/view_cull.h"
+#include "procedural/procedural.h"
+#include "raster/coverage.h"
+#include "shade/shading.h"
 
 namespace streyes {
 
@@ -224,8 +226,8 @@ void BucketWorker::process(const Body& body) {
             ++counters.culledView;
             return;
         }
-        if (const ProceduralBody* p = body.asProcedural()) {
-            expand(*p);
+        if (body.expands()) {
+            expand(static_cast<const ProceduralBody&>(body));
             return;
         }
         if (body.eyeSplitDepth >= options_.maxEyeSplits) {
@@ -258,8 +260,8 @@ void BucketWorker::process(const Body& body) {
         ++counters.culledOcclusionByLayer[li];
         return;
     }
-    if (const ProceduralBody* p = body.asProcedural()) {
-        expand(*p);  // its bound survived culling: now its children are needed
+    if (body.expands()) {
+        expand(static_cast<const ProceduralBody&>(body));  // its bound survived culling: now its children are needed
         return;
     }
 

@@ -6,15 +6,15 @@
 #include <unordered_map>
 #include <vector>
 
-#include "streyes/film.h"
-#include "streyes/grid.h"
-#include "streyes/image_block.h"
-#include "streyes/occlusion.h"
-#include "streyes/rasterizer.h"
-#include "streyes/render_scene.h"
-#include "streyes/renderer.h"
+#include "bodies/render_scene.h"
+#include "cull/occlusion.h"
+#include "film/film.h"
+#include "geom/grid.h"
+#include "raster/image_block.h"
+#include "raster/rasterizer.h"
+#include "streyes/render_options.h"
 #include "streyes/stats.h"
-#include "streyes/trace.h"
+#include "trace/trace.h"
 
 namespace streyes {
 

@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <fstream>
 
-#include "streyes/image_block.h"
-#include "streyes/util/error.h"
+#include "raster/image_block.h"
+#include "streyes/error.h"
 
 namespace streyes {
 

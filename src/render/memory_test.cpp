@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "streyes/image_block.h"
-#include "streyes/util/error.h"
+#include "raster/image_block.h"
+#include "streyes/error.h"
 
 namespace streyes {
 namespace {

@@ -10,10 +10,10 @@
 #include <cmath>
 #include <limits>
 
-#include "bucket.h"
+#include "render/bucket.h"
 #include "streyes/memory.h"
-#include "streyes/procedural.h"
-#include "streyes/trace.h"
+#include "procedural/procedural.h"
+#include "trace/trace.h"
 
 namespace streyes {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 namespace streyes {
 

@@ -1,8 +1,8 @@
 #include "scene/rib_parser.h"
 
-#include "streyes/procedural.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -16,7 +16,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "scene/triangulate.h"
+#include "geom/triangulate.h"
 #include "streyes/rib.h"
 
 namespace streyes {
@@ -1328,9 +1328,9 @@ void RibParser::procedural(RibArgs& args) {
     if (b[0] > b[1] || b[2] > b[3] || b[4] > b[5])
         args.fail("the bound must be xmin xmax ymin ymax zmin zmax with each min <= max");
     p.bound = Bounds3d({b[0], b[2], b[4]}, {b[1], b[3], b[5]});
-    std::string directory;
-    if (args.loc().file) directory = std::filesystem::path(*args.loc().file).parent_path().string();
-    p.generator = makeProceduralGenerator(kind, strings, directory, args.loc());
+    p.kind = kind;
+    p.args = std::move(strings);
+    if (args.loc().file) p.directory = std::filesystem::path(*args.loc().file).parent_path().string();
     p.objectToWorld = ctm_;
     p.attributes = attributes_;
     p.loc = args.loc();
@@ -1957,5 +1957,26 @@ Scene parseRibString(const std::string& text, const std::string& sourceName, Log
     parser.finish();
     return scene;
 }
+
+Scene parseRibFragment(const std::string& text, const std::string& sourceName, const MotionTransform& ctm,
+                       const AttributesPtr& attributes, Log& log) {
+    Scene scene;
+    RibParser parser(scene, log);
+    parser.beginFragment(ctm, attributes);
+    parser.parseString(text, sourceName);
+    parser.finishFragment();
+    return scene;
+}
+
+namespace {
+std::atomic<bool> programsAllowed{true}, filesAllowed{true};
+}  // namespace
+
+void setSceneAccess(SceneAccess access) {
+    programsAllowed = access.programs;
+    filesAllowed = access.files;
+}
+
+SceneAccess sceneAccess() { return {programsAllowed.load(), filesAllowed.load()}; }
 
 }  // namespace streyes

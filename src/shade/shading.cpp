@@ -1,76 +1,10 @@
-#include "streyes/shading.h"
+#include "shade/shading.h"
 
 #include <cmath>
 
-#include "streyes/grid.h"
+#include "geom/grid.h"
 
 namespace streyes {
-
-Material makeMaterial(const Attributes& a) {
-    Material m;
-    m.Cs = a.color;
-    m.Os = a.opacity;
-    m.shadingRate = float(a.shadingRate);
-    m.lights = a.lights;
-    m.attributes = &a;
-    const ParamList& p = a.surface.params;
-    const std::string& name = a.surface.name;
-    if (name == "constant") {
-        m.kind = SurfaceKind::Constant;
-    } else if (name == "matte") {
-        m.kind = SurfaceKind::Matte;
-        m.Ka = float(p.getFloat("Ka", 1));
-        m.Kd = float(p.getFloat("Kd", 1));
-    } else if (name == "plastic") {
-        m.kind = SurfaceKind::Plastic;
-        m.Ka = float(p.getFloat("Ka", 1));
-        m.Kd = float(p.getFloat("Kd", 0.5));
-        m.Ks = float(p.getFloat("Ks", 0.5));
-        m.roughness = float(p.getFloat("roughness", 0.1));
-        m.specularColor = p.getColor("specularcolor", {1, 1, 1});
-    } else {
-        m.kind = SurfaceKind::Default;
-    }
-    return m;
-}
-
-LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& worldToCamera)
-    : worldToCamera_(worldToCamera) {
-    static_ = worldToCamera.isStatic();
-    for (const LightDesc& d : lights) {
-        Light l;
-        if (d.type == "distantlight") l.kind = LightKind::Distant;
-        else if (d.type == "pointlight") l.kind = LightKind::Point;
-        else l.kind = LightKind::Ambient;
-        l.color = d.params.getColor("lightcolor", {1, 1, 1}) * float(d.params.getFloat("intensity", 1));
-        l.from = d.params.getPoint("from", {0, 0, 0});
-        l.to = d.params.getPoint("to", {0, 0, 1});
-        l.lightToWorld = d.lightToWorld;
-        l.castsShadows = d.castsShadows && l.kind != LightKind::Ambient;
-        if (l.castsShadows) shadowLights_.push_back(int(lights_.size()));
-        static_ = static_ && l.lightToWorld.isStatic();
-        lights_.push_back(l);
-    }
-    if (static_) at(0, staticLights_);
-}
-
-void LightSet::at(double t, std::vector<CameraLight>& out) const {
-    if (static_ && staticLights_.size() == lights_.size()) {
-        out = staticLights_;
-        return;
-    }
-    out.clear();
-    Matrix4 w2c = worldToCamera_.at(t);
-    int slot = 0;
-    for (const Light& l : lights_) {
-        Matrix4 m = l.lightToWorld.at(t) * w2c;
-        CameraLight c{l.kind, l.color, {}, {}, l.castsShadows ? slot++ : -1};
-        Vec3d from = m.point(l.from);
-        if (l.kind == LightKind::Point) c.position = Vec3f(from);
-        if (l.kind == LightKind::Distant) c.direction = Vec3f(normalize(from - m.point(l.to)));
-        out.push_back(c);
-    }
-}
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "streyes/ray_patch.h"
+#include "trace/ray_patch.h"
 
 #include <cmath>
 

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "streyes/body.h"
-#include "streyes/ray_patch.h"
-#include "streyes/util/sampling.h"
+#include "geom/body.h"
+#include "trace/ray_patch.h"
+#include "util/sampling.h"
 
 namespace streyes {
 namespace {

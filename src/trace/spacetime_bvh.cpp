@@ -1,4 +1,4 @@
-#include "streyes/spacetime_bvh.h"
+#include "trace/spacetime_bvh.h"
 
 #include <tbb/task_group.h>
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <memory>
 
-#include "streyes/spacetime_bvh.h"
-#include "streyes/util/sampling.h"
+#include "trace/spacetime_bvh.h"
+#include "util/sampling.h"
 
 namespace streyes {
 namespace {

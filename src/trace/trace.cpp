@@ -1,4 +1,4 @@
-#include "streyes/trace.h"
+#include "trace/trace.h"
 
 #include <sys/resource.h>
 #include <tbb/parallel_for.h>
@@ -6,7 +6,8 @@
 #include <cmath>
 #include <limits>
 
-#include "streyes/procedural.h"
+#include "procedural/procedural.h"
+#include "shade/shading.h"
 
 namespace streyes {
 
@@ -57,7 +58,8 @@ TraceScene::TraceScene(const RenderScene& scene, Log& log) : scene_(scene) {
 void TraceScene::collect(const Body& body, Log& log) {
     if (const auto* patch = dynamic_cast<const TrilinearBody*>(&body)) {
         bodies_.push_back(patch);
-    } else if (const ProceduralBody* p = body.asProcedural()) {
+    } else if (body.expands()) {
+        const auto* p = static_cast<const ProceduralBody*>(&body);
         bool expandedHere = false;
         const std::vector<BodyPtr>& children = p->children(*scene_.factory, scene_.camera, log, &expandedHere);
         if (expandedHere) {

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "cli_run.h"
-#include "streyes/contact_sheet.h"
+#include "io/contact_sheet.h"
 #include "streyes/image_io.h"
 #include "test_util.h"
 

@@ -7,7 +7,7 @@
 
 #include "render/bucket.h"
 #include "streyes/rib.h"
-#include "streyes/view_cull.h"
+#include "cull/view_cull.h"
 #include "test_util.h"
 
 namespace streyes {

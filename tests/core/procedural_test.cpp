@@ -120,10 +120,9 @@ int lineOf(const std::string& text, const std::string& needle) {
 }
 
 TEST(Procedural, RunProgramErrorsNameTheProcedural) {
-    Log log;
     const std::string missing = header() + "Procedural \"RunProgram\" [\"no-such-program-xyz\" \"\"] [0 1 0 1 0 1]\nWorldEnd\n";
     try {
-        parseRibString(missing, "test.rib", log);
+        test::renderRib(missing);  // found when bodies are made, before anything renders
         FAIL() << "a missing program must be an error";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("test.rib:" + std::to_string(lineOf(missing, "Procedural"))), std::string::npos) << e.what();

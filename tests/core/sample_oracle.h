@@ -23,7 +23,7 @@
 #include <utility>
 #include <vector>
 
-#include "streyes/image_block.h"
+#include "raster/image_block.h"
 #include "streyes/rib.h"
 #include "test_util.h"
 

@@ -1,0 +1,79 @@
+// What a render is asked to do: the algorithm, frames, resolution, samples, threads, memory and
+// the knobs of culling, splitting and ray tracing. Plain data, read by every stage that needs it.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "streyes/vecmath.h"
+
+namespace streyes {
+
+class ImageBlock;  // a bucket's samples (src/raster/image_block.h), for sampleObserver
+
+// The sample pattern: sx x sy strata per pixel per frame, and the seed of their jitter.
+struct SamplePattern {
+    int sx = 2, sy = 2;      // strata per pixel in x and y; sx * sy time slices
+    uint64_t seed = 0;
+    int count() const { return sx * sy; }
+};
+
+// The ray tracer's spacetime hierarchy (src/trace/spacetime_bvh.h; docs/ARCHITECTURE.md).
+struct HierarchyOptions {
+    int maxLeafBodies = 4;    // a cell with more bodies is subdivided ...
+    int maxDepth = 12;        // ... unless it is this deep
+    bool splitTime = true;    // false: 3D hierarchy (cells keep the whole time span)
+    // Cells this short in time (frames) are cut in space only: by default one frame, the time
+    // resolution of the frame-by-frame hierarchies. Finer cuts save some tests for many more
+    // bounding volumes (docs/results/raytrace.md).
+    double minTimeCut = 1.0;
+    bool alwaysSplitTime = false;  // Glassner's rule: halve t in every subdivision (for comparison)
+};
+
+enum class Algorithm { Frames, FramesOcclusion, Spacetime, SpacetimeOcclusion, Raytrace, RaytraceFrames };
+inline bool usesOcclusion(Algorithm a) { return a == Algorithm::FramesOcclusion || a == Algorithm::SpacetimeOcclusion; }
+inline bool perFrame(Algorithm a) {
+    return a == Algorithm::Frames || a == Algorithm::FramesOcclusion || a == Algorithm::RaytraceFrames;
+}
+inline bool raytraces(Algorithm a) { return a == Algorithm::Raytrace || a == Algorithm::RaytraceFrames; }
+const char* algorithmName(Algorithm a);
+bool parseAlgorithm(const std::string& name, Algorithm* out);
+
+struct RenderOptions {
+    Algorithm algorithm = Algorithm::SpacetimeOcclusion;
+    bool hasFrames = false;          // --frames; otherwise the scene's, otherwise frame 0
+    int firstFrame = 0, lastFrame = 0;
+    int xres = 0, yres = 0;          // --res; 0: the scene's Format
+    int samples = 0;                 // --samples per pixel per frame; 0: the scene's PixelSamples
+    int threads = 0;                 // 0: every core
+    uint64_t seed = 0;
+    int bucketSize = 32;             // tile side in pixels
+    int maxFrameBlock = 64;          // frames rendered (and held in memory) together
+    uint64_t maxMemoryBytes = 0;     // --max-memory; 0: defaultMemoryBudget() (memory.h)
+    // --resume: frames already written completely. A block whose frames all are is not rendered
+    // again; the others are rendered whole, so that their pixels are an uninterrupted render's,
+    // and only their missing frames go to the sink.
+    std::function<bool(int frame)> frameDone;
+
+    // Occlusion culling (the -occlusion algorithms).
+    double tolerance = 0;            // epsilon: drop a body when uncovered <= epsilon * its block
+    int layers = 0;                  // depth layers with geometric spacing; 0: adaptive
+    double adaptiveLayerHits = 0.05; // adaptive: a layer ends once this share of samples got a first hit
+
+    // Split loop (see docs/ARCHITECTURE.md).
+    int maxGridSize = 256;           // micropolygons per grid (RenderMan's "limits" "gridsize")
+    int maxSplitDepth = 60;          // a body split this often and still too large is dropped
+    int maxEyeSplits = 40;           // the same for splits at the eye plane
+    int maxSplitsPerPrimitive = 1 << 20;  // splits of one primitive in one bucket (bounds the work)
+    float timeSplitRatio = 2.0f;     // split t when motion > ratio * size ...
+    float timeSplitMinMotion = 16.0f;  // ... and motion > this many pixels
+
+    // Ray tracing and shadows (see spacetime_bvh.h).
+    HierarchyOptions hierarchy;
+    // For tests and tools: sees each bucket's samples (hits before the filter) and the tile it
+    // resolves. Called from worker threads, one bucket at a time each.
+    std::function<void(const ImageBlock& block, const PixelRect& tile)> sampleObserver;
+};
+
+}  // namespace streyes

@@ -1,0 +1,455 @@
+#include "bodies/body_factory.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "geom/curved_body.h"
+#include "geom/patch_mesh.h"
+#include "procedural/procedural.h"
+#include "geom/quadric.h"
+#include "geom/subdivision.h"
+#include "util/sampling.h"
+
+namespace streyes {
+
+namespace {
+
+// Camera space is single precision. Corners beyond this magnitude would overflow to infinity
+// when a split adds two of them or a measure squares their distance.
+constexpr double kMaxCameraCoordinate = 1e37;
+
+// Checked in double: converting a value beyond float's range would be undefined.
+bool fitsCameraSpace(Vec3d v) {
+    return std::fabs(v.x) <= kMaxCameraCoordinate && std::fabs(v.y) <= kMaxCameraCoordinate &&
+           std::fabs(v.z) <= kMaxCameraCoordinate;
+}
+
+const char* kTooLargeWarning =
+    "primitive reaches beyond 1e37 in camera space, where single precision overflows when it is split: skipped "
+    "(scale the scene down)";
+
+// Far from the world's origin, double precision runs out: a point at world distance M comes to
+// camera space with an error of a few units in M's last place (2^-52 M), however near the camera
+// is. Past this error in raster pixels the renderer says so.
+constexpr double kMaxPrecisionPixels = 0.01;
+
+// The largest magnitude a corner passes through on its way to camera space: its world position,
+// or the camera's translation (the world origin in camera space).
+double worldMagnitude(const Matrix4& objectToWorld, const Matrix4& worldToCamera, const std::array<Vec3d, 4>& obj) {
+    double m = std::max({std::fabs(worldToCamera(3, 0)), std::fabs(worldToCamera(3, 1)), std::fabs(worldToCamera(3, 2))});
+    for (const Vec3d& c : obj) {
+        Vec3d w = objectToWorld.point(c);
+        m = std::max({m, std::fabs(w.x), std::fabs(w.y), std::fabs(w.z)});
+    }
+    return m;
+}
+
+// That rounding error (4 ulps of the world magnitude) in raster pixels at camera-space point v.
+double precisionInPixels(const Camera& camera, double worldScale, Vec3d v) {
+    const double error = 4 * worldScale * std::numeric_limits<double>::epsilon();
+    const double scale = std::max(std::fabs(camera.ax()), std::fabs(camera.ay()));
+    if (!camera.perspective()) return error * scale;
+    return v.z > camera.nearClip() ? error * scale / v.z : 0;  // nearer than `near`: clipped anyway
+}
+
+std::string formatShort(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
+// The primitive's object-space corners at time t: linear between its keys, held outside.
+std::array<Vec3d, 4> cornersAt(const BilinearPatchDesc& p, double t) {
+    if (p.P.size() == 1 || t <= p.times.front()) return p.P.front();
+    if (t >= p.times.back()) return p.P.back();
+    size_t i = size_t(std::upper_bound(p.times.begin(), p.times.end(), t) - p.times.begin());
+    double s = (t - p.times[i - 1]) / (p.times[i] - p.times[i - 1]);
+    std::array<Vec3d, 4> r;
+    for (int c = 0; c < 4; ++c) r[size_t(c)] = lerp(p.P[i - 1][size_t(c)], p.P[i][size_t(c)], s);
+    return r;
+}
+
+// Key times of a motion inside (a, b), plus a and b.
+std::vector<double> segmentTimes(const std::vector<double>& keys, double a, double b) {
+    std::vector<double> ts{a};
+    for (double t : keys)
+        if (t > a && t < b) ts.push_back(t);
+    if (b > a) ts.push_back(b);
+    return ts;
+}
+
+std::vector<double> keysOf(const MotionTransform& m) { return m.isStatic() ? std::vector<double>{} : m.times(); }
+
+// Child ids: a hash of the parent's id and the child's index (never 0 or the "no hit" value).
+uint32_t childId(uint32_t parent, uint64_t index) {
+    uint32_t id = uint32_t(mix64((uint64_t(parent) << 32) ^ (index + 1)) >> 32);
+    return id == 0 || id == UINT32_MAX ? 1 : id;
+}
+
+// Segments meet at their keys: all but the last are half-open (TimeSpan), so that a sample exactly
+// at a key belongs to the segment that starts there.
+TimeSpan segmentSpan(double t0, double t1, const std::vector<double>& ts) { return {t0, t1, t1 < ts.back()}; }
+
+// ---- Motion segments of curved primitives ----------------------------------------------------------
+// Where time t falls among a primitive's keys: between key i and i + 1 at fraction s (held
+// before the first key and after the last, where s = 0).
+void keyInterval(const std::vector<double>& times, size_t keys, double t, size_t* i, double* s) {
+    *s = 0;
+    if (keys == 1 || t <= times.front()) {
+        *i = 0;
+    } else if (t >= times.back()) {
+        *i = keys - 1;
+    } else {
+        *i = size_t(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
+        *s = (t - times[*i]) / (times[*i + 1] - times[*i]);
+    }
+}
+
+// Points at time t: linear between the keys.
+std::vector<Vec3d> pointsAt(const std::vector<double>& times, const std::vector<std::vector<Vec3d>>& keys, double t) {
+    size_t i;
+    double s;
+    keyInterval(times, keys.size(), t, &i, &s);
+    if (s == 0) return keys[i];
+    std::vector<Vec3d> r(keys[i].size());
+    for (size_t c = 0; c < r.size(); ++c) r[c] = lerp(keys[i][c], keys[i + 1][c], s);
+    return r;
+}
+
+// Calls add(t0, t1, i, j) for each segment between consecutive times, with i and j the indices
+// of its keys in `keys`; a run of segments over which the keys do not change is one still
+// segment; a single time (one frame, no shutter) is a segment of length zero.
+template <typename Key, typename Add>
+void forEachSegment(const std::vector<double>& ts, const std::vector<Key>& keys, Add add) {
+    if (ts.size() == 1) {
+        add(ts[0], ts[0], size_t(0), size_t(0));
+        return;
+    }
+    for (size_t i = 0; i + 1 < ts.size();) {
+        size_t j = i + 1;
+        if (keys[j] == keys[i])
+            while (j + 1 < ts.size() && keys[j + 1] == keys[i]) ++j;
+        add(ts[i], ts[j], i, j);
+        i = j;
+    }
+}
+
+}  // namespace
+
+BodyFactory::BodyFactory(const MotionTransform& worldToCamera, double windowStart, double windowEnd, Log& log)
+    : worldToCamera_(worldToCamera), windowStart_(windowStart), windowEnd_(windowEnd), log_(log) {}
+
+const Material* BodyFactory::material(const AttributesPtr& attributes) {
+    static const AttributesPtr kDefault = std::make_shared<const Attributes>();
+    const AttributesPtr& a = attributes ? attributes : kDefault;
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = materialOf_.find(a.get());
+    if (it != materialOf_.end()) return it->second;
+    keepAlive_.push_back(a);
+    materials_.push_back(makeMaterial(*a));
+    return materialOf_.emplace(a.get(), &materials_.back()).first->second;
+}
+
+const SourceLoc* BodyFactory::source(const SourceLoc& loc) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto key = std::make_pair(loc.file.get(), loc.line);
+    auto it = sourceOf_.find(key);
+    if (it != sourceOf_.end()) return it->second;
+    sources_.push_back(loc);
+    return sourceOf_.emplace(key, &sources_.back()).first->second;
+}
+
+void BodyFactory::addPatch(const BilinearPatchDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    const Material* mat = material(p.attributes);
+    std::array<Color, 4> cs;
+    for (int c = 0; c < 4; ++c) cs[size_t(c)] = p.hasCs ? p.Cs[size_t(c)] : mat->Cs;
+
+    MotionTransform objectToCamera = p.objectToWorld.then(worldToCamera_);
+    std::vector<double> keys = keysOf(objectToCamera);
+    if (p.P.size() > 1) keys = unionTimes(keys, p.times);
+    std::vector<double> ts = segmentTimes(keys, windowStart_, windowEnd_);
+    std::vector<TrilinearBody::Corners> corners(ts.size());
+    bool finite = true, fits = true;
+    double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin, rasterError = 0;
+    for (size_t i = 0; i < ts.size(); ++i) {
+        Matrix4 m = objectToCamera.at(ts[i]);
+        std::array<Vec3d, 4> obj = cornersAt(p, ts[i]);
+        const double worldScale = camera_ ? worldMagnitude(p.objectToWorld.at(ts[i]), worldToCamera_.at(ts[i]), obj) : 0;
+        for (int c = 0; c < 4; ++c) {
+            Vec3d v = m.point(obj[size_t(c)]);
+            finite = finite && isFinite(v);
+            fits = fits && fitsCameraSpace(v);
+            if (finite && fits) corners[i][size_t(c)] = Vec3f(v);
+            zmin = std::min(zmin, v.z), zmax = std::max(zmax, v.z);
+            if (camera_) rasterError = std::max(rasterError, precisionInPixels(*camera_, worldScale, v));
+        }
+    }
+    if (!finite) {
+        log_.warn(p.loc, "primitive has non-finite coordinates in camera space: skipped");
+        return;
+    }
+    if (!fits) {
+        log_.warn(p.loc, kTooLargeWarning);
+        return;
+    }
+    if (camera_ && zmin > 0 && zmax < camera_->nearClip())
+        log_.warnOnce("nearclip", p.loc,
+                      "primitive lies wholly between the camera and the near clipping plane (Clipping near = " +
+                          formatShort(camera_->nearClip()) +
+                          "): it cannot be seen (lower the near plane with Clipping, or scale the scene up)");
+    if (rasterError > kMaxPrecisionPixels)
+        log_.warnOnce("precision", p.loc,
+                      "primitive lies so far from the world's origin that double precision moves it by up to " +
+                          formatShort(rasterError) +
+                          " pixels on its way to camera space (translate the scene and the camera nearer the origin)");
+    const SourceLoc* src = source(p.loc);
+    auto add = [&](double t0, double t1, const TrilinearBody::Corners& c0, const TrilinearBody::Corners& c1) {
+        auto body = std::make_unique<TrilinearBody>(segmentSpan(t0, t1, ts), c0, c1, cs, mat);
+        body->setSource(src);
+        body->setPrimitiveId(primitiveId);
+        out.push_back(std::move(body));
+        ++bodiesMade_;
+    };
+    if (ts.size() == 1) {  // a single instant (one frame, shutter open == close)
+        add(ts[0], ts[0], corners[0], corners[0]);
+        return;
+    }
+    bool moves = false;
+    for (size_t i = 1; i < ts.size() && !moves; ++i) moves = corners[i] != corners[0];
+    if (moves && ts.size() > 2) {
+        // Several keys: one body for all of them; the split loop cuts it in time where needed.
+        auto body = std::make_unique<KeyedPatchBody>(std::move(ts), std::move(corners), cs, mat);
+        body->setSource(src);
+        body->setPrimitiveId(primitiveId);
+        out.push_back(std::move(body));
+        ++bodiesMade_;
+        return;
+    }
+    // One body per segment between keys; a run of still segments is one still body.
+    for (size_t i = 0; i + 1 < ts.size();) {
+        size_t j = i + 1;
+        if (corners[j] == corners[i])
+            while (j + 1 < ts.size() && corners[j + 1] == corners[i]) ++j;
+        add(ts[i], ts[j], corners[i], corners[j]);
+        i = j;
+    }
+}
+
+Bounds3f BodyFactory::cameraBound(const Bounds3d& b, const MotionTransform& objectToWorld) const {
+    MotionTransform objectToCamera = objectToWorld.then(worldToCamera_);
+    Bounds3d r;
+    for (double t : segmentTimes(keysOf(objectToCamera), windowStart_, windowEnd_)) {
+        Matrix4 m = objectToCamera.at(t);
+        for (int i = 0; i < 8; ++i)
+            r.extend(m.point({(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z}));
+    }
+    // In float; beyond its range (where the conversion would be undefined) the bound is infinite.
+    auto toFloat = [](Vec3d v) {
+        Vec3f f;
+        for (int a = 0; a < 3; ++a)
+            f[a] = float(std::fabs(v[a]) <= kMaxCameraCoordinate ? v[a] : std::copysign(HUGE_VAL, v[a]));
+        return f;
+    };
+    return Bounds3f(toFloat(r.lo), toFloat(r.hi));
+}
+
+// ---- Curved and polygon-mesh primitives ------------------------------------------------------------
+bool BodyFactory::keyedPoints(const PrimitiveDesc& p, const std::vector<std::vector<Vec3d>>& P,
+                              std::vector<double>* ts, std::vector<std::vector<Vec3d>>* points) {
+    const MotionTransform objectToCamera = p.objectToWorld.then(worldToCamera_);
+    std::vector<double> keys = keysOf(objectToCamera);
+    if (P.size() > 1) keys = unionTimes(keys, p.times);
+    *ts = segmentTimes(keys, windowStart_, windowEnd_);
+    points->resize(ts->size());
+    for (size_t i = 0; i < ts->size(); ++i) {
+        const Matrix4 m = objectToCamera.at((*ts)[i]);
+        std::vector<Vec3d>& pts = (*points)[i];
+        pts = pointsAt(p.times, P, (*ts)[i]);
+        for (Vec3d& q : pts) {
+            q = m.point(q);
+            if (!isFinite(q)) {
+                log_.warn(p.loc, "primitive has non-finite coordinates in camera space: skipped");
+                return false;
+            }
+            if (!fitsCameraSpace(q)) {
+                log_.warn(p.loc, kTooLargeWarning);
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint32_t primitiveId,
+                             std::vector<BodyPtr>& out) {
+    mesh->setSource(src);
+    if (mesh->material()) mesh->setShadingRate(mesh->material()->shadingRate);
+    for (int f = 0; f < mesh->faceCount(); ++f) {
+        auto body = std::make_unique<CurvedBody>(mesh.get(), f);
+        body->setPrimitiveId(primitiveId);
+        out.push_back(std::move(body));
+        ++bodiesMade_;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    surfaces_.push_back(std::move(mesh));
+}
+
+void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    std::vector<double> ts;
+    std::vector<std::vector<Vec3d>> points;
+    if (!keyedPoints(p, p.P, &ts, &points)) return;
+    const Material* mat = material(p.attributes);
+    const PatchMeshShape shape(p);
+    const std::vector<std::array<Color, 4>> colors = shape.colors(p.Cs, mat->Cs);
+    const SourceLoc* src = source(p.loc);
+    forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
+        std::vector<BezierPatch> k1;
+        if (j != i) k1 = shape.patches(points[j]);
+        addSurface(std::make_unique<BezierMesh>(shape.topology(), segmentSpan(t0, t1, ts), mat, camera_,
+                                                shape.patches(points[i]), std::move(k1), colors),
+                   src, primitiveId, out);
+    });
+}
+
+// The topology once, the limit surface per key, a SubdivisionMesh per segment.
+void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    std::vector<double> ts;
+    std::vector<std::vector<Vec3d>> points;
+    if (!keyedPoints(p, p.P, &ts, &points)) return;
+    auto shape = std::make_shared<const SubdivisionShape>(p);
+    if (shape->faceCount() == 0) {
+        log_.warn(p.loc, "SubdivisionMesh has no face with a limit surface (is it all boundary? see "
+                         "\"interpolateboundary\"): skipped");
+        return;
+    }
+    const Material* mat = material(p.attributes);
+    const std::vector<std::array<Color, 4>> colors = shape->colors(p.Cs, mat->Cs);
+    const SourceLoc* src = source(p.loc);
+    std::vector<std::shared_ptr<const SubdivisionKey>> keys(ts.size());
+    auto keyAt = [&](size_t i) {
+        if (!keys[i]) keys[i] = shape->key(points[i]);
+        return keys[i];
+    };
+    forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
+        addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), segmentSpan(t0, t1, ts), mat, camera_,
+                                                     colors),
+                   src, primitiveId, out);
+    });
+}
+
+// A QuadricMesh per segment: the quadric's arguments and transform at both ends.
+void BodyFactory::addQuadric(const QuadricDesc& q, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    const MotionTransform objectToCamera = q.objectToWorld.then(worldToCamera_);
+    std::vector<double> keyTimes = keysOf(objectToCamera);
+    if (q.params.size() > 1) keyTimes = unionTimes(keyTimes, q.times);
+    const std::vector<double> ts = segmentTimes(keyTimes, windowStart_, windowEnd_);
+    struct Key {
+        QuadricMesh::Params params;
+        Matrix4 toCamera;
+        bool operator==(const Key& o) const { return params == o.params && toCamera == o.toCamera; }
+    };
+    std::vector<Key> keys(ts.size());
+    for (size_t i = 0; i < ts.size(); ++i) {
+        size_t k;
+        double s;
+        keyInterval(q.times, q.params.size(), ts[i], &k, &s);
+        for (size_t a = 0; a < 7; ++a)
+            keys[i].params[a] = s == 0 ? q.params[k][a] : (1 - s) * q.params[k][a] + s * q.params[k + 1][a];
+        keys[i].toCamera = objectToCamera.at(ts[i]);
+        if (!keys[i].toCamera.isFinite()) {
+            log_.warn(q.loc, "primitive has non-finite coordinates in camera space: skipped");
+            return;
+        }
+    }
+    const Material* mat = material(q.attributes);
+    std::array<Color, 4> colors;
+    colors.fill(mat->Cs);
+    if (q.Cs.given())
+        for (size_t c = 0; c < 4; ++c) colors[c] = q.Cs.values[q.Cs.values.size() == 4 ? c : 0];
+    const SourceLoc* src = source(q.loc);
+    forEachSegment(ts, keys, [&](double t0, double t1, size_t i, size_t j) {
+        const QuadricMesh::Params params[2] = {keys[i].params, keys[j].params};
+        const Matrix4 toCamera[2] = {keys[i].toCamera, keys[j].toCamera};
+        addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, segmentSpan(t0, t1, ts), mat, camera_, colors),
+                   src, primitiveId, out);
+    });
+}
+
+// Each face (a triangle or a convex quad) as the bilinear patch it is.
+void BodyFactory::addPolygonMesh(const PolygonMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+    BilinearPatchDesc face;
+    face.times = p.times;
+    face.objectToWorld = p.objectToWorld;
+    face.attributes = p.attributes;
+    face.loc = p.loc;
+    face.P.resize(p.P.size());
+    for (size_t f = 0; f < p.faces.size(); ++f) {
+        for (size_t k = 0; k < p.P.size(); ++k)
+            for (size_t c = 0; c < 4; ++c) face.P[k][c] = p.P[k][size_t(p.faces[f][c])];
+        face.hasCs = !p.faceCs.empty();
+        if (face.hasCs) face.Cs = p.faceCs[f];
+        addPatch(face, primitiveId, out);
+    }
+}
+
+void BodyFactory::addProcedural(const ProceduralDesc& p, uint32_t primitiveId, int depth, std::vector<BodyPtr>& out) {
+    addProcedural(p, makeProceduralGenerator(p), primitiveId, depth, out);
+}
+
+void BodyFactory::addProcedural(const ProceduralDesc& p, std::shared_ptr<const ProceduralGenerator> generator,
+                                uint32_t primitiveId, int depth, std::vector<BodyPtr>& out) {
+    if (depth > kMaxProceduralDepth) {
+        log_.warnOnce("procedural-depth", p.loc,
+                      "procedurals nested more than " + std::to_string(kMaxProceduralDepth) +
+                          " deep (does a procedural produce itself?): the deeper ones are dropped");
+        return;
+    }
+    Bounds3f b = cameraBound(p.bound, p.objectToWorld);
+    if (!isFinite(b.lo) || !isFinite(b.hi)) {
+        log_.warn(p.loc, "procedural bound is not finite in camera space: skipped");
+        return;
+    }
+    auto body = std::make_unique<ProceduralBody>(p, std::move(generator), b, TimeSpan{windowStart_, windowEnd_}, depth);
+    body->setSource(source(p.loc));
+    body->setPrimitiveId(primitiveId);
+    out.push_back(std::move(body));
+    ++proceduralsMade_;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (proceduralsByDepth_.size() <= size_t(depth)) proceduralsByDepth_.resize(size_t(depth) + 1, 0);
+    ++proceduralsByDepth_[size_t(depth)];
+}
+
+std::vector<uint64_t> BodyFactory::proceduralsMadeByDepth() const {
+    std::lock_guard<std::mutex> lock(const_cast<std::mutex&>(mutex_));
+    return proceduralsByDepth_;
+}
+
+void BodyFactory::addChildren(const ProceduralOutput& output, uint32_t parentId, int depth, std::vector<BodyPtr>& out) {
+    const Scene& fragment = output.scene;
+    uint64_t index = 0;
+    for (const BilinearPatchDesc& p : fragment.patches) addPatch(p, childId(parentId, index++), out);
+    for (const ProceduralDesc& p : fragment.procedurals) addProcedural(p, childId(parentId, index++), depth, out);
+    for (const GeneratedProcedural& g : output.procedurals)
+        addProcedural(g.desc, g.generator, childId(parentId, index++), depth, out);
+    for (const PatchMeshDesc& p : fragment.patchMeshes) addPatchMesh(p, childId(parentId, index++), out);
+    for (const SubdivisionMeshDesc& p : fragment.subdivisionMeshes) addSubdivisionMesh(p, childId(parentId, index++), out);
+    for (const QuadricDesc& q : fragment.quadrics) addQuadric(q, childId(parentId, index++), out);
+    for (const PolygonMeshDesc& p : fragment.polygonMeshes) addPolygonMesh(p, childId(parentId, index++), out);
+}
+
+void BodyFactory::reportOutgrown(ProceduralBody* p) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    outgrown_.push_back(p);
+}
+
+std::vector<ProceduralBody*> BodyFactory::takeOutgrown() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<ProceduralBody*> r;
+    r.swap(outgrown_);
+    return r;
+}
+
+}  // namespace streyes

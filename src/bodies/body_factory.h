@@ -1,0 +1,99 @@
+// Makes camera-space spacetime bodies from scene descriptions, for the time window of one render.
+//
+// Motion is turned into bodies here. A primitive's camera-space corners (control points) are
+// evaluated at the union of its own motion keys, its transform's keys and the camera's keys
+// (within the render's time window); between consecutive keys they move linearly, which makes
+// one TrilinearBody per segment (polygon faces likewise), or for patch meshes, subdivision meshes
+// and quadrics a SurfaceMesh per segment with a CurvedBody per face. A primitive that does not
+// move in camera space over the whole window is one still body (or mesh), split, diced and
+// shaded once for every frame. Procedurals become ProceduralBodies whose children the factory
+// builds the same way when they expand (it is their ChildBodyMaker).
+#pragma once
+
+#include <atomic>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "bodies/material.h"
+#include "geom/body.h"
+#include "geom/camera.h"
+#include "geom/surface_mesh.h"
+#include "procedural/procedural.h"
+#include "streyes/scene.h"
+
+namespace streyes {
+
+// Thread-safe: procedurals expand on worker threads while other buckets render.
+class BodyFactory final : public ChildBodyMaker {
+  public:
+    BodyFactory(const MotionTransform& worldToCamera, double windowStart, double windowEnd, Log& log);
+
+    double windowStart() const override { return windowStart_; }
+    double windowEnd() const override { return windowEnd_; }
+
+    // One body per motion segment of the patch, appended to `out`. Patches whose corners are not
+    // finite in camera space, or lie beyond 1e37 (where float overflows when they are split),
+    // warn and are skipped. With the camera set, a patch it cannot see (wholly inside the near
+    // plane) or sees imprecisely (so far from the world's origin that double rounding shows)
+    // warns too.
+    void addPatch(const BilinearPatchDesc& patch, uint32_t primitiveId, std::vector<BodyPtr>& out);
+    // Curved primitives: a SurfaceMesh per motion segment (kept by the factory) and a CurvedBody
+    // per face; polygon meshes: their faces like patches. The camera must be set: curved bodies
+    // measure their edges in raster space. A subdivision mesh OpenSubdiv rejects is an InputError.
+    void setCamera(const Camera* camera) { camera_ = camera; }
+    void addPatchMesh(const PatchMeshDesc& mesh, uint32_t primitiveId, std::vector<BodyPtr>& out);
+    void addSubdivisionMesh(const SubdivisionMeshDesc& mesh, uint32_t primitiveId, std::vector<BodyPtr>& out);
+    void addQuadric(const QuadricDesc& quadric, uint32_t primitiveId, std::vector<BodyPtr>& out);
+    void addPolygonMesh(const PolygonMeshDesc& mesh, uint32_t primitiveId, std::vector<BodyPtr>& out);
+    // A procedural, `depth` expansions below the scene (deeper than kMaxProceduralDepth: dropped
+    // with a warning), with the generator its description names (InputError when it names none)
+    // or one a generator made.
+    void addProcedural(const ProceduralDesc& procedural, uint32_t primitiveId, int depth, std::vector<BodyPtr>& out);
+    void addProcedural(const ProceduralDesc& procedural, std::shared_ptr<const ProceduralGenerator> generator,
+                       uint32_t primitiveId, int depth, std::vector<BodyPtr>& out);
+    // Everything a procedural produced; child ids are derived from the parent's, so they do not
+    // depend on which thread expanded it.
+    void addChildren(const ProceduralOutput& output, uint32_t parentId, int depth, std::vector<BodyPtr>& out) override;
+
+    // Camera-space box around an object-space box over the whole window (all transform keys).
+    Bounds3f cameraBound(const Bounds3d& objectBound, const MotionTransform& objectToWorld) const;
+
+    // Procedurals whose children reached outside their declared bound (the renderer renders again).
+    std::vector<ProceduralBody*> takeOutgrown();
+    void reportOutgrown(ProceduralBody* p) override;
+
+    uint64_t bodiesMade() const { return bodiesMade_.load(); }
+    uint64_t proceduralsMade() const { return proceduralsMade_.load(); }
+    std::vector<uint64_t> proceduralsMadeByDepth() const;
+
+  private:
+    const Material* material(const AttributesPtr& attributes);
+    const SourceLoc* source(const SourceLoc& loc);
+    // A curved primitive's segment times and camera-space points at each (false, with a warning,
+    // when they are not finite).
+    bool keyedPoints(const PrimitiveDesc& p, const std::vector<std::vector<Vec3d>>& P, std::vector<double>* ts,
+                     std::vector<std::vector<Vec3d>>* points);
+    // Keeps a segment's mesh and appends a body per face.
+    void addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint32_t primitiveId,
+                    std::vector<BodyPtr>& out);
+
+    MotionTransform worldToCamera_;
+    double windowStart_, windowEnd_;
+    Log& log_;
+    std::mutex mutex_;
+    std::deque<Material> materials_;  // deques: bodies keep pointers into them
+    std::deque<SourceLoc> sources_;
+    std::map<const Attributes*, const Material*> materialOf_;
+    std::map<std::pair<const std::string*, int>, const SourceLoc*> sourceOf_;
+    std::vector<AttributesPtr> keepAlive_;  // materials point at these
+    std::deque<std::unique_ptr<SurfaceMesh>> surfaces_;  // curved bodies point at these
+    const Camera* camera_ = nullptr;
+    std::vector<ProceduralBody*> outgrown_;
+    std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0};
+    std::vector<uint64_t> proceduralsByDepth_;  // under mutex_
+};
+
+}  // namespace streyes

@@ -1,0 +1,33 @@
+#include "bodies/material.h"
+
+namespace streyes {
+
+Material makeMaterial(const Attributes& a) {
+    Material m;
+    m.Cs = a.color;
+    m.Os = a.opacity;
+    m.shadingRate = float(a.shadingRate);
+    m.lights = a.lights;
+    m.attributes = &a;
+    const ParamList& p = a.surface.params;
+    const std::string& name = a.surface.name;
+    if (name == "constant") {
+        m.kind = SurfaceKind::Constant;
+    } else if (name == "matte") {
+        m.kind = SurfaceKind::Matte;
+        m.Ka = float(p.getFloat("Ka", 1));
+        m.Kd = float(p.getFloat("Kd", 1));
+    } else if (name == "plastic") {
+        m.kind = SurfaceKind::Plastic;
+        m.Ka = float(p.getFloat("Ka", 1));
+        m.Kd = float(p.getFloat("Kd", 0.5));
+        m.Ks = float(p.getFloat("Ks", 0.5));
+        m.roughness = float(p.getFloat("roughness", 0.1));
+        m.specularColor = p.getColor("specularcolor", {1, 1, 1});
+    } else {
+        m.kind = SurfaceKind::Default;
+    }
+    return m;
+}
+
+}  // namespace streyes

@@ -1,0 +1,30 @@
+// The scene as the renderer sees it: camera, shutter, lights and the root bodies in camera space,
+// for the time window of one render (frames [first, last] with their exposures).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "bodies/body_factory.h"
+#include "geom/body.h"
+#include "geom/camera.h"
+#include "geom/lights.h"
+#include "streyes/scene.h"
+
+namespace streyes {
+
+struct RenderScene {
+    Camera camera;
+    Shutter shutter;
+    LightSet lights;
+    double windowStart = 0, windowEnd = 0;    // [first + open, last + close]
+    std::unique_ptr<BodyFactory> factory;
+    std::vector<BodyPtr> roots;
+};
+
+// Builds the render scene for frames [firstFrame, lastFrame]. Camera resolution overrides
+// (xres/yres > 0) replace the scene's Format.
+std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame, int lastFrame, int xres,
+                                              int yres, Log& log);
+
+}  // namespace streyes

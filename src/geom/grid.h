@@ -1,0 +1,51 @@
+// A diced grid of micropolygons: (nu+1) x (nv+1) vertices, each at the body's t0 and t1.
+//
+// A micropolygon is the bilinear quad between four neighbouring vertices; its corners move
+// linearly from t0 to t1. Grids are reused from body to body within a bucket, so the vectors
+// keep their capacity and dicing allocates nothing once warm.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "streyes/vecmath.h"
+
+namespace streyes {
+
+struct Material;
+
+struct Grid {
+    int nu = 0, nv = 0;           // micropolygons along u and v
+    double t0 = 0, t1 = 0;        // time span, in frames
+    bool openEnd = false;         // [t0, t1): a sample exactly at t1 belongs to the next piece
+    bool moving = false;          // when false only the [0] arrays are filled
+    const Material* material = nullptr;
+    uint32_t primitiveId = 0;     // the body's primitive: breaks exact depth ties
+
+    std::vector<Vec3f> P[2];      // camera-space positions at t0, t1
+    std::vector<Vec3f> N[2];      // geometric normals (not normalised)
+    std::vector<Color> Cs;        // surface colour per vertex
+    std::vector<Color> Ci[2];     // shaded colour at t0, t1 (written by the shading stage)
+    // Lights that cast shadows: their contribution per vertex (shadowSlots colours a vertex, at
+    // t0 and t1), kept out of Ci for the per-sample shadow test. Set shadowSlots before dicing.
+    int shadowSlots = 0;
+    std::vector<Color> Cl[2];
+
+    int vertexCount() const { return (nu + 1) * (nv + 1); }
+    int index(int i, int j) const { return j * (nu + 1) + i; }  // i along u, j along v
+    void resize(int nu_, int nv_, bool moving_) {
+        nu = nu_;
+        nv = nv_;
+        moving = moving_;
+        size_t n = size_t(vertexCount());
+        for (int k = 0; k < (moving ? 2 : 1); ++k) {
+            P[k].resize(n);
+            N[k].resize(n);
+            Ci[k].resize(n);
+            if (shadowSlots) Cl[k].resize(n * size_t(shadowSlots));
+        }
+        Cs.resize(n);
+    }
+};
+
+}  // namespace streyes

@@ -1,0 +1,53 @@
+// Lights in camera space: the scene's light sources, carried through the camera's and their own
+// motion, evaluated at an instant. Shading reads them; so does the ray tracer, for shadow rays.
+#pragma once
+
+#include <vector>
+
+#include "streyes/scene.h"
+#include "streyes/transform.h"
+
+namespace streyes {
+
+enum class LightKind { Ambient, Distant, Point };
+
+struct Light {
+    LightKind kind = LightKind::Ambient;
+    Color color{1, 1, 1};        // intensity * lightcolor
+    Vec3d from{0, 0, 0}, to{0, 0, 1};  // light space
+    MotionTransform lightToWorld;
+    bool castsShadows = false;
+};
+
+// A light at one instant in camera space.
+struct CameraLight {
+    LightKind kind;
+    Color color;
+    Vec3f position;   // point lights
+    Vec3f direction;  // distant lights: unit vector from the surface towards the light
+    int shadowSlot = -1;  // >= 0: the light casts shadows (its slot among those that do)
+};
+
+class LightSet {
+  public:
+    LightSet() = default;
+    LightSet(const std::vector<LightDesc>& lights, const MotionTransform& worldToCamera);
+    bool empty() const { return lights_.empty(); }
+    size_t size() const { return lights_.size(); }
+    // Every light in camera space at time t (cached when nothing moves).
+    void at(double t, std::vector<CameraLight>& out) const;
+    bool isStatic() const { return static_; }
+    // Lights that cast shadows (not ambient lights), numbered 0 .. shadowSlots()-1 in
+    // declaration order; shadowLight(slot) is the light's index.
+    int shadowSlots() const { return int(shadowLights_.size()); }
+    int shadowLight(int slot) const { return shadowLights_[size_t(slot)]; }
+
+  private:
+    std::vector<Light> lights_;
+    MotionTransform worldToCamera_;
+    bool static_ = true;
+    std::vector<CameraLight> staticLights_;
+    std::vector<int> shadowLights_;
+};
+
+}  // namespace streyes

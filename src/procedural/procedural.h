@@ -1,0 +1,142 @@
+// Procedural primitives: a bound now, geometry later ("model only what a scene needs").
+//
+// A procedural is declared with a conservative bound. It enters the split loop as a
+// ProceduralBody whose camera-space bound covers the whole animation; only when that bound
+// survives view and occlusion culling in some bucket is it expanded, once for all buckets and
+// threads (the children are kept and shared). Children are primitives in the procedural's object
+// space and inherit its attributes; they may be procedurals themselves (nested expansion:
+// forest -> cells -> trees -> parts).
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "geom/body.h"
+#include "streyes/rib.h"
+#include "streyes/scene.h"
+
+namespace streyes {
+
+class ProceduralBody;
+class ProceduralGenerator;
+
+// What expansion knows about the procedural being expanded.
+struct ExpandContext {
+    double detail = 0;                 // raster area of the bound in pixels (RenderMan's "detail")
+    double detailScale = 1;            // --detail: multiplies the generators' level-of-detail thresholds
+    MotionTransform objectToWorld;     // the procedural's transform
+    AttributesPtr attributes;          // its attribute state, inherited by the children
+    SourceLoc loc;                     // where it was declared
+    double windowStart = 0, windowEnd = 0;  // the render's time window, frames (for animated children)
+    int depth = 0;                     // nesting: 0 for a procedural declared in the scene
+    Log* log = nullptr;
+};
+
+// A procedural a generator made itself (the forest's cells and trees), with its generator: the
+// description alone does not say how to expand it.
+struct GeneratedProcedural {
+    ProceduralDesc desc;  // bound, transform, attributes and place; kind and args for messages only
+    std::shared_ptr<const ProceduralGenerator> generator;
+};
+
+// What one expansion produces: primitives (a scene fragment, whose procedurals are declared in
+// RIB and made into generators like the scene's) and procedurals made by the generator.
+struct ProceduralOutput {
+    Scene scene;
+    std::vector<GeneratedProcedural> procedurals;
+};
+
+// The code behind a procedural: turns it into more primitives. Implementations are immutable
+// and may be shared; expand may run on any thread.
+class ProceduralGenerator {
+  public:
+    virtual ~ProceduralGenerator() = default;
+    // Appends the children to `out` (primitives and nested procedurals, with their object-to-world
+    // transforms and attributes). Throws InputError naming ctx.loc when it cannot.
+    virtual void expand(const ExpandContext& ctx, ProceduralOutput& out) const = 0;
+    virtual std::string describe() const = 0;  // for messages: "DelayedReadArchive tree.rib"
+};
+
+// What turns an expansion's output into camera-space bodies: the render scene's BodyFactory
+// (src/bodies/), which lies above this stage and is reached only through this interface.
+class ChildBodyMaker {
+  public:
+    virtual ~ChildBodyMaker() = default;
+    // The render's time window, frames.
+    virtual double windowStart() const = 0;
+    virtual double windowEnd() const = 0;
+    // Appends a body (or several) for everything in `output`, `depth` expansions below the scene;
+    // ids of the children are derived from `parentId`, so they do not depend on the thread.
+    virtual void addChildren(const ProceduralOutput& output, uint32_t parentId, int depth,
+                             std::vector<std::unique_ptr<Body>>& out) = 0;
+    // A procedural whose children reached outside its declared bound (rendered again).
+    virtual void reportOutgrown(ProceduralBody* procedural) = 0;
+};
+
+// A procedural in the split loop.
+class ProceduralBody final : public Body {
+  public:
+    ProceduralBody(ProceduralDesc desc, std::shared_ptr<const ProceduralGenerator> generator,
+                   const Bounds3f& cameraBound, TimeSpan window, int depth);
+
+    bool expands() const override { return true; }
+    LBBox3f bound() const override;
+    RasterMeasure measure(const Camera& camera) const override;
+    CameraExtents cameraExtents() const override;
+    void split(SplitAxis, std::unique_ptr<Body> out[2]) const override;  // procedurals expand instead
+    std::unique_ptr<Body> restrictedTo(double a, double b) const override;
+    void dice(int, int, Grid&) const override;
+
+    const ProceduralDesc& desc() const { return desc_; }
+    const ProceduralGenerator& generator() const { return *generator_; }
+    int depth() const { return depth_; }
+
+    // Expands (first call, on any thread; the others wait) and returns the children as
+    // camera-space bodies. Rethrows the expansion's error on every call. *expandedHere is set
+    // when this call did the expansion (so that counting expansions does not depend on timing).
+    const std::vector<BodyPtr>& children(ChildBodyMaker& maker, const Camera& camera, Log& log,
+                                         bool* expandedHere = nullptr) const;
+    bool expanded() const { return expanded_.load(std::memory_order_acquire); }
+
+    // Children that reach outside the declared bound: the union of everything, for the renderer to
+    // render again where the declared bound was too small.
+    bool outgrewBound() const { return outgrew_; }
+    const Bounds3f& grownBound() const { return grown_; }
+    // From then on, cull with the grown bound, and so do the procedurals this one came from
+    // (their bounds were made from its declared one). Called by the renderer between passes.
+    void useGrownBound();
+
+  private:
+    void expand(ChildBodyMaker& maker, const Camera& camera, Log& log) const;
+
+    ProceduralDesc desc_;
+    std::shared_ptr<const ProceduralGenerator> generator_;
+    Bounds3f bound_;   // camera space, over the whole animation
+    int depth_;
+    bool useGrown_ = false;
+    mutable const ProceduralBody* parent_ = nullptr;  // the procedural that produced this one
+
+    mutable std::once_flag once_;
+    mutable std::atomic<bool> expanded_{false};
+    mutable std::vector<BodyPtr> children_;
+    mutable std::exception_ptr error_;
+    mutable bool outgrew_ = false;
+    mutable Bounds3f grown_;
+};
+
+// The generator behind a declared procedural, one of those a RIB file can ask for:
+//   Procedural "DelayedReadArchive" ["file.rib"] [bound]
+//   Procedural "RunProgram" ["program args" "datablock"] [bound]
+//   Procedural "DynamicLoad" ["forest" | "tree" "key=value ..."] [bound]
+// Relative names are looked up in desc.directory first. Throws InputError naming desc.loc for an
+// unknown kind or name, bad arguments, a missing archive or program, or one the scene may not
+// reach (SceneAccess, rib.h).
+std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const ProceduralDesc& desc);
+
+// Limits, documented in docs/SCENE-FORMAT.md.
+constexpr int kMaxProceduralDepth = 32;  // nested expansions; deeper ones warn and are dropped
+
+}  // namespace streyes

@@ -1,0 +1,18 @@
+// Coverage for occlusion culling: which pixel-frame cells of a bucket are fully covered by
+// opaque hits nearer than a depth boundary. The cull stage sums it into a SummedVolumeTable.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raster/image_block.h"
+
+namespace streyes {
+
+// Coverage of a bucket's block of samples: cell (x, y, frame) is 1 when every sample of the
+// pixel in that frame has a hit nearer than `boundary`. Cells already set stay set (depths only
+// ever decrease, and the boundary only grows). Returns how many cells were newly covered.
+// coverage is indexed [(fi * rect height + y - y0) * rect width + x - x0].
+uint64_t updateCoverage(const ImageBlock& block, float boundary, std::vector<uint8_t>& coverage);
+
+}  // namespace streyes

@@ -1,0 +1,87 @@
+// Sampling diced grids: which samples of an ImageBlock each micropolygon covers.
+//
+// A micropolygon is the quad between four neighbouring grid vertices, tested as two triangles
+// split along its (0,0)-(1,1) diagonal. Its corners move linearly from t0 to t1 in camera
+// space; the rasterizer works one time slice at a time: it projects the grid at the two ends
+// of the slice (so perspective is exact at slice boundaries and the raster path of a vertex is
+// a straight segment inside a slice), rejects the grid's and then each quad's bound for that
+// slice against the block, and tests only the one sample per pixel the slice holds.
+//
+// Edges are evaluated in a canonical direction, so two triangles sharing an edge get exactly
+// opposite edge values, and a sample exactly on an edge goes to exactly one of them (as if it
+// were nudged by (-e^2, e)): no cracks and no double hits inside a grid or between grids that
+// share vertices.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "geom/camera.h"
+#include "geom/grid.h"
+#include "raster/image_block.h"
+
+namespace streyes {
+
+struct RasterCounters {
+    uint64_t micropolygons = 0;
+    uint64_t sampleTests = 0;    // samples given the full inside test (after bound and time checks)
+    uint64_t sampleHits = 0;     // tests that found the sample inside
+    uint64_t firstHits = 0;      // samples that had no hit before (adaptive depth layers use it)
+};
+
+class GridRasterizer {
+  public:
+    // Samples every micropolygon of a shaded grid into the block's frames and slices.
+    void rasterize(const Grid& grid, const Camera& camera, const Shutter& shutter, ImageBlock& block,
+                   RasterCounters& counters);
+    // For tests of watertightness: when set, every hit (before the depth test) adds to
+    // counts[sample index in the block] the number of the micropolygon's triangles holding the
+    // sample (2 where a micropolygon folded at a silhouette covers it twice), and to windings[]
+    // their orientations in raster space (+1 or -1 each): 0 for a closed surface.
+    void countHitsInto(uint32_t* counts, int32_t* windings) {
+        hitCounts_ = counts;
+        windings_ = windings;
+    }
+
+  private:
+    struct RasterVertex {
+        float x, y, z;
+    };
+    // One time slice of one frame that the grid's time span meets.
+    struct Slice {
+        int fi, k;          // frame index in the block, slice index
+        double ta, tb;      // the slice clipped to the grid's span (frames)
+        float tfA, tfB;     // the same as fractions of the frame's exposure
+        bool checkTime;     // the grid covers only part of the slice
+        bool openB;         // ... and ends at tfB half-open
+    };
+    // The part of one frame's exposure a still grid exists in.
+    struct FrameSpan {
+        int fi;
+        bool whole;
+        bool openB;  // the grid ends at tfB half-open
+        float tfA, tfB;
+    };
+    void collectSlices(const Grid& grid, const Shutter& shutter, const ImageBlock& block);
+    void collectFrames(const Grid& grid, const Shutter& shutter, const ImageBlock& block);
+    // Shadowed: the grid carries the contributions of lights that cast shadows (Grid::Cl), kept
+    // with each hit; a separate instance, so that scenes without them pay nothing.
+    template <bool Shadowed>
+    void sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
+    template <bool Shadowed>
+    void sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
+    // Raster positions at time t, and optionally the camera-space positions they come from.
+    void project(const Grid& grid, double t, const Camera& camera, std::vector<RasterVertex>& out,
+                 std::vector<Vec3f>* cameraOut = nullptr) const;
+
+    // Scratch, reused from grid to grid.
+    std::vector<RasterVertex> ra_, rb_;
+    std::vector<Vec3f> ca_, cb_;  // camera space at the ends of a slice (perspective, moving grids)
+    std::vector<Slice> slices_;
+    std::vector<FrameSpan> frames_;
+    uint32_t* hitCounts_ = nullptr;
+    int32_t* windings_ = nullptr;
+};
+
+}  // namespace streyes

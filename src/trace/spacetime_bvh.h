@@ -1,0 +1,107 @@
+// Glassner's spacetime hierarchy (1988): adaptive subdivision of spacetime down, tight
+// bounding volumes up.
+//
+// Down: the 4D box of the scene (x, y, z and the time window; the eye and the lights included)
+// is cut into 16 children by halving x, y, z and t, while a cell holds more than a few bodies
+// and a depth limit is not reached. Each body goes into every child it reaches, and each child
+// asks the body for its bound within the child's spacetime region (Body::boundDuring over the
+// part of the child's time the body can be inside the child's box).
+// Up: each node's bounding volume is the union of what it holds, clipped to its cell: a 3D box
+// and a time interval. Cells do not overlap, so neither do the bounding volumes of siblings. A
+// node with one child is replaced by the child.
+//
+// Time is cut only where it separates something: a cell whose bodies are all still and exist
+// over the cell's whole time span is cut in x, y and z only (8 children). Glassner cuts t
+// everywhere; for still geometry that builds the same 3D subdivision again for each time half
+// without removing a single intersection test (see docs/ARCHITECTURE.md).
+//
+// The frame-by-frame baseline builds the same structure over one frame's exposure with t never
+// cut: a 3D hierarchy (octree-like cells, tight boxes) per frame.
+//
+// Traversal visits the children a ray enters in order of entry distance and skips those that
+// start beyond the nearest hit found so far. A body held by several cells is tested once per ray
+// (a mailbox). Hot loop: no allocation, no virtual call (bodies are TrilinearBodies, read through
+// inline accessors).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "geom/body.h"
+#include "streyes/render_options.h"
+#include "trace/ray_patch.h"
+
+namespace streyes {
+
+struct TraceHit {
+    float t = 0, u = 0, v = 0;
+    uint32_t body = 0;  // index into the hierarchy's bodies
+};
+
+// Per-thread scratch of the traversal, and what it counts.
+struct TraceContext {
+    std::vector<uint32_t> mailbox;  // per body: the last ray that tested it
+    uint32_t rayId = 0;
+    struct Entry {
+        uint32_t node;
+        float tEnter;
+    };
+    std::vector<Entry> stack;  // sized once: 16 a level
+    uint64_t bodyTests = 0;  // ray/body intersection tests (the paper's "intersections")
+    uint64_t boxTests = 0;   // ray/bounding-volume tests (time and box)
+};
+
+class SpacetimeBVH {
+  public:
+    SpacetimeBVH() = default;
+
+    // Builds over the bodies that exist during [ta, tb]. `include` widens the root cell (the eye
+    // and the lights, as in the paper). The bodies must outlive the hierarchy; it keeps pointers
+    // to those it holds, and TraceHit::body indexes them (bodies()).
+    void build(const std::vector<const TrilinearBody*>& bodies, double ta, double tb, const Bounds3f& include,
+               const HierarchyOptions& options);
+
+    // Nearest hit with tMin < t < tMax at time `time`; false when none.
+    bool intersect(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit, TraceContext& ctx) const;
+    // Whether anything is hit with tMin < t < tMax at time `time` (shadow rays).
+    bool occluded(const Ray& ray, double time, float tMin, float tMax, TraceContext& ctx) const;
+
+    // Bounding volumes built: the nodes of the final tree, leaves included.
+    size_t nodeCount() const { return nodes_.size(); }
+    size_t leafReferences() const { return refs_.size(); }  // body references held by leaves
+    int depth() const { return depth_; }
+    const std::vector<const TrilinearBody*>& bodies() const { return bodies_; }
+
+    // A leaf's reference to a body, with the time the body spends in the leaf's cell: rays at
+    // other times skip it without reading the body.
+    struct Reference {
+        uint32_t body;
+        float ta, tb;
+    };
+    // The node layout, for tests: a 4D box; children (or leaf bodies) are a contiguous range.
+    struct Node {
+        Bounds3f box;
+        float ta, tb;          // time interval, rounded outwards
+        uint32_t first;        // first child in nodes_, or first reference in refs_
+        uint32_t count;        // children or references
+        bool leaf;
+        // A cut in time: the first `before` children end by tSplitLo, the others begin at
+        // tSplitHi or later (tSplit rounded down and up), so a ray visits one half.
+        bool timeCut;
+        uint16_t before;
+        float tSplitLo, tSplitHi;
+    };
+    const std::vector<Node>& nodes() const { return nodes_; }
+    const std::vector<Reference>& references() const { return refs_; }
+
+  private:
+    template <bool AnyHit>
+    bool traverse(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit, TraceContext& ctx) const;
+
+    std::vector<const TrilinearBody*> bodies_;
+    std::vector<Node> nodes_;   // nodes_[0] is the root (when there is one)
+    std::vector<Reference> refs_;
+    int depth_ = 0;
+};
+
+}  // namespace streyes

@@ -1,0 +1,94 @@
+// The ray tracer stage: spacetime hierarchies over a render's bodies, eye rays through a
+// bucket's samples, and shadow rays at each sample's own time.
+//
+// It fills the same ImageBlock the rasterizer fills, sample for sample (the same jittered
+// (x, y, t)), so the same resolveTile turns either into pixels and the two are comparable
+// sample by sample. An eye ray hits the exact bilinear patch its trilinear body is at the
+// sample's time (not micropolygons), and the hit is shaded by the shaders the grids use
+// (shadePoint) with the bilinear Cs and the patch normal at the hit.
+//
+// Shadows, in both the ray tracer and the rasterizer: the contribution of each light that casts
+// shadows is kept apart (shadePoint's `shadowed`), and added where a shadow ray from the hit
+// point, at the sample's time, reaches the light through the hierarchy. Shadow rays start one
+// pixel footprint away from the surface (the bias that keeps a surface from shadowing itself:
+// the rasterizer's hit lies on a micropolygon, a hair off the exact patch).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "raster/image_block.h"
+#include "bodies/render_scene.h"
+#include "trace/spacetime_bvh.h"
+#include "streyes/stats.h"
+
+namespace streyes {
+
+// The bodies the ray tracer can intersect and the hierarchies over them, for one render.
+class TraceScene {
+  public:
+    // Takes the scene's root bodies: trilinear bodies as they are, keyed patches as their
+    // trilinear segments (cut at their keys, as the split loop cuts them), procedurals expanded
+    // (all of them: rays go anywhere, shadow rays off screen too). Other kinds of body cannot be
+    // intersected yet and are left out with one warning. Throws what a procedural's expansion
+    // throws.
+    TraceScene(const RenderScene& scene, Log& log);
+
+    // One 4D hierarchy over the render's whole window [windowStart, windowEnd].
+    void buildSpacetime(const HierarchyOptions& options);
+    // One 3D hierarchy per frame of [first, first + count) (over its exposure), replacing those
+    // built before: the frame-by-frame baseline. Frames are built in parallel (TBB).
+    void buildFrames(int first, int count, const HierarchyOptions& options);
+    // The hierarchy rays of frame f go through.
+    const SpacetimeBVH& hierarchy(int frame) const {
+        return frames_.empty() ? spacetime_ : frames_[size_t(frame - framesFirst_)];
+    }
+
+    const RenderScene& scene() const { return scene_; }
+    size_t bodyCount() const { return bodies_.size(); }
+    // Shadow rays start this far (camera-space units) from a surface at depth z: one pixel.
+    float shadowBias(float z) const;
+
+    // Totals over every build so far: nodes built, and CPU seconds spent building (builds run
+    // in parallel, alone).
+    uint64_t boundingVolumes = 0;
+    double buildSeconds = 0;
+    // Procedurals this expanded (first), by nesting depth, for the render's counters.
+    std::vector<uint64_t> proceduralsExpandedByDepth;
+
+  private:
+    void collect(const Body& body, Log& log);
+
+    const RenderScene& scene_;
+    std::vector<const TrilinearBody*> bodies_;
+    std::vector<BodyPtr> pieces_;  // segments of keyed patches
+    Bounds3f include_;  // the eye and the point lights: part of the root cell, as in the paper
+    SpacetimeBVH spacetime_;
+    std::vector<SpacetimeBVH> frames_;
+    int framesFirst_ = 0;
+};
+
+// One thread's ray tracer for buckets: its traversal scratch and light cache.
+class SampleTracer {
+  public:
+    // Every sample of the block: the nearest hit at the sample's time, shaded, with shadow
+    // rays. Writes the block's hits as the rasterizer would (z, colour, alpha 1).
+    void traceSamples(ImageBlock& block, const TraceScene& trace, RenderCounters& counters);
+    // The rasterizer's shadows: adds to each hit sample the contributions the rasterizer kept
+    // apart (block.shadowed()) of the lights its shadow rays reach.
+    void shadeShadows(ImageBlock& block, const TraceScene& trace, RenderCounters& counters);
+
+  private:
+    const std::vector<CameraLight>& lightsAt(const LightSet& lights, double t);
+    // c plus each shadowed[k] whose light a shadow ray from p at `time` reaches.
+    Color addVisibleLights(Color c, Vec3f p, double time, const Color* shadowed, const TraceScene& trace,
+                           const SpacetimeBVH& bvh, RenderCounters& counters);
+
+    TraceContext ctx_;
+    std::vector<CameraLight> lights_;
+    double lightsTime_ = 0;
+    bool lightsValid_ = false;
+    std::vector<Color> shadowed_;
+};
+
+}  // namespace streyes
