@@ -46,6 +46,7 @@ class Package(unittest.TestCase):
             run(["cmake", "--install", BUILD, "--prefix", prefix])
             # Only public headers are installed, and nothing of src/.
             headers = sorted(os.listdir(os.path.join(prefix, "include", "streyes")))
+            self.assertEqual([h for h in headers if not h.endswith(".h")], [])
             self.assertIn("renderer.h", headers)
             self.assertNotIn("rasterizer.h", headers)
             self.assertTrue(os.path.isfile(os.path.join(prefix, "bin", "streyes")))
