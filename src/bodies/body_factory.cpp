@@ -27,9 +27,12 @@ bool fitsCameraSpace(Vec3d v) {
            std::fabs(v.z) <= kMaxCameraCoordinate;
 }
 
+// Said once per render, for the first primitive it happens to: a mesh with a million bad faces
+// must not write a million lines.
+const char* kNonFiniteWarning = "primitive has non-finite coordinates in camera space: skipped (so are any others)";
 const char* kTooLargeWarning =
     "primitive reaches beyond 1e37 in camera space, where single precision overflows when it is split: skipped "
-    "(scale the scene down)";
+    "(scale the scene down; said once for all such primitives)";
 
 // Far from the world's origin, double precision runs out: a point at world distance M comes to
 // camera space with an error of a few units in M's last place (2^-52 M), however near the camera
@@ -82,12 +85,6 @@ std::vector<double> segmentTimes(const std::vector<double>& keys, double a, doub
 }
 
 std::vector<double> keysOf(const MotionTransform& m) { return m.isStatic() ? std::vector<double>{} : m.times(); }
-
-// Child ids: a hash of the parent's id and the child's index (never 0 or the "no hit" value).
-uint32_t childId(uint32_t parent, uint64_t index) {
-    uint32_t id = uint32_t(mix64((uint64_t(parent) << 32) ^ (index + 1)) >> 32);
-    return id == 0 || id == UINT32_MAX ? 1 : id;
-}
 
 // Segments meet at their keys: all but the last are half-open (TimeSpan), so that a sample exactly
 // at a key belongs to the segment that starts there.
@@ -162,7 +159,7 @@ const SourceLoc* BodyFactory::source(const SourceLoc& loc) {
     return sourceOf_.emplace(key, &sources_.back()).first->second;
 }
 
-void BodyFactory::addPatch(const BilinearPatchDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out) {
     const Material* mat = material(p.attributes);
     std::array<Color, 4> cs;
     for (int c = 0; c < 4; ++c) cs[size_t(c)] = p.hasCs ? p.Cs[size_t(c)] : mat->Cs;
@@ -188,11 +185,11 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint32_t primitiveId, std
         }
     }
     if (!finite) {
-        log_.warn(p.loc, "primitive has non-finite coordinates in camera space: skipped");
+        log_.warnOnce("nonfinite", p.loc, kNonFiniteWarning);
         return;
     }
     if (!fits) {
-        log_.warn(p.loc, kTooLargeWarning);
+        log_.warnOnce("toolarge", p.loc, kTooLargeWarning);
         return;
     }
     if (camera_ && zmin > 0 && zmax < camera_->nearClip())
@@ -271,11 +268,11 @@ bool BodyFactory::keyedPoints(const PrimitiveDesc& p, const std::vector<std::vec
         for (Vec3d& q : pts) {
             q = m.point(q);
             if (!isFinite(q)) {
-                log_.warn(p.loc, "primitive has non-finite coordinates in camera space: skipped");
+                log_.warnOnce("nonfinite", p.loc, kNonFiniteWarning);
                 return false;
             }
             if (!fitsCameraSpace(q)) {
-                log_.warn(p.loc, kTooLargeWarning);
+                log_.warnOnce("toolarge", p.loc, kTooLargeWarning);
                 return false;
             }
         }
@@ -283,7 +280,7 @@ bool BodyFactory::keyedPoints(const PrimitiveDesc& p, const std::vector<std::vec
     return true;
 }
 
-void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint32_t primitiveId,
+void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint64_t primitiveId,
                              std::vector<BodyPtr>& out) {
     mesh->setSource(src);
     if (mesh->material()) mesh->setShadingRate(mesh->material()->shadingRate);
@@ -297,7 +294,7 @@ void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc*
     surfaces_.push_back(std::move(mesh));
 }
 
-void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out) {
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;
@@ -315,14 +312,15 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint32_t primitiveId, std
 }
 
 // The topology once, the limit surface per key, a SubdivisionMesh per segment.
-void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out) {
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;
     auto shape = std::make_shared<const SubdivisionShape>(p);
     if (shape->faceCount() == 0) {
-        log_.warn(p.loc, "SubdivisionMesh has no face with a limit surface (is it all boundary? see "
-                         "\"interpolateboundary\"): skipped");
+        log_.warnOnce("subdiv-nolimit", p.loc,
+                      "SubdivisionMesh has no face with a limit surface (is it all boundary? see "
+                      "\"interpolateboundary\"): skipped");
         return;
     }
     const Material* mat = material(p.attributes);
@@ -341,7 +339,7 @@ void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint32_t prim
 }
 
 // A QuadricMesh per segment: the quadric's arguments and transform at both ends.
-void BodyFactory::addQuadric(const QuadricDesc& q, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::vector<BodyPtr>& out) {
     const MotionTransform objectToCamera = q.objectToWorld.then(worldToCamera_);
     std::vector<double> keyTimes = keysOf(objectToCamera);
     if (q.params.size() > 1) keyTimes = unionTimes(keyTimes, q.times);
@@ -360,7 +358,7 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint32_t primitiveId, std::ve
             keys[i].params[a] = s == 0 ? q.params[k][a] : (1 - s) * q.params[k][a] + s * q.params[k + 1][a];
         keys[i].toCamera = objectToCamera.at(ts[i]);
         if (!keys[i].toCamera.isFinite()) {
-            log_.warn(q.loc, "primitive has non-finite coordinates in camera space: skipped");
+            log_.warnOnce("nonfinite", q.loc, kNonFiniteWarning);
             return;
         }
     }
@@ -379,7 +377,7 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint32_t primitiveId, std::ve
 }
 
 // Each face (a triangle or a convex quad) as the bilinear patch it is.
-void BodyFactory::addPolygonMesh(const PolygonMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+void BodyFactory::addPolygonMesh(const PolygonMeshDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out) {
     BilinearPatchDesc face;
     face.times = p.times;
     face.objectToWorld = p.objectToWorld;
@@ -395,12 +393,12 @@ void BodyFactory::addPolygonMesh(const PolygonMeshDesc& p, uint32_t primitiveId,
     }
 }
 
-void BodyFactory::addProcedural(const ProceduralDesc& p, uint32_t primitiveId, int depth, std::vector<BodyPtr>& out) {
+void BodyFactory::addProcedural(const ProceduralDesc& p, uint64_t primitiveId, int depth, std::vector<BodyPtr>& out) {
     addProcedural(p, makeProceduralGenerator(p), primitiveId, depth, out);
 }
 
 void BodyFactory::addProcedural(const ProceduralDesc& p, std::shared_ptr<const ProceduralGenerator> generator,
-                                uint32_t primitiveId, int depth, std::vector<BodyPtr>& out) {
+                                uint64_t primitiveId, int depth, std::vector<BodyPtr>& out) {
     if (depth > kMaxProceduralDepth) {
         log_.warnOnce("procedural-depth", p.loc,
                       "procedurals nested more than " + std::to_string(kMaxProceduralDepth) +
@@ -409,7 +407,7 @@ void BodyFactory::addProcedural(const ProceduralDesc& p, std::shared_ptr<const P
     }
     Bounds3f b = cameraBound(p.bound, p.objectToWorld);
     if (!isFinite(b.lo) || !isFinite(b.hi)) {
-        log_.warn(p.loc, "procedural bound is not finite in camera space: skipped");
+        log_.warnOnce("procedural-nonfinite", p.loc, "procedural bound is not finite in camera space: skipped");
         return;
     }
     auto body = std::make_unique<ProceduralBody>(p, std::move(generator), b, TimeSpan{windowStart_, windowEnd_}, depth);
@@ -427,17 +425,22 @@ std::vector<uint64_t> BodyFactory::proceduralsMadeByDepth() const {
     return proceduralsByDepth_;
 }
 
-void BodyFactory::addChildren(const ProceduralOutput& output, uint32_t parentId, int depth, std::vector<BodyPtr>& out) {
+uint64_t childPrimitiveId(uint64_t parent, uint64_t index) {
+    const uint64_t id = hashCombine(mix64(parent), index + 1);
+    return id == 0 || id == UINT64_MAX ? 1 : id;
+}
+
+void BodyFactory::addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out) {
     const Scene& fragment = output.scene;
     uint64_t index = 0;
-    for (const BilinearPatchDesc& p : fragment.patches) addPatch(p, childId(parentId, index++), out);
-    for (const ProceduralDesc& p : fragment.procedurals) addProcedural(p, childId(parentId, index++), depth, out);
+    for (const BilinearPatchDesc& p : fragment.patches) addPatch(p, childPrimitiveId(parentId, index++), out);
+    for (const ProceduralDesc& p : fragment.procedurals) addProcedural(p, childPrimitiveId(parentId, index++), depth, out);
     for (const GeneratedProcedural& g : output.procedurals)
-        addProcedural(g.desc, g.generator, childId(parentId, index++), depth, out);
-    for (const PatchMeshDesc& p : fragment.patchMeshes) addPatchMesh(p, childId(parentId, index++), out);
-    for (const SubdivisionMeshDesc& p : fragment.subdivisionMeshes) addSubdivisionMesh(p, childId(parentId, index++), out);
-    for (const QuadricDesc& q : fragment.quadrics) addQuadric(q, childId(parentId, index++), out);
-    for (const PolygonMeshDesc& p : fragment.polygonMeshes) addPolygonMesh(p, childId(parentId, index++), out);
+        addProcedural(g.desc, g.generator, childPrimitiveId(parentId, index++), depth, out);
+    for (const PatchMeshDesc& p : fragment.patchMeshes) addPatchMesh(p, childPrimitiveId(parentId, index++), out);
+    for (const SubdivisionMeshDesc& p : fragment.subdivisionMeshes) addSubdivisionMesh(p, childPrimitiveId(parentId, index++), out);
+    for (const QuadricDesc& q : fragment.quadrics) addQuadric(q, childPrimitiveId(parentId, index++), out);
+    for (const PolygonMeshDesc& p : fragment.polygonMeshes) addPolygonMesh(p, childPrimitiveId(parentId, index++), out);
 }
 
 void BodyFactory::reportOutgrown(ProceduralBody* p) {

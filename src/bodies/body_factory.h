@@ -26,6 +26,12 @@
 
 namespace streyes {
 
+// A procedural's children get ids hashed from the parent's id and their index: a pure function,
+// so ids do not depend on which thread expanded what. 64 bits, because ids decide exact depth
+// ties: among the ~10^6 bodies of a forest, 32-bit hashes collide by the dozen; 64-bit ones
+// collide with a chance of about 10^-7. Never 0, never the "no hit" value.
+uint64_t childPrimitiveId(uint64_t parent, uint64_t index);
+
 // Thread-safe: procedurals expand on worker threads while other buckets render.
 class BodyFactory final : public ChildBodyMaker {
   public:
@@ -39,24 +45,24 @@ class BodyFactory final : public ChildBodyMaker {
     // warn and are skipped. With the camera set, a patch it cannot see (wholly inside the near
     // plane) or sees imprecisely (so far from the world's origin that double rounding shows)
     // warns too.
-    void addPatch(const BilinearPatchDesc& patch, uint32_t primitiveId, std::vector<BodyPtr>& out);
+    void addPatch(const BilinearPatchDesc& patch, uint64_t primitiveId, std::vector<BodyPtr>& out);
     // Curved primitives: a SurfaceMesh per motion segment (kept by the factory) and a CurvedBody
     // per face; polygon meshes: their faces like patches. The camera must be set: curved bodies
     // measure their edges in raster space. A subdivision mesh OpenSubdiv rejects is an InputError.
     void setCamera(const Camera* camera) { camera_ = camera; }
-    void addPatchMesh(const PatchMeshDesc& mesh, uint32_t primitiveId, std::vector<BodyPtr>& out);
-    void addSubdivisionMesh(const SubdivisionMeshDesc& mesh, uint32_t primitiveId, std::vector<BodyPtr>& out);
-    void addQuadric(const QuadricDesc& quadric, uint32_t primitiveId, std::vector<BodyPtr>& out);
-    void addPolygonMesh(const PolygonMeshDesc& mesh, uint32_t primitiveId, std::vector<BodyPtr>& out);
+    void addPatchMesh(const PatchMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out);
+    void addSubdivisionMesh(const SubdivisionMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out);
+    void addQuadric(const QuadricDesc& quadric, uint64_t primitiveId, std::vector<BodyPtr>& out);
+    void addPolygonMesh(const PolygonMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out);
     // A procedural, `depth` expansions below the scene (deeper than kMaxProceduralDepth: dropped
     // with a warning), with the generator its description names (InputError when it names none)
     // or one a generator made.
-    void addProcedural(const ProceduralDesc& procedural, uint32_t primitiveId, int depth, std::vector<BodyPtr>& out);
+    void addProcedural(const ProceduralDesc& procedural, uint64_t primitiveId, int depth, std::vector<BodyPtr>& out);
     void addProcedural(const ProceduralDesc& procedural, std::shared_ptr<const ProceduralGenerator> generator,
-                       uint32_t primitiveId, int depth, std::vector<BodyPtr>& out);
+                       uint64_t primitiveId, int depth, std::vector<BodyPtr>& out);
     // Everything a procedural produced; child ids are derived from the parent's, so they do not
     // depend on which thread expanded it.
-    void addChildren(const ProceduralOutput& output, uint32_t parentId, int depth, std::vector<BodyPtr>& out) override;
+    void addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out) override;
 
     // Camera-space box around an object-space box over the whole window (all transform keys).
     Bounds3f cameraBound(const Bounds3d& objectBound, const MotionTransform& objectToWorld) const;
@@ -77,7 +83,7 @@ class BodyFactory final : public ChildBodyMaker {
     bool keyedPoints(const PrimitiveDesc& p, const std::vector<std::vector<Vec3d>>& P, std::vector<double>* ts,
                      std::vector<std::vector<Vec3d>>* points);
     // Keeps a segment's mesh and appends a body per face.
-    void addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint32_t primitiveId,
+    void addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint64_t primitiveId,
                     std::vector<BodyPtr>& out);
 
     MotionTransform worldToCamera_;

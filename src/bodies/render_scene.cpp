@@ -19,7 +19,7 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     rs->factory->setCamera(&rs->camera);
     // Primitive ids in scene order from 1: patches, then procedurals, then the curved and
     // polygon-mesh primitives.
-    uint32_t id = 0;
+    uint64_t id = 0;
     for (const BilinearPatchDesc& p : scene.patches) rs->factory->addPatch(p, ++id, rs->roots);
     for (const ProceduralDesc& p : scene.procedurals) rs->factory->addProcedural(p, ++id, 0, rs->roots);
     for (const PatchMeshDesc& p : scene.patchMeshes) rs->factory->addPatchMesh(p, ++id, rs->roots);

@@ -65,8 +65,8 @@ class Body {
     void setSource(const SourceLoc* s) { source_ = s; }
     // The primitive it came from, in scene order: breaks exact depth ties between surfaces so
     // that the image does not depend on the order bodies are drawn in.
-    uint32_t primitiveId() const { return primitiveId_; }
-    void setPrimitiveId(uint32_t id) { primitiveId_ = id; }
+    uint64_t primitiveId() const { return primitiveId_; }
+    void setPrimitiveId(uint64_t id) { primitiveId_ = id; }
     // Copies what a piece shares with the body it was cut from (material, source, primitive,
     // split counts); every kind of body calls it on its pieces.
     void inheritFrom(const Body& parent) {
@@ -112,7 +112,7 @@ class Body {
     bool moving_ = false;
     const Material* material_ = nullptr;
     const SourceLoc* source_ = nullptr;
-    uint32_t primitiveId_ = 0;
+    uint64_t primitiveId_ = 0;
 };
 
 using BodyPtr = std::unique_ptr<Body>;

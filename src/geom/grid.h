@@ -20,7 +20,7 @@ struct Grid {
     bool openEnd = false;         // [t0, t1): a sample exactly at t1 belongs to the next piece
     bool moving = false;          // when false only the [0] arrays are filled
     const Material* material = nullptr;
-    uint32_t primitiveId = 0;     // the body's primitive: breaks exact depth ties
+    uint64_t primitiveId = 0;     // the body's primitive: breaks exact depth ties
 
     std::vector<Vec3f> P[2];      // camera-space positions at t0, t1
     std::vector<Vec3f> N[2];      // geometric normals (not normalised)

@@ -70,7 +70,7 @@ class ChildBodyMaker {
     virtual double windowEnd() const = 0;
     // Appends a body (or several) for everything in `output`, `depth` expansions below the scene;
     // ids of the children are derived from `parentId`, so they do not depend on the thread.
-    virtual void addChildren(const ProceduralOutput& output, uint32_t parentId, int depth,
+    virtual void addChildren(const ProceduralOutput& output, uint64_t parentId, int depth,
                              std::vector<std::unique_ptr<Body>>& out) = 0;
     // A procedural whose children reached outside its declared bound (rendered again).
     virtual void reportOutgrown(ProceduralBody* procedural) = 0;

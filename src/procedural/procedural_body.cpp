@@ -2,6 +2,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <tbb/task_arena.h>
+
 #include "procedural/procedural.h"
 
 namespace streyes {
@@ -61,11 +63,17 @@ const std::vector<BodyPtr>& ProceduralBody::children(ChildBodyMaker& maker, cons
                                                      bool* expandedHere) const {
     std::call_once(once_, [&] {
         if (expandedHere) *expandedHere = true;
-        try {
-            expand(maker, camera, log);
-        } catch (...) {
-            error_ = std::current_exception();
-        }
+        // Expansion may run parallel work (a subdivision mesh builds its faces with parallel_for).
+        // A thread waiting for that work takes other tasks meanwhile; were it to take another
+        // bucket that reaches this procedural, it would wait on the once-flag it holds itself,
+        // for ever. Isolated, it takes only tasks of this expansion.
+        tbb::this_task_arena::isolate([&] {
+            try {
+                expand(maker, camera, log);
+            } catch (...) {
+                error_ = std::current_exception();
+            }
+        });
         expanded_.store(true, std::memory_order_release);
     });
     if (error_) std::rethrow_exception(error_);

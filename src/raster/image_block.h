@@ -25,16 +25,19 @@ struct SamplePosition {
     float tf;     // time within the frame's exposure in [0, 1): t = f + open + tf * (close - open)
 };
 
+// The id of "no primitive": no hit yet.
+constexpr uint64_t kNoPrimitive = UINT64_MAX;
+
 struct SampleHit {
     float z;      // camera-space depth of the nearest hit so far; +inf when none
     Color c;      // colour of that hit
     float a;      // its coverage (1 for an opaque hit)
-    uint32_t id;  // primitive of that hit (UINT32_MAX when none)
+    uint64_t id;  // primitive of that hit (kNoPrimitive when none)
 
     // Whether a hit (z, id, c) beats this one. Lexicographic on (depth, primitive, colour): the
     // result does not depend on the order hits arrive in, and at equal depth the primitive
     // declared first wins.
-    bool beatenBy(float z2, uint32_t id2, Color c2) const {
+    bool beatenBy(float z2, uint64_t id2, Color c2) const {
         if (z2 != z) return z2 < z;
         if (id2 != id) return id2 < id;
         if (c2.x != c.x) return c2.x < c.x;

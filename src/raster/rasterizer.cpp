@@ -241,7 +241,7 @@ void GridRasterizer::collectFrames(const Grid& grid, const Shutter& shutter, con
 // earlier primitive: see SampleHit::beatenBy). Returns 0 when it does not, 1 when it does, 2
 // when it does and the sample had no hit before.
 template <typename ColorAt>
-static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, uint32_t id,
+static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, uint64_t id,
                              ColorAt colorAt) {
     const float zh = z[h.v0] + h.l1 * (z[h.v1] - z[h.v0]) + h.l2 * (z[h.v2] - z[h.v0]);
     if (!(zh >= nearZ && zh <= farZ && zh <= s.z)) return 0;

@@ -51,7 +51,7 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
         sliceStratum_.reserve(n);
     }
     positions_.resize(n);
-    hits_.assign(n, SampleHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f, UINT32_MAX});
+    hits_.assign(n, SampleHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f, kNoPrimitive});
     sliceStratum_.resize(n);
     shadowSlots_ = shadowSlots;
     if (shadowSlots > 0) shadowed_.resize(n * size_t(shadowSlots));

@@ -76,7 +76,7 @@ class BucketWorker {
     GridRasterizer rasterizer_;
     RasterCounters rasterCounters_;
     std::vector<BodyPtr> stack_;
-    std::unordered_map<uint32_t, uint32_t> splitsOf_;  // splits per primitive in this bucket
+    std::unordered_map<uint64_t, uint32_t> splitsOf_;  // splits per primitive in this bucket
     std::vector<WorkItem> heap_;
     uint64_t arrivals_ = 0;
     std::vector<CameraLight> lightScratch_;

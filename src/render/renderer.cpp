@@ -72,7 +72,12 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     : source_(scene), options_(options), log_(log) {
     settings_ = resolveSettings(scene, options);
     auto t = std::chrono::steady_clock::now();
-    scene_ = buildRenderScene(scene, settings_.firstFrame, settings_.lastFrame, settings_.width, settings_.height, log);
+    // In an arena of its own, like the render: building runs parallel work too (subdivision
+    // meshes), and --threads holds for every stage.
+    tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        scene_ = buildRenderScene(scene, settings_.firstFrame, settings_.lastFrame, settings_.width, settings_.height, log);
+    });
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
@@ -162,8 +167,10 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const bool traceFrames = options_.algorithm == Algorithm::RaytraceFrames;
     std::unique_ptr<TraceScene> trace;
     if (raytraces(options_.algorithm) || scene_->lights.shadowSlots() > 0) {
-        trace = std::make_unique<TraceScene>(*scene_, log_);
-        if (!traceFrames) arena.execute([&] { trace->buildSpacetime(options_.hierarchy); });
+        arena.execute([&] {
+            trace = std::make_unique<TraceScene>(*scene_, log_);  // expands procedurals: parallel work
+            if (!traceFrames) trace->buildSpacetime(options_.hierarchy);
+        });
     }
     tbb::enumerable_thread_specific<std::unique_ptr<BucketWorker>> workers;
     const uint64_t totalBuckets = uint64_t(tiles.size()) * uint64_t(spacetime ? (frames + block - 1) / block : frames);
