@@ -21,20 +21,26 @@ struct MemoryShape {
     int samplesPerPixel = 1;
     int tileSize = 32, guardX = 0, guardY = 0;  // bucket tile and the filter's guard band
     bool spacetime = true;                      // a bucket holds every frame of the block
-    uint64_t rootBodies = 0;
+    uint64_t bodies = 0;                        // bodies made before rendering (roots, and procedurals
+                                                // expanded up front for ray tracing)
     bool occlusion = false;                     // buckets keep coverage and a summed-volume table
+    int shadowSlots = 0;                        // lights casting shadows: a colour per sample each
+    uint64_t traceBytes = 0;                    // ray tracing's bodies and spacetime hierarchy
+    uint64_t traceBytesPerFrame = 0;            // raytrace-frames: one hierarchy per frame of the block
+    uint64_t traceBytesPerWorker = 0;           // a tracing thread's scratch (its mailbox)
 };
 
 // Bytes, by what holds them.
 struct MemoryEstimate {
     uint64_t baseline = 0;       // the executable and its libraries
-    uint64_t scene = 0;          // root bodies
+    uint64_t scene = 0;          // bodies made before rendering
+    uint64_t trace = 0;          // ray tracing: bodies and hierarchies (per frame of the block for raytrace-frames)
     uint64_t frameImages = 0;    // the frame block's images
     uint64_t perWorker = 0;      // one bucket's samples and filter accumulators
     int workers = 1;
     uint64_t writer = 0;         // one frame being encoded and written
     int frameBlock = 1;
-    uint64_t total() const { return baseline + scene + frameImages + perWorker * uint64_t(workers) + writer; }
+    uint64_t total() const { return baseline + scene + trace + frameImages + perWorker * uint64_t(workers) + writer; }
     // "2.3 GiB: frame images 1.5 GiB (64 frames of 1920x1080), samples 0.6 GiB (2 workers x ...), ..."
     std::string describe(const MemoryShape& shape) const;
 };

@@ -52,6 +52,7 @@ struct RenderStats {
     double timeParse = 0, timeBuild = 0, timeRender = 0, timeWrite = 0, timeTotal = 0;  // wall seconds
     uint64_t peakMemoryBytes = 0;  // peak resident set of the process
     uint64_t memoryEstimateBytes = 0, memoryBudgetBytes = 0;  // memory.h, before rendering
+    uint64_t memoryProgramBytes = 0;  // the part of the estimate that is the executable and its libraries
     int framesSkipped = 0;         // already complete (--resume)
     uint64_t procedurals = 0;      // procedurals made (declared, and produced by expansions)
     std::vector<uint64_t> proceduralsByDepth;

@@ -17,6 +17,9 @@ namespace streyes {
 
 namespace {
 
+// What a body holds in memory, with its allocation (TrilinearBody; memory.h counts the same).
+constexpr uint64_t kBytesPerBody = 256;
+
 // Camera space is single precision. Corners beyond this magnitude would overflow to infinity
 // when a split adds two of them or a measure squares their distance.
 constexpr double kMaxCameraCoordinate = 1e37;
@@ -431,6 +434,12 @@ uint64_t childPrimitiveId(uint64_t parent, uint64_t index) {
 }
 
 void BodyFactory::addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out) {
+    const uint64_t budget = bodyBudget_.load();
+    if (budget && bodiesMade_.load() * kBytesPerBody > budget)
+        throw InputError("expanding the scene's procedurals for ray tracing (shadows, or --algorithm raytrace) needs "
+                         "more than the memory budget of " + std::to_string(renderBudget_.load() >> 20) + " MiB (" +
+                         std::to_string(bodiesMade_.load()) + " bodies so far, " + std::to_string(budget >> 20) +
+                         " MiB left for them): raise --max-memory, or turn shadows off");
     const Scene& fragment = output.scene;
     uint64_t index = 0;
     for (const BilinearPatchDesc& p : fragment.patches) addPatch(p, childPrimitiveId(parentId, index++), out);

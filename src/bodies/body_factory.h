@@ -72,6 +72,14 @@ class BodyFactory final : public ChildBodyMaker {
     void reportOutgrown(ProceduralBody* p) override;
 
     uint64_t bodiesMade() const { return bodiesMade_.load(); }
+    // While set (bytes > 0), expanding procedurals beyond this much memory of bodies is an
+    // InputError naming the budget: the ray tracer expands every procedural before the memory
+    // estimate can count them, and a forest expanded whole may not fit.
+    // `budget` is the whole render's, for the message.
+    void setBodyBudget(uint64_t budget, uint64_t forBodies) {
+        renderBudget_ = budget;
+        bodyBudget_ = forBodies;
+    }
     uint64_t proceduralsMade() const { return proceduralsMade_.load(); }
     std::vector<uint64_t> proceduralsMadeByDepth() const;
 
@@ -99,6 +107,7 @@ class BodyFactory final : public ChildBodyMaker {
     const Camera* camera_ = nullptr;
     std::vector<ProceduralBody*> outgrown_;
     std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0};
+    std::atomic<uint64_t> bodyBudget_{0}, renderBudget_{0};
     std::vector<uint64_t> proceduralsByDepth_;  // under mutex_
 };
 

@@ -17,8 +17,8 @@ namespace {
 // Measured: a tiny render's peak resident set is about 124 MiB, nearly all of it the shared
 // libraries OpenImageIO loads.
 constexpr uint64_t kBaselineBytes = uint64_t(128) << 20;
-// A root body: TrilinearBody (two sets of four corners, colours, span) with its allocation.
-constexpr uint64_t kBytesPerRootBody = 256;
+// A body: TrilinearBody (two sets of four corners, colours, span) with its allocation.
+constexpr uint64_t kBytesPerBody = 256;
 // Per sample: its position, its hit and its entry in the slice table.
 constexpr uint64_t kBytesPerSample = sizeof(SamplePosition) + sizeof(SampleHit) + sizeof(uint16_t);
 // Per pixel and frame of a bucket, with occlusion culling: its coverage cell and table entry.
@@ -55,9 +55,12 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     const uint64_t pixels = uint64_t(std::max(0, s.width)) * uint64_t(std::max(0, s.height));
     const uint64_t framesPerBucket = s.spacetime ? uint64_t(e.frameBlock) : 1;
     e.baseline = kBaselineBytes;
-    e.scene = s.rootBodies * kBytesPerRootBody;
+    e.scene = s.bodies * kBytesPerBody;
+    e.trace = s.traceBytes + s.traceBytesPerFrame * uint64_t(e.frameBlock);
     e.frameImages = uint64_t(e.frameBlock) * pixels * kBytesPerPixel;
-    e.perWorker = bucketPixels(s) * framesPerBucket * uint64_t(std::max(1, s.samplesPerPixel)) * kBytesPerSample +
+    const uint64_t bytesPerSample = kBytesPerSample + uint64_t(std::max(0, s.shadowSlots)) * sizeof(Color);
+    e.perWorker = bucketPixels(s) * framesPerBucket * uint64_t(std::max(1, s.samplesPerPixel)) * bytesPerSample +
+                  s.traceBytesPerWorker +
                   tilePixels(s) * framesPerBucket * 5 * sizeof(float) +
                   (s.occlusion ? bucketPixels(s) * framesPerBucket * kOcclusionBytesPerCell : 0);
     e.writer = pixels * kWriterBytesPerPixel;
@@ -73,8 +76,9 @@ std::string MemoryEstimate::describe(const MemoryShape& s) const {
            "), samples " + formatBytes(perWorker * uint64_t(workers)) + " (" + std::to_string(workers) + " worker" +
            (workers == 1 ? "" : "s") + " with a bucket of " + std::to_string(bw) + "x" + std::to_string(bh) +
            " pixels x " + std::to_string(frames) + " frame" + (frames == 1 ? "" : "s") + " x " +
-           std::to_string(s.samplesPerPixel) + " samples), writing " + formatBytes(writer) + ", scene " +
-           formatBytes(scene) + ", program " + formatBytes(baseline);
+           std::to_string(s.samplesPerPixel) + " samples" + (s.shadowSlots ? " with shadows" : "") +
+           "), writing " + formatBytes(writer) + ", scene " + formatBytes(scene) +
+           (trace ? ", ray tracing " + formatBytes(trace) : "") + ", program " + formatBytes(baseline);
 }
 
 MemoryEstimate planMemory(const MemoryShape& shape, int maxBlock, int maxWorkers, uint64_t budget) {

@@ -123,13 +123,47 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     block = std::min(block, std::max(1, int(double(1 << 30) / pixelBytes)));
     if (spacetime) block = std::min(block, std::max(1, int(double(1 << 22) / bucketSamplesPerFrame)));
 
+    // The ray tracer's bodies and hierarchies: for eye rays, and for shadow rays when a light
+    // casts shadows. Made first, in an arena of the threads asked for, because tracing expands
+    // every procedural up front: the memory estimate must count it. raytrace-frames builds a 3D
+    // hierarchy per frame with each frame block; the first frame's is built here to measure one.
+    const int threads = options_.threads > 0 ? options_.threads : tbb::this_task_arena::max_concurrency();
+    const uint64_t budget = options_.maxMemoryBytes ? options_.maxMemoryBytes : defaultMemoryBudget();
+    const bool traceFrames = options_.algorithm == Algorithm::RaytraceFrames;
+    std::unique_ptr<TraceScene> trace;
+    uint64_t traceBytesPerFrame = 0;
+    if (raytraces(options_.algorithm) || scene_->lights.shadowSlots() > 0) {
+        // What the bodies may take: the budget less what rendering one frame needs besides.
+        const MemoryShape bare{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, 0,
+                               usesOcclusion(options_.algorithm)};
+        const uint64_t others = estimateMemory(bare, 1, 1).total();
+        tbb::task_arena traceArena(threads);
+        traceArena.execute([&] {
+            scene_->factory->setBodyBudget(budget, budget > others ? budget - others : 1);
+            trace = std::make_unique<TraceScene>(*scene_, log_);
+            scene_->factory->setBodyBudget(0, 0);
+            if (!traceFrames) {
+                trace->buildSpacetime(options_.hierarchy);
+            } else {
+                trace->buildFrames(s.firstFrame, 1, options_.hierarchy);
+                traceBytesPerFrame = trace->hierarchyBytes();
+                trace->boundingVolumes = 0;  // a measurement, not the render's work: the blocks build again
+                trace->buildSeconds = 0;
+            }
+        });
+    }
+
     // Memory (memory.h), before anything large is allocated: the block shrinks until one worker
     // fits the budget, then as many workers run as fit; a render that does not fit one frame at
     // a time is refused (InputError: the request must change).
-    const MemoryShape shape{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, scene_->roots.size(),
-                            usesOcclusion(options_.algorithm)};
-    const uint64_t budget = options_.maxMemoryBytes ? options_.maxMemoryBytes : defaultMemoryBudget();
-    const int threads = options_.threads > 0 ? options_.threads : tbb::this_task_arena::max_concurrency();
+    MemoryShape shape{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, scene_->factory->bodiesMade(),
+                      usesOcclusion(options_.algorithm)};
+    if (trace) {
+        shape.shadowSlots = raytraces(options_.algorithm) ? 0 : scene_->lights.shadowSlots();
+        shape.traceBytes = trace->bytes() - (traceFrames ? trace->hierarchyBytes() : 0);
+        shape.traceBytesPerFrame = traceBytesPerFrame;
+        shape.traceBytesPerWorker = trace->mailboxBytes();
+    }
     const MemoryEstimate memory = planMemory(shape, block, threads, budget);
     block = memory.frameBlock;
 
@@ -160,18 +194,9 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
 
     stats.memoryEstimateBytes = memory.total();
     stats.memoryBudgetBytes = budget;
+    stats.memoryProgramBytes = memory.baseline;
     tbb::task_arena arena(memory.workers);
     stats.threads = arena.max_concurrency();
-    // The ray tracer's bodies and hierarchies: for eye rays, and for shadow rays when a light
-    // casts shadows. raytrace-frames builds a 3D hierarchy per frame with each frame block.
-    const bool traceFrames = options_.algorithm == Algorithm::RaytraceFrames;
-    std::unique_ptr<TraceScene> trace;
-    if (raytraces(options_.algorithm) || scene_->lights.shadowSlots() > 0) {
-        arena.execute([&] {
-            trace = std::make_unique<TraceScene>(*scene_, log_);  // expands procedurals: parallel work
-            if (!traceFrames) trace->buildSpacetime(options_.hierarchy);
-        });
-    }
     tbb::enumerable_thread_specific<std::unique_ptr<BucketWorker>> workers;
     const uint64_t totalBuckets = uint64_t(tiles.size()) * uint64_t(spacetime ? (frames + block - 1) / block : frames);
     std::atomic<uint64_t> done{0};

@@ -69,6 +69,11 @@ class SpacetimeBVH {
     // Bounding volumes built: the nodes of the final tree, leaves included.
     size_t nodeCount() const { return nodes_.size(); }
     size_t leafReferences() const { return refs_.size(); }  // body references held by leaves
+    // Bytes the hierarchy holds (for the memory estimate, memory.h).
+    size_t bytes() const {
+        return bodies_.capacity() * sizeof(bodies_[0]) + nodes_.capacity() * sizeof(Node) +
+               refs_.capacity() * sizeof(Reference);
+    }
     int depth() const { return depth_; }
     const std::vector<const TrilinearBody*>& bodies() const { return bodies_; }
 

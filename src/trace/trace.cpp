@@ -106,6 +106,16 @@ void TraceScene::buildFrames(int first, int count, const HierarchyOptions& optio
     buildSeconds += processCpuSeconds() - cpu;
 }
 
+size_t TraceScene::hierarchyBytes() const {
+    size_t b = spacetime_.bytes();
+    for (const SpacetimeBVH& h : frames_) b += h.bytes();
+    return b;
+}
+
+size_t TraceScene::bytes() const {
+    return bodies_.capacity() * sizeof(bodies_[0]) + pieces_.size() * (sizeof(TrilinearBody) + 16) + hierarchyBytes();
+}
+
 float TraceScene::shadowBias(float z) const {
     const Camera& cam = scene_.camera;
     const float pixel = 1.0f / std::min(std::fabs(cam.ax()), std::fabs(cam.ay()));  // screen units

@@ -46,6 +46,12 @@ class TraceScene {
 
     const RenderScene& scene() const { return scene_; }
     size_t bodyCount() const { return bodies_.size(); }
+    // Bytes held for ray tracing, for the memory estimate: the pieces cut at motion keys and the
+    // body list, with the hierarchies built so far (hierarchyBytes() alone: the frame-by-frame
+    // ones are built again for every frame block), and each tracing thread's mailbox.
+    size_t bytes() const;
+    size_t hierarchyBytes() const;
+    size_t mailboxBytes() const { return bodies_.size() * sizeof(uint32_t); }
     // Shadow rays start this far (camera-space units) from a surface at depth z: one pixel.
     float shadowBias(float z) const;
 
