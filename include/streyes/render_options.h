@@ -44,6 +44,12 @@ struct RenderOptions {
     Algorithm algorithm = Algorithm::SpacetimeOcclusion;
     bool hasFrames = false;          // --frames; otherwise the scene's, otherwise frame 0
     int firstFrame = 0, lastFrame = 0;
+    // --shot: the whole animation the frames belong to. What is decided once for the animation
+    // (motion segments, procedural level of detail and sway keys) is decided over the shot, so that
+    // a frame's pixels do not depend on which frames are rendered with it. By default the
+    // scene's frames (Option "streyes" "int frames") joined with those rendered.
+    bool hasShot = false;
+    int shotFirst = 0, shotLast = 0;
     int xres = 0, yres = 0;          // --res; 0: the scene's Format
     int samples = 0;                 // --samples per pixel per frame; 0: the scene's PixelSamples
     int threads = 0;                 // 0: every core

@@ -31,6 +31,7 @@ struct RenderScene;  // the scene in camera space (src/bodies/render_scene.h)
 // Frame range, resolution and sample pattern after applying options over the scene.
 struct ResolvedSettings {
     int firstFrame = 0, lastFrame = 0, width = 0, height = 0;
+    int shotFirst = 0, shotLast = 0;  // RenderOptions::hasShot
     SamplePattern pattern;
 };
 ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& options);

@@ -17,12 +17,13 @@ struct RenderScene {
     Camera camera;
     Shutter shutter;
     LightSet lights;
-    double windowStart = 0, windowEnd = 0;    // [first + open, last + close]
+    double windowStart = 0, windowEnd = 0;    // the shot's exposures: [first + open, last + close]
     std::unique_ptr<BodyFactory> factory;
     std::vector<BodyPtr> roots;
 };
 
-// Builds the render scene for frames [firstFrame, lastFrame]. Camera resolution overrides
+// Builds the render scene for the shot, frames [firstFrame, lastFrame] (see RenderOptions::hasShot:
+// the frames rendered lie inside it, and bodies do not depend on which). Camera resolution overrides
 // (xres/yres > 0) replace the scene's Format.
 std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame, int lastFrame, int xres,
                                               int yres, Log& log);

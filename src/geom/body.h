@@ -75,6 +75,7 @@ class Body {
         primitiveId_ = parent.primitiveId_;
         splitDepth = parent.splitDepth;
         eyeSplitDepth = parent.eyeSplitDepth;
+        exposure = parent.exposure;
     }
 
     // A body that is replaced by the bodies it expands into, instead of being split or diced (a
@@ -106,6 +107,10 @@ class Body {
     // How many splits led to this body (regular splits and eye splits), for the limits.
     unsigned char splitDepth = 0;
     unsigned char eyeSplitDepth = 0;
+    // The frame whose exposure the split loop cut this piece to, or kNoExposure for a piece of a
+    // body that spans the whole block (per-frame limits key on it: see BucketWorker).
+    static constexpr int32_t kNoExposure = INT32_MIN;
+    int32_t exposure = kNoExposure;
 
   protected:
     TimeSpan time_;

@@ -36,7 +36,8 @@ BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& option
       pattern_(pattern),
       layerDepths_(layerDepths),
       log_(log),
-      occlusion_(usesOcclusion(options.algorithm)) {}
+      occlusion_(usesOcclusion(options.algorithm)),
+      shadingVaries_(!scene.lights.isStatic()) {}
 
 void BucketWorker::setTrace(const TraceScene* trace) {
     trace_ = trace;
@@ -83,18 +84,32 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
 
 // ---- Drivers ---------------------------------------------------------------------------------------
 
-// Each root whose time span meets the bucket's frames enters the loop; a moving root is first
-// restricted to those frames (only that part of its motion matters here).
+// Does a body's span [t0, t1] reach a sample time in [a, b] (at a only, when a == b)? Motion
+// segments meet at keys: a segment that only touches [a, b] at its end is left to the next one,
+// which covers that instant too (a segment is open at its end exactly when one follows); one that
+// starts where [a, b] ends is never reached (sample times stay below b).
+static bool reachesSamples(const TimeSpan& span, double a, double b) {
+    if (!span.overlaps(a, b)) return false;
+    if (span.t1 == a && span.t0 < span.t1 && span.openEnd) return false;
+    if (span.t0 == b && a < b) return false;
+    return true;
+}
+
+// Each root whose time span meets the bucket's frames enters the loop. A moving root (or any
+// root, while the lights move) is cut at each frame's exposure first, from the root itself: a
+// frame's pieces, and so its pixels, are the same whatever block of frames it is rendered in.
 void BucketWorker::pushRoot(const Body& root) {
     const TimeSpan& span = root.time();
-    if (!span.overlaps(windowStart_, windowEnd_)) return;
-    // Motion segments meet at keys: a segment that only touches the window at its start is left
-    // to the next segment, which covers that instant too (the render's last instant has no next
-    // one); one that starts where the window ends is never reached (sample times stay below it).
-    if (span.t1 == windowStart_ && span.t0 < span.t1 && span.t1 < scene_.windowEnd) return;
-    if (span.t0 == windowEnd_ && windowStart_ < windowEnd_) return;
-    if (root.moving() && (span.t0 < windowStart_ || span.t1 > windowEnd_)) {
-        push(root.restrictedTo(std::max(span.t0, windowStart_), std::min(span.t1, windowEnd_)));
+    if (!reachesSamples(span, windowStart_, windowEnd_)) return;
+    if ((root.moving() || shadingVaries_) && !root.expands()) {  // a procedural expands; its children are cut
+        const double open = scene_.shutter.open, close = scene_.shutter.close;
+        for (int fi = 0; fi < bucket_.frameCount; ++fi) {
+            const double e0 = bucket_.firstFrame + fi + open, e1 = bucket_.firstFrame + fi + close;
+            if (!reachesSamples(span, e0, e1)) continue;
+            BodyPtr piece = root.restrictedTo(std::max(span.t0, e0), std::min(span.t1, e1));
+            piece->exposure = bucket_.firstFrame + fi;
+            push(std::move(piece));
+        }
     } else if (occlusion_) {
         heap_.push_back({root.bound().swept().lo.z, arrivals_++, &root, nullptr});
         std::push_heap(heap_.begin(), heap_.end(), FartherFirst());
@@ -313,7 +328,7 @@ void BucketWorker::expand(const ProceduralBody& procedural) {
 // is split at most maxSplitsPerPrimitive times in one bucket; past that its pieces are dropped,
 // with one warning. The split loop's order is fixed, so which pieces go does not depend on threads.
 bool BucketWorker::withinSplitBudget(const Body& body) {
-    uint32_t& n = splitsOf_[body.primitiveId()];
+    uint32_t& n = splitsOf_[{body.primitiveId(), body.exposure}];
     if (n < uint32_t(options_.maxSplitsPerPrimitive)) {
         ++n;
         return true;
@@ -341,6 +356,13 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv) {
     auto t = Clock::now();
     body.dice(nu, nv, grid_);
     ++counters.gridsDiced;
+    if (shadingVaries_ && !grid_.moving && grid_.t1 > grid_.t0) {
+        // Still geometry under moving lights: shaded at both ends of its span like a moving grid,
+        // so that its colour follows the lights through the exposure.
+        grid_.resize(grid_.nu, grid_.nv, true);
+        grid_.P[1] = grid_.P[0];
+        grid_.N[1] = grid_.N[0];
+    }
     auto t1 = Clock::now();
     counters.timeDice += std::chrono::duration<double>(t1 - t).count();
     shadeGrid(grid_, scene_.lights, !scene_.camera.perspective(), lightScratch_);

@@ -68,6 +68,7 @@ class BucketWorker {
     const std::vector<float>& layerDepths_;
     Log& log_;
     const bool occlusion_;
+    const bool shadingVaries_;  // the lights move: still geometry is shaded per exposure
 
     BucketSpec bucket_;
     double windowStart_ = 0, windowEnd_ = 0;  // the bucket's frames' exposures
@@ -76,7 +77,14 @@ class BucketWorker {
     GridRasterizer rasterizer_;
     RasterCounters rasterCounters_;
     std::vector<BodyPtr> stack_;
-    std::unordered_map<uint64_t, uint32_t> splitsOf_;  // splits per primitive in this bucket
+    // Splits per primitive (and per frame, for pieces cut to one exposure) in this bucket: a
+    // frame's budget does not depend on the other frames in its block.
+    struct PieceKeyHash {
+        size_t operator()(const std::pair<uint64_t, int32_t>& k) const {
+            return std::hash<uint64_t>()(k.first * 0x9e3779b97f4a7c15ull ^ uint64_t(uint32_t(k.second)));
+        }
+    };
+    std::unordered_map<std::pair<uint64_t, int32_t>, uint32_t, PieceKeyHash> splitsOf_;
     std::vector<WorkItem> heap_;
     uint64_t arrivals_ = 0;
     std::vector<CameraLight> lightScratch_;

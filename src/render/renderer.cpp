@@ -56,6 +56,13 @@ ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& o) {
         r.firstFrame = scene.settings.firstFrame;
         r.lastFrame = scene.settings.lastFrame;
     }
+    if (o.hasShot) {
+        r.shotFirst = o.shotFirst;
+        r.shotLast = o.shotLast;
+    } else {
+        r.shotFirst = scene.settings.hasFrames ? std::min(r.firstFrame, scene.settings.firstFrame) : r.firstFrame;
+        r.shotLast = scene.settings.hasFrames ? std::max(r.lastFrame, scene.settings.lastFrame) : r.lastFrame;
+    }
     r.width = o.xres > 0 ? o.xres : scene.camera.xres;
     r.height = o.yres > 0 ? o.yres : scene.camera.yres;
     if (o.samples > 0) {
@@ -76,7 +83,7 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     // meshes), and --threads holds for every stage.
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        scene_ = buildRenderScene(scene, settings_.firstFrame, settings_.lastFrame, settings_.width, settings_.height, log);
+        scene_ = buildRenderScene(scene, settings_.shotFirst, settings_.shotLast, settings_.width, settings_.height, log);
     });
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }

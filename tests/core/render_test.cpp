@@ -170,19 +170,15 @@ TEST(Render, SeedDecidesThePixels) {
     EXPECT_FALSE(test::identicalPixels(a, c));  // the comparison can fail
 }
 
-TEST(Render, SpacetimeAndFramesAgreeWithinSamplingNoise) {
+// Moving geometry is cut at each frame's exposure in both, still geometry is diced the same
+// way in both (its splits depend on the body, not the bucket): the same micropolygons meet the
+// same samples, so spacetime differs from Catmull's per-frame loop only in how often it works.
+TEST(Render, SpacetimeAndFramesGiveTheSamePixels) {
     RenderOptions st, fr;
     fr.algorithm = Algorithm::Frames;
     RenderResult a = renderRib(kMovingScene, st), b = renderRib(kMovingScene, fr);
     ASSERT_EQ(a.frames.size(), b.frames.size());
-    // The same samples see micropolygons diced differently: edges may move by a fraction of a
-    // micropolygon, nothing more.
-    EXPECT_LT(test::meanAbsDifference(a, b), 0.01f);
-    size_t differ = 0, total = 0;
-    for (size_t f = 0; f < a.frames.size(); ++f)
-        for (size_t i = 0; i < a.frames[f].rgba.size(); i += 4, ++total)
-            if (std::fabs(a.frames[f].rgba[i + 3] - b.frames[f].rgba[i + 3]) > 0.25f) ++differ;
-    EXPECT_LT(double(differ) / double(total), 0.01);
+    EXPECT_TRUE(test::identicalPixels(a, b));
     EXPECT_GT(a.stats.counters.sampleHits, 0u);
 }
 
