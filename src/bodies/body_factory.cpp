@@ -379,18 +379,19 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint32_t primitiveId, std::ve
 }
 
 // Each face (a triangle or a convex quad) as the bilinear patch it is.
-void BodyFactory::addPolygonMesh(const PolygonMeshDesc& p, uint32_t primitiveId, std::vector<BodyPtr>& out) {
+void BodyFactory::addPolygonFaces(const PolygonMeshDesc& p, const PolygonFaces& faces, uint32_t primitiveId,
+                                  std::vector<BodyPtr>& out) {
     BilinearPatchDesc face;
     face.times = p.times;
     face.objectToWorld = p.objectToWorld;
     face.attributes = p.attributes;
     face.loc = p.loc;
     face.P.resize(p.P.size());
-    for (size_t f = 0; f < p.faces.size(); ++f) {
+    for (size_t f = 0; f < faces.faces.size(); ++f) {
         for (size_t k = 0; k < p.P.size(); ++k)
-            for (size_t c = 0; c < 4; ++c) face.P[k][c] = p.P[k][size_t(p.faces[f][c])];
-        face.hasCs = !p.faceCs.empty();
-        if (face.hasCs) face.Cs = p.faceCs[f];
+            for (size_t c = 0; c < 4; ++c) face.P[k][c] = p.P[k][size_t(faces.faces[f][c])];
+        face.hasCs = !faces.faceCs.empty();
+        if (face.hasCs) face.Cs = faces.faceCs[f];
         addPatch(face, primitiveId, out);
     }
 }
@@ -427,17 +428,42 @@ std::vector<uint64_t> BodyFactory::proceduralsMadeByDepth() const {
     return proceduralsByDepth_;
 }
 
+void BodyFactory::addPrimitives(const Scene& scene, const std::vector<GeneratedProcedural>& generated, int depth,
+                                const std::function<uint32_t()>& nextId, std::vector<BodyPtr>& out) {
+    // Polygons first: each is a patch, faces, or nothing (no area, warned).
+    struct Polygon {
+        std::optional<BilinearPatchDesc> patch;
+        PolygonFaces faces;
+    };
+    const std::vector<PolygonMeshDesc>& meshes = scene.polygonMeshes;
+    std::vector<Polygon> polygons(meshes.size());
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        polygons[i].patch = polygonAsPatch(meshes[i]);
+        if (!polygons[i].patch) polygons[i].faces = cutPolygons(meshes[i], log_);
+    }
+    size_t next = 0;  // the first polygon not yet placed among the patches
+    auto polygonPatchesUpTo = [&](size_t patches) {
+        for (; next < meshes.size() && meshes[next].patchesBefore <= patches; ++next)
+            if (polygons[next].patch) addPatch(*polygons[next].patch, nextId(), out);
+    };
+    for (size_t i = 0; i < scene.patches.size(); ++i) {
+        polygonPatchesUpTo(i);
+        addPatch(scene.patches[i], nextId(), out);
+    }
+    polygonPatchesUpTo(scene.patches.size());
+    for (const ProceduralDesc& p : scene.procedurals) addProcedural(p, nextId(), depth, out);
+    for (const GeneratedProcedural& g : generated) addProcedural(g.desc, g.generator, nextId(), depth, out);
+    for (const PatchMeshDesc& p : scene.patchMeshes) addPatchMesh(p, nextId(), out);
+    for (const SubdivisionMeshDesc& p : scene.subdivisionMeshes) addSubdivisionMesh(p, nextId(), out);
+    for (const QuadricDesc& q : scene.quadrics) addQuadric(q, nextId(), out);
+    for (size_t i = 0; i < meshes.size(); ++i)
+        if (!polygons[i].patch && !polygons[i].faces.faces.empty())
+            addPolygonFaces(meshes[i], polygons[i].faces, nextId(), out);
+}
+
 void BodyFactory::addChildren(const ProceduralOutput& output, uint32_t parentId, int depth, std::vector<BodyPtr>& out) {
-    const Scene& fragment = output.scene;
     uint64_t index = 0;
-    for (const BilinearPatchDesc& p : fragment.patches) addPatch(p, childId(parentId, index++), out);
-    for (const ProceduralDesc& p : fragment.procedurals) addProcedural(p, childId(parentId, index++), depth, out);
-    for (const GeneratedProcedural& g : output.procedurals)
-        addProcedural(g.desc, g.generator, childId(parentId, index++), depth, out);
-    for (const PatchMeshDesc& p : fragment.patchMeshes) addPatchMesh(p, childId(parentId, index++), out);
-    for (const SubdivisionMeshDesc& p : fragment.subdivisionMeshes) addSubdivisionMesh(p, childId(parentId, index++), out);
-    for (const QuadricDesc& q : fragment.quadrics) addQuadric(q, childId(parentId, index++), out);
-    for (const PolygonMeshDesc& p : fragment.polygonMeshes) addPolygonMesh(p, childId(parentId, index++), out);
+    addPrimitives(output.scene, output.procedurals, depth, [&] { return childId(parentId, index++); }, out);
 }
 
 void BodyFactory::reportOutgrown(ProceduralBody* p) {

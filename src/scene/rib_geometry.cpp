@@ -1,9 +1,5 @@
 #include "scene/rib_geometry.h"
 
-#include <algorithm>
-
-#include "geom/triangulate.h"
-
 namespace streyes {
 
 // ---- Primitive variables ----------------------------------------------------------------------------
@@ -141,9 +137,6 @@ bool readFaceKey(RibParser& reader, RibArgs& args, bool polygon, FaceKey* key) {
     for (const Param& p : params.params)
         if (&p != &pos) checkCount(args, p, counts.of(p.cls));
     key->P = pointsOf(args, pos);
-    // A concave quad would fold as a bilinear patch: it is cut into triangles instead.
-    std::vector<std::array<int, 4>> faces;
-    if (polygon && vertices == 4 && cutPolygon(key->P, {{0, 1, 2, 3}}, &faces) && faces.size() > 1) return false;
     key->Cs = readColors(args, params, counts);
     key->vertexCs.clear();
     if (key->Cs.given()) {

@@ -44,8 +44,7 @@ struct FaceKey {
     std::vector<Color> vertexCs;  // Cs at each vertex (empty when none is given), to compare keys
 };
 // Reads the parameter list of Patch "bilinear" (polygon = false) or of a Polygon into one key.
-// False for a Polygon of more than four vertices or a concave quad: those are read as polygons and
-// cut into faces (rib_polygons.cpp).
+// False for a Polygon of more than four vertices: that is read as polygons (rib_polygons.cpp).
 bool readFaceKey(RibParser& reader, RibArgs& args, bool polygon, FaceKey* key);
 // Checks that a face's keys agree (the same number of vertices; a Cs that differs warns, as colours
 // do not move) and says whether its positions move.

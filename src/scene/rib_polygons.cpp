@@ -1,24 +1,16 @@
-// Polygons: Polygon, GeneralPolygon, PointsPolygons and PointsGeneralPolygons. A Polygon of 3 or 4
-// vertices is a bilinear patch; other polygons are cut into triangles and convex quads.
-#include <map>
+// Polygons: Polygon, GeneralPolygon, PointsPolygons and PointsGeneralPolygons, kept as written
+// (loops of points, holes after the outline): the bodies stage cuts them into faces.
+#include <algorithm>
+#include <numeric>
 
-#include "geom/triangulate.h"
 #include "scene/rib_geometry.h"
 
 namespace streyes {
 
 namespace {
 
-// One key of a polygon request of any size: its points, its polygons as loops of indices into the
-// points (the outline, then holes) and "Cs".
-struct PolygonsKey : PrimitiveDesc {
-    std::string request;
-    std::vector<std::vector<Vec3d>> P;
-    std::vector<std::vector<std::vector<int>>> polygons;
-    ColorPrimvar Cs;
-};
-
-bool readPolygonsKey(RibParser& reader, RibArgs& args, PolygonsKey* d) {
+// One key of a polygon request of any size: its points, polygons and "Cs".
+bool readPolygonsKey(RibParser& reader, RibArgs& args, PolygonMeshDesc* d) {
     const std::string& name = args.name();
     d->request = name;
     std::vector<int> loopsPerPolygon, loopSizes, indices;
@@ -81,43 +73,9 @@ bool readPolygonsKey(RibParser& reader, RibArgs& args, PolygonsKey* d) {
     return true;
 }
 
-// Cuts every polygon once (at the first key) into triangles and convex quads that share the points.
-PolygonMeshDesc cutPolygons(Log& log, const PolygonsKey& k) {
-    PolygonMeshDesc d;
-    static_cast<PrimitiveDesc&>(d) = k;
-    d.P = k.P;
-    size_t faceVertex = 0;
-    for (size_t p = 0; p < k.polygons.size(); ++p) {
-        std::vector<std::array<int, 4>> faces;
-        if (!cutPolygon(k.P[0], k.polygons[p], &faces))
-            log.warnOnce("polygon:degenerate", k.loc,
-                         k.request + ": a polygon has no area (its points are on one line): skipped");
-        // Facevarying colours: the polygon's own corners, by point.
-        std::map<int, size_t> cornerOf;
-        for (const std::vector<int>& loop : k.polygons[p])
-            for (int v : loop) cornerOf.emplace(v, faceVertex++);
-        for (const std::array<int, 4>& f : faces) {
-            d.faces.push_back(f);
-            if (!k.Cs.given()) continue;
-            std::array<Color, 4> c;
-            for (size_t i = 0; i < 4; ++i) {
-                const int v = f[i];
-                switch (k.Cs.cls) {
-                case ParamClass::Constant: c[i] = k.Cs.values[0]; break;
-                case ParamClass::Uniform: c[i] = k.Cs.values[p]; break;
-                case ParamClass::FaceVarying: c[i] = k.Cs.values[cornerOf[v]]; break;
-                default: c[i] = k.Cs.values[size_t(v)];
-                }
-            }
-            d.faceCs.push_back(c);
-        }
-    }
-    return d;
-}
-
 // Any polygon request read as polygons: every key the same polygons, only the points move.
 void polygonMeshKeys(RibParser& reader, const RibKeys& keys) {
-    auto sameShape = [&keys](const PolygonsKey& k, const PolygonsKey& f) {
+    auto sameShape = [&keys](const PolygonMeshDesc& k, const PolygonMeshDesc& f) {
         if (k.polygons == f.polygons) return true;
         if (k.request == "Polygon")
             throw InputError(keys.requests.front().loc,
@@ -126,41 +84,32 @@ void polygonMeshKeys(RibParser& reader, const RibKeys& keys) {
                                  std::to_string(k.polygons[0][0].size()) + ")");
         return false;
     };
-    auto positions = [](PolygonsKey& d) -> auto& { return d.P; };
-    if (auto k = mergeKeys<PolygonsKey>(reader, keys, readPolygonsKey, sameShape,
-                                        "polygons and vertex indices (only \"P\" may change)", positions)) {
-        PolygonMeshDesc d = cutPolygons(reader.log(), *k);
-        if (!d.faces.empty()) reader.scene().polygonMeshes.push_back(std::move(d));
+    auto positions = [](PolygonMeshDesc& d) -> auto& { return d.P; };
+    if (auto d = mergeKeys<PolygonMeshDesc>(reader, keys, readPolygonsKey, sameShape,
+                                            "polygons and vertex indices (only \"P\" may change)", positions)) {
+        d->patchesBefore = reader.scene().patches.size();
+        reader.scene().polygonMeshes.push_back(std::move(*d));
     }
 }
 
-// A Polygon of 3 or 4 vertices as a bilinear patch. Corner c takes vertex order[c]: a quad's
-// vertices go around its edge (0 1 2 3), a patch's corners row by row (0 1 / 2 3); a triangle
-// repeats its last vertex as a collapsed edge.
+// A Polygon of 3 or 4 vertices: one polygon of one loop.
 void addPolygon(RibParser& reader, const std::vector<double>& times, const std::vector<FaceKey>& keys,
                 const SourceLoc& loc) {
-    static const int quadOrder[4] = {0, 1, 3, 2};
-    static const int triangleOrder[4] = {0, 1, 2, 2};
-    const int* order = keys.front().P.size() == 4 ? quadOrder : triangleOrder;
-    BilinearPatchDesc patch;
+    PolygonMeshDesc d;
     const bool moves = faceKeysMove(reader.log(), keys, loc);
-    patch.times = moves ? times : std::vector<double>{times.front()};
-    for (size_t i = 0; i < (moves ? keys.size() : 1); ++i) {
-        std::array<Vec3d, 4>& corners = patch.P.emplace_back();
-        for (size_t c = 0; c < 4; ++c) corners[c] = keys[i].P[size_t(order[c])];
-    }
-    const FaceKey& first = keys.front();
-    patch.hasCs = first.Cs.given();
-    if (patch.hasCs)
-        for (size_t c = 0; c < 4; ++c) patch.Cs[c] = first.vertexCs[size_t(order[c])];
-    patch.objectToWorld = reader.state().ctm;
-    patch.attributes = reader.state().attributes;
-    patch.loc = loc;
-    reader.scene().patches.push_back(std::move(patch));
+    placePrimitive(reader, d, moves ? times : std::vector<double>{times.front()}, loc);
+    d.request = "Polygon";
+    for (size_t i = 0; i < d.times.size(); ++i) d.P.push_back(keys[i].P);
+    std::vector<int> loop(keys.front().P.size());
+    std::iota(loop.begin(), loop.end(), 0);
+    d.polygons = {{loop}};
+    d.Cs = keys.front().Cs;
+    d.patchesBefore = reader.scene().patches.size();
+    reader.scene().polygonMeshes.push_back(std::move(d));
 }
 
 // A Polygon of 3 or 4 vertices is read as a single face, with the checks of Patch "bilinear" in
-// their order; a larger one, or a concave quad, as polygons.
+// their order; a larger one as polygons.
 void polygon(RibParser& reader, RibArgs& args) {
     FaceKey key;
     if (readFaceKey(reader, args, true, &key))
@@ -174,7 +123,7 @@ void polygonKeys(RibParser& reader, const RibKeys& keys) {
     for (size_t i = 0; i < faces.size(); ++i) {
         RibArgs args(keys.requests[i], keys.usage);
         if (!readFaceKey(reader, args, true, &faces[i])) {
-            polygonMeshKeys(reader, keys);  // more than four vertices, or concave
+            polygonMeshKeys(reader, keys);  // more than four vertices
             return;
         }
     }
