@@ -6,11 +6,13 @@
 // appear where it is, holds it while a motion block is open, and calls its handler.
 //
 // Adding a request: write its handler in its group's file and add an entry in that file's add
-// function, for example
+// function, for example (with the field it sets added to the Scene)
 //
 //     void exposure(RibParser& reader, RibArgs& args) { reader.scene().settings.gain = args.number("gain"); ... }
 //     table.add("Exposure", {exposure, "Exposure gain gamma", RibPhase::Options});
 //
+// Geometry that can move also names a handler for the keys of a motion block, and reads one key
+// outside it with oneKey: {oneKey<pointsKeys>, "Points \"P\" [...]", RibPhase::World, pointsKeys}.
 // A new group is a new file with its add function declared below and called in ribRequests().
 // A name may be added once: a request that becomes supported leaves the lists of requests
 // outside the subset (addUnsupportedRequests, rib_requests.cpp).
