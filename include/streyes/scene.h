@@ -117,8 +117,9 @@ struct LightDesc {
     bool castsShadows = false;   // Attribute "light" "shadows" "on" where it was declared
 };
 
-// A bilinear patch (Patch "bilinear", or a Polygon of 3 or 4 vertices), possibly with motion keys.
-// Corners in RenderMan order: P[0]=(u0,v0) P[1]=(u1,v0) P[2]=(u0,v1) P[3]=(u1,v1).
+// A bilinear patch (Patch "bilinear"; the bodies stage makes one of a Polygon of 3 or 4 vertices
+// too), possibly with motion keys. Corners in RenderMan order: P[0]=(u0,v0) P[1]=(u1,v0)
+// P[2]=(u0,v1) P[3]=(u1,v1).
 struct BilinearPatchDesc {
     std::vector<double> times;                 // motion keys; one entry (any value) when static
     std::vector<std::array<Vec3d, 4>> P;       // object space, one set per key
@@ -201,12 +202,18 @@ struct QuadricDesc : PrimitiveDesc {
     ColorPrimvar Cs;                            // varying: the 4 corners of the (u, v) domain
 };
 
-// Polygons beyond four vertices, GeneralPolygon, PointsPolygons and PointsGeneralPolygons, cut
-// when read into triangles and convex quads that share the points.
+// Polygon, GeneralPolygon, PointsPolygons and PointsGeneralPolygons as written: each polygon its
+// loops of indices into the points, the outline first, then any holes. The bodies stage makes
+// them bilinear patches: a Polygon of 3 or 4 vertices as one (unless it is concave), any other
+// cut into triangles and convex quads.
 struct PolygonMeshDesc : PrimitiveDesc {
-    std::vector<std::vector<Vec3d>> P;            // object space, one set per key
-    std::vector<std::array<int, 4>> faces;        // indices into P in patch order (triangles: 0 1 2 2)
-    std::vector<std::array<Color, 4>> faceCs;     // per face corner; empty: the attribute Color
+    std::string request;                                  // "Polygon", "GeneralPolygon", ...
+    std::vector<std::vector<Vec3d>> P;                    // object space, one set per key
+    std::vector<std::vector<std::vector<int>>> polygons;  // per polygon, its loops
+    ColorPrimvar Cs;  // uniform: per polygon; varying, vertex: per point; facevarying: per loop vertex
+    // How many bilinear patches (Scene::patches) were read before it: a Polygon made one patch
+    // takes its primitive id among them there, as ids decide exact depth ties.
+    size_t patchesBefore = 0;
 };
 
 struct Scene {

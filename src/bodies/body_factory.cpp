@@ -380,18 +380,19 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::ve
 }
 
 // Each face (a triangle or a convex quad) as the bilinear patch it is.
-void BodyFactory::addPolygonMesh(const PolygonMeshDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out) {
+void BodyFactory::addPolygonFaces(const PolygonMeshDesc& p, const PolygonFaces& faces, uint64_t primitiveId,
+                                  std::vector<BodyPtr>& out) {
     BilinearPatchDesc face;
     face.times = p.times;
     face.objectToWorld = p.objectToWorld;
     face.attributes = p.attributes;
     face.loc = p.loc;
     face.P.resize(p.P.size());
-    for (size_t f = 0; f < p.faces.size(); ++f) {
+    for (size_t f = 0; f < faces.faces.size(); ++f) {
         for (size_t k = 0; k < p.P.size(); ++k)
-            for (size_t c = 0; c < 4; ++c) face.P[k][c] = p.P[k][size_t(p.faces[f][c])];
-        face.hasCs = !p.faceCs.empty();
-        if (face.hasCs) face.Cs = p.faceCs[f];
+            for (size_t c = 0; c < 4; ++c) face.P[k][c] = p.P[k][size_t(faces.faces[f][c])];
+        face.hasCs = !faces.faceCs.empty();
+        if (face.hasCs) face.Cs = faces.faceCs[f];
         addPatch(face, primitiveId, out);
     }
 }
@@ -428,6 +429,39 @@ std::vector<uint64_t> BodyFactory::proceduralsMadeByDepth() const {
     return proceduralsByDepth_;
 }
 
+void BodyFactory::addPrimitives(const Scene& scene, const std::vector<GeneratedProcedural>& generated, int depth,
+                                const std::function<uint64_t()>& nextId, std::vector<BodyPtr>& out) {
+    // Polygons first: each is a patch, faces, or nothing (no area, warned).
+    struct Polygon {
+        std::optional<BilinearPatchDesc> patch;
+        PolygonFaces faces;
+    };
+    const std::vector<PolygonMeshDesc>& meshes = scene.polygonMeshes;
+    std::vector<Polygon> polygons(meshes.size());
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        polygons[i].patch = polygonAsPatch(meshes[i]);
+        if (!polygons[i].patch) polygons[i].faces = cutPolygons(meshes[i], log_);
+    }
+    size_t next = 0;  // the first polygon not yet placed among the patches
+    auto polygonPatchesUpTo = [&](size_t patches) {
+        for (; next < meshes.size() && meshes[next].patchesBefore <= patches; ++next)
+            if (polygons[next].patch) addPatch(*polygons[next].patch, nextId(), out);
+    };
+    for (size_t i = 0; i < scene.patches.size(); ++i) {
+        polygonPatchesUpTo(i);
+        addPatch(scene.patches[i], nextId(), out);
+    }
+    polygonPatchesUpTo(scene.patches.size());
+    for (const ProceduralDesc& p : scene.procedurals) addProcedural(p, nextId(), depth, out);
+    for (const GeneratedProcedural& g : generated) addProcedural(g.desc, g.generator, nextId(), depth, out);
+    for (const PatchMeshDesc& p : scene.patchMeshes) addPatchMesh(p, nextId(), out);
+    for (const SubdivisionMeshDesc& p : scene.subdivisionMeshes) addSubdivisionMesh(p, nextId(), out);
+    for (const QuadricDesc& q : scene.quadrics) addQuadric(q, nextId(), out);
+    for (size_t i = 0; i < meshes.size(); ++i)
+        if (!polygons[i].patch && !polygons[i].faces.faces.empty())
+            addPolygonFaces(meshes[i], polygons[i].faces, nextId(), out);
+}
+
 uint64_t childPrimitiveId(uint64_t parent, uint64_t index) {
     const uint64_t id = hashCombine(mix64(parent), index + 1);
     return id == 0 || id == UINT64_MAX ? 1 : id;
@@ -440,16 +474,8 @@ void BodyFactory::addChildren(const ProceduralOutput& output, uint64_t parentId,
                          "more than the memory budget of " + std::to_string(renderBudget_.load() >> 20) + " MiB (" +
                          std::to_string(bodiesMade_.load()) + " bodies so far, " + std::to_string(budget >> 20) +
                          " MiB left for them): raise --max-memory, or turn shadows off");
-    const Scene& fragment = output.scene;
     uint64_t index = 0;
-    for (const BilinearPatchDesc& p : fragment.patches) addPatch(p, childPrimitiveId(parentId, index++), out);
-    for (const ProceduralDesc& p : fragment.procedurals) addProcedural(p, childPrimitiveId(parentId, index++), depth, out);
-    for (const GeneratedProcedural& g : output.procedurals)
-        addProcedural(g.desc, g.generator, childPrimitiveId(parentId, index++), depth, out);
-    for (const PatchMeshDesc& p : fragment.patchMeshes) addPatchMesh(p, childPrimitiveId(parentId, index++), out);
-    for (const SubdivisionMeshDesc& p : fragment.subdivisionMeshes) addSubdivisionMesh(p, childPrimitiveId(parentId, index++), out);
-    for (const QuadricDesc& q : fragment.quadrics) addQuadric(q, childPrimitiveId(parentId, index++), out);
-    for (const PolygonMeshDesc& p : fragment.polygonMeshes) addPolygonMesh(p, childPrimitiveId(parentId, index++), out);
+    addPrimitives(output.scene, output.procedurals, depth, [&] { return childPrimitiveId(parentId, index++); }, out);
 }
 
 void BodyFactory::reportOutgrown(ProceduralBody* p) {

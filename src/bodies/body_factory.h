@@ -12,12 +12,14 @@
 
 #include <atomic>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <vector>
 
 #include "bodies/material.h"
+#include "bodies/polygons.h"
 #include "geom/body.h"
 #include "geom/camera.h"
 #include "geom/surface_mesh.h"
@@ -47,19 +49,28 @@ class BodyFactory final : public ChildBodyMaker {
     // warns too.
     void addPatch(const BilinearPatchDesc& patch, uint64_t primitiveId, std::vector<BodyPtr>& out);
     // Curved primitives: a SurfaceMesh per motion segment (kept by the factory) and a CurvedBody
-    // per face; polygon meshes: their faces like patches. The camera must be set: curved bodies
+    // per face. The camera must be set: curved bodies
     // measure their edges in raster space. A subdivision mesh OpenSubdiv rejects is an InputError.
     void setCamera(const Camera* camera) { camera_ = camera; }
     void addPatchMesh(const PatchMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out);
     void addSubdivisionMesh(const SubdivisionMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out);
     void addQuadric(const QuadricDesc& quadric, uint64_t primitiveId, std::vector<BodyPtr>& out);
-    void addPolygonMesh(const PolygonMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out);
+    // A polygon mesh's faces (bodies/polygons.h), each as a patch.
+    void addPolygonFaces(const PolygonMeshDesc& mesh, const PolygonFaces& faces, uint64_t primitiveId,
+                         std::vector<BodyPtr>& out);
     // A procedural, `depth` expansions below the scene (deeper than kMaxProceduralDepth: dropped
     // with a warning), with the generator its description names (InputError when it names none)
     // or one a generator made.
     void addProcedural(const ProceduralDesc& procedural, uint64_t primitiveId, int depth, std::vector<BodyPtr>& out);
     void addProcedural(const ProceduralDesc& procedural, std::shared_ptr<const ProceduralGenerator> generator,
                        uint64_t primitiveId, int depth, std::vector<BodyPtr>& out);
+    // Every primitive of a scene, or of a procedural's output with the procedurals its generator
+    // made, each with the id nextId() gives, taken in the order ids have always been given: the
+    // bilinear patches with the Polygons that are one (in the order read), procedurals, generated
+    // procedurals, patch meshes, subdivision meshes, quadrics, then polygons cut into faces. Ids
+    // decide exact depth ties: this order keeps the pixels.
+    void addPrimitives(const Scene& scene, const std::vector<GeneratedProcedural>& generated, int depth,
+                       const std::function<uint64_t()>& nextId, std::vector<BodyPtr>& out);
     // Everything a procedural produced; child ids are derived from the parent's, so they do not
     // depend on which thread expanded it.
     void addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out) override;

@@ -17,15 +17,9 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     rs->windowEnd = lastFrame + rs->shutter.close;
     rs->factory = std::make_unique<BodyFactory>(cam.worldToCamera, rs->windowStart, rs->windowEnd, log);
     rs->factory->setCamera(&rs->camera);
-    // Primitive ids in scene order from 1: patches, then procedurals, then the curved and
-    // polygon-mesh primitives.
+    // Primitive ids from 1, in the order BodyFactory::addPrimitives takes them.
     uint64_t id = 0;
-    for (const BilinearPatchDesc& p : scene.patches) rs->factory->addPatch(p, ++id, rs->roots);
-    for (const ProceduralDesc& p : scene.procedurals) rs->factory->addProcedural(p, ++id, 0, rs->roots);
-    for (const PatchMeshDesc& p : scene.patchMeshes) rs->factory->addPatchMesh(p, ++id, rs->roots);
-    for (const SubdivisionMeshDesc& p : scene.subdivisionMeshes) rs->factory->addSubdivisionMesh(p, ++id, rs->roots);
-    for (const QuadricDesc& q : scene.quadrics) rs->factory->addQuadric(q, ++id, rs->roots);
-    for (const PolygonMeshDesc& p : scene.polygonMeshes) rs->factory->addPolygonMesh(p, ++id, rs->roots);
+    rs->factory->addPrimitives(scene, {}, 0, [&id] { return ++id; }, rs->roots);
     return rs;
 }
 

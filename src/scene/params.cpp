@@ -6,7 +6,7 @@
 // does not fit.
 #include "streyes/scene.h"
 
-#include "scene/rib_parser.h"
+#include "scene/rib_params.h"
 
 namespace streyes {
 

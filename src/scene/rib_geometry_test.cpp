@@ -1,5 +1,5 @@
 // Parsing the curved and polygon-mesh requests: Basis, Patch "bicubic", PatchMesh,
-// SubdivisionMesh and its tags, the quadrics, polygons beyond four vertices; their motion blocks;
+// SubdivisionMesh and its tags, the quadrics, polygons; their motion blocks;
 // and the errors bad input gets (file:line and what is wrong).
 #include <gtest/gtest.h>
 
@@ -158,36 +158,31 @@ TEST(RibCurved, QuadricsKeepTheirArguments) {
               std::string::npos);
 }
 
-TEST(RibCurved, PolygonsBeyondFourVerticesAreCut) {
+// Polygons are kept as loops of points; the bodies stage cuts them (bodies/polygons_test.cpp).
+TEST(RibCurved, PolygonsAreKeptAsLoops) {
     Scene s = parse(
-        "Polygon \"P\" [0 0 0 2 0 0 3 1 0 1 2 0 -1 1 0]\n"  // a convex pentagon: 3 triangles
+        "Polygon \"P\" [0 0 0 2 0 0 3 1 0 1 2 0 -1 1 0]\n"  // a convex pentagon
         "PointsPolygons [4 4] [0 1 2 3 1 4 5 2] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0 3 0 0 1.5 0.5 0]"
         " \"facevarying color Cs\" [" + numbers(24) + "]\n"
         "GeneralPolygon [4 3] \"P\" [0 0 0 4 0 0 4 4 0 0 4 0 1 1 0 1 2 0 2 1 0]\n");
+    using Polygons = std::vector<std::vector<std::vector<int>>>;
     ASSERT_EQ(s.polygonMeshes.size(), 3u);
-    EXPECT_EQ(s.polygonMeshes[0].faces.size(), 3u);
-    // A convex quad stays one bilinear face (corners in patch order); the concave one is cut in two.
+    EXPECT_EQ(s.polygonMeshes[0].request, "Polygon");
+    EXPECT_EQ(s.polygonMeshes[0].polygons, (Polygons{{{0, 1, 2, 3, 4}}}));
     const PolygonMeshDesc& pp = s.polygonMeshes[1];
-    ASSERT_EQ(pp.faces.size(), 3u);
-    EXPECT_EQ(pp.faces[0], (std::array<int, 4>{0, 1, 3, 2}));
-    ASSERT_EQ(pp.faceCs.size(), 3u);
-    // Facevarying colours follow each polygon's own corners: the second polygon's point 1 is its
-    // first corner, face-vertex 4.
-    bool found = false;
-    for (size_t f = 1; f < 3; ++f)
-        for (size_t k = 0; k < 4; ++k)
-            if (pp.faces[f][k] == 1) found = found || pp.faceCs[f][k] == Color{12, 13, 14};
-    EXPECT_TRUE(found);
-    EXPECT_EQ(s.polygonMeshes[2].faces.size(), 7u);  // a square with a triangular hole
-    // A concave quad is cut too; a convex one stays a bilinear patch.
-    Scene quads = parse("Polygon \"P\" [0 0 0 2 0 0 0.5 0.5 0 0 2 0]\nPolygon \"P\" [0 0 0 2 0 0 2 2 0 0 2 0]\n");
-    ASSERT_EQ(quads.polygonMeshes.size(), 1u);
-    EXPECT_EQ(quads.polygonMeshes[0].faces.size(), 2u);
-    EXPECT_EQ(quads.patches.size(), 1u);
+    EXPECT_EQ(pp.request, "PointsPolygons");
+    EXPECT_EQ(pp.polygons, (Polygons{{{0, 1, 2, 3}}, {{1, 4, 5, 2}}}));
+    ASSERT_EQ(pp.P.size(), 1u);
+    EXPECT_EQ(pp.P[0].size(), 6u);
+    EXPECT_EQ(pp.Cs.cls, ParamClass::FaceVarying);
+    ASSERT_EQ(pp.Cs.values.size(), 8u);
+    EXPECT_EQ(pp.Cs.values[4], (Color{12, 13, 14}));  // the second polygon's first corner
+    EXPECT_EQ(s.polygonMeshes[2].request, "GeneralPolygon");
+    EXPECT_EQ(s.polygonMeshes[2].polygons, (Polygons{{{0, 1, 2, 3}, {4, 5, 6}}}));  // a square with a hole
+    // A polygon without area is kept too: the bodies stage warns about it.
     Log log;
-    EXPECT_TRUE(parse("Polygon \"P\" [0 0 0 1 1 1 2 2 2 3 3 3 4 4 4]\n", log).polygonMeshes.empty());
-    ASSERT_EQ(log.warnings().size(), 1u);
-    EXPECT_NE(log.warnings()[0].find("has no area"), std::string::npos);
+    EXPECT_EQ(parse("Polygon \"P\" [0 0 0 1 1 1 2 2 2 3 3 3 4 4 4]\n", log).polygonMeshes.size(), 1u);
+    EXPECT_TRUE(log.warnings().empty());
     EXPECT_NE(errorOf("PointsPolygons [3 3] [0 1 2 2 1] \"P\" [0 0 0 1 0 0 1 1 0]\n")
                   .find("vertices has 5 indices but nvertices asks for 6"),
               std::string::npos);

@@ -290,32 +290,35 @@ TEST(RibGeometry, StaticPatchHasOneKeyAndSharedAttributes) {
     EXPECT_EQ(p.loc.line, 3);
 }
 
-TEST(RibGeometry, PolygonQuadAndTriangleCornerOrder) {
+// Polygons are kept as written: vertices in order, Cs as given (bodies/polygons_test.cpp makes
+// patches of them).
+TEST(RibGeometry, PolygonsKeepTheirVerticesAndCs) {
     Scene scene = parse(
         "WorldBegin\n"
         "Polygon \"P\" [0 0 0  1 0 0  1 1 0  0 1 0] \"Cs\" [1 0 0  0 1 0  0 0 1  1 1 1]\n"
+        + std::string(kUnitPatch) +
         "Polygon \"P\" [0 0 0  2 0 0  0 2 0] \"vertex color Cs\" [1 0 0  0 1 0  0 0 1]\n"
         "WorldEnd\n");
-    ASSERT_EQ(scene.patches.size(), 2u);
-    // Quad v0 v1 v2 v3 -> corners v0 v1 v3 v2.
-    const BilinearPatchDesc& quad = scene.patches[0];
-    expectNear(quad.P[0][0], {0, 0, 0});
-    expectNear(quad.P[0][1], {1, 0, 0});
-    expectNear(quad.P[0][2], {0, 1, 0});
-    expectNear(quad.P[0][3], {1, 1, 0});
-    ASSERT_TRUE(quad.hasCs);
-    EXPECT_EQ(quad.Cs[0], Color(1, 0, 0));
-    EXPECT_EQ(quad.Cs[1], Color(0, 1, 0));
-    EXPECT_EQ(quad.Cs[2], Color(1, 1, 1));
-    EXPECT_EQ(quad.Cs[3], Color(0, 0, 1));
-    // Triangle v0 v1 v2 -> corners v0 v1 v2 v2.
-    const BilinearPatchDesc& tri = scene.patches[1];
-    expectNear(tri.P[0][0], {0, 0, 0});
-    expectNear(tri.P[0][1], {2, 0, 0});
+    ASSERT_EQ(scene.patches.size(), 1u);
+    ASSERT_EQ(scene.polygonMeshes.size(), 2u);
+    const PolygonMeshDesc& quad = scene.polygonMeshes[0];
+    EXPECT_EQ(quad.request, "Polygon");
+    EXPECT_EQ(quad.polygons, (std::vector<std::vector<std::vector<int>>>{{{0, 1, 2, 3}}}));
+    ASSERT_EQ(quad.P.size(), 1u);
+    ASSERT_EQ(quad.P[0].size(), 4u);
+    expectNear(quad.P[0][2], {1, 1, 0});
+    expectNear(quad.P[0][3], {0, 1, 0});
+    EXPECT_EQ(quad.Cs.cls, ParamClass::Varying);
+    ASSERT_EQ(quad.Cs.values.size(), 4u);
+    EXPECT_EQ(quad.Cs.values[2], Color(0, 0, 1));
+    EXPECT_EQ(quad.patchesBefore, 0u);
+    EXPECT_EQ(quad.loc.line, 2);
+    const PolygonMeshDesc& tri = scene.polygonMeshes[1];
+    EXPECT_EQ(tri.polygons, (std::vector<std::vector<std::vector<int>>>{{{0, 1, 2}}}));
     expectNear(tri.P[0][2], {0, 2, 0});
-    expectNear(tri.P[0][3], {0, 2, 0});
-    EXPECT_EQ(tri.Cs[2], Color(0, 0, 1));
-    EXPECT_EQ(tri.Cs[3], Color(0, 0, 1));
+    EXPECT_EQ(tri.Cs.cls, ParamClass::Vertex);
+    EXPECT_EQ(tri.Cs.values.size(), 3u);
+    EXPECT_EQ(tri.patchesBefore, 1u);  // after the patch: its id comes after the patch's
 }
 
 TEST(RibGeometry, CsVaryingPerCornerAndUniform) {

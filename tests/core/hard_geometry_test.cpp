@@ -38,7 +38,7 @@ class AwayFromFolds {
         time_ = t;
         foldPoints_.clear();
         auto cross2 = [](Vec3d a, Vec3d b) { return a.x * b.y - a.y * b.x; };
-        for (const BilinearPatchDesc& p : scene_.patches) {
+        for (const BilinearPatchDesc& p : test::bilinearPatches(scene_)) {
             const std::array<Vec3d, 4> c = test::cameraCorners(scene_, p, t);
             const Vec3d e = c[1] - c[0], f = c[2] - c[0], g = c[0] - c[1] - c[2] + c[3];
             const double A = cross2(e, f), B = cross2(e, g), C = cross2(g, f);

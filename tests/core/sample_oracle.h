@@ -19,10 +19,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "bodies/polygons.h"
 #include "raster/image_block.h"
 #include "streyes/rib.h"
 #include "test_util.h"
@@ -162,14 +164,23 @@ inline int bilinearLayers(const std::array<Vec3d, 4>& c, double x, double y) {
     return layers;
 }
 
+// A scene's bilinear patches as the renderer makes them: its patches and the Polygons that are
+// one (bodies/polygons.h).
+inline std::vector<BilinearPatchDesc> bilinearPatches(const Scene& scene) {
+    std::vector<BilinearPatchDesc> patches = scene.patches;
+    for (const PolygonMeshDesc& mesh : scene.polygonMeshes)
+        if (std::optional<BilinearPatchDesc> patch = polygonAsPatch(mesh)) patches.push_back(std::move(*patch));
+    return patches;
+}
+
 // The layers of every patch of an orthographic scene (seen along z) over a point, with the
 // corners of all patches evaluated once per time (or once, when nothing moves), and a uniform
 // grid over their bounds so that a point is tested against the patches near it only.
 class PatchLayers {
   public:
-    explicit PatchLayers(const Scene& scene) : scene_(scene) {
+    explicit PatchLayers(const Scene& scene) : patches_(bilinearPatches(scene)) {
         still_ = scene.camera.worldToCamera.isStatic();
-        for (const BilinearPatchDesc& p : scene.patches) {
+        for (const BilinearPatchDesc& p : patches_) {
             still_ = still_ && p.P.size() == 1 && p.objectToWorld.isStatic();
             objectToCamera_.push_back(p.objectToWorld.then(scene.camera.worldToCamera));
         }
@@ -192,7 +203,7 @@ class PatchLayers {
   private:
     static constexpr int kCells = 64;
     void update(double t);
-    const Scene& scene_;
+    std::vector<BilinearPatchDesc> patches_;
     bool still_ = false;
     double time_ = 0, cell_ = 1;
     std::vector<MotionTransform> objectToCamera_;
@@ -207,8 +218,8 @@ inline void PatchLayers::update(double t) {
     corners_.clear();
     bounds_.clear();
     all_ = Bounds3d();
-    for (size_t i = 0; i < scene_.patches.size(); ++i) {
-        corners_.push_back(cameraCorners(scene_.patches[i], objectToCamera_[i], t));
+    for (size_t i = 0; i < patches_.size(); ++i) {
+        corners_.push_back(cameraCorners(patches_[i], objectToCamera_[i], t));
         Bounds3d b;
         for (const Vec3d& c : corners_.back()) b.extend(c);
         b.lo.z = -1e300, b.hi.z = 1e300;

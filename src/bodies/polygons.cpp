@@ -1,0 +1,72 @@
+#include "bodies/polygons.h"
+
+#include <map>
+
+#include "geom/triangulate.h"
+
+namespace streyes {
+
+std::optional<BilinearPatchDesc> polygonAsPatch(const PolygonMeshDesc& mesh) {
+    if (mesh.request != "Polygon" || mesh.polygons.size() != 1 || mesh.polygons[0].size() != 1) return std::nullopt;
+    const std::vector<int>& loop = mesh.polygons[0][0];
+    if (loop.size() != 3 && loop.size() != 4) return std::nullopt;
+    if (loop.size() == 4) {
+        for (const std::vector<Vec3d>& points : mesh.P) {
+            std::vector<std::array<int, 4>> faces;
+            if (cutPolygon(points, {loop}, &faces) && faces.size() > 1) return std::nullopt;  // concave
+        }
+    }
+    // Corner c takes vertex order[c].
+    static const int quadOrder[4] = {0, 1, 3, 2};
+    static const int triangleOrder[4] = {0, 1, 2, 2};
+    const int* order = loop.size() == 4 ? quadOrder : triangleOrder;
+    BilinearPatchDesc patch;
+    patch.times = mesh.times;
+    for (const std::vector<Vec3d>& points : mesh.P) {
+        std::array<Vec3d, 4>& corners = patch.P.emplace_back();
+        for (size_t c = 0; c < 4; ++c) corners[c] = points[size_t(loop[size_t(order[c])])];
+    }
+    patch.hasCs = mesh.Cs.given();
+    if (patch.hasCs) {
+        const bool perVertex = mesh.Cs.cls != ParamClass::Constant && mesh.Cs.cls != ParamClass::Uniform;
+        for (size_t c = 0; c < 4; ++c) patch.Cs[c] = mesh.Cs.values[perVertex ? size_t(loop[size_t(order[c])]) : 0];
+    }
+    patch.objectToWorld = mesh.objectToWorld;
+    patch.attributes = mesh.attributes;
+    patch.loc = mesh.loc;
+    return patch;
+}
+
+PolygonFaces cutPolygons(const PolygonMeshDesc& mesh, Log& log) {
+    PolygonFaces out;
+    const ColorPrimvar& Cs = mesh.Cs;
+    size_t faceVertex = 0;
+    for (size_t p = 0; p < mesh.polygons.size(); ++p) {
+        std::vector<std::array<int, 4>> faces;
+        if (!cutPolygon(mesh.P[0], mesh.polygons[p], &faces))
+            log.warnOnce("polygon:degenerate", mesh.loc,
+                         mesh.request + ": a polygon has no area (its points are on one line): skipped");
+        // Facevarying colours: the polygon's own corners, by point.
+        std::map<int, size_t> cornerOf;
+        for (const std::vector<int>& loop : mesh.polygons[p])
+            for (int v : loop) cornerOf.emplace(v, faceVertex++);
+        for (const std::array<int, 4>& f : faces) {
+            out.faces.push_back(f);
+            if (!Cs.given()) continue;
+            std::array<Color, 4> c;
+            for (size_t k = 0; k < 4; ++k) {
+                const int v = f[k];
+                switch (Cs.cls) {
+                case ParamClass::Constant: c[k] = Cs.values[0]; break;
+                case ParamClass::Uniform: c[k] = Cs.values[p]; break;
+                case ParamClass::FaceVarying: c[k] = Cs.values[cornerOf[v]]; break;
+                default: c[k] = Cs.values[size_t(v)];
+                }
+            }
+            out.faceCs.push_back(c);
+        }
+    }
+    return out;
+}
+
+}  // namespace streyes

@@ -1,0 +1,108 @@
+// Attributes: Color, Opacity, ShadingRate, Attribute and Basis change the current attributes,
+// which primitives share (copy-on-write).
+#include <algorithm>
+#include <set>
+
+#include "scene/rib_requests.h"
+
+namespace streyes {
+
+// Primitives share the Attributes they were created with. Before changing the current attributes
+// we copy them if anything else (a primitive, a saved block) still holds them.
+Attributes& RibState::mutableAttributes() {
+    if (attributes.use_count() > 1) attributes = std::make_shared<Attributes>(*attributes);
+    return *attributes;
+}
+
+namespace {
+
+void color(RibParser& reader, RibArgs& args) {
+    std::vector<double> c = args.numbers(3, "r g b");
+    args.expectEnd();
+    reader.state().mutableAttributes().color = Color(float(c[0]), float(c[1]), float(c[2]));
+}
+
+void opacity(RibParser& reader, RibArgs& args) {
+    std::vector<double> o = args.numbers(3, "r g b");
+    args.expectEnd();
+    if (o[0] < 1 || o[1] < 1 || o[2] < 1)
+        reader.log().warnOnce("opacity", args.loc(), "transparency is not supported yet: rendering as opaque");
+    reader.state().mutableAttributes().opacity = Color(float(o[0]), float(o[1]), float(o[2]));
+}
+
+void shadingRate(RibParser& reader, RibArgs& args) {
+    double rate = args.number("area");
+    args.expectEnd();
+    if (!(rate > 0)) args.fail("the shading rate must be positive, got " + formatNumber(rate));
+    reader.state().mutableAttributes().shadingRate = rate;
+}
+
+// Attribute "category" values are kept as "category:name" for the features that read them.
+void attribute(RibParser& reader, RibArgs& args) {
+    static const std::set<std::string> categories = {"identifier", "light", "user", "streyes"};
+    std::string category = args.string("category");
+    if (!categories.count(category)) {
+        reader.log().warnOnce("attribute:" + category, args.loc(),
+                              "Attribute \"" + category + "\" is not supported: ignored");
+        args.skipRest();
+        return;
+    }
+    ParamList params = reader.readParams(args);
+    Attributes& a = reader.state().mutableAttributes();
+    for (Param& p : params.params) {
+        if ((p.nums.size() + p.strings.size()) % size_t(p.componentsPerItem()) != 0)
+            throw InputError(p.loc, "Attribute \"" + category + "\": parameter '" + p.name + "' has " +
+                                        plural(p.nums.size() + p.strings.size(), "value") +
+                                        ", not a whole number of " + paramTypeName(p.type) + "s");
+        if (category == "light" && p.name == "shadows" && p.type == ParamType::String) {
+            const std::string v = p.strings.empty() ? "" : p.strings.front();
+            if (v != "on" && v != "off")
+                throw InputError(p.loc, "Attribute \"light\" \"shadows\": expected \"on\" or \"off\", not \"" + v + "\"");
+        }
+        p.name = category + ":" + p.name;
+        auto same = std::find_if(a.user.params.begin(), a.user.params.end(),
+                                 [&](const Param& q) { return q.name == p.name; });
+        if (same != a.user.params.end())
+            *same = std::move(p);
+        else
+            a.user.params.push_back(std::move(p));
+    }
+}
+
+void basis(RibParser& reader, RibArgs& args) {
+    BasisDesc b[2];
+    for (int i = 0; i < 2; ++i) {
+        const char* which = i == 0 ? "ubasis" : "vbasis";
+        if (args.done()) args.fail(std::string("missing ") + which);
+        const RibValue& v = *args.peek();
+        if (v.kind == RibValue::Kind::Array && v.isNumericArray() && v.nums.size() == 16) {
+            std::copy(v.nums.begin(), v.nums.end(), b[i].m.begin());
+            args.take();
+        } else {
+            std::string name = args.string(which);
+            if (!basisFromName(name, &b[i]))
+                args.fail(v, "unknown basis \"" + name +
+                                 "\": use bezier, b-spline, catmull-rom, hermite, power or 16 numbers");
+        }
+        const RibValue* stepValue = args.peek();
+        const int step = args.integer(i == 0 ? "ustep" : "vstep");
+        if (step < 1) args.fail(*stepValue, "the step must be at least 1, got " + std::to_string(step));
+        b[i].step = step;
+    }
+    args.expectEnd();
+    Attributes& a = reader.state().mutableAttributes();
+    a.uBasis = b[0];
+    a.vBasis = b[1];
+}
+
+}  // namespace
+
+void addAttributeRequests(RibRequestTable& table) {
+    table.add("Color", {color, "Color r g b"});
+    table.add("Opacity", {opacity, "Opacity r g b"});
+    table.add("ShadingRate", {shadingRate, "ShadingRate area"});
+    table.add("Attribute", {attribute, "Attribute \"category\" parameters..."});
+    table.add("Basis", {basis, "Basis ubasis ustep vbasis vstep"});
+}
+
+}  // namespace streyes

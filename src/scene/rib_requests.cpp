@@ -1,0 +1,150 @@
+// The request table, dispatch, and the requests outside the subset.
+#include "scene/rib_requests.h"
+
+#include <algorithm>
+#include <cctype>
+#include <stdexcept>
+
+namespace streyes {
+
+void RibRequestTable::add(const std::string& name, const RibRequestInfo& info) {
+    if (!requests_.emplace(name, info).second)
+        throw std::logic_error("the RIB request table has '" + name + "' twice");
+}
+
+const RibRequestInfo* RibRequestTable::find(const std::string& name) const {
+    auto found = requests_.find(name);
+    return found == requests_.end() ? nullptr : &found->second;
+}
+
+std::string RibRequestTable::sameButForCase(const std::string& name) const {
+    for (const auto& entry : requests_) {
+        const std::string& known = entry.first;
+        if (known.size() == name.size() &&
+            std::equal(known.begin(), known.end(), name.begin(),
+                       [](char a, char b) { return std::tolower(a) == std::tolower(b); }))
+            return known;
+    }
+    return "";
+}
+
+const RibRequestTable& ribRequests() {
+    static const RibRequestTable table = [] {
+        RibRequestTable t;
+        for (auto add : {addUnsupportedRequests, addParamRequests, addOptionRequests, addBlockRequests,
+                         addTransformRequests, addAttributeRequests, addShadingRequests, addPatchRequests,
+                         addPolygonRequests, addSubdivisionRequests, addQuadricRequests, addArchiveRequests})
+            add(t);
+        return t;
+    }();
+    return table;
+}
+
+// ---- Dispatch -----------------------------------------------------------------------------------
+void RibParser::dispatch(const RibRequest& request) {
+    const std::string& name = request.name;
+
+    // Inside ObjectBegin/ObjectEnd or ArchiveBegin/ArchiveEnd: skip to the matching end.
+    if (std::optional<RibState::SkippedBlock>& skipping = state_.skipping) {
+        if (name == skipping->beginName) ++skipping->depth;
+        if (name == skipping->endName && --skipping->depth == 0) skipping.reset();
+        return;
+    }
+
+    const RibRequestInfo* info = ribRequests().find(name);
+    if (!info) {
+        const std::string known = ribRequests().sameButForCase(name);
+        const std::string hint = known.empty() ? " (see docs/SCENE-FORMAT.md for the requests streyes reads)"
+                                               : ": did you mean '" + known + "'? (request names are case-sensitive)";
+        throw InputError(request.loc, "unknown request '" + name + "'" + hint);
+    }
+
+    // A request that is valid only in part of the file.
+    auto checkPhase = [&] {
+        if (info->phase == RibPhase::Options && state_.world != RibState::World::Before)
+            throw InputError(request.loc, name + " is an option: it must come before WorldBegin (line " +
+                                              std::to_string(state_.worldBegin.line) + ")");
+        if (info->phase == RibPhase::World && state_.world != RibState::World::Inside) {
+            std::string where = state_.world == RibState::World::Before ? "it comes before WorldBegin"
+                                                                        : "it comes after WorldEnd";
+            throw InputError(request.loc, name + " is only valid between WorldBegin and WorldEnd, but " + where);
+        }
+    };
+
+    // Inside MotionBegin/MotionEnd: keep the requests until MotionEnd, checking what we can now.
+    if (std::optional<RibState::MotionBlock>& motion = state_.motion; motion && name != "MotionEnd") {
+        std::string block = "MotionBegin at line " + std::to_string(motion->begin.line);
+        if (name == "MotionBegin") throw InputError(request.loc, "nested MotionBegin: the " + block + " is still open");
+        if (!info->motion)
+            throw InputError(request.loc, name + " cannot appear inside a motion block (" + block +
+                                              " has no MotionEnd yet): only transforms (Translate, Rotate, Scale, "
+                                              "ConcatTransform, Transform, Identity) or geometry (Patch, PatchMesh, "
+                                              "Polygon, SubdivisionMesh, a quadric, ...) can move");
+        checkPhase();
+        const std::vector<RibRequest>& held = motion->requests;
+        if (!held.empty() && name != held.front().name)
+            throw InputError(request.loc, "every request in a motion block must be the same: " + name + " after " +
+                                              held.front().name + " (" + block + ")");
+        if (held.size() == motion->times.size())
+            throw InputError(request.loc, "the " + block + " gives " + plural(motion->times.size(), "time") +
+                                              ", but this is request " + std::to_string(held.size() + 1) +
+                                              " in the block: give one request per time");
+        motion->requests.push_back(request);
+        motion->usage = info->usage;
+        return;
+    }
+
+    checkPhase();
+    RibArgs args(request, info->usage);
+    info->handler(*this, args);
+}
+
+// ---- Requests outside the subset ------------------------------------------------------------------
+namespace {
+
+void version(RibParser&, RibArgs& args) { args.skipRest(); }
+
+void unsupported(RibParser& reader, RibArgs& args) {
+    reader.log().warnOnce("request:" + args.name(), args.loc(), "unsupported request '" + args.name() + "' ignored");
+    args.skipRest();
+}
+
+void unsupportedGeometry(RibParser& reader, RibArgs& args) {
+    reader.log().warnOnce("request:" + args.name(), args.loc(),
+                          "unsupported request '" + args.name() + "' ignored (not supported yet)");
+    args.skipRest();
+}
+
+void unsupportedGeometryKeys(RibParser& reader, const RibKeys& keys) {
+    RibArgs first(keys.requests.front(), keys.usage);
+    unsupportedGeometry(reader, first);
+}
+
+}  // namespace
+
+void addUnsupportedRequests(RibRequestTable& table) {
+    table.add("version", {version, "version number"});
+    // clang-format off
+    // RIB requests outside the subset: warned about once and skipped.
+    for (const char* name :
+         {"Exposure", "Quantize", "Hider", "Imager", "GeometricApproximation", "Sides", "Orientation",
+          "ReverseOrientation", "ColorSamples", "CropWindow", "DepthOfField", "RelativeDetail",
+          "PixelVariance", "Atmosphere", "Interior", "Exterior", "Displacement", "Deformation",
+          "TextureCoordinates", "Matte", "Bound", "Detail", "DetailRange", "Perspective", "Skew",
+          "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "ShadingInterpolation", "AreaLightSource", "SolidBegin",
+          "SolidEnd", "ObjectEnd", "ArchiveEnd", "MakeTexture", "MakeBump", "MakeLatLongEnvironment",
+          "MakeCubeFaceEnvironment", "MakeShadow", "MakeBrickMap", "ErrorHandler", "ArchiveRecord",
+          "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
+          "System", "Shader", "Bxdf", "Pattern", "Integrator", "DisplayFilter", "SampleFilter",
+          "DisplayChannel", "PixelSampleImager", "EditBegin", "EditEnd", "EditAttributeBegin",
+          "EditAttributeEnd", "EditWorldBegin", "EditWorldEnd"})
+        table.add(name, {unsupported});
+    // Geometry outside the subset: skipped with a warning, also as the keys of a motion block.
+    for (const char* name :
+         {"NuPatch", "TrimCurve", "HierarchicalSubdivisionMesh", "Points", "Curves", "Blobby", "Procedural2",
+          "Geometry", "Volume", "ObjectInstance"})
+        table.add(name, {unsupportedGeometry, "", RibPhase::World, unsupportedGeometryKeys});
+    // clang-format on
+}
+
+}  // namespace streyes

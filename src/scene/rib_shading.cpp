@@ -1,0 +1,108 @@
+// Shading: the surface shader (Surface) and lights (LightSource, Illuminate). A light is on in the
+// attribute block where it is declared and the blocks inside it, or as Illuminate turns it.
+#include <algorithm>
+#include <map>
+
+#include "scene/rib_requests.h"
+
+namespace streyes {
+
+namespace {
+
+void surface(RibParser& reader, RibArgs& args) {
+    static const std::map<std::string, std::vector<std::string>> shaders = {
+        {"constant", {}},
+        {"defaultsurface", {}},
+        {"matte", {"Ka", "Kd"}},
+        {"plastic", {"Ka", "Kd", "Ks", "roughness", "specularcolor"}}};
+    std::string name = args.string("shader name");
+    auto shader = shaders.find(name);
+    if (shader == shaders.end()) {
+        reader.log().warnOnce("surface:" + name, args.loc(),
+                              "surface shader \"" + name +
+                                  "\" is not supported (constant, matte, plastic, "
+                                  "defaultsurface): using defaultsurface");
+        args.skipRest();
+        reader.state().mutableAttributes().surface = ShaderDesc{"defaultsurface", {}, args.loc()};
+        return;
+    }
+    ParamList params = reader.readParams(args);
+    // Check the values now, so that a bad one is reported here rather than while shading.
+    for (const char* f : {"Ka", "Kd", "Ks"}) params.getFloat(f, 0);
+    if (params.getFloat("roughness", 0.1) <= 0)
+        throw InputError(params.find("roughness")->loc, "Surface: roughness must be positive");
+    params.getColor("specularcolor", Color(1, 1, 1));
+    reader.warnUnusedParams(params, shader->second, "Surface \"" + name + "\"");
+    reader.state().mutableAttributes().surface = ShaderDesc{name, std::move(params), args.loc()};
+}
+
+// A light is on in the attribute block where it is declared (and the blocks inside it): its index
+// goes into the current attributes' light list, which AttributeEnd restores.
+void lightSource(RibParser& reader, RibArgs& args) {
+    RibState& s = reader.state();
+    static const std::map<std::string, std::vector<std::string>> shaders = {
+        {"ambientlight", {"intensity", "lightcolor"}},
+        {"distantlight", {"intensity", "lightcolor", "from", "to"}},
+        {"pointlight", {"intensity", "lightcolor", "from"}}};
+    std::string name = args.string("shader name");
+
+    // The handle: a number (RIB 3.2) or a string (later versions). Parameters come in pairs, so a
+    // string before an odd number of remaining values is a handle.
+    std::string handle;
+    if (const RibValue* v = args.peek()) {
+        if (v->isNumber() || (v->isString() && args.remaining() % 2 == 1)) {
+            handle = v->isNumber() ? std::to_string(args.integer("handle")) : args.string("handle");
+        }
+    }
+
+    auto shader = shaders.find(name);
+    if (shader == shaders.end()) {
+        reader.log().warnOnce("light:" + name, args.loc(),
+                              "light shader \"" + name +
+                                  "\" is not supported (ambientlight, distantlight, pointlight): "
+                                  "light skipped");
+        args.skipRest();
+        if (!handle.empty()) s.skippedLightHandles.insert(handle);
+        return;
+    }
+    ParamList params = reader.readParams(args);
+    params.getFloat("intensity", 1.0);
+    params.getColor("lightcolor", Color(1, 1, 1));
+    params.getPoint("from", Vec3d(0, 0, 0));
+    params.getPoint("to", Vec3d(0, 0, 1));
+    reader.warnUnusedParams(params, shader->second, "LightSource \"" + name + "\"");
+
+    int index = int(reader.scene().lights.size());
+    const bool shadows = s.attributes->user.getString("light:shadows", "off") == "on";
+    reader.scene().lights.push_back(LightDesc{name, std::move(params), s.ctm, args.loc(), shadows});
+    s.mutableAttributes().lights.push_back(index);
+    if (!handle.empty()) {
+        s.lightHandles[handle] = index;
+        s.skippedLightHandles.erase(handle);
+    }
+}
+
+void illuminate(RibParser& reader, RibArgs& args) {
+    RibState& s = reader.state();
+    if (args.done()) args.fail("missing handle");
+    std::string handle = args.peek()->isNumber() ? std::to_string(args.integer("handle")) : args.string("handle");
+    int on = args.integer("onoff");
+    args.expectEnd();
+    if (s.skippedLightHandles.count(handle)) return;
+    auto light = s.lightHandles.find(handle);
+    if (light == s.lightHandles.end()) args.fail("no light has the handle '" + handle + "'");
+    std::vector<int>& lights = s.mutableAttributes().lights;
+    auto it = std::find(lights.begin(), lights.end(), light->second);
+    if (on && it == lights.end()) lights.push_back(light->second);
+    if (!on && it != lights.end()) lights.erase(it);
+}
+
+}  // namespace
+
+void addShadingRequests(RibRequestTable& table) {
+    table.add("Surface", {surface, "Surface \"name\" parameters..."});
+    table.add("LightSource", {lightSource, "LightSource \"name\" handle parameters...", RibPhase::World});
+    table.add("Illuminate", {illuminate, "Illuminate handle onoff", RibPhase::World});
+}
+
+}  // namespace streyes
