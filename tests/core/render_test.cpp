@@ -181,7 +181,7 @@ TEST(Render, SpacetimeAndFramesAgreeWithinSamplingNoise) {
     size_t differ = 0, total = 0;
     for (size_t f = 0; f < a.frames.size(); ++f)
         for (size_t i = 0; i < a.frames[f].rgba.size(); i += 4, ++total)
-            if (std::fabs(a.frames[f].rgba[i + 3] - b.frames[f].rgba[i + 3]) > 0.25f) ++differ;
+            if (test::absDifference(a.frames[f].rgba[i + 3], b.frames[f].rgba[i + 3]) > 0.25f) ++differ;
     EXPECT_LT(double(differ) / double(total), 0.01);
     EXPECT_GT(a.stats.counters.sampleHits, 0u);
 }
