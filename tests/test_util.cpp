@@ -129,6 +129,17 @@ float meanAbsDifference(const RenderResult& a, const RenderResult& b) {
     return n ? float(s / double(n)) : 0.0f;
 }
 
+size_t differingPixels(const FrameImage& a, const FrameImage& b, float threshold) {
+    if (a.rgba.size() != b.rgba.size()) throw std::runtime_error("sizes differ");
+    size_t n = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) {
+        bool differs = false;
+        for (size_t c = 0; c < 4; ++c) differs = differs || absDifference(a.rgba[i + c], b.rgba[i + c]) > threshold;
+        n += differs;
+    }
+    return n;
+}
+
 }  // namespace streyes::test
 
 namespace streyes::test {

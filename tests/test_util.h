@@ -71,6 +71,9 @@ float absDifference(float x, float y);
 // Largest and mean absDifference of RGBA over all frames and pixels (+inf when a NaN is met).
 float maxAbsDifference(const RenderResult& a, const RenderResult& b);
 float meanAbsDifference(const RenderResult& a, const RenderResult& b);
+// Pixels of two images of one size where some RGBA channel differs by more than `threshold`
+// (by absDifference: a NaN counts).
+size_t differingPixels(const FrameImage& a, const FrameImage& b, float threshold);
 
 // An orthographic camera where one scene unit is one pixel (raster x = x, raster y = h - y), a
 // box filter one pixel wide, then `extra` options, WorldBegin and Surface "constant".

@@ -59,6 +59,19 @@ TEST(TestUtil, MaxAndMeanDifferenceSeeNaNWhereverItIs) {
     EXPECT_EQ(test::maxAbsDifference(half, half), 0.0f);
 }
 
+TEST(TestUtil, DifferingPixelsCountsPixelsNotChannels) {
+    RenderResult a = oneValue(0.5f), b = oneValue(0.5f);
+    EXPECT_EQ(test::differingPixels(a.frames[0], b.frames[0], 0.1f), 0u);
+    b.frames[0].rgba[0] = 0.7f;  // pixel 0: red and alpha
+    b.frames[0].rgba[3] = 0.0f;
+    EXPECT_EQ(test::differingPixels(a.frames[0], b.frames[0], 0.1f), 1u);
+    EXPECT_EQ(test::differingPixels(a.frames[0], b.frames[0], 0.25f), 1u);  // alpha's 0.5
+    EXPECT_EQ(test::differingPixels(a.frames[0], b.frames[0], 0.5f), 0u);   // more than, not as much as
+    b.frames[0].rgba[6] = kNaN;  // pixel 1: blue
+    EXPECT_EQ(test::differingPixels(a.frames[0], b.frames[0], 0.1f), 2u);
+    EXPECT_EQ(test::differingPixels(b.frames[0], b.frames[0], 1e30f), 1u);  // NaN against itself
+}
+
 TEST(TestUtil, IdenticalPixelsMeansTheSameBits) {
     EXPECT_TRUE(test::identicalPixels(oneValue(0.5f), oneValue(0.5f)));
     EXPECT_TRUE(test::identicalPixels(oneValue(kNaN), oneValue(kNaN)));  // the same NaN, the same bits
