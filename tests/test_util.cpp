@@ -225,7 +225,8 @@ SampleAgreement compareSamples(const SampleRecord& a, const SampleRecord& b, flo
             ++r.sameSurface;
             continue;
         }
-        const float dc = std::max({absDifference(x.c.x, y.c.x), absDifference(x.c.y, y.c.y), absDifference(x.c.z, y.c.z)});
+        const float dc =
+            std::max({absDifference(x.c.x, y.c.x), absDifference(x.c.y, y.c.y), absDifference(x.c.z, y.c.z)});
         if (x.id == y.id && dc <= colorTolerance &&
             absDifference(x.z, y.z) <= depthTolerance * std::max(std::fabs(x.z), std::fabs(y.z)))
             ++r.sameSurface;

@@ -274,7 +274,8 @@ TEST(OcclusionRender, HigherToleranceCullsMoreAndChangesLittle) {
 // The bound above fails on a lost object: the green card (0.2 0.9 0.2) dropped from kLayered.
 TEST(OcclusionRender, ToleranceBoundFailsWhenAnObjectIsLost) {
     RenderResult exact = test::renderRib(kLayered, with(Algorithm::SpacetimeOcclusion));
-    RenderResult lost = test::renderRib(withoutBlock(kLayered, "Color [0.2 0.9 0.2]"), with(Algorithm::SpacetimeOcclusion));
+    RenderResult lost =
+        test::renderRib(withoutBlock(kLayered, "Color [0.2 0.9 0.2]"), with(Algorithm::SpacetimeOcclusion));
     ASSERT_EQ(lost.frames.size(), exact.frames.size());
     for (size_t f = 0; f < exact.frames.size(); ++f)
         EXPECT_GT(test::differingPixels(exact.frames[f], lost.frames[f], kVisibleChange), kMaxChangedPixels)
