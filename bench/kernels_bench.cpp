@@ -50,16 +50,18 @@ Camera perspectiveCamera(int w, int h) {
     return Camera(cd);
 }
 
-// The split loop's decision and recursion (as in the bucket), without culling or sampling:
-// a patch seen at an angle, split until each piece dices to at most 256 micropolygons.
+// The split loop's decision (the renderer's own, render/split_decision.h) and recursion, without
+// culling or sampling: a patch seen at an angle, split until each piece dices to at most 256
+// micropolygons (default options, shading rate 1).
 void BM_SplitLoop(benchmark::State& state) {
     Camera cam = perspectiveCamera(1920, 1080);
     Material m;
     TrilinearBody::Corners c{{{-4, -2, 4}, {4, -2, 4}, {-4, -2, 40}, {4, -2, 40}}};
     TrilinearBody root({0, 1}, c, c, {}, &m);
+    const RenderOptions options;
     std::vector<BodyPtr> stack;
     uint64_t splits = 0, dices = 0;
-    for (auto _ : state) splitToGrids(root, cam, stack, splits, dices);
+    for (auto _ : state) splitToGrids(root, cam, options, stack, splits, dices);
     state.counters["splits/s"] = benchmark::Counter(double(splits), benchmark::Counter::kIsRate);
     state.counters["grids"] = double(dices) / double(state.iterations());
 }
