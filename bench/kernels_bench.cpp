@@ -17,9 +17,12 @@
 #include "raster/rasterizer.h"
 #include "shade/shading.h"
 #include "split_loop.h"
+#include "../tests/pixel_camera.h"
 
 namespace streyes {
 namespace {
+
+using test::pixelCamera;
 
 // A 16-pixel square centred at (cx, cy) in raster space, turned by 30 degrees so that its
 // micropolygons do not line up with pixels, at camera depth 10.
@@ -27,18 +30,6 @@ TrilinearBody::Corners turnedSquare(float cx, float cy, int size) {
     const float c = std::cos(0.5236f) * 8, s = std::sin(0.5236f) * 8;
     auto p = [&](float u, float v) { return Vec3f{cx + u * c - v * s, float(size) - (cy + u * s + v * c), 10}; };
     return {{p(-1, -1), p(1, -1), p(-1, 1), p(1, 1)}};
-}
-
-// Orthographic camera: raster x = x, raster y = size - y.
-Camera pixelCamera(int size) {
-    CameraDesc cd;
-    cd.xres = cd.yres = size;
-    cd.hasScreenWindow = true;
-    cd.screenWindow[0] = 0;
-    cd.screenWindow[1] = size;
-    cd.screenWindow[2] = 0;
-    cd.screenWindow[3] = size;
-    return Camera(cd);
 }
 
 Camera perspectiveCamera(int w, int h) {

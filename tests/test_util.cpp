@@ -15,14 +15,6 @@
 
 namespace streyes::test {
 
-Camera pixelCamera(int size) {
-    CameraDesc cd;
-    cd.xres = cd.yres = size;
-    cd.hasScreenWindow = true;
-    cd.screenWindow[0] = 0, cd.screenWindow[1] = size, cd.screenWindow[2] = 0, cd.screenWindow[3] = size;
-    return Camera(cd);
-}
-
 std::string sourcePath(const std::string& relative) { return std::string(STREYES_SOURCE_DIR) + "/" + relative; }
 
 TempDir::TempDir(const std::string& tag) {

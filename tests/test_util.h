@@ -6,17 +6,13 @@
 #include <utility>
 #include <vector>
 
-#include "geom/camera.h"
 #include "film/film.h"
+#include "pixel_camera.h"  // test::pixelCamera
 #include "streyes/renderer.h"
 #include "streyes/scene.h"
 #include "streyes/stats.h"
 
 namespace streyes::test {
-
-// Orthographic camera of size x size pixels where one unit is one pixel: raster x = x,
-// raster y = size - y.
-Camera pixelCamera(int size);
 
 // Absolute path of a file in the source tree, e.g. sourcePath("scenes/ramp.rib").
 std::string sourcePath(const std::string& relative);
