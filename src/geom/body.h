@@ -108,6 +108,10 @@ class Body {
     unsigned char eyeSplitDepth = 0;
 
   protected:
+    // Sizes `grid` for nu x nv micropolygons and copies what every vertex shares from the body
+    // (time span, motion, material, primitive): the start of every dice().
+    void startGrid(int nu, int nv, Grid& grid) const;
+
     TimeSpan time_;
     bool moving_ = false;
     const Material* material_ = nullptr;
