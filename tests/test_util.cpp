@@ -132,6 +132,17 @@ size_t differingPixels(const FrameImage& a, const FrameImage& b, float threshold
     return n;
 }
 
+std::vector<std::string> differingCounts(const RenderCounters& a, const RenderCounters& b) {
+    std::vector<std::string> keys;
+#define STREYES_COMPARE(member, key) \
+    if (a.member != b.member) keys.push_back(key);
+#define STREYES_SKIP(member, key)
+    STREYES_RENDER_COUNTERS(STREYES_COMPARE, STREYES_COMPARE, STREYES_SKIP, STREYES_SKIP)
+#undef STREYES_COMPARE
+#undef STREYES_SKIP
+    return keys;
+}
+
 }  // namespace streyes::test
 
 namespace streyes::test {

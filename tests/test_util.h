@@ -71,6 +71,10 @@ float meanAbsDifference(const RenderResult& a, const RenderResult& b);
 // (by absDifference: a NaN counts).
 size_t differingPixels(const FrameImage& a, const FrameImage& b, float threshold);
 
+// The JSON keys of the counts (not the seconds) that differ between two renders' counters:
+// empty when every count agrees. Walks STREYES_RENDER_COUNTERS, so it covers every counter.
+std::vector<std::string> differingCounts(const RenderCounters& a, const RenderCounters& b);
+
 // An orthographic camera where one scene unit is one pixel (raster x = x, raster y = h - y), a
 // box filter one pixel wide, then `extra` options, WorldBegin and Surface "constant".
 std::string orthoHeader(int w, int h, const std::string& extra = "");

@@ -308,6 +308,7 @@ WorldEnd
     one.bucketSize = two.bucketSize = 8;
     RenderResult a = renderRib(rib, one), b = renderRib(rib, two);
     EXPECT_TRUE(test::identicalPixels(a, b));
+    EXPECT_EQ(test::differingCounts(a.stats.counters, b.stats.counters), std::vector<std::string>{});
     EXPECT_GT(a.stats.counters.sampleHits, 1000u);
 }
 

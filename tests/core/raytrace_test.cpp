@@ -156,7 +156,9 @@ TEST(Raytrace, ThreadCountDoesNotChangePixelsWithShadows) {
         one.bucketSize = two.bucketSize = 8;
         RenderResult r1 = renderRib(kAnimation, one), r2 = renderRib(kAnimation, two);
         EXPECT_TRUE(test::identicalPixels(r1, r2)) << algorithmName(a);
-        EXPECT_EQ(r1.stats.counters.rayBodyTests, r2.stats.counters.rayBodyTests) << algorithmName(a);
+        EXPECT_EQ(test::differingCounts(r1.stats.counters, r2.stats.counters), std::vector<std::string>{})
+            << algorithmName(a);
+        EXPECT_GT(r1.stats.counters.rayBodyTests, 0u) << algorithmName(a);
     }
 }
 

@@ -91,6 +91,28 @@ TEST(TestUtil, IdenticalPixelsMeansTheSameBits) {
     EXPECT_FALSE(test::identicalPixels(noZ, oneValue(0.5f)));
 }
 
+TEST(TestUtil, DifferingCountsNamesEveryCountButNotTheSeconds) {
+    const RenderCounters zero;
+    EXPECT_TRUE(test::differingCounts(zero, zero).empty());
+    size_t counts = 0;
+#define STREYES_ONE(member, key)                                                   \
+    {                                                                              \
+        RenderCounters c;                                                          \
+        c.member = {1};                                                            \
+        EXPECT_EQ(test::differingCounts(zero, c), std::vector<std::string>{key});  \
+        ++counts;                                                                  \
+    }
+#define STREYES_SECONDS(member, key)                                               \
+    {                                                                              \
+        RenderCounters c;                                                          \
+        c.member = 1.5;                                                            \
+        EXPECT_TRUE(test::differingCounts(zero, c).empty()) << key;                \
+    }
+#define STREYES_SKIP(key, expression)
+    STREYES_RENDER_COUNTERS(STREYES_ONE, STREYES_ONE, STREYES_SECONDS, STREYES_SKIP)
+    EXPECT_GE(counts, 26u);  // the counts and lists there were when this was written
+}
+
 // Two records of one sample each, hits as given.
 test::SampleAgreement agreement(const SampleHit& x, const SampleHit& y) {
     test::SampleRecord a, b;
