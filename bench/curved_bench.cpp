@@ -66,8 +66,8 @@ struct Meshes {
     }
 };
 
-// Dicing a grid-sized piece of a face (its first half, split until it dices to at most 256
-// micropolygons, as in the bucket) at the rate its measure asks for.
+// Dicing a grid-sized piece of a face (its first half, split until the split loop's decision is
+// to dice it: at most 256 micropolygons) at the rate that decision asks for.
 // Arguments: 0 Bezier patch, 1 sphere, 2 regular subdivision face, 3 irregular subdivision face.
 void BM_CurvedDice(benchmark::State& state) {
     static Meshes meshes;
@@ -81,15 +81,14 @@ void BM_CurvedDice(benchmark::State& state) {
             if (sd.regular(f) == (state.range(0) == 2)) face = f;
     }
     BodyPtr piece = CurvedBody(mesh, face).restrictedTo(0, 1);
-    int nu = 1, nv = 1;
-    while (true) {
-        const RasterMeasure m = piece->measure(meshes.camera);
-        nu = std::max(1, int(std::ceil(m.extentU))), nv = std::max(1, int(std::ceil(m.extentV)));
-        if (nu * nv <= 256) break;
+    const RenderOptions options;
+    SplitDecision d;
+    while (!(d = decideSplit(*piece, piece->measure(meshes.camera), options)).dice) {
         BodyPtr h[2];
-        piece->split(m.extentU >= m.extentV ? SplitAxis::U : SplitAxis::V, h);
+        piece->split(d.axis, h);
         piece = std::move(h[0]);
     }
+    const int nu = d.nu, nv = d.nv;
     Grid g;
     uint64_t micropolygons = 0;
     for (auto _ : state) {
@@ -107,9 +106,10 @@ BENCHMARK(BM_CurvedDice)->ArgName("kind")->Arg(0)->Arg(1)->Arg(2)->Arg(3);
 void BM_CurvedSplitLoop(benchmark::State& state) {
     static Meshes meshes;
     CurvedBody root(meshes.quadric.get(), 0);
+    const RenderOptions options;
     std::vector<BodyPtr> stack;
     uint64_t splits = 0, grids = 0;
-    for (auto _ : state) splitToGrids(root, meshes.camera, stack, splits, grids);
+    for (auto _ : state) splitToGrids(root, meshes.camera, options, stack, splits, grids);
     state.counters["splits/s"] = benchmark::Counter(double(splits), benchmark::Counter::kIsRate);
     state.counters["grids"] = double(grids) / double(state.iterations());
 }

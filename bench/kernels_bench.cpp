@@ -17,9 +17,12 @@
 #include "raster/rasterizer.h"
 #include "shade/shading.h"
 #include "split_loop.h"
+#include "../tests/pixel_camera.h"
 
 namespace streyes {
 namespace {
+
+using test::pixelCamera;
 
 // A 16-pixel square centred at (cx, cy) in raster space, turned by 30 degrees so that its
 // micropolygons do not line up with pixels, at camera depth 10.
@@ -27,18 +30,6 @@ TrilinearBody::Corners turnedSquare(float cx, float cy, int size) {
     const float c = std::cos(0.5236f) * 8, s = std::sin(0.5236f) * 8;
     auto p = [&](float u, float v) { return Vec3f{cx + u * c - v * s, float(size) - (cy + u * s + v * c), 10}; };
     return {{p(-1, -1), p(1, -1), p(-1, 1), p(1, 1)}};
-}
-
-// Orthographic camera: raster x = x, raster y = size - y.
-Camera pixelCamera(int size) {
-    CameraDesc cd;
-    cd.xres = cd.yres = size;
-    cd.hasScreenWindow = true;
-    cd.screenWindow[0] = 0;
-    cd.screenWindow[1] = size;
-    cd.screenWindow[2] = 0;
-    cd.screenWindow[3] = size;
-    return Camera(cd);
 }
 
 Camera perspectiveCamera(int w, int h) {
@@ -50,16 +41,18 @@ Camera perspectiveCamera(int w, int h) {
     return Camera(cd);
 }
 
-// The split loop's decision and recursion (as in the bucket), without culling or sampling:
-// a patch seen at an angle, split until each piece dices to at most 256 micropolygons.
+// The split loop's decision (the renderer's own, render/split_decision.h) and recursion, without
+// culling or sampling: a patch seen at an angle, split until each piece dices to at most 256
+// micropolygons (default options, shading rate 1).
 void BM_SplitLoop(benchmark::State& state) {
     Camera cam = perspectiveCamera(1920, 1080);
     Material m;
     TrilinearBody::Corners c{{{-4, -2, 4}, {4, -2, 4}, {-4, -2, 40}, {4, -2, 40}}};
     TrilinearBody root({0, 1}, c, c, {}, &m);
+    const RenderOptions options;
     std::vector<BodyPtr> stack;
     uint64_t splits = 0, dices = 0;
-    for (auto _ : state) splitToGrids(root, cam, stack, splits, dices);
+    for (auto _ : state) splitToGrids(root, cam, options, stack, splits, dices);
     state.counters["splits/s"] = benchmark::Counter(double(splits), benchmark::Counter::kIsRate);
     state.counters["grids"] = double(dices) / double(state.iterations());
 }

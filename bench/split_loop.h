@@ -1,32 +1,31 @@
-// The split loop's decision and recursion (as in the bucket), without culling or sampling:
-// splits a body until each piece dices to at most 256 micropolygons at shading rate 1. Shared by
-// the split-loop kernels.
+// The bucket's recursion without culling or sampling: a body is split as the renderer's split
+// loop decides (decideSplit, render/split_decision.h: the same function bucket.cpp calls) until
+// every piece would be diced; the pieces are counted, not diced. Shared by the split-loop kernels.
 #pragma once
 
-#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "geom/body.h"
+#include "render/split_decision.h"
 
 namespace streyes {
 
-inline void splitToGrids(const Body& root, const Camera& camera, std::vector<BodyPtr>& stack, uint64_t& splits,
-                         uint64_t& grids) {
+inline void splitToGrids(const Body& root, const Camera& camera, const RenderOptions& options,
+                         std::vector<BodyPtr>& stack, uint64_t& splits, uint64_t& grids) {
     stack.clear();
     stack.push_back(root.restrictedTo(root.time().t0, root.time().t1));
     while (!stack.empty()) {
         BodyPtr b = std::move(stack.back());
         stack.pop_back();
-        const RasterMeasure m = b->measure(camera);
-        const double nu = std::max(1.0, std::ceil(double(m.extentU))), nv = std::max(1.0, std::ceil(double(m.extentV)));
-        if (nu * nv <= 256) {
+        const SplitDecision d = decideSplit(*b, b->measure(camera), options);
+        if (d.dice) {
             ++grids;
             continue;
         }
         BodyPtr h[2];
-        b->split(m.extentU >= m.extentV ? SplitAxis::U : SplitAxis::V, h);
-        stack.push_back(std::move(h[1]));
+        b->split(d.axis, h);
+        stack.push_back(std::move(h[1]));  // as in the bucket: the first half is processed next
         stack.push_back(std::move(h[0]));
         ++splits;
     }

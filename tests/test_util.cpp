@@ -7,20 +7,13 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <mutex>
 #include <stdexcept>
 
 #include "streyes/rib.h"
 
 namespace streyes::test {
-
-Camera pixelCamera(int size) {
-    CameraDesc cd;
-    cd.xres = cd.yres = size;
-    cd.hasScreenWindow = true;
-    cd.screenWindow[0] = 0, cd.screenWindow[1] = size, cd.screenWindow[2] = 0, cd.screenWindow[3] = size;
-    return Camera(cd);
-}
 
 std::string sourcePath(const std::string& relative) { return std::string(STREYES_SOURCE_DIR) + "/" + relative; }
 
@@ -83,15 +76,25 @@ RenderResult renderFile(const std::string& path, const RenderOptions& options) {
     return renderWithLog(scene, options, log);
 }
 
+// memcmp, not ==: bit identity (NaN payloads, the sign of zero), and sizes first.
+static bool sameBits(const std::vector<float>& x, const std::vector<float>& y) {
+    return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(float)) == 0;
+}
+
 bool identicalPixels(const RenderResult& a, const RenderResult& b) {
     if (a.frames.size() != b.frames.size()) return false;
     for (size_t i = 0; i < a.frames.size(); ++i) {
         const FrameImage &x = a.frames[i], &y = b.frames[i];
         if (x.frame != y.frame || x.width != y.width || x.height != y.height) return false;
-        if (std::memcmp(x.rgba.data(), y.rgba.data(), x.rgba.size() * sizeof(float)) != 0) return false;
-        if (std::memcmp(x.z.data(), y.z.data(), x.z.size() * sizeof(float)) != 0) return false;
+        if (!sameBits(x.rgba, y.rgba) || !sameBits(x.z, y.z)) return false;
     }
     return true;
+}
+
+float absDifference(float x, float y) {
+    if (x == y) return 0;
+    const float d = std::fabs(x - y);  // NaN when either is NaN, +inf for infinities that differ
+    return std::isnan(d) ? std::numeric_limits<float>::infinity() : d;
 }
 
 static void forEachPair(const RenderResult& a, const RenderResult& b, const std::function<void(float, float)>& fn) {
@@ -104,7 +107,7 @@ static void forEachPair(const RenderResult& a, const RenderResult& b, const std:
 
 float maxAbsDifference(const RenderResult& a, const RenderResult& b) {
     float m = 0;
-    forEachPair(a, b, [&](float x, float y) { m = std::max(m, std::fabs(x - y)); });
+    forEachPair(a, b, [&](float x, float y) { m = std::max(m, absDifference(x, y)); });
     return m;
 }
 
@@ -112,10 +115,32 @@ float meanAbsDifference(const RenderResult& a, const RenderResult& b) {
     double s = 0;
     size_t n = 0;
     forEachPair(a, b, [&](float x, float y) {
-        s += std::fabs(x - y);
+        s += double(absDifference(x, y));
         ++n;
     });
     return n ? float(s / double(n)) : 0.0f;
+}
+
+size_t differingPixels(const FrameImage& a, const FrameImage& b, float threshold) {
+    if (a.rgba.size() != b.rgba.size()) throw std::runtime_error("sizes differ");
+    size_t n = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) {
+        bool differs = false;
+        for (size_t c = 0; c < 4; ++c) differs = differs || absDifference(a.rgba[i + c], b.rgba[i + c]) > threshold;
+        n += differs;
+    }
+    return n;
+}
+
+std::vector<std::string> differingCounts(const RenderCounters& a, const RenderCounters& b) {
+    std::vector<std::string> keys;
+#define STREYES_COMPARE(member, key) \
+    if (a.member != b.member) keys.push_back(key);
+#define STREYES_SKIP(member, key)
+    STREYES_RENDER_COUNTERS(STREYES_COMPARE, STREYES_COMPARE, STREYES_SKIP, STREYES_SKIP)
+#undef STREYES_COMPARE
+#undef STREYES_SKIP
+    return keys;
 }
 
 }  // namespace streyes::test
@@ -195,6 +220,7 @@ SampleAgreement compareSamples(const SampleRecord& a, const SampleRecord& b, flo
         const SamplePosition &p = a.positions[i], &q = b.positions[i];
         if (p.x != q.x || p.y != q.y || p.tf != q.tf) throw std::runtime_error("the renders used different samples");
         const SampleHit &x = a.hits[i], &y = b.hits[i];
+        if (std::isnan(x.a) || std::isnan(y.a)) continue;  // neither a hit nor a miss: agrees with nothing
         const bool hx = x.a > 0, hy = y.a > 0;
         if (hx != hy) continue;
         ++r.hitOrMiss;
@@ -202,9 +228,10 @@ SampleAgreement compareSamples(const SampleRecord& a, const SampleRecord& b, flo
             ++r.sameSurface;
             continue;
         }
-        const float dc = std::max({std::fabs(x.c.x - y.c.x), std::fabs(x.c.y - y.c.y), std::fabs(x.c.z - y.c.z)});
+        const float dc =
+            std::max({absDifference(x.c.x, y.c.x), absDifference(x.c.y, y.c.y), absDifference(x.c.z, y.c.z)});
         if (x.id == y.id && dc <= colorTolerance &&
-            std::fabs(x.z - y.z) <= depthTolerance * std::max(std::fabs(x.z), std::fabs(y.z)))
+            absDifference(x.z, y.z) <= depthTolerance * std::max(std::fabs(x.z), std::fabs(y.z)))
             ++r.sameSurface;
     }
     return r;

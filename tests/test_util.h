@@ -6,17 +6,13 @@
 #include <utility>
 #include <vector>
 
-#include "geom/camera.h"
 #include "film/film.h"
+#include "pixel_camera.h"  // test::pixelCamera
 #include "streyes/renderer.h"
 #include "streyes/scene.h"
 #include "streyes/stats.h"
 
 namespace streyes::test {
-
-// Orthographic camera of size x size pixels where one unit is one pixel: raster x = x,
-// raster y = size - y.
-Camera pixelCamera(int size);
 
 // Absolute path of a file in the source tree, e.g. sourcePath("scenes/ramp.rib").
 std::string sourcePath(const std::string& relative);
@@ -61,11 +57,23 @@ RenderResult renderRib(const std::string& rib, const RenderOptions& options = {}
 RenderResult renderScene(const Scene& scene, const RenderOptions& options = {});
 RenderResult renderFile(const std::string& path, const RenderOptions& options = {});
 
-// True when every pixel of every frame is bit-identical (RGBA and Z).
+// True when every pixel of every frame is bit-identical (RGBA and Z): a NaN equals a NaN of the
+// same bits, +0 differs from -0.
 bool identicalPixels(const RenderResult& a, const RenderResult& b);
-// Largest absolute RGBA difference over all frames and pixels.
+// |x - y| for comparing two renders within a tolerance: 0 when x == y (+0 and -0, equal
+// infinities), +inf when either is NaN (NaN in both included: a render that makes NaN is broken,
+// and std::max or a sum would otherwise drop it) or only one is infinite.
+float absDifference(float x, float y);
+// Largest and mean absDifference of RGBA over all frames and pixels (+inf when a NaN is met).
 float maxAbsDifference(const RenderResult& a, const RenderResult& b);
 float meanAbsDifference(const RenderResult& a, const RenderResult& b);
+// Pixels of two images of one size where some RGBA channel differs by more than `threshold`
+// (by absDifference: a NaN counts).
+size_t differingPixels(const FrameImage& a, const FrameImage& b, float threshold);
+
+// The JSON keys of the counts (not the seconds) that differ between two renders' counters:
+// empty when every count agrees. Walks STREYES_RENDER_COUNTERS, so it covers every counter.
+std::vector<std::string> differingCounts(const RenderCounters& a, const RenderCounters& b);
 
 // An orthographic camera where one scene unit is one pixel (raster x = x, raster y = h - y), a
 // box filter one pixel wide, then `extra` options, WorldBegin and Surface "constant".
@@ -94,7 +102,8 @@ struct SampleAgreement {
     double share() const { return samples ? double(sameSurface) / double(samples) : 0; }
 };
 // Same surface: the same primitive, colours within colorTolerance (max over channels) and depths
-// within a relative depthTolerance. Throws when the two do not hold the same sample positions.
+// within a relative depthTolerance (by absDifference: a NaN agrees with nothing, nor does a NaN
+// alpha). Throws when the two do not hold the same sample positions.
 SampleAgreement compareSamples(const SampleRecord& a, const SampleRecord& b, float colorTolerance = 1e-3f,
                                float depthTolerance = 1e-3f);
 

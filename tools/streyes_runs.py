@@ -157,7 +157,8 @@ def counter_value(value):
 
 
 # Counters shown in tables, in this order; any other scalar counter a build reports (such as
-# occlusion culling's) is appended after them automatically.
+# occlusion culling's) is appended after them automatically, so a counter added to the renderer's
+# list (STREYES_RENDER_COUNTERS, include/streyes/stats.h) needs nothing here.
 KNOWN_COUNTERS = [("splits", "splits"), ("grids_diced", "grids"), ("micropolygons", "micropolygons"),
                   ("sample_tests", "sample tests"), ("hit_efficiency", "hit eff.")]
 SKIPPED_COUNTERS = {"root_bodies", "buckets", "sample_hits", "culled_eye_split_limit", "culled_split_limit",

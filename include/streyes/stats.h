@@ -7,36 +7,72 @@
 
 namespace streyes {
 
-struct RenderCounters {
-    uint64_t rootBodies = 0;       // bodies made from the scene (one per motion segment)
-    uint64_t splitsU = 0, splitsV = 0, splitsT = 0;
-    uint64_t eyeSplits = 0;        // splits of bodies reaching the eye plane
-    uint64_t culledView = 0;       // bodies outside the bucket's spacetime block (incl. frustum)
-    uint64_t culledClip = 0;       // bodies wholly nearer than the near plane or beyond the far plane
-    uint64_t culledEyeLimit = 0;   // dropped at the eye-split limit
-    uint64_t culledSplitLimit = 0; // dropped at the split-depth limit
-    uint64_t culledOcclusion = 0;  // dropped because nearer layers cover their block
-    std::vector<uint64_t> culledOcclusionByLayer;  // [layer]: bodies culled while that layer was current
-    std::vector<uint64_t> cellsCoveredByLayer;     // [layer]: pixel-frame cells newly covered when it ended
-    uint64_t occlusionTables = 0;  // summed-volume (or -area) tables built
-    uint64_t proceduralsExpanded = 0;
-    std::vector<uint64_t> proceduralsExpandedByDepth;  // [0]: declared in the scene, [1]: their children ...
-    uint64_t gridsDiced = 0;
-    uint64_t micropolygons = 0;
-    uint64_t sampleTests = 0;
-    uint64_t sampleHits = 0;
-    uint64_t buckets = 0;
-    // Ray tracing (--algorithm raytrace*, and shadow rays): the paper's Tables 1 and 2.
-    uint64_t traceBodies = 0;      // bodies the ray tracer holds (trilinear segments)
-    uint64_t boundingVolumes = 0;  // hierarchy nodes built (summed over frames for raytrace-frames)
-    uint64_t eyeRays = 0, shadowRays = 0;
-    uint64_t rayBodyTests = 0;     // ray/body intersection tests (each body once per ray)
-    uint64_t rayBoxTests = 0;      // ray/bounding-volume tests
+// Every counter of a render, once, in the order `--stats` writes it under "counters" (tools/ read
+// that JSON): the struct's members, its sum (operator+=), the JSON (RenderStats::toJson) and the
+// tests' comparison of two renders' counts are all made from this list, so a new counter is one
+// line here. The four kinds, each given a JSON key ("group.key": inside the object "group",
+// which the keys that follow each other share):
+//   COUNT(member, key)      uint64_t, summed over buckets and threads
+//   LIST(member, key)       std::vector<uint64_t> by layer or depth, summed element by element
+//   SECONDS(member, key)    double, CPU seconds summed over threads (under "seconds" in the JSON)
+//   SHOWN(key, expression)  written under "counters" but not a member: derived from the counters
+//                           `c`, or the render's own (`s`, a RenderStats)
+#define STREYES_RENDER_COUNTERS(COUNT, LIST, SECONDS, SHOWN)                                          \
+    COUNT(rootBodies, "root_bodies") /* bodies made from the scene (one per motion segment) */         \
+    COUNT(buckets, "buckets")                                                                          \
+    COUNT(splitsU, "splits.u")                                                                         \
+    COUNT(splitsV, "splits.v")                                                                         \
+    COUNT(splitsT, "splits.t")                                                                         \
+    SHOWN("splits.total", c.splits())                                                                  \
+    COUNT(eyeSplits, "eye_splits")         /* splits of bodies reaching the eye plane */               \
+    COUNT(culledView, "culled_view")       /* outside the bucket's spacetime block (incl. frustum) */  \
+    COUNT(culledClip, "culled_clip")       /* wholly nearer than the near plane or beyond the far */   \
+    COUNT(culledEyeLimit, "culled_eye_split_limit")  /* dropped at the eye-split limit */              \
+    COUNT(culledSplitLimit, "culled_split_limit")    /* dropped at the split-depth limit or budget */  \
+    COUNT(culledOcclusion, "culled_occlusion")       /* dropped: nearer layers cover their block */    \
+    LIST(culledOcclusionByLayer, "culled_occlusion_by_layer") /* culled while that layer was current */ \
+    LIST(cellsCoveredByLayer, "cells_covered_by_layer") /* pixel-frame cells covered when it ended */  \
+    COUNT(occlusionTables, "occlusion_tables")       /* summed-volume (or -area) tables built */       \
+    SHOWN("procedurals", s.procedurals)                                                                \
+    COUNT(proceduralsExpanded, "procedurals_expanded")                                                 \
+    SHOWN("procedurals_by_depth", s.proceduralsByDepth)                                                \
+    LIST(proceduralsExpandedByDepth, "procedurals_expanded_by_depth") /* [0] declared, [1] children */  \
+    SHOWN("procedurals_never_expanded", s.procedurals - c.proceduralsExpanded)                         \
+    SHOWN("bodies_generated", s.bodiesGenerated)                                                       \
+    SHOWN("passes", s.passes)                                                                          \
+    COUNT(gridsDiced, "grids_diced")                                                                   \
+    COUNT(micropolygons, "micropolygons")                                                              \
+    COUNT(sampleTests, "sample_tests")                                                                 \
+    COUNT(sampleHits, "sample_hits")                                                                   \
+    SHOWN("hit_efficiency", c.sampleTests ? double(c.sampleHits) / double(c.sampleTests) : 0.0)        \
+    /* Ray tracing (--algorithm raytrace*, and shadow rays): the paper's Tables 1 and 2. */           \
+    COUNT(traceBodies, "trace.bodies")     /* bodies the ray tracer holds (trilinear segments) */      \
+    COUNT(boundingVolumes, "trace.bounding_volumes") /* nodes built (summed over frames: -frames) */   \
+    COUNT(eyeRays, "trace.eye_rays")                                                                   \
+    COUNT(shadowRays, "trace.shadow_rays")                                                             \
+    COUNT(rayBodyTests, "trace.ray_body_tests")      /* ray/body tests (each body once per ray) */     \
+    COUNT(rayBoxTests, "trace.ray_box_tests")        /* ray/bounding-volume tests */                   \
+    SECONDS(timeSampleGen, "cpu_by_stage.sample_generation")                                           \
+    SECONDS(timeSplit, "cpu_by_stage.split_cull")                                                      \
+    SECONDS(timeDice, "cpu_by_stage.dice")                                                             \
+    SECONDS(timeShade, "cpu_by_stage.shade")                                                           \
+    SECONDS(timeSample, "cpu_by_stage.sample")                                                         \
+    SECONDS(timeOcclusion, "cpu_by_stage.occlusion_tables") /* building coverage and tables */        \
+    SECONDS(timeResolve, "cpu_by_stage.resolve")                                                       \
+    SECONDS(timeHierarchy, "cpu_by_stage.hierarchy_build")  /* building the ray tracer's hierarchies */ \
+    SECONDS(timeTrace, "cpu_by_stage.trace")                /* tracing and shading rays */
 
-    // Seconds, summed over threads (so they add up to CPU time, not wall time).
-    double timeSampleGen = 0, timeSplit = 0, timeDice = 0, timeShade = 0, timeSample = 0, timeResolve = 0;
-    double timeOcclusion = 0;  // building coverage and tables
-    double timeHierarchy = 0, timeTrace = 0;  // building hierarchies; tracing and shading rays
+struct RenderCounters {
+#define STREYES_DECLARE_COUNT(member, key) uint64_t member = 0;
+#define STREYES_DECLARE_LIST(member, key) std::vector<uint64_t> member;
+#define STREYES_DECLARE_SECONDS(member, key) double member = 0;
+#define STREYES_DECLARE_NOTHING(key, expression)
+    STREYES_RENDER_COUNTERS(STREYES_DECLARE_COUNT, STREYES_DECLARE_LIST, STREYES_DECLARE_SECONDS,
+                            STREYES_DECLARE_NOTHING)
+#undef STREYES_DECLARE_COUNT
+#undef STREYES_DECLARE_LIST
+#undef STREYES_DECLARE_SECONDS
+#undef STREYES_DECLARE_NOTHING
 
     RenderCounters& operator+=(const RenderCounters& o);
     uint64_t splits() const { return splitsU + splitsV + splitsT; }

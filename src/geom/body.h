@@ -113,6 +113,10 @@ class Body {
     int32_t exposure = kNoExposure;
 
   protected:
+    // Sizes `grid` for nu x nv micropolygons and copies what every vertex shares from the body
+    // (time span, motion, material, primitive): the start of every dice().
+    void startGrid(int nu, int nv, Grid& grid) const;
+
     TimeSpan time_;
     bool moving_ = false;
     const Material* material_ = nullptr;

@@ -538,12 +538,7 @@ void CurvedBody::dice(int nu, int nv, Grid& grid) const {
     columnMap(sides[1], NV);
     columnMap(sides[3], NV);
 
-    grid.resize(NU, NV, moving_);
-    grid.t0 = time_.t0;
-    grid.t1 = time_.t1;
-    grid.openEnd = time_.openEnd;
-    grid.material = material_;
-    grid.primitiveId = primitiveId_;
+    startGrid(NU, NV, grid);
     const float s[2] = {keyFraction(time_.t0), keyFraction(time_.t1)};
     const std::array<Color, 4>& cs = mesh_->faceColors(face_);
     for (int j = 0; j <= NV; ++j) {

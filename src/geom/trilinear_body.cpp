@@ -155,13 +155,17 @@ std::unique_ptr<Body> TrilinearBody::restrictedTo(double a, double b) const {
     return body;
 }
 
-void TrilinearBody::dice(int nu, int nv, Grid& grid) const {
+void Body::startGrid(int nu, int nv, Grid& grid) const {
     grid.resize(nu, nv, moving_);
     grid.t0 = time_.t0;
     grid.t1 = time_.t1;
     grid.openEnd = time_.openEnd;
     grid.material = material_;
     grid.primitiveId = primitiveId_;
+}
+
+void TrilinearBody::dice(int nu, int nv, Grid& grid) const {
+    startGrid(nu, nv, grid);
     const float du = 1.0f / float(nu), dv = 1.0f / float(nv);
     for (int j = 0; j <= nv; ++j) {
         // Exact 0 and 1 on the borders so that neighbouring grids share edge vertices.

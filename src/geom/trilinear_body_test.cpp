@@ -4,6 +4,7 @@
 
 #include "geom/body.h"
 #include "geom/grid.h"
+#include "pixel_camera.h"
 
 namespace streyes {
 namespace {
@@ -78,13 +79,7 @@ TEST(TrilinearBody, StillBodyStaysStillAndMeasuresNoMotion) {
     BodyPtr h[2];
     body.split(SplitAxis::V, h);
     EXPECT_FALSE(h[0]->moving());
-    CameraDesc cd;
-    cd.xres = cd.yres = 10;
-    cd.hasScreenWindow = true;
-    double sw[4] = {0, 10, 0, 10};
-    std::copy(sw, sw + 4, cd.screenWindow);
-    Camera cam(cd);
-    RasterMeasure m = body.measure(cam);
+    RasterMeasure m = body.measure(test::pixelCamera(10));
     EXPECT_EQ(m.motion, 0.0f);
     EXPECT_FLOAT_EQ(m.extentU, 1.0f);
     EXPECT_FLOAT_EQ(m.extentV, 1.0f);

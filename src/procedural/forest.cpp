@@ -11,6 +11,46 @@ namespace streyes {
 
 namespace {
 
+// ---- Species ------------------------------------------------------------------------------------
+
+// What a species is, in numbers. Beyond them a species is its crown's shape: a cone of tiered
+// branches carrying needle sprays, or a round crown whose branches reach for its outer part and
+// carry leaves there.
+struct Species {
+    const char* name;               // tree's kind=, and the order of forest's species= shares
+    bool cone;                      // a cone of tiers and needles; otherwise a round crown
+    double height[2];               // uniform in this range, metres
+    double crownBase[2];            // share of the height, uniform in this range
+    double crownRadius[2];          // share of the height, uniform in this range
+    double trunkTop;                // share of the height; 0: the trunk ends at the crown base
+    double trunkRadius;             // share of the height
+    Color bark;
+    Color leaf, leafVariation;      // leaf + leafVariation * v, v uniform in [0, 1)
+    // Round crowns: branches + nextBelow(branchesSpread) branches, from the trunk's top or from
+    // anywhere in the crown's lower part, each with leavesPerBranch leaves.
+    int branches, branchesSpread;
+    bool branchesFromTrunkTop;
+    int leavesPerBranch;
+};
+
+const Species kSpecies[] = {
+    {"conifer", true, {8, 22}, {0.15, 0.3}, {0.17, 0.25}, 0.97, 0.018, {0.22f, 0.16f, 0.11f},
+     {0.08f, 0.22f, 0.07f}, {0.08f, 0.12f, 0.06f}, 0, 0, false, 0},
+    {"broadleaf", false, {8, 18}, {0.35, 0.5}, {0.25, 0.33}, 0, 0.018, {0.3f, 0.22f, 0.15f},
+     {0.18f, 0.4f, 0.08f}, {0.15f, 0.18f, 0.1f}, 4, 3, true, 110},
+    {"birch", false, {10, 20}, {0.35, 0.5}, {0.13, 0.18}, 0.85, 0.012, {0.82f, 0.82f, 0.78f},
+     {0.42f, 0.58f, 0.14f}, {0.15f, 0.1f, 0.1f}, 6, 4, false, 49},
+};
+constexpr int kSpeciesCount = int(sizeof kSpecies / sizeof kSpecies[0]);
+static_assert(kSpeciesCount == int(sizeof ForestParams::mix / sizeof ForestParams::mix[0]),
+              "forest's species= takes a share per species");
+
+std::string speciesNames(const std::string& separator) {
+    std::string names;
+    for (const Species& sp : kSpecies) names += (names.empty() ? "" : separator) + sp.name;
+    return names;
+}
+
 // ---- Parameters ---------------------------------------------------------------------------------
 
 std::vector<double> numbersOf(const std::string& key, const std::string& value, size_t n, const SourceLoc& loc) {
@@ -55,11 +95,14 @@ ForestParams parseParams(const std::string& datablock, const SourceLoc& loc, Ext
             if (!(a[0] > 0 && a[1] > 0)) throw InputError(loc, "forest: area must be positive");
             f.areaX = a[0], f.areaZ = a[1];
         } else if (key == "species") {
-            auto m = numbersOf(key, value, 3, loc);
-            double sum = m[0] + m[1] + m[2];
-            if (!(m[0] >= 0 && m[1] >= 0 && m[2] >= 0 && sum > 0))
-                throw InputError(loc, "forest: species takes three non-negative shares (conifer,broadleaf,birch)");
-            for (int i = 0; i < 3; ++i) f.mix[i] = m[size_t(i)] / sum;
+            auto m = numbersOf(key, value, size_t(kSpeciesCount), loc);
+            double sum = 0;
+            bool valid = true;
+            for (double share : m) sum += share, valid = valid && share >= 0;
+            if (!(valid && sum > 0))
+                throw InputError(loc, "forest: species takes " + std::to_string(kSpeciesCount) +
+                                          " non-negative shares (" + speciesNames(",") + ")");
+            for (int i = 0; i < kSpeciesCount; ++i) f.mix[i] = m[size_t(i)] / sum;
         } else if (key == "leafsize") f.leafSize = one(1e-4, 100);
         else if (key == "wind") f.wind = one(0, 10);
         else if (key == "winddir") {
@@ -78,10 +121,8 @@ ForestParams parseParams(const std::string& datablock, const SourceLoc& loc, Ext
 
 // ---- Trees ----------------------------------------------------------------------------------------
 
-enum class Species { Conifer, Broadleaf, Birch };
-
 struct Tree {
-    Species species = Species::Conifer;
+    const Species* species = &kSpecies[0];
     double x = 0, z = 0;
     double height = 10;
     double crownBase = 3, crownRadius = 2.5;
@@ -95,49 +136,37 @@ struct Tree {
 
 double uniform(HashRng& r, double lo, double hi) { return lo + (hi - lo) * double(r.nextFloat()); }
 
+// forceSpecies: an index into kSpecies, or -1 to draw one by the forest's mix.
 Tree makeTree(const ForestParams& f, uint64_t key, double x, double z, int forceSpecies, double forceHeight) {
     HashRng r(key);
     Tree t;
     t.key = key;
     t.x = x;
     t.z = z;
-    double s = double(r.nextFloat());
-    t.species = s < f.mix[0] ? Species::Conifer : s < f.mix[0] + f.mix[1] ? Species::Broadleaf : Species::Birch;
-    if (forceSpecies >= 0) t.species = Species(forceSpecies);
+    const double s = double(r.nextFloat());
+    int species = kSpeciesCount - 1;
+    double share = 0;
+    for (int i = 0; i < kSpeciesCount - 1; ++i)
+        if (s < (share += f.mix[i])) {
+            species = i;
+            break;
+        }
+    t.species = &kSpecies[forceSpecies >= 0 ? forceSpecies : species];
+    const Species& sp = *t.species;
     t.phase = uniform(r, 0, 2 * M_PI);
     const float v = r.nextFloat();  // colour variation
-    switch (t.species) {
-        case Species::Conifer:
-            t.height = uniform(r, 8, 22);
-            t.crownBase = t.height * uniform(r, 0.15, 0.3);
-            t.crownRadius = t.height * uniform(r, 0.17, 0.25);
-            t.trunkTop = t.height * 0.97;
-            t.bark = {0.22f, 0.16f, 0.11f};
-            t.leaf = {0.08f + 0.08f * v, 0.22f + 0.12f * v, 0.07f + 0.06f * v};
-            break;
-        case Species::Broadleaf:
-            t.height = uniform(r, 8, 18);
-            t.crownBase = t.height * uniform(r, 0.35, 0.5);
-            t.crownRadius = t.height * uniform(r, 0.25, 0.33);
-            t.trunkTop = t.crownBase;
-            t.bark = {0.3f, 0.22f, 0.15f};
-            t.leaf = {0.18f + 0.15f * v, 0.4f + 0.18f * v, 0.08f + 0.1f * v};
-            break;
-        case Species::Birch:
-            t.height = uniform(r, 10, 20);
-            t.crownBase = t.height * uniform(r, 0.35, 0.5);
-            t.crownRadius = t.height * uniform(r, 0.13, 0.18);
-            t.trunkTop = t.height * 0.85;
-            t.bark = {0.82f, 0.82f, 0.78f};
-            t.leaf = {0.42f + 0.15f * v, 0.58f + 0.1f * v, 0.14f + 0.1f * v};
-            break;
-    }
+    t.height = uniform(r, sp.height[0], sp.height[1]);
+    t.crownBase = t.height * uniform(r, sp.crownBase[0], sp.crownBase[1]);
+    t.crownRadius = t.height * uniform(r, sp.crownRadius[0], sp.crownRadius[1]);
+    t.trunkTop = sp.trunkTop > 0 ? t.height * sp.trunkTop : t.crownBase;
+    t.bark = sp.bark;
+    t.leaf = sp.leaf + sp.leafVariation * v;
     if (forceHeight > 0) {
         const double k = forceHeight / t.height;
         t.height = forceHeight;
         t.crownBase *= k, t.crownRadius *= k, t.trunkTop *= k;
     }
-    t.trunkRadius = t.height * (t.species == Species::Birch ? 0.012 : 0.018);
+    t.trunkRadius = t.height * sp.trunkRadius;
     t.bushRadius = uniform(r, 1.2, 2.6);
     t.bushHeight = uniform(r, 0.8, 1.8);
     t.bush = Color{0.12f, 0.22f, 0.08f} * (0.8f + 0.4f * r.nextFloat());
@@ -151,7 +180,7 @@ double flutterAngle(const ForestParams& f) { return f.wind * 0.35; }
 
 // Crown centre and half-sizes: everything of the crown lies within it (branches and leaves).
 Vec3d crownCentre(const Tree& t) {
-    return {t.x, t.species == Species::Conifer ? (t.crownBase + t.height) / 2 : t.crownBase + 0.55 * (t.height - t.crownBase), t.z};
+    return {t.x, t.species->cone ? (t.crownBase + t.height) / 2 : t.crownBase + 0.55 * (t.height - t.crownBase), t.z};
 }
 
 Bounds3d treeBound(const ForestParams& f, const Tree& t) {
@@ -255,7 +284,8 @@ std::vector<Branch> branchesOf(const ForestParams& f, const Tree& t) {
         b.key = hashCombine(t.key, bs.size() + 1);
         bs.push_back(b);
     };
-    if (t.species == Species::Conifer) {
+    const Species& sp = *t.species;
+    if (sp.cone) {
         const int tiers = 6 + int(t.height / 3);
         for (int i = 0; i < tiers; ++i) {
             const double y = t.crownBase + (t.height * 0.95 - t.crownBase) * i / tiers;
@@ -271,19 +301,18 @@ std::vector<Branch> branchesOf(const ForestParams& f, const Tree& t) {
         }
     } else {
         const Vec3d c = crownCentre(t);
-        const int n = t.species == Species::Broadleaf ? 4 + int(r.nextBelow(3)) : 6 + int(r.nextBelow(4));
+        const int n = sp.branches + int(r.nextBelow(uint32_t(sp.branchesSpread)));
         for (int k = 0; k < n; ++k) {
             // Towards a point in the outer crown; leaves cluster around the outer part.
             const double a = 2 * M_PI * (k + uniform(r, -0.3, 0.3)) / n;
             const double up = uniform(r, -0.2, 0.8);
             const Vec3d target = c + Vec3d{std::cos(a) * std::sqrt(1 - up * up), up, std::sin(a) * std::sqrt(1 - up * up)} *
                                          (t.crownRadius * 0.7);
-            const Vec3d base = t.species == Species::Broadleaf
+            const Vec3d base = sp.branchesFromTrunkTop
                                    ? trunk + Vec3d{0, t.trunkTop, 0}
                                    : trunk + Vec3d{0, t.crownBase + (t.trunkTop - t.crownBase) * uniform(r, 0, 0.8), 0};
             const Vec3d d = target - base;
-            const double scale = t.species == Species::Broadleaf ? 1.0 : 0.7;
-            add(base, d, length(d), t.crownRadius * 0.35, int((t.species == Species::Broadleaf ? 110 : 70) * scale));
+            add(base, d, length(d), t.crownRadius * 0.35, sp.leavesPerBranch);
         }
     }
     return bs;
@@ -331,7 +360,7 @@ class BranchGenerator final : public ProceduralGenerator {
         const double s = f.leafSize;
         for (int i = 0; i < b.leaves; ++i) {
             Vec3d attach, along, across;
-            if (tree_.species == Species::Conifer) {
+            if (tree_.species->cone) {
                 // Needle sprays on both sides along the branch.
                 const double at = b.length * (0.15 + 0.85 * double(i / 2) / std::max(1, b.leaves / 2));
                 const double side = (i % 2) ? 1 : -1;
@@ -410,7 +439,7 @@ class TreeGenerator final : public ProceduralGenerator {
             const int n = 8;
             for (int k = 0; k < n; ++k) {
                 const double a0 = 2 * M_PI * k / n, a1 = 2 * M_PI * (k + 1) / n;
-                if (t.species == Species::Conifer) {
+                if (t.species->cone) {
                     const Vec3d apex{t.x, t.height, t.z};
                     emitStill(out, ctx, {trunk + Vec3d{R * std::cos(a0), t.crownBase, R * std::sin(a0)},
                                          trunk + Vec3d{R * std::cos(a1), t.crownBase, R * std::sin(a1)}, apex, apex},
@@ -521,10 +550,10 @@ std::shared_ptr<const ProceduralGenerator> makeTreeGenerator(const std::string& 
     double height = 0;
     ForestParams f = parseParams(datablock, loc, [&](const std::string& key, const std::string& value) {
         if (key == "kind") {
-            if (value == "conifer") species = 0;
-            else if (value == "broadleaf") species = 1;
-            else if (value == "birch") species = 2;
-            else throw InputError(loc, "tree: kind must be conifer, broadleaf or birch, not '" + value + "'");
+            for (int i = 0; i < kSpeciesCount; ++i)
+                if (value == kSpecies[i].name) species = i;
+            if (species < 0)
+                throw InputError(loc, "tree: kind must be one of " + speciesNames(", ") + ", not '" + value + "'");
             return true;
         }
         if (key == "height") {

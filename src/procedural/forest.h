@@ -36,7 +36,7 @@ struct ForestParams {
 ForestParams parseForestParams(const std::string& datablock, const SourceLoc& loc);
 
 std::shared_ptr<const ProceduralGenerator> makeForestGenerator(const std::string& datablock, const SourceLoc& loc);
-// One tree at the origin: the forest's keys plus species=conifer|broadleaf|birch, height=H.
+// One tree at the origin: the forest's keys plus kind=conifer|broadleaf|birch, height=H.
 std::shared_ptr<const ProceduralGenerator> makeTreeGenerator(const std::string& datablock, const SourceLoc& loc);
 
 }  // namespace streyes

@@ -5,22 +5,13 @@
 #include <cmath>
 
 #include "geom/body.h"
+#include "pixel_camera.h"
 #include "shade/shading.h"
 
 namespace streyes {
 namespace {
 
-// Orthographic camera with raster x = x and raster y = size - y.
-Camera pixelCamera(int size) {
-    CameraDesc cd;
-    cd.xres = cd.yres = size;
-    cd.hasScreenWindow = true;
-    cd.screenWindow[0] = 0;
-    cd.screenWindow[1] = size;
-    cd.screenWindow[2] = 0;
-    cd.screenWindow[3] = size;
-    return Camera(cd);
-}
+using test::pixelCamera;
 
 // A square grid from raster (x0, y0) to (x1, y1) at depth z, moved by `dx` pixels from t=0 to t=1.
 void diceSquare(float x0, float y0, float x1, float y1, float z, float dx, int n, const Material* m, int size,

@@ -8,6 +8,7 @@
 #include "cull/view_cull.h"
 #include "procedural/procedural.h"
 #include "raster/coverage.h"
+#include "render/split_decision.h"
 #include "shade/shading.h"
 
 namespace streyes {
@@ -280,22 +281,12 @@ void BucketWorker::process(const Body& body) {
         return;
     }
 
-    const float side = std::sqrt(std::max(body.material()->shadingRate, 1e-4f));
-    const float size = std::max(m.extentU, m.extentV);
-    SplitAxis axis;
-    if (!body.diceableInTime()) {
-        axis = SplitAxis::T;  // more than two motion keys: cut at a key first
-    } else if (body.moving() && m.motion > std::max(options_.timeSplitRatio * size, options_.timeSplitMinMotion)) {
-        axis = SplitAxis::T;  // the swept bound is much larger than the body: split its time span
-    } else {
-        const double nu = std::max(1.0, std::ceil(double(m.extentU) / side));
-        const double nv = std::max(1.0, std::ceil(double(m.extentV) / side));
-        if (nu * nv <= double(options_.maxGridSize)) {
-            diceShadeSample(body, int(nu), int(nv));
-            return;
-        }
-        axis = m.extentU >= m.extentV ? SplitAxis::U : SplitAxis::V;
+    const SplitDecision decision = decideSplit(body, m, options_);
+    if (decision.dice) {
+        diceShadeSample(body, decision.nu, decision.nv);
+        return;
     }
+    const SplitAxis axis = decision.axis;
     if (body.splitDepth >= options_.maxSplitDepth) {
         ++counters.culledSplitLimit;
         log_.warnOnce("splitlimit", body.source() ? *body.source() : SourceLoc{},

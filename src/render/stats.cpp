@@ -8,45 +8,17 @@
 namespace streyes {
 
 RenderCounters& RenderCounters::operator+=(const RenderCounters& o) {
-    rootBodies += o.rootBodies;
-    splitsU += o.splitsU;
-    splitsV += o.splitsV;
-    splitsT += o.splitsT;
-    eyeSplits += o.eyeSplits;
-    culledView += o.culledView;
-    culledClip += o.culledClip;
-    culledEyeLimit += o.culledEyeLimit;
-    culledSplitLimit += o.culledSplitLimit;
-    culledOcclusion += o.culledOcclusion;
-    occlusionTables += o.occlusionTables;
-    proceduralsExpanded += o.proceduralsExpanded;
-    auto addVec = [](std::vector<uint64_t>& a, const std::vector<uint64_t>& b) {
+    auto addList = [](std::vector<uint64_t>& a, const std::vector<uint64_t>& b) {
         if (a.size() < b.size()) a.resize(b.size(), 0);
         for (size_t i = 0; i < b.size(); ++i) a[i] += b[i];
     };
-    addVec(culledOcclusionByLayer, o.culledOcclusionByLayer);
-    addVec(cellsCoveredByLayer, o.cellsCoveredByLayer);
-    addVec(proceduralsExpandedByDepth, o.proceduralsExpandedByDepth);
-    timeOcclusion += o.timeOcclusion;
-    gridsDiced += o.gridsDiced;
-    micropolygons += o.micropolygons;
-    sampleTests += o.sampleTests;
-    sampleHits += o.sampleHits;
-    buckets += o.buckets;
-    traceBodies += o.traceBodies;
-    boundingVolumes += o.boundingVolumes;
-    eyeRays += o.eyeRays;
-    shadowRays += o.shadowRays;
-    rayBodyTests += o.rayBodyTests;
-    rayBoxTests += o.rayBoxTests;
-    timeSampleGen += o.timeSampleGen;
-    timeSplit += o.timeSplit;
-    timeDice += o.timeDice;
-    timeShade += o.timeShade;
-    timeSample += o.timeSample;
-    timeResolve += o.timeResolve;
-    timeHierarchy += o.timeHierarchy;
-    timeTrace += o.timeTrace;
+#define STREYES_ADD(member, key) member += o.member;
+#define STREYES_ADD_LIST(member, key) addList(member, o.member);
+#define STREYES_NOTHING(key, expression)
+    STREYES_RENDER_COUNTERS(STREYES_ADD, STREYES_ADD_LIST, STREYES_ADD, STREYES_NOTHING)
+#undef STREYES_ADD
+#undef STREYES_ADD_LIST
+#undef STREYES_NOTHING
     return *this;
 }
 
@@ -67,20 +39,51 @@ uint64_t peakResidentBytes() {
 }
 
 namespace {
-std::string list(const std::vector<uint64_t>& v) {
+std::string value(const std::vector<uint64_t>& v) {
     std::string s = "[";
     for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + std::to_string(v[i]);
     return s + "]";
 }
-
-std::string num(double v) {
+std::string value(uint64_t v) { return std::to_string(v); }
+std::string value(int v) { return std::to_string(v); }
+std::string value(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", v);
     return buf;
 }
+
+// The fields of one JSON object, a line each; fields "group.key" that follow each other share a
+// line as the object "group": {"key": ..., ...}.
+class JsonFields {
+  public:
+    JsonFields(std::ostringstream& out, const char* indent) : out_(out), indent_(indent) {}
+    void add(const std::string& path, const std::string& v) {
+        const size_t dot = path.find('.');
+        const std::string group = dot == std::string::npos ? "" : path.substr(0, dot);
+        const std::string key = dot == std::string::npos ? path : path.substr(dot + 1);
+        if (fields_ > 0 && !group.empty() && group == group_) {
+            out_ << ", ";
+        } else {
+            if (fields_ > 0) out_ << (group_.empty() ? "" : "}") << ",\n";
+            out_ << indent_;
+            if (!group.empty()) out_ << "\"" << group << "\": {";
+        }
+        out_ << "\"" << key << "\": " << v;
+        group_ = group;
+        ++fields_;
+    }
+    void end() { out_ << (group_.empty() ? "" : "}") << "\n"; }
+
+  private:
+    std::ostringstream& out_;
+    const char* indent_;
+    std::string group_;
+    int fields_ = 0;
+};
 }  // namespace
 
 std::string RenderStats::toJson() const {
+    const RenderStats& s = *this;
     const RenderCounters& c = counters;
     std::ostringstream o;
     o << "{\n"
@@ -91,51 +94,33 @@ std::string RenderStats::toJson() const {
       << "  \"threads\": " << threads << ",\n"
       << "  \"bucket_size\": " << bucketSize << ",\n"
       << "  \"frame_block\": " << frameBlock << ",\n"
-      << "  \"tolerance\": " << num(tolerance) << ",\n"
+      << "  \"tolerance\": " << value(tolerance) << ",\n"
       << "  \"layers\": " << (layers > 0 ? std::to_string(layers) : std::string("\"adaptive\"")) << ",\n"
-      << "  \"counters\": {\n"
-      << "    \"root_bodies\": " << c.rootBodies << ",\n"
-      << "    \"buckets\": " << c.buckets << ",\n"
-      << "    \"splits\": {\"u\": " << c.splitsU << ", \"v\": " << c.splitsV << ", \"t\": " << c.splitsT
-      << ", \"total\": " << c.splits() << "},\n"
-      << "    \"eye_splits\": " << c.eyeSplits << ",\n"
-      << "    \"culled_view\": " << c.culledView << ",\n"
-      << "    \"culled_clip\": " << c.culledClip << ",\n"
-      << "    \"culled_eye_split_limit\": " << c.culledEyeLimit << ",\n"
-      << "    \"culled_split_limit\": " << c.culledSplitLimit << ",\n"
-      << "    \"culled_occlusion\": " << c.culledOcclusion << ",\n"
-      << "    \"culled_occlusion_by_layer\": " << list(c.culledOcclusionByLayer) << ",\n"
-      << "    \"cells_covered_by_layer\": " << list(c.cellsCoveredByLayer) << ",\n"
-      << "    \"occlusion_tables\": " << c.occlusionTables << ",\n"
-      << "    \"procedurals\": " << procedurals << ",\n"
-      << "    \"procedurals_expanded\": " << c.proceduralsExpanded << ",\n"
-      << "    \"procedurals_by_depth\": " << list(proceduralsByDepth) << ",\n"
-      << "    \"procedurals_expanded_by_depth\": " << list(c.proceduralsExpandedByDepth) << ",\n"
-      << "    \"procedurals_never_expanded\": " << (procedurals - c.proceduralsExpanded) << ",\n"
-      << "    \"bodies_generated\": " << bodiesGenerated << ",\n"
-      << "    \"passes\": " << passes << ",\n"
-      << "    \"grids_diced\": " << c.gridsDiced << ",\n"
-      << "    \"micropolygons\": " << c.micropolygons << ",\n"
-      << "    \"sample_tests\": " << c.sampleTests << ",\n"
-      << "    \"sample_hits\": " << c.sampleHits << ",\n"
-      << "    \"hit_efficiency\": " << num(c.sampleTests ? double(c.sampleHits) / double(c.sampleTests) : 0) << ",\n"
-      << "    \"trace\": {\"bodies\": " << c.traceBodies << ", \"bounding_volumes\": " << c.boundingVolumes
-      << ", \"eye_rays\": " << c.eyeRays
-      << ", \"shadow_rays\": " << c.shadowRays << ", \"ray_body_tests\": " << c.rayBodyTests
-      << ", \"ray_box_tests\": " << c.rayBoxTests << "}\n"
-      << "  },\n"
-      << "  \"seconds\": {\n"
-      << "    \"parse\": " << num(timeParse) << ",\n"
-      << "    \"build_bodies\": " << num(timeBuild) << ",\n"
-      << "    \"render\": " << num(timeRender) << ",\n"
-      << "    \"write\": " << num(timeWrite) << ",\n"
-      << "    \"total\": " << num(timeTotal) << ",\n"
-      << "    \"cpu_by_stage\": {\"sample_generation\": " << num(c.timeSampleGen) << ", \"split_cull\": "
-      << num(c.timeSplit) << ", \"dice\": " << num(c.timeDice) << ", \"shade\": " << num(c.timeShade)
-      << ", \"sample\": " << num(c.timeSample) << ", \"occlusion_tables\": " << num(c.timeOcclusion)
-      << ", \"resolve\": " << num(c.timeResolve) << ", \"hierarchy_build\": " << num(c.timeHierarchy)
-      << ", \"trace\": " << num(c.timeTrace) << "}\n"
-      << "  },\n"
+      << "  \"counters\": {\n";
+    JsonFields counts(o, "    ");
+#define STREYES_FIELD(member, key) counts.add(key, value(c.member));
+#define STREYES_SHOWN(key, expression) counts.add(key, value(expression));
+#define STREYES_NOTHING(member, key)
+    STREYES_RENDER_COUNTERS(STREYES_FIELD, STREYES_FIELD, STREYES_NOTHING, STREYES_SHOWN)
+    counts.end();
+    o << "  },\n"
+      << "  \"seconds\": {\n";
+    JsonFields seconds(o, "    ");
+    seconds.add("parse", value(timeParse));
+    seconds.add("build_bodies", value(timeBuild));
+    seconds.add("render", value(timeRender));
+    seconds.add("write", value(timeWrite));
+    seconds.add("total", value(timeTotal));
+#define STREYES_SECONDS(member, key) seconds.add(key, value(c.member));
+#define STREYES_NOTHING_SHOWN(key, expression)
+    STREYES_RENDER_COUNTERS(STREYES_NOTHING, STREYES_NOTHING, STREYES_SECONDS, STREYES_NOTHING_SHOWN)
+#undef STREYES_FIELD
+#undef STREYES_SHOWN
+#undef STREYES_NOTHING
+#undef STREYES_SECONDS
+#undef STREYES_NOTHING_SHOWN
+    seconds.end();
+    o << "  },\n"
       << "  \"peak_memory_bytes\": " << peakMemoryBytes << ",\n"
       << "  \"memory_estimate_bytes\": " << memoryEstimateBytes << ",\n"
       << "  \"memory_budget_bytes\": " << memoryBudgetBytes << ",\n"

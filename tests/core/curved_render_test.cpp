@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "render/bucket.h"
+#include "render/split_decision.h"
 #include "streyes/rib.h"
 #include "cull/view_cull.h"
 #include "test_util.h"
@@ -133,8 +134,9 @@ TEST(CurvedRender, DeformingSubdivisionSurfaceLeavesNoCracks) {
 }
 
 // ---- Counting hits per sample -------------------------------------------------------------------
-// The renderer's split loop (src/render/bucket.cpp) over one bucket that covers the image, with
-// the rasterizer counting every hit on every sample and the winding of what it hit.
+// The split loop over one bucket that covers the image, split and diced as the renderer's own
+// decision says (decideSplit, render/split_decision.h), with the rasterizer counting every hit on
+// every sample and the winding of what it hit (no depth test: every hit counts).
 struct HitCount {
     std::vector<uint32_t> counts;
     std::vector<int32_t> windings;
@@ -168,22 +170,14 @@ HitCount countHits(const std::string& rib, int firstFrame, int frames, int maxGr
             EXPECT_GE(b->bound().swept().lo.z, cam.eyePlane());  // keep these scenes in front of the eye
             const RasterMeasure m = b->measure(cam);
             if (rasterOutside(m.bound.swept(), h.block.rect())) continue;
-            const float side = std::sqrt(b->material()->shadingRate), size = std::max(m.extentU, m.extentV);
-            SplitAxis axis;
-            if (b->moving() && m.motion > std::max(options.timeSplitRatio * size, options.timeSplitMinMotion)) {
-                axis = SplitAxis::T;
-            } else {
-                const double nu = std::max(1.0, std::ceil(double(m.extentU / side)));
-                const double nv = std::max(1.0, std::ceil(double(m.extentV / side)));
-                if (nu * nv <= options.maxGridSize) {
-                    b->dice(int(nu), int(nv), grid);
-                    raster.rasterize(grid, cam, rs->shutter, h.block, counters);
-                    continue;
-                }
-                axis = m.extentU >= m.extentV ? SplitAxis::U : SplitAxis::V;
+            const SplitDecision d = decideSplit(*b, m, options);  // the renderer's own
+            if (d.dice) {
+                b->dice(d.nu, d.nv, grid);
+                raster.rasterize(grid, cam, rs->shutter, h.block, counters);
+                continue;
             }
             BodyPtr halves[2];
-            b->split(axis, halves);
+            b->split(d.axis, halves);
             stack.push_back(std::move(halves[1]));
             stack.push_back(std::move(halves[0]));
         }
@@ -314,6 +308,7 @@ WorldEnd
     one.bucketSize = two.bucketSize = 8;
     RenderResult a = renderRib(rib, one), b = renderRib(rib, two);
     EXPECT_TRUE(test::identicalPixels(a, b));
+    EXPECT_EQ(test::differingCounts(a.stats.counters, b.stats.counters), std::vector<std::string>{});
     EXPECT_GT(a.stats.counters.sampleHits, 1000u);
 }
 

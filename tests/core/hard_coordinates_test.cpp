@@ -20,7 +20,7 @@ using test::RenderResult;
 
 RenderResult render(const std::string& name) { return test::renderFile(test::sourcePath("scenes/hard/" + name)); }
 
-// Depths of `a` times `scale` against `b`, relative; +inf where nothing was hit in both.
+// Depths of `a` times `scale` against `b`, relative; +inf where only one was hit or a depth is NaN.
 double maxDepthError(const RenderResult& a, const RenderResult& b, double scale = 1) {
     double worst = 0;
     for (size_t f = 0; f < a.frames.size(); ++f)
@@ -30,7 +30,9 @@ double maxDepthError(const RenderResult& a, const RenderResult& b, double scale 
                 if (std::isinf(za) != std::isinf(zb)) return std::numeric_limits<double>::infinity();
                 continue;
             }
-            worst = std::max(worst, std::fabs(za - zb) / zb);
+            const double e = std::fabs(za - zb) / zb;
+            if (std::isnan(e)) return std::numeric_limits<double>::infinity();  // std::max would drop it
+            worst = std::max(worst, e);
         }
     return worst;
 }

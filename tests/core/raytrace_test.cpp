@@ -105,18 +105,32 @@ AttributeEnd
 WorldEnd
 )";
 
+// The ray tracer shades each sample at its hit and time; the rasterizer shades a grid's vertices
+// at the grid's t0 and t1 and interpolates linearly in space and time. So colours agree as far as
+// shading changes across a micropolygon and over a grid's time span:
+// - the frames rasterizer's grids span one exposure (0.5 frames, in which the twisted patch turns
+//   9 degrees): colours within 0.01 (measured: 12 of 64,800 samples beyond it);
+// - the spacetime rasterizer's grids of the twisted patch span 2.5 frames (its motion keys), in
+//   which it turns 45 degrees: up to 0.14 on it (measured), so within 0.15.
+// In both, 5 floor samples differ by up to 0.4: at shadow edges, where the two hit points (0.2%
+// apart in depth, below) send shadow rays that pass either side of the occluder's edge. So 99.9%
+// of samples must agree (65 samples may not, about 7 pixels): a wrong colour by more than the
+// tolerance on a surface seen in more than 7 pixels fails.
+// Depth within 1%: the rasterizer interpolates z linearly in raster space across a micropolygon,
+// which is 0.2-0.3% off on the floor where it recedes fastest.
 TEST(Raytrace, AnimationSamplesAgreeWithTheRasterizer) {
-    // Shading differs (vertices against hits): compare hit or miss and depth only. Depth within
-    // 1%: the rasterizer interpolates z linearly in raster space across a micropolygon, which
-    // is 0.2-0.3% off on the floor where it recedes fastest.
-    test::SampleRecord raster = test::renderSamples(kAnimation, test::optionsFor(Algorithm::Spacetime));
     test::SampleRecord traced = test::renderSamples(kAnimation, test::optionsFor(Algorithm::Raytrace));
-    test::SampleAgreement agree = test::compareSamples(raster, traced, 1e9f, 1e-2f);
-    EXPECT_GE(agree.share(), 0.995) << agree.samples - agree.sameSurface << " of " << agree.samples;
-    // Same samples, so the images agree closely too.
-    EXPECT_LT(test::meanAbsDifference(renderRib(kAnimation, test::optionsFor(Algorithm::Spacetime)),
-                                      renderRib(kAnimation, test::optionsFor(Algorithm::Raytrace))),
-              0.01f);
+    for (const auto& [algorithm, colorTolerance] :
+         {std::pair{Algorithm::Frames, 0.01f}, std::pair{Algorithm::Spacetime, 0.15f}}) {
+        test::SampleRecord raster = test::renderSamples(kAnimation, test::optionsFor(algorithm));
+        test::SampleAgreement agree = test::compareSamples(raster, traced, colorTolerance, 1e-2f);
+        EXPECT_GE(agree.share(), 0.999) << algorithmName(algorithm) << ": " << agree.samples - agree.sameSurface
+                                        << " of " << agree.samples << " samples differ";
+    }
+    // Same samples, so the images agree closely too: every pixel within 0.15 (measured 0.11).
+    EXPECT_LE(test::maxAbsDifference(renderRib(kAnimation, test::optionsFor(Algorithm::Spacetime)),
+                                     renderRib(kAnimation, test::optionsFor(Algorithm::Raytrace))),
+              0.15f);
 }
 
 // One spacetime hierarchy or one per frame: the same exact nearest hits, the same pixels.
@@ -142,7 +156,9 @@ TEST(Raytrace, ThreadCountDoesNotChangePixelsWithShadows) {
         one.bucketSize = two.bucketSize = 8;
         RenderResult r1 = renderRib(kAnimation, one), r2 = renderRib(kAnimation, two);
         EXPECT_TRUE(test::identicalPixels(r1, r2)) << algorithmName(a);
-        EXPECT_EQ(r1.stats.counters.rayBodyTests, r2.stats.counters.rayBodyTests) << algorithmName(a);
+        EXPECT_EQ(test::differingCounts(r1.stats.counters, r2.stats.counters), std::vector<std::string>{})
+            << algorithmName(a);
+        EXPECT_GT(r1.stats.counters.rayBodyTests, 0u) << algorithmName(a);
     }
 }
 
