@@ -106,6 +106,7 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
   "peak_memory_bytes": 1048576,
   "memory_estimate_bytes": 524288,
   "memory_budget_bytes": 1073741824,
+  "memory_program_bytes": 0,
   "frames_skipped": 2
 }
 )");
