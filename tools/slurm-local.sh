@@ -130,6 +130,8 @@ start() {
   stop  # whatever a previous start in DIR left, alive or dead
   rm -rf "$DIR/state" "$DIR/spool" "$DIR/log" "$DIR/munge" "$CONF"
   mkdir -p "$DIR/state" "$DIR/spool" "$DIR/log" "$DIR/munge"
+  # munged wants every folder above its socket open for all to pass through (not to read).
+  chmod go+x "$DIR"
   chmod 755 "$DIR/munge"  # munged wants its socket folder open to all (the key stays 0600)
 
   # munge: a key of this cluster's own (created here, so a missing system key does not matter) and
