@@ -169,11 +169,17 @@ BlockChoice chooseBlock(int frames, int slots, const BlockCurve& curve, int rend
     }
     double minWall = choice.options[0].wall;
     for (const BlockOption& o : choice.options) minWall = std::min(minWall, o.wall);
+    // Within 5% of the shortest wall time, the least CPU; of those as cheap (within 0.5%), the
+    // shortest wall time; of those as quick (within 0.5%), the shortest block.
     double minCpu = -1;
     for (const BlockOption& o : choice.options)
         if (o.wall <= minWall * 1.05 && (minCpu < 0 || o.cpu < minCpu)) minCpu = o.cpu;
+    auto cheap = [&](const BlockOption& o) { return o.wall <= minWall * 1.05 && o.cpu <= minCpu * 1.005; };
+    double quickest = -1;
     for (const BlockOption& o : choice.options)
-        if (o.wall <= minWall * 1.05 && o.cpu <= minCpu * 1.005) {
+        if (cheap(o) && (quickest < 0 || o.wall < quickest)) quickest = o.wall;
+    for (const BlockOption& o : choice.options)
+        if (cheap(o) && o.wall <= quickest * 1.005) {
             choice.chosen = o;
             break;
         }

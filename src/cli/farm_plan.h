@@ -69,8 +69,9 @@ struct BlockChoice {
 // Chooses the block length of a shot of `frames` frames on `slots` tasks that can run at once:
 // every length from 1 to min(frames, maxBlock) is modelled (tasks = ceil(frames / L) in waves of
 // `slots`, a task's time its length x the curve at min(L, renderBlock)); the choice is the
-// least CPU among the lengths within 5% of the shortest wall time, and of those equally cheap
-// (within 0.5%), the shortest block (finer load balance, less lost to a failed task).
+// least CPU among the lengths within 5% of the shortest wall time; of those equally cheap (within
+// 0.5%), the shortest wall time; of those equally quick (within 0.5%), the shortest block (finer
+// load balance, less lost to a failed task).
 BlockChoice chooseBlock(int frames, int slots, const BlockCurve& curve, int renderBlock, int maxBlock);
 
 // One `streyes farm submit` of the shot: a Slurm job array, one task per block listed.

@@ -49,6 +49,24 @@ BlockCurve modelCurve(double a, double b, std::vector<int> blocks = {1, 4, 16, 6
     return c;
 }
 
+// The rule chooseBlock states: within 5% of the shortest wall time, the least CPU; then the
+// shortest wall time; then the shortest block.
+void expectTheRule(const BlockChoice& ch) {
+    double minWall = ch.options[0].wall;
+    for (const BlockOption& o : ch.options) minWall = std::min(minWall, o.wall);
+    EXPECT_LE(ch.chosen.wall, minWall * 1.05);
+    for (const BlockOption& o : ch.options) {
+        if (o.wall > minWall * 1.05) continue;
+        EXPECT_GE(o.cpu, ch.chosen.cpu * 0.995) << o.block;
+        if (o.cpu <= ch.chosen.cpu * 1.005) {
+            EXPECT_GE(o.wall, ch.chosen.wall * 0.995) << o.block;
+            if (o.wall <= ch.chosen.wall * 1.005) {
+                EXPECT_GE(o.block, ch.chosen.block);
+            }
+        }
+    }
+}
+
 TEST(FarmBlocks, CutInOrderWithAShorterLast) {
     auto b = cutBlocks(1, 16, 4);
     ASSERT_EQ(b.size(), 4u);
@@ -98,15 +116,7 @@ TEST(FarmCurve, ChoosesOneWaveWhenCoherenceKeepsPaying) {
     EXPECT_LE(ch.chosen.tasks, 50);
     EXPECT_GE(ch.chosen.block, (1000 + 49) / 50);
     EXPECT_EQ(ch.options.size(), 1000u);
-    // The rule: within 5% of the shortest modelled wall time, the least CPU.
-    double minWall = ch.options[0].wall;
-    for (const BlockOption& o : ch.options) minWall = std::min(minWall, o.wall);
-    EXPECT_LE(ch.chosen.wall, minWall * 1.05);
-    for (const BlockOption& o : ch.options) {
-        if (o.wall <= minWall * 1.05) {
-            EXPECT_GE(o.cpu, ch.chosen.cpu * 0.995) << o.block;
-        }
-    }
+    expectTheRule(ch);
     // Block 64 would leave 34 of the 50 slots idle: far slower.
     EXPECT_GT(ch.options[63].wall, 2 * ch.chosen.wall);
 }
@@ -128,6 +138,13 @@ TEST(FarmCurve, NoLongerThanTheRendererKeepsTogether) {
     const BlockChoice ch = chooseBlock(60, 1, modelCurve(1.0, 5.0), 6, 60);
     EXPECT_EQ(ch.chosen.block, 6);
     EXPECT_NE(ch.why.find("at most 6 frames together"), std::string::npos) << ch.why;
+    // 1,000 frames on 50 slots: every block of 6 frames or more costs the same CPU; the wall time
+    // decides (one or two full waves beat three), then the shorter block.
+    const BlockChoice wide = chooseBlock(1000, 50, modelCurve(1.0, 5.0), 6, 1000);
+    expectTheRule(wide);
+    EXPECT_GE(wide.chosen.block, 6);
+    EXPECT_EQ(wide.chosen.wall, 20 * modelCurve(1.0, 5.0).at(6));
+    EXPECT_LT(wide.chosen.block, 20);  // two waves of 10 are as quick as one of 20
 }
 
 TEST(FarmCurve, RendererFrameBlockFollowsTheRenderersLimits) {
