@@ -40,9 +40,10 @@ submit options:
   --frames A-B        the shot's frames (default: the scene's)
   --block N|auto      frames per task (default auto: from the shot's length, the cluster's
                       size and the measured block-length curve)
-  --curve NAME|FILE   the curve --block auto uses: a built-in one (demo, forest,
-                      forest-flyover; default forest) or a file from tools/block-curve
-                      (FILE or FILE:NAME)
+  --curve NAME|FILE   the curve --block auto uses: a built-in one, measured by
+                      tools/block-curve (docs/results/block-curve.md: demo, forest,
+                      forest-flyover ...; default forest), or a file it wrote (FILE or
+                      FILE:NAME)
   --slots N           plan --block auto for N tasks at once instead of the partition's
                       (with --dry-run: plan a shot for a cluster you are not on)
   --partition P       the Slurm partition (default: the cluster's default)

@@ -157,7 +157,14 @@ BlockChoice chooseBlock(int frames, int slots, const BlockCurve& curve, int rend
         const std::vector<Block> blocks = cutBlocks(1, frames, L);
         double waveTime = 0;
         for (size_t k = 0; k < blocks.size(); ++k) {
-            const double t = blocks[k].length() * curve.at(std::min(blocks[k].length(), renderBlock));
+            // The renderer cuts a task into its own frame blocks of renderBlock frames, the last
+            // shorter: each costs what a block of its length costs (counting the process's start
+            // once a block: conservative).
+            double t = 0;
+            for (int left = blocks[k].length(); left > 0; left -= renderBlock) {
+                const int m = std::min(left, renderBlock);
+                t += m * curve.at(m);
+            }
             o.cpu += t;
             waveTime = std::max(waveTime, t);
             if ((k + 1) % size_t(slots) == 0 || k + 1 == blocks.size()) {

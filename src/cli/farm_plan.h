@@ -68,7 +68,8 @@ struct BlockChoice {
 };
 // Chooses the block length of a shot of `frames` frames on `slots` tasks that can run at once:
 // every length from 1 to min(frames, maxBlock) is modelled (tasks = ceil(frames / L) in waves of
-// `slots`, a task's time its length x the curve at min(L, renderBlock)); the choice is the
+// `slots`; a task renders its frames in the renderer's blocks of `renderBlock`, the last shorter,
+// each m frames long costing m x the curve at m); the choice is the
 // least CPU among the lengths within 5% of the shortest wall time; of those equally cheap (within
 // 0.5%), the shortest wall time; of those equally quick (within 0.5%), the shortest block (finer
 // load balance, less lost to a failed task).

@@ -138,13 +138,16 @@ TEST(FarmCurve, NoLongerThanTheRendererKeepsTogether) {
     const BlockChoice ch = chooseBlock(60, 1, modelCurve(1.0, 5.0), 6, 60);
     EXPECT_EQ(ch.chosen.block, 6);
     EXPECT_NE(ch.why.find("at most 6 frames together"), std::string::npos) << ch.why;
-    // 1,000 frames on 50 slots: every block of 6 frames or more costs the same CPU; the wall time
-    // decides (one or two full waves beat three), then the shorter block.
-    const BlockChoice wide = chooseBlock(1000, 50, modelCurve(1.0, 5.0), 6, 1000);
+    // A task longer than 6 frames is rendered 6 at a time, the rest after: 12 frames cost twice 6,
+    // 10 cost 6 and then 4 (dearer a frame).
+    const BlockCurve c = modelCurve(1.0, 5.0);
+    const BlockChoice wide = chooseBlock(1000, 50, c, 6, 1000);
+    EXPECT_DOUBLE_EQ(wide.options[11].cpu, 1000 / 12 * 12 * c.at(6) + 4 * c.at(4));  // 83 tasks of 12, one of 4
+    EXPECT_DOUBLE_EQ(wide.options[9].wall, 2 * (6 * c.at(6) + 4 * c.at(4)));          // 100 tasks of 10: two waves
+    // 1,000 frames on 50 slots: one wave of tasks a little over 18 frames beats waves of 6.
     expectTheRule(wide);
-    EXPECT_GE(wide.chosen.block, 6);
-    EXPECT_EQ(wide.chosen.wall, 20 * modelCurve(1.0, 5.0).at(6));
-    EXPECT_LT(wide.chosen.block, 20);  // two waves of 10 are as quick as one of 20
+    EXPECT_GT(wide.chosen.block, 6);
+    EXPECT_LT(wide.chosen.wall, wide.options[5].wall);
 }
 
 TEST(FarmCurve, RendererFrameBlockFollowsTheRenderersLimits) {
