@@ -275,7 +275,7 @@ TEST_F(Farm, MovingShotInFourBlocksIsIdenticalToOneMachine) {
 // then the shot submitted again: only the missing frames are rendered, complete ones untouched.
 TEST_F(Farm, CancelledTaskThenResubmittedRendersOnlyTheMissingFrames) {
     const test::TempDir dir("farm-cancel");
-    const std::string scene = writeFile(dir.path(), "shot.rib", movingScene(16, "192x144"));
+    const std::string scene = writeFile(dir.path(), "shot.rib", movingScene(16, "256x192"));
     const std::string out = dir.path() + "/farm";
     fs::create_directories(out);
     const std::string submitArgs =
@@ -301,7 +301,7 @@ TEST_F(Farm, CancelledTaskThenResubmittedRendersOnlyTheMissingFrames) {
 
     std::vector<int> complete;
     for (int f = 1; f <= 16; ++f)
-        if (isCompleteFrame(frame(out, f), 192, 144, "rgbaz")) complete.push_back(f);
+        if (isCompleteFrame(frame(out, f), 256, 192, "rgbaz")) complete.push_back(f);
     int kept = 0;  // frames of block 1 the cancelled task finished
     for (int f : complete) kept += f >= 5 && f <= 8;
     ASSERT_GE(kept, 1);
@@ -350,7 +350,7 @@ TEST_F(Farm, CancelledTaskThenResubmittedRendersOnlyTheMissingFrames) {
     ASSERT_EQ(m.submissions.size(), 2u);
     EXPECT_EQ(m.submissions[1].tasks, std::vector<int>{1});
 
-    for (int f = 1; f <= 16; ++f) EXPECT_TRUE(isCompleteFrame(frame(out, f), 192, 144, "rgbaz")) << f;
+    for (int f = 1; f <= 16; ++f) EXPECT_TRUE(isCompleteFrame(frame(out, f), 256, 192, "rgbaz")) << f;
     for (size_t i = 0; i < complete.size(); ++i)
         EXPECT_TRUE(fileId(frame(out, complete[i])) == before[i]) << "frame " << complete[i] << " was written again";
     // The second run's own account: it skipped the frames the cancelled task had finished.
