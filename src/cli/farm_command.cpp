@@ -493,7 +493,7 @@ int farmStatus(const std::vector<std::string>& args) {
                 bool exists = false;
                 readTail(b.log, 1, &exists);
                 const int code = loggedExitCode(b.log);
-                if (!exists) b.state = slurm ? "UNKNOWN" : "NOT_STARTED";
+                if (!exists) b.state = "NOT_STARTED";
                 else if (code == 0) b.state = "COMPLETED";
                 else if (code != INT_MIN) b.state = "FAILED", b.exitCode = std::to_string(code);
                 else b.state = "ENDED_UNFINISHED";

@@ -146,6 +146,35 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
     }
 }
 
+// The temporaries of frames first..last of `pattern` whose writers no longer run (image_io.h,
+// removeStaleTemporaries), and only of those frames: on a render farm, tasks on other machines
+// write the pattern's other frames into the same shared folder, and their process ids mean nothing
+// here (a live writer there would look dead from here). One scan of the folder finds whether any
+// temporary is there at all.
+int removeStaleTemporariesOfFrames(const std::string& pattern, int first, int last) {
+    const std::filesystem::path dir = std::filesystem::path(pattern).has_parent_path()
+                                          ? std::filesystem::path(pattern).parent_path()
+                                          : std::filesystem::path(".");
+    std::vector<std::string> temporaries;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (!name.empty() && name[0] == '.' && name.find(".tmp") != std::string::npos) temporaries.push_back(name);
+    }
+    int removed = 0;
+    if (temporaries.empty()) return removed;
+    for (int f = first; f <= last; ++f) {
+        const std::string path = expandFramePattern(pattern, f);
+        const std::string prefix = "." + std::filesystem::path(path).stem().string() + ".tmp";
+        for (const std::string& t : temporaries)
+            if (t.compare(0, prefix.size(), prefix) == 0) {
+                removed += removeStaleTemporaries(path);  // a pattern without #: this frame only
+                break;
+            }
+    }
+    return removed;
+}
+
 // The stats JSON with the process's CPU time (user + system, every thread, parse and writing
 // included) as "cpu_seconds": what `streyes farm gather` sums over a shot's tasks.
 std::string withProcessCpu(std::string json) {
@@ -252,10 +281,11 @@ int renderCommand(const std::vector<std::string>& args) {
     for (const Output& o : outputs) checkWritableFolder(expandFramePattern(o.pattern, rs.firstFrame), "-o");
     if (!statsPath.empty()) checkWritableFolder(statsPath, "--stats");
 
-    // Temporary files of renders that were killed mid-write go; with --resume, frames whose every
-    // output is a complete image of the right size and channels (read back) are not rendered.
+    // Temporary files of renders of these frames that were killed mid-write go; with --resume,
+    // frames whose every output is a complete image of the right size and channels (read back)
+    // are not rendered.
     int stale = 0;
-    for (const Output& o : outputs) stale += removeStaleTemporaries(o.pattern);
+    for (const Output& o : outputs) stale += removeStaleTemporariesOfFrames(o.pattern, rs.firstFrame, rs.lastFrame);
     if (stale > 0) log.info("removed " + std::to_string(stale) + " temporary file" + (stale == 1 ? "" : "s") +
                             " left by an interrupted render");
     if (resume) {
