@@ -578,9 +578,13 @@ int farmStatus(const std::vector<std::string>& args) {
         std::printf("\nfailed tasks (%zu): they ended with frames missing; `streyes farm submit` with the same "
                     "arguments renders what is missing\n", failed.size());
         for (const BlockStatus* b : failed) {
-            std::printf("  %ld_%d, frames %s: %s%s%s; log %s", b->job, b->index, b->block.str().c_str(), b->state.c_str(),
+            // streyes's exit code 2 is bad input (a scene, an option, the memory budget): the same
+            // line fails the same way on any node.
+            const bool badInput = b->exitCode == "2" || b->exitCode.rfind("2:", 0) == 0;
+            std::printf("  %ld_%d, frames %s: %s%s%s%s; log %s", b->job, b->index, b->block.str().c_str(), b->state.c_str(),
                         b->exitCode.empty() ? "" : (", exit code " + b->exitCode).c_str(),
-                        b->state == "ENDED_UNFINISHED" ? " (cancelled, killed, or its node failed)" : "", b->log.c_str());
+                        b->state == "ENDED_UNFINISHED" ? " (cancelled, killed, or its node failed)" : "",
+                        badInput ? " (bad input: fix it, submitting again fails the same way)" : "", b->log.c_str());
             bool exists = false;
             const std::string tail = readTail(b->log, tailLines, &exists);
             if (!exists) {
