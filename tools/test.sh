@@ -4,13 +4,22 @@
 #   tools/test.sh --asan    the same suite under address and undefined-behaviour sanitizers
 #                           (build-asan/); the fuzzer is sanitized itself and is not run again
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+# The farm tests run on a one-node Slurm cluster that ctest's fixtures start (farm.cluster_start)
+# and stop (farm.cluster_stop, pass or fail); should ctest itself be killed, this stops it too.
+stop_cluster() {
+  for dir in "$ROOT/build/slurm-local" "$ROOT/build-asan/slurm-local"; do
+    [ -f "$dir/slurm.conf" ] && "$ROOT/tools/slurm-local.sh" stop "$dir" >/dev/null 2>&1 || true
+  done
+}
+trap stop_cluster EXIT
 if [ "${1:-}" = "--asan" ]; then
   shift
   [ -f build-asan/CMakeCache.txt ] || cmake --preset asan >/dev/null
   echo "== Building with sanitizers (build-asan/)"
   cmake --build --preset asan -j "$(nproc)"
   echo "== Testing with sanitizers"
-  exec ctest --preset asan -j "$(nproc)" "$@"
+  ctest --preset asan -j "$(nproc)" "$@"
+  exit
 fi
 echo "== Testing"
 ctest --preset release -j "$(nproc)" "$@"

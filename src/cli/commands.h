@@ -35,4 +35,8 @@ int compareCommand(const std::vector<std::string>& args);
 extern const char* kSheetUsage;
 int sheetCommand(const std::vector<std::string>& args);
 
+// `streyes farm submit|status|gather`: a shot on a Slurm cluster (farm_command.cpp, docs/FARM.md).
+extern const char* kFarmUsage;
+int farmCommand(const std::vector<std::string>& args);
+
 }  // namespace streyes::cli

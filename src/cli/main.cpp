@@ -39,6 +39,19 @@ int main(int argc, char** argv) {
                 }
             return renderCommand(rest);
         }
+        if (args[0] == "farm") {
+            usage = kFarmUsage;
+            std::vector<std::string> rest(args.begin() + 1, args.end());
+            // Help for farm itself; `--` ends farm's options (what follows goes to sbatch).
+            for (const std::string& a : rest) {
+                if (a == "--") break;
+                if (a == "--help" || a == "-h") {
+                    std::fputs(kFarmUsage, stdout);
+                    return 0;
+                }
+            }
+            return farmCommand(rest);
+        }
         if (args[0] == "compare" || args[0] == "sheet") {
             const bool compare = args[0] == "compare";
             usage = compare ? kCompareUsage : kSheetUsage;

@@ -1,4 +1,5 @@
 // `streyes render SCENE [options]`: parse, render, write one image per frame.
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <mutex>
 
 #include "commands.h"
+#include "render_request.h"
 #include "streyes/image_io.h"
 #include "streyes/memory.h"
 #include "streyes/renderer.h"
@@ -93,11 +95,8 @@ class ProgressBar {
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
 };
 
-struct Output {
-    std::string pattern, mode;
-};
+}  // namespace
 
-// Where frames go: -o, else the scene's file displays, else SCENE-NAME.####.exr.
 std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPattern, const std::string& scenePath,
                                   int frames, Log& log) {
     std::vector<Output> outs;
@@ -128,6 +127,8 @@ std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPatter
     return outs;
 }
 
+namespace {
+
 void writeTextAtomically(const std::string& path, const std::string& text) {
     std::string tmp = path + ".tmp" + std::to_string(getpid());
     {
@@ -145,12 +146,57 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
     }
 }
 
+// The temporaries of frames first..last of `pattern` whose writers no longer run (image_io.h,
+// removeStaleTemporaries), and only of those frames: on a render farm, tasks on other machines
+// write the pattern's other frames into the same shared folder, and their process ids mean nothing
+// here (a live writer there would look dead from here). One scan of the folder finds whether any
+// temporary is there at all.
+int removeStaleTemporariesOfFrames(const std::string& pattern, int first, int last) {
+    const std::filesystem::path dir = std::filesystem::path(pattern).has_parent_path()
+                                          ? std::filesystem::path(pattern).parent_path()
+                                          : std::filesystem::path(".");
+    std::vector<std::string> temporaries;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (!name.empty() && name[0] == '.' && name.find(".tmp") != std::string::npos) temporaries.push_back(name);
+    }
+    int removed = 0;
+    if (temporaries.empty()) return removed;
+    for (int f = first; f <= last; ++f) {
+        const std::string path = expandFramePattern(pattern, f);
+        const std::string prefix = "." + std::filesystem::path(path).stem().string() + ".tmp";
+        for (const std::string& t : temporaries)
+            if (t.compare(0, prefix.size(), prefix) == 0) {
+                removed += removeStaleTemporaries(path);  // a pattern without #: this frame only
+                break;
+            }
+    }
+    return removed;
+}
+
+// The stats JSON with the process's CPU time (user + system, every thread, parse and writing
+// included) as "cpu_seconds": what `streyes farm gather` sums over a shot's tasks.
+std::string withProcessCpu(std::string json) {
+    struct rusage ru {};
+    if (getrusage(RUSAGE_SELF, &ru) != 0) return json;
+    const double cpu = double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+                       1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+    const size_t close = json.rfind('}');
+    if (close == std::string::npos) return json;
+    size_t end = close;
+    while (end > 0 && (json[end - 1] == '\n' || json[end - 1] == ' ')) --end;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, ",\n  \"cpu_seconds\": %.3f\n", cpu);
+    json.replace(end, close - end, buf);
+    return json;
+}
+
 }  // namespace
 
-int renderCommand(const std::vector<std::string>& args) {
-    RenderOptions opts;
-    std::string scenePath, outPattern, statsPath;
-    bool quiet = false, resume = false, preview = false;
+RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
+    RenderRequest req;
+    RenderOptions& opts = req.opts;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> std::string {
@@ -171,9 +217,9 @@ int renderCommand(const std::vector<std::string>& args) {
             std::string v = value();
             opts.layers = v == "adaptive" ? 0 : int(parseInt(a, v, 1, 1024));
         } else if (a == "--preview") {
-            preview = true;
-        } else if (a == "-o" || a == "--output") outPattern = value();
-        else if (a == "--stats") statsPath = value();
+            req.preview = true;
+        } else if (a == "-o" || a == "--output") req.outPattern = value();
+        else if (a == "--stats") req.statsPath = value();
         else if (a == "--threads") opts.threads = int(parseInt(a, value(), 0, 1024));
         else if (a == "--seed") opts.seed = uint64_t(parseInt(a, value(), 0, 0x7fffffffL));
         else if (a == "--bucket") opts.bucketSize = int(parseInt(a, value(), 4, 1024));
@@ -182,14 +228,34 @@ int renderCommand(const std::vector<std::string>& args) {
             std::string v = value();
             if (!parseByteSize(v, &opts.maxMemoryBytes))
                 throw UsageError("--max-memory expects a size such as 512M, 8G or 1.5GiB, not '" + v + "'");
-        } else if (a == "--resume") resume = true;
-        else if (a == "--quiet" || a == "-q") quiet = true;
+        } else if (a == "--resume") req.resume = true;
+        else if (a == "--quiet" || a == "-q") req.quiet = true;
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else if (scenePath.empty()) scenePath = a;
-        else throw UsageError("more than one scene given ('" + scenePath + "' and '" + a + "')");
+        else if (req.scenePath.empty()) req.scenePath = a;
+        else throw UsageError("more than one scene given ('" + req.scenePath + "' and '" + a + "')");
     }
+    return req;
+}
+
+void applyPreview(RenderRequest& req, const Scene& scene) {
+    if (!req.preview) return;
+    // Chosen from the speed-against-error measurements (docs/results/, docs/ARCHITECTURE.md):
+    // fewer samples and half the resolution reach a given error fastest; the occlusion
+    // tolerance never did, so it stays exact.
+    RenderOptions& opts = req.opts;
+    if (opts.xres <= 0) {
+        opts.xres = std::max(1, scene.camera.xres / 2);
+        opts.yres = std::max(1, scene.camera.yres / 2);
+    }
+    if (opts.samples == 0) opts.samples = std::min(kPreviewSamples, scene.settings.pixelSamplesX * scene.settings.pixelSamplesY);
+}
+
+int renderCommand(const std::vector<std::string>& args) {
+    RenderRequest req = parseRenderArgs(args);
+    RenderOptions& opts = req.opts;
+    const std::string &scenePath = req.scenePath, &outPattern = req.outPattern, &statsPath = req.statsPath;
+    const bool quiet = req.quiet, resume = req.resume;
     if (scenePath.empty()) throw UsageError("no scene given");
-    const bool resGiven = opts.xres > 0;
 
     const auto start = std::chrono::steady_clock::now();
     Log log;
@@ -198,16 +264,7 @@ int renderCommand(const std::vector<std::string>& args) {
     Scene scene = parseRibFile(scenePath, log);
     const double parseSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    if (preview) {
-        // Chosen from the speed-against-error measurements (docs/results/, docs/ARCHITECTURE.md):
-        // fewer samples and half the resolution reach a given error fastest; the occlusion
-        // tolerance never did, so it stays exact.
-        if (!resGiven) {
-            opts.xres = std::max(1, scene.camera.xres / 2);
-            opts.yres = std::max(1, scene.camera.yres / 2);
-        }
-        if (opts.samples == 0) opts.samples = std::min(kPreviewSamples, scene.settings.pixelSamplesX * scene.settings.pixelSamplesY);
-    }
+    applyPreview(req, scene);
 
     // A file size limit kills a process that writes past it (SIGXFSZ); ignored, the write fails
     // with EFBIG instead, and the frame is reported and removed like any failed write.
@@ -224,10 +281,11 @@ int renderCommand(const std::vector<std::string>& args) {
     for (const Output& o : outputs) checkWritableFolder(expandFramePattern(o.pattern, rs.firstFrame), "-o");
     if (!statsPath.empty()) checkWritableFolder(statsPath, "--stats");
 
-    // Temporary files of renders that were killed mid-write go; with --resume, frames whose every
-    // output is a complete image of the right size and channels (read back) are not rendered.
+    // Temporary files of renders of these frames that were killed mid-write go; with --resume,
+    // frames whose every output is a complete image of the right size and channels (read back)
+    // are not rendered.
     int stale = 0;
-    for (const Output& o : outputs) stale += removeStaleTemporaries(o.pattern);
+    for (const Output& o : outputs) stale += removeStaleTemporariesOfFrames(o.pattern, rs.firstFrame, rs.lastFrame);
     if (stale > 0) log.info("removed " + std::to_string(stale) + " temporary file" + (stale == 1 ? "" : "s") +
                             " left by an interrupted render");
     if (resume) {
@@ -253,7 +311,7 @@ int renderCommand(const std::vector<std::string>& args) {
     bar.finish();
     stats.timeParse = parseSeconds;
     stats.timeTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!statsPath.empty()) writeTextAtomically(statsPath, stats.toJson());
+    if (!statsPath.empty()) writeTextAtomically(statsPath, withProcessCpu(stats.toJson()));
     if (!quiet) {
         std::fprintf(stderr, "streyes: %d frame%s %dx%d, %d samples/pixel, %s%s, %.2f s: %s%s\n", frames,
                      frames == 1 ? "" : "s", rs.width, rs.height, rs.pattern.count(), algorithmName(opts.algorithm),

@@ -167,8 +167,9 @@ TEST(Resume, RendersAgainWhatIsMissingTruncatedOrWrong) {
     EXPECT_NE(again.output.find("(nothing written)"), std::string::npos) << again.output;
 }
 
-// Temporaries of writers that no longer run are removed before rendering; those of a running
-// process, and files of other names, are left alone.
+// Temporaries of writers that no longer run are removed before rendering the frames they were
+// for; those of a running process, of other frames and of other names are left alone (on a render
+// farm, other frames are other tasks', written from other machines).
 TEST(Resume, StaleTemporariesOfDeadRendersAreRemoved) {
     const test::TempDir tempDir("stale");
     const std::string& dir = tempDir.path();
@@ -181,13 +182,20 @@ TEST(Resume, StaleTemporariesOfDeadRendersAreRemoved) {
     const std::string deadTmp = temporaryFrameName(dir + "/f.0003.exr", dead);
     const std::string liveTmp = temporaryFrameName(dir + "/f.0004.exr", getpid());
     const std::string otherName = temporaryFrameName(dir + "/g.0003.exr", dead);
-    for (const std::string& p : {deadTmp, liveTmp, otherName}) std::ofstream(p) << "partial";
-    CliRun r = runStreyes("render " + scene + " --frames 1-2 -o " + dir + "/f.####.exr");
+    const std::string otherFrame = temporaryFrameName(dir + "/f.0007.exr", dead);
+    for (const std::string& p : {deadTmp, liveTmp, otherName, otherFrame}) std::ofstream(p) << "partial";
+    CliRun r = runStreyes("render " + scene + " --frames 1-4 -o " + dir + "/f.####.exr");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("removed 1 temporary file left by an interrupted render"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(deadTmp));
     EXPECT_TRUE(fs::exists(liveTmp));
     EXPECT_TRUE(fs::exists(otherName));
+    EXPECT_TRUE(fs::exists(otherFrame));  // frame 7 is not this render's
+    // Rendering frame 7 removes it.
+    r = runStreyes("render " + scene + " --frames 7 -o " + dir + "/f.####.exr");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_FALSE(fs::exists(otherFrame));
+    EXPECT_TRUE(fs::exists(liveTmp));
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ def load_script(name):
 
 
 sve = load_script("speed-vs-error")
+bc = load_script("block-curve")
 
 TODAY_HELP = """render options:
   --frames A-B        frames to render
@@ -159,6 +160,23 @@ class Answers(unittest.TestCase):
         self.assertIn("on the front", text.split("**spacetime-occlusion**")[1].split("\n")[0])
 
 
+class BlockCurve(unittest.TestCase):
+    def test_blocks_sample_the_same_parts_of_the_shot(self):
+        self.assertEqual(bc.sampled_blocks((1, 64), 64, 4), [(1, 64)])
+        self.assertEqual(bc.sampled_blocks((1, 64), 16, 4), [(1, 16), (17, 32), (33, 48), (49, 64)])
+        self.assertEqual(bc.sampled_blocks((1, 64), 4, 4), [(1, 4), (17, 20), (33, 36), (49, 52)])
+        self.assertEqual(bc.sampled_blocks((1, 64), 1, 4), [(1, 1), (17, 17), (33, 33), (49, 49)])
+        self.assertEqual(bc.sampled_blocks((1, 10), 4, 4), [(1, 4), (5, 8), (9, 10)])  # every block: few enough
+        self.assertEqual(bc.sampled_blocks((5, 8), 16, 4), [(5, 8)])  # no longer than the span
+
+    def test_fit_recovers_the_model(self):
+        pts = [{"block": L, "cpu_per_frame": 1.5 + 6.0 / L} for L in (1, 4, 16, 64)]
+        a, b = bc.fit(pts)
+        self.assertAlmostEqual(a, 1.5, places=9)
+        self.assertAlmostEqual(b, 6.0, places=9)
+        self.assertIsNone(bc.fit(pts[:1]))
+
+
 def run(args):
     return subprocess.run([sys.executable] + args, capture_output=True, text=True)
 
@@ -174,13 +192,18 @@ class CommandLines(unittest.TestCase):
             ("bench", ["--no-kernels", "--no-renders"], "leave nothing to do"),
             ("bench", ["/no/such/scene.rib", "--no-kernels", "--exe", EXE], "does not exist"),
             ("bench", ["--bogus"], "unrecognized arguments"),
+            ("block-curve", ["--blocks", "1,x"], "--blocks expects"),
+            ("block-curve", ["--blocks", "1,128"], "block 128 is longer than the span 1-64"),
+            ("block-curve", ["--span", "9-2"], "the last frame comes before the first"),
+            ("block-curve", ["--scenes", "/no/such.rib", "--exe", EXE], "'/no/such.rib' does not exist"),
+            ("block-curve", ["--replot", "--out", "/no/such/curve.json"], "nothing to replot"),
         ]:
             r = run([os.path.join(TOOLS, tool)] + args)
             self.assertEqual(r.returncode, 2, (tool, args, r.stderr))
             self.assertIn(message, r.stderr, (tool, args))
 
     def test_help(self):
-        for tool in ("speed-vs-error", "bench"):
+        for tool in ("speed-vs-error", "bench", "block-curve"):
             r = run([os.path.join(TOOLS, tool), "--help"])
             self.assertEqual(r.returncode, 0)
             self.assertIn("usage: tools/" + tool, r.stdout)
@@ -229,6 +252,23 @@ class EndToEnd(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         with open(os.path.join(self.dir, "ramp.md")) as f:
             self.assertEqual(f.read(), md)
+
+    def test_block_curve_on_the_ramp(self):
+        out = os.path.join(self.dir, "curve.json")
+        r = run([os.path.join(TOOLS, "block-curve"), "--quick", "--scenes", os.path.join(ROOT, "scenes/ramp.rib"),
+                 "--exe", EXE, "--out", out, "--work", os.path.join(self.dir, "work"), "--quiet"])
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out) as f:
+            data = json.load(f)
+        pts = data["curves"]["ramp"]["points"]
+        self.assertEqual([p["block"] for p in pts], [1, 4])
+        self.assertEqual([p["frames_rendered"] for p in pts], [4, 8])  # 1, 3, 5, 7; then 1-4 and 5-8
+        for p in pts:
+            self.assertGreater(p["cpu_seconds"], 0)
+            self.assertAlmostEqual(p["cpu_per_frame"], p["cpu_seconds"] / p["frames_rendered"], places=3)
+        with open(out[:-5] + ".md") as f:
+            self.assertIn("## ramp (scenes/ramp.rib, 64×36, frames 1-8)", f.read())
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "work")))
 
     def test_bench_on_the_ramp(self):
         out = os.path.join(self.dir, "bench.md")

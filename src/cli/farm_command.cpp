@@ -1,0 +1,778 @@
+// `streyes farm submit | status | gather`: a shot on a Slurm cluster, one job array a submission,
+// one task a frame block (docs/FARM.md).
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <climits>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "commands.h"
+#include "farm_plan.h"
+#include "farm_slurm.h"
+#include "render_request.h"
+#include "streyes/film.h"
+#include "streyes/image_io.h"
+#include "streyes/rib.h"
+
+namespace streyes::cli {
+
+using namespace streyes::farm;
+namespace fs = std::filesystem;
+
+const char* kFarmUsage = R"(usage: streyes farm submit SCENE -o PATTERN [--frames A-B] [options] [render options] [-- sbatch options]
+       streyes farm status JOB|MANIFEST [--json] [--lines N]
+       streyes farm gather JOB|MANIFEST [--json] [-o FILE]
+
+Renders a shot on a Slurm cluster: the frames are cut into blocks, and one job array runs one
+task per block, each `streyes render SCENE --frames BLOCK -o PATTERN --resume --seed S ...`.
+Frames, logs and stats go beside PATTERN, on a filesystem every node sees: the manifest
+NAME.farm.json and the folder NAME.farm/ (scripts, logs/JOB_TASK.log, stats/JOB_TASK.json).
+
+submit options:
+  -o PATTERN          output frames, with a #### frame field (required)
+  --frames A-B        the shot's frames (default: the scene's)
+  --block N|auto      frames per task (default auto: from the shot's length, the cluster's
+                      size and the measured block-length curve)
+  --curve NAME|FILE   the curve --block auto uses: a built-in one, measured by
+                      tools/block-curve (docs/results/block-curve.md: demo, forest,
+                      forest-flyover ...; default forest), or a file it wrote (FILE or
+                      FILE:NAME)
+  --slots N           plan --block auto for N tasks at once instead of the partition's
+                      (with --dry-run: plan a shot for a cluster you are not on)
+  --partition P       the Slurm partition (default: the cluster's default)
+  --cpus-per-task N   N cores a task, rendering with N threads (default: a whole node a task)
+  --seed N            the shot's sample seed, the same in every task (default 0)
+  --all-blocks        submit every block (by default, blocks whose frames are all complete
+                      are left out; every task skips complete frames anyway)
+  --dry-run           print the plan, the batch script and the sbatch line; submit nothing
+  render options      --res, --samples, --algorithm, --preview ... as for streyes render,
+                      passed to every task (not --frames, --stats or --resume: the farm sets them)
+  -- OPTIONS          anything after -- goes to sbatch (e.g. -- --time=2:00:00 --mem=8G)
+
+  Submitting the same shot again (same scene, frames, blocks, seed and options) adds a job to
+  its manifest and renders only the frames still missing.
+
+status: frames complete and missing (each frame read back), each block's task as Slurm reports it
+  (squeue / scontrol; without accounting Slurm forgets a finished job after MinJobAge, then the
+  task's log tells), and failed tasks with the last lines of their logs.
+gather: one summary of the tasks' --stats: CPU time, counters summed, peak memory per task;
+  written to NAME.farm/summary.json (or -o FILE).
+
+exit codes: 0 done, 1 the command failed (sbatch refused the job), 2 bad input: no Slurm, no
+            controller answering, an unwritable output folder, a block longer than the shot, a
+            scene that does not parse (all found before anything is submitted)
+)";
+
+namespace {
+
+std::string nowString() {
+    std::time_t t = std::time(nullptr);
+    char buf[64];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", std::localtime(&t));
+    return buf;
+}
+
+std::string selfExecutable() {
+    std::error_code ec;
+    fs::path p = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string("streyes") : p.string();
+}
+
+bool isJobId(const std::string& s) {
+    return !s.empty() && s.size() < 12 && s.find_first_not_of("0123456789") == std::string::npos;
+}
+
+// The manifest a status or gather argument names: a job id (found through the job's comment) or a
+// manifest file.
+Manifest findManifest(const std::string& arg) {
+    if (isJobId(arg) && !fs::exists(arg)) {
+        checkSlurmReachable();
+        const std::string comment = jobComment(std::atol(arg.c_str()));
+        const std::string tag = "streyes-farm:";
+        if (comment.rfind(tag, 0) != 0)
+            throw InputError("Slurm does not know job " + arg + " as a streyes farm job (it forgets finished jobs " +
+                             "after MinJobAge, 300 s by default): give the shot's manifest instead, NAME.farm.json " +
+                             "beside its frames");
+        const std::string path = comment.substr(tag.size());
+        if (!fs::exists(path)) throw InputError("job " + arg + "'s manifest '" + path + "' is gone");
+        return Manifest::load(path);
+    }
+    if (!fs::exists(arg))
+        throw InputError("no manifest '" + arg + "': give a job id or the NAME.farm.json that farm submit wrote");
+    try {
+        return Manifest::load(arg);
+    } catch (const std::runtime_error& e) {
+        throw InputError(e.what());
+    }
+}
+
+std::string readTail(const std::string& path, int lines, bool* exists) {
+    std::ifstream f(path, std::ios::binary);
+    *exists = bool(f);
+    if (!f) return "";
+    std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    // Progress bars redraw with carriage returns: keep what was last drawn on each line.
+    std::vector<std::string> all;
+    std::string cur;
+    for (char c : text) {
+        if (c == '\n') {
+            all.push_back(cur);
+            cur.clear();
+        } else if (c == '\r') {
+            cur.clear();
+        } else {
+            cur += c;
+        }
+    }
+    if (!cur.empty()) all.push_back(cur);
+    std::string out;
+    for (size_t i = all.size() > size_t(lines) ? all.size() - size_t(lines) : 0; i < all.size(); ++i)
+        out += all[i] + "\n";
+    return out;
+}
+
+// The exit code the batch script logged last ("streyes farm: exit code N"), or INT_MIN when it
+// logged none (the task was killed, or runs still).
+int loggedExitCode(const std::string& log) {
+    std::ifstream f(log, std::ios::binary);
+    std::string line;
+    int code = INT_MIN;
+    const std::string tag = "streyes farm: exit code ";
+    while (std::getline(f, line)) {
+        size_t at = line.find(tag);
+        if (at != std::string::npos) code = std::atoi(line.c_str() + at + tag.size());
+        else if (line.find("streyes farm: job ") != std::string::npos) code = INT_MIN;  // a new attempt began
+    }
+    return code;
+}
+
+bool activeState(const std::string& s) {
+    return s == "PENDING" || s == "RUNNING" || s == "CONFIGURING" || s == "COMPLETING" || s == "REQUEUED" ||
+           s == "RESIZING" || s == "SUSPENDED" || s == "REQUEUE_HOLD" || s == "REQUEUE_FED" || s == "SIGNALING" ||
+           s == "STAGE_OUT";
+}
+
+// ---- submit --------------------------------------------------------------------------------------
+
+int farmSubmit(const std::vector<std::string>& args) {
+    std::string scenePath, outPattern, blockArg = "auto", curveArg, partition, framesArg;
+    int cpusPerTask = 0, slotsGiven = 0;
+    uint64_t seed = 0;
+    bool allBlocks = false, dryRun = false;
+    std::vector<std::string> renderOptions, sbatchOptions;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+            return args[++i];
+        };
+        if (a == "--") {
+            sbatchOptions.assign(args.begin() + long(i) + 1, args.end());
+            break;
+        }
+        if (a == "-o" || a == "--output") outPattern = value();
+        else if (a == "--frames") framesArg = value();
+        else if (a == "--block") blockArg = value();
+        else if (a == "--curve") curveArg = value();
+        else if (a == "--partition" || a == "-p") partition = value();
+        else if (a == "--cpus-per-task") cpusPerTask = int(parseInt(a, value(), 1, 4096));
+        else if (a == "--slots") slotsGiven = int(parseInt(a, value(), 1, 10000000));
+        else if (a == "--seed") seed = uint64_t(parseInt(a, value(), 0, 0x7fffffffL));
+        else if (a == "--all-blocks") allBlocks = true;
+        else if (a == "--dry-run") dryRun = true;
+        else if (a == "--stats" || a == "--resume" || a == "--threads")
+            throw UsageError(a + " is set by the farm for each task" +
+                             (a == "--threads" ? std::string(" (use --cpus-per-task N)") : std::string()));
+        else if (!a.empty() && a[0] == '-') {
+            // A render option, and its value when it takes one: parseRenderArgs checks it below.
+            renderOptions.push_back(a);
+            static const std::set<std::string> flags = {"--preview", "--quiet", "-q"};
+            if (!flags.count(a) && i + 1 < args.size()) renderOptions.push_back(args[++i]);
+        } else if (scenePath.empty()) scenePath = a;
+        else throw UsageError("more than one scene given ('" + scenePath + "' and '" + a + "')");
+    }
+    if (scenePath.empty()) throw UsageError("no scene given");
+    if (outPattern.empty())
+        throw UsageError("farm submit needs -o PATTERN (with a #### frame field), in a folder every node of the cluster "
+                         "sees: the tasks write the frames there");
+    if (!hasFrameField(outPattern))
+        throw UsageError("-o " + outPattern + " has no #### frame field: every frame needs a file of its own");
+    int blockFixed = 0;
+    if (blockArg != "auto") blockFixed = int(parseInt("--block", blockArg, 1, 1000000));
+    int first = 0, last = 0;
+    if (!framesArg.empty()) parseFrameRange("--frames", framesArg, &first, &last);
+
+    // The render options, checked by the code every task runs.
+    std::vector<std::string> check = renderOptions;
+    check.push_back(scenePath);
+    if (!framesArg.empty()) {
+        check.push_back("--frames");
+        check.push_back(framesArg);
+    }
+    RenderRequest req = parseRenderArgs(check);
+
+    // Before anything is submitted: Slurm, the scene, the output folder, the blocks, the partition.
+    if (!dryRun) checkSlurmReachable();
+    const std::string scene = fs::absolute(scenePath).lexically_normal().string();
+    const std::string output = fs::absolute(outPattern).lexically_normal().string();
+    if (!fs::exists(scene)) throw InputError("no scene '" + scenePath + "'");
+    Log log;
+    log.setEcho(true);
+    Scene parsed = parseRibFile(scene, log);  // InputError naming file and line when it does not parse
+    applyPreview(req, parsed);
+    const ResolvedSettings rs = resolveSettings(parsed, req.opts);
+    first = rs.firstFrame;
+    last = rs.lastFrame;
+    const int frames = last - first + 1;
+    const std::vector<Output> outs = chooseOutputs(parsed, output, scene, frames, log);
+    try {
+        checkWritableFolder(expandFramePattern(output, first), "-o");
+    } catch (const RenderError& e) {
+        throw InputError(e.what());
+    }
+
+    ClusterSize cluster;
+    if (!dryRun) {
+        cluster = clusterSize(partition);
+        const int widest = *std::max_element(cluster.cpusPerNode.begin(), cluster.cpusPerNode.end());
+        if (cpusPerTask > widest)
+            throw InputError("--cpus-per-task " + std::to_string(cpusPerTask) + ": the largest node of partition '" +
+                             cluster.partition + "' has " + std::to_string(widest) + " CPUs");
+    } else {
+        // --dry-run asks Slurm when it answers, and plans for one task at a time when it does not.
+        try {
+            checkSlurmReachable();
+            cluster = clusterSize(partition);
+        } catch (const InputError&) {
+            cluster.nodes = 1;
+            cluster.cpusPerNode = {std::max(1, cpusPerTask)};
+        }
+    }
+    int block = blockFixed;
+    Json choiceJson = Json::object();
+    // Submitting a shot again: --block auto keeps the blocks it has (the cluster may have changed
+    // since, but the shot's blocks may not).
+    const std::string manifestPath = fs::absolute(manifestPathFor(output)).lexically_normal().string();
+    std::unique_ptr<Manifest> old;
+    if (fs::exists(manifestPath)) {
+        try {
+            old = std::make_unique<Manifest>(Manifest::load(manifestPath));
+        } catch (const std::runtime_error& e) {
+            throw InputError(std::string(e.what()) + ": remove it, or give another -o");
+        }
+        if (block == 0) {
+            block = old->block;
+            choiceJson = old->blockChoice;
+        }
+    }
+    if (blockFixed > frames)
+        throw InputError("--block " + std::to_string(block) + " is longer than the shot: frames " + std::to_string(first) +
+                         "-" + std::to_string(last) + " are " + std::to_string(frames) + " frame" +
+                         (frames == 1 ? "" : "s") + "; give --block " + std::to_string(frames) + " or less");
+    if (old && blockFixed == 0) {
+        // kept from the manifest
+    } else if (block > 0) {
+        choiceJson.set("mode", Json::string("given"));
+    } else {
+        BlockCurve curve;
+        try {
+            curve = findCurve(curveArg.empty() ? kDefaultCurve : curveArg);
+        } catch (const std::runtime_error& e) {
+            throw InputError(std::string("--curve: ") + e.what());
+        }
+        const PixelFilter filter(parsed.settings.filter);
+        const int renderBlock = renderFrameBlock(rs.width, rs.height, rs.pattern.count(), std::max(4, req.opts.bucketSize),
+                                                 filter.guardX(), filter.guardY(), req.opts.maxFrameBlock,
+                                                 !perFrame(req.opts.algorithm));
+        const int slots = slotsGiven > 0 ? slotsGiven : cluster.slots(cpusPerTask);
+        const BlockChoice c = chooseBlock(frames, slots, curve, renderBlock, frames);
+        block = c.chosen.block;
+        choiceJson.set("mode", Json::string("auto"));
+        choiceJson.set("curve", Json::string(curve.name));
+        choiceJson.set("slots", Json::number(slots));
+        choiceJson.set("render_frame_block", Json::number(renderBlock));
+        choiceJson.set("why", Json::string(c.why));
+    }
+    const std::vector<Block> blocks = cutBlocks(first, last, block);
+    const int arrayLimit = dryRun ? INT_MAX : maxArraySize();
+    if (int(blocks.size()) > arrayLimit)
+        throw InputError(std::to_string(blocks.size()) + " blocks of " + std::to_string(block) +
+                         " frames are more tasks than the cluster's MaxArraySize (" + std::to_string(arrayLimit) +
+                         ") allows in one job array: give --block " +
+                         std::to_string((frames + arrayLimit - 1) / arrayLimit) + " or more");
+
+    Manifest m;
+    m.path = manifestPath;
+    m.scene = scene;
+    m.output = output;
+    m.executable = selfExecutable();
+    m.first = first;
+    m.last = last;
+    m.block = block;
+    m.blocks = blocks;
+    m.seed = seed;
+    m.renderOptions = renderOptions;
+    m.width = rs.width;
+    m.height = rs.height;
+    m.channels = outs.back().mode;
+    m.partition = partition.empty() ? cluster.partition : partition;
+    m.cpusPerTask = cpusPerTask;
+    m.sbatchOptions = sbatchOptions;
+    m.blockChoice = choiceJson;
+    if (old) {
+        std::string difference;
+        if (!old->sameShot(m, &difference))
+            throw InputError("'" + m.path + "' holds another shot (" + difference + " as given now): its frames " +
+                             "would mix with these. Give another -o, or remove it and the folder " + old->farmDir() +
+                             " to start again");
+        if (!dryRun)
+            for (const Submission& s : old->submissions)
+                if (jobActive(s.job))
+                    throw InputError("job " + std::to_string(s.job) + " of this shot is still pending or running: wait " +
+                                     "for it (streyes farm status " + m.path + ") or cancel it (scancel " +
+                                     std::to_string(s.job) + ") before submitting again");
+        m.submissions = old->submissions;
+        m.blockChoice = old->blockChoice;
+    }
+
+    // The blocks to render: those with a frame missing, unless --all-blocks.
+    std::vector<int> tasks;
+    for (size_t k = 0; k < blocks.size(); ++k) {
+        bool complete = !allBlocks;
+        for (int f = blocks[k].first; complete && f <= blocks[k].last; ++f)
+            complete = isCompleteFrame(expandFramePattern(output, f), m.width, m.height, m.channels);
+        if (!complete) tasks.push_back(int(k));
+    }
+    std::fprintf(stderr, "streyes farm: %s, frames %d-%d (%d), %dx%d, in %zu block%s of %d%s\n", scene.c_str(), first,
+                 last, frames, m.width, m.height, blocks.size(), blocks.size() == 1 ? "" : "s", block,
+                 m.blockChoice["why"].isString() ? (" (" + m.blockChoice["why"].str() + ")").c_str() : "");
+    if (tasks.empty()) {
+        std::fprintf(stderr, "streyes farm: all %d frames are complete: nothing to submit (--all-blocks submits every "
+                             "block anyway)\n", frames);
+        return 0;
+    }
+
+    const int number = int(m.submissions.size()) + 1;
+    const std::string script = m.farmDir() + "/submission-" + std::to_string(number) + ".sh";
+    std::string stem = fs::path(m.farmDir()).filename().string();
+    stem = stem.substr(0, stem.size() - 5);  // without ".farm"
+    std::vector<std::string> sbatch = {"--array=" + indexList(tasks), "--job-name=streyes:" + stem,
+                                       "--output=" + m.farmDir() + "/logs/%A_%a.log", "--open-mode=append",
+                                       "--requeue", "--comment=streyes-farm:" + m.path, "--nodes=1"};
+    if (!m.partition.empty()) sbatch.push_back("--partition=" + m.partition);
+    if (cpusPerTask > 0) sbatch.push_back("--cpus-per-task=" + std::to_string(cpusPerTask));
+    else sbatch.push_back("--exclusive");
+    sbatch.insert(sbatch.end(), sbatchOptions.begin(), sbatchOptions.end());
+
+    if (dryRun) {
+        std::string line = "sbatch --parsable";
+        for (const std::string& a : sbatch) line += " " + shellQuote(a);
+        std::printf("%s\n# %s\n%s %s\n", m.batchScript(number).c_str(), script.c_str(), line.c_str(), script.c_str());
+        return 0;
+    }
+
+    std::error_code ec;
+    fs::create_directories(m.farmDir() + "/logs", ec);
+    fs::create_directories(m.farmDir() + "/stats", ec);
+    if (ec) throw RenderError("cannot create '" + m.farmDir() + "': " + ec.message());
+    {
+        std::ofstream f(script, std::ios::binary);
+        f << m.batchScript(number);
+        f.close();
+        if (!f) throw RenderError("cannot write '" + script + "'");
+        chmod(script.c_str(), 0755);
+    }
+    const long job = submitBatch(sbatch, script);
+    m.submissions.push_back({job, tasks, nowString(), script});
+    m.save();
+    std::fprintf(stderr,
+                 "streyes farm: submitted job %ld: %zu task%s (array %s), frames %s\n"
+                 "  manifest %s\n  logs     %s/logs/%ld_*.log\n  status   streyes farm status %ld\n",
+                 job, tasks.size(), tasks.size() == 1 ? "" : "s", indexList(tasks).c_str(),
+                 [&] {
+                     std::vector<int> fr;
+                     for (int k : tasks)
+                         for (int f = blocks[size_t(k)].first; f <= blocks[size_t(k)].last; ++f) fr.push_back(f);
+                     return frameRanges(fr);
+                 }().c_str(),
+                 m.path.c_str(), m.farmDir().c_str(), job, job);
+    std::printf("%ld\n", job);
+    return 0;
+}
+
+// ---- status --------------------------------------------------------------------------------------
+
+struct BlockStatus {
+    int index = 0;
+    Block block;
+    int complete = 0;
+    std::vector<int> missing;
+    long job = 0;        // the latest submission that ran this block (0: never submitted)
+    std::string state;   // Slurm's, or from the log
+    std::string source;  // "slurm", "log", "none"
+    std::string exitCode, nodes, reason, log;
+    int restarts = 0;
+    bool failed = false;  // ended, frames still missing
+};
+
+int farmStatus(const std::vector<std::string>& args) {
+    std::string target;
+    bool json = false;
+    int tailLines = 10;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--json") json = true;
+        else if (a == "--lines") {
+            if (i + 1 >= args.size()) throw UsageError("--lines needs a value");
+            tailLines = int(parseInt(a, args[++i], 0, 10000));
+        } else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+        else if (target.empty()) target = a;
+        else throw UsageError("give one job or manifest");
+    }
+    if (target.empty()) throw UsageError("farm status needs a job id or a manifest (NAME.farm.json)");
+    const Manifest m = findManifest(target);
+
+    // Slurm's view, when it can be asked; the files' otherwise.
+    bool slurm = false;
+    try {
+        checkSlurmReachable();
+        slurm = true;
+    } catch (const InputError&) {
+    }
+    std::map<long, std::pair<bool, std::vector<TaskState>>> jobs;
+    if (slurm)
+        for (const Submission& s : m.submissions) {
+            bool known = false;
+            std::vector<TaskState> t = jobTasks(s.job, &known);
+            jobs[s.job] = {known, t};
+        }
+
+    std::vector<BlockStatus> blocks;
+    int complete = 0, total = 0;
+    std::vector<int> missingFrames;
+    for (size_t k = 0; k < m.blocks.size(); ++k) {
+        BlockStatus b;
+        b.index = int(k);
+        b.block = m.blocks[k];
+        for (int f = b.block.first; f <= b.block.last; ++f) {
+            ++total;
+            if (isCompleteFrame(expandFramePattern(m.output, f), m.width, m.height, m.channels)) ++b.complete;
+            else b.missing.push_back(f);
+        }
+        complete += b.complete;
+        missingFrames.insert(missingFrames.end(), b.missing.begin(), b.missing.end());
+        for (const Submission& s : m.submissions)
+            if (std::find(s.tasks.begin(), s.tasks.end(), int(k)) != s.tasks.end()) b.job = s.job;
+        if (b.job == 0) {
+            b.state = "NOT_SUBMITTED";
+            b.source = "none";
+        } else {
+            b.log = m.logPath(b.job, b.index);
+            const auto it = jobs.find(b.job);
+            bool found = false;
+            if (it != jobs.end() && it->second.first)
+                for (const TaskState& t : it->second.second)
+                    if (t.task == b.index) {
+                        b.state = t.state;
+                        b.exitCode = t.exitCode;
+                        b.nodes = t.nodes;
+                        b.reason = t.reason;
+                        b.restarts = t.restarts;
+                        b.source = "slurm";
+                        found = true;
+                    }
+            if (!found) {
+                b.source = "log";
+                bool exists = false;
+                readTail(b.log, 1, &exists);
+                const int code = loggedExitCode(b.log);
+                if (!exists) b.state = "NOT_STARTED";
+                else if (code == 0) b.state = "COMPLETED";
+                else if (code != INT_MIN) b.state = "FAILED", b.exitCode = std::to_string(code);
+                else b.state = "ENDED_UNFINISHED";
+            }
+        }
+        b.failed = !b.missing.empty() && b.job != 0 && !activeState(b.state);
+        blocks.push_back(b);
+    }
+
+    std::vector<const BlockStatus*> failed;
+    for (const BlockStatus& b : blocks)
+        if (b.failed) failed.push_back(&b);
+
+    if (json) {
+        Json j = Json::object();
+        j.set("manifest", Json::string(m.path));
+        j.set("scene", Json::string(m.scene));
+        j.set("output", Json::string(m.output));
+        j.set("slurm_reachable", Json::boolean(slurm));
+        Json fr = Json::object();
+        fr.set("total", Json::number(total));
+        fr.set("complete", Json::number(complete));
+        fr.set("missing", Json::number(total - complete));
+        fr.set("missing_ranges", Json::string(frameRanges(missingFrames)));
+        j.set("frames", fr);
+        Json jl = Json::array();
+        for (const Submission& s : m.submissions) {
+            Json o = Json::object();
+            o.set("job", Json::number(double(s.job)));
+            o.set("tasks", Json::string(indexList(s.tasks)));
+            o.set("time", Json::string(s.time));
+            o.set("known_to_slurm", Json::boolean(jobs.count(s.job) && jobs[s.job].first));
+            jl.push(o);
+        }
+        j.set("jobs", jl);
+        Json tl = Json::array();
+        for (const BlockStatus& b : blocks) {
+            Json o = Json::object();
+            o.set("block", Json::number(b.index));
+            o.set("frames", Json::string(b.block.str()));
+            o.set("job", Json::number(double(b.job)));
+            o.set("task", Json::number(b.index));
+            o.set("state", Json::string(b.state));
+            o.set("state_from", Json::string(b.source));
+            o.set("exit_code", Json::string(b.exitCode));
+            o.set("restarts", Json::number(b.restarts));
+            o.set("complete", Json::number(b.complete));
+            o.set("missing", Json::number(double(b.missing.size())));
+            o.set("failed", Json::boolean(b.failed));
+            o.set("log", Json::string(b.log));
+            if (b.failed) {
+                bool exists = false;
+                o.set("log_tail", Json::string(readTail(b.log, tailLines, &exists)));
+            }
+            tl.push(o);
+        }
+        j.set("tasks", tl);
+        j.set("failed_tasks", Json::number(double(failed.size())));
+        std::printf("%s\n", j.dump().c_str());
+        return 0;
+    }
+
+    std::printf("shot %s\n  scene %s, frames %d-%d in %zu blocks of %d, %dx%d\n", m.path.c_str(), m.scene.c_str(),
+                m.first, m.last, m.blocks.size(), m.block, m.width, m.height);
+    std::printf("frames: %d of %d complete", complete, total);
+    if (complete < total) std::printf(", %d missing: %s", total - complete, frameRanges(missingFrames).c_str());
+    std::printf("\n");
+    for (const Submission& s : m.submissions)
+        std::printf("job %ld: task%s %s, submitted %s%s\n", s.job, s.tasks.size() == 1 ? "" : "s",
+                    indexList(s.tasks).c_str(), s.time.c_str(),
+                    !slurm ? "" : (jobs[s.job].first ? "" : " (Slurm no longer knows it: states from its logs)"));
+    if (!slurm) std::printf("Slurm cannot be asked from here: task states come from their logs\n");
+    std::printf("\n%-6s %-12s %-14s %-18s %s\n", "block", "frames", "job_task", "state", "frames complete");
+    for (const BlockStatus& b : blocks) {
+        const std::string id = b.job ? std::to_string(b.job) + "_" + std::to_string(b.index) : "-";
+        std::string state = b.state;
+        if (b.restarts > 0) state += " (requeued " + std::to_string(b.restarts) + "x)";
+        std::printf("%-6d %-12s %-14s %-18s %d/%d\n", b.index, b.block.str().c_str(), id.c_str(), state.c_str(),
+                    b.complete, b.block.length());
+    }
+    if (!failed.empty()) {
+        std::printf("\nfailed tasks (%zu): they ended with frames missing; `streyes farm submit` with the same "
+                    "arguments renders what is missing\n", failed.size());
+        for (const BlockStatus* b : failed) {
+            // streyes's exit code 2 is bad input (a scene, an option, the memory budget): the same
+            // line fails the same way on any node.
+            const bool badInput = b->exitCode == "2" || b->exitCode.rfind("2:", 0) == 0;
+            std::printf("  %ld_%d, frames %s: %s%s%s%s; log %s", b->job, b->index, b->block.str().c_str(), b->state.c_str(),
+                        b->exitCode.empty() ? "" : (", exit code " + b->exitCode).c_str(),
+                        b->state == "ENDED_UNFINISHED" ? " (cancelled, killed, or its node failed)" : "",
+                        badInput ? " (bad input: fix it, submitting again fails the same way)" : "", b->log.c_str());
+            bool exists = false;
+            const std::string tail = readTail(b->log, tailLines, &exists);
+            if (!exists) {
+                std::printf(" (none: the task never started)\n");
+                continue;
+            }
+            std::printf(", last lines:\n");
+            size_t at = 0;
+            while (at < tail.size()) {
+                size_t nl = tail.find('\n', at);
+                std::printf("    | %s\n", tail.substr(at, nl - at).c_str());
+                at = nl == std::string::npos ? tail.size() : nl + 1;
+            }
+        }
+    }
+    return 0;
+}
+
+// ---- gather --------------------------------------------------------------------------------------
+
+// Adds `v` into `sum`: numbers add, objects member by member, arrays item by item.
+void addInto(Json& sum, const Json& v) {
+    if (v.isNumber()) {
+        sum = Json::number(sum.num(0) + v.num());
+    } else if (v.isObject()) {
+        if (!sum.isObject()) sum = Json::object();
+        for (const auto& [k, x] : v.members()) {
+            Json s = sum[k];
+            addInto(s, x);
+            sum.set(k, s);
+        }
+    } else if (v.isArray()) {
+        Json out = Json::array();
+        const size_t n = std::max(sum.items().size(), v.items().size());
+        for (size_t i = 0; i < n; ++i) {
+            Json s = i < sum.items().size() ? sum.items()[i] : Json();
+            if (i < v.items().size()) addInto(s, v.items()[i]);
+            out.push(s);
+        }
+        sum = out;
+    }
+}
+
+std::string bytesText(double b) {
+    char buf[32];
+    if (b >= double(1ull << 30)) std::snprintf(buf, sizeof buf, "%.2f GiB", b / double(1ull << 30));
+    else std::snprintf(buf, sizeof buf, "%.0f MiB", b / double(1ull << 20));
+    return buf;
+}
+
+int farmGather(const std::vector<std::string>& args) {
+    std::string target, outPath;
+    bool json = false;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--json") json = true;
+        else if (a == "-o" || a == "--output") {
+            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
+            outPath = args[++i];
+        } else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
+        else if (target.empty()) target = a;
+        else throw UsageError("give one job or manifest");
+    }
+    if (target.empty()) throw UsageError("farm gather needs a job id or a manifest (NAME.farm.json)");
+    const Manifest m = findManifest(target);
+    if (outPath.empty()) outPath = m.farmDir() + "/summary.json";
+
+    struct TaskStats {
+        long job;
+        int task;
+        Json stats;
+    };
+    std::vector<TaskStats> found;
+    std::vector<std::string> missing;
+    for (const Submission& s : m.submissions)
+        for (int k : s.tasks) {
+            const std::string p = m.statsPath(s.job, k);
+            if (!fs::exists(p)) {
+                missing.push_back(std::to_string(s.job) + "_" + std::to_string(k));
+                continue;
+            }
+            try {
+                found.push_back({s.job, k, Json::load(p)});
+            } catch (const std::runtime_error& e) {
+                throw InputError(e.what());
+            }
+        }
+
+    Json counters = Json::object();
+    double cpu = 0, wall = 0, peak = 0;
+    int rendered = 0, skipped = 0;
+    Json tasks = Json::array();
+    for (const TaskStats& t : found) {
+        const Json& s = t.stats;
+        const auto& fr = s["frames"].items();
+        const int n = fr.size() == 2 ? int(fr[1].num() - fr[0].num()) + 1 : 0;
+        const int sk = int(s["frames_skipped"].num());
+        rendered += n - sk;
+        skipped += sk;
+        const double c = s["cpu_seconds"].num(0), w = s["seconds"]["total"].num(0), pk = s["peak_memory_bytes"].num(0);
+        cpu += c;
+        wall += w;
+        peak = std::max(peak, pk);
+        addInto(counters, s["counters"]);
+        Json o = Json::object();
+        o.set("job", Json::number(double(t.job)));
+        o.set("task", Json::number(t.task));
+        o.set("frames", Json::string(fr.size() == 2 ? Block{int(fr[0].num()), int(fr[1].num())}.str() : ""));
+        o.set("frames_rendered", Json::number(n - sk));
+        o.set("frames_skipped", Json::number(sk));
+        o.set("cpu_seconds", Json::number(c));
+        o.set("wall_seconds", Json::number(w));
+        o.set("peak_memory_bytes", Json::number(pk));
+        o.set("threads", s["threads"]);
+        tasks.push(o);
+    }
+    // A ratio does not add up: computed again from the summed counts.
+    const double tests = counters["sample_tests"].num(0);
+    if (counters.has("hit_efficiency")) counters.set("hit_efficiency", Json::number(tests > 0 ? counters["sample_hits"].num(0) / tests : 0));
+
+    Json summary = Json::object();
+    summary.set("manifest", Json::string(m.path));
+    summary.set("scene", Json::string(m.scene));
+    summary.set("frames", Json::string(Block{m.first, m.last}.str()));
+    summary.set("resolution", Json::string(std::to_string(m.width) + "x" + std::to_string(m.height)));
+    summary.set("tasks_with_stats", Json::number(double(found.size())));
+    Json miss = Json::array();
+    for (const std::string& s : missing) miss.push(Json::string(s));
+    summary.set("tasks_without_stats", miss);
+    summary.set("frames_rendered", Json::number(rendered));
+    summary.set("frames_skipped", Json::number(skipped));
+    summary.set("cpu_seconds", Json::number(cpu));
+    summary.set("cpu_seconds_per_frame_rendered", Json::number(rendered ? cpu / rendered : 0));
+    summary.set("task_wall_seconds_sum", Json::number(wall));
+    summary.set("peak_memory_bytes_max", Json::number(peak));
+    summary.set("counters", counters);
+    summary.set("tasks", tasks);
+    const std::string text = summary.dump() + "\n";
+    {
+        const std::string tmp = outPath + ".tmp" + std::to_string(getpid());
+        std::ofstream f(tmp, std::ios::binary);
+        f << text;
+        f.close();
+        if (!f || std::rename(tmp.c_str(), outPath.c_str()) != 0) {
+            std::remove(tmp.c_str());
+            throw RenderError("cannot write '" + outPath + "'");
+        }
+    }
+    if (json) {
+        std::fputs(text.c_str(), stdout);
+        return 0;
+    }
+    std::printf("shot %s: frames %d-%d, %dx%d\n", m.path.c_str(), m.first, m.last, m.width, m.height);
+    std::printf("%zu task%s with stats", found.size(), found.size() == 1 ? "" : "s");
+    if (!missing.empty()) {
+        std::string list;
+        for (const std::string& s : missing) list += (list.empty() ? "" : ", ") + s;
+        std::printf("; %zu without (never finished): %s", missing.size(), list.c_str());
+    }
+    std::printf("\n\n%-14s %-12s %9s %8s %10s %10s %12s\n", "job_task", "frames", "rendered", "skipped", "CPU s",
+                "wall s", "peak memory");
+    for (const Json& t : tasks.items())
+        std::printf("%-14s %-12s %9.0f %8.0f %10.1f %10.1f %12s\n",
+                    (std::to_string(long(t["job"].num())) + "_" + std::to_string(int(t["task"].num()))).c_str(),
+                    t["frames"].str().c_str(), t["frames_rendered"].num(), t["frames_skipped"].num(),
+                    t["cpu_seconds"].num(), t["wall_seconds"].num(), bytesText(t["peak_memory_bytes"].num()).c_str());
+    std::printf("\ntotal: %d frames rendered, %d skipped (already complete), %.1f CPU s (%.2f a frame rendered), "
+                "peak memory %s (largest task)\n",
+                rendered, skipped, cpu, rendered ? cpu / rendered : 0.0, bytesText(peak).c_str());
+    const Json& splits = counters["splits"];
+    std::printf("counters summed: %.0f splits, %.0f grids, %.0f micropolygons, %.0f sample tests, %.0f procedurals "
+                "expanded, %.0f bodies culled by occlusion\n",
+                splits.isObject() ? splits["total"].num(0) : splits.num(0), counters["grids_diced"].num(0),
+                counters["micropolygons"].num(0), counters["sample_tests"].num(0),
+                counters["procedurals_expanded"].num(0), counters["culled_occlusion"].num(0));
+    std::printf("summary: %s\n", outPath.c_str());
+    return 0;
+}
+
+}  // namespace
+
+int farmCommand(const std::vector<std::string>& args) {
+    if (args.empty()) throw UsageError("farm needs a subcommand: submit, status or gather");
+    const std::vector<std::string> rest(args.begin() + 1, args.end());
+    if (args[0] == "submit") return farmSubmit(rest);
+    if (args[0] == "status") return farmStatus(rest);
+    if (args[0] == "gather") return farmGather(rest);
+    throw UsageError("unknown farm subcommand '" + args[0] + "' (submit, status or gather)");
+}
+
+}  // namespace streyes::cli

@@ -1,0 +1,33 @@
+// `streyes render`'s command line as data, shared with `streyes farm submit`, which checks a shot's
+// render options with the same code its tasks will run (render_command.cpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "streyes/renderer.h"
+#include "streyes/scene.h"
+#include "streyes/util/error.h"
+
+namespace streyes::cli {
+
+struct RenderRequest {
+    RenderOptions opts;
+    std::string scenePath, outPattern, statsPath;
+    bool quiet = false, resume = false, preview = false;
+};
+
+// Parses `streyes render` arguments (without the command word); UsageError on bad ones.
+RenderRequest parseRenderArgs(const std::vector<std::string>& args);
+// --preview's half resolution and samples, from the scene's (options given explicitly win).
+void applyPreview(RenderRequest& req, const Scene& scene);
+
+// An output: a #### pattern and its channels ("rgbaz", "rgba", "rgb").
+struct Output {
+    std::string pattern, mode;
+};
+// Where frames go: -o, else the scene's file displays, else SCENE-NAME.####.exr.
+std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPattern, const std::string& scenePath,
+                                  int frames, Log& log);
+
+}  // namespace streyes::cli
