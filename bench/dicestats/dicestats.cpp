@@ -38,7 +38,8 @@ namespace {
 
 struct Totals {
     uint64_t grids = 0, mp = 0, requested = 0, degenerate = 0, splits = 0, timeSplits = 0;
-    uint64_t tilesByBound = 0, tilesByGrid = 0;  // 32-px buckets each grid's bound / its vertices reach
+    uint64_t tilesByBound = 0, tilesByGrid = 0;
+    uint64_t bySideCounts = 0;  // max(nu, segments on the top and bottom sides) x likewise for v  // 32-px buckets each grid's bound / its vertices reach
     double area = 0, areaOverRate = 0, diceSeconds = 0;
     std::map<int, uint64_t> areaHist;  // log2 of area in 1/8 px steps
 };
@@ -57,9 +58,9 @@ const char* kindOf(const Body& b) {
 
 std::string rectOf(const Body& b) {
     auto* c = dynamic_cast<const CurvedBody*>(&b);
-    if (!c) return ",,,";
+    if (!c) return ",,,,";
     const ParamRect& r = c->rect();
-    return std::to_string(c->face()) + ":" + std::to_string(r.u0) + "," + std::to_string(r.u1) + "," + std::to_string(r.v0) + "," +
+    return std::to_string(c->face()) + "," + std::to_string(r.u0) + "," + std::to_string(r.u1) + "," + std::to_string(r.v0) + "," +
            std::to_string(r.v1);
 }
 
@@ -96,7 +97,7 @@ int main(int argc, char** argv) {
     std::ofstream csv;
     if (!csvPath.empty()) {
         csv.open(csvPath);
-        csv << "kind,nu,nv,NU,NV,degenerate,area,bw,bh,gw,gh,u0,u1,v0,v1\n";
+        csv << "kind,prim,nu,nv,NU,NV,degenerate,area,bw,bh,gw,gh,face,u0,u1,v0,v1\n";
     }
 
     std::map<std::string, Totals> byKind;
@@ -171,6 +172,22 @@ int main(int argc, char** argv) {
                                                              std::min(H - 1, y + 32)});
                             return n;
                         };
+                        // Distinct vertices along each side (0: row 0, 1: column NU, 2: row NV, 3: column 0).
+                        auto segments = [&](int side) {
+                            const int n = side == 0 || side == 2 ? grid.nu : grid.nv;
+                            int count = 0;
+                            Vec3f last{};
+                            for (int q = 0; q <= n; ++q) {
+                                const int i = side == 0 || side == 2 ? q : (side == 1 ? grid.nu : 0);
+                                const int j = side == 1 || side == 3 ? q : (side == 2 ? grid.nv : 0);
+                                const Vec3f p = grid.P[0][size_t(grid.index(i, j))];
+                                if (q == 0 || p != last) ++count;
+                                last = p;
+                            }
+                            return uint64_t(count - 1);
+                        };
+                        const uint64_t sideCounts = std::max({uint64_t(nu), segments(0), segments(2)}) *
+                                                    std::max({uint64_t(nv), segments(1), segments(3)});
                         const uint64_t tb = tilesOf(m.bound.swept()), tg = tilesOf(gb);
                         for (Totals* t : {&k, &all}) {
                             ++t->grids;
@@ -182,9 +199,10 @@ int main(int argc, char** argv) {
                             t->diceSeconds += sec;
                             t->tilesByBound += tb;
                             t->tilesByGrid += tg;
+                            t->bySideCounts += sideCounts;
                         }
                         ++gridHist[int(mp / 32)];
-                        if (csv) csv << kindOf(*b) << ',' << nu << ',' << nv << ',' << grid.nu << ',' << grid.nv << ','
+                        if (csv) csv << kindOf(*b) << ',' << b->primitiveId() << ',' << nu << ',' << nv << ',' << grid.nu << ',' << grid.nv << ','
                                      << degenerate << ',' << area << ',' << m.bound.swept().hi.x - m.bound.swept().lo.x << ','
                                      << m.bound.swept().hi.y - m.bound.swept().lo.y << ',' << gb.hi.x - gb.lo.x << ','
                                      << gb.hi.y - gb.lo.y << ',' << rectOf(*b) << '\n';
@@ -204,10 +222,10 @@ int main(int argc, char** argv) {
         }
     }
     auto report = [](const char* name, const Totals& t) {
-        std::printf("%-10s grids %7llu  micropolygons %9llu (asked %9llu, degenerate %8llu)  area %10.0f px  "
+        std::printf("%-10s grids %7llu  micropolygons %9llu (asked %9llu, by side counts %9llu, degenerate %8llu)  area %10.0f px  "
                     "mp per area/rate %.2f  mean mp area %.3f px (non-degenerate %.3f)  splits %llu t %llu  dice %.3f s  "
                     "32-px buckets per grid: by bound %.2f, by vertices %.2f\n",
-                    name, (unsigned long long)t.grids, (unsigned long long)t.mp, (unsigned long long)t.requested,
+                    name, (unsigned long long)t.grids, (unsigned long long)t.mp, (unsigned long long)t.requested, (unsigned long long)t.bySideCounts,
                     (unsigned long long)t.degenerate, t.area, t.mp / std::max(t.areaOverRate, 1e-9),
                     t.area / std::max<double>(double(t.mp), 1), t.area / std::max<double>(double(t.mp - t.degenerate), 1),
                     (unsigned long long)t.splits, (unsigned long long)t.timeSplits, t.diceSeconds,
