@@ -1,6 +1,7 @@
 // streyes_dicestats: how many micropolygons dicing makes for the area it covers.
 //
 //   build/streyes_dicestats SCENE.rib [--frame F] [--bucket N] [--grid-size N] [--csv FILE]
+//                           [--time-split-min-motion PX]   (1e9: no time splits)
 //
 // Runs the split loop's decision (src/render/bucket.cpp: cull, time split, dice when
 // nu x nv <= grid size, else split the longer raster direction) over the scene's root bodies for
@@ -72,19 +73,20 @@ int main(int argc, char** argv) {
         return 2;
     }
     std::string path = argv[1], csvPath;
+    RenderOptions options;
     int frame = -1, bucket = 0, gridSize = 256;
     for (int i = 2; i + 1 < argc; i += 2) {
         if (!std::strcmp(argv[i], "--frame")) frame = std::atoi(argv[i + 1]);
         else if (!std::strcmp(argv[i], "--bucket")) bucket = std::atoi(argv[i + 1]);
         else if (!std::strcmp(argv[i], "--grid-size")) gridSize = std::atoi(argv[i + 1]);
         else if (!std::strcmp(argv[i], "--csv")) csvPath = argv[i + 1];
+        else if (!std::strcmp(argv[i], "--time-split-min-motion")) options.timeSplitMinMotion = float(std::atof(argv[i + 1]));
     }
     Log log;
     Scene scene = parseRibFile(path, log);
     if (frame < 0) frame = scene.settings.firstFrame;
     auto rs = buildRenderScene(scene, frame, frame, 0, 0, log);
     const Camera& cam = rs->camera;
-    const RenderOptions options;
     const int W = cam.width(), H = cam.height();
     std::vector<PixelRect> tiles;
     if (bucket <= 0) {
