@@ -39,10 +39,12 @@ namespace {
 
 struct Totals {
     uint64_t grids = 0, mp = 0, requested = 0, degenerate = 0, splits = 0, timeSplits = 0;
-    uint64_t tilesByBound = 0, tilesByGrid = 0;
-    uint64_t bySideCounts = 0;  // max(nu, segments on the top and bottom sides) x likewise for v  // 32-px buckets each grid's bound / its vertices reach
+    uint64_t tilesByBound = 0, tilesByGrid = 0;  // 32-px buckets each grid's bound / its vertices reach
+    uint64_t bySideCounts = 0;   // max(nu, segments on the top and bottom sides) x likewise for v
+    uint64_t byMeanLengths = 0;  // ceil(mean row length / side) x ceil(mean column length / side), from the grid
     double area = 0, areaOverRate = 0, diceSeconds = 0;
-    std::map<int, uint64_t> areaHist;  // log2 of area in 1/8 px steps
+    double edgeProduct = 0;  // per micropolygon, mean u-edge length x mean v-edge length: area when not skewed
+    std::map<int, uint64_t> areaHist;  // 2 log2 of the area
 };
 
 float quadArea(Vec3f a, Vec3f b, Vec3f c, Vec3f d) {
@@ -150,11 +152,17 @@ int main(int argc, char** argv) {
                         std::vector<Vec3f> r(grid.P[0].size());
                         for (size_t i = 0; i < r.size(); ++i) r[i] = cam.toRaster(grid.P[0][i]);
                         uint64_t degenerate = 0;
-                        double area = 0;
+                        double area = 0, edgeProduct = 0;
                         for (int j = 0; j < grid.nv; ++j)
                             for (int i = 0; i < grid.nu; ++i) {
                                 const float a = quadArea(r[size_t(grid.index(i, j))], r[size_t(grid.index(i + 1, j))],
                                                          r[size_t(grid.index(i, j + 1))], r[size_t(grid.index(i + 1, j + 1))]);
+                                auto len = [](Vec3f p, Vec3f q) { return std::hypot(p.x - q.x, p.y - q.y); };
+                                const Vec3f& p00 = r[size_t(grid.index(i, j))];
+                                const Vec3f& p10 = r[size_t(grid.index(i + 1, j))];
+                                const Vec3f& p01 = r[size_t(grid.index(i, j + 1))];
+                                const Vec3f& p11 = r[size_t(grid.index(i + 1, j + 1))];
+                                edgeProduct += 0.25 * (len(p00, p10) + len(p01, p11)) * (len(p00, p01) + len(p10, p11));
                                 if (a <= 0) ++degenerate;
                                 else ++all.areaHist[int(std::floor(std::log2(a) * 2))];
                                 area += a;
@@ -190,6 +198,19 @@ int main(int argc, char** argv) {
                         };
                         const uint64_t sideCounts = std::max({uint64_t(nu), segments(0), segments(2)}) *
                                                     std::max({uint64_t(nv), segments(1), segments(3)});
+                        // What nu x nv would be from the mean raster length of the grid's rows and
+                        // columns instead of the longest edges of the piece.
+                        double rowLength = 0, columnLength = 0;
+                        for (int j = 0; j <= grid.nv; ++j)
+                            for (int i = 0; i < grid.nu; ++i)
+                                rowLength += std::hypot(r[size_t(grid.index(i + 1, j))].x - r[size_t(grid.index(i, j))].x,
+                                                        r[size_t(grid.index(i + 1, j))].y - r[size_t(grid.index(i, j))].y);
+                        for (int i = 0; i <= grid.nu; ++i)
+                            for (int j = 0; j < grid.nv; ++j)
+                                columnLength += std::hypot(r[size_t(grid.index(i, j + 1))].x - r[size_t(grid.index(i, j))].x,
+                                                           r[size_t(grid.index(i, j + 1))].y - r[size_t(grid.index(i, j))].y);
+                        const uint64_t byMean = uint64_t(std::max(1.0, std::ceil(rowLength / (grid.nv + 1) / side))) *
+                                                uint64_t(std::max(1.0, std::ceil(columnLength / (grid.nu + 1) / side)));
                         const uint64_t tb = tilesOf(m.bound.swept()), tg = tilesOf(gb);
                         for (Totals* t : {&k, &all}) {
                             ++t->grids;
@@ -197,11 +218,13 @@ int main(int argc, char** argv) {
                             t->requested += uint64_t(nu * nv);
                             t->degenerate += degenerate;
                             t->area += area;
+                            t->edgeProduct += edgeProduct;
                             t->areaOverRate += area / rate;
                             t->diceSeconds += sec;
                             t->tilesByBound += tb;
                             t->tilesByGrid += tg;
                             t->bySideCounts += sideCounts;
+                            t->byMeanLengths += byMean;
                         }
                         ++gridHist[int(mp / 32)];
                         if (csv) csv << kindOf(*b) << ',' << b->primitiveId() << ',' << nu << ',' << nv << ',' << grid.nu << ',' << grid.nv << ','
@@ -224,15 +247,15 @@ int main(int argc, char** argv) {
         }
     }
     auto report = [](const char* name, const Totals& t) {
-        std::printf("%-10s grids %7llu  micropolygons %9llu (asked %9llu, by side counts %9llu, degenerate %8llu)  area %10.0f px  "
+        std::printf("%-10s grids %7llu  micropolygons %9llu (asked %9llu, by side counts %9llu, by mean lengths %9llu, degenerate %8llu)  area %10.0f px  "
                     "mp per area/rate %.2f  mean mp area %.3f px (non-degenerate %.3f)  splits %llu t %llu  dice %.3f s  "
-                    "32-px buckets per grid: by bound %.2f, by vertices %.2f\n",
-                    name, (unsigned long long)t.grids, (unsigned long long)t.mp, (unsigned long long)t.requested, (unsigned long long)t.bySideCounts,
+                    "32-px buckets per grid: by bound %.2f, by vertices %.2f  edge products / area %.2f\n",
+                    name, (unsigned long long)t.grids, (unsigned long long)t.mp, (unsigned long long)t.requested, (unsigned long long)t.bySideCounts, (unsigned long long)t.byMeanLengths,
                     (unsigned long long)t.degenerate, t.area, t.mp / std::max(t.areaOverRate, 1e-9),
                     t.area / std::max<double>(double(t.mp), 1), t.area / std::max<double>(double(t.mp - t.degenerate), 1),
                     (unsigned long long)t.splits, (unsigned long long)t.timeSplits, t.diceSeconds,
                     double(t.tilesByBound) / std::max<double>(double(t.grids), 1),
-                    double(t.tilesByGrid) / std::max<double>(double(t.grids), 1));
+                    double(t.tilesByGrid) / std::max<double>(double(t.grids), 1), t.edgeProduct / std::max(t.area, 1e-9));
     };
     std::printf("%s frame %d, %zu bucket(s)%s\n", path.c_str(), frame, tiles.size(),
                 bucket > 0 ? (" of " + std::to_string(bucket) + " px").c_str() : " (the whole image)");
