@@ -13,7 +13,7 @@
 // on a side are the points of that line's lattice inside the side, plus the side's two corners.
 // A line's lattice is a function of the line alone (not of the piece): a binary tree over the
 // line's parameter whose nodes are refined while their raster length at the mesh's keys is more
-// than 8 micropolygons; a leaf holds 2^k equal steps, k from its length and the shading rate.
+// than 8 micropolygons; a leaf holds 2^k equal steps, the fewest no longer than two micropolygon edges.
 // So two pieces that meet along a line, however deeply each was split, put the same vertices
 // on their common part of it, evaluated by the same owner (SurfaceMesh::evaluatePoint): the
 // same bits. A corner made by a split lies on the parent's side; where that point is not on the

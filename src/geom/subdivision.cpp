@@ -8,6 +8,8 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <tbb/parallel_for.h>
 
+#include <array>
+#include <cmath>
 #include <mutex>
 #include <shared_mutex>
 #include <string>
@@ -88,31 +90,63 @@ class WeightProbe {
 
 double lerpD(double a, double b, double t) { return a + (b - a) * t; }
 
-// Whether every patch point's weight is one bicubic polynomial over r: fitted through the 4x4
-// samples at thirds (as fitBezier does) and compared at four other points.
+// The inverse of the 4x4 matrix of cubic Bernstein values at the parameters t: maps the values of
+// a cubic at t[0..3] to its Bezier coefficients.
+std::array<double, 16> bernsteinFitMatrix(const double t[4]) {
+    double a[4][8];
+    for (int i = 0; i < 4; ++i) {
+        double b[4], d[4];
+        bernstein(t[i], b, d);
+        for (int j = 0; j < 4; ++j) a[i][j] = b[j], a[i][4 + j] = i == j ? 1 : 0;
+    }
+    for (int c = 0; c < 4; ++c) {  // Gauss-Jordan with partial pivoting
+        int p = c;
+        for (int r = c + 1; r < 4; ++r)
+            if (std::fabs(a[r][c]) > std::fabs(a[p][c])) p = r;
+        for (int k = 0; k < 8; ++k) std::swap(a[c][k], a[p][k]);
+        const double inv = 1 / a[c][c];
+        for (int k = 0; k < 8; ++k) a[c][k] *= inv;
+        for (int r = 0; r < 4; ++r)
+            if (r != c) {
+                const double f = a[r][c];
+                for (int k = 0; k < 8; ++k) a[r][k] -= f * a[c][k];
+            }
+    }
+    std::array<double, 16> m;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) m[size_t(i * 4 + j)] = a[i][4 + j];
+    return m;
+}
+
+// Whether every patch point's weight is one bicubic polynomial over r: fitted through 4x4 samples
+// and compared at four other points. All of them lie strictly inside r: on r's border Bfr may
+// evaluate with the neighbouring leaf, whose weights are on other patch points when it lies at
+// another level of the tree (positions agree there, weights do not), which made regular leaves
+// next to finer ones look irregular.
 bool weightsArePolynomial(WeightProbe& probe, const ParamRect& r) {
     const int n = probe.size();
+    static constexpr double kT[4] = {0.125, 0.375, 0.625, 0.875};
+    static const std::array<double, 16> kInv = bernsteinFitMatrix(kT);
     std::vector<double> samples(size_t(16 * n));
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
-            const std::vector<double>& w = probe.weights(lerpD(r.u0, r.u1, i / 3.0), lerpD(r.v0, r.v1, j / 3.0));
+            const std::vector<double>& w = probe.weights(lerpD(r.u0, r.u1, kT[i]), lerpD(r.v0, r.v1, kT[j]));
             std::copy(w.begin(), w.end(), samples.begin() + (j * 4 + i) * n);
         }
-    // Bezier coefficients of each weight: the same 4x4 solve as fitBezier, per component.
-    static constexpr double kInv[16] = {1, 0, 0, 0, -5.0 / 6, 3, -1.5, 1.0 / 3, 1.0 / 3, -1.5, 3, -5.0 / 6, 0, 0, 0, 1};
+    // Bezier coefficients of each weight, per direction.
     std::vector<double> rows(size_t(16 * n)), coef(size_t(16 * n));
     for (int l = 0; l < 4; ++l)
         for (int i = 0; i < 4; ++i)
             for (int c = 0; c < n; ++c) {
                 double s = 0;
-                for (int k = 0; k < 4; ++k) s += kInv[i * 4 + k] * samples[size_t((l * 4 + k) * n + c)];
+                for (int k = 0; k < 4; ++k) s += kInv[size_t(i * 4 + k)] * samples[size_t((l * 4 + k) * n + c)];
                 rows[size_t((l * 4 + i) * n + c)] = s;
             }
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i)
             for (int c = 0; c < n; ++c) {
                 double s = 0;
-                for (int l = 0; l < 4; ++l) s += kInv[j * 4 + l] * rows[size_t((l * 4 + i) * n + c)];
+                for (int l = 0; l < 4; ++l) s += kInv[size_t(j * 4 + l)] * rows[size_t((l * 4 + i) * n + c)];
                 coef[size_t((j * 4 + i) * n + c)] = s;
             }
     static constexpr double kCheck[4][2] = {{0.2113, 0.7071}, {0.8377, 0.2929}, {0.3821, 0.4142}, {0.6180, 0.9135}};

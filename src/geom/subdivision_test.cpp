@@ -164,6 +164,40 @@ TEST(Subdivision, IrregularFaceBoundsHoldWhatBfrEvaluates) {
     }
 }
 
+// Bfr's tree for a face with one extraordinary corner: a Gregory leaf at that corner, a quarter
+// of the face on each side, and regular (bicubic) leaves everywhere else, some of them next to
+// finer leaves. Only the Gregory leaf is bounded by the box of its patch points; every other cell
+// gets a Bezier form that matches what Bfr evaluates, and bounds that shrink with the piece.
+// (Regular leaves next to finer ones used to be taken for irregular: on a leaf's border Bfr
+// may evaluate with the neighbouring leaf, whose weights are on other patch points; their
+// bounds were the box of all their patch points, up to 40 times the piece's area on screen.)
+TEST(Subdivision, OnlyTheExtraordinaryCornerIsWithoutABezierForm) {
+    Surface s(cube());
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> uni(0, 1);
+    for (int f = 0; f < s.mesh->faceCount(); ++f) {
+        int without = 0;
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) {
+                const ParamRect r{i / 4.0, (i + 1) / 4.0, j / 4.0, (j + 1) / 4.0};
+                BezierPatch cp;
+                if (!s.mesh->bezier(f, r, 0, &cp)) {
+                    ++without;
+                    continue;
+                }
+                for (int k = 0; k < 8; ++k) {
+                    const double a = uni(rng), b = uni(rng);
+                    Vec3f P, N;
+                    s.mesh->evaluate(f, r.u0 + a * 0.25, r.v0 + b * 0.25, 0, &P, &N);
+                    Vec3d Q, du, dv;
+                    evalBezier(cp, a, b, &Q, &du, &dv);
+                    EXPECT_LT(length(Vec3d(P) - Q), 1e-5) << "face " << f << " cell " << i << "," << j;
+                }
+            }
+        EXPECT_EQ(without, 1) << "face " << f;
+    }
+}
+
 TEST(Subdivision, CreaseMakesTheSharpEdgeItPromises) {
     // The four top edges of the cube, infinitely sharp: the crease is the cubic B-spline of the
     // top square (its limit at an edge's middle is (P0 + 23 P1 + 23 P2 + P3) / 48), the top face
