@@ -61,6 +61,11 @@ class Renderer {
     double buildSeconds_ = 0;
 };
 
+// The most frames a render of `scene` with `options` keeps together (before the memory budget
+// shrinks the block): --frame-block, ~1 GiB of resolved pixels, and for spacetime buckets ~4 M
+// samples a bucket. A render farm's blocks longer than this gain no more coherence.
+int frameBlockLimit(const Scene& scene, const RenderOptions& options);
+
 // Splits `samples` per pixel into an sx x sy stratification as square as possible.
 void factorSamples(int samples, int* sx, int* sy);
 

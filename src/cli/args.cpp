@@ -58,6 +58,10 @@ Renders an animation described in RIB as one spacetime scene, one EXR per frame.
 render options:
   --frames A-B        frames to render (or a single frame A); default: the scene's
                       Option "streyes" "int frames", else frame 0
+  --shot A-B          the whole animation these frames belong to: motion segments and procedurals'
+                      level of detail are decided over it, so that a frame renders the same
+                      whatever other frames are rendered with it (render farms pass it);
+                      default: the scene's frames joined with those rendered
   --res WxH           image size in pixels; default: the scene's Format
   --samples N         samples per pixel per frame; default: the scene's PixelSamples
   --algorithm NAME    spacetime-occlusion (default): Algorithm S with occlusion culling

@@ -17,7 +17,6 @@
 #include "farm_plan.h"
 #include "farm_slurm.h"
 #include "render_request.h"
-#include "streyes/film.h"
 #include "streyes/image_io.h"
 #include "streyes/rib.h"
 
@@ -53,7 +52,7 @@ submit options:
                       are left out; every task skips complete frames anyway)
   --dry-run           print the plan, the batch script and the sbatch line; submit nothing
   render options      --res, --samples, --algorithm, --preview ... as for streyes render,
-                      passed to every task (not --frames, --stats or --resume: the farm sets them)
+                      passed to every task (not --frames, --shot, --stats or --resume: the farm sets them)
   -- OPTIONS          anything after -- goes to sbatch (e.g. -- --time=2:00:00 --mem=8G)
 
   Submitting the same shot again (same scene, frames, blocks, seed and options) adds a job to
@@ -187,7 +186,7 @@ int farmSubmit(const std::vector<std::string>& args) {
         else if (a == "--seed") seed = uint64_t(parseInt(a, value(), 0, 0x7fffffffL));
         else if (a == "--all-blocks") allBlocks = true;
         else if (a == "--dry-run") dryRun = true;
-        else if (a == "--stats" || a == "--resume" || a == "--threads")
+        else if (a == "--stats" || a == "--resume" || a == "--threads" || a == "--shot")
             throw UsageError(a + " is set by the farm for each task" +
                              (a == "--threads" ? std::string(" (use --cpus-per-task N)") : std::string()));
         else if (!a.empty() && a[0] == '-') {
@@ -287,10 +286,7 @@ int farmSubmit(const std::vector<std::string>& args) {
         } catch (const std::runtime_error& e) {
             throw InputError(std::string("--curve: ") + e.what());
         }
-        const PixelFilter filter(parsed.settings.filter);
-        const int renderBlock = renderFrameBlock(rs.width, rs.height, rs.pattern.count(), std::max(4, req.opts.bucketSize),
-                                                 filter.guardX(), filter.guardY(), req.opts.maxFrameBlock,
-                                                 !perFrame(req.opts.algorithm));
+        const int renderBlock = frameBlockLimit(parsed, req.opts);
         const int slots = slotsGiven > 0 ? slotsGiven : cluster.slots(cpusPerTask);
         const BlockChoice c = chooseBlock(frames, slots, curve, renderBlock, frames);
         block = c.chosen.block;

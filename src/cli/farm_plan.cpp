@@ -128,20 +128,6 @@ BlockCurve findCurve(const std::string& spec) {
                              (file.empty() ? ", or give a file written by tools/block-curve" : ""));
 }
 
-int renderFrameBlock(int width, int height, int samplesPerPixel, int tileSize, int guardX, int guardY,
-                     int maxFrameBlock, bool spacetime) {
-    // As in Renderer::render (src/render/renderer.cpp): the option, ~1 GiB of resolved pixels
-    // (RGBA + Z floats), and for spacetime buckets ~4 M samples per bucket.
-    const double pixelBytes = double(width) * height * sizeof(float) * 5;
-    int block = std::max(1, maxFrameBlock);
-    block = std::min(block, std::max(1, int(double(1 << 30) / pixelBytes)));
-    if (spacetime) {
-        const double perFrame = double(tileSize + 2 * guardX) * (tileSize + 2 * guardY) * samplesPerPixel;
-        block = std::min(block, std::max(1, int(double(1 << 22) / perFrame)));
-    }
-    return block;
-}
-
 BlockChoice chooseBlock(int frames, int slots, const BlockCurve& curve, int renderBlock, int maxBlock) {
     BlockChoice choice;
     slots = std::max(1, slots);
@@ -240,8 +226,11 @@ std::string Manifest::statsPath(long job, int task) const {
 }
 
 std::vector<std::string> Manifest::taskCommand(const Block& b, const std::string& stats) const {
-    std::vector<std::string> cmd = {executable, "render", scene, "--frames", b.str(), "-o", output, "--resume",
-                                    "--seed", std::to_string(seed)};
+    // --shot: every task decides what the whole animation decides (motion segments, procedural
+    // detail) over the same frames, so that its frames equal a single machine's.
+    std::vector<std::string> cmd = {executable, "render", scene, "--frames", b.str(),
+                                    "--shot", std::to_string(first) + "-" + std::to_string(last),
+                                    "-o", output, "--resume", "--seed", std::to_string(seed)};
     cmd.insert(cmd.end(), renderOptions.begin(), renderOptions.end());
     if (cpusPerTask > 0) {
         cmd.push_back("--threads");

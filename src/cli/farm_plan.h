@@ -49,12 +49,6 @@ constexpr const char* kDefaultCurve = "forest";
 // for one of several; a file with one curve needs no name). Throws runtime_error naming the choices.
 BlockCurve findCurve(const std::string& spec);
 
-// The renderer's own frame block for a shot (Renderer::render keeps at most this many frames
-// together: --frame-block, ~1 GiB of resolved pixels, ~4 M samples per spacetime bucket). A farm
-// block longer than this gains no more spacetime coherence; kept in step with renderer.cpp.
-int renderFrameBlock(int width, int height, int samplesPerPixel, int tileSize, int guardX, int guardY,
-                     int maxFrameBlock, bool spacetime);
-
 // One candidate block length and what the model says of it.
 struct BlockOption {
     int block = 0, tasks = 0, waves = 0;

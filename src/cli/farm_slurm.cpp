@@ -15,7 +15,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 namespace streyes::farm {
 

@@ -204,6 +204,10 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
             return args[++i];
         };
         if (a == "--frames") parseFrames(value(), opts);
+        else if (a == "--shot") {
+            parseFrameRange(a, value(), &opts.shotFirst, &opts.shotLast);
+            opts.hasShot = true;
+        }
         else if (a == "--res") parseRes(value(), opts);
         else if (a == "--samples") opts.samples = int(parseInt(a, value(), 1, 4096));
         else if (a == "--algorithm") {

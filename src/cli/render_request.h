@@ -7,7 +7,7 @@
 
 #include "streyes/renderer.h"
 #include "streyes/scene.h"
-#include "streyes/util/error.h"
+#include "streyes/error.h"
 
 namespace streyes::cli {
 

@@ -110,6 +110,29 @@ std::vector<float> Renderer::geometricLayerDepths() const {
     return depths;
 }
 
+namespace {
+
+int frameBlockLimit(int width, int height, int samplesPerPixel, int tileSize, const PixelFilter& filter,
+                    int maxFrameBlock, bool spacetime, int frames) {
+    const double pixelBytes = double(width) * height * sizeof(float) * 5;
+    int block = std::min(frames, std::max(1, maxFrameBlock));
+    block = std::min(block, std::max(1, int(double(1 << 30) / pixelBytes)));
+    if (spacetime) {
+        const double perFrame = double(tileSize + 2 * filter.guardX()) * (tileSize + 2 * filter.guardY()) * samplesPerPixel;
+        block = std::min(block, std::max(1, int(double(1 << 22) / perFrame)));
+    }
+    return block;
+}
+
+}  // namespace
+
+int frameBlockLimit(const Scene& scene, const RenderOptions& options) {
+    const ResolvedSettings s = resolveSettings(scene, options);
+    return frameBlockLimit(s.width, s.height, s.pattern.count(), std::max(4, options.bucketSize),
+                           PixelFilter(scene.settings.filter), options.maxFrameBlock, !perFrame(options.algorithm),
+                           std::numeric_limits<int>::max());
+}
+
 RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
@@ -123,12 +146,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
 
     // Frames rendered together: bounded by the option, by ~1 GiB of resolved pixels, and (for
     // spacetime buckets, which hold every frame of the block) by ~4 M samples per bucket.
-    const double pixelBytes = double(W) * H * sizeof(float) * 5;
-    const double bucketSamplesPerFrame =
-        double(tileSize + 2 * filter.guardX()) * (tileSize + 2 * filter.guardY()) * S;
-    int block = std::min(frames, std::max(1, options_.maxFrameBlock));
-    block = std::min(block, std::max(1, int(double(1 << 30) / pixelBytes)));
-    if (spacetime) block = std::min(block, std::max(1, int(double(1 << 22) / bucketSamplesPerFrame)));
+    int block = frameBlockLimit(W, H, S, tileSize, filter, options_.maxFrameBlock, spacetime, frames);
 
     // The ray tracer's bodies and hierarchies: for eye rays, and for shadow rays when a light
     // casts shadows. Made first, in an arena of the threads asked for, because tracing expands

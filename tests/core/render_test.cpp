@@ -267,3 +267,30 @@ WorldEnd
 
 }  // namespace
 }  // namespace streyes
+
+namespace streyes {
+namespace {
+
+// The frames a render keeps together before memory is counted (render farms size blocks by it).
+TEST(Render, FrameBlockLimitFollowsPixelsAndBucketSamples) {
+    Scene s;
+    s.settings.pixelSamplesX = s.settings.pixelSamplesY = 2;
+    RenderOptions o;
+    // ~1 GiB of RGBA + Z floats: 3840x2160 holds 6 frames, 640x360 every one of 64.
+    o.xres = 3840, o.yres = 2160;
+    EXPECT_EQ(frameBlockLimit(s, o), int((1 << 30) / (3840.0 * 2160 * 20)));
+    o.xres = 640, o.yres = 360;
+    EXPECT_EQ(frameBlockLimit(s, o), 64);
+    o.maxFrameBlock = 8;
+    EXPECT_EQ(frameBlockLimit(s, o), 8);
+    // ~4 M samples a spacetime bucket: 1024 samples a pixel on 34x34-pixel buckets (gaussian 2x2:
+    // one pixel of guard band) hold 3 frames; per-frame buckets do not count.
+    o.maxFrameBlock = 64;
+    o.samples = 1024;
+    EXPECT_EQ(frameBlockLimit(s, o), int((1 << 22) / (34.0 * 34 * 1024)));
+    o.algorithm = Algorithm::Frames;
+    EXPECT_EQ(frameBlockLimit(s, o), 64);
+}
+
+}  // namespace
+}  // namespace streyes

@@ -150,16 +150,6 @@ TEST(FarmCurve, NoLongerThanTheRendererKeepsTogether) {
     EXPECT_LT(wide.chosen.wall, wide.options[5].wall);
 }
 
-TEST(FarmCurve, RendererFrameBlockFollowsTheRenderersLimits) {
-    // ~1 GiB of RGBA + Z floats: 3840x2160 holds 6 frames, 640x360 every one of 64.
-    EXPECT_EQ(renderFrameBlock(3840, 2160, 4, 32, 1, 1, 64, true), int((1 << 30) / (3840.0 * 2160 * 20)));
-    EXPECT_EQ(renderFrameBlock(640, 360, 4, 32, 1, 1, 64, true), 64);
-    EXPECT_EQ(renderFrameBlock(640, 360, 4, 32, 1, 1, 8, true), 8);
-    // ~4 M samples a spacetime bucket: 1024 samples a pixel on 34x34-pixel buckets hold 3 frames.
-    EXPECT_EQ(renderFrameBlock(640, 360, 1024, 32, 1, 1, 64, true), int((1 << 22) / (34.0 * 34 * 1024)));
-    EXPECT_EQ(renderFrameBlock(640, 360, 1024, 32, 1, 1, 64, false), 64);
-}
-
 TEST(FarmCurve, BuiltInCurvesAreTheMeasuredOnes) {
     const std::vector<BlockCurve> curves = builtinCurves();
     std::set<std::string> names;
@@ -274,9 +264,9 @@ TEST(FarmManifest, TheTaskCommandIsTheContract) {
     Folder dir;
     Manifest m = sampleManifest(dir.path);
     std::vector<std::string> cmd = m.taskCommand(m.blocks[1], "s.json");
-    const std::vector<std::string> want = {m.executable, "render", m.scene, "--frames", "5-8", "-o", m.output,
-                                           "--resume", "--seed", "7", "--res", "64x48", "--samples", "4",
-                                           "--stats", "s.json"};
+    const std::vector<std::string> want = {m.executable, "render", m.scene, "--frames", "5-8", "--shot", "1-10",
+                                           "-o", m.output, "--resume", "--seed", "7", "--res", "64x48",
+                                           "--samples", "4", "--stats", "s.json"};
     EXPECT_EQ(cmd, want);
     m.cpusPerTask = 3;  // a share of a node: as many threads as cores
     cmd = m.taskCommand(m.blocks[1], "s.json");

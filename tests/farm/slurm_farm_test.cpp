@@ -258,18 +258,10 @@ void expectFarmMatchesOneMachine(const std::string& rib) {
 
 TEST_F(Farm, StillShotInFourBlocksIsIdenticalToOneMachine) { expectFarmMatchesOneMachine(stillScene()); }
 
-// Disabled until frame-block invariance lands (DESIGN.md: "a frame's pixels never depend on the
-// block of frames it is rendered in"). Today they do, twice over, on one machine as on the farm:
-// moving bodies are cut where the renderer's frame blocks meet (the last bits differ), and a body's
-// motion segments run from the first to the last frame the process renders, so that motion which
-// is not linear (this square turns) is linearised differently by `--frames 5-8` than by
-// `--frames 1-16` (RMSE 0.03 here). STREYES_FARM_TEST_MOVING=1 runs it.
-TEST_F(Farm, MovingShotInFourBlocksIsIdenticalToOneMachine) {
-    if (!std::getenv("STREYES_FARM_TEST_MOVING"))
-        GTEST_SKIP() << "until frame-block invariance lands: a moving frame's pixels still depend on the frames "
-                        "rendered with it (set STREYES_FARM_TEST_MOVING=1 to run it)";
-    expectFarmMatchesOneMachine(movingScene(4, "64x48"));
-}
+// A frame's pixels never depend on the frames rendered with it (DESIGN.md): moving bodies are cut
+// at each frame's exposure, and every task passes the shot (--shot) so that motion segments (this
+// square turns: its motion is not linear) are made over the same frames as on one machine.
+TEST_F(Farm, MovingShotInFourBlocksIsIdenticalToOneMachine) { expectFarmMatchesOneMachine(movingScene(4, "64x48")); }
 
 // One task cancelled while it renders (its frames written one at a time, so some are on disk),
 // then the shot submitted again: only the missing frames are rendered, complete ones untouched.
