@@ -78,8 +78,9 @@ void sampleGrid(benchmark::State& state, const Camera& cam, const TrilinearBody&
     Grid g;
     body.dice(16, 16, g);
     for (int k = 0; k < 2; ++k) g.Ci[k].assign(g.P[0].size(), Color{1, 1, 1});
+    const PatternTable patterns(SamplePattern{4, 4, 1});
     ImageBlock block;
-    block.reset({0, 0, 63, 63}, 0, 1, SamplePattern{4, 4, 1});
+    block.reset({0, 0, 63, 63}, 0, 1, patterns, false);
     GridRasterizer raster;
     RasterCounters counters;
     for (auto _ : state) raster.rasterize(g, cam, Shutter{0, 1}, block, counters);
@@ -122,7 +123,8 @@ void BM_SamplerPerspective(benchmark::State& state) {
 }
 BENCHMARK(BM_SamplerPerspective)->ArgNames({"px_per_frame"})->Arg(4)->Arg(16);
 
-// A still grid over a block of 48 frames: the spacetime case, diced once and sampled per frame.
+// A still grid over a block of 48 frames: the spacetime case, diced once and sampled once into the
+// still layer (the samples sit at the same positions in every frame).
 void BM_SamplerStillBlock(benchmark::State& state) {
     const int size = 40, frames = 48;
     Camera cam = pixelCamera(size);
@@ -132,8 +134,9 @@ void BM_SamplerStillBlock(benchmark::State& state) {
     Grid g;
     body.dice(16, 16, g);
     g.Ci[0].assign(g.P[0].size(), Color{1, 1, 1});
+    const PatternTable patterns(SamplePattern{4, 4, 1});
     ImageBlock block;
-    block.reset({0, 0, 31, 31}, 0, frames, SamplePattern{4, 4, 1});
+    block.reset({0, 0, 31, 31}, 0, frames, patterns, false);
     GridRasterizer raster;
     RasterCounters counters;
     for (auto _ : state) raster.rasterize(g, cam, Shutter{0, 0.5}, block, counters);
@@ -143,27 +146,39 @@ void BM_SamplerStillBlock(benchmark::State& state) {
 }
 BENCHMARK(BM_SamplerStillBlock);
 
-void BM_SampleGeneration(benchmark::State& state) {
+// Placing a bucket's samples: positions from the pattern table, a time permutation per pixel
+// and frame (the samples themselves are not stored per frame).
+void BM_BlockReset(benchmark::State& state) {
+    const PatternTable patterns(SamplePattern{4, 4, 3});
     ImageBlock block;
-    for (auto _ : state) block.reset({0, 0, 33, 33}, 0, 8, SamplePattern{4, 4, 3});
+    for (auto _ : state) block.reset({0, 0, 33, 33}, 0, 8, patterns, false);
     state.counters["samples/s"] =
         benchmark::Counter(double(34 * 34 * 8 * 16) * double(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_SampleGeneration);
+BENCHMARK(BM_BlockReset);
 
+// Resolving a 32x32 tile over 8 frames with a gaussian 2x2 filter, a third of the samples hit.
+// dense: every frame has its own samples (the ray tracer's and shadows' case: each frame is
+// gathered); sparse: everything in the still layer (gathered once, copied to each frame).
 void BM_Resolve(benchmark::State& state) {
+    const bool dense = state.range(0) != 0;
+    const PatternTable patterns(SamplePattern{4, 4, 3});
     ImageBlock block;
-    block.reset({0, 0, 33, 33}, 0, 8, SamplePattern{4, 4, 3});
-    for (size_t i = 0; i < block.sampleCount(); i += 3) block.hits()[i] = {5.0f, {0.5f, 0.5f, 0.5f}, 1.0f, 1};
-    PixelFilter filter(FilterDesc{"gaussian", 2, 2});
+    block.reset({0, 0, 33, 33}, 0, 8, patterns, dense);
+    for (int fi = 0; fi < (dense ? 8 : 1); ++fi)
+        for (size_t i = 0; i < size_t(block.pixelCount()); ++i) {
+            SampleHit* h = dense ? block.record(fi, i) : block.still(i);
+            for (int j = 0; j < 16; j += 3) h[j] = {5.0f, {0.5f, 0.5f, 0.5f}, 1.0f, 1};
+        }
+    const FilterWeights weights(PixelFilter(FilterDesc{"gaussian", 2, 2}), patterns);
     std::vector<FrameImage> frames(8);
     for (auto& f : frames) f.resize(34, 34);
-    std::vector<float> scratch;
-    for (auto _ : state) resolveTile(block, {1, 1, 32, 32}, filter, frames.data(), scratch);
+    ResolveScratch scratch;
+    for (auto _ : state) resolveTile(block, {1, 1, 32, 32}, weights, frames.data(), scratch);
     state.counters["samples/s"] =
-        benchmark::Counter(double(block.sampleCount()) * double(state.iterations()), benchmark::Counter::kIsRate);
+        benchmark::Counter(double(34 * 34 * 8 * 16) * double(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_Resolve);
+BENCHMARK(BM_Resolve)->ArgNames({"dense"})->Arg(1)->Arg(0);
 
 }  // namespace
 }  // namespace streyes

@@ -177,15 +177,17 @@ SampleRecord renderSamples(const std::string& rib, RenderOptions options) {
     std::mutex mutex;
     // Each bucket's own tile (its guard band belongs to its neighbours).
     options.sampleObserver = [&](const ImageBlock& block, const PixelRect& tile) {
-        const size_t S = size_t(block.slices());
+        const int S = block.samplesPerPixel();
         std::vector<Taken> mine;
         for (int y = tile.y0; y <= tile.y1; ++y)
             for (int x = tile.x0; x <= tile.x1; ++x)
                 for (int fi = 0; fi < block.frameCount(); ++fi) {
-                    const size_t base = block.pixelOffset(x, y) + size_t(fi) * S;
-                    mine.push_back({block.firstFrame() + fi, x, y,
-                                    {block.positions() + base, block.positions() + base + S},
-                                    {block.hits() + base, block.hits() + base + S}});
+                    const size_t i = block.pixelIndex(x, y);
+                    Taken t{block.firstFrame() + fi, x, y, {}, {}};
+                    const SampleHit* h = block.hits(fi, i);
+                    for (int j = 0; j < S; ++j) t.positions.push_back(block.position(fi, i, j));
+                    t.hits.assign(h, h + S);
+                    mine.push_back(std::move(t));
                 }
         std::lock_guard<std::mutex> lock(mutex);
         for (Taken& t : mine) taken.push_back(std::move(t));

@@ -42,78 +42,105 @@ PixelFilter::PixelFilter(const FilterDesc& desc)
 int PixelFilter::guardX() const { return std::max(0, int(std::ceil(rx_ - 0.5f))); }
 int PixelFilter::guardY() const { return std::max(0, int(std::ceil(ry_ - 0.5f))); }
 
-void resolveTile(const ImageBlock& block, const PixelRect& tile, const PixelFilter& filter, FrameImage* frames,
-                 std::vector<float>& acc) {
-    const PixelRect& R = block.rect();
-    const int tw = tile.width(), K = block.slices(), F = block.frameCount();
-    const int gx = filter.guardX(), gy = filter.guardY();
-    // Accumulators r g b a weight, per tile pixel, per frame: the frames of one pixel adjoin,
-    // as they do in the block, so both are walked in order.
-    acc.assign(size_t(tw) * size_t(tile.height()) * size_t(F) * 5, 0.0f);
-    const SamplePosition* pos = block.positions();
-    const SampleHit* hit = block.hits();
+FilterWeights::FilterWeights(const PixelFilter& filter, const PatternTable& patterns)
+    : gx_(filter.guardX()), gy_(filter.guardY()), S_(patterns.samples()) {
+    const int P = patterns.patternCount();
+    w_.resize(size_t(P) * size_t(2 * gy_ + 1) * size_t(2 * gx_ + 1) * size_t(S_));
+    for (int p = 0; p < P; ++p) {
+        const float* o = patterns.offsets(p);
+        for (int oy = -gy_; oy <= gy_; ++oy)
+            for (int ox = -gx_; ox <= gx_; ++ox) {
+                float* w = const_cast<float*>(weights(p, ox, oy));
+                // A sample at s in its pixel is s - (o + 0.5) from the centre of the pixel o away.
+                for (int j = 0; j < S_; ++j)
+                    w[j] = filter.weightX(o[2 * j] - (float(ox) + 0.5f)) * filter.weightY(o[2 * j + 1] - (float(oy) + 0.5f));
+            }
+    }
+}
 
-    // Splat each sample into the pixels whose centre lies within the filter radius: pixel o
-    // takes the sample when |s - (o + 0.5)| < r, i.e. o in (s - 0.5 - r, s - 0.5 + r).
-    constexpr int kMaxTaps = 64;
-    float wx[kMaxTaps], wy[kMaxTaps];
-    const float rx = filter.radiusX(), ry = filter.radiusY();
-    auto floorInt = [](float v) {
-        int i = int(v);
-        return i - (float(i) > v);
-    };
-    const size_t tapStride = size_t(F) * 5;  // from one tile pixel to the next
-    for (int y = std::max(R.y0, tile.y0 - gy); y <= std::min(R.y1, tile.y1 + gy); ++y) {
-        for (int x = std::max(R.x0, tile.x0 - gx); x <= std::min(R.x1, tile.x1 + gx); ++x) {
-            const size_t pixel = block.pixelOffset(x, y);
-            for (int fi = 0; fi < F; ++fi) {
-                for (int k = 0; k < K; ++k) {
-                    const size_t si = pixel + size_t(fi) * size_t(K) + size_t(k);
-                    const SamplePosition& p = pos[si];
-                    const SampleHit& h = hit[si];
-                    const int ox0 = std::max(tile.x0, floorInt(p.x - 0.5f - rx) + 1);
-                    const int ox1 = std::min(tile.x1, floorInt(p.x - 0.5f + rx));
-                    const int oy0 = std::max(tile.y0, floorInt(p.y - 0.5f - ry) + 1);
-                    const int oy1 = std::min(tile.y1, floorInt(p.y - 0.5f + ry));
-                    if (ox0 > ox1 || oy0 > oy1 || ox1 - ox0 >= kMaxTaps || oy1 - oy0 >= kMaxTaps) continue;
-                    for (int ox = ox0; ox <= ox1; ++ox) wx[ox - ox0] = filter.weightX(p.x - (float(ox) + 0.5f));
-                    for (int oy = oy0; oy <= oy1; ++oy) wy[oy - oy0] = filter.weightY(p.y - (float(oy) + 0.5f));
-                    const bool background = h.a == 0;  // contributes weight only
-                    for (int oy = oy0; oy <= oy1; ++oy) {
-                        float* a = &acc[((size_t(oy - tile.y0) * size_t(tw) + size_t(ox0 - tile.x0)) * size_t(F) +
-                                         size_t(fi)) * 5];
-                        const float wyv = wy[oy - oy0];
-                        for (int ox = ox0; ox <= ox1; ++ox, a += tapStride) {
-                            const float w = wx[ox - ox0] * wyv;
-                            a[4] += w;
-                            if (background) continue;
-                            a[0] += w * h.c.x;
-                            a[1] += w * h.c.y;
-                            a[2] += w * h.c.z;
-                            a[3] += w * h.a;
-                        }
-                    }
-                }
+namespace {
+
+// Gathers what `hitsOf(pixel index)` holds around tile pixel (x, y): R G B A weighted, then Z,
+// the nearest of the pixel's own samples. The neighbours and samples are visited in one fixed
+// order whatever the hits come from, so the same hits give the same bits.
+template <typename HitsOf>
+inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int y, float weightSum, HitsOf hitsOf,
+                   float* out) {
+    const PixelRect& R = block.rect();
+    const int S = block.samplesPerPixel(), gx = fw.reachX(), gy = fw.reachY();
+    const PatternTable& patterns = block.patterns();
+    float acc[4] = {0, 0, 0, 0};
+    for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
+        for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx); ++px) {
+            const SampleHit* h = hitsOf(block.pixelIndex(px, py));
+            const float* w = fw.weights(patterns.patternOf(px, py), x - px, y - py);
+            for (int j = 0; j < S; ++j) {
+                if (h[j].a == 0) continue;  // the background adds weight only
+                acc[0] += w[j] * h[j].c.x;
+                acc[1] += w[j] * h[j].c.y;
+                acc[2] += w[j] * h[j].c.z;
+                acc[3] += w[j] * h[j].a;
             }
         }
+    const float inv = std::fabs(weightSum) > 1e-8f ? 1.0f / weightSum : 0.0f;
+    for (int c = 0; c < 4; ++c) out[c] = acc[c] * inv;
+    const SampleHit* own = hitsOf(block.pixelIndex(x, y));
+    float z = std::numeric_limits<float>::infinity();
+    for (int j = 0; j < S; ++j) z = std::min(z, own[j].z);
+    out[4] = z;
+}
+
+}  // namespace
+
+void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWeights& fw, FrameImage* frames,
+                 ResolveScratch& scratch) {
+    const PixelRect& R = block.rect();
+    const int tw = tile.width(), F = block.frameCount(), S = block.samplesPerPixel();
+    const int gx = fw.reachX(), gy = fw.reachY();
+    const PatternTable& patterns = block.patterns();
+    const size_t tilePixels = size_t(tw) * size_t(tile.height());
+
+    // The weights each tile pixel sees: the same in every frame.
+    scratch.weightSum.assign(tilePixels, 0.0f);
+    for (int y = tile.y0; y <= tile.y1; ++y)
+        for (int x = tile.x0; x <= tile.x1; ++x) {
+            float sum = 0;
+            for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
+                for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx); ++px) {
+                    const float* w = fw.weights(patterns.patternOf(px, py), x - px, y - py);
+                    for (int j = 0; j < S; ++j) sum += w[j];
+                }
+            scratch.weightSum[size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0)] = sum;
+        }
+
+    // The still layer, resolved once for every frame that shows it.
+    const bool dense = block.dense();
+    if (!dense) {
+        scratch.still.resize(tilePixels * 5);
+        for (int y = tile.y0; y <= tile.y1; ++y)
+            for (int x = tile.x0; x <= tile.x1; ++x) {
+                const size_t t = size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0);
+                gather(block, fw, x, y, scratch.weightSum[t], [&](size_t i) { return block.still(i); },
+                       &scratch.still[t * 5]);
+            }
     }
 
-    // Normalise; Z is the nearest of the pixel's own samples.
-    const float inf = std::numeric_limits<float>::infinity();
-    for (int y = tile.y0; y <= tile.y1; ++y) {
-        for (int x = tile.x0; x <= tile.x1; ++x) {
-            const size_t pixel = block.pixelOffset(x, y);
-            for (int fi = 0; fi < F; ++fi) {
-                FrameImage& out = frames[fi];
-                const float* a = &acc[((size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0)) * size_t(F) + size_t(fi)) * 5];
+    for (int fi = 0; fi < F; ++fi) {
+        FrameImage& out = frames[fi];
+        for (int y = tile.y0; y <= tile.y1; ++y)
+            for (int x = tile.x0; x <= tile.x1; ++x) {
+                const size_t t = size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0);
+                bool own = dense;  // does a sample this pixel sees belong to a record of this frame?
+                for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy) && !own; ++py)
+                    for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx) && !own; ++px)
+                        own = block.hasRecord(fi, block.pixelIndex(px, py));
+                float v[5] = {0, 0, 0, 0, 0};
+                if (own) gather(block, fw, x, y, scratch.weightSum[t], [&](size_t i) { return block.hits(fi, i); }, v);
+                else std::copy(&scratch.still[t * 5], &scratch.still[t * 5] + 5, v);
                 float* px = &out.rgba[(size_t(y) * size_t(out.width) + size_t(x)) * 4];
-                const float inv = std::fabs(a[4]) > 1e-8f ? 1.0f / a[4] : 0.0f;
-                for (int c = 0; c < 4; ++c) px[c] = a[c] * inv;
-                float z = inf;
-                for (int k = 0; k < K; ++k) z = std::min(z, hit[pixel + size_t(fi) * size_t(K) + size_t(k)].z);
-                out.z[size_t(y) * size_t(out.width) + size_t(x)] = z;
+                for (int c = 0; c < 4; ++c) px[c] = v[c];
+                out.z[size_t(y) * size_t(out.width) + size_t(x)] = v[4];
             }
-        }
     }
 }
 

@@ -44,10 +44,37 @@ class PixelFilter {
     std::vector<float> tx_, ty_;
 };
 
+// The filter's weight for every sample of every pattern (PatternTable), towards each pixel it
+// reaches: samples sit at the same sub-pixel positions in every frame, so the weights are
+// computed once per render, not once per sample and frame. weights(p, ox, oy)[j] is the weight
+// of sample j of a pixel with pattern p for the pixel (ox, oy) away from it.
+class FilterWeights {
+  public:
+    FilterWeights(const PixelFilter& filter, const PatternTable& patterns);
+    int reachX() const { return gx_; }  // pixels a sample reaches on each side (the guard band)
+    int reachY() const { return gy_; }
+    const float* weights(int pattern, int ox, int oy) const {
+        return &w_[((size_t(pattern) * size_t(2 * gy_ + 1) + size_t(oy + gy_)) * size_t(2 * gx_ + 1) + size_t(ox + gx_)) *
+                   size_t(S_)];
+    }
+
+  private:
+    int gx_, gy_, S_;
+    std::vector<float> w_;  // patterns x (2 gy + 1) x (2 gx + 1) x S
+};
+
+// What resolving keeps from bucket to bucket.
+struct ResolveScratch {
+    std::vector<float> weightSum;  // per tile pixel: the weights of every sample it sees
+    std::vector<float> still;      // per tile pixel: R G B A Z resolved from the still layer
+};
+
 // Resolves the samples of every frame of the block into the pixels of `tile` (inside the
 // block's rect, which must include the filter's guard band around it): frames[fi] receives frame
-// block.firstFrame() + fi. One pass in the block's pixel-major order.
-void resolveTile(const ImageBlock& block, const PixelRect& tile, const PixelFilter& filter, FrameImage* frames,
-                 std::vector<float>& scratch);
+// block.firstFrame() + fi. Each pixel gathers the samples of the pixels around it; a pixel none of
+// whose neighbours has a record in a frame shows the still layer there, resolved once for the
+// block. The same gather makes both, so a pixel has the same bits whichever way it is resolved.
+void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWeights& weights, FrameImage* frames,
+                 ResolveScratch& scratch);
 
 }  // namespace streyes

@@ -26,50 +26,75 @@ TEST(PixelFilter, ShapesAndSupport) {
 // A sample exactly on a pixel's top-left corner belongs to that pixel: with a box filter of
 // one pixel, no pixel is left without samples (it would resolve to black).
 TEST(Resolve, SamplesOnPixelCornersBelongToTheirPixel) {
+    const PatternTable patterns(SamplePattern{1, 1, 0}, {{0.0f}}, {0.0f, 0.0f});
     ImageBlock block;
-    block.reset({0, 0, 7, 7}, 0, 1, SamplePattern{1, 1, 0});
-    for (int y = 0; y < 8; ++y)
-        for (int x = 0; x < 8; ++x) {
-            const size_t i = block.sliceIndex(0, 0, x, y);
-            block.positions()[i].x = float(x);
-            block.positions()[i].y = float(y);
-            block.hits()[i] = {2.0f, {0.5f, 0.5f, 0.5f}, 1.0f, 1};
-        }
-    PixelFilter box({"box", 1, 1});
+    block.reset({0, 0, 7, 7}, 0, 1, patterns, false);
+    for (size_t i = 0; i < 64; ++i) block.still(i)[0] = {2.0f, {0.5f, 0.5f, 0.5f}, 1.0f, 1};
+    const PixelFilter box({"box", 1, 1});
+    const FilterWeights weights(box, patterns);
     FrameImage img;
     img.resize(8, 8);
-    std::vector<float> scratch;
-    resolveTile(block, {0, 0, 7, 7}, box, &img, scratch);
+    ResolveScratch scratch;
+    resolveTile(block, {0, 0, 7, 7}, weights, &img, scratch);
     for (int p = 0; p < 64; ++p) {
         EXPECT_EQ(img.rgba[size_t(p) * 4 + 3], 1.0f) << p;
         EXPECT_EQ(img.rgba[size_t(p) * 4], 0.5f) << p;
     }
 }
 
+// Uniform samples resolve to their value whatever the filter, from the still layer as from a
+// dense block's records; Z is the pixel's nearest sample.
 TEST(Resolve, UniformSamplesGiveTheirValueAndZIsTheNearest) {
-    ImageBlock block;
-    block.reset({0, 0, 9, 9}, 0, 1, SamplePattern{3, 3, 5});
-    for (int k = 0; k < 9; ++k)
-        for (int y = 0; y < 10; ++y)
-            for (int x = 0; x < 10; ++x) {
-                SampleHit& s = block.hits()[block.sliceIndex(0, k, x, y)];
-                s.c = {0.25f, 0.5f, 0.75f};
-                s.a = 1;
-                s.z = 3.0f + float(k);
-            }
-    for (const char* type : {"box", "gaussian", "catmull-rom"}) {
-        PixelFilter filter({type, 3, 3});
-        FrameImage img;
-        img.resize(10, 10);
-        std::vector<float> scratch;
-        resolveTile(block, {2, 2, 7, 7}, filter, &img, scratch);
-        float* p = &img.rgba[(5 * 10 + 5) * 4];
-        EXPECT_NEAR(p[0], 0.25f, 1e-5f) << type;
-        EXPECT_NEAR(p[1], 0.5f, 1e-5f) << type;
-        EXPECT_NEAR(p[3], 1.0f, 1e-5f) << type;
-        EXPECT_EQ(img.z[5 * 10 + 5], 3.0f);
-        EXPECT_EQ(img.rgba[0], 0.0f);  // outside the tile: untouched
+    const PatternTable patterns(SamplePattern{3, 3, 5});
+    for (bool dense : {false, true}) {
+        ImageBlock block;
+        block.reset({0, 0, 9, 9}, 0, 1, patterns, dense);
+        for (size_t i = 0; i < 100; ++i) {
+            SampleHit* h = dense ? block.record(0, i) : block.still(i);
+            for (int k = 0; k < 9; ++k) h[k] = {3.0f + float(k), {0.25f, 0.5f, 0.75f}, 1.0f, 1};
+        }
+        for (const char* type : {"box", "gaussian", "catmull-rom"}) {
+            const PixelFilter filter({type, 3, 3});
+            const FilterWeights weights(filter, patterns);
+            FrameImage img;
+            img.resize(10, 10);
+            ResolveScratch scratch;
+            resolveTile(block, {2, 2, 7, 7}, weights, &img, scratch);
+            float* p = &img.rgba[(5 * 10 + 5) * 4];
+            EXPECT_NEAR(p[0], 0.25f, 1e-5f) << type;
+            EXPECT_NEAR(p[1], 0.5f, 1e-5f) << type;
+            EXPECT_NEAR(p[3], 1.0f, 1e-5f) << type;
+            EXPECT_EQ(img.z[5 * 10 + 5], 3.0f);
+            EXPECT_EQ(img.rgba[0], 0.0f);  // outside the tile: untouched
+        }
     }
+}
+
+// A frame's record changes the pixels whose filter reaches it, in that frame only; the others
+// show the still layer, bit for bit as the record-free frames do.
+TEST(Resolve, AFramesRecordChangesOnlyThePixelsItsFilterReaches) {
+    const PatternTable patterns(SamplePattern{2, 2, 1});
+    ImageBlock block;
+    block.reset({0, 0, 9, 9}, 0, 2, patterns, false);
+    for (size_t i = 0; i < 100; ++i)
+        for (int k = 0; k < 4; ++k) block.still(i)[k] = {5.0f, {0.2f, 0.4f, 0.6f}, 1.0f, 1};
+    SampleHit* r = block.makeRecord(1, block.pixelIndex(5, 5));
+    for (int k = 0; k < 4; ++k) r[k] = {2.0f, {1, 0, 0}, 1.0f, 2};
+    const PixelFilter gauss({"gaussian", 2, 2});  // reaches one pixel on each side
+    const FilterWeights weights(gauss, patterns);
+    FrameImage img[2];
+    for (FrameImage& f : img) f.resize(10, 10);
+    ResolveScratch scratch;
+    resolveTile(block, {1, 1, 8, 8}, weights, img, scratch);
+    for (int y = 1; y <= 8; ++y)
+        for (int x = 1; x <= 8; ++x) {
+            const size_t p = size_t(y * 10 + x) * 4;
+            const bool reached = std::abs(x - 5) <= 1 && std::abs(y - 5) <= 1;
+            EXPECT_EQ(img[1].rgba[p] != img[0].rgba[p], reached) << x << "," << y;
+        }
+    EXPECT_EQ(img[1].z[55], 2.0f);
+    EXPECT_EQ(img[0].z[55], 5.0f);
+    EXPECT_NEAR(img[0].rgba[(3 * 10 + 3) * 4 + 1], 0.4f, 1e-6f);
 }
 
 }  // namespace

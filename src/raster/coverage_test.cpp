@@ -6,12 +6,14 @@ namespace streyes {
 namespace {
 
 TEST(Occlusion, CoverageNeedsEverySampleHitNearerThanTheBoundary) {
+    const PatternTable patterns(SamplePattern{2, 1, 0});
     ImageBlock block;
-    block.reset({0, 0, 2, 0}, 0, 2, SamplePattern{2, 1, 0});  // 3 pixels, 2 frames, 2 samples
+    block.reset({0, 0, 2, 0}, 0, 2, patterns, false);  // 3 pixels, 2 frames, 2 samples
     auto hit = [&](int x, int fi, int k, float z) {
-        SampleHit& s = block.hits()[block.pixelOffset(x, 0) + size_t(fi) * 2 + size_t(k)];
-        s.z = z;
-        s.a = 1;
+        SampleHit* r = block.record(fi, block.pixelIndex(x, 0));
+        if (!r) r = block.makeRecord(fi, block.pixelIndex(x, 0));
+        r[k].z = z;
+        r[k].a = 1;
     };
     hit(0, 0, 0, 5), hit(0, 0, 1, 6);  // pixel 0 frame 0: both samples hit
     hit(1, 0, 0, 5);                   // pixel 1 frame 0: one sample only
@@ -22,6 +24,20 @@ TEST(Occlusion, CoverageNeedsEverySampleHitNearerThanTheBoundary) {
     EXPECT_EQ(updateCoverage(block, 7.5f, coverage), 1u);  // the boundary moved past z = 7
     EXPECT_EQ(coverage, (std::vector<uint8_t>{1, 0, 0, 0, 0, 1}));
     EXPECT_EQ(updateCoverage(block, 8.0f, coverage), 0u);  // nothing new
+}
+
+// The still layer covers a pixel in every frame that has no record of it; a frame's record
+// decides for that frame alone.
+TEST(Occlusion, StillLayerCoversEveryFrameWithoutARecord) {
+    const PatternTable patterns(SamplePattern{2, 1, 0});
+    ImageBlock block;
+    block.reset({0, 0, 0, 0}, 0, 3, patterns, false);  // 1 pixel, 3 frames
+    for (int k = 0; k < 2; ++k) block.still(0)[k] = {4.0f, {1, 1, 1}, 1.0f, 1};
+    SampleHit* r = block.makeRecord(1, 0);  // frame 1: something nearer, then something missing
+    r[1] = kNoHit;
+    std::vector<uint8_t> coverage;
+    EXPECT_EQ(updateCoverage(block, 5.0f, coverage), 2u);
+    EXPECT_EQ(coverage, (std::vector<uint8_t>{1, 0, 1}));
 }
 
 }  // namespace

@@ -1,29 +1,31 @@
 // The samples of one bucket: a block of pixels (a tile plus the filter's guard band) times a
 // block of frames, S samples per pixel per frame.
 //
-// Each pixel's S samples in a frame are stratified in (x, y) on an sx x sy grid and in time on
-// S strata ("slices"), with the time strata shuffled against the (x, y) strata so that motion
-// blur does not correlate with position.
+// A pixel's samples lie at the same sub-pixel positions in every frame (sample_pattern.h), so
+// what is still in raster space over the whole block is sampled once: into the *still layer*,
+// S hits per pixel that every frame sees. A frame gets its own *record* of a pixel (S hits, a
+// copy of the still layer to start from) only when something that frame alone sees (a moving
+// grid, or a still one that exists in part of the block) comes nearer than the still layer at one
+// of its samples. Resolving (film.h) then filters the still layer once for the block and only the
+// pixels near a record again per frame. In *dense* mode every frame has a record of every pixel
+// from the start and the still layer is unused: for the ray tracer, and for shadows, whose rays
+// leave every sample at its own time.
 //
-// Layout: pixel-major, then frame, then (x, y) stratum j = iy * sx + ix. All samples of one
-// pixel over the block are contiguous, and a still micropolygon visits only the strata its bound
-// overlaps. A moving micropolygon is bounded over one time slice at a time and needs the one
-// sample per pixel in that slice: sliceStratum() maps slice k to its stratum. Positions (read by
-// every test) are kept apart from hit results (written only on a hit).
+// Layout: pixel index i = (y - y0) * width + (x - x0); sample j of a pixel is in (x, y) stratum
+// (j % sx, j / sx). A still micropolygon visits only the strata its bound overlaps; a moving one
+// is bounded over one time slice at a time and needs the one sample per pixel in that slice
+// (sampleOfStratum). Records sit in chunks, so a record never moves once made.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "raster/sample_pattern.h"
 #include "streyes/render_options.h"
 #include "streyes/vecmath.h"
 
 namespace streyes {
-
-struct SamplePosition {
-    float x, y;   // raster position
-    float tf;     // time within the frame's exposure in [0, 1): t = f + open + tf * (close - open)
-};
 
 // The id of "no primitive": no hit yet.
 constexpr uint64_t kNoPrimitive = UINT64_MAX;
@@ -45,61 +47,94 @@ struct SampleHit {
         return c2.z < c.z;
     }
 };
-
-// The S sample positions of pixel (px, py) in frame `frame`, written to out[stratum], and the
-// stratum of each time slice to sliceStratum[slice]. A pure function of its arguments: the same
-// in every bucket and on every thread.
-void generatePixelSamples(int px, int py, int frame, const SamplePattern& pattern, SamplePosition* out,
-                          uint16_t* sliceStratum);
+constexpr SampleHit kNoHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f, kNoPrimitive};
 
 class ImageBlock {
   public:
-    // Sizes the block, fills in the sample positions and clears the hits (reusing memory).
-    // shadowSlots > 0 also keeps, with each sample's hit, the contribution of each light that
-    // casts shadows before its shadow test (shadowed()), for the shadow pass (trace.h).
-    void reset(const PixelRect& rect, int firstFrame, int frameCount, const SamplePattern& pattern,
+    // Sizes the block, places the samples and clears the hits (reusing memory). shadowSlots > 0
+    // also keeps, with each record's hits, the contribution of each light that casts shadows
+    // before its shadow test (shadowed()); it needs dense mode.
+    void reset(const PixelRect& rect, int firstFrame, int frameCount, const PatternTable& patterns, bool dense,
                int shadowSlots = 0);
 
     const PixelRect& rect() const { return rect_; }
     int firstFrame() const { return firstFrame_; }
     int frameCount() const { return frameCount_; }
-    const SamplePattern& pattern() const { return pattern_; }
-    int slices() const { return slices_; }
-    int samplesPerPixel() const { return frameCount_ * slices_; }  // over the whole block
+    const PatternTable& patterns() const { return *patterns_; }
+    const SamplePattern& pattern() const { return patterns_->pattern(); }
+    int samplesPerPixel() const { return S_; }  // per frame; also the number of time slices
+    int pixelCount() const { return rect_.area(); }
+    size_t pixelIndex(int x, int y) const { return size_t(y - rect_.y0) * size_t(rect_.width()) + size_t(x - rect_.x0); }
+    bool dense() const { return dense_; }
 
-    // Offset of pixel (x, y)'s first sample; its sample in stratum j of frame fi is at
-    // + fi * slices() + j.
-    size_t pixelOffset(int x, int y) const {
-        return (size_t(y - rect_.y0) * size_t(rect_.width()) + size_t(x - rect_.x0)) * size_t(samplesPerPixel());
+    // Raster positions of sample j of pixel i: xs()[i * S + j], ys()[i * S + j].
+    float* xs() { return xs_.data(); }
+    float* ys() { return ys_.data(); }
+    const float* xs() const { return xs_.data(); }
+    const float* ys() const { return ys_.data(); }
+
+    // Time: the permutation of pixel i in frame fi (PatternTable: stratumOfSample,
+    // sampleOfStratum, stratumTimes). The sample of slice k is sampleOfStratum(q)[k].
+    int permutation(int fi, size_t i) const { return int(permutation_[size_t(fi) * size_t(pixelCount()) + i]); }
+    // For tests: pixel i of frame fi takes the table's permutation q instead.
+    void setPermutation(int fi, size_t i, int q) { permutation_[size_t(fi) * size_t(pixelCount()) + i] = uint8_t(q); }
+    float sampleTime(int fi, size_t i, int j) const {
+        const int q = permutation(fi, i);
+        return patterns_->stratumTimes(q)[patterns_->stratumOfSample(q)[j]];
     }
-    // The sample of pixel (x, y) in time slice k of frame fi.
-    size_t sliceIndex(int fi, int k, int x, int y) const {
-        size_t frameBase = pixelOffset(x, y) + size_t(fi) * size_t(slices_);
-        return frameBase + sliceStratum_[frameBase + size_t(k)];
+    SamplePosition position(int fi, size_t i, int j) const {
+        const size_t s = i * size_t(S_) + size_t(j);
+        return {xs_[s], ys_[s], sampleTime(fi, i, j)};
     }
 
-    SamplePosition* positions() { return positions_.data(); }
-    const SamplePosition* positions() const { return positions_.data(); }
-    SampleHit* hits() { return hits_.data(); }
-    const SampleHit* hits() const { return hits_.data(); }
+    // The still layer: S hits per pixel, seen by every frame without a record of the pixel.
+    SampleHit* still(size_t i) { return &still_[i * size_t(S_)]; }
+    const SampleHit* still(size_t i) const { return &still_[i * size_t(S_)]; }
+    // Frame fi's own record of pixel i (S hits), or null when it has none and sees the still layer.
+    SampleHit* record(int fi, size_t i) {
+        const int32_t r = slot_[size_t(fi) * size_t(pixelCount()) + i];
+        return r < 0 ? nullptr : recordAt(uint32_t(r));
+    }
+    const SampleHit* record(int fi, size_t i) const { return const_cast<ImageBlock*>(this)->record(fi, i); }
+    bool hasRecord(int fi, size_t i) const { return slot_[size_t(fi) * size_t(pixelCount()) + i] >= 0; }
+    // How many frames have a record of pixel i (a hit on the still layer must reach them too).
+    int recordsOf(size_t i) const { return dense_ ? frameCount_ : int(recordsOf_[i]); }
+    // Makes frame fi's record of pixel i, a copy of the still layer (which it then differs from).
+    SampleHit* makeRecord(int fi, size_t i);
+    // What frame fi sees at pixel i: its record, or the still layer.
+    const SampleHit* hits(int fi, size_t i) const {
+        const SampleHit* r = record(fi, i);
+        return r ? r : still(i);
+    }
+    size_t recordCount() const { return records_; }
+
+    // Dense mode with shadows: the shadowed parts of the S hits of frame fi's record of pixel i,
+    // shadowSlots() colours each, valid where a sample has a hit.
     int shadowSlots() const { return shadowSlots_; }
-    Color* shadowed(size_t sample) { return &shadowed_[sample * size_t(shadowSlots_)]; }
+    Color* shadowed(int fi, size_t i);
 
-    size_t sampleCount() const { return positions_.size(); }
-    size_t bytes() const {
-        return positions_.capacity() * sizeof(SamplePosition) + hits_.capacity() * sizeof(SampleHit) +
-               shadowed_.capacity() * sizeof(Color);
-    }
+    size_t bytes() const;
 
   private:
+    SampleHit* recordAt(uint32_t r) {
+        return &chunks_[r / kRecordsPerChunk][size_t(r % kRecordsPerChunk) * size_t(S_)];
+    }
+    static constexpr uint32_t kRecordsPerChunk = 256;
+
     PixelRect rect_;
-    int firstFrame_ = 0, frameCount_ = 0, slices_ = 0;
-    SamplePattern pattern_;
-    std::vector<SamplePosition> positions_;
-    std::vector<SampleHit> hits_;
-    std::vector<uint16_t> sliceStratum_;
+    int firstFrame_ = 0, frameCount_ = 0, S_ = 0;
+    bool dense_ = false;
+    const PatternTable* patterns_ = nullptr;
+    std::vector<float> xs_, ys_;
+    std::vector<uint8_t> permutation_;  // frames x pixels
+    std::vector<SampleHit> still_;
+    std::vector<int32_t> slot_;         // frames x pixels: record number, or -1
+    std::vector<uint16_t> recordsOf_;   // per pixel: frames with a record of it (sparse)
+    std::vector<std::unique_ptr<SampleHit[]>> chunks_;  // records, kept from bucket to bucket
+    size_t chunkSamples_ = 0;           // S x kRecordsPerChunk when the chunks were made
+    uint32_t records_ = 0;
     int shadowSlots_ = 0;
-    std::vector<Color> shadowed_;  // shadowSlots_ per sample, valid where the sample has a hit
+    std::vector<Color> shadowed_;       // dense: frames x pixels x S x shadowSlots
 };
 
 }  // namespace streyes

@@ -4,133 +4,11 @@
 #include <cmath>
 
 #include "geom/grid.h"
+#include "raster/micropolygon.h"
 
 namespace streyes {
 
-// ---- The micropolygon hit test ----------------------------------------------------------------
-// A quad q0 q1 q2 q3 (grid order (0,0) (1,0) (1,1) (0,1)) is two triangles, (q0 q1 q2) and
-// (q0 q2 q3), sharing the diagonal q0-q2. Its five edges are set up once in canonical form
-// (lexicographically smaller endpoint first), so an edge shared with a neighbouring micropolygon,
-// or the diagonal shared by the two triangles, gives exactly opposite values on its two sides.
-
-namespace {
-
-struct Edge {
-    float px, py, dx, dy;  // canonical start point and direction
-    float sign;            // +1 when the quad runs along the edge in canonical direction, else -1
-    bool canonical;
-    float eval(float sx, float sy) const { return sign * (dx * (sy - py) - dy * (sx - px)); }
-};
-
-inline Edge makeEdge(float ax, float ay, float bx, float by) {
-    bool canonical = ax < bx || (ax == bx && ay < by);
-    if (canonical) return {ax, ay, bx - ax, by - ay, 1.0f, true};
-    return {bx, by, ax - bx, ay - by, -1.0f, false};
-}
-
-// A sample exactly on an edge belongs to the side where the canonical edge function is
-// positive: the side it would fall on if nudged by (-e^2, e).
-inline bool edgeInside(float e, bool canonical, float orientation) {
-    float g = e * orientation;
-    if (g != 0) return g > 0;
-    return canonical ? orientation > 0 : orientation < 0;
-}
-
-// Inside test for a triangle given its three directed edge values; works for either
-// orientation; a zero-area triangle contains nothing.
-inline bool insideTriangle(float e0, bool c0, float e1, bool c1, float e2, bool c2) {
-    bool anyPos = e0 > 0 || e1 > 0 || e2 > 0;
-    bool anyNeg = e0 < 0 || e1 < 0 || e2 < 0;
-    if (anyPos == anyNeg) return false;  // mixed signs: outside; all zero: degenerate
-    float o = anyPos ? 1.0f : -1.0f;
-    return edgeInside(e0, c0, o) && edgeInside(e1, c1, o) && edgeInside(e2, c2, o);
-}
-
-struct QuadSetup {
-    float x[4], y[4], z[4];
-    Edge e[5];  // q0q1, q1q2, q2q3, q3q0, q2q0 (the diagonal as triangle 1 runs it)
-    float xmin, xmax, ymin, ymax;
-    int px0, px1, py0, py1;  // pixels the bound touches, clipped to the block
-};
-
-
-inline void setupEdges(QuadSetup& q) {
-    q.e[0] = makeEdge(q.x[0], q.y[0], q.x[1], q.y[1]);
-    q.e[1] = makeEdge(q.x[1], q.y[1], q.x[2], q.y[2]);
-    q.e[2] = makeEdge(q.x[2], q.y[2], q.x[3], q.y[3]);
-    q.e[3] = makeEdge(q.x[3], q.y[3], q.x[0], q.y[0]);
-    q.e[4] = makeEdge(q.x[2], q.y[2], q.x[0], q.y[0]);
-}
-
-struct Hit {
-    int v0, v1, v2;  // corners of the triangle hit (0..3)
-    float l1, l2;    // barycentric weights of v1 and v2
-};
-
-inline bool hitQuad(const QuadSetup& q, float sx, float sy, Hit& h) {
-    const float e01 = q.e[0].eval(sx, sy), e12 = q.e[1].eval(sx, sy), e20 = q.e[4].eval(sx, sy);
-    const bool diagDegenerate = q.e[4].dx == 0 && q.e[4].dy == 0;
-    if (insideTriangle(e01, q.e[0].canonical, e12, q.e[1].canonical, e20, q.e[4].canonical)) {
-        float inv = 1.0f / (e01 + e12 + e20);
-        h = {0, 1, 2, e20 * inv, e01 * inv};  // weight of q1 is its opposite edge q2q0, of q2 is q0q1
-        return true;
-    }
-    // Triangle 2 runs the diagonal the other way: exactly -e20, the opposite canonical flag.
-    const float e02 = -e20, e23 = q.e[2].eval(sx, sy), e30 = q.e[3].eval(sx, sy);
-    const bool c02 = diagDegenerate ? false : !q.e[4].canonical;
-    if (insideTriangle(e02, c02, e23, q.e[2].canonical, e30, q.e[3].canonical)) {
-        float inv = 1.0f / (e02 + e23 + e30);
-        h = {0, 2, 3, e30 * inv, e02 * inv};  // q2 is opposite q3q0, q3 opposite q0q2
-        return true;
-    }
-    return false;
-}
-
-// How many of the quad's two triangles hold the sample (2 where a quad folded along its
-// diagonal at a silhouette covers it twice), and their windings summed (+1 for a triangle that
-// runs one way round in raster space, -1 the other). Rendering takes one hit per quad; tests of
-// watertightness count coverage (GridRasterizer::countHitsInto).
-inline void trianglesCovering(const QuadSetup& q, float sx, float sy, uint32_t* count, int32_t* winding) {
-    const float e01 = q.e[0].eval(sx, sy), e12 = q.e[1].eval(sx, sy), e20 = q.e[4].eval(sx, sy);
-    const float e23 = q.e[2].eval(sx, sy), e30 = q.e[3].eval(sx, sy);
-    const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
-    if (insideTriangle(e01, q.e[0].canonical, e12, q.e[1].canonical, e20, q.e[4].canonical)) {
-        ++*count;
-        *winding += e01 + e12 + e20 > 0 ? 1 : -1;
-    }
-    if (insideTriangle(-e20, c02, e23, q.e[2].canonical, e30, q.e[3].canonical)) {
-        ++*count;
-        *winding += -e20 + e23 + e30 > 0 ? 1 : -1;
-    }
-}
-
-// Bound and pixel range of a quad; false when it misses the block or the clipping range.
-inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const float* z2, const PixelRect& R,
-                      float nearZ, float farZ) {
-    float zmin = q.z[0], zmax = q.z[0];
-    q.xmin = q.xmax = q.x[0];
-    q.ymin = q.ymax = q.y[0];
-    for (int c = 0; c < 4; ++c) {
-        q.xmin = std::min(q.xmin, q.x[c]), q.xmax = std::max(q.xmax, q.x[c]);
-        q.ymin = std::min(q.ymin, q.y[c]), q.ymax = std::max(q.ymax, q.y[c]);
-        zmin = std::min(zmin, q.z[c]), zmax = std::max(zmax, q.z[c]);
-        if (x2) {  // the corners at the other end of a time slice
-            q.xmin = std::min(q.xmin, x2[c]), q.xmax = std::max(q.xmax, x2[c]);
-            q.ymin = std::min(q.ymin, y2[c]), q.ymax = std::max(q.ymax, y2[c]);
-            zmin = std::min(zmin, z2[c]), zmax = std::max(zmax, z2[c]);
-        }
-    }
-    if (zmax < nearZ || zmin > farZ) return false;
-    if (!(q.xmax >= float(R.x0) && q.xmin < float(R.x1 + 1) && q.ymax >= float(R.y0) && q.ymin < float(R.y1 + 1)))
-        return false;  // also rejects NaN
-    q.px0 = floorClamped(q.xmin, R.x0, R.x1);
-    q.px1 = floorClamped(q.xmax, R.x0, R.x1);
-    q.py0 = floorClamped(q.ymin, R.y0, R.y1);
-    q.py1 = floorClamped(q.ymax, R.y0, R.y1);
-    return true;
-}
-
-}  // namespace
+using namespace micropolygon;
 
 // ---- Projection ----------------------------------------------------------------------------------
 
@@ -177,7 +55,7 @@ inline bool inTimeSpan(float tf, float tfA, float tfB, bool openB) {
 void GridRasterizer::collectSlices(const Grid& grid, const Shutter& shutter, const ImageBlock& block) {
     slices_.clear();
     const double d = shutter.close - shutter.open;
-    const int K = block.slices();
+    const int K = block.samplesPerPixel();
     for (int fi = 0; fi < block.frameCount(); ++fi) {
         const double e0 = block.firstFrame() + fi + shutter.open, e1 = e0 + d;
         if (!meetsExposure(grid, e0, e1, d)) continue;
@@ -207,17 +85,23 @@ void GridRasterizer::collectSlices(const Grid& grid, const Shutter& shutter, con
 void GridRasterizer::rasterize(const Grid& grid, const Camera& camera, const Shutter& shutter, ImageBlock& block,
                                RasterCounters& counters) {
     counters.micropolygons += uint64_t(grid.nu) * uint64_t(grid.nv);
-    if (grid.moving) {
-        collectSlices(grid, shutter, block);
-        if (slices_.empty()) return;
-        if (grid.shadowSlots) sampleMoving<true>(grid, camera, block, counters);
-        else sampleMoving<false>(grid, camera, block, counters);
+    if (grid.moving) collectSlices(grid, shutter, block);
+    else collectFrames(grid, shutter, block);
+    if (grid.moving ? slices_.empty() : frames_.empty()) return;
+    const bool shadowed = grid.shadowSlots > 0, counting = hitCounts_ != nullptr;
+    if (shadowed) {
+        if (counting) sample<true, true>(grid, camera, block, counters);
+        else sample<true, false>(grid, camera, block, counters);
     } else {
-        collectFrames(grid, shutter, block);
-        if (frames_.empty()) return;
-        if (grid.shadowSlots) sampleStill<true>(grid, camera, block, counters);
-        else sampleStill<false>(grid, camera, block, counters);
+        if (counting) sample<false, true>(grid, camera, block, counters);
+        else sample<false, false>(grid, camera, block, counters);
     }
+}
+
+template <bool Shadowed, bool Counting>
+void GridRasterizer::sample(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters) {
+    if (grid.moving) sampleMoving<Shadowed, Counting>(grid, camera, block, counters);
+    else sampleStill<Shadowed, Counting>(grid, camera, block, counters);
 }
 
 // The frames a still grid exists in, and the part of each exposure it covers.
@@ -237,49 +121,57 @@ void GridRasterizer::collectFrames(const Grid& grid, const Shutter& shutter, con
     }
 }
 
-// Writes a hit into the sample when it beats the one there (nearer, or equal depth and an
-// earlier primitive: see SampleHit::beatenBy). Returns 0 when it does not, 1 when it does, 2
-// when it does and the sample had no hit before.
+namespace {
+
+// The hit of a triangle at a sample, when it beats `cur` (nearer, or equal depth and an earlier
+// primitive: SampleHit::beatenBy) and lies inside the clipping range: then *out is the new hit.
+// Depth first, colour only for a hit that passes the depth test.
 template <typename ColorAt>
-static inline int resolveHit(SampleHit& s, const float* z, const Hit& h, float nearZ, float farZ, uint64_t id,
-                             ColorAt colorAt) {
+inline bool beats(const SampleHit& cur, const float* z, const Hit& h, float nearZ, float farZ, uint64_t id,
+                  ColorAt colorAt, SampleHit* out) {
     const float zh = z[h.v0] + h.l1 * (z[h.v1] - z[h.v0]) + h.l2 * (z[h.v2] - z[h.v0]);
-    if (!(zh >= nearZ && zh <= farZ && zh <= s.z)) return 0;
+    if (!(zh >= nearZ && zh <= farZ && zh <= cur.z)) return false;
     // Relative to the first corner: exact where depth or colour is constant.
     const Color c0 = colorAt(h.v0), c1 = colorAt(h.v1), c2 = colorAt(h.v2);
     const Color c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
-    if (zh == s.z && !s.beatenBy(zh, id, c)) return 0;
-    const int first = s.a == 0 ? 2 : 1;
-    s.z = zh;
-    s.c = c;
-    s.a = 1.0f;
-    s.id = id;
-    return first;
+    if (zh == cur.z && !cur.beatenBy(zh, id, c)) return false;
+    *out = {zh, c, 1.0f, id};
+    return true;
 }
 
 // With the hit, the K contributions of lights that cast shadows, interpolated the same way.
 template <typename PartAt>
-static inline void writeShadowed(Color* out, int K, const Hit& h, PartAt partAt) {
+inline void writeShadowed(Color* out, int K, const Hit& h, PartAt partAt) {
     for (int k = 0; k < K; ++k) {
         const Color c0 = partAt(h.v0, k), c1 = partAt(h.v1, k), c2 = partAt(h.v2, k);
         out[k] = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
     }
 }
 
-// A still grid: each quad is projected and set up once, then tested against the samples of
-// every frame it exists in, visiting in each pixel only the (x, y) strata its bound overlaps.
-template <bool Shadowed>
+}  // namespace
+
+// A still grid: each quad is projected and set up once, then tested against the samples its
+// bound overlaps, visiting in each pixel only the (x, y) strata the bound overlaps. Positions are
+// the same in every frame, so a sample is tested once; a grid over every frame of the block (the
+// usual still geometry) writes the still layer, once for all of them, and any other grid the
+// records of the frames it exists in (at the sample's time within the exposure, where it exists
+// in part of one).
+template <bool Shadowed, bool Counting>
 void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters) {
     const PixelRect& R = block.rect();
-    const int nu = grid.nu, nv = grid.nv, stride = nu + 1, S = block.slices();
+    const int nu = grid.nu, nv = grid.nv, stride = nu + 1, S = block.samplesPerPixel(), F = block.frameCount();
     const int sx = block.pattern().sx, sy = block.pattern().sy;
+    const size_t pixels = size_t(block.pixelCount());
     const float nearZ = camera.nearClip(), farZ = camera.farClip();
+    bool intoStill = !block.dense() && int(frames_.size()) == F;
+    for (const FrameSpan& fr : frames_) intoStill = intoStill && fr.whole;
     project(grid, grid.t0, camera, ra_);
-    const SamplePosition* pos = block.positions();
-    SampleHit* hit = block.hits();
+    const float* xs = block.xs();
+    const float* ys = block.ys();
     const Color* ci = grid.Ci[0].data();
     const int K = grid.shadowSlots;
     const Color* cl = grid.Cl[0].data();
+    const uint64_t id = grid.primitiveId;
     uint64_t tests = 0, hits = 0, firstHits = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
@@ -291,31 +183,67 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
             }
             if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ)) continue;
             setupEdges(q);
+            auto colorAt = [&](int c) { return ci[idx[c]]; };
             for (int py = q.py0; py <= q.py1; ++py) {
                 const int iy0 = floorClamped((q.ymin - float(py)) * float(sy), 0, sy - 1);
                 const int iy1 = floorClamped((q.ymax - float(py)) * float(sy), 0, sy - 1);
                 for (int px = q.px0; px <= q.px1; ++px) {
                     const int ix0 = floorClamped((q.xmin - float(px)) * float(sx), 0, sx - 1);
                     const int ix1 = floorClamped((q.xmax - float(px)) * float(sx), 0, sx - 1);
-                    const size_t base = block.pixelOffset(px, py);
-                    for (const FrameSpan& fr : frames_) {
-                        const size_t fb = base + size_t(fr.fi) * size_t(S);
-                        for (int iy = iy0; iy <= iy1; ++iy) {
-                            for (int ix = ix0; ix <= ix1; ++ix) {
-                                const size_t si = fb + size_t(iy * sx + ix);
-                                const SamplePosition& s = pos[si];
-                                if (s.x < q.xmin || s.x > q.xmax || s.y < q.ymin || s.y > q.ymax) continue;
-                                if (!fr.whole && !inTimeSpan(s.tf, fr.tfA, fr.tfB, fr.openB)) continue;
+                    const size_t pi = block.pixelIndex(px, py), base = pi * size_t(S);
+                    for (int iy = iy0; iy <= iy1; ++iy) {
+                        for (int ix = ix0; ix <= ix1; ++ix) {
+                            const int sj = iy * sx + ix;
+                            const float x = xs[base + size_t(sj)], y = ys[base + size_t(sj)];
+                            if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
+                            SampleHit hit;
+                            if (intoStill) {
                                 ++tests;
                                 Hit h;
-                                if (!hitQuad(q, s.x, s.y, h)) continue;
+                                if (!hitQuad(q, x, y, h)) continue;
                                 ++hits;
-                                if (hitCounts_) trianglesCovering(q, s.x, s.y, &hitCounts_[si], &windings_[si]);
-                                const int r = resolveHit(hit[si], q.z, h, nearZ, farZ, grid.primitiveId,
-                                                         [&](int c) { return ci[idx[c]]; });
-                                firstHits += r == 2;
-                                if (Shadowed && r)
-                                    writeShadowed(block.shadowed(si), K, h,
+                                if (Counting)
+                                    for (int fi = 0; fi < F; ++fi) {
+                                        const size_t ci2 = (size_t(fi) * pixels + pi) * size_t(S) + size_t(sj);
+                                        trianglesCovering(q, x, y, &hitCounts_[ci2], &windings_[ci2]);
+                                    }
+                                SampleHit& cur = block.still(pi)[sj];
+                                if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) continue;
+                                if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
+                                cur = hit;
+                                // Frames that already have a record of the pixel (something only they
+                                // see came first) see this too, where it is nearer.
+                                for (int fi = 0, left = block.recordsOf(pi); left > 0; ++fi) {
+                                    SampleHit* rec = block.record(fi, pi);
+                                    if (!rec) continue;
+                                    --left;
+                                    if (rec[sj].beatenBy(hit.z, hit.id, hit.c)) rec[sj] = hit;
+                                }
+                                continue;
+                            }
+                            // The frames it exists in at the sample's time: the inside test is the
+                            // same for all of them (the same position), made once when first needed.
+                            int inside = -1;
+                            Hit h;
+                            for (const FrameSpan& fr : frames_) {
+                                if (!fr.whole && !inTimeSpan(block.sampleTime(fr.fi, pi, sj), fr.tfA, fr.tfB, fr.openB))
+                                    continue;
+                                ++tests;
+                                if (inside < 0) inside = hitQuad(q, x, y, h);
+                                if (!inside) continue;
+                                ++hits;
+                                if (Counting) {
+                                    const size_t ci2 = (size_t(fr.fi) * pixels + pi) * size_t(S) + size_t(sj);
+                                    trianglesCovering(q, x, y, &hitCounts_[ci2], &windings_[ci2]);
+                                }
+                                SampleHit* rec = block.record(fr.fi, pi);
+                                const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
+                                if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) continue;
+                                firstHits += cur.a == 0;
+                                if (!rec) rec = block.makeRecord(fr.fi, pi);
+                                rec[sj] = hit;
+                                if (Shadowed)
+                                    writeShadowed(block.shadowed(fr.fi, pi) + size_t(sj) * size_t(K), K, h,
                                                   [&](int c, int k) { return cl[size_t(idx[c] * K + k)]; });
                             }
                         }
@@ -335,18 +263,24 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
 // move a vertex that lies on a neighbouring grid's edge (a T-junction, where grids split to
 // different depths meet) off that edge, and open cracks between the grids. So under perspective
 // the corners are interpolated in camera space, where they move linearly, and projected at the
-// sample's time: vertices on a straight edge stay on its projection.
-template <bool Shadowed>
+// sample's time: vertices on a straight edge stay on its projection. Hits go to the frames'
+// records: what moves is seen by one frame only.
+template <bool Shadowed, bool Counting>
 void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block,
                                   RasterCounters& counters) {
     const PixelRect& R = block.rect();
-    const int nu = grid.nu, nv = grid.nv, stride = nu + 1;
+    const int nu = grid.nu, nv = grid.nv, stride = nu + 1, S = block.samplesPerPixel();
+    const size_t pixels = size_t(block.pixelCount());
+    const PatternTable& patterns = block.patterns();
     const bool perspective = camera.perspective();
     const float nearZ = camera.nearClip(), farZ = camera.farClip();
     const double span = grid.t1 - grid.t0;
     const Color *ci0 = grid.Ci[0].data(), *ci1 = grid.Ci[1].data();
     const int K = grid.shadowSlots;
     const Color *cl0 = grid.Cl[0].data(), *cl1 = grid.Cl[1].data();
+    const uint64_t id = grid.primitiveId;
+    const float* xs = block.xs();
+    const float* ys = block.ys();
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
     uint64_t tests = 0, hits = 0, firstHits = 0;
     for (const Slice& sl : slices_) {
@@ -375,12 +309,15 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             za[4] = {q.z[0], q.z[1], q.z[2], q.z[3]};
                 for (int py = q.py0; py <= q.py1; ++py) {
                     for (int px = q.px0; px <= q.px1; ++px) {
-                        const size_t si = block.sliceIndex(sl.fi, sl.k, px, py);
-                        const SamplePosition& s = block.positions()[si];
-                        if (s.x < q.xmin || s.x > q.xmax || s.y < q.ymin || s.y > q.ymax) continue;
-                        if (sl.checkTime && !inTimeSpan(s.tf, sl.tfA, sl.tfB, sl.openB)) continue;
+                        const size_t pi = block.pixelIndex(px, py);
+                        const int perm = block.permutation(sl.fi, pi);
+                        const int sj = patterns.sampleOfStratum(perm)[sl.k];
+                        const size_t si = pi * size_t(S) + size_t(sj);
+                        const float x = xs[si], y = ys[si], tf = patterns.stratumTimes(perm)[sl.k];
+                        if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
+                        if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
                         ++tests;
-                        const float w = std::min(1.0f, std::max(0.0f, (s.tf - sl.tfA) * invSpan));
+                        const float w = std::min(1.0f, std::max(0.0f, (tf - sl.tfA) * invSpan));
                         QuadSetup qt;
                         if (perspective) {
                             for (int c = 0; c < 4; ++c) {
@@ -396,17 +333,26 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         }
                         setupEdges(qt);
                         Hit h;
-                        if (!hitQuad(qt, s.x, s.y, h)) continue;
+                        if (!hitQuad(qt, x, y, h)) continue;
                         ++hits;
-                        if (hitCounts_) trianglesCovering(qt, s.x, s.y, &hitCounts_[si], &windings_[si]);
+                        if (Counting) {
+                            const size_t ci2 = (size_t(sl.fi) * pixels + pi) * size_t(S) + size_t(sj);
+                            trianglesCovering(qt, x, y, &hitCounts_[ci2], &windings_[ci2]);
+                        }
                         const float sg = lerp(sA, sB, w);  // the grid's own time parameter
-                        const int r = resolveHit(block.hits()[si], qt.z, h, nearZ, farZ, grid.primitiveId,
-                                                 [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); });
-                        firstHits += r == 2;
-                        if (Shadowed && r)
-                            writeShadowed(block.shadowed(si), K, h, [&](int c, int k) {
-                                const size_t i = size_t(idx[c] * K + k);
-                                return lerp(cl0[i], cl1[i], sg);
+                        SampleHit* rec = block.record(sl.fi, pi);
+                        const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
+                        SampleHit hit;
+                        if (!beats(cur, qt.z, h, nearZ, farZ, id,
+                                   [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); }, &hit))
+                            continue;
+                        firstHits += cur.a == 0;
+                        if (!rec) rec = block.makeRecord(sl.fi, pi);
+                        rec[sj] = hit;
+                        if (Shadowed)
+                            writeShadowed(block.shadowed(sl.fi, pi) + size_t(sj) * size_t(K), K, h, [&](int c, int k) {
+                                const size_t v = size_t(idx[c] * K + k);
+                                return lerp(cl0[v], cl1[v], sg);
                             });
                     }
                 }

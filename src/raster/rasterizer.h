@@ -1,11 +1,15 @@
 // Sampling diced grids: which samples of an ImageBlock each micropolygon covers.
 //
 // A micropolygon is the quad between four neighbouring grid vertices, tested as two triangles
-// split along its (0,0)-(1,1) diagonal. Its corners move linearly from t0 to t1 in camera
-// space; the rasterizer works one time slice at a time: it projects the grid at the two ends
-// of the slice (so perspective is exact at slice boundaries and the raster path of a vertex is
-// a straight segment inside a slice), rejects the grid's and then each quad's bound for that
+// split along its (0,0)-(1,1) diagonal (micropolygon.h). Its corners move linearly from t0 to t1
+// in camera space; the rasterizer works one time slice at a time: it projects the grid at the two
+// ends of the slice (so perspective is exact at slice boundaries and the raster path of a vertex
+// is a straight segment inside a slice), rejects the grid's and then each quad's bound for that
 // slice against the block, and tests only the one sample per pixel the slice holds.
+//
+// A grid that is still and exists over every frame of the block is sampled once, into the
+// block's still layer; any other writes into the frames' records of the pixels it comes nearest
+// in (image_block.h).
 //
 // Edges are evaluated in a canonical direction, so two triangles sharing an edge get exactly
 // opposite edge values, and a sample exactly on an edge goes to exactly one of them (as if it
@@ -36,9 +40,10 @@ class GridRasterizer {
     void rasterize(const Grid& grid, const Camera& camera, const Shutter& shutter, ImageBlock& block,
                    RasterCounters& counters);
     // For tests of watertightness: when set, every hit (before the depth test) adds to
-    // counts[sample index in the block] the number of the micropolygon's triangles holding the
-    // sample (2 where a micropolygon folded at a silhouette covers it twice), and to windings[]
-    // their orientations in raster space (+1 or -1 each): 0 for a closed surface.
+    // counts[(fi * pixels + i) * S + j] (frame fi, pixel i, sample j) the number of the
+    // micropolygon's triangles holding the sample (2 where a micropolygon folded at a silhouette
+    // covers it twice), and to windings[] their orientations in raster space (+1 or -1 each): 0
+    // for a closed surface. A separate instance of the sampling loops: rendering pays nothing.
     void countHitsInto(uint32_t* counts, int32_t* windings) {
         hitCounts_ = counts;
         windings_ = windings;
@@ -66,11 +71,14 @@ class GridRasterizer {
     void collectSlices(const Grid& grid, const Shutter& shutter, const ImageBlock& block);
     void collectFrames(const Grid& grid, const Shutter& shutter, const ImageBlock& block);
     // Shadowed: the grid carries the contributions of lights that cast shadows (Grid::Cl), kept
-    // with each hit; a separate instance, so that scenes without them pay nothing.
-    template <bool Shadowed>
+    // with each hit; Counting: countHitsInto is set. Separate instances, so that scenes without
+    // shadows, and renders, pay nothing for either.
+    template <bool Shadowed, bool Counting>
     void sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
-    template <bool Shadowed>
+    template <bool Shadowed, bool Counting>
     void sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
+    template <bool Shadowed, bool Counting>
+    void sample(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
     // Raster positions at time t, and optionally the camera-space positions they come from.
     void project(const Grid& grid, double t, const Camera& camera, std::vector<RasterVertex>& out,
                  std::vector<Vec3f>* cameraOut = nullptr) const;

@@ -31,14 +31,22 @@ struct Fixture {
     ImageBlock block;
     GridRasterizer raster;
     RasterCounters counters;
-    // One sample per pixel, placed by the test.
-    void reset() {
-        SamplePattern one{1, 1, 0};
-        block.reset({0, 0, size - 1, size - 1}, 0, 1, one);
+    PatternTable patterns{SamplePattern{1, 1, 0}};
+    // One sample per pixel, placed by the test; at time times[q] in pixels given permutation q.
+    void reset(const std::vector<float>& times = {0.0f}) {
+        std::vector<std::vector<float>> perPermutation;
+        for (float t : times) perPermutation.push_back({t});
+        patterns = PatternTable(SamplePattern{1, 1, 0}, perPermutation);
+        block.reset({0, 0, size - 1, size - 1}, 0, 1, patterns, false);
         counters = {};
     }
-    SamplePosition& sample(int x, int y) { return block.positions()[block.sliceIndex(0, 0, x, y)]; }
-    SampleHit& hit(int x, int y) { return block.hits()[block.sliceIndex(0, 0, x, y)]; }
+    void place(int x, int y, float sx, float sy, int permutation = 0) {
+        const size_t i = block.pixelIndex(x, y);
+        block.xs()[i] = sx;
+        block.ys()[i] = sy;
+        block.setPermutation(0, i, permutation);
+    }
+    const SampleHit& hit(int x, int y) const { return block.hits(0, block.pixelIndex(x, y))[0]; }
 };
 
 TEST(GridRasterizer, SamplesOnSharedEdgesAndVerticesAreHitExactlyOnce) {
@@ -49,11 +57,9 @@ TEST(GridRasterizer, SamplesOnSharedEdgesAndVerticesAreHitExactlyOnce) {
         int inside = 0;
         for (int y = 0; y < f.size; ++y)
             for (int x = 0; x < f.size; ++x) {
-                f.sample(x, y).x = float(x) + shift;
-                f.sample(x, y).y = float(y);
-                f.sample(x, y).tf = 0;
+                f.place(x, y, float(x) + shift, float(y));
                 // The tie rule: a sample on an edge counts as if nudged by (-e^2, e).
-                float sx = f.sample(x, y).x;
+                float sx = float(x) + shift;
                 bool nudgedInside = sx > 1 && sx <= 5 && y >= 1 && y < 5;
                 inside += nudgedInside;
             }
@@ -80,16 +86,12 @@ TEST(GridRasterizer, SamplesOnSharedEdgesAndVerticesAreHitExactlyOnce) {
 
 TEST(GridRasterizer, MovingGridIsSampledWhereItIsAtTheSampleTime) {
     Fixture f;
-    f.reset();
-    // A 2x2-pixel square moving 4 pixels right during [0, 1]; sample times chosen per pixel.
+    f.reset({0.5f});  // every sample at t = 0.5, when the square covers x in [2, 4]
+    // A 2x2-pixel square moving 4 pixels right during [0, 1].
     Grid g;
     diceSquare(0, 2, 2, 4, 10, 4, 2, &f.material, f.size, g);
     for (int y = 0; y < f.size; ++y)
-        for (int x = 0; x < f.size; ++x) {
-            f.sample(x, y).x = float(x) + 0.5f;
-            f.sample(x, y).y = float(y) + 0.5f;
-            f.sample(x, y).tf = 0.5f;  // square covers x in [2, 4] at t = 0.5
-        }
+        for (int x = 0; x < f.size; ++x) f.place(x, y, float(x) + 0.5f, float(y) + 0.5f);
     f.raster.rasterize(g, f.cam, Shutter{0, 1}, f.block, f.counters);
     for (int y = 0; y < f.size; ++y)
         for (int x = 0; x < f.size; ++x) {
@@ -130,13 +132,14 @@ TEST(GridRasterizer, TJunctionsDoNotCrackUnderPerspectiveMotion) {
     GridRasterizer raster;
     uint64_t samples = 0, hits = 0;
     for (uint64_t seed = 0; seed < 200; ++seed) {
-        block.reset({0, 0, size - 1, size - 1}, 0, 1, SamplePattern{1, 1, seed});  // one slice: the whole exposure
+        const PatternTable patterns(SamplePattern{1, 1, seed});  // one slice: the whole exposure
+        block.reset({0, 0, size - 1, size - 1}, 0, 1, patterns, false);
         RasterCounters counters;
         raster.rasterize(gt, cam, Shutter{0, 1}, block, counters);
         raster.rasterize(gb, cam, Shutter{0, 1}, block, counters);
-        samples += block.sampleCount();
+        samples += uint64_t(block.pixelCount());
         hits += counters.sampleHits;
-        for (size_t i = 0; i < block.sampleCount(); ++i) ASSERT_EQ(block.hits()[i].a, 1.0f) << "seed " << seed;
+        for (size_t i = 0; i < size_t(block.pixelCount()); ++i) ASSERT_EQ(block.hits(0, i)[0].a, 1.0f) << "seed " << seed;
     }
     EXPECT_EQ(hits, samples);
 }
@@ -165,12 +168,9 @@ struct TimePieces {
 TEST(GridRasterizer, SamplesAtExposureEndsAndKeysAreHitExactlyOnce) {
     for (bool moving : {false, true}) {
         Fixture f;
-        f.reset();
-        const float times[] = {0.0f, 0.5f, 0.5f, 0x1.fffffep-1f, 0.25f, 0.75f, 0.49999997f, 0.50000006f};
+        f.reset({0.0f, 0.5f, 0.5f, 0x1.fffffep-1f, 0.25f, 0.75f, 0.49999997f, 0.50000006f});
         for (int y = 0; y < f.size; ++y)
-            for (int x = 0; x < f.size; ++x) {
-                f.sample(x, y) = {float(x) + 0.5f, float(y) + 0.5f, times[(x + y) % 8]};
-            }
+            for (int x = 0; x < f.size; ++x) f.place(x, y, float(x) + 0.5f, float(y) + 0.5f, (x + y) % 8);
         TimePieces p(0, 0.5, 1, moving);
         f.raster.rasterize(p.first, f.cam, Shutter{0, 1}, f.block, f.counters);
         f.raster.rasterize(p.second, f.cam, Shutter{0, 1}, f.block, f.counters);
@@ -197,11 +197,11 @@ TEST(GridRasterizer, InstantAtAKeyIsSampledOnce) {
 // to the boundary itself belongs to one piece only.
 TEST(GridRasterizer, PiecesMeetingAtASliceBoundary) {
     for (bool moving : {false, true}) {
+        // Every sample of slice 0 exactly at its end, 0.25; the others inside their slices.
+        const PatternTable patterns(SamplePattern{2, 2, 3}, {{0.25f, 0.375f, 0.625f, 0.875f}});
         ImageBlock block;
-        block.reset({0, 0, 7, 7}, 0, 1, SamplePattern{2, 2, 3});
-        // Every sample of slice 0 exactly at its end, 0.25; the others where they are.
-        for (int y = 0; y < 8; ++y)
-            for (int x = 0; x < 8; ++x) block.positions()[block.sliceIndex(0, 0, x, y)].tf = 0.25f;
+        block.reset({0, 0, 7, 7}, 0, 1, patterns, false);
+        for (size_t i = 0; i < size_t(block.pixelCount()); ++i) block.setPermutation(0, i, 0);
         TimePieces p(0, 0.25, 1, moving);
         GridRasterizer raster;
         RasterCounters counters;
@@ -229,10 +229,7 @@ TEST(GridRasterizer, NearerHitWinsAndEqualDepthGoesToTheEarlierPrimitiveInAnyOrd
         Fixture f;
         f.reset();
         for (int y = 0; y < f.size; ++y)
-            for (int x = 0; x < f.size; ++x) {
-                f.sample(x, y).x = float(x) + 0.5f;
-                f.sample(x, y).y = float(y) + 0.5f;
-            }
+            for (int x = 0; x < f.size; ++x) f.place(x, y, float(x) + 0.5f, float(y) + 0.5f);
         for (Grid* g : order) f.raster.rasterize(*g, f.cam, Shutter{0, 0}, f.block, f.counters);
         EXPECT_FLOAT_EQ(f.hit(1, 1).z, 10.0f);
         EXPECT_EQ(f.hit(1, 1).c.x, 1.0f);  // near (red, primitive 1) beats the tie (green, primitive 2)

@@ -29,12 +29,12 @@ constexpr size_t kMaxLayerStats = 64;  // per-layer counters beyond this go to t
 constexpr float kAdaptiveDepthGrowth = 1.25f;  // adaptive layers: at most this depth ratio apart
 }  // namespace
 
-BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& options, const PixelFilter& filter,
-                           const SamplePattern& pattern, const std::vector<float>& layerDepths, Log& log)
+BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& options, const PatternTable& patterns,
+                           const FilterWeights& filter, const std::vector<float>& layerDepths, Log& log)
     : scene_(scene),
       options_(options),
+      patterns_(patterns),
       filter_(filter),
-      pattern_(pattern),
       layerDepths_(layerDepths),
       log_(log),
       occlusion_(usesOcclusion(options.algorithm)),
@@ -52,7 +52,10 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     ++counters.buckets;
     splitsOf_.clear();
     auto t = Clock::now();
-    block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, pattern_, shadowSlots_);
+    // Dense (every frame its own samples from the start) when rays leave every sample at its own
+    // time: eye rays, and shadow rays.
+    block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, patterns_, traceEyeRays_ || shadowSlots_ > 0,
+                 shadowSlots_);
     counters.timeSampleGen += secondsSince(t);
 
     windowStart_ = bucket.firstFrame + scene_.shutter.open;
@@ -154,7 +157,8 @@ void BucketWorker::runNearToFar() {
     arrivals_ = 0;
     firstHitsAtTable_ = 0;
     coverage_.assign(size_t(bucket_.rect.area()) * size_t(bucket_.frameCount), 0);
-    const uint64_t adaptiveHits = uint64_t(options_.adaptiveLayerHits * double(block_.sampleCount())) + 1;
+    const uint64_t samples = uint64_t(block_.pixelCount()) * uint64_t(block_.frameCount()) * uint64_t(block_.samplesPerPixel());
+    const uint64_t adaptiveHits = uint64_t(options_.adaptiveLayerHits * double(samples)) + 1;
     for (const BodyPtr& root : scene_.roots) pushRoot(*root);
     float lastZmin = -std::numeric_limits<float>::infinity();
     float lastBoundary = 0;  // of the last table

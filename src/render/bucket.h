@@ -29,8 +29,8 @@ class BucketWorker {
   public:
     // layerDepths: boundaries between the geometric depth layers of --layers N (unused when
     // options.layers == 0: adaptive layers).
-    BucketWorker(const RenderScene& scene, const RenderOptions& options, const PixelFilter& filter,
-                 const SamplePattern& pattern, const std::vector<float>& layerDepths, Log& log);
+    BucketWorker(const RenderScene& scene, const RenderOptions& options, const PatternTable& patterns,
+                 const FilterWeights& filter, const std::vector<float>& layerDepths, Log& log);
 
     // Renders the bucket and resolves its tile into frames[f - framesFirst] for each of its frames.
     void render(const BucketSpec& bucket, std::vector<FrameImage>& frames, int framesFirst);
@@ -63,8 +63,8 @@ class BucketWorker {
 
     const RenderScene& scene_;
     const RenderOptions& options_;
-    const PixelFilter& filter_;
-    SamplePattern pattern_;
+    const PatternTable& patterns_;
+    const FilterWeights& filter_;
     const std::vector<float>& layerDepths_;
     Log& log_;
     const bool occlusion_;
@@ -88,7 +88,7 @@ class BucketWorker {
     std::vector<WorkItem> heap_;
     uint64_t arrivals_ = 0;
     std::vector<CameraLight> lightScratch_;
-    std::vector<float> resolveScratch_;
+    ResolveScratch resolveScratch_;
 
     // Occlusion state of the current bucket.
     int layer_ = 0;                   // tables built so far in this bucket

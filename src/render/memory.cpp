@@ -19,8 +19,13 @@ namespace {
 constexpr uint64_t kBaselineBytes = uint64_t(128) << 20;
 // A body: TrilinearBody (two sets of four corners, colours, span) with its allocation.
 constexpr uint64_t kBytesPerBody = 256;
-// Per sample: its position, its hit and its entry in the slice table.
-constexpr uint64_t kBytesPerSample = sizeof(SamplePosition) + sizeof(SampleHit) + sizeof(uint16_t);
+// Per sample of a bucket (the same in every frame): its position and its still-layer hit.
+constexpr uint64_t kBytesPerSample = 2 * sizeof(float) + sizeof(SampleHit);
+// Per sample and frame: the frame's record of it, at most (records are made only where something
+// that frame alone sees comes nearest; dense blocks have them all).
+constexpr uint64_t kBytesPerRecordSample = sizeof(SampleHit);
+// Per pixel and frame: its record's slot and its time permutation.
+constexpr uint64_t kBytesPerPixelFrame = sizeof(int32_t) + sizeof(uint8_t);
 // Per pixel and frame of a bucket, with occlusion culling: its coverage cell and table entry.
 constexpr uint64_t kOcclusionBytesPerCell = sizeof(uint8_t) + sizeof(uint32_t);
 // Per pixel of a resolved frame: RGBA and Z as float.
@@ -58,10 +63,10 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     e.scene = s.bodies * kBytesPerBody;
     e.trace = s.traceBytes + s.traceBytesPerFrame * uint64_t(e.frameBlock);
     e.frameImages = uint64_t(e.frameBlock) * pixels * kBytesPerPixel;
-    const uint64_t bytesPerSample = kBytesPerSample + uint64_t(std::max(0, s.shadowSlots)) * sizeof(Color);
-    e.perWorker = bucketPixels(s) * framesPerBucket * uint64_t(std::max(1, s.samplesPerPixel)) * bytesPerSample +
-                  s.traceBytesPerWorker +
-                  tilePixels(s) * framesPerBucket * 5 * sizeof(float) +
+    const uint64_t S = uint64_t(std::max(1, s.samplesPerPixel));
+    const uint64_t recordSample = kBytesPerRecordSample + uint64_t(std::max(0, s.shadowSlots)) * sizeof(Color);
+    e.perWorker = bucketPixels(s) * (S * kBytesPerSample + framesPerBucket * (kBytesPerPixelFrame + S * recordSample)) +
+                  s.traceBytesPerWorker + tilePixels(s) * 6 * sizeof(float) +  // resolving: weights, still pixels
                   (s.occlusion ? bucketPixels(s) * framesPerBucket * kOcclusionBytesPerCell : 0);
     e.writer = pixels * kWriterBytesPerPixel;
     return e;

@@ -32,10 +32,11 @@ const MemoryShape kHd{1920, 1080, 16, 32, 1, 1, true, 1000};
 TEST(Memory, EstimateCountsImagesAndSamplesPerWorker) {
     const MemoryEstimate e = estimateMemory(kHd, 10, 3);
     EXPECT_EQ(e.frameImages, uint64_t(10) * 1920 * 1080 * 20);  // RGBA + Z float
-    // A bucket of 34 x 34 pixels (tile and guard band) x 10 frames x 16 samples (position, hit,
-    // slice table), and its filter accumulators (32 x 32 pixels x 10 frames x 5 floats).
-    const uint64_t sample = sizeof(SamplePosition) + sizeof(SampleHit) + sizeof(uint16_t);
-    EXPECT_EQ(e.perWorker, uint64_t(34 * 34) * 10 * 16 * sample + uint64_t(32 * 32) * 10 * 20);
+    // A bucket of 34 x 34 pixels (tile and guard band) x 16 samples (position, still-layer hit),
+    // for each of 10 frames a slot, a permutation and at most a record of every sample, and what
+    // resolving keeps (32 x 32 pixels x 6 floats).
+    const uint64_t perPixel = 16 * (8 + sizeof(SampleHit)) + 10 * (5 + 16 * sizeof(SampleHit));
+    EXPECT_EQ(e.perWorker, uint64_t(34 * 34) * perPixel + uint64_t(32 * 32) * 24);
     // With occlusion culling, a coverage byte and a 32-bit table entry per pixel and frame more.
     MemoryShape culled = kHd;
     culled.occlusion = true;

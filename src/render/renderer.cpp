@@ -139,6 +139,9 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const ResolvedSettings& s = settings_;
     const PixelFilter filter(source_.settings.filter);
     const int W = s.width, H = s.height, S = s.pattern.count();
+    // The sample patterns and the filter's weights for them: the same for every bucket and frame.
+    const PatternTable patterns(s.pattern);
+    const FilterWeights weights(filter, patterns);
     const int frames = s.lastFrame - s.firstFrame + 1;
     const int tileSize = std::max(4, options_.bucketSize);
     const bool spacetime = !perFrame(options_.algorithm);
@@ -272,7 +275,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
             arena.execute([&] {
                 tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
                     std::unique_ptr<BucketWorker>& w = workers.local();
-                    if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, filter, s.pattern, layerDepths, log_);
+                    if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, patterns, weights, layerDepths, log_);
                     w->setTrace(trace.get());
                     for (size_t i = r.begin(); i != r.end(); ++i) {
                         w->render(buckets[i], images, first);

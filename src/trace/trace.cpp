@@ -24,20 +24,24 @@ double processCpuSeconds() {
 // Calls fn(sample index, time) for every sample of the block, frame by frame, then pixel by
 // pixel: consecutive rays share their frame's part of the hierarchy, which stays in cache (the
 // block's own order, pixel then frame, jumps through time from one ray to the next).
+// fn(hit, shadowed parts, position, frame, time) for every sample of a dense block (every frame
+// has a record of every pixel).
 template <typename Fn>
-void forEachSampleByFrame(const ImageBlock& block, const Shutter& shutter, Fn fn) {
-    const PixelRect& R = block.rect();
-    const size_t S = size_t(block.slices());
-    const SamplePosition* pos = block.positions();
+void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
+    const int S = block.samplesPerPixel();
+    const int K = block.shadowSlots();
     const double exposure = shutter.close - shutter.open;
     for (int fi = 0; fi < block.frameCount(); ++fi) {
         const double start = block.firstFrame() + fi + shutter.open;
-        for (int y = R.y0; y <= R.y1; ++y)
-            for (int x = R.x0; x <= R.x1; ++x) {
-                const size_t base = block.pixelOffset(x, y) + size_t(fi) * S;
-                for (size_t si = base; si < base + S; ++si)
-                    fn(si, block.firstFrame() + fi, start + double(pos[si].tf) * exposure);
+        for (size_t i = 0; i < size_t(block.pixelCount()); ++i) {
+            SampleHit* hits = block.record(fi, i);
+            Color* shadowed = K ? block.shadowed(fi, i) : nullptr;
+            for (int j = 0; j < S; ++j) {
+                const SamplePosition s = block.position(fi, i, j);
+                fn(hits[j], K ? shadowed + size_t(j) * size_t(K) : nullptr, s, block.firstFrame() + fi,
+                   start + double(s.tf) * exposure);
             }
+        }
     }
 }
 }  // namespace
@@ -168,11 +172,8 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
     const bool ortho = !cam.perspective();
     const int K = scene.lights.shadowSlots();
     shadowed_.resize(size_t(K));
-    const SamplePosition* pos = block.positions();
-    SampleHit* hits = block.hits();
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
-    forEachSampleByFrame(block, scene.shutter, [&](size_t si, int frame, double time) {
-        const SamplePosition& s = pos[si];
+    forEachSampleByFrame(block, scene.shutter, [&](SampleHit& hit, Color*, const SamplePosition& s, int frame, double time) {
         const Ray ray =
             ortho ? Ray{cam.fromRaster(s.x, s.y, 0), {0, 0, 1}} : Ray{{0, 0, 0}, cam.fromRaster(s.x, s.y, 1)};
         const SpacetimeBVH& bvh = trace.hierarchy(frame);
@@ -187,7 +188,7 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
             lightsAt(scene.lights, time);  // refreshed per sample only when lights or camera move
         Color c = shadePoint(*body.material(), cs, p, n, ortho, lights, K ? shadowed_.data() : nullptr, K);
         if (K) c = addVisibleLights(c, p, time, shadowed_.data(), trace, bvh, counters);
-        hits[si] = {p.z, c, 1.0f, body.primitiveId()};
+        hit = {p.z, c, 1.0f, body.primitiveId()};
     });
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
@@ -196,15 +197,12 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
 // The rasterizer's hit point is rebuilt from the sample's raster position and depth.
 void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, RenderCounters& counters) {
     const RenderScene& scene = trace.scene();
-    const SamplePosition* pos = block.positions();
-    SampleHit* hits = block.hits();
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
-    forEachSampleByFrame(block, scene.shutter, [&](size_t si, int frame, double time) {
-        SampleHit& hit = hits[si];
+    forEachSampleByFrame(block, scene.shutter,
+                         [&](SampleHit& hit, Color* shadowed, const SamplePosition& s, int frame, double time) {
         if (hit.a == 0) return;
-        const SamplePosition& s = pos[si];
         const Vec3f p = scene.camera.fromRaster(s.x, s.y, hit.z);
-        hit.c = addVisibleLights(hit.c, p, time, block.shadowed(si), trace, trace.hierarchy(frame), counters);
+        hit.c = addVisibleLights(hit.c, p, time, shadowed, trace, trace.hierarchy(frame), counters);
     });
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;

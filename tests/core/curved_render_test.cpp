@@ -140,6 +140,7 @@ TEST(CurvedRender, DeformingSubdivisionSurfaceLeavesNoCracks) {
 struct HitCount {
     std::vector<uint32_t> counts;
     std::vector<int32_t> windings;
+    PatternTable patterns;
     ImageBlock block;
 };
 
@@ -151,9 +152,11 @@ HitCount countHits(const std::string& rib, int firstFrame, int frames, int maxGr
     const ResolvedSettings settings = resolveSettings(scene, options);
     auto rs = buildRenderScene(scene, firstFrame, firstFrame + frames - 1, 0, 0, log);
     HitCount h;
-    h.block.reset({0, 0, settings.width - 1, settings.height - 1}, firstFrame, frames, settings.pattern);
-    h.counts.assign(h.block.sampleCount(), 0);
-    h.windings.assign(h.block.sampleCount(), 0);
+    h.patterns = PatternTable(settings.pattern);
+    h.block.reset({0, 0, settings.width - 1, settings.height - 1}, firstFrame, frames, h.patterns, false);
+    const size_t samples = size_t(h.block.pixelCount()) * size_t(frames) * size_t(h.block.samplesPerPixel());
+    h.counts.assign(samples, 0);
+    h.windings.assign(samples, 0);
     GridRasterizer raster;
     raster.countHitsInto(h.counts.data(), h.windings.data());
     RasterCounters counters;

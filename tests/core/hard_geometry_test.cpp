@@ -147,11 +147,11 @@ TEST(EyePlane, WallMovingThroughTheEyePlaneDuringTheShutter) {
     const ResolvedSettings s = resolveSettings(scene, RenderOptions{});
     const int S = s.pattern.count();
     std::vector<SamplePosition> pos(static_cast<size_t>(S));
-    std::vector<uint16_t> slices(pos.size());
+    const PatternTable table(s.pattern);
     int partly = 0;
     for (int y = 0; y < s.height; ++y)
         for (int x = 0; x < s.width; ++x) {
-            generatePixelSamples(x, y, 0, s.pattern, pos.data(), slices.data());
+            table.pixelSamples(x, y, 0, pos.data());
             int seen = 0;
             double nearest = std::numeric_limits<double>::infinity();
             for (const SamplePosition& p : pos) {
@@ -188,11 +188,11 @@ TEST(EyePlane, CameraInsideAClosedBox) {
     };
     const ResolvedSettings s = resolveSettings(scene, RenderOptions{});
     std::vector<SamplePosition> pos(static_cast<size_t>(s.pattern.count()));
-    std::vector<uint16_t> slices(pos.size());
+    const PatternTable table(s.pattern);
     int checked = 0;
     for (int y = 0; y < s.height; ++y)
         for (int x = 0; x < s.width; ++x) {
-            generatePixelSamples(x, y, 0, s.pattern, pos.data(), slices.data());
+            table.pixelSamples(x, y, 0, pos.data());
             const int face = faceOf(pos[0].x, pos[0].y);
             bool same = true;
             for (const SamplePosition& p : pos) same = same && faceOf(p.x, p.y) == face;

@@ -41,8 +41,10 @@ const char* kMovingSquare = "MotionBegin [1 24]\nTranslate -0.4 0 0\nTranslate 0
                             "Patch \"bilinear\" \"P\" [-0.3 -0.3 1  0.3 -0.3 1  -0.3 0.3 1  0.3 0.3 1]\nWorldEnd\n";
 
 // What a render's resident memory grows by, against what its estimate counts (all but the
-// program's libraries, which this test process does not load): within 10%.
-void expectEstimateMatchesGrowth(const std::string& rib) {
+// program's libraries, which this test process does not load): within 10% where every frame
+// keeps its own samples (`exact`: dense blocks, as with shadows); otherwise the estimate counts a
+// record of every sample of every frame, made only where something moves, and is a bound.
+void expectEstimateMatchesGrowth(const std::string& rib, bool exact) {
     Log log;
     Scene scene = parseRibString(rib, "memory.rib", log);
     RenderOptions o;
@@ -54,13 +56,18 @@ void expectEstimateMatchesGrowth(const std::string& rib) {
     ASSERT_EQ(stats.frameBlock, 24);
     const double counted = double(stats.memoryEstimateBytes - stats.memoryProgramBytes);
     const double grown = double(stats.peakMemoryBytes) - double(before);
-    EXPECT_GT(grown, 0.9 * counted) << "estimated " << counted << " bytes";
+    if (exact) {
+        EXPECT_GT(grown, 0.9 * counted) << "estimated " << counted << " bytes";
+    }
     EXPECT_LT(grown, 1.1 * counted) << "estimated " << counted << " bytes";
     testing::Test::RecordProperty("estimated_bytes", std::to_string(uint64_t(counted)));
     testing::Test::RecordProperty("resident_growth_bytes", std::to_string(uint64_t(grown)));
 }
 
-TEST(MemoryEstimate, MatchesWhatTheRenderHolds) { expectEstimateMatchesGrowth(std::string(kHeader) + kSquare); }
+TEST(MemoryEstimate, BoundsWhatTheRenderHolds) {
+    expectEstimateMatchesGrowth(std::string(kHeader) + kSquare, false);
+    expectEstimateMatchesGrowth(std::string(kHeader) + kMovingSquare, false);
+}
 
 // With a light that casts shadows, every sample keeps that light's contribution for its shadow
 // ray (12 bytes a sample: a fifth of the sample block here), and the ray tracer holds its bodies
@@ -82,7 +89,8 @@ TEST(MemoryEstimate, MatchesWhatARenderWithShadowsHolds) {
     mesh += "]\n";
     expectEstimateMatchesGrowth(std::string(kHeader) +
                                 "Attribute \"light\" \"shadows\" \"on\"\nLightSource \"distantlight\" 1\n"
-                                "Surface \"matte\"\n" + mesh + kSquare);
+                                "Surface \"matte\"\n" + mesh + kSquare,
+                                true);
 }
 
 // A budget that fits only a few frames at a time shrinks the frame block, as a smaller machine's

@@ -3,7 +3,7 @@
 // The scenes use a one-pixel box filter, so a pixel is exactly the mean of its own samples and
 // no sample is shared between buckets. The test gives `layers(x, y, t)`: how many surfaces lie
 // over raster (x, y) at time t (frames); 0 where the sample sees the background. The oracle
-// regenerates every sample the renderer used (generatePixelSamples is a pure function) and checks
+// regenerates every sample the renderer used (PatternTable::pixelSamples: a pure function) and checks
 //   - a pixel whose samples are all clearly covered has alpha exactly 1 (no cracks);
 //   - a pixel whose samples are all clearly uncovered has alpha exactly 0 (nothing stray);
 //   - the renderer's hit count (every micropolygon a sample falls in, before the depth test) is
@@ -70,11 +70,11 @@ OracleReport checkSamples(const Scene& scene, const RenderResult& r, Layers laye
     OracleReport rep;
     rep.hits = r.stats.counters.sampleHits;
     std::vector<SamplePosition> pos(static_cast<size_t>(s.pattern.count()));
-    std::vector<uint16_t> slices(pos.size());
+    const PatternTable table(s.pattern);
     for (const FrameImage& img : r.frames) {
         for (int y = 0; y < img.height; ++y)
             for (int x = 0; x < img.width; ++x) {
-                generatePixelSamples(x, y, img.frame, s.pattern, pos.data(), slices.data());
+                table.pixelSamples(x, y, img.frame, pos.data());
                 int covered = 0, uncovered = 0;
                 for (const SamplePosition& p : pos) {
                     const double t = img.frame + open + (close - open) * double(p.tf);

@@ -1,0 +1,79 @@
+#include "raster/image_block.h"
+
+#include <algorithm>
+
+namespace streyes {
+
+void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, const PatternTable& patterns, bool dense,
+                       int shadowSlots) {
+    rect_ = rect;
+    firstFrame_ = firstFrame;
+    frameCount_ = frameCount;
+    patterns_ = &patterns;
+    S_ = patterns.samples();
+    dense_ = dense;
+    shadowSlots_ = shadowSlots;
+    const size_t pixels = size_t(rect.area()), n = pixels * size_t(S_);
+    xs_.resize(n);
+    ys_.resize(n);
+    for (int y = rect.y0; y <= rect.y1; ++y)
+        for (int x = rect.x0; x <= rect.x1; ++x) {
+            const size_t i = pixelIndex(x, y);
+            const float* o = patterns.offsets(patterns.patternOf(x, y));
+            for (int j = 0; j < S_; ++j) {
+                xs_[i * size_t(S_) + size_t(j)] = float(x) + o[2 * j];
+                ys_[i * size_t(S_) + size_t(j)] = float(y) + o[2 * j + 1];
+            }
+        }
+    permutation_.resize(size_t(frameCount) * pixels);
+    for (int fi = 0; fi < frameCount; ++fi)
+        for (int y = rect.y0; y <= rect.y1; ++y)
+            for (int x = rect.x0; x <= rect.x1; ++x)
+                permutation_[size_t(fi) * pixels + pixelIndex(x, y)] = uint8_t(patterns.permutationOf(x, y, firstFrame + fi));
+
+    // Records are kept in chunks from bucket to bucket (a bucket with as many samples per pixel
+    // reuses them); the still layer and the slots are rewritten.
+    if (chunkSamples_ != size_t(S_) * kRecordsPerChunk) {
+        chunks_.clear();
+        chunkSamples_ = size_t(S_) * kRecordsPerChunk;
+    }
+    records_ = 0;
+    slot_.assign(size_t(frameCount) * pixels, -1);
+    recordsOf_.assign(dense ? 0 : pixels, 0);
+    if (dense) {
+        still_.clear();
+        for (int fi = 0; fi < frameCount; ++fi)
+            for (size_t i = 0; i < pixels; ++i) {
+                if (records_ / kRecordsPerChunk >= chunks_.size())
+                    chunks_.push_back(std::make_unique<SampleHit[]>(chunkSamples_));
+                slot_[size_t(fi) * pixels + i] = int32_t(records_);
+                SampleHit* h = recordAt(records_++);
+                std::fill(h, h + S_, kNoHit);
+            }
+        if (shadowSlots > 0) shadowed_.assign(size_t(frameCount) * n * size_t(shadowSlots), Color{0, 0, 0});
+    } else {
+        still_.assign(n, kNoHit);
+        shadowed_.clear();
+    }
+}
+
+SampleHit* ImageBlock::makeRecord(int fi, size_t i) {
+    if (records_ / kRecordsPerChunk >= chunks_.size()) chunks_.push_back(std::make_unique<SampleHit[]>(chunkSamples_));
+    slot_[size_t(fi) * size_t(pixelCount()) + i] = int32_t(records_);
+    ++recordsOf_[i];
+    SampleHit* r = recordAt(records_++);
+    std::copy(still(i), still(i) + S_, r);
+    return r;
+}
+
+Color* ImageBlock::shadowed(int fi, size_t i) {
+    return &shadowed_[((size_t(fi) * size_t(pixelCount()) + i) * size_t(S_)) * size_t(shadowSlots_)];
+}
+
+size_t ImageBlock::bytes() const {
+    return (xs_.capacity() + ys_.capacity()) * sizeof(float) + permutation_.capacity() + still_.capacity() * sizeof(SampleHit) +
+           slot_.capacity() * sizeof(int32_t) + chunks_.size() * chunkSamples_ * sizeof(SampleHit) +
+           shadowed_.capacity() * sizeof(Color);
+}
+
+}  // namespace streyes
