@@ -247,7 +247,9 @@ void CodeGen::store(Var& var, Val v, const SourceLoc& loc) {
     }
     if (!var.varying() && var.inferred && maskedNest_ > var.maskedAtDecl) makeVarying(var);
     const bool maskedStore = var.varying() && (varyingNest_ > 0 || maskedNest_ > 0);
-    if (maskedStore) {
+    if (var.type.isString()) {
+        if (v.reg != var.reg) emit(ops::smov, {var.reg, v.reg}, false);
+    } else if (maskedStore) {
         emit(ops::movm, {var.reg, v.reg}, true);
     } else if (v.temp && !prog_.code.empty() && prog_.code.back().a[0] == v.reg && aliasSafe(prog_.code.back().fn) &&
                prog_.regs[size_t(v.reg)].detail == var.detail && prog_.regs[size_t(v.reg)].type == var.type &&
