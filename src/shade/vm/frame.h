@@ -18,6 +18,8 @@ namespace streyes::sl {
 
 struct Frame {
     const ShaderProgram* prog = nullptr;
+    uint64_t programId = 0;         // which program (addresses of freed programs come back)
+    uint64_t lastRun = 0;           // the VM's run counter when last used
     bool constantsLoaded = false;
     int n = 0;
     std::vector<float> arena;       // the uniform area, then varyingArrays arrays of n floats

@@ -1,5 +1,6 @@
 #include "shade/vm/program.h"
 
+#include <atomic>
 #include <cstdio>
 
 #include "shade/vm/shading_grid.h"
@@ -85,6 +86,8 @@ int ShaderProgram::paramIndex(const std::string& n) const {
 }
 
 void ShaderProgram::finish() {
+    static std::atomic<uint64_t> nextId{1};
+    id = nextId++;
     uniformFloats = varyingArrays = stringSlots = 0;
     for (Register& r : regs) {
         if (r.type.isString()) {

@@ -60,6 +60,7 @@ struct ParamInfo {
 };
 
 struct ShaderProgram {
+    uint64_t id = 0;  // unique per compilation: a VM's registers for it are found by id
     ShaderType type = ShaderType::Surface;
     std::string name;
     std::string path;  // file it came from ("" for a string)
@@ -83,7 +84,7 @@ struct ShaderProgram {
     ShaderProgram() { for (int& r : globalReg) r = -1; }
     const ParamInfo* findParam(const std::string& n) const;
     int paramIndex(const std::string& n) const;
-    void finish();                   // assigns register slots
+    void finish();                   // assigns register slots and a fresh id
     std::string dump() const;        // instruction listing, for tests and debugging
 };
 

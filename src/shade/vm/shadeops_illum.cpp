@@ -85,7 +85,8 @@ bool enterLight(Exec& x, const Instr& in, const LightResult& l, int d) {
 
 // The next light after `from` that the loop visits and that reaches a point, or -1.
 int nextLight(Exec& x, const Instr& in, const std::vector<LightResult>& lights, size_t count, int from, int d) {
-    const std::string& cat = in.a[0] >= 0 ? x.str(in.a[0]) : std::string();
+    static const std::string all;
+    const std::string& cat = in.a[0] >= 0 ? x.str(in.a[0]) : all;
     for (int k = from + 1; k < int(count); ++k) {
         const LightResult& l = lights[size_t(k)];
         if (l.ambient || !inCategory(l, cat)) continue;

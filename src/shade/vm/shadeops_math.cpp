@@ -233,7 +233,8 @@ void spline(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]);
     const int32_t* regs = x.extra(in.a[1]);
     const int count = in.a[2];
-    const Basis* b = basisNamed(regs[0] >= 0 ? x.str(regs[0]) : std::string());
+    static const std::string none;
+    const Basis* b = basisNamed(regs[0] >= 0 ? x.str(regs[0]) : none);
     if (!b) b = basisNamed("");
     RegView value = x.view(regs[1]);
     const int nknots = count - 2;
@@ -248,7 +249,8 @@ void spline(Exec& x, const Instr& in) {
 
 void splineArray(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]), value = x.view(in.a[2]), arr = x.view(in.a[3]);
-    const Basis* b = basisNamed(in.a[1] >= 0 ? x.str(in.a[1]) : std::string());
+    static const std::string none;
+    const Basis* b = basisNamed(in.a[1] >= 0 ? x.str(in.a[1]) : none);
     if (!b) b = basisNamed("");
     for (int c = 0; c < d.comps; ++c)
         for (int i = 0; i < d.w; ++i)

@@ -11,8 +11,9 @@ namespace streyes::sl {
 void Exec::sanitised(int count) const { stats.sanitised += uint64_t(count); }
 
 void Frame::prepare(const ShaderProgram& p, int points) {
-    if (prog != &p) {
+    if (prog != &p || programId != p.id) {
         prog = &p;
+        programId = p.id;
         constantsLoaded = false;
     }
     n = points;
@@ -50,12 +51,32 @@ void ShadingVM::print(const std::string& s) const {
 
 Frame& ShadingVM::frameFor(const ShaderProgram& p) {
     for (auto& f : frames_)
-        if (f->prog == &p) return *f;
-    frames_.push_back(std::make_unique<Frame>());
-    return *frames_.back();
+        if (f->prog == &p && f->programId == p.id) {
+            f->lastRun = runCount_;
+            return *f;
+        }
+    // A new frame, or (past kMaxFrames) the one unused longest, never one of this run's.
+    constexpr size_t kMaxFrames = 32;
+    Frame* frame = nullptr;
+    if (frames_.size() < kMaxFrames) {
+        frames_.push_back(std::make_unique<Frame>());
+        frame = frames_.back().get();
+    } else {
+        for (auto& f : frames_)
+            if (f->lastRun != runCount_ && (!frame || f->lastRun < frame->lastRun)) frame = f.get();
+        if (!frame) {
+            frames_.push_back(std::make_unique<Frame>());
+            frame = frames_.back().get();
+        }
+    }
+    frame->prog = nullptr;
+    frame->programId = 0;
+    frame->lastRun = runCount_;
+    return *frame;
 }
 
 void ShadingVM::run(const ShaderInstance& shader, const ShadingGrid& grid, const std::vector<LightRef>& lights) {
+    ++runCount_;
     grid_ = &grid;
     lights_ = &lights;
     if (lightResults_.size() < lights.size()) lightResults_.resize(lights.size());
@@ -69,6 +90,7 @@ void ShadingVM::run(const ShaderInstance& shader, const ShadingGrid& grid, const
 }
 
 void ShadingVM::bindParams(const ShaderInstance& shader, const ShadingGrid& grid) {
+    ++runCount_;
     grid_ = &grid;
     static const std::vector<LightRef> none;
     lights_ = &none;

@@ -129,6 +129,7 @@ class ShadingVM {
     const LightResult* currentLight_ = nullptr;
     const Matrix4* shaderSpace_ = nullptr;  // of the program running
     int randomCalls_ = 0;
+    uint64_t runCount_ = 0;
     ShadingGrid lightGrid_;  // the grid a light runs over: the surface's shape
     float lightOrigin_[3] = {0, 0, 0};
     std::vector<uint8_t> lit_;
