@@ -30,9 +30,10 @@ namespace {
 inline float fade(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
 
 // A gradient for a lattice point: components in [-1, 1] from the hash's bytes.
-inline float gradDot(uint32_t h, const float* d, int dims) {
+template <int D>
+inline float gradDot(uint32_t h, const float* d) {
     float s = 0;
-    for (int k = 0; k < dims; ++k) {
+    for (int k = 0; k < D; ++k) {
         uint32_t bits = (h >> (8 * k)) & 0xffu;
         if (k == 3) bits = ((h >> 24) ^ (h << 3)) & 0xffu;
         s += (float(bits) * (2.0f / 255.0f) - 1.0f) * d[k];
@@ -40,31 +41,36 @@ inline float gradDot(uint32_t h, const float* d, int dims) {
     return s;
 }
 
+// The lattice cell of a coordinate. Far out the lattice repeats (every 2^30), so that no float
+// beyond int's range is ever converted to an int.
+inline int32_t cellOf(float f) {
+    if (std::fabs(f) < 1073741824.0f) return int32_t(f);
+    return int32_t(std::fmod(double(f), 1073741824.0));
+}
+
 // Scale so that the signed noise fills about [-1, 1] (measured on many points).
 constexpr float kScale[5] = {0, 1.9f, 1.5f, 1.3f, 1.15f};
 
-}  // namespace
-
-float gradientNoise(int dims, const float* p, const int* period, uint32_t seed) {
-    int32_t base[4];
-    float frac[4], w[4];
-    for (int k = 0; k < dims; ++k) {
+template <int D>
+float gradientNoiseD(const float* p, const int* period, uint32_t seed) {
+    int32_t base[D];
+    float frac[D], w[D];
+    for (int k = 0; k < D; ++k) {
         const float pk = std::isfinite(p[k]) ? p[k] : 0.0f;
-        float f = std::floor(pk);
-        // Far out the lattice repeats (every 2^30): no float beyond int's range becomes an int.
-        base[k] = int32_t(std::fmod(double(f), 1073741824.0));
+        const float f = std::floor(pk);
+        base[k] = cellOf(f);
         frac[k] = pk - f;
         w[k] = fade(frac[k]);
     }
     float sum = 0;
-    for (int corner = 0; corner < (1 << dims); ++corner) {
-        int32_t lattice[4];
-        float d[4], weight = 1;
-        for (int k = 0; k < dims; ++k) {
+    for (int corner = 0; corner < (1 << D); ++corner) {
+        int32_t lattice[D];
+        float d[D], weight = 1;
+        for (int k = 0; k < D; ++k) {
             const int bit = (corner >> k) & 1;
             int32_t c = base[k] + bit;
             if (period) {
-                int per = std::max(1, period[k]);
+                const int per = std::max(1, period[k]);
                 c %= per;
                 if (c < 0) c += per;
             }
@@ -72,18 +78,26 @@ float gradientNoise(int dims, const float* p, const int* period, uint32_t seed) 
             d[k] = frac[k] - float(bit);
             weight *= bit ? w[k] : 1.0f - w[k];
         }
-        sum += weight * gradDot(hashInts(lattice, dims, seed), d, dims);
+        sum += weight * gradDot<D>(hashInts(lattice, D, seed), d);
     }
-    float n = 0.5f + 0.5f * kScale[dims] * sum;
+    const float n = 0.5f + 0.5f * kScale[D] * sum;
     return std::min(1.0f, std::max(0.0f, n));
+}
+
+}  // namespace
+
+float gradientNoise(int dims, const float* p, const int* period, uint32_t seed) {
+    switch (dims) {
+        case 1: return gradientNoiseD<1>(p, period, seed);
+        case 2: return gradientNoiseD<2>(p, period, seed);
+        case 3: return gradientNoiseD<3>(p, period, seed);
+        default: return gradientNoiseD<4>(p, period, seed);
+    }
 }
 
 float cellNoise(int dims, const float* p, uint32_t seed) {
     int32_t cell[4];
-    for (int k = 0; k < dims; ++k) {
-        const float pk = std::isfinite(p[k]) ? p[k] : 0.0f;
-        cell[k] = int32_t(std::fmod(double(std::floor(pk)), 1073741824.0));
-    }
+    for (int k = 0; k < dims; ++k) cell[k] = cellOf(std::floor(std::isfinite(p[k]) ? p[k] : 0.0f));
     return float(hashInts(cell, dims, seed ^ 0x5bd1e995u) >> 8) * (1.0f / 16777216.0f);
 }
 

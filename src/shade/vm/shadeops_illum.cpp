@@ -202,27 +202,47 @@ void ambient(Exec& x, const Instr& in) {
 namespace {
 
 // Sum over the lights that illuminate the points, within 90 degrees of N, of Cl times
-// term(normalized L, point).
+// term(normalized L, N, point). N is normalised once for all lights (for the cone test).
+thread_local std::vector<float> unitN;
+
 template <class Term>
 void sumLights(Exec& x, const RegView& d, const RegView& N, int Preg, bool specularOnes, Term term) {
     const std::vector<LightResult>& lights = x.vm.lightsAt(x, x.view(Preg));
     const size_t n = size_t(x.n);
     const float cosHalf = std::cos(kPi / 2);
+    if (unitN.size() < 3 * n) unitN.resize(3 * n);
+    float* nx = unitN.data();
+    float* ny = nx + n;
+    float* nz = ny + n;
+    for (int i = 0; i < d.w; ++i) {
+        V3 v = normalize3(load3(N, i));
+        nx[i] = v.x;
+        ny[i] = v.y;
+        nz[i] = v.z;
+    }
+    float* out0 = d.comp(0);
+    float* out1 = d.comp(1);
+    float* out2 = d.comp(2);
     for (int c = 0; c < 3; ++c) std::memset(d.comp(c), 0, sizeof(float) * size_t(d.w));
     for (size_t k = 0; k < x.vm.lightCount(); ++k) {
         const LightResult& l = lights[k];
         if (l.ambient || (specularOnes ? l.nonSpecular : l.nonDiffuse)) continue;
+        const float* lx = l.Ln.data();
+        const float* ly = lx + n;
+        const float* lz = ly + n;
+        const float* c0 = l.Cl.data();
+        const float* c1 = c0 + n;
+        const float* c2 = c1 + n;
+        const uint8_t* lit = l.lit.data();
         for (int i = 0; i < d.w; ++i) {
-            if (!l.lit[size_t(i)]) continue;
-            V3 ln = normalize3(lightVec(l.L, n, i));
-            V3 nn = load3(N, i);
-            if (dot3(ln, normalize3(nn)) < cosHalf) continue;
-            const float t = term(ln, nn, i);
+            if (!lit[i]) continue;
+            const V3 ln{lx[i], ly[i], lz[i]};
+            if (ln.x * nx[i] + ln.y * ny[i] + ln.z * nz[i] < cosHalf) continue;
+            const float t = term(ln, i);
             if (t <= 0) continue;
-            V3 cl = lightVec(l.Cl, n, i);
-            d.comp(0)[i] += cl.x * t;
-            d.comp(1)[i] += cl.y * t;
-            d.comp(2)[i] += cl.z * t;
+            out0[i] += c0[i] * t;
+            out1[i] += c1[i] * t;
+            out2[i] += c2[i] * t;
         }
     }
 }
@@ -238,18 +258,19 @@ inline float specularTerm(V3 l, V3 n, V3 v, float roughness) {
 
 void diffuse(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]), N = x.view(in.a[1]);
-    sumLights(x, d, N, in.a[2], false, [](V3 l, V3 n, int) { return dot3(l, n); });
+    sumLights(x, d, N, in.a[2], false, [&](V3 l, int i) { return dot3(l, load3(N, i)); });
 }
 
 void specular(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]), N = x.view(in.a[1]), V = x.view(in.a[2]), r = x.view(in.a[3]);
-    sumLights(x, d, N, in.a[4], true, [&](V3 l, V3 n, int i) { return specularTerm(l, n, load3(V, i), r.at(0, i)); });
+    sumLights(x, d, N, in.a[4], true,
+              [&](V3 l, int i) { return specularTerm(l, load3(N, i), load3(V, i), r.at(0, i)); });
 }
 
 void phong(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]), N = x.view(in.a[1]), V = x.view(in.a[2]), size = x.view(in.a[3]);
-    sumLights(x, d, N, in.a[4], true, [&](V3 l, V3 n, int i) {
-        V3 nn = normalize3(n), vv = normalize3(load3(V, i));
+    sumLights(x, d, N, in.a[4], true, [&](V3 l, int i) {
+        V3 nn = normalize3(load3(N, i)), vv = normalize3(load3(V, i));
         V3 r = sub3(mul3(vv, -1.0f), mul3(nn, 2.0f * dot3(mul3(vv, -1.0f), nn)));  // reflect(-V, N)
         return std::pow(std::max(0.0f, dot3(r, l)), size.at(0, i));
     });

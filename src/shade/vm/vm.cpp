@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <cstring>
 
 #include "shade/vm/frame.h"
@@ -304,16 +305,21 @@ void ShadingVM::sanitiseOutputs(Exec& x) {
     auto clean = [&](int r) {
         if (r < 0 || p.regs[size_t(r)].type.isString()) return;
         RegView d = x.view(r);
-        int bad = 0;
-        for (int c = 0; c < d.comps * d.elems; ++c) {
-            float* v = d.comp(c);
-            for (int i = 0; i < d.w; ++i)
-                if (!std::isfinite(v[i])) {
-                    v[i] = 0;
-                    ++bad;
-                }
+        const size_t count = size_t(d.comps) * size_t(d.elems) * size_t(d.w);
+        // A float is NaN or infinite when its exponent bits are all ones: test them all at
+        // once (vectorised), and replace only when something was found.
+        uint32_t any = 0;
+        for (size_t i = 0; i < count; ++i) {
+            uint32_t bits;
+            std::memcpy(&bits, d.p + i, 4);
+            any |= uint32_t((bits & 0x7f800000u) == 0x7f800000u);
         }
-        stats_.sanitised += uint64_t(bad);
+        if (!any) return;
+        for (size_t i = 0; i < count; ++i)
+            if (!std::isfinite(d.p[i])) {
+                d.p[i] = 0;
+                ++stats_.sanitised;
+            }
     };
     for (Global g : {Global::Ci, Global::Oi, Global::P, Global::N, Global::L, Global::Cl, Global::Ol, Global::alpha})
         clean(p.globalReg[int(g)]);
@@ -408,7 +414,11 @@ const std::vector<LightResult>& ShadingVM::lightsAt(Exec& x, const RegView& P) {
         bool same = r.valid && r.Ps.size() >= 3 * n;
         for (int c = 0; c < 3 && same; ++c) {
             const float* a = r.Ps.data() + size_t(c) * n;
-            for (size_t i = 0; i < n && same; ++i) same = a[i] == P.at(c, int(i));
+            if (P.varying) {
+                same = std::memcmp(a, P.comp(c), sizeof(float) * n) == 0;
+            } else {
+                for (size_t i = 0; i < n && same; ++i) same = a[i] == P.comp(c)[0];
+            }
         }
         if (!same) runLight(k, P);
     }
@@ -448,17 +458,37 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
 
     // Collect: L towards the light as the surface sees it, Cl, where it reached, outputs.
     res.ambient = !lp.illuminates;
-    res.L.assign(3 * n, 0.0f);
-    res.Cl.assign(3 * n, 0.0f);
     auto grab = [&](Global g, std::vector<float>& out, float sign) {
+        out.resize(3 * n);
         int r = lp.globalReg[int(g)];
-        if (r < 0) return;
+        if (r < 0) {
+            std::fill(out.begin(), out.end(), 0.0f);
+            return;
+        }
         ValueRef v = view(f, r);
-        for (int c = 0; c < 3; ++c)
-            for (size_t i = 0; i < n; ++i) out[size_t(c) * n + i] = sign * v.at(c, int(i));
+        for (int c = 0; c < 3; ++c) {
+            float* o = out.data() + size_t(c) * n;
+            if (v.stride == 1 && sign == 1) {
+                std::memcpy(o, v.comp[c], sizeof(float) * n);
+            } else {
+                for (size_t i = 0; i < n; ++i) o[i] = sign * v.at(c, int(i));
+            }
+        }
     };
     grab(Global::Cl, res.Cl, 1);
-    if (!res.ambient) grab(Global::L, res.L, -1);
+    if (res.ambient) {
+        res.L.assign(3 * n, 0.0f);
+        res.Ln.assign(3 * n, 0.0f);
+    } else {
+        grab(Global::L, res.L, -1);
+        res.Ln.resize(3 * n);
+        for (size_t i = 0; i < n; ++i) {
+            V3 l = normalize3({res.L[i], res.L[n + i], res.L[2 * n + i]});
+            res.Ln[i] = l.x;
+            res.Ln[n + i] = l.y;
+            res.Ln[2 * n + i] = l.z;
+        }
+    }
     res.lit = lit_;
     res.shader = ref.shader;
     res.nonDiffuse = res.nonSpecular = false;

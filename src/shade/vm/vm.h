@@ -40,6 +40,7 @@ struct LightResult {
     std::string category;   // __category
     std::vector<float> Ps;  // the positions it ran for (3 x n)
     std::vector<float> L, Cl;  // 3 x n each
+    std::vector<float> Ln;     // L normalised (3 x n): what diffuse, specular and phong use
     std::vector<uint8_t> lit;  // 1 where an illuminate or solar statement reached the point
     const ShaderInstance* shader = nullptr;
     // Output parameters after the run, for lightsource(): floats (all points when varying)
