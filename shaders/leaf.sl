@@ -8,7 +8,7 @@ surface leaf(float Ka = 1; float Kd = .7; float Ks = .08; float roughness = .25;
     normal Nf = faceforward(normalize(N), I);
     vector V = -normalize(I);
     float x = abs(2 * s - 1);  /* 0 on the midrib, 1 at the patch's sides */
-    float halfwidth = 2 * width * pow(sin(PI * t), .75) * (1 - .3 * t);
+    float halfwidth = 2 * width * pow(max(0, sin(PI * t)), .75) * (1 - .3 * t);
     float inside = 1 - filterstep(halfwidth, x);
     /* midrib and side veins running out towards the tip */
     float rib = 1 - smoothstep(.015, .04, x);

@@ -18,6 +18,7 @@ namespace streyes::sl {
 
 struct Frame {
     const ShaderProgram* prog = nullptr;
+    ProgramPtr keep;                // holds the program while its registers may be read
     uint64_t programId = 0;         // which program (addresses of freed programs come back)
     uint64_t lastRun = 0;           // the VM's run counter when last used
     bool constantsLoaded = false;
@@ -33,7 +34,7 @@ struct Frame {
     uint8_t* cont(int d) { return conts.data() + std::size_t(d) * std::size_t(n); }
 
     // Sizes everything for `p` over n points (allocating only when growing).
-    void prepare(const ShaderProgram& p, int points);
+    void prepare(const ProgramPtr& p, int points);
 };
 
 // Makes level d current and counts its points.

@@ -1,7 +1,9 @@
 // Strings: printf, format, concat, match, comparisons and string arrays. Strings are uniform:
 // format() of varying values formats the first point that runs.
+#include <regex.h>
+
+#include <algorithm>
 #include <cstdio>
-#include <regex>
 
 #include "shade/vm/ops.h"
 #include "shade/vm/vm.h"
@@ -106,13 +108,14 @@ void concat(Exec& x, const Instr& in) {
     x.str(in.a[0]) = s;
 }
 
-// match(pattern, subject): 1 when the regular expression is found in the subject.
+// match(pattern, subject): 1 when the (POSIX extended) regular expression is found in the
+// subject; a bad pattern matches nothing.
 void match(Exec& x, const Instr& in) {
     float r = 0;
-    try {
-        r = std::regex_search(x.str(in.a[2]), std::regex(x.str(in.a[1]))) ? 1.0f : 0.0f;
-    } catch (const std::regex_error&) {
-        r = 0;
+    regex_t re;
+    if (regcomp(&re, x.str(in.a[1]).c_str(), REG_EXTENDED | REG_NOSUB) == 0) {
+        r = regexec(&re, x.str(in.a[2]).c_str(), 0, nullptr, 0) == 0 ? 1.0f : 0.0f;
+        regfree(&re);
     }
     x.ptr(in.a[0])[0] = r;
 }

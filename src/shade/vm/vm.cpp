@@ -11,12 +11,14 @@ namespace streyes::sl {
 
 void Exec::sanitised(int count) const { stats.sanitised += uint64_t(count); }
 
-void Frame::prepare(const ShaderProgram& p, int points) {
+void Frame::prepare(const ProgramPtr& program, int points) {
+    const ShaderProgram& p = *program;
     if (prog != &p || programId != p.id) {
         prog = &p;
         programId = p.id;
         constantsLoaded = false;
     }
+    if (keep != program) keep = program;
     n = points;
     const size_t need = size_t(p.uniformFloats) + size_t(p.varyingArrays) * size_t(n);
     if (arena.size() < need) arena.resize(need);
@@ -103,7 +105,7 @@ void ShadingVM::bindParams(const ShaderInstance& shader, const ShadingGrid& grid
 void ShadingVM::runFrame(Frame& f, const ShaderInstance& shader, const ShadingGrid& grid, const Matrix4* shaderSpace,
                          bool body) {
     const ShaderProgram& p = shader.program();
-    f.prepare(p, grid.n);
+    f.prepare(shader.programPtr(), grid.n);
     Exec x(*this, f, p, grid, stats_);
     x.uni = f.arena.data();
     x.vary = x.uni + p.uniformFloats;

@@ -68,8 +68,9 @@ class ShadingVM {
     // parameter's) throw InputError at the primitive variable's location.
     void run(const ShaderInstance& shader, const ShadingGrid& grid, const std::vector<LightRef>& lights = {});
 
-    // After run: a predefined variable's final value (Ci, Oi, P, N ...). A variable the shader
-    // never touched is the grid's input, or an invalid ValueRef when there was none.
+    // After run: a predefined variable's final value (Ci, Oi, P, N ...), valid until the next
+    // run. A variable the shader never touched is the grid's input (valid while the caller's
+    // arrays are), or an invalid ValueRef when there was none.
     ValueRef result(Global g) const;
     // After run: an output parameter's value (invalid if there is none by that name).
     ValueRef output(const std::string& name) const;
