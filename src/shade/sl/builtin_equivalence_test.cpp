@@ -1,4 +1,4 @@
-// The shipped constant, matte and plastic with ambientlight, distantlight and pointlight give
+// The shipped constant, matte, plastic and defaultsurface with ambientlight, distantlight and pointlight give
 // the numbers of the renderer's built-in shading (src/shade/shading.cpp) when N = Ng: the
 // built-in turns N towards the eye by N itself, RenderMan's faceforward by Ng.
 #include <gtest/gtest.h>
@@ -54,7 +54,8 @@ TEST(SlShaders, StandardShadersReproduceTheBuiltInShading) {
         const char* name;
         SurfaceKind kind;
     };
-    for (Case c : {Case{"constant", SurfaceKind::Constant}, Case{"matte", SurfaceKind::Matte}, Case{"plastic", SurfaceKind::Plastic}}) {
+    for (Case c : {Case{"constant", SurfaceKind::Constant}, Case{"matte", SurfaceKind::Matte},
+                   Case{"plastic", SurfaceKind::Plastic}, Case{"defaultsurface", SurfaceKind::Default}}) {
         SCOPED_TRACE(c.name);
         Material m;
         m.kind = c.kind;

@@ -25,7 +25,7 @@ TEST(SlShaders, EveryShippedShaderCompiles) {
         }
         ++count;
     }
-    EXPECT_GE(count, 17);
+    EXPECT_GE(count, 18);
 }
 
 }  // namespace
