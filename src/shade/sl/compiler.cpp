@@ -144,7 +144,10 @@ int describeShader(const std::string& path, std::ostream& out, std::ostream& err
             for (size_t i = 0; i < info.defaultFloats.size(); ++i) out << (i ? " " : "") << info.defaultFloats[i];
             if (many) out << "]";
         }
-        if (!info.defaultText.empty()) out << "  (" << info.defaultText << ")";
+        // The expression as written, when it says more than the value (radians(30), a space).
+        if (info.defaultText.find_first_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ(") != std::string::npos &&
+            !info.type.isString())
+            out << "  (" << info.defaultText << ")";
         out << "\n";
     }
     return 0;
