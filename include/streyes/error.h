@@ -19,7 +19,8 @@ namespace streyes {
 struct SourceLoc {
     std::shared_ptr<const std::string> file;
     int line = 0;
-    std::string str() const;  // "scene.rib:12", or "" when unknown
+    int column = 0;           // 1-based; 0 when unknown (RIB locations carry lines only)
+    std::string str() const;  // "scene.rib:12" ("shader.sl:12:5" with a column), or "" when unknown
 };
 
 class InputError : public std::runtime_error {

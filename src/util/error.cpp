@@ -6,7 +6,8 @@ namespace streyes {
 
 std::string SourceLoc::str() const {
     if (!file) return "";
-    return *file + ":" + std::to_string(line);
+    std::string s = *file + ":" + std::to_string(line);
+    return column > 0 ? s + ":" + std::to_string(column) : s;
 }
 
 static std::string withLoc(const SourceLoc& loc, const std::string& what) {

@@ -1,0 +1,51 @@
+// Once warm, shading a grid allocates nothing: the VM keeps its registers, masks and light
+// results between grids. Counted with a replacement of the global operator new that counts on
+// the thread that asks (the rest of the test binary sees plain malloc and free).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <new>
+
+#include "shade/vm/vm_test_util.h"
+
+namespace {
+thread_local bool counting = false;
+thread_local size_t allocations = 0;
+}  // namespace
+
+void* operator new(std::size_t n) {
+    if (counting) ++allocations;
+    if (void* p = std::malloc(n ? n : 1)) return p;
+    throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace streyes::sl {
+namespace {
+
+TEST(VmAllocation, NoneOnceWarm) {
+    test::TestGrid g(16, 16);
+    g.setVarying(Global::P, 3, [](int k) { return Vec3f{float(k % 17) * 0.1f, float(k / 17) * 0.1f, 5}; });
+    g.setVarying(Global::N, 3, [](int k) { return Vec3f{0.01f * float(k % 17), 0, -1}; });
+    ShaderInstance amb(compileShaderFile(test::shaderPath("ambientlight")));
+    ShaderInstance sun(compileShaderFile(test::shaderPath("distantlight")));
+    ShaderInstance spot(compileShaderFile(test::shaderPath("spotlight")));
+    std::vector<LightRef> lights{{&amb, Matrix4()}, {&sun, Matrix4()}, {&spot, Matrix4::translate({0, 0, -1})}};
+    for (const char* name : {"matte", "plastic", "ground", "bark", "leaf"}) {
+        SCOPED_TRACE(name);
+        ShaderInstance inst(compileShaderFile(test::shaderPath(name)));
+        ShadingVM vm;
+        vm.run(inst, g.grid, lights);  // warm up
+        vm.run(inst, g.grid, lights);
+        allocations = 0;
+        counting = true;
+        for (int k = 0; k < 10; ++k) vm.run(inst, g.grid, lights);
+        counting = false;
+        EXPECT_EQ(allocations, 0u);
+        EXPECT_EQ(vm.stats().lightRuns, 12u * 3u);  // each light once per grid
+    }
+}
+
+}  // namespace
+}  // namespace streyes::sl

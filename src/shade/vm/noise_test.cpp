@@ -1,0 +1,123 @@
+// Noise: deterministic, in [0, 1], continuous, periodic where asked, and cell noise constant
+// over cells.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "shade/vm/noise.h"
+#include "shade/vm/vm_test_util.h"
+
+namespace streyes::sl {
+namespace {
+
+TEST(VmNoise, InRangeAndSpread) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> d(-100, 100);
+    for (int dims = 1; dims <= 4; ++dims) {
+        float lo = 1, hi = 0;
+        double sum = 0;
+        const int count = 100000;
+        for (int k = 0; k < count; ++k) {
+            float p[4] = {d(rng), d(rng), d(rng), d(rng)};
+            float v = gradientNoise(dims, p);
+            ASSERT_GE(v, 0.0f);
+            ASSERT_LE(v, 1.0f);
+            lo = std::min(lo, v);
+            hi = std::max(hi, v);
+            sum += v;
+        }
+        EXPECT_NEAR(sum / count, 0.5, 0.01) << dims;
+        EXPECT_LT(lo, 0.15f) << dims;  // it uses its range
+        EXPECT_GT(hi, 0.85f) << dims;
+    }
+}
+
+TEST(VmNoise, DeterministicAndHalfOnTheLattice) {
+    float p[3] = {1.25f, -7.5f, 3.75f};
+    EXPECT_EQ(gradientNoise(3, p), gradientNoise(3, p));
+    float q[3] = {4, -2, 9};
+    EXPECT_FLOAT_EQ(gradientNoise(3, q), 0.5f);
+    EXPECT_NE(gradientNoise(3, p, nullptr, 1), gradientNoise(3, p, nullptr, 2));  // channels differ
+    // Values are fixed by the code, not by a run-time table: this one never changes.
+    float r[2] = {0.3f, 0.7f};
+    EXPECT_EQ(gradientNoise(2, r), gradientNoise(2, r));
+}
+
+TEST(VmNoise, Continuous) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> d(-50, 50);
+    const float h = 1e-3f;
+    for (int dims = 1; dims <= 4; ++dims) {
+        float worst = 0;
+        for (int k = 0; k < 20000; ++k) {
+            float p[4] = {d(rng), d(rng), d(rng), d(rng)}, q[4];
+            for (int c = 0; c < 4; ++c) q[c] = p[c] + h;
+            worst = std::max(worst, std::fabs(gradientNoise(dims, p) - gradientNoise(dims, q)));
+        }
+        EXPECT_LT(worst, 0.01f) << dims;  // a gradient bounded by ~5 per unit
+    }
+}
+
+TEST(VmNoise, PeriodicAndCellNoise) {
+    int period[3] = {3, 5, 7};
+    for (float x = 0.1f; x < 4; x += 0.37f) {
+        float p[3] = {x, 2 * x, 0.5f}, q[3] = {x + 3, 2 * x + 10, 0.5f - 7};
+        EXPECT_NEAR(gradientNoise(3, p, period), gradientNoise(3, q, period), 1e-5f);
+    }
+    float a[2] = {2.1f, 5.9f}, b[2] = {2.8f, 5.05f}, c[2] = {3.1f, 5.5f};
+    EXPECT_EQ(cellNoise(2, a), cellNoise(2, b));
+    EXPECT_NE(cellNoise(2, a), cellNoise(2, c));
+    EXPECT_GE(cellNoise(2, a), 0.0f);
+    EXPECT_LT(cellNoise(2, a), 1.0f);
+    float nan[1] = {std::nanf("")};
+    EXPECT_FLOAT_EQ(gradientNoise(1, nan), 0.5f);  // no undefined conversion of NaN
+}
+
+TEST(VmNoise, ShadingLanguageForms) {
+    const char* src = R"(
+        surface s(output varying float f = 0; output varying color c = 0; output varying point p = 0;
+                  output varying float pn = 0; output varying float pn2 = 0; output varying float cn = 0;
+                  output varying float r1 = 0; output varying float r2 = 0) {
+            f = noise(P);
+            c = color noise(P, 1.5);
+            p = point noise(u * 10);
+            pn = pnoise(u * 10, 4);
+            pn2 = pnoise(u * 10 + 4, 4);
+            cn = cellnoise(u * 10);
+            r1 = random();
+            r2 = random();
+            Ci = 0;
+        })";
+    test::TestGrid g(50);
+    g.setVarying(Global::P, 3, [](int i) { return Vec3f{0.37f * float(i), 1.1f, -2.3f}; });
+    g.setVarying(Global::u, 1, [](int i) { return Vec3f{float(i) / 49.0f, 0, 0}; });
+    ShaderInstance inst(test::compile(src));
+    ShadingVM vm;
+    vm.run(inst, g.grid);
+    ValueRef f = vm.output("f"), c = vm.output("c"), p = vm.output("p"), pn = vm.output("pn"), pn2 = vm.output("pn2");
+    ValueRef r1 = vm.output("r1"), r2 = vm.output("r2");
+    int differ = 0;
+    for (int i = 0; i < 50; ++i) {
+        float q[3] = {0.37f * float(i), 1.1f, -2.3f};
+        EXPECT_EQ(f.at(0, i), gradientNoise(3, q));
+        EXPECT_NE(c.at(0, i), c.at(1, i));
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_GE(c.at(k, i), 0.0f);
+            EXPECT_LE(p.at(k, i), 1.0f);
+        }
+        EXPECT_NEAR(pn.at(0, i), pn2.at(0, i), 1e-5f);
+        EXPECT_GE(r1.at(0, i), 0.0f);
+        EXPECT_LT(r1.at(0, i), 1.0f);
+        differ += r1.at(0, i) != r2.at(0, i);
+    }
+    EXPECT_EQ(differ, 50);
+    // The same grid again: the same random numbers (reproducible renders).
+    std::vector<float> before;
+    for (int i = 0; i < 50; ++i) before.push_back(r1.at(0, i));
+    vm.run(inst, g.grid);
+    for (int i = 0; i < 50; ++i) EXPECT_EQ(vm.output("r1").at(0, i), before[size_t(i)]);
+}
+
+}  // namespace
+}  // namespace streyes::sl

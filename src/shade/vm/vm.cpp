@@ -1,0 +1,525 @@
+#include "shade/vm/vm.h"
+
+#include <cmath>
+#include <cstdio>
+#include <algorithm>
+#include <cstring>
+
+#include "shade/vm/frame.h"
+
+namespace streyes::sl {
+
+void Exec::sanitised(int count) const { stats.sanitised += uint64_t(count); }
+
+void Frame::prepare(const ProgramPtr& program, int points) {
+    const ShaderProgram& p = *program;
+    if (prog != &p || programId != p.id) {
+        prog = &p;
+        programId = p.id;
+        constantsLoaded = false;
+    }
+    if (keep != program) keep = program;
+    n = points;
+    const size_t need = size_t(p.uniformFloats) + size_t(p.varyingArrays) * size_t(n);
+    if (arena.size() < need) arena.resize(need);
+    if (strs.size() < size_t(p.stringSlots)) strs.resize(size_t(p.stringSlots));
+    const size_t levels = size_t(p.maxMaskDepth) + 2;
+    if (masks.size() < levels * size_t(n)) {
+        masks.resize(levels * size_t(n));
+        conts.resize(levels * size_t(n));
+    }
+    if (lightIndex.size() < levels) lightIndex.resize(levels);
+    if (!constantsLoaded) {
+        // Constants live in the uniform area, whose layout does not depend on n: load once.
+        for (const Register& r : p.regs) {
+            if (r.constant < 0) continue;
+            if (r.type.isString()) {
+                strs[size_t(r.slot)] = p.constStrings[size_t(r.constant)];
+            } else {
+                for (int k = 0; k < r.floats(); ++k) arena[size_t(r.slot + k)] = p.constFloats[size_t(r.constant + k)];
+            }
+        }
+        constantsLoaded = true;
+    }
+    depth = 0;
+}
+
+ShadingVM::ShadingVM() = default;
+ShadingVM::~ShadingVM() = default;
+
+void ShadingVM::print(const std::string& s) const {
+    if (print_) print_(s);
+    else std::fprintf(stderr, "%s", s.c_str());
+}
+
+Frame& ShadingVM::frameFor(const ShaderProgram& p) {
+    for (auto& f : frames_)
+        if (f->prog == &p && f->programId == p.id) {
+            f->lastRun = runCount_;
+            return *f;
+        }
+    // A new frame, or (past kMaxFrames) the one unused longest, never one of this run's.
+    constexpr size_t kMaxFrames = 32;
+    Frame* frame = nullptr;
+    if (frames_.size() < kMaxFrames) {
+        frames_.push_back(std::make_unique<Frame>());
+        frame = frames_.back().get();
+    } else {
+        for (auto& f : frames_)
+            if (f->lastRun != runCount_ && (!frame || f->lastRun < frame->lastRun)) frame = f.get();
+        if (!frame) {
+            frames_.push_back(std::make_unique<Frame>());
+            frame = frames_.back().get();
+        }
+    }
+    frame->prog = nullptr;
+    frame->programId = 0;
+    frame->lastRun = runCount_;
+    return *frame;
+}
+
+void ShadingVM::run(const ShaderInstance& shader, const ShadingGrid& grid, const std::vector<LightRef>& lights) {
+    ++runCount_;
+    grid_ = &grid;
+    lights_ = &lights;
+    if (lightResults_.size() < lights.size()) lightResults_.resize(lights.size());
+    for (size_t i = 0; i < lights.size(); ++i) lightResults_[i].valid = false;
+    randomCalls_ = 0;
+    currentLight_ = nullptr;
+    Frame& f = frameFor(shader.program());
+    top_ = &f;
+    runFrame(f, shader, grid, &grid.toCurrent[size_t(Space::Shader)]);
+    stats_.points += uint64_t(grid.n);
+}
+
+void ShadingVM::bindParams(const ShaderInstance& shader, const ShadingGrid& grid) {
+    ++runCount_;
+    grid_ = &grid;
+    static const std::vector<LightRef> none;
+    lights_ = &none;
+    Frame& f = frameFor(shader.program());
+    top_ = &f;
+    runFrame(f, shader, grid, &grid.toCurrent[size_t(Space::Shader)], false);
+}
+
+void ShadingVM::runFrame(Frame& f, const ShaderInstance& shader, const ShadingGrid& grid, const Matrix4* shaderSpace,
+                         bool body) {
+    const ShaderProgram& p = shader.program();
+    f.prepare(shader.programPtr(), grid.n);
+    Exec x(*this, f, p, grid, stats_);
+    x.uni = f.arena.data();
+    x.vary = x.uni + p.uniformFloats;
+    x.strs = f.strs.data();
+    x.n = grid.n;
+    std::memset(f.mask(0), 1, size_t(grid.n));
+    setLevel(x, 0);
+    const Matrix4* savedSpace = shaderSpace_;
+    shaderSpace_ = shaderSpace;
+    bindGlobals(x, grid);
+    bindParamValues(x, shader, grid);
+    if (body) {
+        execute(x, p.bodyBegin, int(p.code.size()));
+        sanitiseOutputs(x);
+    }
+    shaderSpace_ = savedSpace;
+    ++stats_.grids;
+}
+
+void ShadingVM::execute(Exec& x, int begin, int end) {
+    const Instr* code = x.prog.code.data();
+    uint64_t count = 0, lanes = 0;
+    x.pc = begin;
+    while (x.pc < end) {
+        const Instr& in = code[x.pc++];
+        in.fn(x, in);
+        ++count;
+        lanes += in.varying ? uint64_t(x.n) : 1u;
+    }
+    stats_.instructions += count;
+    stats_.laneOps += lanes;
+}
+
+// ---- Binding ---------------------------------------------------------------------------------------
+
+namespace {
+
+void fill(const RegView& d, float v) {
+    for (int c = 0; c < d.comps * d.elems; ++c)
+        for (int i = 0; i < d.w; ++i) d.comp(c)[i] = v;
+}
+
+void copyIn(const RegView& d, const ValueRef& s) {
+    for (int c = 0; c < d.comps && c < 3; ++c) {
+        float* out = d.comp(c);
+        const float* in = s.comp[c] ? s.comp[c] : s.comp[0];
+        if (s.stride == 0) {
+            for (int i = 0; i < d.w; ++i) out[i] = in[0];
+        } else if (s.stride == 1) {
+            std::memcpy(out, in, sizeof(float) * size_t(d.w));
+        } else {
+            for (int i = 0; i < d.w; ++i) out[i] = in[std::ptrdiff_t(i) * s.stride];
+        }
+    }
+}
+
+// A primitive variable of type `a` can bind a parameter of type `b`.
+bool compatible(SlType a, SlType b) {
+    return a == b || (a.arrayLen == b.arrayLen && a.element().isPointLike() && b.element().isPointLike());
+}
+
+// Moves a point-like value from "shader" space to current space.
+void fromShaderSpace(float* v, BaseType b, const Matrix4& m) {
+    Vec3d p(v[0], v[1], v[2]), q;
+    if (b == BaseType::Point) {
+        q = m.point(p);
+    } else if (b == BaseType::Vector) {
+        q = m.vector(p);
+    } else {  // normals: by the inverse transpose
+        Matrix4 inv;
+        if (!invert(m, &inv)) return;
+        q = {inv(0, 0) * p.x + inv(0, 1) * p.y + inv(0, 2) * p.z, inv(1, 0) * p.x + inv(1, 1) * p.y + inv(1, 2) * p.z,
+             inv(2, 0) * p.x + inv(2, 1) * p.y + inv(2, 2) * p.z};
+    }
+    v[0] = float(q.x);
+    v[1] = float(q.y);
+    v[2] = float(q.z);
+}
+
+}  // namespace
+
+void ShadingVM::bindGlobals(Exec& x, const ShadingGrid& g) {
+    const ShaderProgram& p = x.prog;
+    auto in = [&](Global k) -> const ValueRef& { return g.globals[size_t(k)]; };
+    for (int k = 0; k < kGlobalCount; ++k) {
+        const int r = p.globalReg[k];
+        if (r < 0) continue;
+        RegView d = x.view(r);
+        const Global gk = Global(k);
+        const ValueRef& src = in(gk);
+        if (src.valid()) {
+            copyIn(d, src);
+            continue;
+        }
+        switch (gk) {
+            case Global::N:
+            case Global::Ng: {
+                const ValueRef& other = in(gk == Global::N ? Global::Ng : Global::N);
+                if (other.valid()) copyIn(d, other);
+                else fill(d, 0);
+                break;
+            }
+            case Global::I:
+                for (int i = 0; i < d.w; ++i)
+                    for (int c = 0; c < 3; ++c) {
+                        float P = in(Global::P).valid() ? in(Global::P).at(c, i) : 0.0f;
+                        float E = in(Global::E).valid() ? in(Global::E).at(c, 0) : 0.0f;
+                        d.comp(c)[i] = P - E;
+                    }
+                break;
+            case Global::Ps:
+                if (in(Global::P).valid()) copyIn(d, in(Global::P));
+                else fill(d, 0);
+                break;
+            case Global::Oi:
+                if (in(Global::Os).valid()) copyIn(d, in(Global::Os));
+                else fill(d, 1);
+                break;
+            case Global::Cs:
+            case Global::Os:
+            case Global::alpha: fill(d, 1); break;
+            case Global::ncomps: fill(d, 3); break;
+            case Global::u:
+            case Global::v:
+            case Global::s:
+            case Global::t: {
+                // Without values: the grid's own parameterisation (s, t default to u, v).
+                const bool alongU = gk == Global::u || gk == Global::s;
+                const ValueRef& uv = in(alongU ? Global::u : Global::v);
+                if (uv.valid()) {
+                    copyIn(d, uv);
+                } else if (g.nu > 0 && g.nv > 0) {
+                    for (int i = 0; i < d.w; ++i) {
+                        int iu = i % (g.nu + 1), iv = i / (g.nu + 1);
+                        d.p[i] = alongU ? float(iu) / float(g.nu) : float(iv) / float(g.nv);
+                    }
+                } else {
+                    fill(d, 0);
+                }
+                break;
+            }
+            case Global::du: fill(d, g.nu > 0 ? 1.0f / float(g.nu) : 0.0f); break;
+            case Global::dv: fill(d, g.nv > 0 ? 1.0f / float(g.nv) : 0.0f); break;
+            default: fill(d, 0); break;
+        }
+    }
+}
+
+void ShadingVM::bindParamValues(Exec& x, const ShaderInstance& shader, const ShadingGrid& g) {
+    const ShaderProgram& p = x.prog;
+    for (size_t k = 0; k < p.params.size(); ++k) {
+        const ParamInfo& info = p.params[k];
+        RegView d = x.view(info.reg);
+        // A primitive variable of the same name first.
+        const Primvar* pv = nullptr;
+        if (g.primvars)
+            for (const Primvar& v : *g.primvars)
+                if (v.name == info.name) pv = &v;
+        if (pv) {
+            if (!compatible(pv->type, info.type))
+                throw InputError(pv->loc, "primitive variable \"" + pv->name + "\" is a " + pv->type.name() +
+                                              "; shader \"" + p.name + "\" declares it " + info.type.name());
+            if (info.type.isString()) {
+                for (int e = 0; e < info.type.elements() && e < int(pv->strings.size()); ++e) x.str(info.reg, e) = pv->strings[size_t(e)];
+                continue;
+            }
+            if (info.type.isMatrix()) {
+                for (int c = 0; c < 16; ++c)
+                    for (int i = 0; i < d.w; ++i) d.comp(c)[i] = pv->matrix ? pv->matrix[c] : (c % 5 == 0 ? 1.0f : 0.0f);
+                continue;
+            }
+            if (pv->value.varying() && !d.varying)
+                throw InputError(pv->loc, "primitive variable \"" + pv->name + "\" varies over the surface; shader \"" +
+                                              p.name + "\" declares it uniform");
+            copyIn(d, pv->value);
+            continue;
+        }
+        if (const ShaderInstance::Value* v = shader.value(int(k))) {
+            if (info.type.isString()) {
+                for (int e = 0; e < info.type.elements() && e < int(v->strings.size()); ++e) x.str(info.reg, e) = v->strings[size_t(e)];
+                continue;
+            }
+            const int comps = info.type.comps();
+            for (int e = 0; e < info.type.elements(); ++e) {
+                float val[16];
+                for (int c = 0; c < comps; ++c) val[c] = v->floats[size_t(e * comps + c)];
+                if (info.type.element().isPointLike() && shaderSpace_) fromShaderSpace(val, info.type.base, *shaderSpace_);
+                for (int c = 0; c < comps; ++c)
+                    for (int i = 0; i < d.w; ++i) d.comp(c, e)[i] = val[c];
+            }
+            continue;
+        }
+        execute(x, info.initBegin, info.initEnd);
+    }
+}
+
+void ShadingVM::sanitiseOutputs(Exec& x) {
+    const ShaderProgram& p = x.prog;
+    auto clean = [&](int r) {
+        if (r < 0 || p.regs[size_t(r)].type.isString()) return;
+        RegView d = x.view(r);
+        const size_t count = size_t(d.comps) * size_t(d.elems) * size_t(d.w);
+        // A float is NaN or infinite when its exponent bits are all ones: test them all at
+        // once (vectorised), and replace only when something was found.
+        uint32_t any = 0;
+        for (size_t i = 0; i < count; ++i) {
+            uint32_t bits;
+            std::memcpy(&bits, d.p + i, 4);
+            any |= uint32_t((bits & 0x7f800000u) == 0x7f800000u);
+        }
+        if (!any) return;
+        for (size_t i = 0; i < count; ++i)
+            if (!std::isfinite(d.p[i])) {
+                d.p[i] = 0;
+                ++stats_.sanitised;
+            }
+    };
+    for (Global g : {Global::Ci, Global::Oi, Global::P, Global::N, Global::L, Global::Cl, Global::Ol, Global::alpha})
+        clean(p.globalReg[int(g)]);
+    for (const ParamInfo& info : p.params)
+        if (info.output) clean(info.reg);
+}
+
+// ---- Results ---------------------------------------------------------------------------------------
+
+ValueRef ShadingVM::view(const Frame& f, int reg, int element) const {
+    const Register& r = f.prog->regs[size_t(reg)];
+    const float* base = f.arena.data() + (r.varying() ? size_t(f.prog->uniformFloats) + size_t(r.slot) * size_t(f.n) : size_t(r.slot));
+    const size_t w = r.varying() ? size_t(f.n) : 1;
+    ValueRef v;
+    const int comps = r.type.comps();
+    for (int c = 0; c < comps && c < 3; ++c) v.comp[c] = base + (size_t(element) * size_t(comps) + size_t(c)) * w;
+    v.stride = r.varying() ? 1 : 0;
+    return v;
+}
+
+ValueRef ShadingVM::result(Global g) const {
+    if (top_ && top_->prog) {
+        int r = top_->prog->globalReg[int(g)];
+        if (r >= 0) return view(*top_, r);
+    }
+    return grid_ ? grid_->globals[size_t(g)] : ValueRef{};
+}
+
+ValueRef ShadingVM::param(const std::string& name, int element) const {
+    if (!top_ || !top_->prog) return {};
+    const ParamInfo* info = top_->prog->findParam(name);
+    if (!info || info->type.isString() || element >= info->type.elements()) return {};
+    return view(*top_, info->reg, element);
+}
+
+ValueRef ShadingVM::output(const std::string& name) const {
+    if (!top_ || !top_->prog) return {};
+    const ParamInfo* info = top_->prog->findParam(name);
+    if (!info || !info->output) return {};
+    return param(name);
+}
+
+std::vector<std::string> ShadingVM::paramStrings(const std::string& name) const {
+    std::vector<std::string> out;
+    if (!top_ || !top_->prog) return out;
+    const ParamInfo* info = top_->prog->findParam(name);
+    if (!info || !info->type.isString()) return out;
+    const Register& r = top_->prog->regs[size_t(info->reg)];
+    for (int e = 0; e < info->type.elements(); ++e) out.push_back(top_->strs[size_t(r.slot + e)]);
+    return out;
+}
+
+// ---- Spaces ----------------------------------------------------------------------------------------
+
+bool ShadingVM::spaceToCurrent(const std::string& name, float m[16]) {
+    const Matrix4* found = nullptr;
+    static const Matrix4 identity;
+    for (int s = 0; s < kSpaceCount; ++s) {
+        if (name != spaceName(Space(s))) continue;
+        if (Space(s) == Space::Current || Space(s) == Space::Camera) found = &identity;
+        else if ((Space(s) == Space::Shader || Space(s) == Space::Object) && shaderSpace_) found = shaderSpace_;
+        else found = &grid_->toCurrent[size_t(s)];
+    }
+    if (!found && grid_ && grid_->coordinateSystems)
+        for (const NamedSpace& ns : *grid_->coordinateSystems)
+            if (ns.name == name) found = &ns.toCurrent;
+    if (!found) {
+        ++stats_.unknownSpaces;
+        for (int k = 0; k < 16; ++k) m[k] = k % 5 == 0 ? 1.0f : 0.0f;
+        return false;
+    }
+    for (int k = 0; k < 16; ++k) m[k] = float(found->m[size_t(k)]);
+    return true;
+}
+
+bool ShadingVM::currentToSpace(const std::string& name, float m[16]) {
+    float f[16];
+    bool ok = spaceToCurrent(name, f);
+    Matrix4 a, inv;
+    for (int k = 0; k < 16; ++k) a.m[size_t(k)] = f[k];
+    if (!invert(a, &inv)) inv = Matrix4();
+    for (int k = 0; k < 16; ++k) m[k] = float(inv.m[size_t(k)]);
+    return ok;
+}
+
+// ---- Lights ----------------------------------------------------------------------------------------
+
+const std::vector<LightResult>& ShadingVM::lightsAt(Exec& x, const RegView& P) {
+    const size_t n = size_t(x.n);
+    for (size_t k = 0; k < lights_->size(); ++k) {
+        LightResult& r = lightResults_[k];
+        bool same = r.valid && r.Ps.size() >= 3 * n;
+        for (int c = 0; c < 3 && same; ++c) {
+            const float* a = r.Ps.data() + size_t(c) * n;
+            if (P.varying) {
+                same = std::memcmp(a, P.comp(c), sizeof(float) * n) == 0;
+            } else {
+                for (size_t i = 0; i < n && same; ++i) same = a[i] == P.comp(c)[0];
+            }
+        }
+        if (!same) runLight(k, P);
+    }
+    return lightResults_;
+}
+
+void ShadingVM::runLight(size_t index, const RegView& P) {
+    const LightRef& ref = (*lights_)[index];
+    LightResult& res = lightResults_[index];
+    const ShaderProgram& lp = ref.shader->program();
+    const size_t n = size_t(grid_->n);
+    // Its positions, kept to reuse the results while P stays the same.
+    res.Ps.resize(3 * n);
+    for (int c = 0; c < 3; ++c)
+        for (size_t i = 0; i < n; ++i) res.Ps[size_t(c) * n + i] = P.at(c, int(i));
+    // The light runs over the surface's points: Ps the surface's, P its own origin.
+    lightGrid_ = *grid_;
+    lightGrid_.primvars = nullptr;
+    for (Global g : {Global::L, Global::Cl, Global::Ol, Global::Ci, Global::Oi, Global::P})
+        lightGrid_.globals[size_t(g)] = ValueRef{};
+    lightGrid_.set(Global::Ps, ValueRef::soa(res.Ps.data(), res.Ps.data() + n, res.Ps.data() + 2 * n));
+    Vec3d o = ref.toCurrent.point({0, 0, 0});
+    lightOrigin_[0] = float(o.x);
+    lightOrigin_[1] = float(o.y);
+    lightOrigin_[2] = float(o.z);
+    lightGrid_.set(Global::P, ValueRef::uniform(lightOrigin_, 3));
+    lightGrid_.toCurrent[size_t(Space::Shader)] = ref.toCurrent;
+    lightGrid_.toCurrent[size_t(Space::Object)] = ref.toCurrent;
+    lit_.assign(n, lp.illuminates ? 0 : 1);
+    illuminateFrom = solarAxis = -1;
+    const LightResult* savedLight = currentLight_;
+    currentLight_ = nullptr;
+    Frame& f = frameFor(lp);
+    runFrame(f, *ref.shader, lightGrid_, &ref.toCurrent);
+    currentLight_ = savedLight;
+    ++stats_.lightRuns;
+
+    // Collect: L towards the light as the surface sees it, Cl, where it reached, outputs.
+    res.ambient = !lp.illuminates;
+    auto grab = [&](Global g, std::vector<float>& out, float sign) {
+        out.resize(3 * n);
+        int r = lp.globalReg[int(g)];
+        if (r < 0) {
+            std::fill(out.begin(), out.end(), 0.0f);
+            return;
+        }
+        ValueRef v = view(f, r);
+        for (int c = 0; c < 3; ++c) {
+            float* o = out.data() + size_t(c) * n;
+            if (v.stride == 1 && sign == 1) {
+                std::memcpy(o, v.comp[c], sizeof(float) * n);
+            } else {
+                for (size_t i = 0; i < n; ++i) o[i] = sign * v.at(c, int(i));
+            }
+        }
+    };
+    grab(Global::Cl, res.Cl, 1);
+    if (res.ambient) {
+        res.L.assign(3 * n, 0.0f);
+        res.Ln.assign(3 * n, 0.0f);
+    } else {
+        grab(Global::L, res.L, -1);
+        res.Ln.resize(3 * n);
+        for (size_t i = 0; i < n; ++i) {
+            V3 l = normalize3({res.L[i], res.L[n + i], res.L[2 * n + i]});
+            res.Ln[i] = l.x;
+            res.Ln[n + i] = l.y;
+            res.Ln[2 * n + i] = l.z;
+        }
+    }
+    res.lit = lit_;
+    res.shader = ref.shader;
+    res.nonDiffuse = res.nonSpecular = false;
+    res.category.clear();
+    res.outFloats.clear();
+    res.outStrings.clear();
+    res.outOffset.assign(lp.params.size(), -1);
+    res.outVarying.assign(lp.params.size(), 0);
+    for (size_t k = 0; k < lp.params.size(); ++k) {
+        const ParamInfo& info = lp.params[k];
+        const Register& r = lp.regs[size_t(info.reg)];
+        if (info.type.isString()) {
+            if (info.name == "__category") res.category = f.strs[size_t(r.slot)];
+            if (!info.output) continue;
+            res.outOffset[k] = int(res.outStrings.size());
+            for (int e = 0; e < info.type.elements(); ++e) res.outStrings.push_back(f.strs[size_t(r.slot + e)]);
+            continue;
+        }
+        ValueRef v = view(f, info.reg);
+        if (info.type.isFloat() && info.name == "__nondiffuse") res.nonDiffuse = v.at(0, 0) != 0;
+        if (info.type.isFloat() && info.name == "__nonspecular") res.nonSpecular = v.at(0, 0) != 0;
+        if (!info.output) continue;
+        res.outOffset[k] = int(res.outFloats.size());
+        res.outVarying[k] = r.varying() ? 1 : 0;
+        const size_t count = size_t(r.floats()) * (r.varying() ? n : 1);
+        const float* base = v.comp[0];
+        res.outFloats.insert(res.outFloats.end(), base, base + count);
+    }
+    res.valid = true;
+}
+
+}  // namespace streyes::sl

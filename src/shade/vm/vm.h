@@ -1,0 +1,140 @@
+// The grid interpreter. A ShadingVM belongs to one thread; compiled programs are shared.
+//
+//   ShadingVM vm;                       // per thread; keeps its registers between grids
+//   vm.setTextureSource(&textures);
+//   vm.run(surface, grid, lights);      // every instruction over all the grid's points
+//   ValueRef ci = vm.result(Global::Ci);
+//
+// Each instruction runs once per grid over all points (structure of arrays); uniform values
+// are computed once; varying control flow runs under a mask stack. Light shaders run over the
+// surface's points when an illuminance loop (or ambient, diffuse, specular, phong) first needs
+// them, once per grid and light. Nothing is allocated per grid once the VM has seen grids of
+// that size and programs of that shape.
+//
+// Never NaN or infinity: division by zero, sqrt, log and pow outside their domains give 0,
+// and so does any non-finite value reaching an output; each such point is counted in
+// stats().sanitised, which the caller can read to warn once.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "shade/vm/exec.h"
+#include "shade/vm/program.h"
+#include "shade/vm/shader_instance.h"
+#include "shade/vm/shading_grid.h"
+#include "shade/vm/texture_source.h"
+
+namespace streyes::sl {
+
+struct Frame;
+
+// A light's results over the surface's points (L from the surface towards the light).
+struct LightResult {
+    bool valid = false;
+    bool ambient = false;   // no illuminate or solar: only ambient() sees it
+    bool nonDiffuse = false, nonSpecular = false;
+    std::string category;   // __category
+    std::vector<float> Ps;  // the positions it ran for (3 x n)
+    std::vector<float> L, Cl;  // 3 x n each
+    std::vector<float> Ln;     // L normalised (3 x n): what diffuse, specular and phong use
+    std::vector<uint8_t> lit;  // 1 where an illuminate or solar statement reached the point
+    const ShaderInstance* shader = nullptr;
+    // Output parameters after the run, for lightsource(): floats (all points when varying)
+    // and strings; offset of each parameter's values, -1 if not an output.
+    std::vector<float> outFloats;
+    std::vector<std::string> outStrings;
+    std::vector<int> outOffset;
+    std::vector<uint8_t> outVarying;
+};
+
+class ShadingVM {
+  public:
+    ShadingVM();
+    ~ShadingVM();
+    ShadingVM(const ShadingVM&) = delete;
+    ShadingVM& operator=(const ShadingVM&) = delete;
+
+    void setTextureSource(TextureSource* t) { textures_ = t; }
+    TextureSource* textureSource() const { return textures_; }
+    // Where printf writes (default: stderr).
+    void setPrintSink(std::function<void(const std::string&)> sink) { print_ = std::move(sink); }
+
+    // Runs `shader` over `grid`. `lights` are the lights on for the surface (for surface and
+    // volume shaders). Bad bindings (a primitive variable whose type differs from the
+    // parameter's) throw InputError at the primitive variable's location.
+    void run(const ShaderInstance& shader, const ShadingGrid& grid, const std::vector<LightRef>& lights = {});
+
+    // After run: a predefined variable's final value (Ci, Oi, P, N ...), valid until the next
+    // run. A variable the shader never touched is the grid's input (valid while the caller's
+    // arrays are), or an invalid ValueRef when there was none.
+    ValueRef result(Global g) const;
+    // After run: an output parameter's value (invalid if there is none by that name).
+    ValueRef output(const std::string& name) const;
+    // Binds a shader's parameters for `grid` (primitive variables, the instance's values, the
+    // defaults) without running its body; then param() reads them. describe uses this.
+    void bindParams(const ShaderInstance& shader, const ShadingGrid& grid);
+    // After run or bindParams: parameter `name` (element `element` of an array), output or not.
+    ValueRef param(const std::string& name, int element = 0) const;
+    std::vector<std::string> paramStrings(const std::string& name) const;
+
+    const ShadeStats& stats() const { return stats_; }
+    void resetStats() { stats_ = {}; }
+
+    // ---- Used by the operations (shade/vm) ----
+    void print(const std::string& s) const;
+    // The matrix from space `name` to current space of the program running (its own "shader"
+    // and "object" spaces). False (identity given, counted) when nobody defined the space.
+    bool spaceToCurrent(const std::string& name, float m[16]);
+    bool currentToSpace(const std::string& name, float m[16]);
+    // Lights for the running surface at positions P (3 x n, current space): runs each light
+    // once per grid and positions.
+    const std::vector<LightResult>& lightsAt(Exec& x, const RegView& P);
+    const LightResult* currentLight() const { return currentLight_; }
+    void setCurrentLight(const LightResult* l) { currentLight_ = l; }
+    int nextRandom() { return randomCalls_++; }
+    // Inside a light's illuminate(from ...): the light position register, for shadow().
+    int illuminateFrom = -1;
+    int solarAxis = -1;
+    // The running light: the points its illuminate or solar statements reached.
+    uint8_t* lit(int n) {
+        if (lit_.size() < size_t(n)) lit_.resize(size_t(n), 0);
+        return lit_.data();
+    }
+    size_t lightCount() const { return lights_ ? lights_->size() : 0; }
+
+  private:
+    friend struct Frame;
+    Frame& frameFor(const ShaderProgram& p);
+    void runFrame(Frame& f, const ShaderInstance& shader, const ShadingGrid& grid, const Matrix4* shaderSpace,
+                  bool body = true);
+    void bindParamValues(Exec& x, const ShaderInstance& shader, const ShadingGrid& grid);
+    void bindGlobals(Exec& x, const ShadingGrid& grid);
+    void sanitiseOutputs(Exec& x);
+    void execute(Exec& x, int begin, int end);
+    void runLight(size_t index, const RegView& P);
+    ValueRef view(const Frame& f, int reg, int element = 0) const;
+
+    std::vector<std::unique_ptr<Frame>> frames_;
+    Frame* top_ = nullptr;  // the surface (or the only) program's frame of the last run
+    TextureSource* textures_ = nullptr;
+    std::function<void(const std::string&)> print_;
+    ShadeStats stats_;
+
+    // The run in progress.
+    const ShadingGrid* grid_ = nullptr;
+    const std::vector<LightRef>* lights_ = nullptr;
+    std::vector<LightResult> lightResults_;
+    const LightResult* currentLight_ = nullptr;
+    const Matrix4* shaderSpace_ = nullptr;  // of the program running
+    int randomCalls_ = 0;
+    uint64_t runCount_ = 0;
+    ShadingGrid lightGrid_;  // the grid a light runs over: the surface's shape
+    float lightOrigin_[3] = {0, 0, 0};
+    std::vector<uint8_t> lit_;
+};
+
+}  // namespace streyes::sl
