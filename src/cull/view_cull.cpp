@@ -28,4 +28,13 @@ bool outsideFrustum(const Camera& camera, const Bounds3f& box, const PixelRect& 
     return false;
 }
 
+bool boxOutside(const Camera& camera, const Bounds3f& box, const PixelRect& rect) {
+    if (camera.perspective() && !(box.lo.z >= camera.eyePlane())) return outsideFrustum(camera, box, rect);
+    Bounds3f raster;
+    for (int i = 0; i < 8; ++i)
+        raster.extend(camera.toRaster({(i & 1) ? box.hi.x : box.lo.x, (i & 2) ? box.hi.y : box.lo.y,
+                                       (i & 4) ? box.hi.z : box.lo.z}));
+    return rasterOutside(raster, rect);
+}
+
 }  // namespace streyes

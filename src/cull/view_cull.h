@@ -18,4 +18,9 @@ inline bool rasterOutside(const Bounds3f& raster, const PixelRect& rect) {
 // the half-space a * (q - c z) >= 0 with c the screen coordinate of the rect's edge.
 bool outsideFrustum(const Camera& camera, const Bounds3f& box, const PixelRect& rect);
 
+// True when a camera-space box surely misses the pixels of `rect`: its projected corners miss
+// them (a box in front of the eye projects inside its corners' raster bound), or, for a box
+// reaching the eye plane, it lies outside the frustum through `rect`.
+bool boxOutside(const Camera& camera, const Bounds3f& box, const PixelRect& rect);
+
 }  // namespace streyes

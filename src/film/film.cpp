@@ -68,12 +68,11 @@ inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int 
                    float* out) {
     const PixelRect& R = block.rect();
     const int S = block.samplesPerPixel(), gx = fw.reachX(), gy = fw.reachY();
-    const PatternTable& patterns = block.patterns();
     float acc[4] = {0, 0, 0, 0};
     for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
         for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx); ++px) {
             const SampleHit* h = hitsOf(block.pixelIndex(px, py));
-            const float* w = fw.weights(patterns.patternOf(px, py), x - px, y - py);
+            const float* w = fw.weights(block.patternOf(block.pixelIndex(px, py)), x - px, y - py);
             for (int j = 0; j < S; ++j) {
                 if (h[j].a == 0) continue;  // the background adds weight only
                 acc[0] += w[j] * h[j].c.x;
@@ -97,7 +96,6 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
     const PixelRect& R = block.rect();
     const int tw = tile.width(), F = block.frameCount(), S = block.samplesPerPixel();
     const int gx = fw.reachX(), gy = fw.reachY();
-    const PatternTable& patterns = block.patterns();
     const size_t tilePixels = size_t(tw) * size_t(tile.height());
 
     // The weights each tile pixel sees: the same in every frame.
@@ -107,7 +105,7 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
             float sum = 0;
             for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
                 for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx); ++px) {
-                    const float* w = fw.weights(patterns.patternOf(px, py), x - px, y - py);
+                    const float* w = fw.weights(block.patternOf(block.pixelIndex(px, py)), x - px, y - py);
                     for (int j = 0; j < S; ++j) sum += w[j];
                 }
             scratch.weightSum[size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0)] = sum;
@@ -125,18 +123,28 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
             }
     }
 
+    // Per frame: the tile pixels whose filter reaches a pixel with a record of that frame are
+    // gathered again; the others show the still layer.
+    scratch.gathered.resize(tilePixels);
     for (int fi = 0; fi < F; ++fi) {
         FrameImage& out = frames[fi];
+        std::fill(scratch.gathered.begin(), scratch.gathered.end(), uint8_t(dense));
+        if (!dense)
+            for (int py = R.y0; py <= R.y1; ++py)
+                for (int px = R.x0; px <= R.x1; ++px) {
+                    if (!block.hasRecord(fi, block.pixelIndex(px, py))) continue;
+                    for (int y = std::max(tile.y0, py - gy); y <= std::min(tile.y1, py + gy); ++y)
+                        for (int x = std::max(tile.x0, px - gx); x <= std::min(tile.x1, px + gx); ++x)
+                            scratch.gathered[size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0)] = 1;
+                }
         for (int y = tile.y0; y <= tile.y1; ++y)
             for (int x = tile.x0; x <= tile.x1; ++x) {
                 const size_t t = size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0);
-                bool own = dense;  // does a sample this pixel sees belong to a record of this frame?
-                for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy) && !own; ++py)
-                    for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx) && !own; ++px)
-                        own = block.hasRecord(fi, block.pixelIndex(px, py));
                 float v[5] = {0, 0, 0, 0, 0};
-                if (own) gather(block, fw, x, y, scratch.weightSum[t], [&](size_t i) { return block.hits(fi, i); }, v);
-                else std::copy(&scratch.still[t * 5], &scratch.still[t * 5] + 5, v);
+                if (scratch.gathered[t])
+                    gather(block, fw, x, y, scratch.weightSum[t], [&](size_t i) { return block.hits(fi, i); }, v);
+                else
+                    std::copy(&scratch.still[t * 5], &scratch.still[t * 5] + 5, v);
                 float* px = &out.rgba[(size_t(y) * size_t(out.width) + size_t(x)) * 4];
                 for (int c = 0; c < 4; ++c) px[c] = v[c];
                 out.z[size_t(y) * size_t(out.width) + size_t(x)] = v[4];

@@ -67,6 +67,7 @@ class FilterWeights {
 struct ResolveScratch {
     std::vector<float> weightSum;  // per tile pixel: the weights of every sample it sees
     std::vector<float> still;      // per tile pixel: R G B A Z resolved from the still layer
+    std::vector<uint8_t> gathered; // per tile pixel, in the frame being resolved: gathered again
 };
 
 // Resolves the samples of every frame of the block into the pixels of `tile` (inside the

@@ -173,6 +173,7 @@ class KeyedPatchBody final : public Body {
 
     bool diceableInTime() const override { return false; }
     LBBox3f bound() const override;
+    Bounds3f boundDuring(double a, double b) const override;  // the keys between a and b, and a and b
     RasterMeasure measure(const Camera& camera) const override;
     CameraExtents cameraExtents() const override;
     void split(SplitAxis axis, std::unique_ptr<Body> out[2]) const override;

@@ -20,6 +20,26 @@ LBBox3f KeyedPatchBody::bound() const {
     return {b, b};  // the union over all keys bounds every instant
 }
 
+Bounds3f KeyedPatchBody::boundDuring(double a, double b) const {
+    // Corners move linearly between keys: the corners at a and at b and at every key between.
+    auto at = [&](double t) {
+        size_t i = size_t(std::upper_bound(times_.begin(), times_.end(), t) - times_.begin());
+        if (i == 0) return keys_.front();
+        if (i >= times_.size()) return keys_.back();
+        const float s = float((t - times_[i - 1]) / (times_[i] - times_[i - 1]));
+        Corners c;
+        for (int k = 0; k < 4; ++k) c[size_t(k)] = lerp(keys_[i - 1][size_t(k)], keys_[i][size_t(k)], s);
+        return c;
+    };
+    Bounds3f box;
+    for (const Vec3f& p : at(a)) box.extend(p);
+    for (const Vec3f& p : at(b)) box.extend(p);
+    for (size_t k = 0; k < times_.size(); ++k)
+        if (times_[k] > a && times_[k] < b)
+            for (const Vec3f& p : keys_[k]) box.extend(p);
+    return box;
+}
+
 RasterMeasure KeyedPatchBody::measure(const Camera& camera) const {
     RasterMeasure m;
     Corners prev{};

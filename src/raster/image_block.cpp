@@ -16,10 +16,12 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     const size_t pixels = size_t(rect.area()), n = pixels * size_t(S_);
     xs_.resize(n);
     ys_.resize(n);
+    pattern_.resize(pixels);
     for (int y = rect.y0; y <= rect.y1; ++y)
         for (int x = rect.x0; x <= rect.x1; ++x) {
             const size_t i = pixelIndex(x, y);
-            const float* o = patterns.offsets(patterns.patternOf(x, y));
+            pattern_[i] = uint8_t(patterns.patternOf(x, y));
+            const float* o = patterns.offsets(pattern_[i]);
             for (int j = 0; j < S_; ++j) {
                 xs_[i * size_t(S_) + size_t(j)] = float(x) + o[2 * j];
                 ys_[i * size_t(S_) + size_t(j)] = float(y) + o[2 * j + 1];

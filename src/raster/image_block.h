@@ -67,6 +67,8 @@ class ImageBlock {
     size_t pixelIndex(int x, int y) const { return size_t(y - rect_.y0) * size_t(rect_.width()) + size_t(x - rect_.x0); }
     bool dense() const { return dense_; }
 
+    // The pattern of pixel i (PatternTable::patternOf, kept: resolving asks for it often).
+    int patternOf(size_t i) const { return int(pattern_[i]); }
     // Raster positions of sample j of pixel i: xs()[i * S + j], ys()[i * S + j].
     float* xs() { return xs_.data(); }
     float* ys() { return ys_.data(); }
@@ -126,6 +128,7 @@ class ImageBlock {
     bool dense_ = false;
     const PatternTable* patterns_ = nullptr;
     std::vector<float> xs_, ys_;
+    std::vector<uint8_t> pattern_;      // per pixel
     std::vector<uint8_t> permutation_;  // frames x pixels
     std::vector<SampleHit> still_;
     std::vector<int32_t> slot_;         // frames x pixels: record number, or -1

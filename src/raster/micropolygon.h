@@ -49,9 +49,9 @@ struct QuadSetup {
     float x[4], y[4], z[4];
     Edge e[5];  // q0q1, q1q2, q2q3, q3q0, q2q0 (the diagonal as triangle 1 runs it)
     float xmin, xmax, ymin, ymax;
+    float zmin;              // nearest depth of the bound: a sample with a nearer hit cannot be beaten
     int px0, px1, py0, py1;  // pixels the bound touches, clipped to the block
 };
-
 
 inline void setupEdges(QuadSetup& q) {
     q.e[0] = makeEdge(q.x[0], q.y[0], q.x[1], q.y[1]);
@@ -120,6 +120,7 @@ inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const floa
         }
     }
     if (zmax < nearZ || zmin > farZ) return false;
+    q.zmin = zmin;
     if (!(q.xmax >= float(R.x0) && q.xmin < float(R.x1 + 1) && q.ymax >= float(R.y0) && q.ymin < float(R.y1 + 1)))
         return false;  // also rejects NaN
     q.px0 = floorClamped(q.xmin, R.x0, R.x1);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geom/grid.h"
 #include "raster/micropolygon.h"
@@ -263,8 +264,11 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
 // move a vertex that lies on a neighbouring grid's edge (a T-junction, where grids split to
 // different depths meet) off that edge, and open cracks between the grids. So under perspective
 // the corners are interpolated in camera space, where they move linearly, and projected at the
-// sample's time: vertices on a straight edge stay on its projection. Hits go to the frames'
-// records: what moves is seen by one frame only.
+// sample's time: vertices on a straight edge stay on its projection. That is needed only on the
+// grid's border, where another grid's vertices may lie on its edges, and where the projection
+// bends a vertex's path: elsewhere (inside the grid, moving at nearly constant depth) a vertex's
+// raster position is interpolated linearly within the slice, the same for every quad that shares
+// it, so no crack opens. Hits go to the frames' records: what moves is seen by one frame only.
 template <bool Shadowed, bool Counting>
 void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block,
                                   RasterCounters& counters) {
@@ -281,19 +285,57 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const uint64_t id = grid.primitiveId;
     const float* xs = block.xs();
     const float* ys = block.ys();
+
+    // Slices are bounded in groups: a quad's bound over a group's time holds every sample of it
+    // that could hit, and a slow grid needs no finer bound than a few slices give. As many slices a
+    // group as keep the grid's largest raster motion over a group under kGroupMotion pixels.
+    constexpr float kGroupMotion = 0.5f;
+    project(grid, grid.t0, camera, ra_);
+    project(grid, grid.t1, camera, rb_);
+    float motion = 0;
+    for (size_t v = 0; v < ra_.size(); ++v)
+        motion = std::max({motion, std::fabs(rb_[v].x - ra_[v].x), std::fabs(rb_[v].y - ra_[v].y)});
+    double sliceTime = 0;  // the longest slice, as a share of the grid's span
+    for (const Slice& sl : slices_) sliceTime = std::max(sliceTime, (sl.tb - sl.ta) / span);
+    const double perSlice = double(motion) * sliceTime;
+    const size_t group = perSlice > 0 ? size_t(std::clamp(double(kGroupMotion) / perSlice, 1.0, double(S))) : size_t(S);
+
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
-    uint64_t tests = 0, hits = 0, firstHits = 0;
-    for (const Slice& sl : slices_) {
-        if (projected == sl.ta) {  // the last slice ended where this one starts
+    uint64_t tests = 0, hits = 0, firstHits = 0, behind = 0;
+    for (size_t s0 = 0; s0 < slices_.size();) {
+        size_t s1 = s0 + 1;  // the group: consecutive slices of one frame
+        while (s1 < slices_.size() && s1 - s0 < group && slices_[s1].fi == slices_[s0].fi &&
+               slices_[s1].k == slices_[s1 - 1].k + 1)
+            ++s1;
+        const Slice &first = slices_[s0], &last = slices_[s1 - 1];
+        const int fi = first.fi;
+        if (projected == first.ta) {  // the last group ended where this one starts
             std::swap(ra_, rb_);
             std::swap(ca_, cb_);
         } else {
-            project(grid, sl.ta, camera, ra_, perspective ? &ca_ : nullptr);
+            project(grid, first.ta, camera, ra_, perspective ? &ca_ : nullptr);
         }
-        project(grid, sl.tb, camera, rb_, perspective ? &cb_ : nullptr);
-        projected = sl.tb;
-        const float sA = float((sl.ta - grid.t0) / span), sB = float((sl.tb - grid.t0) / span);
-        const float invSpan = sl.tfB > sl.tfA ? 1.0f / (sl.tfB - sl.tfA) : 0.0f;
+        project(grid, last.tb, camera, rb_, perspective ? &cb_ : nullptr);
+        projected = last.tb;
+        const float sA = float((first.ta - grid.t0) / span), sB = float((last.tb - grid.t0) / span);
+        const float tfA = first.tfA, invSpan = last.tfB > first.tfA ? 1.0f / (last.tfB - first.tfA) : 0.0f;
+        if (perspective) {
+            // A vertex moving linearly in camera space leaves the straight raster segment between
+            // its group's ends by at most 1/4 |raster motion| |dz| / min z. Where that is below
+            // kLinearError it is interpolated in raster space; on the grid's border (where other
+            // grids' vertices may sit on its edges) and elsewhere it is projected exactly.
+            constexpr float kLinearError = 1e-5f;
+            exact_.resize(ra_.size());
+            for (int vj = 0; vj <= nv; ++vj)
+                for (int vi = 0; vi <= nu; ++vi) {
+                    const size_t v = size_t(vj * stride + vi);
+                    const RasterVertex &a = ra_[v], &b = rb_[v];
+                    const bool border = vi == 0 || vj == 0 || vi == nu || vj == nv;
+                    const float move = std::max(std::fabs(b.x - a.x), std::fabs(b.y - a.y));
+                    const float error = 0.25f * move * std::fabs(b.z - a.z) / std::min(a.z, b.z);
+                    exact_[v] = border || !(error < kLinearError);
+                }
+        }
         for (int j = 0; j < nv; ++j) {
             for (int i = 0; i < nu; ++i) {
                 const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
@@ -310,58 +352,65 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 for (int py = q.py0; py <= q.py1; ++py) {
                     for (int px = q.px0; px <= q.px1; ++px) {
                         const size_t pi = block.pixelIndex(px, py);
-                        const int perm = block.permutation(sl.fi, pi);
-                        const int sj = patterns.sampleOfStratum(perm)[sl.k];
-                        const size_t si = pi * size_t(S) + size_t(sj);
-                        const float x = xs[si], y = ys[si], tf = patterns.stratumTimes(perm)[sl.k];
-                        if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
-                        if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
-                        ++tests;
-                        const float w = std::min(1.0f, std::max(0.0f, (tf - sl.tfA) * invSpan));
-                        QuadSetup qt;
-                        if (perspective) {
-                            for (int c = 0; c < 4; ++c) {
-                                const Vec3f r = camera.toRaster(lerp(ca_[size_t(idx[c])], cb_[size_t(idx[c])], w));
-                                qt.x[c] = r.x, qt.y[c] = r.y, qt.z[c] = r.z;
+                        const int perm = block.permutation(fi, pi);
+                        for (size_t s = s0; s < s1; ++s) {
+                            const Slice& sl = slices_[s];
+                            const int sj = patterns.sampleOfStratum(perm)[sl.k];
+                            const size_t si = pi * size_t(S) + size_t(sj);
+                            const float x = xs[si], y = ys[si], tf = patterns.stratumTimes(perm)[sl.k];
+                            if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
+                            if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
+                            SampleHit* rec = block.record(fi, pi);
+                            const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
+                            if (!Counting && q.zmin > cur.z) {  // all of it behind what the sample already sees
+                                ++behind;
+                                continue;
                             }
-                        } else {
+                            ++tests;
+                            const float w = std::min(1.0f, std::max(0.0f, (tf - tfA) * invSpan));
+                            QuadSetup qt;
                             for (int c = 0; c < 4; ++c) {
-                                qt.x[c] = lerp(xa[c], xb[c], w);
-                                qt.y[c] = lerp(ya[c], yb[c], w);
-                                qt.z[c] = lerp(za[c], zb[c], w);
+                                if (perspective && exact_[size_t(idx[c])]) {
+                                    const Vec3f r = camera.toRaster(lerp(ca_[size_t(idx[c])], cb_[size_t(idx[c])], w));
+                                    qt.x[c] = r.x, qt.y[c] = r.y, qt.z[c] = r.z;
+                                } else {
+                                    qt.x[c] = lerp(xa[c], xb[c], w);
+                                    qt.y[c] = lerp(ya[c], yb[c], w);
+                                    qt.z[c] = lerp(za[c], zb[c], w);
+                                }
                             }
+                            setupEdges(qt);
+                            Hit h;
+                            if (!hitQuad(qt, x, y, h)) continue;
+                            ++hits;
+                            if (Counting) {
+                                const size_t ci2 = (size_t(fi) * pixels + pi) * size_t(S) + size_t(sj);
+                                trianglesCovering(qt, x, y, &hitCounts_[ci2], &windings_[ci2]);
+                            }
+                            const float sg = lerp(sA, sB, w);  // the grid's own time parameter
+                            SampleHit hit;
+                            if (!beats(cur, qt.z, h, nearZ, farZ, id,
+                                       [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); }, &hit))
+                                continue;
+                            firstHits += cur.a == 0;
+                            if (!rec) rec = block.makeRecord(fi, pi);
+                            rec[sj] = hit;
+                            if (Shadowed)
+                                writeShadowed(block.shadowed(fi, pi) + size_t(sj) * size_t(K), K, h, [&](int c, int k) {
+                                    const size_t v = size_t(idx[c] * K + k);
+                                    return lerp(cl0[v], cl1[v], sg);
+                                });
                         }
-                        setupEdges(qt);
-                        Hit h;
-                        if (!hitQuad(qt, x, y, h)) continue;
-                        ++hits;
-                        if (Counting) {
-                            const size_t ci2 = (size_t(sl.fi) * pixels + pi) * size_t(S) + size_t(sj);
-                            trianglesCovering(qt, x, y, &hitCounts_[ci2], &windings_[ci2]);
-                        }
-                        const float sg = lerp(sA, sB, w);  // the grid's own time parameter
-                        SampleHit* rec = block.record(sl.fi, pi);
-                        const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
-                        SampleHit hit;
-                        if (!beats(cur, qt.z, h, nearZ, farZ, id,
-                                   [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); }, &hit))
-                            continue;
-                        firstHits += cur.a == 0;
-                        if (!rec) rec = block.makeRecord(sl.fi, pi);
-                        rec[sj] = hit;
-                        if (Shadowed)
-                            writeShadowed(block.shadowed(sl.fi, pi) + size_t(sj) * size_t(K), K, h, [&](int c, int k) {
-                                const size_t v = size_t(idx[c] * K + k);
-                                return lerp(cl0[v], cl1[v], sg);
-                            });
                     }
                 }
             }
         }
+        s0 = s1;
     }
     counters.sampleTests += tests;
     counters.sampleHits += hits;
     counters.firstHits += firstHits;
+    counters.samplesBehind += behind;
 }
 
 }  // namespace streyes

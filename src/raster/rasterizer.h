@@ -31,6 +31,7 @@ struct RasterCounters {
     uint64_t micropolygons = 0;
     uint64_t sampleTests = 0;    // samples given the full inside test (after bound and time checks)
     uint64_t sampleHits = 0;     // tests that found the sample inside
+    uint64_t samplesBehind = 0;  // samples not tested: all of the micropolygon lay behind their hit
     uint64_t firstHits = 0;      // samples that had no hit before (adaptive depth layers use it)
 };
 
@@ -86,6 +87,7 @@ class GridRasterizer {
     // Scratch, reused from grid to grid.
     std::vector<RasterVertex> ra_, rb_;
     std::vector<Vec3f> ca_, cb_;  // camera space at the ends of a slice (perspective, moving grids)
+    std::vector<uint8_t> exact_;  // per vertex, this slice: projected at each sample's time
     std::vector<Slice> slices_;
     std::vector<FrameSpan> frames_;
     uint32_t* hitCounts_ = nullptr;

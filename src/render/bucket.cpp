@@ -83,6 +83,7 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     counters.micropolygons += rasterCounters_.micropolygons;
     counters.sampleTests += rasterCounters_.sampleTests;
     counters.sampleHits += rasterCounters_.sampleHits;
+    counters.samplesBehind += rasterCounters_.samplesBehind;
     rasterCounters_ = {};
 }
 
@@ -106,20 +107,38 @@ void BucketWorker::pushRoot(const Body& root) {
     const TimeSpan& span = root.time();
     if (!reachesSamples(span, windowStart_, windowEnd_)) return;
     if ((root.moving() || shadingVaries_) && !root.expands()) {  // a procedural expands; its children are cut
-        const double open = scene_.shutter.open, close = scene_.shutter.close;
-        for (int fi = 0; fi < bucket_.frameCount; ++fi) {
-            const double e0 = bucket_.firstFrame + fi + open, e1 = bucket_.firstFrame + fi + close;
-            if (!reachesSamples(span, e0, e1)) continue;
-            BodyPtr piece = root.restrictedTo(std::max(span.t0, e0), std::min(span.t1, e1));
-            piece->exposure = bucket_.firstFrame + fi;
-            push(std::move(piece));
-        }
+        pushExposures(root, 0, bucket_.frameCount - 1);
     } else if (occlusion_) {
         heap_.push_back({root.bound().swept().lo.z, arrivals_++, &root, nullptr});
         std::push_heap(heap_.begin(), heap_.end(), FartherFirst());
     } else {
         process(root);
     }
+}
+
+void BucketWorker::pushExposures(const Body& root, int fa, int fb) {
+    const TimeSpan& span = root.time();
+    const double a = std::max(span.t0, bucket_.firstFrame + fa + scene_.shutter.open);
+    const double b = std::min(span.t1, bucket_.firstFrame + fb + scene_.shutter.close);
+    if (a > b) return;
+    // Not one piece of these frames can reach the bucket (the margin keeps this conservative to
+    // float rounding: the pieces' own bounds decide, as always, in process()).
+    const PixelRect& R = bucket_.rect;
+    if (boxOutside(scene_.camera, root.boundDuring(a, b), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
+        ++counters.culledView;
+        return;
+    }
+    if (fa < fb) {
+        const int mid = fa + (fb - fa) / 2;
+        pushExposures(root, fa, mid);
+        pushExposures(root, mid + 1, fb);
+        return;
+    }
+    const double e0 = bucket_.firstFrame + fa + scene_.shutter.open, e1 = bucket_.firstFrame + fa + scene_.shutter.close;
+    if (!reachesSamples(span, e0, e1)) return;
+    BodyPtr piece = root.restrictedTo(std::max(span.t0, e0), std::min(span.t1, e1));
+    piece->exposure = bucket_.firstFrame + fa;
+    push(std::move(piece));
 }
 
 void BucketWorker::push(BodyPtr body) {

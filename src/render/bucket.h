@@ -53,6 +53,9 @@ class BucketWorker {
     void runNearToFar();      // with occlusion: a heap by depth, tables between layers
     void push(BodyPtr body);
     void pushRoot(const Body& body);
+    // A moving root's pieces for the bucket's frames [fa, fb] (indices in the block): the frames
+    // whose exposures its bound reaches the bucket in, found by halving the range.
+    void pushExposures(const Body& root, int fa, int fb);
     void process(const Body& body);  // one step of the split loop
     bool withinSplitBudget(const Body& body);  // counts a split of the body's primitive
     void expand(const ProceduralBody& procedural);
