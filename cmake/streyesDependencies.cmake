@@ -4,6 +4,7 @@
 if(NOT TARGET TBB::tbb)
   find_package(TBB 2021 CONFIG REQUIRED COMPONENTS tbb)
 endif()
+find_package(hwy 1.0 CONFIG REQUIRED)  # Highway: the sampler's SIMD kernels
 find_package(Imath 3.1 CONFIG REQUIRED)
 find_package(OpenEXR 3.1 CONFIG REQUIRED)
 find_package(OpenImageIO 2.4 CONFIG REQUIRED)

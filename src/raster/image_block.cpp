@@ -14,8 +14,9 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     dense_ = dense;
     shadowSlots_ = shadowSlots;
     const size_t pixels = size_t(rect.area()), n = pixels * size_t(S_);
-    xs_.resize(n);
-    ys_.resize(n);
+    // Padded: the SIMD kernels read whole vectors past a pixel's last sample (sample_kernels.h).
+    xs_.resize(n + 64);
+    ys_.resize(n + 64);
     pattern_.resize(pixels);
     for (int y = rect.y0; y <= rect.y1; ++y)
         for (int x = rect.x0; x <= rect.x1; ++x) {

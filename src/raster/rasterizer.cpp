@@ -6,6 +6,7 @@
 
 #include "geom/grid.h"
 #include "raster/micropolygon.h"
+#include "raster/sample_kernels.h"
 
 namespace streyes {
 
@@ -173,6 +174,10 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const int K = grid.shadowSlots;
     const Color* cl = grid.Cl[0].data();
     const uint64_t id = grid.primitiveId;
+    // The kernel: SIMD, or scalar while counting hits for tests of watertightness (the counting
+    // instance runs the scalar reference: the kernels are held to it bit for bit).
+    const QuadTestFn test = Counting ? quadTestScalar() : quadTestKernel();
+    const SampleLayout layout{xs, ys, R.x0, R.y0, R.width(), S, sx, sy};
     uint64_t tests = 0, hits = 0, firstHits = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
@@ -185,70 +190,59 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
             if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ)) continue;
             setupEdges(q);
             auto colorAt = [&](int c) { return ci[idx[c]]; };
-            for (int py = q.py0; py <= q.py1; ++py) {
-                const int iy0 = floorClamped((q.ymin - float(py)) * float(sy), 0, sy - 1);
-                const int iy1 = floorClamped((q.ymax - float(py)) * float(sy), 0, sy - 1);
-                for (int px = q.px0; px <= q.px1; ++px) {
-                    const int ix0 = floorClamped((q.xmin - float(px)) * float(sx), 0, sx - 1);
-                    const int ix1 = floorClamped((q.xmax - float(px)) * float(sx), 0, sx - 1);
-                    const size_t pi = block.pixelIndex(px, py), base = pi * size_t(S);
-                    for (int iy = iy0; iy <= iy1; ++iy) {
-                        for (int ix = ix0; ix <= ix1; ++ix) {
-                            const int sj = iy * sx + ix;
-                            const float x = xs[base + size_t(sj)], y = ys[base + size_t(sj)];
-                            if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
-                            SampleHit hit;
-                            if (intoStill) {
-                                ++tests;
-                                Hit h;
-                                if (!hitQuad(q, x, y, h)) continue;
-                                ++hits;
-                                if (Counting)
-                                    for (int fi = 0; fi < F; ++fi) {
-                                        const size_t ci2 = (size_t(fi) * pixels + pi) * size_t(S) + size_t(sj);
-                                        trianglesCovering(q, x, y, &hitCounts_[ci2], &windings_[ci2]);
-                                    }
-                                SampleHit& cur = block.still(pi)[sj];
-                                if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) continue;
-                                if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
-                                cur = hit;
-                                // Frames that already have a record of the pixel (something only they
-                                // see came first) see this too, where it is nearer.
-                                for (int fi = 0, left = block.recordsOf(pi); left > 0; ++fi) {
-                                    SampleHit* rec = block.record(fi, pi);
-                                    if (!rec) continue;
-                                    --left;
-                                    if (rec[sj].beatenBy(hit.z, hit.id, hit.c)) rec[sj] = hit;
-                                }
-                                continue;
-                            }
-                            // The frames it exists in at the sample's time: the inside test is the
-                            // same for all of them (the same position), made once when first needed.
-                            int inside = -1;
-                            Hit h;
-                            for (const FrameSpan& fr : frames_) {
-                                if (!fr.whole && !inTimeSpan(block.sampleTime(fr.fi, pi, sj), fr.tfA, fr.tfB, fr.openB))
-                                    continue;
-                                ++tests;
-                                if (inside < 0) inside = hitQuad(q, x, y, h);
-                                if (!inside) continue;
-                                ++hits;
-                                if (Counting) {
-                                    const size_t ci2 = (size_t(fr.fi) * pixels + pi) * size_t(S) + size_t(sj);
-                                    trianglesCovering(q, x, y, &hitCounts_[ci2], &windings_[ci2]);
-                                }
-                                SampleHit* rec = block.record(fr.fi, pi);
-                                const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
-                                if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) continue;
-                                firstHits += cur.a == 0;
-                                if (!rec) rec = block.makeRecord(fr.fi, pi);
-                                rec[sj] = hit;
-                                if (Shadowed)
-                                    writeShadowed(block.shadowed(fr.fi, pi) + size_t(sj) * size_t(K), K, h,
-                                                  [&](int c, int k) { return cl[size_t(idx[c] * K + k)]; });
-                            }
+            // The samples of the strata the bound overlaps in each pixel, tested at once (SIMD).
+            const size_t room = size_t(q.px1 - q.px0 + 1) * size_t(q.py1 - q.py0 + 1) * size_t(S);
+            if (quadHits_.size() < room) quadHits_.resize(room);
+            size_t found = 0;
+            tests += test(q, layout, quadHits_.data(), &found);
+            for (size_t n = 0; n < found; ++n) {
+                const QuadHit& qh = quadHits_[n];
+                const size_t pi = qh.pixel;
+                const int sj = qh.sample;
+                const Hit h = quadHit(qh);
+                SampleHit hit;
+                if (intoStill) {
+                    ++hits;
+                    if (Counting) {
+                        const float x = xs[pi * size_t(S) + size_t(sj)], y = ys[pi * size_t(S) + size_t(sj)];
+                        for (int fi = 0; fi < F; ++fi) {
+                            const size_t ci2 = (size_t(fi) * pixels + pi) * size_t(S) + size_t(sj);
+                            trianglesCovering(q, x, y, &hitCounts_[ci2], &windings_[ci2]);
                         }
                     }
+                    SampleHit& cur = block.still(pi)[sj];
+                    if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) continue;
+                    if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
+                    cur = hit;
+                    // Frames that already have a record of the pixel (something only they see came
+                    // first) see this too, where it is nearer.
+                    for (int fi = 0, left = block.recordsOf(pi); left > 0; ++fi) {
+                        SampleHit* rec = block.record(fi, pi);
+                        if (!rec) continue;
+                        --left;
+                        if (rec[sj].beatenBy(hit.z, hit.id, hit.c)) rec[sj] = hit;
+                    }
+                    continue;
+                }
+                // The frames it exists in at the sample's time (the position, and so the inside
+                // test, is the same in every frame).
+                for (const FrameSpan& fr : frames_) {
+                    if (!fr.whole && !inTimeSpan(block.sampleTime(fr.fi, pi, sj), fr.tfA, fr.tfB, fr.openB)) continue;
+                    ++hits;
+                    if (Counting) {
+                        const float x = xs[pi * size_t(S) + size_t(sj)], y = ys[pi * size_t(S) + size_t(sj)];
+                        const size_t ci2 = (size_t(fr.fi) * pixels + pi) * size_t(S) + size_t(sj);
+                        trianglesCovering(q, x, y, &hitCounts_[ci2], &windings_[ci2]);
+                    }
+                    SampleHit* rec = block.record(fr.fi, pi);
+                    const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
+                    if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) continue;
+                    firstHits += cur.a == 0;
+                    if (!rec) rec = block.makeRecord(fr.fi, pi);
+                    rec[sj] = hit;
+                    if (Shadowed)
+                        writeShadowed(block.shadowed(fr.fi, pi) + size_t(sj) * size_t(K), K, h,
+                                      [&](int c, int k) { return cl[size_t(idx[c] * K + k)]; });
                 }
             }
         }

@@ -24,6 +24,7 @@
 #include "geom/camera.h"
 #include "geom/grid.h"
 #include "raster/image_block.h"
+#include "raster/sample_kernels.h"
 
 namespace streyes {
 
@@ -88,6 +89,7 @@ class GridRasterizer {
     std::vector<RasterVertex> ra_, rb_;
     std::vector<Vec3f> ca_, cb_;  // camera space at the ends of a slice (perspective, moving grids)
     std::vector<uint8_t> exact_;  // per vertex, this slice: projected at each sample's time
+    std::vector<QuadHit> quadHits_;  // a still quad's hits
     std::vector<Slice> slices_;
     std::vector<FrameSpan> frames_;
     uint32_t* hitCounts_ = nullptr;

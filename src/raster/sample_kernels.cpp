@@ -1,0 +1,263 @@
+// The sampler's SIMD kernels, compiled once per instruction set (Highway's foreach_target) and
+// chosen at run time. No fused multiply-add here (-ffp-contract=off for this file): the kernels
+// must give micropolygon.h's scalar results bit for bit.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "raster/sample_kernels.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include <algorithm>
+
+#include "raster/sample_kernels.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace streyes {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using micropolygon::QuadSetup;
+
+namespace {
+
+const hn::ScalableTag<float> kD;
+using V = hn::Vec<decltype(kD)>;
+using M = hn::Mask<decltype(kD)>;
+
+// micropolygon.h's insideTriangle, lane by lane: mixed signs are outside, all zero (a triangle
+// with no area) too; a lane exactly on an edge goes by the edge's canonical direction.
+HWY_INLINE M insideTriangle(V e0, bool c0, V e1, bool c1, V e2, bool c2) {
+    const V zero = hn::Zero(kD);
+    const M p0 = hn::Gt(e0, zero), p1 = hn::Gt(e1, zero), p2 = hn::Gt(e2, zero);
+    const M n0 = hn::Lt(e0, zero), n1 = hn::Lt(e1, zero), n2 = hn::Lt(e2, zero);
+    const M z0 = hn::Eq(e0, zero), z1 = hn::Eq(e1, zero), z2 = hn::Eq(e2, zero);
+    const M anyPos = hn::Or(hn::Or(p0, p1), p2), anyNeg = hn::Or(hn::Or(n0, n1), n2);
+    const M positive = hn::AndNot(anyNeg, anyPos), negative = hn::AndNot(anyPos, anyNeg);
+    auto edge = [&](M p, M n, M z, bool c) {
+        return hn::Or(hn::And(positive, c ? hn::Or(p, z) : p), hn::And(negative, c ? n : hn::Or(n, z)));
+    };
+    return hn::And(hn::And(edge(p0, n0, z0, c0), edge(p1, n1, z1, c1)), edge(p2, n2, z2, c2));
+}
+
+}  // namespace
+
+PixelTest TestPixel(const QuadSetup& q, const float* xs, const float* ys, int n, uint64_t candidates, float* edges) {
+    const size_t N = hn::Lanes(kD);
+    const int stride = edgeStride(n);
+    V px[5], py[5], dx[5], dy[5], sign[5];
+    for (int k = 0; k < 5; ++k) {
+        px[k] = hn::Set(kD, q.e[k].px), py[k] = hn::Set(kD, q.e[k].py);
+        dx[k] = hn::Set(kD, q.e[k].dx), dy[k] = hn::Set(kD, q.e[k].dy);
+        sign[k] = hn::Set(kD, q.e[k].sign);
+    }
+    const bool diagonalDegenerate = q.e[4].dx == 0 && q.e[4].dy == 0;
+    const bool c02 = diagonalDegenerate ? false : !q.e[4].canonical;
+    const V xmin = hn::Set(kD, q.xmin), xmax = hn::Set(kD, q.xmax), ymin = hn::Set(kD, q.ymin), ymax = hn::Set(kD, q.ymax);
+    PixelTest r;
+    for (size_t i = 0; i < size_t(n); i += N) {
+        uint64_t bits = candidates >> i;
+        if (N < 64) bits &= (uint64_t(1) << N) - 1;
+        if (!bits) continue;
+        uint8_t maskBytes[8];
+        for (int b = 0; b < 8; ++b) maskBytes[b] = uint8_t(bits >> (8 * b));
+        const M cand = hn::LoadMaskBits(kD, maskBytes);
+        const V x = hn::LoadU(kD, xs + i), y = hn::LoadU(kD, ys + i);
+        const M inBound = hn::And(hn::And(hn::Not(hn::Lt(x, xmin)), hn::Not(hn::Gt(x, xmax))),
+                                  hn::And(hn::Not(hn::Lt(y, ymin)), hn::Not(hn::Gt(y, ymax))));
+        const M tested = hn::And(cand, inBound);
+        V e[5];
+        for (int k = 0; k < 5; ++k) {
+            // Edge::eval: sign * (dx * (sy - py) - dy * (sx - px)), in this order.
+            e[k] = hn::Mul(sign[k], hn::Sub(hn::Mul(dx[k], hn::Sub(y, py[k])), hn::Mul(dy[k], hn::Sub(x, px[k]))));
+            hn::StoreU(e[k], kD, edges + k * stride + int(i));
+        }
+        const M first = hn::And(tested, insideTriangle(e[0], q.e[0].canonical, e[1], q.e[1].canonical, e[4], q.e[4].canonical));
+        const M second = hn::AndNot(first, hn::And(tested, insideTriangle(hn::Neg(e[4]), c02, e[2], q.e[2].canonical,
+                                                                          e[3], q.e[3].canonical)));
+        uint8_t out[8] = {0};
+        auto bitsOf = [&](M m) {
+            std::fill(out, out + 8, uint8_t(0));
+            hn::StoreMaskBits(kD, m, out);
+            uint64_t v = 0;
+            for (int b = 0; b < 8; ++b) v |= uint64_t(out[b]) << (8 * b);
+            return v << i;
+        };
+        r.tested |= bitsOf(tested);
+        r.first |= bitsOf(first);
+        r.second |= bitsOf(second);
+    }
+    return r;
+}
+
+// The candidate samples of one pixel for a quad: those of the strata its bound overlaps.
+HWY_INLINE uint64_t strataCandidates(const QuadSetup& q, const SampleLayout& L, int px, int py, int c0, int n) {
+    const int iy0 = floorClamped((q.ymin - float(py)) * float(L.sy), 0, L.sy - 1);
+    const int iy1 = floorClamped((q.ymax - float(py)) * float(L.sy), 0, L.sy - 1);
+    const int ix0 = floorClamped((q.xmin - float(px)) * float(L.sx), 0, L.sx - 1);
+    const int ix1 = floorClamped((q.xmax - float(px)) * float(L.sx), 0, L.sx - 1);
+    uint64_t candidates = 0;
+    for (int iy = iy0; iy <= iy1; ++iy) {
+        const int row = iy * L.sx - c0;  // the row's first sample, in this chunk
+        const int a = std::max(0, row + ix0), b = std::min(n - 1, row + ix1);
+        if (a <= b) candidates |= (b - a == 63 ? ~uint64_t(0) : ((uint64_t(2) << (b - a)) - 1)) << a;
+    }
+    return candidates;
+}
+
+uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_t* hitCount) {
+    const size_t N = hn::Lanes(kD);
+    V px[5], py[5], dx[5], dy[5], sign[5];
+    for (int k = 0; k < 5; ++k) {
+        px[k] = hn::Set(kD, q.e[k].px), py[k] = hn::Set(kD, q.e[k].py);
+        dx[k] = hn::Set(kD, q.e[k].dx), dy[k] = hn::Set(kD, q.e[k].dy);
+        sign[k] = hn::Set(kD, q.e[k].sign);
+    }
+    const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
+    const V xmin = hn::Set(kD, q.xmin), xmax = hn::Set(kD, q.xmax), ymin = hn::Set(kD, q.ymin), ymax = hn::Set(kD, q.ymax);
+    HWY_ALIGN float e[5][hn::MaxLanes(kD)];
+    uint64_t tested = 0;
+    size_t hits = *hitCount;
+    for (int ppy = q.py0; ppy <= q.py1; ++ppy)
+        for (int ppx = q.px0; ppx <= q.px1; ++ppx) {
+            const uint32_t pixel = uint32_t((ppy - L.y0) * L.width + (ppx - L.x0));
+            const float* xs = L.xs + size_t(pixel) * size_t(L.S);
+            const float* ys = L.ys + size_t(pixel) * size_t(L.S);
+            for (int c0 = 0; c0 < L.S; c0 += 64) {
+                const int n = std::min(64, L.S - c0);
+                const uint64_t candidates = strataCandidates(q, L, ppx, ppy, c0, n);
+                for (size_t i = 0; i < size_t(n); i += N) {
+                    uint64_t bits = candidates >> i;
+                    if (N < 64) bits &= (uint64_t(1) << N) - 1;
+                    if (!bits) continue;
+                    uint8_t maskBytes[8];
+                    for (size_t b = 0; b < (N + 7) / 8; ++b) maskBytes[b] = uint8_t(bits >> (8 * b));
+                    const M cand = hn::LoadMaskBits(kD, maskBytes);
+                    const V x = hn::LoadU(kD, xs + c0 + i), y = hn::LoadU(kD, ys + c0 + i);
+                    const M inBound = hn::And(hn::And(hn::Not(hn::Lt(x, xmin)), hn::Not(hn::Gt(x, xmax))),
+                                              hn::And(hn::Not(hn::Lt(y, ymin)), hn::Not(hn::Gt(y, ymax))));
+                    const M t = hn::And(cand, inBound);
+                    if (hn::AllFalse(kD, t)) continue;
+                    tested += hn::CountTrue(kD, t);
+                    V ev[5];
+                    for (int k = 0; k < 5; ++k)
+                        ev[k] = hn::Mul(sign[k], hn::Sub(hn::Mul(dx[k], hn::Sub(y, py[k])), hn::Mul(dy[k], hn::Sub(x, px[k]))));
+                    const M first = hn::And(t, insideTriangle(ev[0], q.e[0].canonical, ev[1], q.e[1].canonical, ev[4],
+                                                              q.e[4].canonical));
+                    const M second = hn::AndNot(first, hn::And(t, insideTriangle(hn::Neg(ev[4]), c02, ev[2],
+                                                                                 q.e[2].canonical, ev[3], q.e[3].canonical)));
+                    const M inside = hn::Or(first, second);
+                    if (hn::AllFalse(kD, inside)) continue;
+                    for (int k = 0; k < 5; ++k) hn::Store(ev[k], kD, e[k]);
+                    uint8_t inBits[8] = {0}, firstBits[8] = {0};
+                    hn::StoreMaskBits(kD, inside, inBits);
+                    hn::StoreMaskBits(kD, first, firstBits);
+                    uint64_t in = 0, fi = 0;
+                    for (size_t b = 0; b < (N + 7) / 8; ++b) in |= uint64_t(inBits[b]) << (8 * b), fi |= uint64_t(firstBits[b]) << (8 * b);
+                    for (; in; in &= in - 1) {
+                        const int lane = __builtin_ctzll(in);
+                        QuadHit& h = out[hits++];
+                        h.pixel = pixel;
+                        h.sample = uint16_t(c0 + int(i) + lane);
+                        h.first = uint8_t((fi >> lane) & 1);
+                        for (int k = 0; k < 5; ++k) h.e[k] = e[k][lane];
+                    }
+                }
+            }
+        }
+    *hitCount = hits;
+    return tested;
+}
+
+PixelTestFn Kernel() { return &TestPixel; }
+QuadTestFn QuadKernel() { return &TestQuad; }
+const char* Target() { return hwy::TargetName(HWY_TARGET); }
+
+}  // namespace HWY_NAMESPACE
+}  // namespace streyes
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace streyes {
+
+HWY_EXPORT(Kernel);
+HWY_EXPORT(QuadKernel);
+HWY_EXPORT(Target);
+
+namespace {
+
+PixelTest scalarTest(const micropolygon::QuadSetup& q, const float* xs, const float* ys, int n, uint64_t candidates,
+                     float* edges) {
+    using namespace micropolygon;
+    const int stride = edgeStride(n);
+    const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
+    PixelTest r;
+    for (int j = 0; j < n; ++j) {
+        if (!((candidates >> j) & 1)) continue;
+        const float x = xs[j], y = ys[j];
+        if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
+        const uint64_t bit = uint64_t(1) << j;
+        r.tested |= bit;
+        float e[5];
+        for (int k = 0; k < 5; ++k) edges[k * stride + j] = e[k] = q.e[k].eval(x, y);
+        if (insideTriangle(e[0], q.e[0].canonical, e[1], q.e[1].canonical, e[4], q.e[4].canonical)) r.first |= bit;
+        else if (insideTriangle(-e[4], c02, e[2], q.e[2].canonical, e[3], q.e[3].canonical)) r.second |= bit;
+    }
+    return r;
+}
+
+uint64_t scalarQuadTest(const micropolygon::QuadSetup& q, const SampleLayout& L, QuadHit* out, size_t* hitCount) {
+    float edges[kMaxEdgeValues];
+    uint64_t tested = 0;
+    size_t hits = *hitCount;
+    for (int py = q.py0; py <= q.py1; ++py) {
+        const int iy0 = floorClamped((q.ymin - float(py)) * float(L.sy), 0, L.sy - 1);
+        const int iy1 = floorClamped((q.ymax - float(py)) * float(L.sy), 0, L.sy - 1);
+        for (int px = q.px0; px <= q.px1; ++px) {
+            const int ix0 = floorClamped((q.xmin - float(px)) * float(L.sx), 0, L.sx - 1);
+            const int ix1 = floorClamped((q.xmax - float(px)) * float(L.sx), 0, L.sx - 1);
+            const uint32_t pixel = uint32_t((py - L.y0) * L.width + (px - L.x0));
+            for (int c0 = 0; c0 < L.S; c0 += 64) {
+                const int n = std::min(64, L.S - c0);
+                uint64_t candidates = 0;
+                for (int iy = iy0; iy <= iy1; ++iy) {
+                    const int row = iy * L.sx - c0;
+                    const int a = std::max(0, row + ix0), b = std::min(n - 1, row + ix1);
+                    if (a <= b) candidates |= (b - a == 63 ? ~uint64_t(0) : ((uint64_t(2) << (b - a)) - 1)) << a;
+                }
+                const size_t base = size_t(pixel) * size_t(L.S) + size_t(c0);
+                const PixelTest t = scalarTest(q, L.xs + base, L.ys + base, n, candidates, edges);
+                tested += uint64_t(__builtin_popcountll(t.tested));
+                for (uint64_t in = t.first | t.second; in; in &= in - 1) {
+                    const int j = __builtin_ctzll(in);
+                    QuadHit& h = out[hits++];
+                    h.pixel = pixel;
+                    h.sample = uint16_t(c0 + j);
+                    h.first = uint8_t((t.first >> j) & 1);
+                    for (int k = 0; k < 5; ++k) h.e[k] = edges[k * edgeStride(n) + j];
+                }
+            }
+        }
+    }
+    *hitCount = hits;
+    return tested;
+}
+
+}  // namespace
+
+QuadTestFn quadTestKernel() {
+    static const QuadTestFn kernel = HWY_DYNAMIC_DISPATCH(QuadKernel)();
+    return kernel;
+}
+
+QuadTestFn quadTestScalar() { return &scalarQuadTest; }
+
+PixelTestFn pixelTestKernel() {
+    static const PixelTestFn kernel = HWY_DYNAMIC_DISPATCH(Kernel)();
+    return kernel;
+}
+
+PixelTestFn pixelTestScalar() { return &scalarTest; }
+
+const char* pixelTestTarget() { return HWY_DYNAMIC_DISPATCH(Target)(); }
+
+}  // namespace streyes
+#endif  // HWY_ONCE

@@ -1,0 +1,82 @@
+// The sampler's SIMD kernels: which of a pixel's samples a micropolygon holds, many samples at
+// once (Highway, dispatched at run time to the widest the CPU has: AVX-512, AVX2, SSE4 ...).
+//
+// They compute exactly what the scalar kernel of micropolygon.h computes, bit for bit (the same
+// operations in the same order, and no fused multiply-add: the kernel file is compiled with
+// -ffp-contract=off), and tests hold them to it (sample_kernels_test.cpp).
+#pragma once
+
+#include <cstdint>
+
+#include "raster/micropolygon.h"
+
+namespace streyes {
+
+// What a quad does to the samples of one pixel (bits by sample, up to 64 at a time).
+struct PixelTest {
+    uint64_t tested = 0;  // candidates inside the quad's bound: given the inside test
+    uint64_t first = 0;   // inside the quad's first triangle (q0 q1 q2)
+    uint64_t second = 0;  // inside the second (q0 q2 q3) and not the first
+};
+
+// Tests samples [0, n) (n <= 64) at xs, ys against the quad, those whose bit is set in
+// `candidates`. edges[k * edgeStride(n) + j] receives sample j's value of the quad's edge k
+// (micropolygon.h's QuadSetup::e order: q0q1, q1q2, q2q3, q3q0, q2q0), from which its hit is made
+// (pixelHit). xs and ys must be readable up to edgeStride(n) past them.
+constexpr int edgeStride(int n) { return (n + 15) / 16 * 16; }
+constexpr int kMaxEdgeValues = 5 * 64;  // edges for n = 64
+
+using PixelTestFn = PixelTest (*)(const micropolygon::QuadSetup& q, const float* xs, const float* ys, int n,
+                                  uint64_t candidates, float* edges);
+
+PixelTestFn pixelTestKernel();  // the best for this CPU
+PixelTestFn pixelTestScalar();  // the reference: micropolygon.h's scalar test, sample by sample
+const char* pixelTestTarget();  // the instruction set pixelTestKernel() uses ("AVX2", ...)
+
+// A still quad against every pixel of its bound at once (one call a quad, so that the quad's
+// edges are set up once): the samples of the strata its bound overlaps in each pixel, S a pixel
+// at xs/ys (pixel i's sample j at i * S + j, pixel index (y - y0) * width + x - x0).
+struct SampleLayout {
+    const float* xs;
+    const float* ys;
+    int x0, y0, width;  // the block's rect
+    int S, sx, sy;      // samples a pixel, strata in x and y
+};
+struct QuadHit {
+    uint32_t pixel;   // index in the block
+    uint16_t sample;  // j
+    uint8_t first;    // in the quad's first triangle (else the second)
+    float e[5];       // the sample's edge values (QuadSetup::e order), for its barycentrics
+};
+// Appends the hits to `out` (room for (px1 - px0 + 1) (py1 - py0 + 1) S hits), in pixel order
+// then sample order; returns how many samples were tested.
+using QuadTestFn = uint64_t (*)(const micropolygon::QuadSetup& q, const SampleLayout& layout, QuadHit* out,
+                                size_t* hits);
+QuadTestFn quadTestKernel();
+QuadTestFn quadTestScalar();
+
+inline micropolygon::Hit quadHit(const QuadHit& h) {
+    if (h.first) {
+        const float inv = 1.0f / (h.e[0] + h.e[1] + h.e[4]);
+        return {0, 1, 2, h.e[4] * inv, h.e[0] * inv};
+    }
+    const float e02 = -h.e[4];
+    const float inv = 1.0f / (e02 + h.e[2] + h.e[3]);
+    return {0, 2, 3, h.e[3] * inv, e02 * inv};
+}
+
+// Sample j's hit from its edge values, as micropolygon::hitQuad makes it.
+inline micropolygon::Hit pixelHit(const float* edges, int n, int j, bool first) {
+    const int m = edgeStride(n);
+    const float e01 = edges[0 * m + j], e12 = edges[1 * m + j], e23 = edges[2 * m + j], e30 = edges[3 * m + j],
+                e20 = edges[4 * m + j];
+    if (first) {
+        const float inv = 1.0f / (e01 + e12 + e20);
+        return {0, 1, 2, e20 * inv, e01 * inv};
+    }
+    const float e02 = -e20;
+    const float inv = 1.0f / (e02 + e23 + e30);
+    return {0, 2, 3, e30 * inv, e02 * inv};
+}
+
+}  // namespace streyes

@@ -1,0 +1,83 @@
+#include "raster/sample_kernels.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+namespace streyes {
+namespace {
+
+using namespace micropolygon;
+
+// A quad from four corners, set up as the rasterizer sets it up (bound over the whole image).
+QuadSetup quad(const float (&x)[4], const float (&y)[4]) {
+    QuadSetup q;
+    for (int c = 0; c < 4; ++c) q.x[c] = x[c], q.y[c] = y[c], q.z[c] = 1;
+    boundQuad(q, nullptr, nullptr, nullptr, {-100, -100, 100, 100}, 0, 10);
+    setupEdges(q);
+    return q;
+}
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// The kernel against the scalar reference, and both against micropolygon::hitQuad, on quads of
+// every shape (convex, concave, bow-ties, collapsed edges, no area) and samples anywhere, on the
+// corners and on the edges (where the tie rule decides).
+TEST(SampleKernels, KernelGivesTheScalarTestBitForBit) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 4.0f);
+    const PixelTestFn kernel = pixelTestKernel(), scalar = pixelTestScalar();
+    uint64_t tested = 0, hits = 0;
+    for (int t = 0; t < 20000; ++t) {
+        float x[4], y[4];
+        for (int c = 0; c < 4; ++c) x[c] = std::round(u(rng) * 4) / 4, y[c] = std::round(u(rng) * 4) / 4;
+        if (t % 7 == 0) x[1] = x[0], y[1] = y[0];  // a collapsed edge
+        if (t % 11 == 0) x[2] = x[0], y[2] = y[0];  // a collapsed diagonal
+        const QuadSetup q = quad(x, y);
+        const int n = 1 + int(rng() % 64);
+        std::vector<float> xs(size_t(edgeStride(n))), ys(xs.size());
+        for (int j = 0; j < n; ++j) {
+            switch (rng() % 4) {
+            case 0: xs[size_t(j)] = x[rng() % 4], ys[size_t(j)] = y[rng() % 4]; break;  // corner coordinates
+            case 1: {                                                                     // an edge's midpoint
+                const int a = int(rng() % 4), b = (a + 1) % 4;
+                xs[size_t(j)] = 0.5f * (x[a] + x[b]), ys[size_t(j)] = 0.5f * (y[a] + y[b]);
+                break;
+            }
+            default: xs[size_t(j)] = u(rng), ys[size_t(j)] = u(rng);
+            }
+        }
+        const uint64_t candidates = n == 64 ? ~uint64_t(0) : ((uint64_t(1) << n) - 1) & rng();
+        float ek[kMaxEdgeValues], es[kMaxEdgeValues];
+        const PixelTest a = kernel(q, xs.data(), ys.data(), n, candidates, ek);
+        const PixelTest b = scalar(q, xs.data(), ys.data(), n, candidates, es);
+        ASSERT_EQ(a.tested, b.tested) << "quad " << t;
+        ASSERT_EQ(a.first, b.first) << "quad " << t;
+        ASSERT_EQ(a.second, b.second) << "quad " << t;
+        for (int j = 0; j < n; ++j) {
+            if (!((a.tested >> j) & 1)) continue;
+            ++tested;
+            for (int k = 0; k < 5; ++k)
+                ASSERT_TRUE(sameBits(ek[k * edgeStride(n) + j], es[k * edgeStride(n) + j])) << "quad " << t;
+            Hit h;
+            const bool inside = hitQuad(q, xs[size_t(j)], ys[size_t(j)], h);
+            const bool first = (a.first >> j) & 1, second = (a.second >> j) & 1;
+            ASSERT_EQ(inside, first || second) << "quad " << t << " sample " << j;
+            if (!inside) continue;
+            ++hits;
+            const Hit k = pixelHit(ek, n, j, first);
+            EXPECT_EQ(k.v0, h.v0);
+            EXPECT_EQ(k.v1, h.v1);
+            EXPECT_EQ(k.v2, h.v2);
+            EXPECT_TRUE(sameBits(k.l1, h.l1) && sameBits(k.l2, h.l2)) << "quad " << t << " sample " << j;
+        }
+    }
+    EXPECT_GT(tested, 100000u);
+    EXPECT_GT(hits, 20000u);
+    RecordProperty("target", pixelTestTarget());
+}
+
+}  // namespace
+}  // namespace streyes
