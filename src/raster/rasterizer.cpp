@@ -330,6 +330,18 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                     exact_[v] = border || !(error < kLinearError);
                 }
         }
+        // The whole grid over the group, against the block: most of a grid's groups lie in it, but a
+        // grid crossing bucket borders meets some of them in none of its frames' time.
+        Bounds3f groupBound;
+        for (size_t v = 0; v < ra_.size(); ++v) {
+            groupBound.extend(Vec3f{ra_[v].x, ra_[v].y, ra_[v].z});
+            groupBound.extend(Vec3f{rb_[v].x, rb_[v].y, rb_[v].z});
+        }
+        if (!(groupBound.hi.x >= float(R.x0) && groupBound.lo.x < float(R.x1 + 1) && groupBound.hi.y >= float(R.y0) &&
+              groupBound.lo.y < float(R.y1 + 1))) {
+            s0 = s1;
+            continue;
+        }
         for (int j = 0; j < nv; ++j) {
             for (int i = 0; i < nu; ++i) {
                 const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};

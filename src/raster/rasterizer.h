@@ -1,11 +1,13 @@
 // Sampling diced grids: which samples of an ImageBlock each micropolygon covers.
 //
 // A micropolygon is the quad between four neighbouring grid vertices, tested as two triangles
-// split along its (0,0)-(1,1) diagonal (micropolygon.h). Its corners move linearly from t0 to t1
-// in camera space; the rasterizer works one time slice at a time: it projects the grid at the two
-// ends of the slice (so perspective is exact at slice boundaries and the raster path of a vertex
-// is a straight segment inside a slice), rejects the grid's and then each quad's bound for that
-// slice against the block, and tests only the one sample per pixel the slice holds.
+// split along its (0,0)-(1,1) diagonal (micropolygon.h; the SIMD kernels of sample_kernels.h test
+// many samples at once). Its corners move linearly from t0 to t1 in camera space; a frame's
+// exposure has one time slice per sample of a pixel, each slice holding one sample a pixel. A
+// moving grid is projected at the ends of a group of slices (as many as keep its motion over the
+// group under half a pixel), the grid's and then each quad's bound over the group rejected against
+// the block (a vertex moving linearly in camera space projects inside the box of its two ends),
+// and each sample tested against the quad at the sample's own time.
 //
 // A grid that is still and exists over every frame of the block is sampled once, into the
 // block's still layer; any other writes into the frames' records of the pixels it comes nearest

@@ -1,6 +1,7 @@
 // One bucket's work: the split loop (Algorithm S or C, with or without occlusion culling) over a
 // tile times a block of frames, then the pixel filter. A BucketWorker is one thread's reusable
-// workspace; nothing in its hot path allocates once its vectors are warm.
+// workspace: its vectors (samples, grid, stack) are reused from bucket to bucket. The pieces a
+// split or an exposure cut makes are allocated one by one (docs/ARCHITECTURE.md, "The split loop").
 #pragma once
 
 #include <unordered_map>
