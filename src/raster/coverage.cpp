@@ -13,10 +13,11 @@ bool covered(const SampleHit* s, int S, float boundary) {
 
 }  // namespace
 
-uint64_t updateCoverage(const ImageBlock& block, float boundary, std::vector<uint8_t>& coverage) {
+uint64_t updateCoverage(const ImageBlock& block, float boundary, std::vector<uint8_t>& coverage, int frames) {
     const PixelRect& R = block.rect();
-    const int W = R.width(), H = R.height(), F = block.frameCount(), S = block.samplesPerPixel();
-    coverage.resize(size_t(W) * size_t(H) * size_t(F), 0);
+    const int W = R.width(), H = R.height(), S = block.samplesPerPixel();
+    const int F = frames < 0 ? block.frameCount() : frames;
+    coverage.resize(size_t(W) * size_t(H) * size_t(block.frameCount()), 0);
     uint64_t added = 0;
     for (int y = R.y0; y <= R.y1; ++y)
         for (int x = R.x0; x <= R.x1; ++x) {

@@ -13,6 +13,8 @@ namespace streyes {
 // pixel in that frame has a hit nearer than `boundary`. Cells already set stay set (depths only
 // ever decrease, and the boundary only grows). Returns how many cells were newly covered.
 // coverage is indexed [(fi * rect height + y - y0) * rect width + x - x0].
-uint64_t updateCoverage(const ImageBlock& block, float boundary, std::vector<uint8_t>& coverage);
+// With `frames` = 1 only the first frame's cells are made (the caller knows every frame sees the
+// same: nothing in the block has a record yet).
+uint64_t updateCoverage(const ImageBlock& block, float boundary, std::vector<uint8_t>& coverage, int frames = -1);
 
 }  // namespace streyes

@@ -173,6 +173,7 @@ void BucketWorker::runNearToFar() {
     layer_ = 0;
     nextDepth_ = 0;
     haveTable_ = false;
+    tableFrames_ = 1;
     arrivals_ = 0;
     firstHitsAtTable_ = 0;
     coverage_.assign(size_t(bucket_.rect.area()) * size_t(bucket_.frameCount), 0);
@@ -213,15 +214,27 @@ void BucketWorker::runNearToFar() {
 // covers those cells, so culling against the table never hides a surface that would be seen.
 void BucketWorker::endLayer(float boundary) {
     auto t = Clock::now();
-    const uint64_t added = updateCoverage(block_, boundary, coverage_);
+    // While nothing in the bucket has a frame's record, every frame sees the still layer: one
+    // frame's coverage and a summed-area table stand for all of them (a block of n frames covers
+    // n times what one does, so the culling rule decides the same). Once records appear, the
+    // first frame's coverage is copied to the others and the volume is kept whole.
+    const int F = bucket_.frameCount;
+    const int frames = block_.recordCount() == 0 ? 1 : F;
+    const size_t cells = size_t(bucket_.rect.area());
+    if (frames == F && tableFrames_ == 1 && F > 1) {
+        coverage_.resize(cells * size_t(F), 0);
+        for (int fi = 1; fi < F; ++fi) std::copy(coverage_.begin(), coverage_.begin() + long(cells), coverage_.begin() + long(cells * size_t(fi)));
+    }
+    const uint64_t added = updateCoverage(block_, boundary, coverage_, frames) * uint64_t(F / frames);
     const size_t li = std::min<size_t>(size_t(layer_), kMaxLayerStats - 1);
     if (counters.cellsCoveredByLayer.size() <= li) counters.cellsCoveredByLayer.resize(li + 1, 0);
     counters.cellsCoveredByLayer[li] += added;
-    if (added > 0 || !haveTable_) {
-        table_.build(coverage_.data(), bucket_.rect.width(), bucket_.rect.height(), bucket_.frameCount);
+    if (added > 0 || !haveTable_ || frames != tableFrames_) {
+        table_.build(coverage_.data(), bucket_.rect.width(), bucket_.rect.height(), frames);
         ++counters.occlusionTables;
         haveTable_ = true;
     }
+    tableFrames_ = frames;
     ++layer_;
     firstHitsAtTable_ = rasterCounters_.firstHits;
     counters.timeOcclusion += secondsSince(t);
@@ -244,6 +257,12 @@ bool BucketWorker::occluded(const Body& body, const Bounds3f& raster) const {
     b.f0 = std::max(0, int(std::ceil(span.t0 - close)) - bucket_.firstFrame);
     b.f1 = std::min(bucket_.frameCount - 1, int(std::floor(span.t1 - open)) - bucket_.firstFrame);
     if (b.x0 > b.x1 || b.y0 > b.y1 || b.f0 > b.f1) return false;
+    if (tableFrames_ == 1) {  // every frame the same so far: the first frame's table, times the frames
+        CellBlock first = b;
+        first.f0 = first.f1 = 0;
+        const uint64_t n = uint64_t(b.f1 - b.f0 + 1);
+        return occludedWithin(b.volume(), uint64_t(table_.sum(first)) * n, options_.tolerance);
+    }
     return occludedWithin(b.volume(), table_.sum(b), options_.tolerance);
 }
 

@@ -99,6 +99,7 @@ class BucketWorker {
     size_t nextDepth_ = 0;            // next geometric boundary in layerDepths_
     uint64_t firstHitsAtTable_ = 0;   // rasterCounters_.firstHits when the last table was built
     bool haveTable_ = false;
+    int tableFrames_ = 1;             // frames the table has: 1 while every frame sees the still layer
     std::vector<uint8_t> coverage_;
     SummedVolumeTable<uint32_t> table_;
 
