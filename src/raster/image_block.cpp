@@ -29,10 +29,9 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
             }
         }
     permutation_.resize(size_t(frameCount) * pixels);
-    for (int fi = 0; fi < frameCount; ++fi)
-        for (int y = rect.y0; y <= rect.y1; ++y)
-            for (int x = rect.x0; x <= rect.x1; ++x)
-                permutation_[size_t(fi) * pixels + pixelIndex(x, y)] = uint8_t(patterns.permutationOf(x, y, firstFrame + fi));
+    timesMade_.assign(size_t(frameCount), 0);
+    if (dense)
+        for (int fi = 0; fi < frameCount; ++fi) makeTimes(fi);
 
     // Records are kept in chunks from bucket to bucket (a bucket with as many samples per pixel
     // reuses them); the still layer and the slots are rewritten.
@@ -58,6 +57,14 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
         still_.assign(n, kNoHit);
         shadowed_.clear();
     }
+}
+
+void ImageBlock::makeTimes(int fi) const {
+    const size_t pixels = size_t(pixelCount());
+    for (int y = rect_.y0; y <= rect_.y1; ++y)
+        for (int x = rect_.x0; x <= rect_.x1; ++x)
+            permutation_[size_t(fi) * pixels + pixelIndex(x, y)] = uint8_t(patterns_->permutationOf(x, y, firstFrame_ + fi));
+    timesMade_[size_t(fi)] = 1;
 }
 
 SampleHit* ImageBlock::makeRecord(int fi, size_t i) {

@@ -76,15 +76,24 @@ class ImageBlock {
     const float* ys() const { return ys_.data(); }
 
     // Time: the permutation of pixel i in frame fi (PatternTable: stratumOfSample,
-    // sampleOfStratum, stratumTimes). The sample of slice k is sampleOfStratum(q)[k].
+    // sampleOfStratum, stratumTimes). The sample of slice k is sampleOfStratum(q)[k]. A frame's
+    // permutations are made when first needed (a still scene never needs them):
+    // needTimes(fi) before permutation(fi, ...).
+    void needTimes(int fi) const {
+        if (!timesMade_[size_t(fi)]) makeTimes(fi);
+    }
     int permutation(int fi, size_t i) const { return int(permutation_[size_t(fi) * size_t(pixelCount()) + i]); }
     // For tests: pixel i of frame fi takes the table's permutation q instead.
-    void setPermutation(int fi, size_t i, int q) { permutation_[size_t(fi) * size_t(pixelCount()) + i] = uint8_t(q); }
+    void setPermutation(int fi, size_t i, int q) {
+        needTimes(fi);
+        permutation_[size_t(fi) * size_t(pixelCount()) + i] = uint8_t(q);
+    }
     float sampleTime(int fi, size_t i, int j) const {
         const int q = permutation(fi, i);
         return patterns_->stratumTimes(q)[patterns_->stratumOfSample(q)[j]];
     }
     SamplePosition position(int fi, size_t i, int j) const {
+        needTimes(fi);
         const size_t s = i * size_t(S_) + size_t(j);
         return {xs_[s], ys_[s], sampleTime(fi, i, j)};
     }
@@ -129,7 +138,9 @@ class ImageBlock {
     const PatternTable* patterns_ = nullptr;
     std::vector<float> xs_, ys_;
     std::vector<uint8_t> pattern_;      // per pixel
-    std::vector<uint8_t> permutation_;  // frames x pixels
+    void makeTimes(int fi) const;
+    mutable std::vector<uint8_t> permutation_;  // frames x pixels
+    mutable std::vector<uint8_t> timesMade_;    // per frame
     std::vector<SampleHit> still_;
     std::vector<int32_t> slot_;         // frames x pixels: record number, or -1
     std::vector<uint16_t> recordsOf_;   // per pixel: frames with a record of it (sparse)

@@ -90,6 +90,13 @@ void GridRasterizer::rasterize(const Grid& grid, const Camera& camera, const Shu
     if (grid.moving) collectSlices(grid, shutter, block);
     else collectFrames(grid, shutter, block);
     if (grid.moving ? slices_.empty() : frames_.empty()) return;
+    // Sample times, in the frames where they decide (a grid over part of an exposure, or moving).
+    if (grid.moving) {
+        for (const Slice& sl : slices_) block.needTimes(sl.fi);
+    } else {
+        for (const FrameSpan& fr : frames_)
+            if (!fr.whole) block.needTimes(fr.fi);
+    }
     const bool shadowed = grid.shadowSlots > 0, counting = hitCounts_ != nullptr;
     if (shadowed) {
         if (counting) sample<true, true>(grid, camera, block, counters);

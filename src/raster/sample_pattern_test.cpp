@@ -100,6 +100,7 @@ TEST(ImageBlock, PositionsAreSharedByTheFramesAndEachSliceHoldsOneSamplePerPixel
             const size_t i = block.pixelIndex(x, y);
             for (int fi = 0; fi < 3; ++fi) {
                 EXPECT_FALSE(block.hasRecord(fi, i));
+                block.needTimes(fi);
                 const int q = block.permutation(fi, i);
                 std::set<int> seen;
                 for (int k = 0; k < 4; ++k) {
