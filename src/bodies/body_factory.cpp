@@ -239,9 +239,13 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std
 }
 
 Bounds3f BodyFactory::cameraBound(const Bounds3d& b, const MotionTransform& objectToWorld) const {
+    return cameraBound(b, objectToWorld, windowStart_, windowEnd_);
+}
+
+Bounds3f BodyFactory::cameraBound(const Bounds3d& b, const MotionTransform& objectToWorld, double ta, double tb) const {
     MotionTransform objectToCamera = objectToWorld.then(worldToCamera_);
     Bounds3d r;
-    for (double t : segmentTimes(keysOf(objectToCamera), windowStart_, windowEnd_)) {
+    for (double t : segmentTimes(keysOf(objectToCamera), ta, tb)) {
         Matrix4 m = objectToCamera.at(t);
         for (int i = 0; i < 8; ++i)
             r.extend(m.point({(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z}));
@@ -414,7 +418,14 @@ void BodyFactory::addProcedural(const ProceduralDesc& p, std::shared_ptr<const P
         log_.warnOnce("procedural-nonfinite", p.loc, "procedural bound is not finite in camera space: skipped");
         return;
     }
-    auto body = std::make_unique<ProceduralBody>(p, std::move(generator), b, TimeSpan{windowStart_, windowEnd_}, depth);
+    // Moving in camera space over the shot (the camera or its transform moves): its bound and level
+    // of detail are taken frame by frame.
+    const std::vector<double> keys = keysOf(p.objectToWorld.then(worldToCamera_));
+    auto any = [&](auto pred) { return std::any_of(keys.begin(), keys.end(), pred); };
+    const bool moving = any([&](double t) { return t > windowStart_ && t < windowEnd_; }) ||
+                        (any([&](double t) { return t <= windowStart_; }) && any([&](double t) { return t >= windowEnd_; }));
+    auto body = std::make_unique<ProceduralBody>(p, std::move(generator), b, TimeSpan{windowStart_, windowEnd_}, depth,
+                                                 moving, this);
     body->setSource(source(p.loc));
     body->setPrimitiveId(primitiveId);
     out.push_back(std::move(body));

@@ -75,8 +75,11 @@ class BodyFactory final : public ChildBodyMaker {
     // depend on which thread expanded it.
     void addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out) override;
 
-    // Camera-space box around an object-space box over the whole window (all transform keys).
+    // Camera-space box around an object-space box over the whole window (all transform keys), or
+    // during [a, b].
     Bounds3f cameraBound(const Bounds3d& objectBound, const MotionTransform& objectToWorld) const;
+    Bounds3f cameraBound(const Bounds3d& objectBound, const MotionTransform& objectToWorld, double a,
+                         double b) const override;
 
     // Procedurals whose children reached outside their declared bound (the renderer renders again).
     std::vector<ProceduralBody*> takeOutgrown();

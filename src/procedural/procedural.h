@@ -9,6 +9,7 @@
 #pragma once
 
 #include <atomic>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -74,58 +75,91 @@ class ChildBodyMaker {
                              std::vector<std::unique_ptr<Body>>& out) = 0;
     // A procedural whose children reached outside its declared bound (rendered again).
     virtual void reportOutgrown(ProceduralBody* procedural) = 0;
+    // The camera-space box of an object-space box during [a, b].
+    virtual Bounds3f cameraBound(const Bounds3d& objectBound, const MotionTransform& objectToWorld, double a,
+                                 double b) const = 0;
 };
 
 // A procedural in the split loop.
+//
+// Its level of detail (RenderMan's "detail": the raster area of its bound) is decided per frame
+// where the procedural moves in camera space (the camera or its transform moves): each frame
+// takes the level of its own bound, rounded up to a power of two (detailLevel), and the procedural
+// expands once per level it is seen at; a frame's children are those of its level. The split loop
+// works on *views*: a procedural over a run of frames that share a level (restrictedTo), bounded
+// over those frames only, whose children it pushes for those frames only. A still procedural has
+// one level, from its bound over the shot, and is its own view.
 class ProceduralBody final : public Body {
   public:
     ProceduralBody(ProceduralDesc desc, std::shared_ptr<const ProceduralGenerator> generator,
-                   const Bounds3f& cameraBound, TimeSpan window, int depth);
+                   const Bounds3f& cameraBound, TimeSpan window, int depth, bool moving, const ChildBodyMaker* maker);
 
     bool expands() const override { return true; }
     LBBox3f bound() const override;
+    Bounds3f boundDuring(double a, double b) const override;  // camera space, over [a, b]
     RasterMeasure measure(const Camera& camera) const override;
     CameraExtents cameraExtents() const override;
     void split(SplitAxis, std::unique_ptr<Body> out[2]) const override;  // procedurals expand instead
+    // A view over [a, b] (a run of exposures) at `level` (detailLevel of its frames), bounded over
+    // [a, b]; expanding it gives the children of that level.
     std::unique_ptr<Body> restrictedTo(double a, double b) const override;
+    std::unique_ptr<ProceduralBody> view(double a, double b, int level) const;
     void dice(int, int, Grid&) const override;
 
-    const ProceduralDesc& desc() const { return desc_; }
-    const ProceduralGenerator& generator() const { return *generator_; }
-    int depth() const { return depth_; }
+    const ProceduralDesc& desc() const { return root().desc_; }
+    const ProceduralGenerator& generator() const { return *root().generator_; }
+    int depth() const { return root().depth_; }
+    // The level of detail this body expands at (a view's own, or a still procedural's).
+    int level(const Camera& camera) const;
 
-    // Expands (first call, on any thread; the others wait) and returns the children as
-    // camera-space bodies. Rethrows the expansion's error on every call. *expandedHere is set
-    // when this call did the expansion (so that counting expansions does not depend on timing).
+    // Expands at this body's level (first call for the level, on any thread; the others wait)
+    // and returns the children as camera-space bodies (over the whole shot). Rethrows the
+    // expansion's error on every call. *expandedHere is set when this call did the expansion (so
+    // that counting expansions does not depend on timing).
     const std::vector<BodyPtr>& children(ChildBodyMaker& maker, const Camera& camera, Log& log,
                                          bool* expandedHere = nullptr) const;
-    bool expanded() const { return expanded_.load(std::memory_order_acquire); }
+    bool expanded() const;  // at any level
 
     // Children that reach outside the declared bound: the union of everything, for the renderer to
     // render again where the declared bound was too small.
-    bool outgrewBound() const { return outgrew_; }
-    const Bounds3f& grownBound() const { return grown_; }
+    bool outgrewBound() const { return root().outgrew_; }
+    const Bounds3f& grownBound() const { return root().grown_; }
     // From then on, cull with the grown bound, and so do the procedurals this one came from
     // (their bounds were made from its declared one). Called by the renderer between passes.
     void useGrownBound();
 
   private:
-    void expand(ChildBodyMaker& maker, const Camera& camera, Log& log) const;
+    struct Expansion {  // the children of one level of detail
+        std::once_flag once;
+        std::vector<BodyPtr> children;
+        std::exception_ptr error;
+    };
+    const ProceduralBody& root() const { return root_ ? *root_ : *this; }
+    void expand(Expansion& e, int level, ChildBodyMaker& maker, const Camera& camera, Log& log) const;
 
+    // The procedural itself (views point at it and share its expansions).
+    const ProceduralBody* root_ = nullptr;
     ProceduralDesc desc_;
     std::shared_ptr<const ProceduralGenerator> generator_;
-    Bounds3f bound_;   // camera space, over the whole animation
+    const ChildBodyMaker* maker_ = nullptr;  // for bounds over part of the shot
     int depth_;
+    int level_ = -1;   // a view's level; -1: from the bound
+    Bounds3f bound_;   // camera space: over the whole shot (a view: over its frames)
     bool useGrown_ = false;
     mutable const ProceduralBody* parent_ = nullptr;  // the procedural that produced this one
 
-    mutable std::once_flag once_;
-    mutable std::atomic<bool> expanded_{false};
-    mutable std::vector<BodyPtr> children_;
-    mutable std::exception_ptr error_;
-    mutable bool outgrew_ = false;
-    mutable Bounds3f grown_;
+    mutable std::mutex mutex_;  // guards expansions_ (the map, not what an Expansion holds)
+    mutable std::map<int, std::unique_ptr<Expansion>> expansions_;
+    mutable std::atomic<bool> outgrew_{false};
+    mutable Bounds3f grown_;  // under mutex_
 };
+
+// A raster area (pixels) as a level of detail: the power of two at or above it (0 for a pixel or
+// less); kDetailUnbounded for a bound reaching the eye plane. The detail a level expands with is
+// 2^level (infinite for kDetailUnbounded).
+constexpr int kDetailUnbounded = 1000;
+int detailLevel(double area);
+double detailOfLevel(int level);
 
 // The generator behind a declared procedural, one of those a RIB file can ask for:
 //   Procedural "DelayedReadArchive" ["file.rib"] [bound]

@@ -8,20 +8,57 @@
 
 namespace streyes {
 
+int detailLevel(double area) {
+    if (!(area < 1e300)) return kDetailUnbounded;  // infinite or NaN: the bound reaches the eye plane
+    if (area <= 1) return 0;
+    return std::min(kDetailUnbounded - 1, int(std::ceil(std::log2(area))));
+}
+
+double detailOfLevel(int level) {
+    return level >= kDetailUnbounded ? std::numeric_limits<double>::infinity() : std::ldexp(1.0, level);
+}
+
 ProceduralBody::ProceduralBody(ProceduralDesc desc, std::shared_ptr<const ProceduralGenerator> generator,
-                               const Bounds3f& cameraBound, TimeSpan window, int depth)
-    : desc_(std::move(desc)), generator_(std::move(generator)), bound_(cameraBound), depth_(depth) {
+                               const Bounds3f& cameraBound, TimeSpan window, int depth, bool moving,
+                               const ChildBodyMaker* maker)
+    : desc_(std::move(desc)), generator_(std::move(generator)), maker_(maker), depth_(depth), bound_(cameraBound) {
     time_ = window;
-    moving_ = false;  // the bound covers the whole animation
+    moving_ = moving;  // in camera space: its level of detail and bound change from frame to frame
+}
+
+std::unique_ptr<ProceduralBody> ProceduralBody::view(double a, double b, int level) const {
+    const ProceduralBody& r = root();
+    auto v = std::unique_ptr<ProceduralBody>(
+        new ProceduralBody(ProceduralDesc{}, nullptr, boundDuring(a, b), TimeSpan{a, b, false}, r.depth_, false, r.maker_));
+    v->root_ = &r;
+    v->level_ = level;
+    v->inheritFrom(*this);
+    return v;
+}
+
+std::unique_ptr<Body> ProceduralBody::restrictedTo(double a, double b) const { return view(a, b, level_); }
+
+Bounds3f ProceduralBody::boundDuring(double a, double b) const {
+    const ProceduralBody& r = root();
+    if (r.useGrown_) return r.grown_;  // the declared bound was too small: the union of what came out
+    if (!moving_ || !r.maker_) return bound_;
+    return r.maker_->cameraBound(r.desc_.bound, r.desc_.objectToWorld, a, b);
+}
+
+int ProceduralBody::level(const Camera& camera) const {
+    if (level_ >= 0) return level_;
+    if (camera.perspective() && bound().b0.lo.z < camera.eyePlane()) return kDetailUnbounded;
+    const Bounds3f r = measure(camera).bound.b0;
+    return detailLevel(double(r.hi.x - r.lo.x) * double(r.hi.y - r.lo.y));
 }
 
 LBBox3f ProceduralBody::bound() const {
-    const Bounds3f& b = useGrown_ ? grown_ : bound_;
+    const Bounds3f& b = root().useGrown_ ? root().grown_ : bound_;
     return {b, b};
 }
 
 RasterMeasure ProceduralBody::measure(const Camera& camera) const {
-    const Bounds3f& b = useGrown_ ? grown_ : bound_;
+    const Bounds3f b = bound().b0;
     RasterMeasure m;
     for (int i = 0; i < 8; ++i)
         m.bound.b0.extend(camera.toRaster({(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y,
@@ -39,13 +76,14 @@ CameraExtents ProceduralBody::cameraExtents() const {
 }
 
 void ProceduralBody::useGrownBound() {
-    useGrown_ = true;
-    for (ProceduralBody* p = const_cast<ProceduralBody*>(parent_); p; p = const_cast<ProceduralBody*>(p->parent_)) {
+    ProceduralBody& r = const_cast<ProceduralBody&>(root());
+    r.useGrown_ = true;
+    for (ProceduralBody* p = const_cast<ProceduralBody*>(r.parent_); p; p = const_cast<ProceduralBody*>(p->parent_)) {
         if (!p->useGrown_) {
             p->useGrown_ = true;
             if (p->grown_.empty()) p->grown_ = p->bound_;
         }
-        p->grown_.extend(grown_);
+        p->grown_.extend(r.grown_);
     }
 }
 
@@ -53,15 +91,25 @@ void ProceduralBody::split(SplitAxis, std::unique_ptr<Body>[2]) const {
     throw std::logic_error("a procedural is expanded, not split");
 }
 
-std::unique_ptr<Body> ProceduralBody::restrictedTo(double, double) const {
-    throw std::logic_error("a procedural spans the whole animation and is never restricted");
-}
-
 void ProceduralBody::dice(int, int, Grid&) const { throw std::logic_error("a procedural is expanded, not diced"); }
+
+bool ProceduralBody::expanded() const {
+    std::lock_guard<std::mutex> lock(root().mutex_);
+    return !root().expansions_.empty();
+}
 
 const std::vector<BodyPtr>& ProceduralBody::children(ChildBodyMaker& maker, const Camera& camera, Log& log,
                                                      bool* expandedHere) const {
-    std::call_once(once_, [&] {
+    const ProceduralBody& r = root();
+    const int lv = level(camera);
+    Expansion* e;
+    {
+        std::lock_guard<std::mutex> lock(r.mutex_);
+        std::unique_ptr<Expansion>& slot = r.expansions_[lv];
+        if (!slot) slot = std::make_unique<Expansion>();
+        e = slot.get();
+    }
+    std::call_once(e->once, [&] {
         if (expandedHere) *expandedHere = true;
         // Expansion may run parallel work (a subdivision mesh builds its faces with parallel_for).
         // A thread waiting for that work takes other tasks meanwhile; were it to take another
@@ -69,26 +117,19 @@ const std::vector<BodyPtr>& ProceduralBody::children(ChildBodyMaker& maker, cons
         // for ever. Isolated, it takes only tasks of this expansion.
         tbb::this_task_arena::isolate([&] {
             try {
-                expand(maker, camera, log);
+                r.expand(*e, lv, maker, camera, log);
             } catch (...) {
-                error_ = std::current_exception();
+                e->error = std::current_exception();
             }
         });
-        expanded_.store(true, std::memory_order_release);
     });
-    if (error_) std::rethrow_exception(error_);
-    return children_;
+    if (e->error) std::rethrow_exception(e->error);
+    return e->children;
 }
 
-void ProceduralBody::expand(ChildBodyMaker& maker, const Camera& camera, Log& log) const {
+void ProceduralBody::expand(Expansion& e, int level, ChildBodyMaker& maker, const Camera&, Log& log) const {
     ExpandContext ctx;
-    // RenderMan's detail: the raster area of the bound; unbounded when it reaches the eye plane.
-    if (camera.perspective() && bound_.lo.z < camera.eyePlane()) {
-        ctx.detail = std::numeric_limits<double>::infinity();
-    } else {
-        const Bounds3f r = measure(camera).bound.b0;
-        ctx.detail = double(r.hi.x - r.lo.x) * double(r.hi.y - r.lo.y);
-    }
+    ctx.detail = detailOfLevel(level);
     ctx.objectToWorld = desc_.objectToWorld;
     ctx.attributes = desc_.attributes;
     ctx.loc = desc_.loc;
@@ -98,20 +139,25 @@ void ProceduralBody::expand(ChildBodyMaker& maker, const Camera& camera, Log& lo
     ctx.log = &log;
     ProceduralOutput output;
     generator_->expand(ctx, output);
-    maker.addChildren(output, primitiveId(), depth_ + 1, children_);
-    for (const BodyPtr& c : children_)
+    maker.addChildren(output, primitiveId(), depth_ + 1, e.children);
+    for (const BodyPtr& c : e.children)
         if (c->expands()) static_cast<const ProceduralBody&>(*c).parent_ = this;
 
     // Children reaching outside the declared bound are not lost: the renderer renders again
     // with the grown bound (see Renderer::render).
-    grown_ = bound_;
-    for (const BodyPtr& c : children_) grown_.extend(c->bound().swept());
+    Bounds3f grown = bound_;
+    for (const BodyPtr& c : e.children) grown.extend(c->bound().swept());
     const float slack = 1e-4f * std::max({1.0f, std::fabs(bound_.lo.x), std::fabs(bound_.hi.x), std::fabs(bound_.lo.y),
                                           std::fabs(bound_.hi.y), std::fabs(bound_.lo.z), std::fabs(bound_.hi.z)});
-    outgrew_ = grown_.lo.x < bound_.lo.x - slack || grown_.lo.y < bound_.lo.y - slack ||
-               grown_.lo.z < bound_.lo.z - slack || grown_.hi.x > bound_.hi.x + slack ||
-               grown_.hi.y > bound_.hi.y + slack || grown_.hi.z > bound_.hi.z + slack;
-    if (outgrew_) {
+    const bool outgrew = grown.lo.x < bound_.lo.x - slack || grown.lo.y < bound_.lo.y - slack ||
+                         grown.lo.z < bound_.lo.z - slack || grown.hi.x > bound_.hi.x + slack ||
+                         grown.hi.y > bound_.hi.y + slack || grown.hi.z > bound_.hi.z + slack;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (grown_.empty()) grown_ = bound_;
+        grown_.extend(grown);
+    }
+    if (outgrew && !outgrew_.exchange(true)) {
         log.warnOnce("procedural-bound:" + desc_.loc.str(), desc_.loc,
                      generator_->describe() +
                          ": its children reach outside the declared bound; the frames are rendered again with "

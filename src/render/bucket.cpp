@@ -103,11 +103,21 @@ static bool reachesSamples(const TimeSpan& span, double a, double b) {
 // Each root whose time span meets the bucket's frames enters the loop. A moving root (or any
 // root, while the lights move) is cut at each frame's exposure first, from the root itself: a
 // frame's pieces, and so its pixels, are the same whatever block of frames it is rendered in.
-void BucketWorker::pushRoot(const Body& root) {
+void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
+    if (fb < 0) fb = bucket_.frameCount - 1;
     const TimeSpan& span = root.time();
-    if (!reachesSamples(span, windowStart_, windowEnd_)) return;
-    if ((root.moving() || shadingVaries_) && !root.expands()) {  // a procedural expands; its children are cut
-        pushExposures(root, 0, bucket_.frameCount - 1);
+    const double a = bucket_.firstFrame + fa + scene_.shutter.open, b = bucket_.firstFrame + fb + scene_.shutter.close;
+    if (!reachesSamples(span, a, b)) return;
+    if (root.expands() && root.moving()) {
+        pushProceduralViews(static_cast<const ProceduralBody&>(root), fa, fb);
+    } else if (root.moving() || (shadingVaries_ && !root.expands())) {
+        const int chunk = chunkFrames(root);
+        auto chunkOf = [&](int frame) { return frame >= 0 ? frame / chunk : -((-frame + chunk - 1) / chunk); };
+        pushChunks(root, chunk, chunkOf(bucket_.firstFrame + fa), chunkOf(bucket_.firstFrame + fb));
+    } else if (fa > 0 || fb < bucket_.frameCount - 1) {
+        // Still, but wanted in some of the bucket's frames only (a moving procedural's children at
+        // one level of detail): the piece over those frames.
+        push(root.restrictedTo(std::max(span.t0, a), std::min(span.t1, b)));
     } else if (occlusion_) {
         heap_.push_back({root.bound().swept().lo.z, arrivals_++, &root, nullptr});
         std::push_heap(heap_.begin(), heap_.end(), FartherFirst());
@@ -116,28 +126,94 @@ void BucketWorker::pushRoot(const Body& root) {
     }
 }
 
-void BucketWorker::pushExposures(const Body& root, int fa, int fb) {
+// A moving procedural: the frames whose exposures its bound reaches the bucket in (halving the
+// range, as for moving bodies), each at the level of detail of its own bound; runs of frames that
+// share a level make one view.
+void BucketWorker::pushProceduralViews(const ProceduralBody& procedural, int fa, int fb) {
+    levels_.clear();
+    collectLevels(procedural, fa, fb);
+    const double open = scene_.shutter.open, close = scene_.shutter.close;
+    for (size_t i = 0; i < levels_.size();) {
+        size_t j = i + 1;
+        while (j < levels_.size() && levels_[j].first == levels_[j - 1].first + 1 && levels_[j].second == levels_[i].second)
+            ++j;
+        const int first = levels_[i].first, last = levels_[j - 1].first;
+        std::unique_ptr<ProceduralBody> view = procedural.view(bucket_.firstFrame + first + open,
+                                                               bucket_.firstFrame + last + close, levels_[i].second);
+        view->exposure = last == first ? bucket_.firstFrame + first : Body::kNoExposure;
+        push(std::move(view));
+        i = j;
+    }
+}
+
+void BucketWorker::collectLevels(const ProceduralBody& procedural, int fa, int fb) {
+    const double a = bucket_.firstFrame + fa + scene_.shutter.open, b = bucket_.firstFrame + fb + scene_.shutter.close;
+    const Bounds3f box = procedural.boundDuring(a, b);
+    const PixelRect& R = bucket_.rect;
+    if (boxOutside(scene_.camera, box, {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
+        ++counters.culledView;
+        return;
+    }
+    if (fa < fb) {
+        const int mid = fa + (fb - fa) / 2;
+        collectLevels(procedural, fa, mid);
+        collectLevels(procedural, mid + 1, fb);
+        return;
+    }
+    const Camera& cam = scene_.camera;
+    int level = kDetailUnbounded;
+    if (!(cam.perspective() && box.lo.z < cam.eyePlane())) {
+        Bounds3f r;
+        for (int i = 0; i < 8; ++i)
+            r.extend(cam.toRaster({(i & 1) ? box.hi.x : box.lo.x, (i & 2) ? box.hi.y : box.lo.y, (i & 4) ? box.hi.z : box.lo.z}));
+        level = detailLevel(double(r.hi.x - r.lo.x) * double(r.hi.y - r.lo.y));
+    }
+    levels_.push_back({fa, level});
+}
+
+// Frames a moving root's pieces span: a power of two, as many as keep its raster motion over a
+// piece under kChunkMotion pixels (a slow leaf is diced once for several frames, a fast body once
+// an exposure), at most kMaxChunk. A function of the body and the camera only: pieces (and so
+// pixels) do not depend on the block of frames. Bodies reaching the eye plane cannot be measured:
+// one exposure a piece.
+int BucketWorker::chunkFrames(const Body& root) const {
+    constexpr float kChunkMotion = 8.0f;
+    constexpr int kMaxChunk = 16;
+    const Camera& cam = scene_.camera;
+    if (!root.moving() || !(root.bound().swept().lo.z >= cam.eyePlane())) return 1;
     const TimeSpan& span = root.time();
-    const double a = std::max(span.t0, bucket_.firstFrame + fa + scene_.shutter.open);
-    const double b = std::min(span.t1, bucket_.firstFrame + fb + scene_.shutter.close);
-    if (a > b) return;
-    // Not one piece of these frames can reach the bucket (the margin keeps this conservative to
+    const RasterMeasure m = root.measure(cam);
+    // The motion measured is over the whole span, or between neighbouring keys for a keyed body.
+    const double keys = root.diceableInTime() ? 1.0 : double(static_cast<const KeyedPatchBody&>(root).keyCount() - 1);
+    const double perFrame = double(m.motion) / std::max(1e-9, (span.t1 - span.t0) / keys);
+    int frames = 1;
+    while (frames < kMaxChunk && perFrame * double(2 * frames) <= double(kChunkMotion)) frames *= 2;
+    return frames;
+}
+
+// A moving root's pieces for the bucket's frames [fa, fb]: one a chunk of `chunk` frames aligned
+// to multiples of `chunk` (absolute frame numbers), cut from the root. The chunks whose time its
+// bound reaches the bucket in are found by halving the range of chunks.
+void BucketWorker::pushChunks(const Body& root, int chunk, int ca, int cb) {
+    const TimeSpan& span = root.time();
+    const double open = scene_.shutter.open, close = scene_.shutter.close;
+    const double a = std::max(span.t0, double(ca) * chunk + open), b = std::min(span.t1, double(cb + 1) * chunk - 1 + close);
+    if (a > b || !reachesSamples(span, a, b)) return;
+    // Not one piece of these chunks can reach the bucket (the margin keeps this conservative to
     // float rounding: the pieces' own bounds decide, as always, in process()).
     const PixelRect& R = bucket_.rect;
     if (boxOutside(scene_.camera, root.boundDuring(a, b), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
         ++counters.culledView;
         return;
     }
-    if (fa < fb) {
-        const int mid = fa + (fb - fa) / 2;
-        pushExposures(root, fa, mid);
-        pushExposures(root, mid + 1, fb);
+    if (ca < cb) {
+        const int mid = ca + (cb - ca) / 2;
+        pushChunks(root, chunk, ca, mid);
+        pushChunks(root, chunk, mid + 1, cb);
         return;
     }
-    const double e0 = bucket_.firstFrame + fa + scene_.shutter.open, e1 = bucket_.firstFrame + fa + scene_.shutter.close;
-    if (!reachesSamples(span, e0, e1)) return;
-    BodyPtr piece = root.restrictedTo(std::max(span.t0, e0), std::min(span.t1, e1));
-    piece->exposure = bucket_.firstFrame + fa;
+    BodyPtr piece = root.restrictedTo(a, b);
+    piece->exposure = ca * chunk;
     push(std::move(piece));
 }
 
@@ -352,7 +428,12 @@ void BucketWorker::expand(const ProceduralBody& procedural) {
         if (counters.proceduralsExpandedByDepth.size() <= d) counters.proceduralsExpandedByDepth.resize(d + 1, 0);
         ++counters.proceduralsExpandedByDepth[d];
     }
-    for (const BodyPtr& child : children) pushRoot(*child);
+    // A view of a moving procedural stands for some of the bucket's frames: its children (bodies
+    // over the whole shot) are wanted in those only.
+    const int fa = std::max(0, int(std::lround(procedural.time().t0 - scene_.shutter.open)) - bucket_.firstFrame);
+    const int fb = std::min(bucket_.frameCount - 1,
+                            int(std::lround(procedural.time().t1 - scene_.shutter.close)) - bucket_.firstFrame);
+    for (const BodyPtr& child : children) pushRoot(*child, fa, fb);
 }
 
 // The split limits bound how deeply a body is split, not how many pieces it makes: a body whose

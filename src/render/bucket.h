@@ -19,6 +19,8 @@
 
 namespace streyes {
 
+class ProceduralBody;
+
 struct BucketSpec {
     PixelRect tile;       // the pixels this bucket resolves
     PixelRect rect;       // tile plus the filter's guard band, clipped to the image
@@ -53,10 +55,13 @@ class BucketWorker {
     void runDepthFirst();     // Algorithms S and C: a stack, no layers
     void runNearToFar();      // with occlusion: a heap by depth, tables between layers
     void push(BodyPtr body);
-    void pushRoot(const Body& body);
-    // A moving root's pieces for the bucket's frames [fa, fb] (indices in the block): the frames
-    // whose exposures its bound reaches the bucket in, found by halving the range.
-    void pushExposures(const Body& root, int fa, int fb);
+    // A root (or a procedural's child) for the bucket's frames [fa, fb] (indices in the block; -1:
+    // to the last).
+    void pushRoot(const Body& body, int fa = 0, int fb = -1);
+    void pushProceduralViews(const ProceduralBody& procedural, int fa, int fb);
+    void collectLevels(const ProceduralBody& procedural, int fa, int fb);
+    int chunkFrames(const Body& root) const;
+    void pushChunks(const Body& root, int chunk, int ca, int cb);
     void process(const Body& body);  // one step of the split loop
     bool withinSplitBudget(const Body& body);  // counts a split of the body's primitive
     void expand(const ProceduralBody& procedural);
@@ -92,6 +97,7 @@ class BucketWorker {
     std::vector<WorkItem> heap_;
     uint64_t arrivals_ = 0;
     std::vector<CameraLight> lightScratch_;
+    std::vector<std::pair<int, int>> levels_;  // (frame index, level of detail) of a moving procedural
     ResolveScratch resolveScratch_;
 
     // Occlusion state of the current bucket.
