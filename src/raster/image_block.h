@@ -38,7 +38,7 @@ struct SampleHit {
 
     // Whether a hit (z, id, c) beats this one. Lexicographic on (depth, primitive, colour): the
     // result does not depend on the order hits arrive in, and at equal depth the primitive
-    // declared first wins.
+    // with the smaller id wins (ids are numbered by kind of primitive: BodyFactory::addPrimitives).
     bool beatenBy(float z2, uint64_t id2, Color c2) const {
         if (z2 != z) return z2 < z;
         if (id2 != id) return id2 < id;
