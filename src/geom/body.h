@@ -12,6 +12,9 @@
 // Everything else (culling, the split loop, sampling) is generic over these questions.
 #pragma once
 
+#include <atomic>
+#include <cmath>
+
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -84,6 +87,9 @@ class Body {
     // False while the body must be split in time before it can be diced (a body with more than
     // two motion keys: a grid's corners move linearly from t0 to t1 only).
     virtual bool diceableInTime() const { return true; }
+    // A body not diceable in time that dices at each of its keys instead (KeyedPatchBody::diceKey),
+    // sampled one key interval at a time: dicing and shading once for a run of keys.
+    virtual bool dicesAtKeys() const { return false; }
 
     virtual LBBox3f bound() const = 0;
     // Camera-space bound of the body during [a, b], a sub-span of time(). The LBBox lerped to a
@@ -111,6 +117,10 @@ class Body {
     // body that spans the whole block (per-frame limits key on it: see BucketWorker).
     static constexpr int32_t kNoExposure = INT32_MIN;
     int32_t exposure = kNoExposure;
+    // As a root, the frames each of its pieces spans (BucketWorker::chunkFrames), made by the first
+    // bucket that asks: it depends on the body and the camera only, and every bucket asks. 0 until
+    // made; a race writes the same value.
+    mutable std::atomic<uint8_t> rootChunk{0};
 
   protected:
     // Sizes `grid` for nu x nv micropolygons and copies what every vertex shares from the body
@@ -172,7 +182,8 @@ class KeyedPatchBody final : public Body {
                    const Material* material, bool openEnd = false);
 
     bool diceableInTime() const override { return false; }
-    LBBox3f bound() const override;
+    bool dicesAtKeys() const override { return true; }
+    LBBox3f bound() const override { return bound_; }
     Bounds3f boundDuring(double a, double b) const override;  // the keys between a and b, and a and b
     RasterMeasure measure(const Camera& camera) const override;
     CameraExtents cameraExtents() const override;
@@ -181,6 +192,12 @@ class KeyedPatchBody final : public Body {
     void dice(int nu, int nv, Grid& grid) const override;  // not diceable: throws
 
     size_t keyCount() const { return times_.size(); }
+    double keyTime(size_t k) const { return times_[k]; }
+    bool keyMoves(size_t k) const { return keys_[k] != keys_[k + 1]; }  // from key k to k + 1
+    // Fills slot (0 or 1) of positions and normals of `grid`, sized by startKeyGrid, with key k's
+    // (nu+1) x (nv+1) vertices, as a TrilinearBody's dice() places them.
+    void startKeyGrid(int nu, int nv, Grid& grid) const;
+    void diceKey(size_t k, Grid& grid, int slot) const;
 
   private:
     // The pieces over keys [i, j]: a KeyedPatchBody, or a TrilinearBody for two keys.
@@ -189,6 +206,7 @@ class KeyedPatchBody final : public Body {
     std::vector<double> times_;
     std::vector<Corners> keys_;
     std::array<Color, 4> Cs_;
+    LBBox3f bound_;  // the union over all keys, made once
 };
 
 // Point, colour or normal of a bilinear patch at (u, v), corners in RenderMan order. The normal
@@ -198,5 +216,12 @@ T bilerp(const std::array<T, 4>& c, float u, float v) {
     return lerp(lerp(c[0], c[1], u), lerp(c[2], c[3], u), v);
 }
 Vec3f bilinearNormal(const TrilinearBody::Corners& p, float u, float v);
+
+// Distance in the raster plane (x, y), in double: no overflow for any float coordinates, and
+// far cheaper than std::hypot, which the split loop's measures called millions of times.
+inline float rasterDistance(Vec3f a, Vec3f b) {
+    const double dx = double(a.x) - double(b.x), dy = double(a.y) - double(b.y);
+    return float(std::sqrt(dx * dx + dy * dy));
+}
 
 }  // namespace streyes

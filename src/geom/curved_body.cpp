@@ -52,7 +52,6 @@ Vec3f projectClamped(const Camera& camera, Vec3f p) {
     return camera.toRaster(p);
 }
 
-float rasterDistance(Vec3f a, Vec3f b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
 // Steps for a raster length of `edges` micropolygon edges: the smallest power of two whose steps
 // are at most two edges long (so between one and two). A grid has at least as many columns as

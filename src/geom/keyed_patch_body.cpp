@@ -1,6 +1,7 @@
 #include <stdexcept>
 
 #include "geom/body.h"
+#include "geom/grid.h"
 
 namespace streyes {
 
@@ -11,14 +12,12 @@ KeyedPatchBody::KeyedPatchBody(std::vector<double> times, std::vector<Corners> k
     material_ = material;
     moving_ = false;
     for (size_t i = 1; i < keys_.size() && !moving_; ++i) moving_ = keys_[i] != keys_[0];
-}
-
-LBBox3f KeyedPatchBody::bound() const {
     Bounds3f b;
     for (const Corners& k : keys_)
         for (const Vec3f& p : k) b.extend(p);
-    return {b, b};  // the union over all keys bounds every instant
+    bound_ = {b, b};  // the union over all keys bounds every instant
 }
+
 
 Bounds3f KeyedPatchBody::boundDuring(double a, double b) const {
     // Corners move linearly between keys: the corners at a and at b and at every key between.
@@ -46,7 +45,7 @@ RasterMeasure KeyedPatchBody::measure(const Camera& camera) const {
     for (size_t k = 0; k < keys_.size(); ++k) {
         Corners r;
         for (int i = 0; i < 4; ++i) r[size_t(i)] = camera.toRaster(keys_[k][size_t(i)]);
-        auto d = [](Vec3f a, Vec3f b) { return std::hypot(a.x - b.x, a.y - b.y); };
+        auto d = [](Vec3f a, Vec3f b) { return rasterDistance(a, b); };
         m.extentU = std::max({m.extentU, d(r[0], r[1]), d(r[2], r[3])});
         m.extentV = std::max({m.extentV, d(r[0], r[2]), d(r[1], r[3])});
         for (int i = 0; i < 4; ++i) {
@@ -147,7 +146,33 @@ std::unique_ptr<Body> KeyedPatchBody::restrictedTo(double a, double b) const {
 }
 
 void KeyedPatchBody::dice(int, int, Grid&) const {
-    throw std::logic_error("a body with more than two motion keys is split in time before it is diced");
+    throw std::logic_error("a body with more than two motion keys is diced at its keys (diceKey), not over its span");
+}
+
+void KeyedPatchBody::startKeyGrid(int nu, int nv, Grid& grid) const {
+    startGrid(nu, nv, grid);
+    grid.resize(nu, nv, true);
+    const float du = 1.0f / float(nu), dv = 1.0f / float(nv);
+    for (int j = 0; j <= nv; ++j) {
+        const float v = j == nv ? 1.0f : float(j) * dv;
+        for (int i = 0; i <= nu; ++i) grid.Cs[size_t(grid.index(i, j))] = bilerp(Cs_, i == nu ? 1.0f : float(i) * du, v);
+    }
+}
+
+void KeyedPatchBody::diceKey(size_t k, Grid& grid, int slot) const {
+    const int nu = grid.nu, nv = grid.nv;
+    const float du = 1.0f / float(nu), dv = 1.0f / float(nv);
+    const Corners& c = keys_[k];
+    for (int j = 0; j <= nv; ++j) {
+        // Exact 0 and 1 on the borders, as TrilinearBody::dice: neighbours share edge vertices.
+        const float v = j == nv ? 1.0f : float(j) * dv;
+        for (int i = 0; i <= nu; ++i) {
+            const float u = i == nu ? 1.0f : float(i) * du;
+            const size_t idx = size_t(grid.index(i, j));
+            grid.P[slot][idx] = bilerp(c, u, v);
+            grid.N[slot][idx] = bilinearNormal(c, u, v);
+        }
+    }
 }
 
 }  // namespace streyes

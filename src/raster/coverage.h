@@ -15,6 +15,10 @@ namespace streyes {
 // coverage is indexed [(fi * rect height + y - y0) * rect width + x - x0].
 // With `frames` = 1 only the first frame's cells are made (the caller knows every frame sees the
 // same: nothing in the block has a record yet).
-uint64_t updateCoverage(const ImageBlock& block, float boundary, std::vector<uint8_t>& coverage, int frames = -1);
+// `farthest`, when given, receives for each cell scanned (those not covered before) the farthest
+// depth of the pixel's hits in that frame, +inf unless every sample has an opaque hit: a surface
+// strictly farther than it at every cell it reaches cannot change a sample there.
+uint64_t updateCoverage(const ImageBlock& block, float boundary, std::vector<uint8_t>& coverage, int frames = -1,
+                        std::vector<float>* farthest = nullptr);
 
 }  // namespace streyes

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace streyes {
 namespace {
 
@@ -38,6 +40,33 @@ TEST(Occlusion, StillLayerCoversEveryFrameWithoutARecord) {
     std::vector<uint8_t> coverage;
     EXPECT_EQ(updateCoverage(block, 5.0f, coverage), 2u);
     EXPECT_EQ(coverage, (std::vector<uint8_t>{1, 0, 1}));
+}
+
+// The farthest hit of each cell scanned: +inf while a sample has no opaque hit; cells covered
+// before keep what they had (stale is conservative: depths only decrease).
+TEST(Occlusion, FarthestHitPerCell) {
+    const PatternTable patterns(SamplePattern{2, 1, 0});
+    ImageBlock block;
+    block.reset({0, 0, 1, 0}, 0, 2, patterns, false);  // 2 pixels, 2 frames
+    for (int k = 0; k < 2; ++k) block.still(0)[k] = {4.0f + float(k), {1, 1, 1}, 1.0f, 1};
+    block.still(1)[0] = {3.0f, {1, 1, 1}, 1.0f, 1};  // pixel 1: one sample only
+    SampleHit* r = block.makeRecord(1, 0);          // frame 1 of pixel 0: nearer
+    r[1].z = 2.0f;
+    std::vector<uint8_t> coverage;
+    std::vector<float> farthest;
+    const float inf = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(updateCoverage(block, 4.5f, coverage, -1, &farthest), 1u);
+    EXPECT_EQ(farthest, (std::vector<float>{5.0f, inf, 4.0f, inf}));
+    block.still(1)[1] = {3.5f, {1, 1, 1}, 0.5f, 1};  // not opaque: still +inf
+    updateCoverage(block, 4.5f, coverage, -1, &farthest);
+    EXPECT_EQ(farthest[1], inf);
+    block.still(1)[1].a = 1.0f;
+    block.still(1)[1].z = std::numeric_limits<float>::quiet_NaN();  // never taken for a depth
+    updateCoverage(block, 4.5f, coverage, -1, &farthest);
+    EXPECT_EQ(farthest[1], inf);
+    block.still(1)[1].z = 3.5f;
+    EXPECT_EQ(updateCoverage(block, 4.5f, coverage, -1, &farthest), 2u);
+    EXPECT_EQ(farthest, (std::vector<float>{5.0f, 3.5f, 4.0f, 3.5f}));
 }
 
 }  // namespace

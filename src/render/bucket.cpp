@@ -111,6 +111,12 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
     if (root.expands() && root.moving()) {
         pushProceduralViews(static_cast<const ProceduralBody&>(root), fa, fb);
     } else if (root.moving() || (shadingVaries_ && !root.expands())) {
+        // Its bound over the whole shot (made once) misses the bucket: nothing to cut.
+        const PixelRect& R = bucket_.rect;
+        if (boxOutside(scene_.camera, root.bound().swept(), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
+            ++counters.culledView;
+            return;
+        }
         const int chunk = chunkFrames(root);
         auto chunkOf = [&](int frame) { return frame >= 0 ? frame / chunk : -((-frame + chunk - 1) / chunk); };
         pushChunks(root, chunk, chunkOf(bucket_.firstFrame + fa), chunkOf(bucket_.firstFrame + fb));
@@ -177,8 +183,9 @@ void BucketWorker::collectLevels(const ProceduralBody& procedural, int fa, int f
 // pixels) do not depend on the block of frames. Bodies reaching the eye plane cannot be measured:
 // one exposure a piece.
 int BucketWorker::chunkFrames(const Body& root) const {
+    if (const uint8_t made = root.rootChunk.load(std::memory_order_relaxed)) return made;
     constexpr float kChunkMotion = 8.0f;
-    constexpr int kMaxChunk = 16;
+    constexpr int kMaxChunk = 8;
     const Camera& cam = scene_.camera;
     if (!root.moving() || !(root.bound().swept().lo.z >= cam.eyePlane())) return 1;
     const TimeSpan& span = root.time();
@@ -188,6 +195,7 @@ int BucketWorker::chunkFrames(const Body& root) const {
     const double perFrame = double(m.motion) / std::max(1e-9, (span.t1 - span.t0) / keys);
     int frames = 1;
     while (frames < kMaxChunk && perFrame * double(2 * frames) <= double(kChunkMotion)) frames *= 2;
+    root.rootChunk.store(uint8_t(frames), std::memory_order_relaxed);
     return frames;
 }
 
@@ -253,6 +261,7 @@ void BucketWorker::runNearToFar() {
     arrivals_ = 0;
     firstHitsAtTable_ = 0;
     coverage_.assign(size_t(bucket_.rect.area()) * size_t(bucket_.frameCount), 0);
+    farthest_.assign(coverage_.size(), std::numeric_limits<float>::infinity());
     const uint64_t samples = uint64_t(block_.pixelCount()) * uint64_t(block_.frameCount()) * uint64_t(block_.samplesPerPixel());
     const uint64_t adaptiveHits = uint64_t(options_.adaptiveLayerHits * double(samples)) + 1;
     for (const BodyPtr& root : scene_.roots) pushRoot(*root);
@@ -299,9 +308,13 @@ void BucketWorker::endLayer(float boundary) {
     const size_t cells = size_t(bucket_.rect.area());
     if (frames == F && tableFrames_ == 1 && F > 1) {
         coverage_.resize(cells * size_t(F), 0);
-        for (int fi = 1; fi < F; ++fi) std::copy(coverage_.begin(), coverage_.begin() + long(cells), coverage_.begin() + long(cells * size_t(fi)));
+        farthest_.resize(cells * size_t(F), std::numeric_limits<float>::infinity());
+        for (int fi = 1; fi < F; ++fi) {
+            std::copy(coverage_.begin(), coverage_.begin() + long(cells), coverage_.begin() + long(cells * size_t(fi)));
+            std::copy(farthest_.begin(), farthest_.begin() + long(cells), farthest_.begin() + long(cells * size_t(fi)));
+        }
     }
-    const uint64_t added = updateCoverage(block_, boundary, coverage_, frames) * uint64_t(F / frames);
+    const uint64_t added = updateCoverage(block_, boundary, coverage_, frames, &farthest_) * uint64_t(F / frames);
     const size_t li = std::min<size_t>(size_t(layer_), kMaxLayerStats - 1);
     if (counters.cellsCoveredByLayer.size() <= li) counters.cellsCoveredByLayer.resize(li + 1, 0);
     counters.cellsCoveredByLayer[li] += added;
@@ -340,6 +353,55 @@ bool BucketWorker::occluded(const Body& body, const Bounds3f& raster) const {
         return occludedWithin(b.volume(), uint64_t(table_.sum(first)) * n, options_.tolerance);
     }
     return occludedWithin(b.volume(), table_.sum(b), options_.tolerance);
+}
+
+// Finer than the table, and exact: a body whose nearest depth lies beyond the farthest hit of every
+// pixel-frame cell it can reach (as of the last table: depths only decrease since) cannot change
+// a sample, so it is dropped before it is split, expanded, diced, shaded or sampled. A hit passes
+// the z-test at equal depth (then primitive ids decide), and a micropolygon's interpolated depth
+// may round a hair below its vertices' least: hence strictly behind, by a relative 1e-6. Blocks
+// of more than kMaxCells cells are not scanned (a large body is split first; its pieces are).
+// Hits are opaque today; a transparent one (a < 1) never hides what lies behind it.
+bool BucketWorker::hiddenBehindHits(const Body& body, const Bounds3f& raster, float zmin) const {
+    constexpr uint64_t kMaxCells = 1 << 14, kLiveSamples = 1024;
+    if (!(zmin > 0)) return false;
+    const float limit = zmin - zmin * 1e-6f;
+    const PixelRect& R = bucket_.rect;
+    const int x0 = floorClamped(raster.lo.x, R.x0, R.x1 + 1) - R.x0, x1 = floorClamped(raster.hi.x, R.x0 - 1, R.x1) - R.x0;
+    const int y0 = floorClamped(raster.lo.y, R.y0, R.y1 + 1) - R.y0, y1 = floorClamped(raster.hi.y, R.y0 - 1, R.y1) - R.y0;
+    const double open = scene_.shutter.open, close = scene_.shutter.close;
+    const TimeSpan& span = body.time();
+    int f0 = std::max(0, int(std::ceil(span.t0 - close)) - bucket_.firstFrame);
+    int f1 = std::min(bucket_.frameCount - 1, int(std::floor(span.t1 - open)) - bucket_.firstFrame);
+    if (x0 > x1 || y0 > y1 || f0 > f1) return false;
+    const uint64_t cells = uint64_t(x1 - x0 + 1) * uint64_t(y1 - y0 + 1);
+    // Small blocks are tested against the samples themselves, as they are now; larger ones
+    // against the cells' farthest hits at the last table.
+    const int S = block_.samplesPerPixel();
+    if (cells * uint64_t(f1 - f0 + 1) * uint64_t(S) <= kLiveSamples) {
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) {
+                const size_t pi = block_.pixelIndex(R.x0 + x, R.y0 + y);
+                const bool records = block_.recordsOf(pi) > 0;
+                for (int fi = f0; fi <= f1; ++fi) {
+                    const SampleHit* h = records ? block_.hits(fi, pi) : block_.still(pi);
+                    for (int k = 0; k < S; ++k)
+                        if (!(h[k].a >= 1.0f && h[k].z < limit)) return false;
+                    if (!records) break;  // every frame sees the still layer
+                }
+            }
+        return true;
+    }
+    if (tableFrames_ == 1) f0 = f1 = 0;  // every frame sees the still layer: the first stands for all
+    if (cells * uint64_t(f1 - f0 + 1) > kMaxCells) return false;
+    const size_t W = size_t(R.width()), area = size_t(R.area());
+    for (int fi = f0; fi <= f1; ++fi)
+        for (int y = y0; y <= y1; ++y) {
+            const float* row = &farthest_[size_t(fi) * area + size_t(y) * W];
+            for (int x = x0; x <= x1; ++x)
+                if (!(row[x] < limit)) return false;
+        }
+    return true;
 }
 
 // One body: cull against the bucket's spacetime block and the nearer coverage, then dice it if
@@ -392,6 +454,10 @@ void BucketWorker::process(const Body& body) {
         const size_t li = std::min<size_t>(size_t(layer_), kMaxLayerStats - 1);
         if (counters.culledOcclusionByLayer.size() <= li) counters.culledOcclusionByLayer.resize(li + 1, 0);
         ++counters.culledOcclusionByLayer[li];
+        return;
+    }
+    if (occlusion_ && hiddenBehindHits(body, raster, swept.lo.z)) {
+        ++counters.culledHidden;
         return;
     }
     if (body.expands()) {
@@ -466,7 +532,53 @@ void BucketWorker::split(const Body& body, SplitAxis axis, bool eyeSplit) {
     }
 }
 
+// A body with several motion keys (a leaf swaying frame by frame): diced and shaded once at each
+// key, and sampled one key interval at a time as a grid moving linearly between two keys. The
+// grid's two slots take turns: the end of one interval is the start of the next.
+void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int nv) {
+    auto t = Clock::now();
+    body.startKeyGrid(nu, nv, grid_);
+    ++counters.gridsDiced;
+    const bool ortho = !scene_.camera.perspective();
+    // The key intervals that meet the bucket's frames (a piece spans a whole chunk of frames, which
+    // may reach beyond the block).
+    const double a = bucket_.firstFrame + scene_.shutter.open, b = bucket_.firstFrame + bucket_.frameCount - 1 + scene_.shutter.close;
+    size_t k0 = 0, keys = body.keyCount();
+    while (k0 + 2 < keys && body.keyTime(k0 + 1) <= a) ++k0;
+    while (keys > k0 + 2 && body.keyTime(keys - 2) >= b) --keys;
+    body.diceKey(k0, grid_, 0);
+    auto t1 = Clock::now();
+    counters.timeDice += std::chrono::duration<double>(t1 - t).count();
+    shadeGridSlot(grid_, 0, body.keyTime(k0), scene_.lights, ortho, lightScratch_);
+    counters.timeShade += secondsSince(t1);
+    for (size_t k = k0; k + 1 < keys; ++k) {
+        auto ta = Clock::now();
+        body.diceKey(k + 1, grid_, 1);
+        auto tb = Clock::now();
+        counters.timeDice += std::chrono::duration<double>(tb - ta).count();
+        shadeGridSlot(grid_, 1, body.keyTime(k + 1), scene_.lights, ortho, lightScratch_);
+        auto tc = Clock::now();
+        counters.timeShade += std::chrono::duration<double>(tc - tb).count();
+        grid_.t0 = body.keyTime(k);
+        grid_.t1 = body.keyTime(k + 1);
+        grid_.openEnd = k + 2 < body.keyCount() || body.time().openEnd;  // pieces meet at keys (TimeSpan)
+        grid_.moving = body.keyMoves(k) || shadingVaries_;
+        rasterizer_.rasterize(grid_, scene_.camera, scene_.shutter, block_, rasterCounters_);
+        counters.timeSample += secondsSince(tc);
+        if (k + 2 < keys) {
+            std::swap(grid_.P[0], grid_.P[1]);
+            std::swap(grid_.N[0], grid_.N[1]);
+            std::swap(grid_.Ci[0], grid_.Ci[1]);
+            std::swap(grid_.Cl[0], grid_.Cl[1]);
+        }
+    }
+}
+
 void BucketWorker::diceShadeSample(const Body& body, int nu, int nv) {
+    if (body.dicesAtKeys()) {
+        diceShadeSampleKeys(static_cast<const KeyedPatchBody&>(body), nu, nv);
+        return;
+    }
     auto t = Clock::now();
     body.dice(nu, nv, grid_);
     ++counters.gridsDiced;

@@ -66,9 +66,11 @@ class BucketWorker {
     bool withinSplitBudget(const Body& body);  // counts a split of the body's primitive
     void expand(const ProceduralBody& procedural);
     bool occluded(const Body& body, const Bounds3f& raster) const;
+    bool hiddenBehindHits(const Body& body, const Bounds3f& raster, float zmin) const;
     void endLayer(float boundary);
     void split(const Body& body, SplitAxis axis, bool eyeSplit);
     void diceShadeSample(const Body& body, int nu, int nv);
+    void diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int nv);
 
     const RenderScene& scene_;
     const RenderOptions& options_;
@@ -107,6 +109,7 @@ class BucketWorker {
     bool haveTable_ = false;
     int tableFrames_ = 1;             // frames the table has: 1 while every frame sees the still layer
     std::vector<uint8_t> coverage_;
+    std::vector<float> farthest_;     // per cell: the farthest hit at the last table (hiddenBehindHits)
     SummedVolumeTable<uint32_t> table_;
 
     const TraceScene* trace_ = nullptr;

@@ -24,7 +24,7 @@ inline SplitDecision decideSplit(const Body& body, const RasterMeasure& m, const
     const float side = std::sqrt(std::max(body.material()->shadingRate, 1e-4f));
     const float size = std::max(m.extentU, m.extentV);
     SplitDecision d;
-    if (!body.diceableInTime()) {
+    if (!body.diceableInTime() && !body.dicesAtKeys()) {
         d.axis = SplitAxis::T;  // more than two motion keys: cut at a key first
     } else if (body.moving() && m.motion > std::max(options.timeSplitRatio * size, options.timeSplitMinMotion)) {
         d.axis = SplitAxis::T;  // the swept bound is much larger than the body: split its time span

@@ -79,6 +79,7 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
     "culled_split_limit": 0,
     "culled_occlusion": 9,
     "culled_occlusion_by_layer": [0, 4, 5],
+    "culled_hidden": 0,
     "cells_covered_by_layer": [7],
     "occlusion_tables": 0,
     "procedurals": 130,

@@ -66,17 +66,20 @@ Color shadePoint(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthographi
     return c * m.Os;
 }
 
-void shadeGrid(Grid& grid, const LightSet& lights, bool orthographic, std::vector<CameraLight>& scratch) {
+void shadeGridSlot(Grid& grid, int k, double time, const LightSet& lights, bool orthographic,
+                   std::vector<CameraLight>& scratch) {
     const Material& m = *grid.material;
     const int n = grid.vertexCount();
-    for (int k = 0; k < (grid.moving ? 2 : 1); ++k) {
-        if (m.kind != SurfaceKind::Constant && m.kind != SurfaceKind::Default && !m.lights.empty())
-            lights.at(k == 0 ? grid.t0 : grid.t1, scratch);
-        const int K = grid.shadowSlots;
-        for (int i = 0; i < n; ++i)
-            grid.Ci[k][size_t(i)] = shadePoint(m, grid.Cs[size_t(i)], grid.P[k][size_t(i)], grid.N[k][size_t(i)],
-                                               orthographic, scratch, K ? &grid.Cl[k][size_t(i) * size_t(K)] : nullptr, K);
-    }
+    if (m.kind != SurfaceKind::Constant && m.kind != SurfaceKind::Default && !m.lights.empty()) lights.at(time, scratch);
+    const int K = grid.shadowSlots;
+    for (int i = 0; i < n; ++i)
+        grid.Ci[k][size_t(i)] = shadePoint(m, grid.Cs[size_t(i)], grid.P[k][size_t(i)], grid.N[k][size_t(i)],
+                                           orthographic, scratch, K ? &grid.Cl[k][size_t(i) * size_t(K)] : nullptr, K);
+}
+
+void shadeGrid(Grid& grid, const LightSet& lights, bool orthographic, std::vector<CameraLight>& scratch) {
+    for (int k = 0; k < (grid.moving ? 2 : 1); ++k)
+        shadeGridSlot(grid, k, k == 0 ? grid.t0 : grid.t1, lights, orthographic, scratch);
 }
 
 }  // namespace streyes

@@ -32,5 +32,9 @@ Color shadePoint(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthographi
 // sets the view direction to +z instead of from the eye. With grid.shadowSlots > 0 the lights
 // that cast shadows go to grid.Cl[k] instead.
 void shadeGrid(Grid& grid, const LightSet& lights, bool orthographic, std::vector<CameraLight>& scratch);
+// One end of a grid: Ci[k] (and Cl[k]) from P[k], N[k] at `time` (a grid diced at several keys is
+// shaded a key at a time).
+void shadeGridSlot(Grid& grid, int k, double time, const LightSet& lights, bool orthographic,
+                   std::vector<CameraLight>& scratch);
 
 }  // namespace streyes
