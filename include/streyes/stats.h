@@ -31,6 +31,7 @@ namespace streyes {
     COUNT(culledSplitLimit, "culled_split_limit")    /* dropped at the split-depth limit or budget */  \
     COUNT(culledOcclusion, "culled_occlusion")       /* dropped: nearer layers cover their block */    \
     LIST(culledOcclusionByLayer, "culled_occlusion_by_layer") /* culled while that layer was current */ \
+    COUNT(culledHidden, "culled_hidden") /* dropped: behind the farthest hit of every cell it reaches */     \
     LIST(cellsCoveredByLayer, "cells_covered_by_layer") /* pixel-frame cells covered when it ended */  \
     COUNT(occlusionTables, "occlusion_tables")       /* summed-volume (or -area) tables built */       \
     SHOWN("procedurals", s.procedurals)                                                                \
