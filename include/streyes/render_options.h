@@ -54,7 +54,7 @@ struct RenderOptions {
     int samples = 0;                 // --samples per pixel per frame; 0: the scene's PixelSamples
     int threads = 0;                 // 0: every core
     uint64_t seed = 0;
-    int bucketSize = 32;             // tile side in pixels
+    int bucketSize = 64;             // tile side in pixels (64: a moving grid is diced again in fewer buckets)
     int maxFrameBlock = 64;          // frames rendered (and held in memory) together
     uint64_t maxMemoryBytes = 0;     // --max-memory; 0: defaultMemoryBudget() (memory.h)
     // --resume: frames already written completely. A block whose frames all are is not rendered

@@ -77,7 +77,7 @@ TEST(CliMemory, MaxMemoryShrinksTheFrameBlock) {
     const test::TempDir tempDir("budget");
     const std::string& dir = tempDir.path();
     const std::string scene = writeFile(dir, "s.rib", kScene);
-    CliRun r = runStreyes("render " + scene + " --max-memory 140M --threads 2 -o " + dir + "/f.####.exr --stats " +
+    CliRun r = runStreyes("render " + scene + " --max-memory 140M --threads 2 --bucket 32 -o " + dir + "/f.####.exr --stats " +
                           dir + "/stats.json --quiet");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     std::ifstream f(dir + "/stats.json");

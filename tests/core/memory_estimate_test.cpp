@@ -49,6 +49,7 @@ void expectEstimateMatchesGrowth(const std::string& rib, bool exact) {
     Scene scene = parseRibString(rib, "memory.rib", log);
     RenderOptions o;
     o.threads = 1;
+    o.bucketSize = 32;  // the block sizes below are for 32-pixel buckets
     ASSERT_TRUE(resetPeakResident()) << "cannot reset the peak resident set (/proc/self/clear_refs)";
     const uint64_t before = residentBytes();
     Renderer renderer(scene, o, log);
@@ -101,12 +102,17 @@ TEST(MemoryEstimate, BudgetShrinksTheFrameBlock) {
     const std::string rib = std::string(kHeader) + kMovingSquare;
     MemoryShape shape{32, 32, 64, 32, 0, 0, true, 1, usesOcclusion(RenderOptions{}.algorithm)};
     RenderOptions tight;
+    tight.bucketSize = 32;  // as the shape says
     tight.maxMemoryBytes = estimateMemory(shape, 6, 1).total();
     RenderOptions tightTwo = tight;
     tight.threads = 1;
     tightTwo.threads = 2;
     test::RenderResult a = test::renderRib(rib, tight), b = test::renderRib(rib, tightTwo),
-                       roomy = test::renderRib(rib);
+                       roomy = test::renderRib(rib, [] {
+                           RenderOptions o;
+                           o.bucketSize = 32;
+                           return o;
+                       }());
     EXPECT_EQ(a.stats.frameBlock, 6);
     EXPECT_EQ(b.stats.frameBlock, 6);
     EXPECT_LE(a.stats.memoryEstimateBytes, tight.maxMemoryBytes);
