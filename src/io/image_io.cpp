@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 
 #include "streyes/error.h"
 
@@ -113,10 +114,36 @@ void checkWritableFolder(const std::string& path, const std::string& option) {
                           std::strerror(errno) + "; remove it, or choose another " + option + ")");
 }
 
+namespace {
+
+// The last frame encoded, and its bytes.
+struct EncodedFrame {
+    int width = 0, height = 0;
+    std::string mode, ext;
+    std::vector<float> rgba, z;
+    std::vector<unsigned char> bytes;
+};
+EncodedFrame& lastEncoded() {
+    static EncodedFrame last;
+    return last;
+}
+std::mutex& lastEncodedMutex() {
+    static std::mutex m;
+    return m;
+}
+// Bit for bit (NaNs included, and -0 apart from 0).
+bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
+}
+std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage& image, const std::string& mode,
+                                       const std::string& ext, bool exr, int nch, bool alpha, bool z);
+void writeBytesInPlace(const std::string& path, const std::vector<unsigned char>& bytes);
+
+}  // namespace
+
 void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode) {
     const fs::path target(path);
     const fs::path dir = folderOf(target);
-    std::error_code ec;
     requireFolder(path, dir, "-o");
     if (access(dir.c_str(), W_OK) != 0) throw notWritable(path, dir, errno);
 
@@ -126,6 +153,27 @@ void writeFrame(const std::string& path, const FrameImage& image, const std::str
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     const bool exr = ext == ".exr" || ext.empty();
 
+    // A frame whose pixels equal the last frame encoded (a still shot: every frame of it) reuses
+    // its bytes: the encoding is a function of the pixels and the format only (no date, no frame
+    // number in the header), so the file is the same, bit for bit, and 64 still frames cost one
+    // encoding instead of 64.
+    std::vector<unsigned char> bytes;
+    {
+        std::lock_guard<std::mutex> lock(lastEncodedMutex());
+        const EncodedFrame& last = lastEncoded();
+        if (last.width == image.width && last.height == image.height && last.mode == mode && last.ext == ext &&
+            sameBits(last.rgba, image.rgba) && sameBits(last.z, image.z))
+            bytes = last.bytes;
+    }
+    if (bytes.empty()) bytes = encodeFrame(path, image, mode, ext, exr, nch, alpha, z);
+    writeBytesInPlace(path, bytes);
+}
+
+namespace {
+
+std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage& image, const std::string& mode,
+                                       const std::string& ext, bool exr, int nch, bool alpha, bool z) {
+    const fs::path target(path);
     ImageSpec spec(image.width, image.height, nch, exr ? TypeDesc::HALF : TypeDesc::FLOAT);
     spec.channelnames = {"R", "G", "B"};
     if (alpha) {
@@ -167,6 +215,16 @@ void writeFrame(const std::string& path, const FrameImage& image, const std::str
         if (!out->open(target.string(), spec) || !out->write_image(TypeDesc::FLOAT, data.data()) || !out->close())
             throw RenderError("cannot write '" + path + "': " + out->geterror());
     }
+    std::lock_guard<std::mutex> lock(lastEncodedMutex());
+    EncodedFrame& last = lastEncoded();
+    last.width = image.width, last.height = image.height, last.mode = mode, last.ext = ext;
+    last.rgba = image.rgba, last.z = image.z, last.bytes = bytes;
+    return bytes;
+}
+
+void writeBytesInPlace(const std::string& path, const std::vector<unsigned char>& bytes) {
+    const fs::path target(path);
+    std::error_code ec;
     const fs::path tmp = temporaryFrameName(path, int(getpid()));
     auto fail = [&](const std::string& why) {
         std::error_code ignore;
@@ -194,6 +252,8 @@ void writeFrame(const std::string& path, const FrameImage& image, const std::str
     fs::rename(tmp, target, ec);
     if (ec) fail(ec.message());
 }
+
+}  // namespace
 
 std::string temporaryFrameName(const std::string& path, int pid) {
     const fs::path target(path);

@@ -112,6 +112,12 @@ std::vector<float> Renderer::geometricLayerDepths() const {
 
 namespace {
 
+// Samples a spacetime bucket may span (pixels x frames x samples per pixel). A bucket keeps the
+// positions and the still layer once, and a frame's record of a pixel only where something moves
+// there; 16 M lets a 64-pixel bucket at 16 samples a pixel hold 64 frames. The memory plan counts
+// a record of every sample (memory.cpp) and shrinks the block further where the budget needs it.
+constexpr int64_t kMaxBucketSamples = int64_t(1) << 24;
+
 int frameBlockLimit(int width, int height, int samplesPerPixel, int tileSize, const PixelFilter& filter,
                     int maxFrameBlock, bool spacetime, int frames) {
     const double pixelBytes = double(width) * height * sizeof(float) * 5;
@@ -119,7 +125,7 @@ int frameBlockLimit(int width, int height, int samplesPerPixel, int tileSize, co
     block = std::min(block, std::max(1, int(double(1 << 30) / pixelBytes)));
     if (spacetime) {
         const double perFrame = double(tileSize + 2 * filter.guardX()) * (tileSize + 2 * filter.guardY()) * samplesPerPixel;
-        block = std::min(block, std::max(1, int(double(1 << 22) / perFrame)));
+        block = std::min(block, std::max(1, int(double(kMaxBucketSamples) / perFrame)));
     }
     return block;
 }
@@ -148,7 +154,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const std::vector<float> layerDepths = usesOcclusion(options_.algorithm) ? geometricLayerDepths() : std::vector<float>{};
 
     // Frames rendered together: bounded by the option, by ~1 GiB of resolved pixels, and (for
-    // spacetime buckets, which hold every frame of the block) by ~4 M samples per bucket.
+    // spacetime buckets, which hold every frame of the block) by ~16 M samples per bucket.
     int block = frameBlockLimit(W, H, S, tileSize, filter, options_.maxFrameBlock, spacetime, frames);
 
     // The ray tracer's bodies and hierarchies: for eye rays, and for shadow rays when a light

@@ -285,12 +285,12 @@ TEST(Render, FrameBlockLimitFollowsPixelsAndBucketSamples) {
     EXPECT_EQ(frameBlockLimit(s, o), 64);
     o.maxFrameBlock = 8;
     EXPECT_EQ(frameBlockLimit(s, o), 8);
-    // ~4 M samples a spacetime bucket: 1024 samples a pixel on 34x34-pixel buckets (32-pixel tiles,
-    // gaussian 2x2: one pixel of guard band) hold 3 frames; per-frame buckets do not count.
+    // ~16 M samples a spacetime bucket: 1024 samples a pixel on 34x34-pixel buckets (32-pixel tiles,
+    // gaussian 2x2: one pixel of guard band) hold 14 frames; per-frame buckets do not count.
     o.maxFrameBlock = 64;
     o.bucketSize = 32;
     o.samples = 1024;
-    EXPECT_EQ(frameBlockLimit(s, o), int((1 << 22) / (34.0 * 34 * 1024)));
+    EXPECT_EQ(frameBlockLimit(s, o), int((1 << 24) / (34.0 * 34 * 1024)));
     o.algorithm = Algorithm::Frames;
     EXPECT_EQ(frameBlockLimit(s, o), 64);
 }
