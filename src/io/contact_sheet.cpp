@@ -1,14 +1,12 @@
 #include "io/contact_sheet.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
 
 #include "film/film.h"
+#include "io/image_library.h"
 #include "streyes/image_io.h"
 #include "streyes/error.h"
 
@@ -70,7 +68,8 @@ void drawLabel(FrameImage& sheet, int cx, int cy, int cellW, int cellH, int fram
     }
 }
 
-// R G B of a frame as a 3-channel float buffer, scaled to w x h with OIIO's filtered resize.
+// R G B of a frame as a 3-channel float buffer, scaled to w x h with OpenImageIO's filtered resize
+// (through the image library module).
 std::vector<float> frameRGB(const ImageData& im, const std::string& path, int w, int h) {
     const int c[3] = {im.channelIndex("R"), im.channelIndex("G"), im.channelIndex("B")};
     if (c[0] < 0 || c[1] < 0 || c[2] < 0) throw InputError("'" + path + "' has no R, G and B channels");
@@ -78,11 +77,10 @@ std::vector<float> frameRGB(const ImageData& im, const std::string& path, int w,
     for (size_t i = 0, n = size_t(im.width) * size_t(im.height); i < n; ++i)
         for (int k = 0; k < 3; ++k) rgb[i * 3 + size_t(k)] = im.pixels[i * im.channels.size() + size_t(c[k])];
     if (w == im.width && h == im.height) return rgb;
-    OIIO::ImageBuf src(OIIO::ImageSpec(im.width, im.height, 3, OIIO::TypeDesc::FLOAT), rgb.data());
-    OIIO::ImageBuf dst = OIIO::ImageBufAlgo::resize(src, "", 0.0f, OIIO::ROI(0, w, 0, h, 0, 1, 0, 3));
     std::vector<float> out(size_t(w) * size_t(h) * 3);
-    if (dst.has_error() || !dst.get_pixels(OIIO::ROI(0, w, 0, h, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, out.data()))
-        throw RenderError("cannot scale '" + path + "': " + dst.geterror());
+    std::string why;
+    if (!imageLibrary().resize(rgb.data(), im.width, im.height, out.data(), w, h, &why))
+        throw RenderError("cannot scale '" + path + "': " + why);
     return out;
 }
 

@@ -1,7 +1,5 @@
 #include "streyes/image_io.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <unistd.h>
@@ -14,15 +12,13 @@
 #include <filesystem>
 #include <mutex>
 
+#include "io/exr_file.h"
+#include "io/image_library.h"
 #include "streyes/error.h"
 
 namespace streyes {
 
 namespace fs = std::filesystem;
-using OIIO::ImageInput;
-using OIIO::ImageOutput;
-using OIIO::ImageSpec;
-using OIIO::TypeDesc;
 
 bool validChannelMode(const std::string& mode) { return mode == "rgb" || mode == "rgba" || mode == "rgbaz"; }
 
@@ -173,47 +169,27 @@ namespace {
 
 std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage& image, const std::string& mode,
                                        const std::string& ext, bool exr, int nch, bool alpha, bool z) {
-    const fs::path target(path);
-    ImageSpec spec(image.width, image.height, nch, exr ? TypeDesc::HALF : TypeDesc::FLOAT);
-    spec.channelnames = {"R", "G", "B"};
-    if (alpha) {
-        spec.channelnames.push_back("A");
-        spec.alpha_channel = 3;
-    }
-    if (z) {
-        spec.channelnames.push_back("Z");
-        spec.z_channel = nch - 1;
-    }
-    if (exr) {
-        spec.channelformats.assign(size_t(nch), TypeDesc::HALF);
-        if (z) spec.channelformats.back() = TypeDesc::FLOAT;
-        spec.attribute("compression", "zip");
-    }
-    spec.attribute("DateTime", "2000:01:01 00:00:00");  // fixed: the same render gives the same bytes
-    spec.attribute("Software", "streyes");
-
-    std::vector<float> data(size_t(image.width) * size_t(image.height) * size_t(nch));
-    for (size_t i = 0, n = size_t(image.width) * size_t(image.height); i < n; ++i) {
-        float* d = &data[i * size_t(nch)];
-        for (int c = 0; c < 3 + (alpha ? 1 : 0); ++c) d[c] = image.rgba[i * 4 + size_t(c)];
-        if (z) d[nch - 1] = image.z[i];
-    }
-
-    // The file is encoded in memory, then written by us: OpenEXR does not report a failing write
-    // (a full disk, a file size limit), and left truncated frames behind as if all was well. The
-    // bytes go to a temporary name in the same folder (rename is atomic within a file system),
-    // each write checked, synced to disk, and renamed into place.
+    // EXR frames through OpenEXR; anything else (a contact sheet's PNG) through the image library.
     std::vector<unsigned char> bytes;
-    {
-        OIIO::Filesystem::IOVecOutput memory(bytes);
-        OIIO::Filesystem::IOProxy* proxy = &memory;
-        auto out = ImageOutput::create(exr ? std::string("openexr") : target.string());
-        if (!out) throw RenderError("cannot write '" + path + "': no image format for '" + ext + "' (" + OIIO::geterror() + ")");
-        if (!out->supports("ioproxy"))
-            throw RenderError("cannot write '" + path + "': the '" + ext + "' format cannot be written safely (use .exr)");
-        spec.attribute("oiio:ioproxy", TypeDesc::PTR, &proxy);
-        if (!out->open(target.string(), spec) || !out->write_image(TypeDesc::FLOAT, data.data()) || !out->close())
-            throw RenderError("cannot write '" + path + "': " + out->geterror());
+    if (exr) {
+        try {
+            bytes = encodeExr(image, alpha, z);
+        } catch (const std::exception& e) {
+            throw RenderError("cannot write '" + path + "': " + e.what());
+        }
+    } else {
+        std::vector<std::string> channels = {"R", "G", "B"};
+        if (alpha) channels.push_back("A");
+        if (z) channels.push_back("Z");
+        std::vector<float> data(size_t(image.width) * size_t(image.height) * size_t(nch));
+        for (size_t i = 0, n = size_t(image.width) * size_t(image.height); i < n; ++i) {
+            float* d = &data[i * size_t(nch)];
+            for (int c = 0; c < 3 + (alpha ? 1 : 0); ++c) d[c] = image.rgba[i * 4 + size_t(c)];
+            if (z) d[nch - 1] = image.z[i];
+        }
+        std::string why;
+        if (!imageLibrary().encode(path, image.width, image.height, channels, data.data(), &bytes, &why))
+            throw RenderError("cannot write '" + path + "': " + why + " ('" + ext + "')");
     }
     std::lock_guard<std::mutex> lock(lastEncodedMutex());
     EncodedFrame& last = lastEncoded();
@@ -318,21 +294,14 @@ int removeStaleTemporaries(const std::string& pattern) {
 bool isCompleteFrame(const std::string& path, int width, int height, const std::string& mode) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) return false;
-    auto in = ImageInput::open(path);
-    if (!in) {
-        OIIO::geterror();  // clear it
-        return false;
-    }
-    const ImageSpec& spec = in->spec();
     std::vector<std::string> channels = {"R", "G", "B"};
     if (mode != "rgb") channels.push_back("A");
     if (mode == "rgbaz") channels.push_back("Z");
-    if (spec.width != width || spec.height != height || spec.channelnames != channels) return false;
     // Reading every pixel is what proves the file complete: a truncated EXR has a good header.
-    std::vector<float> pixels(size_t(width) * size_t(height) * channels.size());
-    const bool ok = in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, pixels.data());
-    if (!ok) in->geterror();
-    return ok;
+    ImageData img;
+    std::string why;
+    if (!isExrFile(path) || !readExr(path, &img, &why)) return false;
+    return img.width == width && img.height == height && img.channels == channels;
 }
 
 int ImageData::channelIndex(const std::string& name) const {
@@ -342,17 +311,14 @@ int ImageData::channelIndex(const std::string& name) const {
 }
 
 ImageData readImage(const std::string& path) {
-    auto in = ImageInput::open(path);
-    if (!in) throw RenderError("cannot read '" + path + "': " + OIIO::geterror());
-    const ImageSpec& spec = in->spec();
     ImageData img;
-    img.width = spec.width;
-    img.height = spec.height;
-    img.channels = spec.channelnames;
-    for (int c = 0; c < spec.nchannels; ++c) img.formats.push_back(spec.channelformat(c).c_str());
-    img.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-    if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, img.pixels.data()))
-        throw RenderError("cannot read '" + path + "': " + in->geterror());
+    std::string why;
+    const bool ok = isExrFile(path) ? readExr(path, &img, &why) : imageLibrary().read(path, &img, &why);
+    if (!ok) {
+        std::error_code ec;
+        if (!fs::exists(path, ec)) why = "no such file";
+        throw RenderError("cannot read '" + path + "': " + why);
+    }
     return img;
 }
 

@@ -62,9 +62,9 @@ TEST(CliMemory, BudgetBelowTheProgramItselfIsRefused) {
     const test::TempDir tempDir("tiny-budget");
     const std::string& dir = tempDir.path();
     const std::string scene = writeFile(dir, "s.rib", kScene);
-    CliRun r = runStreyes("render " + scene + " --max-memory 64M -o " + dir + "/f.####.exr");
+    CliRun r = runStreyes("render " + scene + " --max-memory 32M -o " + dir + "/f.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
-    EXPECT_NE(r.output.find("more than its budget of 64.0 MiB"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("more than its budget of 32.0 MiB"), std::string::npos) << r.output;
     CliRun bad = runStreyes("render " + scene + " --max-memory lots -o " + dir + "/f.####.exr");
     EXPECT_EQ(bad.exitCode, 2) << bad.output;
     EXPECT_NE(bad.output.find("--max-memory expects a size such as 512M"), std::string::npos) << bad.output;
@@ -77,12 +77,12 @@ TEST(CliMemory, MaxMemoryShrinksTheFrameBlock) {
     const test::TempDir tempDir("budget");
     const std::string& dir = tempDir.path();
     const std::string scene = writeFile(dir, "s.rib", kScene);
-    CliRun r = runStreyes("render " + scene + " --max-memory 140M --threads 2 --bucket 32 -o " + dir + "/f.####.exr --stats " +
+    CliRun r = runStreyes("render " + scene + " --max-memory 52M --threads 2 --bucket 32 -o " + dir + "/f.####.exr --stats " +
                           dir + "/stats.json --quiet");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     std::ifstream f(dir + "/stats.json");
     const std::string json((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    const uint64_t budget = uint64_t(140) << 20;
+    const uint64_t budget = uint64_t(52) << 20;
     EXPECT_EQ(jsonNumber(json, "memory_budget_bytes"), budget);
     EXPECT_LE(jsonNumber(json, "memory_estimate_bytes"), budget);
     const uint64_t block = jsonNumber(json, "frame_block");

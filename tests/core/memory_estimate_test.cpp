@@ -134,12 +134,12 @@ TEST(MemoryEstimate, ExpandingProceduralsForRayTracingStaysInTheBudget) {
     o.yres = 36;
     o.hasFrames = true;
     o.firstFrame = o.lastFrame = 1;
-    o.maxMemoryBytes = uint64_t(140) << 20;  // the program's 128 MiB, and 12 MiB for everything else
+    o.maxMemoryBytes = uint64_t(52) << 20;  // the program's 40 MiB, and 12 MiB for everything else
     try {
         test::renderScene(scene, o);
         FAIL() << "the forest's bodies do not fit 12 MiB";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("memory budget of 140 MiB"), std::string::npos) << e.report();
+        EXPECT_NE(std::string(e.what()).find("memory budget of 52 MiB"), std::string::npos) << e.report();
     }
     o.maxMemoryBytes = uint64_t(4) << 30;
     EXPECT_GT(test::renderScene(scene, o).stats.bodiesGenerated, 12u << 20 >> 8);

@@ -1,0 +1,28 @@
+// EXR files through OpenEXR directly: a frame encoded in memory, and any scanline EXR read back.
+//
+// OpenImageIO made every process load about 260 shared libraries (0.15 s of CPU before the first
+// request); frames, the files streyes writes and reads most, need only OpenEXR. Other formats go
+// through the image library module (image_library.h), loaded when first needed.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "streyes/frame_image.h"
+#include "streyes/image_io.h"
+
+namespace streyes {
+
+// The frame as an EXR file's bytes: R, G, B (and A) as half floats, Z as float, ZIP compression
+// (the format frames have always had). Nothing in them depends on the time or the machine.
+std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z);
+
+// Reads every pixel of an EXR file as float, channels in the order R, G, B, A, then the others by
+// name (as OpenImageIO presents them). False, with *error saying why, when the file cannot be
+// opened or a pixel cannot be read (a truncated file has a good header).
+bool readExr(const std::string& path, ImageData* out, std::string* error);
+
+// Whether the file starts with the EXR magic number.
+bool isExrFile(const std::string& path);
+
+}  // namespace streyes

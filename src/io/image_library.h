@@ -1,0 +1,32 @@
+// The image library module: what streyes needs of OpenImageIO (images other than EXR frames, a
+// filtered resize for contact sheets), in a shared module (libstreyes_oiio.so, built from
+// oiio_library.cpp) that is loaded the first time one of these is asked for. Rendering never
+// asks: a render's process loads OpenEXR, not the ~260 libraries OpenImageIO brings.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "streyes/image_io.h"
+
+namespace streyes {
+
+struct ImageLibrary {
+    // Reads any image OpenImageIO reads, every channel as float. False, with *error, on failure.
+    bool (*read)(const std::string& path, ImageData* out, std::string* error);
+    // Encodes interleaved float pixels (channel names given) into the format that `path`'s
+    // extension names, in memory. False, with *error, when the format cannot be written.
+    bool (*encode)(const std::string& path, int width, int height, const std::vector<std::string>& channels,
+                   const float* pixels, std::vector<unsigned char>* bytes, std::string* error);
+    // Scales interleaved float RGB pixels from w x h to nw x nh with a filtered resize.
+    bool (*resize)(const float* rgb, int w, int h, float* out, int nw, int nh, std::string* error);
+};
+
+// The module, loaded on first use (beside the executable, then from the installed library
+// folder). Throws RenderError naming where it looked when it cannot be loaded.
+const ImageLibrary& imageLibrary();
+
+}  // namespace streyes
+
+// The module's one entry point.
+extern "C" const streyes::ImageLibrary* streyesImageLibrary();
