@@ -12,6 +12,7 @@
 #include <mutex>
 
 #include "commands.h"
+#include "io/frame_writer.h"
 #include "render_request.h"
 #include "streyes/image_io.h"
 #include "streyes/memory.h"
@@ -303,15 +304,21 @@ int renderCommand(const std::vector<std::string>& args) {
 
     ProgressBar bar(!quiet);
     std::vector<std::string> written;
+    // Frames are encoded and written by a writer thread while the next block renders.
+    FrameWriter writer;
     RenderStats stats = renderer.render(
         [&](const FrameImage& img) {
+            std::vector<std::pair<std::string, std::string>> files;
             for (const Output& o : outputs) {
-                std::string path = expandFramePattern(o.pattern, img.frame);
-                writeFrame(path, img, o.mode);
-                written.push_back(path);
+                files.emplace_back(expandFramePattern(o.pattern, img.frame), o.mode);
+                written.push_back(files.back().first);
             }
+            writer.write(img, std::move(files));
         },
         [&](uint64_t done, uint64_t total) { bar.update(done, total); });
+    const auto waited = std::chrono::steady_clock::now();
+    writer.finish();
+    stats.timeWrite += std::chrono::duration<double>(std::chrono::steady_clock::now() - waited).count();
     bar.finish();
     stats.timeParse = parseSeconds;
     stats.timeTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -31,9 +31,10 @@ constexpr uint64_t kOcclusionBytesPerCell = sizeof(uint8_t) + sizeof(uint32_t);
 // Per pixel of a resolved frame: RGBA and Z as float.
 constexpr uint64_t kBytesPerPixel = 5 * sizeof(float);
 // Per pixel of a frame being written: up to five float channels, then the encoded file (at most
-// the half-float data, before compression); and the last frame encoded, its pixels and bytes, kept
-// so that an identical next frame reuses them (image_io.cpp).
-constexpr uint64_t kWriterBytesPerPixel = 2 * (5 * sizeof(float) + 5 * 2);
+// the half-float data, before compression); the last frame encoded, its pixels and bytes, kept
+// so that an identical next frame reuses them (image_io.cpp); and the writer's queue of two
+// frames' RGBA and Z (io/frame_writer.h).
+constexpr uint64_t kWriterBytesPerPixel = 2 * (5 * sizeof(float) + 5 * 2) + 2 * 5 * sizeof(float);
 
 uint64_t bucketPixels(const MemoryShape& s) {
     const uint64_t w = uint64_t(std::min(s.tileSize + 2 * s.guardX, std::max(1, s.width)));

@@ -49,7 +49,7 @@ TEST(CliMemory, HugeRenderIsRefusedWithTheFigureItNeeds) {
     CliRun r = runStreyesWith(kSanitized ? "" : "ulimit -v 4000000; ",
                               "render " + scene + " --res 65536x65536 --max-memory 64G -o " + dir + "/f.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
-    EXPECT_NE(r.output.find("streyes: error: this render needs about 320 GiB of memory even one frame at a time "
+    EXPECT_NE(r.output.find("streyes: error: this render needs about 480 GiB of memory even one frame at a time "
                             "(frame images 80.0 GiB (1 frame of 65536x65536)"),
               std::string::npos)
         << r.output;

@@ -1,0 +1,61 @@
+#include "io/frame_writer.h"
+
+#include "streyes/image_io.h"
+
+namespace streyes {
+
+FrameWriter::FrameWriter(int capacity) : capacity_(size_t(capacity < 1 ? 1 : capacity)), thread_([this] { run(); }) {}
+
+FrameWriter::~FrameWriter() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopping_ = true;
+    }
+    changed_.notify_all();
+    thread_.join();
+}
+
+void FrameWriter::rethrow() {
+    if (error_) std::rethrow_exception(error_);
+}
+
+void FrameWriter::write(const FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs) {
+    auto copy = std::make_shared<const FrameImage>(image);  // the renderer reuses its images
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [this] { return error_ || queue_.size() < capacity_; });
+    rethrow();
+    queue_.push_back({std::move(copy), std::move(outputs)});
+    changed_.notify_all();
+}
+
+void FrameWriter::finish() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [this] { return error_ || (queue_.empty() && !busy_); });
+    rethrow();
+}
+
+void FrameWriter::run() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+        changed_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+        if (queue_.empty()) return;  // stopping, nothing left
+        Job job = std::move(queue_.front());
+        queue_.pop_front();
+        busy_ = true;
+        lock.unlock();
+        std::exception_ptr failed;
+        try {
+            if (!error_)
+                for (const auto& [path, mode] : job.outputs) writeFrame(path, *job.image, mode);
+        } catch (...) {
+            failed = std::current_exception();
+        }
+        lock.lock();
+        busy_ = false;
+        if (failed && !error_) error_ = failed;
+        if (error_) queue_.clear();  // the render stops: nothing after a failed frame is written
+        changed_.notify_all();
+    }
+}
+
+}  // namespace streyes

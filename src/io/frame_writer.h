@@ -1,0 +1,49 @@
+// Frames written off the render threads: a writer thread takes frames from a short queue and
+// encodes and writes them (writeFrame: in order, so the files and the reuse of a still frame's
+// encoding are what writing them one by one gives), while the renderer goes on with the next
+// block. The queue holds at most `capacity` frames, so memory stays bounded (the memory plan counts
+// them); a full queue makes the renderer wait.
+#pragma once
+
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "streyes/frame_image.h"
+
+namespace streyes {
+
+class FrameWriter {
+  public:
+    explicit FrameWriter(int capacity = 2);
+    ~FrameWriter();  // waits for what is queued; errors then are dropped (call finish() to see them)
+
+    // Queues `image` to be written to each (path, channel mode). Throws the error of an earlier
+    // write, if one failed: the render stops there, as if it had written the frame itself.
+    void write(const FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs);
+    // Waits until every queued frame is written; throws the first write error.
+    void finish();
+
+  private:
+    struct Job {
+        std::shared_ptr<const FrameImage> image;
+        std::vector<std::pair<std::string, std::string>> outputs;
+    };
+    void run();
+    void rethrow();
+
+    const size_t capacity_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    std::deque<Job> queue_;
+    bool busy_ = false, stopping_ = false;
+    std::exception_ptr error_;
+    std::thread thread_;
+};
+
+}  // namespace streyes
