@@ -157,6 +157,19 @@ inline void writeShadowed(Color* out, int K, const Hit& h, PartAt partAt) {
     }
 }
 
+// Whether every sample of every pixel of the quad's bound already sees, in the still layer,
+// something nearer than the whole quad: then the quad cannot change one of them.
+inline bool behindStillLayer(const ImageBlock& block, const QuadSetup& q) {
+    const int S = block.samplesPerPixel();
+    for (int py = q.py0; py <= q.py1; ++py)
+        for (int px = q.px0; px <= q.px1; ++px) {
+            const SampleHit* h = block.still(block.pixelIndex(px, py));
+            for (int k = 0; k < S; ++k)
+                if (!(q.zmin > h[k].z)) return false;
+        }
+    return true;
+}
+
 }  // namespace
 
 // A still grid: each quad is projected and set up once, then tested against the samples its
@@ -195,6 +208,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                 q.x[c] = v.x, q.y[c] = v.y, q.z[c] = v.z;
             }
             if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ)) continue;
+            if (!Counting && intoStill && behindStillLayer(block, q)) continue;
             setupEdges(q);
             auto colorAt = [&](int c) { return ci[idx[c]]; };
             // The samples of the strata the bound overlaps in each pixel, tested at once (SIMD).
@@ -365,6 +379,18 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 for (int py = q.py0; py <= q.py1; ++py) {
                     for (int px = q.px0; px <= q.px1; ++px) {
                         const size_t pi = block.pixelIndex(px, py);
+                        SampleHit* rec = block.record(fi, pi);
+                        if (!Counting) {
+                            // Every sample of the pixel already sees something nearer than the whole
+                            // quad: none of them can change (the usual case deep in foliage).
+                            const SampleHit* seen = rec ? rec : block.still(pi);
+                            float farthest = seen[0].z;
+                            for (int k = 1; k < S; ++k) farthest = std::max(farthest, seen[k].z);
+                            if (q.zmin > farthest) {
+                                behind += s1 - s0;
+                                continue;
+                            }
+                        }
                         const int perm = block.permutation(fi, pi);
                         for (size_t s = s0; s < s1; ++s) {
                             const Slice& sl = slices_[s];
@@ -373,7 +399,6 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             const float x = xs[si], y = ys[si], tf = patterns.stratumTimes(perm)[sl.k];
                             if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
                             if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
-                            SampleHit* rec = block.record(fi, pi);
                             const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
                             if (!Counting && q.zmin > cur.z) {  // all of it behind what the sample already sees
                                 ++behind;
