@@ -88,7 +88,7 @@ struct CameraDesc {
 };
 
 struct FilterDesc {
-    std::string type = "gaussian";  // box | gaussian | catmull-rom
+    std::string type = "gaussian";  // box | triangle | gaussian | catmull-rom | sinc | mitchell | disk
     double xwidth = 2, ywidth = 2;
 };
 

@@ -7,9 +7,26 @@ namespace streyes {
 
 namespace {
 
-// RenderMan's filter functions, one dimension; x in [0, r), r = width / 2.
+// RenderMan's filter functions, one dimension; x in [0, r), r = width / 2 (the RenderMan
+// Interface 3.2's built-in filters, which are separable but for the disk; mitchell as PRMan
+// defines it, B = C = 1/3 over [-2, 2] stretched to the radius).
 float filter1D(const std::string& type, float x, float r) {
     if (type == "box") return 1.0f;
+    if (type == "triangle") return 1.0f - std::fabs(x) / r;  // RiTriangleFilter
+    if (type == "sinc") {
+        // RiSincFilter: sin(pi x) / (pi x) under the specification's cosine window.
+        if (x == 0) return 1.0f;
+        const double px = 3.14159265358979323846 * double(x);
+        return float(std::cos(0.5 * px / (2.0 * double(r))) * std::sin(px) / px);
+    }
+    if (type == "mitchell") {
+        const double t = std::fabs(double(x)) * 2.0 / double(r), B = 1.0 / 3.0, C = 1.0 / 3.0;
+        if (t < 1) return float(((12 - 9 * B - 6 * C) * t * t * t + (-18 + 12 * B + 6 * C) * t * t + (6 - 2 * B)) / 6);
+        if (t < 2)
+            return float(((-B - 6 * C) * t * t * t + (6 * B + 30 * C) * t * t + (-12 * B - 48 * C) * t + (8 * B + 24 * C)) / 6);
+        return 0.0f;
+    }
+    if (type == "disk") return 1.0f;  // radial: the disk's own table decides (PixelFilter)
     if (type == "catmull-rom") {
         // The Catmull-Rom cubic over [-2, 2], stretched to the filter's radius.
         float t = std::fabs(x) * 2.0f / r;
@@ -28,6 +45,7 @@ PixelFilter::PixelFilter(const FilterDesc& desc)
     : rx_(float(std::max(desc.xwidth, 1e-3) * 0.5)), ry_(float(std::max(desc.ywidth, 1e-3) * 0.5)) {
     sx_ = float(kTableSize) / rx_;
     sy_ = float(kTableSize) / ry_;
+    radial_ = desc.type == "disk";
     tx_.assign(kTableSize + 1, 0.0f);
     ty_.assign(kTableSize + 1, 0.0f);
     for (int i = 0; i < kTableSize; ++i) {  // bin centres; entry kTableSize stays 0
@@ -53,7 +71,7 @@ FilterWeights::FilterWeights(const PixelFilter& filter, const PatternTable& patt
                 float* w = const_cast<float*>(weights(p, ox, oy));
                 // A sample at s in its pixel is s - (o + 0.5) from the centre of the pixel o away.
                 for (int j = 0; j < S_; ++j)
-                    w[j] = filter.weightX(o[2 * j] - (float(ox) + 0.5f)) * filter.weightY(o[2 * j + 1] - (float(oy) + 0.5f));
+                    w[j] = filter.weight(o[2 * j] - (float(ox) + 0.5f), o[2 * j + 1] - (float(oy) + 0.5f));
             }
     }
 }

@@ -1,7 +1,8 @@
 // Pixel reconstruction: the pixel filter and the frames it resolves samples into.
 //
-// Filters are separable, tabulated products f(dx) * f(dy) over [-xwidth/2, xwidth/2] x
-// [-ywidth/2, ywidth/2] (RenderMan's widths). Colour and alpha are the filter-weighted mean of
+// Filters are tabulated over [-xwidth/2, xwidth/2] x [-ywidth/2, ywidth/2] (RenderMan's widths):
+// box, triangle, gaussian, catmull-rom, sinc and mitchell as separable products f(dx) * f(dy)
+// (the "separable-" names are the same), disk as 1 inside the ellipse the widths span. Colour and alpha are the filter-weighted mean of
 // the samples around the pixel centre; Z is the nearest camera-space depth among the pixel's
 // own samples (+inf where none hit: Z is not filtered).
 #pragma once
@@ -24,7 +25,14 @@ class PixelFilter {
     // Weight at offset (dx, dy) from the pixel centre; 0 outside the support [-r, r) per axis.
     // The support is half-open like the pixels: a sample exactly on a pixel's left or top edge
     // (d = -r for a box of width 1) belongs to that pixel, and to no other.
-    float weight(float dx, float dy) const { return weightX(dx) * weightY(dy); }
+    float weight(float dx, float dy) const {
+        if (radial_) {
+            if (!(dx >= -rx_ && dx < rx_ && dy >= -ry_ && dy < ry_)) return 0.0f;
+            const float u = dx / rx_, v = dy / ry_;
+            return u * u + v * v < 1.0f ? 1.0f : 0.0f;
+        }
+        return weightX(dx) * weightY(dy);
+    }
     float weightX(float dx) const { return lookup(tx_, dx, sx_, rx_); }
     float weightY(float dy) const { return lookup(ty_, dy, sy_, ry_); }
     // Pixels of guard band a bucket needs on each side so its own pixels see every sample.
@@ -41,6 +49,7 @@ class PixelFilter {
         return t[size_t(i)];
     }
     float rx_, ry_, sx_, sy_;  // radii, and kTableSize / radius
+    bool radial_ = false;      // the disk: not a product of two functions
     std::vector<float> tx_, ty_;
 };
 

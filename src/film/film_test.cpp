@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace streyes {
 namespace {
 
@@ -21,6 +23,33 @@ TEST(PixelFilter, ShapesAndSupport) {
     EXPECT_EQ(box.weight(0.5f, 0), 0.0f);
     EXPECT_GT(gauss.weight(-1.0f, 0), 0.1f);
     EXPECT_EQ(gauss.weight(1.0f, 0), 0.0f);
+}
+
+// The RenderMan Interface's filters against their formulas (tables of 256 bins a radius: within
+// the change of the function over half a bin).
+TEST(PixelFilter, EveryFilterFollowsItsFormula) {
+    const double pi = 3.14159265358979323846;
+    PixelFilter tri({"triangle", 2, 4}), sinc({"sinc", 4, 4}), mitchell({"mitchell", 4, 4}), disk({"disk", 2, 3});
+    for (float x : {0.0f, 0.3f, -0.7f, 0.95f}) EXPECT_NEAR(tri.weight(x, 0.5f), (1 - std::fabs(x)) * 0.75f, 5e-3f) << x;
+    EXPECT_EQ(tri.weight(1.0f, 0), 0.0f);
+    for (float x : {0.5f, 1.0f, 1.5f, -1.9f}) {  // RiSincFilter: sin(pi x) / (pi x), windowed by cos(pi x / (2 width))
+        const double px = pi * x, want = std::cos(0.5 * px / 4.0) * std::sin(px) / px;
+        EXPECT_NEAR(sinc.weight(x, 0), want, 1e-2) << x;
+    }
+    EXPECT_NEAR(sinc.weight(0, 0), 1.0f, 1e-3f);
+    EXPECT_LT(sinc.weight(1.5f, 0), 0.0f);  // a negative lobe
+    // Mitchell-Netravali with B = C = 1/3 over [-2, 2] at radius 2: its values at 0, 1 and 2.
+    EXPECT_NEAR(mitchell.weightX(0), 16.0f / 18.0f, 1e-2f);
+    EXPECT_NEAR(mitchell.weightX(1.0f), 1.0f / 18.0f, 1e-2f);
+    EXPECT_NEAR(mitchell.weight(1.0f, 0), mitchell.weightX(1.0f) * mitchell.weightY(0), 1e-6f);  // separable
+    EXPECT_EQ(mitchell.weight(2.0f, 0), 0.0f);
+    // The disk: 1 inside the ellipse of radii 1 and 1.5, 0 outside, not a product of two axes.
+    EXPECT_EQ(disk.weight(0.69f, 1.05f), 1.0f);  // (0.69)^2 + (0.7)^2 < 1
+    EXPECT_EQ(disk.weight(0.72f, 1.08f), 0.0f);  // (0.72)^2 + (0.72)^2 > 1
+    EXPECT_EQ(disk.weight(0.99f, 0), 1.0f);
+    EXPECT_EQ(disk.weight(0, 1.49f), 1.0f);
+    EXPECT_EQ(disk.guardX(), 1);
+    EXPECT_EQ(disk.guardY(), 1);
 }
 
 // A sample exactly on a pixel's top-left corner belongs to that pixel: with a box filter of
@@ -53,7 +82,7 @@ TEST(Resolve, UniformSamplesGiveTheirValueAndZIsTheNearest) {
             SampleHit* h = dense ? block.record(0, i) : block.still(i);
             for (int k = 0; k < 9; ++k) h[k] = {3.0f + float(k), {0.25f, 0.5f, 0.75f}, 1.0f, 1};
         }
-        for (const char* type : {"box", "gaussian", "catmull-rom"}) {
+        for (const char* type : {"box", "triangle", "gaussian", "catmull-rom", "sinc", "mitchell", "disk"}) {
             const PixelFilter filter({type, 3, 3});
             const FilterWeights weights(filter, patterns);
             FrameImage img;

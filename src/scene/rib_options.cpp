@@ -121,11 +121,15 @@ void pixelFilter(RibParser& reader, RibArgs& args) {
     constexpr double kMaxFilterWidth = 32;
     if (w[0] > kMaxFilterWidth || w[1] > kMaxFilterWidth)
         args.fail("filter widths must be at most 32 pixels, got " + formatNumber(w[0]) + " " + formatNumber(w[1]));
+    // PRMan's "separable-" names are the separable forms these filters already are.
+    if (type.rfind("separable-", 0) == 0) type = type.substr(10);
     if (type == "catmullrom") type = "catmull-rom";
-    if (type != "box" && type != "gaussian" && type != "catmull-rom") {
-        reader.log().warnOnce(
-            "pixelfilter:" + type, args.loc(),
-            "pixel filter \"" + type + "\" is not supported (box, gaussian, catmull-rom): using gaussian 2 2");
+    static const char* kFilters[] = {"box", "triangle", "gaussian", "catmull-rom", "sinc", "mitchell", "disk"};
+    if (std::find(std::begin(kFilters), std::end(kFilters), type) == std::end(kFilters)) {
+        reader.log().warnOnce("pixelfilter:" + type, args.loc(),
+                              "pixel filter \"" + type +
+                                  "\" is not supported (box, triangle, gaussian, catmull-rom, sinc, mitchell, disk): "
+                                  "using gaussian 2 2");
         settings.filter = FilterDesc{};
         return;
     }

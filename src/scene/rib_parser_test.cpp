@@ -172,9 +172,18 @@ TEST(RibOptions, DefaultsAndVariants) {
     scene = parse("Option \"streyes\" \"integer frames\" [-2 -2]\nWorldBegin\nWorldEnd\n");
     EXPECT_EQ(scene.settings.firstFrame, -2);
 
+    // The RenderMan Interface's filters, and PRMan's "separable-" names for them.
+    scene = parse("PixelFilter \"sinc\" 4 3\nWorldBegin\nWorldEnd\n");
+    EXPECT_EQ(scene.settings.filter.type, "sinc");
+    EXPECT_DOUBLE_EQ(scene.settings.filter.ywidth, 3);
+    scene = parse("PixelFilter \"separable-catmull-rom\" 4 4\nWorldBegin\nWorldEnd\n");
+    EXPECT_EQ(scene.settings.filter.type, "catmull-rom");
+    for (const char* f : {"triangle", "mitchell", "disk"})
+        EXPECT_EQ(parse(std::string("PixelFilter \"") + f + "\" 2 2\nWorldBegin\nWorldEnd\n").settings.filter.type, f);
+
     // An unknown filter warns and keeps gaussian 2 2.
     Log log;
-    scene = parse("PixelFilter \"box\" 1 1\nPixelFilter \"sinc\" 4 4\nWorldBegin\nWorldEnd\n", log);
+    scene = parse("PixelFilter \"box\" 1 1\nPixelFilter \"lanczos\" 4 4\nWorldBegin\nWorldEnd\n", log);
     EXPECT_EQ(scene.settings.filter.type, "gaussian");
     EXPECT_DOUBLE_EQ(scene.settings.filter.xwidth, 2);
     ASSERT_EQ(log.warnings().size(), 1u);
