@@ -133,14 +133,18 @@ struct BilinearPatchDesc {
 // A procedural primitive as declared: Procedural "DelayedReadArchive" | "RunProgram" |
 // "DynamicLoad" with its arguments and a bound in object space. The description is data: the
 // procedural stage makes the generator behind it when bodies are made from the scene.
+struct Scene;
 struct ProceduralDesc {
-    std::string kind;               // "DelayedReadArchive", "RunProgram" or "DynamicLoad"
+    std::string kind;               // "DelayedReadArchive", "RunProgram", "DynamicLoad" or "ObjectInstance"
     std::vector<std::string> args;  // the request's string arguments
     std::string directory;          // folder of the declaring file: relative names are looked up there first
     Bounds3d bound;                 // object space, as declared
     MotionTransform objectToWorld;
     AttributesPtr attributes;
     SourceLoc loc;
+    // ObjectInstance: the object's primitives in its own space, shared by all its instances
+    // (args holds the handle; the bound is the object's).
+    std::shared_ptr<const Scene> object;
 };
 
 // ---- Curved and polygonal primitives ----------------------------------------------------------

@@ -56,6 +56,35 @@ class ProgramGenerator final : public ProceduralGenerator {
     std::string command_, datablock_;
 };
 
+// ObjectInstance: the object's primitives under the instance's transform (after their own) and
+// its attributes (RI 3.2: an object holds geometry; the graphics state comes from the instance).
+class InstanceGenerator final : public ProceduralGenerator {
+  public:
+    InstanceGenerator(std::string handle, std::shared_ptr<const Scene> object)
+        : handle_(std::move(handle)), object_(std::move(object)) {}
+    std::string describe() const override { return "ObjectInstance " + handle_; }
+    void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
+        Scene& s = out.scene;
+        s = *object_;
+        auto place = [&](auto& prims) {
+            for (auto& p : prims) {
+                p.objectToWorld = p.objectToWorld.then(ctx.objectToWorld);
+                p.attributes = ctx.attributes;
+            }
+        };
+        place(s.patches);
+        place(s.procedurals);
+        place(s.patchMeshes);
+        place(s.subdivisionMeshes);
+        place(s.quadrics);
+        place(s.polygonMeshes);
+    }
+
+  private:
+    std::string handle_;
+    std::shared_ptr<const Scene> object_;
+};
+
 }  // namespace
 
 std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const ProceduralDesc& desc) {
@@ -65,6 +94,10 @@ std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const Procedu
     const std::string& directory = desc.directory;
     const SourceLoc& loc = desc.loc;
     const SceneAccess access = sceneAccess();
+    if (kind == "ObjectInstance") {
+        if (!desc.object || args.size() != 1) throw InputError(loc, "ObjectInstance without its object");
+        return std::make_shared<InstanceGenerator>(args[0], desc.object);
+    }
     if ((kind == "DelayedReadArchive" && !access.files) || (kind == "RunProgram" && !access.programs))
         throw InputError(loc, "Procedural \"" + kind + "\" is not allowed here (" +
                                   (kind == "RunProgram" ? "no programs are run" : "no other files are read") + ")");

@@ -131,9 +131,9 @@ void frameBeginEnd(RibParser& reader, RibArgs& args) {
     args.skipRest();
 }
 
-// ObjectBegin and ArchiveBegin: everything up to the matching end is skipped (see dispatch).
+// ArchiveBegin: everything up to the matching end is skipped (see dispatch).
 void skippedBlockBegin(RibParser& reader, RibArgs& args) {
-    std::string endName = args.name() == "ObjectBegin" ? "ObjectEnd" : "ArchiveEnd";
+    std::string endName = "ArchiveEnd";
     reader.log().warnOnce(
         "request:" + args.name(), args.loc(),
         "unsupported request '" + args.name() + "' ignored, with everything up to its " + endName);
@@ -154,7 +154,6 @@ void addBlockRequests(RibRequestTable& table) {
     table.add("MotionEnd", {motionEnd, "MotionEnd"});
     table.add("FrameBegin", {frameBeginEnd, "FrameBegin number"});
     table.add("FrameEnd", {frameBeginEnd, "FrameEnd"});
-    table.add("ObjectBegin", {skippedBlockBegin, "ObjectBegin handle"});
     table.add("ArchiveBegin", {skippedBlockBegin, "ArchiveBegin \"name\""});
 }
 

@@ -123,6 +123,7 @@ RibValue RibParser::readArray(RibLexer& lexer, const RibToken& open) {
 // ---- End of input -------------------------------------------------------------------------------
 void RibParser::finish() {
     if (state_.motion) throw InputError(state_.motion->begin, "MotionBegin is never closed: missing MotionEnd");
+    if (state_.defining) throw InputError(state_.defining->begin, "ObjectBegin is never closed: missing ObjectEnd");
     if (state_.skipping)
         throw InputError(state_.skipping->begin,
                          state_.skipping->beginName + " is never closed: missing " + state_.skipping->endName);
@@ -149,6 +150,7 @@ void RibParser::beginFragment(const MotionTransform& ctm, const AttributesPtr& a
 
 void RibParser::finishFragment() {
     if (state_.motion) throw InputError(state_.motion->begin, "MotionBegin is never closed: missing MotionEnd");
+    if (state_.defining) throw InputError(state_.defining->begin, "ObjectBegin is never closed: missing ObjectEnd");
     if (state_.skipping)
         throw InputError(state_.skipping->begin,
                          state_.skipping->beginName + " is never closed: missing " + state_.skipping->endName);

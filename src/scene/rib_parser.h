@@ -45,11 +45,20 @@ struct RibState {
         std::vector<RibRequest> requests;  // held until MotionEnd, all the same request
         const char* usage = "";            // how that request is written, for messages
     };
-    // ObjectBegin/ObjectEnd and ArchiveBegin/ArchiveEnd: contents skipped until the matching end.
+    // ArchiveBegin/ArchiveEnd: contents skipped until the matching end.
     struct SkippedBlock {
         std::string beginName, endName;
         SourceLoc begin;
         int depth = 1;
+    };
+    // ObjectBegin ... ObjectEnd: primitives go to the object, not the scene (rib_objects.cpp).
+    struct ObjectDefinition {
+        std::string handle;
+        SourceLoc begin;
+        std::shared_ptr<Scene> object;
+        MotionTransform ctm;                     // restored at ObjectEnd
+        std::shared_ptr<Attributes> attributes;  // restored at ObjectEnd
+        size_t blocks = 0;                       // open blocks at ObjectBegin
     };
     static const char* beginName(BlockKind kind);  // "AttributeBegin"
     static const char* endName(BlockKind kind);    // "AttributeEnd"
@@ -62,6 +71,8 @@ struct RibState {
     SourceLoc worldBegin;
     std::optional<MotionBlock> motion;
     std::optional<SkippedBlock> skipping;
+    std::optional<ObjectDefinition> defining;                          // the open ObjectBegin
+    std::map<std::string, std::shared_ptr<const Scene>> objects;      // handle -> defined object
     std::map<std::string, RibParamDecl> declarations = predeclaredParams();
     std::map<std::string, int> lightHandles;    // handle -> index in Scene::lights
     std::set<std::string> skippedLightHandles;  // handles of lights of unsupported types
@@ -76,6 +87,8 @@ struct RibState {
 class RibParser {
   public:
     RibParser(Scene& scene, Log& log) : scene_(scene), log_(log) {}
+    RibParser(const RibParser&) = delete;
+    RibParser& operator=(const RibParser&) = delete;
 
     // Parse a whole RIB file or string into the scene, starting from the current graphics state.
     // parseFile also sets scene.sourceName when it is still empty.
@@ -98,7 +111,8 @@ class RibParser {
     bool inWorld() const { return state_.world == RibState::World::Inside; }
 
     // ---- For request handlers (rib_requests.h)
-    Scene& scene() { return scene_; }
+    // Where primitives go: the scene, or the object being defined (ObjectBegin).
+    Scene& scene() { return state_.defining ? *state_.defining->object : scene_; }
     Log& log() { return log_; }
     RibState& state() { return state_; }
     const RibState& state() const { return state_; }

@@ -33,7 +33,7 @@ const RibRequestTable& ribRequests() {
         RibRequestTable t;
         for (auto add : {addUnsupportedRequests, addParamRequests, addOptionRequests, addBlockRequests,
                          addTransformRequests, addAttributeRequests, addShadingRequests, addPatchRequests,
-                         addPolygonRequests, addSubdivisionRequests, addQuadricRequests, addArchiveRequests})
+                         addPolygonRequests, addSubdivisionRequests, addQuadricRequests, addArchiveRequests, addObjectRequests})
             add(t);
         return t;
     }();
@@ -44,7 +44,7 @@ const RibRequestTable& ribRequests() {
 void RibParser::dispatch(const RibRequest& request) {
     const std::string& name = request.name;
 
-    // Inside ObjectBegin/ObjectEnd or ArchiveBegin/ArchiveEnd: skip to the matching end.
+    // Inside ArchiveBegin/ArchiveEnd: skip to the matching end.
     if (std::optional<RibState::SkippedBlock>& skipping = state_.skipping) {
         if (name == skipping->beginName) ++skipping->depth;
         if (name == skipping->endName && --skipping->depth == 0) skipping.reset();
@@ -132,7 +132,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
           "PixelVariance", "Atmosphere", "Interior", "Exterior", "Displacement", "Deformation",
           "TextureCoordinates", "Matte", "Bound", "Detail", "DetailRange", "Perspective", "Skew",
           "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "ShadingInterpolation", "AreaLightSource", "SolidBegin",
-          "SolidEnd", "ObjectEnd", "ArchiveEnd", "MakeTexture", "MakeBump", "MakeLatLongEnvironment",
+          "SolidEnd", "ArchiveEnd", "MakeTexture", "MakeBump", "MakeLatLongEnvironment",
           "MakeCubeFaceEnvironment", "MakeShadow", "MakeBrickMap", "ErrorHandler", "ArchiveRecord",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
           "System", "Shader", "Bxdf", "Pattern", "Integrator", "DisplayFilter", "SampleFilter",
@@ -142,7 +142,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
     // Geometry outside the subset: skipped with a warning, also as the keys of a motion block.
     for (const char* name :
          {"NuPatch", "TrimCurve", "HierarchicalSubdivisionMesh", "Points", "Curves", "Blobby", "Procedural2",
-          "Geometry", "Volume", "ObjectInstance"})
+          "Geometry", "Volume"})
         table.add(name, {unsupportedGeometry, "", RibPhase::World, unsupportedGeometryKeys});
     // clang-format on
 }
