@@ -319,11 +319,39 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
 }
 
 // The topology once, the limit surface per key, a SubdivisionMesh per segment.
+std::shared_ptr<const SubdivisionShape> BodyFactory::subdivisionShape(const SubdivisionMeshDesc& p) {
+    // The key: every input of the shape, as bytes.
+    std::string key;
+    auto add = [&key](const auto& v) {
+        const size_t n = v.size();
+        key.append(reinterpret_cast<const char*>(&n), sizeof n);
+        key.append(reinterpret_cast<const char*>(v.data()), n * sizeof(v[0]));
+    };
+    const int header[2] = {p.vertexCount, p.interpolateBoundary};
+    key.append(reinterpret_cast<const char*>(header), sizeof header);
+    add(p.faceSizes);
+    add(p.faceVertices);
+    add(p.creaseEdges);
+    add(p.creaseSharpness);
+    add(p.corners);
+    add(p.cornerSharpness);
+    add(p.holes);
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto it = shapes_.find(key);
+        if (it != shapes_.end()) return it->second;
+    }
+    // Built outside the lock (building refines in parallel); a mesh built twice at once keeps the first.
+    auto shape = std::make_shared<const SubdivisionShape>(p);
+    std::lock_guard<std::mutex> lock(mutex_);
+    return shapes_.emplace(std::move(key), std::move(shape)).first->second;
+}
+
 void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out) {
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;
-    auto shape = std::make_shared<const SubdivisionShape>(p);
+    const std::shared_ptr<const SubdivisionShape> shape = subdivisionShape(p);
     if (shape->faceCount() == 0) {
         log_.warnOnce("subdiv-nolimit", p.loc,
                       "SubdivisionMesh has no face with a limit surface (is it all boundary? see "

@@ -16,6 +16,8 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "bodies/material.h"
@@ -27,6 +29,8 @@
 #include "streyes/scene.h"
 
 namespace streyes {
+
+class SubdivisionShape;
 
 // A procedural's children get ids hashed from the parent's id and their index: a pure function,
 // so ids do not depend on which thread expanded what. 64 bits, because ids decide exact depth
@@ -95,6 +99,11 @@ class BodyFactory final : public ChildBodyMaker {
         bodyBudget_ = forBodies;
     }
     uint64_t proceduralsMade() const { return proceduralsMade_.load(); }
+    // Distinct subdivision shapes built so far (meshes of one topology share one).
+    size_t subdivisionShapes() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return shapes_.size();
+    }
     std::vector<uint64_t> proceduralsMadeByDepth() const;
 
   private:
@@ -104,6 +113,9 @@ class BodyFactory final : public ChildBodyMaker {
     // when they are not finite).
     bool keyedPoints(const PrimitiveDesc& p, const std::vector<std::vector<Vec3d>>& P, std::vector<double>* ts,
                      std::vector<std::vector<Vec3d>>* points);
+    // The subdivision shape (OpenSubdiv's refined topology) of a mesh, shared by every mesh of the
+    // same topology and tags: the instances of an object, and meshes written out alike.
+    std::shared_ptr<const SubdivisionShape> subdivisionShape(const SubdivisionMeshDesc& mesh);
     // Keeps a segment's mesh and appends a body per face.
     void addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint64_t primitiveId,
                     std::vector<BodyPtr>& out);
@@ -123,6 +135,7 @@ class BodyFactory final : public ChildBodyMaker {
     std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0};
     std::atomic<uint64_t> bodyBudget_{0}, renderBudget_{0};
     std::vector<uint64_t> proceduralsByDepth_;  // under mutex_
+    std::unordered_map<std::string, std::shared_ptr<const SubdivisionShape>> shapes_;  // under mutex_
 };
 
 }  // namespace streyes
