@@ -288,7 +288,7 @@ bool BodyFactory::keyedPoints(const PrimitiveDesc& p, const std::vector<std::vec
 }
 
 void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint64_t primitiveId,
-                             std::vector<BodyPtr>& out) {
+                             std::vector<BodyPtr>& out, Keep* keep) {
     mesh->setSource(src);
     if (mesh->material()) mesh->setShadingRate(mesh->material()->shadingRate);
     for (int f = 0; f < mesh->faceCount(); ++f) {
@@ -297,11 +297,15 @@ void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc*
         out.push_back(std::move(body));
         ++bodiesMade_;
     }
+    if (keep) {
+        keep->push_back(std::shared_ptr<const SurfaceMesh>(std::move(mesh)));
+        return;
+    }
     std::lock_guard<std::mutex> lock(mutex_);
     surfaces_.push_back(std::move(mesh));
 }
 
-void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out) {
+void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep) {
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;
@@ -314,7 +318,7 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
         if (j != i) k1 = shape.patches(points[j]);
         addSurface(std::make_unique<BezierMesh>(shape.topology(), segmentSpan(t0, t1, ts), mat, camera_,
                                                 shape.patches(points[i]), std::move(k1), colors),
-                   src, primitiveId, out);
+                   src, primitiveId, out, keep);
     });
 }
 
@@ -347,7 +351,8 @@ std::shared_ptr<const SubdivisionShape> BodyFactory::subdivisionShape(const Subd
     return shapes_.emplace(std::move(key), std::move(shape)).first->second;
 }
 
-void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out) {
+void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out,
+                                     Keep* keep) {
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;
@@ -369,12 +374,12 @@ void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t prim
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
         addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), segmentSpan(t0, t1, ts), mat, camera_,
                                                      colors),
-                   src, primitiveId, out);
+                   src, primitiveId, out, keep);
     });
 }
 
 // A QuadricMesh per segment: the quadric's arguments and transform at both ends.
-void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::vector<BodyPtr>& out) {
+void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep) {
     const MotionTransform objectToCamera = q.objectToWorld.then(worldToCamera_);
     std::vector<double> keyTimes = keysOf(objectToCamera);
     if (q.params.size() > 1) keyTimes = unionTimes(keyTimes, q.times);
@@ -407,7 +412,7 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::ve
         const QuadricMesh::Params params[2] = {keys[i].params, keys[j].params};
         const Matrix4 toCamera[2] = {keys[i].toCamera, keys[j].toCamera};
         addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, segmentSpan(t0, t1, ts), mat, camera_, colors),
-                   src, primitiveId, out);
+                   src, primitiveId, out, keep);
     });
 }
 
@@ -469,7 +474,7 @@ std::vector<uint64_t> BodyFactory::proceduralsMadeByDepth() const {
 }
 
 void BodyFactory::addPrimitives(const Scene& scene, const std::vector<GeneratedProcedural>& generated, int depth,
-                                const std::function<uint64_t()>& nextId, std::vector<BodyPtr>& out) {
+                                const std::function<uint64_t()>& nextId, std::vector<BodyPtr>& out, Keep* keep) {
     // Polygons first: each is a patch, faces, or nothing (no area, warned).
     struct Polygon {
         std::optional<BilinearPatchDesc> patch;
@@ -493,9 +498,9 @@ void BodyFactory::addPrimitives(const Scene& scene, const std::vector<GeneratedP
     polygonPatchesUpTo(scene.patches.size());
     for (const ProceduralDesc& p : scene.procedurals) addProcedural(p, nextId(), depth, out);
     for (const GeneratedProcedural& g : generated) addProcedural(g.desc, g.generator, nextId(), depth, out);
-    for (const PatchMeshDesc& p : scene.patchMeshes) addPatchMesh(p, nextId(), out);
-    for (const SubdivisionMeshDesc& p : scene.subdivisionMeshes) addSubdivisionMesh(p, nextId(), out);
-    for (const QuadricDesc& q : scene.quadrics) addQuadric(q, nextId(), out);
+    for (const PatchMeshDesc& p : scene.patchMeshes) addPatchMesh(p, nextId(), out, keep);
+    for (const SubdivisionMeshDesc& p : scene.subdivisionMeshes) addSubdivisionMesh(p, nextId(), out, keep);
+    for (const QuadricDesc& q : scene.quadrics) addQuadric(q, nextId(), out, keep);
     for (size_t i = 0; i < meshes.size(); ++i)
         if (!polygons[i].patch && !polygons[i].faces.faces.empty())
             addPolygonFaces(meshes[i], polygons[i].faces, nextId(), out);
@@ -506,7 +511,8 @@ uint64_t childPrimitiveId(uint64_t parent, uint64_t index) {
     return id == 0 || id == UINT64_MAX ? 1 : id;
 }
 
-void BodyFactory::addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out) {
+void BodyFactory::addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out,
+                              Keep* keep) {
     const uint64_t budget = bodyBudget_.load();
     if (budget && bodiesMade_.load() * kBytesPerBody > budget)
         throw InputError("expanding the scene's procedurals for ray tracing (shadows, or --algorithm raytrace) needs "
@@ -514,7 +520,8 @@ void BodyFactory::addChildren(const ProceduralOutput& output, uint64_t parentId,
                          std::to_string(bodiesMade_.load()) + " bodies so far, " + std::to_string(budget >> 20) +
                          " MiB left for them): raise --max-memory, or turn shadows off");
     uint64_t index = 0;
-    addPrimitives(output.scene, output.procedurals, depth, [&] { return childPrimitiveId(parentId, index++); }, out);
+    addPrimitives(output.scene, output.procedurals, depth, [&] { return childPrimitiveId(parentId, index++); }, out,
+                  keep);
 }
 
 void BodyFactory::reportOutgrown(ProceduralBody* p) {

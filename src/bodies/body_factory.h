@@ -56,9 +56,13 @@ class BodyFactory final : public ChildBodyMaker {
     // per face. The camera must be set: curved bodies
     // measure their edges in raster space. A subdivision mesh OpenSubdiv rejects is an InputError.
     void setCamera(const Camera* camera) { camera_ = camera; }
-    void addPatchMesh(const PatchMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out);
-    void addSubdivisionMesh(const SubdivisionMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out);
-    void addQuadric(const QuadricDesc& quadric, uint64_t primitiveId, std::vector<BodyPtr>& out);
+    // The meshes the bodies point into go to `keep` when given (freed with the bodies by their
+    // owner), else the factory keeps them for the whole render.
+    using Keep = std::vector<std::shared_ptr<const void>>;
+    void addPatchMesh(const PatchMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
+    void addSubdivisionMesh(const SubdivisionMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out,
+                            Keep* keep = nullptr);
+    void addQuadric(const QuadricDesc& quadric, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
     // A polygon mesh's faces (bodies/polygons.h), each as a patch.
     void addPolygonFaces(const PolygonMeshDesc& mesh, const PolygonFaces& faces, uint64_t primitiveId,
                          std::vector<BodyPtr>& out);
@@ -74,10 +78,11 @@ class BodyFactory final : public ChildBodyMaker {
     // procedurals, patch meshes, subdivision meshes, quadrics, then polygons cut into faces. Ids
     // decide exact depth ties: this order keeps the pixels.
     void addPrimitives(const Scene& scene, const std::vector<GeneratedProcedural>& generated, int depth,
-                       const std::function<uint64_t()>& nextId, std::vector<BodyPtr>& out);
+                       const std::function<uint64_t()>& nextId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
     // Everything a procedural produced; child ids are derived from the parent's, so they do not
     // depend on which thread expanded it.
-    void addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out) override;
+    void addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out,
+                     Keep* keep = nullptr) override;
 
     // Camera-space box around an object-space box over the whole window (all transform keys), or
     // during [a, b].
@@ -118,7 +123,7 @@ class BodyFactory final : public ChildBodyMaker {
     std::shared_ptr<const SubdivisionShape> subdivisionShape(const SubdivisionMeshDesc& mesh);
     // Keeps a segment's mesh and appends a body per face.
     void addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint64_t primitiveId,
-                    std::vector<BodyPtr>& out);
+                    std::vector<BodyPtr>& out, Keep* keep);
 
     MotionTransform worldToCamera_;
     double windowStart_, windowEnd_;

@@ -63,6 +63,9 @@ class InstanceGenerator final : public ProceduralGenerator {
     InstanceGenerator(std::string handle, std::shared_ptr<const Scene> object)
         : handle_(std::move(handle)), object_(std::move(object)) {}
     std::string describe() const override { return "ObjectInstance " + handle_; }
+    // A copy of what the scene holds is cheap to make again: buckets expand it for themselves.
+    // An object holding procedurals keeps its children (they report outgrown bounds by address).
+    bool keepsChildren() const override { return !object_->procedurals.empty(); }
     void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
         Scene& s = out.scene;
         s = *object_;

@@ -50,11 +50,23 @@ struct ProceduralOutput {
     std::vector<GeneratedProcedural> procedurals;
 };
 
+// What an expansion made: the children, and what they point into (their meshes), which lives as
+// long as they do.
+struct ProceduralChildren {
+    std::vector<std::shared_ptr<const void>> keep;  // first: destroyed after the bodies
+    std::vector<BodyPtr> bodies;
+};
+
 // The code behind a procedural: turns it into more primitives. Implementations are immutable
 // and may be shared; expand may run on any thread.
 class ProceduralGenerator {
   public:
     virtual ~ProceduralGenerator() = default;
+    // Whether the children are kept once made, for every bucket and thread (archives, programs and
+    // the forest are costly to make again). When not (an object instance: a copy of primitives the
+    // scene holds), each bucket that reaches the bound expands it for itself and frees the
+    // children when it is done, so memory follows the buckets at work, not the instances.
+    virtual bool keepsChildren() const { return true; }
     // Appends the children to `out` (primitives and nested procedurals, with their object-to-world
     // transforms and attributes). Throws InputError naming ctx.loc when it cannot.
     virtual void expand(const ExpandContext& ctx, ProceduralOutput& out) const = 0;
@@ -70,9 +82,12 @@ class ChildBodyMaker {
     virtual double windowStart() const = 0;
     virtual double windowEnd() const = 0;
     // Appends a body (or several) for everything in `output`, `depth` expansions below the scene;
-    // ids of the children are derived from `parentId`, so they do not depend on the thread.
+    // ids of the children are derived from `parentId`, so they do not depend on the thread. What
+    // the bodies point into goes to `keep` when given (the children's owner frees it with them),
+    // else it stays with the maker for the whole render.
     virtual void addChildren(const ProceduralOutput& output, uint64_t parentId, int depth,
-                             std::vector<std::unique_ptr<Body>>& out) = 0;
+                             std::vector<std::unique_ptr<Body>>& out,
+                             std::vector<std::shared_ptr<const void>>* keep = nullptr) = 0;
     // A procedural whose children reached outside its declared bound (rendered again).
     virtual void reportOutgrown(ProceduralBody* procedural) = 0;
     // The camera-space box of an object-space box during [a, b].
@@ -119,6 +134,11 @@ class ProceduralBody final : public Body {
     const std::vector<BodyPtr>& children(ChildBodyMaker& maker, const Camera& camera, Log& log,
                                          bool* expandedHere = nullptr) const;
     bool expanded() const;  // at any level
+    // Whether children() keeps what it makes (ProceduralGenerator::keepsChildren); when not, a
+    // bucket calls expandInto and owns the children.
+    bool keepsChildren() const { return root().generator_->keepsChildren(); }
+    // Expands at this body's level into `out`, kept by nobody else (the caller frees them).
+    void expandInto(ProceduralChildren& out, ChildBodyMaker& maker, const Camera& camera, Log& log) const;
 
     // Children that reach outside the declared bound: the union of everything, for the renderer to
     // render again where the declared bound was too small.
@@ -131,11 +151,11 @@ class ProceduralBody final : public Body {
   private:
     struct Expansion {  // the children of one level of detail
         std::once_flag once;
-        std::vector<BodyPtr> children;
+        ProceduralChildren children;
         std::exception_ptr error;
     };
     const ProceduralBody& root() const { return root_ ? *root_ : *this; }
-    void expand(Expansion& e, int level, ChildBodyMaker& maker, const Camera& camera, Log& log) const;
+    void expand(ProceduralChildren& out, int level, ChildBodyMaker& maker, Log& log, bool keep) const;
 
     // The procedural itself (views point at it and share its expansions).
     const ProceduralBody* root_ = nullptr;

@@ -117,17 +117,23 @@ const std::vector<BodyPtr>& ProceduralBody::children(ChildBodyMaker& maker, cons
         // for ever. Isolated, it takes only tasks of this expansion.
         tbb::this_task_arena::isolate([&] {
             try {
-                r.expand(*e, lv, maker, camera, log);
+                r.expand(e->children, lv, maker, log, false);
             } catch (...) {
                 e->error = std::current_exception();
             }
         });
     });
     if (e->error) std::rethrow_exception(e->error);
-    return e->children;
+    return e->children.bodies;
 }
 
-void ProceduralBody::expand(Expansion& e, int level, ChildBodyMaker& maker, const Camera&, Log& log) const {
+void ProceduralBody::expandInto(ProceduralChildren& out, ChildBodyMaker& maker, const Camera& camera, Log& log) const {
+    const int lv = level(camera);
+    tbb::this_task_arena::isolate([&] { root().expand(out, lv, maker, log, true); });  // as children() does
+}
+
+// `own`: the meshes go with the children (out.keep), not to the maker.
+void ProceduralBody::expand(ProceduralChildren& out, int level, ChildBodyMaker& maker, Log& log, bool own) const {
     ExpandContext ctx;
     ctx.detail = detailOfLevel(level);
     ctx.objectToWorld = desc_.objectToWorld;
@@ -139,14 +145,14 @@ void ProceduralBody::expand(Expansion& e, int level, ChildBodyMaker& maker, cons
     ctx.log = &log;
     ProceduralOutput output;
     generator_->expand(ctx, output);
-    maker.addChildren(output, primitiveId(), depth_ + 1, e.children);
-    for (const BodyPtr& c : e.children)
+    maker.addChildren(output, primitiveId(), depth_ + 1, out.bodies, own ? &out.keep : nullptr);
+    for (const BodyPtr& c : out.bodies)
         if (c->expands()) static_cast<const ProceduralBody&>(*c).parent_ = this;
 
     // Children reaching outside the declared bound are not lost: the renderer renders again
     // with the grown bound (see Renderer::render).
     Bounds3f grown = bound_;
-    for (const BodyPtr& c : e.children) grown.extend(c->bound().swept());
+    for (const BodyPtr& c : out.bodies) grown.extend(c->bound().swept());
     const float slack = 1e-4f * std::max({1.0f, std::fabs(bound_.lo.x), std::fabs(bound_.hi.x), std::fabs(bound_.lo.y),
                                           std::fabs(bound_.hi.y), std::fabs(bound_.lo.z), std::fabs(bound_.hi.z)});
     const bool outgrew = grown.lo.x < bound_.lo.x - slack || grown.lo.y < bound_.lo.y - slack ||

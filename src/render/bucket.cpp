@@ -66,6 +66,7 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
         if (occlusion_) runNearToFar();
         else runDepthFirst();
     }
+    ownChildren_.clear();  // nothing holds them now: the split loop is done
     counters.timeSplit +=
         secondsSince(t) - (counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion - before);
 
@@ -487,7 +488,16 @@ void BucketWorker::process(const Body& body) {
 // bucket gets there first; the others reuse its children.
 void BucketWorker::expand(const ProceduralBody& procedural) {
     bool expandedHere = false;
-    const std::vector<BodyPtr>& children = procedural.children(*scene_.factory, scene_.camera, log_, &expandedHere);
+    const std::vector<BodyPtr>* kept = nullptr;
+    if (procedural.keepsChildren()) {
+        kept = &procedural.children(*scene_.factory, scene_.camera, log_, &expandedHere);
+    } else {  // this bucket's own, freed when it is done (ProceduralGenerator::keepsChildren)
+        ownChildren_.emplace_back();
+        procedural.expandInto(ownChildren_.back(), *scene_.factory, scene_.camera, log_);
+        kept = &ownChildren_.back().bodies;
+        expandedHere = true;
+    }
+    const std::vector<BodyPtr>& children = *kept;
     if (expandedHere) {
         ++counters.proceduralsExpanded;
         const size_t d = size_t(procedural.depth());

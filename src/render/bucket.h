@@ -4,6 +4,7 @@
 // split or an exposure cut makes are allocated one by one (docs/ARCHITECTURE.md, "The split loop").
 #pragma once
 
+#include <deque>
 #include <unordered_map>
 #include <vector>
 
@@ -88,6 +89,7 @@ class BucketWorker {
     GridRasterizer rasterizer_;
     RasterCounters rasterCounters_;
     std::vector<BodyPtr> stack_;
+    std::deque<ProceduralChildren> ownChildren_;  // expansions this bucket made for itself (deque: stable)
     // Splits per primitive (and per frame, for pieces cut to one exposure) in this bucket: a
     // frame's budget does not depend on the other frames in its block.
     struct PieceKeyHash {

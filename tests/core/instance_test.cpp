@@ -66,6 +66,34 @@ TEST(Instancing, AnInstanceMovesWithItsOwnTransform) {
     EXPECT_EQ(inst.alpha(3, 3, 8), 0.0f);  // frame 3 has moved on (x 20..25)
 }
 
+// Instances are not kept: each bucket their bound reaches expands them for itself and frees the
+// children when it is done (memory follows the buckets at work, not the instances). An instance
+// across four 16-pixel buckets is expanded four times, one inside a bucket once; the pixels are
+// those of the geometry written out, whatever the buckets.
+TEST(Instancing, EachBucketExpandsTheInstancesItReaches) {
+    const std::string header = test::orthoHeader(64, 32, "PixelSamples 2 2\n");
+    const std::string object = test::square(0, 6, 0, 6, 5);
+    const std::string places = "Translate 13 13 0\n";  // x 13..19, y 13..19: four buckets
+    const std::string inside = "Translate 35 3 0\n";   // x 35..41 (bucket 32..47), y 3..9 (rows 22..28)
+    auto render = [&](const std::string& a, const std::string& b, int bucket) {
+        RenderOptions o;
+        o.bucketSize = bucket;
+        return test::renderRib(header + "ObjectBegin 1\n" + object + "ObjectEnd\n" + a + b + "WorldEnd\n", o);
+    };
+    const test::RenderResult four = render("AttributeBegin\n" + places + "ObjectInstance 1\nAttributeEnd\n",
+                                           "AttributeBegin\n" + inside + "ObjectInstance 1\nAttributeEnd\n", 16);
+    EXPECT_EQ(four.stats.counters.proceduralsExpanded, 5u);
+    const test::RenderResult whole = render("AttributeBegin\n" + places + "ObjectInstance 1\nAttributeEnd\n",
+                                            "AttributeBegin\n" + inside + "ObjectInstance 1\nAttributeEnd\n", 64);
+    EXPECT_EQ(whole.stats.counters.proceduralsExpanded, 2u);
+    const test::RenderResult written = test::renderRib(header + "AttributeBegin\n" + places + object + "AttributeEnd\n" +
+                                                       "AttributeBegin\n" + inside + object + "AttributeEnd\nWorldEnd\n");
+    EXPECT_TRUE(test::identicalPixels(four, written));
+    EXPECT_TRUE(test::identicalPixels(whole, written));
+    EXPECT_EQ(four.alpha(0, 16, 16), 1.0f);
+    EXPECT_EQ(four.alpha(0, 38, 25), 1.0f);
+}
+
 TEST(Instancing, MistakesAreErrorsNamingTheLine) {
     const std::string world = "WorldBegin\n";
     EXPECT_EQ(errorOf(world + "ObjectBegin 1\nSphere 1 -1 1 360\nObjectEnd\nObjectInstance 1\nWorldEnd\n"), "");
