@@ -139,6 +139,10 @@ void ProceduralBody::expand(Expansion& e, int level, ChildBodyMaker& maker, cons
     ctx.log = &log;
     ProceduralOutput output;
     generator_->expand(ctx, output);
+    if (!desc_.life.always()) {  // one frame's procedural (a frame sequence): its children live as long
+        setLifetime(output.scene, desc_.life);
+        for (GeneratedProcedural& g : output.procedurals) g.desc.life = desc_.life;
+    }
     maker.addChildren(output, primitiveId(), depth_ + 1, e.children);
     for (const BodyPtr& c : e.children)
         if (c->expands()) static_cast<const ProceduralBody&>(*c).parent_ = this;
