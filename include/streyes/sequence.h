@@ -87,6 +87,7 @@ class SequenceBuilder {
     // This frame's: lights' merged indices, attribute states with them.
     std::vector<int> lightIndex_;
     std::map<const Attributes*, AttributesPtr> remapped_;
+    std::map<std::string, SourceLoc> declared_;  // where each identifier was given in this frame
     MotionTransform worldToCamera_;
     double open_ = 0, close_ = 0;
 };

@@ -86,12 +86,20 @@ void bake(Desc& p, const MotionTransform& worldToCamera) {
 template <typename Desc>
 void SequenceBuilder::addPrimitive(char kind, Desc&& p, std::vector<Desc>& merged, std::map<std::string, int>& seen,
                                    int frame) {
-    const std::string name = p.attributes ? p.attributes->user.getString("identifier:name", "") : "";
+    const Param* id = p.attributes ? p.attributes->user.find("identifier:name") : nullptr;
+    const std::string name = id && !id->strings.empty() ? id->strings.front() : "";
     const int index = seen[name]++;
-    if (index == 1 && !name.empty())
-        log_.warnOnce("sequence-duplicate:" + name + ":" + std::to_string(frame), p.loc,
-                      "identifier \"" + name + "\" names more than one primitive in frame " + std::to_string(frame) +
-                          ": they are matched with the next frame's in the order they come");
+    if (id && !name.empty()) {
+        // Primitives of one Attribute "identifier" are one object; the same name given again
+        // elsewhere in the frame is most likely a mistake of the exporter's.
+        auto [first, isNew] = declared_.emplace(name, id->loc);
+        if (!isNew && (first->second.line != id->loc.line || first->second.file != id->loc.file))
+            log_.warnOnce("sequence-duplicate:" + name, id->loc,
+                          "identifier \"" + name + "\" is given again in frame " + std::to_string(frame) +
+                              " (first at " + (first->second.file == id->loc.file ? "line " + std::to_string(first->second.line)
+                                                                                  : first->second.str()) +
+                              "): its primitives are matched with other frames' in the order they come");
+    }
     std::string key;
     key.reserve(name.size() + 16);
     key += kind;
@@ -158,6 +166,7 @@ void SequenceBuilder::add(Scene&& frame) {
     worldToCamera_ = frame.camera.worldToCamera;
     lightIndex_.clear();
     remapped_.clear();
+    declared_.clear();
     for (LightDesc& l : frame.lights) {
         l.lightToWorld = l.lightToWorld.then(worldToCamera_);
         std::vector<LightDesc>& lights = out_.scene.lights;
