@@ -11,6 +11,9 @@
 #include <set>
 #include <sys/stat.h>
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include "scene/sequence_equal.h"
 #include "streyes/rib.h"
 
@@ -269,6 +272,26 @@ uint64_t fileSize(const std::string& path) {
     return stat(path.c_str(), &st) == 0 ? uint64_t(st.st_size) : 0;
 }
 
+// One frame's file: a scene, or one FrameBegin block (whose number should be the file's).
+Scene readFrameFile(const std::string& file, int f, Log& log) {
+    Scene frame;
+    int blocks = 0;
+    parseRibFrames(file, log, [&](Scene&& s) {
+        const bool block = s.frameLoc.line > 0;
+        if (block && ++blocks > 1)
+            throw InputError(s.frameLoc, "a second FrameBegin in the frame file of frame " + std::to_string(f) +
+                                             ": a pattern's file holds one frame");
+        if (block && s.frameNumber != f)
+            log.warnOnce("sequence-number:" + file, s.frameLoc,
+                         "FrameBegin " + std::to_string(s.frameNumber) + " in the file of frame " + std::to_string(f) +
+                             ": the file name's number is used");
+        if (!block) s.frameLoc = SourceLoc{std::make_shared<const std::string>(file), 1, 0};
+        s.frameNumber = f;
+        frame = std::move(s);
+    });
+    return frame;
+}
+
 }  // namespace
 
 Sequence readScene(const std::string& path, const FrameRequest& req, Log& log) {
@@ -299,20 +322,25 @@ Sequence readScene(const std::string& path, const FrameRequest& req, Log& log) {
                                  std::to_string(frames.front()) + " to " + std::to_string(frames.back()) +
                                  " with a gap; give --frames to render a part");
             bytes += fileSize(file);
-            int blocks = 0;
-            parseRibFrames(file, log, [&](Scene&& s) {
-                const bool block = s.frameLoc.line > 0;
-                if (block && ++blocks > 1)
-                    throw InputError(s.frameLoc, "a second FrameBegin in the frame file of frame " + std::to_string(f) +
-                                                     ": a pattern's file holds one frame");
-                if (block && s.frameNumber != f)
-                    log.warnOnce("sequence-number:" + file, s.frameLoc,
-                                 "FrameBegin " + std::to_string(s.frameNumber) + " in the file of frame " +
-                                     std::to_string(f) + ": the file name's number is used");
-                if (!block) s.frameLoc = SourceLoc{std::make_shared<const std::string>(file), 1, 0};
-                s.frameNumber = f;
-                builder.add(std::move(s));
+        }
+        // Frames are parsed in parallel, a batch at a time (memory holds a batch), and merged in
+        // order; the first frame's error in order is the one reported, whatever thread found it.
+        const size_t batch = size_t(std::max(2, 2 * tbb::this_task_arena::max_concurrency()));
+        for (size_t b = 0; b < frames.size(); b += batch) {
+            const size_t n = std::min(batch, frames.size() - b);
+            std::vector<Scene> scenes(n);
+            std::vector<std::exception_ptr> errors(n);
+            tbb::parallel_for(size_t(0), n, [&](size_t i) {
+                try {
+                    scenes[i] = readFrameFile(frameFileName(path, frames[b + i]), frames[b + i], log);
+                } catch (...) {
+                    errors[i] = std::current_exception();
+                }
             });
+            for (size_t i = 0; i < n; ++i) {
+                if (errors[i]) std::rethrow_exception(errors[i]);
+                builder.add(std::move(scenes[i]));
+            }
         }
         Sequence seq = builder.finish();
         seq.stats.bytesRead = bytes;
