@@ -15,6 +15,7 @@
 // and shared between frames where they are equal.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -60,6 +61,9 @@ class SequenceBuilder {
     // One frame (Scene::frameNumber, Scene::frameLoc). InputError when it cannot join the others:
     // resolution, shutter, camera projection or sampling differ; a frame missing or out of order.
     void add(Scene&& frame);
+    int frames() const { return out_.stats.frames; }  // in the block being built
+    // The frames added since the last finish, merged; the next frame starts a new block (checked
+    // against the same first frame and following the last).
     Sequence finish();
 
   private:
@@ -82,7 +86,7 @@ class SequenceBuilder {
     Log& log_;
     Sequence out_;
     std::unique_ptr<Reference> first_;
-    int lastFrame_ = 0;
+    int lastFrame_ = 0, blockFirst_ = 0;
     std::unordered_map<std::string, Track> tracks_;
     // This frame's: lights' merged indices, attribute states with them.
     std::vector<int> lightIndex_;
@@ -102,5 +106,11 @@ std::string frameFileName(const std::string& pattern, int frame);
 // scene file (isSequence false; `frames` is left to the renderer). A frame file missing or a
 // frame the request names that the file lacks is an InputError.
 Sequence readScene(const std::string& path, const FrameRequest& frames, Log& log);
+// The same, a block of at most `blockFrames` consecutive frames at a time: each block is merged and
+// handed to `block` before the next is read, so memory holds one block (and a batch of frames
+// being parsed). An ordinary scene file is handed over once (isSequence false). A frame's pixels
+// do not depend on the block it is rendered in: each renders what its RIB says.
+void readSceneBlocks(const std::string& path, const FrameRequest& frames, int blockFrames, Log& log,
+                     const std::function<void(Sequence&&)>& block);
 
 }  // namespace streyes

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
+#include <utility>
 #include <regex>
 #include <set>
 #include <sys/stat.h>
@@ -138,10 +140,6 @@ void SequenceBuilder::add(Scene&& frame) {
     const int f = frame.frameNumber;
     if (!first_) {
         first_ = std::make_unique<Reference>(Reference{f, frame.frameLoc, frame.camera, frame.settings});
-        out_.scene.camera = frame.camera;
-        out_.scene.camera.worldToCamera = MotionTransform();
-        out_.scene.settings = frame.settings;
-        out_.scene.sourceName = frame.sourceName;
         open_ = frame.settings.shutterOpen;
         close_ = frame.settings.shutterClose;
         if (close_ - open_ > 1)
@@ -160,6 +158,13 @@ void SequenceBuilder::add(Scene&& frame) {
                                                   (f - 1 > lastFrame_ + 1 ? "-" + std::to_string(f - 1) : "") +
                                                   " are missing (a sequence's frames must be consecutive)");
         check(frame);
+    }
+    if (out_.stats.frames == 0) {  // the block's first frame
+        blockFirst_ = f;
+        out_.scene.camera = frame.camera;
+        out_.scene.camera.worldToCamera = MotionTransform();
+        out_.scene.settings = frame.settings;
+        out_.scene.sourceName = frame.sourceName;
     }
     lastFrame_ = f;
     ++out_.stats.frames;
@@ -200,10 +205,10 @@ void SequenceBuilder::add(Scene&& frame) {
 }
 
 Sequence SequenceBuilder::finish() {
-    if (!first_) throw InputError("the sequence has no frames");
+    if (out_.stats.frames == 0) throw InputError("the sequence has no frames");
     RenderSettings& s = out_.scene.settings;
     s.hasFrames = true;
-    s.firstFrame = first_->frame;
+    s.firstFrame = blockFirst_;
     s.lastFrame = lastFrame_;
     s.displays.clear();
     // Exposures that touch (close - open == 1): a run that ends before the last frame ends open,
@@ -219,7 +224,9 @@ Sequence SequenceBuilder::finish() {
     out_.stats.runs = out_.runs.size();
     out_.isSequence = true;
     tracks_.clear();
-    return std::move(out_);
+    Sequence done = std::move(out_);
+    out_ = Sequence();
+    return done;
 }
 
 // ---- Reading --------------------------------------------------------------------------------------------
@@ -295,8 +302,23 @@ Scene readFrameFile(const std::string& file, int f, Log& log) {
 }  // namespace
 
 Sequence readScene(const std::string& path, const FrameRequest& req, Log& log) {
+    Sequence all;
+    readSceneBlocks(path, req, std::numeric_limits<int>::max(), log, [&](Sequence&& s) { all = std::move(s); });
+    return all;
+}
+
+void readSceneBlocks(const std::string& path, const FrameRequest& req, int blockFrames, Log& log,
+                     const std::function<void(Sequence&&)>& block) {
     SequenceBuilder builder(log);
     uint64_t bytes = 0;
+    blockFrames = std::max(1, blockFrames);
+    auto add = [&](Scene&& s) {
+        builder.add(std::move(s));
+        if (builder.frames() < blockFrames) return;
+        Sequence done = builder.finish();
+        done.stats.bytesRead = std::exchange(bytes, 0);
+        block(std::move(done));
+    };
     if (isFramePattern(path)) {
         std::vector<int> frames;
         if (req.given) {
@@ -321,7 +343,6 @@ Sequence readScene(const std::string& path, const FrameRequest& req, Log& log) {
                                  std::to_string(frames[i - 1] + 1) + "): the pattern's files run from " +
                                  std::to_string(frames.front()) + " to " + std::to_string(frames.back()) +
                                  " with a gap; give --frames to render a part");
-            bytes += fileSize(file);
         }
         // Frames are parsed in parallel, a batch at a time (memory holds a batch), and merged in
         // order; the first frame's error in order is the one reported, whatever thread found it.
@@ -339,12 +360,16 @@ Sequence readScene(const std::string& path, const FrameRequest& req, Log& log) {
             });
             for (size_t i = 0; i < n; ++i) {
                 if (errors[i]) std::rethrow_exception(errors[i]);
-                builder.add(std::move(scenes[i]));
+                bytes += fileSize(frameFileName(path, frames[b + i]));
+                add(std::move(scenes[i]));
             }
         }
-        Sequence seq = builder.finish();
-        seq.stats.bytesRead = bytes;
-        return seq;
+        if (builder.frames() > 0) {
+            Sequence done = builder.finish();
+            done.stats.bytesRead = bytes;
+            block(std::move(done));
+        }
+        return;
     }
     Sequence single;
     bool frames = false;
@@ -357,20 +382,19 @@ Sequence readScene(const std::string& path, const FrameRequest& req, Log& log) {
         frames = true;
         read.insert(s.frameNumber);
         if (req.given && (s.frameNumber < req.first || s.frameNumber > req.last)) return;
-        builder.add(std::move(s));
+        add(std::move(s));
     });
     if (!frames) {
         single.stats.bytesRead = fileSize(path);
-        return single;
+        block(std::move(single));
+        return;
     }
     if (req.given)
         for (int f = req.first; f <= req.last; ++f)
             if (!read.count(f))
                 throw InputError("'" + path + "' has no FrameBegin " + std::to_string(f) + ", which --frames " +
                                  std::to_string(req.first) + "-" + std::to_string(req.last) + " asks for");
-    Sequence seq = builder.finish();
-    seq.stats.bytesRead = fileSize(path);
-    return seq;
+    if (builder.frames() > 0) block(builder.finish());
 }
 
 }  // namespace streyes

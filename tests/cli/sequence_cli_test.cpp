@@ -58,6 +58,23 @@ TEST(SequenceCli, FramesOfAPatternEqualTheSameFramesOfOneFile) {
     EXPECT_FALSE(fs::exists(tmp.path() + "/b.0005.exr"));
 }
 
+// --frame-block 3: the sequence is read and rendered three frames at a time; every frame the same.
+TEST(SequenceCli, ABlockOfFramesAtATimeGivesTheSameFrames) {
+    test::TempDir tmp("seqcli");
+    const std::string shot = test::sourcePath("scenes/sequence/shot.rib");
+    ASSERT_EQ(renderIn(tmp.path(), shot + " -o 'a.####.exr'").exitCode, 0);
+    const test::CliRun r = renderIn(tmp.path(), shot + " --frame-block 3 -o 'b.####.exr' --stats s.json");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (int f = 1; f <= 8; ++f) {
+        char a[32], b[32];
+        std::snprintf(a, sizeof a, "/a.%04d.exr", f);
+        std::snprintf(b, sizeof b, "/b.%04d.exr", f);
+        EXPECT_EQ(readImage(tmp.path() + a).pixels, readImage(tmp.path() + b).pixels) << f;
+    }
+    const std::string stats = readFile(tmp.path() + "/s.json");
+    EXPECT_NE(stats.find("\"frames\": [1, 8]"), std::string::npos) << stats;
+}
+
 TEST(SequenceCli, AMissingFrameFileIsAnErrorNamingIt) {
     test::TempDir tmp("seqcli");
     copyShot(tmp.path(), 4);
