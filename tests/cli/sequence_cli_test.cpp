@@ -75,6 +75,27 @@ TEST(SequenceCli, ABlockOfFramesAtATimeGivesTheSameFrames) {
     EXPECT_NE(stats.find("\"frames\": [1, 8]"), std::string::npos) << stats;
 }
 
+// A render farm takes a sequence as it takes a scene: the plan's tasks render frame blocks of the
+// pattern (each block renders its frames as the whole sequence does: the lines it runs are checked
+// above); frames that disagree are refused before anything is submitted.
+TEST(SequenceCli, FarmPlansASequence) {
+    test::TempDir tmp("seqcli");
+    const std::string pattern = "'" + test::sourcePath("scenes/sequence/shot.####.rib") + "'";
+    test::CliRun r = runStreyesWith("", "farm submit " + pattern + " -o " + tmp.path() + "/f.####.exr --block 4 --dry-run");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("frames 1-8 (8), 160x90, in 2 blocks of 4"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("BLOCKS=(1-4 5-8)"), std::string::npos) << r.output;
+    copyShot(tmp.path(), 2);
+    std::string text = readFile(tmp.path() + "/" + shotFile(2));
+    text.replace(text.find("Shutter 0 0.5"), 13, "Shutter 0 1");
+    writeFile(tmp.path(), shotFile(2), text);
+    r = runStreyesWith("cd " + tmp.path() + " && ", "farm submit 'shot.####.rib' -o " + tmp.path() + "/g.####.exr --dry-run");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("shot.0002.rib:2: error: frame 2 has Shutter 0 1, Shutter 0 0.5 against frame 1"),
+              std::string::npos)
+        << r.output;
+}
+
 TEST(SequenceCli, AMissingFrameFileIsAnErrorNamingIt) {
     test::TempDir tmp("seqcli");
     copyShot(tmp.path(), 4);
