@@ -2,16 +2,14 @@
 // with the previous frame's, runs of still primitives, and reading patterns and frame files.
 #include "streyes/sequence.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
-#include <cerrno>
-#include <cmath>
-#include <cstring>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
-#include <utility>
-#include <regex>
 #include <set>
-#include <sys/stat.h>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -151,12 +149,14 @@ void SequenceBuilder::add(Scene&& frame) {
         if (f <= lastFrame_)
             throw InputError(frameLoc(frame), "frame " + std::to_string(f) + " comes after frame " +
                                                   std::to_string(lastFrame_) + ": frames must be in increasing order");
-        if (f != lastFrame_ + 1)
+        if (f != lastFrame_ + 1) {
+            const std::string missing = f - 1 > lastFrame_ + 1 ? "frames " + std::to_string(lastFrame_ + 1) + "-" +
+                                                                     std::to_string(f - 1) + " are missing"
+                                                               : "frame " + std::to_string(lastFrame_ + 1) + " is missing";
             throw InputError(frameLoc(frame), "frame " + std::to_string(f) + " follows frame " +
-                                                  std::to_string(lastFrame_) + ": frames " +
-                                                  std::to_string(lastFrame_ + 1) +
-                                                  (f - 1 > lastFrame_ + 1 ? "-" + std::to_string(f - 1) : "") +
-                                                  " are missing (a sequence's frames must be consecutive)");
+                                                  std::to_string(lastFrame_) + ": " + missing +
+                                                  " (a sequence's frames must be consecutive)");
+        }
         check(frame);
     }
     if (out_.stats.frames == 0) {  // the block's first frame

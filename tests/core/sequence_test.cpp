@@ -279,7 +279,7 @@ TEST(Sequence, FramesThatDisagreeOnResolutionOrShutterAreRefusedNamingTheFrame) 
     EXPECT_NE(e.find("frame1.rib:1: error: frame 2 has Shutter 0 0.25, Shutter 0 0.5 against frame 1"), std::string::npos)
         << e;
     e = errorOf({stillFrame(1), stillFrame(3)});
-    EXPECT_NE(e.find("frame1.rib:1: error: frame 3 follows frame 1: frames 2 are missing"), std::string::npos) << e;
+    EXPECT_NE(e.find("frame1.rib:1: error: frame 3 follows frame 1: frame 2 is missing"), std::string::npos) << e;
     e = errorOf({stillFrame(2), stillFrame(1)});
     EXPECT_NE(e.find("frame 1 comes after frame 2"), std::string::npos) << e;
     e = errorOf({stillFrame(1, "0 1.5")});
