@@ -3,6 +3,7 @@
 // the subset warn once through the Log and are skipped.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "streyes/scene.h"
@@ -11,6 +12,10 @@ namespace streyes {
 
 Scene parseRibFile(const std::string& path, Log& log);
 Scene parseRibString(const std::string& text, const std::string& sourceName, Log& log);
+// A file of FrameBegin n ... FrameEnd blocks: each frame, as it ends, is handed to `frame` as a
+// complete scene (Scene::frameNumber, Scene::frameLoc). A file without frame blocks is handed over
+// whole, as one scene with no frame location. Memory holds one frame at a time.
+void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame);
 
 // A procedural's RIB output (DelayedReadArchive, RunProgram): requests inside a world block,
 // read under the procedural's transform and attributes into a scene of their own. Every block

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -109,6 +110,16 @@ struct RenderSettings {
 };
 
 // ---- Lights and geometry --------------------------------------------------------------------------
+// The time a primitive exists in, frames: a frame sequence (streyes/sequence.h) gives each
+// primitive the exposures of the frames it is in; a single scene's primitives exist always. The
+// end is open, [t0, t1), where the next frame's exposure begins at t1 (Shutter 0 1): a sample at
+// that instant is the next frame's.
+struct Lifetime {
+    double t0 = -std::numeric_limits<double>::infinity(), t1 = std::numeric_limits<double>::infinity();
+    bool openEnd = false;
+    bool always() const { return t0 == -std::numeric_limits<double>::infinity() && t1 == std::numeric_limits<double>::infinity(); }
+};
+
 struct LightDesc {
     std::string type;            // "ambientlight" | "distantlight" | "pointlight"
     ParamList params;
@@ -128,6 +139,7 @@ struct BilinearPatchDesc {
     MotionTransform objectToWorld;
     AttributesPtr attributes;
     SourceLoc loc;
+    Lifetime life;
 };
 
 // A procedural primitive as declared: Procedural "DelayedReadArchive" | "RunProgram" |
@@ -142,6 +154,7 @@ struct ProceduralDesc {
     MotionTransform objectToWorld;
     AttributesPtr attributes;
     SourceLoc loc;
+    Lifetime life;                  // its children's too
     // ObjectInstance: the object's primitives in its own space, shared by all its instances
     // (args holds the handle; the bound is the object's).
     std::shared_ptr<const Scene> object;
@@ -155,6 +168,7 @@ struct PrimitiveDesc {
     MotionTransform objectToWorld;
     AttributesPtr attributes;
     SourceLoc loc;
+    Lifetime life;
 };
 
 // A colour primitive variable ("Cs") as given: its storage class and values. Empty when the
@@ -231,6 +245,11 @@ struct Scene {
     std::vector<QuadricDesc> quadrics;
     std::vector<PolygonMeshDesc> polygonMeshes;
     std::string sourceName;  // the scene file, for messages and default output names
+    int frameNumber = 0;     // FrameBegin n, when the scene was one frame of a sequence
+    SourceLoc frameLoc;      // where that FrameBegin (or the frame's file) is
 };
+
+// Every primitive of the scene (a procedural's output) exists only during `life`.
+void setLifetime(Scene& scene, const Lifetime& life);
 
 }  // namespace streyes

@@ -91,7 +91,10 @@ std::vector<double> keysOf(const MotionTransform& m) { return m.isStatic() ? std
 
 // Segments meet at their keys: all but the last are half-open (TimeSpan), so that a sample exactly
 // at a key belongs to the segment that starts there.
-TimeSpan segmentSpan(double t0, double t1, const std::vector<double>& ts) { return {t0, t1, t1 < ts.back()}; }
+// The last is open too where the primitive's lifetime ends open (the next frame's exposure begins there).
+TimeSpan segmentSpan(double t0, double t1, const std::vector<double>& ts, bool lastOpen) {
+    return {t0, t1, t1 < ts.back() || (lastOpen && t1 > t0)};
+}
 
 // ---- Motion segments of curved primitives ----------------------------------------------------------
 // Where time t falls among a primitive's keys: between key i and i + 1 at fraction s (held
@@ -142,6 +145,12 @@ void forEachSegment(const std::vector<double>& ts, const std::vector<Key>& keys,
 BodyFactory::BodyFactory(const MotionTransform& worldToCamera, double windowStart, double windowEnd, Log& log)
     : worldToCamera_(worldToCamera), windowStart_(windowStart), windowEnd_(windowEnd), log_(log) {}
 
+BodyFactory::Window BodyFactory::windowOf(const Lifetime& life) const {
+    Window w{std::max(windowStart_, life.t0), std::min(windowEnd_, life.t1), false};
+    w.openEnd = life.openEnd && w.b == life.t1 && w.b > w.a;
+    return w;
+}
+
 const Material* BodyFactory::material(const AttributesPtr& attributes) {
     static const AttributesPtr kDefault = std::make_shared<const Attributes>();
     const AttributesPtr& a = attributes ? attributes : kDefault;
@@ -170,7 +179,9 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std
     MotionTransform objectToCamera = p.objectToWorld.then(worldToCamera_);
     std::vector<double> keys = keysOf(objectToCamera);
     if (p.P.size() > 1) keys = unionTimes(keys, p.times);
-    std::vector<double> ts = segmentTimes(keys, windowStart_, windowEnd_);
+    const Window w = windowOf(p.life);
+    if (w.empty()) return;
+    std::vector<double> ts = segmentTimes(keys, w.a, w.b);
     std::vector<TrilinearBody::Corners> corners(ts.size());
     bool finite = true, fits = true;
     double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin, rasterError = 0;
@@ -207,7 +218,7 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std
                           " pixels on its way to camera space (translate the scene and the camera nearer the origin)");
     const SourceLoc* src = source(p.loc);
     auto add = [&](double t0, double t1, const TrilinearBody::Corners& c0, const TrilinearBody::Corners& c1) {
-        auto body = std::make_unique<TrilinearBody>(segmentSpan(t0, t1, ts), c0, c1, cs, mat);
+        auto body = std::make_unique<TrilinearBody>(segmentSpan(t0, t1, ts, w.openEnd), c0, c1, cs, mat);
         body->setSource(src);
         body->setPrimitiveId(primitiveId);
         out.push_back(std::move(body));
@@ -221,7 +232,7 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std
     for (size_t i = 1; i < ts.size() && !moves; ++i) moves = corners[i] != corners[0];
     if (moves && ts.size() > 2) {
         // Several keys: one body for all of them; the split loop cuts it in time where needed.
-        auto body = std::make_unique<KeyedPatchBody>(std::move(ts), std::move(corners), cs, mat);
+        auto body = std::make_unique<KeyedPatchBody>(std::move(ts), std::move(corners), cs, mat, w.openEnd);
         body->setSource(src);
         body->setPrimitiveId(primitiveId);
         out.push_back(std::move(body));
@@ -263,10 +274,12 @@ Bounds3f BodyFactory::cameraBound(const Bounds3d& b, const MotionTransform& obje
 // ---- Curved and polygon-mesh primitives ------------------------------------------------------------
 bool BodyFactory::keyedPoints(const PrimitiveDesc& p, const std::vector<std::vector<Vec3d>>& P,
                               std::vector<double>* ts, std::vector<std::vector<Vec3d>>* points) {
+    const Window w = windowOf(p.life);
+    if (w.empty()) return false;
     const MotionTransform objectToCamera = p.objectToWorld.then(worldToCamera_);
     std::vector<double> keys = keysOf(objectToCamera);
     if (P.size() > 1) keys = unionTimes(keys, p.times);
-    *ts = segmentTimes(keys, windowStart_, windowEnd_);
+    *ts = segmentTimes(keys, w.a, w.b);
     points->resize(ts->size());
     for (size_t i = 0; i < ts->size(); ++i) {
         const Matrix4 m = objectToCamera.at((*ts)[i]);
@@ -316,7 +329,7 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
         std::vector<BezierPatch> k1;
         if (j != i) k1 = shape.patches(points[j]);
-        addSurface(std::make_unique<BezierMesh>(shape.topology(), segmentSpan(t0, t1, ts), mat, camera_,
+        addSurface(std::make_unique<BezierMesh>(shape.topology(), segmentSpan(t0, t1, ts, windowOf(p.life).openEnd), mat, camera_,
                                                 shape.patches(points[i]), std::move(k1), colors),
                    src, primitiveId, out, keep);
     });
@@ -372,7 +385,7 @@ void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t prim
         return keys[i];
     };
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
-        addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), segmentSpan(t0, t1, ts), mat, camera_,
+        addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), segmentSpan(t0, t1, ts, windowOf(p.life).openEnd), mat, camera_,
                                                      colors),
                    src, primitiveId, out, keep);
     });
@@ -383,7 +396,9 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::ve
     const MotionTransform objectToCamera = q.objectToWorld.then(worldToCamera_);
     std::vector<double> keyTimes = keysOf(objectToCamera);
     if (q.params.size() > 1) keyTimes = unionTimes(keyTimes, q.times);
-    const std::vector<double> ts = segmentTimes(keyTimes, windowStart_, windowEnd_);
+    const Window w = windowOf(q.life);
+    if (w.empty()) return;
+    const std::vector<double> ts = segmentTimes(keyTimes, w.a, w.b);
     struct Key {
         QuadricMesh::Params params;
         Matrix4 toCamera;
@@ -411,7 +426,7 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::ve
     forEachSegment(ts, keys, [&](double t0, double t1, size_t i, size_t j) {
         const QuadricMesh::Params params[2] = {keys[i].params, keys[j].params};
         const Matrix4 toCamera[2] = {keys[i].toCamera, keys[j].toCamera};
-        addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, segmentSpan(t0, t1, ts), mat, camera_, colors),
+        addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, segmentSpan(t0, t1, ts, w.openEnd), mat, camera_, colors),
                    src, primitiveId, out, keep);
     });
 }
@@ -424,6 +439,7 @@ void BodyFactory::addPolygonFaces(const PolygonMeshDesc& p, const PolygonFaces& 
     face.objectToWorld = p.objectToWorld;
     face.attributes = p.attributes;
     face.loc = p.loc;
+    face.life = p.life;
     face.P.resize(p.P.size());
     for (size_t f = 0; f < faces.faces.size(); ++f) {
         for (size_t k = 0; k < p.P.size(); ++k)
@@ -446,7 +462,9 @@ void BodyFactory::addProcedural(const ProceduralDesc& p, std::shared_ptr<const P
                           " deep (does a procedural produce itself?): the deeper ones are dropped");
         return;
     }
-    Bounds3f b = cameraBound(p.bound, p.objectToWorld);
+    const Window w = windowOf(p.life);
+    if (w.empty()) return;
+    Bounds3f b = cameraBound(p.bound, p.objectToWorld, w.a, w.b);
     if (!isFinite(b.lo) || !isFinite(b.hi)) {
         log_.warnOnce("procedural-nonfinite", p.loc, "procedural bound is not finite in camera space: skipped");
         return;
@@ -455,9 +473,9 @@ void BodyFactory::addProcedural(const ProceduralDesc& p, std::shared_ptr<const P
     // of detail are taken frame by frame.
     const std::vector<double> keys = keysOf(p.objectToWorld.then(worldToCamera_));
     auto any = [&](auto pred) { return std::any_of(keys.begin(), keys.end(), pred); };
-    const bool moving = any([&](double t) { return t > windowStart_ && t < windowEnd_; }) ||
-                        (any([&](double t) { return t <= windowStart_; }) && any([&](double t) { return t >= windowEnd_; }));
-    auto body = std::make_unique<ProceduralBody>(p, std::move(generator), b, TimeSpan{windowStart_, windowEnd_}, depth,
+    const bool moving = any([&](double t) { return t > w.a && t < w.b; }) ||
+                        (any([&](double t) { return t <= w.a; }) && any([&](double t) { return t >= w.b; }));
+    auto body = std::make_unique<ProceduralBody>(p, std::move(generator), b, TimeSpan{w.a, w.b, w.openEnd}, depth,
                                                  moving, this);
     body->setSource(source(p.loc));
     body->setPrimitiveId(primitiveId);

@@ -112,6 +112,14 @@ class BodyFactory final : public ChildBodyMaker {
     std::vector<uint64_t> proceduralsMadeByDepth() const;
 
   private:
+    // The part of the render's window a primitive exists in (its Lifetime), and whether it ends
+    // open (the next frame's exposure begins there).
+    struct Window {
+        double a, b;
+        bool openEnd;
+        bool empty() const { return !(a <= b); }
+    };
+    Window windowOf(const Lifetime& life) const;
     const Material* material(const AttributesPtr& attributes);
     const SourceLoc* source(const SourceLoc& loc);
     // A curved primitive's segment times and camera-space points at each (false, with a warning,

@@ -34,6 +34,7 @@ std::optional<BilinearPatchDesc> polygonAsPatch(const PolygonMeshDesc& mesh) {
     patch.objectToWorld = mesh.objectToWorld;
     patch.attributes = mesh.attributes;
     patch.loc = mesh.loc;
+    patch.life = mesh.life;
     return patch;
 }
 

@@ -47,17 +47,20 @@ std::vector<int> selectFrames(const std::string& pattern, bool hasRange, int fir
     return frames;
 }
 
-const char* kUsage = R"(usage: streyes render SCENE.rib [options]
+const char* kUsage = R"(usage: streyes render SCENE.rib | SHOT.####.rib [options]
        streyes compare A B [options]        (streyes compare --help)
        streyes sheet PATTERN -o FILE [options]   (streyes sheet --help)
        streyes farm submit|status|gather ...     (streyes farm --help: a shot on a Slurm cluster)
        streyes --help | --version
 
-Renders an animation described in RIB as one spacetime scene, one EXR per frame.
+Renders an animation described in RIB as one spacetime scene, one EXR per frame. A frame
+pattern (shot.####.rib: a file per frame) or a file of FrameBegin blocks is read as a frame
+sequence, each frame a complete scene (docs/SCENE-FORMAT.md, "Frame sequences").
 
 render options:
   --frames A-B        frames to render (or a single frame A); default: the scene's
-                      Option "streyes" "int frames", else frame 0
+                      Option "streyes" "int frames", else frame 0; of a sequence, every
+                      frame it has (a pattern: every file there is, which must be consecutive)
   --shot A-B          the whole animation these frames belong to: motion segments and procedurals'
                       level of detail are decided over it, so that a frame renders the same
                       whatever other frames are rendered with it (render farms pass it);

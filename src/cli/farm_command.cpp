@@ -221,10 +221,16 @@ int farmSubmit(const std::vector<std::string>& args) {
     if (!dryRun) checkSlurmReachable();
     const std::string scene = fs::absolute(scenePath).lexically_normal().string();
     const std::string output = fs::absolute(outPattern).lexically_normal().string();
-    if (!fs::exists(scene)) throw InputError("no scene '" + scenePath + "'");
+    if (!isFramePattern(scene) && !fs::exists(scene)) throw InputError("no scene '" + scenePath + "'");
     Log log;
     log.setEcho(true);
-    Scene parsed = parseRibFile(scene, log);  // InputError naming file and line when it does not parse
+    // A scene, or a frame sequence (a pattern of frame files, FrameBegin blocks), read as the tasks
+    // will read it: InputError naming file and line when it does not parse or its frames disagree.
+    FrameRequest wanted;
+    wanted.given = !framesArg.empty();
+    wanted.first = first, wanted.last = last;
+    Sequence sequence = readScene(scene, wanted, log);
+    Scene& parsed = sequence.scene;
     applyPreview(req, parsed);
     const ResolvedSettings rs = resolveSettings(parsed, req.opts);
     first = rs.firstFrame;

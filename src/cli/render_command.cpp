@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <set>
 
 #include "commands.h"
 #include "io/frame_writer.h"
@@ -18,6 +19,7 @@
 #include "streyes/memory.h"
 #include "streyes/renderer.h"
 #include "streyes/rib.h"
+#include "streyes/sequence.h"
 
 namespace streyes::cli {
 
@@ -123,6 +125,56 @@ std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPatter
             log.warn({}, "output '" + o.pattern + "' has no #### frame field and " + std::to_string(frames) +
                              " frames are rendered: writing '" + p + "'");
             o.pattern = p;
+        }
+    }
+    return outs;
+}
+
+std::map<int, std::vector<Output>> sequenceOutputs(const Sequence& seq, const std::string& oPattern,
+                                                   const std::string& scenePath, int first, int last, Log& log) {
+    std::map<int, std::vector<Output>> outs;
+    const int frames = last - first + 1;
+    if (!oPattern.empty()) {
+        Scene none;
+        const std::vector<Output> o = chooseOutputs(none, oPattern, scenePath, frames, log);
+        for (int f = first; f <= last; ++f) outs[f] = o;
+        return outs;
+    }
+    // Each frame's own Display names; a name without #### that several frames give gets one.
+    std::map<std::string, int> uses;
+    for (int f = first; f <= last; ++f) {
+        auto it = seq.displays.find(f);
+        if (it == seq.displays.end()) continue;
+        for (const DisplayDesc& d : it->second) ++uses[d.name];
+    }
+    std::string stem = std::filesystem::path(scenePath).stem().string();
+    stem.erase(std::remove(stem.begin(), stem.end(), '#'), stem.end());
+    while (!stem.empty() && stem.back() == '.') stem.pop_back();
+    for (int f = first; f <= last; ++f) {
+        std::vector<Output>& o = outs[f];
+        auto it = seq.displays.find(f);
+        if (it != seq.displays.end())
+            for (const DisplayDesc& d : it->second) {
+                const bool file = d.type == "openexr" || d.type == "file" || d.type == "tiff" || d.type == "exr";
+                if (!file) {
+                    log.warnOnce("display-type:" + d.type, d.loc,
+                                 "Display type '" + d.type + "' is not supported: '" + d.name + "' skipped");
+                    continue;
+                }
+                std::string name = d.name;
+                if (uses[name] > 1 && !hasFrameField(name)) {
+                    const std::string p = addFrameField(name);
+                    log.warnOnce("display-field:" + name, d.loc,
+                                 "Display '" + name + "' is named by several frames: writing '" + p + "'");
+                    name = p;
+                }
+                o.push_back({name, d.mode.empty() ? "rgbaz" : d.mode});
+            }
+        if (o.empty()) {
+            o.push_back({(stem.empty() ? "frame" : stem) + ".####.exr", "rgbaz"});
+            log.warnOnce("sequence-default-output", {},
+                         "no output given (-o) and no file Display in frame " + std::to_string(f) + ": writing " +
+                             o.back().pattern);
         }
     }
     return outs;
@@ -266,62 +318,119 @@ int renderCommand(const std::vector<std::string>& args) {
     Log log;
     log.setEcho(true);
     log.setQuiet(quiet);
-    Scene scene = parseRibFile(scenePath, log);
-    const double parseSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-    applyPreview(req, scene);
+    FrameRequest wanted;
+    wanted.given = opts.hasFrames;
+    wanted.first = opts.firstFrame, wanted.last = opts.lastFrame;
 
     // A file size limit kills a process that writes past it (SIGXFSZ); ignored, the write fails
     // with EFBIG instead, and the frame is reported and removed like any failed write.
     std::signal(SIGXFSZ, SIG_IGN);
 
-    const ResolvedSettings rs = resolveSettings(scene, opts);
-    const int frames = rs.lastFrame - rs.firstFrame + 1;
-    std::vector<Output> outputs = chooseOutputs(scene, outPattern, scenePath, frames, log);
-
-    // Before anything is rendered, every output's folder and the --stats file's folder must take a
-    // file: a missing or read-only folder would otherwise be found only when the first frame block
-    // is done, perhaps minutes in (exit 1, as then). Writes failing later (a full disk) are still
-    // caught, and the frame removed, by writeFrame.
-    for (const Output& o : outputs) checkWritableFolder(expandFramePattern(o.pattern, rs.firstFrame), "-o");
-    if (!statsPath.empty()) checkWritableFolder(statsPath, "--stats");
-
-    // Temporary files of renders of these frames that were killed mid-write go; with --resume,
-    // frames whose every output is a complete image of the right size and channels (read back)
-    // are not rendered.
-    int stale = 0;
-    for (const Output& o : outputs) stale += removeStaleTemporariesOfFrames(o.pattern, rs.firstFrame, rs.lastFrame);
-    if (stale > 0) log.info("removed " + std::to_string(stale) + " temporary file" + (stale == 1 ? "" : "s") +
-                            " left by an interrupted render");
-    if (resume) {
-        opts.frameDone = [&outputs, &rs](int frame) {
-            for (const Output& o : outputs)
-                if (!isCompleteFrame(expandFramePattern(o.pattern, frame), rs.width, rs.height, o.mode)) return false;
-            return true;
-        };
-    }
-    Renderer renderer(scene, opts, log);
-
     ProgressBar bar(!quiet);
     std::vector<std::string> written;
     // Frames are encoded and written by a writer thread while the next block renders.
     FrameWriter writer;
-    RenderStats stats = renderer.render(
-        [&](const FrameImage& img) {
-            std::vector<std::pair<std::string, std::string>> files;
-            for (const Output& o : outputs) {
-                files.emplace_back(expandFramePattern(o.pattern, img.frame), o.mode);
-                written.push_back(files.back().first);
+    RenderStats total;
+    ResolvedSettings first;
+    int frames = 0, blocks = 0;
+    double parseSeconds = 0;
+    auto readFrom = std::chrono::steady_clock::now();
+    // A scene renders whole; a frame sequence a block of frames at a time as it is read (memory
+    // holds one block of the sequence), each block with its own renderer: a frame's pixels do not
+    // depend on the block (streyes/sequence.h).
+    auto renderBlock = [&](Sequence&& seq) {
+        Scene& scene = seq.scene;
+        parseSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - readFrom).count();
+        if (blocks == 0) applyPreview(req, scene);
+        RenderOptions blockOpts = opts;
+        if (seq.isSequence) {  // this block's frames
+            blockOpts.hasFrames = true;
+            blockOpts.firstFrame = scene.settings.firstFrame;
+            blockOpts.lastFrame = scene.settings.lastFrame;
+        }
+        const ResolvedSettings rs = resolveSettings(scene, blockOpts);
+        if (blocks == 0) first = rs;
+        const int blockFrames = rs.lastFrame - rs.firstFrame + 1;
+        frames += blockFrames;
+        // Where each frame goes: -o, or the scene's displays (a sequence's frames each their own).
+        std::vector<Output> outputs;
+        std::map<int, std::vector<Output>> frameOutputs;
+        if (seq.isSequence) frameOutputs = sequenceOutputs(seq, outPattern, scenePath, rs.firstFrame, rs.lastFrame, log);
+        else outputs = chooseOutputs(scene, outPattern, scenePath, blockFrames, log);
+        auto outputsOf = [&](int frame) -> const std::vector<Output>& {
+            return seq.isSequence ? frameOutputs.at(frame) : outputs;
+        };
+
+        // Before anything is rendered, every output's folder and the --stats file's folder must
+        // take a file: a missing or read-only folder would otherwise be found only when the first
+        // frame block is done, perhaps minutes in (exit 1, as then). Writes failing later (a full
+        // disk) are still caught, and the frame removed, by writeFrame.
+        std::set<std::string> folders;  // each folder once (a sequence names a file a frame)
+        for (int f = rs.firstFrame; f <= rs.lastFrame && (f == rs.firstFrame || seq.isSequence); ++f)
+            for (const Output& o : outputsOf(f)) {
+                const std::string file = expandFramePattern(o.pattern, f);
+                if (folders.insert(std::filesystem::path(file).parent_path().string()).second)
+                    checkWritableFolder(file, "-o");
             }
-            writer.write(img, std::move(files));
-        },
-        [&](uint64_t done, uint64_t total) { bar.update(done, total); });
+        if (!statsPath.empty() && blocks == 0) checkWritableFolder(statsPath, "--stats");
+
+        // Temporary files of renders of these frames that were killed mid-write go; with --resume,
+        // frames whose every output is a complete image of the right size and channels (read
+        // back) are not rendered.
+        int stale = 0;
+        if (seq.isSequence) {
+            for (const auto& [f, outs] : frameOutputs)
+                for (const Output& o : outs) stale += removeStaleTemporariesOfFrames(o.pattern, f, f);
+        } else {
+            for (const Output& o : outputs) stale += removeStaleTemporariesOfFrames(o.pattern, rs.firstFrame, rs.lastFrame);
+        }
+        if (stale > 0) log.info("removed " + std::to_string(stale) + " temporary file" + (stale == 1 ? "" : "s") +
+                                " left by an interrupted render");
+        if (resume) {
+            blockOpts.frameDone = [&outputsOf, &rs](int frame) {
+                for (const Output& o : outputsOf(frame))
+                    if (!isCompleteFrame(expandFramePattern(o.pattern, frame), rs.width, rs.height, o.mode)) return false;
+                return true;
+            };
+        }
+        Renderer renderer(scene, blockOpts, log);
+        RenderStats stats = renderer.render(
+            [&](const FrameImage& img) {
+                std::vector<std::pair<std::string, std::string>> files;
+                for (const Output& o : outputsOf(img.frame)) {
+                    files.emplace_back(expandFramePattern(o.pattern, img.frame), o.mode);
+                    written.push_back(files.back().first);
+                }
+                writer.write(img, std::move(files));
+            },
+            [&](uint64_t done, uint64_t all) { bar.update(done, all); });
+        if (blocks++ == 0) {
+            total = stats;
+        } else {  // the blocks of a sequence: summed, the last frame and the largest memory theirs
+            total.counters += stats.counters;
+            total.lastFrame = stats.lastFrame;
+            total.timeBuild += stats.timeBuild;
+            total.timeRender += stats.timeRender;
+            total.timeWrite += stats.timeWrite;
+            total.peakMemoryBytes = std::max(total.peakMemoryBytes, stats.peakMemoryBytes);
+            total.memoryEstimateBytes = std::max(total.memoryEstimateBytes, stats.memoryEstimateBytes);
+            total.framesSkipped += stats.framesSkipped;
+            total.procedurals += stats.procedurals;
+            total.bodiesGenerated += stats.bodiesGenerated;
+            total.passes = std::max(total.passes, stats.passes);
+        }
+        readFrom = std::chrono::steady_clock::now();
+    };
+    readSceneBlocks(scenePath, wanted, opts.maxFrameBlock, log, renderBlock);
+    const ResolvedSettings& rs = first;
+    RenderStats& stats = total;
     const auto waited = std::chrono::steady_clock::now();
     writer.finish();
     stats.timeWrite += std::chrono::duration<double>(std::chrono::steady_clock::now() - waited).count();
     bar.finish();
     stats.timeParse = parseSeconds;
     stats.timeTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats.peakMemoryBytes = std::max(stats.peakMemoryBytes, peakResidentBytes());
     if (!statsPath.empty()) writeTextAtomically(statsPath, withProcessCpu(stats.toJson()));
     if (!quiet) {
         std::fprintf(stderr, "streyes: %d frame%s %dx%d, %d samples/pixel, %s%s, %.2f s: %s%s\n", frames,

@@ -2,11 +2,13 @@
 // render options with the same code its tasks will run (render_command.cpp).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
 #include "streyes/renderer.h"
 #include "streyes/scene.h"
+#include "streyes/sequence.h"
 #include "streyes/error.h"
 
 namespace streyes::cli {
@@ -29,5 +31,9 @@ struct Output {
 // Where frames go: -o, else the scene's file displays, else SCENE-NAME.####.exr.
 std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPattern, const std::string& scenePath,
                                   int frames, Log& log);
+// A frame sequence's outputs, frame by frame: -o for all, else each frame's own file displays (a
+// name without #### that several frames give gets one), else SCENE-NAME.####.exr.
+std::map<int, std::vector<Output>> sequenceOutputs(const Sequence& seq, const std::string& oPattern,
+                                                   const std::string& scenePath, int first, int last, Log& log);
 
 }  // namespace streyes::cli

@@ -17,6 +17,7 @@ LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& 
         l.castsShadows = d.castsShadows && l.kind != LightKind::Ambient;
         if (l.castsShadows) shadowLights_.push_back(int(lights_.size()));
         static_ = static_ && l.lightToWorld.isStatic();
+        moves_.push_back(!worldToCamera.isStatic() || !l.lightToWorld.isStatic());
         lights_.push_back(l);
     }
     if (static_) at(0, staticLights_);

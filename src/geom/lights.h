@@ -37,6 +37,13 @@ class LightSet {
     // Every light in camera space at time t (cached when nothing moves).
     void at(double t, std::vector<CameraLight>& out) const;
     bool isStatic() const { return static_; }
+    // Does any of these lights (indices) move in camera space? A frame sequence holds every
+    // frame's lights, each held outside its frame: a body reads only its own frames' lights.
+    bool anyMoves(const std::vector<int>& lights) const {
+        for (int i : lights)
+            if (moves_[size_t(i)]) return true;
+        return false;
+    }
     // Lights that cast shadows (not ambient lights), numbered 0 .. shadowSlots()-1 in
     // declaration order; shadowLight(slot) is the light's index.
     int shadowSlots() const { return int(shadowLights_.size()); }
@@ -48,6 +55,7 @@ class LightSet {
     bool static_ = true;
     std::vector<CameraLight> staticLights_;
     std::vector<int> shadowLights_;
+    std::vector<bool> moves_;  // per light
 };
 
 }  // namespace streyes

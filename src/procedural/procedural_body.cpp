@@ -145,6 +145,10 @@ void ProceduralBody::expand(ProceduralChildren& out, int level, ChildBodyMaker& 
     ctx.log = &log;
     ProceduralOutput output;
     generator_->expand(ctx, output);
+    if (!desc_.life.always()) {  // one frame's procedural (a frame sequence): its children live as long
+        setLifetime(output.scene, desc_.life);
+        for (GeneratedProcedural& g : output.procedurals) g.desc.life = desc_.life;
+    }
     maker.addChildren(output, primitiveId(), depth_ + 1, out.bodies, own ? &out.keep : nullptr);
     for (const BodyPtr& c : out.bodies)
         if (c->expands()) static_cast<const ProceduralBody&>(*c).parent_ = this;

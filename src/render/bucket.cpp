@@ -111,7 +111,7 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
     if (!reachesSamples(span, a, b)) return;
     if (root.expands() && root.moving()) {
         pushProceduralViews(static_cast<const ProceduralBody&>(root), fa, fb);
-    } else if (root.moving() || (shadingVaries_ && !root.expands())) {
+    } else if (root.moving() || (!root.expands() && shadingVaries(root))) {
         // Its bound over the whole shot (made once) misses the bucket: nothing to cut.
         const PixelRect& R = bucket_.rect;
         if (boxOutside(scene_.camera, root.bound().swept(), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
@@ -572,7 +572,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
         grid_.t0 = body.keyTime(k);
         grid_.t1 = body.keyTime(k + 1);
         grid_.openEnd = k + 2 < body.keyCount() || body.time().openEnd;  // pieces meet at keys (TimeSpan)
-        grid_.moving = body.keyMoves(k) || shadingVaries_;
+        grid_.moving = body.keyMoves(k) || shadingVaries(body);
         rasterizer_.rasterize(grid_, scene_.camera, scene_.shutter, block_, rasterCounters_);
         counters.timeSample += secondsSince(tc);
         if (k + 2 < keys) {
@@ -592,7 +592,7 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv) {
     auto t = Clock::now();
     body.dice(nu, nv, grid_);
     ++counters.gridsDiced;
-    if (shadingVaries_ && !grid_.moving && grid_.t1 > grid_.t0) {
+    if (!grid_.moving && grid_.t1 > grid_.t0 && shadingVaries(body)) {
         // Still geometry under moving lights: shaded at both ends of its span like a moving grid,
         // so that its colour follows the lights through the exposure.
         grid_.resize(grid_.nu, grid_.nv, true);

@@ -80,7 +80,11 @@ class BucketWorker {
     const std::vector<float>& layerDepths_;
     Log& log_;
     const bool occlusion_;
-    const bool shadingVaries_;  // the lights move: still geometry is shaded per exposure
+    const bool shadingVaries_;  // some light moves: still geometry it lights is shaded per exposure
+    // Does a light the body's material reads move (in camera space)?
+    bool shadingVaries(const Body& body) const {
+        return shadingVaries_ && body.material() && scene_.lights.anyMoves(body.material()->lights);
+    }
 
     BucketSpec bucket_;
     double windowStart_ = 0, windowEnd_ = 0;  // the bucket's frames' exposures

@@ -34,3 +34,16 @@ int PatchMeshDesc::vPatches() const {
 }
 
 }  // namespace streyes
+
+namespace streyes {
+
+void setLifetime(Scene& scene, const Lifetime& life) {
+    for (BilinearPatchDesc& p : scene.patches) p.life = life;
+    for (ProceduralDesc& p : scene.procedurals) p.life = life;
+    for (PatchMeshDesc& p : scene.patchMeshes) p.life = life;
+    for (SubdivisionMeshDesc& p : scene.subdivisionMeshes) p.life = life;
+    for (QuadricDesc& p : scene.quadrics) p.life = life;
+    for (PolygonMeshDesc& p : scene.polygonMeshes) p.life = life;
+}
+
+}  // namespace streyes

@@ -20,6 +20,17 @@ namespace {
 using BlockKind = RibState::BlockKind;
 using World = RibState::World;
 
+// The inverse of a (moving) transform, key by key.
+MotionTransform inverseOf(const MotionTransform& m, RibArgs& args) {
+    std::vector<Matrix4> keys;
+    for (const Matrix4& k : m.keys()) {
+        Matrix4 inv;
+        if (!invert(k, &inv)) args.fail("the camera transform is singular: lights before WorldBegin cannot be placed");
+        keys.push_back(inv);
+    }
+    return MotionTransform(m.times(), std::move(keys));
+}
+
 // WorldBegin fixes the camera: the CTM so far is world-to-camera, and the world starts at identity.
 void worldBegin(RibParser& reader, RibArgs& args) {
     RibState& s = reader.state();
@@ -34,8 +45,17 @@ void worldBegin(RibParser& reader, RibArgs& args) {
                                          " is still open at WorldBegin (line " + std::to_string(args.loc().line) +
                                          "): close it before WorldBegin");
     }
+    if (reader.readsFrames() && reader.framesRead() > 0 && !reader.inFrame())
+        args.fail("a world outside FrameBegin ... FrameEnd in a file of frames: put it in a frame");
     reader.scene().camera.worldToCamera = s.ctm;
     reader.scene().camera.loc = args.loc();
+    // Lights declared before WorldBegin (PRMan and Aqsis accept them) were placed in camera space:
+    // their light-to-world transform is that through the camera's inverse.
+    for (int i : s.cameraLights) {
+        LightDesc& light = reader.scene().lights[size_t(i)];
+        light.lightToWorld = light.lightToWorld.then(inverseOf(s.ctm, args));
+    }
+    s.cameraLights.clear();
     s.blocks.push_back(RibState::Block{BlockKind::World, args.loc(), s.attributes, s.ctm});
     s.ctm = MotionTransform();
     s.world = World::Inside;
@@ -124,11 +144,26 @@ void motionEnd(RibParser& reader, RibArgs& args) {
     ribRequests().find(keys.requests.front().name)->motion(reader, keys);
 }
 
-void frameBeginEnd(RibParser& reader, RibArgs& args) {
-    reader.log().warnOnce("request:FrameBegin", args.loc(),
-                          "FrameBegin/FrameEnd ignored: the frames rendered come from Option \"streyes\" \"int "
-                          "frames\" or the command line");
-    args.skipRest();
+void frameBegin(RibParser& reader, RibArgs& args) {
+    if (!reader.readsFrames()) {
+        reader.log().warnOnce("request:FrameBegin", args.loc(),
+                              "FrameBegin/FrameEnd ignored: the frames rendered come from Option \"streyes\" \"int "
+                              "frames\" or the command line");
+        args.skipRest();
+        return;
+    }
+    const int number = args.integer("frame");
+    args.expectEnd();
+    reader.beginFrame(number, args.loc());
+}
+
+void frameEnd(RibParser& reader, RibArgs& args) {
+    if (!reader.readsFrames()) {
+        args.skipRest();
+        return;
+    }
+    args.expectEnd();
+    reader.endFrame(args.loc());
 }
 
 // ArchiveBegin: everything up to the matching end is skipped (see dispatch).
@@ -152,8 +187,8 @@ void addBlockRequests(RibRequestTable& table) {
     table.add("TransformEnd", {transformEnd, "TransformEnd"});
     table.add("MotionBegin", {motionBegin, "MotionBegin [t0 t1 ...]"});
     table.add("MotionEnd", {motionEnd, "MotionEnd"});
-    table.add("FrameBegin", {frameBeginEnd, "FrameBegin number"});
-    table.add("FrameEnd", {frameBeginEnd, "FrameEnd"});
+    table.add("FrameBegin", {frameBegin, "FrameBegin number"});
+    table.add("FrameEnd", {frameEnd, "FrameEnd"});
     table.add("ArchiveBegin", {skippedBlockBegin, "ArchiveBegin \"name\""});
 }
 

@@ -120,8 +120,46 @@ RibValue RibParser::readArray(RibLexer& lexer, const RibToken& open) {
     }
 }
 
+// ---- Frames ----------------------------------------------------------------------------------------
+void RibParser::beginFrame(int number, const SourceLoc& loc) {
+    if (frame_)
+        throw InputError(loc, "FrameBegin inside the frame begun at line " + std::to_string(frame_->begin.line) +
+                                  ": close it with FrameEnd first");
+    if (state_.world == RibState::World::Inside)
+        throw InputError(loc, "FrameBegin inside the world (WorldBegin at line " +
+                                  std::to_string(state_.worldBegin.line) + "): frames hold worlds, not the reverse");
+    if (state_.world == RibState::World::After)
+        throw InputError(loc, "FrameBegin after a world outside any frame (WorldBegin at line " +
+                                  std::to_string(state_.worldBegin.line) + "): put every world in a frame");
+    if (state_.motion) throw InputError(loc, "FrameBegin inside a MotionBegin block");
+    if (!state_.blocks.empty())
+        throw InputError(state_.blocks.back().begin, std::string(RibState::beginName(state_.blocks.back().kind)) +
+                                                         " is still open at FrameBegin (line " +
+                                                         std::to_string(loc.line) + ")");
+    frame_ = SavedFrame{scene_, state_, loc};
+    scene_.frameNumber = number;
+    scene_.frameLoc = loc;
+}
+
+void RibParser::endFrame(const SourceLoc& loc) {
+    if (!frame_) throw InputError(loc, "FrameEnd without FrameBegin");
+    const int begin = frame_->begin.line;
+    if (state_.world == RibState::World::Inside)
+        throw InputError(loc, "FrameEnd before WorldEnd (the frame began at line " + std::to_string(begin) + ")");
+    if (state_.world == RibState::World::Before)
+        throw InputError(loc, "the frame begun at line " + std::to_string(begin) +
+                                  " has no WorldBegin ... WorldEnd: a frame is a complete scene");
+    Scene done = std::move(scene_);
+    scene_ = std::move(frame_->scene);
+    state_ = std::move(frame_->state);
+    frame_.reset();
+    ++framesRead_;
+    frameHandler_(std::move(done));
+}
+
 // ---- End of input -------------------------------------------------------------------------------
 void RibParser::finish() {
+    if (frame_) throw InputError(frame_->begin, "FrameBegin is never closed: missing FrameEnd");
     if (state_.motion) throw InputError(state_.motion->begin, "MotionBegin is never closed: missing MotionEnd");
     if (state_.defining) throw InputError(state_.defining->begin, "ObjectBegin is never closed: missing ObjectEnd");
     if (state_.skipping)
@@ -135,7 +173,7 @@ void RibParser::finish() {
         throw InputError(open.begin, std::string(RibState::beginName(open.kind)) + " is never closed: missing " +
                                          RibState::endName(open.kind) + " before the end of the file");
     }
-    if (state_.world == RibState::World::Before)
+    if (state_.world == RibState::World::Before && framesRead_ == 0)
         throw InputError(lastLoc_,
                          "no WorldBegin: a scene needs WorldBegin ... WorldEnd around its lights and "
                          "geometry");
@@ -178,6 +216,19 @@ Scene parseRibString(const std::string& text, const std::string& sourceName, Log
     parser.parseString(text, sourceName);
     parser.finish();
     return scene;
+}
+
+void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame) {
+    Scene scene;
+    scene.sourceName = path;
+    RibParser parser(scene, log);
+    parser.setFrameHandler([&](Scene&& s) {
+        s.sourceName = path;
+        frame(std::move(s));
+    });
+    parser.parseFile(path);
+    parser.finish();
+    if (parser.framesRead() == 0) frame(std::move(scene));
 }
 
 Scene parseRibFragment(const std::string& text, const std::string& sourceName, const MotionTransform& ctm,

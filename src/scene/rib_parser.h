@@ -15,6 +15,7 @@
 // file:line; requests outside the subset warn once through the Log and are skipped.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -74,6 +75,7 @@ struct RibState {
     std::optional<ObjectDefinition> defining;                          // the open ObjectBegin
     std::map<std::string, std::shared_ptr<const Scene>> objects;      // handle -> defined object
     std::map<std::string, RibParamDecl> declarations = predeclaredParams();
+    std::vector<int> cameraLights;              // lights declared before WorldBegin (camera-relative)
     std::map<std::string, int> lightHandles;    // handle -> index in Scene::lights
     std::set<std::string> skippedLightHandles;  // handles of lights of unsupported types
     bool fragment = false;                      // reading a procedural's output
@@ -110,6 +112,18 @@ class RibParser {
     AttributesPtr currentAttributes() const { return state_.attributes; }
     bool inWorld() const { return state_.world == RibState::World::Inside; }
 
+    // Frame sequences: with a handler set, each FrameBegin n ... FrameEnd block is read as a
+    // complete scene of its own (options, camera, world), starting from the state before the block,
+    // and handed over at FrameEnd; the state returns to what it was at FrameBegin. Without one,
+    // FrameBegin and FrameEnd are skipped with a warning (one scene per file).
+    using FrameHandler = std::function<void(Scene&&)>;
+    void setFrameHandler(FrameHandler handler) { frameHandler_ = std::move(handler); }
+    bool readsFrames() const { return bool(frameHandler_); }
+    void beginFrame(int number, const SourceLoc& loc);  // rib_blocks.cpp's FrameBegin
+    void endFrame(const SourceLoc& loc);
+    bool inFrame() const { return frame_.has_value(); }
+    int framesRead() const { return framesRead_; }
+
     // ---- For request handlers (rib_requests.h)
     // Where primitives go: the scene, or the object being defined (ObjectBegin).
     Scene& scene() { return state_.defining ? *state_.defining->object : scene_; }
@@ -129,9 +143,17 @@ class RibParser {
     void dispatch(const RibRequest& request);  // rib_requests.cpp
     Param makeParam(RibArgs& args, const RibValue& nameValue, const RibValue& value) const;
 
+    struct SavedFrame {
+        Scene scene;
+        RibState state;
+        SourceLoc begin;
+    };
     Scene& scene_;
     Log& log_;
     RibState state_;
+    FrameHandler frameHandler_;
+    std::optional<SavedFrame> frame_;  // inside FrameBegin ... FrameEnd: the state before it
+    int framesRead_ = 0;
     SourceLoc lastLoc_;  // last line read, for "missing ..." at the end
     int nesting_ = 0;    // parseFile/parseString calls in progress
 };

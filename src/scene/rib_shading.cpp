@@ -72,7 +72,9 @@ void lightSource(RibParser& reader, RibArgs& args) {
     params.getPoint("to", Vec3d(0, 0, 1));
     reader.warnUnusedParams(params, shader->second, "LightSource \"" + name + "\"");
 
+    if (s.world == RibState::World::After) args.fail("LightSource after WorldEnd: lights belong in the world");
     int index = int(reader.scene().lights.size());
+    if (s.world == RibState::World::Before) s.cameraLights.push_back(index);
     const bool shadows = s.attributes->user.getString("light:shadows", "off") == "on";
     reader.scene().lights.push_back(LightDesc{name, std::move(params), s.ctm, args.loc(), shadows});
     s.mutableAttributes().lights.push_back(index);
@@ -101,7 +103,7 @@ void illuminate(RibParser& reader, RibArgs& args) {
 
 void addShadingRequests(RibRequestTable& table) {
     table.add("Surface", {surface, "Surface \"name\" parameters..."});
-    table.add("LightSource", {lightSource, "LightSource \"name\" handle parameters...", RibPhase::World});
+    table.add("LightSource", {lightSource, "LightSource \"name\" handle parameters..."});
     table.add("Illuminate", {illuminate, "Illuminate handle onoff", RibPhase::World});
 }
 

@@ -1,0 +1,116 @@
+// Frame sequences: an animation as RenderMan pipelines write it, one complete scene per frame
+// (a file per frame, shot.####.rib, or FrameBegin n ... FrameEnd blocks in one file), read into
+// one spacetime scene.
+//
+// Each frame's primitives are matched with the previous frame's: same kind, same identifier
+// (Attribute "identifier" "name", and the order among primitives of that name; stream order when
+// unnamed). A primitive whose data (points, topology, transform to camera space, attributes, the
+// lights it reads) do not change over a run of frames, and that does not move within them, is ONE
+// primitive of the merged scene, living over the run's exposures: a still body, split, diced and
+// shaded once. Anything else is that frame's own primitive, living over its exposure only, its
+// motion keys as the frame gives them (in frame time). So every frame renders exactly what its
+// RIB describes, whatever other frames are read with it. Transforms are taken to camera space per
+// frame (the merged scene's camera is the identity), so a camera that moves makes every primitive
+// a per-frame one and a camera that stops makes them still again; lights are taken to camera space
+// and shared between frames where they are equal.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "streyes/scene.h"
+
+namespace streyes {
+
+// Frames wanted (--frames); all the input has when not given.
+struct FrameRequest {
+    bool given = false;
+    int first = 0, last = 0;
+};
+
+// A run: one primitive of the merged scene, over consecutive frames.
+struct SequenceRun {
+    std::string name;  // identifier, "" when unnamed
+    int firstFrame = 0, lastFrame = 0;
+};
+
+struct SequenceStats {
+    int frames = 0;
+    uint64_t primitivesRead = 0;  // over every frame
+    uint64_t runs = 0;            // primitives of the merged scene
+    uint64_t stillRuns = 0;       // runs over more than one frame
+    uint64_t bytesRead = 0;       // RIB read
+};
+
+struct Sequence {
+    bool isSequence = false;  // false: one ordinary scene (no frame blocks, no pattern)
+    Scene scene;              // merged: settings.firstFrame .. lastFrame are the frames read
+    std::map<int, std::vector<DisplayDesc>> displays;  // each frame's own Display requests
+    std::vector<SequenceRun> runs;                     // one per primitive of `scene`, made in order
+    SequenceStats stats;
+};
+
+// Builds the merged scene from frames given in increasing, consecutive frame order.
+class SequenceBuilder {
+  public:
+    explicit SequenceBuilder(Log& log) : log_(log) {}
+    // One frame (Scene::frameNumber, Scene::frameLoc). InputError when it cannot join the others:
+    // resolution, shutter, camera projection or sampling differ; a frame missing or out of order.
+    void add(Scene&& frame);
+    int frames() const { return out_.stats.frames; }  // in the block being built
+    // The frames added since the last finish, merged; the next frame starts a new block (checked
+    // against the same first frame and following the last).
+    Sequence finish();
+
+  private:
+    struct Track {
+        size_t run = 0;  // index into the merged vector of its kind, and into runs_
+        int lastFrame = 0;
+        size_t runIndex = 0;
+    };
+    struct Reference {  // what later frames are checked against
+        int frame = 0;
+        SourceLoc loc;
+        CameraDesc camera;
+        RenderSettings settings;
+    };
+    template <typename Desc>
+    void addPrimitive(char kind, Desc&& p, std::vector<Desc>& merged, std::map<std::string, int>& seen, int frame);
+    AttributesPtr remap(const AttributesPtr& a);
+    void check(const Scene& frame);
+
+    Log& log_;
+    Sequence out_;
+    std::unique_ptr<Reference> first_;
+    int lastFrame_ = 0, blockFirst_ = 0;
+    std::unordered_map<std::string, Track> tracks_;
+    // This frame's: lights' merged indices, attribute states with them.
+    std::vector<int> lightIndex_;
+    std::map<const Attributes*, AttributesPtr> remapped_;
+    std::map<std::string, SourceLoc> declared_;  // where each identifier was given in this frame
+    MotionTransform worldToCamera_;
+    double open_ = 0, close_ = 0;
+};
+
+// True when `path` holds a frame field (a run of '#').
+bool isFramePattern(const std::string& path);
+// The pattern with its '#' run replaced by the frame number, zero-padded to the run's length.
+std::string frameFileName(const std::string& pattern, int frame);
+
+// Reads a scene: a frame pattern (every frame of `frames`, or every file there is, which must be
+// consecutive), a file of FrameBegin blocks (the frames of `frames` among them), or an ordinary
+// scene file (isSequence false; `frames` is left to the renderer). A frame file missing or a
+// frame the request names that the file lacks is an InputError.
+Sequence readScene(const std::string& path, const FrameRequest& frames, Log& log);
+// The same, a block of at most `blockFrames` consecutive frames at a time: each block is merged and
+// handed to `block` before the next is read, so memory holds one block (and a batch of frames
+// being parsed). An ordinary scene file is handed over once (isSequence false). A frame's pixels
+// do not depend on the block it is rendered in: each renders what its RIB says.
+void readSceneBlocks(const std::string& path, const FrameRequest& frames, int blockFrames, Log& log,
+                     const std::function<void(Sequence&&)>& block);
+
+}  // namespace streyes

@@ -1,0 +1,109 @@
+#include "scene/sequence_equal.h"
+
+namespace streyes {
+
+namespace {
+
+bool sameBasis(const BasisDesc& a, const BasisDesc& b) { return a.m == b.m && a.step == b.step; }
+
+bool sameColors(const ColorPrimvar& a, const ColorPrimvar& b) { return a.cls == b.cls && a.values == b.values; }
+
+bool samePrimitive(const PrimitiveDesc& a, const PrimitiveDesc& b) {
+    if (a.times.size() != b.times.size()) return false;
+    if (a.times.size() > 1 && a.times != b.times) return false;  // one key: its time means nothing
+    if (!sameTransform(a.objectToWorld, b.objectToWorld)) return false;
+    if (a.attributes == b.attributes) return true;
+    return a.attributes && b.attributes && sameAttributes(*a.attributes, *b.attributes);
+}
+
+bool sameAttributesPtr(const AttributesPtr& a, const AttributesPtr& b) {
+    return a == b || (a && b && sameAttributes(*a, *b));
+}
+
+}  // namespace
+
+bool sameTransform(const MotionTransform& a, const MotionTransform& b) {
+    if (a.isStatic() != b.isStatic()) return false;
+    if (a.isStatic()) return a.keys().front() == b.keys().front();
+    return a.times() == b.times() && a.keys() == b.keys();
+}
+
+bool sameParams(const ParamList& a, const ParamList& b) {
+    if (a.params.size() != b.params.size()) return false;
+    for (size_t i = 0; i < a.params.size(); ++i) {
+        const Param &p = a.params[i], &q = b.params[i];
+        if (p.name != q.name || p.type != q.type || p.cls != q.cls || p.arraySize != q.arraySize || p.nums != q.nums ||
+            p.strings != q.strings)
+            return false;
+    }
+    return true;
+}
+
+bool sameAttributes(const Attributes& a, const Attributes& b) {
+    return a.color == b.color && a.opacity == b.opacity && a.surface.name == b.surface.name &&
+           sameParams(a.surface.params, b.surface.params) && a.shadingRate == b.shadingRate && a.lights == b.lights &&
+           sameParams(a.user, b.user) && sameBasis(a.uBasis, b.uBasis) && sameBasis(a.vBasis, b.vBasis);
+}
+
+bool sameLight(const LightDesc& a, const LightDesc& b) {
+    return a.type == b.type && sameParams(a.params, b.params) && sameTransform(a.lightToWorld, b.lightToWorld) &&
+           a.castsShadows == b.castsShadows;
+}
+
+bool sameData(const BilinearPatchDesc& a, const BilinearPatchDesc& b) {
+    if (a.times.size() != b.times.size() || (a.times.size() > 1 && a.times != b.times)) return false;
+    if (a.P != b.P || a.hasCs != b.hasCs || (a.hasCs && a.Cs != b.Cs)) return false;
+    return sameTransform(a.objectToWorld, b.objectToWorld) && sameAttributesPtr(a.attributes, b.attributes);
+}
+
+bool sameObject(const std::shared_ptr<const Scene>& a, const std::shared_ptr<const Scene>& b);
+
+bool sameData(const ProceduralDesc& a, const ProceduralDesc& b) {
+    return a.kind == b.kind && a.args == b.args && a.directory == b.directory && a.bound.lo == b.bound.lo &&
+           a.bound.hi == b.bound.hi && sameTransform(a.objectToWorld, b.objectToWorld) &&
+           sameAttributesPtr(a.attributes, b.attributes) && sameObject(a.object, b.object);
+}
+
+bool sameData(const PatchMeshDesc& a, const PatchMeshDesc& b) {
+    return a.bicubic == b.bicubic && a.nu == b.nu && a.nv == b.nv && a.uPeriodic == b.uPeriodic &&
+           a.vPeriodic == b.vPeriodic && sameBasis(a.uBasis, b.uBasis) && sameBasis(a.vBasis, b.vBasis) &&
+           a.P == b.P && sameColors(a.Cs, b.Cs) && samePrimitive(a, b);
+}
+
+bool sameData(const SubdivisionMeshDesc& a, const SubdivisionMeshDesc& b) {
+    return a.faceSizes == b.faceSizes && a.faceVertices == b.faceVertices && a.vertexCount == b.vertexCount &&
+           a.creaseEdges == b.creaseEdges && a.creaseSharpness == b.creaseSharpness && a.corners == b.corners &&
+           a.cornerSharpness == b.cornerSharpness && a.holes == b.holes &&
+           a.interpolateBoundary == b.interpolateBoundary && a.P == b.P && sameColors(a.Cs, b.Cs) &&
+           samePrimitive(a, b);
+}
+
+bool sameData(const QuadricDesc& a, const QuadricDesc& b) {
+    return a.kind == b.kind && a.params == b.params && sameColors(a.Cs, b.Cs) && samePrimitive(a, b);
+}
+
+bool sameData(const PolygonMeshDesc& a, const PolygonMeshDesc& b) {
+    return a.request == b.request && a.polygons == b.polygons && a.P == b.P && sameColors(a.Cs, b.Cs) &&
+           samePrimitive(a, b);
+}
+
+// An instance's object (ObjectBegin): each frame defines its own, so compare what they hold.
+bool sameObject(const std::shared_ptr<const Scene>& a, const std::shared_ptr<const Scene>& b) {
+    if (a == b) return true;
+    if (!a || !b) return false;
+    auto same = [](const auto& x, const auto& y) {
+        if (x.size() != y.size()) return false;
+        for (size_t i = 0; i < x.size(); ++i)
+            if (!sameData(x[i], y[i])) return false;
+        return true;
+    };
+    return same(a->patches, b->patches) && same(a->procedurals, b->procedurals) && same(a->patchMeshes, b->patchMeshes) &&
+           same(a->subdivisionMeshes, b->subdivisionMeshes) && same(a->quadrics, b->quadrics) &&
+           same(a->polygonMeshes, b->polygonMeshes);
+}
+
+bool stillWithinFrame(const BilinearPatchDesc& p) { return p.P.size() == 1 && p.objectToWorld.isStatic(); }
+bool stillWithinFrame(const ProceduralDesc& p) { return p.objectToWorld.isStatic(); }
+bool stillWithinFrame(const PrimitiveDesc& p) { return p.times.size() <= 1 && p.objectToWorld.isStatic(); }
+
+}  // namespace streyes
