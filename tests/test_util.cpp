@@ -17,6 +17,16 @@ namespace streyes::test {
 
 std::string sourcePath(const std::string& relative) { return std::string(STREYES_SOURCE_DIR) + "/" + relative; }
 
+std::string ribError(const std::string& rib) {
+    Log log;
+    try {
+        parseRibString(rib, "bad.rib", log);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
 TempDir::TempDir(const std::string& tag) {
     std::string tmpl = (std::filesystem::temp_directory_path() / ("streyes-" + tag + "-XXXXXX")).string();
     if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed for " + tmpl);

@@ -54,6 +54,8 @@ inline RenderOptions optionsFor(Algorithm a) {
 }
 
 RenderResult renderRib(const std::string& rib, const RenderOptions& options = {});
+// The InputError a RIB string read as "bad.rib" makes, or "" when it reads.
+std::string ribError(const std::string& rib);
 RenderResult renderScene(const Scene& scene, const RenderOptions& options = {});
 RenderResult renderFile(const std::string& path, const RenderOptions& options = {});
 

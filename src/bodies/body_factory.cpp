@@ -326,10 +326,11 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
     const PatchMeshShape shape(p);
     const std::vector<std::array<Color, 4>> colors = shape.colors(p.Cs, mat->Cs);
     const SourceLoc* src = source(p.loc);
+    const bool lastOpen = windowOf(p.life).openEnd;
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
         std::vector<BezierPatch> k1;
         if (j != i) k1 = shape.patches(points[j]);
-        addSurface(std::make_unique<BezierMesh>(shape.topology(), segmentSpan(t0, t1, ts, windowOf(p.life).openEnd), mat, camera_,
+        addSurface(std::make_unique<BezierMesh>(shape.topology(), segmentSpan(t0, t1, ts, lastOpen), mat, camera_,
                                                 shape.patches(points[i]), std::move(k1), colors),
                    src, primitiveId, out, keep);
     });
@@ -384,9 +385,10 @@ void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t prim
         if (!keys[i]) keys[i] = shape->key(points[i]);
         return keys[i];
     };
+    const bool lastOpen = windowOf(p.life).openEnd;
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
-        addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), segmentSpan(t0, t1, ts, windowOf(p.life).openEnd), mat, camera_,
-                                                     colors),
+        addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), segmentSpan(t0, t1, ts, lastOpen), mat,
+                                                     camera_, colors),
                    src, primitiveId, out, keep);
     });
 }
@@ -426,7 +428,8 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::ve
     forEachSegment(ts, keys, [&](double t0, double t1, size_t i, size_t j) {
         const QuadricMesh::Params params[2] = {keys[i].params, keys[j].params};
         const Matrix4 toCamera[2] = {keys[i].toCamera, keys[j].toCamera};
-        addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, segmentSpan(t0, t1, ts, w.openEnd), mat, camera_, colors),
+        addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, segmentSpan(t0, t1, ts, w.openEnd), mat, camera_,
+                                                 colors),
                    src, primitiveId, out, keep);
     });
 }

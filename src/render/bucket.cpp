@@ -488,16 +488,15 @@ void BucketWorker::process(const Body& body) {
 // bucket gets there first; the others reuse its children.
 void BucketWorker::expand(const ProceduralBody& procedural) {
     bool expandedHere = false;
-    const std::vector<BodyPtr>* kept = nullptr;
+    const std::vector<BodyPtr>* made;
     if (procedural.keepsChildren()) {
-        kept = &procedural.children(*scene_.factory, scene_.camera, log_, &expandedHere);
+        made = &procedural.children(*scene_.factory, scene_.camera, log_, &expandedHere);
     } else {  // this bucket's own, freed when it is done (ProceduralGenerator::keepsChildren)
-        ownChildren_.emplace_back();
-        procedural.expandInto(ownChildren_.back(), *scene_.factory, scene_.camera, log_);
-        kept = &ownChildren_.back().bodies;
+        procedural.expandInto(ownChildren_.emplace_back(), *scene_.factory, scene_.camera, log_);
+        made = &ownChildren_.back().bodies;
         expandedHere = true;
     }
-    const std::vector<BodyPtr>& children = *kept;
+    const std::vector<BodyPtr>& children = *made;
     if (expandedHere) {
         ++counters.proceduralsExpanded;
         const size_t d = size_t(procedural.depth());

@@ -7,6 +7,8 @@
 
 #include "streyes/rib.h"
 
+#include "test_util.h"
+
 namespace streyes {
 namespace {
 
@@ -17,15 +19,7 @@ Scene parse(const std::string& world) {
     Log log;
     return parse(world, log);
 }
-std::string errorOf(const std::string& world) {
-    Log log;
-    try {
-        parseRibString("WorldBegin\n" + world + "WorldEnd\n", "bad.rib", log);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string errorOf(const std::string& world) { return test::ribError("WorldBegin\n" + world + "WorldEnd\n"); }
 std::string numbers(int n, double start = 0) {
     std::string s;
     for (int i = 0; i < n; ++i) s += std::to_string(start + i) + " ";

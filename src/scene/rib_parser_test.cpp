@@ -8,6 +8,7 @@
 #include "scene/rib_lexer.h"
 #include "scene/rib_parser.h"
 #include "streyes/rib.h"
+#include "test_util.h"
 
 namespace streyes {
 namespace {
@@ -23,15 +24,7 @@ Scene parse(const std::string& text) {
 }
 
 // The message of the InputError that parsing `text` (named bad.rib) throws, or "" if none.
-std::string errorOf(const std::string& text) {
-    Log log;
-    try {
-        parseRibString(text, "bad.rib", log);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string errorOf(const std::string& text) { return test::ribError(text); }
 
 void expectNear(Vec3d a, Vec3d b, double eps = 1e-12) {
     EXPECT_NEAR(a.x, b.x, eps);

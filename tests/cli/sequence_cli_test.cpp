@@ -44,17 +44,21 @@ TEST(SequenceCli, PatternWritesEachFrameUnderItsOwnDisplayName) {
     EXPECT_EQ(img.channels.size(), 4u);  // Display "rgba"
 }
 
+// Frames first..last of dir/A.####.exr and dir/B.####.exr hold the same pixels.
+void expectSameFrames(const std::string& dir, const std::string& a, const std::string& b, int first, int last) {
+    for (int f = first; f <= last; ++f) {
+        char n[16];
+        std::snprintf(n, sizeof n, ".%04d.exr", f);
+        EXPECT_EQ(readImage(dir + "/" + a + n).pixels, readImage(dir + "/" + b + n).pixels) << f;
+    }
+}
+
 TEST(SequenceCli, FramesOfAPatternEqualTheSameFramesOfOneFile) {
     test::TempDir tmp("seqcli");
     ASSERT_EQ(renderIn(tmp.path(), "'" + test::sourcePath("scenes/sequence/shot.####.rib") + "' -o 'p.####.exr'").exitCode, 0);
     const test::CliRun r = renderIn(tmp.path(), test::sourcePath("scenes/sequence/shot.rib") + " --frames 6-8 -o 'b.####.exr'");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    for (int f = 6; f <= 8; ++f) {
-        char p[32], b[32];
-        std::snprintf(p, sizeof p, "/p.%04d.exr", f);
-        std::snprintf(b, sizeof b, "/b.%04d.exr", f);
-        EXPECT_EQ(readImage(tmp.path() + p).pixels, readImage(tmp.path() + b).pixels) << f;
-    }
+    expectSameFrames(tmp.path(), "p", "b", 6, 8);
     EXPECT_FALSE(fs::exists(tmp.path() + "/b.0005.exr"));
 }
 
@@ -65,12 +69,7 @@ TEST(SequenceCli, ABlockOfFramesAtATimeGivesTheSameFrames) {
     ASSERT_EQ(renderIn(tmp.path(), shot + " -o 'a.####.exr'").exitCode, 0);
     const test::CliRun r = renderIn(tmp.path(), shot + " --frame-block 3 -o 'b.####.exr' --stats s.json");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    for (int f = 1; f <= 8; ++f) {
-        char a[32], b[32];
-        std::snprintf(a, sizeof a, "/a.%04d.exr", f);
-        std::snprintf(b, sizeof b, "/b.%04d.exr", f);
-        EXPECT_EQ(readImage(tmp.path() + a).pixels, readImage(tmp.path() + b).pixels) << f;
-    }
+    expectSameFrames(tmp.path(), "a", "b", 1, 8);
     const std::string stats = readFile(tmp.path() + "/s.json");
     EXPECT_NE(stats.find("\"frames\": [1, 8]"), std::string::npos) << stats;
 }

@@ -9,15 +9,7 @@
 namespace streyes {
 namespace {
 
-std::string errorOf(const std::string& text) {
-    Log log;
-    try {
-        parseRibString(text, "bad.rib", log);
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string errorOf(const std::string& text) { return test::ribError(text); }
 
 // An object of two squares (its own transform inside the block), placed three times (one
 // instance outside the image), against the same squares written out at each place.
