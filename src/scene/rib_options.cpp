@@ -154,9 +154,32 @@ void display(RibParser& reader, RibArgs& args) {
     settings.displays.push_back(DisplayDesc{name, type, mode, args.loc()});
 }
 
+// Option "searchpath" "shader" "path:&": where shaders are found (see RenderSettings).
+void searchPathOption(RibParser& reader, RibArgs& args) {
+    RenderSettings& settings = reader.scene().settings;
+    ParamList params = reader.readParams(args);
+    if (params.find("shader")) {
+        settings.shaderSearchPath = params.getString("shader", "");
+        settings.shaderSearchPathLoc = params.find("shader")->loc;
+    }
+    reader.warnUnusedParams(params, {"shader"}, "Option \"searchpath\"");
+}
+
+void shadingOption(RibParser& reader, RibArgs& args) {
+    ParamList params = reader.readParams(args);
+    if (const Param* p = params.find("builtin")) {
+        const std::string v = params.getString("builtin", "on");
+        if (v != "on" && v != "off") throw InputError(p->loc, "Option \"shading\": builtin is \"on\" or \"off\"");
+        reader.scene().settings.builtinShading = v == "on";
+    }
+    reader.warnUnusedParams(params, {"builtin"}, "Option \"shading\"");
+}
+
 void option(RibParser& reader, RibArgs& args) {
     RenderSettings& settings = reader.scene().settings;
     std::string category = args.string("option name");
+    if (category == "searchpath") return searchPathOption(reader, args);
+    if (category == "shading") return shadingOption(reader, args);
     if (category != "streyes") {
         reader.log().warnOnce("option:" + category, args.loc(), "Option \"" + category + "\" is not supported: ignored");
         args.skipRest();

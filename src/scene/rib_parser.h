@@ -132,7 +132,9 @@ class RibParser {
     const RibState& state() const { return state_; }
     // The parameter list that ends a request: ("name" value) pairs, each name declared or an
     // inline declaration, each value of the declared type (rib_params.cpp).
-    ParamList readParams(RibArgs& args) const;
+    // `shaderParams`: names without a declaration are taken too (Param::declared false), typed
+    // later by the shader that receives them.
+    ParamList readParams(RibArgs& args, bool shaderParams = false) const;
     // Warns once per owner and name about parameters the owner does not have.
     void warnUnusedParams(const ParamList& params, const std::vector<std::string>& known, const std::string& owner);
 
@@ -141,7 +143,7 @@ class RibParser {
     RibRequest readRequest(RibLexer& lexer, RibToken nameToken);
     RibValue readArray(RibLexer& lexer, const RibToken& open);
     void dispatch(const RibRequest& request);  // rib_requests.cpp
-    Param makeParam(RibArgs& args, const RibValue& nameValue, const RibValue& value) const;
+    Param makeParam(RibArgs& args, const RibValue& nameValue, const RibValue& value, bool shaderParam) const;
 
     struct SavedFrame {
         Scene scene;
