@@ -154,9 +154,28 @@ void display(RibParser& reader, RibArgs& args) {
     settings.displays.push_back(DisplayDesc{name, type, mode, args.loc()});
 }
 
+// Option "searchpath" "procedural" ["dir:&"] "archive" [...]: the names are strings whatever
+// declarations say (RenderMan declares them so); other paths (shader, texture) are not used here.
+void searchPathOption(RibParser& reader, RibArgs& args) {
+    RibState& s = reader.state();
+    while (!args.done()) {
+        const std::string name = args.string("search path name (\"procedural\" or \"archive\")");
+        if (args.done()) args.fail("Option \"searchpath\" \"" + name + "\" needs a value: [\"dir1:dir2:&\"]");
+        const std::string value = args.string("search path");
+        if (name == "procedural" || name == "string procedural") s.proceduralPath = expandSearchPath(value, s.proceduralPath);
+        else if (name == "archive" || name == "string archive") s.archivePath = expandSearchPath(value, s.archivePath);
+        else reader.log().warnOnce("searchpath:" + name, args.loc(),
+                                   "Option \"searchpath\" \"" + name + "\" is not used: ignored");
+    }
+}
+
 void option(RibParser& reader, RibArgs& args) {
     RenderSettings& settings = reader.scene().settings;
     std::string category = args.string("option name");
+    if (category == "searchpath") {
+        searchPathOption(reader, args);
+        return;
+    }
     if (category != "streyes") {
         reader.log().warnOnce("option:" + category, args.loc(), "Option \"" + category + "\" is not supported: ignored");
         args.skipRest();
