@@ -106,7 +106,7 @@ RtFloat RiSincFilter(RtFloat x, RtFloat y, RtFloat xwidth, RtFloat ywidth);
 RtVoid RiProcDelayedReadArchive(RtPointer data, RtFloat detail); /* data: RtString[1], the file */
 RtVoid RiProcRunProgram(RtPointer data, RtFloat detail);         /* data: RtString[2], program, datablock */
 RtVoid RiProcDynamicLoad(RtPointer data, RtFloat detail);        /* data: RtString[2], plug-in, parameters */
-RtVoid RiProcFree(RtPointer data);                               /* frees nothing: a no-op */
+RtVoid RiProcFree(RtPointer data);                               /* free(data), as RISpec says */
 
 /* ---- Sessions, frames and blocks */
 RtVoid RiBegin(RtToken name);

@@ -5,9 +5,10 @@
  * Parameters (key=value, any order): level (recursion depth, default 2), x y z (the sponge's
  * lowest corner, default 0) and size (its edge, default 1); mindetail (default 0): a cube whose
  * bound covers fewer pixels than this is drawn whole instead of being subdivided further;
- * recurse=dso|function: the 20 sub-cubes are procedurals again, either through
- * RiProcDynamicLoad (loading this plug-in by name: plugin=NAME, default "menger") or through
- * RiProcedural with this file's own subdivide function. Either way each sub-cube is expanded only
+ * recurse=function|dso: the 20 sub-cubes are procedurals again, either through RiProcedural with
+ * this file's own subdivide function (the default) or through RiProcDynamicLoad, loading this
+ * plug-in again by name (plugin=NAME, default "menger": found as the parent was, along the search
+ * path; give a path when the parent was given one). Either way each sub-cube is expanded only
  * when a bucket reaches its bound.
  *
  * Build: cc -shared -fPIC -I/where/include menger.c -o menger.so (the Ri functions come from the
@@ -48,6 +49,7 @@ RtPointer ConvertParameters(RtString paramstr) {
     int used = 0;
     s->level = 2;
     s->size = 1;
+    s->useFunction = 1;
     strcpy(s->plugin, "menger");
     while (sscanf(p, " %63[^= ]=%255s%n", key, value, &used) == 2) {
         p += used;

@@ -70,7 +70,7 @@ RtVoid RiEnd(void) {
     }
     std::unique_ptr<Session> s = std::move(session);
     s->scope.reset();
-    const streyes::RiStream& stream = *s->stream;
+    streyes::RiStream& stream = *s->stream;
     if (!stream.error().empty()) {
         std::fprintf(stderr, "streyes: RiEnd: %s; nothing %s\n", stream.error().c_str(),
                      s->file.empty() ? "rendered" : "written");
@@ -79,7 +79,15 @@ RtVoid RiEnd(void) {
     const std::string rib = stream.text() + "\n";
     if (s->file.empty()) {
         render(rib);  // the stream keeps its function procedurals until the render is done
-    } else if (s->file == "-") {
+        return;
+    }
+    // A function cannot be written as RIB: its procedural would be unreadable.
+    if (!stream.functions().empty())
+        std::fprintf(stderr,
+                     "streyes: RiEnd: '%s' names %zu procedural(s) of the program's own functions, which a RIB file "
+                     "cannot hold: they are written as Procedural \"RiFunction\" and will not read back\n",
+                     s->file.c_str(), stream.functions().size());
+    if (s->file == "-") {
         std::fwrite(rib.data(), 1, rib.size(), stdout);
         std::fflush(stdout);
     } else {

@@ -113,14 +113,15 @@ TEST(PluginProcedural, FoundAlongTheProceduralSearchPath) {
     const std::string viaPath =
         test::orthoHeader(40, 40, "Option \"searchpath\" \"procedural\" [\"/nonexistent\"]\n"
                                   "Option \"searchpath\" \"procedural\" [\"" + kPluginDir + ":&\"]\n") +
-        mengerRequest("menger", 1, 2, 2, 5, 27) + "WorldEnd\n";
+        mengerRequest("menger", 1, 2, 2, 5, 27, " recurse=dso") + "WorldEnd\n";
     EXPECT_TRUE(test::identicalPixels(plain, test::renderRib(viaPath)));
 
     // By default ('@'), beside the RIB file.
     test::TempDir dir("plugin-beside");
     std::filesystem::copy_file(kMenger, dir.path() + "/menger.so");
     const std::string scene = dir.path() + "/sponge.rib";
-    std::ofstream(scene) << test::orthoHeader(40, 40) + mengerRequest("menger", 1, 2, 2, 5, 27) + "WorldEnd\n";
+    std::ofstream(scene) << test::orthoHeader(40, 40) + mengerRequest("menger", 1, 2, 2, 5, 27, " recurse=dso") +
+                                "WorldEnd\n";
     EXPECT_TRUE(test::identicalPixels(plain, test::renderFile(scene)));
 }
 
