@@ -359,10 +359,19 @@ RtVoid RiSphereV(RtFloat radius, RtFloat zmin, RtFloat zmax, RtFloat thetamax, R
         s->params(n, tokens, values, RiClassSizes{1, 4, 4, 4});
     }
 }
+// RISpec fixes this signature: the last named parameter is a float, which va_start formally may
+// not name (it is promoted); every ABI streyes builds for handles it, and clang's warning is off.
+#ifdef __clang__
+#pragma clang diagnostic push
+#pragma clang diagnostic ignored "-Wvarargs"
+#endif
 RtVoid RiSphere(RtFloat radius, RtFloat zmin, RtFloat zmax, RtFloat thetamax, ...) {
     COLLECT_PARAMS(thetamax);
     RiSphereV(radius, zmin, zmax, thetamax, p.n(), p.t(), p.v());
 }
+#ifdef __clang__
+#pragma clang diagnostic pop
+#endif
 RtVoid RiPolygonV(RtInt nvertices, RtInt n, RtToken tokens[], RtPointer values[]) {
     if (RiStream* s = streamFor("RiPolygon")) {
         s->request("RiPolygon", "Polygon");

@@ -102,12 +102,12 @@ TEST(RiSession, ABadCallRendersNothing) {
     RiBegin(RI_NULL);
     view(out);
     RiWorldBegin();
-    RiSphere(1, -1, 1, 360, "undeclared", std::vector<RtFloat>{1}.data(), RI_NULL);
+    RiSphere(1, -1, 1, 360, "undeclared", std::vector<RtFloat>{1}.data(), RI_NULL);  // the 8th call
     RiWorldEnd();
     testing::internal::CaptureStderr();
     RiEnd();
     const std::string err = testing::internal::GetCapturedStderr();
-    EXPECT_NE(err.find("call 7 (RiSphere): parameter \"undeclared\" is not declared"), std::string::npos) << err;
+    EXPECT_NE(err.find("call 8 (RiSphere): parameter \"undeclared\" is not declared"), std::string::npos) << err;
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
