@@ -2,6 +2,7 @@
 // rendered to its display, with procedurals of the program's own functions and of a plug-in.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -28,16 +29,22 @@ struct Square {
     float x, y, s;
     int* subdivided;
     int* freed;
+    float detail = -1;  // what Subdivide was given
 };
-void subdivideSquare(RtPointer data, RtFloat) {
-    const Square* q = static_cast<const Square*>(data);
+void subdivideSquare(RtPointer data, RtFloat detail) {
+    Square* q = static_cast<Square*>(data);
     ++*q->subdivided;
+    q->detail = detail;
     RtFloat P[12] = {q->x, q->y, 5, q->x + q->s, q->y, 5, q->x, q->y + q->s, 5, q->x + q->s, q->y + q->s, 5};
     RiPatch(RI_BILINEAR, RI_P, P, RI_NULL);
 }
 void freeSquare(RtPointer data) {
     Square* q = static_cast<Square*>(data);
     ++*q->freed;
+    // The detail is the bound's raster area (s^2 pixels here) rounded up to a power of two.
+    EXPECT_GE(q->detail, q->s * q->s);
+    EXPECT_LT(q->detail, 2 * q->s * q->s);
+    EXPECT_EQ(std::exp2(std::round(std::log2(q->detail))), q->detail);
     delete q;
 }
 
