@@ -94,7 +94,7 @@ class FunctionGenerator final : public ProceduralGenerator {
         : f_(std::move(f)), lineage_(std::move(lineage)) {}
     std::string describe() const override { return "RiProcedural function " + f_->id; }
     void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
-        const float detail = float(std::min(ctx.detail / ctx.detailScale, double(RI_INFINITY)));
+        const float detail = float(std::min(ctx.detail, double(RI_INFINITY)));
         expandThroughStream(ctx, "RiProcedural function", lineage_, [&] { f_->subdivide(f_->data, detail); }, out);
     }
 
@@ -113,8 +113,7 @@ class PluginGenerator final : public ProceduralGenerator {
     ~PluginGenerator() override { plugin_->free(data_); }
     std::string describe() const override { return "DynamicLoad '" + name_ + "'"; }
     void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
-        // --detail scales the thresholds generators compare the detail with: the plug-in's too.
-        const float detail = float(std::min(ctx.detail / ctx.detailScale, double(RI_INFINITY)));
+        const float detail = float(std::min(ctx.detail, double(RI_INFINITY)));
         expandThroughStream(ctx, describe(), lineage_, [&] { plugin_->subdivide(data_, detail); }, out);
     }
 

@@ -105,6 +105,25 @@ TEST(PluginProcedural, MengerSpongeFaceOnCoversTheSierpinskiCarpet) {
     }
 }
 
+TEST(PluginProcedural, SubdivideGetsTheDetailOfItsBound) {
+    // mindetail=2000: the sponge of edge 81 (6561 pixels, detail 8192) subdivides; its sub-cubes
+    // (729 pixels, detail 1024) are drawn whole. Level 3 asked, level 1 drawn: 8/9 of the face.
+    const RenderResult r = test::renderRib(test::orthoHeader(97, 97, "PixelSamples 2 2\n") +
+                                           mengerRequest(kMenger, 3, 8, 8, 5, 81, " mindetail=2000") +
+                                           "WorldEnd\n");
+    EXPECT_NEAR(alphaSum(r), 81.0 * 81.0 * 8.0 / 9.0, 1e-3);
+    EXPECT_EQ(r.stats.counters.proceduralsExpanded, 21u);
+}
+
+TEST(PluginProcedural, SameImageWhateverTheThreadCount) {
+    const std::string rib = perspectiveHeader() + mengerRequest(kMenger, 2, -1, -1, -1, 2) + "WorldEnd\n";
+    RenderOptions one;
+    one.threads = 1;
+    RenderOptions two;
+    two.threads = 2;
+    EXPECT_TRUE(test::identicalPixels(test::renderRib(rib, one), test::renderRib(rib, two)));
+}
+
 TEST(PluginProcedural, FoundAlongTheProceduralSearchPath) {
     std::string reference = test::orthoHeader(40, 40) ;
     spongeRib(1, 2, 2, 5, 27, reference);
