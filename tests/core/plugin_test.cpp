@@ -112,7 +112,9 @@ TEST(PluginProcedural, SubdivideGetsTheDetailOfItsBound) {
                                            mengerRequest(kMenger, 3, 8, 8, 5, 81, " mindetail=2000") +
                                            "WorldEnd\n");
     EXPECT_NEAR(alphaSum(r), 81.0 * 81.0 * 8.0 / 9.0, 1e-3);
-    EXPECT_EQ(r.stats.counters.proceduralsExpanded, 21u);
+    // The sponge and at most its 20 sub-cubes (those hidden may be culled unexpanded); none deeper.
+    EXPECT_GE(r.stats.counters.proceduralsExpanded, 9u);
+    EXPECT_LE(r.stats.counters.proceduralsExpanded, 21u);
 }
 
 TEST(PluginProcedural, SameImageWhateverTheThreadCount) {
