@@ -121,7 +121,7 @@ std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const Procedu
             if (!found.empty()) path = found;
         }
         if (!fs::is_regular_file(path, ec))
-            throw InputError(loc, "DelayedReadArchive: no archive '" + args[0] + "' (looked beside this file and in the current folder)");
+            throw InputError(loc, "DelayedReadArchive: no archive '" + args[0] + "' (looked beside this file, in the current folder and along Option \"searchpath\" \"archive\")");
         return std::make_shared<ArchiveGenerator>(path);
     }
     if (kind == "RunProgram") {
