@@ -7,8 +7,8 @@
  *   - inside a plug-in's Subdivide (Procedural "DynamicLoad", or RiProcedural with a function):
  *     that expansion's children, on the thread running it;
  *   - between RiBegin and RiEnd (on the thread that called RiBegin): RiBegin(RI_NULL) renders the
- *     scene at RiEnd to its Display files (needs streyes::io); RiBegin("name.rib") writes the RIB
- *     to that file ("-": standard output);
+ *     scene at RiEnd to its Display files ("ri.exr" when none; needs streyes::io); any other name,
+ *     RiBegin("scene.rib"), writes the RIB to that file instead ("-": standard output);
  *   - anywhere else a call is reported on standard error and ignored.
  * A bad call (a NaN, an undeclared parameter) is reported at RiEnd, or by the procedural that
  * made it, naming the call by its number and name.

@@ -73,6 +73,67 @@ TEST(RiStream, ParameterListsAreCountedFromTheDeclarationAndThePrimitive) {
     EXPECT_EQ(s.error(), "");
 }
 
+// The reader checks every count: what the calls write must read back as the primitives meant.
+TEST(RiStream, MeshesAndMotionReadBackAsTheCallsMeant) {
+    RiStream s("test");
+    {
+        RiStreamScope scope(&s);
+        RiWorldBegin();
+        // A bicubic mesh of 7 x 4 points in the Bezier basis (step 3): 2 x 1 patches, 3 x 2 varying colours.
+        std::vector<RtFloat> P, Cs(18, 0.5f);
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 7; ++i) P.insert(P.end(), {RtFloat(i), RtFloat(j), 5});
+        RiPatchMesh(RI_BICUBIC, 7, RI_NONPERIODIC, 4, RI_NONPERIODIC, RI_P, P.data(), RI_CS, Cs.data(), RI_NULL);
+        // The same points, periodic in u in the B-spline basis (step 1): 7 x 1 patches, 7 x 2 colours.
+        RiAttributeBegin();
+        RiBasis(RiBSplineBasis, RI_BSPLINESTEP, RiBSplineBasis, RI_BSPLINESTEP);
+        std::vector<RtFloat> Cs2(42, 0.25f);
+        RiPatchMesh(RI_BICUBIC, 7, RI_PERIODIC, 4, RI_NONPERIODIC, RI_P, P.data(), RI_CS, Cs2.data(), RI_NULL);
+        RiAttributeEnd();
+        // A cube as a subdivision mesh with a crease, a corner and a hole; uniform colours.
+        RtInt nverts[6] = {4, 4, 4, 4, 4, 4};
+        RtInt verts[24] = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5};
+        RtFloat cube[24];
+        for (int i = 0; i < 8; ++i) {
+            cube[3 * i] = RtFloat(i & 1);
+            cube[3 * i + 1] = RtFloat((i >> 1) & 1);
+            cube[3 * i + 2] = RtFloat((i >> 2) & 1) + 5;
+        }
+        RtToken tags[3] = {"crease", "corner", "hole"};
+        RtInt nargs[6] = {2, 1, 1, 1, 1, 0};
+        RtInt intargs[4] = {0, 1, 7, 5};
+        RtFloat floatargs[2] = {2, 3};
+        std::vector<RtFloat> uniformCs(18, 1);
+        RiSubdivisionMesh(RI_CATMULLCLARK, 6, nverts, verts, 3, tags, nargs, intargs, floatargs, RI_P, cube,
+                          "uniform color Cs", uniformCs.data(), RI_NULL);
+        // A sphere moving from x = 0 to x = 1.
+        RiAttributeBegin();
+        RiMotionBegin(2, 0.0, 1.0);
+        RiTranslate(0, 0, 5);
+        RiTranslate(1, 0, 5);
+        RiMotionEnd();
+        RiSphere(1, -1, 1, 360, RI_NULL);
+        RiAttributeEnd();
+        RiWorldEnd();
+    }
+    ASSERT_EQ(s.error(), "");
+    Log log;
+    log.setQuiet(true);
+    const Scene scene = parseRibString(lines(s), "stream", log);
+    ASSERT_EQ(scene.patchMeshes.size(), 2u);
+    EXPECT_EQ(scene.patchMeshes[0].Cs.values.size(), 6u);
+    EXPECT_EQ(scene.patchMeshes[1].Cs.values.size(), 14u);
+    EXPECT_TRUE(scene.patchMeshes[1].uPeriodic);
+    ASSERT_EQ(scene.subdivisionMeshes.size(), 1u);
+    EXPECT_EQ(scene.subdivisionMeshes[0].creaseEdges, (std::vector<int>{0, 1}));
+    EXPECT_EQ(scene.subdivisionMeshes[0].corners, (std::vector<int>{7}));
+    EXPECT_EQ(scene.subdivisionMeshes[0].holes, (std::vector<int>{5}));
+    EXPECT_EQ(scene.subdivisionMeshes[0].Cs.values.size(), 6u);
+    ASSERT_EQ(scene.quadrics.size(), 1u);
+    EXPECT_FALSE(scene.quadrics[0].objectToWorld.isStatic());
+    EXPECT_TRUE(log.warnings().empty()) << log.warnings()[0];
+}
+
 TEST(RiStream, FloatsReadBackExactly) {
     RiStream s("test");
     const float v = 0.1f + 1e-7f;
