@@ -55,8 +55,8 @@ std::shared_ptr<Plugin> loadPlugin(const std::string& path, const SourceLoc& loc
     if (!p->handle) {
         const char* why = dlerror();
         throw InputError(loc, "DynamicLoad: cannot load the plug-in '" + path + "': " + (why ? why : "unknown error") +
-                                  " (build it as a shared object for this machine; a program loading plug-ins must "
-                                  "export the Ri functions, e.g. link it with -rdynamic)");
+                                  " (build it as a shared object for this machine; it may call only the Ri functions "
+                                  "of include/ri.h, which a program linking streyes exports)");
     }
     p->convert = reinterpret_cast<ConvertFn>(dlsym(p->handle, "ConvertParameters"));
     p->subdivide = reinterpret_cast<SubdivideFn>(dlsym(p->handle, "Subdivide"));

@@ -9,8 +9,8 @@
 // the generator goes, after the render. Expansions run on any thread, several at once: a plug-in's
 // Subdivide must not change what it shares.
 //
-// The Ri functions the plug-in calls are the program's: a program that loads plug-ins exports
-// them (the streyes command and the tests are linked with ENABLE_EXPORTS).
+// The Ri functions the plug-in calls are the program's: every program linking streyes_core
+// exports them (an interface link option in CMakeLists.txt: --export-dynamic-symbol=Ri*).
 #pragma once
 
 #include <memory>
