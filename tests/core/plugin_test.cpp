@@ -176,6 +176,13 @@ TEST(PluginProcedural, SharedObjectWithoutTheProceduralFunctionsIsAnError) {
     EXPECT_NE(e.find("test.rib:7"), std::string::npos) << e;
     EXPECT_NE(e.find("does not export Subdivide Free"), std::string::npos) << e;
 
+    // A call streyes does not have: the symbol dlopen misses is named.
+    const std::string unknown = renderError(test::orthoHeader(8, 8) + "Procedural \"DynamicLoad\" [\"" + kPluginDir +
+                                            "/test_plugin_unknown_call.so\" \"\"] [0 1 0 1 0 1]\nWorldEnd\n");
+    EXPECT_NE(unknown.find("test.rib:7"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("undefined symbol: RiBlobby"), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("only the Ri functions of include/ri.h"), std::string::npos) << unknown;
+
     // Not a shared object at all: dlopen's complaint, with the file named.
     test::TempDir dir("plugin-bad");
     std::ofstream(dir.path() + "/junk.so") << "not an ELF file\n";
