@@ -84,10 +84,6 @@ void matrix(const char* call, const char* request, RtMatrix m) {
     }
 }
 
-// Attribute blocks save the basis steps (PatchMesh's counts depend on them) as the reader saves
-// the Basis.
-thread_local std::vector<std::pair<RiStream*, std::pair<int, int>>> savedSteps;
-
 // Varying and uniform counts of a patch mesh along one direction.
 void patchCounts(bool bicubic, int n, bool periodic, int step, int* patches, int* varying) {
     if (!bicubic) *patches = periodic ? n : n - 1;
@@ -154,16 +150,16 @@ RtVoid RiWorldEnd(void) { bare("RiWorldEnd", "WorldEnd"); }
 RtVoid RiAttributeBegin(void) {
     if (RiStream* s = streamFor("RiAttributeBegin")) {
         s->request("RiAttributeBegin", "AttributeBegin");
-        savedSteps.push_back({s, {s->uStep, s->vStep}});
+        s->savedSteps.push_back({s->uStep, s->vStep});
     }
 }
 RtVoid RiAttributeEnd(void) {
     if (RiStream* s = streamFor("RiAttributeEnd")) {
         s->request("RiAttributeEnd", "AttributeEnd");
-        if (!savedSteps.empty() && savedSteps.back().first == s) {
-            s->uStep = savedSteps.back().second.first;
-            s->vStep = savedSteps.back().second.second;
-            savedSteps.pop_back();
+        if (!s->savedSteps.empty()) {
+            s->uStep = s->savedSteps.back().first;
+            s->vStep = s->savedSteps.back().second;
+            s->savedSteps.pop_back();
         }
     }
 }

@@ -11,6 +11,8 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "ri.h"
 #include "scene/rib_params.h"
@@ -68,6 +70,7 @@ class RiStream {
     // RiDeclare: the stream's declarations (RenderMan's predeclared names, then RiDeclare's).
     std::map<std::string, RibParamDecl>& declarations() { return declarations_; }
     int uStep = 3, vStep = 3;  // RiBasis's steps: PatchMesh's varying counts depend on them
+    std::vector<std::pair<int, int>> savedSteps;  // by RiAttributeBegin, as the reader saves the Basis
     int nextLight = 1;          // RiLightSource handles, numbered as RIB 3.2 does
 
     // Function procedurals written to this stream, by id; also findable with findRiFunction while

@@ -90,6 +90,8 @@ TEST(RiStream, MeshesAndMotionReadBackAsTheCallsMeant) {
         std::vector<RtFloat> Cs2(42, 0.25f);
         RiPatchMesh(RI_BICUBIC, 7, RI_PERIODIC, 4, RI_NONPERIODIC, RI_P, P.data(), RI_CS, Cs2.data(), RI_NULL);
         RiAttributeEnd();
+        // Bezier again after the block: 2 x 1 patches.
+        RiPatchMesh(RI_BICUBIC, 7, RI_NONPERIODIC, 4, RI_NONPERIODIC, RI_P, P.data(), RI_CS, Cs.data(), RI_NULL);
         // A cube as a subdivision mesh with a crease, a corner and a hole; uniform colours.
         RtInt nverts[6] = {4, 4, 4, 4, 4, 4};
         RtInt verts[24] = {0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5};
@@ -120,7 +122,8 @@ TEST(RiStream, MeshesAndMotionReadBackAsTheCallsMeant) {
     Log log;
     log.setQuiet(true);
     const Scene scene = parseRibString(lines(s), "stream", log);
-    ASSERT_EQ(scene.patchMeshes.size(), 2u);
+    ASSERT_EQ(scene.patchMeshes.size(), 3u);
+    EXPECT_EQ(scene.patchMeshes[2].Cs.values.size(), 6u);
     EXPECT_EQ(scene.patchMeshes[0].Cs.values.size(), 6u);
     EXPECT_EQ(scene.patchMeshes[1].Cs.values.size(), 14u);
     EXPECT_TRUE(scene.patchMeshes[1].uPeriodic);
