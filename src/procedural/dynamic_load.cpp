@@ -91,7 +91,7 @@ void expandThroughStream(const ExpandContext& ctx, const std::string& what, cons
 class FunctionGenerator final : public ProceduralGenerator {
   public:
     FunctionGenerator(std::shared_ptr<RiFunctionProcedural> f, Lineage lineage)
-        : f_(std::move(f)), lineage_(std::move(lineage)) {}
+        : lineage_(std::move(lineage)), f_(std::move(f)) {}
     std::string describe() const override { return "RiProcedural function " + f_->id; }
     void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
         const float detail = float(std::min(ctx.detail, double(RI_INFINITY)));
@@ -99,8 +99,8 @@ class FunctionGenerator final : public ProceduralGenerator {
     }
 
   private:
-    std::shared_ptr<RiFunctionProcedural> f_;  // freed (its free function) before the plug-in goes
-    Lineage lineage_;
+    Lineage lineage_;                          // keeps the plug-in the function is in loaded...
+    std::shared_ptr<RiFunctionProcedural> f_;  // ...until after this (declared later) is freed
 };
 
 // Procedural "DynamicLoad" ["name" "parameters"] with a plug-in.
