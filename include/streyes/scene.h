@@ -166,6 +166,9 @@ struct ProceduralDesc {
     std::string kind;               // "DelayedReadArchive", "RunProgram", "DynamicLoad" or "ObjectInstance"
     std::vector<std::string> args;  // the request's string arguments
     std::string directory;          // folder of the declaring file: relative names are looked up there first
+    // Option "searchpath" "procedural" and "archive" where it was declared: ':'-separated folders,
+    // "@" standing for `directory` (DynamicLoad plug-ins and archives named without a folder).
+    std::string proceduralPath = "@", archivePath = "@";
     Bounds3d bound;                 // object space, as declared
     MotionTransform objectToWorld;
     AttributesPtr attributes;

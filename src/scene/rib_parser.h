@@ -26,6 +26,7 @@
 #include "scene/rib_args.h"
 #include "scene/rib_lexer.h"
 #include "scene/rib_params.h"
+#include "scene/search_path.h"
 #include "streyes/scene.h"
 
 namespace streyes {
@@ -79,6 +80,9 @@ struct RibState {
     std::map<std::string, int> lightHandles;    // handle -> index in Scene::lights
     std::set<std::string> skippedLightHandles;  // handles of lights of unsupported types
     bool fragment = false;                      // reading a procedural's output
+    // Option "searchpath" "procedural" | "archive": where plug-ins and archives named without a
+    // folder are looked up (scene/search_path.h).
+    std::string proceduralPath = kDefaultSearchPath, archivePath = kDefaultSearchPath;
 
     // Copy-on-write: primitives keep the attributes they were made with (rib_attributes.cpp).
     Attributes& mutableAttributes();
