@@ -268,12 +268,17 @@ RasterMeasure DiscBody::measure(const Camera& camera) const {
     return m;
 }
 
+// Asked by eye splits only. A disc is flat at its centre's depth, so what reaches the eye plane is
+// its motion: splitting it in angle would never free it, in time does.
 CameraExtents DiscBody::cameraExtents() const {
     CameraExtents e;
-    const float r = std::max(radiusAt(0), radiusAt(1));
-    e.u = r * float(kTwoPi * (a1_ - a0_));
-    e.v = r;
-    e.t = moving_ ? length(centreAt(1) - centreAt(0)) + std::fabs(radiusAt(1) - radiusAt(0)) : 0.0f;
+    if (moving_) {
+        e.t = length(centreAt(1) - centreAt(0)) + std::fabs(radiusAt(1) - radiusAt(0));
+    } else {
+        const float r = radiusAt(0);
+        e.u = r * float(kTwoPi * (a1_ - a0_));
+        e.v = r;
+    }
     return e;
 }
 

@@ -10,7 +10,9 @@
 #include "geom/bezier.h"
 #include "geom/curves.h"
 #include "sample_oracle.h"
+#include "scene/rib_parser.h"
 #include "streyes/rib.h"
+#include "streyes/sequence.h"
 #include "test_util.h"
 
 namespace streyes {
@@ -264,6 +266,62 @@ TEST(CurvesRender, AFramesPixelsDoNotDependOnItsBlock) {
         // And the frames differ: things moved.
         EXPECT_GT(test::differingPixels(together.frame(0), together.frame(3), 0.05f), 10u);
     }
+}
+
+// A point flying through the eye plane: what reaches it is the disc's motion, so eye splits cut
+// it in time (splitting it in angle would never free it, and the piece would be dropped).
+TEST(PointsRender, DiscThroughTheEyePlaneIsSplitInTime) {
+    const test::RenderResult r = test::renderRib(
+        "Format 64 64 1\nProjection \"perspective\" \"fov\" [60]\nClipping 0.5 1000\nShutter 0 1\nWorldBegin\n"
+        "Surface \"constant\"\nMotionBegin [0 1]\nPoints \"P\" [0 0 -3] \"constantwidth\" [1]\n"
+        "Points \"P\" [0 0 5] \"constantwidth\" [1]\nMotionEnd\nWorldEnd\n");
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    EXPECT_EQ(r.stats.counters.culledEyeLimit, 0u);
+    EXPECT_GT(r.stats.counters.eyeSplits, 0u);
+    EXPECT_GT(alphaSum(r), 1.0);  // seen on its way out
+}
+
+// ---- Frame sequences ----------------------------------------------------------------------------------
+// Curves and points in a sequence of frame blocks: the same in every frame, one still run each;
+// moving pollen, a run per frame. A frame renders as its RIB alone does.
+std::string meadowFrame(int f) {
+    const std::string x = std::to_string(0.2 * f);
+    return "FrameBegin " + std::to_string(f) +
+           "\nFormat 64 48 1\nProjection \"perspective\" \"fov\" [50]\nShutter 0 0.5\nPixelSamples 2 2\n"
+           "Translate 0 -1 6\nWorldBegin\nSurface \"matte\"\nLightSource \"ambientlight\" 1\n"
+           "Curves \"linear\" [3] \"nonperiodic\" \"P\" [0 0 0 0.2 1 0 0.1 2 0] \"width\" [0.3 0.2 0.1]\n"
+           "Points \"P\" [-1 1 0 1 1 0] \"constantwidth\" [0.2]\n"
+           "MotionBegin [0 0.5]\nPoints \"P\" [" + x + " 0.5 0] \"constantwidth\" [0.3]\nPoints \"P\" [" + x +
+           " 0.7 0] \"constantwidth\" [0.3]\nMotionEnd\nWorldEnd\nFrameEnd\n";
+}
+
+TEST(CurvesRender, SequencesMergeStillCurvesAndPointsIntoOneRun) {
+    Log log;
+    SequenceBuilder builder(log);
+    std::string all;
+    for (int f = 1; f <= 3; ++f) {
+        all += meadowFrame(f);
+        Scene scene;
+        RibParser p(scene, log);
+        RibParser::FrameHandler add = [&](Scene&& s) { builder.add(std::move(s)); };
+        p.setFrameHandler(add);
+        p.parseString(meadowFrame(f), "frame" + std::to_string(f) + ".rib");
+        p.finish();
+    }
+    Sequence seq = builder.finish();
+    EXPECT_EQ(seq.scene.curves.size(), 1u);  // one still run over the three frames
+    EXPECT_EQ(seq.scene.points.size(), 1u + 3u);
+    RenderOptions o = test::optionsFor(Algorithm::Frames);
+    const test::RenderResult merged = test::renderScene(seq.scene, o);
+    ASSERT_EQ(merged.frames.size(), 3u);
+    Log one;
+    Scene alone = parseRibString(meadowFrame(2), "frame2.rib", one);
+    alone.settings.hasFrames = true;
+    alone.settings.firstFrame = alone.settings.lastFrame = 2;
+    test::RenderResult middle;
+    middle.frames = {merged.frame(2)};
+    EXPECT_GT(alphaSum(middle, 2), 20.0);  // the curve and the points are there
+    EXPECT_TRUE(test::identicalPixels(middle, test::renderScene(alone, o)));
 }
 
 // ---- Cost with the points seen ----------------------------------------------------------------------
