@@ -100,6 +100,8 @@ class BodyFactory final : public ChildBodyMaker {
     void reportOutgrown(ProceduralBody* p) override;
 
     uint64_t bodiesMade() const { return bodiesMade_.load(); }
+    // Bytes of what bodies share beyond their own (point clouds), for the memory estimate.
+    uint64_t sharedBytes() const { return sharedBytes_.load(); }
     // While set (bytes > 0), expanding procedurals beyond this much memory of bodies is an
     // InputError naming the budget: the ray tracer expands every procedural before the memory
     // estimate can count them, and a forest expanded whole may not fit.
@@ -151,7 +153,7 @@ class BodyFactory final : public ChildBodyMaker {
     std::vector<std::shared_ptr<const void>> clouds_;    // point bodies point at these (under mutex_)
     const Camera* camera_ = nullptr;
     std::vector<ProceduralBody*> outgrown_;
-    std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0};
+    std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0}, sharedBytes_{0};
     std::atomic<uint64_t> bodyBudget_{0}, renderBudget_{0};
     std::vector<uint64_t> proceduralsByDepth_;  // under mutex_
     std::unordered_map<std::string, std::shared_ptr<const SubdivisionShape>> shapes_;  // under mutex_

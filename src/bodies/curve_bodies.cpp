@@ -81,6 +81,7 @@ void BodyFactory::addPoints(const PointsDesc& p, uint64_t primitiveId, std::vect
         body->setPrimitiveId(primitiveId);
         out.push_back(std::move(body));
         ++bodiesMade_;
+        sharedBytes_ += cloud->bytes();
         if (keep) {
             keep->push_back(std::move(cloud));
             return;

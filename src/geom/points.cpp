@@ -106,6 +106,14 @@ std::unique_ptr<Body> PointCloud::root(const Material* material) const {
     return std::make_unique<PointsBody>(this, 0, 0, size(), keys_, material);
 }
 
+uint64_t PointCloud::bytes() const {
+    uint64_t b = sizeof(*this) + colors_.capacity() * sizeof(Color);
+    for (int k = 0; k < 2; ++k)
+        b += centre_[k].capacity() * sizeof(Vec3f) + radius_[k].capacity() * sizeof(float) +
+             nodes_[k].capacity() * sizeof(Bounds3f);
+    return b;
+}
+
 float cloudFraction(const PointCloud& cloud, double t) {
     const TimeSpan& k = cloud.keys();
     if (!cloud.moving() || !(k.t1 > k.t0) || t <= k.t0) return 0.0f;

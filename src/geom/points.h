@@ -37,6 +37,8 @@ class PointCloud {
     Color color(size_t i) const { return colors_[i]; }
     // The box of node n (over two or more points) at key k.
     const Bounds3f& nodeBox(size_t n, int k) const { return nodes_[moving_ ? k : 0][n]; }
+    // What it holds, in bytes.
+    uint64_t bytes() const;
     // The root body (a PointsBody, or a DiscBody for a single point), with this material.
     std::unique_ptr<Body> root(const Material* material) const;
 
