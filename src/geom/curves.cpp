@@ -110,7 +110,7 @@ std::vector<BezierPatch> CurveRibbons::patches(const std::vector<Vec3d>& P, cons
     // Joints: one point (the start of the segment leaving it, else the end of the one arriving),
     // the mean of the unit tangents arriving and leaving, the side direction and the width.
     const size_t joints = curveOfJoint_.size();
-    std::vector<Vec3d> point(joints), tangent(joints, Vec3d(0, 0, 0)), side(joints);
+    std::vector<Vec3d> point(joints), tangent(joints, Vec3d(0, 0, 0)), side(joints), normal(joints);
     std::vector<double> width(joints);
     std::vector<bool> placed(joints, false);
     for (size_t f = 0; f < segments_.size(); ++f) {
@@ -129,6 +129,7 @@ std::vector<BezierPatch> CurveRibbons::patches(const std::vector<Vec3d>& P, cons
             const Vec3d nc{inverse(0, 0) * n.x + inverse(0, 1) * n.y + inverse(0, 2) * n.z,
                            inverse(1, 0) * n.x + inverse(1, 1) * n.y + inverse(1, 2) * n.z,
                            inverse(2, 0) * n.x + inverse(2, 1) * n.y + inverse(2, 2) * n.z};
+            normal[j] = nc;
             side[j] = sideDirection(tangent[j], nc);
         } else {
             side[j] = sideDirection(tangent[j], perspective ? point[j] : Vec3d(0, 0, 1));
@@ -141,12 +142,27 @@ std::vector<BezierPatch> CurveRibbons::patches(const std::vector<Vec3d>& P, cons
         const size_t a = size_t(s.joint0), b = size_t(s.joint1);
         q[0] = point[a];
         q[3] = point[b];
-        // A width linear along the segment is exactly the Bezier blend of these.
-        const double w[4] = {width[a], (2 * width[a] + width[b]) / 3, (width[a] + 2 * width[b]) / 3, width[b]};
-        const Vec3d dir[4] = {side[a], side[a], side[b], side[b]};
+        // The half-width offset at u = 0, 1/3, 2/3, 1: the joints' at the ends, and across the
+        // curve's own tangent (and the line of sight, or the normal blended from the joints') at
+        // u = 1/3 and 2/3, with the width linear in u. The cubic through these four is exact for
+        // a straight ribbon, and keeps a bent segment's width where a blend of the ends' directions
+        // would narrow it.
+        Vec3d h[4];
+        h[0] = side[a] * (0.5 * width[a]);
+        h[3] = side[b] * (0.5 * width[b]);
+        for (int i = 1; i <= 2; ++i) {
+            const double u = i / 3.0, v = 1 - u;
+            const Vec3d c = q[0] * (v * v * v) + q[1] * (3 * u * v * v) + q[2] * (3 * u * u * v) + q[3] * (u * u * u);
+            Vec3d t = (q[1] - q[0]) * (v * v) + (q[2] - q[1]) * (2 * u * v) + (q[3] - q[2]) * (u * u);
+            if (!(dot(t, t) > 0)) t = lerp(tangent[a], tangent[b], u);
+            Vec3d dir = sideDirection(t, oriented ? lerp(normal[a], normal[b], u) : perspective ? c : Vec3d(0, 0, 1));
+            if (dot(dir, side[a] + side[b]) < 0) dir = -dir;  // the same side as the joints'
+            h[i] = dir * (0.5 * lerp(width[a], width[b], u));
+        }
+        const Vec3d o[4] = {h[0], (h[0] * -5.0 + h[1] * 18.0 - h[2] * 9.0 + h[3] * 2.0) / 6.0,
+                            (h[0] * 2.0 - h[1] * 9.0 + h[2] * 18.0 - h[3] * 5.0) / 6.0, h[3]};
         for (int i = 0; i < 4; ++i) {
-            const Vec3d half = dir[i] * (0.5 * w[i]);
-            const Vec3d lo = q[size_t(i)] - half, hi = q[size_t(i)] + half;
+            const Vec3d lo = q[size_t(i)] - o[i], hi = q[size_t(i)] + o[i];
             for (int r = 0; r < 4; ++r) out[f][size_t(r * 4 + i)] = Vec3f(r == 0 ? lo : r == 3 ? hi : lerp(lo, hi, r / 3.0));
         }
     }

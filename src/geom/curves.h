@@ -3,13 +3,13 @@
 // width, so the curved-body machinery (curved_body.h) bounds, splits and dices it and keeps it
 // watertight along the curve (neighbouring segments share their joint as one mesh edge).
 //
-// A ribbon at each joint (segment end) is centred on the curve and spans the joint's width along
-// its side direction: perpendicular to the curve's tangent and to the view direction (a
-// camera-facing ribbon), or to the curve's normal N when one is given. Side directions and
-// widths are taken at the joints in camera space, at each motion key, and blended along the
-// segment: the width exactly (linear), the direction as the Bezier blend of its joints' (exact
-// for a straight ribbon). Both segments at a joint use the same joint point, direction and
-// width, so their shared edge is the same line.
+// At each joint (segment end) the ribbon is centred on the curve and spans the joint's width
+// along its side direction: perpendicular to the curve's tangent and to the line of sight (a
+// camera-facing ribbon), or to the curve's normal N when one is given, in camera space at each
+// motion key. Both segments at a joint use the same joint point, direction and width, so their
+// shared edge is one line. Inside a segment the half-width offset is the cubic through its values
+// at u = 0, 1/3, 2/3, 1 (the same rule at the curve's own tangent there, the width linear in u):
+// exact for a straight ribbon.
 #pragma once
 
 #include <array>

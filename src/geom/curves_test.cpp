@@ -3,6 +3,8 @@
 // follow the basis.
 #include "geom/curves.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 namespace streyes {
@@ -64,6 +66,21 @@ TEST(CurveRibbons, PeriodicCubicCurvesCloseAndVertexWidthsFollowTheBasis) {
     // 6, 0, 0, 0 segment 0 starts 1 wide, segment 3 (points 3, 0, 1) 4 wide.
     EXPECT_NEAR(length(Vec3d(p[0][12] - p[0][0])), 1.0, 1e-5);
     EXPECT_NEAR(length(Vec3d(p[3][12] - p[3][0])), 4.0, 1e-5);
+}
+
+TEST(CurveRibbons, BentSegmentsKeepTheirWidth) {
+    // A quarter circle of radius 10 as one Bezier segment (k = 0.5523), 2 wide, facing the camera.
+    const double k = 0.5523 * 10;
+    CurvesDesc d = curves(true, {4}, {{10, 0, 5}, {10, k, 5}, {k, 10, 5}, {0, 10, 5}});
+    d.width = {2};
+    const CurveRibbons r(d);
+    const BezierPatch p = r.patches(d.P[0], Matrix4{}, false)[0];
+    for (double u : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+        Vec3d a, b, du, dv;
+        evalBezier(p, u, 0, &a, &du, &dv);
+        evalBezier(p, u, 1, &b, &du, &dv);
+        EXPECT_NEAR(length(b - a), 2.0, 0.02) << u;  // blending the ends' directions gave 1.41 at 0.5
+    }
 }
 
 }  // namespace
