@@ -149,7 +149,7 @@ class RibbonLayers {
 // once (a crack, or a double hit on a joint, would show in the hit count). Moved by (dx, dy)
 // raster pixels over frame 0's exposure when `moving` (a translation: the ribbons only move).
 // (Checked to fail: with segments that neither share their joint as a mesh edge nor meet at one
-// point, 135 pixels crack; either alone keeps the ribbon closed.)
+// point, 135 pixels crack; the shared mesh edge alone keeps it closed, even across such a gap.)
 void expectRibbonsWatertight(bool moving) {
     const double dx = moving ? 24 : 0, dy = moving ? 6 : 0;
     const std::string motion = "MotionBegin [0 1]\nTranslate 0 0 0\nTranslate " + std::to_string(dx) + " " +
