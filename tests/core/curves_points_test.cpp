@@ -350,6 +350,22 @@ TEST(CurvesRender, SequencesMergeStillCurvesAndPointsIntoOneRun) {
     EXPECT_TRUE(test::identicalPixels(middle, test::renderScene(alone, o)));
 }
 
+// Curves and points inside an object render through its instances as they do written out.
+TEST(CurvesRender, ObjectInstancesHoldCurvesAndPoints) {
+    const std::string shapes = "Curves \"linear\" [3] \"nonperiodic\" \"P\" [0 0 1 10 12 1 20 4 1] \"constantwidth\" [3]\n"
+                               "Points \"P\" [5 15 1 15 20 1] \"width\" [4 6]\n";
+    const std::string header = test::orthoHeader(96, 48, "PixelSamples 3 3\n");
+    const test::RenderResult direct = test::renderRib(header + "AttributeBegin\nTranslate 10 10 0\n" + shapes +
+                                                      "AttributeEnd\nAttributeBegin\nTranslate 60 10 0\n" + shapes +
+                                                      "AttributeEnd\nWorldEnd\n");
+    const test::RenderResult instanced = test::renderRib(
+        header + "ObjectBegin \"tuft\"\n" + shapes + "ObjectEnd\nAttributeBegin\nTranslate 10 10 0\nObjectInstance \"tuft\"\n"
+                 "AttributeEnd\nAttributeBegin\nTranslate 60 10 0\nObjectInstance \"tuft\"\nAttributeEnd\nWorldEnd\n");
+    EXPECT_TRUE(instanced.warnings.empty()) << instanced.warnings.front();
+    EXPECT_GT(alphaSum(direct), 100.0);
+    EXPECT_TRUE(test::identicalPixels(direct, instanced)) << test::maxAbsDifference(direct, instanced);
+}
+
 // ---- Cost with the points seen ----------------------------------------------------------------------
 // 100,000 moving points, of which 4,096 are in view: the split loop descends only into groups
 // that reach a bucket, so the grids diced and the splits follow the points seen.
