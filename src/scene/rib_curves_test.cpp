@@ -77,16 +77,20 @@ TEST(RibCurves, MotionBlocksMakeKeys) {
 TEST(RibCurves, BadInputNamesFileAndLine) {
     const std::string P2 = " \"P\" [0 0 0 1 0 0]";
     // Missing P, wrong counts, negative widths, unknown type or wrap.
-    EXPECT_TRUE(says(errorOf("Curves \"linear\" [2] \"nonperiodic\" \"width\" [1 1]\n"), "bad.rib:2: Curves: missing \"P\""));
+    EXPECT_TRUE(says(errorOf("Curves \"linear\" [2] \"nonperiodic\" \"width\" [1 1]\n"),
+                     "bad.rib:2: Curves: missing \"P\""));
     EXPECT_TRUE(says(errorOf("Points \"width\" [1]\n"), "bad.rib:2: Points: missing \"P\""));
-    EXPECT_TRUE(says(errorOf("Curves \"linear\" [3] \"nonperiodic\"" + P2 + "\n"), "bad.rib:2: Curves: parameter 'P' has 6 numbers, expected 9"));
+    EXPECT_TRUE(says(errorOf("Curves \"linear\" [3] \"nonperiodic\"" + P2 + "\n"),
+                     "bad.rib:2: Curves: parameter 'P' has 6 numbers, expected 9"));
     EXPECT_TRUE(says(errorOf("Curves \"linear\" [2] \"nonperiodic\"" + P2 + " \"width\" [1 2 3]\n"),
                      "bad.rib:2: Curves: parameter 'width' has 3 numbers, expected 2"));
-    EXPECT_TRUE(says(errorOf("Points \"P\" [0 0 0 1 1 1] \"width\" [1]\n"), "bad.rib:2: Points: parameter 'width' has 1 number, expected 2"));
+    EXPECT_TRUE(says(errorOf("Points \"P\" [0 0 0 1 1 1] \"width\" [1]\n"),
+                     "bad.rib:2: Points: parameter 'width' has 1 number, expected 2"));
     EXPECT_TRUE(says(errorOf("Curves \"cubic\" [5] \"nonperiodic\" \"P\" [0 0 0 1 0 0 2 0 0 3 0 0 4 0 0]\n"),
                      "bad.rib:2: Curves: curve 0 has 5 vertices: a nonperiodic cubic curve needs 4 plus a multiple of "
                      "the basis step (3)"));
-    EXPECT_TRUE(says(errorOf("Curves \"linear\" [1] \"nonperiodic\" \"P\" [0 0 0]\n"), "a linear curve needs at least 2"));
+    EXPECT_TRUE(
+        says(errorOf("Curves \"linear\" [1] \"nonperiodic\" \"P\" [0 0 0]\n"), "a linear curve needs at least 2"));
     EXPECT_TRUE(says(errorOf("Curves \"linear\" [2] \"nonperiodic\"" + P2 + " \"width\" [1 -1]\n"),
                      "bad.rib:2: Curves: \"width\" value 1 is -1: widths must be at least 0"));
     EXPECT_TRUE(says(errorOf("Points \"P\" [0 0 0] \"constantwidth\" [-2]\n"),
