@@ -22,6 +22,9 @@
 
 namespace streyes {
 
+// The shape of a Curves primitive (what does not change over its keys): its segments, joints and
+// topology. It reads `desc` (widths, normals, colours) while it is used: made and used within one
+// call of the body factory.
 class CurveRibbons {
   public:
     explicit CurveRibbons(const CurvesDesc& desc);
@@ -38,7 +41,7 @@ class CurveRibbons {
   private:
     struct Segment {
         int curve;
-        int first;      // its first control point, within the curve
+        int first;           // its first control point, within the curve
         int joint0, joint1;  // joint indices (global): the segment runs from joint0 to joint1
     };
     // A per-joint value of a primitive variable given by class (one per curve, joint or vertex).
