@@ -48,6 +48,32 @@ TEST(CurvesRender, StraightRibbonCoversWidthTimesLength) {
     EXPECT_NEAR(alphaSum(r), 12.0 * std::hypot(90.0, 30.0), 0.003 * 12.0 * std::hypot(90.0, 30.0));
 }
 
+TEST(CurvesRender, ColoursFollowTheCurveAndThePoints) {
+    // Varying Cs runs linearly along a segment; vertex Cs of a B-spline is the basis's blend at
+    // each segment end; each point takes its own.
+    const test::RenderResult r = test::renderRib(
+        test::orthoHeader(128, 64, "PixelSamples 2 2\n") +
+        "Curves \"linear\" [2] \"nonperiodic\" \"P\" [10 48 1 110 48 1] \"constantwidth\" [8] \"Cs\" [1 0 0 0 0 1]\n"
+        "Basis \"bezier\" 3 \"b-spline\" 1\n"
+        "Curves \"cubic\" [4] \"nonperiodic\" \"P\" [0 30 1 20 30 1 40 30 1 60 30 1] \"constantwidth\" [6]"
+        " \"vertex color Cs\" [0 0 0 0 0.3 0 0 0.6 0 0 0.9 0]\n"
+        "Points \"P\" [20 10 1 100 10 1] \"constantwidth\" [8] \"Cs\" [0 1 0 1 1 0]\n"
+        "WorldEnd\n");
+    auto near = [&](int x, int y, Color c) {
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(r.channel(0, x, 64 - 1 - y, ch), c[ch], 0.03) << x << "," << y;
+    };
+    near(15, 48, {0.95f, 0, 0.05f});  // raster y of scene y: 64 - y (the pixel below)
+    near(60, 48, {0.5f, 0, 0.5f});
+    near(105, 48, {0.05f, 0, 0.95f});
+    // The B-spline runs from (P0 + 4 P1 + P2) / 6 = x 20, green (0 + 1.2 + 0.6) / 6 = 0.3, to
+    // x 40, green (0.3 + 2.4 + 0.9) / 6 = 0.6, linearly in between (its speed is uniform).
+    near(22, 30, {0, 0.33f, 0});
+    near(30, 30, {0, 0.45f, 0});
+    near(38, 30, {0, 0.57f, 0});
+    near(20, 10, {0, 1, 0});
+    near(100, 10, {1, 1, 0});
+}
+
 TEST(PointsRender, DiscCoversPiRSquared) {
     const std::string header = test::orthoHeader(128, 64, "PixelSamples 4 4\n");
     for (double width : {40.0, 20.0}) {
