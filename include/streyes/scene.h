@@ -253,6 +253,32 @@ struct PolygonMeshDesc : PrimitiveDesc {
     size_t patchesBefore = 0;
 };
 
+// Curves "linear" | "cubic" [nvertices] "nonperiodic" | "periodic": flat ribbons along each curve
+// (the v Basis and its step for cubic curves). Varying values are one per segment end of each
+// curve (periodic curves: one per segment); vertex values one per control point.
+struct CurvesDesc : PrimitiveDesc {
+    bool cubic = false;
+    bool periodic = false;
+    BasisDesc basis;                          // the v basis in force at the request
+    std::vector<int> nvertices;               // control points per curve
+    std::vector<std::vector<Vec3d>> P;        // object space, one set per key
+    ParamClass widthClass = ParamClass::Constant;
+    std::vector<double> width{1.0};           // "constantwidth" (one), or "width" by its class
+    ParamClass normalClass = ParamClass::Varying;
+    std::vector<Vec3d> N;                     // empty: camera-facing ribbons; else their normals
+    ColorPrimvar Cs;                          // uniform: per curve; varying, vertex as above
+
+    int segments(size_t curve) const;         // segments of one curve
+    int varying(size_t curve) const { return segments(curve) + (periodic ? 0 : 1); }
+};
+
+// Points: camera-facing discs of diameter "width" (one per point) or "constantwidth".
+struct PointsDesc : PrimitiveDesc {
+    std::vector<std::vector<Vec3d>> P;        // object space, one set per key
+    std::vector<double> width{1.0};           // one per point, or one for all
+    ColorPrimvar Cs;                          // varying, vertex: per point
+};
+
 struct Scene {
     CameraDesc camera;
     RenderSettings settings;
@@ -263,6 +289,8 @@ struct Scene {
     std::vector<SubdivisionMeshDesc> subdivisionMeshes;
     std::vector<QuadricDesc> quadrics;
     std::vector<PolygonMeshDesc> polygonMeshes;
+    std::vector<CurvesDesc> curves;
+    std::vector<PointsDesc> points;
     std::string sourceName;  // the scene file, for messages and default output names
     int frameNumber = 0;     // FrameBegin n, when the scene was one frame of a sequence
     SourceLoc frameLoc;      // where that FrameBegin (or the frame's file) is

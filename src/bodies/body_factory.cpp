@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "bodies/motion_segments.h"
 #include "geom/curved_body.h"
 #include "geom/patch_mesh.h"
 #include "procedural/procedural.h"
@@ -89,13 +90,6 @@ std::vector<double> segmentTimes(const std::vector<double>& keys, double a, doub
 
 std::vector<double> keysOf(const MotionTransform& m) { return m.isStatic() ? std::vector<double>{} : m.times(); }
 
-// Segments meet at their keys: all but the last are half-open (TimeSpan), so that a sample exactly
-// at a key belongs to the segment that starts there.
-// The last is open too where the primitive's lifetime ends open (the next frame's exposure begins there).
-TimeSpan segmentSpan(double t0, double t1, const std::vector<double>& ts, bool lastOpen) {
-    return {t0, t1, t1 < ts.back() || (lastOpen && t1 > t0)};
-}
-
 // ---- Motion segments of curved primitives ----------------------------------------------------------
 // Where time t falls among a primitive's keys: between key i and i + 1 at fraction s (held
 // before the first key and after the last, where s = 0).
@@ -120,24 +114,6 @@ std::vector<Vec3d> pointsAt(const std::vector<double>& times, const std::vector<
     std::vector<Vec3d> r(keys[i].size());
     for (size_t c = 0; c < r.size(); ++c) r[c] = lerp(keys[i][c], keys[i + 1][c], s);
     return r;
-}
-
-// Calls add(t0, t1, i, j) for each segment between consecutive times, with i and j the indices
-// of its keys in `keys`; a run of segments over which the keys do not change is one still
-// segment; a single time (one frame, no shutter) is a segment of length zero.
-template <typename Key, typename Add>
-void forEachSegment(const std::vector<double>& ts, const std::vector<Key>& keys, Add add) {
-    if (ts.size() == 1) {
-        add(ts[0], ts[0], size_t(0), size_t(0));
-        return;
-    }
-    for (size_t i = 0; i + 1 < ts.size();) {
-        size_t j = i + 1;
-        if (keys[j] == keys[i])
-            while (j + 1 < ts.size() && keys[j + 1] == keys[i]) ++j;
-        add(ts[i], ts[j], i, j);
-        i = j;
-    }
 }
 
 }  // namespace
@@ -527,6 +503,8 @@ void BodyFactory::addPrimitives(const Scene& scene, const std::vector<GeneratedP
     for (size_t i = 0; i < meshes.size(); ++i)
         if (!polygons[i].patch && !polygons[i].faces.faces.empty())
             addPolygonFaces(meshes[i], polygons[i].faces, nextId(), out);
+    for (const CurvesDesc& c : scene.curves) addCurves(c, nextId(), out, keep);
+    for (const PointsDesc& p : scene.points) addPoints(p, nextId(), out, keep);
 }
 
 uint64_t childPrimitiveId(uint64_t parent, uint64_t index) {

@@ -65,6 +65,11 @@ class BodyFactory final : public ChildBodyMaker {
     void addSubdivisionMesh(const SubdivisionMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out,
                             Keep* keep = nullptr);
     void addQuadric(const QuadricDesc& quadric, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
+    // Curves: a BezierMesh of ribbons per motion segment (geom/curves.h), a CurvedBody per segment
+    // of each curve. Points: a PointCloud per motion segment with one root body over all its
+    // points, split spatially (geom/points.h). Both in curve_bodies.cpp.
+    void addCurves(const CurvesDesc& curves, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
+    void addPoints(const PointsDesc& points, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
     // A polygon mesh's faces (bodies/polygons.h), each as a patch.
     void addPolygonFaces(const PolygonMeshDesc& mesh, const PolygonFaces& faces, uint64_t primitiveId,
                          std::vector<BodyPtr>& out);
@@ -77,7 +82,7 @@ class BodyFactory final : public ChildBodyMaker {
     // Every primitive of a scene, or of a procedural's output with the procedurals its generator
     // made, each with the id nextId() gives, taken in the order ids have always been given: the
     // bilinear patches with the Polygons that are one (in the order read), procedurals, generated
-    // procedurals, patch meshes, subdivision meshes, quadrics, then polygons cut into faces. Ids
+    // procedurals, patch meshes, subdivision meshes, quadrics, polygons cut into faces, then curves and points. Ids
     // decide exact depth ties: this order keeps the pixels.
     void addPrimitives(const Scene& scene, const std::vector<GeneratedProcedural>& generated, int depth,
                        const std::function<uint64_t()>& nextId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
@@ -97,6 +102,8 @@ class BodyFactory final : public ChildBodyMaker {
     void reportOutgrown(ProceduralBody* p) override;
 
     uint64_t bodiesMade() const { return bodiesMade_.load(); }
+    // Bytes of what bodies share beyond their own (point clouds), for the memory estimate.
+    uint64_t sharedBytes() const { return sharedBytes_.load(); }
     // While set (bytes > 0), expanding procedurals beyond this much memory of bodies is an
     // InputError naming the budget: the ray tracer expands every procedural before the memory
     // estimate can count them, and a forest expanded whole may not fit.
@@ -146,9 +153,10 @@ class BodyFactory final : public ChildBodyMaker {
     std::map<std::pair<const std::string*, int>, const SourceLoc*> sourceOf_;
     std::vector<AttributesPtr> keepAlive_;  // materials point at these
     std::deque<std::unique_ptr<SurfaceMesh>> surfaces_;  // curved bodies point at these
+    std::vector<std::shared_ptr<const void>> clouds_;    // point bodies point at these (under mutex_)
     const Camera* camera_ = nullptr;
     std::vector<ProceduralBody*> outgrown_;
-    std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0};
+    std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0}, sharedBytes_{0};
     std::atomic<uint64_t> bodyBudget_{0}, renderBudget_{0};
     std::vector<uint64_t> proceduralsByDepth_;  // under mutex_
     std::unordered_map<std::string, std::shared_ptr<const SubdivisionShape>> shapes_;  // under mutex_

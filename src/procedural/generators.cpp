@@ -84,6 +84,8 @@ class InstanceGenerator final : public ProceduralGenerator {
         place(s.subdivisionMeshes);
         place(s.quadrics);
         place(s.polygonMeshes);
+        place(s.curves);
+        place(s.points);
     }
 
   private:

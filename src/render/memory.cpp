@@ -62,7 +62,7 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     const uint64_t pixels = uint64_t(std::max(0, s.width)) * uint64_t(std::max(0, s.height));
     const uint64_t framesPerBucket = s.spacetime ? uint64_t(e.frameBlock) : 1;
     e.baseline = kBaselineBytes;
-    e.scene = s.bodies * kBytesPerBody;
+    e.scene = s.bodies * kBytesPerBody + s.sharedBytes;
     e.trace = s.traceBytes + s.traceBytesPerFrame * uint64_t(e.frameBlock);
     e.frameImages = uint64_t(e.frameBlock) * pixels * kBytesPerPixel;
     const uint64_t S = uint64_t(std::max(1, s.samplesPerPixel));

@@ -33,6 +33,12 @@ int PatchMeshDesc::vPatches() const {
     return vPeriodic ? nv / vBasis.step : (nv - 4) / vBasis.step + 1;
 }
 
+int CurvesDesc::segments(size_t curve) const {
+    const int n = nvertices[curve];
+    if (!cubic) return periodic ? n : n - 1;
+    return periodic ? n / basis.step : (n - 4) / basis.step + 1;
+}
+
 }  // namespace streyes
 
 namespace streyes {
@@ -44,6 +50,8 @@ void setLifetime(Scene& scene, const Lifetime& life) {
     for (SubdivisionMeshDesc& p : scene.subdivisionMeshes) p.life = life;
     for (QuadricDesc& p : scene.quadrics) p.life = life;
     for (PolygonMeshDesc& p : scene.polygonMeshes) p.life = life;
+    for (CurvesDesc& p : scene.curves) p.life = life;
+    for (PointsDesc& p : scene.points) p.life = life;
 }
 
 }  // namespace streyes

@@ -7,6 +7,7 @@
 // transform and attributes in force at ObjectInstance (its own motion too: a MotionBegin block of
 // transforms before it). Instances share the object: the scene keeps it once, and an instance is
 // a procedural (procedural.h) whose bound is the object's, culled before it is expanded.
+#include <algorithm>
 #include <limits>
 
 #include "scene/rib_requests.h"
@@ -72,6 +73,20 @@ Bounds3d objectBound(const Scene& s) {
     for (const QuadricDesc& q : s.quadrics)
         for (const auto& key : q.params) extendByBox(box, quadricBox(q.kind, key), q.objectToWorld);
     for (const ProceduralDesc& p : s.procedurals) extendByBox(box, p.bound, p.objectToWorld);
+    // Ribbons and discs reach half their widest width beyond their points (a cubic curve lies in
+    // the hull of its control points).
+    auto grown = [&](const std::vector<std::vector<Vec3d>>& keys, const std::vector<double>& width,
+                     const MotionTransform& xf) {
+        double r = 0;
+        for (double w : width) r = std::max(r, 0.5 * w);
+        for (const auto& key : keys) {
+            Bounds3d b;
+            for (const Vec3d& q : key) b.extend(q);
+            if (!b.empty()) extendByBox(box, Bounds3d(b.lo - Vec3d(r, r, r), b.hi + Vec3d(r, r, r)), xf);
+        }
+    };
+    for (const CurvesDesc& c : s.curves) grown(c.P, c.width, c.objectToWorld);
+    for (const PointsDesc& p : s.points) grown(p.P, p.width, p.objectToWorld);
     return box;
 }
 

@@ -99,6 +99,8 @@ std::map<std::string, RibParamDecl> predeclaredParams() {
     declare("s", C::Varying, T::Float);
     declare("t", C::Varying, T::Float);
     declare("st", C::Varying, T::Float, 2);
+    declare("width", C::Varying, T::Float);        // Curves, Points
+    declare("constantwidth", C::Constant, T::Float);
     for (const char* f : {"Ka", "Kd", "Ks", "roughness", "intensity", "fov", "falloff"})
         declare(f, C::Uniform, T::Float);
     declare("specularcolor", C::Uniform, T::Color);

@@ -349,16 +349,17 @@ TEST(RibGeometry, PwDividesByW) {
 TEST(RibGeometry, UnsupportedGeometryIsSkippedWithOneWarning) {
     Log log;
     Scene scene = parse(
-        "WorldBegin\nPoints \"P\" [0 0 0]\nPoints \"P\" [1 1 1]\n"
-        "Curves \"linear\" [2] \"nonperiodic\" \"P\" [0 0 0 1 1 1]\nWorldEnd\n",
+        "WorldBegin\nBlobby 1 [1001 0] [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1] [\"\"]\n"
+        "Blobby 1 [1001 0] [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1] [\"\"]\n"
+        "NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"P\" [0 0 0 1 0 0 0 1 0 1 1 0]\nWorldEnd\n",
         log);
     EXPECT_TRUE(scene.patches.empty());
     EXPECT_TRUE(scene.patchMeshes.empty());
     EXPECT_TRUE(scene.polygonMeshes.empty());
     std::vector<std::string> w = log.warnings();
     ASSERT_EQ(w.size(), 2u);
-    EXPECT_NE(w[0].find("test.rib:2: warning: unsupported request 'Points'"), std::string::npos) << w[0];
-    EXPECT_NE(w[1].find("test.rib:4: warning: unsupported request 'Curves'"), std::string::npos) << w[1];
+    EXPECT_NE(w[0].find("test.rib:2: warning: unsupported request 'Blobby'"), std::string::npos) << w[0];
+    EXPECT_NE(w[1].find("test.rib:4: warning: unsupported request 'NuPatch'"), std::string::npos) << w[1];
 }
 
 // ---- Declarations ---------------------------------------------------------------------------------

@@ -196,6 +196,10 @@ void SequenceBuilder::add(Scene&& frame) {
     seen.clear();
     for (QuadricDesc& p : frame.quadrics) addPrimitive('q', std::move(p), m.quadrics, seen, f);
     seen.clear();
+    for (CurvesDesc& p : frame.curves) addPrimitive('c', std::move(p), m.curves, seen, f);
+    seen.clear();
+    for (PointsDesc& p : frame.points) addPrimitive('o', std::move(p), m.points, seen, f);
+    seen.clear();
     for (PolygonMeshDesc& p : frame.polygonMeshes) {
         // Ids follow the merged order: a Polygon that is one patch takes its place after the
         // patches merged so far.
@@ -220,7 +224,7 @@ Sequence SequenceBuilder::finish() {
     };
     Scene& m = out_.scene;
     close(m.patches), close(m.procedurals), close(m.patchMeshes), close(m.subdivisionMeshes), close(m.quadrics);
-    close(m.polygonMeshes);
+    close(m.polygonMeshes), close(m.curves), close(m.points);
     out_.stats.runs = out_.runs.size();
     out_.isSequence = true;
     tracks_.clear();

@@ -88,6 +88,16 @@ bool sameData(const PolygonMeshDesc& a, const PolygonMeshDesc& b) {
            samePrimitive(a, b);
 }
 
+bool sameData(const CurvesDesc& a, const CurvesDesc& b) {
+    return a.cubic == b.cubic && a.periodic == b.periodic && sameBasis(a.basis, b.basis) && a.nvertices == b.nvertices &&
+           a.P == b.P && a.widthClass == b.widthClass && a.width == b.width && a.normalClass == b.normalClass &&
+           a.N == b.N && sameColors(a.Cs, b.Cs) && samePrimitive(a, b);
+}
+
+bool sameData(const PointsDesc& a, const PointsDesc& b) {
+    return a.P == b.P && a.width == b.width && sameColors(a.Cs, b.Cs) && samePrimitive(a, b);
+}
+
 // An instance's object (ObjectBegin): each frame defines its own, so compare what they hold.
 bool sameObject(const std::shared_ptr<const Scene>& a, const std::shared_ptr<const Scene>& b) {
     if (a == b) return true;
@@ -100,7 +110,7 @@ bool sameObject(const std::shared_ptr<const Scene>& a, const std::shared_ptr<con
     };
     return same(a->patches, b->patches) && same(a->procedurals, b->procedurals) && same(a->patchMeshes, b->patchMeshes) &&
            same(a->subdivisionMeshes, b->subdivisionMeshes) && same(a->quadrics, b->quadrics) &&
-           same(a->polygonMeshes, b->polygonMeshes);
+           same(a->polygonMeshes, b->polygonMeshes) && same(a->curves, b->curves) && same(a->points, b->points);
 }
 
 bool stillWithinFrame(const BilinearPatchDesc& p) { return p.P.size() == 1 && p.objectToWorld.isStatic(); }

@@ -18,6 +18,8 @@ bool sameData(const ProceduralDesc& a, const ProceduralDesc& b);
 bool sameData(const PatchMeshDesc& a, const PatchMeshDesc& b);
 bool sameData(const SubdivisionMeshDesc& a, const SubdivisionMeshDesc& b);
 bool sameData(const QuadricDesc& a, const QuadricDesc& b);
+bool sameData(const CurvesDesc& a, const CurvesDesc& b);
+bool sameData(const PointsDesc& a, const PointsDesc& b);
 bool sameData(const PolygonMeshDesc& a, const PolygonMeshDesc& b);
 
 // Does the primitive stand still within its frame (no motion keys of its own or of its transform)?

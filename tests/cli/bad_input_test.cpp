@@ -55,6 +55,20 @@ std::vector<Malformed> malformedCases() {
          "MotionBegin is never closed"},
         {"MotionEndAlone", "WorldBegin\n\nMotionEnd\nWorldEnd\n", "MotionEnd without MotionBegin"},
         {"BinaryBytes", std::string("WorldBegin\n\n\x01\x02\xff\xfe", 16) + "\nWorldEnd\n", "binary RIB"},
+        {"CurvesWithoutP", "WorldBegin\n\nCurves \"linear\" [2] \"nonperiodic\" \"width\" [1 1]\nWorldEnd\n",
+         "missing \"P\""},
+        {"CurvesVertexCount",
+         "WorldBegin\n\nCurves \"cubic\" [5] \"nonperiodic\" \"P\" [0 0 0 1 0 0 2 0 0 3 0 0 4 0 0]\nWorldEnd\n",
+         "a nonperiodic cubic curve needs 4 plus a multiple of the basis step"},
+        {"CurvesNegativeWidth",
+         "WorldBegin\n\nCurves \"linear\" [2] \"nonperiodic\" \"P\" [0 0 5 1 0 5] \"width\" [1 -1]\nWorldEnd\n",
+         "widths must be at least 0"},
+        {"CurvesUnknownType", "WorldBegin\n\nCurves \"quadratic\" [2] \"nonperiodic\" \"P\" [0 0 5 1 0 5]\nWorldEnd\n",
+         "the curve type must be \"linear\" or \"cubic\""},
+        {"CurvesUnknownWrap", "WorldBegin\n\nCurves \"linear\" [2] \"closed\" \"P\" [0 0 5 1 0 5]\nWorldEnd\n",
+         "the wrap must be \"periodic\" or \"nonperiodic\""},
+        {"PointsWidthCount", "WorldBegin\n\nPoints \"P\" [0 0 5 1 0 5] \"width\" [1]\nWorldEnd\n",
+         "'width' has 1 number, expected 2"},
     };
 }
 
