@@ -70,6 +70,7 @@ struct Attributes {
     Color opacity{1, 1, 1};                      // Opacity (Os)
     ShaderDesc surface{"defaultsurface", {}, {}, {}};
     ShaderDesc displacement;                     // Displacement; no name: none
+    ShaderDesc atmosphere;                       // Atmosphere (a volume shader); no name: none
     // Attribute "displacementbound" "sphere" r: how far displacement may move a point, in the
     // "coordinatesystem" named there ("object", "shader", "world" or "camera").
     double displacementBound = 0;
@@ -123,6 +124,7 @@ struct RenderSettings {
     // Option "shading" "string builtin" ["off"]: shade constant, matte, plastic and
     // defaultsurface with their Shading Language sources too (the same pixels, slower).
     bool builtinShading = true;
+    ShaderDesc imager;  // Imager: run over each finished frame's pixels; no name: none
 };
 
 // ---- Lights and geometry --------------------------------------------------------------------------

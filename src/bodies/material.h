@@ -34,6 +34,8 @@ struct Material {
     // far it may move a point in camera space: the split loop grows the body's bounds by it.
     std::shared_ptr<const sl::ShaderInstance> displacement;
     float displacementBound = 0;
+    // A volume shader (Atmosphere) run on the surface's colour after the surface shader.
+    std::shared_ptr<const sl::ShaderInstance> atmosphere;
 };
 
 // Binds a material's Shading Language shaders (made by the shading stage, which the bodies

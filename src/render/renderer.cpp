@@ -303,11 +303,12 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                 break;
             }
             t = Clock::now();
-            for (const FrameImage& img : images) {
+            for (FrameImage& img : images) {
                 if (alreadyWritten(img.frame)) {
                     ++stats.framesSkipped;
                     continue;
                 }
+                shaders_->runImager(img);
                 sink(img);
             }
             writeSeconds += std::chrono::duration<double>(Clock::now() - t).count();

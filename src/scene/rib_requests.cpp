@@ -128,9 +128,9 @@ void addUnsupportedRequests(RibRequestTable& table) {
     // clang-format off
     // RIB requests outside the subset: warned about once and skipped.
     for (const char* name :
-         {"Exposure", "Quantize", "Hider", "Imager", "GeometricApproximation", "Sides", "Orientation",
+         {"Exposure", "Quantize", "Hider", "GeometricApproximation", "Sides", "Orientation",
           "ReverseOrientation", "ColorSamples", "CropWindow", "DepthOfField", "RelativeDetail",
-          "PixelVariance", "Atmosphere", "Interior", "Exterior", "Deformation",
+          "PixelVariance", "Interior", "Exterior", "Deformation",
           "TextureCoordinates", "Matte", "Bound", "Detail", "DetailRange", "Perspective", "Skew",
           "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "ShadingInterpolation", "AreaLightSource", "SolidBegin",
           "SolidEnd", "ArchiveEnd", "MakeTexture", "MakeBump", "MakeLatLongEnvironment",

@@ -42,6 +42,15 @@ void displacement(RibParser& reader, RibArgs& args) {
     reader.state().mutableAttributes().displacement = ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm};
 }
 
+// Atmosphere "name" parameters: a volume shader (fog, depthcue) run on every surface point after
+// its surface shader, over the line from the eye (I). Atmosphere "null" turns it off.
+void atmosphere(RibParser& reader, RibArgs& args) {
+    std::string name = args.string("shader name");
+    ParamList params = reader.readParams(args, true);
+    if (name == "null") name.clear();
+    reader.state().mutableAttributes().atmosphere = ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm};
+}
+
 // A light is on in the attribute block where it is declared (and the blocks inside it): its index
 // goes into the current attributes' light list, which AttributeEnd restores.
 void lightSource(RibParser& reader, RibArgs& args) {
@@ -104,6 +113,7 @@ void illuminate(RibParser& reader, RibArgs& args) {
 void addShadingRequests(RibRequestTable& table) {
     table.add("Surface", {surface, "Surface \"name\" parameters..."});
     table.add("Displacement", {displacement, "Displacement \"name\" parameters..."});
+    table.add("Atmosphere", {atmosphere, "Atmosphere \"name\" parameters..."});
     table.add("LightSource", {lightSource, "LightSource \"name\" handle parameters..."});
     table.add("Illuminate", {illuminate, "Illuminate handle onoff", RibPhase::World});
 }

@@ -69,9 +69,37 @@ void GridShader::shadeSurface(Grid& grid, int k, double time) {
     if (!m.surface) {
         shadeGridSlot(grid, k, time, lights_, !camera_.perspective(), lightScratch_);
         builtinPoints_ += uint64_t(grid.vertexCount());
-        return;
+    } else {
+        runSurface(m, grid, k, time);
     }
-    runSurface(m, grid, k, time);
+    if (m.atmosphere) runAtmosphere(m, grid, k, time);
+}
+
+// The volume shader takes the surface's Ci and gives what reaches the eye. The parts of the lights
+// that cast shadows go through it by superposition too: Cl' = atm(Ci + Cl) - atm(Ci), exact for
+// atmospheres affine in Ci (fog, depthcue).
+void GridShader::runAtmosphere(const Material& m, Grid& grid, int k, double time) {
+    if (!vm_) vm_ = std::make_unique<sl::ShadingVM>();
+    prepare(m, grid, k, time, m.attributes ? &m.attributes->atmosphere.shaderToWorld : nullptr);
+    const int n = grid.vertexCount();
+    const int slots = grid.shadowSlots;
+    base_.assign(grid.Ci[k].begin(), grid.Ci[k].end());  // the surface's colour, kept for the slots
+    sgrid_.set(sl::Global::Ci, sl::ValueRef::aos(base_.data()));
+    vm_->run(*m.atmosphere, sgrid_, {});
+    sl::ValueRef ci = vm_->result(sl::Global::Ci);
+    for (int i = 0; i < n; ++i) grid.Ci[k][size_t(i)] = ci.vec(i);
+    if (slots == 0) return;
+    std::vector<Color>& lit = withLight_;
+    lit.resize(size_t(n));
+    sgrid_.set(sl::Global::Ci, sl::ValueRef::aos(lit.data()));
+    Color* cl = grid.Cl[k].data();
+    for (int s = 0; s < slots; ++s) {
+        for (int i = 0; i < n; ++i) lit[size_t(i)] = base_[size_t(i)] + cl[size_t(i) * size_t(slots) + size_t(s)];
+        vm_->run(*m.atmosphere, sgrid_, {});
+        ci = vm_->result(sl::Global::Ci);
+        for (int i = 0; i < n; ++i)
+            cl[size_t(i) * size_t(slots) + size_t(s)] = ci.vec(i) - grid.Ci[k][size_t(i)];
+    }
 }
 
 // The shading grid's inputs for slot k: views of the grid's arrays, u and v over the piece.
@@ -88,16 +116,24 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
             u_[size_t(grid.index(i, j))] = i == grid.nu ? grid.u1 : grid.u0 + float(i) * du;
             v_[size_t(grid.index(i, j))] = j == grid.nv ? grid.v1 : grid.v0 + float(j) * dv;
         }
-    static const Vec3f kEye{0, 0, 0}, kOrthoI{0, 0, 1};
+    static const Vec3f kEye{0, 0, 0};
     using sl::Global;
     using sl::ValueRef;
     const ValueRef P = ValueRef::aos(grid.P[k].data());
     sgrid_.set(Global::P, P);
     sgrid_.set(Global::N, ValueRef::aos(grid.N[k].data()));
     sgrid_.set(Global::Ng, ValueRef::aos(grid.N[k].data()));
-    sgrid_.set(Global::I, camera_.perspective() ? P : ValueRef::uniform(kOrthoI));
+    if (camera_.perspective()) {
+        sgrid_.set(Global::I, P);  // from the eye at the origin
+    } else {  // from the eye plane z = 0, along +z
+        orthoI_.resize(size_t(n));
+        for (int i = 0; i < n; ++i) orthoI_[size_t(i)] = {0, 0, grid.P[k][size_t(i)].z};
+        sgrid_.set(Global::I, ValueRef::aos(orthoI_.data()));
+    }
     sgrid_.set(Global::E, ValueRef::uniform(kEye));
     sgrid_.set(Global::Cs, ValueRef::aos(grid.Cs.data()));
+    sgrid_.set(Global::Ci, ValueRef{});  // outputs: only an atmosphere reads them as inputs
+    sgrid_.set(Global::Oi, ValueRef::uniform(m.Os));
     sgrid_.set(Global::Os, ValueRef::uniform(m.Os));
     sgrid_.set(Global::u, ValueRef::soa(u_.data()));
     sgrid_.set(Global::v, ValueRef::soa(v_.data()));

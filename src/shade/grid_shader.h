@@ -5,7 +5,8 @@
 // allocates nothing once warm.
 //
 // What a shader sees (RI Spec 3.2, section 12.1), all in camera ("current") space: P, N and Ng
-// (the diced geometric normal), I (from the eye; +z under an orthographic camera), E (the eye),
+// (the diced geometric normal), I (from the eye; from the eye plane along +z under an
+// orthographic camera), E (the eye),
 // Cs and Os, u and v (the piece's parameter rectangle, Body::uv, over the grid), s = u and t = v,
 // du and dv, time. "world", "object" and "shader" spaces come from the camera and the transform
 // in force where the surface was declared; lights see their own transform as "shader" space.
@@ -53,6 +54,7 @@ class GridShader {
     void displace(const Material& m, Grid& grid, int k, double time);
     void shadeSurface(Grid& grid, int k, double time);
     void runSurface(const Material& m, Grid& grid, int k, double time);
+    void runAtmosphere(const Material& m, Grid& grid, int k, double time);
     void prepare(const Material& m, const Grid& grid, int k, double time, const MotionTransform* shaderToWorld);
 
     const SceneShaders* shaders_;
@@ -64,7 +66,8 @@ class GridShader {
     std::vector<float> u_, v_;
     float du_ = 0, dv_ = 0, time_ = 0;  // uniform inputs the shading grid points at
     std::vector<sl::LightRef> unshadowed_, withOne_;
-    std::vector<Color> base_;
+    std::vector<Color> base_, withLight_;
+    std::vector<Vec3f> orthoI_;  // I under an orthographic camera
     Grid hit_;  // one point, for shadeHit
     uint64_t builtinPoints_ = 0;
 };

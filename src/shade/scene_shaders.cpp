@@ -3,6 +3,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include "shade/vm/vm.h"
+
 namespace streyes {
 
 namespace {
@@ -74,6 +76,9 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log)
     searchPathSet_ = !scene.settings.shaderSearchPath.empty();
     if (searchPathSet_) cache_->setSearchPath(scene.settings.shaderSearchPath);
 
+    if (!scene.settings.imager.name.empty())
+        imager_ = instance(scene.settings.imager.name, scene.settings.imager.params, scene.settings.imager.loc,
+                           sl::ShaderType::Imager);
     for (const LightDesc& d : scene.lights) {
         builtinLight_.push_back(isBuiltinLight(d.type));
         lights_.push_back(instance(d.type, d.params, d.loc, sl::ShaderType::Light));
@@ -108,7 +113,38 @@ std::shared_ptr<sl::ShaderInstance> SceneShaders::instance(const std::string& na
     return shader;
 }
 
+void SceneShaders::runImager(FrameImage& frame) const {
+    if (!imager_ || frame.width == 0 || frame.height == 0) return;
+    const int n = frame.width * frame.height;
+    std::vector<float> px(static_cast<size_t>(n)), py(static_cast<size_t>(n));
+    for (int y = 0; y < frame.height; ++y)
+        for (int x = 0; x < frame.width; ++x) {
+            px[size_t(y * frame.width + x)] = float(x) + 0.5f;
+            py[size_t(y * frame.width + x)] = float(y) + 0.5f;
+        }
+    float* rgba = frame.rgba.data();
+    sl::ShadingGrid g;
+    g.setShape(frame.width - 1, frame.height - 1);
+    g.set(sl::Global::Ci, sl::ValueRef{{rgba, rgba + 1, rgba + 2}, 4});
+    g.set(sl::Global::Oi, sl::ValueRef{{rgba + 3, rgba + 3, rgba + 3}, 4});
+    g.set(sl::Global::alpha, sl::ValueRef{{rgba + 3, nullptr, nullptr}, 4});
+    g.set(sl::Global::P, sl::ValueRef::soa(px.data(), py.data(), frame.z.data()));
+    sl::ShadingVM vm;
+    vm.run(*imager_, g);
+    const sl::ValueRef ci = vm.result(sl::Global::Ci), alpha = vm.result(sl::Global::alpha);
+    std::vector<float> out(size_t(n) * 4);
+    for (int i = 0; i < n; ++i) {
+        for (int c = 0; c < 3; ++c) out[size_t(i) * 4 + size_t(c)] = ci.valid() ? ci.at(c, i) : rgba[size_t(i) * 4 + size_t(c)];
+        out[size_t(i) * 4 + 3] = alpha.valid() ? alpha.at(0, i) : rgba[size_t(i) * 4 + 3];
+    }
+    frame.rgba = std::move(out);
+}
+
 void SceneShaders::bind(Material& m, const Attributes& a) const {
+    if (!a.atmosphere.name.empty()) {
+        m.atmosphere = instance(a.atmosphere.name, a.atmosphere.params, a.atmosphere.loc, sl::ShaderType::Volume);
+        if (m.atmosphere) m.readsTime = m.atmosphere->program().globalReg[size_t(sl::Global::time)] >= 0;
+    }
     if (!a.displacement.name.empty()) {
         m.displacement = instance(a.displacement.name, a.displacement.params, a.displacement.loc,
                                   sl::ShaderType::Displacement);
@@ -121,7 +157,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
             else if (space == "world")
                 scale = largestStretch(worldToCamera_);
             m.displacementBound = float(a.displacementBound * scale);
-            m.readsTime = m.displacement->program().globalReg[size_t(sl::Global::time)] >= 0;
+            m.readsTime = m.readsTime || m.displacement->program().globalReg[size_t(sl::Global::time)] >= 0;
         }
     }
     bool builtinLights = true;

@@ -16,6 +16,7 @@
 #include "shade/sl/compiler.h"
 #include "shade/vm/shader_instance.h"
 #include "streyes/error.h"
+#include "streyes/frame_image.h"
 #include "streyes/scene.h"
 
 namespace streyes {
@@ -34,6 +35,11 @@ class SceneShaders final : public MaterialBinder {
     // Sets material.surface (and readsTime) unless the built-in shading serves it.
     void bind(Material& material, const Attributes& attributes) const override;
 
+    // Runs the scene's Imager shader over a finished frame (nothing without one): Ci and alpha
+    // are the pixel's, P its raster position (x + 0.5, y + 0.5, depth).
+    void runImager(FrameImage& frame) const;
+    bool hasImager() const { return imager_ != nullptr; }
+
     // Light `i` of the scene as a shader (null when its shader was not found).
     const sl::ShaderInstance* light(size_t i) const { return i < lights_.size() ? lights_[i].get() : nullptr; }
 
@@ -46,6 +52,7 @@ class SceneShaders final : public MaterialBinder {
     bool searchPathSet_ = false;
     std::vector<std::shared_ptr<sl::ShaderInstance>> lights_;
     std::vector<bool> builtinLight_;
+    std::shared_ptr<sl::ShaderInstance> imager_;
     bool builtinShading_ = true;
     Log& log_;
 };

@@ -271,3 +271,43 @@ TEST(ShadingLanguage, OcclusionCullingStaysExactWithDisplacement) {
 
 }  // namespace
 }  // namespace streyes
+
+namespace streyes {
+namespace {
+
+TEST(ShadingLanguage, FogMixesTowardsTheBackgroundOverTheDistance) {
+    // A red plane 10 units away in fog of distance 10: d = 1 - exp(-1) of the way to blue.
+    const std::string world = "WorldBegin\nColor [1 0 0]\nSurface \"constant\"\n"
+                              "Atmosphere \"fog\" \"distance\" 10 \"background\" [0 0 1]\n" +
+                              test::square(0, 8, 0, 8, 10) + "WorldEnd\n";
+    const float d = 1 - std::exp(-1.0f);
+    for (const char* builtin : {"on", "off"}) {
+        test::RenderResult r = test::renderRib(view(8, 8, std::string("Option \"shading\" \"string builtin\" \"") + builtin + "\"\n") + world);
+        EXPECT_NEAR(r.channel(0, 4, 4, 0), 1 - d, 1e-5f) << builtin;
+        EXPECT_NEAR(r.channel(0, 4, 4, 1), 0, 1e-6f) << builtin;
+        EXPECT_NEAR(r.channel(0, 4, 4, 2), d, 1e-5f) << builtin;
+    }
+}
+
+}  // namespace
+}  // namespace streyes
+
+namespace streyes {
+namespace {
+
+TEST(ShadingLanguage, ImagerPaintsBehindWhatWasRendered) {
+    ShaderDir shaders;
+    shaders.add("backdrop", "imager backdrop(color bg = 0) { Ci += (1 - alpha) * bg; alpha = 1; }\n");
+    const std::string rib = view(8, 8, shaders.option() + "Imager \"backdrop\" \"bg\" [0 0 1]\n") +
+                            "WorldBegin\nColor [1 0 0]\nSurface \"constant\"\n" + test::square(0, 4, 0, 8, 10) + "WorldEnd\n";
+    test::RenderResult r = test::renderRib(rib);
+    for (int x = 0; x < 8; ++x) {
+        SCOPED_TRACE(x);
+        EXPECT_EQ(r.channel(0, x, 3, 0), x < 4 ? 1.0f : 0.0f);
+        EXPECT_EQ(r.channel(0, x, 3, 2), x < 4 ? 0.0f : 1.0f);
+        EXPECT_EQ(r.alpha(0, x, 3), 1.0f);
+    }
+}
+
+}  // namespace
+}  // namespace streyes
