@@ -63,6 +63,7 @@ class BodyFactory final : public ChildBodyMaker {
     void addSubdivisionMesh(const SubdivisionMeshDesc& mesh, uint64_t primitiveId, std::vector<BodyPtr>& out,
                             Keep* keep = nullptr);
     void addQuadric(const QuadricDesc& quadric, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
+    void addNuPatch(const NuPatchDesc& patch, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
     // A polygon mesh's faces (bodies/polygons.h), each as a patch.
     void addPolygonFaces(const PolygonMeshDesc& mesh, const PolygonFaces& faces, uint64_t primitiveId,
                          std::vector<BodyPtr>& out);
@@ -75,7 +76,7 @@ class BodyFactory final : public ChildBodyMaker {
     // Every primitive of a scene, or of a procedural's output with the procedurals its generator
     // made, each with the id nextId() gives, taken in the order ids have always been given: the
     // bilinear patches with the Polygons that are one (in the order read), procedurals, generated
-    // procedurals, patch meshes, subdivision meshes, quadrics, then polygons cut into faces. Ids
+    // procedurals, patch meshes, subdivision meshes, quadrics, polygons cut into faces, then NuPatches. Ids
     // decide exact depth ties: this order keeps the pixels.
     void addPrimitives(const Scene& scene, const std::vector<GeneratedProcedural>& generated, int depth,
                        const std::function<uint64_t()>& nextId, std::vector<BodyPtr>& out, Keep* keep = nullptr);

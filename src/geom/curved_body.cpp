@@ -573,6 +573,8 @@ void CurvedBody::dice(int nu, int nv, Grid& grid) const {
             grid.Cs[idx] = bilerp(cs, float(u), float(v));
         }
     }
+    // Micropolygons whose centre a trim curve cuts away (a NuPatch's TrimCurve); none elsewhere.
+    mesh_->trimQuads(face_, rect_, NU, NV, grid.hole);
 }
 
 }  // namespace streyes

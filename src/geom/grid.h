@@ -25,6 +25,9 @@ struct Grid {
     std::vector<Vec3f> P[2];      // camera-space positions at t0, t1
     std::vector<Vec3f> N[2];      // geometric normals (not normalised)
     std::vector<Color> Cs;        // surface colour per vertex
+    // Micropolygons cut away by a trim curve (nu x nv, u fastest; non-zero: not rasterized).
+    // Empty, as after resize(), when none is.
+    std::vector<uint8_t> hole;
     std::vector<Color> Ci[2];     // shaded colour at t0, t1 (written by the shading stage)
     // Lights that cast shadows: their contribution per vertex (shadowSlots colours a vertex, at
     // t0 and t1), kept out of Ci for the per-sample shadow test. Set shadowSlots before dicing.
@@ -45,6 +48,7 @@ struct Grid {
             if (shadowSlots) Cl[k].resize(n * size_t(shadowSlots));
         }
         Cs.resize(n);
+        hole.clear();
     }
 };
 

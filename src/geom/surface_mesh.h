@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -88,6 +89,10 @@ class SurfaceMesh {
     // The Bezier control points of face f over r at key k, when the face is one bicubic
     // polynomial there (their hull is then a bound that shrinks with r).
     virtual bool bezier(int f, const ParamRect& r, int k, BezierPatch* cp) const;
+
+    // Trimming: for an nu x nv grid over r of face f, hole[j * nu + i] = 1 where micropolygon (i, j)
+    // is cut away. False (hole untouched) where nothing is cut; a NuPatch with TrimCurve overrides it.
+    virtual bool trimQuads(int f, const ParamRect& r, int nu, int nv, std::vector<uint8_t>& hole) const;
 
     // Face f's own map at (u, v), key k: position and geometric normal (not unit length). Where
     // the derivatives vanish (a pole, a collapsed edge) the normal is taken a little inside.

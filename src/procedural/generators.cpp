@@ -81,6 +81,7 @@ class InstanceGenerator final : public ProceduralGenerator {
         place(s.subdivisionMeshes);
         place(s.quadrics);
         place(s.polygonMeshes);
+        place(s.nuPatches);
     }
 
   private:

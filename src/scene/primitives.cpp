@@ -44,6 +44,7 @@ void setLifetime(Scene& scene, const Lifetime& life) {
     for (SubdivisionMeshDesc& p : scene.subdivisionMeshes) p.life = life;
     for (QuadricDesc& p : scene.quadrics) p.life = life;
     for (PolygonMeshDesc& p : scene.polygonMeshes) p.life = life;
+    for (NuPatchDesc& p : scene.nuPatches) p.life = life;
 }
 
 }  // namespace streyes

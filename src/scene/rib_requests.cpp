@@ -33,7 +33,8 @@ const RibRequestTable& ribRequests() {
         RibRequestTable t;
         for (auto add : {addUnsupportedRequests, addParamRequests, addOptionRequests, addBlockRequests,
                          addTransformRequests, addAttributeRequests, addShadingRequests, addPatchRequests,
-                         addPolygonRequests, addSubdivisionRequests, addQuadricRequests, addArchiveRequests, addObjectRequests})
+                         addPolygonRequests, addSubdivisionRequests, addQuadricRequests, addArchiveRequests, addObjectRequests,
+                         addNurbsRequests})
             add(t);
         return t;
     }();
@@ -141,7 +142,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
         table.add(name, {unsupported});
     // Geometry outside the subset: skipped with a warning, also as the keys of a motion block.
     for (const char* name :
-         {"NuPatch", "TrimCurve", "HierarchicalSubdivisionMesh", "Points", "Curves", "Blobby", "Procedural2",
+         {"HierarchicalSubdivisionMesh", "Points", "Curves", "Blobby", "Procedural2",
           "Geometry", "Volume"})
         table.add(name, {unsupportedGeometry, "", RibPhase::World, unsupportedGeometryKeys});
     // clang-format on

@@ -84,5 +84,6 @@ void addPolygonRequests(RibRequestTable& table);      // rib_polygons.cpp: Polyg
 void addSubdivisionRequests(RibRequestTable& table);  // rib_subdivision.cpp: SubdivisionMesh
 void addQuadricRequests(RibRequestTable& table);      // rib_quadrics.cpp: Sphere, Cylinder, ...
 void addArchiveRequests(RibRequestTable& table);      // rib_archives.cpp: ReadArchive, Procedural
+void addNurbsRequests(RibRequestTable& table);        // rib_nurbs.cpp: NuPatch, TrimCurve
 
 }  // namespace streyes

@@ -19,6 +19,7 @@ bool sameData(const PatchMeshDesc& a, const PatchMeshDesc& b);
 bool sameData(const SubdivisionMeshDesc& a, const SubdivisionMeshDesc& b);
 bool sameData(const QuadricDesc& a, const QuadricDesc& b);
 bool sameData(const PolygonMeshDesc& a, const PolygonMeshDesc& b);
+bool sameData(const NuPatchDesc& a, const NuPatchDesc& b);
 
 // Does the primitive stand still within its frame (no motion keys of its own or of its transform)?
 bool stillWithinFrame(const BilinearPatchDesc& p);
