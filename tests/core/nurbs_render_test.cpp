@@ -1,0 +1,188 @@
+// NuPatch and TrimCurve end to end, against analytic answers: a NURBS disc's and sphere's
+// silhouettes, a trimmed hole's area, a moving patch's blur; and the reader's errors for bad
+// parameters.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "nurbs_rib.h"
+#include "streyes/rib.h"
+#include "test_util.h"
+
+namespace streyes {
+namespace {
+
+using test::RenderResult;
+using test::renderRib;
+
+double alphaSum(const RenderResult& r, int frame) {
+    const FrameImage& img = r.frame(frame);
+    double s = 0;
+    for (size_t i = 3; i < img.rgba.size(); i += 4) s += img.rgba[i];
+    return s;
+}
+
+// Area of the unit-pixel [px, px+1] x [py, py+1] inside the circle of radius r about (cx, cy), by
+// 256 x 256 point sampling (error far below a sample of the render).
+double pixelInCircle(int px, int py, double cx, double cy, double r) {
+    int in = 0;
+    for (int j = 0; j < 256; ++j)
+        for (int i = 0; i < 256; ++i) {
+            const double x = px + (i + 0.5) / 256 - cx, y = py + (j + 0.5) / 256 - cy;
+            in += x * x + y * y <= r * r;
+        }
+    return in / 65536.0;
+}
+
+TEST(NurbsRender, DiscSilhouetteIsTheCircle) {
+    // Radius 20 pixels about (32, 32), seen straight on (orthographic, a unit is a pixel).
+    const std::string rib = test::orthoHeader(64, 64, "PixelSamples 8 8\nShadingRate 0.25\n") +
+                            "Translate 32 32 0\n" + test::nurbsDisc(20, 5) + "WorldEnd\n";
+    RenderResult r = renderRib(rib);
+    const double expected = M_PI * 400;
+    EXPECT_NEAR(alphaSum(r, 0), expected, 5e-4 * expected);
+    // Pixel by pixel against the circle (raster y runs down: raster y = 64 - y).
+    double worst = 0;
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            worst = std::max(worst, std::fabs(r.alpha(0, x, y) - pixelInCircle(x, 63 - y, 32, 32, 20)));
+    EXPECT_LT(worst, 0.14);  // 64 stratified samples a pixel: an edge misses by under 9 of them
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+}
+
+// Projected area of a sphere of radius r centred at c (camera space), pixels at distance f per
+// unit (as CurvedRender.SphereSilhouetteAreaPerFrameInPerspective).
+double sphereImageArea(Vec3d c, double r, double f) {
+    const double D = length(c), a = std::asin(r / D), th = std::acos(c.z / D);
+    const double sa = std::sin(a), ca = std::cos(a), ct = std::cos(th);
+    return M_PI * f * f * sa * sa * ca / std::pow(ct * ct - sa * sa, 1.5);
+}
+
+TEST(NurbsRender, SphereSilhouetteInPerspective) {
+    RenderResult r = renderRib(R"(Format 64 64 1
+Projection "perspective" "fov" 40
+PixelSamples 4 4
+PixelFilter "box" 1 1
+ShadingRate 0.25
+WorldBegin
+Surface "constant"
+Translate 0.6 -0.4 6
+Rotate 30 1 0.5 0
+)" + test::nurbsSphere(1.5) + "WorldEnd\n");
+    const double f = 32 / std::tan(20 * M_PI / 180);
+    const double expected = sphereImageArea({0.6, -0.4, 6}, 1.5, f);
+    EXPECT_NEAR(alphaSum(r, 0), expected, 0.003 * expected);
+    EXPECT_GT(r.stats.counters.gridsDiced, 4u);
+}
+
+TEST(NurbsRender, TrimmedHoleTakesItsArea) {
+    // A 40 x 40 pixel square with a hole of radius 10 pixels (0.25 in u, v) at its middle.
+    // Micropolygons of a quarter pixel: the hole's edge is resolved to an eighth of a pixel.
+    const std::string header = test::orthoHeader(64, 64, "PixelSamples 8 8\nShadingRate 0.0625\n");
+    const std::string square = test::nurbsSquare(12, 52, 12, 52, 5);
+    RenderResult trimmed = renderRib(header + test::trimCircle(0.5, 0.5, 0.25) + square + "WorldEnd\n");
+    const double expected = 1600 - M_PI * 100;
+    EXPECT_NEAR(alphaSum(trimmed, 0), expected, 1e-3 * expected);
+    EXPECT_EQ(trimmed.alpha(0, 32, 32), 0.0f);  // the middle of the hole
+    EXPECT_EQ(trimmed.alpha(0, 14, 14), 1.0f);  // a corner of the square
+    // Off-centre and small (radius 3 pixels, 0.075): the area follows the trim, not the grid.
+    RenderResult small = renderRib(header + test::trimCircle(0.3, 0.6, 0.075) + square + "WorldEnd\n");
+    EXPECT_NEAR(alphaSum(small, 0), 1600 - M_PI * 9, 1.5);
+    // TrimCurve is attribute state: it ends with its AttributeEnd, and [] turns it off.
+    RenderResult scoped = renderRib(header + "AttributeBegin\n" + test::trimCircle(0.5, 0.5, 0.25) +
+                                    "AttributeEnd\n" + square + "WorldEnd\n");
+    EXPECT_NEAR(alphaSum(scoped, 0), 1600, 1e-3);
+    RenderResult cleared = renderRib(header + test::trimCircle(0.5, 0.5, 0.25) +
+                                     "TrimCurve [] [] [] [] [] [] [] [] []\n" + square + "WorldEnd\n");
+    EXPECT_NEAR(alphaSum(cleared, 0), 1600, 1e-3);
+}
+
+TEST(NurbsRender, MovingPatchBlursAlongItsPath) {
+    // The disc moves 16 pixels right during the exposure: its coverage keeps its area and its
+    // centroid lies half way.
+    std::string keys = test::orthoHeader(96, 64, "PixelSamples 8 8\nShutter 0 1\nShadingRate 0.25\n") +
+                       "Translate 40 32 0\n" +
+                       "MotionBegin [0 1]\n" + test::nurbsDisc(12, 5);
+    // The second key: the same disc, its points 16 pixels along x (Pw: (x + 16) w).
+    const test::NurbsCircle c;
+    std::ostringstream moved;
+    moved.precision(17);
+    moved << "NuPatch 9 3 " << test::NurbsCircle::knots() << " 0 1 2 2 [0 0 1 1] 0 1 \"Pw\" [";
+    for (double rho : {0.0, 12.0})
+        for (int i = 0; i < 9; ++i)
+            moved << (c.x[i] * rho + 16) * c.w[i] << " " << c.y[i] * rho * c.w[i] << " " << 5 * c.w[i] << " " << c.w[i]
+                  << "  ";
+    keys += moved.str() + "]\nMotionEnd\nWorldEnd\n";
+    RenderResult r = renderRib(keys);
+    double sum = 0, mx = 0;
+    const FrameImage& img = r.frame(0);
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            sum += r.alpha(0, x, y);
+            mx += r.alpha(0, x, y) * (x + 0.5);
+        }
+    EXPECT_NEAR(sum, M_PI * 144, 4e-3 * M_PI * 144);  // each sample at its own time: noisier than a still edge
+    EXPECT_NEAR(mx / sum, 48.0, 0.05);
+    // Not a still disc at either end: the middle column is covered only part of the time.
+    EXPECT_GT(r.alpha(0, 48, 32), 0.99f);
+    EXPECT_LT(r.alpha(0, 29, 32), 0.9f);
+    EXPECT_GT(r.alpha(0, 29, 32), 0.1f);
+}
+
+// ---- Bad parameters: exit 2 naming file:line -------------------------------------------------
+std::string errorOf(const std::string& world) { return test::ribError("WorldBegin\n" + world + "WorldEnd\n"); }
+
+void expectError(const std::string& world, const std::string& message) {
+    const std::string e = errorOf(world);
+    EXPECT_NE(e.find("bad.rib:2: NuPatch"), std::string::npos) << e;
+    EXPECT_NE(e.find(message), std::string::npos) << e;
+}
+
+const char* kSquareP = "\"P\" [0 0 0 1 0 0 0 1 0 1 1 0]\n";
+
+TEST(NurbsRender, BadNuPatchParametersNameFileAndLine) {
+    EXPECT_EQ(errorOf(std::string("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 ") + kSquareP), "");
+    expectError(std::string("NuPatch 2 0 [0 0] 0 1 2 2 [0 0 1 1] 0 1 ") + kSquareP, "u order must be 1 to 32, got 0");
+    expectError(std::string("NuPatch 2 2 [0 0 1] 0 1 2 2 [0 0 1 1] 0 1 ") + kSquareP,
+                "u knots: 3 values, expected 4");
+    expectError(std::string("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 1 0.5 1] 0 1 ") + kSquareP,
+                "v knots must not decrease: knot 2 is 0.5 after 1");
+    expectError(std::string("NuPatch 2 2 [0 0 1 1] 0 1.5 2 2 [0 0 1 1] 0 1 ") + kSquareP,
+                "u range [0, 1.5] must be a non-empty part of the knots' range [0, 1]");
+    expectError(std::string("NuPatch 2 2 [0 0 1 1] -1 1 2 2 [0 0 1 1] 0 1 ") + kSquareP, "u range [-1, 1]");
+    expectError(std::string("NuPatch 2 3 [0 0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 ") + kSquareP,
+                "u: 2 control points are fewer than the order 3");
+    expectError("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"P\" [0 0 0 1 0 0 0 1 0]\n",
+                "parameter 'P' has 9 numbers, expected 12");
+    expectError("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"Pw\" [0 0 0 1 1 0 0 1 0 1 0 -1 1 1 0 1]\n",
+                "\"Pw\" vertex 2 has weight -1: NuPatch weights must be positive");
+    expectError(std::string("NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"Cs\" [1 0 0 0 1 0] ") + kSquareP,
+                "parameter 'Cs' has 6 numbers");
+}
+
+TEST(NurbsRender, BadTrimCurveParametersNameFileAndLine) {
+    auto trimError = [](const std::string& args) { return errorOf("TrimCurve " + args + "\n"); };
+    const std::string ok = "[1] [2] [0 0 1 2 3 3] [0] [3] [4] [0 1 1 0] [0 0 1 1] [1 1 1 1]";
+    EXPECT_EQ(trimError(ok), "");
+    EXPECT_NE(trimError("[1] [2] [0 0 1 2 3 3] [0] [3] [4] [0 1 1] [0 0 1 1] [1 1 1 1]").find("bad.rib:2: TrimCurve: u has 3 values, expected 4"),
+              std::string::npos);
+    EXPECT_NE(trimError("[1] [2] [0 0 2 1 3 3] [0] [3] [4] [0 1 1 0] [0 0 1 1] [1 1 1 1]")
+                  .find("trim curve 0 knots must not decrease"),
+              std::string::npos);
+    EXPECT_NE(trimError("[1] [0] [0 0 1 2 3 3] [0] [3] [4] [0 1 1 0] [0 0 1 1] [1 1 1 1]").find("order must hold whole numbers of at least 1"),
+              std::string::npos);
+    EXPECT_NE(trimError("[1] [2] [0 0 1 2 3 3] [0] [4] [4] [0 1 1 0] [0 0 1 1] [1 1 1 1]").find("trim curve 0 range [0, 4]"),
+              std::string::npos);
+    EXPECT_NE(trimError("[1] [2] [0 0 1 2 3 3] [0] [3] [4] [0 1 1 0] [0 0 1 1] [1 0 1 1]").find("has weight 0"),
+              std::string::npos);
+}
+
+TEST(NurbsRender, MotionKeysMustShareKnotsAndWeights) {
+    const std::string e = errorOf(std::string("MotionBegin [0 1]\nNuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 ") +
+                                  kSquareP + "NuPatch 2 2 [0 0 2 2] 0 2 2 2 [0 0 1 1] 0 1 " + kSquareP + "MotionEnd\n");
+    EXPECT_NE(e.find("must have the same sizes, orders, knots, ranges and weights"), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace streyes
