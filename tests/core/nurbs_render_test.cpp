@@ -130,6 +130,20 @@ TEST(NurbsRender, MovingPatchBlursAlongItsPath) {
     EXPECT_GT(r.alpha(0, 29, 32), 0.1f);
 }
 
+// scenes/nurbs.rib (every request of this file in use: trims, rational surfaces moving by their
+// transforms and by their own keys) renders without a warning, and shows its objects.
+TEST(NurbsRender, ExampleSceneRendersWithoutWarnings) {
+    RenderOptions o;
+    o.xres = 64, o.yres = 36, o.samples = 1;
+    o.hasFrames = true, o.firstFrame = 1, o.lastFrame = 2;
+    RenderResult r = test::renderFile(test::sourcePath("scenes/nurbs.rib"), o);
+    EXPECT_TRUE(r.warnings.empty()) << (r.warnings.empty() ? "" : r.warnings[0]);
+    ASSERT_EQ(r.frames.size(), 2u);
+    EXPECT_GT(alphaSum(r, 2), 0.5 * 64 * 36);  // the floor fills most of the frame
+    EXPECT_LT(alphaSum(r, 2), 0.95 * 64 * 36);  // but not its holes nor the sky
+    EXPECT_GT(r.stats.counters.gridsDiced, 20u);
+}
+
 // ---- Bad parameters: exit 2 naming file:line -------------------------------------------------
 std::string errorOf(const std::string& world) { return test::ribError("WorldBegin\n" + world + "WorldEnd\n"); }
 
