@@ -41,13 +41,13 @@ TEST(NurbsRender, DiscSilhouetteIsTheCircle) {
                             "Translate 32 32 0\n" + test::nurbsDisc(20, 5) + "WorldEnd\n";
     RenderResult r = renderRib(rib);
     const double expected = M_PI * 400;
-    EXPECT_NEAR(alphaSum(r, 0), expected, 5e-4 * expected);
+    EXPECT_NEAR(alphaSum(r, 0), expected, 5e-4 * expected);  // measured 0.035 %
     // Pixel by pixel against the circle (raster y runs down: raster y = 64 - y).
     double worst = 0;
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x)
             worst = std::max(worst, std::fabs(r.alpha(0, x, y) - pixelInCircle(x, 63 - y, 32, 32, 20)));
-    EXPECT_LT(worst, 0.14);  // 64 stratified samples a pixel: an edge misses by under 9 of them
+    EXPECT_LT(worst, 0.08);  // 64 stratified samples a pixel: an edge misses by a few (measured 0.036)
     EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
 }
 
@@ -72,7 +72,7 @@ Rotate 30 1 0.5 0
 )" + test::nurbsSphere(1.5) + "WorldEnd\n");
     const double f = 32 / std::tan(20 * M_PI / 180);
     const double expected = sphereImageArea({0.6, -0.4, 6}, 1.5, f);
-    EXPECT_NEAR(alphaSum(r, 0), expected, 0.003 * expected);
+    EXPECT_NEAR(alphaSum(r, 0), expected, 0.0015 * expected);  // measured 0.09 %: chords inside the limb
     EXPECT_GT(r.stats.counters.gridsDiced, 4u);
 }
 
@@ -83,12 +83,12 @@ TEST(NurbsRender, TrimmedHoleTakesItsArea) {
     const std::string square = test::nurbsSquare(12, 52, 12, 52, 5);
     RenderResult trimmed = renderRib(header + test::trimCircle(0.5, 0.5, 0.25) + square + "WorldEnd\n");
     const double expected = 1600 - M_PI * 100;
-    EXPECT_NEAR(alphaSum(trimmed, 0), expected, 1e-3 * expected);
+    EXPECT_NEAR(alphaSum(trimmed, 0), expected, 0.8);  // 0.25 % of the hole (measured 0.25 pixel)
     EXPECT_EQ(trimmed.alpha(0, 32, 32), 0.0f);  // the middle of the hole
     EXPECT_EQ(trimmed.alpha(0, 14, 14), 1.0f);  // a corner of the square
     // Off-centre and small (radius 3 pixels, 0.075): the area follows the trim, not the grid.
     RenderResult small = renderRib(header + test::trimCircle(0.3, 0.6, 0.075) + square + "WorldEnd\n");
-    EXPECT_NEAR(alphaSum(small, 0), 1600 - M_PI * 9, 1.5);
+    EXPECT_NEAR(alphaSum(small, 0), 1600 - M_PI * 9, 0.6);  // measured 0.2 pixel
     // TrimCurve is attribute state: it ends with its AttributeEnd, and [] turns it off.
     RenderResult scoped = renderRib(header + "AttributeBegin\n" + test::trimCircle(0.5, 0.5, 0.25) +
                                     "AttributeEnd\n" + square + "WorldEnd\n");
