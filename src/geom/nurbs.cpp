@@ -34,17 +34,23 @@ void basisOfDegree(const double* U, int p, int s, double t, double* N) {
 HPoint operator*(const HPoint& a, double s) { return {a.p * s, a.w * s}; }
 HPoint operator+(const HPoint& a, const HPoint& b) { return {a.p + b.p, a.w + b.w}; }
 
+// A homogeneous point as four doubles: trivially constructible, so the bound's scratch arrays
+// (up to 32 x 32 of them) cost nothing to set up.
+struct H4 {
+    double c[4];
+};
+
 // The blossom of the degree-p spline on span s at arguments x[0..p-1], from the span's p + 1
 // homogeneous control points d0 (de Boor's algorithm with one argument per level). Every weight
 // lies in [0, 1] when the arguments lie in the span.
-HPoint blossom(const double* U, int p, int s, const HPoint* d0, const double* x) {
-    HPoint d[kMaxNurbsOrder];
+H4 blossom(const double* U, int p, int s, const H4* d0, const double* x) {
+    H4 d[kMaxNurbsOrder];
     std::copy(d0, d0 + p + 1, d);
     for (int r = 1; r <= p; ++r)
         for (int j = p; j >= r; --j) {
             const int i = s - p + j;
             const double a = (x[r - 1] - U[i]) / (U[i + p + 1 - r] - U[i]);
-            d[j] = d[j - 1] * (1 - a) + d[j] * a;
+            for (int k = 0; k < 4; ++k) d[j].c[k] = d[j - 1].c[k] * (1 - a) + d[j].c[k] * a;
         }
     return d[p];
 }
@@ -123,12 +129,15 @@ Bounds3d NurbsSurface::bound(double u0, double u1, double v0, double v1) const {
     forSpans(uknot, nu, uorder, u0, u1, [&](int su, double a, double b) {
         forSpans(vknot, nv, vorder, v0, v1, [&](int sv, double c, double d) {
             // Bezier points in u of each of the span's q + 1 rows, then in v down each column.
-            HPoint rows[kMaxNurbsOrder][kMaxNurbsOrder];  // [k][row]
+            H4 rows[kMaxNurbsOrder][kMaxNurbsOrder];  // [k][row]
             double x[kMaxNurbsOrder];
             for (int j = 0; j <= q; ++j) {
-                HPoint d0[kMaxNurbsOrder];
+                H4 d0[kMaxNurbsOrder];
                 const int row = (sv - q + j) * nu + su - p;
-                for (int i = 0; i <= p; ++i) d0[i] = {P[row + i] * w[row + i], w[row + i]};
+                for (int i = 0; i <= p; ++i) {
+                    const double wi = w[row + i];
+                    d0[i] = {{P[row + i].x * wi, P[row + i].y * wi, P[row + i].z * wi, wi}};
+                }
                 for (int k = 0; k <= p; ++k) {
                     for (int m = 0; m < p; ++m) x[m] = m < p - k ? a : b;
                     rows[k][j] = blossom(uknot, p, su, d0, x);
@@ -137,8 +146,8 @@ Bounds3d NurbsSurface::bound(double u0, double u1, double v0, double v1) const {
             for (int k = 0; k <= p; ++k)
                 for (int l = 0; l <= q; ++l) {
                     for (int m = 0; m < q; ++m) x[m] = m < q - l ? c : d;
-                    const HPoint h = blossom(vknot, q, sv, rows[k], x);
-                    box.extend(h.p / h.w);
+                    const H4 h = blossom(vknot, q, sv, rows[k], x);
+                    box.extend(Vec3d(h.c[0], h.c[1], h.c[2]) / h.c[3]);
                 }
         });
     });
