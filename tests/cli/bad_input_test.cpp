@@ -54,6 +54,14 @@ std::vector<Malformed> malformedCases() {
         {"MotionBlockNeverClosed", "WorldBegin\n\nMotionBegin [0 1]\nTranslate 0 0 0\nTranslate 1 0 0\n",
          "MotionBegin is never closed"},
         {"MotionEndAlone", "WorldBegin\n\nMotionEnd\nWorldEnd\n", "MotionEnd without MotionBegin"},
+        {"NuPatchKnotsDecrease",
+         "WorldBegin\n\nNuPatch 2 2 [0 1 0.5 1] 0 1 2 2 [0 0 1 1] 0 1 \"P\" [0 0 5 1 0 5 0 1 5 1 1 5]\nWorldEnd\n",
+         "u knots must not decrease"},
+        {"NuPatchWeightNotPositive",
+         "WorldBegin\n\nNuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"Pw\" [0 0 5 1 1 0 5 1 0 1 5 0 1 1 5 1]\nWorldEnd\n",
+         "NuPatch weights must be positive"},
+        {"TrimCurveCounts", "WorldBegin\n\nTrimCurve [1] [2] [0 0 1 1] [0] [1] [2] [0 1] [0 1] [1]\nWorldEnd\n",
+         "w has 1 value, expected 2"},
         {"BinaryBytes", std::string("WorldBegin\n\n\x01\x02\xff\xfe", 16) + "\nWorldEnd\n", "binary RIB"},
     };
 }
