@@ -126,6 +126,17 @@ void NurbsSurface::evaluate(double u, double v, Vec3d* S, Vec3d* Su, Vec3d* Sv) 
 Bounds3d NurbsSurface::bound(double u0, double u1, double v0, double v1) const {
     const int p = uorder - 1, q = vorder - 1;
     Bounds3d box;
+    // A rectangle over many spans (the first pieces of a large patch): the box of the control
+    // points of those spans, which holds the surface there too (each span lies in the hull of its
+    // own points) and costs one look at each point instead of ~300 blends a span.
+    int ua = nu, ub = -1, va = nv, vb = -1;
+    forSpans(uknot, nu, uorder, u0, u1, [&](int s, double, double) { ua = std::min(ua, s), ub = std::max(ub, s); });
+    forSpans(vknot, nv, vorder, v0, v1, [&](int s, double, double) { va = std::min(va, s), vb = std::max(vb, s); });
+    if ((ub - ua + 1) * (vb - va + 1) > kMaxBezierSpans) {
+        for (int j = va - q; j <= vb; ++j)
+            for (int i = ua - p; i <= ub; ++i) box.extend(P[j * nu + i]);
+        return box;
+    }
     forSpans(uknot, nu, uorder, u0, u1, [&](int su, double a, double b) {
         forSpans(vknot, nv, vorder, v0, v1, [&](int sv, double c, double d) {
             // Bezier points in u of each of the span's q + 1 rows, then in v down each column.

@@ -24,6 +24,10 @@ struct HPoint {
     double w = 1;
 };
 
+// Past this many spans in a rectangle its bound is the box of the spans' control points (the
+// Bezier nets cost ~300 blends a span, bicubic); pieces within fewer spans get their nets.
+constexpr int kMaxBezierSpans = 16;
+
 // Orders above this are refused when read (scratch arrays are fixed, so evaluation allocates nothing).
 constexpr int kMaxNurbsOrder = 32;
 
@@ -45,7 +49,8 @@ struct NurbsSurface {
 
     // Point and first derivatives at (u, v) of the knot range.
     void evaluate(double u, double v, Vec3d* S, Vec3d* Su, Vec3d* Sv) const;
-    // The box of the projected Bezier control points of every span's part of [u0, u1] x [v0, v1].
+    // The box of the projected Bezier control points of every span's part of [u0, u1] x [v0, v1]
+    // (over more than kMaxBezierSpans spans, the box of their control points).
     Bounds3d bound(double u0, double u1, double v0, double v1) const;
     // The homogeneous control points (x w, y w, z w, w) of the curve u = c (in v, nv of them), or
     // of v = c (in u): boundary curves, to find seams and collapsed sides.

@@ -141,6 +141,42 @@ TEST(Nurbs, BezierNetBoundHoldsThePieceAndShrinksWithIt) {
     EXPECT_GT(length(whole.diagonal()), 5);
 }
 
+// A large patch (12 x 10 spans): rectangles over many spans are bounded by their spans' control
+// points, smaller ones by Bezier nets; both hold the surface.
+TEST(Nurbs, BoundOverManySpansHoldsTheSurface) {
+    const int n = 15, m = 13;
+    std::vector<double> uk{0, 0, 0}, vk{0, 0, 0};
+    for (int i = 0; i <= n - 3; ++i) uk.push_back(i + 0.1 * (i % 3));
+    for (int i = 0; i <= m - 3; ++i) vk.push_back(0.5 * i);
+    for (int i = 0; i < 3; ++i) uk.push_back(uk.back()), vk.push_back(vk.back());
+    std::vector<Vec3d> P;
+    std::vector<double> w;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> d(-1, 1), wd(0.2, 4);
+    for (int j = 0; j < m; ++j)
+        for (int i = 0; i < n; ++i) P.push_back({i + d(rng), j + d(rng), 3 * d(rng)}), w.push_back(wd(rng));
+    NurbsSurface s;
+    s.nu = n, s.uorder = 4, s.nv = m, s.vorder = 4;
+    s.uknot = uk.data(), s.vknot = vk.data(), s.w = w.data(), s.P = P.data();
+    const double U = uk[size_t(n)], V = vk[size_t(m)];
+    std::uniform_real_distribution<double> ud(0, U), vd(0, V);
+    for (int trial = 0; trial < 100; ++trial) {
+        double u0 = ud(rng), u1 = ud(rng), v0 = vd(rng), v1 = vd(rng);
+        if (trial == 0) u0 = 0, u1 = U, v0 = 0, v1 = V;
+        if (u0 > u1) std::swap(u0, u1);
+        if (v0 > v1) std::swap(v0, v1);
+        const Bounds3d b = s.bound(u0, u1, v0, v1);
+        const Vec3d pad{1e-12, 1e-12, 1e-12};
+        const Bounds3d grown(b.lo - pad, b.hi + pad);
+        for (int j = 0; j <= 20; ++j)
+            for (int i = 0; i <= 20; ++i) {
+                Vec3d p, du, dv;
+                s.evaluate(u0 + (u1 - u0) * i / 20, v0 + (v1 - v0) * j / 20, &p, &du, &dv);
+                ASSERT_TRUE(grown.contains(p)) << "trial " << trial;
+            }
+    }
+}
+
 TEST(Nurbs, IsoCurveOfAnEndIsTheBoundaryRow) {
     const Wavy wavy;
     std::vector<HPoint> row;
