@@ -51,6 +51,25 @@ TEST(NurbsRender, DiscSilhouetteIsTheCircle) {
     EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
 }
 
+// umin umax vmin vmax select part of the surface: u from 0.25 to 1 is three quarters of the
+// circle (the knots sit at the quarters), v from 0.5 to 1 the outer half of the radius.
+TEST(NurbsRender, RangeSelectsPartOfTheSurface) {
+    std::string disc = test::nurbsDisc(20, 5);
+    const std::string ranges = "0 1 2 2 [0 0 1 1] 0 1 ";
+    const size_t at = disc.find(ranges);
+    ASSERT_NE(at, std::string::npos);
+    disc.replace(at, ranges.size(), "0.25 1 2 2 [0 0 1 1] 0.5 1 ");
+    ASSERT_NE(disc.find("0 0 0 0.25 0.25 0.5 0.5 0.75 0.75 1 1 1] 0.25 1 2 2"), std::string::npos);
+    const std::string rib = test::orthoHeader(64, 64, "PixelSamples 8 8\nShadingRate 0.25\n") +
+                            "Translate 32 32 0\n" + disc + "WorldEnd\n";
+    RenderResult r = renderRib(rib);
+    const double expected = 0.75 * (M_PI * 400 - M_PI * 100);
+    EXPECT_NEAR(alphaSum(r, 0), expected, 1e-3 * expected);
+    EXPECT_EQ(r.alpha(0, 32 + 5, 32 - 15), 0.0f);  // x > 0, y > 0 (raster y down): the quarter left out
+    EXPECT_EQ(r.alpha(0, 32 - 15, 32 - 5), 1.0f);  // x < 0, y > 0: kept
+    EXPECT_EQ(r.alpha(0, 32, 32), 0.0f);           // the inner half of the radius is left out
+}
+
 // Projected area of a sphere of radius r centred at c (camera space), pixels at distance f per
 // unit (as CurvedRender.SphereSilhouetteAreaPerFrameInPerspective).
 double sphereImageArea(Vec3d c, double r, double f) {
