@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes scenes/nurbs.rib: NuPatch and TrimCurve in motion over 24 frames.
 
-A floor with two circular holes (TrimCurve), a rational sphere bouncing (a moving transform), a
+A floor with two circular holes (TrimCurve) and a ball under one of them, a rational sphere bouncing (a moving transform), a
 torus rolling, a vase (a cubic profile revolved, a window trimmed out of it) and a flag of
 non-uniform cubic spans whose control points wave (motion keys of the patch itself).
 """
@@ -86,6 +86,11 @@ def main():
           trim_circles([(0.3, 0.6, 0.08), (0.7, 0.35, 0.12)]) +
           'NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 "Cs" [0.5 0.55 0.5  0.6 0.5 0.4  0.4 0.5 0.6  0.5 0.55 0.5]\n'
           '  "P" [-9 0 -7  9 0 -7  -9 0 12  9 0 12]\n')
+    # A ball under the floor, seen only through a hole: occlusion culling must not take the
+    # trimmed floor for a cover there.
+    block((0.95, 0.85, 0.2), 'Surface "plastic"',
+          "Translate 3.6 -1.1 -0.35\n" + revolution([(0, -0.8, 1), (0.8, -0.8, H), (0.8, 0, 1), (0.8, 0.8, H),
+                                                     (0, 0.8, 1)], 3, "[0 0 0 0.5 0.5 1 1 1]"))
     # A rational sphere bouncing.
     sphere = revolution([(0, -0.9, 1), (0.9, -0.9, H), (0.9, 0, 1), (0.9, 0.9, H), (0, 0.9, 1)], 3,
                         "[0 0 0 0.5 0.5 1 1 1]")
