@@ -7,7 +7,9 @@
 #include <sstream>
 
 #include "nurbs_rib.h"
+#include "scene/rib_parser.h"
 #include "streyes/rib.h"
+#include "streyes/sequence.h"
 #include "test_util.h"
 
 namespace streyes {
@@ -161,6 +163,29 @@ TEST(NurbsRender, ExampleSceneRendersWithoutWarnings) {
     EXPECT_GT(alphaSum(r, 2), 0.5 * 64 * 36);  // the floor fills most of the frame
     EXPECT_LT(alphaSum(r, 2), 0.95 * 64 * 36);  // but not its holes nor the sky
     EXPECT_GT(r.stats.counters.gridsDiced, 20u);
+}
+
+// Frame sequences merge a NuPatch that stays the same from frame to frame into one run, and
+// start a new run where its trim changes (TrimCurve is part of the patch's data).
+TEST(NurbsRender, SequencesMergeStillPatchesAndSeeTrimChanges) {
+    auto frame = [](int f, double hole) {
+        return "FrameBegin " + std::to_string(f) + "\nFormat 64 64 1\nWorldBegin\nSurface \"constant\"\n" +
+               test::trimCircle(0.5, 0.5, 0.25) + test::nurbsSquare(-0.5, 0.5, -0.5, 0.5, 3) +
+               test::trimCircle(0.5, 0.5, hole) + test::nurbsSquare(-0.9, -0.6, -0.5, 0.5, 3) + "WorldEnd\nFrameEnd\n";
+    };
+    Log log;
+    SequenceBuilder b(log);
+    for (int f = 1; f <= 4; ++f) {
+        Scene scene;
+        RibParser p(scene, log);
+        p.setFrameHandler([&](Scene&& s) { b.add(std::move(s)); });
+        p.parseString(frame(f, f < 3 ? 0.25 : 0.1), "frame" + std::to_string(f) + ".rib");
+        p.finish();
+    }
+    const Sequence seq = b.finish();
+    EXPECT_EQ(seq.stats.runs, 3u);  // the first patch over frames 1-4; the second over 1-2 and 3-4
+    ASSERT_EQ(seq.scene.nuPatches.size(), 3u);
+    EXPECT_EQ(seq.stats.stillRuns, 3u);
 }
 
 // ---- Bad parameters: exit 2 naming file:line -------------------------------------------------
