@@ -446,10 +446,12 @@ void BodyFactory::addNuPatch(const NuPatchDesc& p, uint64_t primitiveId, std::ve
     shape->umin = p.umin, shape->umax = p.umax, shape->vmin = p.vmin, shape->vmax = p.vmax;
     if (p.trim) shape->trim = std::make_shared<const NurbsTrim>(*p.trim);
     const Material* mat = material(p.attributes);
-    // Colour is bilinear over a face's four corners: exact for constant Cs and for a patch of one
-    // span; otherwise the corners of the varying (or vertex) values, with a warning.
+    // Varying Cs is bilinear between the knots (a lattice over the patch); constant Cs fills the
+    // corners; uniform (per span) and vertex (per control point) colour over several spans are
+    // taken from the first span and from the corner points, with a warning.
     std::array<Color, 4> colors;
     colors.fill(mat->Cs);
+    std::vector<Color> varying;
     if (p.Cs.given()) {
         const std::vector<Color>& c = p.Cs.values;
         const size_t n = c.size();
@@ -459,16 +461,18 @@ void BodyFactory::addNuPatch(const NuPatchDesc& p, uint64_t primitiveId, std::ve
             colors.fill(c[0]);
         else
             colors = {c[0], c[cols - 1], c[n - cols], c[n - 1]};
-        if (n > 4 || (n > 1 && (p.Cs.cls == ParamClass::Uniform || vertex)))
+        if (!vertex && (p.Cs.cls == ParamClass::Varying || p.Cs.cls == ParamClass::FaceVarying) && n > 4) varying = c;
+        if (n > 1 && (p.Cs.cls == ParamClass::Uniform || (vertex && n > 4)))
             log_.warnOnce("nupatch-cs", p.loc,
-                          "NuPatch \"Cs\" per span or per control point is taken bilinear between the patch's corners");
+                          "NuPatch \"Cs\" per span (uniform) or per control point (vertex) is taken from the first "
+                          "span or the corner points");
     }
     const SourceLoc* src = source(p.loc);
     const bool lastOpen = windowOf(p.life).openEnd;
     std::shared_ptr<const NurbsShape> shared = std::move(shape);
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
         addSurface(std::make_unique<NurbsMesh>(shared, points[i], j != i ? points[j] : std::vector<Vec3d>{},
-                                               segmentSpan(t0, t1, ts, lastOpen), mat, camera_, colors),
+                                               segmentSpan(t0, t1, ts, lastOpen), mat, camera_, colors, varying),
                    src, primitiveId, out, keep);
     });
 }

@@ -545,7 +545,6 @@ void CurvedBody::dice(int nu, int nv, Grid& grid) const {
 
     startGrid(NU, NV, grid);
     const float s[2] = {keyFraction(time_.t0), keyFraction(time_.t1)};
-    const std::array<Color, 4>& cs = mesh_->faceColors(face_);
     for (int j = 0; j <= NV; ++j) {
         for (int i = 0; i <= NU; ++i) {
             Vec3f P[2], N[2];
@@ -570,7 +569,7 @@ void CurvedBody::dice(int nu, int nv, Grid& grid) const {
                 grid.P[t][idx] = atTime(P, s[t]);
                 grid.N[t][idx] = atTime(N, s[t]);
             }
-            grid.Cs[idx] = bilerp(cs, float(u), float(v));
+            grid.Cs[idx] = mesh_->colorAt(face_, u, v);
         }
     }
     // Micropolygons whose centre a trim curve cuts away (a NuPatch's TrimCurve); none elsewhere.

@@ -75,13 +75,21 @@ bool keysDiffer(const std::vector<Vec3d>& key1, const std::vector<Vec3d>& key0, 
 }  // namespace
 
 NurbsMesh::NurbsMesh(std::shared_ptr<const NurbsShape> shape, std::vector<Vec3d> key0, std::vector<Vec3d> key1,
-                     TimeSpan keys, const Material* material, const Camera* camera, const std::array<Color, 4>& colors)
+                     TimeSpan keys, const Material* material, const Camera* camera, const std::array<Color, 4>& colors,
+                     const std::vector<Color>& varying)
     : SurfaceMesh(nurbsTopology(*shape, key0, key1, keysDiffer(key1, key0, keys)), keys, material, camera),
       shape_(std::move(shape)) {
     moving_ = keysDiffer(key1, key0, keys);
     points_[0] = std::move(key0);
     if (moving_) points_[1] = std::move(key1);
     colors_[0] = colors;
+    if (!varying.empty()) {
+        // The knots knot[order - 1] .. knot[n] as face parameters.
+        const NurbsShape& s = *shape_;
+        for (int i = s.uorder - 1; i <= s.nu; ++i) lattice_.u.push_back((s.uknot[size_t(i)] - s.umin) / (s.umax - s.umin));
+        for (int j = s.vorder - 1; j <= s.nv; ++j) lattice_.v.push_back((s.vknot[size_t(j)] - s.vmin) / (s.vmax - s.vmin));
+        lattice_.c = varying;
+    }
 }
 
 NurbsSurface NurbsMesh::surface(int k) const { return surfaceOf(*shape_, points_[moving_ ? k : 0]); }

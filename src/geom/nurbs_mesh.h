@@ -29,8 +29,11 @@ struct NurbsShape {
 class NurbsMesh final : public SurfaceMesh {
   public:
     // Camera-space control points at the segment's two keys (key1 empty or equal: still).
+    // `varying`: Cs at the knots (RenderMan's varying class: (spans + 1) per direction, u fastest)
+    // when given for a patch of several spans; otherwise the corners' `colors`.
     NurbsMesh(std::shared_ptr<const NurbsShape> shape, std::vector<Vec3d> key0, std::vector<Vec3d> key1, TimeSpan keys,
-              const Material* material, const Camera* camera, const std::array<Color, 4>& colors);
+              const Material* material, const Camera* camera, const std::array<Color, 4>& colors,
+              const std::vector<Color>& varying = {});
 
     bool faceMoving(int) const override { return moving(); }
     Bounds3f bound(int f, const ParamRect& r, int k) const override;

@@ -105,8 +105,23 @@ class SurfaceMesh {
     // Surface colour at the corners of face f, bilinear across it (RenderMan's varying
     // interpolation).
     const std::array<Color, 4>& faceColors(int f) const { return colors_[size_t(f)]; }
+    // The colour at (u, v) of face f: bilinear between its corners, or, where the mesh has a
+    // colour lattice (a NuPatch's varying Cs at its knots), between the corners of the lattice's
+    // cell holding (u, v).
+    Color colorAt(int f, double u, double v) const {
+        if (lattice_.c.empty()) return bilerp(colors_[size_t(f)], float(u), float(v));
+        return latticeColor(u, v);
+    }
 
   protected:
+    // Colours at the face parameters u[i] x v[j] (i fastest) of a one-face mesh; empty for none.
+    struct ColorLattice {
+        std::vector<double> u, v;
+        std::vector<Color> c;
+    };
+    ColorLattice lattice_;
+    Color latticeColor(double u, double v) const;
+
     // Position and derivatives of face f at (u, v), key k, camera space.
     virtual void derivatives(int f, double u, double v, int k, Vec3d* P, Vec3d* dPdu, Vec3d* dPdv) const = 0;
 

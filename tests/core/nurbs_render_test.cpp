@@ -72,6 +72,26 @@ TEST(NurbsRender, RangeSelectsPartOfTheSurface) {
     EXPECT_EQ(r.alpha(0, 32, 32), 0.0f);           // the inner half of the radius is left out
 }
 
+// Varying Cs sits at the knots and is bilinear between them: a strip of two spans (knots at 0,
+// 0.25 and 1 of u, so the middle colour sits a quarter of the way along), red, green and blue
+// along u, darker along v.
+TEST(NurbsRender, VaryingColourIsBilinearBetweenTheKnots) {
+    const std::string rib = test::orthoHeader(64, 16, "PixelSamples 4 4\n") +
+                            "NuPatch 3 2 [0 0 0.25 1 1] 0 1 2 2 [0 0 1 1] 0 1 "
+                            "\"Cs\" [1 0 0  0 1 0  0 0 1  0.5 0 0  0 0.5 0  0 0 0.5] "
+                            "\"P\" [0 0 5  16 0 5  64 0 5  0 16 5  16 16 5  64 16 5]\nWorldEnd\n";
+    RenderResult r = renderRib(rib);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    // Pixel centres: x + 0.5 along u (x = 64 u between the knots' points at 0, 16, 64), raster
+    // row 8 is y = 7.5 of 16 (v = 0.47).
+    auto expect = [&](int x, Color c) {
+        const float v = 7.5f / 16, shade = 1 - 0.5f * v;
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(r.channel(0, x, 8, ch), c[ch] * shade, 2e-3f) << "x " << x;
+    };
+    expect(4, Color{1 - 4.5f / 16, 4.5f / 16, 0});                 // in the first span
+    expect(40, Color{0, 1 - (40.5f - 16) / 48, (40.5f - 16) / 48});  // in the second
+}
+
 // Projected area of a sphere of radius r centred at c (camera space), pixels at distance f per
 // unit (as CurvedRender.SphereSilhouetteAreaPerFrameInPerspective).
 double sphereImageArea(Vec3d c, double r, double f) {
