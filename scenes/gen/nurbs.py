@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Writes scenes/nurbs.rib: NuPatch and TrimCurve in motion over 24 frames.
 
-A floor with two circular holes (TrimCurve) and a ball under one of them, a rational sphere bouncing (a moving transform), a
-torus rolling, a vase (a cubic profile revolved, a window trimmed out of it) and a flag of
-non-uniform cubic spans whose control points wave (motion keys of the patch itself).
+A floor with two circular holes (TrimCurve) and a ball under one of them, a rational sphere
+bouncing (a moving transform), a torus rolling, a vase (a cubic profile revolved, a window
+trimmed out of it) and a flag of non-uniform cubic spans whose control points wave (motion keys
+of the patch itself).
 """
 import math
 import os

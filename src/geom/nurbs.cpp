@@ -195,7 +195,8 @@ void nurbsCurvePolyline(int n, int order, const double* knot, double tmin, doubl
     };
     out->push_back(at(tmin));
     forSpans(knot, n, order, tmin, tmax, [&](int, double a, double b) {
-        for (int k = 1; k <= stepsPerSpan; ++k) out->push_back(at(k == stepsPerSpan ? b : a + (b - a) * k / stepsPerSpan));
+        for (int k = 1; k <= stepsPerSpan; ++k)
+            out->push_back(at(k == stepsPerSpan ? b : a + (b - a) * k / stepsPerSpan));
     });
 }
 

@@ -42,8 +42,9 @@ std::shared_ptr<const SurfaceTopology> nurbsTopology(const NurbsShape& s, const 
         Bounds3d box;
         for (const Vec3d& p : *keys[k]) box.extend(p);
         const Vec3d d = box.diagonal();
-        const double tol = 1e-9 * std::max({d.x, d.y, d.z, std::fabs(box.lo.x), std::fabs(box.hi.x), std::fabs(box.lo.y),
-                                            std::fabs(box.hi.y), std::fabs(box.lo.z), std::fabs(box.hi.z)});
+        const Vec3d far = vmax(Vec3d(std::fabs(box.lo.x), std::fabs(box.lo.y), std::fabs(box.lo.z)),
+                               Vec3d(std::fabs(box.hi.x), std::fabs(box.hi.y), std::fabs(box.hi.z)));
+        const double tol = 1e-9 * std::max({d.x, d.y, d.z, far.x, far.y, far.z});
         n.isoCurve(true, s.umin, &lo);
         n.isoCurve(true, s.umax, &hi);
         seamU = seamU && sameCurve(lo, hi, tol);
@@ -86,8 +87,10 @@ NurbsMesh::NurbsMesh(std::shared_ptr<const NurbsShape> shape, std::vector<Vec3d>
     if (!varying.empty()) {
         // The knots knot[order - 1] .. knot[n] as face parameters.
         const NurbsShape& s = *shape_;
-        for (int i = s.uorder - 1; i <= s.nu; ++i) lattice_.u.push_back((s.uknot[size_t(i)] - s.umin) / (s.umax - s.umin));
-        for (int j = s.vorder - 1; j <= s.nv; ++j) lattice_.v.push_back((s.vknot[size_t(j)] - s.vmin) / (s.vmax - s.vmin));
+        for (int i = s.uorder - 1; i <= s.nu; ++i)
+            lattice_.u.push_back((s.uknot[size_t(i)] - s.umin) / (s.umax - s.umin));
+        for (int j = s.vorder - 1; j <= s.nv; ++j)
+            lattice_.v.push_back((s.vknot[size_t(j)] - s.vmin) / (s.vmax - s.vmin));
         lattice_.c = varying;
     }
 }

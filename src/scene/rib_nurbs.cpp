@@ -29,7 +29,9 @@ void checkKnots(RibArgs& args, const RibValue& at, const std::string& what, int 
             args.fail(at, what + " knots must not decrease: knot " + std::to_string(i) + " is " +
                               formatNumber(knot[i]) + " after " + formatNumber(knot[i - 1]));
     const double lo = knot[size_t(order - 1)], hi = knot[size_t(n)];
-    if (!(lo < hi)) args.fail(at, what + " knots leave no span between knot " + std::to_string(order - 1) + " and knot " + std::to_string(n));
+    if (!(lo < hi))
+        args.fail(at, what + " knots leave no span between knot " + std::to_string(order - 1) + " and knot " +
+                          std::to_string(n));
     if (!(tmin >= lo && tmax <= hi && tmin < tmax))
         args.fail(at, what + " range [" + formatNumber(tmin) + ", " + formatNumber(tmax) +
                           "] must be a non-empty part of the knots' range [" + formatNumber(lo) + ", " +
@@ -86,8 +88,8 @@ void nuPatchKeys(RibParser& reader, const RibKeys& keys) {
                k.w == f.w;
     };
     auto positions = [](NuPatchDesc& d) -> auto& { return d.P; };
-    if (auto d = mergeKeys<NuPatchDesc>(reader, keys, readNuPatchKey, sameShape, "sizes, orders, knots, ranges and weights",
-                                        positions))
+    const char* what = "sizes, orders, knots, ranges and weights";
+    if (auto d = mergeKeys<NuPatchDesc>(reader, keys, readNuPatchKey, sameShape, what, positions))
         reader.scene().nuPatches.push_back(std::move(*d));
 }
 

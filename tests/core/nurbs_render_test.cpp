@@ -243,14 +243,17 @@ TEST(NurbsRender, BadTrimCurveParametersNameFileAndLine) {
     auto trimError = [](const std::string& args) { return errorOf("TrimCurve " + args + "\n"); };
     const std::string ok = "[1] [2] [0 0 1 2 3 3] [0] [3] [4] [0 1 1 0] [0 0 1 1] [1 1 1 1]";
     EXPECT_EQ(trimError(ok), "");
-    EXPECT_NE(trimError("[1] [2] [0 0 1 2 3 3] [0] [3] [4] [0 1 1] [0 0 1 1] [1 1 1 1]").find("bad.rib:2: TrimCurve: u has 3 values, expected 4"),
+    EXPECT_NE(trimError("[1] [2] [0 0 1 2 3 3] [0] [3] [4] [0 1 1] [0 0 1 1] [1 1 1 1]")
+                  .find("bad.rib:2: TrimCurve: u has 3 values, expected 4"),
               std::string::npos);
     EXPECT_NE(trimError("[1] [2] [0 0 2 1 3 3] [0] [3] [4] [0 1 1 0] [0 0 1 1] [1 1 1 1]")
                   .find("trim curve 0 knots must not decrease"),
               std::string::npos);
-    EXPECT_NE(trimError("[1] [0] [0 0 1 2 3 3] [0] [3] [4] [0 1 1 0] [0 0 1 1] [1 1 1 1]").find("order must hold whole numbers of at least 1"),
+    EXPECT_NE(trimError("[1] [0] [0 0 1 2 3 3] [0] [3] [4] [0 1 1 0] [0 0 1 1] [1 1 1 1]")
+                  .find("order must hold whole numbers of at least 1"),
               std::string::npos);
-    EXPECT_NE(trimError("[1] [2] [0 0 1 2 3 3] [0] [4] [4] [0 1 1 0] [0 0 1 1] [1 1 1 1]").find("trim curve 0 range [0, 4]"),
+    EXPECT_NE(trimError("[1] [2] [0 0 1 2 3 3] [0] [4] [4] [0 1 1 0] [0 0 1 1] [1 1 1 1]")
+                  .find("trim curve 0 range [0, 4]"),
               std::string::npos);
     EXPECT_NE(trimError("[1] [2] [0 0 1 2 3 3] [0] [3] [4] [0 1 1 0] [0 0 1 1] [1 0 1 1]").find("has weight 0"),
               std::string::npos);
