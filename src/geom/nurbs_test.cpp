@@ -225,5 +225,31 @@ TEST(NurbsTrim, CutsWhatTheLoopsEncloseByTheOddRule) {
     EXPECT_TRUE(none.empty());
 }
 
+// A loop of several curves, head to tail: a square of four linear (order 2) sides, one with a
+// knot inside, and a rational one whose weights leave its line straight.
+TEST(NurbsTrim, LoopsOfSeveralCurvesCutTheirInside) {
+    auto side = [](std::vector<double> u, std::vector<double> v, std::vector<double> w, std::vector<double> knot) {
+        TrimCurveDesc t;
+        t.order = 2, t.knot = std::move(knot), t.tmin = t.knot[1], t.tmax = t.knot[t.knot.size() - 2];
+        t.u = std::move(u), t.v = std::move(v), t.w = std::move(w);
+        return t;
+    };
+    TrimLoops loops;
+    loops.loops = {{side({0.25, 0.75}, {0.25, 0.25}, {1, 1}, {0, 0, 1, 1}),
+                    side({0.75, 0.75, 0.75}, {0.25, 0.5, 0.75}, {1, 1, 1}, {0, 0, 0.5, 1, 1}),
+                    side({0.75 * 2, 0.25 * 2}, {0.75 * 2, 0.75 * 2}, {2, 2}, {0, 0, 1, 1}),  // homogeneous
+                    side({0.25, 0.25}, {0.75, 0.25}, {1, 1}, {3, 3, 4, 4})}};
+    const NurbsTrim trim(loops);
+    EXPECT_TRUE(trim.cut(0.5, 0.5));
+    EXPECT_TRUE(trim.cut(0.74, 0.26));
+    EXPECT_FALSE(trim.cut(0.76, 0.5));
+    EXPECT_FALSE(trim.cut(0.5, 0.8));
+    std::vector<uint8_t> hole;
+    ASSERT_TRUE(trim.mark(0, 1, 0, 1, 100, 100, hole));
+    size_t cut = 0;
+    for (uint8_t h : hole) cut += h;
+    EXPECT_EQ(cut, 50u * 50u);  // centres (i + 0.5) / 100 inside [0.25, 0.75]: i = 25 .. 74
+}
+
 }  // namespace
 }  // namespace streyes
