@@ -26,7 +26,8 @@ struct Grid {
     std::vector<Vec3f> N[2];      // geometric normals (not normalised)
     std::vector<Color> Cs;        // surface colour per vertex
     // Micropolygons cut away by a trim curve (nu x nv, u fastest; non-zero: not rasterized).
-    // Empty, as after resize(), when none is.
+    // Empty when none is: every dice starts it empty (Body::startGrid); resize() keeps it, as a
+    // still grid made moving to be shaded at both ends is the same grid.
     std::vector<uint8_t> hole;
     std::vector<Color> Ci[2];     // shaded colour at t0, t1 (written by the shading stage)
     // Lights that cast shadows: their contribution per vertex (shadowSlots colours a vertex, at
@@ -48,7 +49,6 @@ struct Grid {
             if (shadowSlots) Cl[k].resize(n * size_t(shadowSlots));
         }
         Cs.resize(n);
-        hole.clear();
     }
 };
 

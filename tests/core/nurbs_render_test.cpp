@@ -139,6 +139,19 @@ TEST(NurbsRender, TrimmedHoleTakesItsArea) {
     EXPECT_NEAR(alphaSum(cleared, 0), 1600, 1e-3);
 }
 
+// A still patch under a moving light is shaded at both ends of the exposure (its grid is made
+// moving after dicing): its hole stays a hole.
+TEST(NurbsRender, TrimmedHoleStaysUnderAMovingLight) {
+    const std::string rib = test::orthoHeader(64, 64, "PixelSamples 8 8\nShadingRate 0.0625\nShutter 0 1\n") +
+                            "TransformBegin\nMotionBegin [0 1]\nTranslate -20 0 0\nTranslate 20 0 0\nMotionEnd\n"
+                            "LightSource \"pointlight\" 1 \"from\" [32 32 -10] \"intensity\" [400]\nTransformEnd\n"
+                            "Surface \"matte\"\n" +
+                            test::trimCircle(0.5, 0.5, 0.25) + test::nurbsSquare(12, 52, 12, 52, 5) + "WorldEnd\n";
+    RenderResult r = renderRib(rib);
+    EXPECT_NEAR(alphaSum(r, 0), 1600 - M_PI * 100, 0.8);
+    EXPECT_EQ(r.alpha(0, 32, 32), 0.0f);
+}
+
 TEST(NurbsRender, MovingPatchBlursAlongItsPath) {
     // The disc moves 16 pixels right during the exposure: its coverage keeps its area and its
     // centroid lies half way.
