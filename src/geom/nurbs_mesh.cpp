@@ -120,4 +120,10 @@ bool NurbsMesh::trimQuads(int, const ParamRect& r, int nu, int nv, std::vector<u
                          lerp(sh.vmin, sh.vmax, r.v1), nu, nv, hole);
 }
 
+bool NurbsMesh::trimmedAway(int, const ParamRect& r) const {
+    const NurbsShape& sh = *shape_;
+    return sh.trim && sh.trim->covers(lerp(sh.umin, sh.umax, r.u0), lerp(sh.umin, sh.umax, r.u1),
+                                      lerp(sh.vmin, sh.vmax, r.v0), lerp(sh.vmin, sh.vmax, r.v1));
+}
+
 }  // namespace streyes

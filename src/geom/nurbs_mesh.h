@@ -38,6 +38,7 @@ class NurbsMesh final : public SurfaceMesh {
     bool faceMoving(int) const override { return moving(); }
     Bounds3f bound(int f, const ParamRect& r, int k) const override;
     bool trimQuads(int f, const ParamRect& r, int nu, int nv, std::vector<uint8_t>& hole) const override;
+    bool trimmedAway(int f, const ParamRect& r) const override;
 
     // The surface at key k over the patch's own (u, v) (exposed for tests).
     NurbsSurface surface(int k) const;

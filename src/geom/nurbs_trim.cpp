@@ -44,6 +44,15 @@ bool NurbsTrim::cut(double u, double v) const {
     return inside;
 }
 
+bool NurbsTrim::covers(double u0, double u1, double v0, double v1) const {
+    if (edges_.empty() || u1 < ulo_ || u0 > uhi_ || v1 < vlo_ || v0 > vhi_) return false;
+    for (const Edge& e : edges_)
+        if (std::max(e.a.x, e.b.x) >= u0 && std::min(e.a.x, e.b.x) <= u1 && std::max(e.a.y, e.b.y) >= v0 &&
+            std::min(e.a.y, e.b.y) <= v1)
+            return false;
+    return cut(0.5 * (u0 + u1), 0.5 * (v0 + v1));
+}
+
 bool NurbsTrim::mark(double u0, double u1, double v0, double v1, int nu, int nv, std::vector<uint8_t>& hole) const {
     if (edges_.empty() || u1 < ulo_ || u0 > uhi_ || v1 < vlo_ || v0 > vhi_) return false;
     thread_local std::vector<const Edge*> near;  // the edges reaching into the rows' range

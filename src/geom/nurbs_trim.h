@@ -22,6 +22,9 @@ class NurbsTrim {
     bool empty() const { return edges_.empty(); }
     // Whether (u, v) is cut away.
     bool cut(double u, double v) const;
+    // Whether all of [u0, u1] x [v0, v1] is cut away: no loop edge's box meets it and its centre
+    // is cut (conservative: false where an edge passes near).
+    bool covers(double u0, double u1, double v0, double v1) const;
     // For an nu x nv grid over [u0, u1] x [v0, v1]: hole[j * nu + i] = 1 where micropolygon (i, j)'s
     // centre is cut away. False, with `hole` untouched, when the rectangle misses every loop's bound
     // (nothing is cut there). Allocates nothing once its scratch is warm.

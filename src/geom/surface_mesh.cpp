@@ -40,6 +40,7 @@ SurfaceMesh::SurfaceMesh(std::shared_ptr<const SurfaceTopology> topology, TimeSp
 
 bool SurfaceMesh::bezier(int, const ParamRect&, int, BezierPatch*) const { return false; }
 bool SurfaceMesh::trimQuads(int, const ParamRect&, int, int, std::vector<uint8_t>&) const { return false; }
+bool SurfaceMesh::trimmedAway(int, const ParamRect&) const { return false; }
 
 void SurfaceMesh::evaluate(int f, double u, double v, int k, Vec3f* P, Vec3f* N) const {
     Vec3d p, du, dv;

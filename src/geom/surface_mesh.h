@@ -93,6 +93,8 @@ class SurfaceMesh {
     // Trimming: for an nu x nv grid over r of face f, hole[j * nu + i] = 1 where micropolygon (i, j)
     // is cut away. False (hole untouched) where nothing is cut; a NuPatch with TrimCurve overrides it.
     virtual bool trimQuads(int f, const ParamRect& r, int nu, int nv, std::vector<uint8_t>& hole) const;
+    // Whether a trim curve cuts away all of face f over r (false when unsure).
+    virtual bool trimmedAway(int f, const ParamRect& r) const;
 
     // Face f's own map at (u, v), key k: position and geometric normal (not unit length). Where
     // the derivatives vanish (a pole, a collapsed edge) the normal is taken a little inside.
