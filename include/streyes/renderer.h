@@ -36,6 +36,8 @@ struct ResolvedSettings {
 };
 ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& options);
 
+class SceneShaders;  // the Shading Language shaders of the scene (src/shade)
+
 class Renderer {
   public:
     using FrameSink = std::function<void(const FrameImage&)>;
@@ -57,6 +59,7 @@ class Renderer {
     RenderOptions options_;
     Log& log_;
     ResolvedSettings settings_;
+    std::unique_ptr<SceneShaders> shaders_;
     std::unique_ptr<RenderScene> scene_;
     double buildSeconds_ = 0;
 };

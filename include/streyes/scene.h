@@ -30,6 +30,9 @@ struct Param {
     std::vector<double> nums;           // every numeric value, flattened
     std::vector<std::string> strings;   // for String parameters
     SourceLoc loc;
+    // False for a shader parameter given without a declaration: the shader's own declaration
+    // gives its type (type is Float or String here, from the value).
+    bool declared = true;
 
     int componentsPerItem() const;      // 3 for point/color..., 4 for hpoint, 16 matrix, times arraySize
 };
@@ -46,9 +49,10 @@ struct ParamList {
 
 // ---- Graphics state -------------------------------------------------------------------------
 struct ShaderDesc {
-    std::string name;   // "constant", "matte", "plastic", "defaultsurface", ...
+    std::string name;   // "constant", "matte", "plastic", "defaultsurface", or a shader's file name
     ParamList params;
     SourceLoc loc;
+    MotionTransform shaderToWorld;  // the CTM where it was declared: the shader's "shader" space
 };
 
 // A RenderMan basis (Basis request): P(u) = [u^3 u^2 u 1] * m * [P0 P1 P2 P3]^T, and `step`, the
@@ -77,7 +81,12 @@ struct TrimLoops {
 struct Attributes {
     Color color{1, 1, 1};                        // Color (Cs)
     Color opacity{1, 1, 1};                      // Opacity (Os)
-    ShaderDesc surface{"defaultsurface", {}, {}};
+    ShaderDesc surface{"defaultsurface", {}, {}, {}};
+    ShaderDesc displacement;                     // Displacement; no name: none
+    // Attribute "displacementbound" "sphere" r: how far displacement may move a point, in the
+    // "coordinatesystem" named there ("object", "shader", "world" or "camera").
+    double displacementBound = 0;
+    std::string displacementBoundSpace = "object";
     double shadingRate = 1.0;                    // pixels of area per micropolygon
     std::vector<int> lights;                     // indices into Scene::lights that are on
     ParamList user;                              // Attribute "category" "name" values, as "category:name"
@@ -121,6 +130,13 @@ struct RenderSettings {
     bool hasFrames = false;                    // Option "streyes" "int frames" [first last]
     int firstFrame = 0, lastFrame = 0;
     std::vector<DisplayDesc> displays;
+    // Option "searchpath" "shader": folders separated by ':' ('&' the path before, '@' the
+    // standard shaders); empty: the RIB file's folder, then the standard shaders.
+    std::string shaderSearchPath;
+    SourceLoc shaderSearchPathLoc;
+    // Option "shading" "string builtin" ["off"]: shade constant, matte, plastic and
+    // defaultsurface with their Shading Language sources too (the same pixels, slower).
+    bool builtinShading = true;
 };
 
 // ---- Lights and geometry --------------------------------------------------------------------------
@@ -164,6 +180,9 @@ struct ProceduralDesc {
     std::string kind;               // "DelayedReadArchive", "RunProgram", "DynamicLoad" or "ObjectInstance"
     std::vector<std::string> args;  // the request's string arguments
     std::string directory;          // folder of the declaring file: relative names are looked up there first
+    // Option "searchpath" "procedural" and "archive" where it was declared: ':'-separated folders,
+    // "@" standing for `directory` (DynamicLoad plug-ins and archives named without a folder).
+    std::string proceduralPath = "@", archivePath = "@";
     Bounds3d bound;                 // object space, as declared
     MotionTransform objectToWorld;
     AttributesPtr attributes;

@@ -43,6 +43,10 @@ namespace streyes {
     SHOWN("passes", s.passes)                                                                          \
     COUNT(gridsDiced, "grids_diced")                                                                   \
     COUNT(micropolygons, "micropolygons")                                                              \
+    COUNT(pointsShadedBuiltin, "shading.points_builtin") /* vertices the built-in shading shaded */   \
+    COUNT(pointsShadedSurface, "shading.points_surface") /* vertices Shading Language surfaces ran on */ \
+    COUNT(lightShaderRuns, "shading.light_shader_runs")  /* light shader runs over a grid */          \
+    COUNT(shadingSanitised, "shading.sanitised")  /* NaN, infinity or out-of-domain results set to 0 */ \
     COUNT(sampleTests, "sample_tests")                                                                 \
     COUNT(sampleHits, "sample_hits")                                                                   \
     COUNT(samplesBehind, "samples_behind") /* not tested: the micropolygon lay behind their hit */    \

@@ -159,7 +159,9 @@ const Material* BodyFactory::material(const AttributesPtr& attributes) {
     auto it = materialOf_.find(a.get());
     if (it != materialOf_.end()) return it->second;
     keepAlive_.push_back(a);
-    materials_.push_back(makeMaterial(*a));
+    Material m = makeMaterial(*a);
+    if (binder_) binder_->bind(m, *a);
+    materials_.push_back(std::move(m));
     return materialOf_.emplace(a.get(), &materials_.back()).first->second;
 }
 

@@ -56,6 +56,8 @@ class BodyFactory final : public ChildBodyMaker {
     // per face. The camera must be set: curved bodies
     // measure their edges in raster space. A subdivision mesh OpenSubdiv rejects is an InputError.
     void setCamera(const Camera* camera) { camera_ = camera; }
+    // Binds the Shading Language shaders of every material made from now on (see material.h).
+    void setMaterialBinder(const MaterialBinder* binder) { binder_ = binder; }
     // The meshes the bodies point into go to `keep` when given (freed with the bodies by their
     // owner), else the factory keeps them for the whole render.
     using Keep = std::vector<std::shared_ptr<const void>>;
@@ -138,6 +140,7 @@ class BodyFactory final : public ChildBodyMaker {
     double windowStart_, windowEnd_;
     Log& log_;
     std::mutex mutex_;
+    const MaterialBinder* binder_ = nullptr;
     std::deque<Material> materials_;  // deques: bodies keep pointers into them
     std::deque<SourceLoc> sources_;
     std::map<const Attributes*, const Material*> materialOf_;

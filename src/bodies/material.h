@@ -2,11 +2,16 @@
 // the scene (BodyFactory); the shading stage evaluates them (shading.h).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "streyes/scene.h"
 
 namespace streyes {
+
+namespace sl {
+class ShaderInstance;  // shade/vm: a compiled Shading Language shader and its parameter values
+}
 
 enum class SurfaceKind { Constant, Matte, Plastic, Default };
 
@@ -20,6 +25,23 @@ struct Material {
     float shadingRate = 1;
     std::vector<int> lights;  // indices into the render's LightSet
     const Attributes* attributes = nullptr;
+    // A Shading Language surface (shaders/*.sl or the user's), run over whole grids by the
+    // shading stage. Null: the built-in `kind` above, which reproduces the shipped constant,
+    // matte, plastic and defaultsurface under the standard lights, three times faster.
+    std::shared_ptr<const sl::ShaderInstance> surface;
+    bool readsTime = false;  // a shader reads `time`: a still grid is shaded per exposure
+    // A Shading Language displacement shader, run on each diced grid before the surface, and how
+    // far it may move a point in camera space: the split loop grows the body's bounds by it.
+    std::shared_ptr<const sl::ShaderInstance> displacement;
+    float displacementBound = 0;
+};
+
+// Binds a material's Shading Language shaders (made by the shading stage, which the bodies
+// stage cannot see: BodyFactory calls it for every material it makes).
+class MaterialBinder {
+  public:
+    virtual ~MaterialBinder() = default;
+    virtual void bind(Material& material, const Attributes& attributes) const = 0;
 };
 
 // Builds a Material from an attribute state; unknown shader names have been handled by the

@@ -3,7 +3,7 @@
 namespace streyes {
 
 std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame, int lastFrame, int xres, int yres,
-                                              Log& log) {
+                                              Log& log, const MaterialBinder* binder) {
     auto rs = std::make_unique<RenderScene>();
     CameraDesc cam = scene.camera;
     if (xres > 0 && yres > 0) {
@@ -17,6 +17,7 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     rs->windowEnd = lastFrame + rs->shutter.close;
     rs->factory = std::make_unique<BodyFactory>(cam.worldToCamera, rs->windowStart, rs->windowEnd, log);
     rs->factory->setCamera(&rs->camera);
+    rs->factory->setMaterialBinder(binder);
     // Primitive ids from 1, in the order BodyFactory::addPrimitives takes them.
     uint64_t id = 0;
     rs->factory->addPrimitives(scene, {}, 0, [&id] { return ++id; }, rs->roots);

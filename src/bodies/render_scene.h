@@ -25,7 +25,8 @@ struct RenderScene {
 // Builds the render scene for the shot, frames [firstFrame, lastFrame] (see RenderOptions::hasShot:
 // the frames rendered lie inside it, and bodies do not depend on which). Camera resolution overrides
 // (xres/yres > 0) replace the scene's Format.
+// `binder` binds the materials' Shading Language shaders (null: built-in shading only).
 std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame, int lastFrame, int xres,
-                                              int yres, Log& log);
+                                              int yres, Log& log, const MaterialBinder* binder = nullptr);
 
 }  // namespace streyes

@@ -50,6 +50,7 @@ std::vector<int> selectFrames(const std::string& pattern, bool hasRange, int fir
 const char* kUsage = R"(usage: streyes render SCENE.rib | SHOT.####.rib [options]
        streyes compare A B [options]        (streyes compare --help)
        streyes sheet PATTERN -o FILE [options]   (streyes sheet --help)
+       streyes shader FILE.sl ...           check shaders and print their parameters
        streyes farm submit|status|gather ...     (streyes farm --help: a shot on a Slurm cluster)
        streyes --help | --version
 

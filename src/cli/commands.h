@@ -35,6 +35,10 @@ int compareCommand(const std::vector<std::string>& args);
 extern const char* kSheetUsage;
 int sheetCommand(const std::vector<std::string>& args);
 
+// `streyes shader FILE.sl`: checks shaders and prints their parameters (shader_command.cpp).
+extern const char* kShaderUsage;
+int shaderCommand(const std::vector<std::string>& args);
+
 // `streyes farm submit|status|gather`: a shot on a Slurm cluster (farm_command.cpp, docs/FARM.md).
 extern const char* kFarmUsage;
 int farmCommand(const std::vector<std::string>& args);

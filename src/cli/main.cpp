@@ -52,15 +52,15 @@ int main(int argc, char** argv) {
             }
             return farmCommand(rest);
         }
-        if (args[0] == "compare" || args[0] == "sheet") {
-            const bool compare = args[0] == "compare";
-            usage = compare ? kCompareUsage : kSheetUsage;
+        if (args[0] == "compare" || args[0] == "sheet" || args[0] == "shader") {
+            usage = args[0] == "compare" ? kCompareUsage : args[0] == "sheet" ? kSheetUsage : kShaderUsage;
             std::vector<std::string> rest(args.begin() + 1, args.end());
             if (asksForHelp(rest)) {
                 std::fputs(usage, stdout);
                 return 0;
             }
-            return compare ? compareCommand(rest) : sheetCommand(rest);
+            if (args[0] == "shader") return shaderCommand(rest);
+            return args[0] == "compare" ? compareCommand(rest) : sheetCommand(rest);
         }
         throw UsageError("unknown command '" + args[0] + "'");
     } catch (const UsageError& e) {

@@ -79,6 +79,7 @@ class Body {
         splitDepth = parent.splitDepth;
         eyeSplitDepth = parent.eyeSplitDepth;
         exposure = parent.exposure;
+        uv = parent.uv;
     }
 
     // A body that is replaced by the bodies it expands into, instead of being split or diced (a
@@ -117,6 +118,9 @@ class Body {
     // body that spans the whole block (per-frame limits key on it: see BucketWorker).
     static constexpr int32_t kNoExposure = INT32_MIN;
     int32_t exposure = kNoExposure;
+    // The piece's parameter rectangle in its primitive, (u0, u1, v0, v1): what a shader sees as u
+    // and v (and s and t, by default). The split loop halves it with every split in u or v.
+    std::array<float, 4> uv{0, 1, 0, 1};
     // As a root, the frames each of its pieces spans (BucketWorker::chunkFrames), made by the first
     // bucket that asks: it depends on the body and the camera only, and every bucket asks. 0 until
     // made; a race writes the same value.

@@ -9,12 +9,22 @@ LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& 
         Light l;
         if (d.type == "distantlight") l.kind = LightKind::Distant;
         else if (d.type == "pointlight") l.kind = LightKind::Point;
-        else l.kind = LightKind::Ambient;
-        l.color = d.params.getColor("lightcolor", {1, 1, 1}) * float(d.params.getFloat("intensity", 1));
-        l.from = d.params.getPoint("from", {0, 0, 0});
-        l.to = d.params.getPoint("to", {0, 0, 1});
+        else if (d.type == "ambientlight") l.kind = LightKind::Ambient;
+        else l.kind = LightKind::Shader;
+        // A shader light's parameters are typed by its shader: read from and to only when RIB
+        // typed them as points.
+        const Param* from = d.params.find("from");
+        const Param* to = d.params.find("to");
+        if (!from || from->type == ParamType::Point) l.from = d.params.getPoint("from", {0, 0, 0});
+        if (!to || to->type == ParamType::Point) l.to = d.params.getPoint("to", {0, 0, 1});
+        if (l.kind == LightKind::Shader && from && !from->declared && from->nums.size() == 3)
+            l.from = {from->nums[0], from->nums[1], from->nums[2]};
+        l.color = l.kind == LightKind::Shader
+                      ? Color{0, 0, 0}
+                      : d.params.getColor("lightcolor", {1, 1, 1}) * float(d.params.getFloat("intensity", 1));
         l.lightToWorld = d.lightToWorld;
         l.castsShadows = d.castsShadows && l.kind != LightKind::Ambient;
+        slotOf_.push_back(l.castsShadows ? int(shadowLights_.size()) : -1);
         if (l.castsShadows) shadowLights_.push_back(int(lights_.size()));
         static_ = static_ && l.lightToWorld.isStatic();
         moves_.push_back(!worldToCamera.isStatic() || !l.lightToWorld.isStatic());
@@ -35,7 +45,7 @@ void LightSet::at(double t, std::vector<CameraLight>& out) const {
         Matrix4 m = l.lightToWorld.at(t) * w2c;
         CameraLight c{l.kind, l.color, {}, {}, l.castsShadows ? slot++ : -1};
         Vec3d from = m.point(l.from);
-        if (l.kind == LightKind::Point) c.position = Vec3f(from);
+        if (l.kind == LightKind::Point || l.kind == LightKind::Shader) c.position = Vec3f(from);
         if (l.kind == LightKind::Distant) c.direction = Vec3f(normalize(from - m.point(l.to)));
         out.push_back(c);
     }

@@ -9,7 +9,9 @@
 
 namespace streyes {
 
-enum class LightKind { Ambient, Distant, Point };
+// Shader: a Shading Language light (spotlight, a studio's own); only Shading Language surfaces
+// see it, and its shadow rays go to its "from" point.
+enum class LightKind { Ambient, Distant, Point, Shader };
 
 struct Light {
     LightKind kind = LightKind::Ambient;
@@ -23,7 +25,7 @@ struct Light {
 struct CameraLight {
     LightKind kind;
     Color color;
-    Vec3f position;   // point lights
+    Vec3f position;   // point and shader lights
     Vec3f direction;  // distant lights: unit vector from the surface towards the light
     int shadowSlot = -1;  // >= 0: the light casts shadows (its slot among those that do)
 };
@@ -48,6 +50,12 @@ class LightSet {
     // declaration order; shadowLight(slot) is the light's index.
     int shadowSlots() const { return int(shadowLights_.size()); }
     int shadowLight(int slot) const { return shadowLights_[size_t(slot)]; }
+    int shadowSlotOf(int light) const { return slotOf_[size_t(light)]; }  // -1: casts none
+    LightKind kind(int light) const { return lights_[size_t(light)].kind; }
+    // Light `light`'s own space to camera space at time t: its shader's "shader" space.
+    Matrix4 lightToCamera(int light, double t) const {
+        return lights_[size_t(light)].lightToWorld.at(t) * worldToCamera_.at(t);
+    }
 
   private:
     std::vector<Light> lights_;
@@ -55,6 +63,7 @@ class LightSet {
     bool static_ = true;
     std::vector<CameraLight> staticLights_;
     std::vector<int> shadowLights_;
+    std::vector<int> slotOf_;  // per light: its shadow slot or -1
     std::vector<bool> moves_;  // per light
 };
 

@@ -163,6 +163,7 @@ void Body::startGrid(int nu, int nv, Grid& grid) const {
     grid.openEnd = time_.openEnd;
     grid.material = material_;
     grid.primitiveId = primitiveId_;
+    grid.u0 = uv[0], grid.u1 = uv[1], grid.v0 = uv[2], grid.v1 = uv[3];
 }
 
 void TrilinearBody::dice(int nu, int nv, Grid& grid) const {

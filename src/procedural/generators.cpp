@@ -5,9 +5,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "procedural/dynamic_load.h"
 #include "procedural/forest.h"
 #include "procedural/run_program.h"
 #include "procedural/procedural.h"
+#include "scene/ri_stream.h"
+#include "scene/search_path.h"
 
 namespace streyes {
 
@@ -113,8 +116,13 @@ std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const Procedu
         std::error_code ec;
         if (fs::path(path).is_relative() && !directory.empty() && fs::exists(fs::path(directory) / path, ec))
             path = (fs::path(directory) / path).string();
+        // A name without a folder found in neither place: along Option "searchpath" "archive".
+        if (path.find('/') == std::string::npos && !fs::exists(path, ec)) {
+            const std::string found = findOnSearchPath(path, desc.archivePath, directory, {".rib"});
+            if (!found.empty()) path = found;
+        }
         if (!fs::is_regular_file(path, ec))
-            throw InputError(loc, "DelayedReadArchive: no archive '" + args[0] + "' (looked beside this file and in the current folder)");
+            throw InputError(loc, "DelayedReadArchive: no archive '" + args[0] + "' (looked beside this file, in the current folder and along Option \"searchpath\" \"archive\")");
         return std::make_shared<ArchiveGenerator>(path);
     }
     if (kind == "RunProgram") {
@@ -140,9 +148,11 @@ std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const Procedu
         const std::string block = args.size() > 1 ? args[1] : "";
         if (args[0] == "forest") return makeForestGenerator(block, loc);
         if (args[0] == "tree") return makeTreeGenerator(block, loc);
-        throw InputError(loc, "DynamicLoad '" + args[0] +
-                                  "': streyes loads no shared objects; its built-in generators are \"forest\" and \"tree\"");
+        // A plug-in runs code, as a program does: allowed where programs are.
+        if (!access.programs) throw InputError(loc, "Procedural \"DynamicLoad\" with a plug-in is not allowed here (no plug-ins are loaded)");
+        return makePluginGenerator(desc);
     }
+    if (kind == kRiFunctionKind) return makeFunctionGenerator(desc);
     throw InputError(loc, "unknown procedural '" + kind + "': use DelayedReadArchive, RunProgram or DynamicLoad");
 }
 

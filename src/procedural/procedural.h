@@ -184,8 +184,9 @@ double detailOfLevel(int level);
 // The generator behind a declared procedural, one of those a RIB file can ask for:
 //   Procedural "DelayedReadArchive" ["file.rib"] [bound]
 //   Procedural "RunProgram" ["program args" "datablock"] [bound]
-//   Procedural "DynamicLoad" ["forest" | "tree" "key=value ..."] [bound]
-// Relative names are looked up in desc.directory first. Throws InputError naming desc.loc for an
+//   Procedural "DynamicLoad" ["forest" | "tree" | "plugin" "parameters"] [bound]  (dynamic_load.h)
+//   Procedural "RiFunction" ["id"] [bound]: RiProcedural with a function (scene/ri_stream.h)
+// Relative names are looked up in desc.directory first, then along the search paths. Throws InputError naming desc.loc for an
 // unknown kind or name, bad arguments, a missing archive or program, or one the scene may not
 // reach (SceneAccess, rib.h).
 std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const ProceduralDesc& desc);

@@ -27,6 +27,25 @@ struct FartherFirst {
 
 constexpr size_t kMaxLayerStats = 64;  // per-layer counters beyond this go to the last entry
 constexpr float kAdaptiveDepthGrowth = 1.25f;  // adaptive layers: at most this depth ratio apart
+// A body's camera-space bound grown by how far its displacement shader may move its points
+// (Attribute "displacementbound"): culling stays conservative for displaced surfaces.
+Bounds3f displaced(const Body& body, Bounds3f box) {
+    const float r = body.material() ? body.material()->displacementBound : 0.0f;
+    if (r > 0) {
+        box.lo = box.lo - Vec3f{r, r, r};
+        box.hi = box.hi + Vec3f{r, r, r};
+    }
+    return box;
+}
+
+// The raster bound of a camera-space box in front of the eye plane: its corners projected.
+Bounds3f rasterOfBox(const Camera& cam, const Bounds3f& box) {
+    Bounds3f r;
+    for (int c = 0; c < 8; ++c)
+        r.extend(cam.toRaster({c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y, c & 4 ? box.hi.z : box.lo.z}));
+    return r;
+}
+
 }  // namespace
 
 BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& options, const PatternTable& patterns,
@@ -38,7 +57,10 @@ BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& option
       layerDepths_(layerDepths),
       log_(log),
       occlusion_(usesOcclusion(options.algorithm)),
-      shadingVaries_(!scene.lights.isStatic()) {}
+      shadingVaries_(!scene.lights.isStatic()),
+      shader_(nullptr, scene.camera, scene.lights) {
+    tracer_.setShader(&shader_);
+}
 
 void BucketWorker::setTrace(const TraceScene* trace) {
     trace_ = trace;
@@ -86,6 +108,7 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     counters.sampleHits += rasterCounters_.sampleHits;
     counters.samplesBehind += rasterCounters_.samplesBehind;
     rasterCounters_ = {};
+    shader_.takeCounters(counters);
 }
 
 // ---- Drivers ---------------------------------------------------------------------------------------
@@ -114,7 +137,7 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
     } else if (root.moving() || (!root.expands() && shadingVaries(root))) {
         // Its bound over the whole shot (made once) misses the bucket: nothing to cut.
         const PixelRect& R = bucket_.rect;
-        if (boxOutside(scene_.camera, root.bound().swept(), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
+        if (boxOutside(scene_.camera, displaced(root, root.bound().swept()), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
             ++counters.culledView;
             return;
         }
@@ -126,7 +149,7 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
         // one level of detail): the piece over those frames.
         push(root.restrictedTo(std::max(span.t0, a), std::min(span.t1, b)));
     } else if (occlusion_) {
-        heap_.push_back({root.bound().swept().lo.z, arrivals_++, &root, nullptr});
+        heap_.push_back({displaced(root, root.bound().swept()).lo.z, arrivals_++, &root, nullptr});
         std::push_heap(heap_.begin(), heap_.end(), FartherFirst());
     } else {
         process(root);
@@ -211,7 +234,7 @@ void BucketWorker::pushChunks(const Body& root, int chunk, int ca, int cb) {
     // Not one piece of these chunks can reach the bucket (the margin keeps this conservative to
     // float rounding: the pieces' own bounds decide, as always, in process()).
     const PixelRect& R = bucket_.rect;
-    if (boxOutside(scene_.camera, root.boundDuring(a, b), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
+    if (boxOutside(scene_.camera, displaced(root, root.boundDuring(a, b)), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
         ++counters.culledView;
         return;
     }
@@ -231,7 +254,7 @@ void BucketWorker::push(BodyPtr body) {
         stack_.push_back(std::move(body));
         return;
     }
-    const float zmin = body->bound().swept().lo.z;
+    const float zmin = displaced(*body, body->bound().swept()).lo.z;
     const Body* raw = body.get();
     heap_.push_back({zmin, arrivals_++, raw, std::move(body)});
     std::push_heap(heap_.begin(), heap_.end(), FartherFirst());
@@ -409,7 +432,7 @@ bool BucketWorker::hiddenBehindHits(const Body& body, const Bounds3f& raster, fl
 // it is small enough or split it along its longest direction in raster spacetime (u, v or t).
 void BucketWorker::process(const Body& body) {
     const Camera& cam = scene_.camera;
-    const Bounds3f swept = body.bound().swept();
+    const Bounds3f swept = displaced(body, body.bound().swept());
     if (!(swept.hi.z >= cam.nearClip() && swept.lo.z <= cam.farClip())) {
         ++counters.culledClip;  // wholly in front of the near plane or beyond the far plane (or NaN)
         return;
@@ -445,7 +468,8 @@ void BucketWorker::process(const Body& body) {
     }
 
     const RasterMeasure m = body.measure(cam);
-    const Bounds3f raster = m.bound.swept();
+    Bounds3f raster = m.bound.swept();
+    if (body.material() && body.material()->displacementBound > 0) raster.extend(rasterOfBox(cam, swept));
     if (rasterOutside(raster, bucket_.rect)) {
         ++counters.culledView;
         return;
@@ -533,6 +557,12 @@ bool BucketWorker::withinSplitBudget(const Body& body) {
 void BucketWorker::split(const Body& body, SplitAxis axis, bool eyeSplit) {
     BodyPtr halves[2];
     body.split(axis, halves);
+    if (axis != SplitAxis::T) {  // halves of the parameter rectangle, low half first (Body::split)
+        const int lo = axis == SplitAxis::U ? 0 : 2;
+        const float mid = 0.5f * (body.uv[size_t(lo)] + body.uv[size_t(lo + 1)]);
+        halves[0]->uv[size_t(lo + 1)] = mid;
+        halves[1]->uv[size_t(lo)] = mid;
+    }
     // Second half first: on the stack, the first half is processed next (depth first).
     for (int i = 1; i >= 0; --i) {
         if (eyeSplit) halves[i]->eyeSplitDepth = static_cast<unsigned char>(body.eyeSplitDepth + 1);
@@ -548,7 +578,6 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
     auto t = Clock::now();
     body.startKeyGrid(nu, nv, grid_);
     ++counters.gridsDiced;
-    const bool ortho = !scene_.camera.perspective();
     // The key intervals that meet the bucket's frames (a piece spans a whole chunk of frames, which
     // may reach beyond the block).
     const double a = bucket_.firstFrame + scene_.shutter.open, b = bucket_.firstFrame + bucket_.frameCount - 1 + scene_.shutter.close;
@@ -558,14 +587,14 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
     body.diceKey(k0, grid_, 0);
     auto t1 = Clock::now();
     counters.timeDice += std::chrono::duration<double>(t1 - t).count();
-    shadeGridSlot(grid_, 0, body.keyTime(k0), scene_.lights, ortho, lightScratch_);
+    shader_.shadeSlot(grid_, 0, body.keyTime(k0));
     counters.timeShade += secondsSince(t1);
     for (size_t k = k0; k + 1 < keys; ++k) {
         auto ta = Clock::now();
         body.diceKey(k + 1, grid_, 1);
         auto tb = Clock::now();
         counters.timeDice += std::chrono::duration<double>(tb - ta).count();
-        shadeGridSlot(grid_, 1, body.keyTime(k + 1), scene_.lights, ortho, lightScratch_);
+        shader_.shadeSlot(grid_, 1, body.keyTime(k + 1));
         auto tc = Clock::now();
         counters.timeShade += std::chrono::duration<double>(tc - tb).count();
         grid_.t0 = body.keyTime(k);
@@ -600,7 +629,7 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv) {
     }
     auto t1 = Clock::now();
     counters.timeDice += std::chrono::duration<double>(t1 - t).count();
-    shadeGrid(grid_, scene_.lights, !scene_.camera.perspective(), lightScratch_);
+    shader_.shade(grid_);
     auto t2 = Clock::now();
     counters.timeShade += std::chrono::duration<double>(t2 - t1).count();
     rasterizer_.rasterize(grid_, scene_.camera, scene_.shutter, block_, rasterCounters_);

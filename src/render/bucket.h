@@ -14,6 +14,7 @@
 #include "geom/grid.h"
 #include "raster/image_block.h"
 #include "raster/rasterizer.h"
+#include "shade/grid_shader.h"
 #include "streyes/render_options.h"
 #include "streyes/stats.h"
 #include "trace/trace.h"
@@ -41,6 +42,8 @@ class BucketWorker {
     // The ray tracer's scene (null when nothing is ray traced): eye rays replace the split loop
     // for --algorithm raytrace*; otherwise it traces the shadow rays of lights that cast shadows.
     void setTrace(const TraceScene* trace);
+    // The scene's Shading Language shaders (null: built-in shading only). Before render().
+    void setShaders(const SceneShaders* shaders) { shader_.setShaders(shaders); }
 
     RenderCounters counters;
 
@@ -81,9 +84,14 @@ class BucketWorker {
     Log& log_;
     const bool occlusion_;
     const bool shadingVaries_;  // some light moves: still geometry it lights is shaded per exposure
-    // Does a light the body's material reads move (in camera space)?
+    // Does anything the body's shading reads change over time, while its grid may stand still in
+    // camera space: a light it reads moving, its shader reading `time`, or the world moving
+    // against the camera under a Shading Language surface (world-space noise, say)?
     bool shadingVaries(const Body& body) const {
-        return shadingVaries_ && body.material() && scene_.lights.anyMoves(body.material()->lights);
+        const Material* m = body.material();
+        if (!m) return false;
+        return (shadingVaries_ && scene_.lights.anyMoves(m->lights)) || m->readsTime ||
+               (m->surface && !scene_.camera.worldToCamera().isStatic());
     }
 
     BucketSpec bucket_;
@@ -104,7 +112,7 @@ class BucketWorker {
     std::unordered_map<std::pair<uint64_t, int32_t>, uint32_t, PieceKeyHash> splitsOf_;
     std::vector<WorkItem> heap_;
     uint64_t arrivals_ = 0;
-    std::vector<CameraLight> lightScratch_;
+    GridShader shader_;
     std::vector<std::pair<int, int>> levels_;  // (frame index, level of detail) of a moving procedural
     ResolveScratch resolveScratch_;
 

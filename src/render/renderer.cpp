@@ -13,6 +13,7 @@
 #include "render/bucket.h"
 #include "streyes/memory.h"
 #include "procedural/procedural.h"
+#include "shade/scene_shaders.h"
 #include "trace/trace.h"
 
 namespace streyes {
@@ -83,7 +84,9 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     // meshes), and --threads holds for every stage.
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        scene_ = buildRenderScene(scene, settings_.shotFirst, settings_.shotLast, settings_.width, settings_.height, log);
+        shaders_ = std::make_unique<SceneShaders>(scene, log);
+        scene_ = buildRenderScene(scene, settings_.shotFirst, settings_.shotLast, settings_.width, settings_.height, log,
+                                  shaders_.get());
     });
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
@@ -283,6 +286,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                     std::unique_ptr<BucketWorker>& w = workers.local();
                     if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, patterns, weights, layerDepths, log_);
                     w->setTrace(trace.get());
+                    w->setShaders(shaders_.get());
                     for (size_t i = r.begin(); i != r.end(); ++i) {
                         w->render(buckets[i], images, first);
                         uint64_t n = ++done;
@@ -313,6 +317,11 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     for (const auto& w : workers)
         if (w) stats.counters += w->counters;
     stats.counters.rootBodies = scene_->roots.size();
+    if (stats.counters.shadingSanitised > 0)
+        log_.warnOnce("shading:sanitised", {},
+                      std::to_string(stats.counters.shadingSanitised) +
+                          " shading results were NaN or infinite (a division by zero, the root or log of a negative) "
+                          "and were written as 0");
     if (trace) {
         RenderCounters c;
         c.traceBodies = trace->bodyCount();

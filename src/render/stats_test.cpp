@@ -91,6 +91,7 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
     "passes": 2,
     "grids_diced": 0,
     "micropolygons": 0,
+    "shading": {"points_builtin": 0, "points_surface": 0, "light_shader_runs": 0, "sanitised": 0},
     "sample_tests": 8,
     "sample_hits": 6,
     "samples_behind": 0,

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "scene/rib_requests.h"
+#include "scene/search_path.h"
 #include "streyes/rib.h"
 
 namespace streyes {
@@ -32,19 +33,27 @@ void procedural(RibParser& reader, RibArgs& args) {
     p.kind = kind;
     p.args = std::move(strings);
     if (args.loc().file) p.directory = std::filesystem::path(*args.loc().file).parent_path().string();
+    p.proceduralPath = reader.state().proceduralPath;
+    p.archivePath = reader.state().archivePath;
     p.objectToWorld = reader.state().ctm;
     p.attributes = reader.state().attributes;
     p.loc = args.loc();
     reader.scene().procedurals.push_back(std::move(p));
 }
 
-// An archive path: relative to the folder of the file that names it, else as given.
-std::string resolveArchive(const std::string& name, const SourceLoc& loc) {
+// An archive path: relative to the folder of the file that names it, else as given; a name
+// without a folder that is in neither place, along Option "searchpath" "archive".
+std::string resolveArchive(const std::string& name, const SourceLoc& loc, const std::string& searchPath) {
     namespace fs = std::filesystem;
     std::error_code ec;
+    const std::string directory = loc.file ? fs::path(*loc.file).parent_path().string() : "";
     if (fs::path(name).is_relative() && loc.file) {
-        fs::path beside = fs::path(*loc.file).parent_path() / name;
+        fs::path beside = fs::path(directory) / name;
         if (fs::exists(beside, ec)) return beside.string();
+    }
+    if (name.find('/') == std::string::npos && !fs::exists(name, ec)) {
+        const std::string found = findOnSearchPath(name, searchPath, directory, {".rib"});
+        if (!found.empty()) return found;
     }
     return name;
 }
@@ -54,7 +63,7 @@ void readArchive(RibParser& reader, RibArgs& args) {
     const std::string name = args.string("archive file name");
     args.expectEnd();
     if (!sceneAccess().files) args.fail("reading other files is not allowed here");
-    const std::string path = resolveArchive(name, args.loc());
+    const std::string path = resolveArchive(name, args.loc(), reader.state().archivePath);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(args.loc(), "ReadArchive: cannot open '" + name + "': " + std::strerror(errno));
     std::ostringstream text;

@@ -1,6 +1,7 @@
 // Attributes: Color, Opacity, ShadingRate, Attribute and Basis change the current attributes,
 // which primitives share (copy-on-write).
 #include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "scene/rib_requests.h"
@@ -41,6 +42,23 @@ void shadingRate(RibParser& reader, RibArgs& args) {
 void attribute(RibParser& reader, RibArgs& args) {
     static const std::set<std::string> categories = {"identifier", "light", "user", "streyes"};
     std::string category = args.string("category");
+    if (category == "displacementbound") {
+        ParamList params = reader.readParams(args);
+        Attributes& a = reader.state().mutableAttributes();
+        const double r = params.getFloat("sphere", a.displacementBound);
+        if (!(r >= 0) || !std::isfinite(r))
+            throw InputError(params.find("sphere")->loc,
+                             "Attribute \"displacementbound\": sphere must be a radius >= 0, not " + formatNumber(r));
+        const std::string space = params.getString("coordinatesystem", a.displacementBoundSpace);
+        if (space != "object" && space != "shader" && space != "world" && space != "camera" && space != "current")
+            throw InputError(params.find("coordinatesystem")->loc,
+                             "Attribute \"displacementbound\": coordinatesystem \"" + space +
+                                 "\" is not one of object, shader, world, camera, current");
+        a.displacementBound = r;
+        a.displacementBoundSpace = space;
+        reader.warnUnusedParams(params, {"sphere", "coordinatesystem"}, "Attribute \"displacementbound\"");
+        return;
+    }
     if (!categories.count(category)) {
         reader.log().warnOnce("attribute:" + category, args.loc(),
                               "Attribute \"" + category + "\" is not supported: ignored");

@@ -154,9 +154,56 @@ void display(RibParser& reader, RibArgs& args) {
     settings.displays.push_back(DisplayDesc{name, type, mode, args.loc()});
 }
 
+// Option "searchpath" "procedural" ["dir:&"] "archive" [...] "shader" [...]: the names are
+// strings whatever declarations say (RenderMan declares them so). Procedural and archive paths
+// are expanded here; the shader path is kept as written for the render's shader cache ('@'
+// there is the shipped shaders). Other paths (texture) are not used.
+void searchPathOption(RibParser& reader, RibArgs& args) {
+    RibState& s = reader.state();
+    RenderSettings& settings = reader.scene().settings;
+    while (!args.done()) {
+        const std::string name = args.string("search path name (\"procedural\", \"archive\" or \"shader\")");
+        if (args.done()) args.fail("Option \"searchpath\" \"" + name + "\" needs a value: [\"dir1:dir2:&\"]");
+        const std::string value = args.string("search path");
+        if (name == "procedural" || name == "string procedural") {
+            s.proceduralPath = expandSearchPath(value, s.proceduralPath);
+        } else if (name == "archive" || name == "string archive") {
+            s.archivePath = expandSearchPath(value, s.archivePath);
+        } else if (name == "shader" || name == "string shader") {
+            // '&' is the path given before (the default when none was).
+            std::string v = value, before = settings.shaderSearchPath.empty() ? "@" : settings.shaderSearchPath;
+            for (size_t at = v.find('&'); at != std::string::npos; at = v.find('&', at + before.size()))
+                v.replace(at, 1, before);
+            settings.shaderSearchPath = v;
+            settings.shaderSearchPathLoc = args.loc();
+        } else {
+            reader.log().warnOnce("searchpath:" + name, args.loc(),
+                                  "Option \"searchpath\" \"" + name + "\" is not used: ignored");
+        }
+    }
+}
+
+void shadingOption(RibParser& reader, RibArgs& args) {
+    ParamList params = reader.readParams(args);
+    if (const Param* p = params.find("builtin")) {
+        const std::string v = params.getString("builtin", "on");
+        if (v != "on" && v != "off") throw InputError(p->loc, "Option \"shading\": builtin is \"on\" or \"off\"");
+        reader.scene().settings.builtinShading = v == "on";
+    }
+    reader.warnUnusedParams(params, {"builtin"}, "Option \"shading\"");
+}
+
 void option(RibParser& reader, RibArgs& args) {
     RenderSettings& settings = reader.scene().settings;
     std::string category = args.string("option name");
+    if (category == "searchpath") {
+        searchPathOption(reader, args);
+        return;
+    }
+    if (category == "shading") {
+        shadingOption(reader, args);
+        return;
+    }
     if (category != "streyes") {
         reader.log().warnOnce("option:" + category, args.loc(), "Option \"" + category + "\" is not supported: ignored");
         args.skipRest();

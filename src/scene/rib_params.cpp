@@ -109,6 +109,10 @@ std::map<std::string, RibParamDecl> predeclaredParams() {
     // Standard attribute parameters: Attribute "identifier" "name", Attribute "light" "shadows".
     declare("name", C::Uniform, T::String);
     declare("shadows", C::Uniform, T::String);
+    // Option "searchpath" and Option "shading".
+    for (const char* f : {"shader", "texture", "archive", "procedural", "builtin", "coordinatesystem"})
+        declare(f, C::Uniform, T::String);
+    declare("sphere", C::Uniform, T::Float);  // Attribute "displacementbound"
     return d;
 }
 
@@ -138,7 +142,7 @@ void addParamRequests(RibRequestTable& table) {
 // ("name" value) pairs. The name is a declared name or an inline declaration; the value is a
 // number, a string or an array, and must fit the declared type. How many values a use needs
 // (one color, four vertex points) is checked where the parameter is used.
-ParamList RibParser::readParams(RibArgs& args) const {
+ParamList RibParser::readParams(RibArgs& args, bool shaderParams) const {
     ParamList list;
     while (!args.done()) {
         const RibValue& nameValue = args.take();
@@ -147,7 +151,7 @@ ParamList RibParser::readParams(RibArgs& args) const {
                         true);
         if (args.done())
             args.failAt(nameValue.line, "parameter \"" + nameValue.strings[0] + "\" has no value", false);
-        Param p = makeParam(args, nameValue, args.take());
+        Param p = makeParam(args, nameValue, args.take(), shaderParams);
         // A parameter given twice: the later value wins.
         auto same =
             std::find_if(list.params.begin(), list.params.end(), [&](const Param& q) { return q.name == p.name; });
@@ -159,7 +163,7 @@ ParamList RibParser::readParams(RibArgs& args) const {
     return list;
 }
 
-Param RibParser::makeParam(RibArgs& args, const RibValue& nameValue, const RibValue& value) const {
+Param RibParser::makeParam(RibArgs& args, const RibValue& nameValue, const RibValue& value, bool shaderParam) const {
     const std::string& spelled = nameValue.strings[0];
     auto fail = [&](const std::string& what) { args.failAt(nameValue.line, what, false); };
 
@@ -171,6 +175,19 @@ Param RibParser::makeParam(RibArgs& args, const RibValue& nameValue, const RibVa
         if (!error.empty()) fail("invalid inline declaration \"" + spelled + "\": " + error);
     } else {
         auto found = state_.declarations.find(spelled);
+        if (found == state_.declarations.end() && shaderParam && (value.isString() || value.isStringArray() ||
+                                                                  value.isNumber() || value.isNumericArray())) {
+            // A shader's parameter: its declaration in the shader gives the type (as RenderMan does).
+            p.name = spelled;
+            p.declared = false;
+            p.cls = ParamClass::Uniform;
+            p.type = value.isString() || value.isStringArray() ? ParamType::String : ParamType::Float;
+            p.strings = value.strings;
+            p.nums = value.nums;
+            if (p.nums.empty() && p.strings.empty())
+                fail("parameter '" + p.name + "' has an empty array: give it a value");
+            return p;
+        }
         if (found == state_.declarations.end()) {
             std::string example = value.isString() || value.isStringArray() ? "uniform string " : "uniform float ";
             fail("parameter '" + spelled + "' is not declared: use an inline declaration like \"" + example +

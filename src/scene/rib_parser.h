@@ -26,6 +26,7 @@
 #include "scene/rib_args.h"
 #include "scene/rib_lexer.h"
 #include "scene/rib_params.h"
+#include "scene/search_path.h"
 #include "streyes/scene.h"
 
 namespace streyes {
@@ -79,6 +80,9 @@ struct RibState {
     std::map<std::string, int> lightHandles;    // handle -> index in Scene::lights
     std::set<std::string> skippedLightHandles;  // handles of lights of unsupported types
     bool fragment = false;                      // reading a procedural's output
+    // Option "searchpath" "procedural" | "archive": where plug-ins and archives named without a
+    // folder are looked up (scene/search_path.h).
+    std::string proceduralPath = kDefaultSearchPath, archivePath = kDefaultSearchPath;
 
     // Copy-on-write: primitives keep the attributes they were made with (rib_attributes.cpp).
     Attributes& mutableAttributes();
@@ -132,7 +136,9 @@ class RibParser {
     const RibState& state() const { return state_; }
     // The parameter list that ends a request: ("name" value) pairs, each name declared or an
     // inline declaration, each value of the declared type (rib_params.cpp).
-    ParamList readParams(RibArgs& args) const;
+    // `shaderParams`: names without a declaration are taken too (Param::declared false), typed
+    // later by the shader that receives them.
+    ParamList readParams(RibArgs& args, bool shaderParams = false) const;
     // Warns once per owner and name about parameters the owner does not have.
     void warnUnusedParams(const ParamList& params, const std::vector<std::string>& known, const std::string& owner);
 
@@ -141,7 +147,7 @@ class RibParser {
     RibRequest readRequest(RibLexer& lexer, RibToken nameToken);
     RibValue readArray(RibLexer& lexer, const RibToken& open);
     void dispatch(const RibRequest& request);  // rib_requests.cpp
-    Param makeParam(RibArgs& args, const RibValue& nameValue, const RibValue& value) const;
+    Param makeParam(RibArgs& args, const RibValue& nameValue, const RibValue& value, bool shaderParam) const;
 
     struct SavedFrame {
         Scene scene;

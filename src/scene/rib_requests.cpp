@@ -130,7 +130,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
     for (const char* name :
          {"Exposure", "Quantize", "Hider", "Imager", "GeometricApproximation", "Sides", "Orientation",
           "ReverseOrientation", "ColorSamples", "CropWindow", "DepthOfField", "RelativeDetail",
-          "PixelVariance", "Atmosphere", "Interior", "Exterior", "Displacement", "Deformation",
+          "PixelVariance", "Atmosphere", "Interior", "Exterior", "Deformation",
           "TextureCoordinates", "Matte", "Bound", "Detail", "DetailRange", "Perspective", "Skew",
           "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "ShadingInterpolation", "AreaLightSource", "SolidBegin",
           "SolidEnd", "ArchiveEnd", "MakeTexture", "MakeBump", "MakeLatLongEnvironment",

@@ -9,42 +9,49 @@ namespace streyes {
 
 namespace {
 
+// The built-in surfaces' parameters are checked here; any other name is a Shading Language
+// shader found along the shader search path when the render binds it (shade/scene_shaders.h),
+// which checks its parameters against the shader's declarations.
 void surface(RibParser& reader, RibArgs& args) {
-    static const std::map<std::string, std::vector<std::string>> shaders = {
+    static const std::map<std::string, std::vector<std::string>> builtins = {
         {"constant", {}},
         {"defaultsurface", {}},
         {"matte", {"Ka", "Kd"}},
         {"plastic", {"Ka", "Kd", "Ks", "roughness", "specularcolor"}}};
     std::string name = args.string("shader name");
-    auto shader = shaders.find(name);
-    if (shader == shaders.end()) {
-        reader.log().warnOnce("surface:" + name, args.loc(),
-                              "surface shader \"" + name +
-                                  "\" is not supported (constant, matte, plastic, "
-                                  "defaultsurface): using defaultsurface");
-        args.skipRest();
-        reader.state().mutableAttributes().surface = ShaderDesc{"defaultsurface", {}, args.loc()};
-        return;
+    if (name.empty()) args.fail("the shader name is empty");
+    ParamList params = reader.readParams(args, true);
+    auto builtin = builtins.find(name);
+    if (builtin != builtins.end()) {
+        // Check the values now, so that a bad one is reported here rather than while shading.
+        for (const char* f : {"Ka", "Kd", "Ks"}) params.getFloat(f, 0);
+        if (params.getFloat("roughness", 0.1) <= 0)
+            throw InputError(params.find("roughness")->loc, "Surface: roughness must be positive");
+        params.getColor("specularcolor", Color(1, 1, 1));
+        reader.warnUnusedParams(params, builtin->second, "Surface \"" + name + "\"");
     }
-    ParamList params = reader.readParams(args);
-    // Check the values now, so that a bad one is reported here rather than while shading.
-    for (const char* f : {"Ka", "Kd", "Ks"}) params.getFloat(f, 0);
-    if (params.getFloat("roughness", 0.1) <= 0)
-        throw InputError(params.find("roughness")->loc, "Surface: roughness must be positive");
-    params.getColor("specularcolor", Color(1, 1, 1));
-    reader.warnUnusedParams(params, shader->second, "Surface \"" + name + "\"");
-    reader.state().mutableAttributes().surface = ShaderDesc{name, std::move(params), args.loc()};
+    reader.state().mutableAttributes().surface = ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm};
+}
+
+// Displacement "name" parameters: a Shading Language displacement shader, bound and checked
+// when the render starts (shade/scene_shaders.h). Displacement "null" turns it off.
+void displacement(RibParser& reader, RibArgs& args) {
+    std::string name = args.string("shader name");
+    ParamList params = reader.readParams(args, true);
+    if (name == "null") name.clear();
+    reader.state().mutableAttributes().displacement = ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm};
 }
 
 // A light is on in the attribute block where it is declared (and the blocks inside it): its index
 // goes into the current attributes' light list, which AttributeEnd restores.
 void lightSource(RibParser& reader, RibArgs& args) {
     RibState& s = reader.state();
-    static const std::map<std::string, std::vector<std::string>> shaders = {
+    static const std::map<std::string, std::vector<std::string>> builtins = {
         {"ambientlight", {"intensity", "lightcolor"}},
         {"distantlight", {"intensity", "lightcolor", "from", "to"}},
         {"pointlight", {"intensity", "lightcolor", "from"}}};
     std::string name = args.string("shader name");
+    if (name.empty()) args.fail("the shader name is empty");
 
     // The handle: a number (RIB 3.2) or a string (later versions). Parameters come in pairs, so a
     // string before an odd number of remaining values is a handle.
@@ -55,22 +62,15 @@ void lightSource(RibParser& reader, RibArgs& args) {
         }
     }
 
-    auto shader = shaders.find(name);
-    if (shader == shaders.end()) {
-        reader.log().warnOnce("light:" + name, args.loc(),
-                              "light shader \"" + name +
-                                  "\" is not supported (ambientlight, distantlight, pointlight): "
-                                  "light skipped");
-        args.skipRest();
-        if (!handle.empty()) s.skippedLightHandles.insert(handle);
-        return;
+    ParamList params = reader.readParams(args, true);
+    auto builtin = builtins.find(name);
+    if (builtin != builtins.end()) {  // other lights are Shading Language shaders, checked when bound
+        params.getFloat("intensity", 1.0);
+        params.getColor("lightcolor", Color(1, 1, 1));
+        params.getPoint("from", Vec3d(0, 0, 0));
+        params.getPoint("to", Vec3d(0, 0, 1));
+        reader.warnUnusedParams(params, builtin->second, "LightSource \"" + name + "\"");
     }
-    ParamList params = reader.readParams(args);
-    params.getFloat("intensity", 1.0);
-    params.getColor("lightcolor", Color(1, 1, 1));
-    params.getPoint("from", Vec3d(0, 0, 0));
-    params.getPoint("to", Vec3d(0, 0, 1));
-    reader.warnUnusedParams(params, shader->second, "LightSource \"" + name + "\"");
 
     if (s.world == RibState::World::After) args.fail("LightSource after WorldEnd: lights belong in the world");
     int index = int(reader.scene().lights.size());
@@ -103,6 +103,7 @@ void illuminate(RibParser& reader, RibArgs& args) {
 
 void addShadingRequests(RibRequestTable& table) {
     table.add("Surface", {surface, "Surface \"name\" parameters..."});
+    table.add("Displacement", {displacement, "Displacement \"name\" parameters..."});
     table.add("LightSource", {lightSource, "LightSource \"name\" handle parameters..."});
     table.add("Illuminate", {illuminate, "Illuminate handle onoff", RibPhase::World});
 }

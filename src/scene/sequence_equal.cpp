@@ -59,7 +59,8 @@ bool sameData(const BilinearPatchDesc& a, const BilinearPatchDesc& b) {
 bool sameObject(const std::shared_ptr<const Scene>& a, const std::shared_ptr<const Scene>& b);
 
 bool sameData(const ProceduralDesc& a, const ProceduralDesc& b) {
-    return a.kind == b.kind && a.args == b.args && a.directory == b.directory && a.bound.lo == b.bound.lo &&
+    return a.kind == b.kind && a.args == b.args && a.directory == b.directory && a.proceduralPath == b.proceduralPath &&
+           a.archivePath == b.archivePath && a.bound.lo == b.bound.lo &&
            a.bound.hi == b.bound.hi && sameTransform(a.objectToWorld, b.objectToWorld) &&
            sameAttributesPtr(a.attributes, b.attributes) && sameObject(a.object, b.object);
 }

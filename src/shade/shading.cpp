@@ -31,6 +31,7 @@ Color shadePoint(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthographi
             ambient += l.color;
             continue;
         }
+        if (l.kind == LightKind::Shader) continue;  // lights only Shading Language surfaces
         Vec3f L;
         Color cl = l.color;
         if (l.kind == LightKind::Distant) {

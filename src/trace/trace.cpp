@@ -55,7 +55,7 @@ TraceScene::TraceScene(const RenderScene& scene, Log& log) : scene_(scene) {
     for (double t : {scene.windowStart, scene.windowEnd}) {
         scene.lights.at(t, lights);
         for (const CameraLight& l : lights)
-            if (l.kind == LightKind::Point && isFinite(l.position)) include_.extend(l.position);
+            if ((l.kind == LightKind::Point || l.kind == LightKind::Shader) && isFinite(l.position)) include_.extend(l.position);
     }
 }
 
@@ -147,7 +147,7 @@ Color SampleTracer::addVisibleLights(Color c, Vec3f p, double time, const Color*
         const CameraLight& l = lightsAt(lights, time)[size_t(lights.shadowLight(k))];
         Ray ray{p, l.direction};
         float tMax = std::numeric_limits<float>::infinity();
-        if (l.kind == LightKind::Point) {
+        if (l.kind == LightKind::Point || l.kind == LightKind::Shader) {
             const Vec3f d = l.position - p;
             const float dist = length(d);
             if (!(dist > 2 * bias)) {  // the light sits on the surface: nothing between
@@ -186,7 +186,12 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
         const Color cs = bilerp(body.colors(), h.u, h.v);
         const std::vector<CameraLight>& lights =
             lightsAt(scene.lights, time);  // refreshed per sample only when lights or camera move
-        Color c = shadePoint(*body.material(), cs, p, n, ortho, lights, K ? shadowed_.data() : nullptr, K);
+        const Material& m = *body.material();
+        Color c = m.surface && shader_
+                      ? shader_->shadeHit(m, cs, p, n, time, body.uv[0] + h.u * (body.uv[1] - body.uv[0]),
+                                          body.uv[2] + h.v * (body.uv[3] - body.uv[2]), body.primitiveId(),
+                                          K ? shadowed_.data() : nullptr, K)
+                      : shadePoint(m, cs, p, n, ortho, lights, K ? shadowed_.data() : nullptr, K);
         if (K) c = addVisibleLights(c, p, time, shadowed_.data(), trace, bvh, counters);
         hit = {p.z, c, 1.0f, body.primitiveId()};
     });

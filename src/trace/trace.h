@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "raster/image_block.h"
+#include "shade/grid_shader.h"
 #include "bodies/render_scene.h"
 #include "trace/spacetime_bvh.h"
 #include "streyes/stats.h"
@@ -77,6 +78,9 @@ class TraceScene {
 // One thread's ray tracer for buckets: its traversal scratch and light cache.
 class SampleTracer {
   public:
+    // Shades hits on Shading Language surfaces (the built-in shading needs none).
+    void setShader(GridShader* shader) { shader_ = shader; }
+
     // Every sample of the block: the nearest hit at the sample's time, shaded, with shadow
     // rays. Writes the block's hits as the rasterizer would (z, colour, alpha 1).
     void traceSamples(ImageBlock& block, const TraceScene& trace, RenderCounters& counters);
@@ -91,6 +95,7 @@ class SampleTracer {
                            const SpacetimeBVH& bvh, RenderCounters& counters);
 
     TraceContext ctx_;
+    GridShader* shader_ = nullptr;
     std::vector<CameraLight> lights_;
     double lightsTime_ = 0;
     bool lightsValid_ = false;

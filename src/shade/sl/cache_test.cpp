@@ -66,10 +66,11 @@ TEST(SlCache, CompilesOncePerFileAndModificationTime) {
 }
 
 TEST(SlCache, SearchPathSpecification) {
-    ShaderCache cache({"a"});
-    cache.setSearchPath("b:&:@");
-    std::vector<std::string> want{"b", "a", "shaders"};
-    EXPECT_EQ(cache.searchPath(), want);
+    ShaderCache cache({"a", "std"});
+    cache.setSearchPath("b:&");
+    EXPECT_EQ(cache.searchPath(), (std::vector<std::string>{"b", "a", "std"}));
+    cache.setSearchPath("c:@");  // '@' is the path the cache was made with, '&' the one before
+    EXPECT_EQ(cache.searchPath(), (std::vector<std::string>{"c", "a", "std"}));
 }
 
 TEST(SlCache, ThreadsShareOneCompilationAndShadeIndependently) {

@@ -59,7 +59,7 @@ ProgramPtr compileShaderFile(const std::string& path) {
 
 // ---- ShaderCache ---------------------------------------------------------------------------------
 
-ShaderCache::ShaderCache(std::vector<std::string> searchPath) : path_(std::move(searchPath)) {}
+ShaderCache::ShaderCache(std::vector<std::string> searchPath) : default_(searchPath), path_(std::move(searchPath)) {}
 
 void ShaderCache::setSearchPath(const std::string& spec) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -68,7 +68,7 @@ void ShaderCache::setSearchPath(const std::string& spec) {
     std::istringstream in(spec);
     while (std::getline(in, item, ':')) {
         if (item == "&") out.insert(out.end(), before.begin(), before.end());
-        else if (item == "@") out.push_back("shaders");
+        else if (item == "@") out.insert(out.end(), default_.begin(), default_.end());
         else if (!item.empty()) out.push_back(item);
     }
     path_ = out;

@@ -31,7 +31,7 @@ class ShaderCache {
   public:
     explicit ShaderCache(std::vector<std::string> searchPath = {"shaders"});
     // RIB's Option "searchpath" "shader": folders separated by ':'; '&' stands for the path
-    // before, '@' for the default ("shaders").
+    // before, '@' for the default (the path the cache was made with).
     void setSearchPath(const std::string& colonSeparated);
     std::vector<std::string> searchPath() const;
     // `name` is "plastic", "plastic.sl", or a path. Not found, or a bad shader: InputError (at
@@ -47,6 +47,7 @@ class ShaderCache {
         ProgramPtr program;
     };
     mutable std::mutex mutex_;
+    std::vector<std::string> default_;  // what '@' stands for: the path the cache was made with
     std::vector<std::string> path_;
     std::map<std::string, Entry> byPath_;
     size_t compiled_ = 0;

@@ -1,0 +1,26 @@
+// Search paths: Option "searchpath" "procedural" | "archive" ["dir:dir:..."], RenderMan's way.
+//
+// A path is folders separated by ':'. In a new value, '&' stands for the value before and '@'
+// for the default: the folder of the RIB file that names the plug-in or archive. The stored path
+// keeps '@' (it is resolved where a name is looked up, against that file's folder).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace streyes {
+
+constexpr const char* kDefaultSearchPath = "@";
+
+// The path `spec` gives after `previous`: each '&' is replaced by `previous`.
+std::string expandSearchPath(const std::string& spec, const std::string& previous);
+
+// The folders of `path`, '@' replaced by `directory` (the current folder when it is empty), in order.
+std::vector<std::string> searchPathFolders(const std::string& path, const std::string& directory);
+
+// The first existing regular file named `name`, or `name` + a suffix, in the folders of `path`;
+// "" when there is none.
+std::string findOnSearchPath(const std::string& name, const std::string& path, const std::string& directory,
+                             const std::vector<std::string>& suffixes = {});
+
+}  // namespace streyes

@@ -1,0 +1,162 @@
+#include "shade/grid_shader.h"
+
+#include "bodies/material.h"
+#include "shade/shading.h"
+
+namespace streyes {
+
+GridShader::GridShader(const SceneShaders* shaders, const Camera& camera, const LightSet& lights)
+    : shaders_(shaders), camera_(camera), lights_(lights) {}
+
+GridShader::~GridShader() = default;
+
+void GridShader::takeCounters(RenderCounters& out) {
+    out.pointsShadedBuiltin += builtinPoints_;
+    builtinPoints_ = 0;
+    if (!vm_) return;
+    const sl::ShadeStats& s = vm_->stats();
+    out.pointsShadedSurface += s.points;
+    out.lightShaderRuns += s.lightRuns;
+    out.shadingSanitised += s.sanitised;
+    vm_->resetStats();
+}
+
+Color GridShader::shadeHit(const Material& m, Color cs, Vec3f p, Vec3f n, double time, float u, float v,
+                          uint64_t primitiveId, Color* shadowed, int slots) {
+    hit_.shadowSlots = slots;
+    hit_.resize(0, 0, false);
+    hit_.material = &m;
+    hit_.primitiveId = primitiveId;
+    hit_.t0 = hit_.t1 = time;
+    hit_.u0 = hit_.u1 = u;
+    hit_.v0 = hit_.v1 = v;
+    hit_.P[0][0] = p;
+    hit_.N[0][0] = n;
+    hit_.Cs[0] = cs;
+    shadeSurface(hit_, 0, time);  // a hit on the traced surface: not displaced again
+    for (int k = 0; k < slots; ++k) shadowed[k] = hit_.Cl[0][size_t(k)];
+    return hit_.Ci[0][0];
+}
+
+void GridShader::shade(Grid& grid) {
+    for (int k = 0; k < (grid.moving ? 2 : 1); ++k) shadeSlot(grid, k, k == 0 ? grid.t0 : grid.t1);
+}
+
+void GridShader::shadeSlot(Grid& grid, int k, double time) {
+    if (grid.material->displacement) displace(*grid.material, grid, k, time);
+    shadeSurface(grid, k, time);
+}
+
+// The displacement shader moves P (and sets N) over the grid; they replace the diced ones.
+void GridShader::displace(const Material& m, Grid& grid, int k, double time) {
+    if (!vm_) vm_ = std::make_unique<sl::ShadingVM>();
+    prepare(m, grid, k, time, m.attributes ? &m.attributes->displacement.shaderToWorld : nullptr);
+    vm_->run(*m.displacement, sgrid_, {});
+    const sl::ValueRef P = vm_->result(sl::Global::P), N = vm_->result(sl::Global::N);
+    const int n = grid.vertexCount();
+    // Read both before writing: a result the shader did not touch is the grid's own array.
+    base_.resize(size_t(n) * 2);
+    for (int i = 0; i < n; ++i) {
+        base_[size_t(i)] = P.valid() ? P.vec(i) : grid.P[k][size_t(i)];
+        base_[size_t(n + i)] = N.valid() ? N.vec(i) : grid.N[k][size_t(i)];
+    }
+    std::copy(base_.begin(), base_.begin() + n, grid.P[k].begin());
+    std::copy(base_.begin() + n, base_.begin() + 2 * n, grid.N[k].begin());
+}
+
+void GridShader::shadeSurface(Grid& grid, int k, double time) {
+    const Material& m = *grid.material;
+    if (!m.surface) {
+        shadeGridSlot(grid, k, time, lights_, !camera_.perspective(), lightScratch_);
+        builtinPoints_ += uint64_t(grid.vertexCount());
+        return;
+    }
+    runSurface(m, grid, k, time);
+}
+
+// The shading grid's inputs for slot k: views of the grid's arrays, u and v over the piece.
+void GridShader::prepare(const Material& m, const Grid& grid, int k, double time, const MotionTransform* shaderToWorld) {
+    const int n = grid.vertexCount();
+    sgrid_.setShape(grid.nu, grid.nv);
+    u_.resize(size_t(n));
+    v_.resize(size_t(n));
+    const float du = grid.nu > 0 ? (grid.u1 - grid.u0) / float(grid.nu) : 0.0f;
+    const float dv = grid.nv > 0 ? (grid.v1 - grid.v0) / float(grid.nv) : 0.0f;
+    for (int j = 0; j <= grid.nv; ++j)
+        for (int i = 0; i <= grid.nu; ++i) {
+            // The borders exactly, as the dicers place them: neighbours agree on shared vertices.
+            u_[size_t(grid.index(i, j))] = i == grid.nu ? grid.u1 : grid.u0 + float(i) * du;
+            v_[size_t(grid.index(i, j))] = j == grid.nv ? grid.v1 : grid.v0 + float(j) * dv;
+        }
+    static const Vec3f kEye{0, 0, 0}, kOrthoI{0, 0, 1};
+    using sl::Global;
+    using sl::ValueRef;
+    const ValueRef P = ValueRef::aos(grid.P[k].data());
+    sgrid_.set(Global::P, P);
+    sgrid_.set(Global::N, ValueRef::aos(grid.N[k].data()));
+    sgrid_.set(Global::Ng, ValueRef::aos(grid.N[k].data()));
+    sgrid_.set(Global::I, camera_.perspective() ? P : ValueRef::uniform(kOrthoI));
+    sgrid_.set(Global::E, ValueRef::uniform(kEye));
+    sgrid_.set(Global::Cs, ValueRef::aos(grid.Cs.data()));
+    sgrid_.set(Global::Os, ValueRef::uniform(m.Os));
+    sgrid_.set(Global::u, ValueRef::soa(u_.data()));
+    sgrid_.set(Global::v, ValueRef::soa(v_.data()));
+    sgrid_.set(Global::s, ValueRef::soa(u_.data()));
+    sgrid_.set(Global::t, ValueRef::soa(v_.data()));
+    du_ = du;
+    dv_ = dv;
+    time_ = float(time);
+    sgrid_.set(Global::du, ValueRef::uniform(&du_));
+    sgrid_.set(Global::dv, ValueRef::uniform(&dv_));
+    sgrid_.set(Global::time, ValueRef::uniform(&time_));
+    const Matrix4 worldToCamera = camera_.worldToCamera().at(time);
+    const Matrix4 shaderToCamera = shaderToWorld ? shaderToWorld->at(time) * worldToCamera : worldToCamera;
+    sgrid_.setSpace(sl::Space::World, worldToCamera);
+    sgrid_.setSpace(sl::Space::Object, shaderToCamera);
+    sgrid_.setSpace(sl::Space::Shader, shaderToCamera);
+    sgrid_.seed = unsigned(grid.primitiveId ^ (grid.primitiveId >> 32));
+    sgrid_.nearClip = camera_.nearClip();
+    sgrid_.farClip = camera_.farClip();
+}
+
+void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
+    if (!vm_) vm_ = std::make_unique<sl::ShadingVM>();
+    prepare(m, grid, k, time, m.attributes ? &m.attributes->surface.shaderToWorld : nullptr);
+    // The material's lights, those that cast shadows apart.
+    unshadowed_.clear();
+    int shadowed = 0;
+    for (int li : m.lights) {
+        const sl::ShaderInstance* s = shaders_ ? shaders_->light(size_t(li)) : nullptr;
+        if (!s) continue;
+        if (grid.shadowSlots > 0 && lights_.shadowSlotOf(li) >= 0) {
+            ++shadowed;
+            continue;
+        }
+        unshadowed_.push_back({s, lights_.lightToCamera(li, time)});
+    }
+    const int n = grid.vertexCount();
+    vm_->run(*m.surface, sgrid_, unshadowed_);
+    const sl::ValueRef ci = vm_->result(sl::Global::Ci);
+    std::vector<Color>& Ci = grid.Ci[k];
+    for (int i = 0; i < n; ++i) Ci[size_t(i)] = ci.valid() ? ci.vec(i) : Color{0, 0, 0};
+    if (grid.shadowSlots > 0) {
+        Color* cl = grid.Cl[k].data();
+        std::fill(cl, cl + size_t(n) * size_t(grid.shadowSlots), Color{0, 0, 0});
+        if (shadowed > 0) {
+            base_.assign(Ci.begin(), Ci.end());
+            for (int li : m.lights) {
+                const int slot = lights_.shadowSlotOf(li);
+                const sl::ShaderInstance* s = shaders_->light(size_t(li));
+                if (slot < 0 || !s) continue;
+                withOne_.assign(unshadowed_.begin(), unshadowed_.end());
+                withOne_.push_back({s, lights_.lightToCamera(li, time)});
+                vm_->run(*m.surface, sgrid_, withOne_);
+                const sl::ValueRef c = vm_->result(sl::Global::Ci);
+                for (int i = 0; i < n; ++i)
+                    cl[size_t(i) * size_t(grid.shadowSlots) + size_t(slot)] = c.vec(i) - base_[size_t(i)];
+            }
+        }
+    }
+}
+
+}  // namespace streyes

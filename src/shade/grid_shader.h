@@ -1,0 +1,72 @@
+// Shades diced grids: a displacement shader first, when the material has one (moving P and
+// setting N before anything else reads them); then the built-in shading (shading.h) for materials it serves, the Shading
+// Language interpreter (shade/vm) over the whole grid for the others. One per thread: it keeps
+// the interpreter's registers and its own scratch arrays from grid to grid, so shading
+// allocates nothing once warm.
+//
+// What a shader sees (RI Spec 3.2, section 12.1), all in camera ("current") space: P, N and Ng
+// (the diced geometric normal), I (from the eye; +z under an orthographic camera), E (the eye),
+// Cs and Os, u and v (the piece's parameter rectangle, Body::uv, over the grid), s = u and t = v,
+// du and dv, time. "world", "object" and "shader" spaces come from the camera and the transform
+// in force where the surface was declared; lights see their own transform as "shader" space.
+//
+// Lights that cast shadows are kept apart as the built-in shading keeps them: Cl[slot] is what
+// the surface gives with that light on minus what it gives without it (exact for shaders that
+// add up their lights' contributions, as illuminance loops and diffuse/specular do).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "geom/camera.h"
+#include "geom/grid.h"
+#include "geom/lights.h"
+#include "shade/scene_shaders.h"
+#include "shade/vm/vm.h"
+#include "streyes/stats.h"
+
+namespace streyes {
+
+class GridShader {
+  public:
+    // `shaders` may be null (no Shading Language: every material is built in).
+    GridShader(const SceneShaders* shaders, const Camera& camera, const LightSet& lights);
+    ~GridShader();
+
+    void setShaders(const SceneShaders* shaders) { shaders_ = shaders; }
+
+    // Ci (and Cl) of slot k of `grid` from its P[k] and N[k] at `time`.
+    void shadeSlot(Grid& grid, int k, double time);
+    // Both slots of a moving grid (t0 and t1), or the one of a still grid.
+    void shade(Grid& grid);
+
+    // One point (a ray's hit): its colour, and with `shadowed` the parts of the lights that cast
+    // shadows (as shadePoint gives them). No derivatives: du, dv and Du(), Dv() are 0.
+    Color shadeHit(const Material& m, Color cs, Vec3f p, Vec3f n, double time, float u, float v,
+                   uint64_t primitiveId, Color* shadowed, int slots);
+
+    // Adds what was shaded since the last call to `out` (the stats' shading.* counters).
+    void takeCounters(RenderCounters& out);
+
+  private:
+    void displace(const Material& m, Grid& grid, int k, double time);
+    void shadeSurface(Grid& grid, int k, double time);
+    void runSurface(const Material& m, Grid& grid, int k, double time);
+    void prepare(const Material& m, const Grid& grid, int k, double time, const MotionTransform* shaderToWorld);
+
+    const SceneShaders* shaders_;
+    const Camera& camera_;
+    const LightSet& lights_;
+    std::vector<CameraLight> lightScratch_;
+    std::unique_ptr<sl::ShadingVM> vm_;  // made when a grid first needs it
+    sl::ShadingGrid sgrid_;
+    std::vector<float> u_, v_;
+    float du_ = 0, dv_ = 0, time_ = 0;  // uniform inputs the shading grid points at
+    std::vector<sl::LightRef> unshadowed_, withOne_;
+    std::vector<Color> base_;
+    Grid hit_;  // one point, for shadeHit
+    uint64_t builtinPoints_ = 0;
+};
+
+}  // namespace streyes

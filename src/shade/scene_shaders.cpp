@@ -1,0 +1,142 @@
+#include "shade/scene_shaders.h"
+
+#include <cmath>
+#include <filesystem>
+
+namespace streyes {
+
+namespace {
+
+bool isBuiltinSurface(const std::string& name) {
+    return name == "constant" || name == "matte" || name == "plastic" || name == "defaultsurface";
+}
+
+bool isBuiltinLight(const std::string& name) {
+    return name == "ambientlight" || name == "distantlight" || name == "pointlight";
+}
+
+sl::BaseType baseTypeOf(const Param& p) {
+    switch (p.type) {
+        case ParamType::Float:
+        case ParamType::Integer: return sl::BaseType::Float;
+        case ParamType::Color: return sl::BaseType::Color;
+        case ParamType::Point: return sl::BaseType::Point;
+        case ParamType::Vector: return sl::BaseType::Vector;
+        case ParamType::Normal: return sl::BaseType::Normal;
+        case ParamType::Matrix: return sl::BaseType::Matrix;
+        case ParamType::String: return sl::BaseType::String;
+        case ParamType::HPoint: break;
+    }
+    throw InputError(p.loc, "parameter '" + p.name + "': the Shading Language has no hpoint type");
+}
+
+// An upper bound on how much `m` stretches a vector over all its keys (the Frobenius norm of
+// the linear part, never below the largest singular value).
+double largestStretch(const MotionTransform& m) {
+    double worst = 0;
+    for (const Matrix4& k : m.keys()) {
+        double f = 0;
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) f += k(r, c) * k(r, c);
+        worst = std::max(worst, std::sqrt(f));
+    }
+    return worst;
+}
+
+}  // namespace
+
+std::string standardShaderDir() {
+    std::error_code ec;
+    for (const char* dir : {STREYES_SHADERS_SOURCE_DIR, STREYES_SHADERS_INSTALL_DIR})
+        if (std::filesystem::is_directory(dir, ec)) return dir;
+    return STREYES_SHADERS_INSTALL_DIR;
+}
+
+void setShaderParams(sl::ShaderInstance& shader, const ParamList& params) {
+    const sl::ShaderProgram& program = shader.program();
+    for (const Param& p : params.params) {
+        if (!program.findParam(p.name))
+            throw InputError(p.loc, "shader \"" + program.name + "\" (" + program.path + ") has no parameter \"" +
+                                        p.name + "\"");
+        if (p.type == ParamType::String) {
+            shader.setStrings(p.name, p.strings, p.loc);
+            continue;
+        }
+        const sl::BaseType base = p.declared ? baseTypeOf(p) : sl::BaseType::Void;
+        const sl::SlType type(base, p.declared && p.arraySize > 1 ? p.arraySize : 0);
+        shader.set(p.name, type, std::vector<float>(p.nums.begin(), p.nums.end()), p.loc);
+    }
+}
+
+SceneShaders::SceneShaders(const Scene& scene, Log& log)
+    : worldToCamera_(scene.camera.worldToCamera), builtinShading_(scene.settings.builtinShading), log_(log) {
+    cache_ = std::make_unique<sl::ShaderCache>(std::vector<std::string>{standardShaderDir()});
+    searchPathSet_ = !scene.settings.shaderSearchPath.empty();
+    if (searchPathSet_) cache_->setSearchPath(scene.settings.shaderSearchPath);
+
+    for (const LightDesc& d : scene.lights) {
+        builtinLight_.push_back(isBuiltinLight(d.type));
+        lights_.push_back(instance(d.type, d.params, d.loc, sl::ShaderType::Light));
+    }
+}
+
+std::shared_ptr<sl::ShaderInstance> SceneShaders::instance(const std::string& name, const ParamList& params,
+                                                           const SourceLoc& loc, sl::ShaderType type) const {
+    // Without a search path, the folder of the RIB file that names the shader comes first.
+    std::string file = name;
+    if (!searchPathSet_ && loc.file && name.find('/') == std::string::npos) {
+        std::filesystem::path dir = std::filesystem::path(*loc.file).parent_path();
+        if (dir.empty()) dir = ".";
+        const std::string here = (dir / name).string();
+        if (!cache_->find(here).empty()) file = here;
+    }
+    if (cache_->find(file).empty()) {
+        std::string dirs = searchPathSet_ ? "" : "the RIB file's folder";
+        for (const std::string& d : cache_->searchPath()) dirs += (dirs.empty() ? "" : ":") + d;
+        log_.warnOnce(std::string(sl::shaderTypeName(type)) + ":" + name, loc,
+                      std::string(sl::shaderTypeName(type)) + " shader \"" + name + "\" not found (searchpath " + dirs +
+                          "; see Option \"searchpath\" \"shader\"): " +
+                          (type == sl::ShaderType::Light ? "the light is dark" : "using defaultsurface"));
+        return nullptr;
+    }
+    sl::ProgramPtr program = cache_->get(file, loc);
+    if (program->type != type)
+        throw InputError(loc, "\"" + name + "\" (" + program->path + ") is a " + sl::shaderTypeName(program->type) +
+                                  " shader, not a " + sl::shaderTypeName(type) + " shader");
+    auto shader = std::make_shared<sl::ShaderInstance>(program);
+    setShaderParams(*shader, params);
+    return shader;
+}
+
+void SceneShaders::bind(Material& m, const Attributes& a) const {
+    if (!a.displacement.name.empty()) {
+        m.displacement = instance(a.displacement.name, a.displacement.params, a.displacement.loc,
+                                  sl::ShaderType::Displacement);
+        if (m.displacement) {
+            // The bound's radius in camera space.
+            const std::string& space = a.displacementBoundSpace;
+            double scale = 1;
+            if (space == "object" || space == "shader")
+                scale = largestStretch(a.displacement.shaderToWorld) * largestStretch(worldToCamera_);
+            else if (space == "world")
+                scale = largestStretch(worldToCamera_);
+            m.displacementBound = float(a.displacementBound * scale);
+            m.readsTime = m.displacement->program().globalReg[size_t(sl::Global::time)] >= 0;
+        }
+    }
+    bool builtinLights = true;
+    for (int i : m.lights) builtinLights = builtinLights && builtinLight_[size_t(i)];
+    const std::string& name = a.surface.name;
+    if (builtinShading_ && builtinLights && isBuiltinSurface(name)) return;
+    std::shared_ptr<sl::ShaderInstance> shader = instance(name, a.surface.params, a.surface.loc, sl::ShaderType::Surface);
+    if (!shader) {
+        m.kind = SurfaceKind::Default;
+        if (builtinShading_) return;  // defaultsurface reads no light: the built-in serves
+        shader = instance("defaultsurface", {}, a.surface.loc, sl::ShaderType::Surface);
+        if (!shader) return;
+    }
+    m.readsTime = m.readsTime || shader->program().globalReg[size_t(sl::Global::time)] >= 0;
+    m.surface = std::move(shader);
+}
+
+}  // namespace streyes

@@ -1,0 +1,51 @@
+// `streyes shader` and shaders in `streyes render` from the command line: parameters printed,
+// bad shaders and bindings exit 2 naming the shader's file:line:column or the RIB's file:line,
+// and no frame is written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "cli_run.h"
+#include "test_util.h"
+
+namespace streyes::test {
+namespace {
+
+TEST(ShaderCli, PrintsTheParametersOfAShippedShader) {
+    CliRun r = runStreyes("shader " + sourcePath("shaders/spotlight.sl"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("light \"spotlight\""), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("coneangle"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("beamdistribution"), std::string::npos) << r.output;
+}
+
+TEST(ShaderCli, ABadShaderExitsTwoAtItsLineAndColumn) {
+    const TempDir dir("shader-cli");
+    const std::string sl = writeFile(dir.path(), "bad.sl", "surface bad() {\n  Ci = 1 +;\n}\n");
+    CliRun check = runStreyes("shader " + sl);
+    EXPECT_EQ(check.exitCode, 2);
+    EXPECT_NE(check.output.find("bad.sl:2:"), std::string::npos) << check.output;
+
+    // The same shader named by a scene: the render stops before writing anything.
+    const std::string rib = writeFile(dir.path(), "scene.rib",
+                                      "Format 16 16 1\nProjection \"orthographic\"\nWorldBegin\nSurface \"bad\"\n"
+                                      "Patch \"bilinear\" \"P\" [-1 -1 5 1 -1 5 -1 1 5 1 1 5]\nWorldEnd\n");
+    CliRun render = runStreyes("render " + rib + " -o " + dir.path() + "/out.####.exr");
+    EXPECT_EQ(render.exitCode, 2) << render.output;
+    EXPECT_NE(render.output.find("bad.sl:2:"), std::string::npos) << render.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() + "/out.0000.exr"));
+
+    // A parameter the shader declares otherwise: the RIB line.
+    writeFile(dir.path(), "good.sl", "surface good(float k = 1) { Ci = k; }\n");
+    const std::string rib2 = writeFile(dir.path(), "scene2.rib",
+                                       "Format 16 16 1\nProjection \"orthographic\"\nWorldBegin\n"
+                                       "Surface \"good\" \"string k\" \"no\"\n"
+                                       "Patch \"bilinear\" \"P\" [-1 -1 5 1 -1 5 -1 1 5 1 1 5]\nWorldEnd\n");
+    CliRun wrong = runStreyes("render " + rib2 + " -o " + dir.path() + "/out2.####.exr");
+    EXPECT_EQ(wrong.exitCode, 2) << wrong.output;
+    EXPECT_NE(wrong.output.find("scene2.rib:4:"), std::string::npos) << wrong.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.path() + "/out2.0000.exr"));
+}
+
+}  // namespace
+}  // namespace streyes::test
