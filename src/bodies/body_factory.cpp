@@ -472,11 +472,15 @@ void BodyFactory::addNuPatch(const NuPatchDesc& p, uint64_t primitiveId, std::ve
     const SourceLoc* src = source(p.loc);
     const bool lastOpen = windowOf(p.life).openEnd;
     std::shared_ptr<const NurbsShape> shared = std::move(shape);
+    const size_t first = out.size();
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
         addSurface(std::make_unique<NurbsMesh>(shared, points[i], j != i ? points[j] : std::vector<Vec3d>{},
                                                segmentSpan(t0, t1, ts, lastOpen), mat, camera_, colors, varying),
                    src, primitiveId, out, keep);
     });
+    // Shaders see a NuPatch's own parameters, [umin, umax] x [vmin, vmax] (RenderMan's rule for NURBS).
+    for (size_t b = first; b < out.size(); ++b)
+        out[b]->uv = {float(p.umin), float(p.umax), float(p.vmin), float(p.vmax)};
 }
 
 // Each face (a triangle or a convex quad) as the bilinear patch it is.

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 #include "nurbs_rib.h"
@@ -90,6 +91,28 @@ TEST(NurbsRender, VaryingColourIsBilinearBetweenTheKnots) {
     };
     expect(4, Color{1 - 4.5f / 16, 4.5f / 16, 0});                 // in the first span
     expect(40, Color{0, 1 - (40.5f - 16) / 48, (40.5f - 16) / 48});  // in the second
+}
+
+// A shader sees u and v over [umin, umax] x [vmin, vmax], not the unit square (RenderMan's rule
+// for NURBS): u from 2 to 4 across the patch, v from 0.5 to 1.
+TEST(NurbsRender, ShadersSeeThePatchsOwnParameters) {
+    test::TempDir dir("nurbs-shader");
+    std::ofstream(dir.path() + "/showuv.sl") << "surface showuv() { Ci = color(u / 4, v, 0); Oi = 1; }\n";
+    const std::string rib = test::orthoHeader(64, 16, "PixelSamples 4 4\nOption \"searchpath\" \"shader\" \"" +
+                                                          dir.path() + ":@\"\n") +
+                            "Surface \"showuv\"\n"
+                            "NuPatch 2 2 [2 2 4 4] 2 4 2 2 [0.5 0.5 1 1] 0.5 1 \"P\" [0 0 5  64 0 5  0 16 5  64 16 5]\n"
+                            "WorldEnd\n";
+    RenderResult r = renderRib(rib);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    // Pixel centre x + 0.5 is u = 2 + 2 (x + 0.5) / 64; raster row 8 is y = 7.5, v = 0.5 + 0.5 * 7.5 / 16.
+    // (A grid's shader takes each vertex's u, v from its row and column, while a vertex on a
+    // piece's side sits on its line's lattice: by a piece's edge, as at x = 32, v is off by up
+    // to half a row, 0.007 here. That is how every curved surface is shaded, not the NuPatch.)
+    for (int x : {3, 32, 60}) {
+        EXPECT_NEAR(r.channel(0, x, 8, 0), (2 + 2 * (x + 0.5f) / 64) / 4, 2e-3f) << "x " << x;
+        EXPECT_NEAR(r.channel(0, x, 8, 1), 0.5f + 0.5f * 7.5f / 16, 1e-2f) << "x " << x;
+    }
 }
 
 // Projected area of a sphere of radius r centred at c (camera space), pixels at distance f per
