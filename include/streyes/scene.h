@@ -64,6 +64,19 @@ struct BasisDesc {
 // The named bases: "bezier", "b-spline", "catmull-rom", "hermite", "power". False for other names.
 bool basisFromName(const std::string& name, BasisDesc* out);
 
+// TrimCurve: loops of rational B-spline curves in the (u, v) parameter space of the NuPatches that
+// follow it (attribute state). Each curve's points are homogeneous (u, v, w), knots as a NuPatch's.
+struct TrimCurveDesc {
+    int order = 2;
+    std::vector<double> knot;  // n + order
+    double tmin = 0, tmax = 1;
+    std::vector<double> u, v, w;  // n each
+};
+struct TrimLoops {
+    std::vector<std::vector<TrimCurveDesc>> loops;  // each loop's curves, head to tail
+    SourceLoc loc;
+};
+
 // The attribute state a primitive was declared with. Shared: many primitives point at one.
 struct Attributes {
     Color color{1, 1, 1};                        // Color (Cs)
@@ -79,6 +92,7 @@ struct Attributes {
     std::vector<int> lights;                     // indices into Scene::lights that are on
     ParamList user;                              // Attribute "category" "name" values, as "category:name"
     BasisDesc uBasis, vBasis;                    // Basis, for bicubic patches
+    std::shared_ptr<const TrimLoops> trim;       // TrimCurve (none when empty), for NuPatches
 };
 using AttributesPtr = std::shared_ptr<const Attributes>;
 
@@ -241,6 +255,23 @@ struct QuadricDesc : PrimitiveDesc {
     ColorPrimvar Cs;                            // varying: the 4 corners of the (u, v) domain
 };
 
+// NuPatch: a non-uniform rational B-spline surface of any order. Control points row by row, u
+// fastest: P[key][j * nu + i], the points divided by their weights ("Pw"); the weights (1 for "P")
+// are the same at every key. Knots hold nu + uorder (nv + vorder) values; the surface is the part
+// over [umin, umax] x [vmin, vmax]. `trim` is the TrimCurve in force when it was declared.
+struct NuPatchDesc : PrimitiveDesc {
+    int nu = 0, uorder = 0, nv = 0, vorder = 0;
+    std::vector<double> uknot, vknot;
+    double umin = 0, umax = 1, vmin = 0, vmax = 1;
+    std::vector<std::vector<Vec3d>> P;        // object space, one set per key
+    std::vector<double> w;                    // nu * nv weights, all positive
+    ColorPrimvar Cs;                          // uniform/constant: one; varying: the corners of the spans
+    std::shared_ptr<const TrimLoops> trim;
+
+    int uSpans() const { return nu - uorder + 1; }  // RenderMan's segments: varying counts are spans + 1
+    int vSpans() const { return nv - vorder + 1; }
+};
+
 // Polygon, GeneralPolygon, PointsPolygons and PointsGeneralPolygons as written: each polygon its
 // loops of indices into the points, the outline first, then any holes. The bodies stage makes
 // them bilinear patches: a Polygon of 3 or 4 vertices as one (unless it is concave), any other
@@ -293,6 +324,7 @@ struct Scene {
     std::vector<PolygonMeshDesc> polygonMeshes;
     std::vector<CurvesDesc> curves;
     std::vector<PointsDesc> points;
+    std::vector<NuPatchDesc> nuPatches;
     std::string sourceName;  // the scene file, for messages and default output names
     int frameNumber = 0;     // FrameBegin n, when the scene was one frame of a sequence
     SourceLoc frameLoc;      // where that FrameBegin (or the frame's file) is

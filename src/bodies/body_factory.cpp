@@ -8,6 +8,7 @@
 
 #include "bodies/motion_segments.h"
 #include "geom/curved_body.h"
+#include "geom/nurbs_mesh.h"
 #include "geom/patch_mesh.h"
 #include "procedural/procedural.h"
 #include "geom/quadric.h"
@@ -412,6 +413,52 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::ve
     });
 }
 
+// A NurbsMesh per segment over the patch's shape (knots, weights, trim), shared by the segments.
+void BodyFactory::addNuPatch(const NuPatchDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep) {
+    std::vector<double> ts;
+    std::vector<std::vector<Vec3d>> points;
+    if (!keyedPoints(p, p.P, &ts, &points)) return;
+    auto shape = std::make_shared<NurbsShape>();
+    shape->nu = p.nu, shape->uorder = p.uorder, shape->nv = p.nv, shape->vorder = p.vorder;
+    shape->uknot = p.uknot, shape->vknot = p.vknot, shape->w = p.w;
+    shape->umin = p.umin, shape->umax = p.umax, shape->vmin = p.vmin, shape->vmax = p.vmax;
+    if (p.trim) shape->trim = std::make_shared<const NurbsTrim>(*p.trim);
+    const Material* mat = material(p.attributes);
+    // Varying Cs is bilinear between the knots (a lattice over the patch); constant Cs fills the
+    // corners; uniform (per span) and vertex (per control point) colour over several spans are
+    // taken from the first span and from the corner points, with a warning.
+    std::array<Color, 4> colors;
+    colors.fill(mat->Cs);
+    std::vector<Color> varying;
+    if (p.Cs.given()) {
+        const std::vector<Color>& c = p.Cs.values;
+        const size_t n = c.size();
+        const bool vertex = p.Cs.cls == ParamClass::Vertex;
+        const size_t cols = vertex ? size_t(p.nu) : size_t(p.uSpans() + 1);
+        if (n == 1 || p.Cs.cls == ParamClass::Uniform || p.Cs.cls == ParamClass::Constant)
+            colors.fill(c[0]);
+        else
+            colors = {c[0], c[cols - 1], c[n - cols], c[n - 1]};
+        if (!vertex && (p.Cs.cls == ParamClass::Varying || p.Cs.cls == ParamClass::FaceVarying) && n > 4) varying = c;
+        if (n > 1 && (p.Cs.cls == ParamClass::Uniform || (vertex && n > 4)))
+            log_.warnOnce("nupatch-cs", p.loc,
+                          "NuPatch \"Cs\" per span (uniform) or per control point (vertex) is taken from the first "
+                          "span or the corner points");
+    }
+    const SourceLoc* src = source(p.loc);
+    const bool lastOpen = windowOf(p.life).openEnd;
+    std::shared_ptr<const NurbsShape> shared = std::move(shape);
+    const size_t first = out.size();
+    forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
+        addSurface(std::make_unique<NurbsMesh>(shared, points[i], j != i ? points[j] : std::vector<Vec3d>{},
+                                               segmentSpan(t0, t1, ts, lastOpen), mat, camera_, colors, varying),
+                   src, primitiveId, out, keep);
+    });
+    // Shaders see a NuPatch's own parameters, [umin, umax] x [vmin, vmax] (RenderMan's rule for NURBS).
+    for (size_t b = first; b < out.size(); ++b)
+        out[b]->uv = {float(p.umin), float(p.umax), float(p.vmin), float(p.vmax)};
+}
+
 // Each face (a triangle or a convex quad) as the bilinear patch it is.
 void BodyFactory::addPolygonFaces(const PolygonMeshDesc& p, const PolygonFaces& faces, uint64_t primitiveId,
                                   std::vector<BodyPtr>& out) {
@@ -505,6 +552,7 @@ void BodyFactory::addPrimitives(const Scene& scene, const std::vector<GeneratedP
             addPolygonFaces(meshes[i], polygons[i].faces, nextId(), out);
     for (const CurvesDesc& c : scene.curves) addCurves(c, nextId(), out, keep);
     for (const PointsDesc& p : scene.points) addPoints(p, nextId(), out, keep);
+    for (const NuPatchDesc& p : scene.nuPatches) addNuPatch(p, nextId(), out, keep);
 }
 
 uint64_t childPrimitiveId(uint64_t parent, uint64_t index) {

@@ -70,6 +70,7 @@ class BodyFactory final : public ChildBodyMaker {
     // points, split spatially (geom/points.h). Both in curve_bodies.cpp.
     void addCurves(const CurvesDesc& curves, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
     void addPoints(const PointsDesc& points, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
+    void addNuPatch(const NuPatchDesc& patch, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep = nullptr);
     // A polygon mesh's faces (bodies/polygons.h), each as a patch.
     void addPolygonFaces(const PolygonMeshDesc& mesh, const PolygonFaces& faces, uint64_t primitiveId,
                          std::vector<BodyPtr>& out);
@@ -82,7 +83,7 @@ class BodyFactory final : public ChildBodyMaker {
     // Every primitive of a scene, or of a procedural's output with the procedurals its generator
     // made, each with the id nextId() gives, taken in the order ids have always been given: the
     // bilinear patches with the Polygons that are one (in the order read), procedurals, generated
-    // procedurals, patch meshes, subdivision meshes, quadrics, polygons cut into faces, then curves and points. Ids
+    // procedurals, patch meshes, subdivision meshes, quadrics, polygons cut into faces, then curves and points, then NuPatches. Ids
     // decide exact depth ties: this order keeps the pixels.
     void addPrimitives(const Scene& scene, const std::vector<GeneratedProcedural>& generated, int depth,
                        const std::function<uint64_t()>& nextId, std::vector<BodyPtr>& out, Keep* keep = nullptr);

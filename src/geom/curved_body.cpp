@@ -492,6 +492,22 @@ std::unique_ptr<Body> CurvedBody::restrictedTo(double a, double b) const {
 
 // ---- Dicing -----------------------------------------------------------------------------------------
 void CurvedBody::dice(int nu, int nv, Grid& grid) const {
+    if (mesh_->trimmedAway(face_, rect_)) {
+        // Wholly inside a trim hole: every micropolygon of any grid would be cut, so one cut
+        // micropolygon over the corners stands for them (nothing to evaluate, shade or sample).
+        startGrid(1, 1, grid);
+        const float s[2] = {keyFraction(time_.t0), keyFraction(time_.t1)};
+        for (int c = 0; c < 4; ++c) {
+            const size_t idx = size_t(grid.index(c & 1, c >> 1));
+            for (int t = 0; t < (moving_ ? 2 : 1); ++t) {
+                grid.P[t][idx] = atTime(corner_[c].P, s[t]);
+                grid.N[t][idx] = atTime(corner_[c].N, s[t]);
+            }
+            grid.Cs[idx] = mesh_->colorAt(face_, (c & 1) ? rect_.u1 : rect_.u0, (c & 2) ? rect_.v1 : rect_.v0);
+        }
+        grid.hole.assign(1, 1);
+        return;
+    }
     const LineContext ctx = contextOf(*mesh_);
     const int keys = ctx.keys;
     // Sides in grid order: 0 (row 0), 1 (column NU), 2 (row NV), 3 (column 0), and their corners.
@@ -545,7 +561,6 @@ void CurvedBody::dice(int nu, int nv, Grid& grid) const {
 
     startGrid(NU, NV, grid);
     const float s[2] = {keyFraction(time_.t0), keyFraction(time_.t1)};
-    const std::array<Color, 4>& cs = mesh_->faceColors(face_);
     for (int j = 0; j <= NV; ++j) {
         for (int i = 0; i <= NU; ++i) {
             Vec3f P[2], N[2];
@@ -570,9 +585,11 @@ void CurvedBody::dice(int nu, int nv, Grid& grid) const {
                 grid.P[t][idx] = atTime(P, s[t]);
                 grid.N[t][idx] = atTime(N, s[t]);
             }
-            grid.Cs[idx] = bilerp(cs, float(u), float(v));
+            grid.Cs[idx] = mesh_->colorAt(face_, u, v);
         }
     }
+    // Micropolygons whose centre a trim curve cuts away (a NuPatch's TrimCurve); none elsewhere.
+    mesh_->trimQuads(face_, rect_, NU, NV, grid.hole);
 }
 
 }  // namespace streyes

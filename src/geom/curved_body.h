@@ -1,12 +1,12 @@
 // CurvedBody: a piece of one face of a SurfaceMesh (a bicubic patch, a subdivision face, a
-// quadric) over a rectangle of its parameter space and a span of time: the spacetime body of
-// every curved primitive.
+// quadric, a NuPatch) over a rectangle of its parameter space and a span of time: the spacetime
+// body of every curved primitive.
 //
 // Bound: the hull of the piece's Bezier control points at t0 and t1 where the face is a bicubic
 // polynomial there (split by de Casteljau with the piece), otherwise the box the mesh gives for
 // the rectangle (analytic for quadrics, the hull of the patch points for irregular subdivision
-// faces). Split: at the parameter midpoint, so pieces cover dyadic rectangles; t splits halve
-// the time span.
+// faces, the hull of the piece's rational Bezier nets for NuPatches). Split: at the parameter
+// midpoint, so pieces cover dyadic rectangles; t splits halve the time span.
 //
 // Crack-free dicing, "shared edges diced identically": every side of a piece lies on a line of
 // parameter space (a mesh edge, or an iso-line u = c or v = c of its face), and the vertices

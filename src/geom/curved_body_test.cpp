@@ -12,6 +12,7 @@
 #include <random>
 
 #include "geom/grid.h"
+#include "geom/nurbs_mesh.h"
 #include "geom/patch_mesh.h"
 #include "geom/quadric.h"
 #include "shade/shading.h"
@@ -57,6 +58,34 @@ struct Fixture {
                                                            shape->colors({}, Color{1, 1, 1})));
         meshes.back()->setShadingRate(material.shadingRate);
         return meshes.back().get();
+    }
+    // A NuPatch: a surface of revolution about z of a rational profile (rho, z, w), its rational
+    // quadratic circle in u, placed by m0 at key 0 and m1 at key 1 (the same: still).
+    const SurfaceMesh* nurbsRevolution(const std::vector<std::array<double, 3>>& profile, int vorder,
+                                       std::vector<double> vknot, const Matrix4& m0, const Matrix4& m1) {
+        const double h = std::sqrt(0.5), cx[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1}, cy[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0},
+                     cw[9] = {1, h, 1, h, 1, h, 1, h, 1};
+        auto shape = std::make_shared<NurbsShape>();
+        shape->nu = 9, shape->uorder = 3, shape->nv = int(profile.size()), shape->vorder = vorder;
+        shape->uknot = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
+        shape->vknot = std::move(vknot);
+        shape->vmin = shape->vknot[size_t(vorder - 1)], shape->vmax = shape->vknot[profile.size()];
+        std::vector<Vec3d> k0, k1;
+        for (const auto& [rho, z, w] : profile)
+            for (int i = 0; i < 9; ++i) {
+                shape->w.push_back(w * cw[i]);
+                k0.push_back(m0.point({rho * cx[i], rho * cy[i], z}));
+                k1.push_back(m1.point({rho * cx[i], rho * cy[i], z}));
+            }
+        meshes.push_back(std::make_unique<NurbsMesh>(shape, k0, k1, TimeSpan{0, 1}, &material, &camera,
+                                                     std::array<Color, 4>{}));
+        meshes.back()->setShadingRate(material.shadingRate);
+        return meshes.back().get();
+    }
+    const SurfaceMesh* nurbsSphere(double r, const Matrix4& m0, const Matrix4& m1) {
+        const double h = std::sqrt(0.5);
+        return nurbsRevolution({{0, -r, 1}, {r, -r, h}, {r, 0, 1}, {r, r, h}, {0, r, 1}}, 3, {0, 0, 0, 0.5, 0.5, 1, 1, 1},
+                               m0, m1);
     }
     const SurfaceMesh* quadric(QuadricKind kind, QuadricMesh::Params p, const Matrix4& m0, const Matrix4& m1) {
         const QuadricMesh::Params params[2] = {p, p};
@@ -275,6 +304,24 @@ TEST(CurvedBody, ClosedQuadricsDiceIntoWatertightMeshes) {
     }
 }
 
+// NuPatches: a sphere (a seam and two poles, collapsed sides) and a torus (two seams), and a
+// cubic vase profile of non-uniform knots (a seam, open ends).
+TEST(CurvedBody, ClosedNurbsSurfacesDiceIntoWatertightMeshes) {
+    Fixture fx;
+    fx.material.shadingRate = 30;
+    const Matrix4 m0 = Matrix4::translate({64, 64, 100}), m1 = Matrix4::rotate(30, {1, 1, 0}) * m0;
+    const double h = std::sqrt(0.5);
+    std::vector<std::array<double, 3>> torus;
+    const double cx[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1}, cy[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
+    for (int j = 0; j < 9; ++j) torus.push_back({35 + 12 * cx[j], 12 * cy[j], j % 2 ? h : 1});
+    const std::vector<double> circle{0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
+    for (uint32_t seed : {4u, 5u}) {
+        expectWatertight(*fx.nurbsSphere(40, m0, m0), seed, 1);
+        expectWatertight(*fx.nurbsSphere(40, m0, m1), seed, 2);
+        expectWatertight(*fx.nurbsRevolution(torus, 3, circle, m0, m1), seed, 2);
+    }
+}
+
 TEST(CurvedBody, ClosedSubdivisionSurfaceDicesIntoAWatertightMesh) {
     Fixture fx;
     fx.material.shadingRate = 30;
@@ -297,6 +344,9 @@ TEST(CurvedBody, BoundsHoldTheDicedSurfaceAtEveryTime) {
         fx.quadric(QuadricKind::Paraboloid, {20, 5, 30, 360}, m0, m1),
         fx.quadric(QuadricKind::Hyperboloid, {10, -20, -10, -5, 25, 15, 330}, m0, m1),
         fx.quadric(QuadricKind::Torus, {30, 10, -45, 200, 250}, m0, m1),
+        fx.nurbsSphere(30, m0, m1),
+        fx.nurbsRevolution({{20, -20, 1}, {35, -10, 0.4}, {10, 5, 2.5}, {12, 20, 1}, {25, 30, 0.7}}, 4,
+                           {-1, -1, -1, -1, 0.2, 3, 3, 3, 3}, m0, m1),
     };
     std::mt19937 rng(23);
     for (const SurfaceMesh* mesh : meshes) {

@@ -26,6 +26,10 @@ struct Grid {
     std::vector<Vec3f> P[2];      // camera-space positions at t0, t1
     std::vector<Vec3f> N[2];      // geometric normals (not normalised)
     std::vector<Color> Cs;        // surface colour per vertex
+    // Micropolygons cut away by a trim curve (nu x nv, u fastest; non-zero: not rasterized).
+    // Empty when none is: every dice starts it empty (Body::startGrid); resize() keeps it, as a
+    // still grid made moving to be shaded at both ends is the same grid.
+    std::vector<uint8_t> hole;
     std::vector<Color> Ci[2];     // shaded colour at t0, t1 (written by the shading stage)
     // Lights that cast shadows: their contribution per vertex (shadowSlots colours a vertex, at
     // t0 and t1), kept out of Ci for the per-sample shadow test. Set shadowSlots before dicing.

@@ -1,5 +1,6 @@
 #include "geom/surface_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -38,6 +39,8 @@ SurfaceMesh::SurfaceMesh(std::shared_ptr<const SurfaceTopology> topology, TimeSp
 }
 
 bool SurfaceMesh::bezier(int, const ParamRect&, int, BezierPatch*) const { return false; }
+bool SurfaceMesh::trimQuads(int, const ParamRect&, int, int, std::vector<uint8_t>&) const { return false; }
+bool SurfaceMesh::trimmedAway(int, const ParamRect&) const { return false; }
 
 void SurfaceMesh::evaluate(int f, double u, double v, int k, Vec3f* P, Vec3f* N) const {
     Vec3d p, du, dv;
@@ -81,6 +84,23 @@ void SurfaceMesh::evaluatePoint(int f, double u, double v, int k, Vec3f* P, Vec3
     } else {
         evaluate(f, u, v, k, P, N);
     }
+}
+
+Color SurfaceMesh::latticeColor(double u, double v) const {
+    // The cell of a non-decreasing list of parameters holding t (the last non-empty one at a
+    // repeated value), and t's fraction across it.
+    auto cell = [](const std::vector<double>& p, double t, float* f) {
+        size_t i = size_t(std::upper_bound(p.begin(), p.end(), t) - p.begin());
+        i = std::min(std::max(i, size_t(1)), p.size() - 1) - 1;
+        while (i > 0 && !(p[i] < p[i + 1])) --i;
+        *f = p[i] < p[i + 1] ? float((t - p[i]) / (p[i + 1] - p[i])) : 0.0f;
+        return i;
+    };
+    float fu, fv;
+    const size_t i = cell(lattice_.u, u, &fu), j = cell(lattice_.v, v, &fv), n = lattice_.u.size();
+    const Color* c = lattice_.c.data();
+    return bilerp(std::array<Color, 4>{c[j * n + i], c[j * n + i + 1], c[(j + 1) * n + i], c[(j + 1) * n + i + 1]}, fu,
+                  fv);
 }
 
 // ---- Bounds -----------------------------------------------------------------------------------------

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -89,6 +90,12 @@ class SurfaceMesh {
     // polynomial there (their hull is then a bound that shrinks with r).
     virtual bool bezier(int f, const ParamRect& r, int k, BezierPatch* cp) const;
 
+    // Trimming: for an nu x nv grid over r of face f, hole[j * nu + i] = 1 where micropolygon (i, j)
+    // is cut away. False (hole untouched) where nothing is cut; a NuPatch with TrimCurve overrides it.
+    virtual bool trimQuads(int f, const ParamRect& r, int nu, int nv, std::vector<uint8_t>& hole) const;
+    // Whether a trim curve cuts away all of face f over r (false when unsure).
+    virtual bool trimmedAway(int f, const ParamRect& r) const;
+
     // Face f's own map at (u, v), key k: position and geometric normal (not unit length). Where
     // the derivatives vanish (a pole, a collapsed edge) the normal is taken a little inside.
     void evaluate(int f, double u, double v, int k, Vec3f* P, Vec3f* N) const;
@@ -100,8 +107,23 @@ class SurfaceMesh {
     // Surface colour at the corners of face f, bilinear across it (RenderMan's varying
     // interpolation).
     const std::array<Color, 4>& faceColors(int f) const { return colors_[size_t(f)]; }
+    // The colour at (u, v) of face f: bilinear between its corners, or, where the mesh has a
+    // colour lattice (a NuPatch's varying Cs at its knots), between the corners of the lattice's
+    // cell holding (u, v).
+    Color colorAt(int f, double u, double v) const {
+        if (lattice_.c.empty()) return bilerp(colors_[size_t(f)], float(u), float(v));
+        return latticeColor(u, v);
+    }
 
   protected:
+    // Colours at the face parameters u[i] x v[j] (i fastest) of a one-face mesh; empty for none.
+    struct ColorLattice {
+        std::vector<double> u, v;
+        std::vector<Color> c;
+    };
+    ColorLattice lattice_;
+    Color latticeColor(double u, double v) const;
+
     // Position and derivatives of face f at (u, v), key k, camera space.
     virtual void derivatives(int f, double u, double v, int k, Vec3d* P, Vec3d* dPdu, Vec3d* dPdv) const = 0;
 

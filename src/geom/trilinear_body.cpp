@@ -157,6 +157,7 @@ std::unique_ptr<Body> TrilinearBody::restrictedTo(double a, double b) const {
 
 void Body::startGrid(int nu, int nv, Grid& grid) const {
     grid.resize(nu, nv, moving_);
+    grid.hole.clear();
     grid.t0 = time_.t0;
     grid.t1 = time_.t1;
     grid.openEnd = time_.openEnd;

@@ -86,6 +86,7 @@ class InstanceGenerator final : public ProceduralGenerator {
         place(s.polygonMeshes);
         place(s.curves);
         place(s.points);
+        place(s.nuPatches);
     }
 
   private:

@@ -182,6 +182,7 @@ template <bool Shadowed, bool Counting>
 void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters) {
     const PixelRect& R = block.rect();
     const int nu = grid.nu, nv = grid.nv, stride = nu + 1, S = block.samplesPerPixel(), F = block.frameCount();
+    const uint8_t* hole = grid.hole.empty() ? nullptr : grid.hole.data();
     const int sx = block.pattern().sx, sy = block.pattern().sy;
     const size_t pixels = size_t(block.pixelCount());
     const float nearZ = camera.nearClip(), farZ = camera.farClip();
@@ -201,6 +202,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     uint64_t tests = 0, hits = 0, firstHits = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
+            if (hole && hole[j * nu + i]) continue;  // trimmed away
             const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
             QuadSetup q;
             for (int c = 0; c < 4; ++c) {
@@ -289,6 +291,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                                   RasterCounters& counters) {
     const PixelRect& R = block.rect();
     const int nu = grid.nu, nv = grid.nv, stride = nu + 1, S = block.samplesPerPixel();
+    const uint8_t* hole = grid.hole.empty() ? nullptr : grid.hole.data();
     const size_t pixels = size_t(block.pixelCount());
     const PatternTable& patterns = block.patterns();
     const bool perspective = camera.perspective();
@@ -365,6 +368,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
         }
         for (int j = 0; j < nv; ++j) {
             for (int i = 0; i < nu; ++i) {
+                if (hole && hole[j * nu + i]) continue;  // trimmed away
                 const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
                 QuadSetup q;
                 float xb[4], yb[4], zb[4];

@@ -52,6 +52,7 @@ void setLifetime(Scene& scene, const Lifetime& life) {
     for (PolygonMeshDesc& p : scene.polygonMeshes) p.life = life;
     for (CurvesDesc& p : scene.curves) p.life = life;
     for (PointsDesc& p : scene.points) p.life = life;
+    for (NuPatchDesc& p : scene.nuPatches) p.life = life;
 }
 
 }  // namespace streyes

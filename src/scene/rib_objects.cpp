@@ -70,6 +70,8 @@ Bounds3d objectBound(const Scene& s) {
         for (const auto& key : p.P) extendBy(box, key, p.objectToWorld);
     for (const PolygonMeshDesc& p : s.polygonMeshes)
         for (const auto& key : p.P) extendBy(box, key, p.objectToWorld);
+    for (const NuPatchDesc& p : s.nuPatches)
+        for (const auto& key : p.P) extendBy(box, key, p.objectToWorld);
     for (const QuadricDesc& q : s.quadrics)
         for (const auto& key : q.params) extendByBox(box, quadricBox(q.kind, key), q.objectToWorld);
     for (const ProceduralDesc& p : s.procedurals) extendByBox(box, p.bound, p.objectToWorld);

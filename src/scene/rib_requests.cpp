@@ -34,7 +34,7 @@ const RibRequestTable& ribRequests() {
         for (auto add : {addUnsupportedRequests, addParamRequests, addOptionRequests, addBlockRequests,
                          addTransformRequests, addAttributeRequests, addShadingRequests, addPatchRequests,
                          addPolygonRequests, addSubdivisionRequests, addQuadricRequests, addArchiveRequests, addObjectRequests,
-                         addCurveRequests})
+                         addCurveRequests, addNurbsRequests})
             add(t);
         return t;
     }();
@@ -142,7 +142,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
         table.add(name, {unsupported});
     // Geometry outside the subset: skipped with a warning, also as the keys of a motion block.
     for (const char* name :
-         {"NuPatch", "TrimCurve", "HierarchicalSubdivisionMesh", "Blobby", "Procedural2",
+         {"HierarchicalSubdivisionMesh", "Blobby", "Procedural2",
           "Geometry", "Volume"})
         table.add(name, {unsupportedGeometry, "", RibPhase::World, unsupportedGeometryKeys});
     // clang-format on

@@ -85,5 +85,6 @@ void addSubdivisionRequests(RibRequestTable& table);  // rib_subdivision.cpp: Su
 void addQuadricRequests(RibRequestTable& table);      // rib_quadrics.cpp: Sphere, Cylinder, ...
 void addArchiveRequests(RibRequestTable& table);      // rib_archives.cpp: ReadArchive, Procedural
 void addCurveRequests(RibRequestTable& table);        // rib_curves.cpp: Curves, Points
+void addNurbsRequests(RibRequestTable& table);        // rib_nurbs.cpp: NuPatch, TrimCurve
 
 }  // namespace streyes

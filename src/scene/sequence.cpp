@@ -206,6 +206,8 @@ void SequenceBuilder::add(Scene&& frame) {
         p.patchesBefore = m.patches.size();
         addPrimitive('g', std::move(p), m.polygonMeshes, seen, f);
     }
+    seen.clear();
+    for (NuPatchDesc& p : frame.nuPatches) addPrimitive('n', std::move(p), m.nuPatches, seen, f);
 }
 
 Sequence SequenceBuilder::finish() {
@@ -224,7 +226,7 @@ Sequence SequenceBuilder::finish() {
     };
     Scene& m = out_.scene;
     close(m.patches), close(m.procedurals), close(m.patchMeshes), close(m.subdivisionMeshes), close(m.quadrics);
-    close(m.polygonMeshes), close(m.curves), close(m.points);
+    close(m.polygonMeshes), close(m.curves), close(m.points), close(m.nuPatches);
     out_.stats.runs = out_.runs.size();
     out_.isSequence = true;
     tracks_.clear();

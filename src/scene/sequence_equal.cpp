@@ -98,6 +98,27 @@ bool sameData(const PointsDesc& a, const PointsDesc& b) {
     return a.P == b.P && a.width == b.width && sameColors(a.Cs, b.Cs) && samePrimitive(a, b);
 }
 
+static bool sameTrim(const std::shared_ptr<const TrimLoops>& a, const std::shared_ptr<const TrimLoops>& b) {
+    if (a == b) return true;
+    if (!a || !b || a->loops.size() != b->loops.size()) return false;
+    for (size_t l = 0; l < a->loops.size(); ++l) {
+        if (a->loops[l].size() != b->loops[l].size()) return false;
+        for (size_t c = 0; c < a->loops[l].size(); ++c) {
+            const TrimCurveDesc &x = a->loops[l][c], &y = b->loops[l][c];
+            if (x.order != y.order || x.knot != y.knot || x.tmin != y.tmin || x.tmax != y.tmax || x.u != y.u ||
+                x.v != y.v || x.w != y.w)
+                return false;
+        }
+    }
+    return true;
+}
+
+bool sameData(const NuPatchDesc& a, const NuPatchDesc& b) {
+    return a.nu == b.nu && a.uorder == b.uorder && a.nv == b.nv && a.vorder == b.vorder && a.uknot == b.uknot &&
+           a.vknot == b.vknot && a.umin == b.umin && a.umax == b.umax && a.vmin == b.vmin && a.vmax == b.vmax &&
+           a.P == b.P && a.w == b.w && sameColors(a.Cs, b.Cs) && sameTrim(a.trim, b.trim) && samePrimitive(a, b);
+}
+
 // An instance's object (ObjectBegin): each frame defines its own, so compare what they hold.
 bool sameObject(const std::shared_ptr<const Scene>& a, const std::shared_ptr<const Scene>& b) {
     if (a == b) return true;
@@ -110,7 +131,8 @@ bool sameObject(const std::shared_ptr<const Scene>& a, const std::shared_ptr<con
     };
     return same(a->patches, b->patches) && same(a->procedurals, b->procedurals) && same(a->patchMeshes, b->patchMeshes) &&
            same(a->subdivisionMeshes, b->subdivisionMeshes) && same(a->quadrics, b->quadrics) &&
-           same(a->polygonMeshes, b->polygonMeshes) && same(a->curves, b->curves) && same(a->points, b->points);
+           same(a->polygonMeshes, b->polygonMeshes) && same(a->curves, b->curves) && same(a->points, b->points) &&
+           same(a->nuPatches, b->nuPatches);
 }
 
 bool stillWithinFrame(const BilinearPatchDesc& p) { return p.P.size() == 1 && p.objectToWorld.isStatic(); }

@@ -21,6 +21,7 @@ bool sameData(const QuadricDesc& a, const QuadricDesc& b);
 bool sameData(const CurvesDesc& a, const CurvesDesc& b);
 bool sameData(const PointsDesc& a, const PointsDesc& b);
 bool sameData(const PolygonMeshDesc& a, const PolygonMeshDesc& b);
+bool sameData(const NuPatchDesc& a, const NuPatchDesc& b);
 
 // Does the primitive stand still within its frame (no motion keys of its own or of its transform)?
 bool stillWithinFrame(const BilinearPatchDesc& p);

@@ -9,6 +9,7 @@
 #include "render/split_decision.h"
 #include "streyes/rib.h"
 #include "cull/view_cull.h"
+#include "nurbs_rib.h"
 #include "test_util.h"
 
 namespace streyes {
@@ -250,6 +251,29 @@ TEST(CurvedRender, ClosedQuadricsAndPatchMeshesHaveNoCracksOrDoubleHits) {
     expectClosed(kHitHeader + tumbling(30) + "Basis \"b-spline\" 1 \"b-spline\" 1\n" +
                      "PatchMesh \"bicubic\" 6 \"periodic\" 5 \"periodic\" \"P\" [" + P + "]\nWorldEnd\n",
                  4);
+}
+
+// NuPatches: a sphere (two poles, a seam) and a torus (two seams) of rational quadratics, also
+// with grids of at most 2 micropolygons (pieces far below their lattices); and a wavy open
+// sheet of non-uniform cubic spans turning in front of the camera.
+TEST(CurvedRender, ClosedNurbsSurfacesHaveNoCracksOrDoubleHits) {
+    expectClosed(kHitHeader + tumbling(30) + test::nurbsSphere(1.6) + "WorldEnd\n", 4);
+    expectClosed(kHitHeader + tumbling(30) + test::nurbsTorus(1.3, 0.5) + "WorldEnd\n", 4);
+    expectClosed(kHitHeader + std::string("ShadingRate 16\n") + tumbling(30) + test::nurbsSphere(1.6) + "WorldEnd\n",
+                 4, 2);
+}
+
+TEST(CurvedRender, NurbsSheetLeavesNoCracks) {
+    std::string mesh = "NuPatch 8 4 [0 0 0 0 0.2 0.3 0.7 0.75 1 1 1 1] 0 1 7 3 [0 0 0 0.1 0.5 0.6 1 1 1 1] 0 1 \"Pw\" [";
+    for (int j = 0; j < 7; ++j)
+        for (int i = 0; i < 8; ++i) {
+            const double w = 0.5 + 0.25 * ((i + 2 * j) % 5);
+            mesh += std::to_string(w * (-12 + 24.0 * i / 7)) + " " + std::to_string(w * (-10 + 20.0 * j / 6)) + " " +
+                    std::to_string(w * 0.8 * std::sin(i * 1.7) * std::cos(j * 1.3)) + " " + std::to_string(w) + " ";
+        }
+    mesh += "]\n";
+    const std::string motion = "MotionBegin [0 2.5]\nRotate 0 0 0 1\nRotate 40 0.2 0.1 1\nMotionEnd\n";
+    for (const char* rate : {"1", "5"}) expectFullCoverage(sheetHeader(rate) + motion + mesh + "WorldEnd\n");
 }
 
 // ---- Polygons --------------------------------------------------------------------------------------
