@@ -351,7 +351,8 @@ TEST(RibGeometry, UnsupportedGeometryIsSkippedWithOneWarning) {
     Scene scene = parse(
         "WorldBegin\nBlobby 1 [1001 0] [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1] [\"\"]\n"
         "Blobby 1 [1001 0] [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1] [\"\"]\n"
-        "NuPatch 2 2 [0 0 1 1] 0 1 2 2 [0 0 1 1] 0 1 \"P\" [0 0 0 1 0 0 0 1 0 1 1 0]\nWorldEnd\n",
+        "HierarchicalSubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] [] [0 0] [] [] [] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]\n"
+        "WorldEnd\n",
         log);
     EXPECT_TRUE(scene.patches.empty());
     EXPECT_TRUE(scene.patchMeshes.empty());
@@ -359,7 +360,8 @@ TEST(RibGeometry, UnsupportedGeometryIsSkippedWithOneWarning) {
     std::vector<std::string> w = log.warnings();
     ASSERT_EQ(w.size(), 2u);
     EXPECT_NE(w[0].find("test.rib:2: warning: unsupported request 'Blobby'"), std::string::npos) << w[0];
-    EXPECT_NE(w[1].find("test.rib:4: warning: unsupported request 'NuPatch'"), std::string::npos) << w[1];
+    EXPECT_NE(w[1].find("test.rib:4: warning: unsupported request 'HierarchicalSubdivisionMesh'"), std::string::npos)
+        << w[1];
 }
 
 // ---- Declarations ---------------------------------------------------------------------------------
