@@ -157,6 +157,13 @@ std::vector<std::string> differingCounts(const RenderCounters& a, const RenderCo
 
 namespace streyes::test {
 
+double alphaSum(const RenderResult& r, int frame) {
+    const FrameImage& f = r.frame(frame);
+    double sum = 0;
+    for (size_t i = 3; i < f.rgba.size(); i += 4) sum += f.rgba[i];
+    return sum;
+}
+
 std::string orthoHeader(int w, int h, const std::string& extra) {
     return "Format " + std::to_string(w) + " " + std::to_string(h) + " 1\n" +
            "Projection \"orthographic\"\nScreenWindow 0 " + std::to_string(w) + " 0 " + std::to_string(h) + "\n" +

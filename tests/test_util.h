@@ -59,6 +59,9 @@ std::string ribError(const std::string& rib);
 RenderResult renderScene(const Scene& scene, const RenderOptions& options = {});
 RenderResult renderFile(const std::string& path, const RenderOptions& options = {});
 
+// The sum of frame `frame`'s alpha over its pixels: the covered area in pixels.
+double alphaSum(const RenderResult& r, int frame = 0);
+
 // True when every pixel of every frame is bit-identical (RGBA and Z): a NaN equals a NaN of the
 // same bits, +0 differs from -0.
 bool identicalPixels(const RenderResult& a, const RenderResult& b);

@@ -17,8 +17,6 @@ LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& 
         const Param* to = d.params.find("to");
         if (!from || from->type == ParamType::Point) l.from = d.params.getPoint("from", {0, 0, 0});
         if (!to || to->type == ParamType::Point) l.to = d.params.getPoint("to", {0, 0, 1});
-        if (l.kind == LightKind::Shader && from && !from->declared && from->nums.size() == 3)
-            l.from = {from->nums[0], from->nums[1], from->nums[2]};
         l.color = l.kind == LightKind::Shader
                       ? Color{0, 0, 0}
                       : d.params.getColor("lightcolor", {1, 1, 1}) * float(d.params.getFloat("intensity", 1));

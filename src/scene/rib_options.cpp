@@ -193,14 +193,6 @@ void shadingOption(RibParser& reader, RibArgs& args) {
     reader.warnUnusedParams(params, {"builtin"}, "Option \"shading\"");
 }
 
-// Imager "name" parameters: an imager shader over every finished frame (Ci, alpha, P in raster).
-void imager(RibParser& reader, RibArgs& args) {
-    std::string name = args.string("shader name");
-    ParamList params = reader.readParams(args, true);
-    if (name == "null") name.clear();
-    reader.scene().settings.imager = ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm};
-}
-
 void option(RibParser& reader, RibArgs& args) {
     RenderSettings& settings = reader.scene().settings;
     std::string category = args.string("option name");
@@ -248,7 +240,6 @@ void addOptionRequests(RibRequestTable& table) {
     table.add("PixelSamples", {pixelSamples, "PixelSamples xsamples ysamples", options});
     table.add("PixelFilter", {pixelFilter, "PixelFilter \"gaussian\" xwidth ywidth", options});
     table.add("Display", {display, "Display \"name\" \"type\" \"mode\"", options});
-    table.add("Imager", {imager, "Imager \"name\" parameters...", options});
     table.add("Option", {option, "Option \"streyes\" \"int frames\" [first last]", options});
 }
 

@@ -33,23 +33,25 @@ void surface(RibParser& reader, RibArgs& args) {
     reader.state().mutableAttributes().surface = ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm};
 }
 
-// Displacement "name" parameters: a Shading Language displacement shader, bound and checked
-// when the render starts (shade/scene_shaders.h). Displacement "null" turns it off.
-void displacement(RibParser& reader, RibArgs& args) {
+// A shader request's name and parameters, with the CTM as its "shader" space. "null" (the RI
+// Spec's way to turn a displacement, atmosphere or imager off) gives no name.
+ShaderDesc readShader(RibParser& reader, RibArgs& args) {
     std::string name = args.string("shader name");
     ParamList params = reader.readParams(args, true);
     if (name == "null") name.clear();
-    reader.state().mutableAttributes().displacement = ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm};
+    return ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm};
 }
 
-// Atmosphere "name" parameters: a volume shader (fog, depthcue) run on every surface point after
-// its surface shader, over the line from the eye (I). Atmosphere "null" turns it off.
-void atmosphere(RibParser& reader, RibArgs& args) {
-    std::string name = args.string("shader name");
-    ParamList params = reader.readParams(args, true);
-    if (name == "null") name.clear();
-    reader.state().mutableAttributes().atmosphere = ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm};
+// Displacement: run on the diced grid before the surface; Atmosphere: a volume shader (fog,
+// depthcue) run on every surface point after its surface, along I; Imager (an option): over each
+// finished frame. All bound and checked when the render starts (shade/scene_shaders.h).
+void displacement(RibParser& reader, RibArgs& args) {
+    reader.state().mutableAttributes().displacement = readShader(reader, args);
 }
+
+void atmosphere(RibParser& reader, RibArgs& args) { reader.state().mutableAttributes().atmosphere = readShader(reader, args); }
+
+void imager(RibParser& reader, RibArgs& args) { reader.scene().settings.imager = readShader(reader, args); }
 
 // A light is on in the attribute block where it is declared (and the blocks inside it): its index
 // goes into the current attributes' light list, which AttributeEnd restores.
@@ -114,6 +116,7 @@ void addShadingRequests(RibRequestTable& table) {
     table.add("Surface", {surface, "Surface \"name\" parameters..."});
     table.add("Displacement", {displacement, "Displacement \"name\" parameters..."});
     table.add("Atmosphere", {atmosphere, "Atmosphere \"name\" parameters..."});
+    table.add("Imager", {imager, "Imager \"name\" parameters...", RibPhase::Options});
     table.add("LightSource", {lightSource, "LightSource \"name\" handle parameters..."});
     table.add("Illuminate", {illuminate, "Illuminate handle onoff", RibPhase::World});
 }

@@ -33,6 +33,7 @@ Color GridShader::shadeHit(const Material& m, Color cs, Vec3f p, Vec3f n, double
     hit_.P[0][0] = p;
     hit_.N[0][0] = n;
     hit_.Cs[0] = cs;
+    if (m.surface || m.atmosphere) prepare(m, hit_, 0, time);
     shadeSurface(hit_, 0, time);  // a hit on the traced surface: not displaced again
     for (int k = 0; k < slots; ++k) shadowed[k] = hit_.Cl[0][size_t(k)];
     return hit_.Ci[0][0];
@@ -43,14 +44,35 @@ void GridShader::shade(Grid& grid) {
 }
 
 void GridShader::shadeSlot(Grid& grid, int k, double time) {
-    if (grid.material->displacement) displace(*grid.material, grid, k, time);
+    const Material& m = *grid.material;
+    if (m.displacement || m.surface || m.atmosphere) prepare(m, grid, k, time);  // once for all three
+    if (m.displacement) displace(m, grid, k, time);
     shadeSurface(grid, k, time);
+}
+
+// A shader's own "object" and "shader" spaces at `time`: the CTM where it was declared.
+void GridShader::useShaderSpace(const MotionTransform* shaderToWorld, double time) {
+    const Matrix4 shaderToCamera = shaderToWorld ? shaderToWorld->at(time) * worldToCamera_ : worldToCamera_;
+    sgrid_.setSpace(sl::Space::Object, shaderToCamera);
+    sgrid_.setSpace(sl::Space::Shader, shaderToCamera);
+}
+
+// I for the grid's positions: from the eye at the origin, or from the eye plane z = 0 along +z
+// under an orthographic camera.
+void GridShader::setIncident(const Grid& grid, int k) {
+    if (camera_.perspective()) {
+        sgrid_.set(sl::Global::I, sl::ValueRef::aos(grid.P[k].data()));
+        return;
+    }
+    const int n = grid.vertexCount();
+    orthoI_.resize(size_t(n));
+    for (int i = 0; i < n; ++i) orthoI_[size_t(i)] = {0, 0, grid.P[k][size_t(i)].z};
+    sgrid_.set(sl::Global::I, sl::ValueRef::aos(orthoI_.data()));
 }
 
 // The displacement shader moves P (and sets N) over the grid; they replace the diced ones.
 void GridShader::displace(const Material& m, Grid& grid, int k, double time) {
-    if (!vm_) vm_ = std::make_unique<sl::ShadingVM>();
-    prepare(m, grid, k, time, m.attributes ? &m.attributes->displacement.shaderToWorld : nullptr);
+    useShaderSpace(m.attributes ? &m.attributes->displacement.shaderToWorld : nullptr, time);
     vm_->run(*m.displacement, sgrid_, {});
     const sl::ValueRef P = vm_->result(sl::Global::P), N = vm_->result(sl::Global::N);
     const int n = grid.vertexCount();
@@ -62,6 +84,7 @@ void GridShader::displace(const Material& m, Grid& grid, int k, double time) {
     }
     std::copy(base_.begin(), base_.begin() + n, grid.P[k].begin());
     std::copy(base_.begin() + n, base_.begin() + 2 * n, grid.N[k].begin());
+    setIncident(grid, k);  // the shading grid's views are the grid's arrays: only I is derived
 }
 
 void GridShader::shadeSurface(Grid& grid, int k, double time) {
@@ -79,8 +102,7 @@ void GridShader::shadeSurface(Grid& grid, int k, double time) {
 // that cast shadows go through it by superposition too: Cl' = atm(Ci + Cl) - atm(Ci), exact for
 // atmospheres affine in Ci (fog, depthcue).
 void GridShader::runAtmosphere(const Material& m, Grid& grid, int k, double time) {
-    if (!vm_) vm_ = std::make_unique<sl::ShadingVM>();
-    prepare(m, grid, k, time, m.attributes ? &m.attributes->atmosphere.shaderToWorld : nullptr);
+    useShaderSpace(m.attributes ? &m.attributes->atmosphere.shaderToWorld : nullptr, time);
     const int n = grid.vertexCount();
     const int slots = grid.shadowSlots;
     base_.assign(grid.Ci[k].begin(), grid.Ci[k].end());  // the surface's colour, kept for the slots
@@ -103,7 +125,8 @@ void GridShader::runAtmosphere(const Material& m, Grid& grid, int k, double time
 }
 
 // The shading grid's inputs for slot k: views of the grid's arrays, u and v over the piece.
-void GridShader::prepare(const Material& m, const Grid& grid, int k, double time, const MotionTransform* shaderToWorld) {
+void GridShader::prepare(const Material& m, const Grid& grid, int k, double time) {
+    if (!vm_) vm_ = std::make_unique<sl::ShadingVM>();
     const int n = grid.vertexCount();
     sgrid_.setShape(grid.nu, grid.nv);
     u_.resize(size_t(n));
@@ -119,17 +142,10 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     static const Vec3f kEye{0, 0, 0};
     using sl::Global;
     using sl::ValueRef;
-    const ValueRef P = ValueRef::aos(grid.P[k].data());
-    sgrid_.set(Global::P, P);
+    sgrid_.set(Global::P, ValueRef::aos(grid.P[k].data()));
     sgrid_.set(Global::N, ValueRef::aos(grid.N[k].data()));
     sgrid_.set(Global::Ng, ValueRef::aos(grid.N[k].data()));
-    if (camera_.perspective()) {
-        sgrid_.set(Global::I, P);  // from the eye at the origin
-    } else {  // from the eye plane z = 0, along +z
-        orthoI_.resize(size_t(n));
-        for (int i = 0; i < n; ++i) orthoI_[size_t(i)] = {0, 0, grid.P[k][size_t(i)].z};
-        sgrid_.set(Global::I, ValueRef::aos(orthoI_.data()));
-    }
+    setIncident(grid, k);
     sgrid_.set(Global::E, ValueRef::uniform(kEye));
     sgrid_.set(Global::Cs, ValueRef::aos(grid.Cs.data()));
     sgrid_.set(Global::Ci, ValueRef{});  // outputs: only an atmosphere reads them as inputs
@@ -145,19 +161,15 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     sgrid_.set(Global::du, ValueRef::uniform(&du_));
     sgrid_.set(Global::dv, ValueRef::uniform(&dv_));
     sgrid_.set(Global::time, ValueRef::uniform(&time_));
-    const Matrix4 worldToCamera = camera_.worldToCamera().at(time);
-    const Matrix4 shaderToCamera = shaderToWorld ? shaderToWorld->at(time) * worldToCamera : worldToCamera;
-    sgrid_.setSpace(sl::Space::World, worldToCamera);
-    sgrid_.setSpace(sl::Space::Object, shaderToCamera);
-    sgrid_.setSpace(sl::Space::Shader, shaderToCamera);
+    worldToCamera_ = camera_.worldToCamera().at(time);
+    sgrid_.setSpace(sl::Space::World, worldToCamera_);
     sgrid_.seed = unsigned(grid.primitiveId ^ (grid.primitiveId >> 32));
     sgrid_.nearClip = camera_.nearClip();
     sgrid_.farClip = camera_.farClip();
 }
 
 void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
-    if (!vm_) vm_ = std::make_unique<sl::ShadingVM>();
-    prepare(m, grid, k, time, m.attributes ? &m.attributes->surface.shaderToWorld : nullptr);
+    useShaderSpace(m.attributes ? &m.attributes->surface.shaderToWorld : nullptr, time);
     // The material's lights, those that cast shadows apart.
     unshadowed_.clear();
     int shadowed = 0;

@@ -55,7 +55,10 @@ class GridShader {
     void shadeSurface(Grid& grid, int k, double time);
     void runSurface(const Material& m, Grid& grid, int k, double time);
     void runAtmosphere(const Material& m, Grid& grid, int k, double time);
-    void prepare(const Material& m, const Grid& grid, int k, double time, const MotionTransform* shaderToWorld);
+    // The shading grid's inputs for slot k (once per slot, before any of its shaders runs).
+    void prepare(const Material& m, const Grid& grid, int k, double time);
+    void useShaderSpace(const MotionTransform* shaderToWorld, double time);
+    void setIncident(const Grid& grid, int k);
 
     const SceneShaders* shaders_;
     const Camera& camera_;
@@ -65,6 +68,7 @@ class GridShader {
     sl::ShadingGrid sgrid_;
     std::vector<float> u_, v_;
     float du_ = 0, dv_ = 0, time_ = 0;  // uniform inputs the shading grid points at
+    Matrix4 worldToCamera_;             // at the slot's time
     std::vector<sl::LightRef> unshadowed_, withOne_;
     std::vector<Color> base_, withLight_;
     std::vector<Vec3f> orthoI_;  // I under an orthographic camera

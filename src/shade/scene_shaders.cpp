@@ -13,6 +13,9 @@ bool isBuiltinSurface(const std::string& name) {
     return name == "constant" || name == "matte" || name == "plastic" || name == "defaultsurface";
 }
 
+// Does the shader read `time`? Then a still grid it shades is shaded per exposure.
+bool readsTime(const sl::ShaderInstance& s) { return s.program().globalReg[size_t(sl::Global::time)] >= 0; }
+
 bool isBuiltinLight(const std::string& name) {
     return name == "ambientlight" || name == "distantlight" || name == "pointlight";
 }
@@ -143,7 +146,7 @@ void SceneShaders::runImager(FrameImage& frame) const {
 void SceneShaders::bind(Material& m, const Attributes& a) const {
     if (!a.atmosphere.name.empty()) {
         m.atmosphere = instance(a.atmosphere.name, a.atmosphere.params, a.atmosphere.loc, sl::ShaderType::Volume);
-        if (m.atmosphere) m.readsTime = m.atmosphere->program().globalReg[size_t(sl::Global::time)] >= 0;
+        if (m.atmosphere) m.readsTime = readsTime(*m.atmosphere);
     }
     if (!a.displacement.name.empty()) {
         m.displacement = instance(a.displacement.name, a.displacement.params, a.displacement.loc,
@@ -157,7 +160,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
             else if (space == "world")
                 scale = largestStretch(worldToCamera_);
             m.displacementBound = float(a.displacementBound * scale);
-            m.readsTime = m.readsTime || m.displacement->program().globalReg[size_t(sl::Global::time)] >= 0;
+            m.readsTime = m.readsTime || readsTime(*m.displacement);
         }
     }
     bool builtinLights = true;
@@ -171,7 +174,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         shader = instance("defaultsurface", {}, a.surface.loc, sl::ShaderType::Surface);
         if (!shader) return;
     }
-    m.readsTime = m.readsTime || shader->program().globalReg[size_t(sl::Global::time)] >= 0;
+    m.readsTime = m.readsTime || readsTime(*shader);
     m.surface = std::move(shader);
 }
 

@@ -18,12 +18,7 @@ namespace {
 using test::RenderResult;
 using test::renderRib;
 
-double alphaSum(const RenderResult& r, int frame) {
-    const FrameImage& img = r.frame(frame);
-    double s = 0;
-    for (size_t i = 3; i < img.rgba.size(); i += 4) s += img.rgba[i];
-    return s;
-}
+using test::alphaSum;
 
 // Projected area of a sphere of radius r centred at c (camera space) on the image plane at
 // distance f: the cone of sight lines touching it has half-angle asin(r / |c|), and its section

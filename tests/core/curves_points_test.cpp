@@ -20,12 +20,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double alphaSum(const test::RenderResult& r, int frame = 0) {
-    const FrameImage& f = r.frame(frame);
-    double sum = 0;
-    for (size_t i = 0; i < size_t(f.width) * size_t(f.height); ++i) sum += f.rgba[i * 4 + 3];
-    return sum;
-}
+using test::alphaSum;
 
 // ---- Analytic areas -------------------------------------------------------------------------------
 TEST(CurvesRender, StraightRibbonCoversWidthTimesLength) {

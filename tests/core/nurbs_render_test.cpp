@@ -19,12 +19,7 @@ namespace {
 using test::RenderResult;
 using test::renderRib;
 
-double alphaSum(const RenderResult& r, int frame) {
-    const FrameImage& img = r.frame(frame);
-    double s = 0;
-    for (size_t i = 3; i < img.rgba.size(); i += 4) s += img.rgba[i];
-    return s;
-}
+using test::alphaSum;
 
 // Area of the unit-pixel [px, px+1] x [py, py+1] inside the circle of radius r about (cx, cy), by
 // 256 x 256 point sampling (error far below a sample of the render).

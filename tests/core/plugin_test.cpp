@@ -62,12 +62,7 @@ std::string perspectiveHeader() {
            "WorldBegin\nSurface \"constant\"\nColor [0.8 0.6 0.3]\n";
 }
 
-double alphaSum(const RenderResult& r) {
-    double sum = 0;
-    const FrameImage& f = r.frame(0);
-    for (size_t i = 3; i < f.rgba.size(); i += 4) sum += f.rgba[i];
-    return sum;
-}
+using test::alphaSum;
 
 TEST(PluginProcedural, MengerSpongeEqualsTheSameSpongeWrittenAsRib) {
     std::string reference = perspectiveHeader();

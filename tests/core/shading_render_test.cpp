@@ -204,7 +204,8 @@ TEST(ShadingLanguage, BadShadersAndBindingsNameTheirPlace) {
         }
         return std::string();
     };
-    EXPECT_NE(error("Surface \"broken\"\n").find("broken.sl:2:8:"), std::string::npos) << error("Surface \"broken\"\n");
+    const std::string broken = error("Surface \"broken\"\n");
+    EXPECT_NE(broken.find("broken.sl:2:8:"), std::string::npos) << broken;
     EXPECT_NE(error("Surface \"lit\"\n").find("is a light shader, not a surface shader"), std::string::npos);
     const std::string wrongType = error("Surface \"takes\" \"color k\" [1 0 0]\n");
     EXPECT_NE(wrongType.find("test.rib:8:"), std::string::npos) << wrongType;  // the RIB line of the parameter
