@@ -138,6 +138,9 @@ RtVoid RiDisplay(RtToken name, RtToken type, RtToken mode, ...);
 RtVoid RiDisplayV(RtToken name, RtToken type, RtToken mode, RtInt n, RtToken tokens[], RtPointer values[]);
 RtVoid RiOption(RtToken name, ...);
 RtVoid RiOptionV(RtToken name, RtInt n, RtToken tokens[], RtPointer values[]);
+RtVoid RiExposure(RtFloat gain, RtFloat gamma);
+RtVoid RiHider(RtToken type, ...);
+RtVoid RiHiderV(RtToken type, RtInt n, RtToken tokens[], RtPointer values[]);
 RtToken RiDeclare(const char* name, const char* declaration);
 
 /* ---- Transforms */
@@ -153,6 +156,10 @@ RtVoid RiColor(RtColor color);
 RtVoid RiOpacity(RtColor color);
 RtVoid RiShadingRate(RtFloat size);
 RtVoid RiBasis(RtBasis ubasis, RtInt ustep, RtBasis vbasis, RtInt vstep);
+RtVoid RiSides(RtInt sides);
+RtVoid RiOrientation(RtToken orientation);
+RtVoid RiReverseOrientation(void);
+RtVoid RiShadingInterpolation(RtToken type);
 RtVoid RiAttribute(RtToken name, ...);
 RtVoid RiAttributeV(RtToken name, RtInt n, RtToken tokens[], RtPointer values[]);
 RtVoid RiSurface(RtToken name, ...);

@@ -16,6 +16,7 @@ class ImageBlock;  // a bucket's samples (src/raster/image_block.h), for sampleO
 struct SamplePattern {
     int sx = 2, sy = 2;      // strata per pixel in x and y; sx * sy time slices
     uint64_t seed = 0;
+    bool jitter = true;      // false (Hider "hidden" "jitter" 0): samples at their strata's centres
     int count() const { return sx * sy; }
 };
 
@@ -40,6 +41,8 @@ inline bool raytraces(Algorithm a) { return a == Algorithm::Raytrace || a == Alg
 const char* algorithmName(Algorithm a);
 bool parseAlgorithm(const std::string& name, Algorithm* out);
 
+constexpr int kDefaultBucketSize = 64, kDefaultGridSize = 256;
+
 struct RenderOptions {
     Algorithm algorithm = Algorithm::SpacetimeOcclusion;
     bool hasFrames = false;          // --frames; otherwise the scene's, otherwise frame 0
@@ -54,7 +57,9 @@ struct RenderOptions {
     int samples = 0;                 // --samples per pixel per frame; 0: the scene's PixelSamples
     int threads = 0;                 // 0: every core
     uint64_t seed = 0;
-    int bucketSize = 64;             // tile side in pixels (64: a moving grid is diced again in fewer buckets)
+    // Tile side in pixels (--bucket); 0: the scene's Option "limits" "bucketsize", else 64 (a
+    // moving grid is diced again in fewer buckets than with smaller tiles).
+    int bucketSize = 0;
     int maxFrameBlock = 64;          // frames rendered (and held in memory) together
     uint64_t maxMemoryBytes = 0;     // --max-memory; 0: defaultMemoryBudget() (memory.h)
     // --resume: frames already written completely. A block whose frames all are is not rendered
@@ -68,7 +73,8 @@ struct RenderOptions {
     double adaptiveLayerHits = 0.05; // adaptive: a layer ends once this share of samples got a first hit
 
     // Split loop (see docs/ARCHITECTURE.md).
-    int maxGridSize = 256;           // micropolygons per grid (RenderMan's "limits" "gridsize")
+    // Micropolygons per grid; 0: the scene's Option "limits" "gridsize", else 256.
+    int maxGridSize = 0;
     int maxSplitDepth = 60;          // a body split this often and still too large is dropped
     int maxEyeSplits = 40;           // the same for splits at the eye plane
     int maxSplitsPerPrimitive = 1 << 20;  // splits of one primitive in one bucket (bounds the work)

@@ -33,6 +33,7 @@ struct ResolvedSettings {
     int firstFrame = 0, lastFrame = 0, width = 0, height = 0;
     int shotFirst = 0, shotLast = 0;  // RenderOptions::hasShot
     SamplePattern pattern;
+    int bucketSize = kDefaultBucketSize, gridSize = kDefaultGridSize;  // options over Option "limits"
 };
 ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& options);
 

@@ -93,6 +93,15 @@ struct Attributes {
     ParamList user;                              // Attribute "category" "name" values, as "category:name"
     BasisDesc uBasis, vBasis;                    // Basis, for bicubic patches
     std::shared_ptr<const TrimLoops> trim;       // TrimCurve (none when empty), for NuPatches
+    // Sides 1: only the outside is drawn (micropolygons facing away from the eye are not).
+    bool twoSided = true;
+    // Orientation: which side is the outside, relative to the current coordinate system's
+    // handedness ("outside", "inside") or absolute ("lh", "rh"); ReverseOrientation flips it.
+    enum class Orientation { Outside, Inside, LeftHanded, RightHanded };
+    Orientation orientation = Orientation::Outside;
+    // ShadingInterpolation "constant": a micropolygon takes the colour of its first vertex
+    // ("smooth", the default here: colours interpolated across it).
+    bool smoothShading = true;
 };
 using AttributesPtr = std::shared_ptr<const Attributes>;
 
@@ -139,6 +148,15 @@ struct RenderSettings {
     // defaultsurface with their Shading Language sources too (the same pixels, slower).
     bool builtinShading = true;
     ShaderDesc imager;  // Imager: run over each finished frame's pixels; no name: none
+    double exposureGain = 1, exposureGamma = 1;  // Exposure: rgb = (gain * rgb)^(1 / gamma)
+    // Hider "hidden": "jitter" 0 puts samples at the centres of their strata (and times at the
+    // centres of theirs); "depthfilter" makes Z the "min" (default), "max" or "average" depth of a
+    // pixel's own samples that hit.
+    bool jitter = true;
+    std::string depthFilter = "min";
+    // Option "limits": "bucketsize" [w h] (buckets are square: the larger) and "gridsize"; 0: the
+    // command line's or streyes's default.
+    int bucketSize = 0, gridSize = 0;
 };
 
 // ---- Lights and geometry --------------------------------------------------------------------------

@@ -128,17 +128,27 @@ BodyFactory::Window BodyFactory::windowOf(const Lifetime& life) const {
     return w;
 }
 
-const Material* BodyFactory::material(const AttributesPtr& attributes) {
+const Material* BodyFactory::material(const AttributesPtr& attributes, const MotionTransform& objectToWorld,
+                                      bool cameraFacing) {
     static const AttributesPtr kDefault = std::make_shared<const Attributes>();
     const AttributesPtr& a = attributes ? attributes : kDefault;
+    Facing facing = Facing::Camera;
+    if (!cameraFacing) {
+        // The 3x3 part's determinant (at the first key: a transform does not turn inside out as it moves).
+        const Matrix4 m = objectToWorld.then(worldToCamera_).keys()[0];
+        const double det = m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)) -
+                           m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0)) +
+                           m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
+        facing = det < 0 ? Facing::Mirrored : Facing::Object;
+    }
     std::lock_guard<std::mutex> lock(mutex_);
-    auto it = materialOf_.find(a.get());
+    auto it = materialOf_.find({a.get(), facing});
     if (it != materialOf_.end()) return it->second;
     keepAlive_.push_back(a);
-    Material m = makeMaterial(*a);
+    Material m = makeMaterial(*a, facing);
     if (binder_) binder_->bind(m, *a);
     materials_.push_back(std::move(m));
-    return materialOf_.emplace(a.get(), &materials_.back()).first->second;
+    return materialOf_.emplace(std::make_pair(a.get(), facing), &materials_.back()).first->second;
 }
 
 const SourceLoc* BodyFactory::source(const SourceLoc& loc) {
@@ -151,7 +161,7 @@ const SourceLoc* BodyFactory::source(const SourceLoc& loc) {
 }
 
 void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out) {
-    const Material* mat = material(p.attributes);
+    const Material* mat = material(p.attributes, p.objectToWorld);
     std::array<Color, 4> cs;
     for (int c = 0; c < 4; ++c) cs[size_t(c)] = p.hasCs ? p.Cs[size_t(c)] : mat->Cs;
 
@@ -301,7 +311,7 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;
-    const Material* mat = material(p.attributes);
+    const Material* mat = material(p.attributes, p.objectToWorld);
     const PatchMeshShape shape(p);
     const std::vector<std::array<Color, 4>> colors = shape.colors(p.Cs, mat->Cs);
     const SourceLoc* src = source(p.loc);
@@ -356,7 +366,7 @@ void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t prim
                       "\"interpolateboundary\"): skipped");
         return;
     }
-    const Material* mat = material(p.attributes);
+    const Material* mat = material(p.attributes, p.objectToWorld);
     const std::vector<std::array<Color, 4>> colors = shape->colors(p.Cs, mat->Cs);
     const SourceLoc* src = source(p.loc);
     std::vector<std::shared_ptr<const SubdivisionKey>> keys(ts.size());
@@ -398,7 +408,7 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::ve
             return;
         }
     }
-    const Material* mat = material(q.attributes);
+    const Material* mat = material(q.attributes, q.objectToWorld);
     std::array<Color, 4> colors;
     colors.fill(mat->Cs);
     if (q.Cs.given())
@@ -423,7 +433,7 @@ void BodyFactory::addNuPatch(const NuPatchDesc& p, uint64_t primitiveId, std::ve
     shape->uknot = p.uknot, shape->vknot = p.vknot, shape->w = p.w;
     shape->umin = p.umin, shape->umax = p.umax, shape->vmin = p.vmin, shape->vmax = p.vmax;
     if (p.trim) shape->trim = std::make_shared<const NurbsTrim>(*p.trim);
-    const Material* mat = material(p.attributes);
+    const Material* mat = material(p.attributes, p.objectToWorld);
     // Varying Cs is bilinear between the knots (a lattice over the patch); constant Cs fills the
     // corners; uniform (per span) and vertex (per control point) colour over several spans are
     // taken from the first span and from the corner points, with a warning.

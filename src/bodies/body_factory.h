@@ -130,7 +130,10 @@ class BodyFactory final : public ChildBodyMaker {
         bool empty() const { return !(a <= b); }
     };
     Window windowOf(const Lifetime& life) const;
-    const Material* material(const AttributesPtr& attributes);
+    // The material of an attribute state, for a primitive placed by objectToWorld (whether it
+    // mirrors decides which way its normals face; cameraFacing: Points and camera-facing Curves).
+    const Material* material(const AttributesPtr& attributes, const MotionTransform& objectToWorld,
+                             bool cameraFacing = false);
     const SourceLoc* source(const SourceLoc& loc);
     // A curved primitive's segment times and camera-space points at each (false, with a warning,
     // when they are not finite).
@@ -150,7 +153,7 @@ class BodyFactory final : public ChildBodyMaker {
     const MaterialBinder* binder_ = nullptr;
     std::deque<Material> materials_;  // deques: bodies keep pointers into them
     std::deque<SourceLoc> sources_;
-    std::map<const Attributes*, const Material*> materialOf_;
+    std::map<std::pair<const Attributes*, Facing>, const Material*> materialOf_;
     std::map<std::pair<const std::string*, int>, const SourceLoc*> sourceOf_;
     std::vector<AttributesPtr> keepAlive_;  // materials point at these
     std::deque<std::unique_ptr<SurfaceMesh>> surfaces_;  // curved bodies point at these

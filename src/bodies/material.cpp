@@ -2,8 +2,19 @@
 
 namespace streyes {
 
-Material makeMaterial(const Attributes& a) {
+Material makeMaterial(const Attributes& a, Facing facing) {
     Material m;
+    using O = Attributes::Orientation;
+    if (facing != Facing::Camera) {
+        // "outside" and "inside" follow the primitive's coordinate system; "lh" is camera space's
+        // handedness (no flip), "rh" the other.
+        const bool mirrored = facing == Facing::Mirrored;
+        m.flipNormals = a.orientation == O::Outside   ? mirrored
+                        : a.orientation == O::Inside  ? !mirrored
+                                                      : a.orientation == O::RightHanded;
+        m.oneSided = !a.twoSided;
+    }
+    m.smoothShading = a.smoothShading;
     m.Cs = a.color;
     m.Os = a.opacity;
     m.shadingRate = float(a.shadingRate);

@@ -36,6 +36,12 @@ struct Material {
     float displacementBound = 0;
     // A volume shader (Atmosphere) run on the surface's colour after the surface shader.
     std::shared_ptr<const sl::ShaderInstance> atmosphere;
+    // Sides and Orientation. Bodies compute N = dPdu x dPdv in camera space; flipNormals turns
+    // it to the side Orientation calls outside (the primitive's transform may mirror), and
+    // oneSided (Sides 1) drops micropolygons whose outside faces away from the eye.
+    bool flipNormals = false;
+    bool oneSided = false;
+    bool smoothShading = true;  // ShadingInterpolation "smooth"; false: "constant"
 };
 
 // Binds a material's Shading Language shaders (made by the shading stage, which the bodies
@@ -46,8 +52,14 @@ class MaterialBinder {
     virtual void bind(Material& material, const Attributes& attributes) const = 0;
 };
 
+// How a primitive's transform and kind bear on its sides: whether its object-to-camera transform
+// mirrors (so N = dPdu x dPdv computed in camera space points the other way than in object space),
+// or whether it always faces the camera (Points, camera-facing Curves: Sides and Orientation do
+// not apply).
+enum class Facing { Object, Mirrored, Camera };
+
 // Builds a Material from an attribute state; unknown shader names have been handled by the
 // parser (they fall back to defaultsurface).
-Material makeMaterial(const Attributes& attributes);
+Material makeMaterial(const Attributes& attributes, Facing facing = Facing::Object);
 
 }  // namespace streyes

@@ -60,8 +60,16 @@ PixelFilter::PixelFilter(const FilterDesc& desc)
 int PixelFilter::guardX() const { return std::max(0, int(std::ceil(rx_ - 0.5f))); }
 int PixelFilter::guardY() const { return std::max(0, int(std::ceil(ry_ - 0.5f))); }
 
-FilterWeights::FilterWeights(const PixelFilter& filter, const PatternTable& patterns)
-    : gx_(filter.guardX()), gy_(filter.guardY()), S_(patterns.samples()) {
+bool depthFilterFromName(const std::string& name, DepthFilter* out) {
+    if (name == "min") *out = DepthFilter::Min;
+    else if (name == "max") *out = DepthFilter::Max;
+    else if (name == "average") *out = DepthFilter::Average;
+    else return false;
+    return true;
+}
+
+FilterWeights::FilterWeights(const PixelFilter& filter, const PatternTable& patterns, DepthFilter depth)
+    : gx_(filter.guardX()), gy_(filter.guardY()), S_(patterns.samples()), depth_(depth) {
     const int P = patterns.patternCount();
     w_.resize(size_t(P) * size_t(2 * gy_ + 1) * size_t(2 * gx_ + 1) * size_t(S_));
     for (int p = 0; p < P; ++p) {
@@ -103,7 +111,26 @@ inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int 
     for (int c = 0; c < 4; ++c) out[c] = acc[c] * inv;
     const SampleHit* own = hitsOf(block.pixelIndex(x, y));
     float z = std::numeric_limits<float>::infinity();
-    for (int j = 0; j < S; ++j) z = std::min(z, own[j].z);
+    switch (fw.depthFilter()) {
+        case DepthFilter::Min:
+            for (int j = 0; j < S; ++j) z = std::min(z, own[j].z);
+            break;
+        case DepthFilter::Max: {
+            float far = -std::numeric_limits<float>::infinity();
+            for (int j = 0; j < S; ++j)
+                if (own[j].a != 0) far = std::max(far, own[j].z);
+            if (far > -std::numeric_limits<float>::infinity()) z = far;
+            break;
+        }
+        case DepthFilter::Average: {
+            float sum = 0;
+            int n = 0;
+            for (int j = 0; j < S; ++j)
+                if (own[j].a != 0) sum += own[j].z, ++n;
+            if (n > 0) z = sum / float(n);
+            break;
+        }
+    }
     out[4] = z;
 }
 
@@ -168,6 +195,17 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
                 out.z[size_t(y) * size_t(out.width) + size_t(x)] = v[4];
             }
     }
+}
+
+void applyExposure(FrameImage& image, double gain, double gamma) {
+    if (gain == 1 && gamma == 1) return;
+    const float g = float(gain), invGamma = float(1 / gamma);
+    for (size_t p = 0; p < image.rgba.size(); p += 4)
+        for (size_t c = 0; c < 3; ++c) {
+            float& v = image.rgba[p + c];
+            v *= g;
+            if (gamma != 1 && v > 0) v = std::pow(v, invGamma);
+        }
 }
 
 }  // namespace streyes

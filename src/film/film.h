@@ -4,7 +4,7 @@
 // box, triangle, gaussian, catmull-rom, sinc and mitchell as separable products f(dx) * f(dy)
 // (the "separable-" names are the same), disk as 1 inside the ellipse the widths span. Colour and alpha are the filter-weighted mean of
 // the samples around the pixel centre; Z is the nearest camera-space depth among the pixel's
-// own samples (+inf where none hit: Z is not filtered).
+// own samples (+inf where none hit: Z is not filtered), or as DepthFilter says.
 #pragma once
 
 #include <cmath>
@@ -57,9 +57,15 @@ class PixelFilter {
 // reaches: samples sit at the same sub-pixel positions in every frame, so the weights are
 // computed once per render, not once per sample and frame. weights(p, ox, oy)[j] is the weight
 // of sample j of a pixel with pattern p for the pixel (ox, oy) away from it.
+// How a pixel's Z comes from the depths of its own samples (Hider "hidden" "depthfilter"): the
+// nearest (misses count as +inf), or the farthest or the mean of those that hit (+inf where none do).
+enum class DepthFilter { Min, Max, Average };
+bool depthFilterFromName(const std::string& name, DepthFilter* out);
+
 class FilterWeights {
   public:
-    FilterWeights(const PixelFilter& filter, const PatternTable& patterns);
+    FilterWeights(const PixelFilter& filter, const PatternTable& patterns, DepthFilter depth = DepthFilter::Min);
+    DepthFilter depthFilter() const { return depth_; }
     int reachX() const { return gx_; }  // pixels a sample reaches on each side (the guard band)
     int reachY() const { return gy_; }
     const float* weights(int pattern, int ox, int oy) const {
@@ -69,6 +75,7 @@ class FilterWeights {
 
   private:
     int gx_, gy_, S_;
+    DepthFilter depth_;
     std::vector<float> w_;  // patterns x (2 gy + 1) x (2 gx + 1) x S
 };
 
@@ -84,6 +91,10 @@ struct ResolveScratch {
 // block.firstFrame() + fi. Each pixel gathers the samples of the pixels around it; a pixel none of
 // whose neighbours has a record in a frame shows the still layer there, resolved once for the
 // block. The same gather makes both, so a pixel has the same bits whichever way it is resolved.
+// Exposure: rgb = (gain * rgb)^(1 / gamma) per channel (negative values stay linear), after the
+// imager, before the frame is written. Alpha and Z are kept. Nothing is done for gain = gamma = 1.
+void applyExposure(FrameImage& image, double gain, double gamma);
+
 void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWeights& weights, FrameImage* frames,
                  ResolveScratch& scratch);
 

@@ -192,6 +192,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const float* xs = block.xs();
     const float* ys = block.ys();
     const Color* ci = grid.Ci[0].data();
+    const bool flat = grid.flatShading;  // ShadingInterpolation "constant": the first corner's colour
     const int K = grid.shadowSlots;
     const Color* cl = grid.Cl[0].data();
     const uint64_t id = grid.primitiveId;
@@ -212,7 +213,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
             if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ)) continue;
             if (!Counting && intoStill && behindStillLayer(block, q)) continue;
             setupEdges(q);
-            auto colorAt = [&](int c) { return ci[idx[c]]; };
+            auto colorAt = [&](int c) { return ci[idx[flat ? 0 : c]]; };
             // The samples of the strata the bound overlaps in each pixel, tested at once (SIMD).
             const size_t room = size_t(q.px1 - q.px0 + 1) * size_t(q.py1 - q.py0 + 1) * size_t(S);
             if (quadHits_.size() < room) quadHits_.resize(room);
@@ -265,7 +266,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     rec[sj] = hit;
                     if (Shadowed)
                         writeShadowed(block.shadowed(fr.fi, pi) + size_t(sj) * size_t(K), K, h,
-                                      [&](int c, int k) { return cl[size_t(idx[c] * K + k)]; });
+                                      [&](int c, int k) { return cl[size_t(idx[flat ? 0 : c] * K + k)]; });
                 }
             }
         }
@@ -298,6 +299,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const float nearZ = camera.nearClip(), farZ = camera.farClip();
     const double span = grid.t1 - grid.t0;
     const Color *ci0 = grid.Ci[0].data(), *ci1 = grid.Ci[1].data();
+    const bool flat = grid.flatShading;  // ShadingInterpolation "constant": the first corner's colour
     const int K = grid.shadowSlots;
     const Color *cl0 = grid.Cl[0].data(), *cl1 = grid.Cl[1].data();
     const uint64_t id = grid.primitiveId;
@@ -432,14 +434,14 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             const float sg = lerp(sA, sB, w);  // the grid's own time parameter
                             SampleHit hit;
                             if (!beats(cur, qt.z, h, nearZ, farZ, id,
-                                       [&](int c) { return lerp(ci0[idx[c]], ci1[idx[c]], sg); }, &hit))
+                                       [&](int c) { return lerp(ci0[idx[flat ? 0 : c]], ci1[idx[flat ? 0 : c]], sg); }, &hit))
                                 continue;
                             firstHits += cur.a == 0;
                             if (!rec) rec = block.makeRecord(fi, pi);
                             rec[sj] = hit;
                             if (Shadowed)
                                 writeShadowed(block.shadowed(fi, pi) + size_t(sj) * size_t(K), K, h, [&](int c, int k) {
-                                    const size_t v = size_t(idx[c] * K + k);
+                                    const size_t v = size_t(idx[flat ? 0 : c] * K + k);
                                     return lerp(cl0[v], cl1[v], sg);
                                 });
                         }

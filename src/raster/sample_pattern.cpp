@@ -82,7 +82,12 @@ PatternTable::PatternTable(const SamplePattern& pattern) : pattern_(pattern) {
         const uint32_t id = uint32_t(hashCombine(seed, uint64_t(p)) >> 32);
         for (int j = 0; j < S_; ++j) {
             float* o = &offsets_[(size_t(p) * size_t(S_) + size_t(j)) * 2];
-            correlatedMultiJitter(j, pattern.sx, pattern.sy, id, &o[0], &o[1]);
+            if (pattern.jitter) {
+                correlatedMultiJitter(j, pattern.sx, pattern.sy, id, &o[0], &o[1]);
+            } else {
+                o[0] = (float(j % pattern.sx) + 0.5f) / float(pattern.sx);
+                o[1] = (float(j / pattern.sx) + 0.5f) / float(pattern.sy);
+            }
         }
     }
     stratumOf_.resize(size_t(Q_) * size_t(S_));
@@ -98,7 +103,8 @@ PatternTable::PatternTable(const SamplePattern& pattern) : pattern_(pattern) {
         }
         for (int k = 0; k < S_; ++k)
             times_[size_t(q) * size_t(S_) + size_t(k)] =
-                std::min((float(k) + randfloat(uint32_t(k), id * 0x68bc21ebu)) * invS, kOneMinusEpsilon);
+                std::min((float(k) + (pattern.jitter ? randfloat(uint32_t(k), id * 0x68bc21ebu) : 0.5f)) * invS,
+                         kOneMinusEpsilon);
     }
 }
 

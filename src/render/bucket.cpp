@@ -46,6 +46,38 @@ Bounds3f rasterOfBox(const Camera& cam, const Bounds3f& box) {
     return r;
 }
 
+// Sides and Orientation on a diced grid (slot k: the positions and normals at t0 or t1): turns
+// the normals to the side Orientation calls outside.
+void orientNormals(Grid& grid, int k, const Material* m) {
+    if (m && m->flipNormals)
+        for (Vec3f& n : grid.N[k]) n = -n;
+}
+
+// Sides 1: marks in grid.hole the micropolygons whose outside faces away from the eye at every
+// end of the grid's span (their corners' normals summed, against the direction from the eye).
+// False when none is left to draw.
+bool cullBackFacing(Grid& grid, const Camera& cam) {
+    const int nu = grid.nu, nv = grid.nv, stride = nu + 1;
+    if (grid.hole.empty()) grid.hole.assign(size_t(nu) * size_t(nv), 0);
+    bool any = false;
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            uint8_t& h = grid.hole[size_t(j * nu + i)];
+            if (h) continue;
+            const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
+            bool back = true;
+            for (int k = 0; k < (grid.moving ? 2 : 1) && back; ++k) {
+                Vec3f n{0, 0, 0}, c{0, 0, 0};
+                for (int v : idx) n = n + grid.N[k][size_t(v)], c = c + grid.P[k][size_t(v)];
+                const Vec3f eyeToQuad = cam.perspective() ? c : Vec3f{0, 0, 1};
+                back = dot(n, eyeToQuad) > 0;
+            }
+            h = back;
+            any = any || !back;
+        }
+    return any;
+}
+
 }  // namespace
 
 BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& options, const PatternTable& patterns,
@@ -585,6 +617,9 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
     while (k0 + 2 < keys && body.keyTime(k0 + 1) <= a) ++k0;
     while (keys > k0 + 2 && body.keyTime(keys - 2) >= b) --keys;
     body.diceKey(k0, grid_, 0);
+    const Material* mat = body.material();
+    grid_.flatShading = mat && !mat->smoothShading;
+    orientNormals(grid_, 0, mat);
     auto t1 = Clock::now();
     counters.timeDice += std::chrono::duration<double>(t1 - t).count();
     shader_.shadeSlot(grid_, 0, body.keyTime(k0));
@@ -592,6 +627,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
     for (size_t k = k0; k + 1 < keys; ++k) {
         auto ta = Clock::now();
         body.diceKey(k + 1, grid_, 1);
+        orientNormals(grid_, 1, mat);
         auto tb = Clock::now();
         counters.timeDice += std::chrono::duration<double>(tb - ta).count();
         shader_.shadeSlot(grid_, 1, body.keyTime(k + 1));
@@ -601,7 +637,9 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
         grid_.t1 = body.keyTime(k + 1);
         grid_.openEnd = k + 2 < body.keyCount() || body.time().openEnd;  // pieces meet at keys (TimeSpan)
         grid_.moving = body.keyMoves(k) || shadingVaries(body);
-        rasterizer_.rasterize(grid_, scene_.camera, scene_.shutter, block_, rasterCounters_);
+        grid_.hole.clear();
+        if (!mat || !mat->oneSided || cullBackFacing(grid_, scene_.camera))
+            rasterizer_.rasterize(grid_, scene_.camera, scene_.shutter, block_, rasterCounters_);
         counters.timeSample += secondsSince(tc);
         if (k + 2 < keys) {
             std::swap(grid_.P[0], grid_.P[1]);
@@ -620,6 +658,13 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv) {
     auto t = Clock::now();
     body.dice(nu, nv, grid_);
     ++counters.gridsDiced;
+    const Material* mat = body.material();
+    grid_.flatShading = mat && !mat->smoothShading;
+    for (int k = 0; k < (grid_.moving ? 2 : 1); ++k) orientNormals(grid_, k, mat);
+    if (mat && mat->oneSided && !cullBackFacing(grid_, scene_.camera)) {
+        counters.timeDice += secondsSince(t);
+        return;  // every micropolygon faces away
+    }
     if (!grid_.moving && grid_.t1 > grid_.t0 && shadingVaries(body)) {
         // Still geometry under moving lights: shaded at both ends of its span like a moving grid,
         // so that its colour follows the lights through the exposure.

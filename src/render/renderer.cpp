@@ -73,12 +73,17 @@ ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& o) {
         r.pattern.sy = scene.settings.pixelSamplesY;
     }
     r.pattern.seed = o.seed;
+    r.pattern.jitter = scene.settings.jitter;
+    r.bucketSize = std::max(4, o.bucketSize > 0 ? o.bucketSize : scene.settings.bucketSize > 0 ? scene.settings.bucketSize : kDefaultBucketSize);
+    r.gridSize = o.maxGridSize > 0 ? o.maxGridSize : scene.settings.gridSize > 0 ? scene.settings.gridSize : kDefaultGridSize;
     return r;
 }
 
 Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     : source_(scene), options_(options), log_(log) {
     settings_ = resolveSettings(scene, options);
+    options_.bucketSize = settings_.bucketSize;
+    options_.maxGridSize = settings_.gridSize;
     auto t = std::chrono::steady_clock::now();
     // In an arena of its own, like the render: building runs parallel work too (subdivision
     // meshes), and --threads holds for every stage.
@@ -137,7 +142,7 @@ int frameBlockLimit(int width, int height, int samplesPerPixel, int tileSize, co
 
 int frameBlockLimit(const Scene& scene, const RenderOptions& options) {
     const ResolvedSettings s = resolveSettings(scene, options);
-    return frameBlockLimit(s.width, s.height, s.pattern.count(), std::max(4, options.bucketSize),
+    return frameBlockLimit(s.width, s.height, s.pattern.count(), s.bucketSize,
                            PixelFilter(scene.settings.filter), options.maxFrameBlock, !perFrame(options.algorithm),
                            std::numeric_limits<int>::max());
 }
@@ -150,9 +155,11 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const int W = s.width, H = s.height, S = s.pattern.count();
     // The sample patterns and the filter's weights for them: the same for every bucket and frame.
     const PatternTable patterns(s.pattern);
-    const FilterWeights weights(filter, patterns);
+    DepthFilter depthFilter = DepthFilter::Min;
+    depthFilterFromName(source_.settings.depthFilter, &depthFilter);  // the parser checked the name
+    const FilterWeights weights(filter, patterns, depthFilter);
     const int frames = s.lastFrame - s.firstFrame + 1;
-    const int tileSize = std::max(4, options_.bucketSize);
+    const int tileSize = settings_.bucketSize;
     const bool spacetime = !perFrame(options_.algorithm);
     const std::vector<float> layerDepths = usesOcclusion(options_.algorithm) ? geometricLayerDepths() : std::vector<float>{};
 
@@ -309,6 +316,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                     continue;
                 }
                 shaders_->runImager(img);
+                applyExposure(img, source_.settings.exposureGain, source_.settings.exposureGamma);
                 sink(img);
             }
             writeSeconds += std::chrono::duration<double>(Clock::now() - t).count();

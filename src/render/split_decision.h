@@ -31,7 +31,7 @@ inline SplitDecision decideSplit(const Body& body, const RasterMeasure& m, const
     } else {
         const double nu = std::max(1.0, std::ceil(double(m.extentU) / side));
         const double nv = std::max(1.0, std::ceil(double(m.extentV) / side));
-        if (nu * nv <= double(options.maxGridSize)) {
+        if (nu * nv <= double(options.maxGridSize > 0 ? options.maxGridSize : kDefaultGridSize)) {
             d.dice = true;
             d.nu = int(nu);
             d.nv = int(nv);

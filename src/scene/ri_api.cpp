@@ -254,6 +254,14 @@ RtVoid RiOptionV(RtToken name, RtInt n, RtToken tokens[], RtPointer values[]) {
     }
     s->params(n, tokens, values, RiClassSizes{});
 }
+RtVoid RiExposure(RtFloat gain, RtFloat gamma) { numbers("RiExposure", "Exposure", {gain, gamma}); }
+RtVoid RiHiderV(RtToken type, RtInt n, RtToken tokens[], RtPointer values[]) {
+    named("RiHider", "Hider", type, n, tokens, values);
+}
+RtVoid RiHider(RtToken type, ...) {
+    COLLECT_PARAMS(type);
+    RiHiderV(type, p.n(), p.t(), p.v());
+}
 RtVoid RiOption(RtToken name, ...) {
     COLLECT_PARAMS(name);
     RiOptionV(name, p.n(), p.t(), p.v());
@@ -309,6 +317,17 @@ RtVoid RiBasis(RtBasis ubasis, RtInt ustep, RtBasis vbasis, RtInt vstep) {
     }
     s->uStep = ustep;
     s->vStep = vstep;
+}
+RtVoid RiSides(RtInt sides) {
+    if (RiStream* s = streamFor("RiSides")) {
+        s->request("RiSides", "Sides");
+        s->integer(sides);
+    }
+}
+RtVoid RiOrientation(RtToken orientation) { named("RiOrientation", "Orientation", orientation, 0, nullptr, nullptr); }
+RtVoid RiReverseOrientation(void) { bare("RiReverseOrientation", "ReverseOrientation"); }
+RtVoid RiShadingInterpolation(RtToken type) {
+    named("RiShadingInterpolation", "ShadingInterpolation", type, 0, nullptr, nullptr);
 }
 RtVoid RiAttributeV(RtToken name, RtInt n, RtToken tokens[], RtPointer values[]) {
     named("RiAttribute", "Attribute", name, n, tokens, values);
@@ -520,7 +539,9 @@ int riApiFunctionCount() {
         (void*)RiMotionBeginV, (void*)RiMotionEnd, (void*)RiArchiveRecord, (void*)RiFormat,
         (void*)RiFrameAspectRatio, (void*)RiScreenWindow, (void*)RiClipping, (void*)RiShutter, (void*)RiPixelSamples,
         (void*)RiPixelFilter, (void*)RiProjection, (void*)RiProjectionV, (void*)RiDisplay, (void*)RiDisplayV,
-        (void*)RiOption, (void*)RiOptionV, (void*)RiDeclare, (void*)RiIdentity, (void*)RiTransform,
+        (void*)RiOption, (void*)RiOptionV, (void*)RiExposure, (void*)RiHider, (void*)RiHiderV,
+        (void*)RiSides, (void*)RiOrientation, (void*)RiReverseOrientation, (void*)RiShadingInterpolation,
+        (void*)RiDeclare, (void*)RiIdentity, (void*)RiTransform,
         (void*)RiConcatTransform, (void*)RiTranslate, (void*)RiRotate, (void*)RiScale, (void*)RiColor,
         (void*)RiOpacity, (void*)RiShadingRate, (void*)RiBasis, (void*)RiAttribute, (void*)RiAttributeV,
         (void*)RiSurface, (void*)RiSurfaceV, (void*)RiLightSource, (void*)RiLightSourceV, (void*)RiIlluminate,

@@ -48,6 +48,36 @@ TEST(RiStream, CallsWriteTheirRibRequests) {
     EXPECT_EQ(scene.camera.xres, 64);
 }
 
+TEST(RiStream, SidesOrientationExposureAndHiderReachTheScene) {
+    RiStream s("test");
+    {
+        RiStreamScope scope(&s);
+        RiExposure(2, 2.2f);
+        const RtInt jitter = 0;
+        const RtString filter = "max";
+        RiHider("hidden", "jitter", &jitter, "depthfilter", &filter, RI_NULL);
+        RiWorldBegin();
+        RiSides(1);
+        RiOrientation("inside");
+        RiReverseOrientation();
+        RiShadingInterpolation("constant");
+        RiSphere(1, -1, 1, 360, RI_NULL);
+        RiWorldEnd();
+    }
+    EXPECT_EQ(s.error(), "");
+    Log log;
+    const Scene scene = parseRibString(lines(s), "stream", log);
+    EXPECT_EQ(scene.settings.exposureGain, 2.0);
+    EXPECT_NEAR(scene.settings.exposureGamma, 2.2, 1e-6);
+    EXPECT_FALSE(scene.settings.jitter);
+    EXPECT_EQ(scene.settings.depthFilter, "max");
+    ASSERT_EQ(scene.quadrics.size(), 1u);
+    const Attributes& a = *scene.quadrics[0].attributes;
+    EXPECT_FALSE(a.twoSided);
+    EXPECT_EQ(a.orientation, Attributes::Orientation::Outside);  // inside, reversed
+    EXPECT_FALSE(a.smoothShading);
+}
+
 TEST(RiStream, ParameterListsAreCountedFromTheDeclarationAndThePrimitive) {
     RiStream s("test");
     {

@@ -113,9 +113,56 @@ void basis(RibParser& reader, RibArgs& args) {
     a.vBasis = b[1];
 }
 
+void sides(RibParser& reader, RibArgs& args) {
+    const RibValue* v = args.peek();
+    const int n = args.integer("sides");
+    args.expectEnd();
+    if (n != 1 && n != 2) args.fail(*v, "must be 1 or 2, got " + std::to_string(n));
+    reader.state().mutableAttributes().twoSided = n == 2;
+}
+
+void orientation(RibParser& reader, RibArgs& args) {
+    const RibValue* v = args.peek();
+    const std::string name = args.string("orientation");
+    args.expectEnd();
+    using O = Attributes::Orientation;
+    O o;
+    if (name == "outside") o = O::Outside;
+    else if (name == "inside") o = O::Inside;
+    else if (name == "lh") o = O::LeftHanded;
+    else if (name == "rh") o = O::RightHanded;
+    else args.fail(*v, "unknown orientation \"" + name + "\": use \"outside\", \"inside\", \"lh\" or \"rh\"");
+    reader.state().mutableAttributes().orientation = o;
+}
+
+void reverseOrientation(RibParser& reader, RibArgs& args) {
+    args.expectEnd();
+    using O = Attributes::Orientation;
+    Attributes& a = reader.state().mutableAttributes();
+    switch (a.orientation) {
+        case O::Outside: a.orientation = O::Inside; break;
+        case O::Inside: a.orientation = O::Outside; break;
+        case O::LeftHanded: a.orientation = O::RightHanded; break;
+        case O::RightHanded: a.orientation = O::LeftHanded; break;
+    }
+}
+
+void shadingInterpolation(RibParser& reader, RibArgs& args) {
+    const RibValue* v = args.peek();
+    const std::string name = args.string("interpolation");
+    args.expectEnd();
+    if (name != "constant" && name != "smooth")
+        args.fail(*v, "unknown shading interpolation \"" + name + "\": use \"constant\" or \"smooth\"");
+    reader.state().mutableAttributes().smoothShading = name == "smooth";
+}
+
 }  // namespace
 
 void addAttributeRequests(RibRequestTable& table) {
+    table.add("Sides", {sides, "Sides 1 | 2"});
+    table.add("Orientation", {orientation, "Orientation \"outside\" | \"inside\" | \"lh\" | \"rh\""});
+    table.add("ReverseOrientation", {reverseOrientation, "ReverseOrientation"});
+    table.add("ShadingInterpolation", {shadingInterpolation, "ShadingInterpolation \"constant\" | \"smooth\""});
     table.add("Color", {color, "Color r g b"});
     table.add("Opacity", {opacity, "Opacity r g b"});
     table.add("ShadingRate", {shadingRate, "ShadingRate area"});

@@ -154,6 +154,71 @@ void display(RibParser& reader, RibArgs& args) {
     settings.displays.push_back(DisplayDesc{name, type, mode, args.loc()});
 }
 
+// Exposure gain gamma: both positive and finite.
+void exposure(RibParser& reader, RibArgs& args) {
+    const RibValue* gv = args.peek();
+    const double gain = args.number("gain");
+    const RibValue* yv = args.peek();
+    const double gamma = args.number("gamma");
+    args.expectEnd();
+    if (!(gain >= 0) || !std::isfinite(gain)) args.fail(*gv, "gain must be a finite number >= 0, got " + formatNumber(gain));
+    if (!(gamma > 0) || !std::isfinite(gamma)) args.fail(*yv, "gamma must be positive, got " + formatNumber(gamma));
+    reader.scene().settings.exposureGain = gain;
+    reader.scene().settings.exposureGamma = gamma;
+}
+
+// Hider "hidden" (or "stochastic", its old name) with "jitter" and "depthfilter". Another hider
+// warns once and renders with the hidden one.
+void hider(RibParser& reader, RibArgs& args) {
+    RenderSettings& settings = reader.scene().settings;
+    const std::string type = args.string("hider type");
+    ParamList params = reader.readParams(args);
+    if (type != "hidden" && type != "stochastic") {
+        reader.log().warnOnce("hider:" + type, args.loc(),
+                              "Hider \"" + type + "\" is not supported: rendering with \"hidden\"");
+        return;
+    }
+    if (const Param* p = params.find("jitter")) {
+        if (p->nums.size() != 1 || (p->nums[0] != 0 && p->nums[0] != 1))
+            throw InputError(p->loc, "Hider \"hidden\": jitter is 0 or 1");
+        settings.jitter = p->nums[0] != 0;
+    }
+    if (const Param* p = params.find("depthfilter")) {
+        const std::string f = params.getString("depthfilter", "min");
+        if (f == "midpoint") {
+            reader.log().warnOnce("hider:midpoint", p->loc,
+                                  "Hider \"hidden\": depthfilter \"midpoint\" is not supported (samples keep one "
+                                  "depth): using \"min\"");
+            settings.depthFilter = "min";
+        } else if (f == "min" || f == "max" || f == "average") {
+            settings.depthFilter = f;
+        } else {
+            throw InputError(p->loc, "Hider \"hidden\": depthfilter \"" + f + "\" is not min, max, average or midpoint");
+        }
+    }
+    reader.warnUnusedParams(params, {"jitter", "depthfilter"}, "Hider \"hidden\"");
+}
+
+// Option "limits" "bucketsize" [w h] "gridsize" n: buckets are square here, so the larger side.
+void limitsOption(RibParser& reader, RibArgs& args) {
+    RenderSettings& settings = reader.scene().settings;
+    ParamList params = reader.readParams(args);
+    if (const Param* p = params.find("bucketsize")) {
+        if (p->nums.size() != 2 || !(p->nums[0] >= 1 && p->nums[1] >= 1 && p->nums[0] <= 1024 && p->nums[1] <= 1024))
+            throw InputError(p->loc, "Option \"limits\": bucketsize is two sizes [w h] from 1 to 1024 pixels");
+        if (p->nums[0] != p->nums[1])
+            reader.log().warnOnce("limits:bucketsize", p->loc,
+                                  "Option \"limits\": buckets are square here: using the larger side of bucketsize");
+        settings.bucketSize = std::max(4, int(std::max(p->nums[0], p->nums[1])));
+    }
+    if (const Param* p = params.find("gridsize")) {
+        if (p->nums.size() != 1 || !(p->nums[0] >= 1 && p->nums[0] <= 65536))
+            throw InputError(p->loc, "Option \"limits\": gridsize is one count from 1 to 65536 micropolygons");
+        settings.gridSize = int(p->nums[0]);
+    }
+    reader.warnUnusedParams(params, {"bucketsize", "gridsize"}, "Option \"limits\"");
+}
+
 // Option "searchpath" "procedural" ["dir:&"] "archive" [...] "shader" [...]: the names are
 // strings whatever declarations say (RenderMan declares them so). Procedural and archive paths
 // are expanded here; the shader path is kept as written for the render's shader cache ('@'
@@ -204,6 +269,10 @@ void option(RibParser& reader, RibArgs& args) {
         shadingOption(reader, args);
         return;
     }
+    if (category == "limits") {
+        limitsOption(reader, args);
+        return;
+    }
     if (category != "streyes") {
         reader.log().warnOnce("option:" + category, args.loc(), "Option \"" + category + "\" is not supported: ignored");
         args.skipRest();
@@ -240,6 +309,8 @@ void addOptionRequests(RibRequestTable& table) {
     table.add("PixelSamples", {pixelSamples, "PixelSamples xsamples ysamples", options});
     table.add("PixelFilter", {pixelFilter, "PixelFilter \"gaussian\" xwidth ywidth", options});
     table.add("Display", {display, "Display \"name\" \"type\" \"mode\"", options});
+    table.add("Exposure", {exposure, "Exposure gain gamma", options});
+    table.add("Hider", {hider, "Hider \"hidden\" \"jitter\" [1] \"depthfilter\" \"min\"", options});
     table.add("Option", {option, "Option \"streyes\" \"int frames\" [first last]", options});
 }
 

@@ -115,6 +115,11 @@ std::map<std::string, RibParamDecl> predeclaredParams() {
     for (const char* f : {"shader", "texture", "archive", "procedural", "builtin", "coordinatesystem"})
         declare(f, C::Uniform, T::String);
     declare("sphere", C::Uniform, T::Float);  // Attribute "displacementbound"
+    // Option "limits", Hider "hidden".
+    declare("bucketsize", C::Uniform, T::Integer, 2);
+    declare("gridsize", C::Uniform, T::Integer);
+    declare("jitter", C::Uniform, T::Integer);
+    declare("depthfilter", C::Uniform, T::String);
     return d;
 }
 

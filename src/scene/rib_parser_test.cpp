@@ -638,15 +638,15 @@ TEST(RibErrors, MalformedInputNamesTheLine) {
 
 TEST(RibErrors, UnsupportedRequestWarnsOnceAndParses) {
     Log log;
-    Scene scene = parse(std::string("Format 8 8 1\nHider \"hidden\"\nHider \"hidden\" \"jitter\" [1]\n"
-                                    "WorldBegin\nHider \"hidden\"\nExposure 1 2.2\n") +
+    Scene scene = parse(std::string("Format 8 8 1\nPixelVariance 0.01\nPixelVariance 0.02\n"
+                                    "WorldBegin\nPixelVariance 0.01\nMatte 1\n") +
                             kUnitPatch + "WorldEnd\n",
                         log);
     EXPECT_EQ(scene.patches.size(), 1u);
     std::vector<std::string> w = log.warnings();
     ASSERT_EQ(w.size(), 2u);
-    EXPECT_EQ(w[0], "test.rib:2: warning: unsupported request 'Hider' ignored");
-    EXPECT_EQ(w[1], "test.rib:6: warning: unsupported request 'Exposure' ignored");
+    EXPECT_EQ(w[0], "test.rib:2: warning: unsupported request 'PixelVariance' ignored");
+    EXPECT_EQ(w[1], "test.rib:6: warning: unsupported request 'Matte' ignored");
 }
 
 }  // namespace

@@ -128,11 +128,10 @@ void addUnsupportedRequests(RibRequestTable& table) {
     // clang-format off
     // RIB requests outside the subset: warned about once and skipped.
     for (const char* name :
-         {"Exposure", "Quantize", "Hider", "GeometricApproximation", "Sides", "Orientation",
-          "ReverseOrientation", "ColorSamples", "CropWindow", "DepthOfField", "RelativeDetail",
+         {"Quantize", "GeometricApproximation", "ColorSamples", "CropWindow", "DepthOfField", "RelativeDetail",
           "PixelVariance", "Interior", "Exterior", "Deformation",
           "TextureCoordinates", "Matte", "Bound", "Detail", "DetailRange", "Perspective", "Skew",
-          "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "ShadingInterpolation", "AreaLightSource", "SolidBegin",
+          "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "AreaLightSource", "SolidBegin",
           "SolidEnd", "ArchiveEnd", "MakeTexture", "MakeBump", "MakeLatLongEnvironment",
           "MakeCubeFaceEnvironment", "MakeShadow", "MakeBrickMap", "ErrorHandler", "ArchiveRecord",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",

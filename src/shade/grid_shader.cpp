@@ -31,7 +31,7 @@ Color GridShader::shadeHit(const Material& m, Color cs, Vec3f p, Vec3f n, double
     hit_.u0 = hit_.u1 = u;
     hit_.v0 = hit_.v1 = v;
     hit_.P[0][0] = p;
-    hit_.N[0][0] = n;
+    hit_.N[0][0] = m.flipNormals ? -n : n;  // Orientation, as for diced grids
     hit_.Cs[0] = cs;
     if (m.surface || m.atmosphere) prepare(m, hit_, 0, time);
     shadeSurface(hit_, 0, time);  // a hit on the traced surface: not displaced again

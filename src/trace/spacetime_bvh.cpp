@@ -8,6 +8,8 @@
 #include <deque>
 #include <limits>
 
+#include "bodies/material.h"
+
 namespace streyes {
 
 namespace {
@@ -431,6 +433,7 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
                     // (SampleHit::beatenBy): the result does not depend on traversal order.
                     if (!intersectBilinearPatch(b.cornersAt(time), ray, tMin, tieLimit(best), &h)) continue;
                     if (found && h.t == best && b.primitiveId() >= bodies_[hit->body]->primitiveId()) continue;
+                    if (facesAway(b, time, h, ray)) continue;  // Sides 1 (shadow rays still stop at it)
                     best = h.t;
                     *hit = {h.t, h.u, h.v, bi};
                     found = true;
@@ -460,6 +463,13 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
         top += k;
     }
     return found;
+}
+
+bool SpacetimeBVH::facesAway(const TrilinearBody& b, double time, const PatchHit& h, const Ray& ray) {
+    const Material* m = b.material();
+    if (!m || !m->oneSided) return false;
+    const Vec3f n = bilinearNormal(b.cornersAt(time), h.u, h.v);
+    return dot(m->flipNormals ? -n : n, ray.d) > 0;
 }
 
 bool SpacetimeBVH::intersect(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit,

@@ -100,6 +100,8 @@ class SpacetimeBVH {
     const std::vector<Reference>& references() const { return refs_; }
 
   private:
+    // Whether an eye ray's hit is on the inside of a one-sided surface (Sides 1): passed through.
+    static bool facesAway(const TrilinearBody& b, double time, const PatchHit& h, const Ray& ray);
     template <bool AnyHit>
     bool traverse(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit, TraceContext& ctx) const;
 

@@ -68,8 +68,8 @@ TEST(Cli, MalformedRibExits2WithFileAndLine) {
 TEST(Cli, UnknownRequestWarnsOnceAndRenders) {
     const test::TempDir tempDir("cli-warn");
     const std::string& dir = tempDir.path();
-    std::string rib = std::string("Hider \"hidden\"\n") + kTiny;
-    rib.insert(rib.find("WorldEnd"), "Hider \"hidden\"\n");
+    std::string rib = std::string("PixelVariance 0.01\n") + kTiny;
+    rib.insert(rib.find("WorldEnd"), "PixelVariance 0.01\n");
     std::string scene = writeFile(dir, "warn.rib", rib);
     CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
     EXPECT_EQ(r.exitCode, 0) << r.output;
