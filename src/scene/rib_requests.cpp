@@ -129,7 +129,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
     // RIB requests outside the subset: warned about once and skipped.
     for (const char* name :
          {"Exposure", "Quantize", "Hider", "GeometricApproximation", "Sides", "Orientation",
-          "ReverseOrientation", "ColorSamples", "CropWindow", "DepthOfField", "RelativeDetail",
+          "ReverseOrientation", "ColorSamples", "CropWindow", "RelativeDetail",
           "PixelVariance", "Interior", "Exterior", "Deformation",
           "TextureCoordinates", "Matte", "Bound", "Detail", "DetailRange", "Perspective", "Skew",
           "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "ShadingInterpolation", "AreaLightSource", "SolidBegin",
