@@ -58,7 +58,9 @@ class Camera {
     // from lens point L = R (lu, lv) through a camera-space point P meets the focal plane z = d where
     // the pinhole ray through the eye sees screen position P.xy / P.z + L (1/d - 1/P.z): so with
     // the sample's lens point P appears shifted by (lu, lv) lensShift(P.z) in screen units, (ax, ay)
-    // times that in raster units. Perspective only (an orthographic camera has none).
+    // times that in raster units. Perspective only (an orthographic camera has none). Aqsis
+    // (SetDepthOfFieldData) takes the same radius, 0.5 focallength / fstop, and the same
+    // |1/d - 1/z| law, with an extra factor d / (d + focallength / fstop), within a hair of 1.
     bool depthOfField() const { return lensRadius_ > 0; }
     float lensRadius() const { return lensRadius_; }
     float focalDistance() const { return focalDistance_; }
