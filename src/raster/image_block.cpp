@@ -93,9 +93,9 @@ Color* ImageBlock::shadowed(int fi, size_t i) {
 }
 
 size_t ImageBlock::bytes() const {
-    return (xs_.capacity() + ys_.capacity()) * sizeof(float) + permutation_.capacity() + still_.capacity() * sizeof(SampleHit) +
-           slot_.capacity() * sizeof(int32_t) + chunks_.size() * chunkSamples_ * sizeof(SampleHit) +
-           shadowed_.capacity() * sizeof(Color);
+    return (xs_.capacity() + ys_.capacity() + lus_.capacity() + lvs_.capacity()) * sizeof(float) +
+           permutation_.capacity() + still_.capacity() * sizeof(SampleHit) + slot_.capacity() * sizeof(int32_t) +
+           chunks_.size() * chunkSamples_ * sizeof(SampleHit) + shadowed_.capacity() * sizeof(Color);
 }
 
 }  // namespace streyes

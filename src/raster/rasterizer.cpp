@@ -186,7 +186,10 @@ inline bool behindStillLayer(const ImageBlock& block, const QuadSetup& q) {
 template <bool Lens>
 inline auto lensMargin(const Camera& camera) {
     return [&camera](float zmin, float zmax) {
-        if constexpr (Lens) return camera.cocMargin(std::max(zmin, camera.eyePlane()), std::max(zmax, camera.eyePlane()));
+        if constexpr (Lens) {
+            const float e = camera.eyePlane();
+            return camera.cocMargin(std::max(zmin, e), std::max(zmax, e));
+        }
         return Vec2f{0, 0};
     };
 }
@@ -201,8 +204,10 @@ inline bool lensQuad(const QuadSetup& q, const float* sx, const float* sy, float
         out.y[c] = q.y[c] + sy[c] * lv;
         out.z[c] = q.z[c];
     }
-    const float x0 = std::min({out.x[0], out.x[1], out.x[2], out.x[3]}), x1 = std::max({out.x[0], out.x[1], out.x[2], out.x[3]});
-    const float y0 = std::min({out.y[0], out.y[1], out.y[2], out.y[3]}), y1 = std::max({out.y[0], out.y[1], out.y[2], out.y[3]});
+    const float x0 = std::min({out.x[0], out.x[1], out.x[2], out.x[3]});
+    const float x1 = std::max({out.x[0], out.x[1], out.x[2], out.x[3]});
+    const float y0 = std::min({out.y[0], out.y[1], out.y[2], out.y[3]});
+    const float y1 = std::max({out.y[0], out.y[1], out.y[2], out.y[3]});
     if (!(x >= x0 && x <= x1 && y >= y0 && y <= y1)) return false;
     setupEdges(out);
     return true;

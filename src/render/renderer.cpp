@@ -89,10 +89,6 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
                                   shaders_.get());
     });
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    if (raytraces(options.algorithm) && scene_->camera.depthOfField())
-        log.warnOnce("depthoffield:raytrace", scene.camera.depthOfFieldLoc,
-                     "DepthOfField is not traced: --algorithm " + std::string(algorithmName(options.algorithm)) +
-                         " renders a pinhole camera (the rasterizing algorithms render it)");
 }
 
 Renderer::~Renderer() = default;

@@ -36,7 +36,8 @@ TEST(DepthOfField, RequestLandsInTheCamera) {
 TEST(DepthOfField, BadValuesNameFileAndLine) {
     for (const char* bad : {"DepthOfField 0 1 3", "DepthOfField -2 1 3", "DepthOfField 2 0 3", "DepthOfField 2 1 -1",
                             "DepthOfField 2 1", "DepthOfField 2 1 3 4", "DepthOfField 2 \"a\" 3"}) {
-        const std::string e = test::ribError(std::string("Projection \"perspective\"\n\n") + bad + "\nWorldBegin\nWorldEnd\n");
+        const std::string rib = std::string("Projection \"perspective\"\n\n") + bad + "\nWorldBegin\nWorldEnd\n";
+        const std::string e = test::ribError(rib);
         EXPECT_NE(e.find("bad.rib:3"), std::string::npos) << bad << ": " << e;
     }
     // An option: not inside the world.
@@ -139,6 +140,10 @@ TEST(DepthOfField, BlurInFrontOfTheFocusIsTheThinLensCircle) {
     // The same with occlusion culling and frame by frame.
     EXPECT_NEAR(measuredCocRadius(1, 0.5, 2, 1.2, 6, Algorithm::SpacetimeOcclusion), expected, 0.04 * expected);
     EXPECT_NEAR(measuredCocRadius(1, 0.5, 2, 1.2, 6, Algorithm::Frames), expected, 0.04 * expected);
+    // The ray tracer's eye rays from the lens points.
+    EXPECT_NEAR(measuredCocRadius(1, 0.5, 2, 1.2, 6, Algorithm::Raytrace), expected, 0.04 * expected);
+    EXPECT_NEAR(measuredCocRadius(1, 0.5, 2, 10, 6, Algorithm::Raytrace), thinLensCoc(1, 0.5, 2, 10),
+                0.04 * thinLensCoc(1, 0.5, 2, 10));
 }
 
 // A strip on the focal plane with its edges on pixel borders: every pixel wholly in or out.
