@@ -164,5 +164,30 @@ TEST(DepthOfField, InfiniteFstopIsThePinholeBitForBit) {
     EXPECT_FALSE(test::identicalPixels(pinhole, test::renderRib(head + "DepthOfField 2 1 3\n" + world)));
 }
 
+// scenes/dof.rib larger than the scene lists render it (EveryScene, FrameBlockInvariance): at
+// tolerance 0 occlusion culling drops bodies whose grown bounds are covered, and not one pixel
+// changes; the blur reaches across bucket borders, which the grown view bounds keep.
+TEST(DepthOfField, OcclusionCullingAtToleranceZeroIsBitIdentical) {
+    Log log;
+    const Scene scene = parseRibFile(test::sourcePath("scenes/dof.rib"), log);
+    RenderOptions o;
+    o.xres = 120;
+    o.yres = 80;
+    o.bucketSize = 16;
+    o.hasFrames = true;
+    o.firstFrame = 0;
+    o.lastFrame = 2;
+    o.algorithm = Algorithm::Spacetime;
+    const RenderResult plain = test::renderScene(scene, o);
+    o.algorithm = Algorithm::SpacetimeOcclusion;
+    const RenderResult culled = test::renderScene(scene, o);
+    EXPECT_TRUE(test::identicalPixels(plain, culled)) << "max " << test::maxAbsDifference(plain, culled);
+    EXPECT_GT(culled.stats.counters.culledOcclusion + culled.stats.counters.culledHidden, 0u);  // not vacuous
+    o.algorithm = Algorithm::Frames;
+    const RenderResult frames = test::renderScene(scene, o);
+    o.algorithm = Algorithm::FramesOcclusion;
+    EXPECT_TRUE(test::identicalPixels(frames, test::renderScene(scene, o)));
+}
+
 }  // namespace
 }  // namespace streyes
