@@ -129,6 +129,7 @@ RtVoid RiFormat(RtInt xres, RtInt yres, RtFloat pixelaspect);
 RtVoid RiFrameAspectRatio(RtFloat ratio);
 RtVoid RiScreenWindow(RtFloat left, RtFloat right, RtFloat bottom, RtFloat top);
 RtVoid RiClipping(RtFloat hither, RtFloat yon);
+RtVoid RiDepthOfField(RtFloat fstop, RtFloat focallength, RtFloat focaldistance);  // fstop RI_INFINITY: a pinhole
 RtVoid RiShutter(RtFloat open, RtFloat close);
 RtVoid RiPixelSamples(RtFloat xsamples, RtFloat ysamples);
 RtVoid RiPixelFilter(RtFilterFunc filter, RtFloat xwidth, RtFloat ywidth);

@@ -86,6 +86,9 @@ struct RenderOptions {
     // For tests and tools: sees each bucket's samples (hits before the filter) and the tile it
     // resolves. Called from worker threads, one bucket at a time each.
     std::function<void(const ImageBlock& block, const PixelRect& tile)> sampleObserver;
+    // --dof-preview N: DepthOfField as N pinhole depth layers, each blurred by its circle of
+    // confusion (src/render/dof_preview.h); 0: lens samples.
+    int dofPreviewLayers = 0;
 };
 
 }  // namespace streyes

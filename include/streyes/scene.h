@@ -119,6 +119,11 @@ struct CameraDesc {
     double nearClip = 1e-4, farClip = 1e30;  // Clipping; see docs/SCENE-FORMAT.md for the default
     MotionTransform worldToCamera;        // the CTM at WorldBegin
     SourceLoc loc;
+    // DepthOfField fstop focallength focaldistance (camera-space units): a thin lens of radius
+    // focallength / (2 fstop) focused at z = focaldistance. fstop infinity: a pinhole (the default).
+    double fstop = std::numeric_limits<double>::infinity(), focalLength = 0, focalDistance = 0;
+    SourceLoc depthOfFieldLoc;
+    bool depthOfField() const { return fstop < std::numeric_limits<double>::infinity(); }
 };
 
 struct FilterDesc {

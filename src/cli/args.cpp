@@ -80,6 +80,8 @@ render options:
   --layers N|adaptive depth layers between occlusion tables (default adaptive)
   --preview           quick look: half resolution and at most 4 samples per pixel
                       (options given explicitly win)
+  --dof-preview N     DepthOfField as N pinhole depth layers blurred by their circles of
+                      confusion and composited (quick; lens samples by default)
   -o PATTERN          output files, #### = frame number (e.g. out/shot.####.exr);
                       default: the scene's Display, else SCENE-NAME.####.exr
   --stats FILE        write render statistics as JSON

@@ -14,6 +14,7 @@
 
 #include "commands.h"
 #include "io/frame_writer.h"
+#include "render/dof_preview.h"
 #include "render_request.h"
 #include "streyes/image_io.h"
 #include "streyes/memory.h"
@@ -275,6 +276,8 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
             opts.layers = v == "adaptive" ? 0 : int(parseInt(a, v, 1, 1024));
         } else if (a == "--preview") {
             req.preview = true;
+        } else if (a == "--dof-preview") {
+            opts.dofPreviewLayers = int(parseInt(a, value(), 1, 256));
         } else if (a == "-o" || a == "--output") req.outPattern = value();
         else if (a == "--stats") req.statsPath = value();
         else if (a == "--threads") opts.threads = int(parseInt(a, value(), 0, 1024));
@@ -393,17 +396,18 @@ int renderCommand(const std::vector<std::string>& args) {
                 return true;
             };
         }
-        Renderer renderer(scene, blockOpts, log);
-        RenderStats stats = renderer.render(
-            [&](const FrameImage& img) {
-                std::vector<std::pair<std::string, std::string>> files;
-                for (const Output& o : outputsOf(img.frame)) {
-                    files.emplace_back(expandFramePattern(o.pattern, img.frame), o.mode);
-                    written.push_back(files.back().first);
-                }
-                writer.write(img, std::move(files));
-            },
-            [&](uint64_t done, uint64_t all) { bar.update(done, all); });
+        auto sink = [&](const FrameImage& img) {
+            std::vector<std::pair<std::string, std::string>> files;
+            for (const Output& o : outputsOf(img.frame)) {
+                files.emplace_back(expandFramePattern(o.pattern, img.frame), o.mode);
+                written.push_back(files.back().first);
+            }
+            writer.write(img, std::move(files));
+        };
+        auto progress = [&](uint64_t done, uint64_t all) { bar.update(done, all); };
+        RenderStats stats = blockOpts.dofPreviewLayers > 0
+                                ? renderDofPreview(scene, blockOpts, blockOpts.dofPreviewLayers, log, sink, progress)
+                                : Renderer(scene, blockOpts, log).render(sink, progress);
         if (blocks++ == 0) {
             total = stats;
         } else {  // the blocks of a sequence: summed, the last frame and the largest memory theirs

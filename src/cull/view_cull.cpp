@@ -1,5 +1,7 @@
 #include "cull/view_cull.h"
 
+#include <cmath>
+
 namespace streyes {
 
 bool outsideFrustum(const Camera& camera, const Bounds3f& box, const PixelRect& rect) {
@@ -16,12 +18,20 @@ bool outsideFrustum(const Camera& camera, const Bounds3f& box, const PixelRect& 
         {1, camera.ay(), (float(rect.y0) - camera.by()) / camera.ay(), 1},
         {1, camera.ay(), (float(rect.y1 + 1) - camera.by()) / camera.ay(), -1},
     };
+    // Depth of field: P is seen through lens point L = (Lx, Ly) with |L| <= R at screen position
+    // (P.x - Lx) / z + Lx / d, so the side's half-space for that lens point is
+    // sign a ((q - c z) - Lx (1 - z / d)) >= 0, and P misses all of them when
+    // sign a (q - c z) + |a| R |1 - z / d| < 0. That is convex in P: all eight corners decide.
+    const float R = camera.lensRadius() * 1.0001f, invD = camera.depthOfField() ? 1.0f / camera.focalDistance() : 0.0f;
     for (const Side& s : sides) {
         bool allOut = true;
         for (int i = 0; i < 8 && allOut; ++i) {
             Vec3f p{(i & 1) ? box.hi.x : box.lo.x, (i & 2) ? box.hi.y : box.lo.y, (i & 4) ? box.hi.z : box.lo.z};
             float q = s.axis == 0 ? p.x : p.y;
-            allOut = s.sign * s.a * (q - s.c * p.z) < 0;
+            if (camera.depthOfField())
+                allOut = s.sign * s.a * (q - s.c * p.z) + std::fabs(s.a) * R * std::fabs(1 - p.z * invD) < 0;
+            else
+                allOut = s.sign * s.a * (q - s.c * p.z) < 0;
         }
         if (allOut) return true;
     }
@@ -34,7 +44,7 @@ bool boxOutside(const Camera& camera, const Bounds3f& box, const PixelRect& rect
     for (int i = 0; i < 8; ++i)
         raster.extend(camera.toRaster({(i & 1) ? box.hi.x : box.lo.x, (i & 2) ? box.hi.y : box.lo.y,
                                        (i & 4) ? box.hi.z : box.lo.z}));
-    return rasterOutside(raster, rect);
+    return rasterOutside(camera.grownByCoc(raster, box.lo.z, box.hi.z), rect);  // depth of field: grown
 }
 
 }  // namespace streyes

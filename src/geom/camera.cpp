@@ -30,6 +30,11 @@ Camera::Camera(const CameraDesc& desc) : desc_(desc), worldToCamera_(desc.worldT
     bx_ = float(-l * width_ / (r - l));
     ay_ = float(-s * height_ / (t - b));
     by_ = float(t * height_ / (t - b));
+    if (perspective_ && desc.depthOfField()) {
+        lensRadius_ = float(desc.focalLength / (2 * desc.fstop));
+        focalDistance_ = float(desc.focalDistance);
+        invFocal_ = float(1 / desc.focalDistance);
+    }
 }
 
 Vec3f Camera::fromRaster(float x, float y, float z) const {

@@ -6,6 +6,9 @@
 // the Z channel stores.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "streyes/scene.h"
 #include "streyes/vecmath.h"
 
@@ -49,6 +52,43 @@ class Camera {
     float ay() const { return ay_; }
     float by() const { return by_; }
 
+    // Depth of field: a thin lens (Potmesil and Chakravarty's model, as the RenderMan Interface
+    // 3.2 DepthOfField request gives it): lens radius R = focallength / (2 fstop), focallength and
+    // focaldistance in camera-space units, the lens in the plane z = 0 centred on the eye. The ray
+    // from lens point L = R (lu, lv) through a camera-space point P meets the focal plane z = d where
+    // the pinhole ray through the eye sees screen position P.xy / P.z + L (1/d - 1/P.z): so with
+    // the sample's lens point P appears shifted by (lu, lv) lensShift(P.z) in screen units, (ax, ay)
+    // times that in raster units. Perspective only (an orthographic camera has none). Aqsis
+    // (SetDepthOfFieldData) takes the same radius, 0.5 focallength / fstop, and the same
+    // |1/d - 1/z| law, with an extra factor d / (d + focallength / fstop), within a hair of 1.
+    bool depthOfField() const { return lensRadius_ > 0; }
+    float lensRadius() const { return lensRadius_; }
+    float focalDistance() const { return focalDistance_; }
+    // Screen-space shift per unit lens coordinate of a point at depth z (> 0): R (1/d - 1/z).
+    float lensShift(float z) const { return lensRadius_ * (invFocal_ - 1.0f / z); }
+    // The circle of confusion's radius in raster pixels along x (y: cocRadiusY) of a point at
+    // depth z: R |1/d - 1/z| |ax|. Zero at the focal distance and without depth of field.
+    float cocRadius(float z) const { return std::fabs(lensShift(z) * ax_); }
+    float cocRadiusY(float z) const { return std::fabs(lensShift(z) * ay_); }
+    // The largest raster shift (x, y) any lens point gives a point with depth in [zmin, zmax]
+    // (zmin > 0): |1/d - 1/z| grows away from d on either side, so one end of the range holds it.
+    // Slightly over, so that bounds made with it hold the shifted float positions. (0, 0) without
+    // depth of field.
+    Vec2f cocMargin(float zmin, float zmax) const {
+        if (!depthOfField()) return {0, 0};
+        const float s = std::max(std::fabs(lensShift(zmin)), std::fabs(lensShift(zmax))) * 1.0001f;
+        return {s * std::fabs(ax_) + 1e-4f, s * std::fabs(ay_) + 1e-4f};
+    }
+    // Raster bound grown by the circle of confusion over the depths [zmin, zmax]: where a point in
+    // `raster` at those depths may be seen through some point of the lens.
+    Bounds3f grownByCoc(Bounds3f raster, float zmin, float zmax) const {
+        if (!depthOfField()) return raster;
+        const Vec2f m = cocMargin(zmin, zmax);
+        raster.lo.x -= m.x, raster.hi.x += m.x;
+        raster.lo.y -= m.y, raster.hi.y += m.y;
+        return raster;
+    }
+
     const MotionTransform& worldToCamera() const { return worldToCamera_; }
     const CameraDesc& desc() const { return desc_; }
 
@@ -59,6 +99,7 @@ class Camera {
     int width_ = 0, height_ = 0;
     float near_ = 1e-4f, far_ = 1e30f;
     float ax_ = 1, bx_ = 0, ay_ = -1, by_ = 0;  // raster = a * screen + b
+    float lensRadius_ = 0, focalDistance_ = 0, invFocal_ = 0;
 };
 
 }  // namespace streyes

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 namespace streyes {
 namespace {
 
@@ -35,6 +38,52 @@ TEST(Camera, OrthographicScreenWindow) {
     EXPECT_FLOAT_EQ(r.x, 10.0f);
     EXPECT_FLOAT_EQ(r.y, 28.0f);
     EXPECT_FALSE(cam.perspective());
+}
+
+// The thin lens, computed here independently of the camera: the ray from lens point
+// (Lx, 0, 0) through the camera-space point (0, 0, z) meets the focal plane z = d at
+// x = Lx (1 - d / z), which the pinhole sees at screen x / d; times the raster scale ax.
+TEST(Camera, DepthOfFieldCircleOfConfusionIsTheThinLens) {
+    CameraDesc cd;
+    cd.projection = ProjectionKind::Perspective;
+    cd.fov = 40;
+    cd.xres = 64;
+    cd.yres = 48;
+    cd.fstop = 2;
+    cd.focalLength = 0.5;
+    cd.focalDistance = 4;
+    Camera cam(cd);
+    ASSERT_TRUE(cam.depthOfField());
+    const double R = 0.5 / (2 * 2), d = 4;
+    EXPECT_NEAR(cam.lensRadius(), R, 1e-7);
+    const double ax = (1 / std::tan(20 * M_PI / 180)) * 64 / (2 * 64.0 / 48);  // screen x spans the aspect
+    for (double z : {1.0, 2.0, 4.0, 7.0, 50.0}) {
+        const double focalX = R * (1 - d / z);        // where the lens edge's ray meets z = d
+        const double coc = std::fabs(focalX / d) * ax;  // its screen offset, in pixels
+        EXPECT_NEAR(cam.cocRadius(float(z)), coc, 1e-4 * std::max(1.0, coc)) << "z " << z;
+        EXPECT_NEAR(cam.cocRadiusY(float(z)), coc, 1e-4 * std::max(1.0, coc)) << "z " << z;  // square pixels
+        // The lens shift moves the point the way the lens edge's ray sees it.
+        const Vec3f centre = cam.toRaster({0, 0, float(z)});
+        EXPECT_NEAR(centre.x + cam.lensShift(float(z)) * cam.ax(), centre.x + focalX / d * ax, 1e-3);
+    }
+    EXPECT_EQ(cam.cocRadius(4), 0.0f);  // in focus
+    // The bound margin over a depth range holds every depth in it, on both sides of the focus.
+    const Vec2f m = cam.cocMargin(2, 9);
+    for (float z = 2; z <= 9; z += 0.25f) EXPECT_GE(m.x, cam.cocRadius(z));
+    EXPECT_GE(m.x, cam.cocRadius(2));
+}
+
+TEST(Camera, DepthOfFieldNeedsPerspectiveAndAFiniteFstop) {
+    CameraDesc cd;
+    cd.fstop = 2;
+    cd.focalLength = 1;
+    cd.focalDistance = 3;
+    EXPECT_FALSE(Camera(cd).depthOfField());  // orthographic
+    cd.projection = ProjectionKind::Perspective;
+    EXPECT_TRUE(Camera(cd).depthOfField());
+    cd.fstop = std::numeric_limits<double>::infinity();
+    EXPECT_FALSE(Camera(cd).depthOfField());
+    EXPECT_EQ(Camera(cd).cocMargin(1, 10).x, 0.0f);
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 namespace streyes {
 
 void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, const PatternTable& patterns, bool dense,
-                       int shadowSlots) {
+                       int shadowSlots, bool lens) {
     rect_ = rect;
     firstFrame_ = firstFrame;
     frameCount_ = frameCount;
@@ -28,6 +28,18 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
                 ys_[i * size_t(S_) + size_t(j)] = float(y) + o[2 * j + 1];
             }
         }
+    lens_ = lens;
+    if (lens) {
+        lus_.resize(n);
+        lvs_.resize(n);
+        for (size_t i = 0; i < pixels; ++i) {
+            const float* l = patterns.lens(pattern_[i]);
+            for (int j = 0; j < S_; ++j) {
+                lus_[i * size_t(S_) + size_t(j)] = l[2 * j];
+                lvs_[i * size_t(S_) + size_t(j)] = l[2 * j + 1];
+            }
+        }
+    }
     permutation_.resize(size_t(frameCount) * pixels);
     timesMade_.assign(size_t(frameCount), 0);
     if (dense)
@@ -81,9 +93,9 @@ Color* ImageBlock::shadowed(int fi, size_t i) {
 }
 
 size_t ImageBlock::bytes() const {
-    return (xs_.capacity() + ys_.capacity()) * sizeof(float) + permutation_.capacity() + still_.capacity() * sizeof(SampleHit) +
-           slot_.capacity() * sizeof(int32_t) + chunks_.size() * chunkSamples_ * sizeof(SampleHit) +
-           shadowed_.capacity() * sizeof(Color);
+    return (xs_.capacity() + ys_.capacity() + lus_.capacity() + lvs_.capacity()) * sizeof(float) +
+           permutation_.capacity() + still_.capacity() * sizeof(SampleHit) + slot_.capacity() * sizeof(int32_t) +
+           chunks_.size() * chunkSamples_ * sizeof(SampleHit) + shadowed_.capacity() * sizeof(Color);
 }
 
 }  // namespace streyes

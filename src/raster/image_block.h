@@ -53,9 +53,10 @@ class ImageBlock {
   public:
     // Sizes the block, places the samples and clears the hits (reusing memory). shadowSlots > 0
     // also keeps, with each record's hits, the contribution of each light that casts shadows
-    // before its shadow test (shadowed()); it needs dense mode.
+    // before its shadow test (shadowed()); it needs dense mode. `lens` also places each sample's
+    // lens position (depth of field: lus(), lvs()).
     void reset(const PixelRect& rect, int firstFrame, int frameCount, const PatternTable& patterns, bool dense,
-               int shadowSlots = 0);
+               int shadowSlots = 0, bool lens = false);
 
     const PixelRect& rect() const { return rect_; }
     int firstFrame() const { return firstFrame_; }
@@ -74,6 +75,11 @@ class ImageBlock {
     float* ys() { return ys_.data(); }
     const float* xs() const { return xs_.data(); }
     const float* ys() const { return ys_.data(); }
+    // With depth of field, the unit-disc lens position of sample j of pixel i: lus()[i * S + j],
+    // lvs()[i * S + j], the same in every frame (PatternTable::lens). Null without.
+    bool hasLens() const { return lens_; }
+    const float* lus() const { return lens_ ? lus_.data() : nullptr; }
+    const float* lvs() const { return lens_ ? lvs_.data() : nullptr; }
 
     // Time: the permutation of pixel i in frame fi (PatternTable: stratumOfSample,
     // sampleOfStratum, stratumTimes). The sample of slice k is sampleOfStratum(q)[k]. A frame's
@@ -137,6 +143,8 @@ class ImageBlock {
     bool dense_ = false;
     const PatternTable* patterns_ = nullptr;
     std::vector<float> xs_, ys_;
+    bool lens_ = false;
+    std::vector<float> lus_, lvs_;      // with depth of field only
     std::vector<uint8_t> pattern_;      // per pixel
     void makeTimes(int fi) const;
     mutable std::vector<uint8_t> permutation_;  // frames x pixels

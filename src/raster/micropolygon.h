@@ -104,8 +104,11 @@ inline void trianglesCovering(const QuadSetup& q, float sx, float sy, uint32_t* 
 }
 
 // Bound and pixel range of a quad; false when it misses the block or the clipping range.
+// `margin(zmin, zmax)` grows the raster bound in x and y (depth of field: the circle of
+// confusion over the quad's depths, Camera::cocMargin); the plain form grows it by nothing.
+template <typename Margin>
 inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const float* z2, const PixelRect& R,
-                      float nearZ, float farZ) {
+                      float nearZ, float farZ, Margin margin) {
     float zmin = q.z[0], zmax = q.z[0];
     q.xmin = q.xmax = q.x[0];
     q.ymin = q.ymax = q.y[0];
@@ -121,6 +124,9 @@ inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const floa
     }
     if (zmax < nearZ || zmin > farZ) return false;
     q.zmin = zmin;
+    const Vec2f m = margin(zmin, zmax);
+    q.xmin -= m.x, q.xmax += m.x;
+    q.ymin -= m.y, q.ymax += m.y;
     if (!(q.xmax >= float(R.x0) && q.xmin < float(R.x1 + 1) && q.ymax >= float(R.y0) && q.ymin < float(R.y1 + 1)))
         return false;  // also rejects NaN
     q.px0 = floorClamped(q.xmin, R.x0, R.x1);
@@ -128,6 +134,10 @@ inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const floa
     q.py0 = floorClamped(q.ymin, R.y0, R.y1);
     q.py1 = floorClamped(q.ymax, R.y0, R.y1);
     return true;
+}
+inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const float* z2, const PixelRect& R,
+                      float nearZ, float farZ) {
+    return boundQuad(q, x2, y2, z2, R, nearZ, farZ, [](float, float) { return Vec2f{0, 0}; });
 }
 
 }  // namespace streyes::micropolygon

@@ -98,19 +98,30 @@ void GridRasterizer::rasterize(const Grid& grid, const Camera& camera, const Shu
             if (!fr.whole) block.needTimes(fr.fi);
     }
     const bool shadowed = grid.shadowSlots > 0, counting = hitCounts_ != nullptr;
+    const bool lens = block.hasLens() && camera.depthOfField();
+    if (lens) {
+        if (shadowed) {
+            if (counting) sample<true, true, true>(grid, camera, block, counters);
+            else sample<true, false, true>(grid, camera, block, counters);
+        } else {
+            if (counting) sample<false, true, true>(grid, camera, block, counters);
+            else sample<false, false, true>(grid, camera, block, counters);
+        }
+        return;
+    }
     if (shadowed) {
-        if (counting) sample<true, true>(grid, camera, block, counters);
-        else sample<true, false>(grid, camera, block, counters);
+        if (counting) sample<true, true, false>(grid, camera, block, counters);
+        else sample<true, false, false>(grid, camera, block, counters);
     } else {
-        if (counting) sample<false, true>(grid, camera, block, counters);
-        else sample<false, false>(grid, camera, block, counters);
+        if (counting) sample<false, true, false>(grid, camera, block, counters);
+        else sample<false, false, false>(grid, camera, block, counters);
     }
 }
 
-template <bool Shadowed, bool Counting>
+template <bool Shadowed, bool Counting, bool Lens>
 void GridRasterizer::sample(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters) {
-    if (grid.moving) sampleMoving<Shadowed, Counting>(grid, camera, block, counters);
-    else sampleStill<Shadowed, Counting>(grid, camera, block, counters);
+    if (grid.moving) sampleMoving<Shadowed, Counting, Lens>(grid, camera, block, counters);
+    else sampleStill<Shadowed, Counting, Lens>(grid, camera, block, counters);
 }
 
 // The frames a still grid exists in, and the part of each exposure it covers.
@@ -170,6 +181,49 @@ inline bool behindStillLayer(const ImageBlock& block, const QuadSetup& q) {
     return true;
 }
 
+// The margin a quad's bound grows by: the circle of confusion over its depths with depth of
+// field (Lens), nothing without.
+template <bool Lens>
+inline auto lensMargin(const Camera& camera) {
+    const Camera* cam = &camera;  // by pointer: unused without a lens, and a lambda capture would warn
+    return [cam](float zmin, float zmax) {
+        if constexpr (Lens) {
+            const float e = cam->eyePlane();
+            return cam->cocMargin(std::max(zmin, e), std::max(zmax, e));
+        }
+        (void)cam;
+        return Vec2f{0, 0};
+    };
+}
+
+// The quad `q` as the lens point (lu, lv) sees it: each vertex moved by its raster lens shift
+// (sx[c] lu, sy[c] lv). False when the sample (x, y) is outside the moved quad's bound (then the
+// edges are not set up).
+inline bool lensQuad(const QuadSetup& q, const float* sx, const float* sy, float lu, float lv, float x, float y,
+                     QuadSetup& out) {
+    for (int c = 0; c < 4; ++c) {
+        out.x[c] = q.x[c] + sx[c] * lu;
+        out.y[c] = q.y[c] + sy[c] * lv;
+        out.z[c] = q.z[c];
+    }
+    const float x0 = std::min({out.x[0], out.x[1], out.x[2], out.x[3]});
+    const float x1 = std::max({out.x[0], out.x[1], out.x[2], out.x[3]});
+    const float y0 = std::min({out.y[0], out.y[1], out.y[2], out.y[3]});
+    const float y1 = std::max({out.y[0], out.y[1], out.y[2], out.y[3]});
+    if (!(x >= x0 && x <= x1 && y >= y0 && y <= y1)) return false;
+    setupEdges(out);
+    return true;
+}
+
+// The raster lens shifts of a quad's corners per unit lens coordinate.
+inline void lensShifts(const Camera& camera, const float* z, float* sx, float* sy) {
+    for (int c = 0; c < 4; ++c) {
+        const float s = camera.lensShift(std::max(z[c], camera.eyePlane()));
+        sx[c] = s * camera.ax();
+        sy[c] = s * camera.ay();
+    }
+}
+
 }  // namespace
 
 // A still grid: each quad is projected and set up once, then tested against the samples its
@@ -178,7 +232,7 @@ inline bool behindStillLayer(const ImageBlock& block, const QuadSetup& q) {
 // usual still geometry) writes the still layer, once for all of them, and any other grid the
 // records of the frames it exists in (at the sample's time within the exposure, where it exists
 // in part of one).
-template <bool Shadowed, bool Counting>
+template <bool Shadowed, bool Counting, bool Lens>
 void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters) {
     const PixelRect& R = block.rect();
     const int nu = grid.nu, nv = grid.nv, stride = nu + 1, S = block.samplesPerPixel(), F = block.frameCount();
@@ -191,6 +245,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     project(grid, grid.t0, camera, ra_);
     const float* xs = block.xs();
     const float* ys = block.ys();
+    const float *lus = block.lus(), *lvs = block.lvs();
     const Color* ci = grid.Ci[0].data();
     const bool flat = grid.flatShading;  // ShadingInterpolation "constant": the first corner's colour
     const int K = grid.shadowSlots;
@@ -210,20 +265,11 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                 const RasterVertex& v = ra_[size_t(idx[c])];
                 q.x[c] = v.x, q.y[c] = v.y, q.z[c] = v.z;
             }
-            if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ)) continue;
+            if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ, lensMargin<Lens>(camera))) continue;
             if (!Counting && intoStill && behindStillLayer(block, q)) continue;
-            setupEdges(q);
             auto colorAt = [&](int c) { return ci[idx[flat ? 0 : c]]; };
-            // The samples of the strata the bound overlaps in each pixel, tested at once (SIMD).
-            const size_t room = size_t(q.px1 - q.px0 + 1) * size_t(q.py1 - q.py0 + 1) * size_t(S);
-            if (quadHits_.size() < room) quadHits_.resize(room);
-            size_t found = 0;
-            tests += test(q, layout, quadHits_.data(), &found);
-            for (size_t n = 0; n < found; ++n) {
-                const QuadHit& qh = quadHits_[n];
-                const size_t pi = qh.pixel;
-                const int sj = qh.sample;
-                const Hit h = quadHit(qh);
+            // A hit of sample sj of pixel pi, h on quad qc (q as the sample sees it).
+            auto onHit = [&](size_t pi, int sj, const Hit& h, const QuadSetup& qc) {
                 SampleHit hit;
                 if (intoStill) {
                     ++hits;
@@ -231,11 +277,11 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         const float x = xs[pi * size_t(S) + size_t(sj)], y = ys[pi * size_t(S) + size_t(sj)];
                         for (int fi = 0; fi < F; ++fi) {
                             const size_t ci2 = (size_t(fi) * pixels + pi) * size_t(S) + size_t(sj);
-                            trianglesCovering(q, x, y, &hitCounts_[ci2], &windings_[ci2]);
+                            trianglesCovering(qc, x, y, &hitCounts_[ci2], &windings_[ci2]);
                         }
                     }
                     SampleHit& cur = block.still(pi)[sj];
-                    if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) continue;
+                    if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) return;
                     if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
                     cur = hit;
                     // Frames that already have a record of the pixel (something only they see came
@@ -246,7 +292,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         --left;
                         if (rec[sj].beatenBy(hit.z, hit.id, hit.c)) rec[sj] = hit;
                     }
-                    continue;
+                    return;
                 }
                 // The frames it exists in at the sample's time (the position, and so the inside
                 // test, is the same in every frame).
@@ -256,7 +302,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     if (Counting) {
                         const float x = xs[pi * size_t(S) + size_t(sj)], y = ys[pi * size_t(S) + size_t(sj)];
                         const size_t ci2 = (size_t(fr.fi) * pixels + pi) * size_t(S) + size_t(sj);
-                        trianglesCovering(q, x, y, &hitCounts_[ci2], &windings_[ci2]);
+                        trianglesCovering(qc, x, y, &hitCounts_[ci2], &windings_[ci2]);
                     }
                     SampleHit* rec = block.record(fr.fi, pi);
                     const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
@@ -267,6 +313,36 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     if (Shadowed)
                         writeShadowed(block.shadowed(fr.fi, pi) + size_t(sj) * size_t(K), K, h,
                                       [&](int c, int k) { return cl[size_t(idx[flat ? 0 : c] * K + k)]; });
+                }
+            };
+            if constexpr (Lens) {
+                // Every sample of the pixels of the grown bound, against the quad its lens point sees.
+                float shx[4], shy[4];
+                lensShifts(camera, q.z, shx, shy);
+                for (int py = q.py0; py <= q.py1; ++py)
+                    for (int px = q.px0; px <= q.px1; ++px) {
+                        const size_t pi = block.pixelIndex(px, py);
+                        for (int sj = 0; sj < S; ++sj) {
+                            const size_t si = pi * size_t(S) + size_t(sj);
+                            const float x = xs[si], y = ys[si];
+                            if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
+                            ++tests;
+                            QuadSetup ql;
+                            Hit h;
+                            if (!lensQuad(q, shx, shy, lus[si], lvs[si], x, y, ql) || !hitQuad(ql, x, y, h)) continue;
+                            onHit(pi, sj, h, ql);
+                        }
+                    }
+            } else {
+                setupEdges(q);
+                // The samples of the strata the bound overlaps in each pixel, tested at once (SIMD).
+                const size_t room = size_t(q.px1 - q.px0 + 1) * size_t(q.py1 - q.py0 + 1) * size_t(S);
+                if (quadHits_.size() < room) quadHits_.resize(room);
+                size_t found = 0;
+                tests += test(q, layout, quadHits_.data(), &found);
+                for (size_t n = 0; n < found; ++n) {
+                    const QuadHit& qh = quadHits_[n];
+                    onHit(qh.pixel, qh.sample, quadHit(qh), q);
                 }
             }
         }
@@ -287,7 +363,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
 // bends a vertex's path: elsewhere (inside the grid, moving at nearly constant depth) a vertex's
 // raster position is interpolated linearly within the slice, the same for every quad that shares
 // it, so no crack opens. Hits go to the frames' records: what moves is seen by one frame only.
-template <bool Shadowed, bool Counting>
+template <bool Shadowed, bool Counting, bool Lens>
 void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block,
                                   RasterCounters& counters) {
     const PixelRect& R = block.rect();
@@ -305,6 +381,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const uint64_t id = grid.primitiveId;
     const float* xs = block.xs();
     const float* ys = block.ys();
+    const float *lus = block.lus(), *lvs = block.lvs();
 
     // Slices are bounded in groups: a quad's bound over a group's time holds every sample of it
     // that could hit, and a slow grid needs no finer bound than a few slices give. As many slices a
@@ -379,7 +456,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                     q.x[c] = a.x, q.y[c] = a.y, q.z[c] = a.z;
                     xb[c] = b.x, yb[c] = b.y, zb[c] = b.z;
                 }
-                if (!boundQuad(q, xb, yb, zb, R, nearZ, farZ)) continue;
+                if (!boundQuad(q, xb, yb, zb, R, nearZ, farZ, lensMargin<Lens>(camera))) continue;
                 const float xa[4] = {q.x[0], q.x[1], q.x[2], q.x[3]}, ya[4] = {q.y[0], q.y[1], q.y[2], q.y[3]},
                             za[4] = {q.z[0], q.z[1], q.z[2], q.z[3]};
                 for (int py = q.py0; py <= q.py1; ++py) {
@@ -423,8 +500,16 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                                     qt.z[c] = lerp(za[c], zb[c], w);
                                 }
                             }
-                            setupEdges(qt);
                             Hit h;
+                            if constexpr (Lens) {
+                                // The quad at the sample's time as its lens point sees it.
+                                float shx[4], shy[4];
+                                lensShifts(camera, qt.z, shx, shy);
+                                const QuadSetup qp = qt;
+                                if (!lensQuad(qp, shx, shy, lus[si], lvs[si], x, y, qt)) continue;
+                            } else {
+                                setupEdges(qt);
+                            }
                             if (!hitQuad(qt, x, y, h)) continue;
                             ++hits;
                             if (Counting) {

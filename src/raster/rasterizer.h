@@ -17,6 +17,11 @@
 // opposite edge values, and a sample exactly on an edge goes to exactly one of them (as if it
 // were nudged by (-e^2, e)): no cracks and no double hits inside a grid or between grids that
 // share vertices.
+//
+// With depth of field each sample has a lens position (lu, lv) and sees every vertex shifted in
+// raster space by (ax lu, ay lv) lensShift(z) (geom/camera.h): per vertex, so quads sharing a
+// vertex shift it alike and stay watertight. A quad's bound is grown by the circle of confusion
+// over its depths, and each sample in it is tested against the quad as its lens point sees it.
 #pragma once
 
 #include <array>
@@ -77,11 +82,13 @@ class GridRasterizer {
     // Shadowed: the grid carries the contributions of lights that cast shadows (Grid::Cl), kept
     // with each hit; Counting: countHitsInto is set. Separate instances, so that scenes without
     // shadows, and renders, pay nothing for either.
-    template <bool Shadowed, bool Counting>
+    // Lens: depth of field (the block's lens positions): each sample sees the quad with its
+    // vertices shifted by their lens shift (Camera::lensShift), tested by the scalar kernel.
+    template <bool Shadowed, bool Counting, bool Lens>
     void sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
-    template <bool Shadowed, bool Counting>
+    template <bool Shadowed, bool Counting, bool Lens>
     void sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
-    template <bool Shadowed, bool Counting>
+    template <bool Shadowed, bool Counting, bool Lens>
     void sample(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
     // Raster positions at time t, and optionally the camera-space positions they come from.
     void project(const Grid& grid, double t, const Camera& camera, std::vector<RasterVertex>& out,

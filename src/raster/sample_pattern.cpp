@@ -1,6 +1,7 @@
 #include "raster/sample_pattern.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "util/sampling.h"
 
@@ -72,6 +73,25 @@ void correlatedMultiJitter(int j, int m, int n, uint32_t p, float* x, float* y) 
     *y = std::min((float(s / uint32_t(m)) + (float(sx) + jy) / float(m)) / float(n), kOneMinusEpsilon);
 }
 
+void concentricDisc(float x, float y, float* u, float* v) {
+    const float a = 2 * x - 1, b = 2 * y - 1;
+    if (a == 0 && b == 0) {
+        *u = *v = 0;
+        return;
+    }
+    constexpr float kQuarterPi = 0.785398163397448f;
+    float r, phi;
+    if (std::fabs(a) > std::fabs(b)) {
+        r = a;
+        phi = kQuarterPi * (b / a);
+    } else {
+        r = b;
+        phi = 2 * kQuarterPi - kQuarterPi * (a / b);
+    }
+    *u = r * std::cos(phi);
+    *v = r * std::sin(phi);
+}
+
 PatternTable::PatternTable(const SamplePattern& pattern) : pattern_(pattern) {
     S_ = pattern.count();
     P_ = int(std::clamp<size_t>(kMaxTableEntries / size_t(S_), 1, kMaxPatterns));
@@ -88,6 +108,17 @@ PatternTable::PatternTable(const SamplePattern& pattern) : pattern_(pattern) {
                 o[0] = (float(j % pattern.sx) + 0.5f) / float(pattern.sx);
                 o[1] = (float(j / pattern.sx) + 0.5f) / float(pattern.sy);
             }
+        }
+    }
+    lens_.resize(offsets_.size());
+    for (int p = 0; p < P_; ++p) {
+        const uint32_t id = uint32_t(hashCombine(seed ^ 0x27d4eb2fu, uint64_t(p)) >> 32);
+        for (int j = 0; j < S_; ++j) {
+            const uint32_t stratum = permute(uint32_t(j), uint32_t(S_), id * 0x85ebca6bu);
+            float x, y;
+            correlatedMultiJitter(int(stratum), pattern.sx, pattern.sy, id, &x, &y);
+            float* l = &lens_[(size_t(p) * size_t(S_) + size_t(j)) * 2];
+            concentricDisc(x, y, &l[0], &l[1]);
         }
     }
     stratumOf_.resize(size_t(Q_) * size_t(S_));

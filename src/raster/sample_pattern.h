@@ -12,6 +12,12 @@
 // permutations, each with its own jitter within the strata. Time is thus decorrelated from
 // position, and from frame to frame, while positions stay.
 //
+// Lens positions (depth of field) are a pure function of the pixel too, the same in every frame,
+// so still geometry stays in the still layer: pattern p's sample j takes a point of another
+// correlated multi-jittered pattern (its own scramble), in a stratum drawn by a permutation of
+// the samples, so that the lens stratum is decorrelated from the sample's (x, y) stratum, mapped
+// to the unit disc with Shirley and Chiu's concentric map (which keeps the strata's areas).
+//
 // Everything is a pure function of (pixel, frame, seed): the same in every bucket, every block
 // and on every thread.
 #pragma once
@@ -47,6 +53,9 @@ class PatternTable {
     int patternOf(int x, int y) const;
     const float* offsets(int pattern) const { return &offsets_[size_t(pattern) * size_t(S_) * 2]; }
 
+    // The unit-disc lens positions (lu, lv pairs) of pattern `pattern`'s S samples.
+    const float* lens(int pattern) const { return &lens_[size_t(pattern) * size_t(S_) * 2]; }
+
     // The time permutation of pixel (x, y) in `frame`; for it, the time stratum of each sample,
     // the sample of each stratum (slice), and each stratum's time as a fraction of the exposure,
     // in [k / S, (k + 1) / S).
@@ -63,6 +72,7 @@ class PatternTable {
     SamplePattern pattern_;
     int S_ = 0, P_ = 0, Q_ = 0;
     std::vector<float> offsets_;       // P x S x 2
+    std::vector<float> lens_;          // P x S x 2
     std::vector<uint16_t> stratumOf_;  // Q x S
     std::vector<uint16_t> sampleOf_;   // Q x S
     std::vector<float> times_;         // Q x S
@@ -71,5 +81,7 @@ class PatternTable {
 // Kensler's correlated multi-jittered sample j of an m x n pattern number p: in stratum
 // (j % m, j / m) of [0, 1)^2. Exposed for tests.
 void correlatedMultiJitter(int j, int m, int n, uint32_t p, float* x, float* y);
+// Shirley and Chiu's concentric map of [0, 1)^2 onto the unit disc. Exposed for tests.
+void concentricDisc(float x, float y, float* u, float* v);
 
 }  // namespace streyes

@@ -109,7 +109,7 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     // Dense (every frame its own samples from the start) when rays leave every sample at its own
     // time: eye rays, and shadow rays.
     block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, patterns_, traceEyeRays_ || shadowSlots_ > 0,
-                 shadowSlots_);
+                 shadowSlots_, scene_.camera.depthOfField());
     counters.timeSampleGen += secondsSince(t);
 
     windowStart_ = bucket.firstFrame + scene_.shutter.open;
@@ -502,6 +502,9 @@ void BucketWorker::process(const Body& body) {
     const RasterMeasure m = body.measure(cam);
     Bounds3f raster = m.bound.swept();
     if (body.material() && body.material()->displacementBound > 0) raster.extend(rasterOfBox(cam, swept));
+    // Depth of field: what the lens blurs reaches samples a circle of confusion away. Every cull
+    // below (view, occlusion table, hits) takes the grown bound, so none drops a body wrongly.
+    raster = cam.grownByCoc(raster, swept.lo.z, swept.hi.z);
     if (rasterOutside(raster, bucket_.rect)) {
         ++counters.culledView;
         return;

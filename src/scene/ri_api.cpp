@@ -196,6 +196,9 @@ RtVoid RiScreenWindow(RtFloat left, RtFloat right, RtFloat bottom, RtFloat top) 
     numbers("RiScreenWindow", "ScreenWindow", {left, right, bottom, top});
 }
 RtVoid RiClipping(RtFloat hither, RtFloat yon) { numbers("RiClipping", "Clipping", {hither, yon}); }
+RtVoid RiDepthOfField(RtFloat fstop, RtFloat focallength, RtFloat focaldistance) {
+    numbers("RiDepthOfField", "DepthOfField", {fstop, focallength, focaldistance});
+}
 RtVoid RiShutter(RtFloat open, RtFloat close) { numbers("RiShutter", "Shutter", {open, close}); }
 RtVoid RiPixelSamples(RtFloat xsamples, RtFloat ysamples) {
     numbers("RiPixelSamples", "PixelSamples", {xsamples, ysamples});
@@ -537,7 +540,8 @@ int riApiFunctionCount() {
         (void*)RiFrameBegin, (void*)RiFrameEnd, (void*)RiWorldBegin, (void*)RiWorldEnd, (void*)RiAttributeBegin,
         (void*)RiAttributeEnd, (void*)RiTransformBegin, (void*)RiTransformEnd, (void*)RiMotionBegin,
         (void*)RiMotionBeginV, (void*)RiMotionEnd, (void*)RiArchiveRecord, (void*)RiFormat,
-        (void*)RiFrameAspectRatio, (void*)RiScreenWindow, (void*)RiClipping, (void*)RiShutter, (void*)RiPixelSamples,
+        (void*)RiFrameAspectRatio, (void*)RiScreenWindow, (void*)RiClipping, (void*)RiDepthOfField, (void*)RiShutter,
+        (void*)RiPixelSamples,
         (void*)RiPixelFilter, (void*)RiProjection, (void*)RiProjectionV, (void*)RiDisplay, (void*)RiDisplayV,
         (void*)RiOption, (void*)RiOptionV, (void*)RiExposure, (void*)RiHider, (void*)RiHiderV,
         (void*)RiSides, (void*)RiOrientation, (void*)RiReverseOrientation, (void*)RiShadingInterpolation,

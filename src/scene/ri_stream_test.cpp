@@ -19,6 +19,7 @@ TEST(RiStream, CallsWriteTheirRibRequests) {
         RiStreamScope scope(&s);
         RiFormat(64, 48, 1);
         RiProjection(RI_PERSPECTIVE, RI_FOV, std::vector<RtFloat>{45}.data(), RI_NULL);
+        RiDepthOfField(2, 0.5f, 4);
         RiTranslate(0, 0, 5);
         RiWorldBegin();
         RiAttributeBegin();
@@ -32,6 +33,7 @@ TEST(RiStream, CallsWriteTheirRibRequests) {
     EXPECT_EQ(lines(s),
               "Format 64 48 1\n"
               "Projection \"perspective\" \"fov\" [ 45 ]\n"
+              "DepthOfField 2 0.5 4\n"
               "Translate 0 0 5\n"
               "WorldBegin\n"
               "AttributeBegin\n"
@@ -40,7 +42,7 @@ TEST(RiStream, CallsWriteTheirRibRequests) {
               "Sphere 1 -1 1 360\n"
               "AttributeEnd\n"
               "WorldEnd\n");
-    EXPECT_EQ(s.calls(), 10);
+    EXPECT_EQ(s.calls(), 11);
     EXPECT_EQ(s.error(), "");
     Log log;
     const Scene scene = parseRibString(lines(s), "stream", log);

@@ -49,6 +49,12 @@ void worldBegin(RibParser& reader, RibArgs& args) {
         args.fail("a world outside FrameBegin ... FrameEnd in a file of frames: put it in a frame");
     reader.scene().camera.worldToCamera = s.ctm;
     reader.scene().camera.loc = args.loc();
+    CameraDesc& camera = reader.scene().camera;
+    if (camera.depthOfField() && camera.projection == ProjectionKind::Orthographic) {
+        reader.log().warnOnce("depthoffield:orthographic", camera.depthOfFieldLoc,
+                              "DepthOfField has no effect with an orthographic projection: ignored");
+        camera.fstop = std::numeric_limits<double>::infinity();
+    }
     // Lights declared before WorldBegin (PRMan and Aqsis accept them) were placed in camera space:
     // their light-to-world transform is that through the camera's inverse.
     for (int i : s.cameraLights) {

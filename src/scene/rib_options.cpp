@@ -1,8 +1,9 @@
-// Options: the camera (Format, Projection, ScreenWindow, FrameAspectRatio, Clipping), the exposure
+// Options: the camera (Format, Projection, ScreenWindow, FrameAspectRatio, Clipping, DepthOfField), the exposure
 // (Shutter), sampling and filtering (PixelSamples, PixelFilter), output (Display) and Option.
 // Valid only before WorldBegin.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "scene/rib_requests.h"
 
@@ -84,6 +85,31 @@ void clipping(RibParser& reader, RibArgs& args) {
                   formatNumber(c[1]));
     camera.nearClip = c[0];
     camera.farClip = c[1];
+}
+
+// DepthOfField fstop focallength focaldistance; with no arguments, or an fstop of RI_INFINITY
+// (RIB writers give 1e38: any fstop from 1e30 up), a pinhole camera.
+void depthOfField(RibParser& reader, RibArgs& args) {
+    CameraDesc& camera = reader.scene().camera;
+    camera.depthOfFieldLoc = args.loc();
+    if (args.done()) {
+        camera.fstop = std::numeric_limits<double>::infinity();
+        return;
+    }
+    const RibValue* fv = args.peek();
+    const double fstop = args.number("fstop");
+    const RibValue* lv = args.peek();
+    const double focalLength = args.number("focallength");
+    const RibValue* dv = args.peek();
+    const double focalDistance = args.number("focaldistance");
+    args.expectEnd();
+    if (!(fstop > 0)) args.fail(*fv, "fstop must be positive, got " + formatNumber(fstop));
+    if (!(focalLength > 0)) args.fail(*lv, "focallength must be positive, got " + formatNumber(focalLength));
+    if (!(focalDistance > 0)) args.fail(*dv, "focaldistance must be positive, got " + formatNumber(focalDistance));
+    constexpr double kInfiniteFstop = 1e30;
+    camera.fstop = fstop >= kInfiniteFstop ? std::numeric_limits<double>::infinity() : fstop;
+    camera.focalLength = focalLength;
+    camera.focalDistance = focalDistance;
 }
 
 void shutter(RibParser& reader, RibArgs& args) {
@@ -305,6 +331,7 @@ void addOptionRequests(RibRequestTable& table) {
     table.add("ScreenWindow", {screenWindow, "ScreenWindow left right bottom top", options});
     table.add("FrameAspectRatio", {frameAspectRatio, "FrameAspectRatio ratio", options});
     table.add("Clipping", {clipping, "Clipping near far", options});
+    table.add("DepthOfField", {depthOfField, "DepthOfField fstop focallength focaldistance | DepthOfField", options});
     table.add("Shutter", {shutter, "Shutter open close", options});
     table.add("PixelSamples", {pixelSamples, "PixelSamples xsamples ysamples", options});
     table.add("PixelFilter", {pixelFilter, "PixelFilter \"gaussian\" xwidth ywidth", options});

@@ -59,6 +59,9 @@ void SequenceBuilder::check(const Scene& frame) {
              ": a sequence is rendered through one projection (the camera may move)");
     if (a.nearClip != b.nearClip || a.farClip != b.farClip)
         fail("has other Clipping planes than" + against.substr(8) + ": every frame of a sequence needs the same");
+    if (a.depthOfField() != b.depthOfField() ||
+        (a.depthOfField() && (a.fstop != b.fstop || a.focalLength != b.focalLength || a.focalDistance != b.focalDistance)))
+        fail("has another DepthOfField than" + against.substr(8) + ": every frame of a sequence needs the same lens");
     if (s.pixelSamplesX != t.pixelSamplesX || s.pixelSamplesY != t.pixelSamplesY || s.filter.type != t.filter.type ||
         s.filter.xwidth != t.filter.xwidth || s.filter.ywidth != t.filter.ywidth)
         fail("has other PixelSamples or PixelFilter than" + against.substr(8) +

@@ -38,7 +38,9 @@ void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
             Color* shadowed = K ? block.shadowed(fi, i) : nullptr;
             for (int j = 0; j < S; ++j) {
                 const SamplePosition s = block.position(fi, i, j);
-                fn(hits[j], K ? shadowed + size_t(j) * size_t(K) : nullptr, s, block.firstFrame() + fi,
+                const size_t si = i * size_t(S) + size_t(j);
+                const Vec2f lens = block.hasLens() ? Vec2f{block.lus()[si], block.lvs()[si]} : Vec2f{0, 0};
+                fn(hits[j], K ? shadowed + size_t(j) * size_t(K) : nullptr, s, lens, block.firstFrame() + fi,
                    start + double(s.tf) * exposure);
             }
         }
@@ -51,6 +53,9 @@ void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
 TraceScene::TraceScene(const RenderScene& scene, Log& log) : scene_(scene) {
     for (const BodyPtr& root : scene.roots) collect(*root, log);
     include_.extend(Vec3f{0, 0, 0});  // the eye
+    const float lens = scene.camera.lensRadius();  // and the lens, where eye rays start with depth of field
+    include_.extend(Vec3f{-lens, -lens, 0});
+    include_.extend(Vec3f{lens, lens, 0});
     std::vector<CameraLight> lights;
     for (double t : {scene.windowStart, scene.windowEnd}) {
         scene.lights.at(t, lights);
@@ -163,9 +168,20 @@ Color SampleTracer::addVisibleLights(Color c, Vec3f p, double time, const Color*
     return c;
 }
 
-// Eye rays: from the eye through the sample's raster position (perspective) or parallel to +z
-// (orthographic). Either way the direction has z = 1, so the ray parameter is camera-space z
-// and the near and far planes clip it directly.
+// The eye ray of a sample: from the eye through its raster position (perspective) or parallel to
+// +z (orthographic); with depth of field from its lens point R (lu, lv) through the point of the
+// focal plane z = d the pinhole sees there (geom/camera.h). Every way the direction has z = 1, so
+// the ray parameter is camera-space z and the near and far planes clip it directly.
+namespace {
+Ray eyeRay(const Camera& cam, float x, float y, Vec2f lens) {
+    if (!cam.perspective()) return {cam.fromRaster(x, y, 0), {0, 0, 1}};
+    if (!cam.depthOfField()) return {{0, 0, 0}, cam.fromRaster(x, y, 1)};
+    const float d = cam.focalDistance();
+    const Vec3f o{cam.lensRadius() * lens.x, cam.lensRadius() * lens.y, 0};
+    return {o, (cam.fromRaster(x, y, d) - o) * (1.0f / d)};
+}
+}  // namespace
+
 void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, RenderCounters& counters) {
     const RenderScene& scene = trace.scene();
     const Camera& cam = scene.camera;
@@ -173,9 +189,9 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
     const int K = scene.lights.shadowSlots();
     shadowed_.resize(size_t(K));
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
-    forEachSampleByFrame(block, scene.shutter, [&](SampleHit& hit, Color*, const SamplePosition& s, int frame, double time) {
-        const Ray ray =
-            ortho ? Ray{cam.fromRaster(s.x, s.y, 0), {0, 0, 1}} : Ray{{0, 0, 0}, cam.fromRaster(s.x, s.y, 1)};
+    forEachSampleByFrame(block, scene.shutter, [&](SampleHit& hit, Color*, const SamplePosition& s, Vec2f lens, int frame,
+                                                   double time) {
+        const Ray ray = eyeRay(cam, s.x, s.y, lens);
         const SpacetimeBVH& bvh = trace.hierarchy(frame);
         ++counters.eyeRays;
         TraceHit h;
@@ -199,14 +215,23 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
 }
 
-// The rasterizer's hit point is rebuilt from the sample's raster position and depth.
+// The rasterizer's hit point is rebuilt from the sample's eye ray (through its lens point, with
+// depth of field) and depth.
 void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, RenderCounters& counters) {
     const RenderScene& scene = trace.scene();
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
     forEachSampleByFrame(block, scene.shutter,
-                         [&](SampleHit& hit, Color* shadowed, const SamplePosition& s, int frame, double time) {
+                         [&](SampleHit& hit, Color* shadowed, const SamplePosition& s, Vec2f lens, int frame,
+                             double time) {
         if (hit.a == 0) return;
-        const Vec3f p = scene.camera.fromRaster(s.x, s.y, hit.z);
+        const Camera& cam = scene.camera;
+        Vec3f p;
+        if (cam.depthOfField()) {
+            const Ray ray = eyeRay(cam, s.x, s.y, lens);
+            p = ray.o + ray.d * hit.z;
+        } else {
+            p = cam.fromRaster(s.x, s.y, hit.z);
+        }
         hit.c = addVisibleLights(hit.c, p, time, shadowed, trace, trace.hierarchy(frame), counters);
     });
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;

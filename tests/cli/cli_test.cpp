@@ -101,6 +101,32 @@ TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
     EXPECT_NE(json.find("\"frames\": [3, 4]"), std::string::npos);
 }
 
+// DepthOfField from the command line: a bad lens exits 2 at its line; --dof-preview writes every
+// frame, blurred (the square's edge spreads over pixels the pinhole leaves empty).
+TEST(Cli, DepthOfFieldPreviewWritesEveryFrameBlurred) {
+    const test::TempDir tempDir("cli-dof");
+    const std::string& dir = tempDir.path();
+    const std::string head = "Format 32 16 1\nProjection \"perspective\" \"fov\" [40]\nPixelSamples 2 2\n";
+    const std::string world = "WorldBegin\nSurface \"constant\"\n"
+                              "Patch \"bilinear\" \"P\" [-3 -3 6  0 -3 6  -3 3 6  0 3 6]\nWorldEnd\n";
+    std::string bad = writeFile(dir, "bad.rib", head + "\nDepthOfField 2 0 3\n" + world);
+    CliRun r = streyes("render " + bad + " -o " + dir + "/b.####.exr");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("bad.rib:5:"), std::string::npos) << r.output;
+    EXPECT_EQ(streyes("render " + bad + " --dof-preview 0").exitCode, 2);
+    std::string scene = writeFile(dir, "dof.rib", head + "DepthOfField 1 1 2\n" + world);
+    r = streyes("render " + scene + " --frames 0-1 --dof-preview 4 -o " + dir + "/p.####.exr --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(listDir(dir), (std::vector<std::string>{"bad.rib", "dof.rib", "p.0000.exr", "p.0001.exr"}));
+    // The square's right edge x = 0 is at the image's centre; its blur (a circle of confusion of
+    // 1 / (2 * 1) * (1/2 - 1/6) * 22 = 3.7 pixels) covers part of the pixel right of the centre.
+    ImageData img = readImage(dir + "/p.0001.exr");
+    const float a = img.at(17, 8, 3);
+    EXPECT_GT(a, 0.02f);
+    EXPECT_LT(a, 0.98f);
+    EXPECT_FLOAT_EQ(img.at(10, 8, 3), 1.0f);  // over 3.7 pixels from every edge
+}
+
 // --preview: half the scene's resolution, at most 4 samples per pixel, exact culling; options
 // given explicitly win.
 TEST(Cli, PreviewHalvesResolutionAndCapsSamples) {

@@ -118,6 +118,22 @@ WorldEnd
 // tolerance on a surface seen in more than 7 pixels fails.
 // Depth within 1%: the rasterizer interpolates z linearly in raster space across a micropolygon,
 // which is 0.2-0.3% off on the floor where it recedes fastest.
+// Depth of field: the ray tracer's eye rays leave each sample's lens point, and the rasterizer's
+// shadow rays leave the hit rebuilt along that ray: the same samples see the same surfaces, in the
+// same light and shadow, as without a lens (a hit rebuilt through the pinhole instead would move
+// the floor's shadow edges by up to a lens radius).
+TEST(Raytrace, DepthOfFieldSamplesAgreeWithTheRasterizer) {
+    std::string rib = kAnimation;
+    rib.insert(rib.find("PixelSamples"), "DepthOfField 2 1 8\n");
+    test::SampleRecord traced = test::renderSamples(rib, test::optionsFor(Algorithm::Raytrace));
+    test::SampleRecord raster = test::renderSamples(rib, test::optionsFor(Algorithm::Frames));
+    test::SampleAgreement agree = test::compareSamples(raster, traced, 0.01f, 1e-2f);
+    EXPECT_GE(agree.share(), 0.999) << agree.samples - agree.sameSurface << " of " << agree.samples << " samples differ";
+    // And the lens is there: through a pinhole the samples see otherwise.
+    test::SampleRecord pinhole = test::renderSamples(kAnimation, test::optionsFor(Algorithm::Raytrace));
+    EXPECT_LT(test::compareSamples(pinhole, traced, 0.01f, 1e-2f).share(), 0.99);
+}
+
 TEST(Raytrace, AnimationSamplesAgreeWithTheRasterizer) {
     test::SampleRecord traced = test::renderSamples(kAnimation, test::optionsFor(Algorithm::Raytrace));
     for (const auto& [algorithm, colorTolerance] :

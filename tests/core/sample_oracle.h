@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <type_traits>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -77,15 +78,24 @@ OracleReport checkSamples(const Scene& scene, const RenderResult& r, Layers laye
         for (int y = 0; y < img.height; ++y)
             for (int x = 0; x < img.width; ++x) {
                 table.pixelSamples(x, y, img.frame, pos.data());
+                const float* lens = table.lens(table.patternOf(x, y));
                 int covered = 0, uncovered = 0;
-                for (const SamplePosition& p : pos) {
+                for (size_t j = 0; j < pos.size(); ++j) {
+                    const SamplePosition& p = pos[j];
                     const double t = img.frame + open + (close - open) * double(p.tf);
+                    // With depth of field `layers` may take the sample's lens position too.
+                    auto at = [&](double sx, double sy) {
+                        if constexpr (std::is_invocable_v<Layers, double, double, double, double, double>)
+                            return layers(sx, sy, t, double(lens[2 * j]), double(lens[2 * j + 1]));
+                        else
+                            return layers(sx, sy, t);
+                    };
                     // A negative answer means "either way, up to -n layers".
-                    const int n = int(layers(double(p.x), double(p.y), t));
+                    const int n = int(at(double(p.x), double(p.y)));
                     int most = std::abs(n);
                     bool clear = n >= 0;
                     for (auto [dx, dy] : {std::pair{hair, 0.0}, {-hair, 0.0}, {0.0, hair}, {0.0, -hair}}) {
-                        const int m = int(layers(p.x + dx, p.y + dy, t));
+                        const int m = int(at(p.x + dx, p.y + dy));
                         clear = clear && m == n;
                         most = std::max(most, std::abs(m));
                     }

@@ -278,6 +278,16 @@ TEST(Sequence, FramesThatDisagreeOnResolutionOrShutterAreRefusedNamingTheFrame) 
     e = errorOf({stillFrame(1), stillFrame(2, "0 0.25")});
     EXPECT_NE(e.find("frame1.rib:1: error: frame 2 has Shutter 0 0.25, Shutter 0 0.5 against frame 1"), std::string::npos)
         << e;
+    std::string lens = stillFrame(2);
+    lens.insert(lens.find("Shutter"), "DepthOfField 2 1 8\n");
+    e = errorOf({stillFrame(1), lens});
+    EXPECT_NE(e.find("frame1.rib:1: error: frame 2 has another DepthOfField than frame 1"), std::string::npos) << e;
+    EXPECT_EQ(errorOf({lens, [&] {
+                  std::string l = lens;
+                  l.replace(l.find("FrameBegin 2"), 12, "FrameBegin 3");
+                  return l;
+              }()}),
+              "");  // the same lens in every frame
     e = errorOf({stillFrame(1), stillFrame(3)});
     EXPECT_NE(e.find("frame1.rib:1: error: frame 3 follows frame 1: frame 2 is missing"), std::string::npos) << e;
     e = errorOf({stillFrame(2), stillFrame(1)});
