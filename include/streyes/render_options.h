@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "streyes/vecmath.h"
 
@@ -80,6 +81,9 @@ struct RenderOptions {
     // For tests and tools: sees each bucket's samples (hits before the filter) and the tile it
     // resolves. Called from worker threads, one bucket at a time each.
     std::function<void(const ImageBlock& block, const PixelRect& tile)> sampleObserver;
+    // Output variables the frames carry beyond RGBA and Z ("N", "P", ...: util/aov.h); the
+    // renderer adds those its scene's displays name.
+    std::vector<std::string> aovs;
 };
 
 }  // namespace streyes

@@ -1,5 +1,6 @@
 #include "film/film.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -107,6 +108,29 @@ inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int 
     out[4] = z;
 }
 
+// The output variables of tile pixel (x, y) in frame fi: the weighted mean over the samples that
+// hit (coverage-aware: see film.h).
+void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int fi, int x, int y, float* acc, float* out) {
+    const PixelRect& R = block.rect();
+    const int S = block.samplesPerPixel(), gx = fw.reachX(), gy = fw.reachY(), A = block.aovCount();
+    std::fill(acc, acc + A, 0.0f);
+    float sum = 0;
+    for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
+        for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx); ++px) {
+            const size_t i = block.pixelIndex(px, py);
+            const SampleHit* h = block.hits(fi, i);
+            const float* av = block.aovs(fi, i);
+            const float* w = fw.weights(block.patternOf(i), x - px, y - py);
+            for (int j = 0; j < S; ++j) {
+                if (h[j].a == 0 || w[j] == 0) continue;
+                sum += w[j];
+                for (int a = 0; a < A; ++a) acc[a] += w[j] * av[size_t(j) * size_t(A) + size_t(a)];
+            }
+        }
+    const float inv = std::fabs(sum) > 1e-8f ? 1.0f / sum : 0.0f;
+    for (int a = 0; a < A; ++a) out[a] = acc[a] * inv;
+}
+
 }  // namespace
 
 void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWeights& fw, FrameImage* frames,
@@ -167,6 +191,18 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
                 for (int c = 0; c < 4; ++c) px[c] = v[c];
                 out.z[size_t(y) * size_t(out.width) + size_t(x)] = v[4];
             }
+    }
+
+    const int A = block.aovCount();
+    if (A == 0) return;
+    scratch.aov.resize(size_t(A));
+    for (int fi = 0; fi < F; ++fi) {
+        FrameImage& out = frames[fi];
+        if (out.aovNames.size() != size_t(A)) continue;  // a caller that asked for none
+        for (int y = tile.y0; y <= tile.y1; ++y)
+            for (int x = tile.x0; x <= tile.x1; ++x)
+                gatherAovs(block, fw, fi, x, y, scratch.aov.data(),
+                           &out.aov[(size_t(y) * size_t(out.width) + size_t(x)) * size_t(A)]);
     }
 }
 

@@ -9,6 +9,7 @@
 #include "procedural/procedural.h"
 #include "raster/coverage.h"
 #include "render/split_decision.h"
+#include "shade/aov_fill.h"
 #include "shade/shading.h"
 
 namespace streyes {
@@ -58,8 +59,10 @@ BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& option
       log_(log),
       occlusion_(usesOcclusion(options.algorithm)),
       shadingVaries_(!scene.lights.isStatic()),
-      shader_(nullptr, scene.camera, scene.lights) {
+      shader_(nullptr, scene.camera, scene.lights),
+      aovs_(options.aovs) {
     tracer_.setShader(&shader_);
+    grid_.aovCount = aovs_.count;
 }
 
 void BucketWorker::setTrace(const TraceScene* trace) {
@@ -76,6 +79,7 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     auto t = Clock::now();
     // Dense (every frame its own samples from the start) when rays leave every sample at its own
     // time: eye rays, and shadow rays.
+    block_.setAovCount(aovs_.count);
     block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, patterns_, traceEyeRays_ || shadowSlots_ > 0,
                  shadowSlots_);
     counters.timeSampleGen += secondsSince(t);
@@ -601,6 +605,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
         grid_.t1 = body.keyTime(k + 1);
         grid_.openEnd = k + 2 < body.keyCount() || body.time().openEnd;  // pieces meet at keys (TimeSpan)
         grid_.moving = body.keyMoves(k) || shadingVaries(body);
+        if (aovs_.count) fillAovs(grid_, aovs_, scene_.camera);
         rasterizer_.rasterize(grid_, scene_.camera, scene_.shutter, block_, rasterCounters_);
         counters.timeSample += secondsSince(tc);
         if (k + 2 < keys) {
@@ -631,6 +636,7 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv) {
     counters.timeDice += std::chrono::duration<double>(t1 - t).count();
     shader_.shade(grid_);
     auto t2 = Clock::now();
+    if (aovs_.count) fillAovs(grid_, aovs_, scene_.camera);
     counters.timeShade += std::chrono::duration<double>(t2 - t1).count();
     rasterizer_.rasterize(grid_, scene_.camera, scene_.shutter, block_, rasterCounters_);
     counters.timeSample += secondsSince(t2);

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "procedural/procedural.h"
 #include "shade/scene_shaders.h"
 #include "trace/trace.h"
+#include "util/aov.h"
 
 namespace streyes {
 
@@ -79,6 +81,20 @@ ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& o) {
 Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     : source_(scene), options_(options), log_(log) {
     settings_ = resolveSettings(scene, options);
+    // The output variables the displays name, beside any the caller asked for.
+    for (const std::string& v : options_.aovs)
+        if (!findAovVariable(v)) throw InputError("unknown output variable \"" + v + "\" (known: " + aovVariableList() + ")");
+    for (const DisplayDesc& d : scene.settings.displays)
+        for (const std::string& v : modeVariables(d.mode)) {
+            // The ray tracer shades single hits: it does not carry output variables (yet).
+            if (raytraces(options_.algorithm))
+                throw InputError(d.loc, "display mode \"" + d.mode + "\": output variables are written by the rasterizing "
+                                        "algorithms only, not by --algorithm " + std::string(algorithmName(options_.algorithm)));
+            if (std::find(options_.aovs.begin(), options_.aovs.end(), v) == options_.aovs.end()) options_.aovs.push_back(v);
+        }
+    if (!options_.aovs.empty() && raytraces(options_.algorithm))
+        throw InputError("output variables are written by the rasterizing algorithms only, not by --algorithm " +
+                         std::string(algorithmName(options_.algorithm)));
     auto t = std::chrono::steady_clock::now();
     // In an arena of its own, like the render: building runs parallel work too (subdivision
     // meshes), and --threads holds for every stage.
@@ -270,6 +286,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
             images.resize(size_t(count));
             for (int i = 0; i < count; ++i) {
                 images[size_t(i)].frame = first + i;
+                images[size_t(i)].aovNames = AovLayout(options_.aovs).channelNames();
                 images[size_t(i)].resize(W, H);
             }
             // Spacetime: one bucket per tile spans the block's frames. Frames: one per tile and frame.
