@@ -404,6 +404,12 @@ int renderCommand(const std::vector<std::string>& args) {
                 return true;
             };
         }
+        // The output variables the outputs write (a sequence's frames' own displays among them).
+        for (int f = rs.firstFrame; f <= rs.lastFrame && (f == rs.firstFrame || seq.isSequence); ++f)
+            for (const Output& o : outputsOf(f))
+                for (const std::string& v : modeVariables(o.mode))
+                    if (std::find(blockOpts.aovs.begin(), blockOpts.aovs.end(), v) == blockOpts.aovs.end())
+                        blockOpts.aovs.push_back(v);
         Renderer renderer(scene, blockOpts, log);
         RenderStats stats = renderer.render(
             [&](const FrameImage& img) {

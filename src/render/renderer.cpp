@@ -78,6 +78,16 @@ ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& o) {
     return r;
 }
 
+namespace {
+// Where a display asks for motion vectors (for the warning about a closed shutter).
+SourceLoc motionLoc(const Scene& scene) {
+    for (const DisplayDesc& d : scene.settings.displays)
+        for (const std::string& v : modeVariables(d.mode))
+            if (v == "motion") return d.loc;
+    return {};
+}
+}  // namespace
+
 Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     : source_(scene), options_(options), log_(log) {
     settings_ = resolveSettings(scene, options);
@@ -92,6 +102,13 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
                                         "algorithms only, not by --algorithm " + std::string(algorithmName(options_.algorithm)));
             if (std::find(options_.aovs.begin(), options_.aovs.end(), v) == options_.aovs.end()) options_.aovs.push_back(v);
         }
+    // Motion vectors come from a grid's motion over its time span: with a closed shutter every frame
+    // is an instant, and a body's pieces carry no motion.
+    if (std::find(options_.aovs.begin(), options_.aovs.end(), "motion") != options_.aovs.end() &&
+        !(scene.settings.shutterClose > scene.settings.shutterOpen))
+        log_.warnOnce("aov-motion-shutter", motionLoc(scene),
+                      "motion vectors need an open shutter (Shutter 0 0.5, say): with a closed one every frame is an "
+                      "instant and motion reads 0");
     if (!options_.aovs.empty() && raytraces(options_.algorithm))
         throw InputError("output variables are written by the rasterizing algorithms only, not by --algorithm " +
                          std::string(algorithmName(options_.algorithm)));

@@ -179,6 +179,29 @@ WorldEnd
     }
 }
 
+TEST(AovRender, MotionUnderAClosedShutterReadsZeroAndIsWarnedAbout) {
+    // Each frame an instant: the pieces carry no motion (documented; motion needs an open shutter).
+    const std::string rib = R"(Format 20 20 1
+Projection "orthographic"
+ScreenWindow -2 2 -2 2
+Shutter 0 0
+Display "+m.exr" "openexr" "motion"
+WorldBegin
+MotionBegin [0 2]
+Translate -1 0 5
+Translate 1 0 5
+MotionEnd
+Patch "bilinear" "P" [-0.5 0.5 0  0.5 0.5 0  -0.5 -0.5 0  0.5 -0.5 0]
+WorldEnd
+)";
+    const test::RenderResult r = test::renderRib(rib);
+    int warned = 0;
+    for (const std::string& w : r.warnings) warned += w.find("open shutter") != std::string::npos && w.find(":5") != std::string::npos;
+    EXPECT_EQ(warned, 1);
+    EXPECT_GT(test::alphaSum(r), 20.0);
+    for (float v : r.frame(0).aov) EXPECT_EQ(v, 0.0f);
+}
+
 TEST(AovRender, ColourIsBitIdenticalWithAndWithoutOutputVariables) {
     // Moving and still geometry, shaded: asking for every variable changes no colour or depth bit.
     const std::string body = R"(WorldBegin
