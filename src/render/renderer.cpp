@@ -229,6 +229,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     MemoryShape shape{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, scene_->factory->bodiesMade(),
                       usesOcclusion(options_.algorithm)};
     shape.sharedBytes = scene_->factory->sharedBytes();
+    shape.aovFloats = AovLayout(options_.aovs).count;
     if (trace) {
         shape.shadowSlots = raytraces(options_.algorithm) ? 0 : scene_->lights.shadowSlots();
         shape.traceBytes = trace->bytes() - (traceFrames ? trace->hierarchyBytes() : 0);
