@@ -108,9 +108,11 @@ inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int 
     out[4] = z;
 }
 
-// The output variables of tile pixel (x, y) in frame fi: the weighted mean over the samples that
-// hit (coverage-aware: see film.h).
-void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int fi, int x, int y, float* acc, float* out) {
+// The output variables of tile pixel (x, y) from `hitsOf` and `aovsOf` (pixel index -> its S hits,
+// its S x A floats): the weighted mean over the samples that hit (coverage-aware: see film.h).
+template <typename HitsOf, typename AovsOf>
+void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int x, int y, HitsOf hitsOf, AovsOf aovsOf, float* acc,
+                float* out) {
     const PixelRect& R = block.rect();
     const int S = block.samplesPerPixel(), gx = fw.reachX(), gy = fw.reachY(), A = block.aovCount();
     std::fill(acc, acc + A, 0.0f);
@@ -118,8 +120,8 @@ void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int fi, int x,
     for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
         for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx); ++px) {
             const size_t i = block.pixelIndex(px, py);
-            const SampleHit* h = block.hits(fi, i);
-            const float* av = block.aovs(fi, i);
+            const SampleHit* h = hitsOf(i);
+            const float* av = aovsOf(i);
             const float* w = fw.weights(block.patternOf(i), x - px, y - py);
             for (int j = 0; j < S; ++j) {
                 if (h[j].a == 0 || w[j] == 0) continue;
@@ -165,6 +167,21 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
             }
     }
 
+    // Output variables likewise: the still layer's once, a frame's own where it has records near.
+    const int A = block.aovCount();
+    const size_t Az = size_t(A);
+    if (A > 0) {
+        scratch.aov.resize(Az);
+        if (!dense) {
+            scratch.stillAov.resize(tilePixels * Az);
+            for (int y = tile.y0; y <= tile.y1; ++y)
+                for (int x = tile.x0; x <= tile.x1; ++x)
+                    gatherAovs(block, fw, x, y, [&](size_t i) { return block.still(i); },
+                               [&](size_t i) { return block.stillAov(i); }, scratch.aov.data(),
+                               &scratch.stillAov[(size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0)) * Az]);
+        }
+    }
+
     // Per frame: the tile pixels whose filter reaches a pixel with a record of that frame are
     // gathered again; the others show the still layer.
     scratch.gathered.resize(tilePixels);
@@ -190,19 +207,14 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
                 float* px = &out.rgba[(size_t(y) * size_t(out.width) + size_t(x)) * 4];
                 for (int c = 0; c < 4; ++c) px[c] = v[c];
                 out.z[size_t(y) * size_t(out.width) + size_t(x)] = v[4];
+                if (A == 0 || out.aovNames.size() != Az) continue;  // none asked for
+                float* o = &out.aov[(size_t(y) * size_t(out.width) + size_t(x)) * Az];
+                if (scratch.gathered[t])
+                    gatherAovs(block, fw, x, y, [&](size_t i) { return block.hits(fi, i); },
+                               [&](size_t i) { return block.aovs(fi, i); }, scratch.aov.data(), o);
+                else
+                    std::copy(&scratch.stillAov[t * Az], &scratch.stillAov[t * Az] + Az, o);
             }
-    }
-
-    const int A = block.aovCount();
-    if (A == 0) return;
-    scratch.aov.resize(size_t(A));
-    for (int fi = 0; fi < F; ++fi) {
-        FrameImage& out = frames[fi];
-        if (out.aovNames.size() != size_t(A)) continue;  // a caller that asked for none
-        for (int y = tile.y0; y <= tile.y1; ++y)
-            for (int x = tile.x0; x <= tile.x1; ++x)
-                gatherAovs(block, fw, fi, x, y, scratch.aov.data(),
-                           &out.aov[(size_t(y) * size_t(out.width) + size_t(x)) * size_t(A)]);
     }
 }
 

@@ -82,6 +82,7 @@ struct ResolveScratch {
     std::vector<float> still;      // per tile pixel: R G B A Z resolved from the still layer
     std::vector<uint8_t> gathered; // per tile pixel, in the frame being resolved: gathered again
     std::vector<float> aov;        // one pixel's output variables being gathered
+    std::vector<float> stillAov;   // per tile pixel: output variables resolved from the still layer
 };
 
 // Resolves the samples of every frame of the block into the pixels of `tile` (inside the

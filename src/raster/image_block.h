@@ -130,6 +130,7 @@ class ImageBlock {
     void setAovCount(int n) { aovs_ = n; }
     int aovCount() const { return aovs_; }
     float* stillAov(size_t i) { return &stillAov_[i * size_t(S_) * size_t(aovs_)]; }
+    const float* stillAov(size_t i) const { return &stillAov_[i * size_t(S_) * size_t(aovs_)]; }
     float* recordAov(int fi, size_t i) {
         const int32_t r = slot_[size_t(fi) * size_t(pixelCount()) + i];
         return r < 0 ? nullptr : recordAovAt(uint32_t(r));
