@@ -71,7 +71,8 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     e.perWorker = bucketPixels(s) * (S * (kBytesPerSample + aov) + framesPerBucket * (kBytesPerPixelFrame + S * recordSample)) +
                   s.traceBytesPerWorker + tilePixels(s) * 6 * sizeof(float) +  // resolving: weights, still pixels
                   (s.occlusion ? bucketPixels(s) * framesPerBucket * kOcclusionBytesPerCell : 0);
-    e.writer = pixels * (kWriterBytesPerPixel + 3 * aov);  // the frame copied, and its channels interleaved
+    // Output variables the same way, as floats, and interleaved then planar while one is encoded.
+    e.writer = pixels * (kWriterBytesPerPixel + 8 * aov);
     return e;
 }
 
