@@ -252,6 +252,47 @@ WorldEnd
     EXPECT_GT(whole, 100);
 }
 
+TEST(AovRender, ShadowedRendersKeepTheirColourAndCarryTheVariables) {
+    // Lights that cast shadows make every frame's samples its own (dense records): the variables
+    // go with them, and colour keeps its bits.
+    const std::string body = R"(WorldBegin
+AttributeBegin
+Attribute "light" "shadows" "on"
+LightSource "distantlight" 1 "from" [0 2 0] "to" [0 0 1]
+AttributeEnd
+Surface "matte"
+AttributeBegin
+MotionBegin [0 1]
+Translate -0.3 0.6 4
+Translate 0.3 0.6 4
+MotionEnd
+Sphere 0.4 -0.4 0.4 360
+AttributeEnd
+AttributeBegin
+Translate 0 -0.5 5
+Rotate 90 1 0 0
+Patch "bilinear" "P" [-4 -4 0  4 -4 0  -4 4 0  4 4 0]
+AttributeEnd
+WorldEnd
+)";
+    const std::string head = "Format 40 32 1\nProjection \"perspective\" \"fov\" 60\nShutter 0 1\n";
+    const test::RenderResult plain = test::renderRib(head + "Display \"a.exr\" \"openexr\" \"rgbaz\"\n" + body);
+    const test::RenderResult withAovs =
+        test::renderRib(head + "Display \"a.exr\" \"openexr\" \"rgbaz\"\nDisplay \"+b.exr\" \"openexr\" \"N,P\"\n" + body);
+    EXPECT_TRUE(test::identicalPixels(plain, withAovs));
+    const FrameImage& f = withAovs.frame(0);
+    // The floor (y = -0.5, facing up towards y): its normal and height where it alone is seen.
+    int floor = 0;
+    for (int y = 22; y < 29; ++y)  // below the sphere (rows 15 and up), above the floor's near edge
+        for (int x = 0; x < 40; ++x) {
+            if (withAovs.alpha(0, x, y) < 1) continue;
+            ++floor;
+            EXPECT_NEAR(std::fabs(aovAt(f, "N.Y", x, y)), 1.0f, 1e-5f);
+            EXPECT_NEAR(aovAt(f, "P.Y", x, y), -0.5f, 1e-5f);
+        }
+    EXPECT_GT(floor, 100);
+}
+
 TEST(AovRender, BadModesAndUnknownVariablesNameTheLine) {
     const std::string head = "Format 8 8 1\n";
     std::string e = test::ribError(head + "Display \"a.exr\" \"openexr\" \"rgba,Nx\"\n");
