@@ -139,6 +139,13 @@ struct RenderSettings {
     // defaultsurface with their Shading Language sources too (the same pixels, slower).
     bool builtinShading = true;
     ShaderDesc imager;  // Imager: run over each finished frame's pixels; no name: none
+    // DisplayChannel declarations of surface shaders' output parameters (the built-in variables,
+    // N, P, ..., need none): a Display mode may name them.
+    struct ShaderOutput {
+        std::string type, name;
+        SourceLoc loc;
+    };
+    std::vector<ShaderOutput> shaderOutputs;
 };
 
 // ---- Lights and geometry --------------------------------------------------------------------------

@@ -65,10 +65,27 @@ TEST(AovFiles, ColourModesAreTheSameBytesWhateverTheFrameCarries) {
     EXPECT_EQ(bytesOf(dir.path() + "/plain.exr"), bytesOf(dir.path() + "/with.exr"));
 }
 
+TEST(AovFiles, ShaderOutputsAreTheFramesChannelsOfTheirName) {
+    const test::TempDir dir("aov-shader-files");
+    FrameImage f;
+    f.aovNames = {"N.X", "N.Y", "N.Z", "halfCs.R", "halfCs.G", "halfCs.B", "height"};
+    f.resize(3, 2);
+    for (size_t i = 0; i < f.aov.size(); ++i) f.aov[i] = float(i);
+    writeFrame(dir.path() + "/s.exr", f, "rgba,halfCs,height");
+    const ImageData s = readImage(dir.path() + "/s.exr");
+    EXPECT_EQ(s.channels, (std::vector<std::string>{"R", "G", "B", "A", "halfCs.B", "halfCs.G", "halfCs.R", "height"}));
+    EXPECT_EQ(s.at(2, 1, s.channelIndex("halfCs.G")), f.aov[5 * 7 + 4]);
+    EXPECT_EQ(s.at(2, 1, s.channelIndex("height")), f.aov[5 * 7 + 6]);
+    EXPECT_TRUE(isCompleteFrame(dir.path() + "/s.exr", 3, 2, "rgba,halfCs,height"));
+    EXPECT_FALSE(isCompleteFrame(dir.path() + "/s.exr", 3, 2, "rgba,halfCs"));
+    EXPECT_THROW(writeFrame(dir.path() + "/t.exr", f, "rgba,other"), RenderError);
+}
+
 TEST(AovFiles, AModeNamingAVariableTheFrameLacksFails) {
     const test::TempDir dir("aov-missing");
     EXPECT_THROW(writeFrame(dir.path() + "/p.exr", frameWithNormals(), "P"), RenderError);
-    EXPECT_FALSE(validChannelMode("rgba,Q"));
+    EXPECT_FALSE(validChannelMode("rgba,1x"));
+    EXPECT_FALSE(validChannelMode("rgba,,N"));
     EXPECT_TRUE(validChannelMode("rgba, N ,P"));
 }
 

@@ -168,6 +168,26 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
                                        const std::string& ext, bool exr, int nch, bool alpha, bool z);
 void writeBytesInPlace(const std::string& path, const std::vector<unsigned char>& bytes);
 
+// Is channel `channel` one of shader output `name`'s ("name", or "name.X" and the like)?
+bool channelOf(const std::string& channel, const std::string& name) {
+    return channel == name || (channel.size() > name.size() && channel.compare(0, name.size(), name) == 0 &&
+                               channel[name.size()] == '.');
+}
+
+// The channels `mode` writes from `image`: a shader output's are the frame's channels of its name.
+std::vector<std::string> channelsOf(const std::string& mode, const FrameImage& image) {
+    std::vector<std::string> channels;
+    for (const std::string& o : modeOutputs(mode, nullptr)) {
+        std::vector<std::string> add = modeChannels(o);
+        if (add.empty())
+            for (const std::string& c : image.aovNames)
+                if (channelOf(c, o)) add.push_back(c);
+        for (const std::string& c : add)
+            if (std::find(channels.begin(), channels.end(), c) == channels.end()) channels.push_back(c);
+    }
+    return channels;
+}
+
 }  // namespace
 
 void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode) {
@@ -206,7 +226,11 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
     // EXR frames through OpenEXR; anything else (a contact sheet's PNG) through the image library.
     std::vector<unsigned char> bytes;
     if (!colourMode(mode)) {
-        const std::vector<std::string> channels = modeChannels(mode);
+        const std::vector<std::string> channels = channelsOf(mode, image);
+        for (const std::string& o : modeOutputs(mode, nullptr))
+            if (modeChannels(o).empty() && std::none_of(channels.begin(), channels.end(),
+                                                        [&](const std::string& c) { return channelOf(c, o); }))
+                throw RenderError("cannot write '" + path + "': the frame has no output variable " + o);
         const std::vector<float> data = channelPixels(path, image, channels);
         std::string why;
         try {
@@ -350,7 +374,22 @@ bool isCompleteFrame(const std::string& path, int width, int height, const std::
     ImageData img;
     std::string why;
     if (!isExrFile(path) || !readExr(path, &img, &why)) return false;
-    return img.width == width && img.height == height && img.channels == channels;
+    if (img.width != width || img.height != height) return false;
+    // Shader outputs: whatever channels of their names the file has (their types are the scene's).
+    std::vector<std::string> shaderOutputs;
+    for (const std::string& o : modeOutputs(mode, nullptr))
+        if (modeChannels(o).empty()) shaderOutputs.push_back(o);
+    if (shaderOutputs.empty()) return img.channels == channels;
+    std::vector<std::string> rest;
+    for (const std::string& c : img.channels) {
+        bool ofOutput = false;
+        for (const std::string& o : shaderOutputs) ofOutput = ofOutput || channelOf(c, o);
+        if (!ofOutput) rest.push_back(c);
+    }
+    for (const std::string& o : shaderOutputs)
+        if (std::none_of(img.channels.begin(), img.channels.end(), [&](const std::string& c) { return channelOf(c, o); }))
+            return false;
+    return rest == channels;
 }
 
 int ImageData::channelIndex(const std::string& name) const {

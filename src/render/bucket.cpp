@@ -63,6 +63,7 @@ BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& option
       aovs_(options.aovs) {
     tracer_.setShader(&shader_);
     grid_.aovCount = aovs_.count;
+    shader_.setAovs(&aovs_);
 }
 
 void BucketWorker::setTrace(const TraceScene* trace) {
@@ -613,6 +614,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
             std::swap(grid_.N[0], grid_.N[1]);
             std::swap(grid_.Ci[0], grid_.Ci[1]);
             std::swap(grid_.Cl[0], grid_.Cl[1]);
+            std::swap(grid_.aov[0], grid_.aov[1]);  // the shader's outputs; fillAovs writes the rest again
         }
     }
 }

@@ -91,16 +91,32 @@ SourceLoc motionLoc(const Scene& scene) {
 Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     : source_(scene), options_(options), log_(log) {
     settings_ = resolveSettings(scene, options);
-    // The output variables the displays name, beside any the caller asked for.
-    for (const std::string& v : options_.aovs)
-        if (!findAovVariable(v)) throw InputError("unknown output variable \"" + v + "\" (known: " + aovVariableList() + ")");
+    // The output variables the displays name, beside any the caller asked for: built-in ones by
+    // name, shader outputs as "type name" from their DisplayChannel declarations.
+    auto carry = [&](const std::string& v, const SourceLoc* loc) {
+        std::string entry = v;
+        if (!findAovVariable(v) && v.find(' ') == std::string::npos) {
+            entry.clear();
+            for (const RenderSettings::ShaderOutput& o : scene.settings.shaderOutputs)
+                if (o.name == v) entry = o.type + " " + o.name;
+            if (entry.empty()) {
+                const std::string what = "unknown output variable \"" + v + "\" (known: " + aovVariableList() +
+                                         ", and shader outputs declared with DisplayChannel)";
+                throw loc ? InputError(*loc, what) : InputError(what);
+            }
+        }
+        if (std::find(options_.aovs.begin(), options_.aovs.end(), entry) == options_.aovs.end()) options_.aovs.push_back(entry);
+    };
+    const std::vector<std::string> asked = options_.aovs;
+    options_.aovs.clear();
+    for (const std::string& v : asked) carry(v, nullptr);
     for (const DisplayDesc& d : scene.settings.displays)
         for (const std::string& v : modeVariables(d.mode)) {
             // The ray tracer shades single hits: it does not carry output variables (yet).
             if (raytraces(options_.algorithm))
                 throw InputError(d.loc, "display mode \"" + d.mode + "\": output variables are written by the rasterizing "
                                         "algorithms only, not by --algorithm " + std::string(algorithmName(options_.algorithm)));
-            if (std::find(options_.aovs.begin(), options_.aovs.end(), v) == options_.aovs.end()) options_.aovs.push_back(v);
+            carry(v, &d.loc);
         }
     // Motion vectors come from a grid's motion over its time span: with a closed shutter every frame
     // is an instant, and a body's pieces carry no motion.

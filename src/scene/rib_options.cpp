@@ -146,8 +146,10 @@ void display(RibParser& reader, RibArgs& args) {
     const RibValue* modeValue = args.peek();
     std::string mode = args.string("mode");
     args.skipRest();  // display parameters (compression, quantization, ...) are not used
+    std::vector<std::string> declared;
+    for (const RenderSettings::ShaderOutput& o : settings.shaderOutputs) declared.push_back(o.name);
     std::string why;
-    if (modeOutputs(mode, &why).empty()) args.fail(*modeValue, "display mode \"" + mode + "\": " + why);
+    if (modeOutputs(mode, &why, &declared).empty()) args.fail(*modeValue, "display mode \"" + mode + "\": " + why);
     bool additional = !name.empty() && name[0] == '+';
     if (additional) name.erase(0, 1);
     if (name.empty()) args.fail(*nameValue, "the display name is empty");
@@ -175,9 +177,23 @@ void displayChannel(RibParser& reader, RibArgs& args) {
     const std::string& name = words.back();
     const AovVariable* v = findAovVariable(name);
     if (!v && (name == "z" || name == "Z" || name == "a")) return;  // the samples' own depth and alpha
-    if (!v)
-        args.fail(*declValue, "DisplayChannel \"" + decl + "\": unknown output variable \"" + name +
-                                  "\" (known: " + aovVariableList() + ", z, a; shader output parameters are not written)");
+    if (!v) {
+        // A surface shader's output parameter: its type says how many channels it has.
+        const std::string type = words.size() >= 2 ? words[words.size() - 2] : "";
+        if (aovTypeWidth(type) == 0 || modeOutputs(name, nullptr).empty())
+            args.fail(*declValue, "DisplayChannel \"" + decl + "\": \"" + name + "\" is not a variable streyes knows (" +
+                                      aovVariableList() +
+                                      ", z, a); a surface shader's output is declared with its type: "
+                                      "float, color, point, vector or normal");
+        RenderSettings& settings = reader.scene().settings;
+        for (const RenderSettings::ShaderOutput& o : settings.shaderOutputs)
+            if (o.name == name) {
+                if (o.type != type) args.fail(*declValue, "DisplayChannel \"" + decl + "\": " + name + " was declared a " + o.type);
+                return;
+            }
+        settings.shaderOutputs.push_back({type, name, args.loc()});
+        return;
+    }
     const std::string type = words.size() >= 2 ? words[words.size() - 2] : v->type;
     if (type != v->type)
         args.fail(*declValue, "DisplayChannel \"" + decl + "\": " + name + " is a " + v->type + ", not a " + type);

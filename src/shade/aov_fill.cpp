@@ -17,12 +17,13 @@ void fillAovs(Grid& grid, const AovLayout& layout, const Camera& camera) {
     for (int k = 0; k < (grid.moving ? 2 : 1); ++k) {
         float* out = grid.aov[k].data();
         for (size_t vi = 0; vi < layout.vars.size(); ++vi) {
+            if (layout.vars[vi].var == AovVar::Shader) continue;  // the surface shader wrote it (GridShader)
             const int o = layout.offset[vi];
             for (int j = 0; j <= grid.nv; ++j)
                 for (int i = 0; i <= grid.nu; ++i) {
                     const int v = grid.index(i, j);
                     float* d = out + size_t(v) * size_t(A) + size_t(o);
-                    switch (layout.vars[vi]->var) {
+                    switch (layout.vars[vi].var) {
                         case AovVar::N: {
                             const Vec3f nn = grid.N[k][size_t(v)];
                             const float len = std::sqrt(dot(nn, nn));
@@ -44,6 +45,7 @@ void fillAovs(Grid& grid, const AovLayout& layout, const Camera& camera) {
                             break;
                         }
                         case AovVar::Oi: d[0] = os.x, d[1] = os.y, d[2] = os.z; break;
+                        case AovVar::Shader: break;
                         case AovVar::Motion: {
                             if (!moves) {
                                 d[0] = d[1] = 0;

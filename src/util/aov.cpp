@@ -1,6 +1,7 @@
 #include "util/aov.h"
 
 #include <algorithm>
+#include <cctype>
 
 namespace streyes {
 
@@ -34,7 +35,22 @@ std::string aovVariableList() {
     return s;
 }
 
-std::vector<std::string> modeOutputs(const std::string& mode, std::string* error) {
+int aovTypeWidth(const std::string& type) {
+    if (type == "float") return 1;
+    if (type == "color" || type == "point" || type == "vector" || type == "normal") return 3;
+    return 0;
+}
+
+namespace {
+bool isIdentifier(const std::string& s) {
+    if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+    for (char c : s)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+    return true;
+}
+}  // namespace
+
+std::vector<std::string> modeOutputs(const std::string& mode, std::string* error, const std::vector<std::string>* declared) {
     std::vector<std::string> out;
     size_t a = 0;
     for (;;) {
@@ -45,11 +61,13 @@ std::vector<std::string> modeOutputs(const std::string& mode, std::string* error
         while (!o.empty() && o.back() == ' ') o.pop_back();
         if (o == "Z") o = "z";
         if (o == "A") o = "a";
-        if (o.empty() || (!isColourOutput(o) && !findAovVariable(o))) {
+        const bool shaderOutput = !isColourOutput(o) && !findAovVariable(o) && isIdentifier(o) &&
+                                  (!declared || std::find(declared->begin(), declared->end(), o) != declared->end());
+        if (o.empty() || (!isColourOutput(o) && !findAovVariable(o) && !shaderOutput)) {
             if (error)
                 *error = o.empty() ? "an empty output"
                                    : "unknown output variable \"" + o + "\" (known: rgb, rgba, rgbaz, a, z, " +
-                                         aovVariableList() + ")";
+                                         aovVariableList() + ", and shader outputs declared with DisplayChannel)";
             return {};
         }
         out.push_back(o);
@@ -75,8 +93,7 @@ std::vector<std::string> modeChannels(const std::string& mode) {
             add("A");
         } else if (o == "z") {
             add("Z");
-        } else {
-            const AovVariable* v = findAovVariable(o);
+        } else if (const AovVariable* v = findAovVariable(o)) {
             for (int c = 0; c < v->width; ++c) add(v->channels[c]);
         }
     }
@@ -86,30 +103,50 @@ std::vector<std::string> modeChannels(const std::string& mode) {
 std::vector<std::string> modeVariables(const std::string& mode) {
     std::vector<std::string> vars;
     for (const std::string& o : modeOutputs(mode, nullptr))
-        if (findAovVariable(o) && std::find(vars.begin(), vars.end(), o) == vars.end()) vars.push_back(o);
+        if (!isColourOutput(o) && std::find(vars.begin(), vars.end(), o) == vars.end()) vars.push_back(o);
     return vars;
 }
 
 AovLayout::AovLayout(const std::vector<std::string>& names) {
     for (const std::string& n : names) {
-        const AovVariable* v = findAovVariable(n);
-        if (!v || offsetOf(v->var) >= 0) continue;
-        vars.push_back(v);
+        AovEntry e;
+        const size_t space = n.rfind(' ');
+        if (space == std::string::npos) {
+            const AovVariable* v = findAovVariable(n);
+            if (!v) continue;
+            e.var = v->var;
+            e.name = v->name;
+            e.width = v->width;
+            for (int c = 0; c < v->width; ++c) e.channels.push_back(v->channels[c]);
+        } else {
+            const std::string type = n.substr(0, space);
+            e.var = AovVar::Shader;
+            e.name = n.substr(space + 1);
+            e.width = aovTypeWidth(type);
+            if (e.width == 0) continue;
+            if (e.width == 1) e.channels = {e.name};
+            else if (type == "color") e.channels = {e.name + ".R", e.name + ".G", e.name + ".B"};
+            else e.channels = {e.name + ".X", e.name + ".Y", e.name + ".Z"};
+            shaderOutputs = true;
+        }
+        bool have = false;
+        for (const AovEntry& o : vars) have = have || o.name == e.name;
+        if (have) continue;
         offset.push_back(count);
-        count += v->width;
+        count += e.width;
+        vars.push_back(std::move(e));
     }
 }
 
 int AovLayout::offsetOf(AovVar v) const {
     for (size_t i = 0; i < vars.size(); ++i)
-        if (vars[i]->var == v) return offset[i];
+        if (vars[i].var == v) return offset[i];
     return -1;
 }
 
 std::vector<std::string> AovLayout::channelNames() const {
     std::vector<std::string> n;
-    for (const AovVariable* v : vars)
-        for (int c = 0; c < v->width; ++c) n.push_back(v->channels[c]);
+    for (const AovEntry& v : vars) n.insert(n.end(), v.channels.begin(), v.channels.end());
     return n;
 }
 

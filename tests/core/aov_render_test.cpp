@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <string>
 
 #include "streyes/error.h"
@@ -293,6 +294,46 @@ WorldEnd
     EXPECT_GT(floor, 100);
 }
 
+TEST(AovRender, SurfaceShaderOutputsAreWrittenWhereDeclared) {
+    const test::TempDir dir("aov-shader");
+    std::ofstream(dir.path() + "/withaov.sl") << R"(surface withaov(output varying color halfCs = 0;
+                                                                  output varying float height = 0;) {
+    halfCs = Cs * 0.5;
+    height = ycomp(P);
+    Oi = Os;
+    Ci = Cs * Oi;
+}
+)";
+    // A square over the whole image, orthographic: height is camera y, 1 at the top row's top.
+    const std::string rib = "Option \"searchpath\" \"shader\" [\"" + dir.path() + R"(:@"]
+Format 16 16 1
+Projection "orthographic"
+PixelFilter "box" 1 1
+DisplayChannel "color halfCs"
+DisplayChannel "varying float height"
+Display "+sh.exr" "openexr" "rgba,halfCs,height"
+WorldBegin
+AttributeBegin
+Color [1 0.5 0.25]
+Surface "withaov"
+Translate 0 0 5
+Patch "bilinear" "P" [-1 1 0  1 1 0  -1 -1 0  1 -1 0]
+AttributeEnd
+WorldEnd
+)";
+    const test::RenderResult r = test::renderRib(rib);
+    const FrameImage& f = r.frame(0);
+    ASSERT_EQ(f.aovNames, (std::vector<std::string>{"halfCs.R", "halfCs.G", "halfCs.B", "height"}));
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) {
+            EXPECT_EQ(aovAt(f, "halfCs.R", x, y), 0.5f);
+            EXPECT_EQ(aovAt(f, "halfCs.G", x, y), 0.25f);
+            EXPECT_EQ(aovAt(f, "halfCs.B", x, y), 0.125f);
+            // The mean of the 4 jittered samples' heights, within a stratum of the centre's.
+            EXPECT_NEAR(aovAt(f, "height", x, y), 1.0 - (y + 0.5) / 8.0, 0.25 / 8.0);
+        }
+}
+
 TEST(AovRender, BadModesAndUnknownVariablesNameTheLine) {
     const std::string head = "Format 8 8 1\n";
     std::string e = test::ribError(head + "Display \"a.exr\" \"openexr\" \"rgba,Nx\"\n");
@@ -303,9 +344,15 @@ TEST(AovRender, BadModesAndUnknownVariablesNameTheLine) {
     e = test::ribError(head + "\nDisplayChannel \"color N\"\n");
     EXPECT_NE(e.find("bad.rib:3"), std::string::npos) << e;
     EXPECT_NE(e.find("normal"), std::string::npos) << e;
-    e = test::ribError(head + "DisplayChannel \"float myOutput\"\n");
+    // A shader output needs a type a shader output can have; a mode naming an undeclared one fails.
+    e = test::ribError(head + "DisplayChannel \"string label\"\n");
     EXPECT_NE(e.find("bad.rib:2"), std::string::npos) << e;
-    EXPECT_NE(e.find("myOutput"), std::string::npos) << e;
+    EXPECT_NE(e.find("label"), std::string::npos) << e;
+    e = test::ribError(head + "DisplayChannel \"float myOutput\"\nDisplay \"+m.exr\" \"openexr\" \"myOutput,other\"\n");
+    EXPECT_NE(e.find("bad.rib:3"), std::string::npos) << e;
+    EXPECT_NE(e.find("\"other\""), std::string::npos) << e;
+    e = test::ribError(head + "DisplayChannel \"float myOutput\"\nDisplayChannel \"color myOutput\"\n");
+    EXPECT_NE(e.find("bad.rib:3"), std::string::npos) << e;
     // Declared with parameters the renderer does not use: read, warned about once.
     const test::RenderResult r = test::renderRib(head + "DisplayChannel \"normal N\" \"string filter\" \"box\"\n"
                                                          "DisplayChannel \"float s\" \"string filter\" \"box\"\n"
