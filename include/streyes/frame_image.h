@@ -2,11 +2,12 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace streyes {
 
-// One resolved frame: RGBA and Z per pixel, row-major from the top-left.
+// One resolved frame: RGBA and Z per pixel (and any output variables), row-major from the top-left.
 struct FrameImage {
     int frame = 0;
     int width = 0, height = 0;
@@ -17,7 +18,12 @@ struct FrameImage {
         height = h;
         rgba.assign(size_t(w) * size_t(h) * 4, 0.0f);
         z.assign(size_t(w) * size_t(h), 0.0f);
+        aov.assign(size_t(w) * size_t(h) * aovNames.size(), 0.0f);
     }
+    // Output variables beside colour (util/aov.h): their EXR channel names, and aovNames.size()
+    // floats per pixel. Empty unless a display asks for them.
+    std::vector<std::string> aovNames;
+    std::vector<float> aov;
 };
 
 }  // namespace streyes

@@ -11,7 +11,8 @@
 
 namespace streyes {
 
-// "rgb", "rgba" or "rgbaz". EXR files store R G B A as half and Z as 32-bit float.
+// "rgb", "rgba" or "rgbaz", or a comma-separated list of outputs ("rgba,N,P", "z", "motion": see
+// docs/SCENE-FORMAT.md). EXR files store R G B A as half, Z and output variables as 32-bit float.
 bool validChannelMode(const std::string& mode);
 
 // Replaces the run of '#' in `pattern` with the zero-padded frame number ("a.####.exr", 7 ->

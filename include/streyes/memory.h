@@ -29,6 +29,7 @@ struct MemoryShape {
     uint64_t traceBytesPerFrame = 0;            // raytrace-frames: one hierarchy per frame of the block
     uint64_t traceBytesPerWorker = 0;           // a tracing thread's scratch (its mailbox)
     uint64_t sharedBytes = 0;                   // what bodies share beyond themselves: point clouds
+    int aovFloats = 0;                          // output variables: floats per sample and per pixel
 };
 
 // Bytes, by what holds them.

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "streyes/vecmath.h"
 
@@ -89,6 +90,9 @@ struct RenderOptions {
     // --dof-preview N: DepthOfField as N pinhole depth layers, each blurred by its circle of
     // confusion (src/render/dof_preview.h); 0: lens samples.
     int dofPreviewLayers = 0;
+    // Output variables the frames carry beyond RGBA and Z ("N", "P", ...: util/aov.h); the
+    // renderer adds those its scene's displays name.
+    std::vector<std::string> aovs;
 };
 
 }  // namespace streyes

@@ -162,6 +162,13 @@ struct RenderSettings {
     // Option "limits": "bucketsize" [w h] (buckets are square: the larger) and "gridsize"; 0: the
     // command line's or streyes's default.
     int bucketSize = 0, gridSize = 0;
+    // DisplayChannel declarations of surface shaders' output parameters (the built-in variables,
+    // N, P, ..., need none): a Display mode may name them.
+    struct ShaderOutput {
+        std::string type, name;
+        SourceLoc loc;
+    };
+    std::vector<ShaderOutput> shaderOutputs;
 };
 
 // ---- Lights and geometry --------------------------------------------------------------------------

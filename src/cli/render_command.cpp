@@ -21,6 +21,7 @@
 #include "streyes/renderer.h"
 #include "streyes/rib.h"
 #include "streyes/sequence.h"
+#include "util/aov.h"
 
 namespace streyes::cli {
 
@@ -103,18 +104,28 @@ class ProgressBar {
 
 std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPattern, const std::string& scenePath,
                                   int frames, Log& log) {
-    std::vector<Output> outs;
+    std::vector<Output> outs, variables;
     std::string mode = "rgbaz";
+    bool primary = true;
     for (const DisplayDesc& d : scene.settings.displays) {
         bool file = d.type == "openexr" || d.type == "file" || d.type == "tiff" || d.type == "exr";
         if (!file) {
             log.warn(d.loc, "Display type '" + d.type + "' is not supported: '" + d.name + "' skipped");
             continue;
         }
-        if (!d.mode.empty()) mode = d.mode;
+        // -o names the primary display's file; the other displays of output variables keep their
+        // names ("+normals.####.exr"), and the colour-only ones give way to -o as always.
+        const bool hasVariables = !modeVariables(d.mode).empty();
+        if (hasVariables && primary) mode = d.mode;
+        else if (hasVariables) variables.push_back({d.name, d.mode});
+        else if (!d.mode.empty() && modeVariables(mode).empty()) mode = d.mode;
+        primary = false;
         if (oPattern.empty()) outs.push_back({d.name, d.mode.empty() ? "rgbaz" : d.mode});
     }
-    if (!oPattern.empty()) outs.push_back({oPattern, mode});
+    if (!oPattern.empty()) {
+        outs.push_back({oPattern, mode});
+        outs.insert(outs.end(), variables.begin(), variables.end());
+    }
     if (outs.empty()) {
         std::string stem = std::filesystem::path(scenePath).stem().string();
         outs.push_back({stem + ".####.exr", "rgbaz"});
@@ -396,6 +407,15 @@ int renderCommand(const std::vector<std::string>& args) {
                 return true;
             };
         }
+        // The output variables the outputs write (a sequence's frames' own displays among them).
+        for (int f = rs.firstFrame; f <= rs.lastFrame && (f == rs.firstFrame || seq.isSequence); ++f)
+            for (const Output& o : outputsOf(f))
+                for (const std::string& v : modeVariables(o.mode))
+                    if (std::find(blockOpts.aovs.begin(), blockOpts.aovs.end(), v) == blockOpts.aovs.end())
+                        blockOpts.aovs.push_back(v);
+        if (blockOpts.dofPreviewLayers > 0 && !blockOpts.aovs.empty())
+            throw UsageError("--dof-preview writes colour, alpha and Z only: drop the output variables (" +
+                             blockOpts.aovs.front() + ", ...) from the displays, or render with lens samples");
         auto sink = [&](const FrameImage& img) {
             std::vector<std::pair<std::string, std::string>> files;
             for (const Output& o : outputsOf(img.frame)) {

@@ -1,5 +1,6 @@
 #include "film/film.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -134,6 +135,31 @@ inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int 
     out[4] = z;
 }
 
+// The output variables of tile pixel (x, y) from `hitsOf` and `aovsOf` (pixel index -> its S hits,
+// its S x A floats): the weighted mean over the samples that hit (coverage-aware: see film.h).
+template <typename HitsOf, typename AovsOf>
+void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int x, int y, HitsOf hitsOf, AovsOf aovsOf, float* acc,
+                float* out) {
+    const PixelRect& R = block.rect();
+    const int S = block.samplesPerPixel(), gx = fw.reachX(), gy = fw.reachY(), A = block.aovCount();
+    std::fill(acc, acc + A, 0.0f);
+    float sum = 0;
+    for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
+        for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx); ++px) {
+            const size_t i = block.pixelIndex(px, py);
+            const SampleHit* h = hitsOf(i);
+            const float* av = aovsOf(i);
+            const float* w = fw.weights(block.patternOf(i), x - px, y - py);
+            for (int j = 0; j < S; ++j) {
+                if (h[j].a == 0 || w[j] == 0) continue;
+                sum += w[j];
+                for (int a = 0; a < A; ++a) acc[a] += w[j] * av[size_t(j) * size_t(A) + size_t(a)];
+            }
+        }
+    const float inv = std::fabs(sum) > 1e-8f ? 1.0f / sum : 0.0f;
+    for (int a = 0; a < A; ++a) out[a] = acc[a] * inv;
+}
+
 }  // namespace
 
 void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWeights& fw, FrameImage* frames,
@@ -168,6 +194,21 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
             }
     }
 
+    // Output variables likewise: the still layer's once, a frame's own where it has records near.
+    const int A = block.aovCount();
+    const size_t Az = size_t(A);
+    if (A > 0) {
+        scratch.aov.resize(Az);
+        if (!dense) {
+            scratch.stillAov.resize(tilePixels * Az);
+            for (int y = tile.y0; y <= tile.y1; ++y)
+                for (int x = tile.x0; x <= tile.x1; ++x)
+                    gatherAovs(block, fw, x, y, [&](size_t i) { return block.still(i); },
+                               [&](size_t i) { return block.stillAov(i); }, scratch.aov.data(),
+                               &scratch.stillAov[(size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0)) * Az]);
+        }
+    }
+
     // Per frame: the tile pixels whose filter reaches a pixel with a record of that frame are
     // gathered again; the others show the still layer.
     scratch.gathered.resize(tilePixels);
@@ -193,6 +234,13 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
                 float* px = &out.rgba[(size_t(y) * size_t(out.width) + size_t(x)) * 4];
                 for (int c = 0; c < 4; ++c) px[c] = v[c];
                 out.z[size_t(y) * size_t(out.width) + size_t(x)] = v[4];
+                if (A == 0 || out.aovNames.size() != Az) continue;  // none asked for
+                float* o = &out.aov[(size_t(y) * size_t(out.width) + size_t(x)) * Az];
+                if (scratch.gathered[t])
+                    gatherAovs(block, fw, x, y, [&](size_t i) { return block.hits(fi, i); },
+                               [&](size_t i) { return block.aovs(fi, i); }, scratch.aov.data(), o);
+                else
+                    std::copy(&scratch.stillAov[t * Az], &scratch.stillAov[t * Az] + Az, o);
             }
     }
 }

@@ -5,6 +5,10 @@
 // (the "separable-" names are the same), disk as 1 inside the ellipse the widths span. Colour and alpha are the filter-weighted mean of
 // the samples around the pixel centre; Z is the nearest camera-space depth among the pixel's
 // own samples (+inf where none hit: Z is not filtered), or as DepthFilter says.
+//
+// Output variables (util/aov.h) are the filter-weighted mean of the samples that hit, divided by
+// the weight of those samples only: a normal at a silhouette is the surface's, not averaged with
+// the background's nothing (pixels where no sample hits hold 0).
 #pragma once
 
 #include <cmath>
@@ -84,6 +88,8 @@ struct ResolveScratch {
     std::vector<float> weightSum;  // per tile pixel: the weights of every sample it sees
     std::vector<float> still;      // per tile pixel: R G B A Z resolved from the still layer
     std::vector<uint8_t> gathered; // per tile pixel, in the frame being resolved: gathered again
+    std::vector<float> aov;        // one pixel's output variables being gathered
+    std::vector<float> stillAov;   // per tile pixel: output variables resolved from the still layer
 };
 
 // Resolves the samples of every frame of the block into the pixels of `tile` (inside the

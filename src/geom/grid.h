@@ -37,6 +37,11 @@ struct Grid {
     int shadowSlots = 0;
     std::vector<Color> Cl[2];
 
+    // Output variables (util/aov.h) per vertex at t0, t1: aovCount floats each, laid out as the
+    // render's AovLayout; empty when no display asks for one. Set aovCount before dicing.
+    int aovCount = 0;
+    std::vector<float> aov[2];
+
     int vertexCount() const { return (nu + 1) * (nv + 1); }
     int index(int i, int j) const { return j * (nu + 1) + i; }  // i along u, j along v
     void resize(int nu_, int nv_, bool moving_) {
@@ -49,6 +54,7 @@ struct Grid {
             N[k].resize(n);
             Ci[k].resize(n);
             if (shadowSlots) Cl[k].resize(n * size_t(shadowSlots));
+            if (aovCount) aov[k].resize(n * size_t(aovCount));
         }
         Cs.resize(n);
     }

@@ -75,6 +75,46 @@ std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z
     return bytes;
 }
 
+std::vector<unsigned char> encodeExrChannels(int W, int H, const std::vector<std::string>& channels,
+                                             const std::vector<float>& pixels) {
+    Imf::Header header(W, H);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    header.insert("software", Imf::StringAttribute("streyes"));
+    const size_t n = size_t(W) * size_t(H), nc = channels.size();
+    // Each channel planar in its file type: halves rounded as encodeExr rounds them.
+    std::vector<half> halves;
+    std::vector<float> floats;
+    std::vector<std::pair<bool, size_t>> where;  // (half, first element) per channel
+    for (size_t c = 0; c < nc; ++c) {
+        const bool h = channelRank(channels[c]) < 4;
+        header.channels().insert(channels[c], Imf::Channel(h ? Imf::HALF : Imf::FLOAT));
+        where.emplace_back(h, h ? halves.size() : floats.size());
+        if (h) halves.resize(halves.size() + n);
+        else floats.resize(floats.size() + n);
+    }
+    for (size_t c = 0; c < nc; ++c)
+        for (size_t i = 0; i < n; ++i) {
+            const float v = pixels[i * nc + c];
+            if (where[c].first) halves[where[c].second + i] = half(v);
+            else floats[where[c].second + i] = v;
+        }
+    Imf::FrameBuffer fb;
+    for (size_t c = 0; c < nc; ++c) {
+        const bool h = where[c].first;
+        char* base = h ? (char*)(halves.data() + where[c].second) : (char*)(floats.data() + where[c].second);
+        const size_t xs = h ? sizeof(half) : sizeof(float);
+        fb.insert(channels[c], Imf::Slice(h ? Imf::HALF : Imf::FLOAT, base, xs, size_t(W) * xs));
+    }
+    std::vector<unsigned char> bytes;
+    MemoryStream stream(bytes);
+    {
+        Imf::OutputFile file(stream, header, 1);
+        file.setFrameBuffer(fb);
+        file.writePixels(H);
+    }
+    return bytes;
+}
+
 bool readExr(const std::string& path, ImageData* out, std::string* error) {
     try {
         Imf::InputFile file(path.c_str(), 1);

@@ -17,6 +17,11 @@ namespace streyes {
 // (the format frames have always had). Nothing in them depends on the time or the machine.
 std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z);
 
+// Any channels, interleaved floats per pixel (channels.size() each): R, G, B, A as half floats, the
+// others (Z, output variables) as float; ZIP compression, as encodeExr.
+std::vector<unsigned char> encodeExrChannels(int width, int height, const std::vector<std::string>& channels,
+                                             const std::vector<float>& pixels);
+
 // Reads every pixel of an EXR file as float, channels in the order R, G, B, A, then the others by
 // name (as OpenImageIO presents them). False, with *error saying why, when the file cannot be
 // opened or a pixel cannot be read (a truncated file has a good header).

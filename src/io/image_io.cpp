@@ -14,13 +14,45 @@
 
 #include "io/exr_file.h"
 #include "io/image_library.h"
+#include "util/aov.h"
 #include "streyes/error.h"
 
 namespace streyes {
 
 namespace fs = std::filesystem;
 
-bool validChannelMode(const std::string& mode) { return mode == "rgb" || mode == "rgba" || mode == "rgbaz"; }
+bool validChannelMode(const std::string& mode) { return !modeOutputs(mode, nullptr).empty(); }
+
+namespace {
+
+// The modes frames have always been written in (encodeExr); any other goes channel by channel.
+bool colourMode(const std::string& mode) { return mode == "rgb" || mode == "rgba" || mode == "rgbaz"; }
+
+// The channels of `mode` from the frame, interleaved. Throws RenderError when the frame does not
+// carry an output variable the mode names.
+std::vector<float> channelPixels(const std::string& path, const FrameImage& image, const std::vector<std::string>& channels) {
+    const size_t n = size_t(image.width) * size_t(image.height), nc = channels.size(), na = image.aovNames.size();
+    std::vector<float> data(n * nc);
+    for (size_t c = 0; c < nc; ++c) {
+        const std::string& name = channels[c];
+        const float* src = nullptr;
+        size_t stride = 1;
+        if (name == "R" || name == "G" || name == "B" || name == "A") {
+            src = image.rgba.data() + (name == "R" ? 0 : name == "G" ? 1 : name == "B" ? 2 : 3);
+            stride = 4;
+        } else if (name == "Z") {
+            src = image.z.data();
+        } else {
+            for (size_t a = 0; a < na; ++a)
+                if (image.aovNames[a] == name) src = image.aov.data() + a, stride = na;
+        }
+        if (!src) throw RenderError("cannot write '" + path + "': the frame has no channel " + name);
+        for (size_t i = 0; i < n; ++i) data[i * nc + c] = src[i * stride];
+    }
+    return data;
+}
+
+}  // namespace
 
 bool hasFrameField(const std::string& pattern) { return pattern.find('#') != std::string::npos; }
 
@@ -116,7 +148,8 @@ namespace {
 struct EncodedFrame {
     int width = 0, height = 0;
     std::string mode, ext;
-    std::vector<float> rgba, z;
+    std::vector<float> rgba, z, aov;
+    std::vector<std::string> aovNames;
     std::vector<unsigned char> bytes;
 };
 EncodedFrame& lastEncoded() {
@@ -134,6 +167,26 @@ bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
 std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage& image, const std::string& mode,
                                        const std::string& ext, bool exr, int nch, bool alpha, bool z);
 void writeBytesInPlace(const std::string& path, const std::vector<unsigned char>& bytes);
+
+// Is channel `channel` one of shader output `name`'s ("name", or "name.X" and the like)?
+bool channelOf(const std::string& channel, const std::string& name) {
+    return channel == name || (channel.size() > name.size() && channel.compare(0, name.size(), name) == 0 &&
+                               channel[name.size()] == '.');
+}
+
+// The channels `mode` writes from `image`: a shader output's are the frame's channels of its name.
+std::vector<std::string> channelsOf(const std::string& mode, const FrameImage& image) {
+    std::vector<std::string> channels;
+    for (const std::string& o : modeOutputs(mode, nullptr)) {
+        std::vector<std::string> add = modeChannels(o);
+        if (add.empty())
+            for (const std::string& c : image.aovNames)
+                if (channelOf(c, o)) add.push_back(c);
+        for (const std::string& c : add)
+            if (std::find(channels.begin(), channels.end(), c) == channels.end()) channels.push_back(c);
+    }
+    return channels;
+}
 
 }  // namespace
 
@@ -158,7 +211,8 @@ void writeFrame(const std::string& path, const FrameImage& image, const std::str
         std::lock_guard<std::mutex> lock(lastEncodedMutex());
         const EncodedFrame& last = lastEncoded();
         if (last.width == image.width && last.height == image.height && last.mode == mode && last.ext == ext &&
-            sameBits(last.rgba, image.rgba) && sameBits(last.z, image.z))
+            sameBits(last.rgba, image.rgba) && sameBits(last.z, image.z) && sameBits(last.aov, image.aov) &&
+            last.aovNames == image.aovNames)
             bytes = last.bytes;
     }
     if (bytes.empty()) bytes = encodeFrame(path, image, mode, ext, exr, nch, alpha, z);
@@ -171,7 +225,22 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
                                        const std::string& ext, bool exr, int nch, bool alpha, bool z) {
     // EXR frames through OpenEXR; anything else (a contact sheet's PNG) through the image library.
     std::vector<unsigned char> bytes;
-    if (exr) {
+    if (!colourMode(mode)) {
+        const std::vector<std::string> channels = channelsOf(mode, image);
+        for (const std::string& o : modeOutputs(mode, nullptr))
+            if (modeChannels(o).empty() && std::none_of(channels.begin(), channels.end(),
+                                                        [&](const std::string& c) { return channelOf(c, o); }))
+                throw RenderError("cannot write '" + path + "': the frame has no output variable " + o);
+        const std::vector<float> data = channelPixels(path, image, channels);
+        std::string why;
+        try {
+            if (exr) bytes = encodeExrChannels(image.width, image.height, channels, data);
+        } catch (const std::exception& e) {
+            throw RenderError("cannot write '" + path + "': " + e.what());
+        }
+        if (!exr && !imageLibrary().encode(path, image.width, image.height, channels, data.data(), &bytes, &why))
+            throw RenderError("cannot write '" + path + "': " + why + " ('" + ext + "')");
+    } else if (exr) {
         try {
             bytes = encodeExr(image, alpha, z);
         } catch (const std::exception& e) {
@@ -195,6 +264,7 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
     EncodedFrame& last = lastEncoded();
     last.width = image.width, last.height = image.height, last.mode = mode, last.ext = ext;
     last.rgba = image.rgba, last.z = image.z, last.bytes = bytes;
+    last.aov = image.aov, last.aovNames = image.aovNames;
     return bytes;
 }
 
@@ -294,14 +364,32 @@ int removeStaleTemporaries(const std::string& pattern) {
 bool isCompleteFrame(const std::string& path, int width, int height, const std::string& mode) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) return false;
-    std::vector<std::string> channels = {"R", "G", "B"};
-    if (mode != "rgb") channels.push_back("A");
-    if (mode == "rgbaz") channels.push_back("Z");
+    // As readExr orders them: R, G, B, A, then the others by name.
+    std::vector<std::string> channels = modeChannels(mode);
+    std::stable_sort(channels.begin(), channels.end(), [](const std::string& a, const std::string& b) {
+        auto rank = [](const std::string& n) { return n == "R" ? 0 : n == "G" ? 1 : n == "B" ? 2 : n == "A" ? 3 : 4; };
+        return rank(a) != rank(b) ? rank(a) < rank(b) : (rank(a) == 4 && a < b);
+    });
     // Reading every pixel is what proves the file complete: a truncated EXR has a good header.
     ImageData img;
     std::string why;
     if (!isExrFile(path) || !readExr(path, &img, &why)) return false;
-    return img.width == width && img.height == height && img.channels == channels;
+    if (img.width != width || img.height != height) return false;
+    // Shader outputs: whatever channels of their names the file has (their types are the scene's).
+    std::vector<std::string> shaderOutputs;
+    for (const std::string& o : modeOutputs(mode, nullptr))
+        if (modeChannels(o).empty()) shaderOutputs.push_back(o);
+    if (shaderOutputs.empty()) return img.channels == channels;
+    std::vector<std::string> rest;
+    for (const std::string& c : img.channels) {
+        bool ofOutput = false;
+        for (const std::string& o : shaderOutputs) ofOutput = ofOutput || channelOf(c, o);
+        if (!ofOutput) rest.push_back(c);
+    }
+    for (const std::string& o : shaderOutputs)
+        if (std::none_of(img.channels.begin(), img.channels.end(), [&](const std::string& c) { return channelOf(c, o); }))
+            return false;
+    return rest == channels;
 }
 
 int ImageData::channelIndex(const std::string& name) const {

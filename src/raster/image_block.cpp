@@ -47,9 +47,11 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
 
     // Records are kept in chunks from bucket to bucket (a bucket with as many samples per pixel
     // reuses them); the still layer and the slots are rewritten.
-    if (chunkSamples_ != size_t(S_) * kRecordsPerChunk) {
+    if (chunkSamples_ != size_t(S_) * kRecordsPerChunk || aovChunkWidth_ != aovs_) {
         chunks_.clear();
+        aovChunks_.clear();
         chunkSamples_ = size_t(S_) * kRecordsPerChunk;
+        aovChunkWidth_ = aovs_;
     }
     records_ = 0;
     slot_.assign(size_t(frameCount) * pixels, -1);
@@ -58,8 +60,7 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
         still_.clear();
         for (int fi = 0; fi < frameCount; ++fi)
             for (size_t i = 0; i < pixels; ++i) {
-                if (records_ / kRecordsPerChunk >= chunks_.size())
-                    chunks_.push_back(std::make_unique<SampleHit[]>(chunkSamples_));
+                if (records_ / kRecordsPerChunk >= chunks_.size()) addChunk();
                 slot_[size_t(fi) * pixels + i] = int32_t(records_);
                 SampleHit* h = recordAt(records_++);
                 std::fill(h, h + S_, kNoHit);
@@ -69,6 +70,8 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
         still_.assign(n, kNoHit);
         shadowed_.clear();
     }
+    // Read only where a sample has a hit, which writes them: no clearing needed beyond sizing.
+    stillAov_.resize(dense ? 0 : n * size_t(aovs_));
 }
 
 void ImageBlock::makeTimes(int fi) const {
@@ -79,11 +82,21 @@ void ImageBlock::makeTimes(int fi) const {
     timesMade_[size_t(fi)] = 1;
 }
 
+void ImageBlock::addChunk() {
+    chunks_.push_back(std::make_unique<SampleHit[]>(chunkSamples_));
+    if (aovs_ > 0) aovChunks_.push_back(std::make_unique<float[]>(chunkSamples_ * size_t(aovs_)));
+}
+
 SampleHit* ImageBlock::makeRecord(int fi, size_t i) {
-    if (records_ / kRecordsPerChunk >= chunks_.size()) chunks_.push_back(std::make_unique<SampleHit[]>(chunkSamples_));
+    if (records_ / kRecordsPerChunk >= chunks_.size()) addChunk();
     slot_[size_t(fi) * size_t(pixelCount()) + i] = int32_t(records_);
     ++recordsOf_[i];
-    SampleHit* r = recordAt(records_++);
+    SampleHit* r = recordAt(records_);
+    if (aovs_ > 0) {
+        const float* a = stillAov(i);
+        std::copy(a, a + size_t(S_) * size_t(aovs_), recordAovAt(records_));
+    }
+    ++records_;
     std::copy(still(i), still(i) + S_, r);
     return r;
 }
@@ -95,7 +108,8 @@ Color* ImageBlock::shadowed(int fi, size_t i) {
 size_t ImageBlock::bytes() const {
     return (xs_.capacity() + ys_.capacity() + lus_.capacity() + lvs_.capacity()) * sizeof(float) +
            permutation_.capacity() + still_.capacity() * sizeof(SampleHit) + slot_.capacity() * sizeof(int32_t) +
-           chunks_.size() * chunkSamples_ * sizeof(SampleHit) + shadowed_.capacity() * sizeof(Color);
+           chunks_.size() * chunkSamples_ * sizeof(SampleHit) + shadowed_.capacity() * sizeof(Color) +
+           (stillAov_.capacity() + aovChunks_.size() * chunkSamples_ * size_t(aovs_)) * sizeof(float);
 }
 
 }  // namespace streyes

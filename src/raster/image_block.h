@@ -130,9 +130,30 @@ class ImageBlock {
     int shadowSlots() const { return shadowSlots_; }
     Color* shadowed(int fi, size_t i);
 
+    // Output variables (util/aov.h): aovCount() floats per sample beside each hit, in arrays
+    // parallel to the still layer and the records (a record's copy of the still layer copies them
+    // too). Set before reset(); 0 (the default) keeps none.
+    void setAovCount(int n) { aovs_ = n; }
+    int aovCount() const { return aovs_; }
+    float* stillAov(size_t i) { return &stillAov_[i * size_t(S_) * size_t(aovs_)]; }
+    const float* stillAov(size_t i) const { return &stillAov_[i * size_t(S_) * size_t(aovs_)]; }
+    float* recordAov(int fi, size_t i) {
+        const int32_t r = slot_[size_t(fi) * size_t(pixelCount()) + i];
+        return r < 0 ? nullptr : recordAovAt(uint32_t(r));
+    }
+    // What frame fi sees at pixel i: its record's, or the still layer's (S x aovCount() floats).
+    const float* aovs(int fi, size_t i) const {
+        const int32_t r = slot_[size_t(fi) * size_t(pixelCount()) + i];
+        return r < 0 ? &stillAov_[i * size_t(S_) * size_t(aovs_)] : const_cast<ImageBlock*>(this)->recordAovAt(uint32_t(r));
+    }
+
     size_t bytes() const;
 
   private:
+    float* recordAovAt(uint32_t r) {
+        return &aovChunks_[r / kRecordsPerChunk][size_t(r % kRecordsPerChunk) * size_t(S_) * size_t(aovs_)];
+    }
+    void addChunk();
     SampleHit* recordAt(uint32_t r) {
         return &chunks_[r / kRecordsPerChunk][size_t(r % kRecordsPerChunk) * size_t(S_)];
     }
@@ -157,6 +178,10 @@ class ImageBlock {
     uint32_t records_ = 0;
     int shadowSlots_ = 0;
     std::vector<Color> shadowed_;       // dense: frames x pixels x S x shadowSlots
+    int aovs_ = 0;
+    std::vector<float> stillAov_;       // pixels x S x aovs_
+    std::vector<std::unique_ptr<float[]>> aovChunks_;  // beside chunks_, one to one
+    int aovChunkWidth_ = 0;             // aovs_ when aovChunks_ were made
 };
 
 }  // namespace streyes

@@ -168,6 +168,15 @@ inline void writeShadowed(Color* out, int K, const Hit& h, PartAt partAt) {
     }
 }
 
+// With the hit, the A output variables (util/aov.h), interpolated as the colour is.
+template <typename AovAt>
+inline void writeAovs(float* out, int A, const Hit& h, AovAt aovAt) {
+    for (int a = 0; a < A; ++a) {
+        const float a0 = aovAt(h.v0, a), a1 = aovAt(h.v1, a), a2 = aovAt(h.v2, a);
+        out[a] = a0 + (a1 - a0) * h.l1 + (a2 - a0) * h.l2;
+    }
+}
+
 // Whether every sample of every pixel of the quad's bound already sees, in the still layer,
 // something nearer than the whole quad: then the quad cannot change one of them.
 inline bool behindStillLayer(const ImageBlock& block, const QuadSetup& q) {
@@ -250,6 +259,8 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const bool flat = grid.flatShading;  // ShadingInterpolation "constant": the first corner's colour
     const int K = grid.shadowSlots;
     const Color* cl = grid.Cl[0].data();
+    const int A = grid.aovCount;
+    const float* av = grid.aov[0].data();
     const uint64_t id = grid.primitiveId;
     // The kernel: SIMD, or scalar while counting hits for tests of watertightness (the counting
     // instance runs the scalar reference: the kernels are held to it bit for bit).
@@ -284,13 +295,17 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) return;
                     if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
                     cur = hit;
+                    float* stillAov = A ? block.stillAov(pi) + size_t(sj) * size_t(A) : nullptr;
+                    if (A) writeAovs(stillAov, A, h, [&](int c, int a) { return av[size_t(idx[c]) * size_t(A) + size_t(a)]; });
                     // Frames that already have a record of the pixel (something only they see came
                     // first) see this too, where it is nearer.
                     for (int fi = 0, left = block.recordsOf(pi); left > 0; ++fi) {
                         SampleHit* rec = block.record(fi, pi);
                         if (!rec) continue;
                         --left;
-                        if (rec[sj].beatenBy(hit.z, hit.id, hit.c)) rec[sj] = hit;
+                        if (!rec[sj].beatenBy(hit.z, hit.id, hit.c)) continue;
+                        rec[sj] = hit;
+                        if (A) std::copy(stillAov, stillAov + A, block.recordAov(fi, pi) + size_t(sj) * size_t(A));
                     }
                     return;
                 }
@@ -310,6 +325,9 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     firstHits += cur.a == 0;
                     if (!rec) rec = block.makeRecord(fr.fi, pi);
                     rec[sj] = hit;
+                    if (A)
+                        writeAovs(block.recordAov(fr.fi, pi) + size_t(sj) * size_t(A), A, h,
+                                  [&](int c, int a) { return av[size_t(idx[c]) * size_t(A) + size_t(a)]; });
                     if (Shadowed)
                         writeShadowed(block.shadowed(fr.fi, pi) + size_t(sj) * size_t(K), K, h,
                                       [&](int c, int k) { return cl[size_t(idx[flat ? 0 : c] * K + k)]; });
@@ -378,6 +396,8 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const bool flat = grid.flatShading;  // ShadingInterpolation "constant": the first corner's colour
     const int K = grid.shadowSlots;
     const Color *cl0 = grid.Cl[0].data(), *cl1 = grid.Cl[1].data();
+    const int A = grid.aovCount;
+    const float *av0 = grid.aov[0].data(), *av1 = grid.aov[1].data();
     const uint64_t id = grid.primitiveId;
     const float* xs = block.xs();
     const float* ys = block.ys();
@@ -524,6 +544,11 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             firstHits += cur.a == 0;
                             if (!rec) rec = block.makeRecord(fi, pi);
                             rec[sj] = hit;
+                            if (A)
+                                writeAovs(block.recordAov(fi, pi) + size_t(sj) * size_t(A), A, h, [&](int c, int a) {
+                                    const size_t v = size_t(idx[c]) * size_t(A) + size_t(a);
+                                    return lerp(av0[v], av1[v], sg);
+                                });
                             if (Shadowed)
                                 writeShadowed(block.shadowed(fi, pi) + size_t(sj) * size_t(K), K, h, [&](int c, int k) {
                                     const size_t v = size_t(idx[flat ? 0 : c] * K + k);

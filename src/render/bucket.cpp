@@ -9,6 +9,7 @@
 #include "procedural/procedural.h"
 #include "raster/coverage.h"
 #include "render/split_decision.h"
+#include "shade/aov_fill.h"
 #include "shade/shading.h"
 
 namespace streyes {
@@ -90,8 +91,11 @@ BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& option
       log_(log),
       occlusion_(usesOcclusion(options.algorithm)),
       shadingVaries_(!scene.lights.isStatic()),
-      shader_(nullptr, scene.camera, scene.lights) {
+      shader_(nullptr, scene.camera, scene.lights),
+      aovs_(options.aovs) {
     tracer_.setShader(&shader_);
+    grid_.aovCount = aovs_.count;
+    shader_.setAovs(&aovs_);
 }
 
 void BucketWorker::setTrace(const TraceScene* trace) {
@@ -108,6 +112,7 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     auto t = Clock::now();
     // Dense (every frame its own samples from the start) when rays leave every sample at its own
     // time: eye rays, and shadow rays.
+    block_.setAovCount(aovs_.count);
     block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, patterns_, traceEyeRays_ || shadowSlots_ > 0,
                  shadowSlots_, scene_.camera.depthOfField());
     counters.timeSampleGen += secondsSince(t);
@@ -641,6 +646,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
         grid_.openEnd = k + 2 < body.keyCount() || body.time().openEnd;  // pieces meet at keys (TimeSpan)
         grid_.moving = body.keyMoves(k) || shadingVaries(body);
         grid_.hole.clear();
+        if (aovs_.count) fillAovs(grid_, aovs_, scene_.camera);
         if (!mat || !mat->oneSided || cullBackFacing(grid_, scene_.camera))
             rasterizer_.rasterize(grid_, scene_.camera, scene_.shutter, block_, rasterCounters_);
         counters.timeSample += secondsSince(tc);
@@ -649,6 +655,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
             std::swap(grid_.N[0], grid_.N[1]);
             std::swap(grid_.Ci[0], grid_.Ci[1]);
             std::swap(grid_.Cl[0], grid_.Cl[1]);
+            std::swap(grid_.aov[0], grid_.aov[1]);  // the shader's outputs; fillAovs writes the rest again
         }
     }
 }
@@ -679,6 +686,7 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv) {
     counters.timeDice += std::chrono::duration<double>(t1 - t).count();
     shader_.shade(grid_);
     auto t2 = Clock::now();
+    if (aovs_.count) fillAovs(grid_, aovs_, scene_.camera);
     counters.timeShade += std::chrono::duration<double>(t2 - t1).count();
     rasterizer_.rasterize(grid_, scene_.camera, scene_.shutter, block_, rasterCounters_);
     counters.timeSample += secondsSince(t2);

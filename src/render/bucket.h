@@ -18,6 +18,7 @@
 #include "streyes/render_options.h"
 #include "streyes/stats.h"
 #include "trace/trace.h"
+#include "util/aov.h"
 
 namespace streyes {
 
@@ -130,6 +131,7 @@ class BucketWorker {
     bool traceEyeRays_ = false;
     int shadowSlots_ = 0;  // the rasterizer's shadowed light parts per sample
     SampleTracer tracer_;
+    AovLayout aovs_;  // output variables per sample (options_.aovs); count 0: none
 };
 
 }  // namespace streyes

@@ -64,13 +64,15 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     e.baseline = kBaselineBytes;
     e.scene = s.bodies * kBytesPerBody + s.sharedBytes;
     e.trace = s.traceBytes + s.traceBytesPerFrame * uint64_t(e.frameBlock);
-    e.frameImages = uint64_t(e.frameBlock) * pixels * kBytesPerPixel;
+    const uint64_t aov = uint64_t(std::max(0, s.aovFloats)) * sizeof(float);
+    e.frameImages = uint64_t(e.frameBlock) * pixels * (kBytesPerPixel + aov);
     const uint64_t S = uint64_t(std::max(1, s.samplesPerPixel));
-    const uint64_t recordSample = kBytesPerRecordSample + uint64_t(std::max(0, s.shadowSlots)) * sizeof(Color);
-    e.perWorker = bucketPixels(s) * (S * kBytesPerSample + framesPerBucket * (kBytesPerPixelFrame + S * recordSample)) +
+    const uint64_t recordSample = kBytesPerRecordSample + uint64_t(std::max(0, s.shadowSlots)) * sizeof(Color) + aov;
+    e.perWorker = bucketPixels(s) * (S * (kBytesPerSample + aov) + framesPerBucket * (kBytesPerPixelFrame + S * recordSample)) +
                   s.traceBytesPerWorker + tilePixels(s) * 6 * sizeof(float) +  // resolving: weights, still pixels
                   (s.occlusion ? bucketPixels(s) * framesPerBucket * kOcclusionBytesPerCell : 0);
-    e.writer = pixels * kWriterBytesPerPixel;
+    // Output variables the same way, as floats, and interleaved then planar while one is encoded.
+    e.writer = pixels * (kWriterBytesPerPixel + 8 * aov);
     return e;
 }
 

@@ -48,6 +48,16 @@ TEST(Memory, EstimateCountsImagesAndSamplesPerWorker) {
     EXPECT_EQ(estimateMemory(frames, 10, 1).perWorker, estimateMemory(frames, 1, 1).perWorker);
 }
 
+TEST(Memory, OutputVariablesAddTheirFloatsPerSampleAndPixel) {
+    // N and P: 6 floats beside every still-layer sample, every record sample and every frame pixel.
+    MemoryShape aov = kHd;
+    aov.aovFloats = 6;
+    const MemoryEstimate e = estimateMemory(kHd, 10, 3), a = estimateMemory(aov, 10, 3);
+    EXPECT_EQ(a.frameImages - e.frameImages, uint64_t(10) * 1920 * 1080 * 24);
+    EXPECT_EQ(a.perWorker - e.perWorker, uint64_t(34 * 34) * (16 * 24 + 10 * 16 * 24));
+    EXPECT_GT(a.writer, e.writer);
+}
+
 TEST(Memory, PlanShrinksTheBlockThenTheWorkers) {
     // Plenty: the block and the threads asked for.
     MemoryEstimate roomy = planMemory(kHd, 64, 8, uint64_t(64) << 30);

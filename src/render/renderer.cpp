@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "procedural/procedural.h"
 #include "shade/scene_shaders.h"
 #include "trace/trace.h"
+#include "util/aov.h"
 
 namespace streyes {
 
@@ -79,11 +81,58 @@ ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& o) {
     return r;
 }
 
+namespace {
+// Where a display asks for motion vectors (for the warning about a closed shutter).
+SourceLoc motionLoc(const Scene& scene) {
+    for (const DisplayDesc& d : scene.settings.displays)
+        for (const std::string& v : modeVariables(d.mode))
+            if (v == "motion") return d.loc;
+    return {};
+}
+}  // namespace
+
 Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     : source_(scene), options_(options), log_(log) {
     settings_ = resolveSettings(scene, options);
     options_.bucketSize = settings_.bucketSize;
     options_.maxGridSize = settings_.gridSize;
+    // The output variables the displays name, beside any the caller asked for: built-in ones by
+    // name, shader outputs as "type name" from their DisplayChannel declarations.
+    auto carry = [&](const std::string& v, const SourceLoc* loc) {
+        std::string entry = v;
+        if (!findAovVariable(v) && v.find(' ') == std::string::npos) {
+            entry.clear();
+            for (const RenderSettings::ShaderOutput& o : scene.settings.shaderOutputs)
+                if (o.name == v) entry = o.type + " " + o.name;
+            if (entry.empty()) {
+                const std::string what = "unknown output variable \"" + v + "\" (known: " + aovVariableList() +
+                                         ", and shader outputs declared with DisplayChannel)";
+                throw loc ? InputError(*loc, what) : InputError(what);
+            }
+        }
+        if (std::find(options_.aovs.begin(), options_.aovs.end(), entry) == options_.aovs.end()) options_.aovs.push_back(entry);
+    };
+    const std::vector<std::string> asked = options_.aovs;
+    options_.aovs.clear();
+    for (const std::string& v : asked) carry(v, nullptr);
+    for (const DisplayDesc& d : scene.settings.displays)
+        for (const std::string& v : modeVariables(d.mode)) {
+            // The ray tracer shades single hits: it does not carry output variables (yet).
+            if (raytraces(options_.algorithm))
+                throw InputError(d.loc, "display mode \"" + d.mode + "\": output variables are written by the rasterizing "
+                                        "algorithms only, not by --algorithm " + std::string(algorithmName(options_.algorithm)));
+            carry(v, &d.loc);
+        }
+    // Motion vectors come from a grid's motion over its time span: with a closed shutter every frame
+    // is an instant, and a body's pieces carry no motion.
+    if (std::find(options_.aovs.begin(), options_.aovs.end(), "motion") != options_.aovs.end() &&
+        !(scene.settings.shutterClose > scene.settings.shutterOpen))
+        log_.warnOnce("aov-motion-shutter", motionLoc(scene),
+                      "motion vectors need an open shutter (Shutter 0 0.5, say): with a closed one every frame is an "
+                      "instant and motion reads 0");
+    if (!options_.aovs.empty() && raytraces(options_.algorithm))
+        throw InputError("output variables are written by the rasterizing algorithms only, not by --algorithm " +
+                         std::string(algorithmName(options_.algorithm)));
     auto t = std::chrono::steady_clock::now();
     // In an arena of its own, like the render: building runs parallel work too (subdivision
     // meshes), and --threads holds for every stage.
@@ -203,6 +252,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     MemoryShape shape{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, scene_->factory->bodiesMade(),
                       usesOcclusion(options_.algorithm)};
     shape.sharedBytes = scene_->factory->sharedBytes();
+    shape.aovFloats = AovLayout(options_.aovs).count;
     if (trace) {
         shape.shadowSlots = raytraces(options_.algorithm) ? 0 : scene_->lights.shadowSlots();
         shape.traceBytes = trace->bytes() - (traceFrames ? trace->hierarchyBytes() : 0);
@@ -277,6 +327,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
             images.resize(size_t(count));
             for (int i = 0; i < count; ++i) {
                 images[size_t(i)].frame = first + i;
+                images[size_t(i)].aovNames = AovLayout(options_.aovs).channelNames();
                 images[size_t(i)].resize(W, H);
             }
             // Spacetime: one bucket per tile spans the block's frames. Frames: one per tile and frame.

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "scene/rib_requests.h"
+#include "util/aov.h"
 
 namespace streyes {
 
@@ -171,8 +172,10 @@ void display(RibParser& reader, RibArgs& args) {
     const RibValue* modeValue = args.peek();
     std::string mode = args.string("mode");
     args.skipRest();  // display parameters (compression, quantization, ...) are not used
-    if (mode != "rgb" && mode != "rgba" && mode != "rgbaz")
-        args.fail(*modeValue, "display mode \"" + mode + "\" is not supported: use rgb, rgba or rgbaz");
+    std::vector<std::string> declared;
+    for (const RenderSettings::ShaderOutput& o : settings.shaderOutputs) declared.push_back(o.name);
+    std::string why;
+    if (modeOutputs(mode, &why, &declared).empty()) args.fail(*modeValue, "display mode \"" + mode + "\": " + why);
     bool additional = !name.empty() && name[0] == '+';
     if (additional) name.erase(0, 1);
     if (name.empty()) args.fail(*nameValue, "the display name is empty");
@@ -243,6 +246,48 @@ void limitsOption(RibParser& reader, RibArgs& args) {
         settings.gridSize = int(p->nums[0]);
     }
     reader.warnUnusedParams(params, {"bucketsize", "gridsize"}, "Option \"limits\"");
+}
+
+// DisplayChannel "type name": declares an output variable a Display mode may name. Only the
+// variables streyes carries (util/aov.h) can be declared, with their own type; the declaration's
+// parameters (filter, quantize, ...) are not used.
+void displayChannel(RibParser& reader, RibArgs& args) {
+    const RibValue* declValue = args.peek();
+    const std::string decl = args.string("declaration");
+    if (args.remaining() > 0)
+        reader.log().warnOnce("displaychannel-params", args.loc(), "DisplayChannel parameters are ignored");
+    args.skipRest();
+    // "[varying|vertex|uniform] type name", or a bare name.
+    std::vector<std::string> words;
+    for (size_t a = 0; a < decl.size();) {
+        const size_t b = std::min(decl.find(' ', a), decl.size());
+        if (b > a) words.push_back(decl.substr(a, b - a));
+        a = b + 1;
+    }
+    if (words.empty()) args.fail(*declValue, "the DisplayChannel declaration is empty");
+    const std::string& name = words.back();
+    const AovVariable* v = findAovVariable(name);
+    if (!v && (name == "z" || name == "Z" || name == "a")) return;  // the samples' own depth and alpha
+    if (!v) {
+        // A surface shader's output parameter: its type says how many channels it has.
+        const std::string type = words.size() >= 2 ? words[words.size() - 2] : "";
+        if (aovTypeWidth(type) == 0 || modeOutputs(name, nullptr).empty())
+            args.fail(*declValue, "DisplayChannel \"" + decl + "\": \"" + name + "\" is not a variable streyes knows (" +
+                                      aovVariableList() +
+                                      ", z, a); a surface shader's output is declared with its type: "
+                                      "float, color, point, vector or normal");
+        RenderSettings& settings = reader.scene().settings;
+        for (const RenderSettings::ShaderOutput& o : settings.shaderOutputs)
+            if (o.name == name) {
+                if (o.type != type) args.fail(*declValue, "DisplayChannel \"" + decl + "\": " + name + " was declared a " + o.type);
+                return;
+            }
+        settings.shaderOutputs.push_back({type, name, args.loc()});
+        return;
+    }
+    const std::string type = words.size() >= 2 ? words[words.size() - 2] : v->type;
+    if (type != v->type)
+        args.fail(*declValue, "DisplayChannel \"" + decl + "\": " + name + " is a " + v->type + ", not a " + type);
 }
 
 // Option "searchpath" "procedural" ["dir:&"] "archive" [...] "shader" [...]: the names are
@@ -338,6 +383,7 @@ void addOptionRequests(RibRequestTable& table) {
     table.add("Display", {display, "Display \"name\" \"type\" \"mode\"", options});
     table.add("Exposure", {exposure, "Exposure gain gamma", options});
     table.add("Hider", {hider, "Hider \"hidden\" \"jitter\" [1] \"depthfilter\" \"min\"", options});
+    table.add("DisplayChannel", {displayChannel, "DisplayChannel \"type name\"", options});
     table.add("Option", {option, "Option \"streyes\" \"int frames\" [first last]", options});
 }
 

@@ -186,9 +186,13 @@ TEST(RibOptions, DefaultsAndVariants) {
 TEST(RibOptions, DisplayModeErrorListsValidModes) {
     std::string e = errorOf("WorldBegin\nWorldEnd\n");  // control: fine
     EXPECT_EQ(e, "");
-    e = errorOf("Format 10 10 1\n\nDisplay \"x.exr\" \"openexr\" \"z\"\nWorldBegin\nWorldEnd\n");
+    e = errorOf("Format 10 10 1\n\nDisplay \"x.exr\" \"openexr\" \"rgbz\"\nWorldBegin\nWorldEnd\n");
     EXPECT_NE(e.find("bad.rib:3:"), std::string::npos) << e;
-    EXPECT_NE(e.find("rgb, rgba or rgbaz"), std::string::npos) << e;
+    EXPECT_NE(e.find("rgb, rgba, rgbaz, a, z, N, P"), std::string::npos) << e;
+    // Output variables and lists of them are modes too (AovRender tests them rendered).
+    EXPECT_EQ(errorOf("Display \"x.exr\" \"openexr\" \"z\"\nDisplay \"+y.exr\" \"openexr\" \"rgba,N,P,motion\"\n"
+                      "WorldBegin\nWorldEnd\n"),
+              "");
 }
 
 // ---- Transforms -----------------------------------------------------------------------------------

@@ -136,7 +136,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
           "MakeCubeFaceEnvironment", "MakeShadow", "MakeBrickMap", "ErrorHandler", "ArchiveRecord",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
           "System", "Shader", "Bxdf", "Pattern", "Integrator", "DisplayFilter", "SampleFilter",
-          "DisplayChannel", "PixelSampleImager", "EditBegin", "EditEnd", "EditAttributeBegin",
+          "PixelSampleImager", "EditBegin", "EditEnd", "EditAttributeBegin",
           "EditAttributeEnd", "EditWorldBegin", "EditWorldEnd"})
         table.add(name, {unsupported});
     // Geometry outside the subset: skipped with a warning, also as the keys of a motion block.

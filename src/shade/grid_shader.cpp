@@ -89,6 +89,7 @@ void GridShader::displace(const Material& m, Grid& grid, int k, double time) {
 
 void GridShader::shadeSurface(Grid& grid, int k, double time) {
     const Material& m = *grid.material;
+    if (aovs_ && grid.aovCount == aovs_->count) clearShaderOutputs(grid, k);
     if (!m.surface) {
         shadeGridSlot(grid, k, time, lights_, !camera_.perspective(), lightScratch_);
         builtinPoints_ += uint64_t(grid.vertexCount());
@@ -184,6 +185,7 @@ void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
     }
     const int n = grid.vertexCount();
     vm_->run(*m.surface, sgrid_, unshadowed_);
+    if (aovs_ && grid.aovCount == aovs_->count) copyShaderOutputs(grid, k);
     const sl::ValueRef ci = vm_->result(sl::Global::Ci);
     std::vector<Color>& Ci = grid.Ci[k];
     for (int i = 0; i < n; ++i) Ci[size_t(i)] = ci.valid() ? ci.vec(i) : Color{0, 0, 0};
@@ -204,6 +206,34 @@ void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
                     cl[size_t(i) * size_t(grid.shadowSlots) + size_t(slot)] = c.vec(i) - base_[size_t(i)];
             }
         }
+    }
+}
+
+// A shader output no shader writes reads 0 (the grid's arrays are reused from grid to grid).
+void GridShader::clearShaderOutputs(Grid& grid, int k) const {
+    const size_t A = size_t(aovs_->count), n = size_t(grid.vertexCount());
+    float* out = grid.aov[k].data();
+    for (size_t vi = 0; vi < aovs_->vars.size(); ++vi) {
+        if (aovs_->vars[vi].var != AovVar::Shader) continue;
+        const size_t o = size_t(aovs_->offset[vi]), w = size_t(aovs_->vars[vi].width);
+        for (size_t i = 0; i < n; ++i) std::fill(out + i * A + o, out + i * A + o + w, 0.0f);
+    }
+}
+
+// The surface shader's output parameters the layout names, from its run without the lights that
+// cast shadows (those are run again one at a time: an output that depends on them misses their part).
+void GridShader::copyShaderOutputs(Grid& grid, int k) const {
+    const size_t A = size_t(aovs_->count);
+    const int n = grid.vertexCount();
+    float* out = grid.aov[k].data();
+    for (size_t vi = 0; vi < aovs_->vars.size(); ++vi) {
+        const AovEntry& e = aovs_->vars[vi];
+        if (e.var != AovVar::Shader) continue;
+        const sl::ValueRef v = vm_->output(e.name);
+        if (!v.valid()) continue;
+        const size_t o = size_t(aovs_->offset[vi]);
+        for (int i = 0; i < n; ++i)
+            for (int c = 0; c < e.width; ++c) out[size_t(i) * A + o + size_t(c)] = v.comp[c] ? v.at(c, i) : 0.0f;
     }
 }
 

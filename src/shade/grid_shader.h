@@ -26,6 +26,7 @@
 #include "shade/scene_shaders.h"
 #include "shade/vm/vm.h"
 #include "streyes/stats.h"
+#include "util/aov.h"
 
 namespace streyes {
 
@@ -36,6 +37,9 @@ class GridShader {
     ~GridShader();
 
     void setShaders(const SceneShaders* shaders) { shaders_ = shaders; }
+    // Output variables (util/aov.h): the surface shader's output parameters the layout names are
+    // copied into grids that carry it (Grid::aovCount == layout->count); others read 0.
+    void setAovs(const AovLayout* layout) { aovs_ = layout && layout->shaderOutputs ? layout : nullptr; }
 
     // Ci (and Cl) of slot k of `grid` from its P[k] and N[k] at `time`.
     void shadeSlot(Grid& grid, int k, double time);
@@ -74,6 +78,9 @@ class GridShader {
     std::vector<Vec3f> orthoI_;  // I under an orthographic camera
     Grid hit_;  // one point, for shadeHit
     uint64_t builtinPoints_ = 0;
+    const AovLayout* aovs_ = nullptr;  // set when it names shader outputs
+    void clearShaderOutputs(Grid& grid, int k) const;
+    void copyShaderOutputs(Grid& grid, int k) const;
 };
 
 }  // namespace streyes
