@@ -4,13 +4,24 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "streyes/vecmath.h"
 
 namespace streyes {
 
 class ImageBlock;  // a bucket's samples (src/raster/image_block.h), for sampleObserver
+class Log;
+namespace sl {
+class TextureSource;  // where texture() and environment() read maps (src/shade/vm/texture_source.h)
+}
+
+// Makes a render's texture source from the texture search path's folders: see
+// RenderOptions::textureSource.
+using TextureSourceFactory =
+    std::function<std::shared_ptr<sl::TextureSource>(const std::vector<std::string>& searchPath, Log& log)>;
 
 // The sample pattern: sx x sy strata per pixel per frame, and the seed of their jitter.
 struct SamplePattern {
@@ -80,6 +91,11 @@ struct RenderOptions {
     // For tests and tools: sees each bucket's samples (hits before the filter) and the tile it
     // resolves. Called from worker threads, one bucket at a time each.
     std::function<void(const ImageBlock& block, const PixelRect& tile)> sampleObserver;
+    // Textures: called once a render, the first time a shader looks a map up (a render without
+    // lookups never calls it), and the source it gives serves every thread. The io stage gives
+    // OpenImageIO's (src/io/textures.h): the core does not link it. Empty, or a null source:
+    // every lookup gives its "fill" value.
+    TextureSourceFactory textureSource;
 };
 
 }  // namespace streyes

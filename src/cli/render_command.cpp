@@ -14,6 +14,7 @@
 
 #include "commands.h"
 #include "io/frame_writer.h"
+#include "io/textures.h"
 #include "render_request.h"
 #include "streyes/image_io.h"
 #include "streyes/memory.h"
@@ -333,6 +334,7 @@ int renderCommand(const std::vector<std::string>& args) {
     RenderStats total;
     ResolvedSettings first;
     int frames = 0, blocks = 0;
+    std::vector<std::string> madeTextures;  // MakeTexture outputs, made once for all blocks
     double parseSeconds = 0;
     auto readFrom = std::chrono::steady_clock::now();
     // A scene renders whole; a frame sequence a block of frames at a time as it is read (memory
@@ -393,6 +395,8 @@ int renderCommand(const std::vector<std::string>& args) {
                 return true;
             };
         }
+        makeSceneTextures(scene, &madeTextures);
+        blockOpts.textureSource = openImageTextures;  // loads OpenImageIO only on a shader's first lookup
         Renderer renderer(scene, blockOpts, log);
         RenderStats stats = renderer.render(
             [&](const FrameImage& img) {

@@ -35,7 +35,10 @@ class GridShader {
     GridShader(const SceneShaders* shaders, const Camera& camera, const LightSet& lights);
     ~GridShader();
 
-    void setShaders(const SceneShaders* shaders) { shaders_ = shaders; }
+    void setShaders(const SceneShaders* shaders) {
+        shaders_ = shaders;
+        if (vm_) vm_->setTextureSource(shaders ? shaders->textures() : nullptr);
+    }
 
     // Ci (and Cl) of slot k of `grid` from its P[k] and N[k] at `time`.
     void shadeSlot(Grid& grid, int k, double time);
