@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "io/image_library.h"
+#include "shade/vm/texture_source.h"
 
 namespace streyes {
 
