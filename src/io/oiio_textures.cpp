@@ -33,9 +33,8 @@ class OiioTextures final : public sl::TextureSource {
   public:
     OiioTextures(const std::vector<std::string>& searchPath, TextureWarning warn)
         : ts_(OIIO::TextureSystem::create(false)), warn_(std::move(warn)) {
-        std::string path;
-        for (const std::string& f : searchPath) path += (path.empty() ? "" : ":") + f;
-        ts_->attribute("searchpath", path);
+        for (const std::string& f : searchPath) path_ += (path_.empty() ? "" : ":") + f;
+        ts_->attribute("searchpath", path_);
         // Images without MIP levels (a plain .exr or .png) get them made in memory, so that
         // large footprints are filtered rather than aliased.
         ts_->attribute("automip", 1);
@@ -146,12 +145,13 @@ class OiioTextures final : public sl::TextureSource {
         while (!why.empty() && why.back() == '\n') why.pop_back();
         warn_("texture:" + name, std::string(what) + "(\"" + name + "\")" +
                                      (o.shader ? " in shader \"" + *o.shader + "\"" : std::string()) + ": " + why +
-                                     ": using the fill value");
+                                     " (texture searchpath " + path_ + "): using the fill value");
         return false;
     }
 
     OIIO::TextureSystem* ts_;
     TextureWarning warn_;
+    std::string path_;  // for messages
 };
 
 }  // namespace
