@@ -1,10 +1,10 @@
 // texture() and environment() through OpenImageIO's TextureSystem, and MakeTexture through
 // maketx (ImageBufAlgo::make_texture).
 //
-// One TextureSystem per render (not OIIO's shared one: a render's cache and search path are its
-// own), used from every bucket thread: lookups take the calling thread's Perthread record and
-// the map's handle once per call, i.e. once per grid and call site, then go through OIIO's batch
-// interface 16 points a call.
+// One TextureSystem per render (not OIIO's shared one: a render's cache is its own), used from
+// every bucket thread: lookups take the calling thread's Perthread record and the map's handle
+// once per call, i.e. once per grid and call site, then go through OIIO's batch interface 16
+// points a call.
 //
 // Texture space is OIIO's and RenderMan's alike: s runs left to right, t top to bottom, (0, 0)
 // is the image's top-left corner and texel (x, y)'s centre is ((x + .5) / w, (y + .5) / h).
@@ -19,7 +19,10 @@
 #include <OpenImageIO/texture.h>
 
 #include <algorithm>
-#include <cstring>
+#include <filesystem>
+#include <mutex>
+#include <shared_mutex>
+#include <unordered_map>
 
 #include "shade/vm/texture_source.h"
 
@@ -34,7 +37,7 @@ class OiioTextures final : public sl::TextureSource {
     OiioTextures(const std::vector<std::string>& searchPath, TextureWarning warn)
         : ts_(OIIO::TextureSystem::create(false)), warn_(std::move(warn)) {
         for (const std::string& f : searchPath) path_ += (path_.empty() ? "" : ":") + f;
-        ts_->attribute("searchpath", path_);
+        folders_ = searchPath;
         // Images without MIP levels (a plain .exr or .png) get them made in memory, so that
         // large footprints are filtered rather than aliased.
         ts_->attribute("automip", 1);
@@ -130,12 +133,36 @@ class OiioTextures final : public sl::TextureSource {
                 if (mask & (OIIO::Tex::RunMask(1) << j)) out[c][base + j] = result[c * kBatch + j];
     }
 
+    // A name without a folder is looked for along the search path, then in the working folder
+    // (OIIO's own "searchpath" would try the working folder first). Handles are kept by name:
+    // the search happens once a map, and each later lookup costs one shared lock and a hash.
     OIIO::TextureSystem::TextureHandle* open(const std::string& name, OIIO::TextureSystem::Perthread* thread,
                                              const sl::TextureOptions& o, const char* what) {
-        OIIO::TextureSystem::TextureHandle* handle = ts_->get_texture_handle(OIIO::ustring(name), thread);
+        OIIO::TextureSystem::TextureHandle* handle = nullptr;
+        {
+            std::shared_lock<std::shared_mutex> lock(mutex_);
+            const auto it = handles_.find(name);
+            if (it != handles_.end()) handle = it->second;
+        }
+        if (!handle) {
+            handle = ts_->get_texture_handle(OIIO::ustring(resolve(name)), thread);
+            std::unique_lock<std::shared_mutex> lock(mutex_);
+            handles_.emplace(name, handle);
+        }
         if (handle && ts_->good(handle)) return handle;
         failed(name, o, what);
         return nullptr;
+    }
+
+    std::string resolve(const std::string& name) const {
+        namespace fs = std::filesystem;
+        if (name.empty() || fs::path(name).is_absolute()) return name;
+        std::error_code ec;
+        for (const std::string& folder : folders_) {
+            const fs::path p = fs::path(folder) / name;
+            if (fs::is_regular_file(p, ec)) return p.string();
+        }
+        return name;
     }
 
     // Reports the map once (the warning's key is its name) and gives false: the caller fills.
@@ -151,7 +178,10 @@ class OiioTextures final : public sl::TextureSource {
 
     OIIO::TextureSystem* ts_;
     TextureWarning warn_;
-    std::string path_;  // for messages
+    std::vector<std::string> folders_;
+    std::string path_;  // the folders, for messages
+    std::shared_mutex mutex_;
+    std::unordered_map<std::string, OIIO::TextureSystem::TextureHandle*> handles_;
 };
 
 }  // namespace

@@ -191,6 +191,42 @@ TEST(Textures, ARenderShowsTheMapWithTZeroAtTheTop) {
                     << "pixel " << x << "," << y << " channel " << c;
 }
 
+TEST(Textures, TheSearchPathIsTakenInOrder) {
+    const TempDir a("tex-path-a"), b("tex-path-b");
+    writeImage(a.path() + "/m.exr", 2, 2, 3, std::vector<float>(12, 0.25f));
+    writeImage(b.path() + "/m.exr", 2, 2, 3, std::vector<float>(12, 0.75f));
+    Log log;
+    EXPECT_NEAR(lookUp(*openImageTextures({a.path(), b.path()}, log), "m.exr", {0.5f}, {0.5f}, 0.1f, 0.1f)[0][0], 0.25f,
+                1e-6f);
+    EXPECT_NEAR(lookUp(*openImageTextures({b.path(), a.path()}, log), "m.exr", {0.5f}, {0.5f}, 0.1f, 0.1f)[0][0], 0.75f,
+                1e-6f);
+}
+
+// One TextureSystem serves every bucket thread: many small buckets on four threads give the
+// pixels one thread gives.
+TEST(Textures, ThreadsShareTheRendersTextures) {
+    const TempDir dir("tex-threads");
+    const int w = 64, h = 64;
+    std::vector<float> px;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) px.insert(px.end(), {float(x) / w, float(y) / h, float((x * 7 + y * 3) % 11) / 11});
+    writeImage(dir.path() + "/ramp.exr", w, h, 3, px);
+    writeFile(dir.path(), "tex.sl", "surface tex() { Ci = color texture(\"ramp.exr\", s, t); }\n");
+    const std::string rib = writeFile(dir.path(), "scene.rib",
+                                      orthoHeader(64, 64) + "Surface \"tex\"\n" + square(0, 64, 64, 0, 5) + "WorldEnd\n");
+    RenderOptions one;
+    one.textureSource = openImageTextures;
+    one.threads = 1;
+    one.bucketSize = 8;
+    RenderOptions four = one;
+    four.threads = 4;
+    const RenderResult r1 = renderFile(rib, one), r4 = renderFile(rib, four);
+    EXPECT_TRUE(r1.warnings.empty() && r4.warnings.empty());
+    EXPECT_TRUE(identicalPixels(r1, r4));
+    EXPECT_NEAR(r1.channel(0, 40, 20, 0), 40.5f / 64, 0.02f);  // the ramp is there
+    EXPECT_NEAR(r1.channel(0, 40, 20, 1), 20.5f / 64, 0.02f);
+}
+
 TEST(Textures, AMissingMapWarnsOnceNamingItAndTheShaderAndGivesTheFill) {
     const TempDir dir("tex-missing");
     writeFile(dir.path(), "tex.sl", "surface tex() { Ci = color texture(\"nothere.tx\", s, t, \"fill\", 0.25); }\n");
