@@ -87,6 +87,16 @@ TEST(Textures, TexelCentresGiveTheTexel) {
                     EXPECT_NEAR(out[size_t(c)][size_t(y * w + x)], texel(x, y, c), 1e-4f)
                         << name << " texel " << x << "," << y << " channel " << c;
     }
+    // "filter" "closest": anywhere inside a texel, the texel.
+    std::vector<float> s, t;
+    for (int x = 0; x < w; ++x) {
+        s.push_back((float(x) + 0.8f) / float(w));
+        t.push_back(0.3f / float(h));
+    }
+    sl::TextureOptions closest;
+    closest.filter = "closest";
+    const auto out = lookUp(*source, "img.tx", s, t, 0.1f / w, 0.1f / h, closest);
+    for (int x = 0; x < w; ++x) EXPECT_NEAR(out[0][size_t(x)], texel(x, 0, 0), 1e-6f) << "closest, texel " << x;
     EXPECT_TRUE(log.warnings().empty());
 }
 
