@@ -201,6 +201,29 @@ TEST(Textures, ARenderShowsTheMapWithTZeroAtTheTop) {
                     << "pixel " << x << "," << y << " channel " << c;
 }
 
+// The shipped paintedplastic multiplies its colour by the map (ambient light only: Ci = the map).
+TEST(Textures, ThePaintedPlasticShaderPaintsWithTheMap) {
+    const TempDir dir("tex-painted");
+    std::vector<float> px;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) px.insert(px.end(), {x < 4 ? 0.2f : 0.9f, 0.5f, y < 4 ? 0.1f : 0.7f});
+    writeImage(dir.path() + "/paint.exr", 8, 8, 3, px);
+    const std::string rib = writeFile(dir.path(), "scene.rib",
+                                      orthoHeader(8, 8) + "LightSource \"ambientlight\" 1 \"intensity\" 1\n" +
+                                          "Surface \"paintedplastic\" \"texturename\" \"paint.exr\" \"Ka\" 1 \"Kd\" 0 "
+                                          "\"Ks\" 0\n" + square(0, 8, 8, 0, 5) + "WorldEnd\n");
+    RenderOptions options;
+    options.textureSource = openImageTextures;
+    const RenderResult r = renderFile(rib, options);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    for (int y : {1, 6})
+        for (int x : {1, 6}) {
+            EXPECT_NEAR(r.channel(0, x, y, 0), x < 4 ? 0.2f : 0.9f, 1e-3f) << x << "," << y;
+            EXPECT_NEAR(r.channel(0, x, y, 1), 0.5f, 1e-3f) << x << "," << y;
+            EXPECT_NEAR(r.channel(0, x, y, 2), y < 4 ? 0.1f : 0.7f, 1e-3f) << x << "," << y;
+        }
+}
+
 TEST(Textures, TheSearchPathIsTakenInOrder) {
     const TempDir a("tex-path-a"), b("tex-path-b");
     writeImage(a.path() + "/m.exr", 2, 2, 3, std::vector<float>(12, 0.25f));
