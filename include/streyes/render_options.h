@@ -92,8 +92,8 @@ struct RenderOptions {
     // resolves. Called from worker threads, one bucket at a time each.
     std::function<void(const ImageBlock& block, const PixelRect& tile)> sampleObserver;
     // Textures: called once a render, the first time a shader looks a map up (a render without
-    // lookups never calls it), and the source it gives serves every thread. The io stage gives
-    // OpenImageIO's (src/io/textures.h): the core does not link it. Empty, or a null source:
+    // lookups never calls it), and the source it gives serves every thread. streyes::io gives
+    // OpenImageIO's (streyes/textures.h): the core does not link it. Empty, or a null source:
     // every lookup gives its "fill" value.
     TextureSourceFactory textureSource;
 };

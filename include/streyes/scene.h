@@ -125,7 +125,7 @@ struct DisplayDesc {
 };
 
 // MakeTexture "in" "out" swrap twrap filter swidth twidth, or MakeLatLongEnvironment "in" "out"
-// filter swidth twidth: a tiled, MIP-mapped map made from an image before the render (src/io/
+// filter swidth twidth: a tiled, MIP-mapped map made from an image before the render (streyes/
 // textures.h; the scene layer only records it). Relative names are the RIB file's folder's.
 struct MakeTextureDesc {
     bool latLongEnvironment = false;

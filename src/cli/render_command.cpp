@@ -14,7 +14,7 @@
 
 #include "commands.h"
 #include "io/frame_writer.h"
-#include "io/textures.h"
+#include "streyes/textures.h"
 #include "render_request.h"
 #include "streyes/image_io.h"
 #include "streyes/memory.h"

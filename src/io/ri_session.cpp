@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "ri.h"
-#include "io/textures.h"
+#include "streyes/textures.h"
 #include "scene/ri_stream.h"
 #include "streyes/image_io.h"
 #include "streyes/renderer.h"

@@ -1,4 +1,4 @@
-#include "io/textures.h"
+#include "streyes/textures.h"
 
 #include <algorithm>
 

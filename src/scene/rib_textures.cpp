@@ -1,5 +1,5 @@
 // MakeTexture and MakeLatLongEnvironment: recorded in RenderSettings::makeTextures, made before
-// the render by the io stage (src/io/textures.h): the scene stage reads no images. A missing
+// the render by the io stage (streyes/textures.h): the scene stage reads no images. A missing
 // input is an error here, at the request's line, before anything is made or rendered.
 #include <filesystem>
 

@@ -1,4 +1,4 @@
-// Textures through OpenImageIO (src/io/textures.h): texture() at texel centres gives the texel,
+// Textures through OpenImageIO (streyes/textures.h): texture() at texel centres gives the texel,
 // over a known footprint the texels' mean; environment() reads a lat-long map by direction;
 // MakeTexture makes tiled MIP-mapped maps; a missing map warns once and gives the fill value.
 #include <OpenImageIO/imageio.h>
@@ -8,7 +8,7 @@
 #include <filesystem>
 
 #include "cli_run.h"
-#include "io/textures.h"
+#include "streyes/textures.h"
 #include "shade/vm/texture_source.h"
 #include "test_util.h"
 

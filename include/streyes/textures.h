@@ -1,6 +1,9 @@
-// Textures for renders: the texture source a RenderOptions::textureSource names, and the maps
-// MakeTexture and MakeLatLongEnvironment ask for. Both go through the image library module
-// (image_library.h), which is loaded only when a shader first looks a map up or a scene makes one.
+// Textures for renders (streyes::io): the texture source RenderOptions::textureSource takes, and
+// the maps MakeTexture and MakeLatLongEnvironment ask for. Both go through the image library
+// module (src/io/image_library.h), loaded only when a shader first looks a map up or a scene
+// makes one:
+//   makeSceneTextures(scene);
+//   options.textureSource = streyes::openImageTextures;
 #pragma once
 
 #include <memory>
