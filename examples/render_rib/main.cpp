@@ -9,6 +9,7 @@
 #include <streyes/image_io.h>
 #include <streyes/renderer.h>
 #include <streyes/rib.h>
+#include <streyes/textures.h>
 
 int main(int argc, char** argv) {
     if (argc < 3) {
@@ -19,7 +20,9 @@ int main(int argc, char** argv) {
         streyes::Log log;
         log.setEcho(true);
         const streyes::Scene scene = streyes::parseRibFile(argv[1], log);
+        streyes::makeSceneTextures(scene);  // its MakeTexture requests, if any
         streyes::RenderOptions options;
+        options.textureSource = streyes::openImageTextures;  // texture() and environment() in shaders
         if (argc == 5 && std::string(argv[3]) == "--threads") options.threads = std::atoi(argv[4]);
         streyes::Renderer renderer(scene, options, log);
         const streyes::RenderStats stats = renderer.render([&](const streyes::FrameImage& frame) {

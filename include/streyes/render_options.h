@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,15 @@
 namespace streyes {
 
 class ImageBlock;  // a bucket's samples (src/raster/image_block.h), for sampleObserver
+class Log;
+namespace sl {
+class TextureSource;  // where texture() and environment() read maps (src/shade/vm/texture_source.h)
+}
+
+// Makes a render's texture source from the texture search path's folders: see
+// RenderOptions::textureSource.
+using TextureSourceFactory =
+    std::function<std::shared_ptr<sl::TextureSource>(const std::vector<std::string>& searchPath, Log& log)>;
 
 // The sample pattern: sx x sy strata per pixel per frame, and the seed of their jitter.
 struct SamplePattern {
@@ -93,6 +103,11 @@ struct RenderOptions {
     // Output variables the frames carry beyond RGBA and Z ("N", "P", ...: util/aov.h); the
     // renderer adds those its scene's displays name.
     std::vector<std::string> aovs;
+    // Textures: called once a render, the first time a shader looks a map up (a render without
+    // lookups never calls it), and the source it gives serves every thread. streyes::io gives
+    // OpenImageIO's (streyes/textures.h): the core does not link it. Empty, or a null source:
+    // every lookup gives its "fill" value.
+    TextureSourceFactory textureSource;
 };
 
 }  // namespace streyes

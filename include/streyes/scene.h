@@ -138,6 +138,18 @@ struct DisplayDesc {
     SourceLoc loc;
 };
 
+// MakeTexture "in" "out" swrap twrap filter swidth twidth, or MakeLatLongEnvironment "in" "out"
+// filter swidth twidth: a tiled, MIP-mapped map made from an image before the render (streyes/
+// textures.h; the scene layer only records it). Relative names are the RIB file's folder's.
+struct MakeTextureDesc {
+    bool latLongEnvironment = false;
+    std::string input, output;
+    std::string swrap = "black", twrap = "black";  // "black", "clamp" or "periodic"
+    std::string filter = "box";                    // resampling filter of the MIP levels
+    double swidth = 1, twidth = 1;
+    SourceLoc loc;
+};
+
 struct RenderSettings {
     double shutterOpen = 0, shutterClose = 0;  // frame f is exposed during [f+open, f+close]
     int pixelSamplesX = 2, pixelSamplesY = 2;
@@ -169,6 +181,11 @@ struct RenderSettings {
         SourceLoc loc;
     };
     std::vector<ShaderOutput> shaderOutputs;
+    // Option "searchpath" "texture": the folders texture() and environment() look in for maps
+    // named without one, '&' and '@' (the folder of the RIB file giving the option) resolved;
+    // empty: the folder of the scene's file.
+    std::vector<std::string> textureSearchPath;
+    std::vector<MakeTextureDesc> makeTextures;  // in the order the requests came
 };
 
 // ---- Lights and geometry --------------------------------------------------------------------------

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "io/frame_writer.h"
 #include "render/dof_preview.h"
+#include "streyes/textures.h"
 #include "render_request.h"
 #include "streyes/image_io.h"
 #include "streyes/memory.h"
@@ -347,6 +348,7 @@ int renderCommand(const std::vector<std::string>& args) {
     RenderStats total;
     ResolvedSettings first;
     int frames = 0, blocks = 0;
+    std::vector<std::string> madeTextures;  // MakeTexture outputs, made once for all blocks
     double parseSeconds = 0;
     auto readFrom = std::chrono::steady_clock::now();
     // A scene renders whole; a frame sequence a block of frames at a time as it is read (memory
@@ -416,6 +418,8 @@ int renderCommand(const std::vector<std::string>& args) {
         if (blockOpts.dofPreviewLayers > 0 && !blockOpts.aovs.empty())
             throw UsageError("--dof-preview writes colour, alpha and Z only: drop the output variables (" +
                              blockOpts.aovs.front() + ", ...) from the displays, or render with lens samples");
+        makeSceneTextures(scene, &madeTextures);
+        blockOpts.textureSource = openImageTextures;  // loads OpenImageIO only on a shader's first lookup
         auto sink = [&](const FrameImage& img) {
             std::vector<std::pair<std::string, std::string>> files;
             for (const Output& o : outputsOf(img.frame)) {

@@ -1,15 +1,25 @@
 // The image library module: what streyes needs of OpenImageIO (images other than EXR frames, a
-// filtered resize for contact sheets), in a shared module (libstreyes_oiio.so, built from
-// oiio_library.cpp) that is loaded the first time one of these is asked for. Rendering never
-// asks: a render's process loads OpenEXR, not the ~260 libraries OpenImageIO brings.
+// filtered resize for contact sheets, textures), in a shared module (libstreyes_oiio.so, built
+// from oiio_library.cpp and oiio_textures.cpp) that is loaded the first time one of these is
+// asked for. Rendering asks only when a shader looks a texture up or the scene makes one: other
+// renders load OpenEXR, not the ~260 libraries OpenImageIO brings.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "streyes/image_io.h"
+#include "streyes/scene.h"
 
 namespace streyes {
+
+namespace sl {
+class TextureSource;
+}
+
+// How the module reports a map it cannot read: `key` names the map (warn once per key).
+using TextureWarning = std::function<void(const std::string& key, const std::string& message)>;
 
 struct ImageLibrary {
     // Reads any image OpenImageIO reads, every channel as float. False, with *error, on failure.
@@ -20,6 +30,11 @@ struct ImageLibrary {
                    const float* pixels, std::vector<unsigned char>* bytes, std::string* error);
     // Scales interleaved float RGB pixels from w x h to nw x nh with a filtered resize.
     bool (*resize)(const float* rgb, int w, int h, float* out, int nw, int nh, std::string* error);
+    // A texture source on a TextureSystem of its own (one per render; safe from every thread),
+    // looking for maps named without a folder in `searchPath`. Delete it when the render is done.
+    sl::TextureSource* (*makeTextureSource)(const std::vector<std::string>& searchPath, TextureWarning warn);
+    // Makes a tiled, MIP-mapped texture or lat-long environment map (maketx). False, with *error.
+    bool (*makeTexture)(const MakeTextureDesc& desc, std::string* error);
 };
 
 // The module, loaded on first use (beside the executable, then from the installed library

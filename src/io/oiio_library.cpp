@@ -1,4 +1,5 @@
-// The image library module (image_library.h): OpenImageIO behind three functions. Built as its
+// The image library module (image_library.h): OpenImageIO behind a few functions (textures in
+// oiio_textures.cpp). Built as its
 // own shared module, libstreyes_oiio.so; nothing else in streyes links OpenImageIO.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
@@ -6,6 +7,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "io/image_library.h"
+#include "io/oiio_textures.h"
 
 namespace streyes {
 
@@ -67,7 +69,7 @@ bool resizeWithOiio(const float* rgb, int w, int h, float* out, int nw, int nh, 
     return true;
 }
 
-const ImageLibrary kLibrary{readWithOiio, encodeWithOiio, resizeWithOiio};
+const ImageLibrary kLibrary{readWithOiio, encodeWithOiio, resizeWithOiio, makeOiioTextureSource, makeOiioTexture};
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "ri.h"
+#include "streyes/textures.h"
 #include "scene/ri_stream.h"
 #include "streyes/image_io.h"
 #include "streyes/renderer.h"
@@ -36,7 +37,10 @@ void render(const std::string& rib) {
                 log.warn(d.loc, "Display type '" + d.type + "' is not supported: '" + d.name + "' skipped");
         }
         if (outputs.empty()) outputs.push_back({"ri.exr", "rgba"});
-        streyes::Renderer renderer(scene, streyes::RenderOptions{}, log);
+        streyes::makeSceneTextures(scene);
+        streyes::RenderOptions options;
+        options.textureSource = streyes::openImageTextures;
+        streyes::Renderer renderer(scene, options, log);
         renderer.render([&](const streyes::FrameImage& frame) {
             for (const auto& [pattern, mode] : outputs)
                 streyes::writeFrame(streyes::expandFramePattern(pattern, frame.frame), frame, mode);

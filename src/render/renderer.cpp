@@ -138,7 +138,7 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     // meshes), and --threads holds for every stage.
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        shaders_ = std::make_unique<SceneShaders>(scene, log);
+        shaders_ = std::make_unique<SceneShaders>(scene, log, options.textureSource);
         scene_ = buildRenderScene(scene, settings_.shotFirst, settings_.shotLast, settings_.width, settings_.height, log,
                                   shaders_.get());
     });

@@ -3,6 +3,7 @@
 // Valid only before WorldBegin.
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "scene/rib_requests.h"
@@ -292,13 +293,14 @@ void displayChannel(RibParser& reader, RibArgs& args) {
 
 // Option "searchpath" "procedural" ["dir:&"] "archive" [...] "shader" [...]: the names are
 // strings whatever declarations say (RenderMan declares them so). Procedural and archive paths
-// are expanded here; the shader path is kept as written for the render's shader cache ('@'
-// there is the shipped shaders). Other paths (texture) are not used.
+// and texture paths are expanded here ('@' of a texture path is the folder of the file giving
+// it); the shader path is kept as written for the render's shader cache ('@' there is the
+// shipped shaders). Other paths are not used.
 void searchPathOption(RibParser& reader, RibArgs& args) {
     RibState& s = reader.state();
     RenderSettings& settings = reader.scene().settings;
     while (!args.done()) {
-        const std::string name = args.string("search path name (\"procedural\", \"archive\" or \"shader\")");
+        const std::string name = args.string("search path name (\"procedural\", \"archive\", \"shader\" or \"texture\")");
         if (args.done()) args.fail("Option \"searchpath\" \"" + name + "\" needs a value: [\"dir1:dir2:&\"]");
         const std::string value = args.string("search path");
         if (name == "procedural" || name == "string procedural") {
@@ -312,6 +314,11 @@ void searchPathOption(RibParser& reader, RibArgs& args) {
                 v.replace(at, 1, before);
             settings.shaderSearchPath = v;
             settings.shaderSearchPathLoc = args.loc();
+        } else if (name == "texture" || name == "string texture") {
+            std::string before;
+            for (const std::string& f : settings.textureSearchPath) before += (before.empty() ? "" : ":") + f;
+            const std::string dir = args.loc().file ? std::filesystem::path(*args.loc().file).parent_path().string() : "";
+            settings.textureSearchPath = searchPathFolders(expandSearchPath(value, before.empty() ? "@" : before), dir);
         } else {
             reader.log().warnOnce("searchpath:" + name, args.loc(),
                                   "Option \"searchpath\" \"" + name + "\" is not used: ignored");

@@ -34,7 +34,7 @@ const RibRequestTable& ribRequests() {
         for (auto add : {addUnsupportedRequests, addParamRequests, addOptionRequests, addBlockRequests,
                          addTransformRequests, addAttributeRequests, addShadingRequests, addPatchRequests,
                          addPolygonRequests, addSubdivisionRequests, addQuadricRequests, addArchiveRequests, addObjectRequests,
-                         addCurveRequests, addNurbsRequests})
+                         addCurveRequests, addNurbsRequests, addTextureRequests})
             add(t);
         return t;
     }();
@@ -132,7 +132,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
           "PixelVariance", "Interior", "Exterior", "Deformation",
           "TextureCoordinates", "Matte", "Bound", "Detail", "DetailRange", "Perspective", "Skew",
           "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "AreaLightSource", "SolidBegin",
-          "SolidEnd", "ArchiveEnd", "MakeTexture", "MakeBump", "MakeLatLongEnvironment",
+          "SolidEnd", "ArchiveEnd", "MakeBump",
           "MakeCubeFaceEnvironment", "MakeShadow", "MakeBrickMap", "ErrorHandler", "ArchiveRecord",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
           "System", "Shader", "Bxdf", "Pattern", "Integrator", "DisplayFilter", "SampleFilter",

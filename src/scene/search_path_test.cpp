@@ -58,9 +58,20 @@ TEST(SearchPath, OptionNeedsAValueAndWarnsOnPathsItDoesNotUse) {
               std::string::npos);
     Log log;
     log.setQuiet(true);
-    parseRibString("Option \"searchpath\" \"texture\" [\"/x\"]\nWorldBegin\nWorldEnd\n", "s.rib", log);
+    parseRibString("Option \"searchpath\" \"display\" [\"/x\"]\nWorldBegin\nWorldEnd\n", "s.rib", log);
     ASSERT_EQ(log.warnings().size(), 1u);
-    EXPECT_NE(log.warnings()[0].find("\"texture\" is not used"), std::string::npos) << log.warnings()[0];
+    EXPECT_NE(log.warnings()[0].find("\"display\" is not used"), std::string::npos) << log.warnings()[0];
+}
+
+// The texture path is resolved where it is given: '@' the giving file's folder, '&' the path before.
+TEST(SearchPath, TexturePathResolvesAtAndAmpersandWhereGiven) {
+    Log log;
+    Scene scene = parseRibString("Option \"searchpath\" \"texture\" [\"/a:&\"]\n"
+                                 "Option \"searchpath\" \"texture\" [\"/b:&\"]\nWorldBegin\nWorldEnd\n",
+                                 "/scenes/s.rib", log);
+    EXPECT_EQ(scene.settings.textureSearchPath, (std::vector<std::string>{"/b", "/a", "/scenes"}));
+    EXPECT_TRUE(log.warnings().empty());
+    EXPECT_TRUE(parseRibString("WorldBegin\nWorldEnd\n", "s.rib", log).settings.textureSearchPath.empty());
 }
 
 TEST(SearchPath, ShaderPathKeepsWhatCameBeforeForAmpersand) {

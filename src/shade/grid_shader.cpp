@@ -127,7 +127,10 @@ void GridShader::runAtmosphere(const Material& m, Grid& grid, int k, double time
 
 // The shading grid's inputs for slot k: views of the grid's arrays, u and v over the piece.
 void GridShader::prepare(const Material& m, const Grid& grid, int k, double time) {
-    if (!vm_) vm_ = std::make_unique<sl::ShadingVM>();
+    if (!vm_) {
+        vm_ = std::make_unique<sl::ShadingVM>();
+        vm_->setTextureSource(shaders_ ? shaders_->textures() : nullptr);
+    }
     const int n = grid.vertexCount();
     sgrid_.setShape(grid.nu, grid.nv);
     u_.resize(size_t(n));

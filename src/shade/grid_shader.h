@@ -36,7 +36,10 @@ class GridShader {
     GridShader(const SceneShaders* shaders, const Camera& camera, const LightSet& lights);
     ~GridShader();
 
-    void setShaders(const SceneShaders* shaders) { shaders_ = shaders; }
+    void setShaders(const SceneShaders* shaders) {
+        shaders_ = shaders;
+        if (vm_) vm_->setTextureSource(shaders ? shaders->textures() : nullptr);
+    }
     // Output variables (util/aov.h): the surface shader's output parameters the layout names are
     // copied into grids that carry it (Grid::aovCount == layout->count); others read 0.
     void setAovs(const AovLayout* layout) { aovs_ = layout && layout->shaderOutputs ? layout : nullptr; }

@@ -73,8 +73,45 @@ void setShaderParams(sl::ShaderInstance& shader, const ParamList& params) {
     }
 }
 
-SceneShaders::SceneShaders(const Scene& scene, Log& log)
+sl::TextureSource* LazyTextureSource::source() {
+    std::call_once(once_, [this] {
+        if (!factory_) return;
+        try {
+            source_ = factory_(searchPath_, log_);
+        } catch (const std::exception& e) {
+            log_.warnOnce("textures", {}, std::string(e.what()) + ": texture lookups give their fill value");
+        }
+    });
+    return source_.get();
+}
+
+bool LazyTextureSource::texture(const std::string& name, const sl::TextureOptions& o, const sl::TextureQuery& q,
+                                float* const* out) {
+    sl::TextureSource* s = source();
+    return s && s->texture(name, o, q, out);
+}
+
+bool LazyTextureSource::environment(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
+                                    float* const* out) {
+    sl::TextureSource* s = source();
+    return s && s->environment(name, o, q, out);
+}
+
+bool LazyTextureSource::shadow(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
+                               float* const* out) {
+    sl::TextureSource* s = source();
+    return s && s->shadow(name, o, q, out);
+}
+
+SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures)
     : worldToCamera_(scene.camera.worldToCamera), builtinShading_(scene.settings.builtinShading), log_(log) {
+    // Maps named without a folder: along Option "searchpath" "texture", else beside the scene.
+    std::vector<std::string> texturePath = scene.settings.textureSearchPath;
+    if (texturePath.empty()) {
+        const std::string dir = std::filesystem::path(scene.sourceName).parent_path().string();
+        texturePath.push_back(dir.empty() ? "." : dir);
+    }
+    textures_ = std::make_unique<LazyTextureSource>(std::move(textures), std::move(texturePath), log);
     cache_ = std::make_unique<sl::ShaderCache>(std::vector<std::string>{standardShaderDir()});
     searchPathSet_ = !scene.settings.shaderSearchPath.empty();
     if (searchPathSet_) cache_->setSearchPath(scene.settings.shaderSearchPath);
@@ -133,6 +170,7 @@ void SceneShaders::runImager(FrameImage& frame) const {
     g.set(sl::Global::alpha, sl::ValueRef{{rgba + 3, nullptr, nullptr}, 4});
     g.set(sl::Global::P, sl::ValueRef::soa(px.data(), py.data(), frame.z.data()));
     sl::ShadingVM vm;
+    vm.setTextureSource(textures());
     vm.run(*imager_, g);
     const sl::ValueRef ci = vm.result(sl::Global::Ci), alpha = vm.result(sl::Global::alpha);
     std::vector<float> out(size_t(n) * 4);

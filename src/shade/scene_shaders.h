@@ -9,14 +9,17 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "bodies/material.h"
 #include "shade/sl/compiler.h"
 #include "shade/vm/shader_instance.h"
+#include "shade/vm/texture_source.h"
 #include "streyes/error.h"
 #include "streyes/frame_image.h"
+#include "streyes/render_options.h"
 #include "streyes/scene.h"
 
 namespace streyes {
@@ -25,12 +28,36 @@ namespace streyes {
 // an installation): what '@' stands for in the shader search path.
 std::string standardShaderDir();
 
+// The render's texture source, made by the factory on the first lookup from any thread (a
+// render without lookups never loads the image library), then shared. A factory that fails
+// (the library cannot be loaded) warns once, and lookups give their fill value.
+class LazyTextureSource final : public sl::TextureSource {
+  public:
+    LazyTextureSource(TextureSourceFactory factory, std::vector<std::string> searchPath, Log& log)
+        : factory_(std::move(factory)), searchPath_(std::move(searchPath)), log_(log) {}
+    bool texture(const std::string& name, const sl::TextureOptions& o, const sl::TextureQuery& q,
+                 float* const* out) override;
+    bool environment(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
+                     float* const* out) override;
+    bool shadow(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
+                float* const* out) override;
+
+  private:
+    sl::TextureSource* source();
+    TextureSourceFactory factory_;
+    std::vector<std::string> searchPath_;
+    Log& log_;
+    std::once_flag once_;
+    std::shared_ptr<sl::TextureSource> source_;
+};
+
 class SceneShaders final : public MaterialBinder {
   public:
     // Compiles the scene's light shaders. A shader that does not compile, or a parameter that
     // does not fit its declaration, is an InputError (file:line:column of the shader, or the
     // RIB line of the parameter); a light whose shader is not found warns once and is dark.
-    SceneShaders(const Scene& scene, Log& log);
+    // `textures` makes the texture source when a shader first looks a map up (none: fill values).
+    SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures = {});
 
     // Sets material.surface (and readsTime) unless the built-in shading serves it.
     void bind(Material& material, const Attributes& attributes) const override;
@@ -39,6 +66,9 @@ class SceneShaders final : public MaterialBinder {
     // are the pixel's, P its raster position (x + 0.5, y + 0.5, depth).
     void runImager(FrameImage& frame) const;
     bool hasImager() const { return imager_ != nullptr; }
+
+    // What texture() and environment() read, for every thread's interpreter (null: none).
+    sl::TextureSource* textures() const { return textures_.get(); }
 
     // Light `i` of the scene as a shader (null when its shader was not found).
     const sl::ShaderInstance* light(size_t i) const { return i < lights_.size() ? lights_[i].get() : nullptr; }
@@ -55,6 +85,7 @@ class SceneShaders final : public MaterialBinder {
     std::shared_ptr<sl::ShaderInstance> imager_;
     bool builtinShading_ = true;
     Log& log_;
+    std::unique_ptr<LazyTextureSource> textures_;
 };
 
 // Sets `params` on `shader`: RIB's types (inline or Declare'd) are checked against the shader's

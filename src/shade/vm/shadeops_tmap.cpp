@@ -102,6 +102,7 @@ void lookup(Exec& x, const Instr& in, Lookup kind) {
     const int k = r[2];
     TextureOptions opt = options(x, r, 3 + k, count);
     opt.channels = d.comps;
+    opt.shader = &x.prog.name;
     if (r[1] >= 0) opt.firstChannel = std::max(0, int(x.view(r[1]).at(0, firstActive(x))));
     float* out[3] = {d.comp(0), d.comps > 1 ? d.comp(1) : nullptr, d.comps > 2 ? d.comp(2) : nullptr};
     TextureSource* source = x.vm.textureSource();

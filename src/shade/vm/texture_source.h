@@ -22,6 +22,7 @@ struct TextureOptions {
     std::string filter;            // "" : the source's default
     int firstChannel = 0;          // texture("name"[c]) starts at channel c
     int channels = 1;              // 1 for float lookups, 3 for color lookups
+    const std::string* shader = nullptr;  // the calling shader's name, for the source's warnings
 };
 
 // texture(): the point's (s, t) and its footprint: the change of s and t across one

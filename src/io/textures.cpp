@@ -1,0 +1,35 @@
+#include "streyes/textures.h"
+
+#include <algorithm>
+
+#include "io/image_library.h"
+#include "shade/vm/texture_source.h"
+
+namespace streyes {
+
+std::shared_ptr<sl::TextureSource> openImageTextures(const std::vector<std::string>& searchPath, Log& log) {
+    const ImageLibrary& library = imageLibrary();
+    // Lookups warn from any thread: Log is thread-safe, and the key keeps it to once a map.
+    TextureWarning warn = [&log](const std::string& key, const std::string& message) { log.warnOnce(key, {}, message); };
+    return std::shared_ptr<sl::TextureSource>(library.makeTextureSource(searchPath, std::move(warn)));
+}
+
+void makeSceneTextures(const Scene& scene, std::vector<std::string>* done) {
+    for (const MakeTextureDesc& d : scene.settings.makeTextures) {
+        if (done && std::find(done->begin(), done->end(), d.output) != done->end()) continue;
+        std::string error;
+        const ImageLibrary* library = nullptr;
+        try {
+            library = &imageLibrary();
+        } catch (const RenderError& e) {
+            throw InputError(d.loc, std::string(d.latLongEnvironment ? "MakeLatLongEnvironment" : "MakeTexture") +
+                                        ": " + e.what());
+        }
+        if (!library->makeTexture(d, &error))
+            throw InputError(d.loc, std::string(d.latLongEnvironment ? "MakeLatLongEnvironment" : "MakeTexture") +
+                                        " '" + d.input + "' -> '" + d.output + "': " + error);
+        if (done) done->push_back(d.output);
+    }
+}
+
+}  // namespace streyes
