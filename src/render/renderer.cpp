@@ -129,7 +129,7 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
         !(scene.settings.shutterClose > scene.settings.shutterOpen))
         log_.warnOnce("aov-motion-shutter", motionLoc(scene),
                       "motion vectors need an open shutter (Shutter 0 0.5, say): with a closed one every frame is an "
-                      "instant and motion reads 0");
+                      "instant and motion reads 0 (but where a moving piece spans several frames of the shot)");
     if (!options_.aovs.empty() && raytraces(options_.algorithm))
         throw InputError("output variables are written by the rasterizing algorithms only, not by --algorithm " +
                          std::string(algorithmName(options_.algorithm)));
