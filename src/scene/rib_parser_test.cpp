@@ -353,8 +353,8 @@ TEST(RibGeometry, PwDividesByW) {
 TEST(RibGeometry, UnsupportedGeometryIsSkippedWithOneWarning) {
     Log log;
     Scene scene = parse(
-        "WorldBegin\nBlobby 1 [1001 0] [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1] [\"\"]\n"
-        "Blobby 1 [1001 0] [1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1] [\"\"]\n"
+        "WorldBegin\nVolume \"box\" [0 1 0 1 0 1] [2 2 2]\n"
+        "Volume \"box\" [0 1 0 1 0 1] [2 2 2]\n"
         "HierarchicalSubdivisionMesh \"catmull-clark\" [4] [0 1 2 3] [] [0 0] [] [] [] \"P\" [0 0 0 1 0 0 1 1 0 0 1 0]\n"
         "WorldEnd\n",
         log);
@@ -363,7 +363,7 @@ TEST(RibGeometry, UnsupportedGeometryIsSkippedWithOneWarning) {
     EXPECT_TRUE(scene.polygonMeshes.empty());
     std::vector<std::string> w = log.warnings();
     ASSERT_EQ(w.size(), 2u);
-    EXPECT_NE(w[0].find("test.rib:2: warning: unsupported request 'Blobby'"), std::string::npos) << w[0];
+    EXPECT_NE(w[0].find("test.rib:2: warning: unsupported request 'Volume'"), std::string::npos) << w[0];
     EXPECT_NE(w[1].find("test.rib:4: warning: unsupported request 'HierarchicalSubdivisionMesh'"), std::string::npos)
         << w[1];
 }

@@ -34,7 +34,7 @@ const RibRequestTable& ribRequests() {
         for (auto add : {addUnsupportedRequests, addParamRequests, addOptionRequests, addBlockRequests,
                          addTransformRequests, addAttributeRequests, addShadingRequests, addPatchRequests,
                          addPolygonRequests, addSubdivisionRequests, addQuadricRequests, addArchiveRequests, addObjectRequests,
-                         addCurveRequests, addNurbsRequests, addTextureRequests})
+                         addCurveRequests, addNurbsRequests, addTextureRequests, addBlobbyRequests})
             add(t);
         return t;
     }();
@@ -141,7 +141,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
         table.add(name, {unsupported});
     // Geometry outside the subset: skipped with a warning, also as the keys of a motion block.
     for (const char* name :
-         {"HierarchicalSubdivisionMesh", "Blobby", "Procedural2",
+         {"HierarchicalSubdivisionMesh", "Procedural2",
           "Geometry", "Volume"})
         table.add(name, {unsupportedGeometry, "", RibPhase::World, unsupportedGeometryKeys});
     // clang-format on

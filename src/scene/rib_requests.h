@@ -86,6 +86,7 @@ void addQuadricRequests(RibRequestTable& table);      // rib_quadrics.cpp: Spher
 void addArchiveRequests(RibRequestTable& table);      // rib_archives.cpp: ReadArchive, Procedural
 void addCurveRequests(RibRequestTable& table);        // rib_curves.cpp: Curves, Points
 void addNurbsRequests(RibRequestTable& table);        // rib_nurbs.cpp: NuPatch, TrimCurve
+void addBlobbyRequests(RibRequestTable& table);       // rib_blobby.cpp: Blobby
 void addTextureRequests(RibRequestTable& table);      // rib_textures.cpp: MakeTexture, MakeLatLongEnvironment
 
 }  // namespace streyes

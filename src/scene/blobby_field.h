@@ -1,0 +1,66 @@
+// Blobby (RI Spec 3.2, 5.6): the field its code describes, and that field's level surface cut into
+// triangles in object space.
+//
+// A leaf blob has the field (1 - r^2)^3 for r < 1 and 0 beyond, r the distance in the blob's own
+// space (ellipsoid: from the origin of the unit sphere its matrix places; segment blob: from the
+// segment, over its radius). The surface is where the last instruction's value is 1/2: a lone
+// blob's surface is the sphere r = sqrt(1 - 2^(-1/3)) = 0.4542 of its own space.
+//
+// The polygonizer samples the field on a grid of cubic cells over the leaves' bound, splits every
+// cell into six tetrahedra around its main diagonal (neighbouring cells split their shared faces
+// the same way) and puts a vertex on each edge that crosses the level, placed by bisection on the
+// field. Cells share their edge vertices, so the mesh has no cracks; triangles are wound so that
+// dPdu x dPdv points out of the blob (toward lower field).
+//
+// Kept in the scene stage because the scene keeps a Blobby as the polygons it makes
+// (PolygonMeshDesc), like any other polygon request.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "streyes/transform.h"
+
+namespace streyes {
+
+constexpr double kBlobbyLevel = 0.5;
+
+// The field of one leaf blob at squared distance r2 in its own space.
+double blobFalloff(double r2);
+
+struct BlobbyOp {
+    // The RI Spec opcodes: leaves 1000-1003, operators 0-7.
+    enum class Kind { Constant, Ellipsoid, Segment, Plane, Add, Multiply, Max, Min, Subtract, Divide, Negate, Identity };
+    Kind kind = Kind::Constant;
+    std::vector<int> operands;  // operators: earlier instructions, by number
+    double value = 0;           // Constant
+    Matrix4 toObject;           // Ellipsoid, Segment: blob space to object space, as given
+    Matrix4 toBlob;             // its inverse
+    Vec3d a, b;                 // Segment: its ends and radius, in blob space
+    double radius = 1;
+    bool leaf() const { return kind == Kind::Constant || kind == Kind::Ellipsoid || kind == Kind::Segment || kind == Kind::Plane; }
+};
+
+struct BlobbyField {
+    std::vector<BlobbyOp> ops;  // in code order; the last one's value is the field
+
+    // The field at an object-space point; scratch holds one value per instruction.
+    double value(Vec3d p, std::vector<double>& scratch) const;
+    // The field of leaf instruction i alone (0 for a constant or a repelling plane).
+    double leafValue(size_t i, Vec3d p) const;
+    // Where the ellipsoids and segment blobs are not 0, in object space; false when there are none.
+    bool bound(Vec3d* lo, Vec3d* hi) const;
+};
+
+struct BlobbyMesh {
+    std::vector<Vec3d> P;
+    std::vector<std::array<int, 3>> triangles;
+    bool openAtBound = false;  // the field is above the level on the grid's edge (constants): cut open there
+};
+
+// The surface on a grid of `cells` cells along the bound's longest side (the bound padded by one
+// cell on every side).
+BlobbyMesh polygonizeBlobby(const BlobbyField& field, int cells);
+
+}  // namespace streyes

@@ -1,0 +1,206 @@
+// Blobby nleaf [code] [floats] [strings] ...: implicit surfaces, kept as the triangles of their
+// level surface (scene/blobby_field.h), a polygon mesh like PointsPolygons.
+#include <cmath>
+#include <limits>
+
+#include "scene/blobby_field.h"
+#include "scene/rib_geometry.h"
+
+namespace streyes {
+
+namespace {
+
+constexpr int kDefaultCells = 64;  // cells along the longest side of the blobs' bound
+constexpr int kMaxCells = 256;     // at most 258^3 grid points: about 140 MB of field values
+
+struct BlobbyKey {
+    int nleaf = 0;
+    BlobbyField field;
+    std::vector<size_t> leaves;  // the leaf instructions, in order: "Cs" is given per leaf
+    ColorPrimvar Cs;
+};
+
+// One key: the code decoded into instructions, every index checked.
+BlobbyKey readBlobbyKey(RibParser& reader, RibArgs& args) {
+    BlobbyKey key;
+    const RibValue* nleafValue = args.peek();
+    key.nleaf = args.integer("nleaf");
+    if (key.nleaf < 1) args.fail(*nleafValue, "nleaf must be at least 1, got " + std::to_string(key.nleaf));
+    const RibValue* codeValue = args.peek();
+    const std::vector<int> code = intArray(args, "code", std::numeric_limits<int>::min());
+    const RibValue& floatsValue = takeArray(args, "floats", false);
+    const std::vector<double>& floats = floatsValue.nums;
+    takeArray(args, "strings", true);
+    auto bad = [&](const std::string& what) { args.fail(*codeValue, what); };
+    auto floatsAt = [&](size_t at, int index, size_t n, const char* what) {
+        if (index < 0 || size_t(index) + n > floats.size())
+            bad("instruction " + std::to_string(at) + " (" + what + ") needs " + std::to_string(n) +
+                " floats from index " + std::to_string(index) + " but there are " + plural(floats.size(), "float"));
+        for (size_t i = size_t(index); i < size_t(index) + n; ++i)
+            if (!std::isfinite(floats[i]))
+                args.fail(floatsValue, "float " + std::to_string(i) + " (used by instruction " + std::to_string(at) +
+                                           ", " + what + ") is " + formatNumber(floats[i]));
+        return &floats[size_t(index)];
+    };
+    auto matrixAt = [&](size_t at, const double* m, BlobbyOp& op, const char* what) {
+        op.toObject = Matrix4::fromRowMajor(m);
+        if (!invert(op.toObject, &op.toBlob))
+            bad("instruction " + std::to_string(at) + " (" + what + ") has a singular matrix");
+    };
+    if (code.empty()) bad("the code has no instructions");
+    size_t pc = 0;
+    auto operand = [&](size_t at, const char* what) {
+        if (pc >= code.size())
+            bad("the code ends inside instruction " + std::to_string(at) + " (" + what + ")");
+        return code[pc++];
+    };
+    while (pc < code.size()) {
+        const size_t at = key.field.ops.size();
+        const int opcode = code[pc++];
+        BlobbyOp op;
+        using K = BlobbyOp::Kind;
+        switch (opcode) {
+        case 1000: op.kind = K::Constant; op.value = *floatsAt(at, operand(at, "constant"), 1, "constant"); break;
+        case 1001: {
+            op.kind = K::Ellipsoid;
+            matrixAt(at, floatsAt(at, operand(at, "ellipsoid"), 16, "ellipsoid"), op, "ellipsoid");
+            break;
+        }
+        case 1002: {
+            op.kind = K::Segment;
+            const double* f = floatsAt(at, operand(at, "segment blob"), 23, "segment blob");
+            op.a = {f[0], f[1], f[2]};
+            op.b = {f[3], f[4], f[5]};
+            op.radius = f[6];
+            if (!(op.radius > 0))
+                bad("instruction " + std::to_string(at) + " (segment blob) has radius " + formatNumber(op.radius) +
+                    ": it must be positive");
+            matrixAt(at, f + 7, op, "segment blob");
+            break;
+        }
+        case 1003: {
+            op.kind = K::Plane;
+            operand(at, "repelling plane");
+            floatsAt(at, operand(at, "repelling plane"), 4, "repelling plane");
+            reader.log().warnOnce("blobby:plane", args.loc(),
+                                  "Blobby: repelling planes (opcode 1003) need depth maps, which are not "
+                                  "supported: their field is taken as 0");
+            break;
+        }
+        case 0: case 1: case 2: case 3: {
+            static const K kinds[] = {K::Add, K::Multiply, K::Max, K::Min};
+            static const char* names[] = {"add", "multiply", "maximum", "minimum"};
+            op.kind = kinds[opcode];
+            const int n = operand(at, names[opcode]);
+            if (n < 1) bad("instruction " + std::to_string(at) + " (" + names[opcode] + ") has " +
+                           std::to_string(n) + " operands: it needs at least 1");
+            for (int i = 0; i < n; ++i) op.operands.push_back(operand(at, names[opcode]));
+            break;
+        }
+        case 4: case 5: case 6: case 7: {
+            static const K kinds[] = {K::Subtract, K::Divide, K::Negate, K::Identity};
+            static const char* names[] = {"subtract", "divide", "negate", "identity"};
+            op.kind = kinds[opcode - 4];
+            for (int i = 0; i < (opcode < 6 ? 2 : 1); ++i) op.operands.push_back(operand(at, names[opcode - 4]));
+            break;
+        }
+        default:
+            bad("instruction " + std::to_string(at) + " has unknown opcode " + std::to_string(opcode) +
+                " (leaves are 1000-1003, operators 0-7: add, multiply, maximum, minimum, subtract, divide, "
+                "negate, identity)");
+        }
+        for (int o : op.operands)
+            if (o < 0 || size_t(o) >= at)
+                bad("instruction " + std::to_string(at) + " uses instruction " + std::to_string(o) +
+                    ", which is not an earlier one (0 to " + std::to_string(int(at) - 1) + ")");
+        if (op.leaf()) key.leaves.push_back(at);
+        key.field.ops.push_back(std::move(op));
+    }
+    if (key.leaves.size() != size_t(key.nleaf))
+        args.fail(*nleafValue, "nleaf is " + std::to_string(key.nleaf) + " but the code has " +
+                                   plural(key.leaves.size(), "leaf") + " (opcodes 1000-1003)");
+    ParamList params = reader.readParams(args);
+    ClassCounts counts{1, size_t(key.nleaf), size_t(key.nleaf), size_t(key.nleaf)};
+    key.Cs = readColors(args, params, counts);
+    otherParams(args, params, counts, reader.log());
+    return key;
+}
+
+// The polygon mesh of the first key, with "Cs" per leaf blended by each leaf's field.
+void addBlobby(RibParser& reader, const BlobbyKey& key, const SourceLoc& loc) {
+    int cells = int(reader.state().attributes->user.getFloat("streyes:blobbyresolution", kDefaultCells));
+    if (cells < 1 || cells > kMaxCells) {
+        reader.log().warnOnce("blobby:resolution", loc,
+                              "Attribute \"streyes\" \"blobbyresolution\" " + std::to_string(cells) +
+                                  " is outside 1 to " + std::to_string(kMaxCells) + ": using " +
+                                  std::to_string(cells < 1 ? 1 : kMaxCells));
+        cells = cells < 1 ? 1 : kMaxCells;
+    }
+    BlobbyMesh mesh = polygonizeBlobby(key.field, cells);
+    if (mesh.openAtBound)
+        reader.log().warnOnce("blobby:open", loc,
+                              "Blobby: the field is above the level (1/2) beyond its blobs (a constant?): the "
+                              "surface is cut open at the blobs' bound");
+    if (mesh.triangles.empty()) return;
+    PolygonMeshDesc d;
+    placePrimitive(reader, d, {0.0}, loc);
+    d.request = "Blobby";
+    for (const std::array<int, 3>& t : mesh.triangles) d.polygons.push_back({{t[0], t[1], t[2]}});
+    if (key.Cs.given()) {
+        if (key.Cs.cls == ParamClass::Constant || key.Cs.cls == ParamClass::Uniform) {
+            d.Cs.cls = ParamClass::Constant;
+            d.Cs.values = {key.Cs.values[0]};
+        } else {
+            d.Cs.cls = ParamClass::Vertex;
+            for (const Vec3d& p : mesh.P) {
+                Color sum{0, 0, 0}, mean{0, 0, 0};
+                double weight = 0;
+                for (size_t l = 0; l < key.leaves.size(); ++l) {
+                    const double w = key.field.leafValue(key.leaves[l], p);
+                    sum = sum + key.Cs.values[l] * float(w);
+                    mean = mean + key.Cs.values[l] * (1.0f / float(key.leaves.size()));
+                    weight += w;
+                }
+                d.Cs.values.push_back(weight > 0 ? sum * float(1 / weight) : mean);
+            }
+        }
+    }
+    d.P = {std::move(mesh.P)};
+    d.patchesBefore = reader.scene().patches.size();
+    reader.scene().polygonMeshes.push_back(std::move(d));
+}
+
+// A motion block's keys are all read (and checked), but the surface would change its triangles
+// from key to key: the first key is drawn, with a warning when the others differ.
+void blobbyKeys(RibParser& reader, const RibKeys& keys) {
+    std::vector<BlobbyKey> read;
+    for (const RibRequest& request : keys.requests) {
+        RibArgs args(request, keys.usage);
+        read.push_back(readBlobbyKey(reader, args));
+    }
+    auto same = [](const RibRequest& a, const RibRequest& b) {
+        if (a.args.size() != b.args.size()) return false;
+        for (size_t i = 0; i < a.args.size(); ++i)
+            if (a.args[i].kind != b.args[i].kind || a.args[i].nums != b.args[i].nums ||
+                a.args[i].strings != b.args[i].strings)
+                return false;
+        return true;
+    };
+    for (size_t i = 1; i < keys.requests.size(); ++i)
+        if (!same(keys.requests[i], keys.requests[0])) {
+            reader.log().warnOnce("blobby:motion", keys.requests.front().loc,
+                                  "Blobby: a motion block's keys differ, but a blobby's triangles cannot move: "
+                                  "the first key is drawn at every time");
+            break;
+        }
+    addBlobby(reader, read.front(), keys.requests.front().loc);
+}
+
+}  // namespace
+
+void addBlobbyRequests(RibRequestTable& table) {
+    table.add("Blobby", {oneKey<blobbyKeys>, "Blobby nleaf [code] [floats] [strings] ...", RibPhase::World,
+                         blobbyKeys});
+}
+
+}  // namespace streyes
