@@ -1,0 +1,159 @@
+// Blobby: the level-1/2 surface of the (1 - r^2)^3 field, cut into triangles (scene/blobby_field.h),
+// against the analytic silhouettes of blobs seen from the front.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "test_util.h"
+
+namespace streyes {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Where a lone blob's field (1 - r^2)^3 is 1/2, in its own space.
+const double kLevelRadius = std::sqrt(1 - std::cbrt(0.5));
+
+std::string n(double v) { return std::to_string(v); }
+
+// The matrix of a sphere blob of radius R (its field's reach) centred at (x, y, z).
+std::string sphereMatrix(double R, double x, double y, double z) {
+    return n(R) + " 0 0 0  0 " + n(R) + " 0 0  0 0 " + n(R) + " 0  " + n(x) + " " + n(y) + " " + n(z) + " 1";
+}
+
+// Blobby of the given code over the concatenated float lists.
+std::string blobby(int nleaf, const std::string& code, const std::string& floats, const std::string& extra = "") {
+    return "Blobby " + std::to_string(nleaf) + " [" + code + "] [" + floats + "] [\"\"]" + extra + "\n";
+}
+
+TEST(Blobby, OneBlobIsADiscOfTheLevelRadius) {
+    const double R = 60;
+    const std::string rib = test::orthoHeader(64, 64) + blobby(1, "1001 0", sphereMatrix(R, 32, 32, 100)) + "WorldEnd\n";
+    const double r = R * kLevelRadius;  // 27.25 pixels
+    EXPECT_NEAR(test::alphaSum(test::renderRib(rib)), kPi * r * r, 0.01 * kPi * r * r);
+}
+
+TEST(Blobby, SidesOneDrawsTheWholeBlobWithNoCracks) {
+    // Triangles face out of the blob and share their vertices: with only the outside drawn, every
+    // pixel well inside the silhouette is covered exactly (a box filter one pixel wide).
+    const double R = 60, r = R * kLevelRadius;
+    for (const char* sides : {"Sides 2\n", "Sides 1\n"}) {
+        const std::string rib =
+            test::orthoHeader(64, 64) + sides + blobby(1, "1001 0", sphereMatrix(R, 32, 32, 100)) + "WorldEnd\n";
+        const test::RenderResult result = test::renderRib(rib);
+        int inside = 0;
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) {
+                if (std::hypot(x + 0.5 - 32, y + 0.5 - 32) > r - 1.5) continue;
+                ++inside;
+                ASSERT_EQ(result.alpha(0, x, y), 1.0f) << sides << " pixel " << x << "," << y;
+            }
+        EXPECT_GT(inside, 2000);
+    }
+}
+
+TEST(Blobby, TwoBlobsMergeWithABridge) {
+    // Apart, the discs (radius 9.08) do not touch; their fields do (reach 20), so the surface
+    // bridges them: more than the two discs, and the midpoint between them is covered.
+    const double R = 20, r = R * kLevelRadius;
+    const std::string floats = sphereMatrix(R, 22, 32, 100) + "  " + sphereMatrix(R, 42, 32, 100);
+    const test::RenderResult merged =
+        test::renderRib(test::orthoHeader(64, 64) + blobby(2, "1001 0 1001 16 0 2 0 1", floats) + "WorldEnd\n");
+    EXPECT_GT(test::alphaSum(merged), 2 * kPi * r * r * 1.1);
+    EXPECT_EQ(merged.alpha(0, 31, 31), 1.0f);
+    EXPECT_EQ(merged.alpha(0, 32, 32), 1.0f);
+    // The maximum of the two fields does not merge: two discs, apart.
+    const test::RenderResult apart =
+        test::renderRib(test::orthoHeader(64, 64) + blobby(2, "1001 0 1001 16 2 2 0 1", floats) + "WorldEnd\n");
+    EXPECT_NEAR(test::alphaSum(apart), 2 * kPi * r * r, 0.02 * 2 * kPi * r * r);
+    EXPECT_EQ(apart.alpha(0, 32, 32), 0.0f);
+}
+
+TEST(Blobby, SubtractCarvesAndMinimumIntersects) {
+    // A blob minus a larger one at the same centre: its field is below the other's everywhere,
+    // so nothing is left.
+    const std::string contained = sphereMatrix(10, 32, 32, 100) + "  " + sphereMatrix(20, 32, 32, 100);
+    EXPECT_EQ(test::alphaSum(test::renderRib(test::orthoHeader(64, 64) +
+                                             blobby(2, "1001 0 1001 16 4 0 1", contained) + "WorldEnd\n")),
+              0.0);
+    // A big blob (reach 60) minus an ellipsoid through it along the view (reach 20 across, 60
+    // deep): a ring. A line of sight at distance rho from the axis is covered where the largest
+    // f60 - fB along it passes 1/2 (found here numerically); outside, the big blob's level radius.
+    const double RA = 60, RB = 20;
+    auto f = [](double r2) {
+        const double s = 1 - r2;
+        return s > 0 ? s * s * s : 0;
+    };
+    auto covered = [&](double rho) {
+        double best = -1;
+        for (double z = -RA; z <= RA; z += 0.01)
+            best = std::max(best, f((rho * rho + z * z) / (RA * RA)) - f(rho * rho / (RB * RB) + z * z / (RA * RA)));
+        return best > 0.5;
+    };
+    double lo = 0, hi = RB;
+    for (int i = 0; i < 30; ++i) {
+        const double m = (lo + hi) / 2;
+        (covered(m) ? hi : lo) = m;
+    }
+    const double inner = lo, outer = RA * kLevelRadius;
+    const std::string ring = sphereMatrix(RA, 32, 32, 100) + "  " + n(RB) + " 0 0 0  0 " + n(RB) + " 0 0  0 0 " +
+                             n(RA) + " 0  32 32 100 1";
+    const test::RenderResult carved =
+        test::renderRib(test::orthoHeader(64, 64) + blobby(2, "1001 0 1001 16 4 0 1", ring) + "WorldEnd\n");
+    const double area = kPi * (outer * outer - inner * inner);
+    EXPECT_NEAR(test::alphaSum(carved), area, 0.01 * area) << "hole radius " << inner;
+    EXPECT_EQ(carved.alpha(0, 31, 31), 0.0f);
+    EXPECT_EQ(carved.alpha(0, int(32 + (inner + outer) / 2), 32), 1.0f);
+    // The minimum of two overlapping blobs is their lens, smaller than either disc.
+    const double R = 40, r = R * kLevelRadius;
+    const std::string two = sphereMatrix(R, 26, 32, 100) + "  " + sphereMatrix(R, 38, 32, 100);
+    const double lens =
+        test::alphaSum(test::renderRib(test::orthoHeader(64, 64) + blobby(2, "1001 0 1001 16 3 2 0 1", two) + "WorldEnd\n"));
+    // Two discs of radius r, 12 apart: their intersection.
+    const double d = 12, lensArea = 2 * r * r * std::acos(d / (2 * r)) - d / 2 * std::sqrt(4 * r * r - d * d);
+    EXPECT_NEAR(lens, lensArea, 0.015 * lensArea);
+}
+
+TEST(Blobby, SegmentBlobIsACapsule) {
+    // A segment blob of radius 20 from x = 20 to x = 44: a stadium of half-width 20 * 0.4542.
+    const double rad = 20, r = rad * kLevelRadius, len = 24;
+    const std::string floats = "20 32 100  44 32 100  " + n(rad) + "  1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1";
+    const double area = kPi * r * r + 2 * r * len;
+    EXPECT_NEAR(test::alphaSum(test::renderRib(test::orthoHeader(64, 64) + blobby(1, "1002 0", floats) + "WorldEnd\n")),
+                area, 0.01 * area);
+}
+
+TEST(Blobby, MotionBlockDrawsTheFirstKey) {
+    const std::string one = blobby(1, "1001 0", sphereMatrix(40, 32, 32, 100));
+    const std::string other = blobby(1, "1001 0", sphereMatrix(40, 20, 32, 100));
+    const test::RenderResult still = test::renderRib(test::orthoHeader(64, 64) + one + "WorldEnd\n");
+    const test::RenderResult moving = test::renderRib(test::orthoHeader(64, 64, "Shutter 0 1\n") + "MotionBegin [0 1]\n" +
+                                                      one + other + "MotionEnd\nWorldEnd\n");
+    EXPECT_TRUE(test::identicalPixels(still, moving));
+}
+
+TEST(Blobby, BadInputNamesFileAndLine) {
+    const std::string head = "WorldBegin\n";
+    const std::string m = sphereMatrix(1, 0, 0, 0);
+    struct Case {
+        std::string rib, message;
+    };
+    const Case cases[] = {
+        {blobby(1, "1001 0", "1 0 0"), "needs 16 floats"},
+        {blobby(1, "1001 0 9", m), "unknown opcode 9"},
+        {blobby(1, "1001 0 0 1 1", m), "not an earlier one"},
+        {blobby(2, "1001 0", m), "nleaf is 2 but the code has 1 leaf"},
+        {blobby(1, "1001 0 0 2 0", m), "the code ends inside instruction 1"},
+        {blobby(1, "1001 0", "0 0 0 0  0 0 0 0  0 0 0 0  0 0 0 1"), "singular matrix"},
+        {blobby(1, "1002 0", "0 0 0 1 0 0 -1 " + m), "radius -1"},
+    };
+    for (const Case& c : cases) {
+        const std::string error = test::ribError(head + c.rib + "WorldEnd\n");
+        EXPECT_NE(error.find("bad.rib:2"), std::string::npos) << error;
+        EXPECT_NE(error.find(c.message), std::string::npos) << error;
+    }
+}
+
+}  // namespace
+}  // namespace streyes
