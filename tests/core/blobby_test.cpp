@@ -38,7 +38,8 @@ TEST(Blobby, SidesOneDrawsTheWholeBlobWithNoCracks) {
     // Triangles face out of the blob and share their vertices: with only the outside drawn, every
     // pixel well inside the silhouette is covered exactly (a box filter one pixel wide).
     const double R = 60, r = R * kLevelRadius;
-    for (const char* sides : {"Sides 2\n", "Sides 1\n"}) {
+    for (const char* sides : {"Sides 2\n", "Sides 1\n", "ReverseOrientation\nSides 1\n"}) {
+        const bool reversed = std::string(sides).find("Reverse") != std::string::npos;
         const std::string rib =
             test::orthoHeader(64, 64) + sides + blobby(1, "1001 0", sphereMatrix(R, 32, 32, 100)) + "WorldEnd\n";
         const test::RenderResult result = test::renderRib(rib);
@@ -50,6 +51,10 @@ TEST(Blobby, SidesOneDrawsTheWholeBlobWithNoCracks) {
                 ASSERT_EQ(result.alpha(0, x, y), 1.0f) << sides << " pixel " << x << "," << y;
             }
         EXPECT_GT(inside, 2000);
+        // The near side is the one drawn; ReverseOrientation makes the inside the outside, and
+        // Sides 1 then shows the far side.
+        const FrameImage& image = result.frame(0);
+        EXPECT_NEAR(image.z[size_t(32 * 64 + 32)], reversed ? 100 + r : 100 - r, 0.5) << sides;
     }
 }
 
