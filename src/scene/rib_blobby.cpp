@@ -1,5 +1,6 @@
 // Blobby nleaf [code] [floats] [strings] ...: implicit surfaces, kept as the triangles of their
 // level surface (scene/blobby_field.h), a polygon mesh like PointsPolygons.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -10,8 +11,9 @@ namespace streyes {
 
 namespace {
 
-constexpr int kDefaultCells = 64;  // cells along the longest side of the blobs' bound
-constexpr int kMaxCells = 256;     // at most 258^3 grid points: about 140 MB of field values
+constexpr double kPixelsPerCell = 2;  // without "blobbyresolution": a cell every 2 pixels on screen
+constexpr int kMinCells = 8;
+constexpr int kMaxCells = 256;  // at most 258^3 grid points: about 140 MB of field values
 
 struct BlobbyKey {
     int nleaf = 0;
@@ -126,9 +128,52 @@ BlobbyKey readBlobbyKey(RibParser& reader, RibArgs& args) {
     return key;
 }
 
+// Cells along the bound's longest side for a cell every kPixelsPerCell pixels of the bound's
+// extent on screen, seen by the camera as set at WorldBegin (the first keys of the camera and of
+// the object's transform). A bound that reaches behind the eye plane gets the most cells, one
+// wholly behind it the fewest.
+int screenCells(RibParser& reader, const PrimitiveDesc& d, const BlobbyField& field) {
+    Vec3d lo, hi;
+    if (!field.bound(&lo, &hi)) return kMinCells;
+    const CameraDesc& cam = reader.scene().camera;
+    const bool perspective = cam.projection == ProjectionKind::Perspective;
+    const double aspect = cam.frameAspect > 0 ? cam.frameAspect : cam.pixelAspect * cam.xres / cam.yres;
+    double l = -1, r = 1, b = -1, t = 1;
+    if (cam.hasScreenWindow) {
+        l = cam.screenWindow[0], r = cam.screenWindow[1], b = cam.screenWindow[2], t = cam.screenWindow[3];
+    } else if (aspect >= 1) {
+        l = -aspect, r = aspect;
+    } else {
+        b = -1 / aspect, t = 1 / aspect;
+    }
+    const double s = perspective ? 1 / std::tan(cam.fov * 3.14159265358979323846 / 360) : 1;
+    const double ax = s * cam.xres / std::abs(r - l), ay = s * cam.yres / std::abs(t - b);
+    const Matrix4 toCamera = d.objectToWorld.keys().front() * cam.worldToCamera.keys().front();
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    int behind = 0;
+    for (int c = 0; c < 8; ++c) {
+        const Vec3d p = toCamera.point({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
+        if (perspective && !(p.z > cam.nearClip)) {
+            ++behind;
+            continue;
+        }
+        const double x = perspective ? p.x / p.z : p.x, y = perspective ? p.y / p.z : p.y;
+        x0 = std::min(x0, x * ax), x1 = std::max(x1, x * ax), y0 = std::min(y0, y * ay), y1 = std::max(y1, y * ay);
+    }
+    if (behind == 8) return kMinCells;
+    if (behind > 0) return kMaxCells;
+    const double pixels = std::max(x1 - x0, y1 - y0);
+    if (!std::isfinite(pixels)) return kMaxCells;
+    return int(std::clamp(std::ceil(pixels / kPixelsPerCell), double(kMinCells), double(kMaxCells)));
+}
+
 // The polygon mesh of the first key, with "Cs" per leaf blended by each leaf's field.
 void addBlobby(RibParser& reader, const BlobbyKey& key, const SourceLoc& loc) {
-    int cells = int(reader.state().attributes->user.getFloat("streyes:blobbyresolution", kDefaultCells));
+    PolygonMeshDesc d;
+    placePrimitive(reader, d, {0.0}, loc);
+    const Param* given = reader.state().attributes->user.find("streyes:blobbyresolution");
+    int cells = given ? int(reader.state().attributes->user.getFloat("streyes:blobbyresolution", 0))
+                      : screenCells(reader, d, key.field);
     if (cells < 1 || cells > kMaxCells) {
         reader.log().warnOnce("blobby:resolution", loc,
                               "Attribute \"streyes\" \"blobbyresolution\" " + std::to_string(cells) +
@@ -142,8 +187,6 @@ void addBlobby(RibParser& reader, const BlobbyKey& key, const SourceLoc& loc) {
                               "Blobby: the field is above the level (1/2) beyond its blobs (a constant?): the "
                               "surface is cut open at the blobs' bound");
     if (mesh.triangles.empty()) return;
-    PolygonMeshDesc d;
-    placePrimitive(reader, d, {0.0}, loc);
     d.request = "Blobby";
     for (const std::array<int, 3>& t : mesh.triangles) d.polygons.push_back({{t[0], t[1], t[2]}});
     if (key.Cs.given()) {

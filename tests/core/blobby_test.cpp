@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "streyes/rib.h"
 #include "test_util.h"
 
 namespace streyes {
@@ -136,6 +137,24 @@ TEST(Blobby, MotionBlockDrawsTheFirstKey) {
     const test::RenderResult moving = test::renderRib(test::orthoHeader(64, 64, "Shutter 0 1\n") + "MotionBegin [0 1]\n" +
                                                       one + other + "MotionEnd\nWorldEnd\n");
     EXPECT_TRUE(test::identicalPixels(still, moving));
+}
+
+TEST(Blobby, CellsFollowTheScreenSizeUnlessGiven) {
+    // Without "blobbyresolution", a cell is about 2 pixels of the bound's extent on screen: twice
+    // the image, twice the cells along each side, about four times the triangles.
+    auto triangles = [](int size, const std::string& attribute) {
+        Log log;
+        const std::string rib = "Format " + std::to_string(size) + " " + std::to_string(size) +
+                                " 1\nProjection \"orthographic\"\nScreenWindow 0 64 0 64\nWorldBegin\n" + attribute +
+                                blobby(1, "1001 0", sphereMatrix(30, 32, 32, 100)) + "WorldEnd\n";
+        const Scene scene = parseRibString(rib, "blob.rib", log);
+        EXPECT_EQ(scene.polygonMeshes.size(), 1u);
+        return scene.polygonMeshes.empty() ? size_t(0) : scene.polygonMeshes[0].polygons.size();
+    };
+    const double small = double(triangles(64, "")), large = double(triangles(128, ""));
+    EXPECT_NEAR(large / small, 4, 0.4);
+    const std::string fixed = "Attribute \"streyes\" \"float blobbyresolution\" [20]\n";
+    EXPECT_EQ(triangles(64, fixed), triangles(128, fixed));
 }
 
 TEST(Blobby, BadInputNamesFileAndLine) {
