@@ -171,6 +171,7 @@ TEST(Blobby, BadInputNamesFileAndLine) {
         {blobby(1, "1001 0 0 2 0", m), "the code ends inside instruction 1"},
         {blobby(1, "1001 0", "0 0 0 0  0 0 0 0  0 0 0 0  0 0 0 1"), "singular matrix"},
         {blobby(1, "1002 0", "0 0 0 1 0 0 -1 " + m), "radius -1"},
+        {blobby(1, "1001 0", "nan 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1"), "NaN and infinity are not allowed"},
     };
     for (const Case& c : cases) {
         const std::string error = test::ribError(head + c.rib + "WorldEnd\n");
