@@ -2,7 +2,6 @@
 // level surface (scene/blobby_field.h), a polygon mesh like PointsPolygons.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "scene/blobby_field.h"
 #include "scene/rib_geometry.h"
@@ -29,7 +28,7 @@ BlobbyKey readBlobbyKey(RibParser& reader, RibArgs& args) {
     key.nleaf = args.integer("nleaf");
     if (key.nleaf < 1) args.fail(*nleafValue, "nleaf must be at least 1, got " + std::to_string(key.nleaf));
     const RibValue* codeValue = args.peek();
-    const std::vector<int> code = intArray(args, "code", std::numeric_limits<int>::min());
+    const std::vector<int> code = intArray(args, "code", 0);
     const RibValue& floatsValue = takeArray(args, "floats", false);
     const std::vector<double>& floats = floatsValue.nums;
     takeArray(args, "strings", true);
@@ -180,6 +179,12 @@ void addBlobby(RibParser& reader, const BlobbyKey& key, const SourceLoc& loc) {
                                   " is outside 1 to " + std::to_string(kMaxCells) + ": using " +
                                   std::to_string(cells < 1 ? 1 : kMaxCells));
         cells = cells < 1 ? 1 : kMaxCells;
+    }
+    Vec3d lo, hi;
+    if (!key.field.bound(&lo, &hi)) {
+        reader.log().warnOnce("blobby:empty", loc,
+                              "Blobby: no ellipsoid or segment blob, so no surface to bound: nothing is drawn");
+        return;
     }
     BlobbyMesh mesh = polygonizeBlobby(key.field, cells);
     if (mesh.openAtBound)
