@@ -31,7 +31,10 @@ double blobFalloff(double r2);
 
 struct BlobbyOp {
     // The RI Spec opcodes: leaves 1000-1003, operators 0-7.
-    enum class Kind { Constant, Ellipsoid, Segment, Plane, Add, Multiply, Max, Min, Subtract, Divide, Negate, Identity };
+    enum class Kind {
+        Constant, Ellipsoid, Segment, Plane,  // leaves
+        Add, Multiply, Max, Min, Subtract, Divide, Negate, Identity
+    };
     Kind kind = Kind::Constant;
     std::vector<int> operands;  // operators: earlier instructions, by number
     double value = 0;           // Constant
@@ -39,7 +42,9 @@ struct BlobbyOp {
     Matrix4 toBlob;             // its inverse
     Vec3d a, b;                 // Segment: its ends and radius, in blob space
     double radius = 1;
-    bool leaf() const { return kind == Kind::Constant || kind == Kind::Ellipsoid || kind == Kind::Segment || kind == Kind::Plane; }
+    bool leaf() const {
+        return kind == Kind::Constant || kind == Kind::Ellipsoid || kind == Kind::Segment || kind == Kind::Plane;
+    }
 };
 
 struct BlobbyField {

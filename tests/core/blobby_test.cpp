@@ -30,7 +30,8 @@ std::string blobby(int nleaf, const std::string& code, const std::string& floats
 
 TEST(Blobby, OneBlobIsADiscOfTheLevelRadius) {
     const double R = 60;
-    const std::string rib = test::orthoHeader(64, 64) + blobby(1, "1001 0", sphereMatrix(R, 32, 32, 100)) + "WorldEnd\n";
+    const std::string rib =
+        test::orthoHeader(64, 64) + blobby(1, "1001 0", sphereMatrix(R, 32, 32, 100)) + "WorldEnd\n";
     const double r = R * kLevelRadius;  // 27.25 pixels
     EXPECT_NEAR(test::alphaSum(test::renderRib(rib)), kPi * r * r, 0.01 * kPi * r * r);
 }
@@ -114,8 +115,8 @@ TEST(Blobby, SubtractCarvesAndMinimumIntersects) {
     // The minimum of two overlapping blobs is their lens, smaller than either disc.
     const double R = 40, r = R * kLevelRadius;
     const std::string two = sphereMatrix(R, 26, 32, 100) + "  " + sphereMatrix(R, 38, 32, 100);
-    const double lens =
-        test::alphaSum(test::renderRib(test::orthoHeader(64, 64) + blobby(2, "1001 0 1001 16 3 2 0 1", two) + "WorldEnd\n"));
+    const double lens = test::alphaSum(
+        test::renderRib(test::orthoHeader(64, 64) + blobby(2, "1001 0 1001 16 3 2 0 1", two) + "WorldEnd\n"));
     // Two discs of radius r, 12 apart: their intersection.
     const double d = 12, lensArea = 2 * r * r * std::acos(d / (2 * r)) - d / 2 * std::sqrt(4 * r * r - d * d);
     EXPECT_NEAR(lens, lensArea, 0.015 * lensArea);
@@ -134,8 +135,8 @@ TEST(Blobby, MotionBlockDrawsTheFirstKey) {
     const std::string one = blobby(1, "1001 0", sphereMatrix(40, 32, 32, 100));
     const std::string other = blobby(1, "1001 0", sphereMatrix(40, 20, 32, 100));
     const test::RenderResult still = test::renderRib(test::orthoHeader(64, 64) + one + "WorldEnd\n");
-    const test::RenderResult moving = test::renderRib(test::orthoHeader(64, 64, "Shutter 0 1\n") + "MotionBegin [0 1]\n" +
-                                                      one + other + "MotionEnd\nWorldEnd\n");
+    const test::RenderResult moving = test::renderRib(test::orthoHeader(64, 64, "Shutter 0 1\n") +
+                                                      "MotionBegin [0 1]\n" + one + other + "MotionEnd\nWorldEnd\n");
     EXPECT_TRUE(test::identicalPixels(still, moving));
 }
 
