@@ -138,6 +138,9 @@ TEST(Blobby, MotionBlockDrawsTheFirstKey) {
     const test::RenderResult moving = test::renderRib(test::orthoHeader(64, 64, "Shutter 0 1\n") +
                                                       "MotionBegin [0 1]\n" + one + other + "MotionEnd\nWorldEnd\n");
     EXPECT_TRUE(test::identicalPixels(still, moving));
+    bool warned = false;
+    for (const std::string& w : moving.warnings) warned = warned || w.find("the first key is drawn") != std::string::npos;
+    EXPECT_TRUE(warned);
 }
 
 TEST(Blobby, CellsFollowTheScreenSizeUnlessGiven) {
