@@ -50,8 +50,9 @@ void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
 
 // ---- TraceScene -------------------------------------------------------------------------------------
 
-TraceScene::TraceScene(const RenderScene& scene, Log& log) : scene_(scene) {
-    for (const BodyPtr& root : scene.roots) collect(*root, log);
+TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log) : scene_(scene) {
+    Tessellator tessellator(scene.camera, options, log);
+    for (const BodyPtr& root : scene.roots) collect(*root, tessellator, log);
     include_.extend(Vec3f{0, 0, 0});  // the eye
     const float lens = scene.camera.lensRadius();  // and the lens, where eye rays start with depth of field
     include_.extend(Vec3f{-lens, -lens, 0});
@@ -64,7 +65,7 @@ TraceScene::TraceScene(const RenderScene& scene, Log& log) : scene_(scene) {
     }
 }
 
-void TraceScene::collect(const Body& body, Log& log) {
+void TraceScene::collect(const Body& body, Tessellator& tessellator, Log& log) {
     if (const auto* patch = dynamic_cast<const TrilinearBody*>(&body)) {
         bodies_.push_back(patch);
     } else if (body.expands()) {
@@ -76,19 +77,18 @@ void TraceScene::collect(const Body& body, Log& log) {
             if (proceduralsExpandedByDepth.size() <= d) proceduralsExpandedByDepth.resize(d + 1, 0);
             ++proceduralsExpandedByDepth[d];
         }
-        for (const BodyPtr& child : children) collect(*child, log);
+        for (const BodyPtr& child : children) collect(*child, tessellator, log);
     } else if (!body.diceableInTime()) {  // several motion keys: cut at the middle key
         BodyPtr halves[2];
         body.split(SplitAxis::T, halves);
         for (BodyPtr& h : halves) {
-            collect(*h, log);
+            collect(*h, tessellator, log);
             pieces_.push_back(std::move(h));
         }
-    } else {
-        // The place for other kinds of body: an exact intersector, or a tessellation into patches.
-        log.warnOnce("trace:body", body.source() ? *body.source() : SourceLoc{},
-                     "the ray tracer intersects bilinear patches only: other surfaces are left out of ray tracing "
-                     "and shadows");
+    } else {  // a curved body: its micropolygons
+        const size_t first = micropolygons_.size();
+        tessellator.tessellate(body, micropolygons_);
+        for (size_t i = first; i < micropolygons_.size(); ++i) bodies_.push_back(&micropolygons_[i]);
     }
 }
 
@@ -122,7 +122,8 @@ size_t TraceScene::hierarchyBytes() const {
 }
 
 size_t TraceScene::bytes() const {
-    return bodies_.capacity() * sizeof(bodies_[0]) + pieces_.size() * (sizeof(TrilinearBody) + 16) + hierarchyBytes();
+    return bodies_.capacity() * sizeof(bodies_[0]) + pieces_.size() * (sizeof(TrilinearBody) + 16) +
+           micropolygons_.size() * sizeof(TrilinearBody) + hierarchyBytes();
 }
 
 float TraceScene::shadowBias(float z) const {
