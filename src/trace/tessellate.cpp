@@ -9,20 +9,17 @@
 namespace streyes {
 
 void Tessellator::tessellate(const Body& body, std::deque<TrilinearBody>& out) {
-    // A counting pass first: the cap must hold for the whole body, and a body's split tree is
-    // cheap to walk next to the micropolygons it makes.
-    coarsen_ = 1;
-    for (int attempt = 0; attempt < 4; ++attempt) {
-        count_ = 0;
-        out_ = nullptr;
-        process(body, 0, 0);
-        if (count_ <= kMaxMicropolygonsPerBody) break;
-        coarsen_ *= float(std::sqrt(double(count_) / double(kMaxMicropolygonsPerBody))) * 1.05f;
-        if (attempt == 0)
-            log_.warnOnce("trace:tessellation", body.source() ? *body.source() : SourceLoc{},
-                          "a surface would make more than " + std::to_string(kMaxMicropolygonsPerBody) +
-                              " micropolygons for the ray tracer: it is traced (and casts shadows) coarser "
-                              "than it is drawn");
+    // A counting pass first, which stops at the cap: a body reaching the near plane can measure
+    // in millions of pixels. Past the cap the body is left out; it cannot be diced coarser than
+    // the split loop does, since a curved body's edges follow lattices made at its own rate.
+    count_ = 0;
+    out_ = nullptr;
+    process(body, 0, 0);
+    if (count_ > kMaxMicropolygonsPerBody) {
+        log_.warnOnce("trace:tessellation", body.source() ? *body.source() : SourceLoc{},
+                      "a surface would make more than " + std::to_string(kMaxMicropolygonsPerBody) +
+                          " micropolygons for the ray tracer: it is left out of ray tracing and shadows");
+        return;
     }
     dropped_ = false;
     out_ = &out;
@@ -35,6 +32,7 @@ void Tessellator::tessellate(const Body& body, std::deque<TrilinearBody>& out) {
 }
 
 void Tessellator::process(const Body& body, int depth, int eyeDepth) {
+    if (!out_ && count_ > kMaxMicropolygonsPerBody) return;  // counted enough
     if (!body.diceableInTime()) {  // more motion keys: cut at the middle one (not for roots: see TraceScene)
         split(body, SplitAxis::T, depth, eyeDepth);
         return;
@@ -53,10 +51,10 @@ void Tessellator::process(const Body& body, int depth, int eyeDepth) {
         split(body, axis, depth, eyeDepth + 1);
         return;
     }
-    // The split loop's rule (decideSplit), with the side coarsened past the cap.
+    // The split loop's rule (decideSplit).
     const RasterMeasure m = body.measure(cam_);
     const float rate = body.material() ? body.material()->shadingRate : 1.0f;
-    const float side = std::sqrt(std::max(rate, 1e-4f)) * coarsen_;
+    const float side = std::sqrt(std::max(rate, 1e-4f));
     const float size = std::max(m.extentU, m.extentV);
     SplitAxis axis;
     if (body.moving() && m.motion > std::max(options_.timeSplitRatio * size, options_.timeSplitMinMotion)) {

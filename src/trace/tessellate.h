@@ -23,9 +23,9 @@ namespace streyes {
 
 class Tessellator {
   public:
-    // Micropolygons one root body may make; past it the rate is coarsened for that body, with
+    // Micropolygons one root body may make (1 GB of them); past it the body is left out, with
     // one warning (a body reaching the near plane measures in millions of pixels).
-    static constexpr size_t kMaxMicropolygonsPerBody = size_t(1) << 18;
+    static constexpr size_t kMaxMicropolygonsPerBody = size_t(1) << 22;
     // Splits of a piece that cannot be projected before it is diced anyway, and its grid then.
     static constexpr int kMaxEyeSplits = 12, kUnprojectedGrid = 8;
 
@@ -43,7 +43,6 @@ class Tessellator {
     const Camera& cam_;
     const RenderOptions& options_;
     Log& log_;
-    float coarsen_ = 1;  // side multiplier for the current root (1 unless it hit the cap)
     size_t count_ = 0;
     bool dropped_ = false;
     std::deque<TrilinearBody>* out_ = nullptr;

@@ -87,6 +87,19 @@ TEST(TraceCurved, RaytracedCurvedBodiesAgreeWithTheRasterizer) {
     }
 }
 
+// A sphere far larger than the image would make some 18 million micropolygons: it is left out of
+// ray tracing with one warning (its split tree is counted only up to the cap), and a small
+// sphere beside it is still traced.
+TEST(TraceCurved, HugeBodyIsLeftOutWithAWarning) {
+    const std::string rib = orthoHeader(16, 16, "PixelSamples 8 8\n") + "Translate 8 8 2000\nSphere 1200 -1200 1200 360\n" +
+                            "Translate 0 0 -1900\nSphere 4 -4 4 360\nWorldEnd\n";
+    RenderResult r = renderRib(rib, test::optionsFor(Algorithm::Raytrace));
+    EXPECT_TRUE(warned(r, "left out of ray tracing"));
+    EXPECT_GT(r.stats.counters.traceBodies, 0u);
+    EXPECT_LT(r.stats.counters.traceBodies, 1000u);
+    EXPECT_NEAR(test::alphaSum(r), 16 * kPi, 0.03 * 16 * kPi);  // the small sphere alone (a 25-gon)
+}
+
 // A white matte floor at z = 40 lit by a distant light along (1, 0, 1) with intensity sqrt 2
 // (exactly 1 where lit); a sphere of radius 8 centred at (20, 20, 10) in its way. The light is
 // parallel, so the shadow is the sphere's projection along (1, 0, 1) onto the floor: an ellipse
