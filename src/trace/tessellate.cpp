@@ -21,7 +21,7 @@ void Tessellator::tessellate(const Body& body, std::deque<TrilinearBody>& out) {
                           " micropolygons for the ray tracer: it is left out of ray tracing and shadows");
         return;
     }
-    dropped_ = false;
+    dropped_ = behind_ = false;
     out_ = &out;
     process(body, 0, 0);
     out_ = nullptr;
@@ -29,6 +29,10 @@ void Tessellator::tessellate(const Body& body, std::deque<TrilinearBody>& out) {
         log_.warnOnce("trace:splitlimit", body.source() ? *body.source() : SourceLoc{},
                       "a surface is still too large to dice for the ray tracer after " +
                           std::to_string(options_.maxSplitDepth) + " splits (degenerate or huge geometry): dropped");
+    if (behind_)
+        log_.warnOnce("trace:behind", body.source() ? *body.source() : SourceLoc{},
+                      "curved surfaces behind the camera (behind half the near clipping distance) are left out of "
+                      "ray tracing: they cast no shadows");
 }
 
 void Tessellator::process(const Body& body, int depth, int eyeDepth) {
@@ -39,10 +43,11 @@ void Tessellator::process(const Body& body, int depth, int eyeDepth) {
     }
     const Bounds3f swept = body.bound().swept();
     if (cam_.perspective() && !(swept.lo.z >= cam_.eyePlane())) {
-        // Cannot be projected: split across the eye plane as the split loop does, a few times
-        // (the pieces in front then measure), and dice what remains coarsely.
+        // Cannot be projected, so cannot be measured or diced (a curved body's lattices are made
+        // in raster space): split across the eye plane as the split loop does, a few times, and
+        // leave out what lies behind it.
         if (eyeDepth >= kMaxEyeSplits || !(swept.hi.z >= cam_.eyePlane())) {
-            dice(body, kUnprojectedGrid, kUnprojectedGrid);
+            behind_ = true;
             return;
         }
         const CameraExtents e = body.cameraExtents();

@@ -7,8 +7,8 @@
 // would exceed the grid size, dice it into micropolygons shadingRate pixels in area. So a body
 // in front of the camera is cut into the very micropolygons the rasterizer samples (the split
 // tree depends on the body and the camera only), and the two agree sample for sample. Pieces
-// that cannot be projected (behind or across the eye plane; only secondary rays reach them) are
-// split a few times in camera space and diced coarsely.
+// across the eye plane are split a few times in camera space; what lies behind it cannot be
+// measured or diced and is left out (with one warning): it casts no shadows.
 #pragma once
 
 #include <deque>
@@ -26,8 +26,8 @@ class Tessellator {
     // Micropolygons one root body may make (1 GB of them); past it the body is left out, with
     // one warning (a body reaching the near plane measures in millions of pixels).
     static constexpr size_t kMaxMicropolygonsPerBody = size_t(1) << 22;
-    // Splits of a piece that cannot be projected before it is diced anyway, and its grid then.
-    static constexpr int kMaxEyeSplits = 12, kUnprojectedGrid = 8;
+    // Splits of a piece across the eye plane before what still straddles it is left out.
+    static constexpr int kMaxEyeSplits = 12;
 
     Tessellator(const Camera& camera, const RenderOptions& options, Log& log) : cam_(camera), options_(options), log_(log) {}
 
@@ -44,7 +44,7 @@ class Tessellator {
     const RenderOptions& options_;
     Log& log_;
     size_t count_ = 0;
-    bool dropped_ = false;
+    bool dropped_ = false, behind_ = false;
     std::deque<TrilinearBody>* out_ = nullptr;
     Grid grid_;  // reused: dicing allocates nothing once warm
 };

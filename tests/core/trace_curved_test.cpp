@@ -100,6 +100,18 @@ TEST(TraceCurved, HugeBodyIsLeftOutWithAWarning) {
     EXPECT_NEAR(test::alphaSum(r), 16 * kPi, 0.03 * 16 * kPi);  // the small sphere alone (a 25-gon)
 }
 
+// A sphere around the eye: its pieces across and behind the eye plane cannot be diced (they are
+// left out of ray tracing, with a warning), and what is in front is traced like the rasterizer
+// draws it: every pixel covered.
+TEST(TraceCurved, SphereAroundTheEyeIsTracedInFront) {
+    const std::string rib = "Format 16 16 1\nProjection \"perspective\" \"fov\" [60]\nWorldBegin\n"
+                            "Surface \"constant\"\nSphere 5 -5 5 360\nWorldEnd\n";
+    RenderResult r = renderRib(rib, test::optionsFor(Algorithm::Raytrace));
+    EXPECT_TRUE(warned(r, "behind the camera"));
+    EXPECT_NEAR(test::alphaSum(r), 256.0, 1e-3);
+    EXPECT_LT(test::maxAbsDifference(r, renderRib(rib, test::optionsFor(Algorithm::Spacetime))), 1e-5f);
+}
+
 // A white matte floor at z = 40 lit by a distant light along (1, 0, 1) with intensity sqrt 2
 // (exactly 1 where lit); a sphere of radius 8 centred at (20, 20, 10) in its way. The light is
 // parallel, so the shadow is the sphere's projection along (1, 0, 1) onto the floor: an ellipse
