@@ -33,8 +33,8 @@ class TraceScene {
     // Takes the scene's root bodies: trilinear bodies as they are, keyed patches as their
     // trilinear segments (cut at their keys, as the split loop cuts them), procedurals expanded
     // (all of them: rays go anywhere, shadow rays off screen too), every other kind of body
-    // (curved ones) as its micropolygons, diced at the split loop's rate (trace/tessellate.h).
-    // Throws what a procedural's expansion throws.
+    // (curved ones) as its micropolygons, diced at the split loop's rate (trace/tessellate.h),
+    // bodies in parallel. Throws what a procedural's expansion throws.
     TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log);
 
     // One 4D hierarchy over the render's whole window [windowStart, windowEnd].
@@ -66,12 +66,20 @@ class TraceScene {
     std::vector<uint64_t> proceduralsExpandedByDepth;
 
   private:
-    void collect(const Body& body, Tessellator& tessellator, Log& log);
+    void collect(const Body& body, Log& log);
 
     const RenderScene& scene_;
     std::vector<const TrilinearBody*> bodies_;
     std::vector<BodyPtr> pieces_;  // segments of keyed patches
-    std::deque<TrilinearBody> micropolygons_;  // of curved bodies (a deque: bodies_ points into it)
+    // Curved bodies met by collect, and where in bodies_ their micropolygons go; then the
+    // micropolygons of each (deques: bodies_ points into them).
+    struct Curved {
+        const Body* body;
+        size_t at;
+    };
+    std::vector<Curved> curved_;
+    std::vector<std::deque<TrilinearBody>> micropolygons_;
+    size_t micropolygonCount_ = 0;
     Bounds3f include_;  // the eye and the point lights: part of the root cell, as in the paper
     SpacetimeBVH spacetime_;
     std::vector<SpacetimeBVH> frames_;
