@@ -1,6 +1,7 @@
 #include "trace/trace.h"
 
 #include <sys/resource.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -50,8 +51,31 @@ void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
 
 // ---- TraceScene -------------------------------------------------------------------------------------
 
-TraceScene::TraceScene(const RenderScene& scene, Log& log) : scene_(scene) {
+TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log) : scene_(scene) {
     for (const BodyPtr& root : scene.roots) collect(*root, log);
+    // Curved bodies are tessellated in parallel (splitting and dicing are const and thread-safe,
+    // as the buckets use them), each into its own deque, then placed where collect met them: the
+    // body order, and so the hierarchy, does not depend on threads.
+    micropolygons_.resize(curved_.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, curved_.size()), [&](const tbb::blocked_range<size_t>& r) {
+        Tessellator tessellator(scene.camera, options, log);
+        for (size_t i = r.begin(); i != r.end(); ++i) tessellator.tessellate(*curved_[i].body, micropolygons_[i]);
+    });
+    if (!curved_.empty()) {
+        std::vector<const TrilinearBody*> all;
+        size_t n = bodies_.size();
+        for (const std::deque<TrilinearBody>& d : micropolygons_) micropolygonCount_ += d.size();
+        n += micropolygonCount_;
+        all.reserve(n);
+        size_t next = 0;  // of bodies_
+        for (size_t i = 0; i < curved_.size(); ++i) {
+            for (; next < curved_[i].at; ++next) all.push_back(bodies_[next]);
+            for (const TrilinearBody& mp : micropolygons_[i]) all.push_back(&mp);
+        }
+        for (; next < bodies_.size(); ++next) all.push_back(bodies_[next]);
+        bodies_ = std::move(all);
+    }
+    curved_ = {};
     include_.extend(Vec3f{0, 0, 0});  // the eye
     const float lens = scene.camera.lensRadius();  // and the lens, where eye rays start with depth of field
     include_.extend(Vec3f{-lens, -lens, 0});
@@ -84,11 +108,8 @@ void TraceScene::collect(const Body& body, Log& log) {
             collect(*h, log);
             pieces_.push_back(std::move(h));
         }
-    } else {
-        // The place for other kinds of body: an exact intersector, or a tessellation into patches.
-        log.warnOnce("trace:body", body.source() ? *body.source() : SourceLoc{},
-                     "the ray tracer intersects bilinear patches only: other surfaces are left out of ray tracing "
-                     "and shadows");
+    } else {  // a curved body: its micropolygons, made after collecting (see the constructor)
+        curved_.push_back({&body, bodies_.size()});
     }
 }
 
@@ -122,7 +143,8 @@ size_t TraceScene::hierarchyBytes() const {
 }
 
 size_t TraceScene::bytes() const {
-    return bodies_.capacity() * sizeof(bodies_[0]) + pieces_.size() * (sizeof(TrilinearBody) + 16) + hierarchyBytes();
+    return bodies_.capacity() * sizeof(bodies_[0]) + pieces_.size() * (sizeof(TrilinearBody) + 16) +
+           micropolygonCount_ * sizeof(TrilinearBody) + hierarchyBytes();
 }
 
 float TraceScene::shadowBias(float z) const {

@@ -14,6 +14,7 @@
 // the rasterizer's hit lies on a micropolygon, a hair off the exact patch).
 #pragma once
 
+#include <deque>
 #include <memory>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "shade/grid_shader.h"
 #include "bodies/render_scene.h"
 #include "trace/spacetime_bvh.h"
+#include "trace/tessellate.h"
 #include "streyes/stats.h"
 
 namespace streyes {
@@ -30,10 +32,10 @@ class TraceScene {
   public:
     // Takes the scene's root bodies: trilinear bodies as they are, keyed patches as their
     // trilinear segments (cut at their keys, as the split loop cuts them), procedurals expanded
-    // (all of them: rays go anywhere, shadow rays off screen too). Other kinds of body cannot be
-    // intersected yet and are left out with one warning. Throws what a procedural's expansion
-    // throws.
-    TraceScene(const RenderScene& scene, Log& log);
+    // (all of them: rays go anywhere, shadow rays off screen too), every other kind of body
+    // (curved ones) as its micropolygons, diced at the split loop's rate (trace/tessellate.h),
+    // bodies in parallel. Throws what a procedural's expansion throws.
+    TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log);
 
     // One 4D hierarchy over the render's whole window [windowStart, windowEnd].
     void buildSpacetime(const HierarchyOptions& options);
@@ -47,8 +49,8 @@ class TraceScene {
 
     const RenderScene& scene() const { return scene_; }
     size_t bodyCount() const { return bodies_.size(); }
-    // Bytes held for ray tracing, for the memory estimate: the pieces cut at motion keys and the
-    // body list, with the hierarchies built so far (hierarchyBytes() alone: the frame-by-frame
+    // Bytes held for ray tracing, for the memory estimate: the pieces cut at motion keys, the
+    // micropolygons of curved bodies and the body list, with the hierarchies built so far (hierarchyBytes() alone: the frame-by-frame
     // ones are built again for every frame block), and each tracing thread's mailbox.
     size_t bytes() const;
     size_t hierarchyBytes() const;
@@ -69,6 +71,15 @@ class TraceScene {
     const RenderScene& scene_;
     std::vector<const TrilinearBody*> bodies_;
     std::vector<BodyPtr> pieces_;  // segments of keyed patches
+    // Curved bodies met by collect, and where in bodies_ their micropolygons go; then the
+    // micropolygons of each (deques: bodies_ points into them).
+    struct Curved {
+        const Body* body;
+        size_t at;
+    };
+    std::vector<Curved> curved_;
+    std::vector<std::deque<TrilinearBody>> micropolygons_;
+    size_t micropolygonCount_ = 0;
     Bounds3f include_;  // the eye and the point lights: part of the root cell, as in the paper
     SpacetimeBVH spacetime_;
     std::vector<SpacetimeBVH> frames_;

@@ -1,0 +1,130 @@
+#include "trace/tessellate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "bodies/material.h"
+
+namespace streyes {
+
+void Tessellator::tessellate(const Body& body, std::deque<TrilinearBody>& out) {
+    // A counting pass first, which stops at the cap: a body reaching the near plane can measure
+    // in millions of pixels. Past the cap the body is left out; it cannot be diced coarser than
+    // the split loop does, since a curved body's edges follow lattices made at its own rate.
+    count_ = 0;
+    out_ = nullptr;
+    process(body, 0, 0);
+    if (count_ > kMaxMicropolygonsPerBody) {
+        log_.warnOnce("trace:tessellation", body.source() ? *body.source() : SourceLoc{},
+                      "a surface would make more than " + std::to_string(kMaxMicropolygonsPerBody) +
+                          " micropolygons for the ray tracer: it is left out of ray tracing and shadows");
+        return;
+    }
+    dropped_ = behind_ = false;
+    out_ = &out;
+    process(body, 0, 0);
+    out_ = nullptr;
+    if (dropped_)
+        log_.warnOnce("trace:splitlimit", body.source() ? *body.source() : SourceLoc{},
+                      "a surface is still too large to dice for the ray tracer after " +
+                          std::to_string(options_.maxSplitDepth) + " splits (degenerate or huge geometry): dropped");
+    if (behind_)
+        log_.warnOnce("trace:behind", body.source() ? *body.source() : SourceLoc{},
+                      "curved surfaces behind the camera (behind half the near clipping distance) are left out of "
+                      "ray tracing: they cast no shadows");
+}
+
+void Tessellator::process(const Body& body, int depth, int eyeDepth) {
+    if (!out_ && count_ > kMaxMicropolygonsPerBody) return;  // counted enough
+    if (!body.diceableInTime()) {  // more motion keys: cut at the middle one (not for roots: see TraceScene)
+        split(body, SplitAxis::T, depth, eyeDepth);
+        return;
+    }
+    const Bounds3f swept = body.bound().swept();
+    if (cam_.perspective() && !(swept.lo.z >= cam_.eyePlane())) {
+        // Cannot be projected, so cannot be measured or diced (a curved body's lattices are made
+        // in raster space): split across the eye plane as the split loop does, a few times, and
+        // leave out what lies behind it.
+        if (eyeDepth >= kMaxEyeSplits || !(swept.hi.z >= cam_.eyePlane())) {
+            behind_ = true;
+            return;
+        }
+        const CameraExtents e = body.cameraExtents();
+        SplitAxis axis = e.u >= e.v ? SplitAxis::U : SplitAxis::V;
+        if (body.moving() && e.t > std::max(e.u, e.v)) axis = SplitAxis::T;
+        split(body, axis, depth, eyeDepth + 1);
+        return;
+    }
+    // The split loop's rule (decideSplit).
+    const RasterMeasure m = body.measure(cam_);
+    const float rate = body.material() ? body.material()->shadingRate : 1.0f;
+    const float side = std::sqrt(std::max(rate, 1e-4f));
+    const float size = std::max(m.extentU, m.extentV);
+    SplitAxis axis;
+    if (body.moving() && m.motion > std::max(options_.timeSplitRatio * size, options_.timeSplitMinMotion)) {
+        axis = SplitAxis::T;
+    } else {
+        const double nu = std::max(1.0, std::ceil(double(m.extentU) / side));
+        const double nv = std::max(1.0, std::ceil(double(m.extentV) / side));
+        if (nu * nv <= double(options_.maxGridSize > 0 ? options_.maxGridSize : kDefaultGridSize)) {
+            dice(body, int(nu), int(nv));
+            return;
+        }
+        axis = m.extentU >= m.extentV ? SplitAxis::U : SplitAxis::V;
+    }
+    split(body, axis, depth + 1, eyeDepth);
+}
+
+void Tessellator::split(const Body& body, SplitAxis axis, int depth, int eyeDepth) {
+    if (depth > options_.maxSplitDepth) {
+        dropped_ = true;
+        return;
+    }
+    BodyPtr halves[2];
+    body.split(axis, halves);
+    if (axis != SplitAxis::T) {  // halves of the parameter rectangle, as BucketWorker::split keeps them
+        const size_t lo = axis == SplitAxis::U ? 0 : 2;
+        const float mid = 0.5f * (body.uv[lo] + body.uv[lo + 1]);
+        halves[0]->uv[lo + 1] = mid;
+        halves[1]->uv[lo] = mid;
+    }
+    for (BodyPtr& h : halves) process(*h, depth, eyeDepth);
+}
+
+// One TrilinearBody per micropolygon not trimmed away: its corners at the grid's t0 and t1,
+// its colours, its share of the body's parameter rectangle (u, v and s, t at hits).
+void Tessellator::dice(const Body& body, int nu, int nv) {
+    if (!out_) {
+        count_ += size_t(nu) * size_t(nv);
+        return;
+    }
+    body.dice(nu, nv, grid_);
+    const TimeSpan span{grid_.t0, grid_.t1, grid_.openEnd};
+    const bool flat = body.material() && !body.material()->smoothShading;
+    const std::vector<Vec3f>& P0 = grid_.P[0];
+    const std::vector<Vec3f>& P1 = grid_.moving ? grid_.P[1] : grid_.P[0];
+    const float du = (grid_.u1 - grid_.u0) / float(nu), dv = (grid_.v1 - grid_.v0) / float(nv);
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            if (!grid_.hole.empty() && grid_.hole[size_t(j * nu + i)]) continue;
+            const size_t idx[4] = {size_t(grid_.index(i, j)), size_t(grid_.index(i + 1, j)),
+                                   size_t(grid_.index(i, j + 1)), size_t(grid_.index(i + 1, j + 1))};
+            TrilinearBody::Corners c0, c1;
+            std::array<Color, 4> cs;
+            bool finite = true;
+            for (size_t k = 0; k < 4; ++k) {
+                c0[k] = P0[idx[k]];
+                c1[k] = P1[idx[k]];
+                cs[k] = grid_.Cs[flat ? idx[0] : idx[k]];
+                finite = finite && isFinite(c0[k]) && isFinite(c1[k]);
+            }
+            if (!finite) continue;
+            TrilinearBody& mp = out_->emplace_back(span, c0, c1, cs, body.material());
+            mp.inheritFrom(body);
+            mp.uv = {grid_.u0 + du * float(i), grid_.u0 + du * float(i + 1), grid_.v0 + dv * float(j),
+                     grid_.v0 + dv * float(j + 1)};
+        }
+}
+
+}  // namespace streyes
