@@ -35,14 +35,19 @@ constexpr int kBatch = OIIO::Tex::BatchWidth;
 class OiioTextures final : public sl::TextureSource {
   public:
     OiioTextures(const std::vector<std::string>& searchPath, TextureWarning warn)
-        : ts_(OIIO::TextureSystem::create(false)), warn_(std::move(warn)) {
+        : ts_(OIIO::TextureSystem::create(true)), warn_(std::move(warn)) {
+        // OpenImageIO's shared TextureSystem: 2.4's TextureSystem::destroy deletes through a
+        // mismatched type (AddressSanitizer: new-delete-type-mismatch), so the process keeps the
+        // shared one and a render starts by forgetting what an earlier render of the process
+        // read (files may have changed since).
+        ts_->invalidate_all(true);
         for (const std::string& f : searchPath) path_ += (path_.empty() ? "" : ":") + f;
         folders_ = searchPath;
         // Images without MIP levels (a plain .exr or .png) get them made in memory, so that
         // large footprints are filtered rather than aliased.
         ts_->attribute("automip", 1);
     }
-    ~OiioTextures() override { OIIO::TextureSystem::destroy(ts_); }
+    ~OiioTextures() override = default;  // the shared TextureSystem stays with the process
 
     bool texture(const std::string& name, const sl::TextureOptions& o, const sl::TextureQuery& q,
                  float* const* out) override {
