@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "geom/grid.h"
 #include "raster/micropolygon.h"
@@ -84,6 +85,15 @@ void GridRasterizer::collectSlices(const Grid& grid, const Shutter& shutter, con
 
 // ---- Sampling --------------------------------------------------------------------------------------
 
+namespace {
+// Calls f with std::true_type or std::false_type as `flag` is: a run-time flag to a template one.
+template <typename F>
+void withFlag(bool flag, F&& f) {
+    if (flag) f(std::true_type{});
+    else f(std::false_type{});
+}
+}  // namespace
+
 void GridRasterizer::rasterize(const Grid& grid, const Camera& camera, const Shutter& shutter, ImageBlock& block,
                                RasterCounters& counters) {
     counters.micropolygons += uint64_t(grid.nu) * uint64_t(grid.nv);
@@ -97,25 +107,17 @@ void GridRasterizer::rasterize(const Grid& grid, const Camera& camera, const Shu
         for (const FrameSpan& fr : frames_)
             if (!fr.whole) block.needTimes(fr.fi);
     }
-    const bool shadowed = grid.shadowSlots > 0, counting = hitCounts_ != nullptr;
     const bool lens = block.hasLens() && camera.depthOfField();
-    if (lens) {
-        if (shadowed) {
-            if (counting) sample<true, true, true>(grid, camera, block, counters);
-            else sample<true, false, true>(grid, camera, block, counters);
-        } else {
-            if (counting) sample<false, true, true>(grid, camera, block, counters);
-            else sample<false, false, true>(grid, camera, block, counters);
-        }
-        return;
-    }
-    if (shadowed) {
-        if (counting) sample<true, true, false>(grid, camera, block, counters);
-        else sample<true, false, false>(grid, camera, block, counters);
-    } else {
-        if (counting) sample<false, true, false>(grid, camera, block, counters);
-        else sample<false, false, false>(grid, camera, block, counters);
-    }
+    // One instance per combination of the three flags: scenes without shadows, counting or a lens
+    // pay nothing for them.
+    withFlag(grid.shadowSlots > 0, [&](auto shadowed) {
+        withFlag(hitCounts_ != nullptr, [&](auto counting) {
+            withFlag(lens, [&](auto withLens) {
+                sample<decltype(shadowed)::value, decltype(counting)::value, decltype(withLens)::value>(grid, camera, block,
+                                                                                                      counters);
+            });
+        });
+    });
 }
 
 template <bool Shadowed, bool Counting, bool Lens>
