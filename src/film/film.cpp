@@ -101,7 +101,7 @@ inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int 
             const SampleHit* h = hitsOf(block.pixelIndex(px, py));
             const float* w = fw.weights(block.patternOf(block.pixelIndex(px, py)), x - px, y - py);
             for (int j = 0; j < S; ++j) {
-                if (h[j].a == 0) continue;  // the background adds weight only
+                if (h[j].a == 0 && h[j].c.x == 0 && h[j].c.y == 0 && h[j].c.z == 0) continue;  // the background adds weight only
                 acc[0] += w[j] * h[j].c.x;
                 acc[1] += w[j] * h[j].c.y;
                 acc[2] += w[j] * h[j].c.z;
@@ -111,7 +111,8 @@ inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int 
     const float inv = std::fabs(weightSum) > 1e-8f ? 1.0f / weightSum : 0.0f;
     for (int c = 0; c < 4; ++c) out[c] = acc[c] * inv;
     const SampleHit* own = hitsOf(block.pixelIndex(x, y));
-    float z = std::numeric_limits<float>::infinity();
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    float z = kInf;
     switch (fw.depthFilter()) {
         case DepthFilter::Min:
             for (int j = 0; j < S; ++j) z = std::min(z, own[j].z);
@@ -119,7 +120,7 @@ inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int 
         case DepthFilter::Max: {
             float far = -std::numeric_limits<float>::infinity();
             for (int j = 0; j < S; ++j)
-                if (own[j].a != 0) far = std::max(far, own[j].z);
+                if (own[j].a != 0 && own[j].z < kInf) far = std::max(far, own[j].z);  // fragments alone: no depth
             if (far > -std::numeric_limits<float>::infinity()) z = far;
             break;
         }
@@ -127,7 +128,7 @@ inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int 
             float sum = 0;
             int n = 0;
             for (int j = 0; j < S; ++j)
-                if (own[j].a != 0) sum += own[j].z, ++n;
+                if (own[j].a != 0 && own[j].z < kInf) sum += own[j].z, ++n;
             if (n > 0) z = sum / float(n);
             break;
         }
@@ -160,6 +161,30 @@ void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int x, int y, 
     for (int a = 0; a < A; ++a) out[a] = acc[a] * inv;
 }
 
+// The sample whose opaque hit is `opaque` and whose fragments are in lists `a` and `b` (-1: none),
+// composited (film.h): its opaque hit's depth and id, the composited colour and alpha.
+SampleHit composite(const ImageBlock& block, const SampleHit& opaque, int32_t a, int32_t b,
+                    std::vector<SampleFragment>& frags) {
+    if (a < 0 && b < 0) return opaque;
+    frags.clear();
+    for (int32_t list : {a, b})
+        for (int32_t k = list; k >= 0; k = block.fragment(k).next) {
+            const SampleFragment& f = block.fragment(k);
+            if (opaque.beatenBy(f.z, f.id, f.c)) frags.push_back(f);
+        }
+    if (frags.empty()) return opaque;
+    std::sort(frags.begin(), frags.end(), [](const SampleFragment& x, const SampleFragment& y) { return x.before(y); });
+    Color c{0, 0, 0}, t{1, 1, 1};  // colour so far, and what still gets through
+    for (const SampleFragment& f : frags) {
+        c += Color{t.x * f.c.x, t.y * f.c.y, t.z * f.c.z};
+        t = Color{t.x * (1 - f.o.x), t.y * (1 - f.o.y), t.z * (1 - f.o.z)};
+    }
+    c += Color{t.x * opaque.c.x, t.y * opaque.c.y, t.z * opaque.c.z};
+    const float clear = 1 - opaque.a;
+    const float alpha = ((1 - t.x * clear) + (1 - t.y * clear) + (1 - t.z * clear)) / 3;
+    return {opaque.z, c, alpha, opaque.id};
+}
+
 }  // namespace
 
 void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWeights& fw, FrameImage* frames,
@@ -182,15 +207,46 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
             scratch.weightSum[size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0)] = sum;
         }
 
-    // The still layer, resolved once for every frame that shows it.
+    // See-through fragments: the still layer's composited here; a frame's when its gather first
+    // asks for a pixel with a record.
     const bool dense = block.dense();
+    const bool fragments = block.hasFragments();
+    const size_t blockPixels = size_t(block.pixelCount());
+    if (fragments) {
+        if (!dense) {
+            scratch.stillComposite.resize(blockPixels * size_t(S));
+            for (size_t i = 0; i < blockPixels; ++i) {
+                const int32_t* heads = block.stillFragments(i);
+                for (int j = 0; j < S; ++j)
+                    scratch.stillComposite[i * size_t(S) + size_t(j)] =
+                        composite(block, block.still(i)[j], heads[j], -1, scratch.fragments);
+            }
+        }
+        scratch.frameComposite.resize(blockPixels * size_t(S));
+        scratch.compositedFrame.assign(blockPixels, -1);
+    }
+    auto stillHits = [&](size_t i) { return fragments ? &scratch.stillComposite[i * size_t(S)] : block.still(i); };
+    auto frameHits = [&](int fi, size_t i) -> const SampleHit* {
+        if (!fragments) return block.hits(fi, i);
+        const SampleHit* rec = block.record(fi, i);
+        if (!rec) return &scratch.stillComposite[i * size_t(S)];
+        SampleHit* out = &scratch.frameComposite[i * size_t(S)];
+        if (scratch.compositedFrame[i] != fi) {
+            const int32_t* own = block.recordFragments(fi, i);
+            const int32_t* shared = dense ? nullptr : block.stillFragments(i);
+            for (int j = 0; j < S; ++j) out[j] = composite(block, rec[j], own[j], shared ? shared[j] : -1, scratch.fragments);
+            scratch.compositedFrame[i] = fi;
+        }
+        return out;
+    };
+
+    // The still layer, resolved once for every frame that shows it.
     if (!dense) {
         scratch.still.resize(tilePixels * 5);
         for (int y = tile.y0; y <= tile.y1; ++y)
             for (int x = tile.x0; x <= tile.x1; ++x) {
                 const size_t t = size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0);
-                gather(block, fw, x, y, scratch.weightSum[t], [&](size_t i) { return block.still(i); },
-                       &scratch.still[t * 5]);
+                gather(block, fw, x, y, scratch.weightSum[t], stillHits, &scratch.still[t * 5]);
             }
     }
 
@@ -228,7 +284,7 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
                 const size_t t = size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0);
                 float v[5] = {0, 0, 0, 0, 0};
                 if (scratch.gathered[t])
-                    gather(block, fw, x, y, scratch.weightSum[t], [&](size_t i) { return block.hits(fi, i); }, v);
+                    gather(block, fw, x, y, scratch.weightSum[t], [&](size_t i) { return frameHits(fi, i); }, v);
                 else
                     std::copy(&scratch.still[t * 5], &scratch.still[t * 5] + 5, v);
                 float* px = &out.rgba[(size_t(y) * size_t(out.width) + size_t(x)) * 4];

@@ -6,6 +6,11 @@
 // the samples around the pixel centre; Z is the nearest camera-space depth among the pixel's
 // own samples (+inf where none hit: Z is not filtered), or as DepthFilter says.
 //
+// See-through fragments (image_block.h) are composited per sample, nearest first, over the sample's
+// opaque hit: C = sum of T_k Ci_k + T c_opaque with T_k the product of (1 - Oi) of the fragments in
+// front (per channel); alpha is the mean over channels of 1 - T (1 - a_opaque). Z stays the opaque
+// hit's, as with RenderMan's default zthreshold; output variables are the opaque hit's.
+//
 // Output variables (util/aov.h) are the filter-weighted mean of the samples that hit, divided by
 // the weight of those samples only: a normal at a silhouette is the surface's, not averaged with
 // the background's nothing (pixels where no sample hits hold 0).
@@ -90,6 +95,11 @@ struct ResolveScratch {
     std::vector<uint8_t> gathered; // per tile pixel, in the frame being resolved: gathered again
     std::vector<float> aov;        // one pixel's output variables being gathered
     std::vector<float> stillAov;   // per tile pixel: output variables resolved from the still layer
+    // With see-through fragments: each sample's fragments composited over its opaque hit, for the
+    // still layer and (made when first asked for) for the frame being resolved.
+    std::vector<SampleHit> stillComposite, frameComposite;
+    std::vector<int32_t> compositedFrame;  // per block pixel: the frame frameComposite holds it for, or -1
+    std::vector<SampleFragment> fragments;  // one sample's, being sorted
 };
 
 // Resolves the samples of every frame of the block into the pixels of `tile` (inside the

@@ -32,6 +32,10 @@ struct Grid {
     // still grid made moving to be shaded at both ends is the same grid.
     std::vector<uint8_t> hole;
     std::vector<Color> Ci[2];     // shaded colour at t0, t1 (written by the shading stage)
+    // Shaded opacity at t0, t1 (RenderMan's Oi; Ci is premultiplied by it). Empty for a slot
+    // shaded opaque (the usual case): the rasterizer reads a missing slot as Oi = 1. Written by the
+    // shading stage for materials that can be transparent (Opacity < 1, Shading Language surfaces).
+    std::vector<Color> Oi[2];
     // Lights that cast shadows: their contribution per vertex (shadowSlots colours a vertex, at
     // t0 and t1), kept out of Ci for the per-sample shadow test. Set shadowSlots before dicing.
     int shadowSlots = 0;

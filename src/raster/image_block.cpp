@@ -72,6 +72,15 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     }
     // Read only where a sample has a hit, which writes them: no clearing needed beyond sizing.
     stillAov_.resize(dense ? 0 : n * size_t(aovs_));
+    fragmentsOn_ = false;
+    fragments_.clear();
+    fragmentShadowed_.clear();
+}
+
+void ImageBlock::makeFragmentHeads() {
+    fragmentsOn_ = true;
+    stillHeads_.assign(dense_ ? 0 : size_t(pixelCount()) * size_t(S_), -1);
+    recordHeads_.assign(size_t(records_) * size_t(S_), -1);
 }
 
 void ImageBlock::makeTimes(int fi) const {
@@ -97,6 +106,7 @@ SampleHit* ImageBlock::makeRecord(int fi, size_t i) {
         std::copy(a, a + size_t(S_) * size_t(aovs_), recordAovAt(records_));
     }
     ++records_;
+    if (fragmentsOn_) recordHeads_.resize(size_t(records_) * size_t(S_), -1);
     std::copy(still(i), still(i) + S_, r);
     return r;
 }
@@ -109,7 +119,9 @@ size_t ImageBlock::bytes() const {
     return (xs_.capacity() + ys_.capacity() + lus_.capacity() + lvs_.capacity()) * sizeof(float) +
            permutation_.capacity() + still_.capacity() * sizeof(SampleHit) + slot_.capacity() * sizeof(int32_t) +
            chunks_.size() * chunkSamples_ * sizeof(SampleHit) + shadowed_.capacity() * sizeof(Color) +
-           (stillAov_.capacity() + aovChunks_.size() * chunkSamples_ * size_t(aovs_)) * sizeof(float);
+           (stillAov_.capacity() + aovChunks_.size() * chunkSamples_ * size_t(aovs_)) * sizeof(float) +
+           (stillHeads_.capacity() + recordHeads_.capacity()) * sizeof(int32_t) +
+           fragments_.capacity() * sizeof(SampleFragment) + fragmentShadowed_.capacity() * sizeof(Color);
 }
 
 }  // namespace streyes

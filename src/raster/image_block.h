@@ -49,6 +49,28 @@ struct SampleHit {
 };
 constexpr SampleHit kNoHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f, kNoPrimitive};
 
+// A see-through hit (Oi < 1 in some channel) of a sample. Kept apart from SampleHit, in a list per
+// sample, and composited in depth order when the block is resolved (film.h): the SampleHit stays
+// the nearest *opaque* hit, so what hides a micropolygon, what the occlusion tables count and what
+// culls are opaque coverage only, and a fragment behind the final opaque hit is dropped whatever
+// order the two arrived in.
+struct SampleFragment {
+    float z;
+    Color c;       // Ci (premultiplied by o, as shaders give it)
+    Color o;       // Oi
+    uint64_t id;   // primitive: with z and c orders fragments independently of arrival
+    int32_t next;  // the sample's next fragment (unordered), or -1
+
+    // The order fragments are composited in, nearest first (SampleHit::beatenBy's).
+    bool before(const SampleFragment& b) const {
+        if (z != b.z) return z < b.z;
+        if (id != b.id) return id < b.id;
+        if (c.x != b.c.x) return c.x < b.c.x;
+        if (c.y != b.c.y) return c.y < b.c.y;
+        return c.z < b.c.z;
+    }
+};
+
 class ImageBlock {
   public:
     // Sizes the block, places the samples and clears the hits (reusing memory). shadowSlots > 0
@@ -147,6 +169,36 @@ class ImageBlock {
         return r < 0 ? &stillAov_[i * size_t(S_) * size_t(aovs_)] : const_cast<ImageBlock*>(this)->recordAovAt(uint32_t(r));
     }
 
+    // See-through fragments: lists per sample of the still layer (fragments of still grids every
+    // frame sees) and of frames' records (fragments only that frame sees; a frame's list and the
+    // still layer's both apply where it has a record). List heads are made when the bucket's
+    // first fragment arrives, so blocks without any pay nothing.
+    bool hasFragments() const { return fragmentsOn_; }
+    size_t fragmentCount() const { return fragments_.size(); }
+    int32_t* stillFragments(size_t i) { return &stillHeads_[i * size_t(S_)]; }
+    const int32_t* stillFragments(size_t i) const { return &stillHeads_[i * size_t(S_)]; }
+    // Frame fi's lists of pixel i: it must have a record (makeRecord).
+    int32_t* recordFragments(int fi, size_t i) {
+        return &recordHeads_[size_t(slot_[size_t(fi) * size_t(pixelCount()) + i]) * size_t(S_)];
+    }
+    const int32_t* recordFragments(int fi, size_t i) const { return const_cast<ImageBlock*>(this)->recordFragments(fi, i); }
+    // Puts f at the head of list `*head` (which startFragments made): its index.
+    int32_t addFragment(int32_t* head, SampleFragment f) {
+        f.next = *head;
+        *head = int32_t(fragments_.size());
+        fragments_.push_back(f);
+        if (shadowSlots_ > 0) fragmentShadowed_.resize(fragments_.size() * size_t(shadowSlots_));
+        return *head;
+    }
+    // Makes the list heads (call before the first addFragment of a bucket; then a no-op).
+    void startFragments() {
+        if (!fragmentsOn_) makeFragmentHeads();
+    }
+    const SampleFragment& fragment(int32_t k) const { return fragments_[size_t(k)]; }
+    SampleFragment& fragment(int32_t k) { return fragments_[size_t(k)]; }
+    // With shadows (dense mode): the shadowed parts of fragment k, shadowSlots() colours.
+    Color* fragmentShadowed(int32_t k) { return &fragmentShadowed_[size_t(k) * size_t(shadowSlots_)]; }
+
     size_t bytes() const;
 
   private:
@@ -182,6 +234,12 @@ class ImageBlock {
     std::vector<float> stillAov_;       // pixels x S x aovs_
     std::vector<std::unique_ptr<float[]>> aovChunks_;  // beside chunks_, one to one
     int aovChunkWidth_ = 0;             // aovs_ when aovChunks_ were made
+    void makeFragmentHeads();
+    bool fragmentsOn_ = false;
+    std::vector<int32_t> stillHeads_;    // pixels x S (sparse mode)
+    std::vector<int32_t> recordHeads_;   // records x S
+    std::vector<SampleFragment> fragments_;
+    std::vector<Color> fragmentShadowed_;  // fragments x shadowSlots
 };
 
 }  // namespace streyes

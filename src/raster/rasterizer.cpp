@@ -161,6 +161,45 @@ inline bool beats(const SampleHit& cur, const float* z, const Hit& h, float near
     return true;
 }
 
+// The fragment of a see-through triangle at a sample, when it is nearer than the sample's opaque
+// hit `cur` (or beats it at equal depth) and inside the clipping range.
+template <typename ColorAt, typename OpacityAt>
+inline bool fragmentBeats(const SampleHit& cur, const float* z, const Hit& h, float nearZ, float farZ, uint64_t id,
+                          ColorAt colorAt, OpacityAt opacityAt, SampleFragment* out) {
+    const float zh = z[h.v0] + h.l1 * (z[h.v1] - z[h.v0]) + h.l2 * (z[h.v2] - z[h.v0]);
+    if (!(zh >= nearZ && zh <= farZ && zh <= cur.z)) return false;
+    const Color c0 = colorAt(h.v0), c1 = colorAt(h.v1), c2 = colorAt(h.v2);
+    const Color c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
+    if (zh == cur.z && !cur.beatenBy(zh, id, c)) return false;
+    const Color o0 = opacityAt(h.v0), o1 = opacityAt(h.v1), o2 = opacityAt(h.v2);
+    const Color o = o0 + (o1 - o0) * h.l1 + (o2 - o0) * h.l2;
+    *out = {zh, c, {std::clamp(o.x, 0.0f, 1.0f), std::clamp(o.y, 0.0f, 1.0f), std::clamp(o.z, 0.0f, 1.0f)}, id, -1};
+    return true;
+}
+
+enum class QuadOpacity { Opaque, SeeThrough, Clear };
+
+// How a quad's corners idx[] (in either slot of a moving grid: oi1, ci1 non-null) let light through.
+// Missing opacities (null oi) are 1.
+inline QuadOpacity quadOpacity(const Color* oi0, const Color* oi1, const Color* ci0, const Color* ci1, const int* idx) {
+    bool opaque = true, clear = true;
+    auto look = [&](const Color* oi, const Color* ci) {
+        for (int c = 0; c < 4; ++c) {
+            const Color o = oi ? oi[idx[c]] : Color{1, 1, 1}, col = ci[idx[c]];
+            opaque = opaque && o.x >= 1 && o.y >= 1 && o.z >= 1;
+            clear = clear && o.x == 0 && o.y == 0 && o.z == 0 && col.x == 0 && col.y == 0 && col.z == 0;
+        }
+    };
+    look(oi0, ci0);
+    if (ci1) look(oi1, ci1);
+    return opaque ? QuadOpacity::Opaque : clear ? QuadOpacity::Clear : QuadOpacity::SeeThrough;
+}
+
+// A grid's opacities at slot k, or null where the slot was shaded opaque.
+inline const Color* opacities(const Grid& grid, int k) {
+    return grid.Oi[k].size() == size_t(grid.vertexCount()) ? grid.Oi[k].data() : nullptr;
+}
+
 // With the hit, the K contributions of lights that cast shadows, interpolated the same way.
 template <typename PartAt>
 inline void writeShadowed(Color* out, int K, const Hit& h, PartAt partAt) {
@@ -264,15 +303,19 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const int A = grid.aovCount;
     const float* av = grid.aov[0].data();
     const uint64_t id = grid.primitiveId;
+    const Color* oi = opacities(grid, 0);
     // The kernel: SIMD, or scalar while counting hits for tests of watertightness (the counting
     // instance runs the scalar reference: the kernels are held to it bit for bit).
     const QuadTestFn test = Counting ? quadTestScalar() : quadTestKernel();
     const SampleLayout layout{xs, ys, R.x0, R.y0, R.width(), S, sx, sy};
-    uint64_t tests = 0, hits = 0, firstHits = 0;
+    uint64_t tests = 0, hits = 0, firstHits = 0, fragments = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
             if (hole && hole[j * nu + i]) continue;  // trimmed away
             const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
+            const QuadOpacity opacity = oi ? quadOpacity(oi, nullptr, ci, nullptr, idx) : QuadOpacity::Opaque;
+            if (!Counting && opacity == QuadOpacity::Clear) continue;
+            const bool seeThrough = opacity != QuadOpacity::Opaque;
             QuadSetup q;
             for (int c = 0; c < 4; ++c) {
                 const RasterVertex& v = ra_[size_t(idx[c])];
@@ -281,9 +324,11 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
             if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ, lensMargin<Lens>(camera))) continue;
             if (!Counting && intoStill && behindStillLayer(block, q)) continue;
             auto colorAt = [&](int c) { return ci[idx[flat ? 0 : c]]; };
+            auto opacityAt = [&](int c) { return oi[idx[flat ? 0 : c]]; };
             // A hit of sample sj of pixel pi, h on quad qc (q as the sample sees it).
             auto onHit = [&](size_t pi, int sj, const Hit& h, const QuadSetup& qc) {
                 SampleHit hit;
+                SampleFragment frag;
                 if (intoStill) {
                     ++hits;
                     if (Counting) {
@@ -294,6 +339,13 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         }
                     }
                     SampleHit& cur = block.still(pi)[sj];
+                    if (seeThrough) {  // a fragment every frame sees (where nothing opaque of its own is nearer)
+                        if (!fragmentBeats(cur, q.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) return;
+                        block.startFragments();
+                        block.addFragment(block.stillFragments(pi) + sj, frag);
+                        ++fragments;
+                        return;
+                    }
                     if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) return;
                     if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
                     cur = hit;
@@ -323,6 +375,17 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     }
                     SampleHit* rec = block.record(fr.fi, pi);
                     const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
+                    if (seeThrough) {
+                        if (!fragmentBeats(cur, q.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) continue;
+                        if (!rec) rec = block.makeRecord(fr.fi, pi);  // so the frame resolves the pixel itself
+                        block.startFragments();
+                        const int32_t fk = block.addFragment(block.recordFragments(fr.fi, pi) + sj, frag);
+                        ++fragments;
+                        if (Shadowed)
+                            writeShadowed(block.fragmentShadowed(fk), K, h,
+                                          [&](int c, int k) { return cl[size_t(idx[flat ? 0 : c] * K + k)]; });
+                        continue;
+                    }
                     if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) continue;
                     firstHits += cur.a == 0;
                     if (!rec) rec = block.makeRecord(fr.fi, pi);
@@ -370,6 +433,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     counters.sampleTests += tests;
     counters.sampleHits += hits;
     counters.firstHits += firstHits;
+    counters.fragments += fragments;
 }
 
 // A moving grid: projected at both ends of each slice to bound its quads over the slice; a
@@ -401,6 +465,9 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const int A = grid.aovCount;
     const float *av0 = grid.aov[0].data(), *av1 = grid.aov[1].data();
     const uint64_t id = grid.primitiveId;
+    const Color *oi0 = opacities(grid, 0), *oi1 = opacities(grid, 1);
+    const bool anySeeThrough = oi0 || oi1;
+    const Color kOpaque{1, 1, 1};
     const float* xs = block.xs();
     const float* ys = block.ys();
     const float *lus = block.lus(), *lvs = block.lvs();
@@ -420,7 +487,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const size_t group = perSlice > 0 ? size_t(std::clamp(double(kGroupMotion) / perSlice, 1.0, double(S))) : size_t(S);
 
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
-    uint64_t tests = 0, hits = 0, firstHits = 0, behind = 0;
+    uint64_t tests = 0, hits = 0, firstHits = 0, behind = 0, fragments = 0;
     for (size_t s0 = 0; s0 < slices_.size();) {
         size_t s1 = s0 + 1;  // the group: consecutive slices of one frame
         while (s1 < slices_.size() && s1 - s0 < group && slices_[s1].fi == slices_[s0].fi &&
@@ -471,6 +538,10 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
             for (int i = 0; i < nu; ++i) {
                 if (hole && hole[j * nu + i]) continue;  // trimmed away
                 const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
+                const QuadOpacity opacity =
+                    anySeeThrough ? quadOpacity(oi0, oi1, ci0, ci1, idx) : QuadOpacity::Opaque;
+                if (!Counting && opacity == QuadOpacity::Clear) continue;
+                const bool seeThrough = opacity != QuadOpacity::Opaque;
                 QuadSetup q;
                 float xb[4], yb[4], zb[4];
                 for (int c = 0; c < 4; ++c) {
@@ -539,6 +610,25 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                                 trianglesCovering(qt, x, y, &hitCounts_[ci2], &windings_[ci2]);
                             }
                             const float sg = lerp(sA, sB, w);  // the grid's own time parameter
+                            if (seeThrough) {
+                                SampleFragment frag;
+                                auto colorAt = [&](int c) { return lerp(ci0[idx[flat ? 0 : c]], ci1[idx[flat ? 0 : c]], sg); };
+                                auto opacityAt = [&](int c) {
+                                    const int v = idx[flat ? 0 : c];
+                                    return lerp(oi0 ? oi0[v] : kOpaque, oi1 ? oi1[v] : kOpaque, sg);
+                                };
+                                if (!fragmentBeats(cur, qt.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) continue;
+                                if (!rec) rec = block.makeRecord(fi, pi);
+                                block.startFragments();
+                                const int32_t fk = block.addFragment(block.recordFragments(fi, pi) + sj, frag);
+                                ++fragments;
+                                if (Shadowed)
+                                    writeShadowed(block.fragmentShadowed(fk), K, h, [&](int c, int k) {
+                                        const size_t v = size_t(idx[flat ? 0 : c] * K + k);
+                                        return lerp(cl0[v], cl1[v], sg);
+                                    });
+                                continue;
+                            }
                             SampleHit hit;
                             if (!beats(cur, qt.z, h, nearZ, farZ, id,
                                        [&](int c) { return lerp(ci0[idx[flat ? 0 : c]], ci1[idx[flat ? 0 : c]], sg); }, &hit))
@@ -567,6 +657,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     counters.sampleHits += hits;
     counters.firstHits += firstHits;
     counters.samplesBehind += behind;
+    counters.fragments += fragments;
 }
 
 }  // namespace streyes

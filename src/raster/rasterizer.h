@@ -13,6 +13,10 @@
 // block's still layer; any other writes into the frames' records of the pixels it comes nearest
 // in (image_block.h).
 //
+// A quad with a corner whose opacity (Grid::Oi) is below 1 is see-through: its hits nearer than a
+// sample's opaque hit become fragments (image_block.h), composited when resolving; a quad clear at
+// every corner (Oi = Ci = 0) adds nothing and is skipped; the rest are opaque hits as usual.
+//
 // Edges are evaluated in a canonical direction, so two triangles sharing an edge get exactly
 // opposite edge values, and a sample exactly on an edge goes to exactly one of them (as if it
 // were nudged by (-e^2, e)): no cracks and no double hits inside a grid or between grids that
@@ -41,6 +45,7 @@ struct RasterCounters {
     uint64_t sampleHits = 0;     // tests that found the sample inside
     uint64_t samplesBehind = 0;  // samples not tested: all of the micropolygon lay behind their hit
     uint64_t firstHits = 0;      // samples that had no hit before (adaptive depth layers use it)
+    uint64_t fragments = 0;      // see-through hits kept for compositing (image_block.h)
 };
 
 class GridRasterizer {

@@ -144,6 +144,7 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     counters.sampleTests += rasterCounters_.sampleTests;
     counters.sampleHits += rasterCounters_.sampleHits;
     counters.samplesBehind += rasterCounters_.samplesBehind;
+    counters.sampleFragments += rasterCounters_.fragments;
     rasterCounters_ = {};
     shader_.takeCounters(counters);
 }
@@ -654,6 +655,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
             std::swap(grid_.P[0], grid_.P[1]);
             std::swap(grid_.N[0], grid_.N[1]);
             std::swap(grid_.Ci[0], grid_.Ci[1]);
+            std::swap(grid_.Oi[0], grid_.Oi[1]);
             std::swap(grid_.Cl[0], grid_.Cl[1]);
             std::swap(grid_.aov[0], grid_.aov[1]);  // the shader's outputs; fillAovs writes the rest again
         }

@@ -13,7 +13,6 @@ void fillAovs(Grid& grid, const AovLayout& layout, const Camera& camera) {
     const float invSpan = moves ? float(1.0 / (grid.t1 - grid.t0)) : 0.0f;
     const float du = grid.nu > 0 ? (grid.u1 - grid.u0) / float(grid.nu) : 0.0f;
     const float dv = grid.nv > 0 ? (grid.v1 - grid.v0) / float(grid.nv) : 0.0f;
-    const Color os = grid.material ? grid.material->Os : Color{1, 1, 1};
     for (int k = 0; k < (grid.moving ? 2 : 1); ++k) {
         float* out = grid.aov[k].data();
         for (size_t vi = 0; vi < layout.vars.size(); ++vi) {
@@ -44,7 +43,11 @@ void fillAovs(Grid& grid, const AovLayout& layout, const Camera& camera) {
                             d[0] = c.x, d[1] = c.y, d[2] = c.z;
                             break;
                         }
-                        case AovVar::Oi: d[0] = os.x, d[1] = os.y, d[2] = os.z; break;
+                        case AovVar::Oi: {
+                            const Color o = grid.Oi[k].size() > size_t(v) ? grid.Oi[k][size_t(v)] : Color{1, 1, 1};
+                            d[0] = o.x, d[1] = o.y, d[2] = o.z;
+                            break;
+                        }
                         case AovVar::Shader: break;
                         case AovVar::Motion: {
                             if (!moves) {

@@ -5,6 +5,14 @@
 
 namespace streyes {
 
+namespace {
+// An opacity in [0, 1] per channel; NaN is opaque (a shader's bad value must not hide what is behind).
+Color clampOpacity(Color o) {
+    auto c = [](float v) { return v >= 0 ? (v <= 1 ? v : 1.0f) : (v < 0 ? 0.0f : 1.0f); };
+    return {c(o.x), c(o.y), c(o.z)};
+}
+}  // namespace
+
 GridShader::GridShader(const SceneShaders* shaders, const Camera& camera, const LightSet& lights)
     : shaders_(shaders), camera_(camera), lights_(lights) {}
 
@@ -22,7 +30,7 @@ void GridShader::takeCounters(RenderCounters& out) {
 }
 
 Color GridShader::shadeHit(const Material& m, Color cs, Vec3f p, Vec3f n, double time, float u, float v,
-                          uint64_t primitiveId, Color* shadowed, int slots) {
+                          uint64_t primitiveId, Color* shadowed, int slots, Color* opacity) {
     hit_.shadowSlots = slots;
     hit_.resize(0, 0, false);
     hit_.material = &m;
@@ -36,6 +44,7 @@ Color GridShader::shadeHit(const Material& m, Color cs, Vec3f p, Vec3f n, double
     if (m.surface || m.atmosphere) prepare(m, hit_, 0, time);
     shadeSurface(hit_, 0, time);  // a hit on the traced surface: not displaced again
     for (int k = 0; k < slots; ++k) shadowed[k] = hit_.Cl[0][size_t(k)];
+    if (opacity) *opacity = hit_.Oi[0].empty() ? Color{1, 1, 1} : hit_.Oi[0][0];
     return hit_.Ci[0][0];
 }
 
@@ -90,11 +99,26 @@ void GridShader::displace(const Material& m, Grid& grid, int k, double time) {
 void GridShader::shadeSurface(Grid& grid, int k, double time) {
     const Material& m = *grid.material;
     if (aovs_ && grid.aovCount == aovs_->count) clearShaderOutputs(grid, k);
+    const size_t n = size_t(grid.vertexCount());
     if (!m.surface) {
         shadeGridSlot(grid, k, time, lights_, !camera_.perspective(), lightScratch_);
         builtinPoints_ += uint64_t(grid.vertexCount());
+        if (!(m.Os.x >= 1 && m.Os.y >= 1 && m.Os.z >= 1)) grid.Oi[k].assign(n, clampOpacity(m.Os));
+        else grid.Oi[k].clear();
     } else {
         runSurface(m, grid, k, time);
+        // The shader's Oi (Os where it writes none): kept only when some point is see-through.
+        const sl::ValueRef oi = vm_->result(sl::Global::Oi);
+        grid.Oi[k].clear();
+        if (oi.valid())
+            for (size_t i = 0; i < n; ++i) {
+                const Color o = oi.vec(int(i));
+                if (!(o.x >= 1 && o.y >= 1 && o.z >= 1)) {  // NaN counts as see-through here, made opaque below
+                    grid.Oi[k].resize(n);
+                    for (size_t j = 0; j < n; ++j) grid.Oi[k][j] = clampOpacity(oi.vec(int(j)));
+                    break;
+                }
+            }
     }
     if (m.atmosphere) runAtmosphere(m, grid, k, time);
 }

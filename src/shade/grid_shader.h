@@ -50,9 +50,10 @@ class GridShader {
     void shade(Grid& grid);
 
     // One point (a ray's hit): its colour, and with `shadowed` the parts of the lights that cast
-    // shadows (as shadePoint gives them). No derivatives: du, dv and Du(), Dv() are 0.
+    // shadows (as shadePoint gives them), and with `opacity` its Oi. No derivatives: du, dv and
+    // Du(), Dv() are 0.
     Color shadeHit(const Material& m, Color cs, Vec3f p, Vec3f n, double time, float u, float v,
-                   uint64_t primitiveId, Color* shadowed, int slots);
+                   uint64_t primitiveId, Color* shadowed, int slots, Color* opacity = nullptr);
 
     // Adds what was shaded since the last call to `out` (the stats' shading.* counters).
     void takeCounters(RenderCounters& out);

@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -216,22 +217,42 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
         const Ray ray = eyeRay(cam, s.x, s.y, lens);
         const SpacetimeBVH& bvh = trace.hierarchy(frame);
         ++counters.eyeRays;
+        // Nearest first: a see-through hit (Oi < 1) adds its colour through what is in front and
+        // the ray goes on past it, as the rasterizer's fragments are composited (film.h).
+        Color sum{0, 0, 0}, through{1, 1, 1};
+        float tNear = cam.nearClip();
         TraceHit h;
-        if (!bvh.intersect(ray, time, cam.nearClip(), cam.farClip(), &h, ctx_)) return;
-        const TrilinearBody& body = *bvh.bodies()[h.body];
-        const Vec3f p = ray.o + ray.d * h.t;
-        const Vec3f n = bilinearNormal(body.cornersAt(time), h.u, h.v);
-        const Color cs = bilerp(body.colors(), h.u, h.v);
-        const std::vector<CameraLight>& lights =
-            lightsAt(scene.lights, time);  // refreshed per sample only when lights or camera move
-        const Material& m = *body.material();
-        Color c = m.surface && shader_
-                      ? shader_->shadeHit(m, cs, p, n, time, body.uv[0] + h.u * (body.uv[1] - body.uv[0]),
-                                          body.uv[2] + h.v * (body.uv[3] - body.uv[2]), body.primitiveId(),
-                                          K ? shadowed_.data() : nullptr, K)
-                      : shadePoint(m, cs, p, n, ortho, lights, K ? shadowed_.data() : nullptr, K);
-        if (K) c = addVisibleLights(c, p, time, shadowed_.data(), trace, bvh, counters);
-        hit = {p.z, c, 1.0f, body.primitiveId()};
+        while (bvh.intersect(ray, time, tNear, cam.farClip(), &h, ctx_)) {
+            const TrilinearBody& body = *bvh.bodies()[h.body];
+            const Vec3f p = ray.o + ray.d * h.t;
+            const Vec3f n = bilinearNormal(body.cornersAt(time), h.u, h.v);
+            const Color cs = bilerp(body.colors(), h.u, h.v);
+            const std::vector<CameraLight>& lights =
+                lightsAt(scene.lights, time);  // refreshed per sample only when lights or camera move
+            const Material& m = *body.material();
+            Color o = m.Os;
+            Color c = m.surface && shader_
+                          ? shader_->shadeHit(m, cs, p, n, time, body.uv[0] + h.u * (body.uv[1] - body.uv[0]),
+                                              body.uv[2] + h.v * (body.uv[3] - body.uv[2]), body.primitiveId(),
+                                              K ? shadowed_.data() : nullptr, K, &o)
+                          : shadePoint(m, cs, p, n, ortho, lights, K ? shadowed_.data() : nullptr, K);
+            if (K) c = addVisibleLights(c, p, time, shadowed_.data(), trace, bvh, counters);
+            o = {std::clamp(o.x, 0.0f, 1.0f), std::clamp(o.y, 0.0f, 1.0f), std::clamp(o.z, 0.0f, 1.0f)};
+            if (o.x >= 1 && o.y >= 1 && o.z >= 1 && through.x == 1 && through.y == 1 && through.z == 1) {
+                hit = {p.z, c, 1.0f, body.primitiveId()};  // opaque, nothing in front: as ever
+                return;
+            }
+            sum += Color{through.x * c.x, through.y * c.y, through.z * c.z};
+            through = Color{through.x * (1 - o.x), through.y * (1 - o.y), through.z * (1 - o.z)};
+            if (o.x >= 1 && o.y >= 1 && o.z >= 1) {  // the opaque hit behind the fragments
+                hit = {p.z, sum, 1.0f, body.primitiveId()};
+                return;
+            }
+            tNear = std::nextafter(h.t, std::numeric_limits<float>::infinity());
+        }
+        if (through.x == 1 && through.y == 1 && through.z == 1) return;  // nothing seen
+        const float alpha = ((1 - through.x) + (1 - through.y) + (1 - through.z)) / 3;
+        hit = {std::numeric_limits<float>::infinity(), sum, alpha, kNoPrimitive};
     });
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
@@ -256,6 +277,33 @@ void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, Rend
         }
         hit.c = addVisibleLights(hit.c, p, time, shadowed, trace, trace.hierarchy(frame), counters);
     });
+    // See-through fragments likewise, each from its own depth (dense blocks: every frame's own lists).
+    if (block.hasFragments()) {
+        const int S = block.samplesPerPixel();
+        const Camera& cam = scene.camera;
+        const double exposure = scene.shutter.close - scene.shutter.open;
+        for (int fi = 0; fi < block.frameCount(); ++fi)
+            for (size_t i = 0; i < size_t(block.pixelCount()); ++i) {
+                const int32_t* heads = block.recordFragments(fi, i);
+                for (int j = 0; j < S; ++j) {
+                    if (heads[j] < 0) continue;
+                    const SamplePosition s = block.position(fi, i, j);
+                    const size_t si = i * size_t(S) + size_t(j);
+                    const Vec2f lens = block.hasLens() ? Vec2f{block.lus()[si], block.lvs()[si]} : Vec2f{0, 0};
+                    const double time = block.firstFrame() + fi + scene.shutter.open + double(s.tf) * exposure;
+                    for (int32_t k = heads[j]; k >= 0; k = block.fragment(k).next) {
+                        SampleFragment& f = block.fragment(k);
+                        Vec3f p = cam.fromRaster(s.x, s.y, f.z);
+                        if (cam.depthOfField()) {
+                            const Ray ray = eyeRay(cam, s.x, s.y, lens);
+                            p = ray.o + ray.d * f.z;
+                        }
+                        f.c = addVisibleLights(f.c, p, time, block.fragmentShadowed(k), trace,
+                                               trace.hierarchy(block.firstFrame() + fi), counters);
+                    }
+                }
+            }
+    }
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
 }
