@@ -3,11 +3,54 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
+#include <mutex>
 #include <sstream>
 
 #include "util/sampling.h"
 
 namespace streyes {
+
+// The attribute states of shaders=' bark and leaves, made once per parent state (a procedural's),
+// so that every tree shares them and the renderer binds each shader once.
+struct ForestLooks {
+    AttributesPtr of(const AttributesPtr& parent, bool leaf, const ForestParams& f) {
+        std::lock_guard<std::mutex> lock(mutex);
+        Entry& e = made[parent.get()];
+        AttributesPtr& slot = leaf ? e.leaf : e.bark;
+        if (!slot) {
+            e.parent = parent;
+            auto a = std::make_shared<Attributes>(parent ? *parent : Attributes{});
+            auto color = [&](const char* name, Color c) {
+                Param p;
+                p.name = name;
+                p.type = ParamType::Color;
+                p.nums = {c.x, c.y, c.z};
+                p.loc = a->surface.loc;
+                return p;
+            };
+            ShaderDesc s;
+            s.name = leaf ? f.leafShader : f.barkShader;
+            s.loc = a->surface.loc;
+            s.shaderToWorld = a->surface.shaderToWorld;
+            // White bases: the tree's colour (Cs) tints them.
+            if (leaf && s.name == "leaf")
+                s.params.params = {color("leafcolor", {1, 1, 1}), color("veincolor", {1.6f, 1.5f, 1.1f})};
+            if (!leaf && s.name == "bark")
+                s.params.params = {color("lightbark", {1.5f, 1.5f, 1.5f}), color("darkbark", {0.45f, 0.45f, 0.45f})};
+            a->surface = std::move(s);
+            slot = std::move(a);
+        }
+        return slot;
+    }
+
+  private:
+    struct Entry {
+        AttributesPtr parent, bark, leaf;  // the parent kept alive: its address is the key
+    };
+    std::mutex mutex;
+    std::map<const Attributes*, Entry> made;
+};
 
 namespace {
 
@@ -114,6 +157,16 @@ ForestParams parseParams(const std::string& datablock, const SourceLoc& loc, Ext
         else if (key == "keystep") f.keyStep = one(1e-3, 1e9);
         else if (key == "detail") f.detail = one(1e-6, 1e9);
         else if (key == "cell") f.treesPerCell = int(one(1, 1e6));
+        else if (key == "shaders") {
+            const size_t comma = value.find(',');
+            if (comma == std::string::npos || comma == 0 || comma + 1 == value.size() ||
+                value.find(',', comma + 1) != std::string::npos)
+                throw InputError(loc, "forest: shaders takes two surface names, BARK,LEAF (e.g. shaders=bark,leaf), got '" +
+                                          value + "'");
+            f.barkShader = value.substr(0, comma);
+            f.leafShader = value.substr(comma + 1);
+            f.looks = std::make_shared<ForestLooks>();
+        }
         else if (!extra(key, value)) throw InputError(loc, "forest: unknown parameter '" + key + "'");
     }
     return f;
@@ -210,19 +263,26 @@ Vec3d rotateAbout(Vec3d p, Vec3d c, Vec3d a, double angle) {
 
 using Quad = std::array<Vec3d, 4>;  // RenderMan patch corner order
 
-void emit(ProceduralOutput& out, const ExpandContext& ctx, std::vector<double> times, std::vector<Quad> keys, Color cs) {
+// What a part of a tree is shaded with: the procedural's own surface, or shaders=' bark or leaf.
+enum class Part { Own, Bark, Leaf };
+
+void emit(ProceduralOutput& out, const ExpandContext& ctx, std::vector<double> times, std::vector<Quad> keys, Color cs,
+          Part part = Part::Own, const ForestParams* f = nullptr) {
     BilinearPatchDesc p;
     p.times = std::move(times);
     p.P = std::move(keys);
     p.hasCs = true;
     p.Cs = {cs, cs, cs, cs};
     p.objectToWorld = ctx.objectToWorld;
-    p.attributes = ctx.attributes;
+    p.attributes = part != Part::Own && f && f->looks ? f->looks->of(ctx.attributes, part == Part::Leaf, *f) : ctx.attributes;
     p.loc = ctx.loc;
     out.scene.patches.push_back(std::move(p));
 }
 
-void emitStill(ProceduralOutput& out, const ExpandContext& ctx, const Quad& q, Color cs) { emit(out, ctx, {0.0}, {q}, cs); }
+void emitStill(ProceduralOutput& out, const ExpandContext& ctx, const Quad& q, Color cs, Part part = Part::Own,
+               const ForestParams* f = nullptr) {
+    emit(out, ctx, {0.0}, {q}, cs, part, f);
+}
 
 // A nested procedural under the expanding one's transform and attributes.
 void emitProcedural(ProceduralOutput& out, const ExpandContext& ctx, std::shared_ptr<const ProceduralGenerator> generator,
@@ -352,7 +412,7 @@ class BranchGenerator final : public ProceduralGenerator {
             return keys;
         };
         for (const Quad& q : tube(b.base, b.base + b.dir * b.length, b.radius, b.radius * 0.4, 3))
-            emit(out, ctx, times, swaying(q, nullptr), tree_.bark);
+            emit(out, ctx, times, swaying(q, nullptr), tree_.bark, Part::Bark, &f);
 
         HashRng r(b.key);
         Vec3d u, v;
@@ -388,7 +448,7 @@ class BranchGenerator final : public ProceduralGenerator {
                 for (int c = 0; c < 4; ++c) o[size_t(c)] = rotateAbout(q[size_t(c)], attach, stem, a);
                 return o;
             };
-            emit(out, ctx, times, swaying(leaf, flutter), tree_.leaf * shade);
+            emit(out, ctx, times, swaying(leaf, flutter), tree_.leaf * shade, Part::Leaf, &f);
         }
     }
 
@@ -433,7 +493,7 @@ class TreeGenerator final : public ProceduralGenerator {
             }
         for (const Quad& q : tube(trunk, trunk + Vec3d{0, near ? t.trunkTop : t.crownBase, 0}, t.trunkRadius,
                                   t.trunkRadius * 0.6, near ? 6 : 4))
-            emitStill(out, ctx, q, t.bark);
+            emitStill(out, ctx, q, t.bark, Part::Bark, &f);
         if (!near) {
             // Middle: a still crown proxy.
             const int n = 8;

@@ -29,10 +29,16 @@ struct ForestParams {
     double keyStep = 4;            // frames between motion keys
     double detail = 1;             // scales the level-of-detail thresholds (2: more detail)
     int treesPerCell = 64;
+    // shaders=BARK,LEAF: the surfaces near trees' trunks and branches (BARK) and leaves (LEAF, cut
+    // out by its opacity) are shaded with, given white base colours so that the tree's own colour
+    // (Cs) tints them. Empty (the default): everything takes the procedural's own surface.
+    std::string barkShader, leafShader;
+    // The attribute states made for those (one per parent state, shared by every tree).
+    std::shared_ptr<struct ForestLooks> looks;
 };
 
 // Parses "key=value ..." (count seed area=X,Z species=a,b,c leafsize wind winddir=X,Z period
-// keystep detail cell); unknown keys or bad values throw InputError at `loc`.
+// keystep detail cell shaders=BARK,LEAF); unknown keys or bad values throw InputError at `loc`.
 ForestParams parseForestParams(const std::string& datablock, const SourceLoc& loc);
 
 std::shared_ptr<const ProceduralGenerator> makeForestGenerator(const std::string& datablock, const SourceLoc& loc);

@@ -205,6 +205,41 @@ TEST(Procedural, MoreDetailNeverMeansFewerBodies) {
     EXPECT_TRUE(detailMatters);
 }
 
+// shaders=BARK,LEAF: a near tree's bark and leaves run those Shading Language surfaces (the
+// leaves cut out by their opacity: see-through fragments, and less covered than the flat quads),
+// the rest of the tree keeps the procedural's own surface; a malformed value is an error at the
+// Procedural's line.
+TEST(Procedural, TreeShadersShadeBarkAndCutOutLeaves) {
+    auto rib = [](const std::string& extra) {
+        return "Format 96 96 1\nProjection \"perspective\" \"fov\" [40]\nPixelSamples 2 2\nTranslate 0 -7 22\nWorldBegin\n"
+               "LightSource \"distantlight\" 1\nSurface \"matte\"\n"
+               "Procedural \"DynamicLoad\" [\"tree\" \"kind=broadleaf height=12 seed=3 wind=0 " +
+               extra + "\"] [-10 10 0 20 -10 10]\nWorldEnd\n";
+    };
+    RenderOptions o;
+    o.algorithm = Algorithm::Spacetime;
+    const test::RenderResult flat = test::renderRib(rib(""), o);
+    const test::RenderResult shaded = test::renderRib(rib("shaders=bark,leaf"), o);
+    EXPECT_EQ(flat.stats.counters.pointsShadedSurface, 0u);  // matte: the built-in
+    EXPECT_EQ(flat.stats.counters.sampleFragments, 0u);
+    EXPECT_GT(shaded.stats.counters.pointsShadedSurface, 1000u);
+    EXPECT_GT(shaded.stats.counters.pointsShadedBuiltin, 0u);  // the undergrowth keeps matte
+    EXPECT_GT(shaded.stats.counters.sampleFragments, 100u);    // the leaves' cut edges
+    EXPECT_EQ(shaded.stats.bodiesGenerated, flat.stats.bodiesGenerated);  // the same geometry
+    EXPECT_LT(test::alphaSum(shaded), test::alphaSum(flat) - 20);  // leaf shapes cover less than their quads
+    for (const char* bad : {"shaders=bark", "shaders=bark,", "shaders=,leaf", "shaders=a,b,c"}) {
+        const std::string text = rib(bad);
+        try {
+            test::renderRib(text, o);  // the generator is made when bodies are, before anything renders
+            ADD_FAILURE() << bad << " must be an error";
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("test.rib:" + std::to_string(lineOf(text, "Procedural"))), std::string::npos) << what;
+            EXPECT_NE(what.find("shaders takes two surface names"), std::string::npos) << what;
+        }
+    }
+}
+
 TEST(Procedural, ForestIsTheSameWhateverTheThreadCount) {
     Log log;
     Scene scene = parseRibFile(test::sourcePath("scenes/forest-small.rib"), log);
