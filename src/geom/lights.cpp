@@ -21,7 +21,12 @@ LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& 
                       ? Color{0, 0, 0}
                       : d.params.getColor("lightcolor", {1, 1, 1}) * float(d.params.getFloat("intensity", 1));
         l.lightToWorld = d.lightToWorld;
-        l.castsShadows = d.castsShadows && l.kind != LightKind::Ambient;
+        // Attribute "light" "shadows" "on", or the light shader's "shadowname" "raytrace" (the
+        // RenderMan convention: its shadow() calls read 0 and the renderer traces per sample).
+        const Param* shadowName = d.params.find("shadowname");
+        const bool raytraced = shadowName && shadowName->type == ParamType::String && !shadowName->strings.empty() &&
+                               shadowName->strings[0] == "raytrace";
+        l.castsShadows = (d.castsShadows || raytraced) && l.kind != LightKind::Ambient;
         slotOf_.push_back(l.castsShadows ? int(shadowLights_.size()) : -1);
         if (l.castsShadows) shadowLights_.push_back(int(lights_.size()));
         static_ = static_ && l.lightToWorld.isStatic();

@@ -109,8 +109,13 @@ class OiioTextures final : public sl::TextureSource {
         return true;
     }
 
-    // Shadow maps are not read: shadow() leaves points unoccluded, as without a source.
-    bool shadow(const std::string&, const sl::TextureOptions&, const sl::DirectionQuery&, float* const*) override {
+    // Shadow maps are not read: streyes ray traces shadows per sample instead (a light with
+    // "shadowname" "raytrace"; shadow("raytrace") itself never reaches a source). shadow() of a
+    // map leaves points unoccluded, with a warning once a name.
+    bool shadow(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery&, float* const*) override {
+        warn_("shadowmap:" + name, "shadow(\"" + name + "\")" + (o.shader ? " in shader \"" + *o.shader + "\"" : std::string()) +
+                                       ": shadow maps are not read; give the light \"string shadowname\" [\"raytrace\"] "
+                                       "(or Attribute \"light\" \"shadows\" \"on\") for ray-traced shadows: unoccluded");
         return false;
     }
 

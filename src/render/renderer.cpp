@@ -133,6 +133,16 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     if (!options_.aovs.empty() && raytraces(options_.algorithm))
         throw InputError("output variables are written by the rasterizing algorithms only, not by --algorithm " +
                          std::string(algorithmName(options_.algorithm)));
+    // Shadow maps are not read: a light naming one gets no shadows (shadow() of the name reads 0).
+    for (const LightDesc& l : scene.lights) {
+        const Param* name = l.params.find("shadowname");
+        if (name && name->type == ParamType::String && !name->strings.empty() && !name->strings[0].empty() &&
+            name->strings[0] != "raytrace")
+            log_.warnOnce("shadowmap:" + name->strings[0], l.loc,
+                          "LightSource \"" + l.type + "\": shadow map \"" + name->strings[0] +
+                              "\" is not read (streyes ray traces shadows): give \"string shadowname\" [\"raytrace\"] or "
+                              "Attribute \"light\" \"shadows\" \"on\"; this light casts no shadow");
+    }
     auto t = std::chrono::steady_clock::now();
     // In an arena of its own, like the render: building runs parallel work too (subdivision
     // meshes), and --threads holds for every stage.

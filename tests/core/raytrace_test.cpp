@@ -294,3 +294,44 @@ TEST(Raytrace, UnblockedShadowLightAddsUpToThePlainLight) {
 
 }  // namespace
 }  // namespace streyes
+
+namespace streyes {
+namespace {
+
+// A floor lit by `light` with a box-shaped blocker between them (perspective, one frame).
+std::string blockerScene(const std::string& light) {
+    return "Format 64 48 1\nProjection \"perspective\" \"fov\" [50]\nPixelSamples 3 3\nTranslate 0 -2 8\nWorldBegin\n"
+           "LightSource \"ambientlight\" 1 \"intensity\" [0.1]\n" +
+           light +
+           "Surface \"matte\"\nPatch \"bilinear\" \"P\" [-6 0 -6  6 0 -6  -6 0 6  6 0 6]\n"
+           "Polygon \"P\" [-0.8 2 -0.8  0.8 2 -0.8  0.8 2 0.8  -0.8 2 0.8]\nWorldEnd\n";
+}
+
+// "shadowname" "raytrace" on a standard light (RenderMan's convention for ray-traced shadows) gives
+// the same shadows as Attribute "light" "shadows" "on": the renderer traces them per sample and the
+// shader's shadow("raytrace") reads 0. A shadow map name is not read: a warning, no shadow.
+TEST(Raytrace, ShadownameRaytraceCastsTheSameShadowsAsTheAttribute) {
+    const char* lights[] = {
+        "LightSource \"spotlight\" 2 \"point from\" [0 5 0] \"point to\" [0 0 0] \"float coneangle\" [1] \"intensity\" [30]",
+        "LightSource \"pointlight\" 2 \"point from\" [0.5 5 0.5] \"intensity\" [30]",
+        "LightSource \"distantlight\" 2 \"point from\" [0.3 5 0] \"point to\" [0 0 0]"};
+    for (const char* light : lights) {
+        const test::RenderResult byAttribute =
+            test::renderRib(blockerScene(std::string("Attribute \"light\" \"shadows\" \"on\"\n") + light + "\n"));
+        const test::RenderResult byName = test::renderRib(blockerScene(std::string(light) + " \"string shadowname\" [\"raytrace\"]\n"));
+        const test::RenderResult unshadowed = test::renderRib(blockerScene(std::string(light) + "\n"));
+        EXPECT_GT(byName.stats.counters.shadowRays, 0u) << light;
+        EXPECT_TRUE(test::identicalPixels(byAttribute, byName)) << light;
+        // The shadow is there: the floor under the blocker is darker than unshadowed.
+        EXPECT_LT(byName.channel(0, 32, 37, 0), 0.5f * unshadowed.channel(0, 32, 37, 0)) << light;
+        const test::RenderResult map = test::renderRib(blockerScene(std::string(light) + " \"string shadowname\" [\"light.shad\"]\n"));
+        EXPECT_EQ(map.stats.counters.shadowRays, 0u) << light;
+        EXPECT_TRUE(test::identicalPixels(map, unshadowed)) << light;
+        int warned = 0;
+        for (const std::string& w : map.warnings) warned += w.find("shadow map \"light.shad\" is not read") != std::string::npos;
+        EXPECT_EQ(warned, 1) << light;
+    }
+}
+
+}  // namespace
+}  // namespace streyes

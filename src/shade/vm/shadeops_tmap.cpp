@@ -1,7 +1,9 @@
 // texture(), environment() and shadow(): one TextureSource call per call site and grid, with
 // each point's footprint from its neighbours on the grid (or from the four corners given).
 // Without a source, or when it refuses the name, results are the "fill" value (0 for shadow:
-// unoccluded) and the refusal is counted in stats().textureErrors.
+// unoccluded) and the refusal is counted in stats().textureErrors. shadow("raytrace") is 0
+// without asking a source: the renderer traces that light's shadow rays itself, per sample at
+// the sample's time (geom/lights.h), and the shader's light must reach the surface unshadowed.
 #include <cstring>
 #include <vector>
 
@@ -109,6 +111,7 @@ void lookup(Exec& x, const Instr& in, Lookup kind) {
     const float fillValue = kind == Lookup::Shadow ? 0.0f : opt.fill;
     fill(d, fillValue);
     if (x.active == 0) return;
+    if (kind == Lookup::Shadow && name == "raytrace") return;  // traced per sample by the renderer
     bool ok = false;
     const int n = x.n;
     if (source && !name.empty()) {

@@ -117,7 +117,7 @@ TEST(VmTexture, EnvironmentAndShadowThroughTheLight) {
         })"));
     // A point light at x = 2 whose shadow() lets the source trace towards it.
     ShaderInstance light(test::compile(R"(
-        light shadowed(point from = point "shader" (0, 0, 0); string shadowname = "raytrace") {
+        light shadowed(point from = point "shader" (0, 0, 0); string shadowname = "wall") {
             illuminate(from) {
                 Cl = (1 - shadow(shadowname, Ps)) * 25 / (L . L);
             }
@@ -137,9 +137,27 @@ TEST(VmTexture, EnvironmentAndShadowThroughTheLight) {
         EXPECT_NEAR(ci.at(0, i), expect, 1e-5f) << i;
     }
     ASSERT_EQ(tex.calls.size(), 2u);
-    EXPECT_EQ(tex.calls[1].name, "raytrace");
+    EXPECT_EQ(tex.calls[1].name, "wall");
     ASSERT_EQ(tex.calls[1].from0.size(), 4u);
     EXPECT_FLOAT_EQ(tex.calls[1].from0[0], 2.0f);  // the light's position, in current space
+    // shadow("raytrace") never reaches the source: the renderer traces those rays per sample.
+    ShaderInstance traced(test::compile(R"(
+        light traced(point from = point "shader" (0, 0, 0); string shadowname = "raytrace") {
+            illuminate(from) {
+                Cl = (1 - shadow(shadowname, Ps)) * 25 / (L . L);
+            }
+        })"));
+    FakeTextures none;
+    vm.setTextureSource(&none);
+    vm.run(surf, g.grid, {{&traced, Matrix4::translate({2, 0, 0})}});
+    ci = vm.result(Global::Ci);
+    for (int i = 0; i < 4; ++i) {
+        const float x = float(i) - 1.5f;
+        Vec3f L{2 - x, 0, -5};
+        EXPECT_NEAR(ci.at(0, i), 25.0f / dot(L, L) * (5 / length(L)), 1e-5f) << i;  // unshadowed
+    }
+    ASSERT_EQ(none.calls.size(), 1u);  // the environment() only
+    EXPECT_EQ(vm.stats().textureErrors, 0u);
 }
 
 TEST(VmTexture, NoSourceGivesTheFill) {
