@@ -219,6 +219,10 @@ struct BilinearPatchDesc {
     AttributesPtr attributes;
     SourceLoc loc;
     Lifetime life;
+    // Primitive variables bound to shader parameters of the same name: constant ones (one value),
+    // and varying, vertex or facevarying ones (four values, one a corner in corner order,
+    // interpolated bilinearly over the patch; "s", "t" and "st" give the shaders' s and t).
+    ParamList primvars;
 };
 
 // A procedural primitive as declared: Procedural "DelayedReadArchive" | "RunProgram" |
@@ -251,6 +255,9 @@ struct PrimitiveDesc {
     AttributesPtr attributes;
     SourceLoc loc;
     Lifetime life;
+    // The primitive's own variables a shader binds by name (float, color or string; one value for
+    // the whole primitive: constant, or uniform where it has one face). Cs is apart, above.
+    ParamList primvars;
 };
 
 // A colour primitive variable ("Cs") as given: its storage class and values. Empty when the

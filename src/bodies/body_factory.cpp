@@ -129,7 +129,7 @@ BodyFactory::Window BodyFactory::windowOf(const Lifetime& life) const {
 }
 
 const Material* BodyFactory::material(const AttributesPtr& attributes, const MotionTransform& objectToWorld,
-                                      bool cameraFacing) {
+                                      bool cameraFacing, const ParamList* primvars, uint64_t primitiveId) {
     static const AttributesPtr kDefault = std::make_shared<const Attributes>();
     const AttributesPtr& a = attributes ? attributes : kDefault;
     Facing facing = Facing::Camera;
@@ -141,13 +141,21 @@ const Material* BodyFactory::material(const AttributesPtr& attributes, const Mot
                            m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
         facing = det < 0 ? Facing::Mirrored : Facing::Object;
     }
+    const bool own = primvars && !primvars->params.empty();
     std::lock_guard<std::mutex> lock(mutex_);
-    auto it = materialOf_.find({a.get(), facing});
-    if (it != materialOf_.end()) return it->second;
+    if (own) {
+        auto it = ownMaterialOf_.find({a.get(), facing, primitiveId});
+        if (it != ownMaterialOf_.end()) return it->second;
+    } else {
+        auto it = materialOf_.find({a.get(), facing});
+        if (it != materialOf_.end()) return it->second;
+    }
     keepAlive_.push_back(a);
     Material m = makeMaterial(*a, facing);
+    if (own) m.primvars = *primvars;
     if (binder_) binder_->bind(m, *a);
     materials_.push_back(std::move(m));
+    if (own) return ownMaterialOf_.emplace(std::make_tuple(a.get(), facing, primitiveId), &materials_.back()).first->second;
     return materialOf_.emplace(std::make_pair(a.get(), facing), &materials_.back()).first->second;
 }
 
@@ -161,7 +169,7 @@ const SourceLoc* BodyFactory::source(const SourceLoc& loc) {
 }
 
 void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out) {
-    const Material* mat = material(p.attributes, p.objectToWorld);
+    const Material* mat = material(p.attributes, p.objectToWorld, false, &p.primvars, primitiveId);
     std::array<Color, 4> cs;
     for (int c = 0; c < 4; ++c) cs[size_t(c)] = p.hasCs ? p.Cs[size_t(c)] : mat->Cs;
 
@@ -311,7 +319,7 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;
-    const Material* mat = material(p.attributes, p.objectToWorld);
+    const Material* mat = material(p.attributes, p.objectToWorld, false, &p.primvars, primitiveId);
     const PatchMeshShape shape(p);
     const std::vector<std::array<Color, 4>> colors = shape.colors(p.Cs, mat->Cs);
     const SourceLoc* src = source(p.loc);
@@ -366,7 +374,7 @@ void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t prim
                       "\"interpolateboundary\"): skipped");
         return;
     }
-    const Material* mat = material(p.attributes, p.objectToWorld);
+    const Material* mat = material(p.attributes, p.objectToWorld, false, &p.primvars, primitiveId);
     const std::vector<std::array<Color, 4>> colors = shape->colors(p.Cs, mat->Cs);
     const SourceLoc* src = source(p.loc);
     std::vector<std::shared_ptr<const SubdivisionKey>> keys(ts.size());
@@ -408,7 +416,7 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::ve
             return;
         }
     }
-    const Material* mat = material(q.attributes, q.objectToWorld);
+    const Material* mat = material(q.attributes, q.objectToWorld, false, &q.primvars, primitiveId);
     std::array<Color, 4> colors;
     colors.fill(mat->Cs);
     if (q.Cs.given())
@@ -433,7 +441,7 @@ void BodyFactory::addNuPatch(const NuPatchDesc& p, uint64_t primitiveId, std::ve
     shape->uknot = p.uknot, shape->vknot = p.vknot, shape->w = p.w;
     shape->umin = p.umin, shape->umax = p.umax, shape->vmin = p.vmin, shape->vmax = p.vmax;
     if (p.trim) shape->trim = std::make_shared<const NurbsTrim>(*p.trim);
-    const Material* mat = material(p.attributes, p.objectToWorld);
+    const Material* mat = material(p.attributes, p.objectToWorld, false, &p.primvars, primitiveId);
     // Varying Cs is bilinear between the knots (a lattice over the patch); constant Cs fills the
     // corners; uniform (per span) and vertex (per control point) colour over several spans are
     // taken from the first span and from the corner points, with a warning.
@@ -478,6 +486,7 @@ void BodyFactory::addPolygonFaces(const PolygonMeshDesc& p, const PolygonFaces& 
     face.attributes = p.attributes;
     face.loc = p.loc;
     face.life = p.life;
+    face.primvars = p.primvars;  // constant ones (a mesh's varying ones are not read)
     face.P.resize(p.P.size());
     for (size_t f = 0; f < faces.faces.size(); ++f) {
         for (size_t k = 0; k < p.P.size(); ++k)

@@ -14,6 +14,7 @@
 #include <deque>
 #include <functional>
 #include <map>
+#include <tuple>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -132,8 +133,10 @@ class BodyFactory final : public ChildBodyMaker {
     Window windowOf(const Lifetime& life) const;
     // The material of an attribute state, for a primitive placed by objectToWorld (whether it
     // mirrors decides which way its normals face; cameraFacing: Points and camera-facing Curves).
+    // A primitive with primitive variables gets a material of its own that carries them (one per
+    // primitive id: the faces of a mesh share it).
     const Material* material(const AttributesPtr& attributes, const MotionTransform& objectToWorld,
-                             bool cameraFacing = false);
+                             bool cameraFacing = false, const ParamList* primvars = nullptr, uint64_t primitiveId = 0);
     const SourceLoc* source(const SourceLoc& loc);
     // A curved primitive's segment times and camera-space points at each (false, with a warning,
     // when they are not finite).
@@ -154,6 +157,7 @@ class BodyFactory final : public ChildBodyMaker {
     std::deque<Material> materials_;  // deques: bodies keep pointers into them
     std::deque<SourceLoc> sources_;
     std::map<std::pair<const Attributes*, Facing>, const Material*> materialOf_;
+    std::map<std::tuple<const Attributes*, Facing, uint64_t>, const Material*> ownMaterialOf_;  // with primitive variables
     std::map<std::pair<const std::string*, int>, const SourceLoc*> sourceOf_;
     std::vector<AttributesPtr> keepAlive_;  // materials point at these
     std::deque<std::unique_ptr<SurfaceMesh>> surfaces_;  // curved bodies point at these

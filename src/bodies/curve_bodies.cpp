@@ -26,7 +26,7 @@ void BodyFactory::addCurves(const CurvesDesc& c, uint64_t primitiveId, std::vect
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(c, c.P, &ts, &points)) return;
-    const Material* mat = material(c.attributes, c.objectToWorld, c.N.empty());  // ribbons facing the camera: no sides
+    const Material* mat = material(c.attributes, c.objectToWorld, c.N.empty(), &c.primvars, primitiveId);  // ribbons facing the camera: no sides
     const CurveRibbons ribbons(c);
     const std::vector<std::array<Color, 4>> colors = ribbons.colors(mat->Cs);
     const SourceLoc* src = source(c.loc);
@@ -52,7 +52,7 @@ void BodyFactory::addPoints(const PointsDesc& p, uint64_t primitiveId, std::vect
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> centres;
     if (!keyedPoints(p, p.P, &ts, &centres)) return;
-    const Material* mat = material(p.attributes, p.objectToWorld, true);  // discs face the camera
+    const Material* mat = material(p.attributes, p.objectToWorld, true, &p.primvars, primitiveId);  // discs face the camera
     const size_t n = centres[0].size();
     std::vector<Color> colors(n, mat->Cs);
     if (p.Cs.given())

@@ -42,6 +42,10 @@ struct Material {
     bool flipNormals = false;
     bool oneSided = false;
     bool smoothShading = true;  // ShadingInterpolation "smooth"; false: "constant"
+    // The primitive's own variables (a material of its own): bound to its shaders' parameters of
+    // the same name; constant ones, or four corner values interpolated over a bilinear patch (the
+    // grid's u, v). "s", "t" and "st" replace the shaders' s and t.
+    ParamList primvars;
 };
 
 // Binds a material's Shading Language shaders (made by the shading stage, which the bodies

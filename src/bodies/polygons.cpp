@@ -31,6 +31,19 @@ std::optional<BilinearPatchDesc> polygonAsPatch(const PolygonMeshDesc& mesh) {
         const bool perVertex = mesh.Cs.cls != ParamClass::Constant && mesh.Cs.cls != ParamClass::Uniform;
         for (size_t c = 0; c < 4; ++c) patch.Cs[c] = mesh.Cs.values[perVertex ? size_t(loop[size_t(order[c])]) : 0];
     }
+    // Primitive variables: constant ones as they are, per-vertex ones at the corners.
+    for (const Param& v : mesh.primvars.params) {
+        Param q = v;
+        if (v.cls != ParamClass::Constant) {
+            const size_t w = size_t(v.componentsPerItem());
+            q.nums.clear();
+            for (size_t c = 0; c < 4; ++c) {
+                const size_t at = size_t(loop[size_t(order[c])]) * w;
+                q.nums.insert(q.nums.end(), v.nums.begin() + long(at), v.nums.begin() + long(at + w));
+            }
+        }
+        patch.primvars.params.push_back(std::move(q));
+    }
     patch.objectToWorld = mesh.objectToWorld;
     patch.attributes = mesh.attributes;
     patch.loc = mesh.loc;

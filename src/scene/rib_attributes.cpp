@@ -26,8 +26,12 @@ void color(RibParser& reader, RibArgs& args) {
 void opacity(RibParser& reader, RibArgs& args) {
     std::vector<double> o = args.numbers(3, "r g b");
     args.expectEnd();
-    if (o[0] < 1 || o[1] < 1 || o[2] < 1)
-        reader.log().warnOnce("opacity", args.loc(), "transparency is not supported yet: rendering as opaque");
+    for (double& v : o)
+        if (!(v >= 0 && v <= 1)) {
+            reader.log().warnOnce("opacity-range", args.loc(),
+                                  "Opacity takes r g b in [0, 1] (1: opaque, 0: clear): " + formatNumber(v) + " clamped");
+            v = v < 0 ? 0 : 1;
+        }
     reader.state().mutableAttributes().opacity = Color(float(o[0]), float(o[1]), float(o[2]));
 }
 

@@ -19,6 +19,7 @@ struct BlobbyKey {
     BlobbyField field;
     std::vector<size_t> leaves;  // the leaf instructions, in order: "Cs" is given per leaf
     ColorPrimvar Cs;
+    ParamList primvars;  // constant ones (otherParams)
 };
 
 // One key: the code decoded into instructions, every index checked.
@@ -123,7 +124,7 @@ BlobbyKey readBlobbyKey(RibParser& reader, RibArgs& args) {
     ParamList params = reader.readParams(args);
     ClassCounts counts{1, size_t(key.nleaf), size_t(key.nleaf), size_t(key.nleaf)};
     key.Cs = readColors(args, params, counts);
-    otherParams(args, params, counts, reader.log());
+    key.primvars = otherParams(args, params, counts, reader.log());
     return key;
 }
 
@@ -194,6 +195,7 @@ void addBlobby(RibParser& reader, const BlobbyKey& key, const SourceLoc& loc) {
     if (mesh.triangles.empty()) return;
     d.request = "Blobby";
     for (const std::array<int, 3>& t : mesh.triangles) d.polygons.push_back({{t[0], t[1], t[2]}});
+    d.primvars = key.primvars;
     if (key.Cs.given()) {
         if (key.Cs.cls == ParamClass::Constant || key.Cs.cls == ParamClass::Uniform) {
             d.Cs.cls = ParamClass::Constant;

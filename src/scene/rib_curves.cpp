@@ -91,7 +91,7 @@ bool readCurvesKey(RibParser& reader, RibArgs& args, CurvesDesc* d) {
         d->normalClass = N->cls;
         for (size_t i = 0; i + 2 < N->nums.size(); i += 3) d->N.emplace_back(N->nums[i], N->nums[i + 1], N->nums[i + 2]);
     }
-    otherParams(args, withoutHandled(params, {"width", "constantwidth", "N"}), counts, reader.log());
+    d->primvars = otherParams(args, withoutHandled(params, {"width", "constantwidth", "N"}), counts, reader.log());
     return true;
 }
 
@@ -118,7 +118,7 @@ bool readPointsKey(RibParser& reader, RibArgs& args, PointsDesc* d) {
     d->Cs = readColors(args, params, counts);
     ParamClass cls = ParamClass::Constant;
     readWidth(args, params, counts, &cls, &d->width);
-    otherParams(args, withoutHandled(params, {"width", "constantwidth"}), counts, reader.log());
+    d->primvars = otherParams(args, withoutHandled(params, {"width", "constantwidth"}), counts, reader.log());
     return true;
 }
 

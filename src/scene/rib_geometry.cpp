@@ -72,14 +72,32 @@ ColorPrimvar readColors(const RibArgs& args, const ParamList& params, const Clas
     return c;
 }
 
-// Parameters other than positions and Cs: checked for size, then ignored with a warning.
-void otherParams(const RibArgs& args, const ParamList& params, const ClassCounts& counts, Log& log) {
+ParamList otherParams(const RibArgs& args, const ParamList& params, const ClassCounts& counts, Log& log,
+                      bool perVertex) {
+    ParamList out;
     for (const Param& p : params.params) {
         if (p.name == "P" || p.name == "Pw" || p.name == "Cs") continue;
         checkCount(args, p, counts.of(p.cls));
+        const bool st = p.name == "st" && p.type == ParamType::Float && p.arraySize == 2;
+        const bool typed = st || (p.arraySize == 1 && (p.type == ParamType::Float || p.type == ParamType::Color ||
+                                                       p.type == ParamType::String));
+        const bool whole = p.cls == ParamClass::Constant || (p.cls == ParamClass::Uniform && counts.uniform == 1);
+        const bool corners = perVertex && p.type != ParamType::String &&
+                             (p.cls == ParamClass::Varying || p.cls == ParamClass::Vertex || p.cls == ParamClass::FaceVarying);
+        if (typed && (whole || corners)) {
+            Param q = p;
+            if (whole) q.cls = ParamClass::Constant;
+            if (q.type == ParamType::String && q.strings.size() > 1) q.strings.resize(1);
+            out.params.push_back(std::move(q));
+            continue;
+        }
         log.warnOnce("geometry-param:" + p.name, p.loc,
-                     "parameter '" + p.name + "' on " + args.name() + " is not supported yet: ignored");
+                     "parameter '" + p.name + "' on " + args.name() +
+                         " is not bound to shaders yet (primitive variables are: float, color and string ones "
+                         "constant over the primitive, and varying or vertex floats and colours on bilinear patches "
+                         "and polygons of 3 or 4 vertices): ignored");
     }
+    return out;
 }
 
 // A bracketed array of whole numbers, each at least `min`.
@@ -143,7 +161,7 @@ bool readFaceKey(RibParser& reader, RibArgs& args, bool polygon, FaceKey* key) {
         const bool perVertexCs = counts.of(key->Cs.cls) > 1;
         for (size_t i = 0; i < vertices; ++i) key->vertexCs.push_back(key->Cs.values[perVertexCs ? i : 0]);
     }
-    otherParams(args, params, counts, reader.log());
+    key->primvars = otherParams(args, params, counts, reader.log(), true);
     return true;
 }
 

@@ -28,8 +28,13 @@ const Param& positionParam(const RibArgs& args, const ParamList& params);
 std::vector<Vec3d> pointsOf(const RibArgs& args, const Param& pos);
 // "Cs", if given: a color with as many values as its class has items here.
 ColorPrimvar readColors(const RibArgs& args, const ParamList& params, const ClassCounts& counts);
-// Parameters other than positions and Cs: checked for size, then ignored with a warning.
-void otherParams(const RibArgs& args, const ParamList& params, const ClassCounts& counts, Log& log);
+// Parameters other than positions and Cs, checked for size: the primitive variables a shader can
+// bind (float, color or string, "st" as float[2]; one value for the primitive: constant, or uniform
+// where it has one face), uniform ones made constant. With `perVertex` (a single face: Patch
+// "bilinear", a Polygon of 3 or 4 vertices) varying, vertex and facevarying floats and colours
+// too, a value per vertex. The rest are ignored with a warning.
+ParamList otherParams(const RibArgs& args, const ParamList& params, const ClassCounts& counts, Log& log,
+                      bool perVertex = false);
 
 // Positional arrays: whole numbers each at least `min`; an array of strings or of numbers.
 std::vector<int> intArray(RibArgs& args, const std::string& what, int min);
@@ -41,6 +46,7 @@ size_t sum(const std::vector<int>& v);
 struct FaceKey {
     std::vector<Vec3d> P;         // a patch's corners in RenderMan order; a polygon's vertices around its edge
     ColorPrimvar Cs;
+    ParamList primvars;           // otherParams', per vertex in the order of P
     std::vector<Color> vertexCs;  // Cs at each vertex (empty when none is given), to compare keys
 };
 // Reads the parameter list of Patch "bilinear" (polygon = false) or of a Polygon into one key.

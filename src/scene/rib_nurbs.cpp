@@ -76,7 +76,7 @@ bool readNuPatchKey(RibParser& reader, RibArgs& args, NuPatchDesc* d) {
     counts.varying = counts.faceVarying = size_t(d->uSpans() + 1) * size_t(d->vSpans() + 1);
     counts.vertex = count;
     d->Cs = readColors(args, params, counts);
-    otherParams(args, params, counts, reader.log());
+    d->primvars = otherParams(args, params, counts, reader.log());
     d->trim = reader.state().attributes->trim;
     return true;
 }

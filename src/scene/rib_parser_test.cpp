@@ -485,9 +485,8 @@ TEST(RibAttributes, ShadersAndOpacity) {
     ASSERT_NE(wood.params.find("grain"), nullptr);
     EXPECT_FALSE(wood.params.find("grain")->declared);
     EXPECT_EQ(wood.params.find("grain")->nums, std::vector<double>{3});
-    std::vector<std::string> w = log.warnings();
-    ASSERT_EQ(w.size(), 1u);
-    EXPECT_NE(w[0].find("test.rib:2: warning: transparency is not supported yet"), std::string::npos) << w[0];
+    // Opacity is transparency now: no warning.
+    EXPECT_EQ(log.warnings(), std::vector<std::string>{});
 }
 
 TEST(RibAttributes, LightsAttachToTheirAttributeScope) {

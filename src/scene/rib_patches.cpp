@@ -63,7 +63,7 @@ bool readPatchMeshKey(RibParser& reader, RibArgs& args, PatchMeshDesc* d) {
     counts.vertex = size_t(d->nu) * size_t(d->nv);
     d->P = {pointsOf(args, pos)};
     d->Cs = readColors(args, params, counts);
-    otherParams(args, params, counts, reader.log());
+    d->primvars = otherParams(args, params, counts, reader.log());
     return true;
 }
 
@@ -99,6 +99,7 @@ void addBilinearPatch(RibParser& reader, const std::vector<double>& times, const
     const FaceKey& first = keys.front();
     patch.hasCs = first.Cs.given();
     if (patch.hasCs) std::copy(first.vertexCs.begin(), first.vertexCs.end(), patch.Cs.begin());
+    patch.primvars = first.primvars;  // per vertex in corner order already
     patch.objectToWorld = reader.state().ctm;
     patch.attributes = reader.state().attributes;
     patch.loc = loc;

@@ -69,7 +69,7 @@ bool readPolygonsKey(RibParser& reader, RibArgs& args, PolygonMeshDesc* d) {
     counts.varying = counts.vertex = npoints;
     counts.faceVarying = sum(loopSizes);
     d->Cs = readColors(args, params, counts);
-    otherParams(args, params, counts, reader.log());
+    d->primvars = otherParams(args, params, counts, reader.log());
     return true;
 }
 
@@ -104,6 +104,7 @@ void addPolygon(RibParser& reader, const std::vector<double>& times, const std::
     std::iota(loop.begin(), loop.end(), 0);
     d.polygons = {{loop}};
     d.Cs = keys.front().Cs;
+    d.primvars = keys.front().primvars;  // per vertex around the loop: polygonAsPatch puts them at the corners
     d.patchesBefore = reader.scene().patches.size();
     reader.scene().polygonMeshes.push_back(std::move(d));
 }

@@ -39,7 +39,7 @@ bool readQuadricKey(RibParser& reader, RibArgs& args, QuadricDesc* d) {
     ClassCounts counts;
     counts.varying = counts.vertex = counts.faceVarying = 4;
     d->Cs = readColors(args, list, counts);
-    otherParams(args, list, counts, reader.log());
+    d->primvars = otherParams(args, list, counts, reader.log());
     return true;
 }
 

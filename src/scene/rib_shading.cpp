@@ -59,8 +59,8 @@ void lightSource(RibParser& reader, RibArgs& args) {
     RibState& s = reader.state();
     static const std::map<std::string, std::vector<std::string>> builtins = {
         {"ambientlight", {"intensity", "lightcolor"}},
-        {"distantlight", {"intensity", "lightcolor", "from", "to"}},
-        {"pointlight", {"intensity", "lightcolor", "from"}}};
+        {"distantlight", {"intensity", "lightcolor", "from", "to", "shadowname"}},
+        {"pointlight", {"intensity", "lightcolor", "from", "shadowname"}}};
     std::string name = args.string("shader name");
     if (name.empty()) args.fail("the shader name is empty");
 

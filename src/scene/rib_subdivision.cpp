@@ -130,7 +130,7 @@ bool readSubdivisionKey(RibParser& reader, RibArgs& args, SubdivisionMeshDesc* d
                               "facevarying \"Cs\" on SubdivisionMesh is not supported: using the Color attribute");
         d->Cs = {};
     }
-    otherParams(args, params, counts, reader.log());
+    d->primvars = otherParams(args, params, counts, reader.log());
     return true;
 }
 

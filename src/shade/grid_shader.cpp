@@ -191,9 +191,68 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     sgrid_.set(Global::time, ValueRef::uniform(&time_));
     worldToCamera_ = camera_.worldToCamera().at(time);
     sgrid_.setSpace(sl::Space::World, worldToCamera_);
+    bindPrimvars(m, n);
     sgrid_.seed = unsigned(grid.primitiveId ^ (grid.primitiveId >> 32));
     sgrid_.nearClip = camera_.nearClip();
     sgrid_.farClip = camera_.farClip();
+}
+
+void GridShader::bindPrimvars(const Material& m, int n) {
+    sgrid_.primvars = nullptr;
+    if (m.primvars.params.empty()) return;
+    // Sizes first: the views point into primvarData_.
+    size_t total = 0;
+    for (const Param& p : m.primvars.params)
+        if (p.type != ParamType::String)
+            total += size_t(p.componentsPerItem()) * (p.cls == ParamClass::Constant ? 1 : size_t(n));
+    primvarData_.resize(total);
+    size_t at = 0, bound = 0;  // entries of primvars_ are reused from grid to grid (no allocation once warm)
+    for (const Param& p : m.primvars.params) {
+        if (primvars_.size() <= bound) primvars_.emplace_back();
+        sl::Primvar& v = primvars_[bound];
+        v.name = p.name;
+        v.loc = p.loc;
+        if (p.type == ParamType::String) {
+            v.type = sl::BaseType::String;
+            v.strings = p.strings;
+            ++bound;
+            continue;
+        }
+        const int w = p.componentsPerItem();  // 1, 3 (color) or 2 ("st")
+        float* d = &primvarData_[at];
+        float* comp[3] = {nullptr, nullptr, nullptr};
+        if (p.cls == ParamClass::Constant) {
+            for (int c = 0; c < w; ++c) d[c] = float(p.nums[size_t(c)]), comp[c] = d + c;
+            v.value = sl::ValueRef{{comp[0], comp[1], comp[2]}, 0};
+            at += size_t(w);
+        } else {
+            // Four corners in RenderMan order, bilinear in the body's (u, v).
+            for (int c = 0; c < w; ++c) {
+                const float k[4] = {float(p.nums[size_t(c)]), float(p.nums[size_t(w + c)]), float(p.nums[size_t(2 * w + c)]),
+                                    float(p.nums[size_t(3 * w + c)])};
+                comp[c] = d + size_t(c) * size_t(n);
+                for (int i = 0; i < n; ++i) {
+                    const float u = u_[size_t(i)], vv = v_[size_t(i)];
+                    comp[c][i] = (k[0] + (k[1] - k[0]) * u) + ((k[2] + (k[3] - k[2]) * u) - (k[0] + (k[1] - k[0]) * u)) * vv;
+                }
+            }
+            v.value = sl::ValueRef{{comp[0], comp[1], comp[2]}, 1};
+            at += size_t(w) * size_t(n);
+        }
+        const sl::ValueRef one{{comp[0], nullptr, nullptr}, v.value.stride};
+        if (p.name == "st") {
+            sgrid_.set(sl::Global::s, one);
+            sgrid_.set(sl::Global::t, sl::ValueRef{{comp[1], nullptr, nullptr}, v.value.stride});
+            continue;
+        }
+        if (p.name == "s" && w == 1) sgrid_.set(sl::Global::s, one);
+        if (p.name == "t" && w == 1) sgrid_.set(sl::Global::t, one);
+        v.type = p.type == ParamType::Color ? sl::BaseType::Color : sl::BaseType::Float;
+        v.strings.clear();
+        ++bound;
+    }
+    primvars_.resize(bound);
+    sgrid_.primvars = &primvars_;
 }
 
 void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {

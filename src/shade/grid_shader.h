@@ -7,8 +7,9 @@
 // What a shader sees (RI Spec 3.2, section 12.1), all in camera ("current") space: P, N and Ng
 // (the diced geometric normal), I (from the eye; from the eye plane along +z under an
 // orthographic camera), E (the eye),
-// Cs and Os, u and v (the piece's parameter rectangle, Body::uv, over the grid), s = u and t = v,
-// du and dv, time. "world", "object" and "shader" spaces come from the camera and the transform
+// Cs and Os, u and v (the piece's parameter rectangle, Body::uv, over the grid), s = u and t = v
+// (unless the primitive gives "s", "t" or "st"), du and dv, time; its primitive variables
+// (Material::primvars) bound to parameters of the same name. "world", "object" and "shader" spaces come from the camera and the transform
 // in force where the surface was declared; lights see their own transform as "shader" space.
 //
 // Lights that cast shadows are kept apart as the built-in shading keeps them: Cl[slot] is what
@@ -66,6 +67,9 @@ class GridShader {
     // The shading grid's inputs for slot k (once per slot, before any of its shaders runs).
     void prepare(const Material& m, const Grid& grid, int k, double time);
     void useShaderSpace(const MotionTransform* shaderToWorld, double time);
+    // The material's primitive variables over the grid (u_, v_ set): bound by name, s and t
+    // from "s", "t" or "st".
+    void bindPrimvars(const Material& m, int n);
     void setIncident(const Grid& grid, int k);
 
     const SceneShaders* shaders_;
@@ -80,6 +84,8 @@ class GridShader {
     std::vector<sl::LightRef> unshadowed_, withOne_;
     std::vector<Color> base_, withLight_;
     std::vector<Vec3f> orthoI_;  // I under an orthographic camera
+    std::vector<sl::Primvar> primvars_;
+    std::vector<float> primvarData_;  // their values: constant ones, or n per component
     Grid hit_;  // one point, for shadeHit
     uint64_t builtinPoints_ = 0;
     const AovLayout* aovs_ = nullptr;  // set when it names shader outputs

@@ -204,7 +204,8 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
     bool builtinLights = true;
     for (int i : m.lights) builtinLights = builtinLights && builtinLight_[size_t(i)];
     const std::string& name = a.surface.name;
-    if (builtinShading_ && builtinLights && isBuiltinSurface(name)) return;
+    // The built-in shading reads no primitive variables: a primitive with some runs the shader.
+    if (builtinShading_ && builtinLights && isBuiltinSurface(name) && m.primvars.params.empty()) return;
     std::shared_ptr<sl::ShaderInstance> shader = instance(name, a.surface.params, a.surface.loc, sl::ShaderType::Surface);
     if (!shader) {
         m.kind = SurfaceKind::Default;

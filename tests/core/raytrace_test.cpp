@@ -321,6 +321,7 @@ TEST(Raytrace, ShadownameRaytraceCastsTheSameShadowsAsTheAttribute) {
         const test::RenderResult byName = test::renderRib(blockerScene(std::string(light) + " \"string shadowname\" [\"raytrace\"]\n"));
         const test::RenderResult unshadowed = test::renderRib(blockerScene(std::string(light) + "\n"));
         EXPECT_GT(byName.stats.counters.shadowRays, 0u) << light;
+        EXPECT_EQ(byName.warnings, std::vector<std::string>{}) << light;  // a parameter the light takes
         EXPECT_TRUE(test::identicalPixels(byAttribute, byName)) << light;
         // The shadow is there: the floor under the blocker is darker than unshadowed.
         EXPECT_LT(byName.channel(0, 32, 37, 0), 0.5f * unshadowed.channel(0, 32, 37, 0)) << light;
