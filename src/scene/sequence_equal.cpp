@@ -12,6 +12,7 @@ bool samePrimitive(const PrimitiveDesc& a, const PrimitiveDesc& b) {
     if (a.times.size() != b.times.size()) return false;
     if (a.times.size() > 1 && a.times != b.times) return false;  // one key: its time means nothing
     if (!sameTransform(a.objectToWorld, b.objectToWorld)) return false;
+    if (!sameParams(a.primvars, b.primvars)) return false;
     if (a.attributes == b.attributes) return true;
     return a.attributes && b.attributes && sameAttributes(*a.attributes, *b.attributes);
 }
@@ -40,9 +41,15 @@ bool sameParams(const ParamList& a, const ParamList& b) {
 }
 
 bool sameAttributes(const Attributes& a, const Attributes& b) {
-    return a.color == b.color && a.opacity == b.opacity && a.surface.name == b.surface.name &&
-           sameParams(a.surface.params, b.surface.params) && a.shadingRate == b.shadingRate && a.lights == b.lights &&
-           sameParams(a.user, b.user) && sameBasis(a.uBasis, b.uBasis) && sameBasis(a.vBasis, b.vBasis);
+    auto sameShader = [](const ShaderDesc& x, const ShaderDesc& y) {
+        return x.name == y.name && sameParams(x.params, y.params) && sameTransform(x.shaderToWorld, y.shaderToWorld);
+    };
+    return a.color == b.color && a.opacity == b.opacity && sameShader(a.surface, b.surface) &&
+           sameShader(a.displacement, b.displacement) && sameShader(a.atmosphere, b.atmosphere) &&
+           a.displacementBound == b.displacementBound && a.displacementBoundSpace == b.displacementBoundSpace &&
+           a.shadingRate == b.shadingRate && a.lights == b.lights && sameParams(a.user, b.user) &&
+           sameBasis(a.uBasis, b.uBasis) && sameBasis(a.vBasis, b.vBasis) &&  // trim: NuPatchDesc compares its own copy
+           a.twoSided == b.twoSided && a.orientation == b.orientation && a.smoothShading == b.smoothShading;
 }
 
 bool sameLight(const LightDesc& a, const LightDesc& b) {
@@ -52,7 +59,7 @@ bool sameLight(const LightDesc& a, const LightDesc& b) {
 
 bool sameData(const BilinearPatchDesc& a, const BilinearPatchDesc& b) {
     if (a.times.size() != b.times.size() || (a.times.size() > 1 && a.times != b.times)) return false;
-    if (a.P != b.P || a.hasCs != b.hasCs || (a.hasCs && a.Cs != b.Cs)) return false;
+    if (a.P != b.P || a.hasCs != b.hasCs || (a.hasCs && a.Cs != b.Cs) || !sameParams(a.primvars, b.primvars)) return false;
     return sameTransform(a.objectToWorld, b.objectToWorld) && sameAttributesPtr(a.attributes, b.attributes);
 }
 

@@ -339,3 +339,27 @@ TEST(Sequence, AnIdentifierGivenTwiceInOneFrameWarnsNamingTheLine) {
 
 }  // namespace
 }  // namespace streyes
+
+namespace streyes {
+namespace {
+
+// Frames that differ only in what shades a primitive (a primitive variable, a displacement, its
+// sides) are not one still run: each keeps its own.
+TEST(Sequence, ShadingChangesBetweenFramesAreNotMerged) {
+    auto frame = [](int f, const std::string& extra, const std::string& params) {
+        return "FrameBegin " + std::to_string(f) + "\nFormat 32 32 1\nWorldBegin\n" + extra +
+               "Patch \"bilinear\" \"P\" [-1 -1 5  1 -1 5  -1 1 5  1 1 5] " + params + "\nWorldEnd\nFrameEnd\n";
+    };
+    Log log;
+    const Sequence same = buildFrames({frame(1, "", "\"constant float Kd\" [0.5]"), frame(2, "", "\"constant float Kd\" [0.5]")}, log);
+    EXPECT_EQ(same.stats.runs, 1u);
+    const Sequence primvar = buildFrames({frame(1, "", "\"constant float Kd\" [0.5]"), frame(2, "", "\"constant float Kd\" [0.25]")}, log);
+    EXPECT_EQ(primvar.stats.runs, 2u);
+    const Sequence displaced = buildFrames({frame(1, "", ""), frame(2, "Displacement \"bumpy\"\n", "")}, log);
+    EXPECT_EQ(displaced.stats.runs, 2u);
+    const Sequence sides = buildFrames({frame(1, "", ""), frame(2, "Sides 1\n", "")}, log);
+    EXPECT_EQ(sides.stats.runs, 2u);
+}
+
+}  // namespace
+}  // namespace streyes
