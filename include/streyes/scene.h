@@ -102,6 +102,9 @@ struct Attributes {
     // ShadingInterpolation "constant": a micropolygon takes the colour of its first vertex
     // ("smooth", the default here: colours interpolated across it).
     bool smoothShading = true;
+    // AreaLightSource in force (an index into Scene::lights): the geometry declared now also
+    // makes up that light's shape. -1: none.
+    int areaLight = -1;
 };
 using AttributesPtr = std::shared_ptr<const Attributes>;
 
@@ -205,6 +208,11 @@ struct LightDesc {
     MotionTransform lightToWorld;
     SourceLoc loc;
     bool castsShadows = false;   // Attribute "light" "shadows" "on" where it was declared
+    // AreaLightSource: the light is spread over the geometry declared after it in its attribute
+    // block, kept here as world-space bilinear patches (corners in RenderMan order); its shader
+    // runs at points on them (geom/lights.h).
+    bool area = false;
+    std::vector<std::array<Vec3d, 4>> areaPatches;
 };
 
 // A bilinear patch (Patch "bilinear"; the bodies stage makes one of a Polygon of 3 or 4 vertices

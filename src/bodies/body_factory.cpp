@@ -152,7 +152,12 @@ const Material* BodyFactory::material(const AttributesPtr& attributes, const Mot
     }
     keepAlive_.push_back(a);
     Material m = makeMaterial(*a, facing);
-    if (own) m.primvars = *primvars;
+    if (own) {
+        m.primvars = *primvars;
+        for (const Param& v : primvars->params)  // a single face's corners (a mesh's faces carry theirs)
+            if (v.cls != ParamClass::Constant && v.nums.size() == 4 * size_t(v.componentsPerItem()))
+                for (double x : v.nums) m.primvarCorners.push_back(float(x));
+    }
     if (binder_) binder_->bind(m, *a);
     materials_.push_back(std::move(m));
     if (own) return ownMaterialOf_.emplace(std::make_tuple(a.get(), facing, primitiveId), &materials_.back()).first->second;
@@ -168,7 +173,8 @@ const SourceLoc* BodyFactory::source(const SourceLoc& loc) {
     return sourceOf_.emplace(key, &sources_.back()).first->second;
 }
 
-void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out) {
+void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out,
+                           const float* primvarCorners) {
     const Material* mat = material(p.attributes, p.objectToWorld, false, &p.primvars, primitiveId);
     std::array<Color, 4> cs;
     for (int c = 0; c < 4; ++c) cs[size_t(c)] = p.hasCs ? p.Cs[size_t(c)] : mat->Cs;
@@ -218,6 +224,7 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std
         auto body = std::make_unique<TrilinearBody>(segmentSpan(t0, t1, ts, w.openEnd), c0, c1, cs, mat);
         body->setSource(src);
         body->setPrimitiveId(primitiveId);
+        body->primvarCorners = primvarCorners;
         out.push_back(std::move(body));
         ++bodiesMade_;
     };
@@ -232,6 +239,7 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std
         auto body = std::make_unique<KeyedPatchBody>(std::move(ts), std::move(corners), cs, mat, w.openEnd);
         body->setSource(src);
         body->setPrimitiveId(primitiveId);
+        body->primvarCorners = primvarCorners;
         out.push_back(std::move(body));
         ++bodiesMade_;
         return;
@@ -486,14 +494,40 @@ void BodyFactory::addPolygonFaces(const PolygonMeshDesc& p, const PolygonFaces& 
     face.attributes = p.attributes;
     face.loc = p.loc;
     face.life = p.life;
-    face.primvars = p.primvars;  // constant ones (a mesh's varying ones are not read)
+    face.primvars = p.primvars;  // the faces share one material (by primitive id)
     face.P.resize(p.P.size());
+    // Primitive variables that vary from face to face: each face's corner values, kept here.
+    size_t width = 0;
+    for (const Param& v : p.primvars.params)
+        if (v.cls != ParamClass::Constant) width += 4 * size_t(v.componentsPerItem());
+    const float* block = nullptr;
+    if (width > 0) {
+        std::vector<float> values;
+        values.reserve(width * faces.faces.size());
+        for (size_t f = 0; f < faces.faces.size(); ++f)
+            for (const Param& v : p.primvars.params) {
+                if (v.cls == ParamClass::Constant) continue;
+                const size_t w = size_t(v.componentsPerItem());
+                for (size_t c = 0; c < 4; ++c) {
+                    size_t item = 0;  // which of the parameter's items corner c takes
+                    switch (v.cls) {
+                    case ParamClass::Uniform: item = faces.facePolygon[f]; break;
+                    case ParamClass::FaceVarying: item = faces.faceCorner[f][c]; break;
+                    default: item = size_t(faces.faces[f][c]);  // varying, vertex: by point
+                    }
+                    for (size_t k = 0; k < w; ++k) values.push_back(float(v.nums[item * w + k]));
+                }
+            }
+        std::lock_guard<std::mutex> lock(mutex_);
+        primvarBlocks_.push_back(std::move(values));
+        block = primvarBlocks_.back().data();
+    }
     for (size_t f = 0; f < faces.faces.size(); ++f) {
         for (size_t k = 0; k < p.P.size(); ++k)
             for (size_t c = 0; c < 4; ++c) face.P[k][c] = p.P[k][size_t(faces.faces[f][c])];
         face.hasCs = !faces.faceCs.empty();
         if (face.hasCs) face.Cs = faces.faceCs[f];
-        addPatch(face, primitiveId, out);
+        addPatch(face, primitiveId, out, block ? block + f * width : nullptr);
     }
 }
 

@@ -52,7 +52,9 @@ class BodyFactory final : public ChildBodyMaker {
     // warn and are skipped. With the camera set, a patch it cannot see (wholly inside the near
     // plane) or sees imprecisely (so far from the world's origin that double rounding shows)
     // warns too.
-    void addPatch(const BilinearPatchDesc& patch, uint64_t primitiveId, std::vector<BodyPtr>& out);
+    // primvarCorners: a polygon mesh face's own primitive variables (Body::primvarCorners).
+    void addPatch(const BilinearPatchDesc& patch, uint64_t primitiveId, std::vector<BodyPtr>& out,
+                  const float* primvarCorners = nullptr);
     // Curved primitives: a SurfaceMesh per motion segment (kept by the factory) and a CurvedBody
     // per face. The camera must be set: curved bodies
     // measure their edges in raster space. A subdivision mesh OpenSubdiv rejects is an InputError.
@@ -155,6 +157,7 @@ class BodyFactory final : public ChildBodyMaker {
     std::mutex mutex_;
     const MaterialBinder* binder_ = nullptr;
     std::deque<Material> materials_;  // deques: bodies keep pointers into them
+    std::deque<std::vector<float>> primvarBlocks_;  // polygon meshes' faces' primitive variables (Body::primvarCorners)
     std::deque<SourceLoc> sources_;
     std::map<std::pair<const Attributes*, Facing>, const Material*> materialOf_;
     std::map<std::tuple<const Attributes*, Facing, uint64_t>, const Material*> ownMaterialOf_;  // with primitive variables

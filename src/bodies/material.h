@@ -46,6 +46,10 @@ struct Material {
     // the same name; constant ones, or four corner values interpolated over a bilinear patch (the
     // grid's u, v). "s", "t" and "st" replace the shaders' s and t.
     ParamList primvars;
+    // The values of those that are not constant at the four corners of the face (u, v) in
+    // {0, 1}^2, RenderMan order: each such variable in turn, four corners of its floats. A
+    // polygon mesh's faces carry their own (Body::primvarCorners).
+    std::vector<float> primvarCorners;
 };
 
 // Binds a material's Shading Language shaders (made by the shading stage, which the bodies

@@ -66,6 +66,8 @@ PolygonFaces cutPolygons(const PolygonMeshDesc& mesh, Log& log) {
             for (int v : loop) cornerOf.emplace(v, faceVertex++);
         for (const std::array<int, 4>& f : faces) {
             out.faces.push_back(f);
+            out.facePolygon.push_back(p);
+            out.faceCorner.push_back({cornerOf[f[0]], cornerOf[f[1]], cornerOf[f[2]], cornerOf[f[3]]});
             if (!Cs.given()) continue;
             std::array<Color, 4> c;
             for (size_t k = 0; k < 4; ++k) {

@@ -25,6 +25,8 @@ std::optional<BilinearPatchDesc> polygonAsPatch(const PolygonMeshDesc& mesh);
 struct PolygonFaces {
     std::vector<std::array<int, 4>> faces;     // indices into the points, in patch order (a b c c)
     std::vector<std::array<Color, 4>> faceCs;  // per face corner; empty: the attribute Color
+    std::vector<size_t> facePolygon;           // per face: the polygon it was cut from
+    std::vector<std::array<size_t, 4>> faceCorner;  // per face corner: its loop vertex in the mesh (facevarying)
 };
 PolygonFaces cutPolygons(const PolygonMeshDesc& mesh, Log& log);
 

@@ -80,6 +80,7 @@ class Body {
         eyeSplitDepth = parent.eyeSplitDepth;
         exposure = parent.exposure;
         uv = parent.uv;
+        primvarCorners = parent.primvarCorners;
     }
 
     // A body that is replaced by the bodies it expands into, instead of being split or diced (a
@@ -121,6 +122,10 @@ class Body {
     // The piece's parameter rectangle in its primitive, (u0, u1, v0, v1): what a shader sees as u
     // and v (and s and t, by default). The split loop halves it with every split in u or v.
     std::array<float, 4> uv{0, 1, 0, 1};
+    // A face of a polygon mesh with primitive variables that vary from face to face: their values
+    // at its four corners (Material::primvarCorners' layout), kept by the factory. Null: the
+    // material's own.
+    const float* primvarCorners = nullptr;
     // As a root, the frames each of its pieces spans (BucketWorker::chunkFrames), made by the first
     // bucket that asks: it depends on the body and the camera only, and every bucket asks. 0 until
     // made; a race writes the same value.

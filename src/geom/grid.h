@@ -23,6 +23,7 @@ struct Grid {
     uint64_t primitiveId = 0;     // the body's primitive: breaks exact depth ties
     float u0 = 0, u1 = 1, v0 = 0, v1 = 1;  // the body's parameter rectangle (Body::uv)
     bool flatShading = false;     // ShadingInterpolation "constant": a micropolygon has its first vertex's colour
+    const float* primvarCorners = nullptr;  // the body's (Body::primvarCorners)
 
     std::vector<Vec3f> P[2];      // camera-space positions at t0, t1
     std::vector<Vec3f> N[2];      // geometric normals (not normalised)

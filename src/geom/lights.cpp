@@ -1,6 +1,50 @@
 #include "geom/lights.h"
 
+#include <algorithm>
+
 namespace streyes {
+
+namespace {
+
+double radicalInverse2(uint32_t i) {
+    i = (i << 16) | (i >> 16);
+    i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
+    i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
+    i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
+    i = ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
+    return double(i) * (1.0 / 4294967296.0);
+}
+
+Vec3d bilinearAt(const std::array<Vec3d, 4>& p, double u, double v) {
+    return (p[0] * (1 - u) + p[1] * u) * (1 - v) + (p[2] * (1 - u) + p[3] * u) * v;
+}
+
+// kAreaLightSamples points over an area light's patches, a Hammersley set over the patches laid
+// end to end by area: the first coordinate picks the patch (and u within it), the second is v.
+void sampleArea(const std::vector<std::array<Vec3d, 4>>& patches, Light& l) {
+    std::vector<double> cumulative;
+    double total = 0;
+    for (const std::array<Vec3d, 4>& p : patches) {
+        total += 0.5 * (length(cross(p[1] - p[0], p[3] - p[0])) + length(cross(p[3] - p[0], p[2] - p[0])));
+        cumulative.push_back(total);
+    }
+    if (!(total > 0)) return;
+    for (int j = 0; j < kAreaLightSamples; ++j) {
+        const double x = (j + 0.5) / kAreaLightSamples * total, v = radicalInverse2(uint32_t(j));
+        const size_t k = size_t(std::lower_bound(cumulative.begin(), cumulative.end(), x) - cumulative.begin());
+        const size_t f = std::min(k, patches.size() - 1);
+        const double start = f == 0 ? 0 : cumulative[f - 1], width = cumulative[f] - start;
+        const double u = width > 0 ? (x - start) / width : 0.5;
+        const std::array<Vec3d, 4>& p = patches[f];
+        Vec3d n = cross(bilinearAt(p, std::min(1.0, u + 1e-3), v) - bilinearAt(p, std::max(0.0, u - 1e-3), v),
+                        bilinearAt(p, u, std::min(1.0, v + 1e-3)) - bilinearAt(p, u, std::max(0.0, v - 1e-3)));
+        const double nl = length(n);
+        l.areaP.push_back(bilinearAt(p, u, v));
+        l.areaN.push_back(nl > 0 ? n / nl : Vec3d{0, 0, 1});
+    }
+}
+
+}  // namespace
 
 LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& worldToCamera)
     : worldToCamera_(worldToCamera) {
@@ -21,6 +65,16 @@ LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& 
                       ? Color{0, 0, 0}
                       : d.params.getColor("lightcolor", {1, 1, 1}) * float(d.params.getFloat("intensity", 1));
         l.lightToWorld = d.lightToWorld;
+        if (d.area) {
+            // Its shader runs at points of its shape, each with "shader" space moved there.
+            l.kind = LightKind::Shader;
+            sampleArea(d.areaPatches, l);
+            l.lightToWorld = MotionTransform();
+            Vec3d c{0, 0, 0};
+            for (const Vec3d& p : l.areaP) c = c + p / double(std::max<size_t>(1, l.areaP.size()));
+            l.from = c;  // the centre: where a light has one position (the ray tracer's bound)
+        }
+        areaLight_.push_back(d.area);
         // Attribute "light" "shadows" "on", or the light shader's "shadowname" "raytrace" (the
         // RenderMan convention: its shadow() calls read 0 and the renderer traces per sample).
         const Param* shadowName = d.params.find("shadowname");

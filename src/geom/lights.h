@@ -19,7 +19,13 @@ struct Light {
     Vec3d from{0, 0, 0}, to{0, 0, 1};  // light space
     MotionTransform lightToWorld;
     bool castsShadows = false;
+    // An area light (AreaLightSource): its shader runs at these world-space points of its shape,
+    // each with the shape's unit normal there, every result weighted 1 / count.
+    std::vector<Vec3d> areaP, areaN;
 };
+
+// Points an area light's shader runs at: stratified by area over its patches.
+constexpr int kAreaLightSamples = 16;
 
 // A light at one instant in camera space.
 struct CameraLight {
@@ -56,6 +62,20 @@ class LightSet {
     Matrix4 lightToCamera(int light, double t) const {
         return lights_[size_t(light)].lightToWorld.at(t) * worldToCamera_.at(t);
     }
+    // Area lights: the points the shader runs at (0 for other lights, and for an area light
+    // given no geometry: it lights nothing). Sample j's "shader" space is world space moved to
+    // the point; its normal is the shape's, in camera space.
+    int areaSamples(int light) const { return int(lights_[size_t(light)].areaP.size()); }
+    bool isArea(int light) const { return areaLight_[size_t(light)]; }
+    Matrix4 areaSampleToCamera(int light, int j, double t) const {
+        return Matrix4::translate(lights_[size_t(light)].areaP[size_t(j)]) * worldToCamera_.at(t);
+    }
+    Vec3f areaPoint(int light, int j, double t) const {
+        return Vec3f(worldToCamera_.at(t).point(lights_[size_t(light)].areaP[size_t(j)]));
+    }
+    Vec3f areaNormal(int light, int j, double t) const {
+        return Vec3f(normalize(worldToCamera_.at(t).vector(lights_[size_t(light)].areaN[size_t(j)])));
+    }
 
   private:
     std::vector<Light> lights_;
@@ -65,6 +85,7 @@ class LightSet {
     std::vector<int> shadowLights_;
     std::vector<int> slotOf_;  // per light: its shadow slot or -1
     std::vector<bool> moves_;  // per light
+    std::vector<bool> areaLight_;  // per light
 };
 
 }  // namespace streyes

@@ -164,6 +164,7 @@ void Body::startGrid(int nu, int nv, Grid& grid) const {
     grid.material = material_;
     grid.primitiveId = primitiveId_;
     grid.u0 = uv[0], grid.u1 = uv[1], grid.v0 = uv[2], grid.v1 = uv[3];
+    grid.primvarCorners = primvarCorners;
 }
 
 void TrilinearBody::dice(int nu, int nv, Grid& grid) const {

@@ -135,6 +135,10 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
                          std::string(algorithmName(options_.algorithm)));
     // Shadow maps are not read: a light naming one gets no shadows (shadow() of the name reads 0).
     for (const LightDesc& l : scene.lights) {
+        if (l.area && l.areaPatches.empty())
+            log_.warnOnce("arealight-empty", l.loc,
+                          "AreaLightSource \"" + l.type + "\" has no shape (no bilinear patch, polygon, sphere, cylinder, "
+                          "cone or disk follows it in its attribute block): it lights nothing");
         const Param* name = l.params.find("shadowname");
         if (name && name->type == ParamType::String && !name->strings.empty() && !name->strings[0].empty() &&
             name->strings[0] != "raytrace")

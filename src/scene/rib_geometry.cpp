@@ -73,7 +73,7 @@ ColorPrimvar readColors(const RibArgs& args, const ParamList& params, const Clas
 }
 
 ParamList otherParams(const RibArgs& args, const ParamList& params, const ClassCounts& counts, Log& log,
-                      bool perVertex) {
+                      bool perVertex, bool mesh) {
     ParamList out;
     for (const Param& p : params.params) {
         if (p.name == "P" || p.name == "Pw" || p.name == "Cs") continue;
@@ -82,9 +82,12 @@ ParamList otherParams(const RibArgs& args, const ParamList& params, const ClassC
         const bool typed = st || (p.arraySize == 1 && (p.type == ParamType::Float || p.type == ParamType::Color ||
                                                        p.type == ParamType::String));
         const bool whole = p.cls == ParamClass::Constant || (p.cls == ParamClass::Uniform && counts.uniform == 1);
+        // Per-vertex classes whose values are the face's corners (not a bicubic patch's 16 vertex values).
         const bool corners = perVertex && p.type != ParamType::String &&
-                             (p.cls == ParamClass::Varying || p.cls == ParamClass::Vertex || p.cls == ParamClass::FaceVarying);
-        if (typed && (whole || corners)) {
+                             (p.cls == ParamClass::Varying || p.cls == ParamClass::Vertex || p.cls == ParamClass::FaceVarying) &&
+                             counts.of(p.cls) == counts.varying;
+        const bool faces = mesh && p.type != ParamType::String && p.cls != ParamClass::Constant;
+        if (typed && (whole || corners || faces)) {
             Param q = p;
             if (whole) q.cls = ParamClass::Constant;
             if (q.type == ParamType::String && q.strings.size() > 1) q.strings.resize(1);
@@ -94,8 +97,8 @@ ParamList otherParams(const RibArgs& args, const ParamList& params, const ClassC
         log.warnOnce("geometry-param:" + p.name, p.loc,
                      "parameter '" + p.name + "' on " + args.name() +
                          " is not bound to shaders yet (primitive variables are: float, color and string ones "
-                         "constant over the primitive, and varying or vertex floats and colours on bilinear patches "
-                         "and polygons of 3 or 4 vertices): ignored");
+                         "constant over the primitive, and uniform, varying, vertex or facevarying floats and colours "
+                         "on polygons, polygon meshes, single patches and quadrics): ignored");
     }
     return out;
 }
@@ -177,6 +180,22 @@ bool faceKeysMove(Log& log, const std::vector<FaceKey>& keys, const SourceLoc& l
             log.warnOnce("motion:Cs", loc, "Cs does not change over motion keys: using the first key's");
     }
     return moves;
+}
+
+// ---- Area lights ----------------------------------------------------------------------------------
+void shapeAreaLight(RibParser& reader, const std::vector<std::array<Vec3d, 4>>& patches, const SourceLoc& loc,
+                    const std::string& what) {
+    const int li = reader.state().attributes->areaLight;
+    if (li < 0) return;
+    if (patches.empty()) {
+        reader.log().warnOnce("arealight-shape:" + what, loc,
+                              what + " does not shape an area light (bilinear patches, polygons, spheres, cylinders, "
+                                     "cones and disks do): it is drawn, but the light is not spread over it");
+        return;
+    }
+    const Matrix4 m = reader.state().ctm.keys().front();
+    std::vector<std::array<Vec3d, 4>>& shape = reader.scene().lights[size_t(li)].areaPatches;
+    for (const std::array<Vec3d, 4>& p : patches) shape.push_back({m.point(p[0]), m.point(p[1]), m.point(p[2]), m.point(p[3])});
 }
 
 // ---- One primitive from the keys of a motion block -----------------------------------------------

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <optional>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -30,11 +31,14 @@ std::vector<Vec3d> pointsOf(const RibArgs& args, const Param& pos);
 ColorPrimvar readColors(const RibArgs& args, const ParamList& params, const ClassCounts& counts);
 // Parameters other than positions and Cs, checked for size: the primitive variables a shader can
 // bind (float, color or string, "st" as float[2]; one value for the primitive: constant, or uniform
-// where it has one face), uniform ones made constant. With `perVertex` (a single face: Patch
-// "bilinear", a Polygon of 3 or 4 vertices) varying, vertex and facevarying floats and colours
-// too, a value per vertex. The rest are ignored with a warning.
+// where it has one face), uniform ones made constant. With `perVertex` (a primitive of one face:
+// Patch "bilinear" or "bicubic", a Polygon of 3 or 4 vertices, a quadric) varying, vertex and
+// facevarying floats and colours too, a value per corner of the face (a bicubic patch's 16 vertex
+// values are not). The rest are ignored with a warning.
+// A polygon mesh (`mesh`) takes uniform ones (a value per polygon) and per-vertex ones too: each
+// face it is cut into gets its corners' values.
 ParamList otherParams(const RibArgs& args, const ParamList& params, const ClassCounts& counts, Log& log,
-                      bool perVertex = false);
+                      bool perVertex = false, bool mesh = false);
 
 // Positional arrays: whole numbers each at least `min`; an array of strings or of numbers.
 std::vector<int> intArray(RibArgs& args, const std::string& what, int min);
@@ -55,6 +59,13 @@ bool readFaceKey(RibParser& reader, RibArgs& args, bool polygon, FaceKey* key);
 // Checks that a face's keys agree (the same number of vertices; a Cs that differs warns, as colours
 // do not move) and says whether its positions move.
 bool faceKeysMove(Log& log, const std::vector<FaceKey>& keys, const SourceLoc& loc);
+
+// ---- Area lights ----------------------------------------------------------------------------------
+// When an AreaLightSource is in force, adds these object-space patches (corners in RenderMan order),
+// under the current transform at its first key, to that light's shape. `what` names geometry that
+// cannot shape one (empty patches): it warns once instead.
+void shapeAreaLight(RibParser& reader, const std::vector<std::array<Vec3d, 4>>& patches, const SourceLoc& loc,
+                    const std::string& what = "");
 
 // ---- One primitive from the keys of a motion block -----------------------------------------------
 // The current transform and attributes, the key times and where the primitive was declared.
@@ -83,6 +94,8 @@ std::optional<Desc> mergeKeys(RibParser& reader, const RibKeys& keys, Read read,
     bool moves = false;
     for (size_t i = 1; i < descs.size(); ++i) moves = moves || positions(descs[i]) != positions(descs[0]);
     placePrimitive(reader, d, moves ? keys.times : std::vector<double>{keys.times.front()}, loc);
+    if constexpr (!std::is_same_v<Desc, QuadricDesc>)  // quadrics shape area lights themselves
+        shapeAreaLight(reader, {}, loc, keys.requests.front().name);
     positions(d).clear();
     for (size_t i = 0; i < d.times.size(); ++i) positions(d).push_back(positions(descs[i])[0]);
     return d;

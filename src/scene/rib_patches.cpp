@@ -63,7 +63,7 @@ bool readPatchMeshKey(RibParser& reader, RibArgs& args, PatchMeshDesc* d) {
     counts.vertex = size_t(d->nu) * size_t(d->nv);
     d->P = {pointsOf(args, pos)};
     d->Cs = readColors(args, params, counts);
-    d->primvars = otherParams(args, params, counts, reader.log());
+    d->primvars = otherParams(args, params, counts, reader.log(), counts.uniform == 1);  // one patch: its corners
     return true;
 }
 
@@ -103,6 +103,7 @@ void addBilinearPatch(RibParser& reader, const std::vector<double>& times, const
     patch.objectToWorld = reader.state().ctm;
     patch.attributes = reader.state().attributes;
     patch.loc = loc;
+    shapeAreaLight(reader, {patch.P.front()}, loc);
     reader.scene().patches.push_back(std::move(patch));
 }
 

@@ -69,7 +69,7 @@ bool readPolygonsKey(RibParser& reader, RibArgs& args, PolygonMeshDesc* d) {
     counts.varying = counts.vertex = npoints;
     counts.faceVarying = sum(loopSizes);
     d->Cs = readColors(args, params, counts);
-    d->primvars = otherParams(args, params, counts, reader.log());
+    d->primvars = otherParams(args, params, counts, reader.log(), false, true);  // per face of the cut polygons
     return true;
 }
 
@@ -106,6 +106,9 @@ void addPolygon(RibParser& reader, const std::vector<double>& times, const std::
     d.Cs = keys.front().Cs;
     d.primvars = keys.front().primvars;  // per vertex around the loop: polygonAsPatch puts them at the corners
     d.patchesBefore = reader.scene().patches.size();
+    const std::vector<Vec3d>& v = d.P.front();  // around the edge: corners in patch order
+    shapeAreaLight(reader, {v.size() == 4 ? std::array<Vec3d, 4>{v[0], v[1], v[3], v[2]} : std::array<Vec3d, 4>{v[0], v[1], v[2], v[2]}},
+                   loc);
     reader.scene().polygonMeshes.push_back(std::move(d));
 }
 

@@ -1,6 +1,8 @@
 // Quadrics: Sphere, Cylinder, Cone, Disk, Paraboloid, Hyperboloid, Torus, with their arguments as
 // motion keys.
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <map>
 
 #include "scene/rib_geometry.h"
@@ -39,15 +41,62 @@ bool readQuadricKey(RibParser& reader, RibArgs& args, QuadricDesc* d) {
     ClassCounts counts;
     counts.varying = counts.vertex = counts.faceVarying = 4;
     d->Cs = readColors(args, list, counts);
-    d->primvars = otherParams(args, list, counts, reader.log());
+    d->primvars = otherParams(args, list, counts, reader.log(), true);  // one face: corners over (u, v)
     return true;
+}
+
+// A quadric's facets (8 around, 4 along), for an area light's shape: spheres, cylinders, cones and
+// disks (none for the others).
+std::vector<std::array<Vec3d, 4>> quadricFacets(const QuadricDesc& d) {
+    const std::array<double, 7>& a = d.params.front();
+    std::function<Vec3d(double, double)> at;  // (u, v) in [0, 1]^2 -> object space
+    const double pi = 3.14159265358979323846;
+    switch (d.kind) {
+        case QuadricKind::Sphere: {
+            const double r = a[0], zmin = std::max(-r, std::min(a[1], a[2])), zmax = std::min(r, std::max(a[1], a[2]));
+            const double p0 = std::asin(zmin / r), p1 = std::asin(zmax / r), tmax = a[3] * pi / 180;
+            at = [=](double u, double v) {
+                const double phi = p0 + v * (p1 - p0), t = u * tmax;
+                return Vec3d{r * std::cos(phi) * std::cos(t), r * std::cos(phi) * std::sin(t), r * std::sin(phi)};
+            };
+            break;
+        }
+        case QuadricKind::Cylinder:
+            at = [=](double u, double v) {
+                const double t = u * a[3] * pi / 180;
+                return Vec3d{a[0] * std::cos(t), a[0] * std::sin(t), a[1] + v * (a[2] - a[1])};
+            };
+            break;
+        case QuadricKind::Cone:
+            at = [=](double u, double v) {
+                const double t = u * a[2] * pi / 180, r = a[1] * (1 - v);
+                return Vec3d{r * std::cos(t), r * std::sin(t), v * a[0]};
+            };
+            break;
+        case QuadricKind::Disk:
+            at = [=](double u, double v) {
+                const double t = u * a[2] * pi / 180, r = a[1] * (1 - v);
+                return Vec3d{r * std::cos(t), r * std::sin(t), a[0]};
+            };
+            break;
+        default: return {};
+    }
+    std::vector<std::array<Vec3d, 4>> out;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 8; ++i) {
+            const double u0 = i / 8.0, u1 = (i + 1) / 8.0, v0 = j / 4.0, v1 = (j + 1) / 4.0;
+            out.push_back({at(u0, v0), at(u1, v0), at(u0, v1), at(u1, v1)});
+        }
+    return out;
 }
 
 void quadricKeys(RibParser& reader, const RibKeys& keys) {
     auto anyShape = [](const QuadricDesc&, const QuadricDesc&) { return true; };
     auto positions = [](QuadricDesc& d) -> auto& { return d.params; };
-    if (auto d = mergeKeys<QuadricDesc>(reader, keys, readQuadricKey, anyShape, "", positions))
+    if (auto d = mergeKeys<QuadricDesc>(reader, keys, readQuadricKey, anyShape, "", positions)) {
+        shapeAreaLight(reader, quadricFacets(*d), d->loc, keys.requests.front().name);
         reader.scene().quadrics.push_back(std::move(*d));
+    }
 }
 
 }  // namespace

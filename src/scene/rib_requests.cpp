@@ -131,7 +131,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
          {"Quantize", "GeometricApproximation", "ColorSamples", "CropWindow", "RelativeDetail",
           "PixelVariance", "Interior", "Exterior", "Deformation",
           "TextureCoordinates", "Matte", "Bound", "Detail", "DetailRange", "Perspective", "Skew",
-          "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "AreaLightSource", "SolidBegin",
+          "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "SolidBegin",
           "SolidEnd", "ArchiveEnd", "MakeBump",
           "MakeCubeFaceEnvironment", "MakeShadow", "MakeBrickMap", "ErrorHandler", "ArchiveRecord",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",

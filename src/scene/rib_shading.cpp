@@ -55,7 +55,8 @@ void imager(RibParser& reader, RibArgs& args) { reader.scene().settings.imager =
 
 // A light is on in the attribute block where it is declared (and the blocks inside it): its index
 // goes into the current attributes' light list, which AttributeEnd restores.
-void lightSource(RibParser& reader, RibArgs& args) {
+// LightSource, or AreaLightSource (area: the geometry that follows in the attribute block shapes it).
+void declareLight(RibParser& reader, RibArgs& args, bool area) {
     RibState& s = reader.state();
     static const std::map<std::string, std::vector<std::string>> builtins = {
         {"ambientlight", {"intensity", "lightcolor"}},
@@ -74,7 +75,7 @@ void lightSource(RibParser& reader, RibArgs& args) {
     }
 
     ParamList params = reader.readParams(args, true);
-    auto builtin = builtins.find(name);
+    auto builtin = area ? builtins.end() : builtins.find(name);
     if (builtin != builtins.end()) {  // other lights are Shading Language shaders, checked when bound
         params.getFloat("intensity", 1.0);
         params.getColor("lightcolor", Color(1, 1, 1));
@@ -83,17 +84,30 @@ void lightSource(RibParser& reader, RibArgs& args) {
         reader.warnUnusedParams(params, builtin->second, "LightSource \"" + name + "\"");
     }
 
-    if (s.world == RibState::World::After) args.fail("LightSource after WorldEnd: lights belong in the world");
+    if (s.world == RibState::World::After) args.fail(args.name() + " after WorldEnd: lights belong in the world");
+    if (area && s.world != RibState::World::Inside)
+        args.fail("AreaLightSource before WorldBegin: an area light is the geometry that follows it in the world");
     int index = int(reader.scene().lights.size());
     if (s.world == RibState::World::Before) s.cameraLights.push_back(index);
     const bool shadows = s.attributes->user.getString("light:shadows", "off") == "on";
-    reader.scene().lights.push_back(LightDesc{name, std::move(params), s.ctm, args.loc(), shadows});
+    LightDesc light;
+    light.type = name;
+    light.params = std::move(params);
+    light.lightToWorld = s.ctm;
+    light.loc = args.loc();
+    light.castsShadows = shadows;
+    light.area = area;
+    reader.scene().lights.push_back(std::move(light));
     s.mutableAttributes().lights.push_back(index);
+    if (area) s.mutableAttributes().areaLight = index;
     if (!handle.empty()) {
         s.lightHandles[handle] = index;
         s.skippedLightHandles.erase(handle);
     }
 }
+
+void lightSource(RibParser& reader, RibArgs& args) { declareLight(reader, args, false); }
+void areaLightSource(RibParser& reader, RibArgs& args) { declareLight(reader, args, true); }
 
 void illuminate(RibParser& reader, RibArgs& args) {
     RibState& s = reader.state();
@@ -118,6 +132,7 @@ void addShadingRequests(RibRequestTable& table) {
     table.add("Atmosphere", {atmosphere, "Atmosphere \"name\" parameters..."});
     table.add("Imager", {imager, "Imager \"name\" parameters...", RibPhase::Options});
     table.add("LightSource", {lightSource, "LightSource \"name\" handle parameters..."});
+    table.add("AreaLightSource", {areaLightSource, "AreaLightSource \"name\" handle parameters...", RibPhase::World});
     table.add("Illuminate", {illuminate, "Illuminate handle onoff", RibPhase::World});
 }
 

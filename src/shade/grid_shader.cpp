@@ -30,11 +30,13 @@ void GridShader::takeCounters(RenderCounters& out) {
 }
 
 Color GridShader::shadeHit(const Material& m, Color cs, Vec3f p, Vec3f n, double time, float u, float v,
-                          uint64_t primitiveId, Color* shadowed, int slots, Color* opacity) {
+                          uint64_t primitiveId, Color* shadowed, int slots, Color* opacity,
+                          const float* primvarCorners) {
     hit_.shadowSlots = slots;
     hit_.resize(0, 0, false);
     hit_.material = &m;
     hit_.primitiveId = primitiveId;
+    hit_.primvarCorners = primvarCorners;
     hit_.t0 = hit_.t1 = time;
     hit_.u0 = hit_.u1 = u;
     hit_.v0 = hit_.v1 = v;
@@ -191,13 +193,14 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     sgrid_.set(Global::time, ValueRef::uniform(&time_));
     worldToCamera_ = camera_.worldToCamera().at(time);
     sgrid_.setSpace(sl::Space::World, worldToCamera_);
-    bindPrimvars(m, n);
+    bindPrimvars(m, grid, n);
+    sgrid_.flipNormals = m.flipNormals;  // calculatenormal turns as N does (Orientation, mirroring)
     sgrid_.seed = unsigned(grid.primitiveId ^ (grid.primitiveId >> 32));
     sgrid_.nearClip = camera_.nearClip();
     sgrid_.farClip = camera_.farClip();
 }
 
-void GridShader::bindPrimvars(const Material& m, int n) {
+void GridShader::bindPrimvars(const Material& m, const Grid& grid, int n) {
     sgrid_.primvars = nullptr;
     if (m.primvars.params.empty()) return;
     // Sizes first: the views point into primvarData_.
@@ -206,6 +209,8 @@ void GridShader::bindPrimvars(const Material& m, int n) {
         if (p.type != ParamType::String)
             total += size_t(p.componentsPerItem()) * (p.cls == ParamClass::Constant ? 1 : size_t(n));
     primvarData_.resize(total);
+    const float* block = grid.primvarCorners ? grid.primvarCorners : m.primvarCorners.data();
+    size_t cornerAt = 0;
     size_t at = 0, bound = 0;  // entries of primvars_ are reused from grid to grid (no allocation once warm)
     for (const Param& p : m.primvars.params) {
         if (primvars_.size() <= bound) primvars_.emplace_back();
@@ -225,11 +230,18 @@ void GridShader::bindPrimvars(const Material& m, int n) {
             for (int c = 0; c < w; ++c) d[c] = float(p.nums[size_t(c)]), comp[c] = d + c;
             v.value = sl::ValueRef{{comp[0], comp[1], comp[2]}, 0};
             at += size_t(w);
+        } else if (p.cls == ParamClass::Uniform) {  // a mesh face's own value: uniform over the grid
+            const float* corners = block + cornerAt;
+            cornerAt += 4 * size_t(w);
+            for (int c = 0; c < w; ++c) d[c] = corners[c], comp[c] = d + c;
+            v.value = sl::ValueRef{{comp[0], comp[1], comp[2]}, 0};
+            at += size_t(w) * size_t(n);
         } else {
-            // Four corners in RenderMan order, bilinear in the body's (u, v).
+            // Four corners in RenderMan order (the body's, or the material's), bilinear in the body's (u, v).
+            const float* corners = block + cornerAt;
+            cornerAt += 4 * size_t(w);
             for (int c = 0; c < w; ++c) {
-                const float k[4] = {float(p.nums[size_t(c)]), float(p.nums[size_t(w + c)]), float(p.nums[size_t(2 * w + c)]),
-                                    float(p.nums[size_t(3 * w + c)])};
+                const float k[4] = {corners[c], corners[w + c], corners[2 * w + c], corners[3 * w + c]};
                 comp[c] = d + size_t(c) * size_t(n);
                 for (int i = 0; i < n; ++i) {
                     const float u = u_[size_t(i)], vv = v_[size_t(i)];
@@ -255,6 +267,18 @@ void GridShader::bindPrimvars(const Material& m, int n) {
     sgrid_.primvars = &primvars_;
 }
 
+// A light as the interpreter runs it: once, or an area light once at each of its points (each
+// weighted 1 / their number, its surface's normal as N).
+void GridShader::addLight(const sl::ShaderInstance* s, int li, double time, std::vector<sl::LightRef>& out) const {
+    if (!lights_.isArea(li)) {
+        out.emplace_back(s, lights_.lightToCamera(li, time));
+        return;
+    }
+    const int n = lights_.areaSamples(li);
+    for (int j = 0; j < n; ++j)
+        out.emplace_back(s, lights_.areaSampleToCamera(li, j, time), lights_.areaNormal(li, j, time), 1.0f / float(n));
+}
+
 void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
     useShaderSpace(m.attributes ? &m.attributes->surface.shaderToWorld : nullptr, time);
     // The material's lights, those that cast shadows apart.
@@ -267,7 +291,7 @@ void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
             ++shadowed;
             continue;
         }
-        unshadowed_.push_back({s, lights_.lightToCamera(li, time)});
+        addLight(s, li, time, unshadowed_);
     }
     const int n = grid.vertexCount();
     vm_->run(*m.surface, sgrid_, unshadowed_);
@@ -285,7 +309,7 @@ void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
                 const sl::ShaderInstance* s = shaders_->light(size_t(li));
                 if (slot < 0 || !s) continue;
                 withOne_.assign(unshadowed_.begin(), unshadowed_.end());
-                withOne_.push_back({s, lights_.lightToCamera(li, time)});
+                addLight(s, li, time, withOne_);
                 vm_->run(*m.surface, sgrid_, withOne_);
                 const sl::ValueRef c = vm_->result(sl::Global::Ci);
                 for (int i = 0; i < n; ++i)

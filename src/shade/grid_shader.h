@@ -54,7 +54,8 @@ class GridShader {
     // shadows (as shadePoint gives them), and with `opacity` its Oi. No derivatives: du, dv and
     // Du(), Dv() are 0.
     Color shadeHit(const Material& m, Color cs, Vec3f p, Vec3f n, double time, float u, float v,
-                   uint64_t primitiveId, Color* shadowed, int slots, Color* opacity = nullptr);
+                   uint64_t primitiveId, Color* shadowed, int slots, Color* opacity = nullptr,
+                   const float* primvarCorners = nullptr);
 
     // Adds what was shaded since the last call to `out` (the stats' shading.* counters).
     void takeCounters(RenderCounters& out);
@@ -69,7 +70,8 @@ class GridShader {
     void useShaderSpace(const MotionTransform* shaderToWorld, double time);
     // The material's primitive variables over the grid (u_, v_ set): bound by name, s and t
     // from "s", "t" or "st".
-    void bindPrimvars(const Material& m, int n);
+    void bindPrimvars(const Material& m, const Grid& grid, int n);
+    void addLight(const sl::ShaderInstance* s, int li, double time, std::vector<sl::LightRef>& out) const;
     void setIncident(const Grid& grid, int k);
 
     const SceneShaders* shaders_;

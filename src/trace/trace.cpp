@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "procedural/procedural.h"
@@ -156,6 +157,21 @@ float TraceScene::shadowBias(float z) const {
 
 // ---- SampleTracer ------------------------------------------------------------------------------------
 
+namespace {
+// Which of an area light's n points a shadow ray from p at `time` goes to: a hash of their bits.
+int areaPointOf(Vec3f p, double time, int n) {
+    uint32_t bits[3];
+    std::memcpy(bits, &p, sizeof bits);
+    uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (uint32_t b : bits) h = (h ^ b) * 0xff51afd7ed558ccdull, h ^= h >> 33;
+    uint64_t tb;
+    std::memcpy(&tb, &time, sizeof tb);
+    h = (h ^ tb) * 0xc4ceb9fe1a85ec53ull;
+    h ^= h >> 33;
+    return int(h % uint64_t(n));
+}
+}  // namespace
+
 const std::vector<CameraLight>& SampleTracer::lightsAt(const LightSet& lights, double t) {
     if (!lightsValid_ || (!lights.isStatic() && t != lightsTime_)) {
         lights.at(t, lights_);
@@ -172,11 +188,16 @@ Color SampleTracer::addVisibleLights(Color c, Vec3f p, double time, const Color*
     for (int k = 0; k < lights.shadowSlots(); ++k) {
         const Color part = shadowed[k];
         if (part.x == 0 && part.y == 0 && part.z == 0) continue;  // the light does not reach p anyway
-        const CameraLight& l = lightsAt(lights, time)[size_t(lights.shadowLight(k))];
+        const int li = lights.shadowLight(k);
+        const CameraLight& l = lightsAt(lights, time)[size_t(li)];
         Ray ray{p, l.direction};
         float tMax = std::numeric_limits<float>::infinity();
         if (l.kind == LightKind::Point || l.kind == LightKind::Shader) {
-            const Vec3f d = l.position - p;
+            // An area light: towards one of its points, picked by a hash of the shaded point, so
+            // that a pixel's samples spread over the light (soft shadows) the same in any block.
+            Vec3f target = l.position;
+            if (const int n = lights.areaSamples(li); n > 0) target = lights.areaPoint(li, areaPointOf(p, time, n), time);
+            const Vec3f d = target - p;
             const float dist = length(d);
             if (!(dist > 2 * bias)) {  // the light sits on the surface: nothing between
                 c += part;
@@ -234,7 +255,7 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
             Color c = m.surface && shader_
                           ? shader_->shadeHit(m, cs, p, n, time, body.uv[0] + h.u * (body.uv[1] - body.uv[0]),
                                               body.uv[2] + h.v * (body.uv[3] - body.uv[2]), body.primitiveId(),
-                                              K ? shadowed_.data() : nullptr, K, &o)
+                                              K ? shadowed_.data() : nullptr, K, &o, body.primvarCorners)
                           : shadePoint(m, cs, p, n, ortho, lights, K ? shadowed_.data() : nullptr, K);
             if (K) c = addVisibleLights(c, p, time, shadowed_.data(), trace, bvh, counters);
             o = {std::clamp(o.x, 0.0f, 1.0f), std::clamp(o.y, 0.0f, 1.0f), std::clamp(o.z, 0.0f, 1.0f)};

@@ -16,6 +16,7 @@ struct Shaders {
     test::TempDir dir{"primvars"};
     Shaders() {
         add("kd", "surface kd(float Kd = 1) { Oi = 1; Ci = Kd * Cs; }\n");
+        add("vkd", "surface vkd(varying float Kd = 1) { Oi = 1; Ci = Kd * Cs; }\n");
         add("tint", "surface tint(varying color tint = 0) { Oi = 1; Ci = tint; }\n");
         add("st", "surface st() { Oi = 1; Ci = color(s, t, 0); }\n");
         add("label", "surface label(string label = \"\") { Oi = 1; Ci = label == \"on\" ? color(1, 0, 0) : color(0, 0, 1); }\n");
@@ -98,6 +99,49 @@ TEST(Primvars, StGivesTheShadersTextureCoordinates) {
     for (int x : {3, 16, 29}) EXPECT_NEAR(p.channel(0, x, 10, 0), (float(x) + 0.5f) / 32, 1e-3f) << x;
 }
 
+// On a quadric the four values are the corners of its (u, v) domain: a disk's v runs from the rim
+// (0) to the centre (1), so "varying float Kd" [1 1 0 0] is the distance from the centre over the radius.
+TEST(Primvars, AVaryingValueOnAQuadricFollowsItsParameters) {
+    const Shaders sh;
+    const test::RenderResult r = test::renderRib(sh.header(32, 32) + "Surface \"vkd\"\nColor [1 1 1]\nTranslate 16 16 0\n"
+                                                 "Disk 5 16 360 \"varying float Kd\" [1 1 0 0]\nWorldEnd\n");
+    for (int x : {17, 20, 24, 28}) {
+        const float d = std::hypot(float(x) + 0.5f - 16, 16 - (15 + 0.5f));  // row 15: scene y 16.5
+        EXPECT_NEAR(r.channel(0, x, 15, 0), d / 16, 0.02f) << x;
+    }
+}
+
+// A polygon mesh: uniform values per polygon, vertex values by point, facevarying ones by each
+// polygon's own corner (a seam: the two quads give their shared points different s), also where a
+// polygon is cut into several faces (a pentagon).
+TEST(Primvars, APolygonMeshBindsUniformVertexAndFacevaryingValues) {
+    const Shaders sh;
+    sh.add("mesh", "surface mesh(float Kd = 1; varying color tint = 0) { Oi = 1; Ci = color(Kd, s, comp(tint, 2)); }\n");
+    // Two quads side by side, 16 x 16 each, sharing the points 1 and 4.
+    const std::string rib = sh.header(32, 16) + "Surface \"mesh\"\n" +
+                            "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] \"P\" [0 0 5  16 0 5  32 0 5  0 16 5  16 16 5  32 16 5]"
+                            " \"uniform float Kd\" [0.25 0.75]"
+                            " \"facevarying float s\" [0 1 1 0  1 0 0 1]"
+                            " \"vertex color tint\" [0 0 0  0 0 0.5  0 0 1  0 0 0  0 0 0.5  0 0 1]\nWorldEnd\n";
+    for (const Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Raytrace}) {
+        const test::RenderResult r = test::renderRib(rib, test::optionsFor(a));
+        const std::string name = algorithmName(a);
+        EXPECT_FLOAT_EQ(r.channel(0, 8, 8, 0), 0.25f) << name;   // Kd of the first quad
+        EXPECT_FLOAT_EQ(r.channel(0, 24, 8, 0), 0.75f) << name;  // and of the second
+        // s rises over the first quad and falls over the second (the seam at x = 16).
+        EXPECT_NEAR(r.channel(0, 4, 8, 1), 4.5f / 16, 2e-3f) << name;
+        EXPECT_NEAR(r.channel(0, 20, 8, 1), 1 - 4.5f / 16, 2e-3f) << name;
+        // tint's blue by point: 0 at x = 0, 0.5 at x = 16, 1 at x = 32.
+        EXPECT_NEAR(r.channel(0, 8, 8, 2), 8.5f / 32, 2e-3f) << name;
+        EXPECT_NEAR(r.channel(0, 28, 8, 2), 28.5f / 32, 2e-3f) << name;
+    }
+    // A pentagon (cut into a triangle and a quad) with a vertex value: continuous across the cut.
+    const test::RenderResult p = test::renderRib(
+        sh.header(32, 32) + "Surface \"mesh\"\nPolygon \"P\" [0 0 5  32 0 5  32 32 5  16 40 5  0 32 5]"
+                            " \"vertex color tint\" [0 0 0  0 0 1  0 0 1  0 0 0.5  0 0 0]\nWorldEnd\n");
+    for (int x : {2, 10, 16, 22, 30}) EXPECT_NEAR(p.channel(0, x, 24, 2), (float(x) + 0.5f) / 32, 2e-3f) << x;
+}
+
 TEST(Primvars, StringsAndTheBuiltInShading) {
     const Shaders sh;
     const test::RenderResult r = test::renderRib(sh.header(32, 16) + "Surface \"label\"\n" +
@@ -129,9 +173,10 @@ TEST(Primvars, ATypeMismatchNamesThePrimitiveVariable) {
         EXPECT_NE(what.find("test.rib:"), std::string::npos) << what;
         EXPECT_NE(what.find("primitive variable \"Kd\""), std::string::npos) << what;
     }
-    // A varying one on a quadric is not bound yet: said once, and the surface still renders.
-    const test::RenderResult r = test::renderRib(sh.header(16, 16) + "Surface \"kd\"\nTranslate 8 8 10\n"
-                                                 "Sphere 6 -6 6 360 \"varying float Kd\" [0 0 0 0]\nWorldEnd\n");
+    // A varying one on a mesh of several patches is not bound yet: said once, and the surface still renders.
+    const test::RenderResult r = test::renderRib(
+        sh.header(16, 16) + "Surface \"kd\"\nPatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" "
+                            "\"P\" [0 0 5  8 0 5  16 0 5  0 16 5  8 16 5  16 16 5] \"varying float Kd\" [0 0 0 0 0 0]\nWorldEnd\n");
     int warned = 0;
     for (const std::string& w : r.warnings) warned += w.find("'Kd'") != std::string::npos && w.find("not bound") != std::string::npos;
     EXPECT_EQ(warned, 1);

@@ -279,3 +279,24 @@ TEST(RenderAttributes, UnsupportedHiderAndMidpointWarnAndRender) {
 
 }  // namespace
 }  // namespace streyes
+
+namespace streyes {
+namespace {
+
+// calculatenormal(P) turns with N: under ReverseOrientation, Orientation "inside" or a mirroring
+// transform, the normal a shader computes from P points the way the shading normal N does.
+TEST(RenderAttributes, CalculatenormalFollowsOrientation) {
+    test::TempDir dir("calcnormal");
+    std::ofstream(dir.path() + "/agree.sl")
+        << "surface agree() { Oi = 1; float d = normalize(N) . normalize(calculatenormal(P)); Ci = color(max(d, 0), max(-d, 0), 0); }\n";
+    const std::string header = test::orthoHeader(32, 32, "Option \"searchpath\" \"shader\" \"" + dir.path() + ":@\"\n");
+    for (const char* turn : {"", "ReverseOrientation\n", "Orientation \"inside\"\n", "Translate 0 0 20\nScale 1 1 -1\n"}) {
+        const test::RenderResult r =
+            test::renderRib(header + "Surface \"agree\"\n" + turn + polygon(0, 32, 0, 32, 10, true) + "WorldEnd\n");
+        EXPECT_NEAR(r.channel(0, 16, 16, 0), 1.0f, 1e-4f) << turn;
+        EXPECT_EQ(r.channel(0, 16, 16, 1), 0.0f) << turn;
+    }
+}
+
+}  // namespace
+}  // namespace streyes

@@ -85,8 +85,18 @@ class ShaderInstance;
 // A light as a surface's illuminance loops see it: its shader instance and its own "shader"
 // space (and "object" space, the same) at the shading time.
 struct LightRef {
+    LightRef() = default;
+    LightRef(const ShaderInstance* s, const Matrix4& m) : shader(s), toCurrent(m) {}
+    // One point of an area light: N is the light's surface normal there (current space), and
+    // what it gives is weighted by `weight` (1 / the number of points).
+    LightRef(const ShaderInstance* s, const Matrix4& m, Vec3f n, float w)
+        : shader(s), toCurrent(m), normal(n), hasNormal(true), weight(w) {}
+
     const ShaderInstance* shader = nullptr;
     Matrix4 toCurrent;
+    Vec3f normal{0, 0, 0};
+    bool hasNormal = false;
+    float weight = 1;
 };
 
 }  // namespace streyes::sl

@@ -447,6 +447,13 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
     lightOrigin_[1] = float(o.y);
     lightOrigin_[2] = float(o.z);
     lightGrid_.set(Global::P, ValueRef::uniform(lightOrigin_, 3));
+    if (ref.hasNormal) {  // a point of an area light: N and Ng are its surface's
+        lightNormal_[0] = ref.normal.x;
+        lightNormal_[1] = ref.normal.y;
+        lightNormal_[2] = ref.normal.z;
+        lightGrid_.set(Global::N, ValueRef::uniform(lightNormal_, 3));
+        lightGrid_.set(Global::Ng, ValueRef::uniform(lightNormal_, 3));
+    }
     lightGrid_.toCurrent[size_t(Space::Shader)] = ref.toCurrent;
     lightGrid_.toCurrent[size_t(Space::Object)] = ref.toCurrent;
     lit_.assign(n, lp.illuminates ? 0 : 1);
@@ -478,6 +485,8 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
         }
     };
     grab(Global::Cl, res.Cl, 1);
+    if (ref.weight != 1)
+        for (float& c : res.Cl) c *= ref.weight;
     if (res.ambient) {
         res.L.assign(3 * n, 0.0f);
         res.Ln.assign(3 * n, 0.0f);

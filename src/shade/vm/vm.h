@@ -134,6 +134,7 @@ class ShadingVM {
     uint64_t runCount_ = 0;
     ShadingGrid lightGrid_;  // the grid a light runs over: the surface's shape
     float lightOrigin_[3] = {0, 0, 0};
+    float lightNormal_[3] = {0, 0, 0};  // an area light point's N
     std::vector<uint8_t> lit_;
 };
 
