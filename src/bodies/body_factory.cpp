@@ -305,13 +305,51 @@ bool BodyFactory::keyedPoints(const PrimitiveDesc& p, const std::vector<std::vec
     return true;
 }
 
+const float* BodyFactory::meshPrimvars(const ParamList& primvars, size_t faces,
+                                       const std::function<std::vector<std::array<Color, 4>>(const ColorPrimvar&)>& cornersOf,
+                                       Keep* keep, size_t* width) {
+    *width = 0;
+    for (const Param& v : primvars.params)
+        if (v.cls != ParamClass::Constant) *width += 4 * size_t(v.componentsPerItem());
+    if (*width == 0) return nullptr;
+    auto values = std::make_shared<std::vector<float>>(*width * faces);
+    size_t offset = 0;  // of the variable in a face's block
+    for (const Param& v : primvars.params) {
+        if (v.cls == ParamClass::Constant) continue;
+        const size_t w = size_t(v.componentsPerItem()), items = v.nums.size() / w;
+        for (size_t g = 0; g < w; g += 3) {  // three components a pass, as colours
+            ColorPrimvar cp;
+            cp.cls = v.cls;
+            for (size_t i = 0; i < items; ++i)
+                cp.values.push_back(Color(float(v.nums[i * w + g]), g + 1 < w ? float(v.nums[i * w + g + 1]) : 0.0f,
+                                          g + 2 < w ? float(v.nums[i * w + g + 2]) : 0.0f));
+            const std::vector<std::array<Color, 4>> corners = cornersOf(cp);
+            for (size_t f = 0; f < faces && f < corners.size(); ++f)
+                for (size_t c = 0; c < 4; ++c)
+                    for (size_t k = g; k < std::min(w, g + 3); ++k)
+                        (*values)[f * *width + offset + c * w + k] = corners[f][c][int(k - g)];
+        }
+        offset += 4 * w;
+    }
+    const float* block = values->data();
+    if (keep) {
+        keep->push_back(std::shared_ptr<const void>(values));
+    } else {
+        std::lock_guard<std::mutex> lock(mutex_);
+        primvarBlocks_.push_back(std::move(*values));
+        block = primvarBlocks_.back().data();
+    }
+    return block;
+}
+
 void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint64_t primitiveId,
-                             std::vector<BodyPtr>& out, Keep* keep) {
+                             std::vector<BodyPtr>& out, Keep* keep, const float* primvarBlock, size_t primvarWidth) {
     mesh->setSource(src);
     if (mesh->material()) mesh->setShadingRate(mesh->material()->shadingRate);
     for (int f = 0; f < mesh->faceCount(); ++f) {
         auto body = std::make_unique<CurvedBody>(mesh.get(), f);
         body->setPrimitiveId(primitiveId);
+        if (primvarBlock) body->primvarCorners = primvarBlock + size_t(f) * primvarWidth;
         out.push_back(std::move(body));
         ++bodiesMade_;
     }
@@ -330,6 +368,9 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
     const Material* mat = material(p.attributes, p.objectToWorld, false, &p.primvars, primitiveId);
     const PatchMeshShape shape(p);
     const std::vector<std::array<Color, 4>> colors = shape.colors(p.Cs, mat->Cs);
+    size_t width = 0;
+    const float* block = meshPrimvars(p.primvars, colors.size(), [&](const ColorPrimvar& v) { return shape.colors(v, {0, 0, 0}); },
+                                      keep, &width);
     const SourceLoc* src = source(p.loc);
     const bool lastOpen = windowOf(p.life).openEnd;
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
@@ -337,7 +378,7 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
         if (j != i) k1 = shape.patches(points[j]);
         addSurface(std::make_unique<BezierMesh>(shape.topology(), segmentSpan(t0, t1, ts, lastOpen), mat, camera_,
                                                 shape.patches(points[i]), std::move(k1), colors),
-                   src, primitiveId, out, keep);
+                   src, primitiveId, out, keep, block, width);
     });
 }
 
@@ -384,6 +425,9 @@ void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t prim
     }
     const Material* mat = material(p.attributes, p.objectToWorld, false, &p.primvars, primitiveId);
     const std::vector<std::array<Color, 4>> colors = shape->colors(p.Cs, mat->Cs);
+    size_t width = 0;
+    const float* block = meshPrimvars(p.primvars, colors.size(), [&](const ColorPrimvar& v) { return shape->colors(v, {0, 0, 0}); },
+                                      keep, &width);
     const SourceLoc* src = source(p.loc);
     std::vector<std::shared_ptr<const SubdivisionKey>> keys(ts.size());
     auto keyAt = [&](size_t i) {
@@ -394,7 +438,7 @@ void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t prim
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
         addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), segmentSpan(t0, t1, ts, lastOpen), mat,
                                                      camera_, colors),
-                   src, primitiveId, out, keep);
+                   src, primitiveId, out, keep, block, width);
     });
 }
 

@@ -148,8 +148,15 @@ class BodyFactory final : public ChildBodyMaker {
     // same topology and tags: the instances of an object, and meshes written out alike.
     std::shared_ptr<const SubdivisionShape> subdivisionShape(const SubdivisionMeshDesc& mesh);
     // Keeps a segment's mesh and appends a body per face.
+    // `primvarBlock`: `primvarWidth` floats a face (Body::primvarCorners), or null.
     void addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint64_t primitiveId,
-                    std::vector<BodyPtr>& out, Keep* keep);
+                    std::vector<BodyPtr>& out, Keep* keep, const float* primvarBlock = nullptr, size_t primvarWidth = 0);
+    // The corner values of a mesh's faces for its primitive variables that vary from face to face,
+    // from `cornersOf` (the mesh's own reading of "Cs" by class), three components at a time; kept
+    // here (or in `keep`). Null when none varies.
+    const float* meshPrimvars(const ParamList& primvars, size_t faces,
+                              const std::function<std::vector<std::array<Color, 4>>(const ColorPrimvar&)>& cornersOf,
+                              Keep* keep, size_t* width);
 
     MotionTransform worldToCamera_;
     double windowStart_, windowEnd_;

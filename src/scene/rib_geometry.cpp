@@ -98,7 +98,7 @@ ParamList otherParams(const RibArgs& args, const ParamList& params, const ClassC
                      "parameter '" + p.name + "' on " + args.name() +
                          " is not bound to shaders yet (primitive variables are: float, color and string ones "
                          "constant over the primitive, and uniform, varying, vertex or facevarying floats and colours "
-                         "on polygons, polygon meshes, single patches and quadrics): ignored");
+                         "on polygons, polygon meshes, patches, patch meshes, subdivision meshes and quadrics): ignored");
     }
     return out;
 }

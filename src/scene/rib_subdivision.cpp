@@ -130,7 +130,19 @@ bool readSubdivisionKey(RibParser& reader, RibArgs& args, SubdivisionMeshDesc* d
                               "facevarying \"Cs\" on SubdivisionMesh is not supported: using the Color attribute");
         d->Cs = {};
     }
-    d->primvars = otherParams(args, params, counts, reader.log());
+    d->primvars = otherParams(args, params, counts, reader.log(), false, true);
+    // Per face (uniform) and per vertex (varying: bilinear over each face; vertex: subdivided like
+    // P); facevarying ones are not read yet.
+    auto& list = d->primvars.params;
+    for (auto it = list.begin(); it != list.end();) {
+        if (it->cls != ParamClass::FaceVarying) {
+            ++it;
+            continue;
+        }
+        reader.log().warnOnce("subdivision:facevarying:" + it->name, it->loc,
+                              "facevarying \"" + it->name + "\" on SubdivisionMesh is not bound to shaders yet: ignored");
+        it = list.erase(it);
+    }
     return true;
 }
 

@@ -142,6 +142,29 @@ TEST(Primvars, APolygonMeshBindsUniformVertexAndFacevaryingValues) {
     for (int x : {2, 10, 16, 22, 30}) EXPECT_NEAR(p.channel(0, x, 24, 2), (float(x) + 0.5f) / 32, 2e-3f) << x;
 }
 
+// Patch meshes and subdivision meshes: a value per face (uniform), varying values at each face's
+// corners, as "Cs" is read on them.
+TEST(Primvars, PatchAndSubdivisionMeshesBindPerFaceValues) {
+    const Shaders sh;
+    sh.add("mesh", "surface mesh(float Kd = 1; varying color tint = 0) { Oi = 1; Ci = color(Kd, comp(tint, 1), comp(tint, 2)); }\n");
+    const test::RenderResult pm = test::renderRib(
+        sh.header(32, 16) + "Surface \"mesh\"\nPatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" "
+                            "\"P\" [0 0 5  16 0 5  32 0 5  0 16 5  16 16 5  32 16 5] \"uniform float Kd\" [0.25 0.75] "
+                            "\"varying color tint\" [0 0 0  0 0 0.5  0 0 1  0 1 0  0 1 0.5  0 1 1]\nWorldEnd\n");
+    EXPECT_FLOAT_EQ(pm.channel(0, 8, 8, 0), 0.25f);
+    EXPECT_FLOAT_EQ(pm.channel(0, 24, 8, 0), 0.75f);
+    EXPECT_NEAR(pm.channel(0, 8, 8, 2), 8.5f / 32, 2e-3f);           // blue by x across both patches
+    EXPECT_NEAR(pm.channel(0, 28, 8, 2), 28.5f / 32, 2e-3f);
+    EXPECT_NEAR(pm.channel(0, 8, 4, 1), (16 - 4.5f) / 16, 2e-3f);    // green by scene y
+    // A subdivision mesh of two quads (its boundary interpolated): the uniform value per control face.
+    const test::RenderResult sd = test::renderRib(
+        sh.header(32, 16) + "Surface \"mesh\"\nSubdivisionMesh \"catmull-clark\" [4 4] [0 1 4 3  1 2 5 4] "
+                            "[\"interpolateboundary\"] [0 0] [] [] \"P\" [0 0 5  16 0 5  32 0 5  0 16 5  16 16 5  32 16 5] "
+                            "\"uniform float Kd\" [0.25 0.75]\nWorldEnd\n");
+    EXPECT_FLOAT_EQ(sd.channel(0, 8, 8, 0), 0.25f);
+    EXPECT_FLOAT_EQ(sd.channel(0, 24, 8, 0), 0.75f);
+}
+
 TEST(Primvars, StringsAndTheBuiltInShading) {
     const Shaders sh;
     const test::RenderResult r = test::renderRib(sh.header(32, 16) + "Surface \"label\"\n" +
@@ -173,10 +196,9 @@ TEST(Primvars, ATypeMismatchNamesThePrimitiveVariable) {
         EXPECT_NE(what.find("test.rib:"), std::string::npos) << what;
         EXPECT_NE(what.find("primitive variable \"Kd\""), std::string::npos) << what;
     }
-    // A varying one on a mesh of several patches is not bound yet: said once, and the surface still renders.
-    const test::RenderResult r = test::renderRib(
-        sh.header(16, 16) + "Surface \"kd\"\nPatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" "
-                            "\"P\" [0 0 5  8 0 5  16 0 5  0 16 5  8 16 5  16 16 5] \"varying float Kd\" [0 0 0 0 0 0]\nWorldEnd\n");
+    // A varying one on Points is not bound yet: said once, and the points still render.
+    const test::RenderResult r = test::renderRib(sh.header(16, 16) + "Surface \"kd\"\n"
+                                                 "Points \"P\" [4 8 5  12 8 5] \"constantwidth\" [6] \"varying float Kd\" [0 0]\nWorldEnd\n");
     int warned = 0;
     for (const std::string& w : r.warnings) warned += w.find("'Kd'") != std::string::npos && w.find("not bound") != std::string::npos;
     EXPECT_EQ(warned, 1);
