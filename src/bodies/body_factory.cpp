@@ -154,6 +154,7 @@ const Material* BodyFactory::material(const AttributesPtr& attributes, const Mot
     Material m = makeMaterial(*a, facing);
     if (own) {
         m.primvars = *primvars;
+        m.primvarToWorld = objectToWorld;
         for (const Param& v : primvars->params)  // a single face's corners (a mesh's faces carry theirs)
             if (v.cls != ParamClass::Constant && v.nums.size() == 4 * size_t(v.componentsPerItem()))
                 for (double x : v.nums) m.primvarCorners.push_back(float(x));

@@ -50,6 +50,9 @@ struct Material {
     // {0, 1}^2, RenderMan order: each such variable in turn, four corners of its floats. A
     // polygon mesh's faces carry their own (Body::primvarCorners).
     std::vector<float> primvarCorners;
+    // The primitive's object-to-world transform: point, vector and normal primitive variables are
+    // given in object space.
+    MotionTransform primvarToWorld;
 };
 
 // Binds a material's Shading Language shaders (made by the shading stage, which the bodies

@@ -80,7 +80,8 @@ ParamList otherParams(const RibArgs& args, const ParamList& params, const ClassC
         checkCount(args, p, counts.of(p.cls));
         const bool st = p.name == "st" && p.type == ParamType::Float && p.arraySize == 2;
         const bool typed = st || (p.arraySize == 1 && (p.type == ParamType::Float || p.type == ParamType::Color ||
-                                                       p.type == ParamType::String));
+                                                       p.type == ParamType::Point || p.type == ParamType::Vector ||
+                                                       p.type == ParamType::Normal || p.type == ParamType::String));
         const bool whole = p.cls == ParamClass::Constant || (p.cls == ParamClass::Uniform && counts.uniform == 1);
         // Per-vertex classes whose values are the face's corners (not a bicubic patch's 16 vertex values).
         const bool corners = perVertex && p.type != ParamType::String &&
@@ -96,7 +97,7 @@ ParamList otherParams(const RibArgs& args, const ParamList& params, const ClassC
         }
         log.warnOnce("geometry-param:" + p.name, p.loc,
                      "parameter '" + p.name + "' on " + args.name() +
-                         " is not bound to shaders yet (primitive variables are: float, color and string ones "
+                         " is not bound to shaders yet (primitive variables are: float, color, point, vector, normal and string ones "
                          "constant over the primitive, and uniform, varying, vertex or facevarying floats and colours "
                          "on polygons, polygon meshes, patches, patch meshes, subdivision meshes and quadrics): ignored");
     }

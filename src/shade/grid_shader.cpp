@@ -193,14 +193,14 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     sgrid_.set(Global::time, ValueRef::uniform(&time_));
     worldToCamera_ = camera_.worldToCamera().at(time);
     sgrid_.setSpace(sl::Space::World, worldToCamera_);
-    bindPrimvars(m, grid, n);
+    bindPrimvars(m, grid, n, time);
     sgrid_.flipNormals = m.flipNormals;  // calculatenormal turns as N does (Orientation, mirroring)
     sgrid_.seed = unsigned(grid.primitiveId ^ (grid.primitiveId >> 32));
     sgrid_.nearClip = camera_.nearClip();
     sgrid_.farClip = camera_.farClip();
 }
 
-void GridShader::bindPrimvars(const Material& m, const Grid& grid, int n) {
+void GridShader::bindPrimvars(const Material& m, const Grid& grid, int n, double time) {
     sgrid_.primvars = nullptr;
     if (m.primvars.params.empty()) return;
     // Sizes first: the views point into primvarData_.
@@ -251,6 +251,34 @@ void GridShader::bindPrimvars(const Material& m, const Grid& grid, int n) {
             v.value = sl::ValueRef{{comp[0], comp[1], comp[2]}, 1};
             at += size_t(w) * size_t(n);
         }
+        // Points, vectors and normals: from the primitive's object space to current space.
+        if (p.type == ParamType::Point || p.type == ParamType::Vector || p.type == ParamType::Normal) {
+            const Matrix4 toCurrent = m.primvarToWorld.at(time) * worldToCamera_;
+            Matrix4 inverse;
+            if (!invert(toCurrent, &inverse)) inverse = Matrix4();
+            const int count = v.value.stride ? n : 1;
+            for (int i = 0; i < count; ++i) {
+                const Vec3d a{comp[0][i], comp[1][i], comp[2][i]};
+                Vec3d b;
+                if (p.type == ParamType::Point) b = toCurrent.point(a);
+                else if (p.type == ParamType::Vector) b = toCurrent.vector(a);
+                else  // normals by the inverse transpose
+                    b = {inverse(0, 0) * a.x + inverse(0, 1) * a.y + inverse(0, 2) * a.z,
+                         inverse(1, 0) * a.x + inverse(1, 1) * a.y + inverse(1, 2) * a.z,
+                         inverse(2, 0) * a.x + inverse(2, 1) * a.y + inverse(2, 2) * a.z};
+                comp[0][i] = float(b.x), comp[1][i] = float(b.y), comp[2][i] = float(b.z);
+            }
+            // "N" is the shading normal; the rest bind by name.
+            if (p.name == "N" && p.type == ParamType::Normal) {
+                sgrid_.set(sl::Global::N, v.value);
+                continue;
+            }
+        }
+        if (p.name == "Os" && p.type == ParamType::Color) {  // the opacity a shader starts from
+            sgrid_.set(sl::Global::Os, v.value);
+            sgrid_.set(sl::Global::Oi, v.value);
+            continue;
+        }
         const sl::ValueRef one{{comp[0], nullptr, nullptr}, v.value.stride};
         if (p.name == "st") {
             sgrid_.set(sl::Global::s, one);
@@ -259,7 +287,11 @@ void GridShader::bindPrimvars(const Material& m, const Grid& grid, int n) {
         }
         if (p.name == "s" && w == 1) sgrid_.set(sl::Global::s, one);
         if (p.name == "t" && w == 1) sgrid_.set(sl::Global::t, one);
-        v.type = p.type == ParamType::Color ? sl::BaseType::Color : sl::BaseType::Float;
+        v.type = p.type == ParamType::Color    ? sl::BaseType::Color
+                 : p.type == ParamType::Point  ? sl::BaseType::Point
+                 : p.type == ParamType::Vector ? sl::BaseType::Vector
+                 : p.type == ParamType::Normal ? sl::BaseType::Normal
+                                               : sl::BaseType::Float;
         v.strings.clear();
         ++bound;
     }

@@ -70,7 +70,7 @@ class GridShader {
     void useShaderSpace(const MotionTransform* shaderToWorld, double time);
     // The material's primitive variables over the grid (u_, v_ set): bound by name, s and t
     // from "s", "t" or "st".
-    void bindPrimvars(const Material& m, const Grid& grid, int n);
+    void bindPrimvars(const Material& m, const Grid& grid, int n, double time);
     void addLight(const sl::ShaderInstance* s, int li, double time, std::vector<sl::LightRef>& out) const;
     void setIncident(const Grid& grid, int k);
 

@@ -165,6 +165,31 @@ TEST(Primvars, PatchAndSubdivisionMeshesBindPerFaceValues) {
     EXPECT_FLOAT_EQ(sd.channel(0, 24, 8, 0), 0.75f);
 }
 
+// Points, vectors and normals are given in object space: a point moves with the primitive's
+// transform; "N" replaces the shading normal, transformed as a normal (by the inverse transpose:
+// under Scale 2 1 1 a normal (0.6, 0, 0.8) leans back to (0.3, 0, 0.8); on the patch's own side,
+// as Ng, which faceforward() consults); "Os" is the opacity the shader starts from.
+TEST(Primvars, PointsNormalsAndOpacityComeFromObjectSpace) {
+    const Shaders sh;
+    sh.add("dist", "surface dist(point center = 0) { Oi = 1; Ci = length(P - center) / 16; }\n");
+    const test::RenderResult d = test::renderRib(sh.header(32, 32) + "Surface \"dist\"\nTranslate 16 16 0\n" +
+                                                 patch(-16, 16, -16, 16, "\"constant point center\" [0 0 5]") + "WorldEnd\n");
+    for (int x : {20, 24, 28})  // away from the cone's tip, where a pixel's mean is not its centre's value
+        EXPECT_NEAR(d.channel(0, x, 15, 0), std::hypot(float(x) + 0.5f - 16, 0.5f) / 16, 2e-3f) << x;
+    const std::string lit = "LightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0 0 1]\nSurface \"matte\" \"Ka\" [0]\n";
+    const test::RenderResult n = test::renderRib(sh.header(32, 32) + lit + "Translate 16 16 0\nScale 2 1 1\n" +
+                                                 patch(-8, 8, -16, 16, "\"constant normal N\" [0.6 0 0.8]") + "WorldEnd\n");
+    EXPECT_NEAR(n.channel(0, 16, 16, 0), 0.8f / std::sqrt(0.09f + 0.64f), 1e-4f);
+    const test::RenderResult flat = test::renderRib(sh.header(32, 32) + lit + "Translate 16 16 0\nScale 2 1 1\n" +
+                                                    patch(-8, 8, -16, 16, "") + "WorldEnd\n");
+    EXPECT_NEAR(flat.channel(0, 16, 16, 0), 1.0f, 1e-4f);
+    const test::RenderResult o = test::renderRib(sh.header(32, 16) + "Surface \"constant\"\n" +
+                                                 patch(0, 32, 0, 16, "\"varying color Os\" [0 0 0  1 1 1  0 0 0  1 1 1]") +
+                                                 "WorldEnd\n");
+    for (int x : {3, 16, 29}) EXPECT_NEAR(o.alpha(0, x, 8), (float(x) + 0.5f) / 32, 2e-3f) << x;
+    EXPECT_GT(o.stats.counters.sampleFragments, 0u);
+}
+
 TEST(Primvars, StringsAndTheBuiltInShading) {
     const Shaders sh;
     const test::RenderResult r = test::renderRib(sh.header(32, 16) + "Surface \"label\"\n" +
