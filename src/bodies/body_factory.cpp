@@ -401,6 +401,9 @@ std::shared_ptr<const SubdivisionShape> BodyFactory::subdivisionShape(const Subd
     add(p.corners);
     add(p.cornerSharpness);
     add(p.holes);
+    bool faceVarying = p.Cs.given() && p.Cs.cls == ParamClass::FaceVarying;  // the shape then has a channel
+    for (const Param& v : p.primvars.params) faceVarying = faceVarying || v.cls == ParamClass::FaceVarying;
+    key.push_back(faceVarying ? 'f' : '-');
     {
         std::lock_guard<std::mutex> lock(mutex_);
         auto it = shapes_.find(key);

@@ -232,6 +232,7 @@ struct SubdivisionShape::Impl {
     std::vector<int> parentFace;                   // level-1 face -> base face
     std::shared_ptr<const SurfaceTopology> topology;
     int irregular = 0;
+    bool faceVarying = false;  // the base refiner carries channel 0: one value per face vertex
 };
 
 struct SubdivisionKey::Data {
@@ -269,6 +270,22 @@ SubdivisionShape::SubdivisionShape(const SubdivisionMeshDesc& desc) : impl_(std:
     d.cornerWeights = desc.cornerSharpness.data();
     d.numHoles = int(desc.holes.size());
     d.holeIndices = desc.holes.data();
+    // Facevarying values (one per face vertex, as given): a channel refined linearly, so that each
+    // level-1 face's corners hold the bilinear interpolation RenderMan gives them.
+    bool faceVarying = desc.Cs.given() && desc.Cs.cls == ParamClass::FaceVarying;
+    for (const Param& v : desc.primvars.params) faceVarying = faceVarying || v.cls == ParamClass::FaceVarying;
+    std::vector<int> fvarIndices;
+    Far::TopologyDescriptor::FVarChannel channel;
+    if (faceVarying) {
+        fvarIndices.resize(desc.faceVertices.size());
+        for (size_t i = 0; i < fvarIndices.size(); ++i) fvarIndices[i] = int(i);
+        channel.numValues = int(fvarIndices.size());
+        channel.valueIndices = fvarIndices.data();
+        d.numFVarChannels = 1;
+        d.fvarChannels = &channel;
+        m.options.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_ALL);
+        m.faceVarying = true;
+    }
     m.base.reset(createRefiner(d, m.options));
     if (!m.base) fail("OpenSubdiv rejected the topology");
     Far::TopologyRefiner::UniformOptions uniform(1);
@@ -429,14 +446,30 @@ std::vector<std::array<Color, 4>> SubdivisionShape::colors(const ColorPrimvar& C
         for (size_t f = 0; f < out.size(); ++f) out[f].fill(Cs.values[size_t(m.parentFace[size_t(m.faces[f].level1Face)])]);
         return out;
     }
+    const Far::TopologyLevel& L = m.base->GetLevel(1);
+    const int order[4] = {0, 1, 3, 2};
+    if (Cs.cls == ParamClass::FaceVarying) {
+        if (!m.faceVarying) return out;  // the shape was built without its channel: none was given
+        std::vector<Point3> src(Cs.values.size()), dst(size_t(L.GetNumFVarValues(0)));
+        for (size_t i = 0; i < src.size(); ++i) src[i] = {{Cs.values[i].x, Cs.values[i].y, Cs.values[i].z}};
+        Far::PrimvarRefinerReal<double> refiner(*m.base);
+        Point3* to = dst.data();
+        refiner.InterpolateFaceVarying(1, src.data(), to, 0);
+        for (size_t f = 0; f < out.size(); ++f) {
+            Far::ConstIndexArray fvv = L.GetFaceFVarValues(m.faces[f].level1Face, 0);
+            for (int c = 0; c < 4; ++c) {
+                const Point3& v = dst[size_t(fvv[order[c]])];
+                out[f][size_t(c)] = Color(float(v.p[0]), float(v.p[1]), float(v.p[2]));
+            }
+        }
+        return out;
+    }
     std::vector<Vec3d> values(Cs.values.begin(), Cs.values.end());
     const bool varying = Cs.cls != ParamClass::Vertex;
     const std::vector<double> level1 = refineToLevel1(*m.base, values, varying);
-    const Far::TopologyLevel& L = m.base->GetLevel(1);
     for (size_t f = 0; f < out.size(); ++f) {
         const FaceInfo& fi = m.faces[f];
         Far::ConstIndexArray fv = L.GetFaceVertices(fi.level1Face);
-        const int order[4] = {0, 1, 3, 2};
         if (varying) {
             for (int c = 0; c < 4; ++c) {
                 const double* v = &level1[size_t(fv[order[c]]) * 3];

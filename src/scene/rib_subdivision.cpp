@@ -125,24 +125,9 @@ bool readSubdivisionKey(RibParser& reader, RibArgs& args, SubdivisionMeshDesc* d
     counts.faceVarying = d->faceVertices.size();
     d->P = {pointsOf(args, pos)};
     d->Cs = readColors(args, params, counts);
-    if (d->Cs.given() && d->Cs.cls == ParamClass::FaceVarying) {
-        reader.log().warnOnce("subdivision:facevarying", args.loc(),
-                              "facevarying \"Cs\" on SubdivisionMesh is not supported: using the Color attribute");
-        d->Cs = {};
-    }
+    // Per face (uniform), per vertex (varying: bilinear over each face; vertex: subdivided like P)
+    // and per face vertex (facevarying: bilinear over each face, discontinuous between faces).
     d->primvars = otherParams(args, params, counts, reader.log(), false, true);
-    // Per face (uniform) and per vertex (varying: bilinear over each face; vertex: subdivided like
-    // P); facevarying ones are not read yet.
-    auto& list = d->primvars.params;
-    for (auto it = list.begin(); it != list.end();) {
-        if (it->cls != ParamClass::FaceVarying) {
-            ++it;
-            continue;
-        }
-        reader.log().warnOnce("subdivision:facevarying:" + it->name, it->loc,
-                              "facevarying \"" + it->name + "\" on SubdivisionMesh is not bound to shaders yet: ignored");
-        it = list.erase(it);
-    }
     return true;
 }
 

@@ -163,6 +163,24 @@ TEST(Primvars, PatchAndSubdivisionMeshesBindPerFaceValues) {
                             "\"uniform float Kd\" [0.25 0.75]\nWorldEnd\n");
     EXPECT_FLOAT_EQ(sd.channel(0, 8, 8, 0), 0.25f);
     EXPECT_FLOAT_EQ(sd.channel(0, 24, 8, 0), 0.75f);
+    // Facevarying: bilinear over each control face, discontinuous between faces. s rises over the
+    // first quad and falls over the second (a seam at their shared edge); as "Cs" does.
+    const std::string mesh = "SubdivisionMesh \"catmull-clark\" [4 4] [0 1 4 3  1 2 5 4] [\"interpolateboundary\"] [0 0] [] [] "
+                             "\"P\" [0 0 5  16 0 5  32 0 5  0 16 5  16 16 5  32 16 5] \"facevarying float s\" [0 1 1 0  1 0 0 1] "
+                             "\"facevarying color Cs\" [1 0 0  1 0 0  1 0 0  1 0 0  0 1 0  0 1 0  0 1 0  0 1 0]\n";
+    for (const Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Raytrace}) {
+        const test::RenderResult r = test::renderRib(sh.header(32, 16) + "Surface \"st\"\n" + mesh + "WorldEnd\n", test::optionsFor(a));
+        // A flat mesh: its limit surface lies on the control quads (in x, y), and s is each face's
+        // own bilinear, so about x / 16 on the first and 2 - x / 16 on the second.
+        EXPECT_NEAR(r.channel(0, 4, 8, 0), 4.5f / 16, 0.03f) << algorithmName(a);
+        EXPECT_NEAR(r.channel(0, 28, 8, 0), 2 - 28.5f / 16, 0.03f) << algorithmName(a);
+        EXPECT_GT(r.channel(0, 15, 8, 0), 0.85f) << algorithmName(a);  // both sides of the seam near 1
+        EXPECT_GT(r.channel(0, 16, 8, 0), 0.85f) << algorithmName(a);
+        const test::RenderResult c = test::renderRib(sh.header(32, 16) + "Surface \"constant\"\n" + mesh + "WorldEnd\n",
+                                                     test::optionsFor(a));
+        EXPECT_EQ(rgb(c, 4, 8), (std::array<float, 3>{1, 0, 0})) << algorithmName(a);  // facevarying Cs per face
+        EXPECT_EQ(rgb(c, 28, 8), (std::array<float, 3>{0, 1, 0})) << algorithmName(a);
+    }
 }
 
 // Points, vectors and normals are given in object space: a point moves with the primitive's
