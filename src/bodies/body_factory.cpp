@@ -544,32 +544,10 @@ void BodyFactory::addPolygonFaces(const PolygonMeshDesc& p, const PolygonFaces& 
     face.life = p.life;
     face.primvars = p.primvars;  // the faces share one material (by primitive id)
     face.P.resize(p.P.size());
-    // Primitive variables that vary from face to face: each face's corner values, kept here.
+    // Primitive variables that vary from face to face: each face's corner values, as Cs is read.
     size_t width = 0;
-    for (const Param& v : p.primvars.params)
-        if (v.cls != ParamClass::Constant) width += 4 * size_t(v.componentsPerItem());
-    const float* block = nullptr;
-    if (width > 0) {
-        std::vector<float> values;
-        values.reserve(width * faces.faces.size());
-        for (size_t f = 0; f < faces.faces.size(); ++f)
-            for (const Param& v : p.primvars.params) {
-                if (v.cls == ParamClass::Constant) continue;
-                const size_t w = size_t(v.componentsPerItem());
-                for (size_t c = 0; c < 4; ++c) {
-                    size_t item = 0;  // which of the parameter's items corner c takes
-                    switch (v.cls) {
-                    case ParamClass::Uniform: item = faces.facePolygon[f]; break;
-                    case ParamClass::FaceVarying: item = faces.faceCorner[f][c]; break;
-                    default: item = size_t(faces.faces[f][c]);  // varying, vertex: by point
-                    }
-                    for (size_t k = 0; k < w; ++k) values.push_back(float(v.nums[item * w + k]));
-                }
-            }
-        std::lock_guard<std::mutex> lock(mutex_);
-        primvarBlocks_.push_back(std::move(values));
-        block = primvarBlocks_.back().data();
-    }
+    const float* block = meshPrimvars(p.primvars, faces.faces.size(),
+                                      [&](const ColorPrimvar& v) { return faceCorners(faces, v); }, nullptr, &width);
     for (size_t f = 0; f < faces.faces.size(); ++f) {
         for (size_t k = 0; k < p.P.size(); ++k)
             for (size_t c = 0; c < 4; ++c) face.P[k][c] = p.P[k][size_t(faces.faces[f][c])];

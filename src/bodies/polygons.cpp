@@ -53,14 +53,13 @@ std::optional<BilinearPatchDesc> polygonAsPatch(const PolygonMeshDesc& mesh) {
 
 PolygonFaces cutPolygons(const PolygonMeshDesc& mesh, Log& log) {
     PolygonFaces out;
-    const ColorPrimvar& Cs = mesh.Cs;
     size_t faceVertex = 0;
     for (size_t p = 0; p < mesh.polygons.size(); ++p) {
         std::vector<std::array<int, 4>> faces;
         if (!cutPolygon(mesh.P[0], mesh.polygons[p], &faces))
             log.warnOnce("polygon:degenerate", mesh.loc,
                          mesh.request + ": a polygon has no area (its points are on one line): skipped");
-        // Facevarying colours: the polygon's own corners, by point.
+        // Facevarying values: the polygon's own corners, by point.
         std::map<int, size_t> cornerOf;
         for (const std::vector<int>& loop : mesh.polygons[p])
             for (int v : loop) cornerOf.emplace(v, faceVertex++);
@@ -68,20 +67,23 @@ PolygonFaces cutPolygons(const PolygonMeshDesc& mesh, Log& log) {
             out.faces.push_back(f);
             out.facePolygon.push_back(p);
             out.faceCorner.push_back({cornerOf[f[0]], cornerOf[f[1]], cornerOf[f[2]], cornerOf[f[3]]});
-            if (!Cs.given()) continue;
-            std::array<Color, 4> c;
-            for (size_t k = 0; k < 4; ++k) {
-                const int v = f[k];
-                switch (Cs.cls) {
-                case ParamClass::Constant: c[k] = Cs.values[0]; break;
-                case ParamClass::Uniform: c[k] = Cs.values[p]; break;
-                case ParamClass::FaceVarying: c[k] = Cs.values[cornerOf[v]]; break;
-                default: c[k] = Cs.values[size_t(v)];
-                }
-            }
-            out.faceCs.push_back(c);
         }
     }
+    if (mesh.Cs.given()) out.faceCs = faceCorners(out, mesh.Cs);
+    return out;
+}
+
+std::vector<std::array<Color, 4>> faceCorners(const PolygonFaces& faces, const ColorPrimvar& v) {
+    std::vector<std::array<Color, 4>> out(faces.faces.size());
+    for (size_t f = 0; f < out.size(); ++f)
+        for (size_t k = 0; k < 4; ++k) {
+            switch (v.cls) {
+            case ParamClass::Constant: out[f][k] = v.values[0]; break;
+            case ParamClass::Uniform: out[f][k] = v.values[faces.facePolygon[f]]; break;
+            case ParamClass::FaceVarying: out[f][k] = v.values[faces.faceCorner[f][k]]; break;
+            default: out[f][k] = v.values[size_t(faces.faces[f][k])];
+            }
+        }
     return out;
 }
 

@@ -29,5 +29,8 @@ struct PolygonFaces {
     std::vector<std::array<size_t, 4>> faceCorner;  // per face corner: its loop vertex in the mesh (facevarying)
 };
 PolygonFaces cutPolygons(const PolygonMeshDesc& mesh, Log& log);
+// A colour-like primitive variable at each face's corners, by its class: uniform per polygon,
+// facevarying by the polygon's own corner, varying and vertex by point.
+std::vector<std::array<Color, 4>> faceCorners(const PolygonFaces& faces, const ColorPrimvar& v);
 
 }  // namespace streyes

@@ -174,15 +174,9 @@ SampleHit composite(const ImageBlock& block, const SampleHit& opaque, int32_t a,
         }
     if (frags.empty()) return opaque;
     std::sort(frags.begin(), frags.end(), [](const SampleFragment& x, const SampleFragment& y) { return x.before(y); });
-    Color c{0, 0, 0}, t{1, 1, 1};  // colour so far, and what still gets through
-    for (const SampleFragment& f : frags) {
-        c += Color{t.x * f.c.x, t.y * f.c.y, t.z * f.c.z};
-        t = Color{t.x * (1 - f.o.x), t.y * (1 - f.o.y), t.z * (1 - f.o.z)};
-    }
-    c += Color{t.x * opaque.c.x, t.y * opaque.c.y, t.z * opaque.c.z};
-    const float clear = 1 - opaque.a;
-    const float alpha = ((1 - t.x * clear) + (1 - t.y * clear) + (1 - t.z * clear)) / 3;
-    return {opaque.z, c, alpha, opaque.id};
+    OverComposite over;
+    for (const SampleFragment& f : frags) over.add(f.c, f.o);
+    return {opaque.z, over.c + over.t * opaque.c, over.alpha(opaque.a), opaque.id};
 }
 
 }  // namespace

@@ -88,6 +88,23 @@ class FilterWeights {
     std::vector<float> w_;  // patterns x (2 gy + 1) x (2 gx + 1) x S
 };
 
+// "Over", nearest first: see-through layers (Ci premultiplied by Oi, as shaders give it) composited
+// front to back. The rasterizer's fragments (resolveTile) and the ray tracer's hits along an eye
+// ray both go through it.
+struct OverComposite {
+    Color c{0, 0, 0};  // the colour so far
+    Color t{1, 1, 1};  // what still gets through, per channel
+    void add(Color ci, Color oi) {
+        c += t * ci;
+        t = t * (Color{1, 1, 1} - oi);
+    }
+    // Alpha over what lies behind, of coverage a: the channel mean of 1 - t (1 - a).
+    float alpha(float a = 0) const {
+        const float clear = 1 - a;
+        return ((1 - t.x * clear) + (1 - t.y * clear) + (1 - t.z * clear)) / 3;
+    }
+};
+
 // What resolving keeps from bucket to bucket.
 struct ResolveScratch {
     std::vector<float> weightSum;  // per tile pixel: the weights of every sample it sees

@@ -61,14 +61,8 @@ struct SampleFragment {
     uint64_t id;   // primitive: with z and c orders fragments independently of arrival
     int32_t next;  // the sample's next fragment (unordered), or -1
 
-    // The order fragments are composited in, nearest first (SampleHit::beatenBy's).
-    bool before(const SampleFragment& b) const {
-        if (z != b.z) return z < b.z;
-        if (id != b.id) return id < b.id;
-        if (c.x != b.c.x) return c.x < b.c.x;
-        if (c.y != b.c.y) return c.y < b.c.y;
-        return c.z < b.c.z;
-    }
+    // The order fragments are composited in, nearest first: SampleHit::beatenBy's.
+    bool before(const SampleFragment& b) const { return SampleHit{b.z, b.c, 0, b.id}.beatenBy(z, id, c); }
 };
 
 class ImageBlock {
@@ -174,7 +168,6 @@ class ImageBlock {
     // still layer's both apply where it has a record). List heads are made when the bucket's
     // first fragment arrives, so blocks without any pay nothing.
     bool hasFragments() const { return fragmentsOn_; }
-    size_t fragmentCount() const { return fragments_.size(); }
     int32_t* stillFragments(size_t i) { return &stillHeads_[i * size_t(S_)]; }
     const int32_t* stillFragments(size_t i) const { return &stillHeads_[i * size_t(S_)]; }
     // Frame fi's lists of pixel i: it must have a record (makeRecord).

@@ -166,15 +166,20 @@ inline bool beats(const SampleHit& cur, const float* z, const Hit& h, float near
 template <typename ColorAt, typename OpacityAt>
 inline bool fragmentBeats(const SampleHit& cur, const float* z, const Hit& h, float nearZ, float farZ, uint64_t id,
                           ColorAt colorAt, OpacityAt opacityAt, SampleFragment* out) {
-    const float zh = z[h.v0] + h.l1 * (z[h.v1] - z[h.v0]) + h.l2 * (z[h.v2] - z[h.v0]);
-    if (!(zh >= nearZ && zh <= farZ && zh <= cur.z)) return false;
-    const Color c0 = colorAt(h.v0), c1 = colorAt(h.v1), c2 = colorAt(h.v2);
-    const Color c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
-    if (zh == cur.z && !cur.beatenBy(zh, id, c)) return false;
+    SampleHit hit;
+    if (!beats(cur, z, h, nearZ, farZ, id, colorAt, &hit)) return false;
     const Color o0 = opacityAt(h.v0), o1 = opacityAt(h.v1), o2 = opacityAt(h.v2);
     const Color o = o0 + (o1 - o0) * h.l1 + (o2 - o0) * h.l2;
-    *out = {zh, c, {std::clamp(o.x, 0.0f, 1.0f), std::clamp(o.y, 0.0f, 1.0f), std::clamp(o.z, 0.0f, 1.0f)}, id, -1};
+    *out = {hit.z, hit.c, {std::clamp(o.x, 0.0f, 1.0f), std::clamp(o.y, 0.0f, 1.0f), std::clamp(o.z, 0.0f, 1.0f)}, id, -1};
     return true;
+}
+
+// Keeps a fragment that frame fi alone sees at sample sj of pixel pi: in the frame's record of the
+// pixel, made for it when missing (so the frame resolves the pixel itself). Its index.
+inline int32_t keepFrameFragment(ImageBlock& block, int fi, size_t pi, int sj, const SampleFragment& f, SampleHit*& rec) {
+    if (!rec) rec = block.makeRecord(fi, pi);
+    block.startFragments();
+    return block.addFragment(block.recordFragments(fi, pi) + sj, f);
 }
 
 enum class QuadOpacity { Opaque, SeeThrough, Clear };
@@ -377,9 +382,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
                     if (seeThrough) {
                         if (!fragmentBeats(cur, q.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) continue;
-                        if (!rec) rec = block.makeRecord(fr.fi, pi);  // so the frame resolves the pixel itself
-                        block.startFragments();
-                        const int32_t fk = block.addFragment(block.recordFragments(fr.fi, pi) + sj, frag);
+                        const int32_t fk = keepFrameFragment(block, fr.fi, pi, sj, frag, rec);
                         ++fragments;
                         if (Shadowed)
                             writeShadowed(block.fragmentShadowed(fk), K, h,
@@ -618,9 +621,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                                     return lerp(oi0 ? oi0[v] : kOpaque, oi1 ? oi1[v] : kOpaque, sg);
                                 };
                                 if (!fragmentBeats(cur, qt.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) continue;
-                                if (!rec) rec = block.makeRecord(fi, pi);
-                                block.startFragments();
-                                const int32_t fk = block.addFragment(block.recordFragments(fi, pi) + sj, frag);
+                                const int32_t fk = keepFrameFragment(block, fi, pi, sj, frag, rec);
                                 ++fragments;
                                 if (Shadowed)
                                     writeShadowed(block.fragmentShadowed(fk), K, h, [&](int c, int k) {

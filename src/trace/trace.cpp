@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 
+#include "film/film.h"
 #include "procedural/procedural.h"
 #include "shade/shading.h"
 
@@ -29,6 +30,7 @@ double processCpuSeconds() {
 // block's own order, pixel then frame, jumps through time from one ray to the next).
 // fn(hit, shadowed parts, position, frame, time) for every sample of a dense block (every frame
 // has a record of every pixel).
+// The last argument is the sample's list of see-through fragments (its head, -1: none).
 template <typename Fn>
 void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
     const int S = block.samplesPerPixel();
@@ -39,12 +41,13 @@ void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
         for (size_t i = 0; i < size_t(block.pixelCount()); ++i) {
             SampleHit* hits = block.record(fi, i);
             Color* shadowed = K ? block.shadowed(fi, i) : nullptr;
+            const int32_t* fragments = block.hasFragments() ? block.recordFragments(fi, i) : nullptr;
             for (int j = 0; j < S; ++j) {
                 const SamplePosition s = block.position(fi, i, j);
                 const size_t si = i * size_t(S) + size_t(j);
                 const Vec2f lens = block.hasLens() ? Vec2f{block.lus()[si], block.lvs()[si]} : Vec2f{0, 0};
                 fn(hits[j], K ? shadowed + size_t(j) * size_t(K) : nullptr, s, lens, block.firstFrame() + fi,
-                   start + double(s.tf) * exposure);
+                   start + double(s.tf) * exposure, fragments ? fragments[j] : -1);
             }
         }
     }
@@ -234,13 +237,13 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
     shadowed_.resize(size_t(K));
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
     forEachSampleByFrame(block, scene.shutter, [&](SampleHit& hit, Color*, const SamplePosition& s, Vec2f lens, int frame,
-                                                   double time) {
+                                                   double time, int32_t) {
         const Ray ray = eyeRay(cam, s.x, s.y, lens);
         const SpacetimeBVH& bvh = trace.hierarchy(frame);
         ++counters.eyeRays;
         // Nearest first: a see-through hit (Oi < 1) adds its colour through what is in front and
         // the ray goes on past it, as the rasterizer's fragments are composited (film.h).
-        Color sum{0, 0, 0}, through{1, 1, 1};
+        OverComposite over;
         float tNear = cam.nearClip();
         TraceHit h;
         while (bvh.intersect(ray, time, tNear, cam.farClip(), &h, ctx_)) {
@@ -259,21 +262,20 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
                           : shadePoint(m, cs, p, n, ortho, lights, K ? shadowed_.data() : nullptr, K);
             if (K) c = addVisibleLights(c, p, time, shadowed_.data(), trace, bvh, counters);
             o = {std::clamp(o.x, 0.0f, 1.0f), std::clamp(o.y, 0.0f, 1.0f), std::clamp(o.z, 0.0f, 1.0f)};
-            if (o.x >= 1 && o.y >= 1 && o.z >= 1 && through.x == 1 && through.y == 1 && through.z == 1) {
-                hit = {p.z, c, 1.0f, body.primitiveId()};  // opaque, nothing in front: as ever
+            const bool opaque = o.x >= 1 && o.y >= 1 && o.z >= 1;
+            if (opaque && over.t == Color{1, 1, 1}) {
+                hit = {p.z, c, 1.0f, body.primitiveId()};  // nothing in front: its colour as it is
                 return;
             }
-            sum += Color{through.x * c.x, through.y * c.y, through.z * c.z};
-            through = Color{through.x * (1 - o.x), through.y * (1 - o.y), through.z * (1 - o.z)};
-            if (o.x >= 1 && o.y >= 1 && o.z >= 1) {  // the opaque hit behind the fragments
-                hit = {p.z, sum, 1.0f, body.primitiveId()};
+            over.add(c, o);
+            if (opaque) {  // the opaque hit behind see-through ones
+                hit = {p.z, over.c, 1.0f, body.primitiveId()};
                 return;
             }
             tNear = std::nextafter(h.t, std::numeric_limits<float>::infinity());
         }
-        if (through.x == 1 && through.y == 1 && through.z == 1) return;  // nothing seen
-        const float alpha = ((1 - through.x) + (1 - through.y) + (1 - through.z)) / 3;
-        hit = {std::numeric_limits<float>::infinity(), sum, alpha, kNoPrimitive};
+        if (over.t == Color{1, 1, 1}) return;  // nothing seen
+        hit = {std::numeric_limits<float>::infinity(), over.c, over.alpha(), kNoPrimitive};
     });
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
@@ -284,47 +286,24 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
 void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, RenderCounters& counters) {
     const RenderScene& scene = trace.scene();
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
+    const Camera& cam = scene.camera;
+    // The point a sample's eye ray (through its lens point, with depth of field) meets at depth z.
+    auto pointAt = [&](const SamplePosition& s, Vec2f lens, float z) {
+        if (!cam.depthOfField()) return cam.fromRaster(s.x, s.y, z);
+        const Ray ray = eyeRay(cam, s.x, s.y, lens);
+        return ray.o + ray.d * z;
+    };
     forEachSampleByFrame(block, scene.shutter,
                          [&](SampleHit& hit, Color* shadowed, const SamplePosition& s, Vec2f lens, int frame,
-                             double time) {
-        if (hit.a == 0) return;
-        const Camera& cam = scene.camera;
-        Vec3f p;
-        if (cam.depthOfField()) {
-            const Ray ray = eyeRay(cam, s.x, s.y, lens);
-            p = ray.o + ray.d * hit.z;
-        } else {
-            p = cam.fromRaster(s.x, s.y, hit.z);
+                             double time, int32_t fragments) {
+        const SpacetimeBVH& bvh = trace.hierarchy(frame);
+        if (hit.a != 0) hit.c = addVisibleLights(hit.c, pointAt(s, lens, hit.z), time, shadowed, trace, bvh, counters);
+        // See-through fragments likewise, each from its own depth.
+        for (int32_t k = fragments; k >= 0; k = block.fragment(k).next) {
+            SampleFragment& f = block.fragment(k);
+            f.c = addVisibleLights(f.c, pointAt(s, lens, f.z), time, block.fragmentShadowed(k), trace, bvh, counters);
         }
-        hit.c = addVisibleLights(hit.c, p, time, shadowed, trace, trace.hierarchy(frame), counters);
     });
-    // See-through fragments likewise, each from its own depth (dense blocks: every frame's own lists).
-    if (block.hasFragments()) {
-        const int S = block.samplesPerPixel();
-        const Camera& cam = scene.camera;
-        const double exposure = scene.shutter.close - scene.shutter.open;
-        for (int fi = 0; fi < block.frameCount(); ++fi)
-            for (size_t i = 0; i < size_t(block.pixelCount()); ++i) {
-                const int32_t* heads = block.recordFragments(fi, i);
-                for (int j = 0; j < S; ++j) {
-                    if (heads[j] < 0) continue;
-                    const SamplePosition s = block.position(fi, i, j);
-                    const size_t si = i * size_t(S) + size_t(j);
-                    const Vec2f lens = block.hasLens() ? Vec2f{block.lus()[si], block.lvs()[si]} : Vec2f{0, 0};
-                    const double time = block.firstFrame() + fi + scene.shutter.open + double(s.tf) * exposure;
-                    for (int32_t k = heads[j]; k >= 0; k = block.fragment(k).next) {
-                        SampleFragment& f = block.fragment(k);
-                        Vec3f p = cam.fromRaster(s.x, s.y, f.z);
-                        if (cam.depthOfField()) {
-                            const Ray ray = eyeRay(cam, s.x, s.y, lens);
-                            p = ray.o + ray.d * f.z;
-                        }
-                        f.c = addVisibleLights(f.c, p, time, block.fragmentShadowed(k), trace,
-                                               trace.hierarchy(block.firstFrame() + fi), counters);
-                    }
-                }
-            }
-    }
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
 }

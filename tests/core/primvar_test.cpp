@@ -39,6 +39,12 @@ std::array<float, 3> rgb(const test::RenderResult& r, int x, int y) {
     return {r.channel(0, x, y, 0), r.channel(0, x, y, 1), r.channel(0, x, y, 2)};
 }
 
+// Two 16 x 16 quads side by side: their six points (0 1 2 along the bottom, 3 4 5 along the top),
+// and the same as a two-face subdivision mesh with its boundary interpolated.
+const std::string kTwoQuadPoints = "\"P\" [0 0 5  16 0 5  32 0 5  0 16 5  16 16 5  32 16 5]";
+const std::string kTwoQuadSubdivision =
+    "SubdivisionMesh \"catmull-clark\" [4 4] [0 1 4 3  1 2 5 4] [\"interpolateboundary\"] [0 0] [] [] " + kTwoQuadPoints;
+
 TEST(Primvars, AConstantVariableOverridesTheShaderParameterPerPrimitive) {
     const Shaders sh;
     // Two patches in one attribute state, each with its own Kd; a third with none: the default.
@@ -119,7 +125,7 @@ TEST(Primvars, APolygonMeshBindsUniformVertexAndFacevaryingValues) {
     sh.add("mesh", "surface mesh(float Kd = 1; varying color tint = 0) { Oi = 1; Ci = color(Kd, s, comp(tint, 2)); }\n");
     // Two quads side by side, 16 x 16 each, sharing the points 1 and 4.
     const std::string rib = sh.header(32, 16) + "Surface \"mesh\"\n" +
-                            "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] \"P\" [0 0 5  16 0 5  32 0 5  0 16 5  16 16 5  32 16 5]"
+                            "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] " + kTwoQuadPoints +
                             " \"uniform float Kd\" [0.25 0.75]"
                             " \"facevarying float s\" [0 1 1 0  1 0 0 1]"
                             " \"vertex color tint\" [0 0 0  0 0 0.5  0 0 1  0 0 0  0 0 0.5  0 0 1]\nWorldEnd\n";
@@ -148,8 +154,8 @@ TEST(Primvars, PatchAndSubdivisionMeshesBindPerFaceValues) {
     const Shaders sh;
     sh.add("mesh", "surface mesh(float Kd = 1; varying color tint = 0) { Oi = 1; Ci = color(Kd, comp(tint, 1), comp(tint, 2)); }\n");
     const test::RenderResult pm = test::renderRib(
-        sh.header(32, 16) + "Surface \"mesh\"\nPatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" "
-                            "\"P\" [0 0 5  16 0 5  32 0 5  0 16 5  16 16 5  32 16 5] \"uniform float Kd\" [0.25 0.75] "
+        sh.header(32, 16) + "Surface \"mesh\"\nPatchMesh \"bilinear\" 3 \"nonperiodic\" 2 \"nonperiodic\" " + kTwoQuadPoints +
+                            " \"uniform float Kd\" [0.25 0.75] "
                             "\"varying color tint\" [0 0 0  0 0 0.5  0 0 1  0 1 0  0 1 0.5  0 1 1]\nWorldEnd\n");
     EXPECT_FLOAT_EQ(pm.channel(0, 8, 8, 0), 0.25f);
     EXPECT_FLOAT_EQ(pm.channel(0, 24, 8, 0), 0.75f);
@@ -158,15 +164,12 @@ TEST(Primvars, PatchAndSubdivisionMeshesBindPerFaceValues) {
     EXPECT_NEAR(pm.channel(0, 8, 4, 1), (16 - 4.5f) / 16, 2e-3f);    // green by scene y
     // A subdivision mesh of two quads (its boundary interpolated): the uniform value per control face.
     const test::RenderResult sd = test::renderRib(
-        sh.header(32, 16) + "Surface \"mesh\"\nSubdivisionMesh \"catmull-clark\" [4 4] [0 1 4 3  1 2 5 4] "
-                            "[\"interpolateboundary\"] [0 0] [] [] \"P\" [0 0 5  16 0 5  32 0 5  0 16 5  16 16 5  32 16 5] "
-                            "\"uniform float Kd\" [0.25 0.75]\nWorldEnd\n");
+        sh.header(32, 16) + "Surface \"mesh\"\n" + kTwoQuadSubdivision + " \"uniform float Kd\" [0.25 0.75]\nWorldEnd\n");
     EXPECT_FLOAT_EQ(sd.channel(0, 8, 8, 0), 0.25f);
     EXPECT_FLOAT_EQ(sd.channel(0, 24, 8, 0), 0.75f);
     // Facevarying: bilinear over each control face, discontinuous between faces. s rises over the
     // first quad and falls over the second (a seam at their shared edge); as "Cs" does.
-    const std::string mesh = "SubdivisionMesh \"catmull-clark\" [4 4] [0 1 4 3  1 2 5 4] [\"interpolateboundary\"] [0 0] [] [] "
-                             "\"P\" [0 0 5  16 0 5  32 0 5  0 16 5  16 16 5  32 16 5] \"facevarying float s\" [0 1 1 0  1 0 0 1] "
+    const std::string mesh = kTwoQuadSubdivision + " \"facevarying float s\" [0 1 1 0  1 0 0 1] "
                              "\"facevarying color Cs\" [1 0 0  1 0 0  1 0 0  1 0 0  0 1 0  0 1 0  0 1 0  0 1 0]\n";
     for (const Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Raytrace}) {
         const test::RenderResult r = test::renderRib(sh.header(32, 16) + "Surface \"st\"\n" + mesh + "WorldEnd\n", test::optionsFor(a));
