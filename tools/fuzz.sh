@@ -40,7 +40,7 @@ args=(-dict="$ROOT/fuzz/rib.dict" -max_total_time="$seconds" -max_len=8192 -time
 if ((jobs > 1)); then args+=(-jobs="$jobs" -workers="$jobs"); fi
 echo "== Fuzzing the RIB parser for $seconds s ($binary)"
 status=0
-ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+ASAN_OPTIONS=detect_leaks=1:intercept_tls_get_addr=0 UBSAN_OPTIONS=print_stacktrace=1 \
   "$binary" "${args[@]}" "$work/corpus" "$ROOT/scenes" "$ROOT/scenes/hard" "$ROOT/fuzz/seeds" \
   "$ROOT/fuzz/regressions" >"$log" 2>&1 || status=$?
 if ((jobs > 1)); then cat "$work"/fuzz-*.log >>"$log" 2>/dev/null || true; fi

@@ -143,20 +143,29 @@ bool cutPolygon(const std::vector<Vec3d>& points, const std::vector<std::vector<
     const double ax = std::fabs(n.x), ay = std::fabs(n.y), az = std::fabs(n.z);
     if (!(std::max({ax, ay, az}) > 0)) return false;
     const int drop = az >= ax && az >= ay ? 2 : (ay >= ax ? 1 : 0);
-    std::vector<P2> q(points.size());
-    for (size_t i = 0; i < points.size(); ++i) {
-        const Vec3d& p = points[i];
+    // Only the loops' own points are projected, renumbered 0..k-1 (a polygon of a large mesh reads
+    // a handful of its points; projecting them all made a mesh's cutting quadratic).
+    std::vector<int> used;
+    for (const std::vector<int>& l : loops) used.insert(used.end(), l.begin(), l.end());
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    std::vector<P2> q(used.size());
+    for (size_t i = 0; i < used.size(); ++i) {
+        const Vec3d& p = points[size_t(used[i])];
         q[i] = drop == 2 ? P2{p.x, p.y} : drop == 1 ? P2{p.z, p.x} : P2{p.y, p.z};
     }
+    std::vector<std::vector<int>> local(loops);
+    for (std::vector<int>& l : local)
+        for (int& i : l) i = int(std::lower_bound(used.begin(), used.end(), i) - used.begin());
     // Counter-clockwise outer loop, clockwise holes; remember to turn the faces back.
-    const bool flipped = signedArea(outer, q) < 0;
-    std::vector<int> ring = outer;
+    std::vector<int> ring = local[0];
+    const bool flipped = signedArea(ring, q) < 0;
     if (flipped) std::reverse(ring.begin(), ring.end());
     if (!(std::fabs(signedArea(ring, q)) > 0)) return false;
 
     auto emit = [&](std::array<int, 3> t) {
         if (flipped) std::swap(t[1], t[2]);
-        faces->push_back({t[0], t[1], t[2], t[2]});
+        faces->push_back({used[size_t(t[0])], used[size_t(t[1])], used[size_t(t[2])], used[size_t(t[2])]});
     };
     if (loops.size() == 1 && ring.size() == 4) {
         // A convex quad stays one face (a bilinear patch, as RenderMan dices it).
@@ -169,7 +178,7 @@ bool cutPolygon(const std::vector<Vec3d>& points, const std::vector<std::vector<
             return true;
         }
     }
-    std::vector<std::vector<int>> holes(loops.begin() + 1, loops.end());
+    std::vector<std::vector<int>> holes(local.begin() + 1, local.end());
     for (std::vector<int>& h : holes) {
         if (h.size() < 3) continue;
         if (signedArea(h, q) > 0) std::reverse(h.begin(), h.end());
