@@ -29,11 +29,7 @@ WorldEnd
 
 // The address sanitizer reserves terabytes of address space for its shadow memory and pads every
 // allocation: limits on the process's memory say nothing about the renderer's under it.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
+constexpr bool kSanitized = test::kAddressSanitizer;
 
 uint64_t jsonNumber(const std::string& json, const std::string& key) {
     const size_t at = json.find("\"" + key + "\": ");
