@@ -20,7 +20,16 @@ void FrameWriter::rethrow() {
 }
 
 void FrameWriter::write(const FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs) {
-    auto copy = std::make_shared<const FrameImage>(image);  // the renderer reuses its images
+    std::unique_ptr<FrameImage> copy;  // the renderer reuses its images
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!spare_.empty()) {
+            copy = std::move(spare_.back());
+            spare_.pop_back();
+        }
+    }
+    if (copy) *copy = image;
+    else copy = std::make_unique<FrameImage>(image);
     std::unique_lock<std::mutex> lock(mutex_);
     changed_.wait(lock, [this] { return error_ || queue_.size() < capacity_; });
     rethrow();
@@ -51,6 +60,7 @@ void FrameWriter::run() {
             failed = std::current_exception();
         }
         lock.lock();
+        if (spare_.size() <= capacity_) spare_.push_back(std::move(job.image));
         busy_ = false;
         if (failed && !error_) error_ = failed;
         if (error_) queue_.clear();  // the render stops: nothing after a failed frame is written

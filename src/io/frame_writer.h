@@ -31,7 +31,7 @@ class FrameWriter {
 
   private:
     struct Job {
-        std::shared_ptr<const FrameImage> image;
+        std::unique_ptr<FrameImage> image;
         std::vector<std::pair<std::string, std::string>> outputs;
     };
     void run();
@@ -41,6 +41,10 @@ class FrameWriter {
     std::mutex mutex_;
     std::condition_variable changed_;
     std::deque<Job> queue_;
+    // Copies already written, kept for the next frames: copying into a buffer of the right size
+    // touches no new page (a fresh 4.6 MB copy a frame was mapped, faulted in and unmapped each
+    // time: half the CPU of a 64-frame still shot). At most capacity + 1 exist at once.
+    std::vector<std::unique_ptr<FrameImage>> spare_;
     bool busy_ = false, stopping_ = false;
     std::exception_ptr error_;
     std::thread thread_;
