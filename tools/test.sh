@@ -14,7 +14,12 @@ stop_cluster() {
 trap stop_cluster EXIT
 if [ "${1:-}" = "--asan" ]; then
   shift
-  cmake --preset asan >/dev/null  # also moves a tree configured with another compiler to clang
+  # A tree configured with another compiler (GCC, before the preset moved to clang) starts
+  # afresh: changing the compiler in place makes CMake drop the preset's other settings.
+  if [ -f build-asan/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build-asan/CMakeCache.txt; then
+    rm -rf build-asan/CMakeCache.txt build-asan/CMakeFiles
+  fi
+  [ -f build-asan/CMakeCache.txt ] || cmake --preset asan >/dev/null
   echo "== Building with sanitizers (build-asan/)"
   cmake --build --preset asan -j "$(nproc)"
   echo "== Testing with sanitizers"
