@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <functional>
 #include <memory>
 #include <string>
@@ -89,8 +90,12 @@ struct RenderOptions {
     int maxSplitDepth = 60;          // a body split this often and still too large is dropped
     int maxEyeSplits = 40;           // the same for splits at the eye plane
     int maxSplitsPerPrimitive = 1 << 20;  // splits of one primitive in one bucket (bounds the work)
-    float timeSplitRatio = 2.0f;     // split t when motion > ratio * size ...
-    float timeSplitMinMotion = 16.0f;  // ... and motion > this many pixels
+    // Split t when motion > ratio * size and > this many pixels. Off by default: a moving grid is
+    // diced once an exposure (as RenderMan dices it) and its micropolygons move; cutting in time
+    // only adds dicing (every piece is diced in each bucket it reaches) for tighter sampling
+    // bounds the rasterizer's time slices already give (docs/ARCHITECTURE.md, the split loop).
+    float timeSplitRatio = 2.0f;
+    float timeSplitMinMotion = std::numeric_limits<float>::infinity();
 
     // Ray tracing and shadows (see spacetime_bvh.h).
     HierarchyOptions hierarchy;
