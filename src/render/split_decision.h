@@ -27,7 +27,7 @@ inline SplitDecision decideSplit(const Body& body, const RasterMeasure& m, const
     if (!body.diceableInTime() && !body.dicesAtKeys()) {
         d.axis = SplitAxis::T;  // more than two motion keys: cut at a key first
     } else if (body.moving() && m.motion > std::max(options.timeSplitRatio * size, options.timeSplitMinMotion)) {
-        d.axis = SplitAxis::T;  // the swept bound is much larger than the body: split its time span
+        d.axis = SplitAxis::T;  // only when asked (timeSplitMinMotion is off by default): cut its span
     } else {
         const double nu = std::max(1.0, std::ceil(double(m.extentU) / side));
         const double nv = std::max(1.0, std::ceil(double(m.extentV) / side));
