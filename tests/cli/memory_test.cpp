@@ -27,10 +27,6 @@ Patch "bilinear" "P" [-0.5 -0.5 1  0.5 -0.5 1  -0.5 0.5 1  0.5 0.5 1]
 WorldEnd
 )";
 
-// The address sanitizer reserves terabytes of address space for its shadow memory and pads every
-// allocation: limits on the process's memory say nothing about the renderer's under it.
-constexpr bool kSanitized = test::kAddressSanitizer;
-
 uint64_t jsonNumber(const std::string& json, const std::string& key) {
     const size_t at = json.find("\"" + key + "\": ");
     return at == std::string::npos ? 0 : std::stoull(json.substr(at + key.size() + 4));
@@ -41,8 +37,9 @@ TEST(CliMemory, HugeRenderIsRefusedWithTheFigureItNeeds) {
     const std::string& dir = tempDir.path();
     const std::string scene = writeFile(dir, "s.rib", kScene);
     // 65536 x 65536: one frame's image alone is 80 GiB.
-    // It must not even try: with 4 GB of address space, allocating the image would fail.
-    CliRun r = runStreyesWith(kSanitized ? "" : "ulimit -v 4000000; ",
+    // It must not even try: with 4 GB of address space, allocating the image would fail. (Not
+    // under the address sanitizer, which reserves terabytes of address space for its shadow.)
+    CliRun r = runStreyesWith(test::kAddressSanitizer ? "" : "ulimit -v 4000000; ",
                               "render " + scene + " --res 65536x65536 --max-memory 64G -o " + dir + "/f.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("streyes: error: this render needs about 480 GiB of memory even one frame at a time "
@@ -84,7 +81,7 @@ TEST(CliMemory, MaxMemoryShrinksTheFrameBlock) {
     const uint64_t block = jsonNumber(json, "frame_block");
     EXPECT_GT(block, 1u);
     EXPECT_LT(block, 32u);
-    if (!kSanitized) {  // the program's own size varies a little
+    if (!test::kAddressSanitizer) {  // the program's own size varies a little
         EXPECT_LE(jsonNumber(json, "peak_memory_bytes"), budget + budget / 20);
     }
     for (int frame = 1; frame <= 32; ++frame)
