@@ -3,7 +3,7 @@
 #
 #   tools/fuzz.sh                      build the fuzzer (cmake --preset fuzz, clang) and run 10 minutes
 #   tools/fuzz.sh --seconds 3600 --jobs 2
-#   tools/fuzz.sh --binary build/fuzz/streyes_fuzz_rib --seconds 10 --seed 1 --fresh   (what ctest runs)
+#   tools/fuzz.sh --binary build-asan/streyes_fuzz_rib --seconds 10 --seed 1 --fresh   (what ctest runs)
 #
 # Seeds: scenes/, scenes/hard/, fuzz/seeds/ and fuzz/regressions/ (read only); inputs that reach new
 # code go to WORK/corpus (default build-fuzz/work), crashes to WORK/ as crash-*, leak-*, timeout-*.

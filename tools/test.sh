@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds Release, and runs the whole test suite through ctest.
-#   tools/test.sh           the release build (build/), with a brief libFuzzer run
+#   tools/test.sh           the release build (build/)
 #   tools/test.sh --asan    the same suite under address and undefined-behaviour sanitizers
-#                           (build-asan/); the fuzzer is sanitized itself and is not run again
+#                           (build-asan/, clang), with a brief libFuzzer run of the RIB parser
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 # The farm tests run on a one-node Slurm cluster that ctest's fixtures start (farm.cluster_start)
 # and stop (farm.cluster_stop, pass or fail); should ctest itself be killed, this stops it too.
