@@ -159,7 +159,7 @@ BENCHMARK(BM_BlockReset);
 
 // Resolving a 32x32 tile over 8 frames with a gaussian 2x2 filter, a third of the samples hit.
 // dense: every frame has its own samples (the ray tracer's and shadows' case: each frame is
-// gathered); sparse: everything in the still layer (gathered once, copied to each frame).
+// gathered); sparse: everything in the still layer (gathered once, shared by the frames).
 void BM_Resolve(benchmark::State& state) {
     const bool dense = state.range(0) != 0;
     const PatternTable patterns(SamplePattern{4, 4, 3});
@@ -171,10 +171,10 @@ void BM_Resolve(benchmark::State& state) {
             for (int j = 0; j < 16; j += 3) h[j] = {5.0f, {0.5f, 0.5f, 0.5f}, 1.0f, 1};
         }
     const FilterWeights weights(PixelFilter(FilterDesc{"gaussian", 2, 2}), patterns);
-    std::vector<FrameImage> frames(8);
-    for (auto& f : frames) f.resize(34, 34);
+    TiledFrames frames;
+    frames.reset(34, 34, {PixelRect{1, 1, 32, 32}}, 0, 8, {});
     ResolveScratch scratch;
-    for (auto _ : state) resolveTile(block, {1, 1, 32, 32}, weights, frames.data(), scratch);
+    for (auto _ : state) resolveTile(block, weights, frames, 0, scratch);
     state.counters["samples/s"] =
         benchmark::Counter(double(34 * 34 * 8 * 16) * double(state.iterations()), benchmark::Counter::kIsRate);
 }

@@ -181,8 +181,10 @@ SampleHit composite(const ImageBlock& block, const SampleHit& opaque, int32_t a,
 
 }  // namespace
 
-void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWeights& fw, FrameImage* frames,
+void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& frames, size_t tileIndex,
                  ResolveScratch& scratch) {
+    TiledFrames::Tile& out = frames.tile(tileIndex);
+    const PixelRect& tile = out.rect();
     const PixelRect& R = block.rect();
     const int tw = tile.width(), F = block.frameCount(), S = block.samplesPerPixel();
     const int gx = fw.reachX(), gy = fw.reachY();
@@ -259,38 +261,58 @@ void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWei
         }
     }
 
+    // Where the pixels go: frame fi of the block is slot firstSlot + fi of `frames`. A bucket that
+    // spans all of its frames stores the still layer's pixels once, for every frame that shows only
+    // them; output variables are written when the frames ask for the block's (zeros otherwise).
+    const int C = out.channels();
+    const bool writeAov = A > 0 && size_t(C - 5) == Az;
+    const int firstSlot = block.firstFrame() - frames.firstFrame();
+    const bool shareStill = !dense && block.frameCount() == frames.frameCount();
+    auto putStill = [&](size_t t, float* px) {
+        std::copy(&scratch.still[t * 5], &scratch.still[t * 5] + 5, px);
+        if (writeAov) std::copy(&scratch.stillAov[t * Az], &scratch.stillAov[t * Az] + Az, px + 5);
+        else std::fill(px + 5, px + C, 0.0f);
+    };
+    if (shareStill) {
+        float* px = out.still();
+        for (size_t t = 0; t < tilePixels; ++t) putStill(t, px + t * size_t(C));
+    }
+
     // Per frame: the tile pixels whose filter reaches a pixel with a record of that frame are
     // gathered again; the others show the still layer.
     scratch.gathered.resize(tilePixels);
     for (int fi = 0; fi < F; ++fi) {
-        FrameImage& out = frames[fi];
         std::fill(scratch.gathered.begin(), scratch.gathered.end(), uint8_t(dense));
+        bool moving = dense;
         if (!dense)
             for (int py = R.y0; py <= R.y1; ++py)
                 for (int px = R.x0; px <= R.x1; ++px) {
                     if (!block.hasRecord(fi, block.pixelIndex(px, py))) continue;
                     for (int y = std::max(tile.y0, py - gy); y <= std::min(tile.y1, py + gy); ++y)
-                        for (int x = std::max(tile.x0, px - gx); x <= std::min(tile.x1, px + gx); ++x)
+                        for (int x = std::max(tile.x0, px - gx); x <= std::min(tile.x1, px + gx); ++x) {
                             scratch.gathered[size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0)] = 1;
+                            moving = true;
+                        }
                 }
+        if (shareStill && !moving) {
+            out.showStill(firstSlot + fi);
+            continue;
+        }
+        float* own = out.own(firstSlot + fi);
         for (int y = tile.y0; y <= tile.y1; ++y)
             for (int x = tile.x0; x <= tile.x1; ++x) {
                 const size_t t = size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0);
-                float v[5] = {0, 0, 0, 0, 0};
-                if (scratch.gathered[t])
-                    gather(block, fw, x, y, scratch.weightSum[t], [&](size_t i) { return frameHits(fi, i); }, v);
-                else
-                    std::copy(&scratch.still[t * 5], &scratch.still[t * 5] + 5, v);
-                float* px = &out.rgba[(size_t(y) * size_t(out.width) + size_t(x)) * 4];
-                for (int c = 0; c < 4; ++c) px[c] = v[c];
-                out.z[size_t(y) * size_t(out.width) + size_t(x)] = v[4];
-                if (A == 0 || out.aovNames.size() != Az) continue;  // none asked for
-                float* o = &out.aov[(size_t(y) * size_t(out.width) + size_t(x)) * Az];
-                if (scratch.gathered[t])
+                float* px = own + t * size_t(C);
+                if (!scratch.gathered[t]) {
+                    putStill(t, px);
+                    continue;
+                }
+                gather(block, fw, x, y, scratch.weightSum[t], [&](size_t i) { return frameHits(fi, i); }, px);
+                if (writeAov)
                     gatherAovs(block, fw, x, y, [&](size_t i) { return block.hits(fi, i); },
-                               [&](size_t i) { return block.aovs(fi, i); }, scratch.aov.data(), o);
+                               [&](size_t i) { return block.aovs(fi, i); }, scratch.aov.data(), px + 5);
                 else
-                    std::copy(&scratch.stillAov[t * Az], &scratch.stillAov[t * Az] + Az, o);
+                    std::fill(px + 5, px + C, 0.0f);
             }
     }
 }

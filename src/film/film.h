@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "film/tiled_frames.h"
 #include "raster/image_block.h"
 #include "streyes/frame_image.h"
 #include "streyes/scene.h"
@@ -119,16 +120,17 @@ struct ResolveScratch {
     std::vector<SampleFragment> fragments;  // one sample's, being sorted
 };
 
-// Resolves the samples of every frame of the block into the pixels of `tile` (inside the
-// block's rect, which must include the filter's guard band around it): frames[fi] receives frame
-// block.firstFrame() + fi. Each pixel gathers the samples of the pixels around it; a pixel none of
-// whose neighbours has a record in a frame shows the still layer there, resolved once for the
-// block. The same gather makes both, so a pixel has the same bits whichever way it is resolved.
+// Resolves the samples of every frame of the block into the pixels of tile `tileIndex` of `frames`
+// (inside the block's rect, which must include the filter's guard band around it). Each pixel
+// gathers the samples of the pixels around it; a pixel none of whose neighbours has a record in a
+// frame shows the still layer there, resolved once for the block, and a frame whose whole tile
+// shows it keeps a reference to those pixels (tiled_frames.h). The same gather makes both, so a
+// pixel has the same bits whichever way it is resolved.
 // Exposure: rgb = (gain * rgb)^(1 / gamma) per channel (negative values stay linear), after the
 // imager, before the frame is written. Alpha and Z are kept. Nothing is done for gain = gamma = 1.
 void applyExposure(FrameImage& image, double gain, double gamma);
 
-void resolveTile(const ImageBlock& block, const PixelRect& tile, const FilterWeights& weights, FrameImage* frames,
+void resolveTile(const ImageBlock& block, const FilterWeights& weights, TiledFrames& frames, size_t tileIndex,
                  ResolveScratch& scratch);
 
 }  // namespace streyes

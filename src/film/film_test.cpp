@@ -52,6 +52,27 @@ TEST(PixelFilter, EveryFilterFollowsItsFormula) {
     EXPECT_EQ(disk.guardY(), 1);
 }
 
+// Resolves `tile` of every frame of the block into images of width x height (zero outside it).
+void resolveInto(const ImageBlock& block, const PixelRect& tile, const FilterWeights& weights, FrameImage* images,
+                 int width, int height) {
+    TiledFrames frames;
+    frames.reset(width, height, {tile}, block.firstFrame(), block.frameCount(), {});
+    ResolveScratch scratch;
+    resolveTile(block, weights, frames, 0, scratch);
+    for (int fi = 0; fi < block.frameCount(); ++fi) {
+        FrameImage& img = images[fi];
+        img.resize(width, height);
+        const float* p = frames.tile(0).pixels(fi);
+        ASSERT_NE(p, nullptr);
+        for (int y = tile.y0; y <= tile.y1; ++y)
+            for (int x = tile.x0; x <= tile.x1; ++x, p += 5) {
+                const size_t i = size_t(y) * size_t(width) + size_t(x);
+                std::copy(p, p + 4, &img.rgba[i * 4]);
+                img.z[i] = p[4];
+            }
+    }
+}
+
 // A sample exactly on a pixel's top-left corner belongs to that pixel: with a box filter of
 // one pixel, no pixel is left without samples (it would resolve to black).
 TEST(Resolve, SamplesOnPixelCornersBelongToTheirPixel) {
@@ -62,9 +83,7 @@ TEST(Resolve, SamplesOnPixelCornersBelongToTheirPixel) {
     const PixelFilter box({"box", 1, 1});
     const FilterWeights weights(box, patterns);
     FrameImage img;
-    img.resize(8, 8);
-    ResolveScratch scratch;
-    resolveTile(block, {0, 0, 7, 7}, weights, &img, scratch);
+    resolveInto(block, {0, 0, 7, 7}, weights, &img, 8, 8);
     for (int p = 0; p < 64; ++p) {
         EXPECT_EQ(img.rgba[size_t(p) * 4 + 3], 1.0f) << p;
         EXPECT_EQ(img.rgba[size_t(p) * 4], 0.5f) << p;
@@ -86,9 +105,7 @@ TEST(Resolve, UniformSamplesGiveTheirValueAndZIsTheNearest) {
             const PixelFilter filter({type, 3, 3});
             const FilterWeights weights(filter, patterns);
             FrameImage img;
-            img.resize(10, 10);
-            ResolveScratch scratch;
-            resolveTile(block, {2, 2, 7, 7}, weights, &img, scratch);
+            resolveInto(block, {2, 2, 7, 7}, weights, &img, 10, 10);
             float* p = &img.rgba[(5 * 10 + 5) * 4];
             EXPECT_NEAR(p[0], 0.25f, 1e-5f) << type;
             EXPECT_NEAR(p[1], 0.5f, 1e-5f) << type;
@@ -112,9 +129,7 @@ TEST(Resolve, AFramesRecordChangesOnlyThePixelsItsFilterReaches) {
     const PixelFilter gauss({"gaussian", 2, 2});  // reaches one pixel on each side
     const FilterWeights weights(gauss, patterns);
     FrameImage img[2];
-    for (FrameImage& f : img) f.resize(10, 10);
-    ResolveScratch scratch;
-    resolveTile(block, {1, 1, 8, 8}, weights, img, scratch);
+    resolveInto(block, {1, 1, 8, 8}, weights, img, 10, 10);
     for (int y = 1; y <= 8; ++y)
         for (int x = 1; x <= 8; ++x) {
             const size_t p = size_t(y * 10 + x) * 4;

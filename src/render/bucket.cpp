@@ -105,7 +105,7 @@ void BucketWorker::setTrace(const TraceScene* trace) {
     grid_.shadowSlots = shadowSlots_;
 }
 
-void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& frames, int framesFirst) {
+void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
     bucket_ = bucket;
     ++counters.buckets;
     splitsOf_.clear();
@@ -138,7 +138,7 @@ void BucketWorker::render(const BucketSpec& bucket, std::vector<FrameImage>& fra
     if (options_.sampleObserver) options_.sampleObserver(block_, bucket.tile);
 
     t = Clock::now();
-    resolveTile(block_, bucket.tile, filter_, &frames[size_t(bucket.firstFrame - framesFirst)], resolveScratch_);
+    resolveTile(block_, filter_, frames, bucket.tileIndex, resolveScratch_);
     counters.timeResolve += secondsSince(t);
     counters.micropolygons += rasterCounters_.micropolygons;
     counters.sampleTests += rasterCounters_.sampleTests;

@@ -25,7 +25,8 @@ namespace streyes {
 class ProceduralBody;
 
 struct BucketSpec {
-    PixelRect tile;       // the pixels this bucket resolves
+    PixelRect tile;       // the pixels this bucket resolves: tile `tileIndex` of the frames
+    size_t tileIndex = 0;
     PixelRect rect;       // tile plus the filter's guard band, clipped to the image
     int firstFrame = 0;   // frames this bucket's split loop covers
     int frameCount = 1;
@@ -38,8 +39,8 @@ class BucketWorker {
     BucketWorker(const RenderScene& scene, const RenderOptions& options, const PatternTable& patterns,
                  const FilterWeights& filter, const std::vector<float>& layerDepths, Log& log);
 
-    // Renders the bucket and resolves its tile into frames[f - framesFirst] for each of its frames.
-    void render(const BucketSpec& bucket, std::vector<FrameImage>& frames, int framesFirst);
+    // Renders the bucket and resolves its tile into `frames` for each of its frames.
+    void render(const BucketSpec& bucket, TiledFrames& frames);
     // The ray tracer's scene (null when nothing is ray traced): eye rays replace the split loop
     // for --algorithm raytrace*; otherwise it traces the shadow rays of lights that cast shadows.
     void setTrace(const TraceScene* trace);

@@ -36,6 +36,11 @@ constexpr uint64_t kBytesPerPixel = 5 * sizeof(float);
 // frames' RGBA and Z (io/frame_writer.h).
 constexpr uint64_t kWriterBytesPerPixel = 2 * (5 * sizeof(float) + 5 * 2) + 2 * 5 * sizeof(float);
 
+// The block's frames are held tile by tile (film/tiled_frames.h): at most a copy a frame (where
+// everything moves), the tiles' still pixels when a bucket spans several frames, and the frame
+// assembled for the writer.
+int framesHeld(const MemoryShape& s, int frameBlock) { return frameBlock + 1 + (s.spacetime && frameBlock > 1 ? 1 : 0); }
+
 uint64_t bucketPixels(const MemoryShape& s) {
     const uint64_t w = uint64_t(std::min(s.tileSize + 2 * s.guardX, std::max(1, s.width)));
     const uint64_t h = uint64_t(std::min(s.tileSize + 2 * s.guardY, std::max(1, s.height)));
@@ -65,7 +70,7 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     e.scene = s.bodies * kBytesPerBody + s.sharedBytes;
     e.trace = s.traceBytes + s.traceBytesPerFrame * uint64_t(e.frameBlock);
     const uint64_t aov = uint64_t(std::max(0, s.aovFloats)) * sizeof(float);
-    e.frameImages = uint64_t(e.frameBlock) * pixels * (kBytesPerPixel + aov);
+    e.frameImages = uint64_t(framesHeld(s, e.frameBlock)) * pixels * (kBytesPerPixel + aov);
     const uint64_t S = uint64_t(std::max(1, s.samplesPerPixel));
     const uint64_t recordSample = kBytesPerRecordSample + uint64_t(std::max(0, s.shadowSlots)) * sizeof(Color) + aov;
     e.perWorker = bucketPixels(s) * (S * (kBytesPerSample + aov) + framesPerBucket * (kBytesPerPixelFrame + S * recordSample)) +
@@ -82,7 +87,8 @@ std::string MemoryEstimate::describe(const MemoryShape& s) const {
     const int frames = s.spacetime ? frameBlock : 1;
     return "frame images " + formatBytes(frameImages) + " (" + std::to_string(frameBlock) + " frame" +
            (frameBlock == 1 ? "" : "s") + " of " + std::to_string(s.width) + "x" + std::to_string(s.height) +
-           "), samples " + formatBytes(perWorker * uint64_t(workers)) + " (" + std::to_string(workers) + " worker" +
+           (framesHeld(s, frameBlock) > frameBlock + 1 ? ", their still pixels" : "") +
+           " and one being written), samples " + formatBytes(perWorker * uint64_t(workers)) + " (" + std::to_string(workers) + " worker" +
            (workers == 1 ? "" : "s") + " with a bucket of " + std::to_string(bw) + "x" + std::to_string(bh) +
            " pixels x " + std::to_string(frames) + " frame" + (frames == 1 ? "" : "s") + " x " +
            std::to_string(s.samplesPerPixel) + " samples" + (s.shadowSlots ? " with shadows" : "") +
@@ -93,10 +99,15 @@ std::string MemoryEstimate::describe(const MemoryShape& s) const {
 MemoryEstimate planMemory(const MemoryShape& shape, int maxBlock, int maxWorkers, uint64_t budget) {
     const MemoryEstimate one = estimateMemory(shape, 1, 1);
     if (one.total() > budget) throw InputError(budgetAdvice(shape, budget, one));
-    // With one worker the estimate grows linearly with the block.
-    const uint64_t perFrame = estimateMemory(shape, 2, 1).total() - one.total();
+    // With one worker the estimate grows linearly with the block from two frames on (a block of
+    // several frames also holds its tiles' still pixels).
     int block = std::max(1, maxBlock);
-    if (perFrame > 0) block = int(std::min<uint64_t>(uint64_t(block), 1 + (budget - one.total()) / perFrame));
+    if (block > 1) {
+        const uint64_t two = estimateMemory(shape, 2, 1).total();
+        const uint64_t perFrame = estimateMemory(shape, 3, 1).total() - two;
+        if (two > budget) block = 1;
+        else if (perFrame > 0) block = int(std::min<uint64_t>(uint64_t(block), 2 + (budget - two) / perFrame));
+    }
     MemoryEstimate e = estimateMemory(shape, block, 1);
     const uint64_t room = budget - e.total();
     e.workers = int(std::min<uint64_t>(uint64_t(std::max(1, maxWorkers)), 1 + room / std::max<uint64_t>(1, e.perWorker)));

@@ -31,7 +31,8 @@ const MemoryShape kHd{1920, 1080, 16, 32, 1, 1, true, 1000};
 
 TEST(Memory, EstimateCountsImagesAndSamplesPerWorker) {
     const MemoryEstimate e = estimateMemory(kHd, 10, 3);
-    EXPECT_EQ(e.frameImages, uint64_t(10) * 1920 * 1080 * 20);  // RGBA + Z float
+    // RGBA + Z float: the 10 frames, the tiles' still pixels, the frame being written.
+    EXPECT_EQ(e.frameImages, uint64_t(12) * 1920 * 1080 * 20);
     // A bucket of 34 x 34 pixels (tile and guard band) x 16 samples (position, still-layer hit),
     // for each of 10 frames a slot, a permutation and at most a record of every sample, and what
     // resolving keeps (32 x 32 pixels x 6 floats).
@@ -46,6 +47,8 @@ TEST(Memory, EstimateCountsImagesAndSamplesPerWorker) {
     MemoryShape frames = kHd;
     frames.spacetime = false;
     EXPECT_EQ(estimateMemory(frames, 10, 1).perWorker, estimateMemory(frames, 1, 1).perWorker);
+    EXPECT_EQ(estimateMemory(frames, 10, 1).frameImages, uint64_t(11) * 1920 * 1080 * 20);  // no still pixels
+    EXPECT_EQ(estimateMemory(kHd, 1, 1).frameImages, uint64_t(2) * 1920 * 1080 * 20);
 }
 
 TEST(Memory, OutputVariablesAddTheirFloatsPerSampleAndPixel) {
@@ -53,7 +56,7 @@ TEST(Memory, OutputVariablesAddTheirFloatsPerSampleAndPixel) {
     MemoryShape aov = kHd;
     aov.aovFloats = 6;
     const MemoryEstimate e = estimateMemory(kHd, 10, 3), a = estimateMemory(aov, 10, 3);
-    EXPECT_EQ(a.frameImages - e.frameImages, uint64_t(10) * 1920 * 1080 * 24);
+    EXPECT_EQ(a.frameImages - e.frameImages, uint64_t(12) * 1920 * 1080 * 24);
     EXPECT_EQ(a.perWorker - e.perWorker, uint64_t(34 * 34) * (16 * 24 + 10 * 16 * 24));
     EXPECT_GT(a.writer, e.writer);
 }
@@ -87,7 +90,7 @@ TEST(Memory, RefusesWhatDoesNotFitOneFrameAtATime) {
     } catch (const InputError& e) {
         const std::string m = e.what();
         EXPECT_NE(m.find("needs about " + formatBytes(need)), std::string::npos) << m;
-        EXPECT_NE(m.find("frame images 80.0 GiB (1 frame of 65536x65536)"), std::string::npos) << m;
+        EXPECT_NE(m.find("frame images 160 GiB (1 frame of 65536x65536 and one being written)"), std::string::npos) << m;
         EXPECT_NE(m.find("budget of 16.0 GiB"), std::string::npos) << m;
         EXPECT_NE(m.find("lower --res or --samples"), std::string::npos) << m;
     }

@@ -292,10 +292,13 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
 
     // Tiles in scanline order; their count and shape do not depend on the thread count.
     std::vector<BucketSpec> tiles;
+    std::vector<PixelRect> tileRects;
     for (int y = 0; y < H; y += tileSize)
         for (int x = 0; x < W; x += tileSize) {
             BucketSpec b;
             b.tile = {x, y, std::min(W, x + tileSize) - 1, std::min(H, y + tileSize) - 1};
+            b.tileIndex = tiles.size();
+            tileRects.push_back(b.tile);
             b.rect = {std::max(0, b.tile.x0 - filter.guardX()), std::max(0, b.tile.y0 - filter.guardY()),
                       std::min(W - 1, b.tile.x1 + filter.guardX()), std::min(H - 1, b.tile.y1 + filter.guardY())};
             tiles.push_back(b);
@@ -315,7 +318,9 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     // have been culled by that bound where its children are seen: then the render starts again
     // with the grown bounds (frames already handed to the sink come again; rare, and warned).
     constexpr int kMaxPasses = 8;
-    std::vector<FrameImage> images;
+    TiledFrames resolved;  // the block's frames, tile by tile (film/tiled_frames.h)
+    FrameImage image;      // one of them at a time, for the sink
+    const std::vector<std::string> aovNames = AovLayout(options_.aovs).channelNames();
     // --resume: the frames already written, asked once before rendering (a second pass must not
     // take the frames of the first for finished ones).
     std::vector<char> written(size_t(frames), 0);
@@ -338,12 +343,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                     continue;
                 }
             }
-            images.resize(size_t(count));
-            for (int i = 0; i < count; ++i) {
-                images[size_t(i)].frame = first + i;
-                images[size_t(i)].aovNames = AovLayout(options_.aovs).channelNames();
-                images[size_t(i)].resize(W, H);
-            }
+            resolved.reset(W, H, tileRects, first, count, aovNames);
             // Spacetime: one bucket per tile spans the block's frames. Frames: one per tile and frame.
             std::vector<BucketSpec> buckets;
             for (int f = 0; f < (spacetime ? 1 : count); ++f)
@@ -361,7 +361,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                     w->setTrace(trace.get());
                     w->setShaders(shaders_.get());
                     for (size_t i = r.begin(); i != r.end(); ++i) {
-                        w->render(buckets[i], images, first);
+                        w->render(buckets[i], resolved);
                         uint64_t n = ++done;
                         if (progress) progress(n, totalBuckets);
                     }
@@ -375,14 +375,15 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                 break;
             }
             t = Clock::now();
-            for (FrameImage& img : images) {
-                if (alreadyWritten(img.frame)) {
+            for (int i = 0; i < count; ++i) {
+                if (alreadyWritten(first + i)) {
                     ++stats.framesSkipped;
                     continue;
                 }
-                shaders_->runImager(img);
-                applyExposure(img, source_.settings.exposureGain, source_.settings.exposureGamma);
-                sink(img);
+                resolved.assemble(i, image);
+                shaders_->runImager(image);
+                applyExposure(image, source_.settings.exposureGain, source_.settings.exposureGamma);
+                sink(image);
             }
             writeSeconds += std::chrono::duration<double>(Clock::now() - t).count();
         }

@@ -1,0 +1,69 @@
+// The resolved frames of a block, kept tile by tile until they are handed out one at a time.
+//
+// A bucket that spans every frame of the block resolves its tile's still layer once; a frame with no
+// moving sample under the tile's filter footprint shows exactly those pixels, so it keeps a
+// reference to them instead of a copy. A still shot of 64 frames then holds about one frame of
+// pixels, where 64 full frame images were allocated, zeroed and faulted in (half its CPU time).
+// Frames with moving samples near get their own tile buffer. Buffers are kept from block to block
+// (no new pages after the first). assemble() copies one frame's tiles into a FrameImage for the
+// sink: a pixel has the same bits whichever way it was stored.
+//
+// Pixel layout in a tile buffer: R G B A Z, then the frame's output variables, row-major.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "streyes/frame_image.h"
+#include "streyes/vecmath.h"
+
+namespace streyes {
+
+class TiledFrames {
+  public:
+    // One tile's pixels in every frame of the block. Written only by the bucket that resolves the
+    // tile (for --algorithm frames, one bucket a frame: each writes only its own frame's slot).
+    class Tile {
+      public:
+        const PixelRect& rect() const { return rect_; }
+        int channels() const { return channels_; }
+        size_t pixelCount() const { return size_t(rect_.area()); }
+        // The still layer's pixels, shared by the frames that show only them.
+        float* still();
+        // Frame `slot` (an index in the block) shows the still pixels.
+        void showStill(int slot) { bufferOf_[size_t(slot)] = kStill; }
+        // Frame `slot`'s own pixels, to be written in full.
+        float* own(int slot);
+        const float* pixels(int slot) const;
+
+      private:
+        friend class TiledFrames;
+        static constexpr int32_t kStill = -1, kNone = -2;
+        PixelRect rect_;
+        int channels_ = 5;
+        std::vector<float> still_;
+        std::vector<int32_t> bufferOf_;            // per frame slot: its buffer, kStill, or kNone
+        std::vector<std::vector<float>> buffers_;  // one per frame slot, made when first asked for
+    };
+
+    // Starts a block of `frameCount` frames from `firstFrame`, cut into `tiles` (which cover the
+    // width x height image once), each pixel with the named output variables after R G B A Z.
+    void reset(int width, int height, const std::vector<PixelRect>& tiles, int firstFrame, int frameCount,
+               const std::vector<std::string>& aovNames);
+    int firstFrame() const { return firstFrame_; }
+    int frameCount() const { return frameCount_; }
+    size_t aovCount() const { return aovNames_.size(); }
+    Tile& tile(size_t index) { return tiles_[index]; }
+
+    // Frame `slot` of the block as one image (reusing out's storage when its shape fits). Throws
+    // std::logic_error if a tile was not resolved for that frame.
+    void assemble(int slot, FrameImage& out) const;
+
+  private:
+    int width_ = 0, height_ = 0, firstFrame_ = 0, frameCount_ = 0;
+    std::vector<std::string> aovNames_;
+    std::vector<Tile> tiles_;
+};
+
+}  // namespace streyes
