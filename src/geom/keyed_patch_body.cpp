@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <stdexcept>
 
 #include "geom/body.h"
@@ -127,20 +128,28 @@ std::unique_ptr<Body> KeyedPatchBody::restrictedTo(double a, double b) const {
         for (int k = 0; k < 4; ++k) c[size_t(k)] = lerp(keys_[i - 1][size_t(k)], keys_[i][size_t(k)], s);
         return c;
     };
-    std::vector<double> ts{a};
-    std::vector<Corners> ks{at(a)};
-    for (size_t i = 0; i < times_.size(); ++i)
-        if (times_[i] > a && times_[i] < b) {
-            ts.push_back(times_[i]);
-            ks.push_back(keys_[i]);
-        }
-    ts.push_back(b);
-    ks.push_back(at(b));
+    // The keys strictly inside (a, b): none for a piece of one exposure between two keys, which
+    // is then a trilinear body, made without a vector (a split loop makes many).
+    const size_t first = size_t(std::upper_bound(times_.begin(), times_.end(), a) - times_.begin());
+    const size_t last = size_t(std::lower_bound(times_.begin(), times_.end(), b) - times_.begin());
     // Cut short of the last key, the piece is closed at b (TrilinearBody::restrictedTo).
     const bool open = b == time_.t1 && time_.openEnd;
     std::unique_ptr<Body> r;
-    if (ts.size() == 2) r = std::make_unique<TrilinearBody>(TimeSpan{a, b, open}, ks[0], ks[1], Cs_, material_);
-    else r = std::make_unique<KeyedPatchBody>(std::move(ts), std::move(ks), Cs_, material_, open);
+    if (first >= last) {
+        r = std::make_unique<TrilinearBody>(TimeSpan{a, b, open}, at(a), at(b), Cs_, material_);
+    } else {
+        std::vector<double> ts;
+        std::vector<Corners> ks;
+        ts.reserve(last - first + 2);
+        ks.reserve(last - first + 2);
+        ts.push_back(a);
+        ks.push_back(at(a));
+        ts.insert(ts.end(), times_.begin() + std::ptrdiff_t(first), times_.begin() + std::ptrdiff_t(last));
+        ks.insert(ks.end(), keys_.begin() + std::ptrdiff_t(first), keys_.begin() + std::ptrdiff_t(last));
+        ts.push_back(b);
+        ks.push_back(at(b));
+        r = std::make_unique<KeyedPatchBody>(std::move(ts), std::move(ks), Cs_, material_, open);
+    }
     r->inheritFrom(*this);
     return r;
 }
