@@ -1,6 +1,7 @@
 #include "raster/image_block.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace streyes {
 
@@ -55,6 +56,7 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     }
     records_ = 0;
     slot_.assign(size_t(frameCount) * pixels, -1);
+    farthest_.assign(size_t(frameCount) * pixels, std::numeric_limits<float>::infinity());
     recordsOf_.assign(dense ? 0 : pixels, 0);
     if (dense) {
         still_.clear();

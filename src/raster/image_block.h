@@ -140,6 +140,12 @@ class ImageBlock {
         return r ? r : still(i);
     }
     size_t recordCount() const { return records_; }
+    // Frame fi's bound on the farthest depth pixel i's samples see: +inf until measured, then
+    // what was last measured. A sample's depth only comes nearer (a hit replaces it only when it
+    // beats it; a record starts as a copy of the still layer), so a measured value stays a bound,
+    // and a quad behind it is hidden from every sample of the pixel: one float read instead of
+    // the S hits (GridRasterizer::sampleMoving, deep in foliage).
+    float& farthestBound(int fi, size_t i) { return farthest_[size_t(fi) * size_t(pixelCount()) + i]; }
 
     // Dense mode with shadows: the shadowed parts of the S hits of frame fi's record of pixel i,
     // shadowSlots() colours each, valid where a sample has a hit.
@@ -217,6 +223,7 @@ class ImageBlock {
     mutable std::vector<uint8_t> timesMade_;    // per frame
     std::vector<SampleHit> still_;
     std::vector<int32_t> slot_;         // frames x pixels: record number, or -1
+    std::vector<float> farthest_;       // frames x pixels: farthestBound
     std::vector<uint16_t> recordsOf_;   // per pixel: frames with a record of it (sparse)
     std::vector<std::unique_ptr<SampleHit[]>> chunks_;  // records, kept from bucket to bucket
     size_t chunkSamples_ = 0;           // S x kRecordsPerChunk when the chunks were made

@@ -558,13 +558,22 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 for (int py = q.py0; py <= q.py1; ++py) {
                     for (int px = q.px0; px <= q.px1; ++px) {
                         const size_t pi = block.pixelIndex(px, py);
-                        SampleHit* rec = block.record(fi, pi);
                         if (!Counting) {
                             // Every sample of the pixel already sees something nearer than the whole
-                            // quad: none of them can change (the usual case deep in foliage).
+                            // quad: none of them can change (the usual case deep in foliage). The
+                            // pixel's bound says so without reading its hits; else it is measured again.
+                            float& bound = block.farthestBound(fi, pi);
+                            if (q.zmin > bound) {
+                                behind += s1 - s0;
+                                continue;
+                            }
+                        }
+                        SampleHit* rec = block.record(fi, pi);
+                        if (!Counting) {
                             const SampleHit* seen = rec ? rec : block.still(pi);
                             float farthest = seen[0].z;
                             for (int k = 1; k < S; ++k) farthest = std::max(farthest, seen[k].z);
+                            block.farthestBound(fi, pi) = farthest;
                             if (q.zmin > farthest) {
                                 behind += s1 - s0;
                                 continue;

@@ -24,8 +24,8 @@ constexpr uint64_t kBytesPerSample = 2 * sizeof(float) + sizeof(SampleHit);
 // Per sample and frame: the frame's record of it, at most (records are made only where something
 // that frame alone sees comes nearest; dense blocks have them all).
 constexpr uint64_t kBytesPerRecordSample = sizeof(SampleHit);
-// Per pixel and frame: its record's slot and its time permutation.
-constexpr uint64_t kBytesPerPixelFrame = sizeof(int32_t) + sizeof(uint8_t);
+// Per pixel and frame: its record's slot, its time permutation and its farthest-depth bound.
+constexpr uint64_t kBytesPerPixelFrame = sizeof(int32_t) + sizeof(uint8_t) + sizeof(float);
 // Per pixel and frame of a bucket, with occlusion culling: its coverage cell and table entry.
 constexpr uint64_t kOcclusionBytesPerCell = sizeof(uint8_t) + sizeof(uint32_t);
 // Per pixel of a resolved frame: RGBA and Z as float.
