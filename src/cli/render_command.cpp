@@ -11,8 +11,10 @@
 #include <fstream>
 #include <mutex>
 #include <set>
+#include <thread>
 
 #include "commands.h"
+#include "io/exr_file.h"
 #include "io/frame_writer.h"
 #include "render/dof_preview.h"
 #include "streyes/textures.h"
@@ -343,7 +345,9 @@ int renderCommand(const std::vector<std::string>& args) {
 
     ProgressBar bar(!quiet);
     std::vector<std::string> written;
-    // Frames are encoded and written by a writer thread while the next block renders.
+    // Frames are encoded and written by a writer thread while the next block renders; OpenEXR
+    // compresses each on as many threads as render (after the last block the writer is alone).
+    setExrEncodeThreads(opts.threads > 0 ? opts.threads : int(std::max(1u, std::thread::hardware_concurrency())));
     FrameWriter writer;
     RenderStats total;
     ResolvedSettings first;

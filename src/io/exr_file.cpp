@@ -7,9 +7,11 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
 #include <Imath/half.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -43,7 +45,16 @@ int channelRank(const std::string& name) {
     return 4;
 }
 
+std::atomic<int> encodeThreads{1};
+
 }  // namespace
+
+void setExrEncodeThreads(int threads) {
+    threads = std::max(1, threads);
+    if (threads == encodeThreads.load()) return;
+    Imf::setGlobalThreadCount(threads > 1 ? threads : 0);  // 0: OpenEXR works on the caller's thread
+    encodeThreads = threads;
+}
 
 std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z) {
     const int W = image.width, H = image.height;
@@ -68,7 +79,7 @@ std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z
     bytes.reserve(size_t(W) * size_t(H) * size_t(colour * 2 + (z ? 4 : 0)) / 2 + 4096);
     MemoryStream stream(bytes);
     {
-        Imf::OutputFile file(stream, header, 1);  // one thread: frames are written while others render
+        Imf::OutputFile file(stream, header, encodeThreads.load());
         file.setFrameBuffer(fb);
         file.writePixels(H);
     }
@@ -108,7 +119,7 @@ std::vector<unsigned char> encodeExrChannels(int W, int H, const std::vector<std
     std::vector<unsigned char> bytes;
     MemoryStream stream(bytes);
     {
-        Imf::OutputFile file(stream, header, 1);
+        Imf::OutputFile file(stream, header, encodeThreads.load());
         file.setFrameBuffer(fb);
         file.writePixels(H);
     }

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "io/exr_file.h"
 #include "streyes/error.h"
 #include "test_util.h"
 
@@ -58,6 +59,34 @@ TEST(FrameFiles, IdenticalFramesReuseTheirEncodingBitForBit) {
     EXPECT_EQ(rb.at(5, 0, 4), b.z[5]);
     EXPECT_EQ(ra.at(5, 0, 4), a.z[5]);
     EXPECT_EQ(r4.channels.size(), 4u);
+}
+
+// OpenEXR compressing a frame's scanline blocks on several threads writes the same bytes as one
+// thread (files must not depend on the thread count), and they read back as the frame.
+TEST(FrameFiles, EncodingThreadsDoNotChangeTheBytes) {
+    FrameImage f;
+    f.resize(37, 100);  // seven blocks of 16 scanlines, the last short
+    uint32_t h = 12345;
+    for (float& v : f.rgba) v = float((h = h * 1664525u + 1013904223u) >> 8) / float(1 << 24);
+    for (size_t i = 0; i < f.z.size(); ++i) f.z[i] = 1.0f + float(i % 13) * 0.5f;
+    f.rgba[(50 * 37 + 3) * 4] = 0.375f;  // exact in half
+    std::vector<float> rz(37 * 100 * 2);
+    for (size_t i = 0; i < rz.size(); ++i) rz[i] = float(i % 29) * 0.125f;
+    setExrEncodeThreads(1);
+    const std::vector<unsigned char> one = encodeExr(f, true, true), channels = encodeExrChannels(37, 100, {"R", "Z"}, rz);
+    setExrEncodeThreads(3);
+    const std::vector<unsigned char> three = encodeExr(f, true, true), channels3 = encodeExrChannels(37, 100, {"R", "Z"}, rz);
+    setExrEncodeThreads(1);
+    ASSERT_GT(one.size(), 1000u);
+    EXPECT_TRUE(one == three);
+    EXPECT_TRUE(channels == channels3);
+    const test::TempDir tempDir("threads");
+    const std::string path = tempDir.path() + "/f.exr";
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(three.data()), std::streamsize(three.size()));
+    const ImageData back = readImage(path);
+    ASSERT_EQ(back.channels.size(), 5u);
+    EXPECT_EQ(back.at(36, 99, 4), f.z[99 * 37 + 36]);
+    EXPECT_EQ(back.at(3, 50, 0), 0.375f);
 }
 
 }  // namespace
