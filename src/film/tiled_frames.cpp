@@ -13,14 +13,16 @@ float* TiledFrames::Tile::still() {
 float* TiledFrames::Tile::own(int slot) {
     std::vector<float>& b = buffers_[size_t(slot)];
     b.resize(pixelCount() * size_t(channels_));
-    bufferOf_[size_t(slot)] = slot;
+    shows_[size_t(slot)] = Shows::Own;
     return b.data();
 }
 
 const float* TiledFrames::Tile::pixels(int slot) const {
-    const int32_t b = bufferOf_[size_t(slot)];
-    if (b == kNone) return nullptr;
-    return b == kStill ? still_.data() : buffers_[size_t(b)].data();
+    switch (shows_[size_t(slot)]) {
+        case Shows::Still: return still_.data();
+        case Shows::Own: return buffers_[size_t(slot)].data();
+        default: return nullptr;
+    }
 }
 
 void TiledFrames::reset(int width, int height, const std::vector<PixelRect>& tiles, int firstFrame, int frameCount,
@@ -36,7 +38,7 @@ void TiledFrames::reset(int width, int height, const std::vector<PixelRect>& til
         Tile& t = tiles_[i];
         t.rect_ = tiles[i];
         t.channels_ = 5 + int(aovNames.size());
-        t.bufferOf_.assign(size_t(frameCount), Tile::kNone);
+        t.shows_.assign(size_t(frameCount), Tile::Shows::Nothing);
         t.buffers_.resize(size_t(frameCount));
     }
 }
@@ -51,7 +53,9 @@ void TiledFrames::assemble(int slot, FrameImage& out) const {
     out.frame = firstFrame_ + slot;
     for (const Tile& t : tiles_) {
         const float* p = t.pixels(slot);
-        if (!p) throw std::logic_error("TiledFrames::assemble: a tile of frame " + std::to_string(out.frame) + " was not resolved");
+        if (!p)
+            throw std::logic_error("TiledFrames::assemble: a tile of frame " + std::to_string(out.frame) +
+                                   " was not resolved");
         const int C = t.channels_;
         for (int y = t.rect_.y0; y <= t.rect_.y1; ++y)
             for (int x = t.rect_.x0; x <= t.rect_.x1; ++x, p += C) {

@@ -32,19 +32,20 @@ class TiledFrames {
         // The still layer's pixels, shared by the frames that show only them.
         float* still();
         // Frame `slot` (an index in the block) shows the still pixels.
-        void showStill(int slot) { bufferOf_[size_t(slot)] = kStill; }
+        void showStill(int slot) { shows_[size_t(slot)] = Shows::Still; }
         // Frame `slot`'s own pixels, to be written in full.
         float* own(int slot);
+        // Frame `slot`'s pixels, the still ones or its own; null until resolved.
         const float* pixels(int slot) const;
 
       private:
         friend class TiledFrames;
-        static constexpr int32_t kStill = -1, kNone = -2;
+        enum class Shows : uint8_t { Nothing, Still, Own };
         PixelRect rect_;
         int channels_ = 5;
         std::vector<float> still_;
-        std::vector<int32_t> bufferOf_;            // per frame slot: its buffer, kStill, or kNone
-        std::vector<std::vector<float>> buffers_;  // one per frame slot, made when first asked for
+        std::vector<Shows> shows_;                 // per frame slot
+        std::vector<std::vector<float>> buffers_;  // per frame slot its own pixels, made when first asked for
     };
 
     // Starts a block of `frameCount` frames from `firstFrame`, cut into `tiles` (which cover the
@@ -53,7 +54,6 @@ class TiledFrames {
                const std::vector<std::string>& aovNames);
     int firstFrame() const { return firstFrame_; }
     int frameCount() const { return frameCount_; }
-    size_t aovCount() const { return aovNames_.size(); }
     Tile& tile(size_t index) { return tiles_[index]; }
 
     // Frame `slot` of the block as one image (reusing out's storage when its shape fits). Throws

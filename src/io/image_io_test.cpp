@@ -73,16 +73,19 @@ TEST(FrameFiles, EncodingThreadsDoNotChangeTheBytes) {
     std::vector<float> rz(37 * 100 * 2);
     for (size_t i = 0; i < rz.size(); ++i) rz[i] = float(i % 29) * 0.125f;
     setExrEncodeThreads(1);
-    const std::vector<unsigned char> one = encodeExr(f, true, true), channels = encodeExrChannels(37, 100, {"R", "Z"}, rz);
+    const std::vector<unsigned char> one = encodeExr(f, true, true);
+    const std::vector<unsigned char> channels = encodeExrChannels(37, 100, {"R", "Z"}, rz);
     setExrEncodeThreads(3);
-    const std::vector<unsigned char> three = encodeExr(f, true, true), channels3 = encodeExrChannels(37, 100, {"R", "Z"}, rz);
+    const std::vector<unsigned char> three = encodeExr(f, true, true);
+    const std::vector<unsigned char> channels3 = encodeExrChannels(37, 100, {"R", "Z"}, rz);
     setExrEncodeThreads(1);
     ASSERT_GT(one.size(), 1000u);
     EXPECT_TRUE(one == three);
     EXPECT_TRUE(channels == channels3);
     const test::TempDir tempDir("threads");
     const std::string path = tempDir.path() + "/f.exr";
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(three.data()), std::streamsize(three.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(three.data()), std::streamsize(three.size()));
     const ImageData back = readImage(path);
     ASSERT_EQ(back.channels.size(), 5u);
     EXPECT_EQ(back.at(36, 99, 4), f.z[99 * 37 + 36]);

@@ -563,22 +563,17 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             // quad: none of them can change (the usual case deep in foliage). The
                             // pixel's bound says so without reading its hits; else it is measured again.
                             float& bound = block.farthestBound(fi, pi);
+                            if (!(q.zmin > bound)) {
+                                const SampleHit* seen = block.hits(fi, pi);
+                                bound = seen[0].z;
+                                for (int k = 1; k < S; ++k) bound = std::max(bound, seen[k].z);
+                            }
                             if (q.zmin > bound) {
                                 behind += s1 - s0;
                                 continue;
                             }
                         }
                         SampleHit* rec = block.record(fi, pi);
-                        if (!Counting) {
-                            const SampleHit* seen = rec ? rec : block.still(pi);
-                            float farthest = seen[0].z;
-                            for (int k = 1; k < S; ++k) farthest = std::max(farthest, seen[k].z);
-                            block.farthestBound(fi, pi) = farthest;
-                            if (q.zmin > farthest) {
-                                behind += s1 - s0;
-                                continue;
-                            }
-                        }
                         const int perm = block.permutation(fi, pi);
                         for (size_t s = s0; s < s1; ++s) {
                             const Slice& sl = slices_[s];

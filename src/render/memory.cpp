@@ -39,7 +39,9 @@ constexpr uint64_t kWriterBytesPerPixel = 2 * (5 * sizeof(float) + 5 * 2) + 2 * 
 // The block's frames are held tile by tile (film/tiled_frames.h): at most a copy a frame (where
 // everything moves), the tiles' still pixels when a bucket spans several frames, and the frame
 // assembled for the writer.
-int framesHeld(const MemoryShape& s, int frameBlock) { return frameBlock + 1 + (s.spacetime && frameBlock > 1 ? 1 : 0); }
+int framesHeld(const MemoryShape& s, int frameBlock) {
+    return frameBlock + 1 + (s.spacetime && frameBlock > 1 ? 1 : 0);
+}
 
 uint64_t bucketPixels(const MemoryShape& s) {
     const uint64_t w = uint64_t(std::min(s.tileSize + 2 * s.guardX, std::max(1, s.width)));
