@@ -70,10 +70,14 @@ template <typename T> bool isFinite(Vec3<T> v) {
 }
 // floor(v) clamped to [lo, hi] (lo for NaN), without converting a float beyond int's range,
 // which is undefined: raster bounds of huge or degenerate bodies reach far past any image.
+// Floors by truncating and stepping down, not through floorf (a library call in the sampler's
+// inner loops without SSE4.1).
 inline int floorClamped(float v, int lo, int hi) {
     if (!(v >= float(lo))) return lo;
     if (v >= float(hi)) return hi;
-    return std::min(hi, std::max(lo, int(std::floor(v))));
+    int i = int(v);  // v is within [lo, hi): no overflow
+    if (float(i) > v) --i;
+    return std::min(hi, std::max(lo, i));
 }
 
 // Axis-aligned box; empty when lo > hi on any axis.

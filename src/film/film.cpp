@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <limits>
 
 namespace streyes {
@@ -87,6 +89,44 @@ FilterWeights::FilterWeights(const PixelFilter& filter, const PatternTable& patt
 
 namespace {
 
+// R G B A of sample j of `h`, weighted by w, added to acc: four lanes side by side, one multiply
+// and one add each (the background adds w * 0, which leaves a sum as it is).
+inline void accumulate(float* acc, float w, const SampleHit& h) {
+    float v[4];
+    std::memcpy(v, reinterpret_cast<const char*>(&h) + offsetof(SampleHit, c), sizeof v);
+    for (int c = 0; c < 4; ++c) acc[c] += w * v[c];
+}
+
+// The depth of tile pixel (x, y): of the pixel's own samples, as the depth filter says.
+template <typename HitsOf>
+float pixelDepth(const ImageBlock& block, const FilterWeights& fw, int x, int y, HitsOf hitsOf) {
+    const int S = block.samplesPerPixel();
+    const SampleHit* own = hitsOf(block.pixelIndex(x, y));
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    float z = kInf;
+    switch (fw.depthFilter()) {
+        case DepthFilter::Min:
+            for (int j = 0; j < S; ++j) z = std::min(z, own[j].z);
+            break;
+        case DepthFilter::Max: {
+            float far = -kInf;
+            for (int j = 0; j < S; ++j)
+                if (own[j].a != 0 && own[j].z < kInf) far = std::max(far, own[j].z);  // fragments alone: no depth
+            if (far > -kInf) z = far;
+            break;
+        }
+        case DepthFilter::Average: {
+            float sum = 0;
+            int n = 0;
+            for (int j = 0; j < S; ++j)
+                if (own[j].a != 0 && own[j].z < kInf) sum += own[j].z, ++n;
+            if (n > 0) z = sum / float(n);
+            break;
+        }
+    }
+    return z;
+}
+
 // Gathers what `hitsOf(pixel index)` holds around tile pixel (x, y): R G B A weighted, then Z,
 // the nearest of the pixel's own samples. The neighbours and samples are visited in one fixed
 // order whatever the hits come from, so the same hits give the same bits.
@@ -100,40 +140,43 @@ inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int 
         for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx); ++px) {
             const SampleHit* h = hitsOf(block.pixelIndex(px, py));
             const float* w = fw.weights(block.patternOf(block.pixelIndex(px, py)), x - px, y - py);
-            for (int j = 0; j < S; ++j) {
-                if (h[j].a == 0 && h[j].c.x == 0 && h[j].c.y == 0 && h[j].c.z == 0) continue;  // the background adds weight only
-                acc[0] += w[j] * h[j].c.x;
-                acc[1] += w[j] * h[j].c.y;
-                acc[2] += w[j] * h[j].c.z;
-                acc[3] += w[j] * h[j].a;
-            }
+            for (int j = 0; j < S; ++j) accumulate(acc, w[j], h[j]);
         }
     const float inv = std::fabs(weightSum) > 1e-8f ? 1.0f / weightSum : 0.0f;
     for (int c = 0; c < 4; ++c) out[c] = acc[c] * inv;
-    const SampleHit* own = hitsOf(block.pixelIndex(x, y));
-    constexpr float kInf = std::numeric_limits<float>::infinity();
-    float z = kInf;
-    switch (fw.depthFilter()) {
-        case DepthFilter::Min:
-            for (int j = 0; j < S; ++j) z = std::min(z, own[j].z);
-            break;
-        case DepthFilter::Max: {
-            float far = -std::numeric_limits<float>::infinity();
+    out[4] = pixelDepth(block, fw, x, y, hitsOf);
+}
+
+// gather for the four tile pixels (x .. x + 3, y), whose filters lie inside the block in x: each
+// pixel's sum is made in gather's order, so with gather's bits, but the four are interleaved. One
+// pixel's sum is a chain of dependent adds, waiting on each other; four chains keep the adder busy.
+constexpr int kGatherRun = 4;
+inline bool gatherRunFits(const PixelRect& R, const FilterWeights& fw, int x) {
+    return x - fw.reachX() >= R.x0 && x + kGatherRun - 1 + fw.reachX() <= R.x1;
+}
+template <typename HitsOf>
+inline void gatherRun(const ImageBlock& block, const FilterWeights& fw, int x, int y, const float* weightSums,
+                      HitsOf hitsOf, float* const* out) {
+    const PixelRect& R = block.rect();
+    const int S = block.samplesPerPixel(), gx = fw.reachX(), gy = fw.reachY();
+    float acc[kGatherRun][4] = {};
+    for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
+        for (int ox = -gx; ox <= gx; ++ox) {  // pixel k's neighbour x + k + ox
+            const SampleHit* h[kGatherRun];
+            const float* w[kGatherRun];
+            for (int k = 0; k < kGatherRun; ++k) {
+                const size_t pi = block.pixelIndex(x + k + ox, py);
+                h[k] = hitsOf(pi);
+                w[k] = fw.weights(block.patternOf(pi), -ox, y - py);
+            }
             for (int j = 0; j < S; ++j)
-                if (own[j].a != 0 && own[j].z < kInf) far = std::max(far, own[j].z);  // fragments alone: no depth
-            if (far > -std::numeric_limits<float>::infinity()) z = far;
-            break;
+                for (int k = 0; k < kGatherRun; ++k) accumulate(acc[k], w[k][j], h[k][j]);
         }
-        case DepthFilter::Average: {
-            float sum = 0;
-            int n = 0;
-            for (int j = 0; j < S; ++j)
-                if (own[j].a != 0 && own[j].z < kInf) sum += own[j].z, ++n;
-            if (n > 0) z = sum / float(n);
-            break;
-        }
+    for (int k = 0; k < kGatherRun; ++k) {
+        const float inv = std::fabs(weightSums[k]) > 1e-8f ? 1.0f / weightSums[k] : 0.0f;
+        for (int c = 0; c < 4; ++c) out[k][c] = acc[k][c] * inv;
+        out[k][4] = pixelDepth(block, fw, x + k, y, hitsOf);
     }
-    out[4] = z;
 }
 
 // The output variables of tile pixel (x, y) from `hitsOf` and `aovsOf` (pixel index -> its S hits,
@@ -240,9 +283,17 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
     if (!dense) {
         scratch.still.resize(tilePixels * 5);
         for (int y = tile.y0; y <= tile.y1; ++y)
-            for (int x = tile.x0; x <= tile.x1; ++x) {
+            for (int x = tile.x0; x <= tile.x1;) {
                 const size_t t = size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0);
+                if (x + kGatherRun - 1 <= tile.x1 && gatherRunFits(R, fw, x)) {
+                    float* out[kGatherRun];
+                    for (int k = 0; k < kGatherRun; ++k) out[k] = &scratch.still[(t + size_t(k)) * 5];
+                    gatherRun(block, fw, x, y, &scratch.weightSum[t], stillHits, out);
+                    x += kGatherRun;
+                    continue;
+                }
                 gather(block, fw, x, y, scratch.weightSum[t], stillHits, &scratch.still[t * 5]);
+                ++x;
             }
     }
 
@@ -299,20 +350,36 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
             continue;
         }
         float* own = out.own(firstSlot + fi);
+        auto hitsOfFrame = [&](size_t i) { return frameHits(fi, i); };
+        auto outputVariables = [&](int x, int y, float* px) {
+            if (writeAov)
+                gatherAovs(block, fw, x, y, [&](size_t i) { return block.hits(fi, i); },
+                           [&](size_t i) { return block.aovs(fi, i); }, scratch.aov.data(), px + 5);
+            else
+                std::fill(px + 5, px + C, 0.0f);
+        };
         for (int y = tile.y0; y <= tile.y1; ++y)
-            for (int x = tile.x0; x <= tile.x1; ++x) {
+            for (int x = tile.x0; x <= tile.x1;) {
                 const size_t t = size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0);
                 float* px = own + t * size_t(C);
                 if (!scratch.gathered[t]) {
                     putStill(t, px);
+                    ++x;
                     continue;
                 }
-                gather(block, fw, x, y, scratch.weightSum[t], [&](size_t i) { return frameHits(fi, i); }, px);
-                if (writeAov)
-                    gatherAovs(block, fw, x, y, [&](size_t i) { return block.hits(fi, i); },
-                               [&](size_t i) { return block.aovs(fi, i); }, scratch.aov.data(), px + 5);
-                else
-                    std::fill(px + 5, px + C, 0.0f);
+                bool run = x + kGatherRun - 1 <= tile.x1 && gatherRunFits(R, fw, x);
+                for (int k = 1; run && k < kGatherRun; ++k) run = scratch.gathered[t + size_t(k)] != 0;
+                if (run) {
+                    float* outs[kGatherRun];
+                    for (int k = 0; k < kGatherRun; ++k) outs[k] = px + size_t(k) * size_t(C);
+                    gatherRun(block, fw, x, y, &scratch.weightSum[t], hitsOfFrame, outs);
+                    for (int k = 0; k < kGatherRun; ++k) outputVariables(x + k, y, outs[k]);
+                    x += kGatherRun;
+                    continue;
+                }
+                gather(block, fw, x, y, scratch.weightSum[t], hitsOfFrame, px);
+                outputVariables(x, y, px);
+                ++x;
             }
     }
 }

@@ -56,7 +56,7 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     }
     records_ = 0;
     slot_.assign(size_t(frameCount) * pixels, -1);
-    farthest_.assign(size_t(frameCount) * pixels, std::numeric_limits<float>::infinity());
+    farthest_.assign(size_t(frameCount) * pixels, -std::numeric_limits<float>::infinity());  // stale
     recordsOf_.assign(dense ? 0 : pixels, 0);
     if (dense) {
         still_.clear();

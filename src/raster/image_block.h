@@ -17,6 +17,7 @@
 // (sampleOfStratum). Records sit in chunks, so a record never moves once made.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -47,6 +48,8 @@ struct SampleHit {
         return c2.z < c.z;
     }
 };
+// The resolve reads R G B A of a hit as four floats side by side (film.cpp's gather).
+static_assert(offsetof(SampleHit, a) == offsetof(SampleHit, c) + 3 * sizeof(float));
 constexpr SampleHit kNoHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f, kNoPrimitive};
 
 // A see-through hit (Oi < 1 in some channel) of a sample. Kept apart from SampleHit, in a list per
@@ -140,11 +143,12 @@ class ImageBlock {
         return r ? r : still(i);
     }
     size_t recordCount() const { return records_; }
-    // Frame fi's bound on the farthest depth pixel i's samples see: +inf until measured, then
-    // what was last measured. A sample's depth only comes nearer (a hit replaces it only when it
-    // beats it; a record starts as a copy of the still layer), so a measured value stays a bound,
-    // and a quad behind it is hidden from every sample of the pixel: one float read instead of
-    // the S hits (GridRasterizer::sampleMoving, deep in foliage).
+    // Frame fi's bound on the farthest depth pixel i's samples see, |value|: -inf until measured,
+    // then what was last measured, negated (stale) when a hit replaces the sample that was the
+    // farthest, so that it is measured again only then. A sample's depth only comes nearer (a hit
+    // replaces it only when it beats it; a record starts as a copy of the still layer), so a
+    // measured value stays a bound, and a quad behind it is hidden from every sample of the
+    // pixel: one float read instead of the S hits (GridRasterizer::sampleMoving, deep in foliage).
     float& farthestBound(int fi, size_t i) { return farthest_[size_t(fi) * size_t(pixelCount()) + i]; }
 
     // Dense mode with shadows: the shadowed parts of the S hits of frame fi's record of pixel i,

@@ -561,14 +561,15 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         if (!Counting) {
                             // Every sample of the pixel already sees something nearer than the whole
                             // quad: none of them can change (the usual case deep in foliage). The
-                            // pixel's bound says so without reading its hits; else it is measured again.
+                            // pixel's bound says so without reading its hits; a stale one (negative:
+                            // its farthest sample came nearer) is measured again only when it fails.
                             float& bound = block.farthestBound(fi, pi);
-                            if (!(q.zmin > bound)) {
+                            if (bound < 0 && !(q.zmin > -bound)) {
                                 const SampleHit* seen = block.hits(fi, pi);
                                 bound = seen[0].z;
                                 for (int k = 1; k < S; ++k) bound = std::max(bound, seen[k].z);
                             }
-                            if (q.zmin > bound) {
+                            if (q.zmin > std::fabs(bound)) {
                                 behind += s1 - s0;
                                 continue;
                             }
@@ -639,6 +640,11 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                                        [&](int c) { return lerp(ci0[idx[flat ? 0 : c]], ci1[idx[flat ? 0 : c]], sg); }, &hit))
                                 continue;
                             firstHits += cur.a == 0;
+                            if (!Counting) {
+                                // The pixel's farthest sample came nearer: its bound goes stale.
+                                float& bound = block.farthestBound(fi, pi);
+                                if (!(cur.z < std::fabs(bound))) bound = -std::fabs(bound);
+                            }
                             if (!rec) rec = block.makeRecord(fi, pi);
                             rec[sj] = hit;
                             if (A)
