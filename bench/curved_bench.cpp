@@ -83,7 +83,7 @@ void BM_CurvedDice(benchmark::State& state) {
     BodyPtr piece = CurvedBody(mesh, face).restrictedTo(0, 1);
     const RenderOptions options;
     SplitDecision d;
-    while (!(d = decideSplit(*piece, piece->measure(meshes.camera), options)).dice) {
+    while (!(d = decideSplit(*piece, piece->measure(meshes.camera), options, 1.0)).dice) {
         BodyPtr h[2];
         piece->split(d.axis, h);
         piece = std::move(h[0]);
@@ -109,7 +109,7 @@ void BM_CurvedSplitLoop(benchmark::State& state) {
     const RenderOptions options;
     std::vector<BodyPtr> stack;
     uint64_t splits = 0, grids = 0;
-    for (auto _ : state) splitToGrids(root, meshes.camera, options, stack, splits, grids);
+    for (auto _ : state) splitToGrids(root, meshes.camera, options, 1.0, stack, splits, grids);
     state.counters["splits/s"] = benchmark::Counter(double(splits), benchmark::Counter::kIsRate);
     state.counters["grids"] = double(grids) / double(state.iterations());
 }

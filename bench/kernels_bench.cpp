@@ -52,7 +52,7 @@ void BM_SplitLoop(benchmark::State& state) {
     const RenderOptions options;
     std::vector<BodyPtr> stack;
     uint64_t splits = 0, dices = 0;
-    for (auto _ : state) splitToGrids(root, cam, options, stack, splits, dices);
+    for (auto _ : state) splitToGrids(root, cam, options, 1.0, stack, splits, dices);
     state.counters["splits/s"] = benchmark::Counter(double(splits), benchmark::Counter::kIsRate);
     state.counters["grids"] = double(dices) / double(state.iterations());
 }

@@ -11,14 +11,15 @@
 
 namespace streyes {
 
-inline void splitToGrids(const Body& root, const Camera& camera, const RenderOptions& options,
+// `exposure`: the shutter's length in frames (for GeometricApproximation "motionfactor").
+inline void splitToGrids(const Body& root, const Camera& camera, const RenderOptions& options, double exposure,
                          std::vector<BodyPtr>& stack, uint64_t& splits, uint64_t& grids) {
     stack.clear();
     stack.push_back(root.restrictedTo(root.time().t0, root.time().t1));
     while (!stack.empty()) {
         BodyPtr b = std::move(stack.back());
         stack.pop_back();
-        const SplitDecision d = decideSplit(*b, b->measure(camera), options);
+        const SplitDecision d = decideSplit(*b, b->measure(camera), options, exposure);
         if (d.dice) {
             ++grids;
             continue;

@@ -156,6 +156,7 @@ RtVoid RiScale(RtFloat sx, RtFloat sy, RtFloat sz);
 RtVoid RiColor(RtColor color);
 RtVoid RiOpacity(RtColor color);
 RtVoid RiShadingRate(RtFloat size);
+RtVoid RiGeometricApproximation(RtToken type, RtFloat value);
 RtVoid RiBasis(RtBasis ubasis, RtInt ustep, RtBasis vbasis, RtInt vstep);
 RtVoid RiSides(RtInt sides);
 RtVoid RiOrientation(RtToken orientation);

@@ -89,6 +89,9 @@ struct Attributes {
     double displacementBound = 0;
     std::string displacementBoundSpace = "object";
     double shadingRate = 1.0;                    // pixels of area per micropolygon
+    // GeometricApproximation "motionfactor": a moving surface is diced at a shading rate raised by
+    // max(1, motionFactor * blur / 16), blur the pixels it moves in one exposure. 0: off.
+    double motionFactor = 0;
     std::vector<int> lights;                     // indices into Scene::lights that are on
     ParamList user;                              // Attribute "category" "name" values, as "category:name"
     BasisDesc uBasis, vBasis;                    // Basis, for bicubic patches

@@ -343,10 +343,38 @@ const float* BodyFactory::meshPrimvars(const ParamList& primvars, size_t faces,
     return block;
 }
 
+namespace {
+
+// The pixels a moving mesh moves in one exposure, largest over each face's corners and centre
+// between its two keys: its whole lattice is diced at one rate (GeometricApproximation
+// "motionfactor"), so neighbouring faces meet. 0 (no coarsening) for a still mesh, a closed
+// shutter, or a mesh reaching the eye plane, which cannot be measured.
+double meshBlur(const SurfaceMesh& mesh, double exposure) {
+    const double span = mesh.keys().t1 - mesh.keys().t0;
+    if (!mesh.moving() || !(exposure > 0) || !(span > 0)) return 0;
+    const Camera& camera = mesh.camera();
+    constexpr double kPoints[5][2] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0.5, 0.5}};
+    double most = 0;
+    for (int f = 0; f < mesh.faceCount(); ++f)
+        for (const auto& p : kPoints) {
+            Vec3f a, b, n;
+            mesh.evaluatePoint(f, p[0], p[1], 0, &a, &n);
+            mesh.evaluatePoint(f, p[0], p[1], 1, &b, &n);
+            if (!(a.z >= camera.eyePlane() && b.z >= camera.eyePlane())) return 0;
+            const Vec3f ra = camera.toRaster(a), rb = camera.toRaster(b);
+            most = std::max(most, std::hypot(double(rb.x - ra.x), double(rb.y - ra.y)));
+        }
+    return most * exposure / span;
+}
+
+}  // namespace
+
 void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint64_t primitiveId,
                              std::vector<BodyPtr>& out, Keep* keep, const float* primvarBlock, size_t primvarWidth) {
     mesh->setSource(src);
-    if (mesh->material()) mesh->setShadingRate(mesh->material()->shadingRate);
+    if (const Material* m = mesh->material())
+        mesh->setShadingRate(m->motionFactor > 0 ? motionDicingRate(m->shadingRate, m->motionFactor, meshBlur(*mesh, exposure_))
+                                                 : m->shadingRate);
     for (int f = 0; f < mesh->faceCount(); ++f) {
         auto body = std::make_unique<CurvedBody>(mesh.get(), f);
         body->setPrimitiveId(primitiveId);

@@ -59,6 +59,8 @@ class BodyFactory final : public ChildBodyMaker {
     // per face. The camera must be set: curved bodies
     // measure their edges in raster space. A subdivision mesh OpenSubdiv rejects is an InputError.
     void setCamera(const Camera* camera) { camera_ = camera; }
+    // The shutter's length in frames: GeometricApproximation "motionfactor" measures motion per exposure.
+    void setExposure(double exposure) { exposure_ = exposure; }
     // Binds the Shading Language shaders of every material made from now on (see material.h).
     void setMaterialBinder(const MaterialBinder* binder) { binder_ = binder; }
     // The meshes the bodies point into go to `keep` when given (freed with the bodies by their
@@ -173,6 +175,7 @@ class BodyFactory final : public ChildBodyMaker {
     std::deque<std::unique_ptr<SurfaceMesh>> surfaces_;  // curved bodies point at these
     std::vector<std::shared_ptr<const void>> clouds_;    // point bodies point at these (under mutex_)
     const Camera* camera_ = nullptr;
+    double exposure_ = 1;
     std::vector<ProceduralBody*> outgrown_;
     std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0}, sharedBytes_{0};
     std::atomic<uint64_t> bodyBudget_{0}, renderBudget_{0};

@@ -18,6 +18,7 @@ Material makeMaterial(const Attributes& a, Facing facing) {
     m.Cs = a.color;
     m.Os = a.opacity;
     m.shadingRate = float(a.shadingRate);
+    m.motionFactor = float(a.motionFactor);
     m.lights = a.lights;
     m.attributes = &a;
     const ParamList& p = a.surface.params;
@@ -39,6 +40,16 @@ Material makeMaterial(const Attributes& a, Facing facing) {
         m.kind = SurfaceKind::Default;
     }
     return m;
+}
+
+float dicingRate(const Body& body, const RasterMeasure& m, double exposure) {
+    if (const float rate = body.latticeRate(); rate > 0) return rate;
+    const Material* material = body.material();
+    if (!material) return 1.0f;
+    if (!body.moving() || !(material->motionFactor > 0)) return material->shadingRate;
+    const double span = body.time().t1 - body.time().t0;
+    return motionDicingRate(material->shadingRate, material->motionFactor,
+                            span > 0 ? double(m.motion) * exposure / span : 0.0);
 }
 
 }  // namespace streyes

@@ -2,9 +2,11 @@
 // the scene (BodyFactory); the shading stage evaluates them (shading.h).
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
+#include "geom/body.h"
 #include "streyes/scene.h"
 
 namespace streyes {
@@ -15,6 +17,21 @@ class ShaderInstance;  // shade/vm: a compiled Shading Language shader and its p
 
 enum class SurfaceKind { Constant, Matte, Plastic, Default };
 
+// The shading rate a surface is diced at when it moves `blur` pixels in one exposure: its
+// ShadingRate, raised for fast movers by GeometricApproximation "motionfactor" as RenderMan does,
+// times max(1, motionfactor * blur / 16). Blurred detail cannot be seen, so it is not diced.
+inline float motionDicingRate(float shadingRate, float motionFactor, double blur) {
+    if (!(motionFactor > 0) || !(blur > 0)) return shadingRate;
+    return shadingRate * float(std::max(1.0, double(motionFactor) * blur / 16.0));
+}
+
+// The shading rate a body is diced at: its lattice's (a curved body), else its ShadingRate (1
+// without a material), raised for a fast mover by GeometricApproximation "motionfactor" from the
+// pixels it moves in one exposure (`exposure`: the shutter's length in frames; the piece's
+// motion `m.motion` is over its whole span). The split loop and the ray tracer's tessellation
+// dice by it alike.
+float dicingRate(const Body& body, const RasterMeasure& m, double exposure);
+
 // A surface shader bound to its attribute state: what a body points at.
 struct Material {
     SurfaceKind kind = SurfaceKind::Default;
@@ -23,6 +40,7 @@ struct Material {
     float Ka = 1, Kd = 1, Ks = 0.5f, roughness = 0.1f;
     Color specularColor{1, 1, 1};
     float shadingRate = 1;
+    float motionFactor = 0;  // GeometricApproximation "motionfactor" (motionDicingRate)
     std::vector<int> lights;  // indices into the render's LightSet
     const Attributes* attributes = nullptr;
     // A Shading Language surface (shaders/*.sl or the user's), run over whole grids by the

@@ -17,6 +17,7 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     rs->windowEnd = lastFrame + rs->shutter.close;
     rs->factory = std::make_unique<BodyFactory>(cam.worldToCamera, rs->windowStart, rs->windowEnd, log);
     rs->factory->setCamera(&rs->camera);
+    rs->factory->setExposure(rs->shutter.close - rs->shutter.open);
     rs->factory->setMaterialBinder(binder);
     // Primitive ids from 1, in the order BodyFactory::addPrimitives takes them.
     uint64_t id = 0;

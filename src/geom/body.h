@@ -92,6 +92,9 @@ class Body {
     // A body not diceable in time that dices at each of its keys instead (KeyedPatchBody::diceKey),
     // sampled one key interval at a time: dicing and shading once for a run of keys.
     virtual bool dicesAtKeys() const { return false; }
+    // The shading rate a body whose pieces share one lattice is diced at (a curved body: its
+    // mesh's), or 0: the split loop's own rule (dicingRate, render/split_decision.h).
+    virtual float latticeRate() const { return 0; }
 
     virtual LBBox3f bound() const = 0;
     // Camera-space bound of the body during [a, b], a sub-span of time(). The LBBox lerped to a

@@ -531,7 +531,7 @@ void BucketWorker::process(const Body& body) {
         return;
     }
 
-    const SplitDecision decision = decideSplit(body, m, options_);
+    const SplitDecision decision = decideSplit(body, m, options_, scene_.shutter.close - scene_.shutter.open);
     if (decision.dice) {
         diceShadeSample(body, decision.nu, decision.nv);
         return;

@@ -20,8 +20,9 @@ struct SplitDecision {
     SplitAxis axis = SplitAxis::U;  // when splitting
 };
 
-inline SplitDecision decideSplit(const Body& body, const RasterMeasure& m, const RenderOptions& options) {
-    const float side = std::sqrt(std::max(body.material()->shadingRate, 1e-4f));
+inline SplitDecision decideSplit(const Body& body, const RasterMeasure& m, const RenderOptions& options,
+                                 double exposure) {
+    const float side = std::sqrt(std::max(dicingRate(body, m, exposure), 1e-4f));
     const float size = std::max(m.extentU, m.extentV);
     SplitDecision d;
     if (!body.diceableInTime() && !body.dicesAtKeys()) {

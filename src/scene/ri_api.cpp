@@ -308,6 +308,13 @@ RtVoid RiOpacity(RtColor color) {
     }
 }
 RtVoid RiShadingRate(RtFloat size) { numbers("RiShadingRate", "ShadingRate", {size}); }
+RtVoid RiGeometricApproximation(RtToken type, RtFloat value) {
+    if (RiStream* s = streamFor("RiGeometricApproximation")) {
+        s->request("RiGeometricApproximation", "GeometricApproximation");
+        s->string(type);
+        s->floats(&value, 1);
+    }
+}
 RtVoid RiBasis(RtBasis ubasis, RtInt ustep, RtBasis vbasis, RtInt vstep) {
     RiStream* s = streamFor("RiBasis");
     if (!s) return;
@@ -547,7 +554,7 @@ int riApiFunctionCount() {
         (void*)RiSides, (void*)RiOrientation, (void*)RiReverseOrientation, (void*)RiShadingInterpolation,
         (void*)RiDeclare, (void*)RiIdentity, (void*)RiTransform,
         (void*)RiConcatTransform, (void*)RiTranslate, (void*)RiRotate, (void*)RiScale, (void*)RiColor,
-        (void*)RiOpacity, (void*)RiShadingRate, (void*)RiBasis, (void*)RiAttribute, (void*)RiAttributeV,
+        (void*)RiOpacity, (void*)RiShadingRate, (void*)RiGeometricApproximation, (void*)RiBasis, (void*)RiAttribute, (void*)RiAttributeV,
         (void*)RiSurface, (void*)RiSurfaceV, (void*)RiLightSource, (void*)RiLightSourceV, (void*)RiIlluminate,
         (void*)RiSphere, (void*)RiSphereV, (void*)RiPolygon, (void*)RiPolygonV, (void*)RiPointsPolygons,
         (void*)RiPointsPolygonsV, (void*)RiPatch, (void*)RiPatchV, (void*)RiPatchMesh, (void*)RiPatchMeshV,

@@ -42,6 +42,23 @@ void shadingRate(RibParser& reader, RibArgs& args) {
     reader.state().mutableAttributes().shadingRate = rate;
 }
 
+// GeometricApproximation "motionfactor" value: fast movers are diced and shaded coarser
+// (RenderMan's rule, docs/SCENE-FORMAT.md). The other approximations are not modelled: warned once.
+void geometricApproximation(RibParser& reader, RibArgs& args) {
+    const std::string type = args.string("type");
+    const double value = args.number("value");
+    args.expectEnd();
+    if (type != "motionfactor") {
+        reader.log().warnOnce("geometric-approximation-" + type, args.loc(),
+                              "GeometricApproximation \"" + type + "\" is not modelled (only \"motionfactor\"): ignored");
+        return;
+    }
+    if (!(value >= 0 && value < 1e6))
+        args.fail("GeometricApproximation \"motionfactor\" takes a finite value of at least 0 (0: off), got " +
+                  formatNumber(value));
+    reader.state().mutableAttributes().motionFactor = value;
+}
+
 // Attribute "category" values are kept as "category:name" for the features that read them.
 void attribute(RibParser& reader, RibArgs& args) {
     static const std::set<std::string> categories = {"identifier", "light", "user", "streyes"};
@@ -170,6 +187,7 @@ void addAttributeRequests(RibRequestTable& table) {
     table.add("Color", {color, "Color r g b"});
     table.add("Opacity", {opacity, "Opacity r g b"});
     table.add("ShadingRate", {shadingRate, "ShadingRate area"});
+    table.add("GeometricApproximation", {geometricApproximation, "GeometricApproximation \"motionfactor\" value"});
     table.add("Attribute", {attribute, "Attribute \"category\" parameters..."});
     table.add("Basis", {basis, "Basis ubasis ustep vbasis vstep"});
 }

@@ -128,7 +128,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
     // clang-format off
     // RIB requests outside the subset: warned about once and skipped.
     for (const char* name :
-         {"Quantize", "GeometricApproximation", "ColorSamples", "CropWindow", "RelativeDetail",
+         {"Quantize", "ColorSamples", "CropWindow", "RelativeDetail",
           "PixelVariance", "Interior", "Exterior", "Deformation",
           "TextureCoordinates", "Matte", "Bound", "Detail", "DetailRange", "Perspective", "Skew",
           "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "SolidBegin",

@@ -47,7 +47,7 @@ bool sameAttributes(const Attributes& a, const Attributes& b) {
     return a.color == b.color && a.opacity == b.opacity && sameShader(a.surface, b.surface) &&
            sameShader(a.displacement, b.displacement) && sameShader(a.atmosphere, b.atmosphere) &&
            a.displacementBound == b.displacementBound && a.displacementBoundSpace == b.displacementBoundSpace &&
-           a.shadingRate == b.shadingRate && a.lights == b.lights && sameParams(a.user, b.user) &&
+           a.shadingRate == b.shadingRate && a.motionFactor == b.motionFactor && a.lights == b.lights && sameParams(a.user, b.user) &&
            sameBasis(a.uBasis, b.uBasis) && sameBasis(a.vBasis, b.vBasis) &&  // trim: NuPatchDesc compares its own copy
            a.twoSided == b.twoSided && a.orientation == b.orientation && a.smoothShading == b.smoothShading;
 }

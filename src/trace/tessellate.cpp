@@ -58,8 +58,7 @@ void Tessellator::process(const Body& body, int depth, int eyeDepth) {
     }
     // The split loop's rule (decideSplit).
     const RasterMeasure m = body.measure(cam_);
-    const float rate = body.material() ? body.material()->shadingRate : 1.0f;
-    const float side = std::sqrt(std::max(rate, 1e-4f));
+    const float side = std::sqrt(std::max(dicingRate(body, m, exposure_), 1e-4f));
     const float size = std::max(m.extentU, m.extentV);
     SplitAxis axis;
     if (body.moving() && m.motion > std::max(options_.timeSplitRatio * size, options_.timeSplitMinMotion)) {

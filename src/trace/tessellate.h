@@ -29,7 +29,9 @@ class Tessellator {
     // Splits of a piece across the eye plane before what still straddles it is left out.
     static constexpr int kMaxEyeSplits = 12;
 
-    Tessellator(const Camera& camera, const RenderOptions& options, Log& log) : cam_(camera), options_(options), log_(log) {}
+    // `exposure`: the shutter's length in frames (GeometricApproximation "motionfactor" needs it).
+    Tessellator(const Camera& camera, const RenderOptions& options, double exposure, Log& log)
+        : cam_(camera), options_(options), exposure_(exposure), log_(log) {}
 
     // Appends the micropolygons of `body` (diceable in time, not a procedural) to `out`.
     void tessellate(const Body& body, std::deque<TrilinearBody>& out);
@@ -42,6 +44,7 @@ class Tessellator {
 
     const Camera& cam_;
     const RenderOptions& options_;
+    double exposure_;
     Log& log_;
     size_t count_ = 0;
     bool dropped_ = false, behind_ = false;

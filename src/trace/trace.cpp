@@ -63,7 +63,7 @@ TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, L
     // body order, and so the hierarchy, does not depend on threads.
     micropolygons_.resize(curved_.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, curved_.size()), [&](const tbb::blocked_range<size_t>& r) {
-        Tessellator tessellator(scene.camera, options, log);
+        Tessellator tessellator(scene.camera, options, scene.shutter.close - scene.shutter.open, log);
         for (size_t i = r.begin(); i != r.end(); ++i) tessellator.tessellate(*curved_[i].body, micropolygons_[i]);
     });
     if (!curved_.empty()) {

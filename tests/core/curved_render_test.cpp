@@ -169,7 +169,7 @@ HitCount countHits(const std::string& rib, int firstFrame, int frames, int maxGr
             EXPECT_GE(b->bound().swept().lo.z, cam.eyePlane());  // keep these scenes in front of the eye
             const RasterMeasure m = b->measure(cam);
             if (rasterOutside(m.bound.swept(), h.block.rect())) continue;
-            const SplitDecision d = decideSplit(*b, m, options);  // the renderer's own
+            const SplitDecision d = decideSplit(*b, m, options, rs->shutter.close - rs->shutter.open);  // the renderer's own
             if (d.dice) {
                 b->dice(d.nu, d.nv, grid);
                 raster.rasterize(grid, cam, rs->shutter, h.block, counters);
