@@ -372,9 +372,10 @@ double meshBlur(const SurfaceMesh& mesh, double exposure) {
 void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc* src, uint64_t primitiveId,
                              std::vector<BodyPtr>& out, Keep* keep, const float* primvarBlock, size_t primvarWidth) {
     mesh->setSource(src);
-    if (const Material* m = mesh->material())
-        mesh->setShadingRate(m->motionFactor > 0 ? motionDicingRate(m->shadingRate, m->motionFactor, meshBlur(*mesh, exposure_))
-                                                 : m->shadingRate);
+    if (const Material* m = mesh->material()) {
+        const double blur = m->motionFactor > 0 ? meshBlur(*mesh, exposure_) : 0.0;  // measured only when asked
+        mesh->setShadingRate(motionDicingRate(m->shadingRate, m->motionFactor, blur));
+    }
     for (int f = 0; f < mesh->faceCount(); ++f) {
         auto body = std::make_unique<CurvedBody>(mesh.get(), f);
         body->setPrimitiveId(primitiveId);

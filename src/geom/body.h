@@ -93,7 +93,7 @@ class Body {
     // sampled one key interval at a time: dicing and shading once for a run of keys.
     virtual bool dicesAtKeys() const { return false; }
     // The shading rate a body whose pieces share one lattice is diced at (a curved body: its
-    // mesh's), or 0: the split loop's own rule (dicingRate, render/split_decision.h).
+    // mesh's), or 0: the body's material decides (dicingRate, bodies/material.h).
     virtual float latticeRate() const { return 0; }
 
     virtual LBBox3f bound() const = 0;

@@ -53,7 +53,7 @@ void geometricApproximation(RibParser& reader, RibArgs& args) {
                               "GeometricApproximation \"" + type + "\" is not modelled (only \"motionfactor\"): ignored");
         return;
     }
-    if (!(value >= 0 && value < 1e6))
+    if (!(value >= 0 && std::isfinite(value)))
         args.fail("GeometricApproximation \"motionfactor\" takes a finite value of at least 0 (0: off), got " +
                   formatNumber(value));
     reader.state().mutableAttributes().motionFactor = value;
