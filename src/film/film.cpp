@@ -179,6 +179,37 @@ inline void gatherRun(const ImageBlock& block, const FilterWeights& fw, int x, i
     }
 }
 
+// Gathers the tile pixels `wanted(t)` picks (t: index in the tile) into outOf(t), four neighbours
+// at once (gatherRun) where all four are wanted and their filters lie inside the block, one at a
+// time elsewhere; then finish(x, y, out) for each.
+template <typename Wanted, typename HitsOf, typename OutOf, typename Finish>
+void gatherTile(const ImageBlock& block, const FilterWeights& fw, const PixelRect& tile, const float* weightSums,
+                Wanted wanted, HitsOf hitsOf, OutOf outOf, Finish finish) {
+    const int tw = tile.width();
+    for (int y = tile.y0; y <= tile.y1; ++y)
+        for (int x = tile.x0; x <= tile.x1;) {
+            const size_t t = size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0);
+            if (!wanted(t)) {
+                ++x;
+                continue;
+            }
+            bool run = x + kGatherRun - 1 <= tile.x1 && gatherRunFits(block.rect(), fw, x);
+            for (int k = 1; run && k < kGatherRun; ++k) run = wanted(t + size_t(k));
+            if (run) {
+                float* outs[kGatherRun];
+                for (int k = 0; k < kGatherRun; ++k) outs[k] = outOf(t + size_t(k));
+                gatherRun(block, fw, x, y, weightSums + t, hitsOf, outs);
+                for (int k = 0; k < kGatherRun; ++k) finish(x + k, y, outs[k]);
+                x += kGatherRun;
+                continue;
+            }
+            float* out = outOf(t);
+            gather(block, fw, x, y, weightSums[t], hitsOf, out);
+            finish(x, y, out);
+            ++x;
+        }
+}
+
 // The output variables of tile pixel (x, y) from `hitsOf` and `aovsOf` (pixel index -> its S hits,
 // its S x A floats): the weighted mean over the samples that hit (coverage-aware: see film.h).
 template <typename HitsOf, typename AovsOf>
@@ -282,19 +313,9 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
     // The still layer, resolved once for every frame that shows it.
     if (!dense) {
         scratch.still.resize(tilePixels * 5);
-        for (int y = tile.y0; y <= tile.y1; ++y)
-            for (int x = tile.x0; x <= tile.x1;) {
-                const size_t t = size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0);
-                if (x + kGatherRun - 1 <= tile.x1 && gatherRunFits(R, fw, x)) {
-                    float* out[kGatherRun];
-                    for (int k = 0; k < kGatherRun; ++k) out[k] = &scratch.still[(t + size_t(k)) * 5];
-                    gatherRun(block, fw, x, y, &scratch.weightSum[t], stillHits, out);
-                    x += kGatherRun;
-                    continue;
-                }
-                gather(block, fw, x, y, scratch.weightSum[t], stillHits, &scratch.still[t * 5]);
-                ++x;
-            }
+        gatherTile(
+            block, fw, tile, scratch.weightSum.data(), [](size_t) { return true; }, stillHits,
+            [&](size_t t) { return &scratch.still[t * 5]; }, [](int, int, float*) {});
     }
 
     // Output variables likewise: the still layer's once, a frame's own where it has records near.
@@ -350,7 +371,8 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
             continue;
         }
         float* own = out.own(firstSlot + fi);
-        auto hitsOfFrame = [&](size_t i) { return frameHits(fi, i); };
+        for (size_t t = 0; t < tilePixels; ++t)
+            if (!scratch.gathered[t]) putStill(t, own + t * size_t(C));
         auto outputVariables = [&](int x, int y, float* px) {
             if (writeAov)
                 gatherAovs(block, fw, x, y, [&](size_t i) { return block.hits(fi, i); },
@@ -358,29 +380,9 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
             else
                 std::fill(px + 5, px + C, 0.0f);
         };
-        for (int y = tile.y0; y <= tile.y1; ++y)
-            for (int x = tile.x0; x <= tile.x1;) {
-                const size_t t = size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0);
-                float* px = own + t * size_t(C);
-                if (!scratch.gathered[t]) {
-                    putStill(t, px);
-                    ++x;
-                    continue;
-                }
-                bool run = x + kGatherRun - 1 <= tile.x1 && gatherRunFits(R, fw, x);
-                for (int k = 1; run && k < kGatherRun; ++k) run = scratch.gathered[t + size_t(k)] != 0;
-                if (run) {
-                    float* outs[kGatherRun];
-                    for (int k = 0; k < kGatherRun; ++k) outs[k] = px + size_t(k) * size_t(C);
-                    gatherRun(block, fw, x, y, &scratch.weightSum[t], hitsOfFrame, outs);
-                    for (int k = 0; k < kGatherRun; ++k) outputVariables(x + k, y, outs[k]);
-                    x += kGatherRun;
-                    continue;
-                }
-                gather(block, fw, x, y, scratch.weightSum[t], hitsOfFrame, px);
-                outputVariables(x, y, px);
-                ++x;
-            }
+        gatherTile(
+            block, fw, tile, scratch.weightSum.data(), [&](size_t t) { return scratch.gathered[t] != 0; },
+            [&](size_t i) { return frameHits(fi, i); }, [&](size_t t) { return own + t * size_t(C); }, outputVariables);
     }
 }
 
