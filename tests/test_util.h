@@ -28,6 +28,20 @@ inline constexpr bool kAddressSanitizer = false;
 inline constexpr bool kAddressSanitizer = false;
 #endif
 
+// The scenes whose whole-scene property tests (the epsilon = 0 identity, frame-block invariance)
+// take one to four minutes each under the sanitizers: procedural forests, and hundreds of trees or
+// atoms whose shadows build a ray-tracing hierarchy. There they run only their checksum test, which
+// renders them through the same code; the release suite runs every test on every scene. It keeps
+// CI near its half hour (docs/ARCHITECTURE.md, "Hard cases, fuzzing and sanitizers").
+inline bool slowUnderSanitizers(const std::string& sceneFile) {
+    const size_t slash = sceneFile.find_last_of('/');
+    const std::string name = sceneFile.substr(slash == std::string::npos ? 0 : slash + 1);
+    for (const char* slow : {"atom.rib", "blobby.rib", "forest.rib", "forest-flyover.rib", "forest-small.rib",
+                             "grove.rib", "split_budget.rib"})
+        if (name == slow) return kAddressSanitizer;
+    return false;
+}
+
 // Absolute path of a file in the source tree, e.g. sourcePath("scenes/ramp.rib").
 std::string sourcePath(const std::string& relative);
 

@@ -47,6 +47,11 @@ int channelRank(const std::string& name) {
 
 std::atomic<int> encodeThreads{1};
 
+// zlib's fastest level. An animation's frames are written as fast as they render: at OpenEXR's
+// default (4) zlib took 29% of the demo's CPU time (48 frames at 640x360, rgbaz); level 1 takes
+// 10% less CPU in all for files 6% larger. Readers see the same ZIP compression.
+constexpr int kZipLevel = 1;
+
 }  // namespace
 
 void setExrEncodeThreads(int threads) {
@@ -60,6 +65,7 @@ std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z
     const int W = image.width, H = image.height;
     Imf::Header header(W, H);
     header.compression() = Imf::ZIP_COMPRESSION;
+    header.zipCompressionLevel() = kZipLevel;
     header.insert("software", Imf::StringAttribute("streyes"));
     const char* names[] = {"R", "G", "B", "A"};
     const int colour = alpha ? 4 : 3;
@@ -90,6 +96,7 @@ std::vector<unsigned char> encodeExrChannels(int W, int H, const std::vector<std
                                              const std::vector<float>& pixels) {
     Imf::Header header(W, H);
     header.compression() = Imf::ZIP_COMPRESSION;
+    header.zipCompressionLevel() = kZipLevel;
     header.insert("software", Imf::StringAttribute("streyes"));
     const size_t n = size_t(W) * size_t(H), nc = channels.size();
     // Each channel planar in its file type: halves rounded as encodeExr rounds them.

@@ -20,7 +20,8 @@ namespace streyes {
 void setExrEncodeThreads(int threads);
 
 // The frame as an EXR file's bytes: R, G, B (and A) as half floats, Z as float, ZIP compression
-// (the format frames have always had). Nothing in them depends on the time or the machine.
+// (the format frames have always had) at zlib's fastest level. Nothing in them depends on the time
+// or the machine.
 std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z);
 
 // Any channels, interleaved floats per pixel (channels.size() each): R, G, B, A as half floats, the

@@ -44,6 +44,7 @@ bool sameFrame(const FrameImage& a, const FrameImage& b) {
 class FrameBlockInvariance : public testing::TestWithParam<std::string> {};
 
 TEST_P(FrameBlockInvariance, AFramesPixelsDoNotDependOnItsBlock) {
+    if (test::slowUnderSanitizers(GetParam())) GTEST_SKIP() << "minutes under the sanitizers: the release suite runs it";
     Log log;
     Scene scene = parseRibFile(test::sourcePath(GetParam()), log);
     RenderOptions o;

@@ -146,6 +146,7 @@ std::vector<std::string> sceneFiles() {
 class EveryScene : public testing::TestWithParam<std::string> {};
 
 TEST_P(EveryScene, ToleranceZeroIsBitIdentical) {
+    if (test::slowUnderSanitizers(GetParam())) GTEST_SKIP() << "minutes under the sanitizers: the release suite runs it";
     Log log;
     Scene scene = parseRibFile(test::sourcePath("scenes/" + GetParam()), log);
     // Small and short: the first two frames at 64 pixels wide (with motion blur across them).
