@@ -7,6 +7,15 @@ endif()
 find_package(hwy 1.0 CONFIG REQUIRED)  # Highway: the sampler's SIMD kernels
 find_package(Imath 3.1 CONFIG REQUIRED)
 find_package(OpenEXR 3.1 CONFIG REQUIRED)
+# libdeflate (Debian's 1.14 ships no CMake package): the frames' ZIP compression (src/io/exr_file.cpp).
+find_path(LIBDEFLATE_INCLUDE_DIR libdeflate.h REQUIRED)
+find_library(LIBDEFLATE_LIBRARY deflate REQUIRED)
+if(NOT TARGET libdeflate::libdeflate)
+  add_library(libdeflate::libdeflate UNKNOWN IMPORTED)
+  set_target_properties(libdeflate::libdeflate PROPERTIES
+    IMPORTED_LOCATION "${LIBDEFLATE_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${LIBDEFLATE_INCLUDE_DIR}")
+endif()
 find_package(OpenImageIO 2.4 CONFIG REQUIRED)
 # Debian's OIIO target lists /usr/include/opencv4, which exists only with libopencv-dev: drop it.
 foreach(_prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)

@@ -13,15 +13,15 @@
 
 namespace streyes {
 
-// OpenEXR compresses a file's blocks of scanlines on this many threads (1 at the start). The bytes
+// A file's chunks of scanlines are compressed on this many threads (1 at the start). The bytes
 // are the same whatever the count. The render command sets its thread count: after the last block
 // the writer is alone, and one thread encoding 48 frames left the other core idle for a third
 // of the demo's wall time.
 void setExrEncodeThreads(int threads);
 
 // The frame as an EXR file's bytes: R, G, B (and A) as half floats, Z as float, ZIP compression
-// (the format frames have always had) at zlib's fastest level. Nothing in them depends on the time
-// or the machine.
+// (the format frames have always had; libdeflate makes it, exr_file.cpp). Nothing in them depends
+// on the time, the thread count or the machine.
 std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z);
 
 // Any channels, interleaved floats per pixel (channels.size() each): R, G, B, A as half floats, the

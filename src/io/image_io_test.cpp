@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iterator>
+
+#include <Imath/half.h>
 
 #include "io/exr_file.h"
 #include "streyes/error.h"
@@ -90,6 +93,56 @@ TEST(FrameFiles, EncodingThreadsDoNotChangeTheBytes) {
     ASSERT_EQ(back.channels.size(), 5u);
     EXPECT_EQ(back.at(36, 99, 4), f.z[99 * 37 + 36]);
     EXPECT_EQ(back.at(3, 50, 0), 0.375f);
+}
+
+// The frames' ZIP chunks are made here (libdeflate, exr_file.cpp) and read by OpenEXR's reader:
+// every pixel comes back as written, from a chunk that compresses (a flat colour), one that
+// cannot (random bits, stored as it is) and a short last chunk; a flat frame really shrinks.
+TEST(FrameFiles, EveryPixelReadsBackFromCompressedAndStoredChunks) {
+    const int W = 53, H = 40;  // chunks of 16 scanlines: flat, noise, and 8 lines of a ramp
+    FrameImage f;
+    f.resize(W, H);
+    uint32_t h = 777;
+    auto next = [&] { return h = h * 1664525u + 1013904223u; };
+    auto noiseHalf = [&] {  // a random finite half, as a float (converts back exactly)
+        const uint32_t b = next() >> 16;
+        return float(half(half::FromBits, uint16_t((b & 0x83ffu) | ((b % 31u) << 10))));
+    };
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const size_t i = size_t(y) * size_t(W) + size_t(x);
+            for (int c = 0; c < 4; ++c)
+                f.rgba[i * 4 + size_t(c)] = y < 16 ? 0.25f * float(c + 1) : y < 32 ? noiseHalf() : float(x) / 64.0f;
+            uint32_t zb = (next() & 0x007fffffu) | ((1u + next() % 250u) << 23);  // finite, positive
+            float z;
+            std::memcpy(&z, &zb, sizeof z);
+            f.z[i] = y < 16 ? 5.0f : y < 32 ? z : 1.0f + float(y);
+        }
+    const std::vector<unsigned char> bytes = encodeExr(f, true, true);
+    const test::TempDir tempDir("chunks");
+    const std::string path = tempDir.path() + "/f.exr";
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    const ImageData back = readImage(path);
+    ASSERT_EQ(back.width, W);
+    ASSERT_EQ(back.height, H);
+    ASSERT_EQ(back.channels, (std::vector<std::string>{"R", "G", "B", "A", "Z"}));
+    int wrong = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const size_t i = size_t(y) * size_t(W) + size_t(x);
+            for (int c = 0; c < 4; ++c)
+                wrong += std::memcmp(&back.pixels[i * 5 + size_t(c)], &f.rgba[i * 4 + size_t(c)], 4) != 0;
+            wrong += std::memcmp(&back.pixels[i * 5 + 4], &f.z[i], 4) != 0;
+        }
+    EXPECT_EQ(wrong, 0);
+    // Random bits cannot shrink: the noise chunk alone holds W * 16 * (4 * 2 + 4) bytes.
+    EXPECT_GT(bytes.size(), size_t(W) * 16 * 12);
+    FrameImage flat;
+    flat.resize(W, H);
+    std::fill(flat.rgba.begin(), flat.rgba.end(), 0.5f);
+    std::fill(flat.z.begin(), flat.z.end(), 3.0f);
+    EXPECT_LT(encodeExr(flat, true, true).size(), size_t(W) * size_t(H) * 12 / 10);
 }
 
 }  // namespace
