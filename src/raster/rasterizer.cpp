@@ -474,6 +474,9 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const float* xs = block.xs();
     const float* ys = block.ys();
     const float *lus = block.lus(), *lvs = block.lvs();
+    const InBoxFn inBoxes = inBoxKernel();
+    constexpr size_t kMaskSlices = 4;  // groups of this many slices find their samples by SIMD
+    candidates_.resize(size_t(S));
 
     // Slices are bounded in groups: a quad's bound over a group's time holds every sample of it
     // that could hit, and a slow grid needs no finer bound than a few slices give. As many slices a
@@ -576,12 +579,37 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         }
                         SampleHit* rec = block.record(fi, pi);
                         const int perm = block.permutation(fi, pi);
-                        for (size_t s = s0; s < s1; ++s) {
-                            const Slice& sl = slices_[s];
-                            const int sj = patterns.sampleOfStratum(perm)[sl.k];
+                        // The group's samples inside the quad's bound, each with its slice. Of a
+                        // group of many slices, found 64 samples at a time (SIMD) and listed in
+                        // sample order: each sample is tested alone, so the order changes nothing.
+                        size_t candidates = 0;
+                        if (s1 - s0 >= kMaskSlices) {
+                            const uint16_t* sliceOf = patterns.stratumOfSample(perm);
+                            const Box box{q.xmin, q.xmax, q.ymin, q.ymax, float(first.k), float(last.k)};
+                            for (int c0 = 0; c0 < S; c0 += 64) {
+                                const size_t at = pi * size_t(S) + size_t(c0);
+                                uint64_t in = inBoxes(xs + at, ys + at, patterns.stratumKeys(perm) + c0,
+                                                      std::min(64, S - c0), box);
+                                for (; in; in &= in - 1) {
+                                    const int sj = c0 + __builtin_ctzll(in);
+                                    const size_t s = s0 + size_t(sliceOf[sj] - first.k);
+                                    candidates_[candidates++] = {uint32_t(s), uint32_t(sj)};
+                                }
+                            }
+                        } else {
+                            for (size_t s = s0; s < s1; ++s) {
+                                const int sj = patterns.sampleOfStratum(perm)[slices_[s].k];
+                                const size_t si = pi * size_t(S) + size_t(sj);
+                                const float x = xs[si], y = ys[si];
+                                if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
+                                candidates_[candidates++] = {uint32_t(s), uint32_t(sj)};
+                            }
+                        }
+                        for (size_t n = 0; n < candidates; ++n) {
+                            const Slice& sl = slices_[candidates_[n].slice];
+                            const int sj = int(candidates_[n].sample);
                             const size_t si = pi * size_t(S) + size_t(sj);
                             const float x = xs[si], y = ys[si], tf = patterns.stratumTimes(perm)[sl.k];
-                            if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
                             if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
                             const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
                             if (!Counting && q.zmin > cur.z) {  // all of it behind what the sample already sees

@@ -7,7 +7,8 @@
 // moving grid is projected at the ends of a group of slices (as many as keep its motion over the
 // group under half a pixel), the grid's and then each quad's bound over the group rejected against
 // the block (a vertex moving linearly in camera space projects inside the box of its two ends),
-// and each sample tested against the quad at the sample's own time.
+// and each sample tested against the quad at the sample's own time. A group of four slices or
+// more finds a pixel's samples inside the quad's bound 64 at a time (sample_kernels.h, inBox).
 //
 // A grid that is still and exists over every frame of the block is sampled once, into the
 // block's still layer; any other writes into the frames' records of the pixels it comes nearest
@@ -105,6 +106,10 @@ class GridRasterizer {
     std::vector<uint8_t> exact_;  // per vertex, this slice: projected at each sample's time
     std::vector<QuadHit> quadHits_;  // a still quad's hits
     std::vector<Slice> slices_;
+    struct Candidate {
+        uint32_t slice, sample;  // a moving quad's sample in one pixel, and its slice
+    };
+    std::vector<Candidate> candidates_;
     std::vector<FrameSpan> frames_;
     uint32_t* hitCounts_ = nullptr;
     int32_t* windings_ = nullptr;

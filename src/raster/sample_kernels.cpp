@@ -167,7 +167,37 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
     return tested;
 }
 
+// The bits of samples [0, n) inside the box whose key lies in [k0, k1]: whole vectors, then
+// groups of four, then one at a time (no read past n).
+template <class D>
+HWY_INLINE uint64_t BoxBits(D d, const float* xs, const float* ys, const float* keys, int& j, int n, const Box& b) {
+    const size_t N = hn::Lanes(d);
+    const auto x0 = hn::Set(d, b.xmin), x1 = hn::Set(d, b.xmax), y0 = hn::Set(d, b.ymin), y1 = hn::Set(d, b.ymax);
+    const auto k0 = hn::Set(d, b.k0), k1 = hn::Set(d, b.k1);
+    uint64_t bits = 0;
+    for (; j + int(N) <= n; j += int(N)) {
+        const auto x = hn::LoadU(d, xs + j), y = hn::LoadU(d, ys + j), k = hn::LoadU(d, keys + j);
+        const auto in = hn::And(hn::And(hn::And(hn::Ge(x, x0), hn::Le(x, x1)), hn::And(hn::Ge(y, y0), hn::Le(y, y1))),
+                                hn::And(hn::Ge(k, k0), hn::Le(k, k1)));
+        uint8_t laneBits[8] = {0};
+        hn::StoreMaskBits(d, in, laneBits);
+        uint64_t v = 0;
+        for (size_t i = 0; i < (N + 7) / 8; ++i) v |= uint64_t(laneBits[i]) << (8 * i);
+        bits |= v << j;
+    }
+    return bits;
+}
+
+uint64_t InBox(const float* xs, const float* ys, const float* keys, int n, const Box& b) {
+    int j = 0;
+    uint64_t bits = BoxBits(kD, xs, ys, keys, j, n, b);
+    bits |= BoxBits(hn::CappedTag<float, 4>(), xs, ys, keys, j, n, b);
+    for (; j < n; ++j) bits |= uint64_t(inBox(xs[j], ys[j], keys[j], b)) << j;
+    return bits;
+}
+
 PixelTestFn Kernel() { return &TestPixel; }
+InBoxFn InBoxKernel() { return &InBox; }
 QuadTestFn QuadKernel() { return &TestQuad; }
 const char* Target() { return hwy::TargetName(HWY_TARGET); }
 
@@ -180,6 +210,7 @@ namespace streyes {
 
 HWY_EXPORT(Kernel);
 HWY_EXPORT(QuadKernel);
+HWY_EXPORT(InBoxKernel);
 HWY_EXPORT(Target);
 
 namespace {
@@ -202,6 +233,12 @@ PixelTest scalarTest(const micropolygon::QuadSetup& q, const float* xs, const fl
         else if (insideTriangle(-e[4], c02, e[2], q.e[2].canonical, e[3], q.e[3].canonical)) r.second |= bit;
     }
     return r;
+}
+
+uint64_t scalarInBox(const float* xs, const float* ys, const float* keys, int n, const Box& b) {
+    uint64_t bits = 0;
+    for (int j = 0; j < n; ++j) bits |= uint64_t(inBox(xs[j], ys[j], keys[j], b)) << j;
+    return bits;
 }
 
 uint64_t scalarQuadTest(const micropolygon::QuadSetup& q, const SampleLayout& L, QuadHit* out, size_t* hitCount) {
@@ -256,6 +293,13 @@ PixelTestFn pixelTestKernel() {
 }
 
 PixelTestFn pixelTestScalar() { return &scalarTest; }
+
+InBoxFn inBoxKernel() {
+    static const InBoxFn kernel = HWY_DYNAMIC_DISPATCH(InBoxKernel)();
+    return kernel;
+}
+
+InBoxFn inBoxScalar() { return &scalarInBox; }
 
 const char* pixelTestTarget() { return HWY_DYNAMIC_DISPATCH(Target)(); }
 

@@ -55,6 +55,19 @@ using QuadTestFn = uint64_t (*)(const micropolygon::QuadSetup& q, const SampleLa
 QuadTestFn quadTestKernel();
 QuadTestFn quadTestScalar();
 
+// A moving quad's candidates in one pixel: of samples [0, n) (n <= 64) at xs, ys, those inside the
+// quad's bound over a group of time slices, [xmin, xmax] x [ymin, ymax], whose key (the sample's
+// time stratum) lies in the group's [k0, k1]. Bit j for sample j.
+struct Box {
+    float xmin, xmax, ymin, ymax, k0, k1;
+};
+inline bool inBox(float x, float y, float k, const Box& b) {
+    return x >= b.xmin && x <= b.xmax && y >= b.ymin && y <= b.ymax && k >= b.k0 && k <= b.k1;
+}
+using InBoxFn = uint64_t (*)(const float* xs, const float* ys, const float* keys, int n, const Box& box);
+InBoxFn inBoxKernel();
+InBoxFn inBoxScalar();  // inBox sample by sample
+
 inline micropolygon::Hit quadHit(const QuadHit& h) {
     if (h.first) {
         const float inv = 1.0f / (h.e[0] + h.e[1] + h.e[4]);

@@ -79,5 +79,38 @@ TEST(SampleKernels, KernelGivesTheScalarTestBitForBit) {
     RecordProperty("target", pixelTestTarget());
 }
 
+// A moving quad's candidate filter: the SIMD kernel gives the scalar test's bits for every count
+// of samples (whole vectors, groups of four and single tails), with samples on the box's edges
+// and keys on the range's ends; and the bits are the samples inside.
+TEST(SampleKernels, InBoxKernelGivesTheScalarBits) {
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int> grid(0, 8);
+    std::vector<float> xs(64), ys(64), keys(64);
+    int inside = 0, outside = 0;
+    for (int round = 0; round < 400; ++round) {
+        for (int j = 0; j < 64; ++j) {
+            xs[size_t(j)] = 10.0f + 0.25f * float(grid(rng));  // on a quarter-pixel lattice: box edges are hit
+            ys[size_t(j)] = 20.0f + 0.25f * float(grid(rng));
+            keys[size_t(j)] = float(j % 16);
+        }
+        const float a = 10.0f + 0.25f * float(grid(rng)), c = 20.0f + 0.25f * float(grid(rng));
+        const Box box{a, a + 0.25f * float(grid(rng)), c, c + 0.25f * float(grid(rng)), float(grid(rng)),
+                      float(grid(rng) + 4)};
+        const int n = 1 + round % 64;
+        const uint64_t simd = inBoxKernel()(xs.data(), ys.data(), keys.data(), n, box);
+        const uint64_t scalar = inBoxScalar()(xs.data(), ys.data(), keys.data(), n, box);
+        ASSERT_EQ(simd, scalar) << "n " << n << " round " << round;
+        for (int j = 0; j < 64; ++j) {
+            const float x = xs[size_t(j)], y = ys[size_t(j)], k = keys[size_t(j)];
+            const bool in = j < n && x >= box.xmin && x <= box.xmax && y >= box.ymin && y <= box.ymax && k >= box.k0 &&
+                            k <= box.k1;
+            ASSERT_EQ(bool((simd >> j) & 1), in) << "sample " << j << " of " << n;
+            (in ? inside : outside) += 1;
+        }
+    }
+    EXPECT_GT(inside, 500);  // both outcomes were seen often
+    EXPECT_GT(outside, 1000);
+}
+
 }  // namespace
 }  // namespace streyes
