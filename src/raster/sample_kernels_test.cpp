@@ -79,6 +79,57 @@ TEST(SampleKernels, KernelGivesTheScalarTestBitForBit) {
     RecordProperty("target", pixelTestTarget());
 }
 
+// The kernel the renderer calls for a still quad (every pixel of its bound, the samples of the
+// strata it overlaps) against the scalar reference: the same samples tested, the same hits in
+// the same order, each with the same edge values bit for bit, and each hit the one hitQuad makes.
+TEST(SampleKernels, QuadKernelGivesTheScalarQuadTestBitForBit) {
+    std::mt19937 rng(5);
+    const int W = 6, H = 5, sx = 4, sy = 4, S = sx * sy;
+    const PixelRect R{10, 20, 10 + W - 1, 20 + H - 1};
+    std::uniform_real_distribution<float> jitter(0.0f, 1.0f), corner(9.0f, 17.0f);
+    std::vector<float> xs(size_t(W * H * S)), ys(xs.size());
+    for (int py = 0; py < H; ++py)
+        for (int px = 0; px < W; ++px)
+            for (int j = 0; j < S; ++j) {  // one sample in each stratum, some on a stratum's edge
+                const size_t i = size_t((py * W + px) * S + j);
+                const float u = j % 5 == 0 ? 0.0f : jitter(rng), v = j % 7 == 0 ? 0.0f : jitter(rng);
+                xs[i] = float(R.x0 + px) + (float(j % sx) + u) / float(sx);
+                ys[i] = float(R.y0 + py) + (float(j / sx) + v) / float(sy);
+            }
+    const SampleLayout layout{xs.data(), ys.data(), R.x0, R.y0, W, S, sx, sy};
+    const QuadTestFn kernel = quadTestKernel(), scalar = quadTestScalar();
+    std::vector<QuadHit> a(size_t(W * H * S)), b(a.size());
+    uint64_t hits = 0;
+    for (int t = 0; t < 5000; ++t) {
+        QuadSetup q;
+        for (int c = 0; c < 4; ++c) {
+            // On a quarter-pixel lattice now and then, so that samples fall on edges and corners.
+            q.x[c] = t % 3 == 0 ? std::round(corner(rng) * 4) / 4 : corner(rng);
+            q.y[c] = t % 3 == 0 ? std::round((corner(rng) + 10) * 4) / 4 : corner(rng) + 10;
+            q.z[c] = 1;
+        }
+        if (t % 7 == 0) q.x[1] = q.x[0], q.y[1] = q.y[0];  // a collapsed edge
+        if (!boundQuad(q, nullptr, nullptr, nullptr, R, 0, 10)) continue;
+        setupEdges(q);
+        size_t na = 0, nb = 0;
+        ASSERT_EQ(kernel(q, layout, a.data(), &na), scalar(q, layout, b.data(), &nb)) << "quad " << t;
+        ASSERT_EQ(na, nb) << "quad " << t;
+        for (size_t n = 0; n < na; ++n) {
+            ASSERT_EQ(a[n].pixel, b[n].pixel);
+            ASSERT_EQ(a[n].sample, b[n].sample);
+            ASSERT_EQ(a[n].first, b[n].first);
+            for (int k = 0; k < 5; ++k) ASSERT_TRUE(sameBits(a[n].e[k], b[n].e[k])) << "quad " << t << " hit " << n;
+            const size_t i = size_t(a[n].pixel) * S + a[n].sample;
+            Hit h;
+            ASSERT_TRUE(hitQuad(q, xs[i], ys[i], h)) << "quad " << t << " hit " << n;
+            const Hit k = quadHit(a[n]);
+            EXPECT_TRUE(k.v2 == h.v2 && sameBits(k.l1, h.l1) && sameBits(k.l2, h.l2)) << "quad " << t << " hit " << n;
+        }
+        hits += na;
+    }
+    EXPECT_GT(hits, 50000u);
+}
+
 // A moving quad's candidate filter: the SIMD kernel gives the scalar test's bits for every count
 // of samples (whole vectors, groups of four and single tails), with samples on the box's edges
 // and keys on the range's ends; and the bits are the samples inside.
