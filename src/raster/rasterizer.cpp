@@ -149,8 +149,8 @@ namespace {
 // primitive: SampleHit::beatenBy) and lies inside the clipping range: then *out is the new hit.
 // Depth first, colour only for a hit that passes the depth test.
 template <typename ColorAt>
-inline bool beats(const SampleHit& cur, const float* z, const Hit& h, float nearZ, float farZ, uint64_t id,
-                  ColorAt colorAt, SampleHit* out) {
+[[gnu::always_inline]] inline bool beats(const SampleHit& cur, const float* z, const Hit& h, float nearZ, float farZ,
+                                         uint64_t id, ColorAt colorAt, SampleHit* out) {
     const float zh = z[h.v0] + h.l1 * (z[h.v1] - z[h.v0]) + h.l2 * (z[h.v2] - z[h.v0]);
     if (!(zh >= nearZ && zh <= farZ && zh <= cur.z)) return false;
     // Relative to the first corner: exact where depth or colour is constant.

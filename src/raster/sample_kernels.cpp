@@ -114,7 +114,7 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
     }
     const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
     const V xmin = hn::Set(kD, q.xmin), xmax = hn::Set(kD, q.xmax), ymin = hn::Set(kD, q.ymin), ymax = hn::Set(kD, q.ymax);
-    HWY_ALIGN float e[5][hn::MaxLanes(kD)];
+    HWY_ALIGN float l1s[hn::MaxLanes(kD)], l2s[hn::MaxLanes(kD)];
     uint64_t tested = 0;
     size_t hits = *hitCount;
     for (int ppy = q.py0; ppy <= q.py1; ++ppy)
@@ -147,7 +147,14 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
                                                                                  q.e[2].canonical, ev[3], q.e[3].canonical)));
                     const M inside = hn::Or(first, second);
                     if (hn::AllFalse(kD, inside)) continue;
-                    for (int k = 0; k < 5; ++k) hn::Store(ev[k], kD, e[k]);
+                    // Barycentrics as hitQuad makes them (the same operations in the same order):
+                    // triangle 1 weighs q1 by e20 and q2 by e01; triangle 2 weighs q2 by e30 and
+                    // q3 by e02 = -e20.
+                    const V one = hn::Set(kD, 1.0f), e02 = hn::Neg(ev[4]);
+                    const V inv1 = hn::Div(one, hn::Add(hn::Add(ev[0], ev[1]), ev[4]));
+                    const V inv2 = hn::Div(one, hn::Add(hn::Add(e02, ev[2]), ev[3]));
+                    hn::Store(hn::IfThenElse(first, hn::Mul(ev[4], inv1), hn::Mul(ev[3], inv2)), kD, l1s);
+                    hn::Store(hn::IfThenElse(first, hn::Mul(ev[0], inv1), hn::Mul(e02, inv2)), kD, l2s);
                     uint8_t inBits[8] = {0}, firstBits[8] = {0};
                     hn::StoreMaskBits(kD, inside, inBits);
                     hn::StoreMaskBits(kD, first, firstBits);
@@ -159,7 +166,8 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
                         h.pixel = pixel;
                         h.sample = uint16_t(c0 + int(i) + lane);
                         h.first = uint8_t((fi >> lane) & 1);
-                        for (int k = 0; k < 5; ++k) h.e[k] = e[k][lane];
+                        h.l1 = l1s[lane];
+                        h.l2 = l2s[lane];
                     }
                 }
             }
@@ -270,7 +278,9 @@ uint64_t scalarQuadTest(const micropolygon::QuadSetup& q, const SampleLayout& L,
                     h.pixel = pixel;
                     h.sample = uint16_t(c0 + j);
                     h.first = uint8_t((t.first >> j) & 1);
-                    for (int k = 0; k < 5; ++k) h.e[k] = edges[k * edgeStride(n) + j];
+                    const micropolygon::Hit b = pixelHit(edges, n, j, h.first);
+                    h.l1 = b.l1;
+                    h.l2 = b.l2;
                 }
             }
         }

@@ -46,7 +46,7 @@ struct QuadHit {
     uint32_t pixel;   // index in the block
     uint16_t sample;  // j
     uint8_t first;    // in the quad's first triangle (else the second)
-    float e[5];       // the sample's edge values (QuadSetup::e order), for its barycentrics
+    float l1, l2;     // barycentric weights, as micropolygon::hitQuad makes them (quadHit)
 };
 // Appends the hits to `out` (room for (px1 - px0 + 1) (py1 - py0 + 1) S hits), in pixel order
 // then sample order; returns how many samples were tested.
@@ -69,13 +69,7 @@ InBoxFn inBoxKernel();
 InBoxFn inBoxScalar();  // inBox sample by sample
 
 inline micropolygon::Hit quadHit(const QuadHit& h) {
-    if (h.first) {
-        const float inv = 1.0f / (h.e[0] + h.e[1] + h.e[4]);
-        return {0, 1, 2, h.e[4] * inv, h.e[0] * inv};
-    }
-    const float e02 = -h.e[4];
-    const float inv = 1.0f / (e02 + h.e[2] + h.e[3]);
-    return {0, 2, 3, h.e[3] * inv, e02 * inv};
+    return h.first ? micropolygon::Hit{0, 1, 2, h.l1, h.l2} : micropolygon::Hit{0, 2, 3, h.l1, h.l2};
 }
 
 // Sample j's hit from its edge values, as micropolygon::hitQuad makes it.
