@@ -141,8 +141,10 @@ std::vector<unsigned char> encodeScanlines(int W, int H, std::vector<Plane> plan
         compressChunks(W, H, planes, 0, chunkCount, chunks);
     }
 
+    size_t chunkBytes = 0;
+    for (const std::vector<unsigned char>& c : chunks) chunkBytes += c.size();
     std::vector<unsigned char> bytes;
-    bytes.reserve(4096 + size_t(chunkCount) * 8 + size_t(chunkCount) * (chunks.empty() ? 0 : chunks[0].size()));
+    bytes.reserve(4096 + size_t(chunkCount) * 16 + chunkBytes);  // header, offsets and chunk heads, chunks
     MemoryTarget target{&bytes, {}};
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.user_data = &target;
@@ -184,16 +186,16 @@ std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z
     const int W = image.width, H = image.height;
     const char* names[] = {"R", "G", "B", "A"};
     const int colour = alpha ? 4 : 3;
-    // Colour to half here (Imath's conversion, round to nearest even), interleaved per pixel.
+    // Colour to half here (Imath's conversion, round to nearest even), a plane per channel: the
+    // file's layout, so that packing a chunk copies whole rows.
     const size_t n = size_t(W) * size_t(H);
     std::vector<half> colours(n * size_t(colour));
     for (size_t i = 0; i < n; ++i)
-        for (int c = 0; c < colour; ++c) colours[i * size_t(colour) + size_t(c)] = half(image.rgba[i * 4 + size_t(c)]);
+        for (int c = 0; c < colour; ++c) colours[size_t(c) * n + i] = half(image.rgba[i * 4 + size_t(c)]);
     std::vector<Plane> planes;
-    const size_t xs = size_t(colour) * sizeof(half);
     for (int c = 0; c < colour; ++c)
-        planes.push_back(
-            {names[c], true, reinterpret_cast<const unsigned char*>(colours.data() + c), xs, size_t(W) * xs});
+        planes.push_back({names[c], true, reinterpret_cast<const unsigned char*>(colours.data() + size_t(c) * n),
+                          sizeof(half), size_t(W) * sizeof(half)});
     if (z) {
         const auto* depth = reinterpret_cast<const unsigned char*>(image.z.data());
         planes.push_back({"Z", false, depth, sizeof(float), size_t(W) * sizeof(float)});

@@ -201,8 +201,7 @@ uint64_t InBox(const float* xs, const float* ys, const float* keys, int n, const
     int j = 0;
     uint64_t bits = BoxBits(kD, xs, ys, keys, j, n, b);
     bits |= BoxBits(hn::CappedTag<float, 4>(), xs, ys, keys, j, n, b);
-    for (; j < n; ++j) bits |= uint64_t(inBox(xs[j], ys[j], keys[j], b)) << j;
-    return bits;
+    return bits | inBoxBits(xs, ys, keys, j, n, b);
 }
 
 PixelTestFn Kernel() { return &TestPixel; }
@@ -245,9 +244,7 @@ PixelTest scalarTest(const micropolygon::QuadSetup& q, const float* xs, const fl
 }
 
 uint64_t scalarInBox(const float* xs, const float* ys, const float* keys, int n, const Box& b) {
-    uint64_t bits = 0;
-    for (int j = 0; j < n; ++j) bits |= uint64_t(inBox(xs[j], ys[j], keys[j], b)) << j;
-    return bits;
+    return inBoxBits(xs, ys, keys, 0, n, b);
 }
 
 uint64_t scalarQuadTest(const micropolygon::QuadSetup& q, const SampleLayout& L, QuadHit* out, size_t* hitCount) {

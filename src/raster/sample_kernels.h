@@ -64,6 +64,12 @@ struct Box {
 inline bool inBox(float x, float y, float k, const Box& b) {
     return x >= b.xmin && x <= b.xmax && y >= b.ymin && y <= b.ymax && k >= b.k0 && k <= b.k1;
 }
+// The bits of samples [from, n), one at a time: the scalar reference, and the kernel's tail.
+inline uint64_t inBoxBits(const float* xs, const float* ys, const float* keys, int from, int n, const Box& b) {
+    uint64_t bits = 0;
+    for (int j = from; j < n; ++j) bits |= uint64_t(inBox(xs[j], ys[j], keys[j], b)) << j;
+    return bits;
+}
 using InBoxFn = uint64_t (*)(const float* xs, const float* ys, const float* keys, int n, const Box& box);
 InBoxFn inBoxKernel();
 InBoxFn inBoxScalar();  // inBox sample by sample
