@@ -1,6 +1,7 @@
 #include "raster/coverage.h"
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 
 namespace streyes {
@@ -27,25 +28,37 @@ uint64_t updateCoverage(const ImageBlock& block, float boundary, std::vector<uin
     const int F = frames < 0 ? block.frameCount() : frames;
     coverage.resize(size_t(W) * size_t(H) * size_t(block.frameCount()), 0);
     if (farthest) farthest->resize(coverage.size(), std::numeric_limits<float>::infinity());
+    // The still layer is what every frame without a record of a pixel sees: its farthest hit is
+    // found once a pixel, when first needed (NaN: not yet).
+    std::vector<float> stillFarthest(size_t(W) * size_t(H), std::numeric_limits<float>::quiet_NaN());
+    // Frame by frame, row by row, in the order cells and records are stored. Most cells are
+    // covered after the first layers: eight at a time are skipped when all are.
+    constexpr uint64_t kEightCovered = 0x0101010101010101ull;
     uint64_t added = 0;
-    for (int y = R.y0; y <= R.y1; ++y)
-        for (int x = R.x0; x <= R.x1; ++x) {
-            const size_t i = block.pixelIndex(x, y);
-            // The still layer is what every frame without a record of the pixel sees: tested once.
-            bool stillDone = false;
-            float stillFarthest = 0;
-            for (int fi = 0; fi < F; ++fi) {
-                const size_t ci = (size_t(fi) * size_t(H) + size_t(y - R.y0)) * size_t(W) + size_t(x - R.x0);
-                uint8_t& cell = coverage[ci];
+    for (int fi = 0; fi < F; ++fi)
+        for (int y = 0; y < H; ++y) {
+            const size_t row = (size_t(fi) * size_t(H) + size_t(y)) * size_t(W);
+            for (int x = 0; x < W; ++x) {
+                if ((x & 7) == 0 && x + 8 <= W) {
+                    uint64_t eight;
+                    std::memcpy(&eight, &coverage[row + size_t(x)], sizeof eight);
+                    if (eight == kEightCovered) {
+                        x += 7;
+                        continue;
+                    }
+                }
+                uint8_t& cell = coverage[row + size_t(x)];
                 if (cell) continue;
+                const size_t i = size_t(y) * size_t(W) + size_t(x);  // block.pixelIndex(R.x0 + x, R.y0 + y)
                 float z;
                 if (const SampleHit* r = block.record(fi, i)) {
                     z = farthestHit(r, S);
                 } else {
-                    if (!stillDone) stillFarthest = farthestHit(block.still(i), S), stillDone = true;
-                    z = stillFarthest;
+                    float& still = stillFarthest[i];
+                    if (still != still) still = farthestHit(block.still(i), S);
+                    z = still;
                 }
-                if (farthest) (*farthest)[ci] = z;
+                if (farthest) (*farthest)[row + size_t(x)] = z;
                 if (z < boundary) {
                     cell = 1;
                     ++added;
