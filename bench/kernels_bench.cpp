@@ -15,6 +15,7 @@
 #include "geom/grid.h"
 #include "raster/image_block.h"
 #include "raster/rasterizer.h"
+#include "raster/sample_kernels.h"
 #include "shade/shading.h"
 #include "split_loop.h"
 #include "../tests/pixel_camera.h"
@@ -145,6 +146,56 @@ void BM_SamplerStillBlock(benchmark::State& state) {
     state.counters["hit_efficiency"] = double(counters.sampleHits) / double(std::max<uint64_t>(1, counters.sampleTests));
 }
 BENCHMARK(BM_SamplerStillBlock);
+
+// The still quad test alone (sample_kernels.h, quadTestKernel): the same grid and block as
+// BM_SamplerStillBlock, each quad projected, bounded and set up beforehand, so that only the
+// kernel is timed: the inside test of the samples in each quad's strata, and the barycentrics of
+// its hits. BM_SamplerStillBlock adds the rest of the still sampler (each hit's depth test,
+// colour and write).
+void BM_QuadTestKernel(benchmark::State& state) {
+    const int size = 40;
+    Camera cam = pixelCamera(size);
+    Material m;
+    TrilinearBody::Corners a = turnedSquare(15.37f, 15.61f, size);
+    TrilinearBody body({0, 100}, a, a, {}, &m);
+    Grid g;
+    body.dice(16, 16, g);
+    const PatternTable patterns(SamplePattern{4, 4, 1});
+    ImageBlock block;
+    block.reset({0, 0, 31, 31}, 0, 1, patterns, false);
+    const PixelRect R = block.rect();
+    const int S = block.samplesPerPixel();
+    std::vector<micropolygon::QuadSetup> quads;
+    const int stride = g.nu + 1;
+    for (int j = 0; j < g.nv; ++j)
+        for (int i = 0; i < g.nu; ++i) {
+            const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
+            micropolygon::QuadSetup q;
+            for (int c = 0; c < 4; ++c) {
+                const Vec3f r = cam.toRaster(g.P[0][size_t(idx[c])]);
+                q.x[c] = r.x, q.y[c] = r.y, q.z[c] = r.z;
+            }
+            if (!micropolygon::boundQuad(q, nullptr, nullptr, nullptr, R, cam.nearClip(), cam.farClip())) continue;
+            micropolygon::setupEdges(q);
+            quads.push_back(q);
+        }
+    const SampleLayout layout{block.xs(), block.ys(), R.x0, R.y0, R.width(), S, 4, 4};
+    std::vector<QuadHit> hits(size_t(block.pixelCount()) * size_t(S));
+    const QuadTestFn test = quadTestKernel();
+    uint64_t tests = 0, found = 0;
+    for (auto _ : state)
+        for (const micropolygon::QuadSetup& q : quads) {
+            size_t n = 0;
+            tests += test(q, layout, hits.data(), &n);
+            found += n;
+            benchmark::DoNotOptimize(hits.data());
+        }
+    state.counters["sample_tests/s"] = benchmark::Counter(double(tests), benchmark::Counter::kIsRate);
+    state.counters["hit_efficiency"] = double(found) / double(std::max<uint64_t>(1, tests));
+    state.counters["micropolygons/s"] =
+        benchmark::Counter(double(quads.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_QuadTestKernel);
 
 // Placing a bucket's samples: positions from the pattern table, a time permutation per pixel
 // and frame (the samples themselves are not stored per frame).
