@@ -50,6 +50,7 @@ namespace streyes {
     COUNT(sampleTests, "sample_tests")                                                                 \
     COUNT(sampleHits, "sample_hits")                                                                   \
     COUNT(samplesBehind, "samples_behind") /* not tested: the micropolygon lay behind their hit */    \
+    COUNT(gridGroupsBehind, "grid_groups_behind") /* a moving grid's slices skipped: all of it behind */ \
     COUNT(sampleFragments, "sample_fragments") /* see-through hits kept to composite (Oi < 1) */   \
     SHOWN("hit_efficiency", c.sampleTests ? double(c.sampleHits) / double(c.sampleTests) : 0.0)        \
     /* Ray tracing (--algorithm raytrace*, and shadow rays): the paper's Tables 1 and 2. */           \

@@ -236,6 +236,19 @@ inline bool behindStillLayer(const ImageBlock& block, const QuadSetup& q) {
     return true;
 }
 
+// Whether every sample of pixel pi in frame fi already sees something nearer than zmin. The
+// pixel's farthest bound (ImageBlock::farthestBound) says so without reading its hits; a stale one
+// (negative: its farthest sample came nearer since) is measured again only when it fails.
+inline bool pixelBehind(ImageBlock& block, int fi, size_t pi, float zmin, int S) {
+    float& bound = block.farthestBound(fi, pi);
+    if (bound < 0 && !(zmin > -bound)) {
+        const SampleHit* seen = block.hits(fi, pi);
+        bound = seen[0].z;
+        for (int k = 1; k < S; ++k) bound = std::max(bound, seen[k].z);
+    }
+    return zmin > std::fabs(bound);
+}
+
 // The margin a quad's bound grows by: the circle of confusion over its depths with depth of
 // field (Lens), nothing without.
 template <bool Lens>
@@ -493,7 +506,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const size_t group = perSlice > 0 ? size_t(std::clamp(double(kGroupMotion) / perSlice, 1.0, double(S))) : size_t(S);
 
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
-    uint64_t tests = 0, hits = 0, firstHits = 0, behind = 0, fragments = 0;
+    uint64_t tests = 0, hits = 0, firstHits = 0, behind = 0, fragments = 0, gridsBehind = 0;
     for (size_t s0 = 0; s0 < slices_.size();) {
         size_t s1 = s0 + 1;  // the group: consecutive slices of one frame
         while (s1 < slices_.size() && s1 - s0 < group && slices_[s1].fi == slices_[s0].fi &&
@@ -540,6 +553,23 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
             s0 = s1;
             continue;
         }
+        // The same for the whole grid: every pixel its bound over the group reaches already sees,
+        // in every sample, something nearer than all of it. None of its quads could change a
+        // sample there (each quad's bound and depth lie within the grid's), so none is visited.
+        // Without a lens only: a lens grows each quad's bound by its circle of confusion.
+        if (!Counting && !Lens) {
+            const int x0 = floorClamped(groupBound.lo.x, R.x0, R.x1), x1 = floorClamped(groupBound.hi.x, R.x0, R.x1);
+            const int y0 = floorClamped(groupBound.lo.y, R.y0, R.y1), y1 = floorClamped(groupBound.hi.y, R.y0, R.y1);
+            bool hidden = true;
+            for (int py = y0; py <= y1 && hidden; ++py)
+                for (int px = x0; px <= x1 && hidden; ++px)
+                    hidden = pixelBehind(block, fi, block.pixelIndex(px, py), groupBound.lo.z, S);
+            if (hidden) {
+                ++gridsBehind;
+                s0 = s1;
+                continue;
+            }
+        }
         for (int j = 0; j < nv; ++j) {
             for (int i = 0; i < nu; ++i) {
                 if (hole && hole[j * nu + i]) continue;  // trimmed away
@@ -561,21 +591,11 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 for (int py = q.py0; py <= q.py1; ++py) {
                     for (int px = q.px0; px <= q.px1; ++px) {
                         const size_t pi = block.pixelIndex(px, py);
-                        if (!Counting) {
-                            // Every sample of the pixel already sees something nearer than the whole
-                            // quad: none of them can change (the usual case deep in foliage). The
-                            // pixel's bound says so without reading its hits; a stale one (negative:
-                            // its farthest sample came nearer) is measured again only when it fails.
-                            float& bound = block.farthestBound(fi, pi);
-                            if (bound < 0 && !(q.zmin > -bound)) {
-                                const SampleHit* seen = block.hits(fi, pi);
-                                bound = seen[0].z;
-                                for (int k = 1; k < S; ++k) bound = std::max(bound, seen[k].z);
-                            }
-                            if (q.zmin > std::fabs(bound)) {
-                                behind += s1 - s0;
-                                continue;
-                            }
+                        // Every sample of the pixel already sees something nearer than the whole
+                        // quad: none of them can change (the usual case deep in foliage).
+                        if (!Counting && pixelBehind(block, fi, pi, q.zmin, S)) {
+                            behind += s1 - s0;
+                            continue;
                         }
                         SampleHit* rec = block.record(fi, pi);
                         const int perm = block.permutation(fi, pi);
@@ -697,6 +717,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     counters.firstHits += firstHits;
     counters.samplesBehind += behind;
     counters.fragments += fragments;
+    counters.gridGroupsBehind += gridsBehind;
 }
 
 }  // namespace streyes

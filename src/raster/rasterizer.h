@@ -47,6 +47,7 @@ struct RasterCounters {
     uint64_t samplesBehind = 0;  // samples not tested: all of the micropolygon lay behind their hit
     uint64_t firstHits = 0;      // samples that had no hit before (adaptive depth layers use it)
     uint64_t fragments = 0;      // see-through hits kept for compositing (image_block.h)
+    uint64_t gridGroupsBehind = 0;  // a moving grid's groups of slices not sampled: all of it lay behind
 };
 
 class GridRasterizer {

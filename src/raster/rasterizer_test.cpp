@@ -239,5 +239,61 @@ TEST(GridRasterizer, NearerHitWinsAndEqualDepthGoesToTheEarlierPrimitiveInAnyOrd
     }
 }
 
+// A moving grid wholly behind what every pixel it can reach already sees (a still wall, nearer in
+// every sample) is not sampled at all: not a sample tested, the block unchanged, and the skip
+// counted. The same grid passing in front of the wall is sampled as usual; so is one whose reach
+// includes pixels that see nothing.
+TEST(GridRasterizer, AMovingGridBehindEverySampleItCanReachIsSkipped) {
+    Material material;
+    auto start = [](Fixture& f, int size) {
+        f.size = size;
+        f.cam = pixelCamera(size);
+        f.reset({0.5f});  // every sample at t = 0.5
+        for (int y = 0; y < f.size; ++y)
+            for (int x = 0; x < f.size; ++x) f.place(x, y, float(x) + 0.5f, float(y) + 0.5f);
+    };
+    auto wallOf = [&](Fixture& f, int width) {  // x in [0, width), every row, z = 5, still
+        Grid wall;
+        diceSquare(0, 0, float(width), float(f.size), 5, 0, 4, &material, f.size, wall);
+        wall.Ci[0].assign(wall.P[0].size(), Color{0, 0, 1});
+        wall.primitiveId = 1;
+        f.raster.rasterize(wall, f.cam, Shutter{0, 1}, f.block, f.counters);
+    };
+    Fixture f;
+    start(f, 8);
+    wallOf(f, 8);
+    ASSERT_EQ(f.counters.sampleHits, 64u);
+    const RasterCounters afterWall = f.counters;
+    Grid behind, front;
+    diceSquare(2, 2, 4, 4, 10, 2, 2, &material, 8, behind);  // z = 10, moving 2 pixels right
+    diceSquare(2, 2, 4, 4, 3, 2, 2, &material, 8, front);    // z = 3: nearer than the wall
+    f.raster.rasterize(behind, f.cam, Shutter{0, 1}, f.block, f.counters);
+    EXPECT_GE(f.counters.gridGroupsBehind, 1u);
+    EXPECT_EQ(f.counters.sampleTests, afterWall.sampleTests);
+    EXPECT_EQ(f.counters.samplesBehind, afterWall.samplesBehind);
+    for (int y = 0; y < f.size; ++y)
+        for (int x = 0; x < f.size; ++x) ASSERT_EQ(f.hit(x, y).id, 1u) << x << "," << y;
+    const uint64_t skipped = f.counters.gridGroupsBehind;
+    f.raster.rasterize(front, f.cam, Shutter{0, 1}, f.block, f.counters);
+    EXPECT_EQ(f.counters.gridGroupsBehind, skipped);
+    EXPECT_GT(f.counters.sampleTests, afterWall.sampleTests);
+    EXPECT_FLOAT_EQ(f.hit(3, 3).z, 3.0f);  // at t = 0.5 the square covers x in [3, 5]
+    EXPECT_FLOAT_EQ(f.hit(1, 1).z, 5.0f);
+
+    // 12 pixels wide, the wall covering x < 8: a square at z = 10 moving from x in [5, 7] to
+    // [11, 13] reaches pixels that see nothing, so it is sampled, and seen where it is at t = 0.5
+    // (x in [8, 10]), beyond the wall.
+    Fixture wide;
+    start(wide, 12);
+    wallOf(wide, 8);
+    Grid past;
+    diceSquare(5, 2, 7, 4, 10, 6, 2, &material, 12, past);
+    wide.raster.rasterize(past, wide.cam, Shutter{0, 1}, wide.block, wide.counters);
+    EXPECT_EQ(wide.counters.gridGroupsBehind, 0u);
+    EXPECT_FLOAT_EQ(wide.hit(8, 2).z, 10.0f);
+    EXPECT_FLOAT_EQ(wide.hit(9, 3).z, 10.0f);
+    EXPECT_FLOAT_EQ(wide.hit(6, 2).z, 5.0f);
+}
+
 }  // namespace
 }  // namespace streyes

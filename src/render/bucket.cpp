@@ -144,6 +144,7 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
     counters.sampleTests += rasterCounters_.sampleTests;
     counters.sampleHits += rasterCounters_.sampleHits;
     counters.samplesBehind += rasterCounters_.samplesBehind;
+    counters.gridGroupsBehind += rasterCounters_.gridGroupsBehind;
     counters.sampleFragments += rasterCounters_.fragments;
     rasterCounters_ = {};
     shader_.takeCounters(counters);
