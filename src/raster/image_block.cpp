@@ -8,6 +8,8 @@ namespace streyes {
 void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, const PatternTable& patterns, bool dense,
                        int shadowSlots, bool lens) {
     rect_ = rect;
+    width_ = rect.width();
+    pixels_ = int(rect.area());
     firstFrame_ = firstFrame;
     frameCount_ = frameCount;
     patterns_ = &patterns;

@@ -83,8 +83,9 @@ class ImageBlock {
     const PatternTable& patterns() const { return *patterns_; }
     const SamplePattern& pattern() const { return patterns_->pattern(); }
     int samplesPerPixel() const { return S_; }  // per frame; also the number of time slices
-    int pixelCount() const { return rect_.area(); }
-    size_t pixelIndex(int x, int y) const { return size_t(y - rect_.y0) * size_t(rect_.width()) + size_t(x - rect_.x0); }
+    // Kept beside rect_ at reset: the samplers index pixels and frames for every pixel they visit.
+    int pixelCount() const { return pixels_; }
+    size_t pixelIndex(int x, int y) const { return size_t(y - rect_.y0) * size_t(width_) + size_t(x - rect_.x0); }
     bool dense() const { return dense_; }
 
     // The pattern of pixel i (PatternTable::patternOf, kept: resolving asks for it often).
@@ -215,6 +216,7 @@ class ImageBlock {
     static constexpr uint32_t kRecordsPerChunk = 256;
 
     PixelRect rect_;
+    int width_ = 0, pixels_ = 0;  // rect_.width(), rect_.area()
     int firstFrame_ = 0, frameCount_ = 0, S_ = 0;
     bool dense_ = false;
     const PatternTable* patterns_ = nullptr;
