@@ -126,15 +126,22 @@ BENCHMARK(BM_SamplerPerspective)->ArgNames({"px_per_frame"})->Arg(4)->Arg(16);
 
 // A still grid over a block of 48 frames: the spacetime case, diced once and sampled once into the
 // still layer (the samples sit at the same positions in every frame).
-void BM_SamplerStillBlock(benchmark::State& state) {
-    const int size = 40, frames = 48;
-    Camera cam = pixelCamera(size);
-    Material m;
+// The still kernels' grid: the turned square on a size x size frame, still over frames 0-100,
+// diced 16 x 16 (1-pixel micropolygons), white.
+Grid stillSquare(int size, const Material& m) {
     TrilinearBody::Corners a = turnedSquare(15.37f, 15.61f, size);
     TrilinearBody body({0, 100}, a, a, {}, &m);
     Grid g;
     body.dice(16, 16, g);
     g.Ci[0].assign(g.P[0].size(), Color{1, 1, 1});
+    return g;
+}
+
+void BM_SamplerStillBlock(benchmark::State& state) {
+    const int size = 40, frames = 48;
+    Camera cam = pixelCamera(size);
+    Material m;
+    const Grid g = stillSquare(size, m);
     const PatternTable patterns(SamplePattern{4, 4, 1});
     ImageBlock block;
     block.reset({0, 0, 31, 31}, 0, frames, patterns, false);
@@ -156,10 +163,7 @@ void BM_QuadTestKernel(benchmark::State& state) {
     const int size = 40;
     Camera cam = pixelCamera(size);
     Material m;
-    TrilinearBody::Corners a = turnedSquare(15.37f, 15.61f, size);
-    TrilinearBody body({0, 100}, a, a, {}, &m);
-    Grid g;
-    body.dice(16, 16, g);
+    const Grid g = stillSquare(size, m);
     const PatternTable patterns(SamplePattern{4, 4, 1});
     ImageBlock block;
     block.reset({0, 0, 31, 31}, 0, 1, patterns, false);
