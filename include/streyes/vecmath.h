@@ -72,7 +72,7 @@ template <typename T> bool isFinite(Vec3<T> v) {
 // which is undefined: raster bounds of huge or degenerate bodies reach far past any image.
 // Floors by truncating and stepping down, not through floorf (a library call in the sampler's
 // inner loops without SSE4.1).
-inline int floorClamped(float v, int lo, int hi) {
+[[gnu::always_inline]] inline int floorClamped(float v, int lo, int hi) {
     if (!(v >= float(lo))) return lo;
     if (v >= float(hi)) return hi;
     int i = int(v);  // v is within [lo, hi): no overflow

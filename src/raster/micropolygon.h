@@ -107,7 +107,7 @@ inline void trianglesCovering(const QuadSetup& q, float sx, float sy, uint32_t* 
 // `margin(zmin, zmax)` grows the raster bound in x and y (depth of field: the circle of
 // confusion over the quad's depths, Camera::cocMargin); the plain form grows it by nothing.
 template <typename Margin>
-inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const float* z2, const PixelRect& R,
+[[gnu::always_inline]] inline bool boundQuad(QuadSetup& q, const float* x2, const float* y2, const float* z2, const PixelRect& R,
                       float nearZ, float farZ, Margin margin) {
     float zmin = q.z[0], zmax = q.z[0];
     q.xmin = q.xmax = q.x[0];
