@@ -89,12 +89,9 @@ PixelTest TestPixel(const QuadSetup& q, const float* xs, const float* ys, int n,
     return r;
 }
 
-// The candidate samples of one pixel for a quad: those of the strata its bound overlaps.
-HWY_INLINE uint64_t strataCandidates(const QuadSetup& q, const SampleLayout& L, int px, int py, int c0, int n) {
-    const int iy0 = floorClamped((q.ymin - float(py)) * float(L.sy), 0, L.sy - 1);
-    const int iy1 = floorClamped((q.ymax - float(py)) * float(L.sy), 0, L.sy - 1);
-    const int ix0 = floorClamped((q.xmin - float(px)) * float(L.sx), 0, L.sx - 1);
-    const int ix1 = floorClamped((q.xmax - float(px)) * float(L.sx), 0, L.sx - 1);
+// The candidate samples of one pixel for a quad: those of the strata [ix0, ix1] x [iy0, iy1] its
+// bound overlaps there (rows from the pixel's row, columns from its column: found once each).
+HWY_INLINE uint64_t strataCandidates(const SampleLayout& L, int ix0, int ix1, int iy0, int iy1, int c0, int n) {
     uint64_t candidates = 0;
     for (int iy = iy0; iy <= iy1; ++iy) {
         const int row = iy * L.sx - c0;  // the row's first sample, in this chunk
@@ -117,14 +114,18 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
     HWY_ALIGN float l1s[hn::MaxLanes(kD)], l2s[hn::MaxLanes(kD)];
     uint64_t tested = 0;
     size_t hits = *hitCount;
-    for (int ppy = q.py0; ppy <= q.py1; ++ppy)
+    for (int ppy = q.py0; ppy <= q.py1; ++ppy) {
+        const int iy0 = floorClamped((q.ymin - float(ppy)) * float(L.sy), 0, L.sy - 1);
+        const int iy1 = floorClamped((q.ymax - float(ppy)) * float(L.sy), 0, L.sy - 1);
         for (int ppx = q.px0; ppx <= q.px1; ++ppx) {
+            const int ix0 = floorClamped((q.xmin - float(ppx)) * float(L.sx), 0, L.sx - 1);
+            const int ix1 = floorClamped((q.xmax - float(ppx)) * float(L.sx), 0, L.sx - 1);
             const uint32_t pixel = uint32_t((ppy - L.y0) * L.width + (ppx - L.x0));
             const float* xs = L.xs + size_t(pixel) * size_t(L.S);
             const float* ys = L.ys + size_t(pixel) * size_t(L.S);
             for (int c0 = 0; c0 < L.S; c0 += 64) {
                 const int n = std::min(64, L.S - c0);
-                const uint64_t candidates = strataCandidates(q, L, ppx, ppy, c0, n);
+                const uint64_t candidates = strataCandidates(L, ix0, ix1, iy0, iy1, c0, n);
                 for (size_t i = 0; i < size_t(n); i += N) {
                     uint64_t bits = candidates >> i;
                     if (N < 64) bits &= (uint64_t(1) << N) - 1;
@@ -149,12 +150,12 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
                     if (hn::AllFalse(kD, inside)) continue;
                     // Barycentrics as hitQuad makes them (the same operations in the same order):
                     // triangle 1 weighs q1 by e20 and q2 by e01; triangle 2 weighs q2 by e30 and
-                    // q3 by e02 = -e20.
+                    // q3 by e02 = -e20. One division: each lane needs only its own triangle's.
                     const V one = hn::Set(kD, 1.0f), e02 = hn::Neg(ev[4]);
-                    const V inv1 = hn::Div(one, hn::Add(hn::Add(ev[0], ev[1]), ev[4]));
-                    const V inv2 = hn::Div(one, hn::Add(hn::Add(e02, ev[2]), ev[3]));
-                    hn::Store(hn::IfThenElse(first, hn::Mul(ev[4], inv1), hn::Mul(ev[3], inv2)), kD, l1s);
-                    hn::Store(hn::IfThenElse(first, hn::Mul(ev[0], inv1), hn::Mul(e02, inv2)), kD, l2s);
+                    const V inv = hn::Div(one, hn::IfThenElse(first, hn::Add(hn::Add(ev[0], ev[1]), ev[4]),
+                                                              hn::Add(hn::Add(e02, ev[2]), ev[3])));
+                    hn::Store(hn::Mul(hn::IfThenElse(first, ev[4], ev[3]), inv), kD, l1s);
+                    hn::Store(hn::Mul(hn::IfThenElse(first, ev[0], e02), inv), kD, l2s);
                     uint8_t inBits[8] = {0}, firstBits[8] = {0};
                     hn::StoreMaskBits(kD, inside, inBits);
                     hn::StoreMaskBits(kD, first, firstBits);
@@ -172,6 +173,7 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
                 }
             }
         }
+    }
     *hitCount = hits;
     return tested;
 }
