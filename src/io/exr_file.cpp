@@ -52,18 +52,14 @@ struct Plane {
 
 // The ZIP format's pre-pass: the chunk's bytes split into the even ones then the odd ones, and
 // each byte after the first stored as its difference from the one before, plus 128.
-void zipPredict(const unsigned char* in, size_t n, unsigned char* out) {
-    unsigned char *even = out, *odd = out + (n + 1) / 2;
-    for (size_t i = 0; i < n; i += 2) {
-        *even++ = in[i];
-        if (i + 1 < n) *odd++ = in[i + 1];
-    }
-    int previous = n ? out[0] : 0;
-    for (size_t i = 1; i < n; ++i) {
-        const int v = out[i];
-        out[i] = static_cast<unsigned char>(v - previous + 384);
-        previous = v;
-    }
+// Written as two independent passes (split, then differences of the split bytes, each from a
+// byte the pass does not write) so that the compiler vectorises both.
+void zipPredict(const unsigned char* in, size_t n, unsigned char* split, unsigned char* out) {
+    const size_t half = (n + 1) / 2;
+    for (size_t k = 0; k < half; ++k) split[k] = in[2 * k];
+    for (size_t k = 0; k < n / 2; ++k) split[half + k] = in[2 * k + 1];
+    if (n) out[0] = split[0];
+    for (size_t i = 1; i < n; ++i) out[i] = static_cast<unsigned char>(split[i] - split[i - 1] + 128);
 }
 
 struct DeflateDeleter {
@@ -77,7 +73,7 @@ void compressChunks(int W, int H, const std::vector<Plane>& planes, int c0, int 
                     std::vector<std::vector<unsigned char>>& chunks) {
     std::unique_ptr<libdeflate_compressor, DeflateDeleter> z(libdeflate_alloc_compressor(kDeflateLevel));
     if (!z) throw std::bad_alloc();
-    std::vector<unsigned char> packed, predicted;
+    std::vector<unsigned char> packed, split, predicted;
     for (int c = c0; c < c1; ++c) {
         const int y0 = c * kLinesPerChunk, y1 = std::min(H, y0 + kLinesPerChunk);
         packed.clear();
@@ -93,8 +89,9 @@ void compressChunks(int W, int H, const std::vector<Plane>& planes, int c0, int 
                         std::memcpy(packed.data() + at + size_t(x) * bytes, row + size_t(x) * p.xs, bytes);
                 }
             }
+        split.resize(packed.size());
         predicted.resize(packed.size());
-        zipPredict(packed.data(), packed.size(), predicted.data());
+        zipPredict(packed.data(), packed.size(), split.data(), predicted.data());
         std::vector<unsigned char>& out = chunks[size_t(c)];
         out.resize(libdeflate_zlib_compress_bound(z.get(), predicted.size()));
         const size_t n =
