@@ -24,6 +24,11 @@ void setExrEncodeThreads(int threads);
 // on the time, the thread count or the machine.
 std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z);
 
+// Floats to half-float bits, rounded to nearest even as Imath's half(float) rounds them: eight at
+// a time by F16C where the CPU has it (Imath uses F16C only when the whole program is compiled
+// for it), else through Imath. Exposed for tests.
+void floatsToHalves(const float* in, size_t n, uint16_t* out);
+
 // Any channels, interleaved floats per pixel (channels.size() each): R, G, B, A as half floats, the
 // others (Z, output variables) as float; ZIP compression, as encodeExr.
 std::vector<unsigned char> encodeExrChannels(int width, int height, const std::vector<std::string>& channels,

@@ -95,6 +95,39 @@ TEST(FrameFiles, EncodingThreadsDoNotChangeTheBytes) {
     EXPECT_EQ(back.at(3, 50, 0), 0.375f);
 }
 
+// Frames' colour goes to half floats eight at a time (F16C where the CPU has it): every float
+// rounds as Imath's half(float) rounds it, ties to even, subnormals, overflow to infinity and
+// infinities; NaN stays NaN. Over every exponent and random mantissas.
+TEST(FrameFiles, HalvesRoundAsImathRoundsThem) {
+    std::vector<float> in;
+    uint32_t h = 99;
+    for (uint32_t e = 0; e < 256; ++e)
+        for (int k = 0; k < 64; ++k) {
+            h = h * 1664525u + 1013904223u;
+            // Random mantissas, and ones exactly halfway between two halves (ties).
+            const uint32_t m = k % 4 == 0 ? (h & 0x7fe000u) | 0x1000u : (h >> 9);
+            const uint32_t bits = (uint32_t(k & 1) << 31) | (e << 23) | (m & 0x7fffffu);
+            float f;
+            std::memcpy(&f, &bits, sizeof f);
+            in.push_back(f);
+        }
+    in.push_back(65504.0f), in.push_back(65520.0f), in.push_back(-0.0f), in.push_back(5.96e-8f);
+    std::vector<uint16_t> out(in.size());
+    floatsToHalves(in.data(), in.size(), out.data());
+    int wrong = 0, nans = 0;
+    for (size_t i = 0; i < in.size(); ++i) {
+        const half fast(half::FromBits, out[i]), ref(in[i]);
+        if (std::isnan(in[i])) {
+            nans += fast.isNan();
+            wrong += !fast.isNan();
+        } else {
+            wrong += out[i] != ref.bits();
+        }
+    }
+    EXPECT_EQ(wrong, 0);
+    EXPECT_GT(nans, 0);
+}
+
 // The frames' ZIP chunks are made here (libdeflate, exr_file.cpp) and read by OpenEXR's reader:
 // every pixel comes back as written, from a chunk that compresses (a flat colour), one that
 // cannot (random bits, stored as it is) and a short last chunk; a flat frame really shrinks.
