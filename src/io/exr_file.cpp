@@ -206,20 +206,8 @@ bool hasF16C() {
 }
 #endif
 
-}  // namespace
-
-void floatsToHalves(const float* in, size_t n, uint16_t* out) {
-#if defined(__x86_64__)
-    static const bool f16c = hasF16C();
-    if (f16c) return floatsToHalvesF16C(in, n, out);
-#endif
-    for (size_t i = 0; i < n; ++i) out[i] = half(in[i]).bits();
-}
-
-namespace {
-
-// The frame's colour as half bits, a plane per channel (the file's layout, so that packing a
-// chunk copies whole rows).
+// The frame's first `colour` channels as half bits, a plane per channel (the file's layout, so
+// that packing a chunk copies whole rows).
 std::vector<half> colourPlanes(const FrameImage& image, int colour) {
     const size_t n = size_t(image.width) * size_t(image.height);
     std::vector<uint16_t> interleaved(n * 4);
@@ -231,6 +219,14 @@ std::vector<half> colourPlanes(const FrameImage& image, int colour) {
 }
 
 }  // namespace
+
+void floatsToHalves(const float* in, size_t n, uint16_t* out) {
+#if defined(__x86_64__)
+    static const bool f16c = hasF16C();
+    if (f16c) return floatsToHalvesF16C(in, n, out);
+#endif
+    for (size_t i = 0; i < n; ++i) out[i] = half(in[i]).bits();
+}
 
 std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z) {
     const int W = image.width, H = image.height;

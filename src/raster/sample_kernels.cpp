@@ -115,11 +115,11 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
     uint64_t tested = 0;
     size_t hits = *hitCount;
     for (int ppy = q.py0; ppy <= q.py1; ++ppy) {
-        const int iy0 = floorClamped((q.ymin - float(ppy)) * float(L.sy), 0, L.sy - 1);
-        const int iy1 = floorClamped((q.ymax - float(ppy)) * float(L.sy), 0, L.sy - 1);
+        const int iy0 = stratumAt(q.ymin, ppy, L.sy);
+        const int iy1 = stratumAt(q.ymax, ppy, L.sy);
         for (int ppx = q.px0; ppx <= q.px1; ++ppx) {
-            const int ix0 = floorClamped((q.xmin - float(ppx)) * float(L.sx), 0, L.sx - 1);
-            const int ix1 = floorClamped((q.xmax - float(ppx)) * float(L.sx), 0, L.sx - 1);
+            const int ix0 = stratumAt(q.xmin, ppx, L.sx);
+            const int ix1 = stratumAt(q.xmax, ppx, L.sx);
             const uint32_t pixel = uint32_t((ppy - L.y0) * L.width + (ppx - L.x0));
             const float* xs = L.xs + size_t(pixel) * size_t(L.S);
             const float* ys = L.ys + size_t(pixel) * size_t(L.S);
@@ -254,11 +254,11 @@ uint64_t scalarQuadTest(const micropolygon::QuadSetup& q, const SampleLayout& L,
     uint64_t tested = 0;
     size_t hits = *hitCount;
     for (int py = q.py0; py <= q.py1; ++py) {
-        const int iy0 = floorClamped((q.ymin - float(py)) * float(L.sy), 0, L.sy - 1);
-        const int iy1 = floorClamped((q.ymax - float(py)) * float(L.sy), 0, L.sy - 1);
+        const int iy0 = stratumAt(q.ymin, py, L.sy);
+        const int iy1 = stratumAt(q.ymax, py, L.sy);
         for (int px = q.px0; px <= q.px1; ++px) {
-            const int ix0 = floorClamped((q.xmin - float(px)) * float(L.sx), 0, L.sx - 1);
-            const int ix1 = floorClamped((q.xmax - float(px)) * float(L.sx), 0, L.sx - 1);
+            const int ix0 = stratumAt(q.xmin, px, L.sx);
+            const int ix1 = stratumAt(q.xmax, px, L.sx);
             const uint32_t pixel = uint32_t((py - L.y0) * L.width + (px - L.x0));
             for (int c0 = 0; c0 < L.S; c0 += 64) {
                 const int n = std::min(64, L.S - c0);

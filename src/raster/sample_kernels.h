@@ -48,6 +48,11 @@ struct QuadHit {
     uint8_t first;    // in the quad's first triangle (else the second)
     float l1, l2;     // barycentric weights, as micropolygon::hitQuad makes them (quadHit)
 };
+// The stratum, of `strata` across the pixel that starts at p, that coordinate v falls in (clamped
+// to the pixel's): the kernels and the scalar reference visit the strata a quad's bound overlaps.
+inline int stratumAt(float v, int p, int strata) {
+    return floorClamped((v - float(p)) * float(strata), 0, strata - 1);
+}
 // Appends the hits to `out` (room for (px1 - px0 + 1) (py1 - py0 + 1) S hits), in pixel order
 // then sample order; returns how many samples were tested.
 using QuadTestFn = uint64_t (*)(const micropolygon::QuadSetup& q, const SampleLayout& layout, QuadHit* out,
