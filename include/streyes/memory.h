@@ -30,6 +30,7 @@ struct MemoryShape {
     uint64_t traceBytesPerWorker = 0;           // a tracing thread's scratch (its mailbox)
     uint64_t sharedBytes = 0;                   // what bodies share beyond themselves: point clouds
     int aovFloats = 0;                          // output variables: floats per sample and per pixel
+    uint64_t gridCacheBytes = 0;                // grids shared between buckets, at most (grid_cache.h)
 };
 
 // Bytes, by what holds them.
@@ -41,8 +42,11 @@ struct MemoryEstimate {
     uint64_t perWorker = 0;      // one bucket's samples and filter accumulators
     int workers = 1;
     uint64_t writer = 0;         // one frame being encoded and written
+    uint64_t gridCache = 0;      // grids shared between buckets: the cache's capacity
     int frameBlock = 1;
-    uint64_t total() const { return baseline + scene + trace + frameImages + perWorker * uint64_t(workers) + writer; }
+    uint64_t total() const {
+        return baseline + scene + trace + frameImages + perWorker * uint64_t(workers) + writer + gridCache;
+    }
     // "2.3 GiB: frame images 1.5 GiB (64 frames of 1920x1080), samples 0.6 GiB (2 workers x ...), ..."
     std::string describe(const MemoryShape& shape) const;
 };

@@ -96,6 +96,10 @@ struct RenderOptions {
     // bounds the rasterizer's time slices already give (docs/ARCHITECTURE.md, the split loop).
     float timeSplitRatio = 2.0f;
     float timeSplitMinMotion = std::numeric_limits<float>::infinity();
+    // Grids whose bound reaches several buckets are diced and shaded once and shared by them
+    // (render/grid_cache.h), in at most this many bytes (less when the memory budget is short);
+    // 0: every bucket dices its own. Pixels do not depend on it.
+    uint64_t gridCacheBytes = uint64_t(128) << 20;
 
     // Ray tracing and shadows (see spacetime_bvh.h).
     HierarchyOptions hierarchy;

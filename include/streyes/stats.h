@@ -42,7 +42,10 @@ namespace streyes {
     SHOWN("bodies_generated", s.bodiesGenerated)                                                       \
     SHOWN("passes", s.passes)                                                                          \
     COUNT(gridsDiced, "grids_diced")                                                                   \
-    COUNT(micropolygons, "micropolygons")                                                              \
+    COUNT(micropolygons, "micropolygons")  /* diced (and shaded) */                                    \
+    COUNT(gridsShared, "grids_shared")     /* sampled from a grid another bucket diced (grid_cache.h) */ \
+    COUNT(micropolygonsShared, "micropolygons_shared")                                                 \
+    COUNT(gridsEvicted, "grids_evicted")   /* shared grids dropped for room before every bucket took them */ \
     COUNT(pointsShadedBuiltin, "shading.points_builtin") /* vertices the built-in shading shaded */   \
     COUNT(pointsShadedSurface, "shading.points_surface") /* vertices Shading Language surfaces ran on */ \
     COUNT(lightShaderRuns, "shading.light_shader_runs")  /* light shader runs over a grid */          \

@@ -133,6 +133,12 @@ class Body {
     // bucket that asks: it depends on the body and the camera only, and every bucket asks. 0 until
     // made; a race writes the same value.
     mutable std::atomic<uint8_t> rootChunk{0};
+    // Which piece of which body this is, for sharing its diced grid between the buckets it
+    // reaches (render/grid_cache.h). A body made by the scene or a procedural has a fresh
+    // identity; the split loop derives a piece's from its parent's and the cut that made it, so
+    // the same piece gets the same key in every bucket that makes it.
+    uint64_t pieceKey = newIdentity();
+    static uint64_t newIdentity();
 
   protected:
     // Sizes `grid` for nu x nv micropolygons and copies what every vertex shares from the body

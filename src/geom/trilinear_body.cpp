@@ -155,6 +155,18 @@ std::unique_ptr<Body> TrilinearBody::restrictedTo(double a, double b) const {
     return body;
 }
 
+// Identities are handed out in runs of 2^20 per thread: no shared counter per body made. They
+// need be unique only, not the same from run to run.
+uint64_t Body::newIdentity() {
+    static std::atomic<uint64_t> runs{1};
+    thread_local uint64_t next = 0, end = 0;
+    if (next == end) {
+        next = runs.fetch_add(1, std::memory_order_relaxed) << 20;
+        end = next + (uint64_t(1) << 20);
+    }
+    return next++;
+}
+
 void Body::startGrid(int nu, int nv, Grid& grid) const {
     grid.resize(nu, nv, moving_);
     grid.hole.clear();

@@ -186,7 +186,9 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
     } else if (fa > 0 || fb < bucket_.frameCount - 1) {
         // Still, but wanted in some of the bucket's frames only (a moving procedural's children at
         // one level of detail): the piece over those frames.
-        push(root.restrictedTo(std::max(span.t0, a), std::min(span.t1, b)));
+        BodyPtr piece = root.restrictedTo(std::max(span.t0, a), std::min(span.t1, b));
+        piece->pieceKey = pieceKeyOf(root.pieceKey, 0x200000000ull + uint64_t(uint32_t(bucket_.firstFrame + fa)));  // span in GridKey
+        push(std::move(piece));
     } else if (occlusion_) {
         heap_.push_back({displaced(root, root.bound().swept()).lo.z, arrivals_++, &root, nullptr});
         std::push_heap(heap_.begin(), heap_.end(), FartherFirst());
@@ -285,6 +287,7 @@ void BucketWorker::pushChunks(const Body& root, int chunk, int ca, int cb) {
     }
     BodyPtr piece = root.restrictedTo(a, b);
     piece->exposure = ca * chunk;
+    piece->pieceKey = pieceKeyOf(root.pieceKey, 0x100000000ull + uint64_t(uint32_t(ca)) * 16 + uint64_t(chunk));
     push(std::move(piece));
 }
 
@@ -534,7 +537,7 @@ void BucketWorker::process(const Body& body) {
 
     const SplitDecision decision = decideSplit(body, m, options_, scene_.shutter.close - scene_.shutter.open);
     if (decision.dice) {
-        diceShadeSample(body, decision.nu, decision.nv);
+        diceShadeSample(body, decision.nu, decision.nv, raster);
         return;
     }
     const SplitAxis axis = decision.axis;
@@ -609,6 +612,7 @@ void BucketWorker::split(const Body& body, SplitAxis axis, bool eyeSplit) {
     for (int i = 1; i >= 0; --i) {
         if (eyeSplit) halves[i]->eyeSplitDepth = static_cast<unsigned char>(body.eyeSplitDepth + 1);
         else halves[i]->splitDepth = static_cast<unsigned char>(body.splitDepth + 1);
+        halves[i]->pieceKey = pieceKeyOf(body.pieceKey, uint64_t(axis) * 4 + uint64_t(i) * 2 + (eyeSplit ? 1 : 0));
         push(std::move(halves[i]));
     }
 }
@@ -663,11 +667,52 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
     }
 }
 
-void BucketWorker::diceShadeSample(const Body& body, int nu, int nv) {
+// A grid whose bound reaches other buckets of the block is made once, by the first bucket that
+// needs it, and left in the grid cache for the others (grid_cache.h); the rest are made here.
+void BucketWorker::diceShadeSample(const Body& body, int nu, int nv, const Bounds3f& raster) {
     if (body.dicesAtKeys()) {
         diceShadeSampleKeys(static_cast<const KeyedPatchBody&>(body), nu, nv);
         return;
     }
+    const int others = gridCache_ && gridCache_->enabled() ? gridCache_->layout().bucketsReached(raster) - 1 : 0;
+    if (others <= 0) {
+        if (diceShade(body, nu, nv)) sample(grid_);
+        return;
+    }
+    const GridKey key{body.pieceKey, body.uv, body.time().t0, body.time().t1, nu, nv, bucket_.firstFrame,
+                      bucket_.frameCount};
+    GridCache::Lease lease = gridCache_->acquire(key);
+    if (lease.grid) {
+        ++counters.gridsShared;
+        if (lease.grid->nu > 0) {
+            const uint64_t n = uint64_t(lease.grid->nu) * uint64_t(lease.grid->nv);
+            sample(*lease.grid);
+            rasterCounters_.micropolygons -= n;  // counted where it was diced
+            counters.micropolygonsShared += n;
+        }
+        return;
+    }
+    if (!lease.make) {  // this thread is making it further up its stack: a copy of its own
+        if (diceShade(body, nu, nv)) sample(grid_);
+        return;
+    }
+    // Abandoned if dicing or shading throws, so that no bucket waits for it forever.
+    struct Abandon {
+        GridCache* cache;
+        const GridKey& key;
+        bool armed = true;
+        ~Abandon() {
+            if (armed) cache->abandon(key);
+        }
+    } abandon{gridCache_, key};
+    static const std::shared_ptr<const Grid> kNothing = std::make_shared<const Grid>();  // nu == 0
+    const bool drawn = diceShade(body, nu, nv);
+    gridCache_->publish(key, drawn ? std::make_shared<const Grid>(copyForSampling(grid_)) : kNothing, others);
+    abandon.armed = false;
+    if (drawn) sample(grid_);
+}
+
+bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
     auto t = Clock::now();
     body.dice(nu, nv, grid_);
     ++counters.gridsDiced;
@@ -676,7 +721,7 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv) {
     for (int k = 0; k < (grid_.moving ? 2 : 1); ++k) orientNormals(grid_, k, mat);
     if (mat && mat->oneSided && !cullBackFacing(grid_, scene_.camera)) {
         counters.timeDice += secondsSince(t);
-        return;  // every micropolygon faces away
+        return false;  // every micropolygon faces away
     }
     if (!grid_.moving && grid_.t1 > grid_.t0 && shadingVaries(body)) {
         // Still geometry under moving lights: shaded at both ends of its span like a moving grid,
@@ -688,11 +733,15 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv) {
     auto t1 = Clock::now();
     counters.timeDice += std::chrono::duration<double>(t1 - t).count();
     shader_.shade(grid_);
-    auto t2 = Clock::now();
     if (aovs_.count) fillAovs(grid_, aovs_, scene_.camera);
-    counters.timeShade += std::chrono::duration<double>(t2 - t1).count();
-    rasterizer_.rasterize(grid_, scene_.camera, scene_.shutter, block_, rasterCounters_);
-    counters.timeSample += secondsSince(t2);
+    counters.timeShade += secondsSince(t1);
+    return true;
+}
+
+void BucketWorker::sample(const Grid& grid) {
+    auto t = Clock::now();
+    rasterizer_.rasterize(grid, scene_.camera, scene_.shutter, block_, rasterCounters_);
+    counters.timeSample += secondsSince(t);
 }
 
 }  // namespace streyes

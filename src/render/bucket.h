@@ -14,6 +14,7 @@
 #include "geom/grid.h"
 #include "raster/image_block.h"
 #include "raster/rasterizer.h"
+#include "render/grid_cache.h"
 #include "shade/grid_shader.h"
 #include "streyes/render_options.h"
 #include "streyes/stats.h"
@@ -46,6 +47,8 @@ class BucketWorker {
     void setTrace(const TraceScene* trace);
     // The scene's Shading Language shaders (null: built-in shading only). Before render().
     void setShaders(const SceneShaders* shaders) { shader_.setShaders(shaders); }
+    // Grids shared with the other buckets of the frame block (null or disabled: none).
+    void setGridCache(GridCache* cache) { gridCache_ = cache; }
 
     RenderCounters counters;
 
@@ -75,7 +78,11 @@ class BucketWorker {
     bool hiddenBehindHits(const Body& body, const Bounds3f& raster, float zmin) const;
     void endLayer(float boundary);
     void split(const Body& body, SplitAxis axis, bool eyeSplit);
-    void diceShadeSample(const Body& body, int nu, int nv);
+    // `raster`: the body's raster bound as the view cull took it (the buckets it reaches).
+    void diceShadeSample(const Body& body, int nu, int nv, const Bounds3f& raster);
+    // Dices and shades the body into grid_; false when nothing of it is left to sample.
+    bool diceShade(const Body& body, int nu, int nv);
+    void sample(const Grid& grid);
     void diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int nv);
 
     const RenderScene& scene_;
@@ -128,6 +135,7 @@ class BucketWorker {
     std::vector<float> farthest_;     // per cell: the farthest hit at the last table (hiddenBehindHits)
     SummedVolumeTable<uint32_t> table_;
 
+    GridCache* gridCache_ = nullptr;
     const TraceScene* trace_ = nullptr;
     bool traceEyeRays_ = false;
     int shadowSlots_ = 0;  // the rasterizer's shadowed light parts per sample

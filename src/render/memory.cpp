@@ -80,6 +80,7 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
                   (s.occlusion ? bucketPixels(s) * framesPerBucket * kOcclusionBytesPerCell : 0);
     // Output variables the same way, as floats, and interleaved then planar while one is encoded.
     e.writer = pixels * (kWriterBytesPerPixel + 8 * aov);
+    e.gridCache = s.gridCacheBytes;
     return e;
 }
 
@@ -95,10 +96,15 @@ std::string MemoryEstimate::describe(const MemoryShape& s) const {
            " pixels x " + std::to_string(frames) + " frame" + (frames == 1 ? "" : "s") + " x " +
            std::to_string(s.samplesPerPixel) + " samples" + (s.shadowSlots ? " with shadows" : "") +
            "), writing " + formatBytes(writer) + ", scene " + formatBytes(scene) +
-           (trace ? ", ray tracing " + formatBytes(trace) : "") + ", program " + formatBytes(baseline);
+           (trace ? ", ray tracing " + formatBytes(trace) : "") + (gridCache ? ", shared grids " + formatBytes(gridCache) : "") +
+           ", program " + formatBytes(baseline);
 }
 
-MemoryEstimate planMemory(const MemoryShape& shape, int maxBlock, int maxWorkers, uint64_t budget) {
+MemoryEstimate planMemory(const MemoryShape& asked, int maxBlock, int maxWorkers, uint64_t budget) {
+    // The grid cache saves work and never changes pixels: it gets what the frame block and the
+    // workers leave of the budget, up to its size (below).
+    MemoryShape shape = asked;
+    shape.gridCacheBytes = 0;
     const MemoryEstimate one = estimateMemory(shape, 1, 1);
     if (one.total() > budget) throw InputError(budgetAdvice(shape, budget, one));
     // With one worker the estimate grows linearly with the block from two frames on (a block of
@@ -113,6 +119,7 @@ MemoryEstimate planMemory(const MemoryShape& shape, int maxBlock, int maxWorkers
     MemoryEstimate e = estimateMemory(shape, block, 1);
     const uint64_t room = budget - e.total();
     e.workers = int(std::min<uint64_t>(uint64_t(std::max(1, maxWorkers)), 1 + room / std::max<uint64_t>(1, e.perWorker)));
+    e.gridCache = std::min(asked.gridCacheBytes, budget - std::min(budget, e.total()));
     return e;
 }
 

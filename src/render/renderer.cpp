@@ -267,6 +267,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                       usesOcclusion(options_.algorithm)};
     shape.sharedBytes = scene_->factory->sharedBytes();
     shape.aovFloats = AovLayout(options_.aovs).count;
+    shape.gridCacheBytes = raytraces(options_.algorithm) ? 0 : options_.gridCacheBytes;
     if (trace) {
         shape.shadowSlots = raytraces(options_.algorithm) ? 0 : scene_->lights.shadowSlots();
         shape.traceBytes = trace->bytes() - (traceFrames ? trace->hierarchyBytes() : 0);
@@ -307,6 +308,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.memoryEstimateBytes = memory.total();
     stats.memoryBudgetBytes = budget;
     stats.memoryProgramBytes = memory.baseline;
+    GridCache gridCache;  // grids shared by the buckets of a frame block
+    gridCache.configure({W, H, tileSize, filter.guardX(), filter.guardY()}, memory.gridCache);
     tbb::task_arena arena(memory.workers);
     stats.threads = arena.max_concurrency();
     tbb::enumerable_thread_specific<std::unique_ptr<BucketWorker>> workers;
@@ -360,6 +363,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                     if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, patterns, weights, layerDepths, log_);
                     w->setTrace(trace.get());
                     w->setShaders(shaders_.get());
+                    w->setGridCache(&gridCache);
                     for (size_t i = r.begin(); i != r.end(); ++i) {
                         w->render(buckets[i], resolved);
                         uint64_t n = ++done;
@@ -368,6 +372,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                 });
             });
             renderSeconds += std::chrono::duration<double>(Clock::now() - t).count();
+            gridCache.clear();  // the next block's buckets span other frames
             std::vector<ProceduralBody*> outgrown = scene_->factory->takeOutgrown();
             if (!outgrown.empty() && pass < kMaxPasses) {
                 for (ProceduralBody* p : outgrown) p->useGrownBound();
@@ -393,6 +398,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     for (const auto& w : workers)
         if (w) stats.counters += w->counters;
     stats.counters.rootBodies = scene_->roots.size();
+    stats.counters.gridsEvicted = gridCache.evictions();
     if (stats.counters.shadingSanitised > 0)
         log_.warnOnce("shading:sanitised", {},
                       std::to_string(stats.counters.shadingSanitised) +

@@ -53,6 +53,7 @@ void expectEstimateMatchesGrowth(const std::string& rib, bool exact) {
     RenderOptions o;
     o.threads = 1;
     o.bucketSize = 32;  // the block sizes below are for 32-pixel buckets
+    o.gridCacheBytes = 0;  // counted at its capacity, a bound (grid_cache_test.cpp holds it)
     ASSERT_TRUE(resetPeakResident()) << "cannot reset the peak resident set (/proc/self/clear_refs)";
     const uint64_t before = residentBytes();
     Renderer renderer(scene, o, log);

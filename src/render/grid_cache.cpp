@@ -1,0 +1,175 @@
+#include "render/grid_cache.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace streyes {
+
+namespace {
+
+uint64_t mix(uint64_t h, uint64_t v) {
+    h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+    return h * 0xff51afd7ed558ccdull;
+}
+
+template <typename T>
+uint64_t bitsOf(T v) {
+    static_assert(sizeof(T) <= sizeof(uint64_t));
+    uint64_t b = 0;
+    std::memcpy(&b, &v, sizeof v);
+    return b;
+}
+
+// Tiles whose pixels with guard band g reach [lo, hi] along one axis of `size` pixels.
+int tilesReached(float lo, float hi, int size, int tile, int g) {
+    if (!(lo <= hi)) return 0;  // NaN or empty
+    const int n = (size + tile - 1) / tile;
+    // A first guess from the division (clamped before converting: bounds may be huge), then the
+    // view cull's own test on each candidate and its neighbours.
+    const float span = float(size);
+    const int a = int(std::floor(std::clamp(lo, -span, 2 * span) / float(tile))) - 1;
+    const int b = int(std::floor(std::clamp(hi, -span, 2 * span) / float(tile))) + 1;
+    int count = 0;
+    for (int i = std::max(0, a); i <= std::min(n - 1, b); ++i) {
+        const int x0 = std::max(0, i * tile - g), x1 = std::min(size - 1, std::min(size, (i + 1) * tile) - 1 + g);
+        if (hi >= float(x0) && lo < float(x1 + 1)) ++count;
+    }
+    return count;
+}
+
+}  // namespace
+
+size_t GridKeyHash::operator()(const GridKey& k) const {
+    uint64_t h = mix(k.piece, bitsOf(k.uv[0]) | bitsOf(k.uv[1]) << 32);
+    h = mix(h, bitsOf(k.uv[2]) | bitsOf(k.uv[3]) << 32);
+    h = mix(h, bitsOf(k.t0));
+    h = mix(h, bitsOf(k.t1));
+    h = mix(h, uint64_t(uint32_t(k.nu)) | uint64_t(uint32_t(k.nv)) << 32);
+    h = mix(h, uint64_t(uint32_t(k.firstFrame)) | uint64_t(uint32_t(k.frameCount)) << 32);
+    return size_t(h);
+}
+
+int TileLayout::bucketsReached(const Bounds3f& raster) const {
+    if (tileSize <= 0) return 0;
+    // The view cull's test (rasterOutside) is separable: a bucket is reached when its columns
+    // and its rows are.
+    return tilesReached(raster.lo.x, raster.hi.x, width, tileSize, guardX) *
+           tilesReached(raster.lo.y, raster.hi.y, height, tileSize, guardY);
+}
+
+Grid copyForSampling(const Grid& g) {
+    Grid c;
+    c.nu = g.nu, c.nv = g.nv;
+    c.t0 = g.t0, c.t1 = g.t1;
+    c.openEnd = g.openEnd;
+    c.moving = g.moving;
+    c.material = g.material;
+    c.primitiveId = g.primitiveId;
+    c.u0 = g.u0, c.u1 = g.u1, c.v0 = g.v0, c.v1 = g.v1;
+    c.flatShading = g.flatShading;
+    c.primvarCorners = g.primvarCorners;
+    c.shadowSlots = g.shadowSlots;
+    c.aovCount = g.aovCount;
+    c.hole = g.hole;
+    for (int k = 0; k < (g.moving ? 2 : 1); ++k) {
+        c.P[k] = g.P[k];
+        c.Ci[k] = g.Ci[k];
+        c.Oi[k] = g.Oi[k];
+        c.Cl[k] = g.Cl[k];
+        c.aov[k] = g.aov[k];
+    }
+    return c;
+}
+
+uint64_t gridBytes(const Grid& g) {
+    uint64_t n = sizeof(Grid) + g.hole.size();
+    for (int k = 0; k < 2; ++k)
+        n += (g.P[k].size() + g.N[k].size()) * sizeof(Vec3f) +
+             (g.Ci[k].size() + g.Oi[k].size() + g.Cl[k].size()) * sizeof(Color) + g.aov[k].size() * sizeof(float);
+    return n + g.Cs.size() * sizeof(Color);
+}
+
+void GridCache::configure(const TileLayout& layout, uint64_t capacityBytes) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    layout_ = layout;
+    capacity_ = capacityBytes;
+    entries_.clear();
+    lru_.clear();
+    bytes_ = peakBytes_ = evictions_ = 0;
+}
+
+GridCache::Lease GridCache::acquire(const GridKey& key) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+        auto it = entries_.find(key);
+        if (it == entries_.end()) {
+            Entry& e = entries_[key];
+            e.maker = std::this_thread::get_id();
+            return {nullptr, true};
+        }
+        Entry& e = it->second;
+        if (e.grid) {
+            std::shared_ptr<const Grid> grid = e.grid;
+            if (--e.uses <= 0) erase(it);
+            else lru_.splice(lru_.begin(), lru_, e.lru);
+            return {std::move(grid), false};
+        }
+        // This thread is making it further up its own stack (a bucket task stolen while it
+        // waited elsewhere): waiting would wait for itself.
+        if (e.maker == std::this_thread::get_id()) return {nullptr, false};
+        made_.wait(lock);
+    }
+}
+
+void GridCache::publish(const GridKey& key, std::shared_ptr<const Grid> grid, int uses) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto it = entries_.find(key);
+        if (it != entries_.end() && !it->second.grid) {
+            Entry& e = it->second;
+            if (uses <= 0 || !grid) {
+                erase(it);
+            } else {
+                e.bytes = gridBytes(*grid);
+                e.grid = std::move(grid);
+                e.uses = uses;
+                lru_.push_front(key);
+                e.lru = lru_.begin();
+                bytes_ += e.bytes;
+                while (bytes_ > capacity_ && !lru_.empty()) {
+                    erase(entries_.find(lru_.back()));
+                    ++evictions_;
+                }
+                peakBytes_ = std::max(peakBytes_, bytes_);
+            }
+        }
+    }
+    made_.notify_all();
+}
+
+void GridCache::abandon(const GridKey& key) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto it = entries_.find(key);
+        if (it != entries_.end() && !it->second.grid) erase(it);
+    }
+    made_.notify_all();
+}
+
+void GridCache::clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    entries_.clear();
+    lru_.clear();
+    bytes_ = 0;
+}
+
+void GridCache::erase(std::unordered_map<GridKey, Entry, GridKeyHash>::iterator it) {
+    if (it->second.grid) {
+        bytes_ -= it->second.bytes;
+        lru_.erase(it->second.lru);
+    }
+    entries_.erase(it);
+}
+
+}  // namespace streyes

@@ -1,0 +1,118 @@
+// Diced and shaded grids shared by the buckets of a frame block.
+//
+// Each bucket runs its own split loop, so a piece whose bound reaches several buckets is made in
+// each of them: the same split path from the same root gives the same piece, bit for bit
+// (docs/ARCHITECTURE.md, "The split loop"). A moving grid's swept bound reaches more buckets than
+// a still one's, which made a moving surface cost 3 to 3.5 times the micropolygons of the same
+// surface still. The first bucket that needs such a grid dices and shades it and leaves it here;
+// the others sample it. A grid is the same whichever bucket makes it, so pixels never depend on
+// whether it came from here: the cache changes what is paid, not what is drawn.
+//
+// An entry is dropped when every other bucket its bound reaches has taken it, and the least
+// recently used go first when the cache is over its capacity (then a bucket that comes later
+// dices the grid again). While a bucket makes a grid, the others that want it wait for it, so
+// with room to spare the counts (grids_diced, micropolygons) do not depend on threads.
+#pragma once
+
+#include <array>
+#include <condition_variable>
+#include <cstdint>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <unordered_map>
+
+#include "geom/grid.h"
+#include "streyes/vecmath.h"
+
+namespace streyes {
+
+// Names a grid: the piece (Body::pieceKey, its parameter rectangle and time span), the lattice,
+// and the frames of the bucket that wants it (shading may depend on them).
+struct GridKey {
+    uint64_t piece = 0;
+    std::array<float, 4> uv{};
+    double t0 = 0, t1 = 0;
+    int32_t nu = 0, nv = 0;
+    int32_t firstFrame = 0, frameCount = 0;
+    bool operator==(const GridKey& o) const {
+        return piece == o.piece && uv == o.uv && t0 == o.t0 && t1 == o.t1 && nu == o.nu && nv == o.nv &&
+               firstFrame == o.firstFrame && frameCount == o.frameCount;
+    }
+};
+
+// A piece's key (Body::pieceKey) from its parent's and the cut that made it: the same in every
+// bucket that makes the piece, and (with the parameter rectangle and span beside it in GridKey)
+// different for different pieces.
+inline uint64_t pieceKeyOf(uint64_t parent, uint64_t cut) {
+    uint64_t h = (parent ^ (cut * 0x9e3779b97f4a7c15ull)) + 0x632be59bd9b4e019ull;
+    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ull;  // splitmix64's finaliser
+    h = (h ^ (h >> 27)) * 0x94d049bb133111ebull;
+    return h ^ (h >> 31);
+}
+
+struct GridKeyHash {
+    size_t operator()(const GridKey& k) const;
+};
+
+// The buckets' tiles: tileSize squares from the image's corner, each sampled with a guard band.
+struct TileLayout {
+    int width = 0, height = 0, tileSize = 64, guardX = 0, guardY = 0;
+    // How many buckets' pixels (tile and guard band) a raster bound reaches, as the split loop's
+    // view cull decides it (rasterOutside).
+    int bucketsReached(const Bounds3f& raster) const;
+};
+
+// What a grid keeps for sampling: everything the rasterizer reads (positions, shaded colour and
+// opacity, shadowed light, output variables, holes), not the normals or surface colour.
+Grid copyForSampling(const Grid& grid);
+// Its bytes, as the cache counts them.
+uint64_t gridBytes(const Grid& grid);
+
+class GridCache {
+  public:
+    void configure(const TileLayout& layout, uint64_t capacityBytes);
+    const TileLayout& layout() const { return layout_; }
+    bool enabled() const { return capacity_ > 0; }
+
+    // A grid asked for: the grid itself, when it is here (or once the bucket making it has left
+    // it); otherwise the caller makes it, and when `make` is set it must then call publish() or
+    // abandon() with the same key (unset: this thread is already making it further up its stack,
+    // so the caller makes its own copy and keeps it).
+    struct Lease {
+        std::shared_ptr<const Grid> grid;
+        bool make = false;
+    };
+    Lease acquire(const GridKey& key);
+    // Leaves a grid made by the caller for `uses` more buckets. A grid with nu == 0 stands for
+    // "nothing to sample" (every micropolygon faces away).
+    void publish(const GridKey& key, std::shared_ptr<const Grid> grid, int uses);
+    // The caller will not make it after all (it threw): a bucket waiting for it makes it itself.
+    void abandon(const GridKey& key);
+    // Forgets every grid (between frame blocks).
+    void clear();
+
+    // Counted since configure().
+    uint64_t evictions() const { return evictions_; }
+    uint64_t peakBytes() const { return peakBytes_; }
+
+  private:
+    struct Entry {
+        std::shared_ptr<const Grid> grid;  // null while a bucket makes it
+        std::thread::id maker;
+        int uses = 0;
+        uint64_t bytes = 0;
+        std::list<GridKey>::iterator lru;
+    };
+    void erase(std::unordered_map<GridKey, Entry, GridKeyHash>::iterator it);
+
+    TileLayout layout_;
+    uint64_t capacity_ = 0, bytes_ = 0, peakBytes_ = 0, evictions_ = 0;
+    std::mutex mutex_;
+    std::condition_variable made_;
+    std::unordered_map<GridKey, Entry, GridKeyHash> entries_;
+    std::list<GridKey> lru_;  // made grids, most recently used first
+};
+
+}  // namespace streyes

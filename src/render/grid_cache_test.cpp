@@ -1,0 +1,191 @@
+#include "render/grid_cache.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <thread>
+
+#include "cull/view_cull.h"
+
+namespace streyes {
+namespace {
+
+// The buckets a bound reaches, counted as the renderer lays out its tiles and the view cull
+// tests them: every tile, one by one.
+int bruteForceReached(const TileLayout& t, const Bounds3f& r) {
+    int n = 0;
+    for (int y = 0; y < t.height; y += t.tileSize)
+        for (int x = 0; x < t.width; x += t.tileSize) {
+            const PixelRect tile{x, y, std::min(t.width, x + t.tileSize) - 1, std::min(t.height, y + t.tileSize) - 1};
+            const PixelRect rect{std::max(0, tile.x0 - t.guardX), std::max(0, tile.y0 - t.guardY),
+                                 std::min(t.width - 1, tile.x1 + t.guardX), std::min(t.height - 1, tile.y1 + t.guardY)};
+            n += !rasterOutside(r, rect);
+        }
+    return n;
+}
+
+TEST(GridCache, BucketsReachedAreThoseTheViewCullKeeps) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> pos(-80.0f, 400.0f), size(0.0f, 150.0f);
+    for (const TileLayout t : {TileLayout{320, 200, 64, 1, 1}, TileLayout{100, 37, 16, 3, 0}, TileLayout{64, 64, 64, 2, 2}}) {
+        for (int i = 0; i < 5000; ++i) {
+            Bounds3f r;
+            r.lo = {pos(rng), pos(rng), 1};
+            r.hi = {r.lo.x + size(rng), r.lo.y + size(rng), 2};
+            if (i % 7 == 0) r.hi.x = r.lo.x = std::floor(r.lo.x);  // on a tile's edge, zero width
+            ASSERT_EQ(t.bucketsReached(r), bruteForceReached(t, r)) << r.lo.x << " " << r.lo.y << " " << r.hi.x << " " << r.hi.y;
+        }
+        // Bounds far outside, huge, or NaN.
+        const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+        Bounds3f all;
+        all.lo = {-inf, -1e30f, 0};
+        all.hi = {inf, 1e30f, 1};
+        EXPECT_EQ(t.bucketsReached(all), bruteForceReached(t, all));
+        EXPECT_EQ(t.bucketsReached(all), ((t.width + t.tileSize - 1) / t.tileSize) * ((t.height + t.tileSize - 1) / t.tileSize));
+        Bounds3f none;
+        none.lo = {nan, 0, 0};
+        none.hi = {nan, 10, 1};
+        EXPECT_EQ(t.bucketsReached(none), 0);
+        none.lo = {1e9f, 0, 0};
+        none.hi = {2e9f, 10, 1};
+        EXPECT_EQ(t.bucketsReached(none), 0);
+    }
+}
+
+std::shared_ptr<const Grid> gridOf(int nu, int nv, float x) {
+    Grid g;
+    g.resize(nu, nv, true);
+    for (Vec3f& p : g.P[0]) p = {x, 0, 1};
+    return std::make_shared<const Grid>(copyForSampling(g));
+}
+
+GridKey keyOf(uint64_t piece) {
+    GridKey k;
+    k.piece = piece;
+    k.uv = {0, 1, 0, 1};
+    k.nu = k.nv = 4;
+    k.frameCount = 1;
+    return k;
+}
+
+TEST(GridCache, AGridServesTheOtherBucketsItReachesThenGoes) {
+    GridCache cache;
+    cache.configure({256, 256, 64, 1, 1}, 1 << 20);
+    const GridKey key = keyOf(1);
+    GridCache::Lease first = cache.acquire(key);
+    EXPECT_FALSE(first.grid);
+    ASSERT_TRUE(first.make);
+    const std::shared_ptr<const Grid> made = gridOf(4, 4, 3);
+    cache.publish(key, made, 2);  // two more buckets
+    for (int i = 0; i < 2; ++i) {
+        GridCache::Lease l = cache.acquire(key);
+        EXPECT_EQ(l.grid, made) << i;
+        EXPECT_FALSE(l.make);
+    }
+    GridCache::Lease again = cache.acquire(key);  // every bucket took it: gone, made again
+    EXPECT_FALSE(again.grid);
+    EXPECT_TRUE(again.make);
+    cache.abandon(key);
+    // Another piece, or the same piece at another lattice or in other frames, is another grid.
+    GridKey other = key;
+    other.nu = 5;
+    EXPECT_TRUE(cache.acquire(other).make);
+    other = key;
+    other.firstFrame = 1;
+    EXPECT_TRUE(cache.acquire(other).make);
+    EXPECT_TRUE(cache.acquire(keyOf(2)).make);
+}
+
+TEST(GridCache, TheLeastRecentlyUsedGoWhenFull) {
+    const uint64_t one = gridBytes(*gridOf(8, 8, 0));
+    GridCache cache;
+    cache.configure({256, 256, 64, 1, 1}, 2 * one + one / 2);  // room for two
+    for (uint64_t k = 1; k <= 3; ++k) {
+        ASSERT_TRUE(cache.acquire(keyOf(k)).make);
+        cache.publish(keyOf(k), gridOf(8, 8, float(k)), 5);
+        if (k == 2) {
+            EXPECT_TRUE(cache.acquire(keyOf(1)).grid);  // 1 is used again: 2 goes first
+        }
+    }
+    EXPECT_EQ(cache.evictions(), 1u);
+    EXPECT_LE(cache.peakBytes(), 2 * one + one / 2);
+    EXPECT_GE(cache.peakBytes(), 2 * one);
+    EXPECT_TRUE(cache.acquire(keyOf(1)).grid);
+    EXPECT_TRUE(cache.acquire(keyOf(3)).grid);
+    EXPECT_TRUE(cache.acquire(keyOf(2)).make);
+}
+
+// A bucket that wants a grid another is making waits for it instead of dicing it again; if the
+// maker gives up, the waiter makes it.
+TEST(GridCache, ABucketWaitsForTheGridAnotherIsMaking) {
+    GridCache cache;
+    cache.configure({256, 256, 64, 1, 1}, 1 << 20);
+    const GridKey key = keyOf(9);
+    ASSERT_TRUE(cache.acquire(key).make);
+    // Asked again on the maker's own thread (its task stolen further up the stack): no wait.
+    GridCache::Lease mine = cache.acquire(key);
+    EXPECT_FALSE(mine.grid);
+    EXPECT_FALSE(mine.make);
+
+    std::atomic<bool> got{false};
+    GridCache::Lease seen;
+    std::thread waiter([&] {
+        seen = cache.acquire(key);
+        got = true;
+    });
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_FALSE(got.load());  // still waiting: nothing published
+    const std::shared_ptr<const Grid> made = gridOf(4, 4, 1);
+    cache.publish(key, made, 1);
+    waiter.join();
+    EXPECT_EQ(seen.grid, made);
+
+    const GridKey dropped = keyOf(10);
+    ASSERT_TRUE(cache.acquire(dropped).make);
+    std::thread second([&] { seen = cache.acquire(dropped); });
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    cache.abandon(dropped);
+    second.join();
+    EXPECT_FALSE(seen.grid);
+    EXPECT_TRUE(seen.make);  // the waiter makes it now
+}
+
+TEST(GridCache, TheCopyKeepsWhatSamplingReads) {
+    Grid g;
+    g.shadowSlots = 2;
+    g.aovCount = 3;
+    g.resize(3, 2, true);
+    g.t0 = 1, g.t1 = 2, g.openEnd = true, g.primitiveId = 77, g.flatShading = true;
+    for (size_t i = 0; i < g.P[1].size(); ++i) {
+        g.P[1][i] = {float(i), 1, 2};
+        g.Ci[1][i] = {0.5f, float(i), 0};
+    }
+    g.Oi[0].assign(g.P[0].size(), Color{0.5f, 0.5f, 0.5f});
+    g.hole.assign(6, 0);
+    g.hole[4] = 1;
+    g.aov[1][5] = 9;
+    g.Cl[0][3] = {1, 2, 3};
+    const Grid c = copyForSampling(g);
+    EXPECT_EQ(c.nu, 3);
+    EXPECT_EQ(c.nv, 2);
+    EXPECT_TRUE(c.moving && c.openEnd && c.flatShading);
+    EXPECT_EQ(c.primitiveId, 77u);
+    EXPECT_EQ(c.t0, 1);
+    EXPECT_EQ(c.t1, 2);
+    EXPECT_EQ(c.P[1], g.P[1]);
+    EXPECT_EQ(c.Ci[1][5].y, 5.0f);
+    EXPECT_EQ(c.Oi[0].size(), g.P[0].size());
+    EXPECT_TRUE(c.Oi[1].empty());
+    EXPECT_EQ(c.hole, g.hole);
+    EXPECT_EQ(c.aov[1][5], 9.0f);
+    EXPECT_EQ(c.Cl[0][3].z, 3.0f);
+    EXPECT_TRUE(c.N[0].empty() && c.Cs.empty());  // not read by the rasterizer
+    EXPECT_LT(gridBytes(c), gridBytes(g));
+}
+
+}  // namespace
+}  // namespace streyes
