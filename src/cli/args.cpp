@@ -92,6 +92,9 @@ render options:
   --max-memory SIZE   memory budget, e.g. 8G or 512M (default: 3/4 of the machine's);
                       frame blocks and workers shrink to fit it, and a render that
                       cannot fit one frame at a time is refused (exit 2)
+  --grid-cache SIZE   room for grids shared between buckets (default 128M; less when
+                      the memory budget is short; 0: each bucket dices its own);
+                      images do not depend on it
   --resume            skip frames whose files are already complete (read back and
                       checked), render the rest
   --quiet             no progress (a bar on a terminal, else a line per 10%), no summary,

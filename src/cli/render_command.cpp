@@ -302,6 +302,11 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
             std::string v = value();
             if (!parseByteSize(v, &opts.maxMemoryBytes))
                 throw UsageError("--max-memory expects a size such as 512M, 8G or 1.5GiB, not '" + v + "'");
+        } else if (a == "--grid-cache") {
+            std::string v = value();
+            if (v == "0") opts.gridCacheBytes = 0;
+            else if (!parseByteSize(v, &opts.gridCacheBytes))
+                throw UsageError("--grid-cache expects a size such as 128M or 1G, or 0 (off), not '" + v + "'");
         } else if (a == "--resume") req.resume = true;
         else if (a == "--quiet" || a == "-q") req.quiet = true;
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");

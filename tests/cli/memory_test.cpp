@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 
 #include "cli_run.h"
 #include "streyes/image_io.h"
@@ -86,6 +87,39 @@ TEST(CliMemory, MaxMemoryShrinksTheFrameBlock) {
     }
     for (int frame = 1; frame <= 32; ++frame)
         EXPECT_TRUE(isCompleteFrame(expandFramePattern(dir + "/f.####.exr", frame), 64, 64, "rgbaz")) << frame;
+}
+
+// --grid-cache: the room for grids shared between buckets. Off (0), each bucket dices its own:
+// the files are byte-identical and nothing is shared; a bad size is a usage error.
+TEST(CliMemory, GridCacheChangesTheWorkNotTheFrames) {
+    const test::TempDir tempDir("grid-cache");
+    const std::string& dir = tempDir.path();
+    // A square crossing the four 32-pixel buckets' corner: its grids reach all of them.
+    const std::string scene = writeFile(dir, "s.rib", R"(Format 64 64 1
+PixelSamples 2 2
+WorldBegin
+Surface "constant"
+Patch "bilinear" "P" [-0.5 -0.5 1  0.5 -0.5 1  -0.5 0.5 1  0.5 0.5 1]
+WorldEnd
+)");
+    for (const char* cache : {"", " --grid-cache 0"}) {
+        const std::string name = *cache ? "off" : "on";
+        CliRun r = runStreyes("render " + scene + " --bucket 32 --quiet" + cache + " -o " + dir + "/" + name + ".####.exr --stats " +
+                              dir + "/" + name + ".json");
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+    }
+    auto read = [&](const std::string& file) {
+        std::ifstream f(dir + "/" + file, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    };
+    EXPECT_FALSE(read("on.0000.exr").empty());
+    EXPECT_EQ(read("on.0000.exr"), read("off.0000.exr"));
+    EXPECT_GT(jsonNumber(read("on.json"), "grids_shared"), 0u);
+    EXPECT_EQ(jsonNumber(read("off.json"), "grids_shared"), 0u);
+    EXPECT_GT(jsonNumber(read("off.json"), "grids_diced"), jsonNumber(read("on.json"), "grids_diced"));
+    CliRun bad = runStreyes("render " + scene + " --grid-cache lots -o " + dir + "/bad.####.exr");
+    EXPECT_EQ(bad.exitCode, 2) << bad.output;
+    EXPECT_NE(bad.output.find("--grid-cache expects a size such as 128M"), std::string::npos) << bad.output;
 }
 
 }  // namespace
