@@ -674,8 +674,15 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv, const Bound
         diceShadeSampleKeys(static_cast<const KeyedPatchBody&>(body), nu, nv);
         return;
     }
-    const int others = gridCache_ && gridCache_->enabled() ? gridCache_->layout().bucketsReached(raster) - 1 : 0;
-    if (others <= 0) {
+    // Shared when it reaches at least three buckets: a grid on the border of two is mostly hidden
+    // in one of them in dense scenes, and keeping it costs more than dicing it again. On the
+    // flyover (frames 1-2) sharing from two buckets on cost 7% more CPU than none, from three on
+    // 0.6% (12% fewer grids diced); the moving sphere's micropolygons are 1.33x the still
+    // sphere's from three on, 1.67x from two (docs/ARCHITECTURE.md, "Grids shared between buckets").
+    constexpr int kMinBucketsShared = 3;
+    const int reached = gridCache_ && gridCache_->enabled() ? gridCache_->layout().bucketsReached(raster) : 0;
+    const int others = reached - 1;
+    if (reached < kMinBucketsShared) {
         if (diceShade(body, nu, nv)) sample(grid_);
         return;
     }
@@ -690,6 +697,7 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv, const Bound
             rasterCounters_.micropolygons -= n;  // counted where it was diced
             counters.micropolygonsShared += n;
         }
+        gridCache_->recycle(std::move(lease.grid));
         return;
     }
     if (!lease.make) {  // this thread is making it further up its stack: a copy of its own
@@ -706,10 +714,23 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv, const Bound
         }
     } abandon{gridCache_, key};
     static const std::shared_ptr<const Grid> kNothing = std::make_shared<const Grid>();  // nu == 0
-    const bool drawn = diceShade(body, nu, nv);
-    gridCache_->publish(key, drawn ? std::make_shared<const Grid>(copyForSampling(grid_)) : kNothing, others);
+    if (!diceShade(body, nu, nv)) {
+        gridCache_->publish(key, kNothing, others);
+        abandon.armed = false;
+        return;
+    }
+    // The made grid goes to the cache as it is: the worker dices into a spare one next.
+    std::shared_ptr<Grid> made = gridCache_->spare();
+    std::swap(*made, grid_);
+    grid_.shadowSlots = shadowSlots_;  // what every grid of this worker is set up with
+    grid_.aovCount = aovs_.count;
+    // Sampling reads neither normals nor surface colour: the worker keeps those buffers.
+    for (int k = 0; k < 2; ++k) std::swap(made->N[k], grid_.N[k]);
+    std::swap(made->Cs, grid_.Cs);
+    gridCache_->publish(key, made, others);
     abandon.armed = false;
-    if (drawn) sample(grid_);
+    sample(*made);
+    gridCache_->recycle(std::move(made));  // when every other bucket took it meanwhile
 }
 
 bool BucketWorker::diceShade(const Body& body, int nu, int nv) {

@@ -58,36 +58,13 @@ int TileLayout::bucketsReached(const Bounds3f& raster) const {
            tilesReached(raster.lo.y, raster.hi.y, height, tileSize, guardY);
 }
 
-Grid copyForSampling(const Grid& g) {
-    Grid c;
-    c.nu = g.nu, c.nv = g.nv;
-    c.t0 = g.t0, c.t1 = g.t1;
-    c.openEnd = g.openEnd;
-    c.moving = g.moving;
-    c.material = g.material;
-    c.primitiveId = g.primitiveId;
-    c.u0 = g.u0, c.u1 = g.u1, c.v0 = g.v0, c.v1 = g.v1;
-    c.flatShading = g.flatShading;
-    c.primvarCorners = g.primvarCorners;
-    c.shadowSlots = g.shadowSlots;
-    c.aovCount = g.aovCount;
-    c.hole = g.hole;
-    for (int k = 0; k < (g.moving ? 2 : 1); ++k) {
-        c.P[k] = g.P[k];
-        c.Ci[k] = g.Ci[k];
-        c.Oi[k] = g.Oi[k];
-        c.Cl[k] = g.Cl[k];
-        c.aov[k] = g.aov[k];
-    }
-    return c;
-}
-
 uint64_t gridBytes(const Grid& g) {
-    uint64_t n = sizeof(Grid) + g.hole.size();
+    uint64_t n = sizeof(Grid) + g.hole.capacity();
     for (int k = 0; k < 2; ++k)
-        n += (g.P[k].size() + g.N[k].size()) * sizeof(Vec3f) +
-             (g.Ci[k].size() + g.Oi[k].size() + g.Cl[k].size()) * sizeof(Color) + g.aov[k].size() * sizeof(float);
-    return n + g.Cs.size() * sizeof(Color);
+        n += (g.P[k].capacity() + g.N[k].capacity()) * sizeof(Vec3f) +
+             (g.Ci[k].capacity() + g.Oi[k].capacity() + g.Cl[k].capacity()) * sizeof(Color) +
+             g.aov[k].capacity() * sizeof(float);
+    return n + g.Cs.capacity() * sizeof(Color);
 }
 
 void GridCache::configure(const TileLayout& layout, uint64_t capacityBytes) {
@@ -161,15 +138,43 @@ void GridCache::clear() {
     std::lock_guard<std::mutex> lock(mutex_);
     entries_.clear();
     lru_.clear();
+    spares_.clear();
     bytes_ = 0;
 }
 
+std::shared_ptr<Grid> GridCache::spare() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!spares_.empty()) {
+            std::shared_ptr<Grid> g = std::move(spares_.back());
+            spares_.pop_back();
+            return g;
+        }
+    }
+    return std::make_shared<Grid>();
+}
+
 void GridCache::erase(std::unordered_map<GridKey, Entry, GridKeyHash>::iterator it) {
-    if (it->second.grid) {
-        bytes_ -= it->second.bytes;
-        lru_.erase(it->second.lru);
+    Entry& e = it->second;
+    if (e.grid) {
+        bytes_ -= e.bytes;
+        lru_.erase(e.lru);
+        keepSpare(std::move(e.grid));
     }
     entries_.erase(it);
+}
+
+void GridCache::recycle(std::shared_ptr<const Grid> grid) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    keepSpare(std::move(grid));
+}
+
+// Kept for the next grid made when nothing else holds it: no entry (which would hold a copy) and
+// no bucket sampling it. A few: about as many as buckets publish between two drops.
+void GridCache::keepSpare(std::shared_ptr<const Grid>&& grid) {
+    constexpr size_t kMaxSpares = 64;
+    if (grid && grid.use_count() == 1 && grid->nu > 0 && spares_.size() < kMaxSpares)
+        spares_.push_back(std::const_pointer_cast<Grid>(std::move(grid)));
 }
 
 }  // namespace streyes

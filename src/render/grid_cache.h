@@ -22,6 +22,7 @@
 #include <mutex>
 #include <thread>
 #include <unordered_map>
+#include <vector>
 
 #include "geom/grid.h"
 #include "streyes/vecmath.h"
@@ -64,10 +65,7 @@ struct TileLayout {
     int bucketsReached(const Bounds3f& raster) const;
 };
 
-// What a grid keeps for sampling: everything the rasterizer reads (positions, shaded colour and
-// opacity, shadowed light, output variables, holes), not the normals or surface colour.
-Grid copyForSampling(const Grid& grid);
-// Its bytes, as the cache counts them.
+// A grid's bytes, as the cache counts them (the vectors' capacity: what it holds).
 uint64_t gridBytes(const Grid& grid);
 
 class GridCache {
@@ -88,6 +86,11 @@ class GridCache {
     // Leaves a grid made by the caller for `uses` more buckets. A grid with nu == 0 stands for
     // "nothing to sample" (every micropolygon faces away).
     void publish(const GridKey& key, std::shared_ptr<const Grid> grid, int uses);
+    // A grid to swap a made one into before publishing it, instead of copying it: one the cache
+    // dropped (its vectors keep their capacity, so dicing into it allocates nothing), else new.
+    std::shared_ptr<Grid> spare();
+    // A grid a bucket took is done with: kept as a spare when nothing else holds it.
+    void recycle(std::shared_ptr<const Grid> grid);
     // The caller will not make it after all (it threw): a bucket waiting for it makes it itself.
     void abandon(const GridKey& key);
     // Forgets every grid (between frame blocks).
@@ -106,6 +109,7 @@ class GridCache {
         std::list<GridKey>::iterator lru;
     };
     void erase(std::unordered_map<GridKey, Entry, GridKeyHash>::iterator it);
+    void keepSpare(std::shared_ptr<const Grid>&& grid);  // with the lock held
 
     TileLayout layout_;
     uint64_t capacity_ = 0, bytes_ = 0, peakBytes_ = 0, evictions_ = 0;
@@ -113,6 +117,7 @@ class GridCache {
     std::condition_variable made_;
     std::unordered_map<GridKey, Entry, GridKeyHash> entries_;
     std::list<GridKey> lru_;  // made grids, most recently used first
+    std::vector<std::shared_ptr<Grid>> spares_;  // dropped grids no bucket holds any more
 };
 
 }  // namespace streyes

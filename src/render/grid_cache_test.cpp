@@ -60,7 +60,7 @@ std::shared_ptr<const Grid> gridOf(int nu, int nv, float x) {
     Grid g;
     g.resize(nu, nv, true);
     for (Vec3f& p : g.P[0]) p = {x, 0, 1};
-    return std::make_shared<const Grid>(copyForSampling(g));
+    return std::make_shared<const Grid>(g);
 }
 
 GridKey keyOf(uint64_t piece) {
@@ -154,37 +154,30 @@ TEST(GridCache, ABucketWaitsForTheGridAnotherIsMaking) {
     EXPECT_TRUE(seen.make);  // the waiter makes it now
 }
 
-TEST(GridCache, TheCopyKeepsWhatSamplingReads) {
-    Grid g;
-    g.shadowSlots = 2;
-    g.aovCount = 3;
-    g.resize(3, 2, true);
-    g.t0 = 1, g.t1 = 2, g.openEnd = true, g.primitiveId = 77, g.flatShading = true;
-    for (size_t i = 0; i < g.P[1].size(); ++i) {
-        g.P[1][i] = {float(i), 1, 2};
-        g.Ci[1][i] = {0.5f, float(i), 0};
-    }
-    g.Oi[0].assign(g.P[0].size(), Color{0.5f, 0.5f, 0.5f});
-    g.hole.assign(6, 0);
-    g.hole[4] = 1;
-    g.aov[1][5] = 9;
-    g.Cl[0][3] = {1, 2, 3};
-    const Grid c = copyForSampling(g);
-    EXPECT_EQ(c.nu, 3);
-    EXPECT_EQ(c.nv, 2);
-    EXPECT_TRUE(c.moving && c.openEnd && c.flatShading);
-    EXPECT_EQ(c.primitiveId, 77u);
-    EXPECT_EQ(c.t0, 1);
-    EXPECT_EQ(c.t1, 2);
-    EXPECT_EQ(c.P[1], g.P[1]);
-    EXPECT_EQ(c.Ci[1][5].y, 5.0f);
-    EXPECT_EQ(c.Oi[0].size(), g.P[0].size());
-    EXPECT_TRUE(c.Oi[1].empty());
-    EXPECT_EQ(c.hole, g.hole);
-    EXPECT_EQ(c.aov[1][5], 9.0f);
-    EXPECT_EQ(c.Cl[0][3].z, 3.0f);
-    EXPECT_TRUE(c.N[0].empty() && c.Cs.empty());  // not read by the rasterizer
-    EXPECT_LT(gridBytes(c), gridBytes(g));
+// A dropped grid that no bucket holds is handed out again, its vectors kept: dicing into it
+// allocates nothing. One a bucket still samples is not.
+TEST(GridCache, DroppedGridsAreHandedOutAgain) {
+    GridCache cache;
+    cache.configure({256, 256, 64, 1, 1}, 1 << 20);
+    std::shared_ptr<Grid> first = cache.spare();
+    first->resize(8, 8, true);
+    const Vec3f* storage = first->P[1].data();
+    ASSERT_TRUE(cache.acquire(keyOf(1)).make);
+    cache.publish(keyOf(1), first, 1);
+    first.reset();
+    std::shared_ptr<const Grid> last = cache.acquire(keyOf(1)).grid;  // its last use: dropped
+    ASSERT_TRUE(last);
+    cache.recycle(std::move(last));  // the bucket is done with it: spare again
+    std::shared_ptr<Grid> again = cache.spare();
+    EXPECT_EQ(again->P[1].data(), storage);
+    EXPECT_EQ(again->P[1].capacity(), 81u);
+
+    ASSERT_TRUE(cache.acquire(keyOf(2)).make);
+    cache.publish(keyOf(2), again, 1);
+    const std::shared_ptr<const Grid> held = cache.acquire(keyOf(2)).grid;  // dropped while held
+    ASSERT_TRUE(held);
+    cache.recycle(std::move(again));  // the maker is done, another bucket is not
+    EXPECT_NE(cache.spare().get(), held.get());
 }
 
 }  // namespace
