@@ -677,7 +677,7 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv, const Bound
     // Shared when it reaches at least three buckets: a grid on the border of two is mostly hidden
     // in one of them in dense scenes, and keeping it costs more than dicing it again. On the
     // flyover (frames 1-2) sharing from two buckets on cost 7% more CPU than none, from three on
-    // 0.6% (3-4% over frames 1-8); the moving sphere's micropolygons are 1.33x the still
+    // 0.6% (2-4% over frames 1-8); the moving sphere's micropolygons are 1.33x the still
     // sphere's from three on, 1.67x from two (docs/ARCHITECTURE.md, "Grids shared between buckets").
     constexpr int kMinBucketsShared = 3;
     const int reached = gridCache_ && gridCache_->enabled() ? gridCache_->layout().bucketsReached(raster) : 0;
