@@ -548,6 +548,11 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
             groupBound.extend(Vec3f{ra_[v].x, ra_[v].y, ra_[v].z});
             groupBound.extend(Vec3f{rb_[v].x, rb_[v].y, rb_[v].z});
         }
+        if constexpr (Lens) {  // what the lens blurs reaches the block a circle of confusion away
+            const Vec2f m = lensMargin<Lens>(camera)(groupBound.lo.z, groupBound.hi.z);
+            groupBound.lo.x -= m.x, groupBound.hi.x += m.x;
+            groupBound.lo.y -= m.y, groupBound.hi.y += m.y;
+        }
         if (!(groupBound.hi.x >= float(R.x0) && groupBound.lo.x < float(R.x1 + 1) && groupBound.hi.y >= float(R.y0) &&
               groupBound.lo.y < float(R.y1 + 1))) {
             s0 = s1;
