@@ -137,6 +137,8 @@ class ProceduralBody final : public Body {
     // Whether children() keeps what it makes (ProceduralGenerator::keepsChildren); when not, a
     // bucket calls expandInto and owns the children.
     bool keepsChildren() const { return root().generator_->keepsChildren(); }
+    // The procedural its views come from: its identity (Body::pieceKey) names what it expands into.
+    uint64_t rootKey() const { return root().pieceKey; }
     // Expands at this body's level into `out`, kept by nobody else (the caller frees them).
     void expandInto(ProceduralChildren& out, ChildBodyMaker& maker, const Camera& camera, Log& log) const;
 

@@ -561,8 +561,14 @@ void BucketWorker::expand(const ProceduralBody& procedural) {
     if (procedural.keepsChildren()) {
         made = &procedural.children(*scene_.factory, scene_.camera, log_, &expandedHere);
     } else {  // this bucket's own, freed when it is done (ProceduralGenerator::keepsChildren)
-        procedural.expandInto(ownChildren_.emplace_back(), *scene_.factory, scene_.camera, log_);
-        made = &ownChildren_.back().bodies;
+        ProceduralChildren& own = ownChildren_.emplace_back();
+        procedural.expandInto(own, *scene_.factory, scene_.camera, log_);
+        // Every bucket that expands it makes the same children: keyed by the procedural, the
+        // level and their place, their grids are shared as a kept expansion's are.
+        const uint64_t key =
+            pieceKeyOf(procedural.rootKey(), 0x300000000ull + uint64_t(uint32_t(procedural.level(scene_.camera))));
+        for (size_t i = 0; i < own.bodies.size(); ++i) own.bodies[i]->pieceKey = pieceKeyOf(key, i);
+        made = &own.bodies;
         expandedHere = true;
     }
     const std::vector<BodyPtr>& children = *made;

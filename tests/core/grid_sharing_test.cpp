@@ -94,6 +94,49 @@ TEST(GridSharing, EachGridIsDicedOnceAndTakenByTheOtherBuckets) {
     EXPECT_GT(cramped.gridsEvicted, 0u);
 }
 
+// An instance is expanded by each bucket for itself (InstanceGenerator keeps no children), the
+// same children every time: they are keyed by the instance and their place, so their grids are
+// shared too. A sphere instanced twice, both copies moving across the frame.
+TEST(GridSharing, InstancesExpandedByEachBucketShareTheirGrids) {
+    const std::string rib = R"(Format 320 240 1
+PixelSamples 2 2
+Shutter 0 1
+Projection "perspective" "fov" [40]
+Translate 0 0 6
+WorldBegin
+LightSource "distantlight" 1 "from" [0 0 -1] "to" [0 0 0]
+Surface "matte"
+ObjectBegin 1
+Sphere 1 -1 1 360
+ObjectEnd
+AttributeBegin
+MotionBegin [0 1]
+Translate -1.5 0.5 0
+Translate 0.5 0.5 0
+MotionEnd
+ObjectInstance 1
+AttributeEnd
+AttributeBegin
+Translate 0 -1 1
+Scale 0.7 0.7 0.7
+ObjectInstance 1
+AttributeEnd
+WorldEnd
+)";
+    RenderOptions own;
+    own.gridCacheBytes = 0;
+    const test::RenderResult ref = test::renderRib(rib, own);
+    ASSERT_GT(ref.stats.counters.proceduralsExpanded, 2u);  // expanded in several buckets
+    for (int threads : {1, 2}) {
+        RenderOptions o;
+        o.threads = threads;
+        const test::RenderResult r = test::renderRib(rib, o);
+        EXPECT_TRUE(test::identicalPixels(ref, r)) << threads;
+        EXPECT_GT(r.stats.counters.gridsShared, 0u) << threads;
+        EXPECT_EQ(r.stats.counters.gridsDiced + r.stats.counters.gridsShared, ref.stats.counters.gridsDiced) << threads;
+    }
+}
+
 // Issue 12's measure: the sphere under a camera moving 80 pixels in an exposure, and a
 // subdivision cube moving as far, against the same surfaces still (480 x 360, ShadingRate 1).
 TEST(GridSharing, AMovingSurfaceCostsAtMostTwiceTheMicropolygonsOfItStill) {
