@@ -87,7 +87,7 @@ class GridCache {
     // "nothing to sample" (every micropolygon faces away).
     void publish(const GridKey& key, std::shared_ptr<const Grid> grid, int uses);
     // A grid to swap a made one into before publishing it, instead of copying it: one the cache
-    // dropped (its vectors keep their capacity, so dicing into it allocates nothing), else new.
+    // dropped (its vectors keep their capacity: dicing a grid no larger allocates nothing), else new.
     std::shared_ptr<Grid> spare();
     // A grid a bucket took is done with: kept as a spare when nothing else holds it.
     void recycle(std::shared_ptr<const Grid> grid);
