@@ -10,8 +10,9 @@
 // degenerate (zero raster area: repeated side vertices), and the raster area of each at the
 // grid's t0 (front and back faces alike). With --bucket N the image is cut into N x N tiles (plus
 // the renderer's one-pixel guard band for its default filter) and every tile runs its own loop,
-// as the renderer does, so the count includes grids diced again in every bucket they reach;
-// without it the whole image is one bucket.
+// so the count includes grids diced again in every bucket they reach, as the renderer did before
+// it shared grids reaching three buckets or more (src/render/grid_cache.h; `streyes render
+// --stats` counts what it dices now); without it the whole image is one bucket.
 //
 // Prints the totals, micropolygons per (area / shading rate), the mean raster area of a
 // micropolygon, a histogram of micropolygon areas and of grid sizes, and per kind of body.
