@@ -8,9 +8,11 @@
 #include "cull/view_cull.h"
 #include "procedural/procedural.h"
 #include "raster/coverage.h"
+#include "render/grid_cache.h"
 #include "render/split_decision.h"
 #include "shade/aov_fill.h"
 #include "shade/shading.h"
+#include "util/sampling.h"
 
 namespace streyes {
 
@@ -187,7 +189,7 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
         // Still, but wanted in some of the bucket's frames only (a moving procedural's children at
         // one level of detail): the piece over those frames.
         BodyPtr piece = root.restrictedTo(std::max(span.t0, a), std::min(span.t1, b));
-        piece->pieceKey = pieceKeyOf(root.pieceKey, 0x200000000ull + uint64_t(uint32_t(bucket_.firstFrame + fa)));  // span in GridKey
+        piece->pieceKey = hashCombine(root.pieceKey, 0x200000000ull + uint64_t(uint32_t(bucket_.firstFrame + fa)));  // span in GridKey
         push(std::move(piece));
     } else if (occlusion_) {
         heap_.push_back({displaced(root, root.bound().swept()).lo.z, arrivals_++, &root, nullptr});
@@ -287,7 +289,7 @@ void BucketWorker::pushChunks(const Body& root, int chunk, int ca, int cb) {
     }
     BodyPtr piece = root.restrictedTo(a, b);
     piece->exposure = ca * chunk;
-    piece->pieceKey = pieceKeyOf(root.pieceKey, 0x100000000ull + uint64_t(uint32_t(ca)) * 16 + uint64_t(chunk));
+    piece->pieceKey = hashCombine(root.pieceKey, 0x100000000ull + uint64_t(uint32_t(ca)) * 16 + uint64_t(chunk));
     push(std::move(piece));
 }
 
@@ -566,8 +568,8 @@ void BucketWorker::expand(const ProceduralBody& procedural) {
         // Every bucket that expands it makes the same children: keyed by the procedural, the
         // level and their place, their grids are shared as a kept expansion's are.
         const uint64_t key =
-            pieceKeyOf(procedural.rootKey(), 0x300000000ull + uint64_t(uint32_t(procedural.level(scene_.camera))));
-        for (size_t i = 0; i < own.bodies.size(); ++i) own.bodies[i]->pieceKey = pieceKeyOf(key, i);
+            hashCombine(procedural.rootKey(), 0x300000000ull + uint64_t(uint32_t(procedural.level(scene_.camera))));
+        for (size_t i = 0; i < own.bodies.size(); ++i) own.bodies[i]->pieceKey = hashCombine(key, i);
         made = &own.bodies;
         expandedHere = true;
     }
@@ -618,7 +620,7 @@ void BucketWorker::split(const Body& body, SplitAxis axis, bool eyeSplit) {
     for (int i = 1; i >= 0; --i) {
         if (eyeSplit) halves[i]->eyeSplitDepth = static_cast<unsigned char>(body.eyeSplitDepth + 1);
         else halves[i]->splitDepth = static_cast<unsigned char>(body.splitDepth + 1);
-        halves[i]->pieceKey = pieceKeyOf(body.pieceKey, uint64_t(axis) * 4 + uint64_t(i) * 2 + (eyeSplit ? 1 : 0));
+        halves[i]->pieceKey = hashCombine(body.pieceKey, uint64_t(axis) * 4 + uint64_t(i) * 2 + (eyeSplit ? 1 : 0));
         push(std::move(halves[i]));
     }
 }
@@ -688,13 +690,10 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv, const Bound
     constexpr int kMinBucketsShared = 3;
     const int reached = gridCache_ && gridCache_->enabled() ? gridCache_->layout().bucketsReached(raster) : 0;
     const int others = reached - 1;
-    if (reached < kMinBucketsShared) {
-        if (diceShade(body, nu, nv)) sample(grid_);
-        return;
-    }
     const GridKey key{body.pieceKey, body.uv, body.time().t0, body.time().t1, nu, nv, bucket_.firstFrame,
                       bucket_.frameCount};
-    GridCache::Lease lease = gridCache_->acquire(key);
+    GridCache::Lease lease;  // make unset: made here and kept (not shared, or being made further up this stack)
+    if (reached >= kMinBucketsShared) lease = gridCache_->acquire(key);
     if (lease.grid) {
         ++counters.gridsShared;
         if (lease.grid->nu > 0) {
@@ -706,7 +705,7 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv, const Bound
         gridCache_->recycle(std::move(lease.grid));
         return;
     }
-    if (!lease.make) {  // this thread is making it further up its stack: a copy of its own
+    if (!lease.make) {
         if (diceShade(body, nu, nv)) sample(grid_);
         return;
     }

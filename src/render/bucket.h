@@ -14,7 +14,6 @@
 #include "geom/grid.h"
 #include "raster/image_block.h"
 #include "raster/rasterizer.h"
-#include "render/grid_cache.h"
 #include "shade/grid_shader.h"
 #include "streyes/render_options.h"
 #include "streyes/stats.h"
@@ -23,6 +22,7 @@
 
 namespace streyes {
 
+class GridCache;
 class ProceduralBody;
 
 struct BucketSpec {

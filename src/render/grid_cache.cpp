@@ -4,14 +4,11 @@
 #include <cmath>
 #include <cstring>
 
+#include "util/sampling.h"
+
 namespace streyes {
 
 namespace {
-
-uint64_t mix(uint64_t h, uint64_t v) {
-    h ^= v + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
-    return h * 0xff51afd7ed558ccdull;
-}
 
 template <typename T>
 uint64_t bitsOf(T v) {
@@ -19,6 +16,12 @@ uint64_t bitsOf(T v) {
     uint64_t b = 0;
     std::memcpy(&b, &v, sizeof v);
     return b;
+}
+
+// Along one axis of `size` pixels: the pixels tile i's bucket samples, [first, last] (the tile,
+// `tile` pixels from i * tile, and the guard band g each side, in the image).
+std::pair<int, int> bucketSpan(int i, int size, int tile, int g) {
+    return {std::max(0, i * tile - g), std::min(size - 1, std::min(size, (i + 1) * tile) - 1 + g)};
 }
 
 // Tiles whose pixels with guard band g reach [lo, hi] along one axis of `size` pixels.
@@ -32,7 +35,7 @@ int tilesReached(float lo, float hi, int size, int tile, int g) {
     const int b = int(std::floor(std::clamp(hi, -span, 2 * span) / float(tile))) + 1;
     int count = 0;
     for (int i = std::max(0, a); i <= std::min(n - 1, b); ++i) {
-        const int x0 = std::max(0, i * tile - g), x1 = std::min(size - 1, std::min(size, (i + 1) * tile) - 1 + g);
+        const auto [x0, x1] = bucketSpan(i, size, tile, g);
         if (hi >= float(x0) && lo < float(x1 + 1)) ++count;
     }
     return count;
@@ -41,13 +44,23 @@ int tilesReached(float lo, float hi, int size, int tile, int g) {
 }  // namespace
 
 size_t GridKeyHash::operator()(const GridKey& k) const {
-    uint64_t h = mix(k.piece, bitsOf(k.uv[0]) | bitsOf(k.uv[1]) << 32);
-    h = mix(h, bitsOf(k.uv[2]) | bitsOf(k.uv[3]) << 32);
-    h = mix(h, bitsOf(k.t0));
-    h = mix(h, bitsOf(k.t1));
-    h = mix(h, uint64_t(uint32_t(k.nu)) | uint64_t(uint32_t(k.nv)) << 32);
-    h = mix(h, uint64_t(uint32_t(k.firstFrame)) | uint64_t(uint32_t(k.frameCount)) << 32);
+    uint64_t h = hashCombine(k.piece, bitsOf(k.uv[0]) | bitsOf(k.uv[1]) << 32);
+    h = hashCombine(h, bitsOf(k.uv[2]) | bitsOf(k.uv[3]) << 32);
+    h = hashCombine(h, bitsOf(k.t0));
+    h = hashCombine(h, bitsOf(k.t1));
+    h = hashCombine(h, uint64_t(uint32_t(k.nu)) | uint64_t(uint32_t(k.nv)) << 32);
+    h = hashCombine(h, uint64_t(uint32_t(k.firstFrame)) | uint64_t(uint32_t(k.frameCount)) << 32);
     return size_t(h);
+}
+
+PixelRect TileLayout::tile(int tx, int ty) const {
+    return {tx * tileSize, ty * tileSize, std::min(width, (tx + 1) * tileSize) - 1, std::min(height, (ty + 1) * tileSize) - 1};
+}
+
+PixelRect TileLayout::bucketRect(int tx, int ty) const {
+    const auto [x0, x1] = bucketSpan(tx, width, tileSize, guardX);
+    const auto [y0, y1] = bucketSpan(ty, height, tileSize, guardY);
+    return {x0, y0, x1, y1};
 }
 
 int TileLayout::bucketsReached(const Bounds3f& raster) const {

@@ -43,16 +43,6 @@ struct GridKey {
     }
 };
 
-// A piece's key (Body::pieceKey) from its parent's and the cut that made it: the same in every
-// bucket that makes the piece, and (with the parameter rectangle and span beside it in GridKey)
-// different for different pieces.
-inline uint64_t pieceKeyOf(uint64_t parent, uint64_t cut) {
-    uint64_t h = (parent ^ (cut * 0x9e3779b97f4a7c15ull)) + 0x632be59bd9b4e019ull;
-    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ull;  // splitmix64's finaliser
-    h = (h ^ (h >> 27)) * 0x94d049bb133111ebull;
-    return h ^ (h >> 31);
-}
-
 struct GridKeyHash {
     size_t operator()(const GridKey& k) const;
 };
@@ -60,8 +50,11 @@ struct GridKeyHash {
 // The buckets' tiles: tileSize squares from the image's corner, each sampled with a guard band.
 struct TileLayout {
     int width = 0, height = 0, tileSize = 64, guardX = 0, guardY = 0;
-    // How many buckets' pixels (tile and guard band) a raster bound reaches, as the split loop's
-    // view cull decides it (rasterOutside).
+    // Tile (tx, ty) and the pixels its bucket samples: the tile and its guard band, in the image.
+    PixelRect tile(int tx, int ty) const;
+    PixelRect bucketRect(int tx, int ty) const;
+    // How many buckets' pixels a raster bound reaches, as the split loop's view cull decides it
+    // (rasterOutside).
     int bucketsReached(const Bounds3f& raster) const;
 };
 

@@ -8,24 +8,32 @@
 #include <limits>
 #include <random>
 #include <thread>
+#include <vector>
 
 #include "cull/view_cull.h"
 
 namespace streyes {
 namespace {
 
-// The buckets a bound reaches, counted as the renderer lays out its tiles and the view cull
-// tests them: every tile, one by one.
+// The buckets a bound reaches, counted as the view cull tests them: every bucket of the
+// renderer's layout, one by one.
 int bruteForceReached(const TileLayout& t, const Bounds3f& r) {
     int n = 0;
-    for (int y = 0; y < t.height; y += t.tileSize)
-        for (int x = 0; x < t.width; x += t.tileSize) {
-            const PixelRect tile{x, y, std::min(t.width, x + t.tileSize) - 1, std::min(t.height, y + t.tileSize) - 1};
-            const PixelRect rect{std::max(0, tile.x0 - t.guardX), std::max(0, tile.y0 - t.guardY),
-                                 std::min(t.width - 1, tile.x1 + t.guardX), std::min(t.height - 1, tile.y1 + t.guardY)};
-            n += !rasterOutside(r, rect);
-        }
+    for (int ty = 0; ty * t.tileSize < t.height; ++ty)
+        for (int tx = 0; tx * t.tileSize < t.width; ++tx) n += !rasterOutside(r, t.bucketRect(tx, ty));
     return n;
+}
+
+// A bucket samples its tile and the guard band around it, within the image.
+TEST(GridCache, BucketsSampleTheirTileAndItsGuardBandInTheImage) {
+    const TileLayout t{100, 37, 16, 3, 1};
+    const PixelRect first = t.tile(0, 0), last = t.tile(6, 2);
+    EXPECT_EQ(std::vector<int>({first.x0, first.y0, first.x1, first.y1}), std::vector<int>({0, 0, 15, 15}));
+    EXPECT_EQ(std::vector<int>({last.x0, last.y0, last.x1, last.y1}), std::vector<int>({96, 32, 99, 36}));
+    const PixelRect a = t.bucketRect(0, 0), b = t.bucketRect(3, 1), c = t.bucketRect(6, 2);
+    EXPECT_EQ(std::vector<int>({a.x0, a.y0, a.x1, a.y1}), std::vector<int>({0, 0, 18, 16}));
+    EXPECT_EQ(std::vector<int>({b.x0, b.y0, b.x1, b.y1}), std::vector<int>({45, 15, 66, 32}));
+    EXPECT_EQ(std::vector<int>({c.x0, c.y0, c.x1, c.y1}), std::vector<int>({93, 31, 99, 36}));
 }
 
 TEST(GridCache, BucketsReachedAreThoseTheViewCullKeeps) {

@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "render/bucket.h"
+#include "render/grid_cache.h"
 #include "streyes/memory.h"
 #include "procedural/procedural.h"
 #include "shade/scene_shaders.h"
@@ -292,16 +293,16 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.counters.rootBodies = scene_->roots.size();
 
     // Tiles in scanline order; their count and shape do not depend on the thread count.
+    const TileLayout layout{W, H, tileSize, filter.guardX(), filter.guardY()};
     std::vector<BucketSpec> tiles;
     std::vector<PixelRect> tileRects;
-    for (int y = 0; y < H; y += tileSize)
-        for (int x = 0; x < W; x += tileSize) {
+    for (int ty = 0; ty * tileSize < H; ++ty)
+        for (int tx = 0; tx * tileSize < W; ++tx) {
             BucketSpec b;
-            b.tile = {x, y, std::min(W, x + tileSize) - 1, std::min(H, y + tileSize) - 1};
+            b.tile = layout.tile(tx, ty);
             b.tileIndex = tiles.size();
             tileRects.push_back(b.tile);
-            b.rect = {std::max(0, b.tile.x0 - filter.guardX()), std::max(0, b.tile.y0 - filter.guardY()),
-                      std::min(W - 1, b.tile.x1 + filter.guardX()), std::min(H - 1, b.tile.y1 + filter.guardY())};
+            b.rect = layout.bucketRect(tx, ty);
             tiles.push_back(b);
         }
 
@@ -309,7 +310,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.memoryBudgetBytes = budget;
     stats.memoryProgramBytes = memory.baseline;
     GridCache gridCache;  // grids shared by the buckets of a frame block
-    gridCache.configure({W, H, tileSize, filter.guardX(), filter.guardY()}, memory.gridCache);
+    gridCache.configure(layout, memory.gridCache);
     tbb::task_arena arena(memory.workers);
     stats.threads = arena.max_concurrency();
     tbb::enumerable_thread_specific<std::unique_ptr<BucketWorker>> workers;
