@@ -1,0 +1,203 @@
+// The still sampler: GridRasterizer::sampleStill (rasterizer.h).
+#include "raster/rasterizer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geom/grid.h"
+#include "raster/micropolygon.h"
+#include "raster/sample_kernels.h"
+#include "raster/sampler_common.h"
+
+namespace streyes {
+
+using namespace micropolygon;
+using namespace sampler;
+
+namespace {
+
+// Whether every sample of every pixel of the quad's bound already sees, in the still layer,
+// something nearer than the whole quad: then the quad cannot change one of them.
+inline bool behindStillLayer(const ImageBlock& block, const QuadSetup& q) {
+    const int S = block.samplesPerPixel();
+    for (int py = q.py0; py <= q.py1; ++py)
+        for (int px = q.px0; px <= q.px1; ++px) {
+            const SampleHit* h = block.still(block.pixelIndex(px, py));
+            for (int k = 0; k < S; ++k)
+                if (!(q.zmin > h[k].z)) return false;
+        }
+    return true;
+}
+
+}  // namespace
+
+// A still grid: each quad is projected and set up once, then tested against the samples its
+// bound overlaps, visiting in each pixel only the (x, y) strata the bound overlaps. Positions are
+// the same in every frame, so a sample is tested once; a grid over every frame of the block (the
+// usual still geometry) writes the still layer, once for all of them, and any other grid the
+// records of the frames it exists in (at the sample's time within the exposure, where it exists
+// in part of one).
+template <bool Shadowed, bool Counting, bool Lens>
+void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters) {
+    const PixelRect& R = block.rect();
+    const int nu = grid.nu, nv = grid.nv, stride = nu + 1, S = block.samplesPerPixel(), F = block.frameCount();
+    const uint8_t* hole = grid.hole.empty() ? nullptr : grid.hole.data();
+    const int sx = block.pattern().sx, sy = block.pattern().sy;
+    const size_t pixels = size_t(block.pixelCount());
+    const float nearZ = camera.nearClip(), farZ = camera.farClip();
+    bool intoStill = !block.dense() && int(frames_.size()) == F;
+    for (const FrameSpan& fr : frames_) intoStill = intoStill && fr.whole;
+    project(grid, grid.t0, camera, ra_);
+    const float* xs = block.xs();
+    const float* ys = block.ys();
+    const float *lus = block.lus(), *lvs = block.lvs();
+    const Color* ci = grid.Ci[0].data();
+    const bool flat = grid.flatShading;  // ShadingInterpolation "constant": the first corner's colour
+    const int K = grid.shadowSlots;
+    const Color* cl = grid.Cl[0].data();
+    const int A = grid.aovCount;
+    const float* av = grid.aov[0].data();
+    const uint64_t id = grid.primitiveId;
+    const Color* oi = opacities(grid, 0);
+    // The kernel: SIMD, or scalar while counting hits for tests of watertightness (the counting
+    // instance runs the scalar reference: the kernels are held to it bit for bit).
+    const QuadTestFn test = Counting ? quadTestScalar() : quadTestKernel();
+    const SampleLayout layout{xs, ys, R.x0, R.y0, R.width(), S, sx, sy};
+    uint64_t tests = 0, hits = 0, firstHits = 0, fragments = 0;
+    for (int j = 0; j < nv; ++j) {
+        for (int i = 0; i < nu; ++i) {
+            if (hole && hole[j * nu + i]) continue;  // trimmed away
+            const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
+            const QuadOpacity opacity = oi ? quadOpacity(oi, nullptr, ci, nullptr, idx) : QuadOpacity::Opaque;
+            if (!Counting && opacity == QuadOpacity::Clear) continue;
+            const bool seeThrough = opacity != QuadOpacity::Opaque;
+            QuadSetup q;
+            for (int c = 0; c < 4; ++c) {
+                const RasterVertex& v = ra_[size_t(idx[c])];
+                q.x[c] = v.x, q.y[c] = v.y, q.z[c] = v.z;
+            }
+            if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ, lensMargin<Lens>(camera))) continue;
+            if (!Counting && intoStill && behindStillLayer(block, q)) continue;
+            auto colorAt = [&](int c) { return ci[idx[flat ? 0 : c]]; };
+            auto opacityAt = [&](int c) { return oi[idx[flat ? 0 : c]]; };
+            // A hit of sample sj of pixel pi, h on quad qc (q as the sample sees it).
+            auto onHit = [&](size_t pi, int sj, const Hit& h, const QuadSetup& qc) {
+                SampleHit hit;
+                SampleFragment frag;
+                if (intoStill) {
+                    ++hits;
+                    if (Counting) {
+                        const float x = xs[pi * size_t(S) + size_t(sj)], y = ys[pi * size_t(S) + size_t(sj)];
+                        for (int fi = 0; fi < F; ++fi) {
+                            const size_t ci2 = (size_t(fi) * pixels + pi) * size_t(S) + size_t(sj);
+                            trianglesCovering(qc, x, y, &hitCounts_[ci2], &windings_[ci2]);
+                        }
+                    }
+                    SampleHit& cur = block.still(pi)[sj];
+                    if (seeThrough) {  // a fragment every frame sees (where nothing opaque of its own is nearer)
+                        if (!fragmentBeats(cur, q.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) return;
+                        block.startFragments();
+                        block.addFragment(block.stillFragments(pi) + sj, frag);
+                        ++fragments;
+                        return;
+                    }
+                    if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) return;
+                    if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
+                    cur = hit;
+                    float* stillAov = A ? block.stillAov(pi) + size_t(sj) * size_t(A) : nullptr;
+                    if (A) writeAovs(stillAov, A, h, [&](int c, int a) { return av[size_t(idx[c]) * size_t(A) + size_t(a)]; });
+                    // Frames that already have a record of the pixel (something only they see came
+                    // first) see this too, where it is nearer.
+                    for (int fi = 0, left = block.recordsOf(pi); left > 0; ++fi) {
+                        SampleHit* rec = block.record(fi, pi);
+                        if (!rec) continue;
+                        --left;
+                        if (!rec[sj].beatenBy(hit.z, hit.id, hit.c)) continue;
+                        rec[sj] = hit;
+                        if (A) std::copy(stillAov, stillAov + A, block.recordAov(fi, pi) + size_t(sj) * size_t(A));
+                    }
+                    return;
+                }
+                // The frames it exists in at the sample's time (the position, and so the inside
+                // test, is the same in every frame).
+                for (const FrameSpan& fr : frames_) {
+                    if (!fr.whole && !inTimeSpan(block.sampleTime(fr.fi, pi, sj), fr.tfA, fr.tfB, fr.openB)) continue;
+                    ++hits;
+                    if (Counting) {
+                        const float x = xs[pi * size_t(S) + size_t(sj)], y = ys[pi * size_t(S) + size_t(sj)];
+                        const size_t ci2 = (size_t(fr.fi) * pixels + pi) * size_t(S) + size_t(sj);
+                        trianglesCovering(qc, x, y, &hitCounts_[ci2], &windings_[ci2]);
+                    }
+                    SampleHit* rec = block.record(fr.fi, pi);
+                    const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
+                    if (seeThrough) {
+                        if (!fragmentBeats(cur, q.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) continue;
+                        const int32_t fk = keepFrameFragment(block, fr.fi, pi, sj, frag, rec);
+                        ++fragments;
+                        if (Shadowed)
+                            writeShadowed(block.fragmentShadowed(fk), K, h,
+                                          [&](int c, int k) { return cl[size_t(idx[flat ? 0 : c] * K + k)]; });
+                        continue;
+                    }
+                    if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) continue;
+                    firstHits += cur.a == 0;
+                    if (!rec) rec = block.makeRecord(fr.fi, pi);
+                    rec[sj] = hit;
+                    if (A)
+                        writeAovs(block.recordAov(fr.fi, pi) + size_t(sj) * size_t(A), A, h,
+                                  [&](int c, int a) { return av[size_t(idx[c]) * size_t(A) + size_t(a)]; });
+                    if (Shadowed)
+                        writeShadowed(block.shadowed(fr.fi, pi) + size_t(sj) * size_t(K), K, h,
+                                      [&](int c, int k) { return cl[size_t(idx[flat ? 0 : c] * K + k)]; });
+                }
+            };
+            if constexpr (Lens) {
+                // Every sample of the pixels of the grown bound, against the quad its lens point sees.
+                float shx[4], shy[4];
+                lensShifts(camera, q.z, shx, shy);
+                for (int py = q.py0; py <= q.py1; ++py)
+                    for (int px = q.px0; px <= q.px1; ++px) {
+                        const size_t pi = block.pixelIndex(px, py);
+                        for (int sj = 0; sj < S; ++sj) {
+                            const size_t si = pi * size_t(S) + size_t(sj);
+                            const float x = xs[si], y = ys[si];
+                            if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
+                            ++tests;
+                            QuadSetup ql;
+                            Hit h;
+                            if (!lensQuad(q, shx, shy, lus[si], lvs[si], x, y, ql) || !hitQuad(ql, x, y, h)) continue;
+                            onHit(pi, sj, h, ql);
+                        }
+                    }
+            } else {
+                setupEdges(q);
+                // The samples of the strata the bound overlaps in each pixel, tested at once (SIMD).
+                const size_t room = size_t(q.px1 - q.px0 + 1) * size_t(q.py1 - q.py0 + 1) * size_t(S);
+                if (quadHits_.size() < room) quadHits_.resize(room);
+                size_t found = 0;
+                tests += test(q, layout, quadHits_.data(), &found);
+                for (size_t n = 0; n < found; ++n) {
+                    const QuadHit& qh = quadHits_[n];
+                    onHit(qh.pixel, qh.sample, quadHit(qh), q);
+                }
+            }
+        }
+    }
+    counters.sampleTests += tests;
+    counters.sampleHits += hits;
+    counters.firstHits += firstHits;
+    counters.fragments += fragments;
+}
+
+
+template void GridRasterizer::sampleStill<false, false, false>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
+template void GridRasterizer::sampleStill<false, false, true>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
+template void GridRasterizer::sampleStill<false, true, false>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
+template void GridRasterizer::sampleStill<false, true, true>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
+template void GridRasterizer::sampleStill<true, false, false>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
+template void GridRasterizer::sampleStill<true, false, true>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
+template void GridRasterizer::sampleStill<true, true, false>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
+template void GridRasterizer::sampleStill<true, true, true>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
+
+}  // namespace streyes
