@@ -15,6 +15,9 @@ namespace streyes::sampler {
 
 using namespace micropolygon;
 
+// Internal linkage, as when the samplers were one file: GCC inlines what each file calls once.
+namespace {
+
 // Is the sample at fraction tf of the exposure inside the part [tfA, tfB] a grid covers, open at
 // tfB when the grid ends there half-open?
 inline bool inTimeSpan(float tf, float tfA, float tfB, bool openB) {
@@ -155,4 +158,5 @@ inline void lensShifts(const Camera& camera, const float* z, float* sx, float* s
     }
 }
 
+}  // namespace
 }  // namespace streyes::sampler
