@@ -26,6 +26,12 @@ using namespace sampler;
 // bends a vertex's path: elsewhere (inside the grid, moving at nearly constant depth) a vertex's
 // raster position is interpolated linearly within the slice, the same for every quad that shares
 // it, so no crack opens. Hits go to the frames' records: what moves is seen by one frame only.
+//
+// Without a lens, a quad's samples of a group in the pixels of its bound are tested together, 8 at
+// a time, each against the quad at its own time (sample_kernels.h, MovingQuad: the kernel gives
+// the scalar test's results bit for bit); with a lens, one by one as its lens point sees the quad.
+// Before any quad, the whole grid and then each patch of 4 x 4 quads is skipped where every pixel
+// its bound over the group reaches already sees something nearer than all of it.
 template <bool Shadowed, bool Counting, bool Lens>
 void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageBlock& block,
                                   RasterCounters& counters) {
@@ -51,8 +57,11 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const float* ys = block.ys();
     const float *lus = block.lus(), *lvs = block.lvs();
     const InBoxFn inBoxes = inBoxKernel();
-    constexpr size_t kMaskSlices = 4;  // groups of this many slices find their samples by SIMD
+    constexpr size_t kMaskSlices = 4;  // with a lens, groups of this many slices find their samples by SIMD
     candidates_.resize(size_t(S));
+    // The moving test: the SIMD kernel, or the scalar reference while counting hits for tests of
+    // watertightness (the kernel is held to it bit for bit).
+    const MovingTestFn movingTest = Counting ? movingTestScalar() : movingTestKernel();
 
     // Slices are bounded in groups: a quad's bound over a group's time holds every sample of it
     // that could hit, and a slow grid needs no finer bound than a few slices give. As many slices a
@@ -69,7 +78,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const size_t group = perSlice > 0 ? size_t(std::clamp(double(kGroupMotion) / perSlice, 1.0, double(S))) : size_t(S);
 
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
-    uint64_t tests = 0, hits = 0, firstHits = 0, behind = 0, fragments = 0, gridsBehind = 0;
+    uint64_t tests = 0, hits = 0, firstHits = 0, behind = 0, fragments = 0, gridsBehind = 0, patchesBehind = 0;
     for (size_t s0 = 0; s0 < slices_.size();) {
         size_t s1 = s0 + 1;  // the group: consecutive slices of one frame
         while (s1 < slices_.size() && s1 - s0 < group && slices_[s1].fi == slices_[s0].fi &&
@@ -138,9 +147,37 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 continue;
             }
         }
+        // Patches of kPatch x kPatch quads, tested the same way: a grid partly in sight is often
+        // hidden patch by patch (foliage behind foliage), and a hidden patch's quads are not visited.
+        constexpr int kPatch = 4;
+        const int patchesU = (nu + kPatch - 1) / kPatch, patchesV = (nv + kPatch - 1) / kPatch;
+        patchHidden_.assign(size_t(patchesU * patchesV), 0);
+        if (!Counting && !Lens && patchesU * patchesV > 1) {
+            for (int pj = 0; pj < patchesV; ++pj)
+                for (int pc = 0; pc < patchesU; ++pc) {
+                    Bounds3f b;
+                    for (int vj = pj * kPatch; vj <= std::min(nv, (pj + 1) * kPatch); ++vj)
+                        for (int vi = pc * kPatch; vi <= std::min(nu, (pc + 1) * kPatch); ++vi) {
+                            const size_t v = size_t(vj * stride + vi);
+                            b.extend(Vec3f{ra_[v].x, ra_[v].y, ra_[v].z});
+                            b.extend(Vec3f{rb_[v].x, rb_[v].y, rb_[v].z});
+                        }
+                    const int x0 = floorClamped(b.lo.x, R.x0, R.x1), x1 = floorClamped(b.hi.x, R.x0, R.x1);
+                    const int y0 = floorClamped(b.lo.y, R.y0, R.y1), y1 = floorClamped(b.hi.y, R.y0, R.y1);
+                    bool hidden = true;
+                    for (int py = y0; py <= y1 && hidden; ++py)
+                        for (int px = x0; px <= x1 && hidden; ++px)
+                            hidden = pixelBehind(block, fi, block.pixelIndex(px, py), b.lo.z, S);
+                    if (hidden) {
+                        patchHidden_[size_t(pj * patchesU + pc)] = 1;
+                        ++patchesBehind;
+                    }
+                }
+        }
         for (int j = 0; j < nv; ++j) {
             for (int i = 0; i < nu; ++i) {
                 if (hole && hole[j * nu + i]) continue;  // trimmed away
+                if (patchHidden_[size_t((j / kPatch) * patchesU + i / kPatch)]) continue;
                 const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
                 const QuadOpacity opacity =
                     anySeeThrough ? quadOpacity(oi0, oi1, ci0, ci1, idx) : QuadOpacity::Opaque;
@@ -156,11 +193,134 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 if (!boundQuad(q, xb, yb, zb, R, nearZ, farZ, lensMargin<Lens>(camera))) continue;
                 const float xa[4] = {q.x[0], q.x[1], q.x[2], q.x[3]}, ya[4] = {q.y[0], q.y[1], q.y[2], q.y[3]},
                             za[4] = {q.z[0], q.z[1], q.z[2], q.z[3]};
+                // A hit: sample sj of pixel pi (at (x, y), weight w across the group) inside qt's
+                // triangle h, the quad's corner depths then zq. rec is the frame's record of the
+                // pixel (null until something only this frame sees lands there); cur the sample's hit.
+                auto onHit = [&](size_t pi, int sj, SampleHit*& rec, const SampleHit& cur, float w, const Hit& h,
+                                 const float* zq, const QuadSetup& qt, float x, float y) {
+                    ++hits;
+                    if (Counting) {
+                        const size_t ci2 = (size_t(fi) * pixels + pi) * size_t(S) + size_t(sj);
+                        trianglesCovering(qt, x, y, &hitCounts_[ci2], &windings_[ci2]);
+                    }
+                    const float sg = lerp(sA, sB, w);  // the grid's own time parameter
+                    if (seeThrough) {
+                        SampleFragment frag;
+                        auto colorAt = [&](int c) { return lerp(ci0[idx[flat ? 0 : c]], ci1[idx[flat ? 0 : c]], sg); };
+                        auto opacityAt = [&](int c) {
+                            const int v = idx[flat ? 0 : c];
+                            return lerp(oi0 ? oi0[v] : kOpaque, oi1 ? oi1[v] : kOpaque, sg);
+                        };
+                        if (!fragmentBeats(cur, zq, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) return;
+                        const int32_t fk = keepFrameFragment(block, fi, pi, sj, frag, rec);
+                        ++fragments;
+                        if (Shadowed)
+                            writeShadowed(block.fragmentShadowed(fk), K, h, [&](int c, int k) {
+                                const size_t v = size_t(idx[flat ? 0 : c] * K + k);
+                                return lerp(cl0[v], cl1[v], sg);
+                            });
+                        return;
+                    }
+                    SampleHit hit;
+                    if (!beats(cur, zq, h, nearZ, farZ, id,
+                               [&](int c) { return lerp(ci0[idx[flat ? 0 : c]], ci1[idx[flat ? 0 : c]], sg); }, &hit))
+                        return;
+                    firstHits += cur.a == 0;
+                    if (!Counting) {
+                        // The pixel's farthest sample came nearer: its bound goes stale.
+                        float& bound = block.farthestBound(fi, pi);
+                        if (!(cur.z < std::fabs(bound))) bound = -std::fabs(bound);
+                    }
+                    if (!rec) rec = block.makeRecord(fi, pi);
+                    rec[sj] = hit;
+                    if (A)
+                        writeAovs(block.recordAov(fi, pi) + size_t(sj) * size_t(A), A, h, [&](int c, int a) {
+                            const size_t v = size_t(idx[c]) * size_t(A) + size_t(a);
+                            return lerp(av0[v], av1[v], sg);
+                        });
+                    if (Shadowed)
+                        writeShadowed(block.shadowed(fi, pi) + size_t(sj) * size_t(K), K, h, [&](int c, int k) {
+                            const size_t v = size_t(idx[flat ? 0 : c] * K + k);
+                            return lerp(cl0[v], cl1[v], sg);
+                        });
+                };
+                if constexpr (!Lens) {
+                    // Each pixel's samples of the group's slices go into lanes, tested up to 64 at
+                    // a time against the quad at each sample's own time (sample_kernels.h,
+                    // MovingQuad); lanes inside the quad's bound are tests, as one by one.
+                    MovingQuad& mq = lanes_.quad;
+                    for (int c = 0; c < 4; ++c) {
+                        const size_t v = size_t(idx[c]);
+                        mq.x[0][c] = xa[c], mq.y[0][c] = ya[c], mq.z[0][c] = za[c];
+                        mq.x[1][c] = xb[c], mq.y[1][c] = yb[c], mq.z[1][c] = zb[c];
+                        mq.exact[c] = perspective && exact_[v];
+                        if (mq.exact[c]) {
+                            mq.cx[0][c] = ca_[v].x, mq.cy[0][c] = ca_[v].y, mq.cz[0][c] = ca_[v].z;
+                            mq.cx[1][c] = cb_[v].x, mq.cy[1][c] = cb_[v].y, mq.cz[1][c] = cb_[v].z;
+                        }
+                    }
+                    mq.ax = camera.ax(), mq.bx = camera.bx(), mq.ay = camera.ay(), mq.by = camera.by();
+                    mq.tfA = tfA, mq.invSpan = invSpan;
+                    mq.xmin = q.xmin, mq.xmax = q.xmax, mq.ymin = q.ymin, mq.ymax = q.ymax;
+                    int n = 0;
+                    auto flush = [&] {
+                        const MovingTest t = movingTest(mq, lanes_.x, lanes_.y, lanes_.tf, n, lanes_.edges);
+                        const uint64_t inside = t.first | t.second;
+                        for (uint64_t b = t.inBound; b; b &= b - 1) {
+                            const int l = __builtin_ctzll(b);
+                            const Slice& sl = slices_[lanes_.slice[l]];
+                            const float tf = lanes_.tf[l];
+                            if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
+                            const size_t pi = lanes_.pixel[l];
+                            const int sj = lanes_.sample[l];
+                            SampleHit* rec = block.record(fi, pi);
+                            const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
+                            if (!Counting && q.zmin > cur.z) {  // all of it behind what the sample already sees
+                                ++behind;
+                                continue;
+                            }
+                            ++tests;
+                            if (!((inside >> l) & 1)) continue;
+                            const Hit h = pixelHit(lanes_.edges, n, l, (t.first >> l) & 1);
+                            const float w = movingWeight(mq, tf);
+                            QuadSetup qt;
+                            if (Counting) movingQuadAt(mq, w, qt);
+                            else
+                                for (int c = 0; c < 4; ++c) movingCorner(mq, c, w, qt.x[c], qt.y[c], qt.z[c]);
+                            onHit(pi, sj, rec, cur, w, h, qt.z, qt, lanes_.x[l], lanes_.y[l]);
+                        }
+                        n = 0;
+                    };
+                    for (int py = q.py0; py <= q.py1; ++py) {
+                        for (int px = q.px0; px <= q.px1; ++px) {
+                            const size_t pi = block.pixelIndex(px, py);
+                            // Every sample of the pixel already sees something nearer than the whole
+                            // quad: none of them can change (the usual case deep in foliage).
+                            if (!Counting && pixelBehind(block, fi, pi, q.zmin, S)) {
+                                behind += s1 - s0;
+                                continue;
+                            }
+                            const int perm = block.permutation(fi, pi);
+                            const uint16_t* sampleOf = patterns.sampleOfStratum(perm);
+                            const float* times = patterns.stratumTimes(perm);
+                            for (size_t s = s0; s < s1; ++s) {
+                                if (n == kLanes) flush();
+                                const int k = slices_[s].k, sj = sampleOf[k];
+                                const size_t si = pi * size_t(S) + size_t(sj);
+                                lanes_.x[n] = xs[si], lanes_.y[n] = ys[si], lanes_.tf[n] = times[k];
+                                lanes_.pixel[n] = uint32_t(pi), lanes_.sample[n] = uint16_t(sj);
+                                lanes_.slice[n] = uint32_t(s);
+                                ++n;
+                            }
+                        }
+                    }
+                    if (n) flush();
+                    continue;
+                }
+                // With a lens: each sample against the quad at its time as its lens point sees it.
                 for (int py = q.py0; py <= q.py1; ++py) {
                     for (int px = q.px0; px <= q.px1; ++px) {
                         const size_t pi = block.pixelIndex(px, py);
-                        // Every sample of the pixel already sees something nearer than the whole
-                        // quad: none of them can change (the usual case deep in foliage).
                         if (!Counting && pixelBehind(block, fi, pi, q.zmin, S)) {
                             behind += s1 - s0;
                             continue;
@@ -193,86 +353,36 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                                 candidates_[candidates++] = {uint32_t(s), uint32_t(sj)};
                             }
                         }
-                        for (size_t n = 0; n < candidates; ++n) {
-                            const Slice& sl = slices_[candidates_[n].slice];
-                            const int sj = int(candidates_[n].sample);
+                        for (size_t c = 0; c < candidates; ++c) {
+                            const Slice& sl = slices_[candidates_[c].slice];
+                            const int sj = int(candidates_[c].sample);
                             const size_t si = pi * size_t(S) + size_t(sj);
                             const float x = xs[si], y = ys[si], tf = patterns.stratumTimes(perm)[sl.k];
                             if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
                             const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
-                            if (!Counting && q.zmin > cur.z) {  // all of it behind what the sample already sees
+                            if (!Counting && q.zmin > cur.z) {
                                 ++behind;
                                 continue;
                             }
                             ++tests;
                             const float w = std::min(1.0f, std::max(0.0f, (tf - tfA) * invSpan));
-                            QuadSetup qt;
-                            for (int c = 0; c < 4; ++c) {
-                                if (perspective && exact_[size_t(idx[c])]) {
-                                    const Vec3f r = camera.toRaster(lerp(ca_[size_t(idx[c])], cb_[size_t(idx[c])], w));
-                                    qt.x[c] = r.x, qt.y[c] = r.y, qt.z[c] = r.z;
+                            QuadSetup qp;
+                            for (int k = 0; k < 4; ++k) {
+                                if (perspective && exact_[size_t(idx[k])]) {
+                                    const Vec3f r = camera.toRaster(lerp(ca_[size_t(idx[k])], cb_[size_t(idx[k])], w));
+                                    qp.x[k] = r.x, qp.y[k] = r.y, qp.z[k] = r.z;
                                 } else {
-                                    qt.x[c] = lerp(xa[c], xb[c], w);
-                                    qt.y[c] = lerp(ya[c], yb[c], w);
-                                    qt.z[c] = lerp(za[c], zb[c], w);
+                                    qp.x[k] = lerp(xa[k], xb[k], w);
+                                    qp.y[k] = lerp(ya[k], yb[k], w);
+                                    qp.z[k] = lerp(za[k], zb[k], w);
                                 }
                             }
+                            float shx[4], shy[4];
+                            lensShifts(camera, qp.z, shx, shy);
+                            QuadSetup qt;
                             Hit h;
-                            if constexpr (Lens) {
-                                // The quad at the sample's time as its lens point sees it.
-                                float shx[4], shy[4];
-                                lensShifts(camera, qt.z, shx, shy);
-                                const QuadSetup qp = qt;
-                                if (!lensQuad(qp, shx, shy, lus[si], lvs[si], x, y, qt)) continue;
-                            } else {
-                                setupEdges(qt);
-                            }
-                            if (!hitQuad(qt, x, y, h)) continue;
-                            ++hits;
-                            if (Counting) {
-                                const size_t ci2 = (size_t(fi) * pixels + pi) * size_t(S) + size_t(sj);
-                                trianglesCovering(qt, x, y, &hitCounts_[ci2], &windings_[ci2]);
-                            }
-                            const float sg = lerp(sA, sB, w);  // the grid's own time parameter
-                            if (seeThrough) {
-                                SampleFragment frag;
-                                auto colorAt = [&](int c) { return lerp(ci0[idx[flat ? 0 : c]], ci1[idx[flat ? 0 : c]], sg); };
-                                auto opacityAt = [&](int c) {
-                                    const int v = idx[flat ? 0 : c];
-                                    return lerp(oi0 ? oi0[v] : kOpaque, oi1 ? oi1[v] : kOpaque, sg);
-                                };
-                                if (!fragmentBeats(cur, qt.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) continue;
-                                const int32_t fk = keepFrameFragment(block, fi, pi, sj, frag, rec);
-                                ++fragments;
-                                if (Shadowed)
-                                    writeShadowed(block.fragmentShadowed(fk), K, h, [&](int c, int k) {
-                                        const size_t v = size_t(idx[flat ? 0 : c] * K + k);
-                                        return lerp(cl0[v], cl1[v], sg);
-                                    });
-                                continue;
-                            }
-                            SampleHit hit;
-                            if (!beats(cur, qt.z, h, nearZ, farZ, id,
-                                       [&](int c) { return lerp(ci0[idx[flat ? 0 : c]], ci1[idx[flat ? 0 : c]], sg); }, &hit))
-                                continue;
-                            firstHits += cur.a == 0;
-                            if (!Counting) {
-                                // The pixel's farthest sample came nearer: its bound goes stale.
-                                float& bound = block.farthestBound(fi, pi);
-                                if (!(cur.z < std::fabs(bound))) bound = -std::fabs(bound);
-                            }
-                            if (!rec) rec = block.makeRecord(fi, pi);
-                            rec[sj] = hit;
-                            if (A)
-                                writeAovs(block.recordAov(fi, pi) + size_t(sj) * size_t(A), A, h, [&](int c, int a) {
-                                    const size_t v = size_t(idx[c]) * size_t(A) + size_t(a);
-                                    return lerp(av0[v], av1[v], sg);
-                                });
-                            if (Shadowed)
-                                writeShadowed(block.shadowed(fi, pi) + size_t(sj) * size_t(K), K, h, [&](int c, int k) {
-                                    const size_t v = size_t(idx[flat ? 0 : c] * K + k);
-                                    return lerp(cl0[v], cl1[v], sg);
-                                });
+                            if (!lensQuad(qp, shx, shy, lus[si], lvs[si], x, y, qt) || !hitQuad(qt, x, y, h)) continue;
+                            onHit(pi, sj, rec, cur, w, h, qt.z, qt, x, y);
                         }
                     }
                 }
@@ -286,8 +396,8 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     counters.samplesBehind += behind;
     counters.fragments += fragments;
     counters.gridGroupsBehind += gridsBehind;
+    counters.patchGroupsBehind += patchesBehind;
 }
-
 
 template void GridRasterizer::sampleMoving<false, false, false>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
 template void GridRasterizer::sampleMoving<false, false, true>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);

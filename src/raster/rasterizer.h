@@ -7,8 +7,9 @@
 // moving grid is projected at the ends of a group of slices (as many as keep its motion over the
 // group under half a pixel), the grid's and then each quad's bound over the group rejected against
 // the block (a vertex moving linearly in camera space projects inside the box of its two ends),
-// and each sample tested against the quad at the sample's own time. A group of four slices or
-// more finds a pixel's samples inside the quad's bound 64 at a time (sample_kernels.h, inBox).
+// and each sample tested against the quad at the sample's own time, 8 samples at a time
+// (sample_kernels.h, MovingQuad); with depth of field one at a time, a group of four slices or
+// more finding a pixel's samples inside the quad's bound 64 at a time (inBox).
 //
 // A grid that is still and exists over every frame of the block is sampled once, into the
 // block's still layer; any other writes into the frames' records of the pixels it comes nearest
@@ -48,6 +49,7 @@ struct RasterCounters {
     uint64_t firstHits = 0;      // samples that had no hit before (adaptive depth layers use it)
     uint64_t fragments = 0;      // see-through hits kept for compositing (image_block.h)
     uint64_t gridGroupsBehind = 0;  // a moving grid's groups of slices not sampled: all of it lay behind
+    uint64_t patchGroupsBehind = 0;  // the same for a patch of its quads (4 x 4) over a group
 };
 
 class GridRasterizer {
@@ -105,12 +107,24 @@ class GridRasterizer {
     std::vector<RasterVertex> ra_, rb_;
     std::vector<Vec3f> ca_, cb_;  // camera space at the ends of a slice (perspective, moving grids)
     std::vector<uint8_t> exact_;  // per vertex, this slice: projected at each sample's time
+    std::vector<uint8_t> patchHidden_;  // per patch of quads, this group: all of it lies behind
     std::vector<QuadHit> quadHits_;  // a still quad's hits
     std::vector<Slice> slices_;
     struct Candidate {
         uint32_t slice, sample;  // a moving quad's sample in one pixel, and its slice
     };
-    std::vector<Candidate> candidates_;
+    std::vector<Candidate> candidates_;  // with a lens
+    // A moving quad's lanes: the samples of its group of slices in the pixels of its bound, tested
+    // up to kLanes at a time (sample_kernels.h, MovingTestFn), each with its pixel and slice.
+    static constexpr int kLanes = 64;
+    struct Lanes {
+        MovingQuad quad;
+        float x[kLanes], y[kLanes], tf[kLanes];
+        uint32_t pixel[kLanes], slice[kLanes];
+        uint16_t sample[kLanes];
+        float edges[kMaxEdgeValues];
+    };
+    Lanes lanes_{};
     std::vector<FrameSpan> frames_;
     uint32_t* hitCounts_ = nullptr;
     int32_t* windings_ = nullptr;

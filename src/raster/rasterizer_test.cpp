@@ -295,5 +295,35 @@ TEST(GridRasterizer, AMovingGridBehindEverySampleItCanReachIsSkipped) {
     EXPECT_FLOAT_EQ(wide.hit(6, 2).z, 5.0f);
 }
 
+// A moving grid partly hidden: its patches of 4 x 4 quads that lie behind what every pixel they
+// reach already sees are skipped (counted), the rest sampled as usual. A still wall covers x < 8 at
+// z = 5; an 8 x 8 grid at z = 10 spans x in [2, 10] moving 1 pixel right: its left patches (x up
+// to 7) are hidden, its right ones reach pixels that see nothing.
+TEST(GridRasterizer, HiddenPatchesOfAMovingGridAreSkipped) {
+    Material material;
+    Fixture f;
+    f.size = 12;
+    f.cam = pixelCamera(12);
+    f.reset({0.5f});
+    for (int y = 0; y < f.size; ++y)
+        for (int x = 0; x < f.size; ++x) f.place(x, y, float(x) + 0.5f, float(y) + 0.5f);
+    Grid wall, grid;
+    diceSquare(0, 0, 8, 12, 5, 0, 4, &material, 12, wall);
+    wall.Ci[0].assign(wall.P[0].size(), Color{0, 0, 1});
+    wall.primitiveId = 1;
+    f.raster.rasterize(wall, f.cam, Shutter{0, 1}, f.block, f.counters);
+    diceSquare(2, 2, 10, 10, 10, 1, 8, &material, 12, grid);
+    grid.primitiveId = 2;
+    f.raster.rasterize(grid, f.cam, Shutter{0, 1}, f.block, f.counters);
+    EXPECT_EQ(f.counters.gridGroupsBehind, 0u);
+    EXPECT_GE(f.counters.patchGroupsBehind, 2u);  // the two left patches, in every group of slices
+    for (int y = 0; y < f.size; ++y)
+        for (int x = 0; x < f.size; ++x) {
+            // At t = 0.5 the grid covers x in [2.5, 10.5], y in [2, 10].
+            const bool onGrid = x >= 8 && float(x) + 0.5f <= 10.5f && y >= 2 && y < 10;
+            ASSERT_EQ(f.hit(x, y).id, x < 8 ? 1u : onGrid ? 2u : kNoHit.id) << x << "," << y;
+        }
+}
+
 }  // namespace
 }  // namespace streyes

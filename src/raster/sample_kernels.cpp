@@ -39,7 +39,92 @@ HWY_INLINE M insideTriangle(V e0, bool c0, V e1, bool c1, V e2, bool c2) {
     return hn::Or(positive, negative);
 }
 
+// insideTriangle with each lane's own canonical directions (a moving quad's edges differ by lane).
+template <class D, class VD = hn::Vec<D>, class MD = hn::Mask<D>>
+HWY_INLINE MD insideTriangleLanes(D d, VD e0, MD c0, VD e1, MD c1, VD e2, MD c2) {
+    const VD zero = hn::Zero(d);
+    auto atLeast = [&](VD e, MD orZero) { return hn::Or(hn::Gt(e, zero), hn::And(orZero, hn::Eq(e, zero))); };
+    auto atMost = [&](VD e, MD orZero) { return hn::Or(hn::Lt(e, zero), hn::And(orZero, hn::Eq(e, zero))); };
+    const MD positive = hn::And(hn::And(atLeast(e0, c0), atLeast(e1, c1)),
+                               hn::And(atLeast(e2, c2), hn::Gt(hn::Max(hn::Max(e0, e1), e2), zero)));
+    const MD negative = hn::And(hn::And(atMost(e0, hn::Not(c0)), atMost(e1, hn::Not(c1))),
+                               hn::And(atMost(e2, hn::Not(c2)), hn::Lt(hn::Min(hn::Min(e0, e1), e2), zero)));
+    return hn::Or(positive, negative);
+}
+
+template <class D>
+HWY_INLINE uint64_t maskBits(D d, hn::Mask<D> m) {
+    uint8_t out[8] = {0};
+    hn::StoreMaskBits(d, m, out);
+    uint64_t v = 0;
+    for (size_t b = 0; b < (hn::Lanes(d) + 7) / 8; ++b) v |= uint64_t(out[b]) << (8 * b);
+    return v;
+}
+
 }  // namespace
+
+// Each lane's quad at its own time, set up and tested as movingQuadAt and hitQuad do: the same
+// operations in the same order (lerp is a (1 - w) + b w; makeEdge's canonical choice by lane).
+MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, const float* tfs, int n, float* edges) {
+    const hn::CappedTag<float, 8> kD;  // 8 lanes: a pixel group's candidates seldom fill more
+    using V = hn::Vec<decltype(kD)>;
+    using M = hn::Mask<decltype(kD)>;
+    const size_t N = hn::Lanes(kD);
+    const int stride = edgeStride(n);
+    const V zero = hn::Zero(kD), one = hn::Set(kD, 1.0f), minusOne = hn::Set(kD, -1.0f);
+    const V xmin = hn::Set(kD, q.xmin), xmax = hn::Set(kD, q.xmax), ymin = hn::Set(kD, q.ymin), ymax = hn::Set(kD, q.ymax);
+    const V tfA = hn::Set(kD, q.tfA), invSpan = hn::Set(kD, q.invSpan);
+    MovingTest r;
+    for (size_t i = 0; i < size_t(n); i += N) {
+        const V x = hn::LoadU(kD, xs + i), y = hn::LoadU(kD, ys + i), tf = hn::LoadU(kD, tfs + i);
+        M inBound = hn::And(hn::And(hn::Not(hn::Lt(x, xmin)), hn::Not(hn::Gt(x, xmax))),
+                            hn::And(hn::Not(hn::Lt(y, ymin)), hn::Not(hn::Gt(y, ymax))));
+        inBound = hn::And(inBound, hn::FirstN(kD, size_t(n) - i));
+        if (hn::AllFalse(kD, inBound)) continue;
+        // std::min(1, std::max(0, v)), NaN and signed zeros included.
+        const V v = hn::Mul(hn::Sub(tf, tfA), invSpan);
+        const V m = hn::IfThenElse(hn::Lt(zero, v), v, zero);
+        const V w = hn::IfThenElse(hn::Lt(m, one), m, one), omw = hn::Sub(one, w);
+        auto lerpV = [&](float a, float b) { return hn::Add(hn::Mul(hn::Set(kD, a), omw), hn::Mul(hn::Set(kD, b), w)); };
+        V cxs[4], cys[4];
+        for (int c = 0; c < 4; ++c) {
+            if (q.exact[c]) {
+                const V px = lerpV(q.cx[0][c], q.cx[1][c]), py = lerpV(q.cy[0][c], q.cy[1][c]);
+                const V iz = hn::Div(one, lerpV(q.cz[0][c], q.cz[1][c]));
+                cxs[c] = hn::Add(hn::Mul(hn::Mul(hn::Set(kD, q.ax), px), iz), hn::Set(kD, q.bx));
+                cys[c] = hn::Add(hn::Mul(hn::Mul(hn::Set(kD, q.ay), py), iz), hn::Set(kD, q.by));
+            } else {
+                cxs[c] = lerpV(q.x[0][c], q.x[1][c]);
+                cys[c] = lerpV(q.y[0][c], q.y[1][c]);
+            }
+        }
+        // The five edges (q0q1, q1q2, q2q3, q3q0, q2q0) in canonical form, evaluated at the lane's sample.
+        static constexpr int kFrom[5] = {0, 1, 2, 3, 2}, kTo[5] = {1, 2, 3, 0, 0};
+        V e[5];
+        M canonical[5];
+        M diagonalDegenerate;
+        for (int k = 0; k < 5; ++k) {
+            const V ax = cxs[kFrom[k]], ay = cys[kFrom[k]], bx = cxs[kTo[k]], by = cys[kTo[k]];
+            const M can = hn::Or(hn::Lt(ax, bx), hn::And(hn::Eq(ax, bx), hn::Lt(ay, by)));
+            const V px = hn::IfThenElse(can, ax, bx), py = hn::IfThenElse(can, ay, by);
+            const V dx = hn::IfThenElse(can, hn::Sub(bx, ax), hn::Sub(ax, bx));
+            const V dy = hn::IfThenElse(can, hn::Sub(by, ay), hn::Sub(ay, by));
+            const V sign = hn::IfThenElse(can, one, minusOne);
+            e[k] = hn::Mul(sign, hn::Sub(hn::Mul(dx, hn::Sub(y, py)), hn::Mul(dy, hn::Sub(x, px))));
+            canonical[k] = can;
+            if (k == 4) diagonalDegenerate = hn::And(hn::Eq(dx, zero), hn::Eq(dy, zero));
+            hn::StoreU(e[k], kD, edges + k * stride + int(i));
+        }
+        const M c02 = hn::AndNot(diagonalDegenerate, hn::Not(canonical[4]));
+        const M first = hn::And(inBound, insideTriangleLanes(kD, e[0], canonical[0], e[1], canonical[1], e[4], canonical[4]));
+        const M second = hn::AndNot(first, hn::And(inBound, insideTriangleLanes(kD, hn::Neg(e[4]), c02, e[2], canonical[2],
+                                                                                e[3], canonical[3])));
+        r.inBound |= maskBits(kD, inBound) << i;
+        r.first |= maskBits(kD, first) << i;
+        r.second |= maskBits(kD, second) << i;
+    }
+    return r;
+}
 
 PixelTest TestPixel(const QuadSetup& q, const float* xs, const float* ys, int n, uint64_t candidates, float* edges) {
     const size_t N = hn::Lanes(kD);
@@ -178,8 +263,7 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
     return tested;
 }
 
-// The bits of samples [0, n) inside the box whose key lies in [k0, k1]: whole vectors, then
-// groups of four, then one at a time (no read past n).
+// The bits of samples [0, n) inside the box whose key lies in [k0, k1]: whole vectors, then groups of four, then one at a time (no read past n).
 template <class D>
 HWY_INLINE uint64_t BoxBits(D d, const float* xs, const float* ys, const float* keys, int& j, int n, const Box& b) {
     const size_t N = hn::Lanes(d);
@@ -209,6 +293,7 @@ uint64_t InBox(const float* xs, const float* ys, const float* keys, int n, const
 PixelTestFn Kernel() { return &TestPixel; }
 InBoxFn InBoxKernel() { return &InBox; }
 QuadTestFn QuadKernel() { return &TestQuad; }
+MovingTestFn MovingKernel() { return &TestMoving; }
 const char* Target() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
@@ -221,6 +306,7 @@ namespace streyes {
 HWY_EXPORT(Kernel);
 HWY_EXPORT(QuadKernel);
 HWY_EXPORT(InBoxKernel);
+HWY_EXPORT(MovingKernel);
 HWY_EXPORT(Target);
 
 namespace {
@@ -237,6 +323,27 @@ PixelTest scalarTest(const micropolygon::QuadSetup& q, const float* xs, const fl
         if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
         const uint64_t bit = uint64_t(1) << j;
         r.tested |= bit;
+        float e[5];
+        for (int k = 0; k < 5; ++k) edges[k * stride + j] = e[k] = q.e[k].eval(x, y);
+        if (insideTriangle(e[0], q.e[0].canonical, e[1], q.e[1].canonical, e[4], q.e[4].canonical)) r.first |= bit;
+        else if (insideTriangle(-e[4], c02, e[2], q.e[2].canonical, e[3], q.e[3].canonical)) r.second |= bit;
+    }
+    return r;
+}
+
+MovingTest scalarMovingTest(const MovingQuad& m, const float* xs, const float* ys, const float* tfs, int n,
+                             float* edges) {
+    using namespace micropolygon;
+    const int stride = edgeStride(n);
+    MovingTest r;
+    for (int j = 0; j < n; ++j) {
+        const float x = xs[j], y = ys[j];
+        if (x < m.xmin || x > m.xmax || y < m.ymin || y > m.ymax) continue;
+        const uint64_t bit = uint64_t(1) << j;
+        r.inBound |= bit;
+        QuadSetup q;
+        movingQuadAt(m, movingWeight(m, tfs[j]), q);
+        const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
         float e[5];
         for (int k = 0; k < 5; ++k) edges[k * stride + j] = e[k] = q.e[k].eval(x, y);
         if (insideTriangle(e[0], q.e[0].canonical, e[1], q.e[1].canonical, e[4], q.e[4].canonical)) r.first |= bit;
@@ -310,6 +417,13 @@ InBoxFn inBoxKernel() {
 }
 
 InBoxFn inBoxScalar() { return &scalarInBox; }
+
+MovingTestFn movingTestKernel() {
+    static const MovingTestFn kernel = HWY_DYNAMIC_DISPATCH(MovingKernel)();
+    return kernel;
+}
+
+MovingTestFn movingTestScalar() { return &scalarMovingTest; }
 
 const char* pixelTestTarget() { return HWY_DYNAMIC_DISPATCH(Target)(); }
 

@@ -6,6 +6,7 @@
 // -ffp-contract=off), and tests hold them to it (sample_kernels_test.cpp).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "raster/micropolygon.h"
@@ -78,6 +79,53 @@ inline uint64_t inBoxBits(const float* xs, const float* ys, const float* keys, i
 using InBoxFn = uint64_t (*)(const float* xs, const float* ys, const float* keys, int n, const Box& box);
 InBoxFn inBoxKernel();
 InBoxFn inBoxScalar();  // inBox sample by sample
+
+// A moving quad over a group of time slices (GridRasterizer::sampleMoving): each sample is tested
+// against the quad at its own time, w = clamp((tf - tfA) invSpan, 0, 1) across the group. A corner
+// moves linearly in raster space between the group's ends, or, where exact[c] (perspective: the
+// grid's border, and where the projection bends a vertex's path), linearly in camera space and is
+// projected at w, with Camera::toRaster's operations.
+struct MovingQuad {
+    float x[2][4], y[2][4], z[2][4];     // raster corners at the group's start [0] and end [1]
+    float cx[2][4], cy[2][4], cz[2][4];  // camera-space corners, read where exact[c]
+    bool exact[4];
+    float ax, bx, ay, by;  // raster = a * (camera / z) + b (Camera::toRaster, perspective)
+    float tfA, invSpan;
+    float xmin, xmax, ymin, ymax;  // the quad's bound over the group (micropolygon::boundQuad)
+};
+inline float movingWeight(const MovingQuad& m, float tf) {
+    return std::min(1.0f, std::max(0.0f, (tf - m.tfA) * m.invSpan));
+}
+// Corner c at weight w, as the sampler sees it.
+inline void movingCorner(const MovingQuad& m, int c, float w, float& x, float& y, float& z) {
+    if (m.exact[c]) {
+        const float px = lerp(m.cx[0][c], m.cx[1][c], w), py = lerp(m.cy[0][c], m.cy[1][c], w);
+        z = lerp(m.cz[0][c], m.cz[1][c], w);
+        const float iz = 1.0f / z;
+        x = m.ax * px * iz + m.bx;
+        y = m.ay * py * iz + m.by;
+    } else {
+        x = lerp(m.x[0][c], m.x[1][c], w);
+        y = lerp(m.y[0][c], m.y[1][c], w);
+        z = lerp(m.z[0][c], m.z[1][c], w);
+    }
+}
+// The quad at weight w, its edges set up.
+inline void movingQuadAt(const MovingQuad& m, float w, micropolygon::QuadSetup& q) {
+    for (int c = 0; c < 4; ++c) movingCorner(m, c, w, q.x[c], q.y[c], q.z[c]);
+    micropolygon::setupEdges(q);
+}
+// Samples [0, n) (n <= 64) at (xs, ys), at exposure fractions tfs: inBound, those inside the
+// quad's bound; first and second, those inside its triangles at their own time (as
+// micropolygon::hitQuad finds them). edges as PixelTestFn's. xs, ys and tfs must be readable up
+// to edgeStride(n).
+struct MovingTest {
+    uint64_t inBound = 0, first = 0, second = 0;
+};
+using MovingTestFn = MovingTest (*)(const MovingQuad& q, const float* xs, const float* ys, const float* tfs, int n,
+                                    float* edges);
+MovingTestFn movingTestKernel();
+MovingTestFn movingTestScalar();  // movingQuadAt and micropolygon.h's test, sample by sample
 
 inline micropolygon::Hit quadHit(const QuadHit& h) {
     return h.first ? micropolygon::Hit{0, 1, 2, h.l1, h.l2} : micropolygon::Hit{0, 2, 3, h.l1, h.l2};

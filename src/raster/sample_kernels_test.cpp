@@ -130,6 +130,75 @@ TEST(SampleKernels, QuadKernelGivesTheScalarQuadTestBitForBit) {
     EXPECT_GT(hits, 50000u);
 }
 
+// The moving kernel (each lane's quad at its own time) against its scalar reference, and both
+// against micropolygon::hitQuad on the quad movingQuadAt makes: quads moving from one shape to
+// another, some corners projected from camera space, samples on the ends' corners and edges at
+// the group's ends (where the tie rule decides), collapsed edges and diagonals, every count of lanes.
+TEST(SampleKernels, MovingKernelGivesTheScalarTestBitForBit) {
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> u(0.0f, 4.0f), depth(2.0f, 6.0f);
+    const MovingTestFn kernel = movingTestKernel(), scalar = movingTestScalar();
+    uint64_t tested = 0, hits = 0, exactHits = 0;
+    for (int t = 0; t < 20000; ++t) {
+        MovingQuad m{};
+        for (int e = 0; e < 2; ++e)
+            for (int c = 0; c < 4; ++c) {
+                m.x[e][c] = std::round(u(rng) * 4) / 4, m.y[e][c] = std::round(u(rng) * 4) / 4, m.z[e][c] = depth(rng);
+                m.cz[e][c] = m.z[e][c];  // camera space that projects onto the raster corner
+                m.cx[e][c] = (m.x[e][c] - 0.5f) * m.cz[e][c] / 2.0f, m.cy[e][c] = (m.y[e][c] - 0.25f) * m.cz[e][c] / 2.0f;
+            }
+        m.ax = 2.0f, m.bx = 0.5f, m.ay = 2.0f, m.by = 0.25f;
+        if (t % 7 == 0) m.x[0][1] = m.x[0][0], m.y[0][1] = m.y[0][0];  // a collapsed edge at the start
+        if (t % 11 == 0)
+            for (int e = 0; e < 2; ++e) m.x[e][2] = m.x[e][0], m.y[e][2] = m.y[e][0];  // a collapsed diagonal
+        for (int c = 0; c < 4; ++c) m.exact[c] = t % 3 == 0 && (rng() & 1);
+        m.tfA = 0.25f, m.invSpan = 4.0f;  // the group is [0.25, 0.5] of the exposure
+        m.xmin = m.ymin = 0.0f, m.xmax = m.ymax = 4.0f;
+        if (t % 5 == 0) m.xmin = 1.0f, m.ymax = 3.0f;  // a bound that leaves samples out
+        const int n = 1 + int(rng() % 64);
+        std::vector<float> xs(size_t(edgeStride(n))), ys(xs.size()), tfs(xs.size());
+        for (int j = 0; j < n; ++j) {
+            const int e = int(rng() % 2);
+            tfs[size_t(j)] = rng() % 3 == 0 ? 0.25f + 0.25f * float(e) : 0.2f + 0.35f * float(rng() % 1000) / 1000.0f;
+            switch (rng() % 4) {
+            case 0: xs[size_t(j)] = m.x[e][rng() % 4], ys[size_t(j)] = m.y[e][rng() % 4]; break;
+            case 1: {
+                const int a = int(rng() % 4), b = (a + 1) % 4;
+                xs[size_t(j)] = 0.5f * (m.x[e][a] + m.x[e][b]), ys[size_t(j)] = 0.5f * (m.y[e][a] + m.y[e][b]);
+                break;
+            }
+            default: xs[size_t(j)] = u(rng), ys[size_t(j)] = u(rng);
+            }
+        }
+        float ek[kMaxEdgeValues], es[kMaxEdgeValues];
+        const MovingTest a = kernel(m, xs.data(), ys.data(), tfs.data(), n, ek);
+        const MovingTest b = scalar(m, xs.data(), ys.data(), tfs.data(), n, es);
+        ASSERT_EQ(a.inBound, b.inBound) << "quad " << t;
+        ASSERT_EQ(a.first, b.first) << "quad " << t;
+        ASSERT_EQ(a.second, b.second) << "quad " << t;
+        for (int j = 0; j < n; ++j) {
+            if (!((a.inBound >> j) & 1)) continue;
+            ++tested;
+            for (int k = 0; k < 5; ++k)
+                ASSERT_TRUE(sameBits(ek[k * edgeStride(n) + j], es[k * edgeStride(n) + j])) << "quad " << t << " edge " << k;
+            QuadSetup q;
+            movingQuadAt(m, movingWeight(m, tfs[size_t(j)]), q);
+            Hit h;
+            const bool in = hitQuad(q, xs[size_t(j)], ys[size_t(j)], h);
+            ASSERT_EQ(in, bool(((a.first | a.second) >> j) & 1)) << "quad " << t << " sample " << j;
+            if (!in) continue;
+            ++hits;
+            exactHits += m.exact[0] || m.exact[1] || m.exact[2] || m.exact[3];
+            const Hit k = pixelHit(ek, n, j, (a.first >> j) & 1);
+            EXPECT_TRUE(k.v2 == h.v2 && sameBits(k.l1, h.l1) && sameBits(k.l2, h.l2)) << "quad " << t << " sample " << j;
+        }
+    }
+    EXPECT_GT(tested, 200000u);  // both outcomes, often, and hits through projected corners
+    EXPECT_GT(hits, 50000u);
+    EXPECT_GT(exactHits, 5000u);
+}
+
+
 // A moving quad's candidate filter: the SIMD kernel gives the scalar test's bits for every count
 // of samples (whole vectors, groups of four and single tails), with samples on the box's edges
 // and keys on the range's ends; and the bits are the samples inside.

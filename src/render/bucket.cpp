@@ -147,6 +147,7 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
     counters.sampleHits += rasterCounters_.sampleHits;
     counters.samplesBehind += rasterCounters_.samplesBehind;
     counters.gridGroupsBehind += rasterCounters_.gridGroupsBehind;
+    counters.patchGroupsBehind += rasterCounters_.patchGroupsBehind;
     counters.sampleFragments += rasterCounters_.fragments;
     rasterCounters_ = {};
     shader_.takeCounters(counters);
