@@ -427,5 +427,16 @@ MovingTestFn movingTestScalar() { return &scalarMovingTest; }
 
 const char* pixelTestTarget() { return HWY_DYNAMIC_DISPATCH(Target)(); }
 
+std::vector<KernelSet> kernelsOfEveryTarget() {
+    std::vector<KernelSet> out;
+    for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        hwy::SetSupportedTargetsForTest(target);  // the next dispatch chooses it
+        out.push_back({hwy::TargetName(target), HWY_DYNAMIC_DISPATCH(Kernel)(), HWY_DYNAMIC_DISPATCH(QuadKernel)(),
+                       HWY_DYNAMIC_DISPATCH(MovingKernel)()});
+    }
+    hwy::SetSupportedTargetsForTest(0);
+    return out;
+}
+
 }  // namespace streyes
 #endif  // HWY_ONCE

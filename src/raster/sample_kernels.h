@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "raster/micropolygon.h"
 
@@ -126,6 +127,17 @@ using MovingTestFn = MovingTest (*)(const MovingQuad& q, const float* xs, const 
                                     float* edges);
 MovingTestFn movingTestKernel();
 MovingTestFn movingTestScalar();  // movingQuadAt and micropolygon.h's test, sample by sample
+
+// For tests: the kernels of every instruction set compiled in that this CPU runs (AVX-512, AVX2,
+// SSE4 ...), so that each, not only the one dispatched to, is held to the scalar references: the
+// same scene gives the same pixels on every machine.
+struct KernelSet {
+    const char* target;
+    PixelTestFn pixel;
+    QuadTestFn quad;
+    MovingTestFn moving;
+};
+std::vector<KernelSet> kernelsOfEveryTarget();
 
 inline micropolygon::Hit quadHit(const QuadHit& h) {
     return h.first ? micropolygon::Hit{0, 1, 2, h.l1, h.l2} : micropolygon::Hit{0, 2, 3, h.l1, h.l2};

@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace streyes {
@@ -25,10 +26,10 @@ bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 // The kernel against the scalar reference, and both against micropolygon::hitQuad, on quads of
 // every shape (convex, concave, bow-ties, collapsed edges, no area) and samples anywhere, on the
 // corners and on the edges (where the tie rule decides).
-TEST(SampleKernels, KernelGivesTheScalarTestBitForBit) {
+void pixelKernelAgrees(PixelTestFn kernel) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(0.0f, 4.0f);
-    const PixelTestFn kernel = pixelTestKernel(), scalar = pixelTestScalar();
+    const PixelTestFn scalar = pixelTestScalar();
     uint64_t tested = 0, hits = 0;
     for (int t = 0; t < 20000; ++t) {
         float x[4], y[4];
@@ -76,13 +77,12 @@ TEST(SampleKernels, KernelGivesTheScalarTestBitForBit) {
     }
     EXPECT_GT(tested, 100000u);
     EXPECT_GT(hits, 20000u);
-    RecordProperty("target", pixelTestTarget());
 }
 
 // The kernel the renderer calls for a still quad (every pixel of its bound, the samples of the
 // strata it overlaps) against the scalar reference: the same samples tested, the same hits in
 // the same order, each with the same barycentrics bit for bit, and each hit the one hitQuad makes.
-TEST(SampleKernels, QuadKernelGivesTheScalarQuadTestBitForBit) {
+void quadKernelAgrees(QuadTestFn kernel) {
     std::mt19937 rng(5);
     const int W = 6, H = 5, sx = 4, sy = 4, S = sx * sy;
     const PixelRect R{10, 20, 10 + W - 1, 20 + H - 1};
@@ -97,7 +97,7 @@ TEST(SampleKernels, QuadKernelGivesTheScalarQuadTestBitForBit) {
                 ys[i] = float(R.y0 + py) + (float(j / sx) + v) / float(sy);
             }
     const SampleLayout layout{xs.data(), ys.data(), R.x0, R.y0, W, S, sx, sy};
-    const QuadTestFn kernel = quadTestKernel(), scalar = quadTestScalar();
+    const QuadTestFn scalar = quadTestScalar();
     std::vector<QuadHit> a(size_t(W * H * S)), b(a.size());
     uint64_t hits = 0;
     for (int t = 0; t < 5000; ++t) {
@@ -134,10 +134,10 @@ TEST(SampleKernels, QuadKernelGivesTheScalarQuadTestBitForBit) {
 // against micropolygon::hitQuad on the quad movingQuadAt makes: quads moving from one shape to
 // another, some corners projected from camera space, samples on the ends' corners and edges at
 // the group's ends (where the tie rule decides), collapsed edges and diagonals, every count of lanes.
-TEST(SampleKernels, MovingKernelGivesTheScalarTestBitForBit) {
+void movingKernelAgrees(MovingTestFn kernel) {
     std::mt19937 rng(13);
     std::uniform_real_distribution<float> u(0.0f, 4.0f), depth(2.0f, 6.0f);
-    const MovingTestFn kernel = movingTestKernel(), scalar = movingTestScalar();
+    const MovingTestFn scalar = movingTestScalar();
     uint64_t tested = 0, hits = 0, exactHits = 0;
     for (int t = 0; t < 20000; ++t) {
         MovingQuad m{};
@@ -198,6 +198,41 @@ TEST(SampleKernels, MovingKernelGivesTheScalarTestBitForBit) {
     EXPECT_GT(exactHits, 5000u);
 }
 
+
+// Each kernel of every instruction set this CPU runs (not only the one dispatched to) against
+// its scalar reference: the same scene gives the same pixels on every machine.
+TEST(SampleKernels, KernelGivesTheScalarTestBitForBit) {
+    RecordProperty("target", pixelTestTarget());
+    for (const KernelSet& k : kernelsOfEveryTarget()) {
+        SCOPED_TRACE(k.target);
+        pixelKernelAgrees(k.pixel);
+    }
+}
+
+TEST(SampleKernels, QuadKernelGivesTheScalarQuadTestBitForBit) {
+    for (const KernelSet& k : kernelsOfEveryTarget()) {
+        SCOPED_TRACE(k.target);
+        quadKernelAgrees(k.quad);
+    }
+}
+
+TEST(SampleKernels, MovingKernelGivesTheScalarTestBitForBit) {
+    for (const KernelSet& k : kernelsOfEveryTarget()) {
+        SCOPED_TRACE(k.target);
+        movingKernelAgrees(k.moving);
+    }
+}
+
+// The renderer's kernels are those of one of these targets.
+TEST(SampleKernels, EveryTargetIncludesTheDispatchedOne) {
+    const std::vector<KernelSet> sets = kernelsOfEveryTarget();
+    ASSERT_FALSE(sets.empty());
+    bool found = false;
+    for (const KernelSet& k : sets)
+        found = found || (k.pixel == pixelTestKernel() && k.quad == quadTestKernel() && k.moving == movingTestKernel() &&
+                          std::string(k.target) == pixelTestTarget());
+    EXPECT_TRUE(found) << pixelTestTarget();
+}
 
 // A moving quad's candidate filter: the SIMD kernel gives the scalar test's bits for every count
 // of samples (whole vectors, groups of four and single tails), with samples on the box's edges
