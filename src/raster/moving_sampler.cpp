@@ -286,7 +286,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             QuadSetup qt;
                             if (Counting) movingQuadAt(mq, w, qt);
                             else
-                                for (int c = 0; c < 4; ++c) movingCorner(mq, c, w, qt.x[c], qt.y[c], qt.z[c]);
+                                for (int c = 0; c < 4; ++c) qt.z[c] = movingDepth(mq, c, w);  // all a hit needs
                             onHit(pi, sj, rec, cur, w, h, qt.z, qt, lanes_.x[l], lanes_.y[l]);
                         }
                         n = 0;

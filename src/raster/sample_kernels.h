@@ -111,6 +111,10 @@ inline void movingCorner(const MovingQuad& m, int c, float w, float& x, float& y
         z = lerp(m.z[0][c], m.z[1][c], w);
     }
 }
+// Corner c's depth at weight w (movingCorner's z: toRaster keeps camera depth).
+inline float movingDepth(const MovingQuad& m, int c, float w) {
+    return m.exact[c] ? lerp(m.cz[0][c], m.cz[1][c], w) : lerp(m.z[0][c], m.z[1][c], w);
+}
 // The quad at weight w, its edges set up.
 inline void movingQuadAt(const MovingQuad& m, float w, micropolygon::QuadSetup& q) {
     for (int c = 0; c < 4; ++c) movingCorner(m, c, w, q.x[c], q.y[c], q.z[c]);
