@@ -244,6 +244,20 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             return lerp(cl0[v], cl1[v], sg);
                         });
                 };
+                // The pixels of the quad's bound with their time permutation, but for those every
+                // sample of which already sees something nearer than all of the quad: none of
+                // those samples can change (the usual case deep in foliage).
+                auto eachPixelInSight = [&](auto&& visit) {
+                    for (int py = q.py0; py <= q.py1; ++py)
+                        for (int px = q.px0; px <= q.px1; ++px) {
+                            const size_t pi = block.pixelIndex(px, py);
+                            if (!Counting && pixelBehind(block, fi, pi, q.zmin, S)) {
+                                behind += s1 - s0;
+                                continue;
+                            }
+                            visit(pi, block.permutation(fi, pi));
+                        }
+                };
                 if constexpr (!Lens) {
                     // Each pixel's samples of the group's slices go into lanes, tested up to 64 at
                     // a time against the quad at each sample's own time (sample_kernels.h,
@@ -291,101 +305,83 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         }
                         n = 0;
                     };
-                    for (int py = q.py0; py <= q.py1; ++py) {
-                        for (int px = q.px0; px <= q.px1; ++px) {
-                            const size_t pi = block.pixelIndex(px, py);
-                            // Every sample of the pixel already sees something nearer than the whole
-                            // quad: none of them can change (the usual case deep in foliage).
-                            if (!Counting && pixelBehind(block, fi, pi, q.zmin, S)) {
-                                behind += s1 - s0;
-                                continue;
-                            }
-                            const int perm = block.permutation(fi, pi);
-                            const uint16_t* sampleOf = patterns.sampleOfStratum(perm);
-                            const float* times = patterns.stratumTimes(perm);
-                            for (size_t s = s0; s < s1; ++s) {
-                                if (n == kLanes) flush();
-                                const int k = slices_[s].k, sj = sampleOf[k];
-                                const size_t si = pi * size_t(S) + size_t(sj);
-                                lanes_.x[n] = xs[si], lanes_.y[n] = ys[si], lanes_.tf[n] = times[k];
-                                lanes_.pixel[n] = uint32_t(pi), lanes_.sample[n] = uint16_t(sj);
-                                lanes_.slice[n] = uint32_t(s);
-                                ++n;
-                            }
+                    eachPixelInSight([&](size_t pi, int perm) {
+                        const uint16_t* sampleOf = patterns.sampleOfStratum(perm);
+                        const float* times = patterns.stratumTimes(perm);
+                        for (size_t s = s0; s < s1; ++s) {
+                            if (n == kLanes) flush();
+                            const int k = slices_[s].k, sj = sampleOf[k];
+                            const size_t si = pi * size_t(S) + size_t(sj);
+                            lanes_.x[n] = xs[si], lanes_.y[n] = ys[si], lanes_.tf[n] = times[k];
+                            lanes_.pixel[n] = uint32_t(pi), lanes_.sample[n] = uint16_t(sj);
+                            lanes_.slice[n] = uint32_t(s);
+                            ++n;
                         }
-                    }
+                    });
                     if (n) flush();
                     continue;
                 }
                 // With a lens: each sample against the quad at its time as its lens point sees it.
-                for (int py = q.py0; py <= q.py1; ++py) {
-                    for (int px = q.px0; px <= q.px1; ++px) {
-                        const size_t pi = block.pixelIndex(px, py);
-                        if (!Counting && pixelBehind(block, fi, pi, q.zmin, S)) {
-                            behind += s1 - s0;
-                            continue;
-                        }
-                        SampleHit* rec = block.record(fi, pi);
-                        const int perm = block.permutation(fi, pi);
-                        // The group's samples inside the quad's bound, each with its slice. Of a
-                        // group of many slices, found 64 samples at a time (SIMD) and listed in
-                        // sample order: each sample is tested alone, so the order changes nothing.
-                        size_t candidates = 0;
-                        if (s1 - s0 >= kMaskSlices) {
-                            const uint16_t* sliceOf = patterns.stratumOfSample(perm);
-                            const Box box{q.xmin, q.xmax, q.ymin, q.ymax, float(first.k), float(last.k)};
-                            for (int c0 = 0; c0 < S; c0 += 64) {
-                                const size_t at = pi * size_t(S) + size_t(c0);
-                                uint64_t in = inBoxes(xs + at, ys + at, patterns.stratumKeys(perm) + c0,
-                                                      std::min(64, S - c0), box);
-                                for (; in; in &= in - 1) {
-                                    const int sj = c0 + __builtin_ctzll(in);
-                                    const size_t s = s0 + size_t(sliceOf[sj] - first.k);
-                                    candidates_[candidates++] = {uint32_t(s), uint32_t(sj)};
-                                }
-                            }
-                        } else {
-                            for (size_t s = s0; s < s1; ++s) {
-                                const int sj = patterns.sampleOfStratum(perm)[slices_[s].k];
-                                const size_t si = pi * size_t(S) + size_t(sj);
-                                const float x = xs[si], y = ys[si];
-                                if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
+                eachPixelInSight([&](size_t pi, int perm) {
+                    SampleHit* rec = block.record(fi, pi);
+                    // The group's samples inside the quad's bound, each with its slice. Of a
+                    // group of many slices, found 64 samples at a time (SIMD) and listed in
+                    // sample order: each sample is tested alone, so the order changes nothing.
+                    size_t candidates = 0;
+                    if (s1 - s0 >= kMaskSlices) {
+                        const uint16_t* sliceOf = patterns.stratumOfSample(perm);
+                        const Box box{q.xmin, q.xmax, q.ymin, q.ymax, float(first.k), float(last.k)};
+                        for (int c0 = 0; c0 < S; c0 += 64) {
+                            const size_t at = pi * size_t(S) + size_t(c0);
+                            uint64_t in = inBoxes(xs + at, ys + at, patterns.stratumKeys(perm) + c0,
+                                                  std::min(64, S - c0), box);
+                            for (; in; in &= in - 1) {
+                                const int sj = c0 + __builtin_ctzll(in);
+                                const size_t s = s0 + size_t(sliceOf[sj] - first.k);
                                 candidates_[candidates++] = {uint32_t(s), uint32_t(sj)};
                             }
                         }
-                        for (size_t c = 0; c < candidates; ++c) {
-                            const Slice& sl = slices_[candidates_[c].slice];
-                            const int sj = int(candidates_[c].sample);
+                    } else {
+                        for (size_t s = s0; s < s1; ++s) {
+                            const int sj = patterns.sampleOfStratum(perm)[slices_[s].k];
                             const size_t si = pi * size_t(S) + size_t(sj);
-                            const float x = xs[si], y = ys[si], tf = patterns.stratumTimes(perm)[sl.k];
-                            if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
-                            const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
-                            if (!Counting && q.zmin > cur.z) {
-                                ++behind;
-                                continue;
-                            }
-                            ++tests;
-                            const float w = std::min(1.0f, std::max(0.0f, (tf - tfA) * invSpan));
-                            QuadSetup qp;
-                            for (int k = 0; k < 4; ++k) {
-                                if (perspective && exact_[size_t(idx[k])]) {
-                                    const Vec3f r = camera.toRaster(lerp(ca_[size_t(idx[k])], cb_[size_t(idx[k])], w));
-                                    qp.x[k] = r.x, qp.y[k] = r.y, qp.z[k] = r.z;
-                                } else {
-                                    qp.x[k] = lerp(xa[k], xb[k], w);
-                                    qp.y[k] = lerp(ya[k], yb[k], w);
-                                    qp.z[k] = lerp(za[k], zb[k], w);
-                                }
-                            }
-                            float shx[4], shy[4];
-                            lensShifts(camera, qp.z, shx, shy);
-                            QuadSetup qt;
-                            Hit h;
-                            if (!lensQuad(qp, shx, shy, lus[si], lvs[si], x, y, qt) || !hitQuad(qt, x, y, h)) continue;
-                            onHit(pi, sj, rec, cur, w, h, qt.z, qt, x, y);
+                            const float x = xs[si], y = ys[si];
+                            if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
+                            candidates_[candidates++] = {uint32_t(s), uint32_t(sj)};
                         }
                     }
-                }
+                    for (size_t c = 0; c < candidates; ++c) {
+                        const Slice& sl = slices_[candidates_[c].slice];
+                        const int sj = int(candidates_[c].sample);
+                        const size_t si = pi * size_t(S) + size_t(sj);
+                        const float x = xs[si], y = ys[si], tf = patterns.stratumTimes(perm)[sl.k];
+                        if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
+                        const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
+                        if (!Counting && q.zmin > cur.z) {
+                            ++behind;
+                            continue;
+                        }
+                        ++tests;
+                        const float w = std::min(1.0f, std::max(0.0f, (tf - tfA) * invSpan));
+                        QuadSetup qp;
+                        for (int k = 0; k < 4; ++k) {
+                            if (perspective && exact_[size_t(idx[k])]) {
+                                const Vec3f r = camera.toRaster(lerp(ca_[size_t(idx[k])], cb_[size_t(idx[k])], w));
+                                qp.x[k] = r.x, qp.y[k] = r.y, qp.z[k] = r.z;
+                            } else {
+                                qp.x[k] = lerp(xa[k], xb[k], w);
+                                qp.y[k] = lerp(ya[k], yb[k], w);
+                                qp.z[k] = lerp(za[k], zb[k], w);
+                            }
+                        }
+                        float shx[4], shy[4];
+                        lensShifts(camera, qp.z, shx, shy);
+                        QuadSetup qt;
+                        Hit h;
+                        if (!lensQuad(qp, shx, shy, lus[si], lvs[si], x, y, qt) || !hitQuad(qt, x, y, h)) continue;
+                        onHit(pi, sj, rec, cur, w, h, qt.z, qt, x, y);
+                    }
+                });
             }
         }
         s0 = s1;
