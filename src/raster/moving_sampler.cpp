@@ -15,6 +15,22 @@ namespace streyes {
 using namespace micropolygon;
 using namespace sampler;
 
+namespace {
+
+// Whether every pixel of the block the raster bound b reaches already sees, in every sample of
+// frame fi, something nearer than b's nearest depth.
+bool boundBehind(ImageBlock& block, int fi, const Bounds3f& b) {
+    const PixelRect& R = block.rect();
+    const int x0 = floorClamped(b.lo.x, R.x0, R.x1), x1 = floorClamped(b.hi.x, R.x0, R.x1);
+    const int y0 = floorClamped(b.lo.y, R.y0, R.y1), y1 = floorClamped(b.hi.y, R.y0, R.y1);
+    for (int py = y0; py <= y1; ++py)
+        for (int px = x0; px <= x1; ++px)
+            if (!pixelBehind(block, fi, block.pixelIndex(px, py), b.lo.z, block.samplesPerPixel())) return false;
+    return true;
+}
+
+}  // namespace
+
 // A moving grid: projected at both ends of each slice to bound its quads over the slice; a
 // sample's quad is the quad at the sample's time. Orthographic projection is linear, so that is
 // the raster quad interpolated linearly. Perspective is not: interpolating raster positions would
@@ -135,13 +151,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
         // sample there (each quad's bound and depth lie within the grid's), so none is visited.
         // Without a lens only: a lens grows each quad's bound by its circle of confusion.
         if (!Counting && !Lens) {
-            const int x0 = floorClamped(groupBound.lo.x, R.x0, R.x1), x1 = floorClamped(groupBound.hi.x, R.x0, R.x1);
-            const int y0 = floorClamped(groupBound.lo.y, R.y0, R.y1), y1 = floorClamped(groupBound.hi.y, R.y0, R.y1);
-            bool hidden = true;
-            for (int py = y0; py <= y1 && hidden; ++py)
-                for (int px = x0; px <= x1 && hidden; ++px)
-                    hidden = pixelBehind(block, fi, block.pixelIndex(px, py), groupBound.lo.z, S);
-            if (hidden) {
+            if (boundBehind(block, fi, groupBound)) {
                 ++gridsBehind;
                 s0 = s1;
                 continue;
@@ -162,13 +172,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             b.extend(Vec3f{ra_[v].x, ra_[v].y, ra_[v].z});
                             b.extend(Vec3f{rb_[v].x, rb_[v].y, rb_[v].z});
                         }
-                    const int x0 = floorClamped(b.lo.x, R.x0, R.x1), x1 = floorClamped(b.hi.x, R.x0, R.x1);
-                    const int y0 = floorClamped(b.lo.y, R.y0, R.y1), y1 = floorClamped(b.hi.y, R.y0, R.y1);
-                    bool hidden = true;
-                    for (int py = y0; py <= y1 && hidden; ++py)
-                        for (int px = x0; px <= x1 && hidden; ++px)
-                            hidden = pixelBehind(block, fi, block.pixelIndex(px, py), b.lo.z, S);
-                    if (hidden) {
+                    if (boundBehind(block, fi, b)) {
                         patchHidden_[size_t(pj * patchesU + pc)] = 1;
                         ++patchesBehind;
                     }
