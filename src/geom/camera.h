@@ -66,6 +66,7 @@ class Camera {
     float focalDistance() const { return focalDistance_; }
     // Screen-space shift per unit lens coordinate of a point at depth z (> 0): R (1/d - 1/z).
     float lensShift(float z) const { return lensRadius_ * (invFocal_ - 1.0f / z); }
+    float invFocalDistance() const { return invFocal_; }  // lensShift's 1/d, as it rounds it
     // The circle of confusion's radius in raster pixels along x (y: cocRadiusY) of a point at
     // depth z: R |1/d - 1/z| |ax|. Zero at the focal distance and without depth of field.
     float cocRadius(float z) const { return std::fabs(lensShift(z) * ax_); }

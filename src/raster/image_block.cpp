@@ -33,8 +33,8 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
         }
     lens_ = lens;
     if (lens) {
-        lus_.resize(n);
-        lvs_.resize(n);
+        lus_.resize(n + 64);  // padded as xs_ and ys_
+        lvs_.resize(n + 64);
         for (size_t i = 0; i < pixels; ++i) {
             const float* l = patterns.lens(pattern_[i]);
             for (int j = 0; j < S_; ++j) {

@@ -103,6 +103,25 @@ inline void trianglesCovering(const QuadSetup& q, float sx, float sy, uint32_t* 
     }
 }
 
+// The quad `q` as the lens point (lu, lv) sees it: each vertex moved by its raster lens shift
+// (sx[c] lu, sy[c] lv). False when the sample (x, y) is outside the moved quad's bound (then the
+// edges are not set up). The samplers' lens paths and the lens kernel (sample_kernels.h) use it.
+inline bool lensQuad(const QuadSetup& q, const float* sx, const float* sy, float lu, float lv, float x, float y,
+                     QuadSetup& out) {
+    for (int c = 0; c < 4; ++c) {
+        out.x[c] = q.x[c] + sx[c] * lu;
+        out.y[c] = q.y[c] + sy[c] * lv;
+        out.z[c] = q.z[c];
+    }
+    const float x0 = std::min({out.x[0], out.x[1], out.x[2], out.x[3]});
+    const float x1 = std::max({out.x[0], out.x[1], out.x[2], out.x[3]});
+    const float y0 = std::min({out.y[0], out.y[1], out.y[2], out.y[3]});
+    const float y1 = std::max({out.y[0], out.y[1], out.y[2], out.y[3]});
+    if (!(x >= x0 && x <= x1 && y >= y0 && y <= y1)) return false;
+    setupEdges(out);
+    return true;
+}
+
 // Bound and pixel range of a quad; false when it misses the block or the clipping range.
 // `margin(zmin, zmax)` grows the raster bound in x and y (depth of field: the circle of
 // confusion over the quad's depths, Camera::cocMargin); the plain form grows it by nothing.

@@ -72,9 +72,6 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const float* xs = block.xs();
     const float* ys = block.ys();
     const float *lus = block.lus(), *lvs = block.lvs();
-    const InBoxFn inBoxes = inBoxKernel();
-    constexpr size_t kMaskSlices = 4;  // with a lens, groups of this many slices find their samples by SIMD
-    candidates_.resize(size_t(S));
     // The moving test: the SIMD kernel, or the scalar reference while counting hits for tests of
     // watertightness (the kernel is held to it bit for bit).
     const MovingTestFn movingTest = Counting ? movingTestScalar() : movingTestKernel();
@@ -262,130 +259,72 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             visit(pi, block.permutation(fi, pi));
                         }
                 };
-                if constexpr (!Lens) {
-                    // Each pixel's samples of the group's slices go into lanes, tested up to 64 at
-                    // a time against the quad at each sample's own time (sample_kernels.h,
-                    // MovingQuad); lanes inside the quad's bound are tests, as one by one.
-                    MovingQuad& mq = lanes_.quad;
-                    for (int c = 0; c < 4; ++c) {
-                        const size_t v = size_t(idx[c]);
-                        mq.x[0][c] = xa[c], mq.y[0][c] = ya[c], mq.z[0][c] = za[c];
-                        mq.x[1][c] = xb[c], mq.y[1][c] = yb[c], mq.z[1][c] = zb[c];
-                        mq.exact[c] = perspective && exact_[v];
-                        if (mq.exact[c]) {
-                            mq.cx[0][c] = ca_[v].x, mq.cy[0][c] = ca_[v].y, mq.cz[0][c] = ca_[v].z;
-                            mq.cx[1][c] = cb_[v].x, mq.cy[1][c] = cb_[v].y, mq.cz[1][c] = cb_[v].z;
-                        }
+                // Each pixel's samples of the group's slices go into lanes, tested up to 64 at
+                // a time against the quad at each sample's own time, as its lens point sees it
+                // with a lens (sample_kernels.h, MovingQuad); lanes inside the quad's bound are
+                // tests, as one by one.
+                MovingQuad& mq = lanes_.quad;
+                for (int c = 0; c < 4; ++c) {
+                    const size_t v = size_t(idx[c]);
+                    mq.x[0][c] = xa[c], mq.y[0][c] = ya[c], mq.z[0][c] = za[c];
+                    mq.x[1][c] = xb[c], mq.y[1][c] = yb[c], mq.z[1][c] = zb[c];
+                    mq.exact[c] = perspective && exact_[v];
+                    if (mq.exact[c]) {
+                        mq.cx[0][c] = ca_[v].x, mq.cy[0][c] = ca_[v].y, mq.cz[0][c] = ca_[v].z;
+                        mq.cx[1][c] = cb_[v].x, mq.cy[1][c] = cb_[v].y, mq.cz[1][c] = cb_[v].z;
                     }
-                    mq.ax = camera.ax(), mq.bx = camera.bx(), mq.ay = camera.ay(), mq.by = camera.by();
-                    mq.tfA = tfA, mq.invSpan = invSpan;
-                    mq.xmin = q.xmin, mq.xmax = q.xmax, mq.ymin = q.ymin, mq.ymax = q.ymax;
-                    int n = 0;
-                    auto flush = [&] {
-                        const MovingTest t = movingTest(mq, lanes_.x, lanes_.y, lanes_.tf, n, lanes_.edges);
-                        const uint64_t inside = t.first | t.second;
-                        for (uint64_t b = t.inBound; b; b &= b - 1) {
-                            const int l = __builtin_ctzll(b);
-                            const Slice& sl = slices_[lanes_.slice[l]];
-                            const float tf = lanes_.tf[l];
-                            if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
-                            const size_t pi = lanes_.pixel[l];
-                            const int sj = lanes_.sample[l];
-                            SampleHit* rec = block.record(fi, pi);
-                            const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
-                            if (!Counting && q.zmin > cur.z) {  // all of it behind what the sample already sees
-                                ++behind;
-                                continue;
-                            }
-                            ++tests;
-                            if (!((inside >> l) & 1)) continue;
-                            const Hit h = pixelHit(lanes_.edges, n, l, (t.first >> l) & 1);
-                            const float w = movingWeight(mq, tf);
-                            QuadSetup qt;
-                            if (Counting) movingQuadAt(mq, w, qt);
-                            else
-                                for (int c = 0; c < 4; ++c) qt.z[c] = movingDepth(mq, c, w);  // all a hit needs
-                            onHit(pi, sj, rec, cur, w, h, qt.z, qt, lanes_.x[l], lanes_.y[l]);
-                        }
-                        n = 0;
-                    };
-                    eachPixelInSight([&](size_t pi, int perm) {
-                        const uint16_t* sampleOf = patterns.sampleOfStratum(perm);
-                        const float* times = patterns.stratumTimes(perm);
-                        for (size_t s = s0; s < s1; ++s) {
-                            if (n == kLanes) flush();
-                            const int k = slices_[s].k, sj = sampleOf[k];
-                            const size_t si = pi * size_t(S) + size_t(sj);
-                            lanes_.x[n] = xs[si], lanes_.y[n] = ys[si], lanes_.tf[n] = times[k];
-                            lanes_.pixel[n] = uint32_t(pi), lanes_.sample[n] = uint16_t(sj);
-                            lanes_.slice[n] = uint32_t(s);
-                            ++n;
-                        }
-                    });
-                    if (n) flush();
-                    continue;
                 }
-                // With a lens: each sample against the quad at its time as its lens point sees it.
-                eachPixelInSight([&](size_t pi, int perm) {
-                    SampleHit* rec = block.record(fi, pi);
-                    // The group's samples inside the quad's bound, each with its slice. Of a
-                    // group of many slices, found 64 samples at a time (SIMD) and listed in
-                    // sample order: each sample is tested alone, so the order changes nothing.
-                    size_t candidates = 0;
-                    if (s1 - s0 >= kMaskSlices) {
-                        const uint16_t* sliceOf = patterns.stratumOfSample(perm);
-                        const Box box{q.xmin, q.xmax, q.ymin, q.ymax, float(first.k), float(last.k)};
-                        for (int c0 = 0; c0 < S; c0 += 64) {
-                            const size_t at = pi * size_t(S) + size_t(c0);
-                            uint64_t in = inBoxes(xs + at, ys + at, patterns.stratumKeys(perm) + c0,
-                                                  std::min(64, S - c0), box);
-                            for (; in; in &= in - 1) {
-                                const int sj = c0 + __builtin_ctzll(in);
-                                const size_t s = s0 + size_t(sliceOf[sj] - first.k);
-                                candidates_[candidates++] = {uint32_t(s), uint32_t(sj)};
-                            }
-                        }
-                    } else {
-                        for (size_t s = s0; s < s1; ++s) {
-                            const int sj = patterns.sampleOfStratum(perm)[slices_[s].k];
-                            const size_t si = pi * size_t(S) + size_t(sj);
-                            const float x = xs[si], y = ys[si];
-                            if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
-                            candidates_[candidates++] = {uint32_t(s), uint32_t(sj)};
-                        }
-                    }
-                    for (size_t c = 0; c < candidates; ++c) {
-                        const Slice& sl = slices_[candidates_[c].slice];
-                        const int sj = int(candidates_[c].sample);
-                        const size_t si = pi * size_t(S) + size_t(sj);
-                        const float x = xs[si], y = ys[si], tf = patterns.stratumTimes(perm)[sl.k];
+                mq.ax = camera.ax(), mq.bx = camera.bx(), mq.ay = camera.ay(), mq.by = camera.by();
+                mq.tfA = tfA, mq.invSpan = invSpan;
+                mq.lens = Lens;
+                mq.lensRadius = camera.lensRadius(), mq.invFocal = camera.invFocalDistance(), mq.eyePlane = camera.eyePlane();
+                mq.xmin = q.xmin, mq.xmax = q.xmax, mq.ymin = q.ymin, mq.ymax = q.ymax;
+                int n = 0;
+                auto flush = [&] {
+                    const MovingTest t = movingTest(mq, lanes_.x, lanes_.y, lanes_.tf, Lens ? lanes_.lu : nullptr,
+                                                Lens ? lanes_.lv : nullptr, n, lanes_.edges);
+                    const uint64_t inside = t.first | t.second;
+                    for (uint64_t b = t.inBound; b; b &= b - 1) {
+                        const int l = __builtin_ctzll(b);
+                        const Slice& sl = slices_[lanes_.slice[l]];
+                        const float tf = lanes_.tf[l];
                         if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
+                        const size_t pi = lanes_.pixel[l];
+                        const int sj = lanes_.sample[l];
+                        SampleHit* rec = block.record(fi, pi);
                         const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
-                        if (!Counting && q.zmin > cur.z) {
+                        if (!Counting && q.zmin > cur.z) {  // all of it behind what the sample already sees
                             ++behind;
                             continue;
                         }
                         ++tests;
-                        const float w = std::min(1.0f, std::max(0.0f, (tf - tfA) * invSpan));
-                        QuadSetup qp;
-                        for (int k = 0; k < 4; ++k) {
-                            if (perspective && exact_[size_t(idx[k])]) {
-                                const Vec3f r = camera.toRaster(lerp(ca_[size_t(idx[k])], cb_[size_t(idx[k])], w));
-                                qp.x[k] = r.x, qp.y[k] = r.y, qp.z[k] = r.z;
-                            } else {
-                                qp.x[k] = lerp(xa[k], xb[k], w);
-                                qp.y[k] = lerp(ya[k], yb[k], w);
-                                qp.z[k] = lerp(za[k], zb[k], w);
-                            }
-                        }
-                        float shx[4], shy[4];
-                        lensShifts(camera, qp.z, shx, shy);
+                        if (!((inside >> l) & 1)) continue;
+                        const Hit h = pixelHit(lanes_.edges, n, l, (t.first >> l) & 1);
+                        const float w = movingWeight(mq, tf);
                         QuadSetup qt;
-                        Hit h;
-                        if (!lensQuad(qp, shx, shy, lus[si], lvs[si], x, y, qt) || !hitQuad(qt, x, y, h)) continue;
-                        onHit(pi, sj, rec, cur, w, h, qt.z, qt, x, y);
+                        if (Counting && Lens) movingLensQuadAt(mq, w, lanes_.lu[l], lanes_.lv[l], lanes_.x[l], lanes_.y[l], qt);
+                        else if (Counting) movingQuadAt(mq, w, qt);
+                        else
+                            for (int c = 0; c < 4; ++c) qt.z[c] = movingDepth(mq, c, w);  // all a hit needs
+                        onHit(pi, sj, rec, cur, w, h, qt.z, qt, lanes_.x[l], lanes_.y[l]);
+                    }
+                    n = 0;
+                };
+                eachPixelInSight([&](size_t pi, int perm) {
+                    const uint16_t* sampleOf = patterns.sampleOfStratum(perm);
+                    const float* times = patterns.stratumTimes(perm);
+                    for (size_t s = s0; s < s1; ++s) {
+                        if (n == kLanes) flush();
+                        const int k = slices_[s].k, sj = sampleOf[k];
+                        const size_t si = pi * size_t(S) + size_t(sj);
+                        lanes_.x[n] = xs[si], lanes_.y[n] = ys[si], lanes_.tf[n] = times[k];
+                        lanes_.pixel[n] = uint32_t(pi), lanes_.sample[n] = uint16_t(sj);
+                        lanes_.slice[n] = uint32_t(s);
+                        if constexpr (Lens) lanes_.lu[n] = lus[si], lanes_.lv[n] = lvs[si];
+                        ++n;
                     }
                 });
+                if (n) flush();
             }
         }
         s0 = s1;

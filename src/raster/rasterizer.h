@@ -7,9 +7,8 @@
 // moving grid is projected at the ends of a group of slices (as many as keep its motion over the
 // group under half a pixel), the grid's and then each quad's bound over the group rejected against
 // the block (a vertex moving linearly in camera space projects inside the box of its two ends),
-// and each sample tested against the quad at the sample's own time, 8 samples at a time
-// (sample_kernels.h, MovingQuad); with depth of field one at a time, a group of four slices or
-// more finding a pixel's samples inside the quad's bound 64 at a time (inBox).
+// and each sample tested against the quad at the sample's own time (as its lens point sees it,
+// with depth of field), 8 samples at a time (sample_kernels.h, MovingQuad).
 //
 // A grid that is still and exists over every frame of the block is sampled once, into the
 // block's still layer; any other writes into the frames' records of the pixels it comes nearest
@@ -92,7 +91,7 @@ class GridRasterizer {
     // with each hit; Counting: countHitsInto is set. Separate instances, so that scenes without
     // shadows, and renders, pay nothing for either.
     // Lens: depth of field (the block's lens positions): each sample sees the quad with its
-    // vertices shifted by their lens shift (Camera::lensShift), tested by the scalar kernel.
+    // vertices shifted by their lens shift (Camera::lensShift), tested by the lane kernels.
     template <bool Shadowed, bool Counting, bool Lens>
     void sampleStill(const Grid& grid, const Camera& camera, ImageBlock& block, RasterCounters& counters);
     template <bool Shadowed, bool Counting, bool Lens>
@@ -109,17 +108,14 @@ class GridRasterizer {
     std::vector<uint8_t> exact_;  // per vertex, this slice: projected at each sample's time
     std::vector<uint8_t> patchHidden_;  // per patch of quads, this group: all of it lies behind
     std::vector<QuadHit> quadHits_;  // a still quad's hits
+    float lensEdges_[kMaxEdgeValues];  // a still quad's edge values at a pixel's samples, with a lens
     std::vector<Slice> slices_;
-    struct Candidate {
-        uint32_t slice, sample;  // a moving quad's sample in one pixel, and its slice
-    };
-    std::vector<Candidate> candidates_;  // with a lens
     // A moving quad's lanes: the samples of its group of slices in the pixels of its bound, tested
     // up to kLanes at a time (sample_kernels.h, MovingTestFn), each with its pixel and slice.
     static constexpr int kLanes = 64;
     struct Lanes {
         MovingQuad quad;
-        float x[kLanes], y[kLanes], tf[kLanes];
+        float x[kLanes], y[kLanes], tf[kLanes], lu[kLanes], lv[kLanes];  // lu, lv: with a lens
         uint32_t pixel[kLanes], slice[kLanes];
         uint16_t sample[kLanes];
         float edges[kMaxEdgeValues];

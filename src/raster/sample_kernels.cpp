@@ -61,17 +61,62 @@ HWY_INLINE uint64_t maskBits(D d, hn::Mask<D> m) {
     return v;
 }
 
+// The lanes whose sample lies inside the bound of their moved quad (corners cxs, cys), its ends
+// found as lensQuad's std::min and std::max of the four corners find them (the first of equals).
+template <class D, class VD = hn::Vec<D>>
+HWY_INLINE hn::Mask<D> lensBound(D, VD x, VD y, const VD* cxs, const VD* cys) {
+    VD x0 = cxs[0], x1 = cxs[0], y0 = cys[0], y1 = cys[0];
+    for (int c = 1; c < 4; ++c) {
+        x0 = hn::IfThenElse(hn::Lt(cxs[c], x0), cxs[c], x0), x1 = hn::IfThenElse(hn::Lt(x1, cxs[c]), cxs[c], x1);
+        y0 = hn::IfThenElse(hn::Lt(cys[c], y0), cys[c], y0), y1 = hn::IfThenElse(hn::Lt(y1, cys[c]), cys[c], y1);
+    }
+    return hn::And(hn::And(hn::Ge(x, x0), hn::Le(x, x1)), hn::And(hn::Ge(y, y0), hn::Le(y, y1)));
+}
+
+// Lanes [i, i + N) of a lane test: each lane's quad (corners cxs, cys) set up as makeEdge does,
+// with the canonical choice made lane by lane, its five edges (q0q1, q1q2, q2q3, q3q0, q2q0)
+// evaluated at the lane's sample and stored, and the lanes inside each triangle (hitQuad's
+// test) among `inBound` added to r.
+template <class D, class VD = hn::Vec<D>, class MD = hn::Mask<D>>
+HWY_INLINE void testLanes(D d, VD x, VD y, const VD* cxs, const VD* cys, MD inBound, float* edges, int stride, size_t i,
+                          MovingTest& r) {
+    const VD zero = hn::Zero(d), one = hn::Set(d, 1.0f), minusOne = hn::Set(d, -1.0f);
+    static constexpr int kFrom[5] = {0, 1, 2, 3, 2}, kTo[5] = {1, 2, 3, 0, 0};
+    VD e[5];
+    MD canonical[5];
+    MD diagonalDegenerate = hn::FirstN(d, 0);
+    for (int k = 0; k < 5; ++k) {
+        const VD ax = cxs[kFrom[k]], ay = cys[kFrom[k]], bx = cxs[kTo[k]], by = cys[kTo[k]];
+        const MD can = hn::Or(hn::Lt(ax, bx), hn::And(hn::Eq(ax, bx), hn::Lt(ay, by)));
+        const VD px = hn::IfThenElse(can, ax, bx), py = hn::IfThenElse(can, ay, by);
+        const VD dx = hn::IfThenElse(can, hn::Sub(bx, ax), hn::Sub(ax, bx));
+        const VD dy = hn::IfThenElse(can, hn::Sub(by, ay), hn::Sub(ay, by));
+        const VD sign = hn::IfThenElse(can, one, minusOne);
+        e[k] = hn::Mul(sign, hn::Sub(hn::Mul(dx, hn::Sub(y, py)), hn::Mul(dy, hn::Sub(x, px))));
+        canonical[k] = can;
+        if (k == 4) diagonalDegenerate = hn::And(hn::Eq(dx, zero), hn::Eq(dy, zero));
+        hn::StoreU(e[k], d, edges + k * stride);
+    }
+    const MD c02 = hn::AndNot(diagonalDegenerate, hn::Not(canonical[4]));
+    const MD first = hn::And(inBound, insideTriangleLanes(d, e[0], canonical[0], e[1], canonical[1], e[4], canonical[4]));
+    const MD second =
+        hn::AndNot(first, hn::And(inBound, insideTriangleLanes(d, hn::Neg(e[4]), c02, e[2], canonical[2], e[3], canonical[3])));
+    r.first |= maskBits(d, first) << i;
+    r.second |= maskBits(d, second) << i;
+}
+
 }  // namespace
 
 // Each lane's quad at its own time, set up and tested as movingQuadAt and hitQuad do: the same
 // operations in the same order (lerp is a (1 - w) + b w; makeEdge's canonical choice by lane).
-MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, const float* tfs, int n, float* edges) {
+MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, const float* tfs, const float* lus,
+                      const float* lvs, int n, float* edges) {
     const hn::CappedTag<float, 8> kD;  // 8 lanes: a pixel group's candidates seldom fill more
     using V = hn::Vec<decltype(kD)>;
     using M = hn::Mask<decltype(kD)>;
     const size_t N = hn::Lanes(kD);
     const int stride = edgeStride(n);
-    const V zero = hn::Zero(kD), one = hn::Set(kD, 1.0f), minusOne = hn::Set(kD, -1.0f);
+    const V zero = hn::Zero(kD), one = hn::Set(kD, 1.0f);
     const V xmin = hn::Set(kD, q.xmin), xmax = hn::Set(kD, q.xmax), ymin = hn::Set(kD, q.ymin), ymax = hn::Set(kD, q.ymax);
     const V tfA = hn::Set(kD, q.tfA), invSpan = hn::Set(kD, q.invSpan);
     MovingTest r;
@@ -98,30 +143,49 @@ MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, con
                 cys[c] = lerpV(q.y[0][c], q.y[1][c]);
             }
         }
-        // The five edges (q0q1, q1q2, q2q3, q3q0, q2q0) in canonical form, evaluated at the lane's sample.
-        static constexpr int kFrom[5] = {0, 1, 2, 3, 2}, kTo[5] = {1, 2, 3, 0, 0};
-        V e[5];
-        M canonical[5];
-        M diagonalDegenerate;
-        for (int k = 0; k < 5; ++k) {
-            const V ax = cxs[kFrom[k]], ay = cys[kFrom[k]], bx = cxs[kTo[k]], by = cys[kTo[k]];
-            const M can = hn::Or(hn::Lt(ax, bx), hn::And(hn::Eq(ax, bx), hn::Lt(ay, by)));
-            const V px = hn::IfThenElse(can, ax, bx), py = hn::IfThenElse(can, ay, by);
-            const V dx = hn::IfThenElse(can, hn::Sub(bx, ax), hn::Sub(ax, bx));
-            const V dy = hn::IfThenElse(can, hn::Sub(by, ay), hn::Sub(ay, by));
-            const V sign = hn::IfThenElse(can, one, minusOne);
-            e[k] = hn::Mul(sign, hn::Sub(hn::Mul(dx, hn::Sub(y, py)), hn::Mul(dy, hn::Sub(x, px))));
-            canonical[k] = can;
-            if (k == 4) diagonalDegenerate = hn::And(hn::Eq(dx, zero), hn::Eq(dy, zero));
-            hn::StoreU(e[k], kD, edges + k * stride + int(i));
-        }
-        const M c02 = hn::AndNot(diagonalDegenerate, hn::Not(canonical[4]));
-        const M first = hn::And(inBound, insideTriangleLanes(kD, e[0], canonical[0], e[1], canonical[1], e[4], canonical[4]));
-        const M second = hn::AndNot(first, hn::And(inBound, insideTriangleLanes(kD, hn::Neg(e[4]), c02, e[2], canonical[2],
-                                                                                e[3], canonical[3])));
         r.inBound |= maskBits(kD, inBound) << i;
-        r.first |= maskBits(kD, first) << i;
-        r.second |= maskBits(kD, second) << i;
+        if (q.lens) {  // each corner moved by its lens shift at its depth then (movingLensQuadAt)
+            const V lu = hn::LoadU(kD, lus + i), lv = hn::LoadU(kD, lvs + i);
+            const V eye = hn::Set(kD, q.eyePlane), radius = hn::Set(kD, q.lensRadius), invFocal = hn::Set(kD, q.invFocal);
+            for (int c = 0; c < 4; ++c) {
+                const V z = q.exact[c] ? lerpV(q.cz[0][c], q.cz[1][c]) : lerpV(q.z[0][c], q.z[1][c]);
+                const V zc = hn::IfThenElse(hn::Lt(z, eye), eye, z);  // std::max(z, eyePlane)
+                const V shift = hn::Mul(radius, hn::Sub(invFocal, hn::Div(one, zc)));
+                cxs[c] = hn::Add(cxs[c], hn::Mul(hn::Mul(shift, hn::Set(kD, q.ax)), lu));
+                cys[c] = hn::Add(cys[c], hn::Mul(hn::Mul(shift, hn::Set(kD, q.ay)), lv));
+            }
+            inBound = hn::And(inBound, lensBound(kD, x, y, cxs, cys));
+        }
+        testLanes(kD, x, y, cxs, cys, inBound, edges + i, stride, i, r);
+    }
+    return r;
+}
+
+// Each lane's quad moved by its lens point, bounded and tested as lensQuad and hitQuad do (its
+// bound's ends found as std::min and std::max of the four corners find them: the first of equals).
+MovingTest TestLens(const LensQuad& q, const float* xs, const float* ys, const float* lus, const float* lvs, int n,
+                    float* edges) {
+    const hn::CappedTag<float, 8> kD;  // as TestMoving
+    using V = hn::Vec<decltype(kD)>;
+    using M = hn::Mask<decltype(kD)>;
+    const size_t N = hn::Lanes(kD);
+    const int stride = edgeStride(n);
+    const V xmin = hn::Set(kD, q.xmin), xmax = hn::Set(kD, q.xmax), ymin = hn::Set(kD, q.ymin), ymax = hn::Set(kD, q.ymax);
+    MovingTest r;
+    for (size_t i = 0; i < size_t(n); i += N) {
+        const V x = hn::LoadU(kD, xs + i), y = hn::LoadU(kD, ys + i);
+        M inBound = hn::And(hn::And(hn::Not(hn::Lt(x, xmin)), hn::Not(hn::Gt(x, xmax))),
+                            hn::And(hn::Not(hn::Lt(y, ymin)), hn::Not(hn::Gt(y, ymax))));
+        inBound = hn::And(inBound, hn::FirstN(kD, size_t(n) - i));
+        if (hn::AllFalse(kD, inBound)) continue;
+        r.inBound |= maskBits(kD, inBound) << i;
+        const V lu = hn::LoadU(kD, lus + i), lv = hn::LoadU(kD, lvs + i);
+        V cxs[4], cys[4];
+        for (int c = 0; c < 4; ++c) {
+            cxs[c] = hn::Add(hn::Set(kD, q.x[c]), hn::Mul(hn::Set(kD, q.sx[c]), lu));
+            cys[c] = hn::Add(hn::Set(kD, q.y[c]), hn::Mul(hn::Set(kD, q.sy[c]), lv));
+        }
+        testLanes(kD, x, y, cxs, cys, hn::And(inBound, lensBound(kD, x, y, cxs, cys)), edges + i, stride, i, r);
     }
     return r;
 }
@@ -263,37 +327,10 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
     return tested;
 }
 
-// The bits of samples [0, n) inside the box whose key lies in [k0, k1]: whole vectors, then groups of four, then one at a time (no read past n).
-template <class D>
-HWY_INLINE uint64_t BoxBits(D d, const float* xs, const float* ys, const float* keys, int& j, int n, const Box& b) {
-    const size_t N = hn::Lanes(d);
-    const auto x0 = hn::Set(d, b.xmin), x1 = hn::Set(d, b.xmax), y0 = hn::Set(d, b.ymin), y1 = hn::Set(d, b.ymax);
-    const auto k0 = hn::Set(d, b.k0), k1 = hn::Set(d, b.k1);
-    uint64_t bits = 0;
-    for (; j + int(N) <= n; j += int(N)) {
-        const auto x = hn::LoadU(d, xs + j), y = hn::LoadU(d, ys + j), k = hn::LoadU(d, keys + j);
-        const auto in = hn::And(hn::And(hn::And(hn::Ge(x, x0), hn::Le(x, x1)), hn::And(hn::Ge(y, y0), hn::Le(y, y1))),
-                                hn::And(hn::Ge(k, k0), hn::Le(k, k1)));
-        uint8_t laneBits[8] = {0};
-        hn::StoreMaskBits(d, in, laneBits);
-        uint64_t v = 0;
-        for (size_t i = 0; i < (N + 7) / 8; ++i) v |= uint64_t(laneBits[i]) << (8 * i);
-        bits |= v << j;
-    }
-    return bits;
-}
-
-uint64_t InBox(const float* xs, const float* ys, const float* keys, int n, const Box& b) {
-    int j = 0;
-    uint64_t bits = BoxBits(kD, xs, ys, keys, j, n, b);
-    bits |= BoxBits(hn::CappedTag<float, 4>(), xs, ys, keys, j, n, b);
-    return bits | inBoxBits(xs, ys, keys, j, n, b);
-}
-
 PixelTestFn Kernel() { return &TestPixel; }
-InBoxFn InBoxKernel() { return &InBox; }
 QuadTestFn QuadKernel() { return &TestQuad; }
 MovingTestFn MovingKernel() { return &TestMoving; }
+LensTestFn LensKernel() { return &TestLens; }
 const char* Target() { return hwy::TargetName(HWY_TARGET); }
 
 }  // namespace HWY_NAMESPACE
@@ -305,8 +342,8 @@ namespace streyes {
 
 HWY_EXPORT(Kernel);
 HWY_EXPORT(QuadKernel);
-HWY_EXPORT(InBoxKernel);
 HWY_EXPORT(MovingKernel);
+HWY_EXPORT(LensKernel);
 HWY_EXPORT(Target);
 
 namespace {
@@ -331,8 +368,8 @@ PixelTest scalarTest(const micropolygon::QuadSetup& q, const float* xs, const fl
     return r;
 }
 
-MovingTest scalarMovingTest(const MovingQuad& m, const float* xs, const float* ys, const float* tfs, int n,
-                             float* edges) {
+MovingTest scalarMovingTest(const MovingQuad& m, const float* xs, const float* ys, const float* tfs, const float* lus,
+                             const float* lvs, int n, float* edges) {
     using namespace micropolygon;
     const int stride = edgeStride(n);
     MovingTest r;
@@ -342,7 +379,8 @@ MovingTest scalarMovingTest(const MovingQuad& m, const float* xs, const float* y
         const uint64_t bit = uint64_t(1) << j;
         r.inBound |= bit;
         QuadSetup q;
-        movingQuadAt(m, movingWeight(m, tfs[j]), q);
+        if (!m.lens) movingQuadAt(m, movingWeight(m, tfs[j]), q);
+        else if (!movingLensQuadAt(m, movingWeight(m, tfs[j]), lus[j], lvs[j], x, y, q)) continue;
         const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
         float e[5];
         for (int k = 0; k < 5; ++k) edges[k * stride + j] = e[k] = q.e[k].eval(x, y);
@@ -352,8 +390,27 @@ MovingTest scalarMovingTest(const MovingQuad& m, const float* xs, const float* y
     return r;
 }
 
-uint64_t scalarInBox(const float* xs, const float* ys, const float* keys, int n, const Box& b) {
-    return inBoxBits(xs, ys, keys, 0, n, b);
+MovingTest scalarLensTest(const LensQuad& m, const float* xs, const float* ys, const float* lus, const float* lvs, int n,
+                          float* edges) {
+    using namespace micropolygon;
+    const int stride = edgeStride(n);
+    QuadSetup q;
+    for (int c = 0; c < 4; ++c) q.x[c] = m.x[c], q.y[c] = m.y[c], q.z[c] = 0;
+    MovingTest r;
+    for (int j = 0; j < n; ++j) {
+        const float x = xs[j], y = ys[j];
+        if (x < m.xmin || x > m.xmax || y < m.ymin || y > m.ymax) continue;
+        const uint64_t bit = uint64_t(1) << j;
+        r.inBound |= bit;
+        QuadSetup l;
+        if (!lensQuad(q, m.sx, m.sy, lus[j], lvs[j], x, y, l)) continue;
+        const bool c02 = l.e[4].dx == 0 && l.e[4].dy == 0 ? false : !l.e[4].canonical;
+        float e[5];
+        for (int k = 0; k < 5; ++k) edges[k * stride + j] = e[k] = l.e[k].eval(x, y);
+        if (insideTriangle(e[0], l.e[0].canonical, e[1], l.e[1].canonical, e[4], l.e[4].canonical)) r.first |= bit;
+        else if (insideTriangle(-e[4], c02, e[2], l.e[2].canonical, e[3], l.e[3].canonical)) r.second |= bit;
+    }
+    return r;
 }
 
 uint64_t scalarQuadTest(const micropolygon::QuadSetup& q, const SampleLayout& L, QuadHit* out, size_t* hitCount) {
@@ -411,19 +468,19 @@ PixelTestFn pixelTestKernel() {
 
 PixelTestFn pixelTestScalar() { return &scalarTest; }
 
-InBoxFn inBoxKernel() {
-    static const InBoxFn kernel = HWY_DYNAMIC_DISPATCH(InBoxKernel)();
-    return kernel;
-}
-
-InBoxFn inBoxScalar() { return &scalarInBox; }
-
 MovingTestFn movingTestKernel() {
     static const MovingTestFn kernel = HWY_DYNAMIC_DISPATCH(MovingKernel)();
     return kernel;
 }
 
 MovingTestFn movingTestScalar() { return &scalarMovingTest; }
+
+LensTestFn lensTestKernel() {
+    static const LensTestFn kernel = HWY_DYNAMIC_DISPATCH(LensKernel)();
+    return kernel;
+}
+
+LensTestFn lensTestScalar() { return &scalarLensTest; }
 
 const char* pixelTestTarget() { return HWY_DYNAMIC_DISPATCH(Target)(); }
 
@@ -432,7 +489,7 @@ std::vector<KernelSet> kernelsOfEveryTarget() {
     for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
         hwy::SetSupportedTargetsForTest(target);  // the next dispatch chooses it
         out.push_back({hwy::TargetName(target), HWY_DYNAMIC_DISPATCH(Kernel)(), HWY_DYNAMIC_DISPATCH(QuadKernel)(),
-                       HWY_DYNAMIC_DISPATCH(MovingKernel)()});
+                       HWY_DYNAMIC_DISPATCH(MovingKernel)(), HWY_DYNAMIC_DISPATCH(LensKernel)()});
     }
     hwy::SetSupportedTargetsForTest(0);
     return out;

@@ -62,25 +62,6 @@ using QuadTestFn = uint64_t (*)(const micropolygon::QuadSetup& q, const SampleLa
 QuadTestFn quadTestKernel();
 QuadTestFn quadTestScalar();
 
-// A moving quad's candidates in one pixel: of samples [0, n) (n <= 64) at xs, ys, those inside the
-// quad's bound over a group of time slices, [xmin, xmax] x [ymin, ymax], whose key (the sample's
-// time stratum) lies in the group's [k0, k1]. Bit j for sample j.
-struct Box {
-    float xmin, xmax, ymin, ymax, k0, k1;
-};
-inline bool inBox(float x, float y, float k, const Box& b) {
-    return x >= b.xmin && x <= b.xmax && y >= b.ymin && y <= b.ymax && k >= b.k0 && k <= b.k1;
-}
-// The bits of samples [from, n), one at a time: the scalar reference, and the kernel's tail.
-inline uint64_t inBoxBits(const float* xs, const float* ys, const float* keys, int from, int n, const Box& b) {
-    uint64_t bits = 0;
-    for (int j = from; j < n; ++j) bits |= uint64_t(inBox(xs[j], ys[j], keys[j], b)) << j;
-    return bits;
-}
-using InBoxFn = uint64_t (*)(const float* xs, const float* ys, const float* keys, int n, const Box& box);
-InBoxFn inBoxKernel();
-InBoxFn inBoxScalar();  // inBox sample by sample
-
 // A moving quad over a group of time slices (GridRasterizer::sampleMoving): each sample is tested
 // against the quad at its own time, w = clamp((tf - tfA) invSpan, 0, 1) across the group. A corner
 // moves linearly in raster space between the group's ends, or, where exact[c] (perspective: the
@@ -93,6 +74,11 @@ struct MovingQuad {
     float ax, bx, ay, by;  // raster = a * (camera / z) + b (Camera::toRaster, perspective)
     float tfA, invSpan;
     float xmin, xmax, ymin, ymax;  // the quad's bound over the group (micropolygon::boundQuad)
+    // With depth of field: each lane's quad at its time is moved by the lane's lens point as
+    // micropolygon::lensQuad moves it, by each corner's lens shift R (1/d - 1/max(z, eyePlane))
+    // (Camera::lensShift) times (ax, ay).
+    bool lens;
+    float lensRadius, invFocal, eyePlane;
 };
 inline float movingWeight(const MovingQuad& m, float tf) {
     return std::min(1.0f, std::max(0.0f, (tf - m.tfA) * m.invSpan));
@@ -120,17 +106,46 @@ inline void movingQuadAt(const MovingQuad& m, float w, micropolygon::QuadSetup& 
     for (int c = 0; c < 4; ++c) movingCorner(m, c, w, q.x[c], q.y[c], q.z[c]);
     micropolygon::setupEdges(q);
 }
-// Samples [0, n) (n <= 64) at (xs, ys), at exposure fractions tfs: inBound, those inside the
-// quad's bound; first and second, those inside its triangles at their own time (as
-// micropolygon::hitQuad finds them). edges as PixelTestFn's. xs, ys and tfs must be readable up
-// to edgeStride(n).
+// With a lens: the quad at weight w as lens point (lu, lv) sees it, its edges set up; false when
+// (x, y) is outside its bound (micropolygon::lensQuad).
+inline bool movingLensQuadAt(const MovingQuad& m, float w, float lu, float lv, float x, float y,
+                             micropolygon::QuadSetup& q) {
+    micropolygon::QuadSetup at;
+    float sx[4], sy[4];
+    for (int c = 0; c < 4; ++c) {
+        movingCorner(m, c, w, at.x[c], at.y[c], at.z[c]);
+        const float s = m.lensRadius * (m.invFocal - 1.0f / std::max(at.z[c], m.eyePlane));
+        sx[c] = s * m.ax, sy[c] = s * m.ay;
+    }
+    return micropolygon::lensQuad(at, sx, sy, lu, lv, x, y, q);
+}
+// Samples [0, n) (n <= 64) at (xs, ys), at exposure fractions tfs (and lens points lus, lvs
+// with a lens, else null): inBound, those inside the quad's bound; first and second, those inside
+// its triangles at their own time (as micropolygon::hitQuad finds them; with a lens, inside the
+// moved quad's bound too). edges as PixelTestFn's. The arrays must be readable up to
+// edgeStride(n).
 struct MovingTest {
     uint64_t inBound = 0, first = 0, second = 0;
 };
-using MovingTestFn = MovingTest (*)(const MovingQuad& q, const float* xs, const float* ys, const float* tfs, int n,
-                                    float* edges);
+using MovingTestFn = MovingTest (*)(const MovingQuad& q, const float* xs, const float* ys, const float* tfs,
+                                    const float* lus, const float* lvs, int n, float* edges);
 MovingTestFn movingTestKernel();
-MovingTestFn movingTestScalar();  // movingQuadAt and micropolygon.h's test, sample by sample
+MovingTestFn movingTestScalar();  // movingQuadAt (movingLensQuadAt) and micropolygon.h's test, sample by sample
+
+// A still quad seen through the lens (depth of field, GridRasterizer::sampleStill): sample j, at
+// (xs[j], ys[j]) with lens point (lus[j], lvs[j]), sees corner c at (x[c] + sx[c] lu, y[c] + sy[c] lv)
+// (micropolygon::lensQuad). inBound: the samples inside the quad's bound grown by the circle of
+// confusion; first and second: those also inside the moved quad's bound and its triangles, as
+// lensQuad and hitQuad find them. The results and edges as MovingTestFn's; every array readable
+// up to edgeStride(n).
+struct LensQuad {
+    float x[4], y[4], sx[4], sy[4];
+    float xmin, xmax, ymin, ymax;
+};
+using LensTestFn = MovingTest (*)(const LensQuad& q, const float* xs, const float* ys, const float* lus, const float* lvs,
+                                  int n, float* edges);
+LensTestFn lensTestKernel();
+LensTestFn lensTestScalar();  // lensQuad and micropolygon.h's test, sample by sample
 
 // For tests: the kernels of every instruction set compiled in that this CPU runs (AVX-512, AVX2,
 // SSE4 ...), so that each, not only the one dispatched to, is held to the scalar references: the
@@ -140,6 +155,7 @@ struct KernelSet {
     PixelTestFn pixel;
     QuadTestFn quad;
     MovingTestFn moving;
+    LensTestFn lens;
 };
 std::vector<KernelSet> kernelsOfEveryTarget();
 

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace streyes {
@@ -62,7 +63,7 @@ void pixelKernelAgrees(PixelTestFn kernel) {
             ++tested;
             for (int k = 0; k < 5; ++k)
                 ASSERT_TRUE(sameBits(ek[k * edgeStride(n) + j], es[k * edgeStride(n) + j])) << "quad " << t;
-            Hit h;
+            Hit h{};
             const bool inside = hitQuad(q, xs[size_t(j)], ys[size_t(j)], h);
             const bool first = (a.first >> j) & 1, second = (a.second >> j) & 1;
             ASSERT_EQ(inside, first || second) << "quad " << t << " sample " << j;
@@ -120,7 +121,7 @@ void quadKernelAgrees(QuadTestFn kernel) {
             ASSERT_EQ(a[n].first, b[n].first);
             ASSERT_TRUE(sameBits(a[n].l1, b[n].l1) && sameBits(a[n].l2, b[n].l2)) << "quad " << t << " hit " << n;
             const size_t i = size_t(a[n].pixel) * S + a[n].sample;
-            Hit h;
+            Hit h{};
             ASSERT_TRUE(hitQuad(q, xs[i], ys[i], h)) << "quad " << t << " hit " << n;
             const Hit k = quadHit(a[n]);
             EXPECT_TRUE(k.v2 == h.v2 && sameBits(k.l1, h.l1) && sameBits(k.l2, h.l2)) << "quad " << t << " hit " << n;
@@ -132,13 +133,14 @@ void quadKernelAgrees(QuadTestFn kernel) {
 
 // The moving kernel (each lane's quad at its own time) against its scalar reference, and both
 // against micropolygon::hitQuad on the quad movingQuadAt makes: quads moving from one shape to
-// another, some corners projected from camera space, samples on the ends' corners and edges at
-// the group's ends (where the tie rule decides), collapsed edges and diagonals, every count of lanes.
+// another, some corners projected from camera space, some seen through a lens, samples on the
+// ends' corners and edges at the group's ends (where the tie rule decides), collapsed edges and
+// diagonals, every count of lanes.
 void movingKernelAgrees(MovingTestFn kernel) {
     std::mt19937 rng(13);
     std::uniform_real_distribution<float> u(0.0f, 4.0f), depth(2.0f, 6.0f);
     const MovingTestFn scalar = movingTestScalar();
-    uint64_t tested = 0, hits = 0, exactHits = 0;
+    uint64_t tested = 0, hits = 0, exactHits = 0, lensHits = 0;
     for (int t = 0; t < 20000; ++t) {
         MovingQuad m{};
         for (int e = 0; e < 2; ++e)
@@ -153,12 +155,15 @@ void movingKernelAgrees(MovingTestFn kernel) {
             for (int e = 0; e < 2; ++e) m.x[e][2] = m.x[e][0], m.y[e][2] = m.y[e][0];  // a collapsed diagonal
         for (int c = 0; c < 4; ++c) m.exact[c] = t % 3 == 0 && (rng() & 1);
         m.tfA = 0.25f, m.invSpan = 4.0f;  // the group is [0.25, 0.5] of the exposure
+        m.lens = t % 4 == 1;  // seen through a lens focused at depth 4, some corners nearer than the eye plane
+        m.lensRadius = 0.75f, m.invFocal = 0.25f, m.eyePlane = 2.5f;
         m.xmin = m.ymin = 0.0f, m.xmax = m.ymax = 4.0f;
         if (t % 5 == 0) m.xmin = 1.0f, m.ymax = 3.0f;  // a bound that leaves samples out
         const int n = 1 + int(rng() % 64);
-        std::vector<float> xs(size_t(edgeStride(n))), ys(xs.size()), tfs(xs.size());
+        std::vector<float> xs(size_t(edgeStride(n))), ys(xs.size()), tfs(xs.size()), lus(xs.size()), lvs(xs.size());
         for (int j = 0; j < n; ++j) {
             const int e = int(rng() % 2);
+            lus[size_t(j)] = rng() % 4 == 0 ? 0.0f : u(rng) / 2 - 1, lvs[size_t(j)] = u(rng) / 2 - 1;
             tfs[size_t(j)] = rng() % 3 == 0 ? 0.25f + 0.25f * float(e) : 0.2f + 0.35f * float(rng() % 1000) / 1000.0f;
             switch (rng() % 4) {
             case 0: xs[size_t(j)] = m.x[e][rng() % 4], ys[size_t(j)] = m.y[e][rng() % 4]; break;
@@ -171,23 +176,30 @@ void movingKernelAgrees(MovingTestFn kernel) {
             }
         }
         float ek[kMaxEdgeValues], es[kMaxEdgeValues];
-        const MovingTest a = kernel(m, xs.data(), ys.data(), tfs.data(), n, ek);
-        const MovingTest b = scalar(m, xs.data(), ys.data(), tfs.data(), n, es);
+        const float* lu = m.lens ? lus.data() : nullptr;
+        const float* lv = m.lens ? lvs.data() : nullptr;
+        const MovingTest a = kernel(m, xs.data(), ys.data(), tfs.data(), lu, lv, n, ek);
+        const MovingTest b = scalar(m, xs.data(), ys.data(), tfs.data(), lu, lv, n, es);
         ASSERT_EQ(a.inBound, b.inBound) << "quad " << t;
         ASSERT_EQ(a.first, b.first) << "quad " << t;
         ASSERT_EQ(a.second, b.second) << "quad " << t;
         for (int j = 0; j < n; ++j) {
             if (!((a.inBound >> j) & 1)) continue;
             ++tested;
-            for (int k = 0; k < 5; ++k)
-                ASSERT_TRUE(sameBits(ek[k * edgeStride(n) + j], es[k * edgeStride(n) + j])) << "quad " << t << " edge " << k;
             QuadSetup q;
-            movingQuadAt(m, movingWeight(m, tfs[size_t(j)]), q);
-            Hit h;
-            const bool in = hitQuad(q, xs[size_t(j)], ys[size_t(j)], h);
+            const float w = movingWeight(m, tfs[size_t(j)]), x = xs[size_t(j)], y = ys[size_t(j)];
+            const bool seen = !m.lens || movingLensQuadAt(m, w, lus[size_t(j)], lvs[size_t(j)], x, y, q);
+            if (!m.lens) movingQuadAt(m, w, q);
+            Hit h{};
+            const bool in = seen && hitQuad(q, x, y, h);
             ASSERT_EQ(in, bool(((a.first | a.second) >> j) & 1)) << "quad " << t << " sample " << j;
+            if (seen) {  // the scalar reference sets up no edges for a sample outside the moved bound
+                for (int k = 0; k < 5; ++k)
+                    ASSERT_TRUE(sameBits(ek[k * edgeStride(n) + j], es[k * edgeStride(n) + j])) << "quad " << t << " edge " << k;
+            }
             if (!in) continue;
             ++hits;
+            lensHits += m.lens;
             exactHits += m.exact[0] || m.exact[1] || m.exact[2] || m.exact[3];
             const Hit k = pixelHit(ek, n, j, (a.first >> j) & 1);
             EXPECT_TRUE(k.v2 == h.v2 && sameBits(k.l1, h.l1) && sameBits(k.l2, h.l2)) << "quad " << t << " sample " << j;
@@ -196,8 +208,73 @@ void movingKernelAgrees(MovingTestFn kernel) {
     EXPECT_GT(tested, 200000u);  // both outcomes, often, and hits through projected corners
     EXPECT_GT(hits, 50000u);
     EXPECT_GT(exactHits, 5000u);
+    EXPECT_GT(lensHits, 5000u);
 }
 
+
+// The lens kernel (each lane's quad moved by its lens point) against its scalar reference, and
+// both against micropolygon::lensQuad and hitQuad: corners and shifts on a quarter-pixel lattice,
+// lens points at the disc's edge and centre now and then, samples on the moved corners and edges
+// (where the tie rule decides), collapsed edges, every count of lanes.
+void lensKernelAgrees(LensTestFn kernel) {
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> u(0.0f, 4.0f), shift(-1.5f, 1.5f), disc(-1.0f, 1.0f);
+    const LensTestFn scalar = lensTestScalar();
+    uint64_t tested = 0, hits = 0;
+    for (int t = 0; t < 20000; ++t) {
+        LensQuad m{};
+        for (int c = 0; c < 4; ++c) {
+            m.x[c] = std::round(u(rng) * 4) / 4, m.y[c] = std::round(u(rng) * 4) / 4;
+            m.sx[c] = t % 4 == 0 ? 0.5f : std::round(shift(rng) * 4) / 4, m.sy[c] = std::round(shift(rng) * 4) / 4;
+        }
+        if (t % 7 == 0) m.x[1] = m.x[0], m.y[1] = m.y[0], m.sx[1] = m.sx[0], m.sy[1] = m.sy[0];  // a collapsed edge
+        m.xmin = m.ymin = -1.0f, m.xmax = m.ymax = 5.0f;
+        if (t % 5 == 0) m.xmin = 1.0f, m.ymax = 3.0f;  // a bound that leaves samples out
+        const int n = 1 + int(rng() % 64);
+        std::vector<float> xs(size_t(edgeStride(n))), ys(xs.size()), lus(xs.size()), lvs(xs.size());
+        for (int j = 0; j < n; ++j) {
+            const float lu = rng() % 4 == 0 ? float(int(rng() % 5) - 2) * 0.5f : disc(rng), lv = disc(rng);
+            lus[size_t(j)] = lu, lvs[size_t(j)] = lv;
+            auto at = [&](int c) { return std::pair<float, float>{m.x[c] + m.sx[c] * lu, m.y[c] + m.sy[c] * lv}; };
+            switch (rng() % 4) {
+            case 0: std::tie(xs[size_t(j)], ys[size_t(j)]) = at(int(rng() % 4)); break;  // a moved corner
+            case 1: {                                                                     // a moved edge's midpoint
+                const int a = int(rng() % 4);
+                const auto [ax, ay] = at(a);
+                const auto [bx, by] = at((a + 1) % 4);
+                xs[size_t(j)] = 0.5f * (ax + bx), ys[size_t(j)] = 0.5f * (ay + by);
+                break;
+            }
+            default: xs[size_t(j)] = u(rng), ys[size_t(j)] = u(rng);
+            }
+        }
+        float ek[kMaxEdgeValues], es[kMaxEdgeValues];
+        const MovingTest a = kernel(m, xs.data(), ys.data(), lus.data(), lvs.data(), n, ek);
+        const MovingTest b = scalar(m, xs.data(), ys.data(), lus.data(), lvs.data(), n, es);
+        ASSERT_EQ(a.inBound, b.inBound) << "quad " << t;
+        ASSERT_EQ(a.first, b.first) << "quad " << t;
+        ASSERT_EQ(a.second, b.second) << "quad " << t;
+        QuadSetup q;
+        for (int c = 0; c < 4; ++c) q.x[c] = m.x[c], q.y[c] = m.y[c], q.z[c] = 0;
+        for (int j = 0; j < n; ++j) {
+            if (!((a.inBound >> j) & 1)) continue;
+            ++tested;
+            QuadSetup l;
+            Hit h{};
+            const bool in = lensQuad(q, m.sx, m.sy, lus[size_t(j)], lvs[size_t(j)], xs[size_t(j)], ys[size_t(j)], l) &&
+                            hitQuad(l, xs[size_t(j)], ys[size_t(j)], h);
+            ASSERT_EQ(in, bool(((a.first | a.second) >> j) & 1)) << "quad " << t << " sample " << j;
+            if (!in) continue;
+            ++hits;
+            for (int k = 0; k < 5; ++k)
+                ASSERT_TRUE(sameBits(ek[k * edgeStride(n) + j], es[k * edgeStride(n) + j])) << "quad " << t << " edge " << k;
+            const Hit k = pixelHit(ek, n, j, (a.first >> j) & 1);
+            EXPECT_TRUE(k.v2 == h.v2 && sameBits(k.l1, h.l1) && sameBits(k.l2, h.l2)) << "quad " << t << " sample " << j;
+        }
+    }
+    EXPECT_GT(tested, 200000u);  // both outcomes, often
+    EXPECT_GT(hits, 50000u);
+}
 
 // Each kernel of every instruction set this CPU runs (not only the one dispatched to) against
 // its scalar reference: the same scene gives the same pixels on every machine.
@@ -223,48 +300,22 @@ TEST(SampleKernels, MovingKernelGivesTheScalarTestBitForBit) {
     }
 }
 
+TEST(SampleKernels, LensKernelGivesTheScalarTestBitForBit) {
+    for (const KernelSet& k : kernelsOfEveryTarget()) {
+        SCOPED_TRACE(k.target);
+        lensKernelAgrees(k.lens);
+    }
+}
+
 // The renderer's kernels are those of one of these targets.
 TEST(SampleKernels, EveryTargetIncludesTheDispatchedOne) {
     const std::vector<KernelSet> sets = kernelsOfEveryTarget();
     ASSERT_FALSE(sets.empty());
     bool found = false;
     for (const KernelSet& k : sets)
-        found = found || (k.pixel == pixelTestKernel() && k.quad == quadTestKernel() && k.moving == movingTestKernel() &&
+        found = found || (k.pixel == pixelTestKernel() && k.quad == quadTestKernel() && k.moving == movingTestKernel() && k.lens == lensTestKernel() &&
                           std::string(k.target) == pixelTestTarget());
     EXPECT_TRUE(found) << pixelTestTarget();
-}
-
-// A moving quad's candidate filter: the SIMD kernel gives the scalar test's bits for every count
-// of samples (whole vectors, groups of four and single tails), with samples on the box's edges
-// and keys on the range's ends; and the bits are the samples inside.
-TEST(SampleKernels, InBoxKernelGivesTheScalarBits) {
-    std::mt19937 rng(11);
-    std::uniform_int_distribution<int> grid(0, 8);
-    std::vector<float> xs(64), ys(64), keys(64);
-    int inside = 0, outside = 0;
-    for (int round = 0; round < 400; ++round) {
-        for (int j = 0; j < 64; ++j) {
-            xs[size_t(j)] = 10.0f + 0.25f * float(grid(rng));  // on a quarter-pixel lattice: box edges are hit
-            ys[size_t(j)] = 20.0f + 0.25f * float(grid(rng));
-            keys[size_t(j)] = float(j % 16);
-        }
-        const float a = 10.0f + 0.25f * float(grid(rng)), c = 20.0f + 0.25f * float(grid(rng));
-        const Box box{a, a + 0.25f * float(grid(rng)), c, c + 0.25f * float(grid(rng)), float(grid(rng)),
-                      float(grid(rng) + 4)};
-        const int n = 1 + round % 64;
-        const uint64_t simd = inBoxKernel()(xs.data(), ys.data(), keys.data(), n, box);
-        const uint64_t scalar = inBoxScalar()(xs.data(), ys.data(), keys.data(), n, box);
-        ASSERT_EQ(simd, scalar) << "n " << n << " round " << round;
-        for (int j = 0; j < 64; ++j) {
-            const float x = xs[size_t(j)], y = ys[size_t(j)], k = keys[size_t(j)];
-            const bool in = j < n && x >= box.xmin && x <= box.xmax && y >= box.ymin && y <= box.ymax && k >= box.k0 &&
-                            k <= box.k1;
-            ASSERT_EQ(bool((simd >> j) & 1), in) << "sample " << j << " of " << n;
-            (in ? inside : outside) += 1;
-        }
-    }
-    EXPECT_GT(inside, 500);  // both outcomes were seen often
-    EXPECT_GT(outside, 1000);
 }
 
 }  // namespace

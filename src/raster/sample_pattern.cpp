@@ -137,7 +137,6 @@ PatternTable::PatternTable(const SamplePattern& pattern) : pattern_(pattern) {
                 std::min((float(k) + (pattern.jitter ? randfloat(uint32_t(k), id * 0x68bc21ebu) : 0.5f)) * invS,
                          kOneMinusEpsilon);
     }
-    stratumKeys_.assign(stratumOf_.begin(), stratumOf_.end());
 }
 
 PatternTable::PatternTable(const SamplePattern& pattern, const std::vector<std::vector<float>>& stratumTimes,
@@ -156,7 +155,6 @@ PatternTable::PatternTable(const SamplePattern& pattern, const std::vector<std::
             stratumOf_[size_t(q) * size_t(S_) + size_t(k)] = sampleOf_[size_t(q) * size_t(S_) + size_t(k)] = uint16_t(k);
             times_[size_t(q) * size_t(S_) + size_t(k)] = stratumTimes[size_t(q)][size_t(k)];
         }
-    stratumKeys_.assign(stratumOf_.begin(), stratumOf_.end());
 }
 
 void PatternTable::pixelSamples(int x, int y, int frame, SamplePosition* out) const {

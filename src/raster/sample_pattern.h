@@ -61,7 +61,6 @@ class PatternTable {
     // in [k / S, (k + 1) / S).
     int permutationOf(int x, int y, int frame) const;
     const uint16_t* stratumOfSample(int q) const { return &stratumOf_[size_t(q) * size_t(S_)]; }
-    const float* stratumKeys(int q) const { return &stratumKeys_[size_t(q) * size_t(S_)]; }  // the same as floats
     const uint16_t* sampleOfStratum(int q) const { return &sampleOf_[size_t(q) * size_t(S_)]; }
     const float* stratumTimes(int q) const { return &times_[size_t(q) * size_t(S_)]; }
 
@@ -75,7 +74,6 @@ class PatternTable {
     std::vector<float> offsets_;       // P x S x 2
     std::vector<float> lens_;          // P x S x 2
     std::vector<uint16_t> stratumOf_;  // Q x S
-    std::vector<float> stratumKeys_;   // Q x S: stratumOf_ for the SIMD filter (sample_kernels.h, Box)
     std::vector<uint16_t> sampleOf_;   // Q x S
     std::vector<float> times_;         // Q x S
 };

@@ -63,6 +63,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     // The kernel: SIMD, or scalar while counting hits for tests of watertightness (the counting
     // instance runs the scalar reference: the kernels are held to it bit for bit).
     const QuadTestFn test = Counting ? quadTestScalar() : quadTestKernel();
+    const LensTestFn lensTest = Counting ? lensTestScalar() : lensTestKernel();
     const SampleLayout layout{xs, ys, R.x0, R.y0, R.width(), S, sx, sy};
     uint64_t tests = 0, hits = 0, firstHits = 0, fragments = 0;
     for (int j = 0; j < nv; ++j) {
@@ -153,21 +154,32 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                 }
             };
             if constexpr (Lens) {
-                // Every sample of the pixels of the grown bound, against the quad its lens point sees.
-                float shx[4], shy[4];
-                lensShifts(camera, q.z, shx, shy);
+                // Every sample of the pixels of the grown bound, against the quad its lens point
+                // sees, up to 64 of a pixel at once (sample_kernels.h, LensQuad).
+                LensQuad lq;
+                lensShifts(camera, q.z, lq.sx, lq.sy);
+                for (int c = 0; c < 4; ++c) lq.x[c] = q.x[c], lq.y[c] = q.y[c];
+                lq.xmin = q.xmin, lq.xmax = q.xmax, lq.ymin = q.ymin, lq.ymax = q.ymax;
                 for (int py = q.py0; py <= q.py1; ++py)
                     for (int px = q.px0; px <= q.px1; ++px) {
                         const size_t pi = block.pixelIndex(px, py);
-                        for (int sj = 0; sj < S; ++sj) {
-                            const size_t si = pi * size_t(S) + size_t(sj);
-                            const float x = xs[si], y = ys[si];
-                            if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
-                            ++tests;
-                            QuadSetup ql;
-                            Hit h;
-                            if (!lensQuad(q, shx, shy, lus[si], lvs[si], x, y, ql) || !hitQuad(ql, x, y, h)) continue;
-                            onHit(pi, sj, h, ql);
+                        for (int c0 = 0; c0 < S; c0 += 64) {
+                            const int n = std::min(64, S - c0);
+                            const size_t at = pi * size_t(S) + size_t(c0);
+                            const MovingTest t = lensTest(lq, xs + at, ys + at, lus + at, lvs + at, n, lensEdges_);
+                            tests += uint64_t(__builtin_popcountll(t.inBound));
+                            for (uint64_t in = t.first | t.second; in; in &= in - 1) {
+                                const int j = __builtin_ctzll(in);
+                                const Hit h = pixelHit(lensEdges_, n, j, (t.first >> j) & 1);
+                                if constexpr (Counting) {  // the quad as the sample saw it
+                                    QuadSetup ql;
+                                    const size_t si = at + size_t(j);
+                                    lensQuad(q, lq.sx, lq.sy, lus[si], lvs[si], xs[si], ys[si], ql);
+                                    onHit(pi, c0 + j, h, ql);
+                                } else {
+                                    onHit(pi, c0 + j, h, q);
+                                }
+                            }
                         }
                     }
             } else {
