@@ -43,9 +43,9 @@ bool boundBehind(ImageBlock& block, int fi, const Bounds3f& b) {
 // raster position is interpolated linearly within the slice, the same for every quad that shares
 // it, so no crack opens. Hits go to the frames' records: what moves is seen by one frame only.
 //
-// Without a lens, a quad's samples of a group in the pixels of its bound are tested together, 8 at
-// a time, each against the quad at its own time (sample_kernels.h, MovingQuad: the kernel gives
-// the scalar test's results bit for bit); with a lens, one by one as its lens point sees the quad.
+// A quad's samples of a group in the pixels of its bound are tested together, 8 at a time, each
+// against the quad at its own time, as its lens point sees it with a lens (sample_kernels.h,
+// MovingQuad: the kernel gives the scalar test's results bit for bit).
 // Before any quad, the whole grid and then each patch of 4 x 4 quads is skipped where every pixel
 // its bound over the group reaches already sees something nearer than all of it.
 template <bool Shadowed, bool Counting, bool Lens>
