@@ -279,28 +279,23 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 mq.lens = Lens;
                 mq.lensRadius = camera.lensRadius(), mq.invFocal = camera.invFocalDistance(), mq.eyePlane = camera.eyePlane();
                 mq.xmin = q.xmin, mq.xmax = q.xmax, mq.ymin = q.ymin, mq.ymax = q.ymax;
+                // A lane whose sample already sees something nearer than all of the quad is not
+                // tested (counted behind); while counting hits, every lane is.
+                mq.zmin = Counting ? std::numeric_limits<float>::quiet_NaN() : q.zmin;
                 int n = 0;
                 auto flush = [&] {
-                    const MovingTest t = movingTest(mq, lanes_.x, lanes_.y, lanes_.tf, Lens ? lanes_.lu : nullptr,
-                                                Lens ? lanes_.lv : nullptr, n, lanes_.edges);
-                    const uint64_t inside = t.first | t.second;
-                    for (uint64_t b = t.inBound; b; b &= b - 1) {
+                    const MovingTest t = movingTest(mq, lanes_.x, lanes_.y, lanes_.tf, lanes_.z, Lens ? lanes_.lu : nullptr,
+                                                    Lens ? lanes_.lv : nullptr, n, lanes_.edges);
+                    tests += uint64_t(__builtin_popcountll(t.tested));
+                    behind += uint64_t(__builtin_popcountll(t.behind));
+                    for (uint64_t b = t.first | t.second; b; b &= b - 1) {
                         const int l = __builtin_ctzll(b);
-                        const Slice& sl = slices_[lanes_.slice[l]];
-                        const float tf = lanes_.tf[l];
-                        if (sl.checkTime && !inTimeSpan(tf, sl.tfA, sl.tfB, sl.openB)) continue;
                         const size_t pi = lanes_.pixel[l];
                         const int sj = lanes_.sample[l];
                         SampleHit* rec = block.record(fi, pi);
                         const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
-                        if (!Counting && q.zmin > cur.z) {  // all of it behind what the sample already sees
-                            ++behind;
-                            continue;
-                        }
-                        ++tests;
-                        if (!((inside >> l) & 1)) continue;
                         const Hit h = pixelHit(lanes_.edges, n, l, (t.first >> l) & 1);
-                        const float w = movingWeight(mq, tf);
+                        const float w = movingWeight(mq, lanes_.tf[l]);
                         QuadSetup qt;
                         if (Counting && Lens) movingLensQuadAt(mq, w, lanes_.lu[l], lanes_.lv[l], lanes_.x[l], lanes_.y[l], qt);
                         else if (Counting) movingQuadAt(mq, w, qt);
@@ -313,13 +308,17 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 eachPixelInSight([&](size_t pi, int perm) {
                     const uint16_t* sampleOf = patterns.sampleOfStratum(perm);
                     const float* times = patterns.stratumTimes(perm);
+                    const SampleHit* rec = block.record(fi, pi);
+                    const SampleHit* seen = rec ? rec : block.still(pi);
                     for (size_t s = s0; s < s1; ++s) {
+                        const Slice& sl = slices_[s];
+                        // A sample outside the part of its slice the grid covers meets none of it.
+                        if (sl.checkTime && !inTimeSpan(times[sl.k], sl.tfA, sl.tfB, sl.openB)) continue;
                         if (n == kLanes) flush();
-                        const int k = slices_[s].k, sj = sampleOf[k];
+                        const int sj = sampleOf[sl.k];
                         const size_t si = pi * size_t(S) + size_t(sj);
-                        lanes_.x[n] = xs[si], lanes_.y[n] = ys[si], lanes_.tf[n] = times[k];
+                        lanes_.x[n] = xs[si], lanes_.y[n] = ys[si], lanes_.tf[n] = times[sl.k], lanes_.z[n] = seen[sj].z;
                         lanes_.pixel[n] = uint32_t(pi), lanes_.sample[n] = uint16_t(sj);
-                        lanes_.slice[n] = uint32_t(s);
                         if constexpr (Lens) lanes_.lu[n] = lus[si], lanes_.lv[n] = lvs[si];
                         ++n;
                     }

@@ -111,12 +111,13 @@ class GridRasterizer {
     float lensEdges_[kMaxEdgeValues];  // a still quad's edge values at a pixel's samples, with a lens
     std::vector<Slice> slices_;
     // A moving quad's lanes: the samples of its group of slices in the pixels of its bound, tested
-    // up to kLanes at a time (sample_kernels.h, MovingTestFn), each with its pixel and slice.
+    // up to kLanes at a time (sample_kernels.h, MovingTestFn), each with its pixel.
     static constexpr int kLanes = 64;
     struct Lanes {
         MovingQuad quad;
         float x[kLanes], y[kLanes], tf[kLanes], lu[kLanes], lv[kLanes];  // lu, lv: with a lens
-        uint32_t pixel[kLanes], slice[kLanes];
+        float z[kLanes];  // the depth the sample sees so far
+        uint32_t pixel[kLanes];
         uint16_t sample[kLanes];
         float edges[kMaxEdgeValues];
     };

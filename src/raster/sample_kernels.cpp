@@ -109,8 +109,8 @@ HWY_INLINE void testLanes(D d, VD x, VD y, const VD* cxs, const VD* cys, MD inBo
 
 // Each lane's quad at its own time, set up and tested as movingQuadAt and hitQuad do: the same
 // operations in the same order (lerp is a (1 - w) + b w; makeEdge's canonical choice by lane).
-MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, const float* tfs, const float* lus,
-                      const float* lvs, int n, float* edges) {
+MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, const float* tfs, const float* seenZ,
+                      const float* lus, const float* lvs, int n, float* edges) {
     const hn::CappedTag<float, 8> kD;  // 8 lanes: a pixel group's candidates seldom fill more
     using V = hn::Vec<decltype(kD)>;
     using M = hn::Mask<decltype(kD)>;
@@ -118,13 +118,16 @@ MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, con
     const int stride = edgeStride(n);
     const V zero = hn::Zero(kD), one = hn::Set(kD, 1.0f);
     const V xmin = hn::Set(kD, q.xmin), xmax = hn::Set(kD, q.xmax), ymin = hn::Set(kD, q.ymin), ymax = hn::Set(kD, q.ymax);
-    const V tfA = hn::Set(kD, q.tfA), invSpan = hn::Set(kD, q.invSpan);
+    const V tfA = hn::Set(kD, q.tfA), invSpan = hn::Set(kD, q.invSpan), zmin = hn::Set(kD, q.zmin);
     MovingTest r;
     for (size_t i = 0; i < size_t(n); i += N) {
         const V x = hn::LoadU(kD, xs + i), y = hn::LoadU(kD, ys + i), tf = hn::LoadU(kD, tfs + i);
         M inBound = hn::And(hn::And(hn::Not(hn::Lt(x, xmin)), hn::Not(hn::Gt(x, xmax))),
                             hn::And(hn::Not(hn::Lt(y, ymin)), hn::Not(hn::Gt(y, ymax))));
         inBound = hn::And(inBound, hn::FirstN(kD, size_t(n) - i));
+        const M behind = hn::And(inBound, hn::Gt(zmin, hn::LoadU(kD, seenZ + i)));
+        r.behind |= maskBits(kD, behind) << i;
+        inBound = hn::AndNot(behind, inBound);
         if (hn::AllFalse(kD, inBound)) continue;
         // std::min(1, std::max(0, v)), NaN and signed zeros included.
         const V v = hn::Mul(hn::Sub(tf, tfA), invSpan);
@@ -143,7 +146,7 @@ MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, con
                 cys[c] = lerpV(q.y[0][c], q.y[1][c]);
             }
         }
-        r.inBound |= maskBits(kD, inBound) << i;
+        r.tested |= maskBits(kD, inBound) << i;
         if (q.lens) {  // each corner moved by its lens shift at its depth then (movingLensQuadAt)
             const V lu = hn::LoadU(kD, lus + i), lv = hn::LoadU(kD, lvs + i);
             const V eye = hn::Set(kD, q.eyePlane), radius = hn::Set(kD, q.lensRadius), invFocal = hn::Set(kD, q.invFocal);
@@ -178,7 +181,7 @@ MovingTest TestLens(const LensQuad& q, const float* xs, const float* ys, const f
                             hn::And(hn::Not(hn::Lt(y, ymin)), hn::Not(hn::Gt(y, ymax))));
         inBound = hn::And(inBound, hn::FirstN(kD, size_t(n) - i));
         if (hn::AllFalse(kD, inBound)) continue;
-        r.inBound |= maskBits(kD, inBound) << i;
+        r.tested |= maskBits(kD, inBound) << i;
         const V lu = hn::LoadU(kD, lus + i), lv = hn::LoadU(kD, lvs + i);
         V cxs[4], cys[4];
         for (int c = 0; c < 4; ++c) {
@@ -368,8 +371,8 @@ PixelTest scalarTest(const micropolygon::QuadSetup& q, const float* xs, const fl
     return r;
 }
 
-MovingTest scalarMovingTest(const MovingQuad& m, const float* xs, const float* ys, const float* tfs, const float* lus,
-                             const float* lvs, int n, float* edges) {
+MovingTest scalarMovingTest(const MovingQuad& m, const float* xs, const float* ys, const float* tfs, const float* seenZ,
+                             const float* lus, const float* lvs, int n, float* edges) {
     using namespace micropolygon;
     const int stride = edgeStride(n);
     MovingTest r;
@@ -377,7 +380,11 @@ MovingTest scalarMovingTest(const MovingQuad& m, const float* xs, const float* y
         const float x = xs[j], y = ys[j];
         if (x < m.xmin || x > m.xmax || y < m.ymin || y > m.ymax) continue;
         const uint64_t bit = uint64_t(1) << j;
-        r.inBound |= bit;
+        if (m.zmin > seenZ[j]) {
+            r.behind |= bit;
+            continue;
+        }
+        r.tested |= bit;
         QuadSetup q;
         if (!m.lens) movingQuadAt(m, movingWeight(m, tfs[j]), q);
         else if (!movingLensQuadAt(m, movingWeight(m, tfs[j]), lus[j], lvs[j], x, y, q)) continue;
@@ -401,7 +408,7 @@ MovingTest scalarLensTest(const LensQuad& m, const float* xs, const float* ys, c
         const float x = xs[j], y = ys[j];
         if (x < m.xmin || x > m.xmax || y < m.ymin || y > m.ymax) continue;
         const uint64_t bit = uint64_t(1) << j;
-        r.inBound |= bit;
+        r.tested |= bit;
         QuadSetup l;
         if (!lensQuad(q, m.sx, m.sy, lus[j], lvs[j], x, y, l)) continue;
         const bool c02 = l.e[4].dx == 0 && l.e[4].dy == 0 ? false : !l.e[4].canonical;

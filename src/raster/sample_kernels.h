@@ -74,6 +74,7 @@ struct MovingQuad {
     float ax, bx, ay, by;  // raster = a * (camera / z) + b (Camera::toRaster, perspective)
     float tfA, invSpan;
     float xmin, xmax, ymin, ymax;  // the quad's bound over the group (micropolygon::boundQuad)
+    float zmin;  // its nearest depth over the group: a lane whose sample sees nearer is not tested (NaN: every lane is)
     // With depth of field: each lane's quad at its time is moved by the lane's lens point as
     // micropolygon::lensQuad moves it, by each corner's lens shift R (1/d - 1/max(z, eyePlane))
     // (Camera::lensShift) times (ax, ay).
@@ -120,24 +121,25 @@ inline bool movingLensQuadAt(const MovingQuad& m, float w, float lu, float lv, f
     return micropolygon::lensQuad(at, sx, sy, lu, lv, x, y, q);
 }
 // Samples [0, n) (n <= 64) at (xs, ys), at exposure fractions tfs (and lens points lus, lvs
-// with a lens, else null): inBound, those inside the quad's bound; first and second, those inside
-// its triangles at their own time (as micropolygon::hitQuad finds them; with a lens, inside the
-// moved quad's bound too). edges as PixelTestFn's. The arrays must be readable up to
-// edgeStride(n).
+// with a lens, else null), each seeing a hit at depth seenZ: behind, those inside the quad's
+// bound whose hit is nearer than zmin; tested, the others inside it; first and second, those of
+// tested inside the quad's triangles at their own time (as micropolygon::hitQuad finds them;
+// with a lens, inside the moved quad's bound too). edges as PixelTestFn's. The arrays must be
+// readable up to edgeStride(n).
 struct MovingTest {
-    uint64_t inBound = 0, first = 0, second = 0;
+    uint64_t tested = 0, behind = 0, first = 0, second = 0;
 };
 using MovingTestFn = MovingTest (*)(const MovingQuad& q, const float* xs, const float* ys, const float* tfs,
-                                    const float* lus, const float* lvs, int n, float* edges);
+                                    const float* seenZ, const float* lus, const float* lvs, int n, float* edges);
 MovingTestFn movingTestKernel();
 MovingTestFn movingTestScalar();  // movingQuadAt (movingLensQuadAt) and micropolygon.h's test, sample by sample
 
 // A still quad seen through the lens (depth of field, GridRasterizer::sampleStill): sample j, at
 // (xs[j], ys[j]) with lens point (lus[j], lvs[j]), sees corner c at (x[c] + sx[c] lu, y[c] + sy[c] lv)
-// (micropolygon::lensQuad). inBound: the samples inside the quad's bound grown by the circle of
+// (micropolygon::lensQuad). tested: the samples inside the quad's bound grown by the circle of
 // confusion; first and second: those also inside the moved quad's bound and its triangles, as
-// lensQuad and hitQuad find them. The results and edges as MovingTestFn's; every array readable
-// up to edgeStride(n).
+// lensQuad and hitQuad find them (behind: none). The results and edges as MovingTestFn's; every
+// array readable up to edgeStride(n).
 struct LensQuad {
     float x[4], y[4], sx[4], sy[4];
     float xmin, xmax, ymin, ymax;

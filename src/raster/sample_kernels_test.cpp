@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <random>
 #include <string>
 #include <tuple>
@@ -140,7 +141,7 @@ void movingKernelAgrees(MovingTestFn kernel) {
     std::mt19937 rng(13);
     std::uniform_real_distribution<float> u(0.0f, 4.0f), depth(2.0f, 6.0f);
     const MovingTestFn scalar = movingTestScalar();
-    uint64_t tested = 0, hits = 0, exactHits = 0, lensHits = 0;
+    uint64_t tested = 0, behind = 0, hits = 0, exactHits = 0, lensHits = 0;
     for (int t = 0; t < 20000; ++t) {
         MovingQuad m{};
         for (int e = 0; e < 2; ++e)
@@ -178,13 +179,25 @@ void movingKernelAgrees(MovingTestFn kernel) {
         float ek[kMaxEdgeValues], es[kMaxEdgeValues];
         const float* lu = m.lens ? lus.data() : nullptr;
         const float* lv = m.lens ? lvs.data() : nullptr;
-        const MovingTest a = kernel(m, xs.data(), ys.data(), tfs.data(), lu, lv, n, ek);
-        const MovingTest b = scalar(m, xs.data(), ys.data(), tfs.data(), lu, lv, n, es);
-        ASSERT_EQ(a.inBound, b.inBound) << "quad " << t;
+        // What each sample already sees: nearer than the quad, farther, or exactly at its nearest
+        // depth; the quad's nearest depth NaN now and then (every lane tested, as when counting).
+        m.zmin = t % 9 == 0 ? std::numeric_limits<float>::quiet_NaN() : 4.0f;
+        std::vector<float> seenZ(xs.size());
+        for (int j = 0; j < n; ++j) seenZ[size_t(j)] = rng() % 5 == 0 ? 3.0f : rng() % 4 == 0 ? 4.0f : 100.0f;
+        const MovingTest a = kernel(m, xs.data(), ys.data(), tfs.data(), seenZ.data(), lu, lv, n, ek);
+        const MovingTest b = scalar(m, xs.data(), ys.data(), tfs.data(), seenZ.data(), lu, lv, n, es);
+        ASSERT_EQ(a.tested, b.tested) << "quad " << t;
+        ASSERT_EQ(a.behind, b.behind) << "quad " << t;
         ASSERT_EQ(a.first, b.first) << "quad " << t;
         ASSERT_EQ(a.second, b.second) << "quad " << t;
         for (int j = 0; j < n; ++j) {
-            if (!((a.inBound >> j) & 1)) continue;
+            const bool inBox = xs[size_t(j)] >= m.xmin && xs[size_t(j)] <= m.xmax && ys[size_t(j)] >= m.ymin &&
+                               ys[size_t(j)] <= m.ymax;
+            const bool nearer = m.zmin > seenZ[size_t(j)];
+            ASSERT_EQ(bool((a.behind >> j) & 1), inBox && nearer) << "quad " << t << " sample " << j;
+            ASSERT_EQ(bool((a.tested >> j) & 1), inBox && !nearer) << "quad " << t << " sample " << j;
+            behind += inBox && nearer;
+            if (!((a.tested >> j) & 1)) continue;
             ++tested;
             QuadSetup q;
             const float w = movingWeight(m, tfs[size_t(j)]), x = xs[size_t(j)], y = ys[size_t(j)];
@@ -209,6 +222,7 @@ void movingKernelAgrees(MovingTestFn kernel) {
     EXPECT_GT(hits, 50000u);
     EXPECT_GT(exactHits, 5000u);
     EXPECT_GT(lensHits, 5000u);
+    EXPECT_GT(behind, 20000u);
 }
 
 
@@ -251,13 +265,14 @@ void lensKernelAgrees(LensTestFn kernel) {
         float ek[kMaxEdgeValues], es[kMaxEdgeValues];
         const MovingTest a = kernel(m, xs.data(), ys.data(), lus.data(), lvs.data(), n, ek);
         const MovingTest b = scalar(m, xs.data(), ys.data(), lus.data(), lvs.data(), n, es);
-        ASSERT_EQ(a.inBound, b.inBound) << "quad " << t;
+        ASSERT_EQ(a.tested, b.tested) << "quad " << t;
+        ASSERT_EQ(a.behind, 0u) << "quad " << t;
         ASSERT_EQ(a.first, b.first) << "quad " << t;
         ASSERT_EQ(a.second, b.second) << "quad " << t;
         QuadSetup q;
         for (int c = 0; c < 4; ++c) q.x[c] = m.x[c], q.y[c] = m.y[c], q.z[c] = 0;
         for (int j = 0; j < n; ++j) {
-            if (!((a.inBound >> j) & 1)) continue;
+            if (!((a.tested >> j) & 1)) continue;
             ++tested;
             QuadSetup l;
             Hit h{};

@@ -167,7 +167,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                             const int n = std::min(64, S - c0);
                             const size_t at = pi * size_t(S) + size_t(c0);
                             const MovingTest t = lensTest(lq, xs + at, ys + at, lus + at, lvs + at, n, lensEdges_);
-                            tests += uint64_t(__builtin_popcountll(t.inBound));
+                            tests += uint64_t(__builtin_popcountll(t.tested));
                             for (uint64_t in = t.first | t.second; in; in &= in - 1) {
                                 const int j = __builtin_ctzll(in);
                                 const Hit h = pixelHit(lensEdges_, n, j, (t.first >> j) & 1);
