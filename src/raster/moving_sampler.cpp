@@ -75,6 +75,11 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     // The moving test: the SIMD kernel, or the scalar reference while counting hits for tests of
     // watertightness (the kernel is held to it bit for bit).
     const MovingTestFn movingTest = Counting ? movingTestScalar() : movingTestKernel();
+    // The lanes' quad: what the camera gives it is the same for the whole grid.
+    MovingQuad& mq = lanes_.quad;
+    mq.ax = camera.ax(), mq.bx = camera.bx(), mq.ay = camera.ay(), mq.by = camera.by();
+    mq.lens = Lens;
+    mq.lensRadius = camera.lensRadius(), mq.invFocal = camera.invFocalDistance(), mq.eyePlane = camera.eyePlane();
 
     // Slices are bounded in groups: a quad's bound over a group's time holds every sample of it
     // that could hit, and a slow grid needs no finer bound than a few slices give. As many slices a
@@ -108,7 +113,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
         project(grid, last.tb, camera, rb_, perspective ? &cb_ : nullptr);
         projected = last.tb;
         const float sA = float((first.ta - grid.t0) / span), sB = float((last.tb - grid.t0) / span);
-        const float tfA = first.tfA, invSpan = last.tfB > first.tfA ? 1.0f / (last.tfB - first.tfA) : 0.0f;
+        mq.tfA = first.tfA, mq.invSpan = last.tfB > first.tfA ? 1.0f / (last.tfB - first.tfA) : 0.0f;
         if (perspective) {
             // A vertex moving linearly in camera space leaves the straight raster segment between
             // its group's ends by at most 1/4 |raster motion| |dz| / min z. Where that is below
@@ -192,13 +197,12 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                     xb[c] = b.x, yb[c] = b.y, zb[c] = b.z;
                 }
                 if (!boundQuad(q, xb, yb, zb, R, nearZ, farZ, lensMargin<Lens>(camera))) continue;
-                const float xa[4] = {q.x[0], q.x[1], q.x[2], q.x[3]}, ya[4] = {q.y[0], q.y[1], q.y[2], q.y[3]},
-                            za[4] = {q.z[0], q.z[1], q.z[2], q.z[3]};
                 // A hit: sample sj of pixel pi (at (x, y), weight w across the group) inside qt's
-                // triangle h, the quad's corner depths then zq. rec is the frame's record of the
-                // pixel (null until something only this frame sees lands there); cur the sample's hit.
+                // triangle h (of qt, only the corner depths are set but while counting). rec is the
+                // frame's record of the pixel (null until something only this frame sees lands
+                // there); cur the sample's hit.
                 auto onHit = [&](size_t pi, int sj, SampleHit*& rec, const SampleHit& cur, float w, const Hit& h,
-                                 const float* zq, const QuadSetup& qt, float x, float y) {
+                                 const QuadSetup& qt, float x, float y) {
                     ++hits;
                     if (Counting) {
                         const size_t ci2 = (size_t(fi) * pixels + pi) * size_t(S) + size_t(sj);
@@ -212,7 +216,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             const int v = idx[flat ? 0 : c];
                             return lerp(oi0 ? oi0[v] : kOpaque, oi1 ? oi1[v] : kOpaque, sg);
                         };
-                        if (!fragmentBeats(cur, zq, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) return;
+                        if (!fragmentBeats(cur, qt.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) return;
                         const int32_t fk = keepFrameFragment(block, fi, pi, sj, frag, rec);
                         ++fragments;
                         if (Shadowed)
@@ -223,7 +227,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         return;
                     }
                     SampleHit hit;
-                    if (!beats(cur, zq, h, nearZ, farZ, id,
+                    if (!beats(cur, qt.z, h, nearZ, farZ, id,
                                [&](int c) { return lerp(ci0[idx[flat ? 0 : c]], ci1[idx[flat ? 0 : c]], sg); }, &hit))
                         return;
                     firstHits += cur.a == 0;
@@ -245,28 +249,13 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             return lerp(cl0[v], cl1[v], sg);
                         });
                 };
-                // The pixels of the quad's bound with their time permutation, but for those every
-                // sample of which already sees something nearer than all of the quad: none of
-                // those samples can change (the usual case deep in foliage).
-                auto eachPixelInSight = [&](auto&& visit) {
-                    for (int py = q.py0; py <= q.py1; ++py)
-                        for (int px = q.px0; px <= q.px1; ++px) {
-                            const size_t pi = block.pixelIndex(px, py);
-                            if (!Counting && pixelBehind(block, fi, pi, q.zmin, S)) {
-                                behind += s1 - s0;
-                                continue;
-                            }
-                            visit(pi, block.permutation(fi, pi));
-                        }
-                };
                 // Each pixel's samples of the group's slices go into lanes, tested up to 64 at
                 // a time against the quad at each sample's own time, as its lens point sees it
                 // with a lens (sample_kernels.h, MovingQuad); lanes inside the quad's bound are
                 // tests, as one by one.
-                MovingQuad& mq = lanes_.quad;
                 for (int c = 0; c < 4; ++c) {
                     const size_t v = size_t(idx[c]);
-                    mq.x[0][c] = xa[c], mq.y[0][c] = ya[c], mq.z[0][c] = za[c];
+                    mq.x[0][c] = q.x[c], mq.y[0][c] = q.y[c], mq.z[0][c] = q.z[c];
                     mq.x[1][c] = xb[c], mq.y[1][c] = yb[c], mq.z[1][c] = zb[c];
                     mq.exact[c] = perspective && exact_[v];
                     if (mq.exact[c]) {
@@ -274,10 +263,6 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         mq.cx[1][c] = cb_[v].x, mq.cy[1][c] = cb_[v].y, mq.cz[1][c] = cb_[v].z;
                     }
                 }
-                mq.ax = camera.ax(), mq.bx = camera.bx(), mq.ay = camera.ay(), mq.by = camera.by();
-                mq.tfA = tfA, mq.invSpan = invSpan;
-                mq.lens = Lens;
-                mq.lensRadius = camera.lensRadius(), mq.invFocal = camera.invFocalDistance(), mq.eyePlane = camera.eyePlane();
                 mq.xmin = q.xmin, mq.xmax = q.xmax, mq.ymin = q.ymin, mq.ymax = q.ymax;
                 // A lane whose sample already sees something nearer than all of the quad is not
                 // tested (counted behind); while counting hits, every lane is.
@@ -301,28 +286,37 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         else if (Counting) movingQuadAt(mq, w, qt);
                         else
                             for (int c = 0; c < 4; ++c) qt.z[c] = movingDepth(mq, c, w);  // all a hit needs
-                        onHit(pi, sj, rec, cur, w, h, qt.z, qt, lanes_.x[l], lanes_.y[l]);
+                        onHit(pi, sj, rec, cur, w, h, qt, lanes_.x[l], lanes_.y[l]);
                     }
                     n = 0;
                 };
-                eachPixelInSight([&](size_t pi, int perm) {
-                    const uint16_t* sampleOf = patterns.sampleOfStratum(perm);
-                    const float* times = patterns.stratumTimes(perm);
-                    const SampleHit* rec = block.record(fi, pi);
-                    const SampleHit* seen = rec ? rec : block.still(pi);
-                    for (size_t s = s0; s < s1; ++s) {
-                        const Slice& sl = slices_[s];
-                        // A sample outside the part of its slice the grid covers meets none of it.
-                        if (sl.checkTime && !inTimeSpan(times[sl.k], sl.tfA, sl.tfB, sl.openB)) continue;
-                        if (n == kLanes) flush();
-                        const int sj = sampleOf[sl.k];
-                        const size_t si = pi * size_t(S) + size_t(sj);
-                        lanes_.x[n] = xs[si], lanes_.y[n] = ys[si], lanes_.tf[n] = times[sl.k], lanes_.z[n] = seen[sj].z;
-                        lanes_.pixel[n] = uint32_t(pi), lanes_.sample[n] = uint16_t(sj);
-                        if constexpr (Lens) lanes_.lu[n] = lus[si], lanes_.lv[n] = lvs[si];
-                        ++n;
+                for (int py = q.py0; py <= q.py1; ++py)
+                    for (int px = q.px0; px <= q.px1; ++px) {
+                        const size_t pi = block.pixelIndex(px, py);
+                        // Every sample of the pixel already sees something nearer than all of the
+                        // quad: none of them can change (the usual case deep in foliage).
+                        if (!Counting && pixelBehind(block, fi, pi, q.zmin, S)) {
+                            behind += s1 - s0;
+                            continue;
+                        }
+                        const int perm = block.permutation(fi, pi);
+                        const uint16_t* sampleOf = patterns.sampleOfStratum(perm);
+                        const float* times = patterns.stratumTimes(perm);
+                        const SampleHit* rec = block.record(fi, pi);
+                        const SampleHit* seen = rec ? rec : block.still(pi);
+                        for (size_t s = s0; s < s1; ++s) {
+                            const Slice& sl = slices_[s];
+                            // A sample outside the part of its slice the grid covers meets none of it.
+                            if (sl.checkTime && !inTimeSpan(times[sl.k], sl.tfA, sl.tfB, sl.openB)) continue;
+                            if (n == kLanes) flush();
+                            const int sj = sampleOf[sl.k];
+                            const size_t si = pi * size_t(S) + size_t(sj);
+                            lanes_.x[n] = xs[si], lanes_.y[n] = ys[si], lanes_.tf[n] = times[sl.k], lanes_.z[n] = seen[sj].z;
+                            lanes_.pixel[n] = uint32_t(pi), lanes_.sample[n] = uint16_t(sj);
+                            if constexpr (Lens) lanes_.lu[n] = lus[si], lanes_.lv[n] = lvs[si];
+                            ++n;
+                        }
                     }
-                });
                 if (n) flush();
             }
         }

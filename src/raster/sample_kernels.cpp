@@ -134,16 +134,18 @@ MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, con
         const V m = hn::IfThenElse(hn::Lt(zero, v), v, zero);
         const V w = hn::IfThenElse(hn::Lt(m, one), m, one), omw = hn::Sub(one, w);
         auto lerpV = [&](float a, float b) { return hn::Add(hn::Mul(hn::Set(kD, a), omw), hn::Mul(hn::Set(kD, b), w)); };
-        V cxs[4], cys[4];
+        V cxs[4], cys[4], zs[4];  // zs: the corners' depths, where read (exact corners, a lens)
         for (int c = 0; c < 4; ++c) {
             if (q.exact[c]) {
                 const V px = lerpV(q.cx[0][c], q.cx[1][c]), py = lerpV(q.cy[0][c], q.cy[1][c]);
-                const V iz = hn::Div(one, lerpV(q.cz[0][c], q.cz[1][c]));
+                zs[c] = lerpV(q.cz[0][c], q.cz[1][c]);
+                const V iz = hn::Div(one, zs[c]);
                 cxs[c] = hn::Add(hn::Mul(hn::Mul(hn::Set(kD, q.ax), px), iz), hn::Set(kD, q.bx));
                 cys[c] = hn::Add(hn::Mul(hn::Mul(hn::Set(kD, q.ay), py), iz), hn::Set(kD, q.by));
             } else {
                 cxs[c] = lerpV(q.x[0][c], q.x[1][c]);
                 cys[c] = lerpV(q.y[0][c], q.y[1][c]);
+                if (q.lens) zs[c] = lerpV(q.z[0][c], q.z[1][c]);
             }
         }
         r.tested |= maskBits(kD, inBound) << i;
@@ -151,8 +153,7 @@ MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, con
             const V lu = hn::LoadU(kD, lus + i), lv = hn::LoadU(kD, lvs + i);
             const V eye = hn::Set(kD, q.eyePlane), radius = hn::Set(kD, q.lensRadius), invFocal = hn::Set(kD, q.invFocal);
             for (int c = 0; c < 4; ++c) {
-                const V z = q.exact[c] ? lerpV(q.cz[0][c], q.cz[1][c]) : lerpV(q.z[0][c], q.z[1][c]);
-                const V zc = hn::IfThenElse(hn::Lt(z, eye), eye, z);  // std::max(z, eyePlane)
+                const V zc = hn::IfThenElse(hn::Lt(zs[c], eye), eye, zs[c]);  // std::max(z, eyePlane)
                 const V shift = hn::Mul(radius, hn::Sub(invFocal, hn::Div(one, zc)));
                 cxs[c] = hn::Add(cxs[c], hn::Mul(hn::Mul(shift, hn::Set(kD, q.ax)), lu));
                 cys[c] = hn::Add(cys[c], hn::Mul(hn::Mul(shift, hn::Set(kD, q.ay)), lv));
@@ -351,11 +352,29 @@ HWY_EXPORT(Target);
 
 namespace {
 
+using namespace micropolygon;
+
+// micropolygon.h's test of the sample (x, y) against the set-up quad q: its five edge values into
+// edges[k * stride + j]; 1 when inside the first triangle, 2 the second, 0 neither. The scalar
+// references below share it.
+int scalarInside(const QuadSetup& q, float x, float y, float* edges, int stride, int j) {
+    const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
+    float e[5];
+    for (int k = 0; k < 5; ++k) edges[k * stride + j] = e[k] = q.e[k].eval(x, y);
+    if (insideTriangle(e[0], q.e[0].canonical, e[1], q.e[1].canonical, e[4], q.e[4].canonical)) return 1;
+    if (insideTriangle(-e[4], c02, e[2], q.e[2].canonical, e[3], q.e[3].canonical)) return 2;
+    return 0;
+}
+
+// The bits of a sample that scalarInside put in the first or the second triangle.
+void addInside(int inside, uint64_t bit, uint64_t& first, uint64_t& second) {
+    if (inside == 1) first |= bit;
+    if (inside == 2) second |= bit;
+}
+
 PixelTest scalarTest(const micropolygon::QuadSetup& q, const float* xs, const float* ys, int n, uint64_t candidates,
                      float* edges) {
-    using namespace micropolygon;
     const int stride = edgeStride(n);
-    const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
     PixelTest r;
     for (int j = 0; j < n; ++j) {
         if (!((candidates >> j) & 1)) continue;
@@ -363,17 +382,13 @@ PixelTest scalarTest(const micropolygon::QuadSetup& q, const float* xs, const fl
         if (x < q.xmin || x > q.xmax || y < q.ymin || y > q.ymax) continue;
         const uint64_t bit = uint64_t(1) << j;
         r.tested |= bit;
-        float e[5];
-        for (int k = 0; k < 5; ++k) edges[k * stride + j] = e[k] = q.e[k].eval(x, y);
-        if (insideTriangle(e[0], q.e[0].canonical, e[1], q.e[1].canonical, e[4], q.e[4].canonical)) r.first |= bit;
-        else if (insideTriangle(-e[4], c02, e[2], q.e[2].canonical, e[3], q.e[3].canonical)) r.second |= bit;
+        addInside(scalarInside(q, x, y, edges, stride, j), bit, r.first, r.second);
     }
     return r;
 }
 
 MovingTest scalarMovingTest(const MovingQuad& m, const float* xs, const float* ys, const float* tfs, const float* seenZ,
                              const float* lus, const float* lvs, int n, float* edges) {
-    using namespace micropolygon;
     const int stride = edgeStride(n);
     MovingTest r;
     for (int j = 0; j < n; ++j) {
@@ -388,18 +403,13 @@ MovingTest scalarMovingTest(const MovingQuad& m, const float* xs, const float* y
         QuadSetup q;
         if (!m.lens) movingQuadAt(m, movingWeight(m, tfs[j]), q);
         else if (!movingLensQuadAt(m, movingWeight(m, tfs[j]), lus[j], lvs[j], x, y, q)) continue;
-        const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
-        float e[5];
-        for (int k = 0; k < 5; ++k) edges[k * stride + j] = e[k] = q.e[k].eval(x, y);
-        if (insideTriangle(e[0], q.e[0].canonical, e[1], q.e[1].canonical, e[4], q.e[4].canonical)) r.first |= bit;
-        else if (insideTriangle(-e[4], c02, e[2], q.e[2].canonical, e[3], q.e[3].canonical)) r.second |= bit;
+        addInside(scalarInside(q, x, y, edges, stride, j), bit, r.first, r.second);
     }
     return r;
 }
 
 MovingTest scalarLensTest(const LensQuad& m, const float* xs, const float* ys, const float* lus, const float* lvs, int n,
                           float* edges) {
-    using namespace micropolygon;
     const int stride = edgeStride(n);
     QuadSetup q;
     for (int c = 0; c < 4; ++c) q.x[c] = m.x[c], q.y[c] = m.y[c], q.z[c] = 0;
@@ -411,11 +421,7 @@ MovingTest scalarLensTest(const LensQuad& m, const float* xs, const float* ys, c
         r.tested |= bit;
         QuadSetup l;
         if (!lensQuad(q, m.sx, m.sy, lus[j], lvs[j], x, y, l)) continue;
-        const bool c02 = l.e[4].dx == 0 && l.e[4].dy == 0 ? false : !l.e[4].canonical;
-        float e[5];
-        for (int k = 0; k < 5; ++k) edges[k * stride + j] = e[k] = l.e[k].eval(x, y);
-        if (insideTriangle(e[0], l.e[0].canonical, e[1], l.e[1].canonical, e[4], l.e[4].canonical)) r.first |= bit;
-        else if (insideTriangle(-e[4], c02, e[2], l.e[2].canonical, e[3], l.e[3].canonical)) r.second |= bit;
+        addInside(scalarInside(l, x, y, edges, stride, j), bit, r.first, r.second);
     }
     return r;
 }

@@ -293,33 +293,29 @@ void lensKernelAgrees(LensTestFn kernel) {
 
 // Each kernel of every instruction set this CPU runs (not only the one dispatched to) against
 // its scalar reference: the same scene gives the same pixels on every machine.
-TEST(SampleKernels, KernelGivesTheScalarTestBitForBit) {
-    RecordProperty("target", pixelTestTarget());
+template <typename Check>
+void onEveryTarget(Check check) {
     for (const KernelSet& k : kernelsOfEveryTarget()) {
         SCOPED_TRACE(k.target);
-        pixelKernelAgrees(k.pixel);
+        check(k);
     }
+}
+
+TEST(SampleKernels, KernelGivesTheScalarTestBitForBit) {
+    RecordProperty("target", pixelTestTarget());
+    onEveryTarget([](const KernelSet& k) { pixelKernelAgrees(k.pixel); });
 }
 
 TEST(SampleKernels, QuadKernelGivesTheScalarQuadTestBitForBit) {
-    for (const KernelSet& k : kernelsOfEveryTarget()) {
-        SCOPED_TRACE(k.target);
-        quadKernelAgrees(k.quad);
-    }
+    onEveryTarget([](const KernelSet& k) { quadKernelAgrees(k.quad); });
 }
 
 TEST(SampleKernels, MovingKernelGivesTheScalarTestBitForBit) {
-    for (const KernelSet& k : kernelsOfEveryTarget()) {
-        SCOPED_TRACE(k.target);
-        movingKernelAgrees(k.moving);
-    }
+    onEveryTarget([](const KernelSet& k) { movingKernelAgrees(k.moving); });
 }
 
 TEST(SampleKernels, LensKernelGivesTheScalarTestBitForBit) {
-    for (const KernelSet& k : kernelsOfEveryTarget()) {
-        SCOPED_TRACE(k.target);
-        lensKernelAgrees(k.lens);
-    }
+    onEveryTarget([](const KernelSet& k) { lensKernelAgrees(k.lens); });
 }
 
 // The renderer's kernels are those of one of these targets.
