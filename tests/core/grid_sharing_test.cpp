@@ -131,9 +131,14 @@ WorldEnd
         RenderOptions o;
         o.threads = threads;
         const test::RenderResult r = test::renderRib(rib, o);
-        EXPECT_TRUE(test::identicalPixels(ref, r)) << threads;
-        EXPECT_GT(r.stats.counters.gridsShared, 0u) << threads;
-        EXPECT_EQ(r.stats.counters.gridsDiced + r.stats.counters.gridsShared, ref.stats.counters.gridsDiced) << threads;
+        // (Seen to fail once in about fifteen full runs on 2026-11-27, not reproduced in 450 runs
+        // of this test alone or under load: the messages say which part, and by how much.)
+        EXPECT_TRUE(test::identicalPixels(ref, r))
+            << threads << " threads: largest difference " << test::maxAbsDifference(ref, r);
+        EXPECT_GT(r.stats.counters.gridsShared, 0u) << threads << " threads";
+        EXPECT_EQ(r.stats.counters.gridsDiced + r.stats.counters.gridsShared, ref.stats.counters.gridsDiced)
+            << threads << " threads: " << r.stats.counters.gridsDiced << " diced, " << r.stats.counters.gridsShared
+            << " shared, " << r.stats.counters.gridsEvicted << " evicted";
     }
 }
 
