@@ -7,6 +7,7 @@
 // hit_efficiency is sample hits / sample tests.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -200,6 +201,96 @@ void BM_QuadTestKernel(benchmark::State& state) {
         benchmark::Counter(double(quads.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_QuadTestKernel);
+
+// The moving quad test alone (sample_kernels.h, movingTestKernel), as BM_QuadTestKernel is for
+// still quads: BM_Sampler/px_per_frame:4's grid (1-pixel quads moving 4 pixels a frame), each
+// quad's lanes over each group of slices filled beforehand as the sampler fills them (the
+// samples of the group's slices in the pixels of the quad's bound over the group, the group as
+// long as GridRasterizer::kGroupMotion allows), so that only the kernel is timed: each lane's
+// quad at its own time, its five edges, the inside tests and the edge values of the hits.
+// BM_Sampler/px_per_frame:4 adds the rest of the moving sampler (grouping and projection, each
+// quad's bound, filling the lanes, each hit's depth test, colour and write).
+void BM_MovingTestKernel(benchmark::State& state) {
+    const int size = 64;
+    const float motion = 4;
+    Camera cam = pixelCamera(size);
+    Material m;
+    TrilinearBody::Corners a = turnedSquare(24.37f, 24.61f, size), b = a;
+    for (auto& c : b) c.x += motion;
+    Grid g;
+    TrilinearBody({0, 1}, a, b, {}, &m).dice(16, 16, g);
+    const PatternTable patterns(SamplePattern{4, 4, 1});
+    ImageBlock block;
+    block.reset({0, 0, size - 1, size - 1}, 0, 1, patterns, false);
+    block.needTimes(0);
+    const PixelRect R = block.rect();
+    const int S = block.samplesPerPixel(), stride = g.nu + 1;
+    float moved = 0;  // the grid's largest raster motion over the frame, as the sampler finds it
+    for (size_t v = 0; v < g.P[0].size(); ++v) {
+        const Vec3f ra = cam.toRaster(g.P[0][v]), rb = cam.toRaster(g.P[1][v]);
+        moved = std::max({moved, std::fabs(rb.x - ra.x), std::fabs(rb.y - ra.y)});
+    }
+    const int kGroup = int(std::clamp(double(GridRasterizer::kGroupMotion) / (double(moved) / S), 1.0, double(S)));
+    struct Batch {
+        MovingQuad q;
+        size_t first;
+        int n;
+    };
+    std::vector<Batch> batches;
+    std::vector<float> xs, ys, tfs, zs;  // every batch's lanes, each batch padded to edgeStride
+    for (int k0 = 0; k0 < S; k0 += kGroup) {
+        const int k1 = std::min(S, k0 + kGroup);
+        const float wa = float(k0) / float(S), wb = float(k1) / float(S);
+        for (int j = 0; j < g.nv; ++j)
+            for (int i = 0; i < g.nu; ++i) {
+                const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
+                Batch bt{};
+                micropolygon::QuadSetup q;
+                float xb[4], yb[4], zb[4];
+                for (int c = 0; c < 4; ++c) {
+                    const Vec3f p0 = g.P[0][size_t(idx[c])], p1 = g.P[1][size_t(idx[c])];
+                    const Vec3f ra = cam.toRaster(lerp(p0, p1, wa)), rb = cam.toRaster(lerp(p0, p1, wb));
+                    q.x[c] = bt.q.x[0][c] = ra.x, q.y[c] = bt.q.y[0][c] = ra.y, q.z[c] = bt.q.z[0][c] = ra.z;
+                    xb[c] = bt.q.x[1][c] = rb.x, yb[c] = bt.q.y[1][c] = rb.y, zb[c] = bt.q.z[1][c] = rb.z;
+                    bt.q.exact[c] = false;
+                }
+                if (!micropolygon::boundQuad(q, xb, yb, zb, R, cam.nearClip(), cam.farClip())) continue;
+                bt.q.tfA = wa, bt.q.invSpan = 1.0f / (wb - wa);
+                bt.q.xmin = q.xmin, bt.q.xmax = q.xmax, bt.q.ymin = q.ymin, bt.q.ymax = q.ymax, bt.q.zmin = q.zmin;
+                bt.first = xs.size();
+                for (int py = q.py0; py <= q.py1; ++py)
+                    for (int px = q.px0; px <= q.px1; ++px) {
+                        const size_t pi = block.pixelIndex(px, py);
+                        const int perm = block.permutation(0, pi);
+                        for (int k = k0; k < k1; ++k) {
+                            const size_t si = pi * size_t(S) + patterns.sampleOfStratum(perm)[k];
+                            xs.push_back(block.xs()[si]), ys.push_back(block.ys()[si]);
+                            tfs.push_back(patterns.stratumTimes(perm)[k]), zs.push_back(INFINITY);
+                            ++bt.n;
+                        }
+                    }
+                if (bt.n > 64) state.SkipWithError("a batch over the kernel's 64 lanes");
+                for (int p = bt.n; p < edgeStride(bt.n); ++p) xs.push_back(0), ys.push_back(0), tfs.push_back(0), zs.push_back(0);
+                batches.push_back(bt);
+            }
+    }
+    std::vector<float> edges(kMaxEdgeValues);
+    const MovingTestFn test = movingTestKernel();
+    uint64_t tests = 0, found = 0, lanes = 0;
+    for (auto _ : state)
+        for (const Batch& bt : batches) {
+            const MovingTest t = test(bt.q, &xs[bt.first], &ys[bt.first], &tfs[bt.first], &zs[bt.first], nullptr, nullptr,
+                                      bt.n, edges.data());
+            tests += uint64_t(__builtin_popcountll(t.tested));
+            found += uint64_t(__builtin_popcountll(t.first | t.second));
+            lanes += uint64_t(bt.n);
+            benchmark::DoNotOptimize(edges.data());
+        }
+    state.counters["sample_tests/s"] = benchmark::Counter(double(tests), benchmark::Counter::kIsRate);
+    state.counters["hit_efficiency"] = double(found) / double(std::max<uint64_t>(1, tests));
+    state.counters["lanes/test"] = double(lanes) / double(std::max<uint64_t>(1, tests));
+}
+BENCHMARK(BM_MovingTestKernel);
 
 // Placing a bucket's samples: positions from the pattern table, a time permutation per pixel
 // and frame (the samples themselves are not stored per frame).

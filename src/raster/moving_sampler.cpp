@@ -81,10 +81,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     mq.lens = Lens;
     mq.lensRadius = camera.lensRadius(), mq.invFocal = camera.invFocalDistance(), mq.eyePlane = camera.eyePlane();
 
-    // Slices are bounded in groups: a quad's bound over a group's time holds every sample of it
-    // that could hit, and a slow grid needs no finer bound than a few slices give. As many slices a
-    // group as keep the grid's largest raster motion over a group under kGroupMotion pixels.
-    constexpr float kGroupMotion = 0.5f;
+    // Slices are bounded in groups (kGroupMotion).
     project(grid, grid.t0, camera, ra_);
     project(grid, grid.t1, camera, rb_);
     float motion = 0;
