@@ -230,7 +230,7 @@ void BM_MovingTestKernel(benchmark::State& state) {
         const Vec3f ra = cam.toRaster(g.P[0][v]), rb = cam.toRaster(g.P[1][v]);
         moved = std::max({moved, std::fabs(rb.x - ra.x), std::fabs(rb.y - ra.y)});
     }
-    const int kGroup = int(std::clamp(double(GridRasterizer::kGroupMotion) / (double(moved) / S), 1.0, double(S)));
+    const int group = int(std::clamp(double(GridRasterizer::kGroupMotion) / (double(moved) / S), 1.0, double(S)));
     struct Batch {
         MovingQuad q;
         size_t first;
@@ -238,8 +238,8 @@ void BM_MovingTestKernel(benchmark::State& state) {
     };
     std::vector<Batch> batches;
     std::vector<float> xs, ys, tfs, zs;  // every batch's lanes, each batch padded to edgeStride
-    for (int k0 = 0; k0 < S; k0 += kGroup) {
-        const int k1 = std::min(S, k0 + kGroup);
+    for (int k0 = 0; k0 < S; k0 += group) {
+        const int k1 = std::min(S, k0 + group);
         const float wa = float(k0) / float(S), wb = float(k1) / float(S);
         for (int j = 0; j < g.nv; ++j)
             for (int i = 0; i < g.nu; ++i) {
