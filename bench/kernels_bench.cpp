@@ -230,7 +230,7 @@ void BM_MovingTestKernel(benchmark::State& state) {
         const Vec3f ra = cam.toRaster(g.P[0][v]), rb = cam.toRaster(g.P[1][v]);
         moved = std::max({moved, std::fabs(rb.x - ra.x), std::fabs(rb.y - ra.y)});
     }
-    const int group = int(std::clamp(double(GridRasterizer::kGroupMotion) / (double(moved) / S), 1.0, double(S)));
+    const int group = int(GridRasterizer::slicesPerGroup(double(moved) / S, S));
     struct Batch {
         MovingQuad q;
         size_t first;

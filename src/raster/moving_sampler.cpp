@@ -81,7 +81,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     mq.lens = Lens;
     mq.lensRadius = camera.lensRadius(), mq.invFocal = camera.invFocalDistance(), mq.eyePlane = camera.eyePlane();
 
-    // Slices are bounded in groups (kGroupMotion).
+    // Slices are bounded in groups (kGroupMotion): the grid's largest motion over a slice.
     project(grid, grid.t0, camera, ra_);
     project(grid, grid.t1, camera, rb_);
     float motion = 0;
@@ -90,7 +90,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     double sliceTime = 0;  // the longest slice, as a share of the grid's span
     for (const Slice& sl : slices_) sliceTime = std::max(sliceTime, (sl.tb - sl.ta) / span);
     const double perSlice = double(motion) * sliceTime;
-    const size_t group = perSlice > 0 ? size_t(std::clamp(double(kGroupMotion) / perSlice, 1.0, double(S))) : size_t(S);
+    const size_t group = slicesPerGroup(perSlice, S);
 
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
     uint64_t tests = 0, hits = 0, firstHits = 0, behind = 0, fragments = 0, gridsBehind = 0, patchesBehind = 0;

@@ -29,6 +29,7 @@
 // over its depths, and each sample in it is tested against the quad as its lens point sees it.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -73,6 +74,10 @@ class GridRasterizer {
     // on the moving benchmarks and scenes/dof.rib (2 won 8% at 4 pixels a frame but lost 18% on
     // the diagonal).
     static constexpr float kGroupMotion = 1.0f;
+    // Slices a group for a grid moving `motionPerSlice` pixels a slice at most, S slices a frame.
+    static size_t slicesPerGroup(double motionPerSlice, int S) {
+        return motionPerSlice > 0 ? size_t(std::clamp(double(kGroupMotion) / motionPerSlice, 1.0, double(S))) : size_t(S);
+    }
 
   private:
     struct RasterVertex {

@@ -202,7 +202,6 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     counters.fragments += fragments;
 }
 
-
 template void GridRasterizer::sampleStill<false, false, false>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
 template void GridRasterizer::sampleStill<false, false, true>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
 template void GridRasterizer::sampleStill<false, true, false>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);
