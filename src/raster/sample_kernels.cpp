@@ -254,8 +254,21 @@ HWY_INLINE uint64_t strataCandidates(const SampleLayout& L, int ix0, int ix1, in
     return candidates;
 }
 
+// 0, 1, 2 ... for the widest vector.
+HWY_ALIGN constexpr int32_t kLaneIndex[64] = {0,  1,  2,  3,  4,  5,  6,  7,  8,  9,  10, 11, 12, 13, 14, 15,
+                                              16, 17, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31,
+                                              32, 33, 34, 35, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45, 46, 47,
+                                              48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63};
+static_assert(hn::MaxLanes(kD) <= 64);
+
+// The still kernel packs each quad's candidates (the samples of the strata its bound overlaps, and
+// inside the bound) from all the pixels of its bound into full vectors before testing them: a
+// micropolygon of about a pixel has a few candidates in each of about four pixels, so testing
+// pixel by pixel ran mostly empty lanes. Packing keeps pixel order then sample order, so the hits
+// come out in the order the scalar reference makes them.
 uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_t* hitCount) {
     const size_t N = hn::Lanes(kD);
+    const hn::RebindToSigned<decltype(kD)> kI;
     V px[5], py[5], dx[5], dy[5], sign[5];
     for (int k = 0; k < 5; ++k) {
         px[k] = hn::Set(kD, q.e[k].px), py[k] = hn::Set(kD, q.e[k].py);
@@ -264,9 +277,47 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
     }
     const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
     const V xmin = hn::Set(kD, q.xmin), xmax = hn::Set(kD, q.xmax), ymin = hn::Set(kD, q.ymin), ymax = hn::Set(kD, q.ymax);
-    HWY_ALIGN float l1s[hn::MaxLanes(kD)], l2s[hn::MaxLanes(kD)];
+    const V one = hn::Set(kD, 1.0f);
+    const auto lanes = hn::Load(kI, kLaneIndex);  // (hn::Iota goes through memory)
+    // The packed candidates: positions, pixels and sample indices of lanes [0, packed). Twice a
+    // vector: a store after fewer than N lanes writes a whole vector (the lanes past it unused).
+    constexpr size_t kRoom = 2 * hn::MaxLanes(kD);
+    HWY_ALIGN float bx[kRoom] = {}, by[kRoom] = {}, l1s[kRoom], l2s[kRoom];
+    HWY_ALIGN int32_t bpixel[kRoom] = {}, bsample[kRoom] = {};
+    size_t packed = 0;
     uint64_t tested = 0;
     size_t hits = *hitCount;
+    // Tests packed lanes [0, n) and appends their hits.
+    auto testPacked = [&](size_t n) {
+        const V x = hn::Load(kD, bx), y = hn::Load(kD, by);
+        const M t = hn::FirstN(kD, n);
+        V ev[5];
+        for (int k = 0; k < 5; ++k)
+            ev[k] = hn::Mul(sign[k], hn::Sub(hn::Mul(dx[k], hn::Sub(y, py[k])), hn::Mul(dy[k], hn::Sub(x, px[k]))));
+        const M first =
+            hn::And(t, insideTriangle(ev[0], q.e[0].canonical, ev[1], q.e[1].canonical, ev[4], q.e[4].canonical));
+        const M second = hn::AndNot(
+            first, hn::And(t, insideTriangle(hn::Neg(ev[4]), c02, ev[2], q.e[2].canonical, ev[3], q.e[3].canonical)));
+        const M inside = hn::Or(first, second);
+        if (hn::AllFalse(kD, inside)) return;
+        // Barycentrics as hitQuad makes them (the same operations in the same order): triangle 1
+        // weighs q1 by e20 and q2 by e01; triangle 2 weighs q2 by e30 and q3 by e02 = -e20. One
+        // division: each lane needs only its own triangle's.
+        const V e02 = hn::Neg(ev[4]);
+        const V inv = hn::Div(one, hn::IfThenElse(first, hn::Add(hn::Add(ev[0], ev[1]), ev[4]), hn::Add(hn::Add(e02, ev[2]), ev[3])));
+        hn::Store(hn::Mul(hn::IfThenElse(first, ev[4], ev[3]), inv), kD, l1s);
+        hn::Store(hn::Mul(hn::IfThenElse(first, ev[0], e02), inv), kD, l2s);
+        const uint64_t in = maskBits(kD, inside), fi = maskBits(kD, first);
+        for (uint64_t left = in; left; left &= left - 1) {
+            const int lane = __builtin_ctzll(left);
+            QuadHit& h = out[hits++];
+            h.pixel = uint32_t(bpixel[lane]);
+            h.sample = uint16_t(bsample[lane]);
+            h.first = uint8_t((fi >> lane) & 1);
+            h.l1 = l1s[lane];
+            h.l2 = l2s[lane];
+        }
+    };
     for (int ppy = q.py0; ppy <= q.py1; ++ppy) {
         const int iy0 = stratumAt(q.ymin, ppy, L.sy);
         const int iy1 = stratumAt(q.ymax, ppy, L.sy);
@@ -283,50 +334,35 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
                     uint64_t bits = candidates >> i;
                     if (N < 64) bits &= (uint64_t(1) << N) - 1;
                     if (!bits) continue;
-                    uint8_t maskBytes[8];
-                    for (size_t b = 0; b < (N + 7) / 8; ++b) maskBytes[b] = uint8_t(bits >> (8 * b));
-                    const M cand = hn::LoadMaskBits(kD, maskBytes);
+                    // From one word (little-endian): a store the mask load can be forwarded.
+                    const M cand = hn::LoadMaskBits(kD, reinterpret_cast<const uint8_t*>(&bits));
                     const V x = hn::LoadU(kD, xs + c0 + i), y = hn::LoadU(kD, ys + c0 + i);
                     const M inBound = hn::And(hn::And(hn::Not(hn::Lt(x, xmin)), hn::Not(hn::Gt(x, xmax))),
                                               hn::And(hn::Not(hn::Lt(y, ymin)), hn::Not(hn::Gt(y, ymax))));
                     const M t = hn::And(cand, inBound);
                     if (hn::AllFalse(kD, t)) continue;
-                    tested += hn::CountTrue(kD, t);
-                    V ev[5];
-                    for (int k = 0; k < 5; ++k)
-                        ev[k] = hn::Mul(sign[k], hn::Sub(hn::Mul(dx[k], hn::Sub(y, py[k])), hn::Mul(dy[k], hn::Sub(x, px[k]))));
-                    const M first = hn::And(t, insideTriangle(ev[0], q.e[0].canonical, ev[1], q.e[1].canonical, ev[4],
-                                                              q.e[4].canonical));
-                    const M second = hn::AndNot(first, hn::And(t, insideTriangle(hn::Neg(ev[4]), c02, ev[2],
-                                                                                 q.e[2].canonical, ev[3], q.e[3].canonical)));
-                    const M inside = hn::Or(first, second);
-                    if (hn::AllFalse(kD, inside)) continue;
-                    // Barycentrics as hitQuad makes them (the same operations in the same order):
-                    // triangle 1 weighs q1 by e20 and q2 by e01; triangle 2 weighs q2 by e30 and
-                    // q3 by e02 = -e20. One division: each lane needs only its own triangle's.
-                    const V one = hn::Set(kD, 1.0f), e02 = hn::Neg(ev[4]);
-                    const V inv = hn::Div(one, hn::IfThenElse(first, hn::Add(hn::Add(ev[0], ev[1]), ev[4]),
-                                                              hn::Add(hn::Add(e02, ev[2]), ev[3])));
-                    hn::Store(hn::Mul(hn::IfThenElse(first, ev[4], ev[3]), inv), kD, l1s);
-                    hn::Store(hn::Mul(hn::IfThenElse(first, ev[0], e02), inv), kD, l2s);
-                    uint8_t inBits[8] = {0}, firstBits[8] = {0};
-                    hn::StoreMaskBits(kD, inside, inBits);
-                    hn::StoreMaskBits(kD, first, firstBits);
-                    uint64_t in = 0, fi = 0;
-                    for (size_t b = 0; b < (N + 7) / 8; ++b) in |= uint64_t(inBits[b]) << (8 * b), fi |= uint64_t(firstBits[b]) << (8 * b);
-                    for (; in; in &= in - 1) {
-                        const int lane = __builtin_ctzll(in);
-                        QuadHit& h = out[hits++];
-                        h.pixel = pixel;
-                        h.sample = uint16_t(c0 + int(i) + lane);
-                        h.first = uint8_t((fi >> lane) & 1);
-                        h.l1 = l1s[lane];
-                        h.l2 = l2s[lane];
+                    // Append the lanes to the packed ones; test a vector once one is full.
+                    const size_t k = hn::CountTrue(kD, t);
+                    hn::StoreU(hn::Compress(x, t), kD, bx + packed);
+                    hn::StoreU(hn::Compress(y, t), kD, by + packed);
+                    hn::StoreU(hn::Set(kI, int32_t(pixel)), kI, bpixel + packed);
+                    hn::StoreU(hn::Compress(hn::Add(lanes, hn::Set(kI, int32_t(c0) + int32_t(i))), hn::RebindMask(kI, t)), kI,
+                               bsample + packed);
+                    packed += k;
+                    tested += k;
+                    if (packed >= N) {
+                        testPacked(N);
+                        packed -= N;
+                        hn::Store(hn::LoadU(kD, bx + N), kD, bx);
+                        hn::Store(hn::LoadU(kD, by + N), kD, by);
+                        hn::Store(hn::LoadU(kI, bpixel + N), kI, bpixel);
+                        hn::Store(hn::LoadU(kI, bsample + N), kI, bsample);
                     }
                 }
             }
         }
     }
+    if (packed) testPacked(packed);
     *hitCount = hits;
     return tested;
 }
