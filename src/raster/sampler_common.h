@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "geom/camera.h"
 #include "geom/grid.h"
@@ -108,9 +109,11 @@ inline void writeAovs(float* out, int A, const Hit& h, AovAt aovAt) {
 inline bool pixelBehind(ImageBlock& block, int fi, size_t pi, float zmin, int S) {
     float& bound = block.farthestBound(fi, pi);
     if (bound < 0 && !(zmin > -bound)) {
+        // Up to the first sample that sees nothing (+inf, the farthest there is): in a pixel being
+        // filled, each first hit makes the bound stale, and the next quad measures it again.
         const SampleHit* seen = block.hits(fi, pi);
         bound = seen[0].z;
-        for (int k = 1; k < S; ++k) bound = std::max(bound, seen[k].z);
+        for (int k = 1; k < S && bound != std::numeric_limits<float>::infinity(); ++k) bound = std::max(bound, seen[k].z);
     }
     return zmin > std::fabs(bound);
 }
