@@ -199,7 +199,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 // frame's record of the pixel (null until something only this frame sees lands
                 // there); cur the sample's hit.
                 auto onHit = [&](size_t pi, int sj, SampleHit*& rec, const SampleHit& cur, float w, const Hit& h,
-                                 const QuadSetup& qt, float x, float y) {
+                                 const QuadSetup& qt, float x, float y) __attribute__((always_inline)) {
                     ++hits;
                     if (Counting) {
                         const size_t ci2 = (size_t(fi) * pixels + pi) * size_t(S) + size_t(sj);
@@ -279,6 +279,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         const Hit h = pixelHit(lanes_.edges, n, l, (t.first >> l) & 1);
                         const float w = movingWeight(mq, lanes_.tf[l]);
                         QuadSetup qt;
+                        if constexpr (Counting) qt = QuadSetup{};  // set below; GCC cannot tell once onHit is inlined
                         if (Counting && Lens) movingLensQuadAt(mq, w, lanes_.lu[l], lanes_.lv[l], lanes_.x[l], lanes_.y[l], qt);
                         else if (Counting) movingQuadAt(mq, w, qt);
                         else
