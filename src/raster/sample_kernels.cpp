@@ -339,8 +339,9 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
                     uint64_t bits = candidates >> i;
                     if (N < 64) bits &= (uint64_t(1) << N) - 1;
                     if (!bits) continue;
-                    // From one word (little-endian): a store the mask load can be forwarded.
-                    const M cand = hn::LoadMaskBits(kD, reinterpret_cast<const uint8_t*>(&bits));
+                    uint8_t maskBytes[8];
+                    for (size_t b = 0; b < (N + 7) / 8; ++b) maskBytes[b] = uint8_t(bits >> (8 * b));
+                    const M cand = hn::LoadMaskBits(kD, maskBytes);
                     const V x = hn::LoadU(kD, xs + c0 + i), y = hn::LoadU(kD, ys + c0 + i);
                     const M inBound = hn::And(hn::And(hn::Not(hn::Lt(x, xmin)), hn::Not(hn::Gt(x, xmax))),
                                               hn::And(hn::Not(hn::Lt(y, ymin)), hn::Not(hn::Gt(y, ymax))));
