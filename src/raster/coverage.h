@@ -17,7 +17,10 @@ namespace streyes {
 // same: nothing in the block has a record yet).
 // `farthest`, when given, receives for each cell scanned (those not covered before) the farthest
 // depth of the pixel's hits in that frame, +inf unless every sample has an opaque hit: a surface
-// strictly farther than it at every cell it reaches cannot change a sample there.
+// strictly farther than it at every cell it reaches cannot change a sample there. It also stands
+// for that measure where nothing was written since: a pixel the block has not marked touched
+// (ImageBlock::touch) keeps the value farthest holds, and is not read again (the caller clears
+// the marks once it has the coverage: touchAll(false)).
 uint64_t updateCoverage(const ImageBlock& block, float boundary, std::vector<uint8_t>& coverage, int frames = -1,
                         std::vector<float>* farthest = nullptr);
 

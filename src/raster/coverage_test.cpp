@@ -43,7 +43,8 @@ TEST(Occlusion, StillLayerCoversEveryFrameWithoutARecord) {
 }
 
 // The farthest hit of each cell scanned: +inf while a sample has no opaque hit; cells covered
-// before keep what they had (stale is conservative: depths only decrease).
+// before keep what they had (stale is conservative: depths only decrease). Writes are touched
+// and the marks cleared after each measure, as the samplers and the bucket do.
 TEST(Occlusion, FarthestHitPerCell) {
     const PatternTable patterns(SamplePattern{2, 1, 0});
     ImageBlock block;
@@ -52,21 +53,57 @@ TEST(Occlusion, FarthestHitPerCell) {
     block.still(1)[0] = {3.0f, {1, 1, 1}, 1.0f, 1};  // pixel 1: one sample only
     SampleHit* r = block.makeRecord(1, 0);          // frame 1 of pixel 0: nearer
     r[1].z = 2.0f;
+    block.touchAll(true);
     std::vector<uint8_t> coverage;
     std::vector<float> farthest;
     const float inf = std::numeric_limits<float>::infinity();
-    EXPECT_EQ(updateCoverage(block, 4.5f, coverage, -1, &farthest), 1u);
+    auto measure = [&](float boundary) {
+        const uint64_t added = updateCoverage(block, boundary, coverage, -1, &farthest);
+        block.touchAll(false);
+        return added;
+    };
+    EXPECT_EQ(measure(4.5f), 1u);
     EXPECT_EQ(farthest, (std::vector<float>{5.0f, inf, 4.0f, inf}));
     block.still(1)[1] = {3.5f, {1, 1, 1}, 0.5f, 1};  // not opaque: still +inf
-    updateCoverage(block, 4.5f, coverage, -1, &farthest);
+    block.touch(1);
+    measure(4.5f);
     EXPECT_EQ(farthest[1], inf);
     block.still(1)[1].a = 1.0f;
     block.still(1)[1].z = std::numeric_limits<float>::quiet_NaN();  // never taken for a depth
-    updateCoverage(block, 4.5f, coverage, -1, &farthest);
+    block.touch(1);
+    measure(4.5f);
     EXPECT_EQ(farthest[1], inf);
     block.still(1)[1].z = 3.5f;
-    EXPECT_EQ(updateCoverage(block, 4.5f, coverage, -1, &farthest), 2u);
+    block.touch(1);
+    EXPECT_EQ(measure(4.5f), 2u);
     EXPECT_EQ(farthest, (std::vector<float>{5.0f, 3.5f, 4.0f, 3.5f}));
+}
+
+// A pixel nothing was written to since it was measured keeps that measure: it is not read again,
+// and it is covered once the boundary passes it. A write left untouched leaves the measure a
+// looser bound (the cell is not covered), never a tighter one.
+TEST(Occlusion, UntouchedPixelsKeepTheirMeasure) {
+    const PatternTable patterns(SamplePattern{2, 1, 0});
+    ImageBlock block;
+    block.reset({0, 0, 1, 0}, 0, 1, patterns, false);  // 2 pixels, 1 frame
+    for (int k = 0; k < 2; ++k) block.still(0)[k] = {4.0f, {1, 1, 1}, 1.0f, 1};
+    block.still(1)[0] = {3.0f, {1, 1, 1}, 1.0f, 1};
+    block.touchAll(true);
+    std::vector<uint8_t> coverage;
+    std::vector<float> farthest;
+    const float inf = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(updateCoverage(block, 3.5f, coverage, -1, &farthest), 0u);
+    EXPECT_EQ(farthest, (std::vector<float>{4.0f, inf}));
+    block.touchAll(false);
+    EXPECT_EQ(updateCoverage(block, 4.5f, coverage, -1, &farthest), 1u);  // pixel 0 from its measure
+    EXPECT_EQ(coverage, (std::vector<uint8_t>{1, 0}));
+    block.still(1)[1] = {3.0f, {1, 1, 1}, 1.0f, 1};  // written but not touched: not seen
+    EXPECT_EQ(updateCoverage(block, 4.5f, coverage, -1, &farthest), 0u);
+    EXPECT_EQ(farthest[1], inf);
+    block.touch(1);
+    EXPECT_EQ(updateCoverage(block, 4.5f, coverage, -1, &farthest), 1u);
+    EXPECT_EQ(farthest[1], 3.0f);
+    EXPECT_EQ(coverage, (std::vector<uint8_t>{1, 1}));
 }
 
 }  // namespace

@@ -60,6 +60,7 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     slot_.assign(size_t(frameCount) * pixels, -1);
     farthest_.assign(size_t(frameCount) * pixels, -std::numeric_limits<float>::infinity());  // stale
     recordsOf_.assign(dense ? 0 : pixels, 0);
+    touched_.assign(pixels, 0);
     if (dense) {
         still_.clear();
         for (int fi = 0; fi < frameCount; ++fi)

@@ -17,6 +17,7 @@
 // (sampleOfStratum). Records sit in chunks, so a record never moves once made.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -151,6 +152,14 @@ class ImageBlock {
     // measured value stays a bound, and a quad behind it is hidden from every sample of the
     // pixel: one float read instead of the S hits (GridRasterizer::sampleMoving, deep in foliage).
     float& farthestBound(int fi, size_t i) { return farthest_[size_t(fi) * size_t(pixelCount()) + i]; }
+    // Pixels an opaque hit was written to (in the still layer or a record) since the occlusion
+    // coverage last measured them (raster/coverage.h): the samplers touch what they write, and a
+    // pixel left untouched keeps the farthest hit coverage measured. Depths only come nearer, so
+    // a write that is not marked only leaves that measure a looser bound (less is culled, not
+    // more). A new block has nothing to measure again: an empty pixel's farthest hit is +inf.
+    void touch(size_t i) { touched_[i] = 1; }
+    bool touched(size_t i) const { return touched_[i] != 0; }
+    void touchAll(bool touched) { std::fill(touched_.begin(), touched_.end(), uint8_t(touched)); }
 
     // Dense mode with shadows: the shadowed parts of the S hits of frame fi's record of pixel i,
     // shadowSlots() colours each, valid where a sample has a hit.
@@ -231,6 +240,7 @@ class ImageBlock {
     std::vector<int32_t> slot_;         // frames x pixels: record number, or -1
     std::vector<float> farthest_;       // frames x pixels: farthestBound
     std::vector<uint16_t> recordsOf_;   // per pixel: frames with a record of it (sparse)
+    std::vector<uint8_t> touched_;      // per pixel: touch
     std::vector<std::unique_ptr<SampleHit[]>> chunks_;  // records, kept from bucket to bucket
     size_t chunkSamples_ = 0;           // S x kRecordsPerChunk when the chunks were made
     uint32_t records_ = 0;

@@ -235,6 +235,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                     }
                     if (!rec) rec = block.makeRecord(fi, pi);
                     rec[sj] = hit;
+                    block.touch(pi);
                     if (A)
                         writeAovs(block.recordAov(fi, pi) + size_t(sj) * size_t(A), A, h, [&](int c, int a) {
                             const size_t v = size_t(idx[c]) * size_t(A) + size_t(a);

@@ -106,6 +106,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) return;
                     if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
                     cur = hit;
+                    block.touch(pi);
                     float* stillAov = A ? block.stillAov(pi) + size_t(sj) * size_t(A) : nullptr;
                     if (A) writeAovs(stillAov, A, h, [&](int c, int a) { return av[size_t(idx[c]) * size_t(A) + size_t(a)]; });
                     // Frames that already have a record of the pixel (something only they see came
@@ -145,6 +146,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     firstHits += cur.a == 0;
                     if (!rec) rec = block.makeRecord(fr.fi, pi);
                     rec[sj] = hit;
+                    block.touch(pi);
                     if (A)
                         writeAovs(block.recordAov(fr.fi, pi) + size_t(sj) * size_t(A), A, h,
                                   [&](int c, int a) { return av[size_t(idx[c]) * size_t(A) + size_t(a)]; });
