@@ -37,7 +37,9 @@ const char* pixelTestTarget();  // the instruction set pixelTestKernel() uses ("
 
 // A still quad against every pixel of its bound at once (one call a quad, so that the quad's
 // edges are set up once): the samples of the strata its bound overlaps in each pixel, S a pixel
-// at xs/ys (pixel i's sample j at i * S + j, pixel index (y - y0) * width + x - x0).
+// at xs/ys (pixel i's sample j at i * S + j, pixel index (y - y0) * width + x - x0), readable
+// 64 floats past the last pixel's (a pixel's samples are loaded a whole vector at a time;
+// ImageBlock pads them so).
 struct SampleLayout {
     const float* xs;
     const float* ys;

@@ -91,7 +91,7 @@ void quadKernelAgrees(QuadTestFn kernel, int sx, int sy) {
     const int W = 6, H = 5, S = sx * sy;
     const PixelRect R{10, 20, 10 + W - 1, 20 + H - 1};
     std::uniform_real_distribution<float> jitter(0.0f, 1.0f), corner(9.0f, 17.0f);
-    std::vector<float> xs(size_t(W * H * S)), ys(xs.size());
+    std::vector<float> xs(size_t(W * H * S) + 64), ys(xs.size());  // padded as ImageBlock pads them
     for (int py = 0; py < H; ++py)
         for (int px = 0; px < W; ++px)
             for (int j = 0; j < S; ++j) {  // one sample in each stratum, some on a stratum's edge
