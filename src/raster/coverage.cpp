@@ -53,14 +53,16 @@ uint64_t updateCoverage(const ImageBlock& block, float boundary, std::vector<uin
                 float z;
                 if (farthest && !block.touched(i)) {  // nothing written since it was measured
                     z = (*farthest)[row + size_t(x)];
-                } else if (const SampleHit* r = block.record(fi, i)) {
-                    z = farthestHit(r, S);
                 } else {
-                    float& still = stillFarthest[i];
-                    if (still != still) still = farthestHit(block.still(i), S);
-                    z = still;
+                    if (const SampleHit* r = block.record(fi, i)) {
+                        z = farthestHit(r, S);
+                    } else {
+                        float& still = stillFarthest[i];
+                        if (still != still) still = farthestHit(block.still(i), S);
+                        z = still;
+                    }
+                    if (farthest) (*farthest)[row + size_t(x)] = z;
                 }
-                if (farthest) (*farthest)[row + size_t(x)] = z;  // (the same, untouched)
                 if (z < boundary) {
                     cell = 1;
                     ++added;

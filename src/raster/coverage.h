@@ -20,7 +20,7 @@ namespace streyes {
 // strictly farther than it at every cell it reaches cannot change a sample there. It also stands
 // for that measure where nothing was written since: a pixel the block has not marked touched
 // (ImageBlock::touch) keeps the value farthest holds, and is not read again (the caller clears
-// the marks once it has the coverage: touchAll(false)).
+// the marks once it has the coverage: untouchAll()).
 uint64_t updateCoverage(const ImageBlock& block, float boundary, std::vector<uint8_t>& coverage, int frames = -1,
                         std::vector<float>* farthest = nullptr);
 

@@ -53,13 +53,13 @@ TEST(Occlusion, FarthestHitPerCell) {
     block.still(1)[0] = {3.0f, {1, 1, 1}, 1.0f, 1};  // pixel 1: one sample only
     SampleHit* r = block.makeRecord(1, 0);          // frame 1 of pixel 0: nearer
     r[1].z = 2.0f;
-    block.touchAll(true);
+    block.touchAll();
     std::vector<uint8_t> coverage;
     std::vector<float> farthest;
     const float inf = std::numeric_limits<float>::infinity();
     auto measure = [&](float boundary) {
         const uint64_t added = updateCoverage(block, boundary, coverage, -1, &farthest);
-        block.touchAll(false);
+        block.untouchAll();
         return added;
     };
     EXPECT_EQ(measure(4.5f), 1u);
@@ -88,13 +88,13 @@ TEST(Occlusion, UntouchedPixelsKeepTheirMeasure) {
     block.reset({0, 0, 1, 0}, 0, 1, patterns, false);  // 2 pixels, 1 frame
     for (int k = 0; k < 2; ++k) block.still(0)[k] = {4.0f, {1, 1, 1}, 1.0f, 1};
     block.still(1)[0] = {3.0f, {1, 1, 1}, 1.0f, 1};
-    block.touchAll(true);
+    block.touchAll();
     std::vector<uint8_t> coverage;
     std::vector<float> farthest;
     const float inf = std::numeric_limits<float>::infinity();
     EXPECT_EQ(updateCoverage(block, 3.5f, coverage, -1, &farthest), 0u);
     EXPECT_EQ(farthest, (std::vector<float>{4.0f, inf}));
-    block.touchAll(false);
+    block.untouchAll();
     EXPECT_EQ(updateCoverage(block, 4.5f, coverage, -1, &farthest), 1u);  // pixel 0 from its measure
     EXPECT_EQ(coverage, (std::vector<uint8_t>{1, 0}));
     block.still(1)[1] = {3.0f, {1, 1, 1}, 1.0f, 1};  // written but not touched: not seen

@@ -285,10 +285,11 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
     const V one = hn::Set(kD, 1.0f);
     const auto lanes = hn::Load(kI, kLaneIndex);  // (hn::Iota goes through memory)
     // The packed candidates: positions, pixels and sample indices of lanes [0, packed). Twice a
-    // vector: a store after fewer than N lanes writes a whole vector (the lanes past it unused).
+    // vector: a store after fewer than N lanes writes a whole vector (the lanes past it unused;
+    // the positions start at zero so that the lanes past a last partial vector compute on numbers).
     constexpr size_t kRoom = 2 * hn::MaxLanes(kD);
-    HWY_ALIGN float bx[kRoom] = {}, by[kRoom] = {}, l1s[kRoom], l2s[kRoom];
-    HWY_ALIGN int32_t bpixel[kRoom] = {}, bsample[kRoom] = {};
+    HWY_ALIGN float bx[kRoom] = {}, by[kRoom] = {}, l1s[hn::MaxLanes(kD)], l2s[hn::MaxLanes(kD)];
+    HWY_ALIGN int32_t bpixel[kRoom], bsample[kRoom];  // read only for packed lanes
     size_t packed = 0;
     uint64_t tested = 0;
     size_t hits = *hitCount;

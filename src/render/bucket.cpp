@@ -331,7 +331,7 @@ void BucketWorker::runNearToFar() {
     firstHitsAtTable_ = 0;
     coverage_.assign(size_t(bucket_.rect.area()) * size_t(bucket_.frameCount), 0);
     farthest_.assign(coverage_.size(), std::numeric_limits<float>::infinity());
-    block_.touchAll(true);  // nothing measured yet
+    block_.touchAll();  // nothing measured yet
     const uint64_t samples = uint64_t(block_.pixelCount()) * uint64_t(block_.frameCount()) * uint64_t(block_.samplesPerPixel());
     const uint64_t adaptiveHits = uint64_t(options_.adaptiveLayerHits * double(samples)) + 1;
     for (const BodyPtr& root : scene_.roots) pushRoot(*root);
@@ -385,7 +385,7 @@ void BucketWorker::endLayer(float boundary) {
         }
     }
     const uint64_t added = updateCoverage(block_, boundary, coverage_, frames, &farthest_) * uint64_t(F / frames);
-    block_.touchAll(false);  // farthest_ holds what was measured
+    block_.untouchAll();  // farthest_ holds what was measured
     const size_t li = std::min<size_t>(size_t(layer_), kMaxLayerStats - 1);
     if (counters.cellsCoveredByLayer.size() <= li) counters.cellsCoveredByLayer.resize(li + 1, 0);
     counters.cellsCoveredByLayer[li] += added;
