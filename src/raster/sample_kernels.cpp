@@ -7,6 +7,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <array>
 
 #include "raster/sample_kernels.h"
 
@@ -266,6 +267,52 @@ HWY_ALIGN constexpr int32_t kLaneIndex[64] = {0,  1,  2,  3,  4,  5,  6,  7,  8,
                                               48, 49, 50, 51, 52, 53, 54, 55, 56, 57, 58, 59, 60, 61, 62, 63};
 static_assert(hn::MaxLanes(kD) <= 64);
 
+// Compress tables for 4 and 8 lanes, in static storage. Highway 1.0.3 keeps its own in
+// function-local constexpr arrays, which GCC 12 copies onto the stack at every call: on AVX2, a
+// 1 KB rep movsq per Compress, three a packed vector, then the larger part of the still kernel's
+// instructions. kCompress8[m]: the lanes set in m, in order, then the others, 4 bits a lane.
+constexpr std::array<uint32_t, 256> compressNibbles() {
+    std::array<uint32_t, 256> t{};
+    for (uint32_t m = 0; m < 256; ++m) {
+        uint32_t packed = 0, out = 0;
+        for (uint32_t pass = 0; pass < 2; ++pass)
+            for (uint32_t lane = 0; lane < 8; ++lane)
+                if (((m >> lane) & 1) == (pass == 0 ? 1u : 0u)) packed |= lane << (4 * out++);
+        t[m] = packed;
+    }
+    return t;
+}
+HWY_ALIGN constexpr std::array<uint32_t, 256> kCompress8 = compressNibbles();
+HWY_ALIGN constexpr uint32_t kNibbleShifts[8] = {0, 4, 8, 12, 16, 20, 24, 28};
+constexpr std::array<std::array<int32_t, 4>, 16> compressIndices4() {
+    std::array<std::array<int32_t, 4>, 16> t{};
+    for (int m = 0; m < 16; ++m) {
+        int out = 0;
+        for (int pass = 0; pass < 2; ++pass)
+            for (int lane = 0; lane < 4; ++lane)
+                if (((m >> lane) & 1) == (pass == 0 ? 1 : 0)) t[size_t(m)][size_t(out++)] = lane;
+    }
+    return t;
+}
+HWY_ALIGN constexpr std::array<std::array<int32_t, 4>, 16> kCompress4 = compressIndices4();
+
+// hn::Compress(v, m) where `bits` are m's lanes (bit i for lane i): the lanes of m first, in order.
+template <class D>
+HWY_INLINE hn::Vec<D> compressLanes(D d, hn::Vec<D> v, hn::Mask<D> m, uint64_t bits) {
+    constexpr size_t kN = hn::MaxLanes(d);
+    static_assert(sizeof(hn::TFromD<D>) == 4);
+    if constexpr (kN == 8 && HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR) {
+        const hn::RebindToUnsigned<D> du;
+        const auto idx = hn::And(hn::Set(du, kCompress8[bits & 0xFF]) >> hn::Load(du, kNibbleShifts), hn::Set(du, 15u));
+        return hn::TableLookupLanes(v, hn::IndicesFromVec(d, idx));
+    } else if constexpr (kN == 4 && HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR) {
+        return hn::TableLookupLanes(v, hn::SetTableIndices(d, kCompress4[bits & 0xF].data()));
+    } else {
+        (void)bits;
+        return hn::Compress(v, m);
+    }
+}
+
 // The still kernel packs each quad's candidates (the samples of the strata its bound overlaps, and
 // inside the bound) from all the pixels of its bound into full vectors before testing them: a
 // micropolygon of about a pixel has a few candidates in each of about four pixels, so testing
@@ -349,12 +396,13 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
                     const M t = hn::And(cand, inBound);
                     if (hn::AllFalse(kD, t)) continue;
                     // Append the lanes to the packed ones; test a vector once one is full.
-                    const size_t k = hn::CountTrue(kD, t);
-                    hn::StoreU(hn::Compress(x, t), kD, bx + packed);
-                    hn::StoreU(hn::Compress(y, t), kD, by + packed);
+                    const uint64_t tb = maskBits(kD, t);
+                    const size_t k = size_t(__builtin_popcountll(tb));
+                    hn::StoreU(compressLanes(kD, x, t, tb), kD, bx + packed);
+                    hn::StoreU(compressLanes(kD, y, t, tb), kD, by + packed);
                     hn::StoreU(hn::Set(kI, int32_t(pixel)), kI, bpixel + packed);
-                    hn::StoreU(hn::Compress(hn::Add(lanes, hn::Set(kI, int32_t(c0) + int32_t(i))), hn::RebindMask(kI, t)), kI,
-                               bsample + packed);
+                    hn::StoreU(compressLanes(kI, hn::Add(lanes, hn::Set(kI, int32_t(c0) + int32_t(i))), hn::RebindMask(kI, t), tb),
+                               kI, bsample + packed);
                     packed += k;
                     tested += k;
                     if (packed >= N) {
