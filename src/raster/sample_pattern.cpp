@@ -96,6 +96,10 @@ PatternTable::PatternTable(const SamplePattern& pattern) : pattern_(pattern) {
     S_ = pattern.count();
     P_ = int(std::clamp<size_t>(kMaxTableEntries / size_t(S_), 1, kMaxPatterns));
     Q_ = int(std::clamp<size_t>(kMaxTableEntries / size_t(S_), 1, kMaxPermutations));
+    patternKey_ = mix64(pattern.seed);
+    permutationKey_ = mix64(pattern.seed ^ 0x2545f4914f6cdd1dull);
+    modP_ = FastMod32(uint32_t(P_));
+    modQ_ = FastMod32(uint32_t(Q_));
     const uint64_t seed = mix64(pattern.seed);
     offsets_.resize(size_t(P_) * size_t(S_) * 2);
     for (int p = 0; p < P_; ++p) {
@@ -144,9 +148,11 @@ PatternTable::PatternTable(const SamplePattern& pattern, const std::vector<std::
     : PatternTable(pattern) {
     if (!offsets.empty()) {
         P_ = 1;
+        modP_ = FastMod32(1);
         offsets_ = offsets;
     }
     Q_ = int(stratumTimes.size());
+    modQ_ = FastMod32(uint32_t(std::max(Q_, 1)));
     stratumOf_.resize(size_t(Q_) * size_t(S_));
     sampleOf_.resize(size_t(Q_) * size_t(S_));
     times_.resize(size_t(Q_) * size_t(S_));
@@ -165,15 +171,14 @@ void PatternTable::pixelSamples(int x, int y, int frame, SamplePosition* out) co
 }
 
 int PatternTable::patternOf(int x, int y) const {
-    const uint64_t h = hashCombine(hashCombine(mix64(pattern_.seed), uint64_t(uint32_t(x))), uint64_t(uint32_t(y)));
-    return int((h >> 32) % uint64_t(P_));
+    const uint64_t h = hashCombine(hashCombine(patternKey_, uint64_t(uint32_t(x))), uint64_t(uint32_t(y)));
+    return int(modP_(uint32_t(h >> 32)));
 }
 
 int PatternTable::permutationOf(int x, int y, int frame) const {
-    const uint64_t h = hashCombine(
-        hashCombine(hashCombine(mix64(pattern_.seed ^ 0x2545f4914f6cdd1dull), uint64_t(uint32_t(x))), uint64_t(uint32_t(y))),
-        uint64_t(uint32_t(frame)));
-    return int((h >> 32) % uint64_t(Q_));
+    const uint64_t h =
+        hashCombine(hashCombine(hashCombine(permutationKey_, uint64_t(uint32_t(x))), uint64_t(uint32_t(y))), uint64_t(uint32_t(frame)));
+    return int(modQ_(uint32_t(h >> 32)));
 }
 
 }  // namespace streyes

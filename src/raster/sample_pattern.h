@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "streyes/render_options.h"
+#include "util/sampling.h"
 
 namespace streyes {
 
@@ -71,6 +72,10 @@ class PatternTable {
   private:
     SamplePattern pattern_;
     int S_ = 0, P_ = 0, Q_ = 0;
+    // What patternOf and permutationOf hash from for every pixel, made once (each block makes a
+    // pixel's pattern and, per frame with motion, its permutation).
+    uint64_t patternKey_ = 0, permutationKey_ = 0;
+    FastMod32 modP_, modQ_;
     std::vector<float> offsets_;       // P x S x 2
     std::vector<float> lens_;          // P x S x 2
     std::vector<uint16_t> stratumOf_;  // Q x S

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <set>
 
 #include "raster/image_block.h"
@@ -65,6 +66,39 @@ TEST(SamplePattern, PureFunctionOfPixelFrameAndSeed) {
     }
     EXPECT_LT(samePattern, 8);
     EXPECT_LT(samePermutation, 8);
+}
+
+// FastMod32 is a % d exactly, at the ends of the range and in between.
+TEST(SamplePattern, FastModIsTheRemainder) {
+    std::mt19937 rng(3);
+    for (uint32_t d : {1u, 2u, 3u, 7u, 63u, 64u, 65u, 1000003u, 0x7fffffffu, 0x80000001u, 0xffffffffu}) {
+        const FastMod32 mod(d);
+        for (uint32_t a : {0u, 1u, d - 1, d, d + 1, 0x7fffffffu, 0x80000000u, 0xfffffffeu, 0xffffffffu})
+            ASSERT_EQ(mod(a), a % d) << a << " % " << d;
+        for (int k = 0; k < 20000; ++k) {
+            const uint32_t a = uint32_t(rng());
+            ASSERT_EQ(mod(a), a % d) << a << " % " << d;
+        }
+    }
+}
+
+// A pixel's pattern and its permutation in a frame are the hashes of (seed, x, y[, frame]) the
+// images were made with (the keys hashed once and the remainder by FastMod32 must not move them).
+TEST(SamplePattern, PatternAndPermutationAreTheHashesOfPixelAndFrame) {
+    for (uint64_t seed : {0ull, 7ull}) {
+        const PatternTable table(SamplePattern{4, 4, seed});
+        for (int y = -3; y < 40; y += 3)
+            for (int x = -5; x < 70; x += 4) {
+                const uint64_t hp = hashCombine(hashCombine(mix64(seed), uint64_t(uint32_t(x))), uint64_t(uint32_t(y)));
+                ASSERT_EQ(table.patternOf(x, y), int((hp >> 32) % uint64_t(table.patternCount())));
+                for (int f : {0, 1, 17, 1000}) {
+                    const uint64_t hq = hashCombine(
+                        hashCombine(hashCombine(mix64(seed ^ 0x2545f4914f6cdd1dull), uint64_t(uint32_t(x))), uint64_t(uint32_t(y))),
+                        uint64_t(uint32_t(f)));
+                    ASSERT_EQ(table.permutationOf(x, y, f), int((hq >> 32) % uint64_t(table.permutationCount())));
+                }
+            }
+    }
 }
 
 TEST(SamplePattern, TimeIsDecorrelatedFromPosition) {

@@ -18,6 +18,22 @@ inline uint64_t mix64(uint64_t x) {
 
 inline uint64_t hashCombine(uint64_t h, uint64_t v) { return mix64(h ^ (v + 0x9e3779b97f4a7c15ULL + (h << 6) + (h >> 2))); }
 
+// a % d for 32-bit a by a multiplication (Lemire, Kaser and Kurz, "Faster remainder by direct
+// computation", 2019): exact for every a and every d > 0, and several times cheaper than the
+// division where the same d serves many a (a pattern table's count, per pixel and frame).
+class FastMod32 {
+  public:
+    FastMod32() = default;
+    explicit FastMod32(uint32_t d) : m_(UINT64_MAX / d + 1), d_(d) {}
+    uint32_t operator()(uint32_t a) const {
+        return uint32_t((static_cast<unsigned __int128>(m_ * a) * d_) >> 64);
+    }
+
+  private:
+    uint64_t m_ = 0;
+    uint32_t d_ = 1;
+};
+
 // Largest float below 1: jittered values stay inside their stratum.
 constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
