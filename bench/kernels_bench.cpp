@@ -2,6 +2,7 @@
 //
 //   build/streyes_bench                          all kernels
 //   build/streyes_bench --benchmark_filter=Sampler
+//   STREYES_SIMD=AVX2 build/streyes_bench       the sample kernels on AVX2 (any of simdTargets())
 //
 // Counters: micropolygons/s and sample tests/s are per core (single-threaded kernels);
 // hit_efficiency is sample hits / sample tests.
@@ -9,6 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "geom/body.h"
@@ -339,4 +343,20 @@ BENCHMARK(BM_Resolve)->ArgNames({"dense"})->Arg(1)->Arg(0);
 }  // namespace
 }  // namespace streyes
 
-BENCHMARK_MAIN();
+// STREYES_SIMD=AVX2 (or any name of streyes::simdTargets) runs the sample kernels on that
+// instruction set, as `streyes render --simd` does; the context names the one they ran.
+int main(int argc, char** argv) {
+    if (const char* simd = std::getenv("STREYES_SIMD")) {
+        std::string error;
+        if (!streyes::capSimd(simd, &error)) {
+            std::fprintf(stderr, "streyes_bench: STREYES_SIMD: %s\n", error.c_str());
+            return 2;
+        }
+    }
+    benchmark::AddCustomContext("simd", streyes::pixelTestTarget());
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

@@ -95,6 +95,7 @@ struct RenderStats {
     std::string algorithm;
     int firstFrame = 0, lastFrame = 0, width = 0, height = 0, samplesPerPixel = 0, threads = 0;
     int frameBlock = 0, bucketSize = 0;
+    std::string simd;  // the instruction set the sample kernels ran ("AVX3" is AVX-512; --simd caps it)
     double tolerance = 0;
     int layers = 0;  // 0: adaptive
     double timeParse = 0, timeBuild = 0, timeRender = 0, timeWrite = 0, timeTotal = 0;  // wall seconds

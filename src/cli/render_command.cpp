@@ -16,6 +16,7 @@
 #include "commands.h"
 #include "io/exr_file.h"
 #include "io/frame_writer.h"
+#include "raster/sample_kernels.h"
 #include "render/dof_preview.h"
 #include "streyes/textures.h"
 #include "render_request.h"
@@ -297,6 +298,10 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
         else if (a == "--threads") opts.threads = int(parseInt(a, value(), 0, 1024));
         else if (a == "--seed") opts.seed = uint64_t(parseInt(a, value(), 0, 0x7fffffffL));
         else if (a == "--bucket") opts.bucketSize = int(parseInt(a, value(), 4, 1024));
+        else if (a == "--simd") {
+            std::string error;
+            if (!capSimd(value(), &error)) throw UsageError("--simd: " + error);
+        }
         else if (a == "--frame-block") opts.maxFrameBlock = int(parseInt(a, value(), 1, 100000));
         else if (a == "--max-memory") {
             std::string v = value();

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <string>
 
 #include "raster/sample_kernels.h"
 
@@ -587,6 +589,38 @@ LensTestFn lensTestKernel() {
 LensTestFn lensTestScalar() { return &scalarLensTest; }
 
 const char* pixelTestTarget() { return HWY_DYNAMIC_DISPATCH(Target)(); }
+
+namespace {
+
+std::string upper(std::string s) {
+    for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
+    return s;
+}
+
+}  // namespace
+
+std::vector<std::string> simdTargets() {
+    std::vector<std::string> names;
+    for (const int64_t target : hwy::SupportedAndGeneratedTargets()) names.push_back(hwy::TargetName(target));
+    return names;
+}
+
+bool capSimd(const std::string& name, std::string* error) {
+    const std::string want = upper(name) == "AVX512" ? "AVX3" : upper(name);
+    const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();  // best (lowest bit) first
+    int64_t better = 0;
+    for (const int64_t target : targets) {
+        if (want == hwy::TargetName(target)) {
+            if (better) hwy::DisableTargets(better);
+            return true;
+        }
+        better |= target;
+    }
+    std::string list;
+    for (const std::string& t : simdTargets()) list += (list.empty() ? "" : ", ") + t;
+    *error = "no instruction set '" + name + "' for the sample kernels on this CPU; it runs " + list;
+    return false;
+}
 
 std::vector<KernelSet> kernelsOfEveryTarget() {
     std::vector<KernelSet> out;

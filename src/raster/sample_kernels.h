@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "raster/micropolygon.h"
@@ -34,6 +35,16 @@ using PixelTestFn = PixelTest (*)(const micropolygon::QuadSetup& q, const float*
 PixelTestFn pixelTestKernel();  // the best for this CPU
 PixelTestFn pixelTestScalar();  // the reference: micropolygon.h's scalar test, sample by sample
 const char* pixelTestTarget();  // the instruction set pixelTestKernel() uses ("AVX2", ...)
+
+// The instruction sets the kernels can run on this CPU, best first, in Highway's names ("AVX3" is
+// AVX-512; then "AVX2", "SSE4", "SSSE3", "EMU128" ...), and a cap on them: capSimd makes every
+// kernel run the best at or below `name` (case-insensitive; "AVX512" names AVX3). Images do not
+// depend on it (each kernel gives its scalar reference's results bit for bit), only speed: for
+// measuring the kernels of other machines on this one, and for ruling a wider instruction set out.
+// Call before the first render (each kernel is chosen once). False, and what this CPU runs in
+// *error, for a name it does not run.
+std::vector<std::string> simdTargets();
+bool capSimd(const std::string& name, std::string* error);
 
 // A still quad against every pixel of its bound at once (one call a quad, so that the quad's
 // edges are set up once): the samples of the strata its bound overlaps in each pixel, S a pixel

@@ -15,6 +15,7 @@
 #include "render/grid_cache.h"
 #include "streyes/memory.h"
 #include "procedural/procedural.h"
+#include "raster/sample_kernels.h"
 #include "shade/scene_shaders.h"
 #include "trace/trace.h"
 #include "util/aov.h"
@@ -313,6 +314,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     gridCache.configure(layout, memory.gridCache);
     tbb::task_arena arena(memory.workers);
     stats.threads = arena.max_concurrency();
+    stats.simd = pixelTestTarget();
     tbb::enumerable_thread_specific<std::unique_ptr<BucketWorker>> workers;
     const uint64_t totalBuckets = uint64_t(tiles.size()) * uint64_t(spacetime ? (frames + block - 1) / block : frames);
     std::atomic<uint64_t> done{0};

@@ -92,6 +92,7 @@ std::string RenderStats::toJson() const {
       << "  \"resolution\": [" << width << ", " << height << "],\n"
       << "  \"samples_per_pixel\": " << samplesPerPixel << ",\n"
       << "  \"threads\": " << threads << ",\n"
+      << "  \"simd\": \"" << simd << "\",\n"
       << "  \"bucket_size\": " << bucketSize << ",\n"
       << "  \"frame_block\": " << frameBlock << ",\n"
       << "  \"tolerance\": " << value(tolerance) << ",\n"

@@ -54,6 +54,7 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
     c.timeSplit = 0.5, c.timeTrace = 1.25;
     s.algorithm = "spacetime-occlusion";
     s.firstFrame = 1, s.lastFrame = 8, s.width = 64, s.height = 36, s.samplesPerPixel = 16, s.threads = 2;
+    s.simd = "AVX2";
     s.frameBlock = 8, s.bucketSize = 32, s.tolerance = 0.05, s.layers = 0;
     s.timeParse = 0.5, s.timeBuild = 1.5, s.timeRender = 2.5, s.timeWrite = 3.5, s.timeTotal = 8.125;
     s.peakMemoryBytes = 1 << 20, s.memoryEstimateBytes = 1 << 19, s.memoryBudgetBytes = 1 << 30;
@@ -64,6 +65,7 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
   "resolution": [64, 36],
   "samples_per_pixel": 16,
   "threads": 2,
+  "simd": "AVX2",
   "bucket_size": 32,
   "frame_block": 8,
   "tolerance": 0.05,

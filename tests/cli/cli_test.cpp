@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cli_run.h"
+#include "raster/sample_kernels.h"
 #include "streyes/image_io.h"
 #include "test_util.h"
 
@@ -275,6 +276,57 @@ TEST(Cli, RaytraceWritesTheSameFramesAndItsCounters) {
     CliRun bad = streyes("render " + scene + " --algorithm raytraced");
     EXPECT_EQ(bad.exitCode, 2);
     EXPECT_NE(bad.output.find("frames, raytrace or raytrace-frames"), std::string::npos) << bad.output;
+}
+
+// --simd caps the sample kernels' instruction set: each one this CPU runs gives the default's
+// frames bit for bit (a still patch, a moving one and a lens: every kernel), and --stats names it.
+TEST(Cli, SimdCapKeepsThePixels) {
+    const test::TempDir tempDir("cli-simd");
+    const std::string& dir = tempDir.path();
+    const std::string scene = writeFile(dir, "simd.rib", R"(Format 24 16 1
+Projection "perspective" "fov" [40]
+DepthOfField 8 0.2 3
+PixelSamples 3 3
+Shutter 0 0.5
+WorldBegin
+Surface "constant"
+Patch "bilinear" "P" [-0.43 -0.37 3  0.61 -0.37 3  -0.43 0.52 3.2  0.61 0.52 3.2]
+AttributeBegin
+Color [1 0 0]
+MotionBegin [0 1]
+Translate -0.3 0 0
+Translate 0.4 0.1 0
+MotionEnd
+Patch "bilinear" "P" [-0.2 -0.2 2.5  0.2 -0.2 2.5  -0.2 0.2 2.5  0.2 0.2 2.5]
+AttributeEnd
+WorldEnd
+)");
+    auto render = [&](const std::string& name, const std::string& simd) {
+        CliRun r = streyes("render " + scene + " --frames 0-1" + (simd.empty() ? "" : " --simd " + simd) + " -o " + dir +
+                           "/" + name + ".####.exr --stats " + dir + "/" + name + ".json --quiet");
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        std::ifstream f(dir + "/" + name + ".json");
+        return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    };
+    const std::vector<std::string> targets = simdTargets();
+    ASSERT_FALSE(targets.empty());
+    const std::string best = render("best", "");
+    EXPECT_NE(best.find("\"simd\": \"" + targets.front() + "\""), std::string::npos) << best;
+    const ImageData frame1 = readImage(dir + "/best.0001.exr");
+    float red = 0;
+    for (int y = 0; y < frame1.height; ++y)
+        for (int x = 0; x < frame1.width; ++x) red = std::max(red, frame1.at(x, y, 0) - frame1.at(x, y, 1));
+    EXPECT_GT(red, 0.5f);  // the moving patch is in the frame
+    for (const std::string& t : targets) {
+        const std::string json = render(t, t == "AVX3" ? "avx512" : t);
+        EXPECT_NE(json.find("\"simd\": \"" + t + "\""), std::string::npos) << json;
+        for (const char* f : {".0000.exr", ".0001.exr"})
+            EXPECT_EQ(imageDifference(readImage(dir + "/best" + f), readImage(dir + "/" + t + f)), "") << t << f;
+    }
+    CliRun bad = streyes("render " + scene + " --simd avx9000");
+    EXPECT_EQ(bad.exitCode, 2);
+    EXPECT_NE(bad.output.find("no instruction set 'avx9000'"), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find(targets.front()), std::string::npos) << bad.output;
 }
 
 TEST(Cli, UnwritableOutputFailsCleanly) {

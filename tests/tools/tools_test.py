@@ -32,6 +32,7 @@ def load_script(name):
 
 sve = load_script("speed-vs-error")
 bc = load_script("block-curve")
+bench = load_script("bench")
 
 TODAY_HELP = """render options:
   --frames A-B        frames to render
@@ -175,6 +176,26 @@ class BlockCurve(unittest.TestCase):
         self.assertAlmostEqual(a, 1.5, places=9)
         self.assertAlmostEqual(b, 6.0, places=9)
         self.assertIsNone(bc.fit(pts[:1]))
+
+
+class BenchReport(unittest.TestCase):
+    def kernels(self, simd, rate):
+        return {"context": {"num_cpus": 2, "mhz_per_cpu": 2600, "simd": simd},
+                "benchmarks": [{"name": "BM_QuadTestKernel", "run_type": "iteration", "real_time": 40.0,
+                                "time_unit": "us", "sample_tests/s": rate}]}
+
+    def test_names_the_instruction_set_and_adds_the_avx2_table(self):
+        md = bench.report({"machine": sr.machine_info(), "scenes": [], "kernels": self.kernels("AVX3", 190e6),
+                           "kernels_avx2": self.kernels("AVX2", 163e6)})
+        self.assertIn("the sample kernels ran on AVX-512 (Highway's AVX3)", md)
+        self.assertIn("### The sampling kernels on AVX2", md)
+        avx2 = md[md.index("### The sampling kernels on AVX2"):]
+        self.assertIn("the sample kernels ran on AVX2", avx2)
+        self.assertIn("163 M", avx2)
+        self.assertIn("190 M", md[:md.index("### The sampling kernels on AVX2")])
+        # A machine whose best is AVX2 has one table.
+        md = bench.report({"machine": sr.machine_info(), "scenes": [], "kernels": self.kernels("AVX2", 163e6)})
+        self.assertNotIn("### The sampling kernels on AVX2", md)
 
 
 def run(args):
