@@ -299,8 +299,9 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
         else if (a == "--seed") opts.seed = uint64_t(parseInt(a, value(), 0, 0x7fffffffL));
         else if (a == "--bucket") opts.bucketSize = int(parseInt(a, value(), 4, 1024));
         else if (a == "--simd") {
+            req.simd = value();
             std::string error;
-            if (!capSimd(value(), &error)) throw UsageError("--simd: " + error);
+            if (!simdNameKnown(req.simd, &error)) throw UsageError("--simd: " + error);
         }
         else if (a == "--frame-block") opts.maxFrameBlock = int(parseInt(a, value(), 1, 100000));
         else if (a == "--max-memory") {
@@ -340,6 +341,9 @@ int renderCommand(const std::vector<std::string>& args) {
     const std::string &scenePath = req.scenePath, &outPattern = req.outPattern, &statsPath = req.statsPath;
     const bool quiet = req.quiet, resume = req.resume;
     if (scenePath.empty()) throw UsageError("no scene given");
+    // On this machine (a farm's tasks may run on CPUs other than the one that submitted them).
+    std::string simdError;
+    if (!req.simd.empty() && !capSimd(req.simd, &simdError)) throw UsageError("--simd: " + simdError);
 
     const auto start = std::chrono::steady_clock::now();
     Log log;

@@ -17,6 +17,7 @@ struct RenderRequest {
     RenderOptions opts;
     std::string scenePath, outPattern, statsPath;
     bool quiet = false, resume = false, preview = false;
+    std::string simd;  // --simd: the kernels' instruction set cap, applied on the machine that renders
 };
 
 // Parses `streyes render` arguments (without the command word); UsageError on bad ones.

@@ -605,6 +605,18 @@ std::vector<std::string> simdTargets() {
     return names;
 }
 
+bool simdNameKnown(const std::string& name, std::string* error) {
+    const std::string want = upper(name) == "AVX512" ? "AVX3" : upper(name);
+    std::string list;
+    for (int64_t targets = HWY_TARGETS; targets != 0; targets &= targets - 1) {
+        const int64_t target = targets & ~(targets - 1);
+        if (want == hwy::TargetName(target)) return true;
+        list += (list.empty() ? "" : ", ") + std::string(hwy::TargetName(target));
+    }
+    *error = "no instruction set '" + name + "' for the sample kernels; this build has " + list;
+    return false;
+}
+
 bool capSimd(const std::string& name, std::string* error) {
     const std::string want = upper(name) == "AVX512" ? "AVX3" : upper(name);
     const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();  // best (lowest bit) first

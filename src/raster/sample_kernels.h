@@ -45,6 +45,10 @@ const char* pixelTestTarget();  // the instruction set pixelTestKernel() uses ("
 // *error, for a name it does not run.
 std::vector<std::string> simdTargets();
 bool capSimd(const std::string& name, std::string* error);
+// Whether `name` is an instruction set this build has kernels for, whatever this CPU runs (for
+// checking a render's options on a machine other than the one that renders); else false, and the
+// names in *error.
+bool simdNameKnown(const std::string& name, std::string* error);
 
 // A still quad against every pixel of its bound at once (one call a quad, so that the quad's
 // edges are set up once): the samples of the strata its bound overlaps in each pixel, S a pixel
