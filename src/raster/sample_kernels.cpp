@@ -592,9 +592,16 @@ const char* pixelTestTarget() { return HWY_DYNAMIC_DISPATCH(Target)(); }
 
 namespace {
 
-std::string upper(std::string s) {
+// Highway's name of a target a user names: case-insensitive, and "AVX512" for AVX3.
+std::string targetNamed(std::string s) {
     for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
-    return s;
+    return s == "AVX512" ? "AVX3" : s;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    return list;
 }
 
 }  // namespace
@@ -606,19 +613,18 @@ std::vector<std::string> simdTargets() {
 }
 
 bool simdNameKnown(const std::string& name, std::string* error) {
-    const std::string want = upper(name) == "AVX512" ? "AVX3" : upper(name);
-    std::string list;
+    const std::string want = targetNamed(name);
+    std::vector<std::string> built;
     for (int64_t targets = HWY_TARGETS; targets != 0; targets &= targets - 1) {
-        const int64_t target = targets & ~(targets - 1);
-        if (want == hwy::TargetName(target)) return true;
-        list += (list.empty() ? "" : ", ") + std::string(hwy::TargetName(target));
+        built.push_back(hwy::TargetName(targets & ~(targets - 1)));
+        if (want == built.back()) return true;
     }
-    *error = "no instruction set '" + name + "' for the sample kernels; this build has " + list;
+    *error = "no instruction set '" + name + "' for the sample kernels; this build has " + joined(built);
     return false;
 }
 
 bool capSimd(const std::string& name, std::string* error) {
-    const std::string want = upper(name) == "AVX512" ? "AVX3" : upper(name);
+    const std::string want = targetNamed(name);
     const std::vector<int64_t> targets = hwy::SupportedAndGeneratedTargets();  // best (lowest bit) first
     int64_t better = 0;
     for (const int64_t target : targets) {
@@ -628,9 +634,7 @@ bool capSimd(const std::string& name, std::string* error) {
         }
         better |= target;
     }
-    std::string list;
-    for (const std::string& t : simdTargets()) list += (list.empty() ? "" : ", ") + t;
-    *error = "no instruction set '" + name + "' for the sample kernels on this CPU; it runs " + list;
+    *error = "no instruction set '" + name + "' for the sample kernels on this CPU; it runs " + joined(simdTargets());
     return false;
 }
 
