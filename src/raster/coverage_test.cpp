@@ -53,7 +53,7 @@ TEST(Occlusion, FarthestHitPerCell) {
     block.still(1)[0] = {3.0f, {1, 1, 1}, 1.0f, 1};  // pixel 1: one sample only
     SampleHit* r = block.makeRecord(1, 0);          // frame 1 of pixel 0: nearer
     r[1].z = 2.0f;
-    block.touchAll();
+    block.touch(0), block.touch(1);  // what the samplers mark as they write
     std::vector<uint8_t> coverage;
     std::vector<float> farthest;
     const float inf = std::numeric_limits<float>::infinity();
@@ -88,7 +88,7 @@ TEST(Occlusion, UntouchedPixelsKeepTheirMeasure) {
     block.reset({0, 0, 1, 0}, 0, 1, patterns, false);  // 2 pixels, 1 frame
     for (int k = 0; k < 2; ++k) block.still(0)[k] = {4.0f, {1, 1, 1}, 1.0f, 1};
     block.still(1)[0] = {3.0f, {1, 1, 1}, 1.0f, 1};
-    block.touchAll();
+    block.touch(0), block.touch(1);  // what the samplers mark as they write
     std::vector<uint8_t> coverage;
     std::vector<float> farthest;
     const float inf = std::numeric_limits<float>::infinity();

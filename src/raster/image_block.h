@@ -159,7 +159,6 @@ class ImageBlock {
     // more). A new block has nothing to measure again: an empty pixel's farthest hit is +inf.
     void touch(size_t i) { touched_[i] = 1; }
     bool touched(size_t i) const { return touched_[i] != 0; }
-    void touchAll() { std::fill(touched_.begin(), touched_.end(), uint8_t(1)); }
     void untouchAll() { std::fill(touched_.begin(), touched_.end(), uint8_t(0)); }
 
     // Dense mode with shadows: the shadowed parts of the S hits of frame fi's record of pixel i,

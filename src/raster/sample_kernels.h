@@ -37,7 +37,7 @@ PixelTestFn pixelTestScalar();  // the reference: micropolygon.h's scalar test, 
 const char* pixelTestTarget();  // the instruction set pixelTestKernel() uses ("AVX2", ...)
 
 // The instruction sets the kernels can run on this CPU, best first, in Highway's names ("AVX3" is
-// AVX-512; then "AVX2", "SSE4", "SSSE3", "EMU128" ...), and a cap on them: capSimd makes every
+// AVX-512; then "AVX2", "SSE4", "SSSE3", "SCALAR" ...), and a cap on them: capSimd makes every
 // kernel run the best at or below `name` (case-insensitive; "AVX512" names AVX3). Images do not
 // depend on it (each kernel gives its scalar reference's results bit for bit), only speed: for
 // measuring the kernels of other machines on this one, and for ruling a wider instruction set out.

@@ -330,8 +330,8 @@ void BucketWorker::runNearToFar() {
     arrivals_ = 0;
     firstHitsAtTable_ = 0;
     coverage_.assign(size_t(bucket_.rect.area()) * size_t(bucket_.frameCount), 0);
+    // An empty pixel's farthest hit: what a new block (nothing touched yet) stands for.
     farthest_.assign(coverage_.size(), std::numeric_limits<float>::infinity());
-    block_.touchAll();  // nothing measured yet
     const uint64_t samples = uint64_t(block_.pixelCount()) * uint64_t(block_.frameCount()) * uint64_t(block_.samplesPerPixel());
     const uint64_t adaptiveHits = uint64_t(options_.adaptiveLayerHits * double(samples)) + 1;
     for (const BodyPtr& root : scene_.roots) pushRoot(*root);
