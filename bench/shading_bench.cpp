@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "shade/sl/compiler.h"
+#include "shade/vm/noise.h"
 #include "shade/vm/vm.h"
 #include "shade/shading.h"
 
@@ -98,6 +99,23 @@ void builtin(benchmark::State& state, SurfaceKind kind) {
 void BM_ShadeBuiltinMatte(benchmark::State& state) { builtin(state, SurfaceKind::Matte); }
 void BM_ShadeBuiltinPlastic(benchmark::State& state) { builtin(state, SurfaceKind::Plastic); }
 
+// 3D gradient noise at a grid's 289 points: the scalar reference point by point (kernel:0) or the
+// SIMD kernel the CPU runs (kernel:1, noise_kernels.cpp), the shaders' noise() and pnoise().
+void BM_Noise(benchmark::State& state) {
+    BenchGrid g;
+    std::vector<float> xyz[3], out(size_t(g.grid.n));
+    for (const Vec3f& p : g.P)
+        for (int k = 0; k < 3; ++k) xyz[k].push_back(p[k] * 3.7f);
+    const float* p[3] = {xyz[0].data(), xyz[1].data(), xyz[2].data()};
+    const NoisePointsFn noise = state.range(0) ? noisePointsKernel() : noisePointsScalar();
+    for (auto _ : state) {
+        noise(3, p, nullptr, out.size(), 0, out.data());
+        benchmark::DoNotOptimize(out.data());
+    }
+    state.counters["points/s"] = benchmark::Counter(double(state.iterations()) * g.grid.n, benchmark::Counter::kIsRate);
+}
+
+BENCHMARK(BM_Noise)->ArgName("kernel")->Arg(0)->Arg(1);
 BENCHMARK(BM_ShadeMatte);
 BENCHMARK(BM_ShadePlastic);
 BENCHMARK(BM_ShadeGround);

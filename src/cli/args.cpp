@@ -88,9 +88,9 @@ render options:
   --threads N         worker threads (default: every core); images do not depend on it
   --seed N            sample pattern seed (default 0)
   --bucket N          bucket tile size in pixels (default 64); images do not depend on it
-  --simd NAME         the widest instruction set the sample kernels use: AVX512, AVX2, SSE4,
-                      SSSE3 ... (default: the best this CPU runs; --stats says which ran);
-                      images do not depend on it
+  --simd NAME         the widest instruction set the SIMD kernels use (sampling, shader
+                      noise): AVX512, AVX2, SSE4, SSSE3 ... (default: the best this CPU
+                      runs; --stats says which ran); images do not depend on it
   --frame-block N     frames rendered together (default 64; memory grows with it)
   --max-memory SIZE   memory budget, e.g. 8G or 512M (default: 3/4 of the machine's);
                       frame blocks and workers shrink to fit it, and a render that

@@ -1,5 +1,6 @@
 // noise, pnoise, cellnoise and random over the grid: float or triple results from 1 to 4
 // dimensional inputs (a float, a point, and an optional extra float).
+#include <algorithm>
 #include <cmath>
 
 #include "shade/vm/noise.h"
@@ -34,10 +35,46 @@ void noiseOver(Exec& x, const Instr& in, F f) {
     }
 }
 
+// Gradient noise over the grid through the SIMD kernel (gradientNoisePoints), kChunk points at
+// a time: each coordinate (and period) a run of floats, a uniform input's value repeated.
+// periodOf(k, i): coordinate k's period at point i (pnoise; unused for noise).
+template <class PeriodOf>
+void gradientNoiseOver(Exec& x, const Instr& in, bool periodic, PeriodOf periodOf) {
+    constexpr int kChunk = 64;
+    RegView d = x.view(in.a[0]), a = x.view(in.a[1]);
+    RegView b;
+    const bool hasB = in.a[2] >= 0;
+    if (hasB) b = x.view(in.a[2]);
+    const int dims = a.comps + (hasB ? 1 : 0);
+    float fill[4][kChunk], noise[3][kChunk];
+    int32_t period[4][kChunk];
+    const float* coord[4];
+    const int32_t* periods[4] = {period[0], period[1], period[2], period[3]};
+    for (int i0 = 0; i0 < d.w; i0 += kChunk) {
+        const int n = std::min(kChunk, d.w - i0);
+        for (int k = 0; k < dims; ++k) {
+            const RegView& r = k < a.comps ? a : b;
+            const int c = k < a.comps ? k : 0;
+            if (r.varying) {
+                coord[k] = r.comp(c) + i0;
+            } else {
+                std::fill(fill[k], fill[k] + n, r.at(c, 0));
+                coord[k] = fill[k];
+            }
+            if (periodic)
+                for (int i = 0; i < n; ++i) period[k][i] = periodOf(k, i0 + i);
+        }
+        // Every channel before any is written: the result may share a register with an input.
+        for (int c = 0; c < d.comps; ++c)
+            gradientNoisePoints(dims, coord, periodic ? periods : nullptr, size_t(n), kChannelSeed[c], noise[c]);
+        for (int c = 0; c < d.comps; ++c) std::copy(noise[c], noise[c] + n, d.comp(c) + i0);
+    }
+}
+
 }  // namespace
 
 void noise(Exec& x, const Instr& in) {
-    noiseOver(x, in, [](int dims, const float* p, uint32_t seed, int) { return gradientNoise(dims, p, nullptr, seed); });
+    gradientNoiseOver(x, in, false, [](int, int) { return 1; });
 }
 
 void cellnoise(Exec& x, const Instr& in) {
@@ -49,13 +86,9 @@ void pnoise(Exec& x, const Instr& in) {
     RegView pb;
     const bool hasB = in.a[4] >= 0;
     if (hasB) pb = x.view(in.a[4]);
-    noiseOver(x, in, [&](int dims, const float* p, uint32_t seed, int i) {
-        int period[4];
-        int k = 0;
-        for (int c = 0; c < pa.comps; ++c) period[k++] = std::max(1, int(std::lround(std::min(1e6f, std::max(1.0f, pa.at(c, i))))));
-        if (hasB) period[k++] = std::max(1, int(std::lround(std::min(1e6f, std::max(1.0f, pb.at(0, i))))));
-        (void)dims;
-        return gradientNoise(k, p, period, seed);
+    gradientNoiseOver(x, in, true, [&](int k, int i) {
+        const float v = k < pa.comps ? pa.at(k, i) : pb.at(0, i);
+        return std::max(1, int(std::lround(std::min(1e6f, std::max(1.0f, v)))));
     });
 }
 
