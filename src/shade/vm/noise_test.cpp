@@ -122,6 +122,44 @@ TEST(VmNoise, ShadingLanguageForms) {
     for (int i = 0; i < 50; ++i) EXPECT_EQ(vm.output("r1").at(0, i), before[size_t(i)]);
 }
 
+// pnoise and noise in a shader give gradientNoise's values at each point, with varying and
+// uniform periods and coordinates, in 1 to 4 dimensions (the interpreter hands the kernel runs of
+// 64 points: a grid of 150 ends in a partial run).
+TEST(VmNoise, ShaderNoiseIsGradientNoiseAtEachPoint) {
+    const char* src = R"(
+        surface s(output varying float a = 0; output varying float b = 0; output varying float c = 0;
+                  output varying float d = 0; output varying float e = 0) {
+            a = pnoise(P, point(2 + floor(u * 4), 3, 5));
+            b = pnoise(u * 10, 1.5 + v, 3, 2 + floor(u * 3));
+            c = noise(point(1.5, 2.5, u * 7));
+            d = noise(P, v * 3);
+            e = pnoise(point(1.5, 2.5, u * 7), 0.5, point(4, 4, 4), 6);
+            Ci = 0;
+        })";
+    const int n = 150;
+    test::TestGrid g(n);
+    auto pAt = [](int i) { return Vec3f{0.37f * float(i) - 20, 1.1f + 0.05f * float(i), -2.3f}; };
+    g.setVarying(Global::P, 3, pAt);
+    g.setVarying(Global::u, 1, [](int i) { return Vec3f{float(i) / (n - 1), 0, 0}; });
+    g.setVarying(Global::v, 1, [](int i) { return Vec3f{float(i % 17) / 16.0f, 0, 0}; });
+    ShaderInstance inst(test::compile(src));
+    ShadingVM vm;
+    vm.run(inst, g.grid);
+    for (int i = 0; i < n; ++i) {
+        const float u = float(i) / (n - 1), v = float(i % 17) / 16.0f;
+        const Vec3f P = pAt(i);
+        const float pa[3] = {P.x, P.y, P.z}, pb[2] = {u * 10, 1.5f + v}, pc[3] = {1.5f, 2.5f, u * 7},
+                    pd[4] = {P.x, P.y, P.z, v * 3}, pe[4] = {1.5f, 2.5f, u * 7, 0.5f};
+        const int perA[3] = {2 + int(std::floor(u * 4)), 3, 5}, perB[2] = {3, 2 + int(std::floor(u * 3))},
+                  perE[4] = {4, 4, 4, 6};
+        EXPECT_EQ(vm.output("a").at(0, i), gradientNoise(3, pa, perA)) << i;
+        EXPECT_EQ(vm.output("b").at(0, i), gradientNoise(2, pb, perB)) << i;
+        EXPECT_EQ(vm.output("c").at(0, i), gradientNoise(3, pc)) << i;
+        EXPECT_EQ(vm.output("d").at(0, i), gradientNoise(4, pd)) << i;
+        EXPECT_EQ(vm.output("e").at(0, i), gradientNoise(4, pe, perE)) << i;
+    }
+}
+
 bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // The SIMD kernels of every instruction set this CPU runs give gradientNoise's values bit for

@@ -35,11 +35,13 @@ void noiseOver(Exec& x, const Instr& in, F f) {
     }
 }
 
+// A pnoise period: rounded, in [1, 1e6].
+inline int32_t periodOf(float v) { return std::max(1, int(std::lround(std::min(1e6f, std::max(1.0f, v))))); }
+
 // Gradient noise over the grid through the SIMD kernel (gradientNoisePoints), kChunk points at
-// a time: each coordinate (and period) a run of floats, a uniform input's value repeated.
-// periodOf(k, i): coordinate k's period at point i (pnoise; unused for noise).
-template <class PeriodOf>
-void gradientNoiseOver(Exec& x, const Instr& in, bool periodic, PeriodOf periodOf) {
+// a time: each coordinate (and period) a run of values, a uniform input's repeated. pa, pb: the
+// periods of pnoise (of a's coordinates, and of b's), null for noise().
+void gradientNoiseOver(Exec& x, const Instr& in, const RegView* pa, const RegView* pb) {
     constexpr int kChunk = 64;
     RegView d = x.view(in.a[0]), a = x.view(in.a[1]);
     RegView b;
@@ -61,21 +63,24 @@ void gradientNoiseOver(Exec& x, const Instr& in, bool periodic, PeriodOf periodO
                 std::fill(fill[k], fill[k] + n, r.at(c, 0));
                 coord[k] = fill[k];
             }
-            if (periodic)
-                for (int i = 0; i < n; ++i) period[k][i] = periodOf(k, i0 + i);
+            if (!pa) continue;
+            const RegView& pr = k < pa->comps ? *pa : *pb;
+            const int pc = k < pa->comps ? k : 0;
+            if (pr.varying)
+                for (int i = 0; i < n; ++i) period[k][i] = periodOf(pr.at(pc, i0 + i));
+            else
+                std::fill(period[k], period[k] + n, periodOf(pr.at(pc, 0)));
         }
         // Every channel before any is written: the result may share a register with an input.
         for (int c = 0; c < d.comps; ++c)
-            gradientNoisePoints(dims, coord, periodic ? periods : nullptr, size_t(n), kChannelSeed[c], noise[c]);
+            gradientNoisePoints(dims, coord, pa ? periods : nullptr, size_t(n), kChannelSeed[c], noise[c]);
         for (int c = 0; c < d.comps; ++c) std::copy(noise[c], noise[c] + n, d.comp(c) + i0);
     }
 }
 
 }  // namespace
 
-void noise(Exec& x, const Instr& in) {
-    gradientNoiseOver(x, in, false, [](int, int) { return 1; });
-}
+void noise(Exec& x, const Instr& in) { gradientNoiseOver(x, in, nullptr, nullptr); }
 
 void cellnoise(Exec& x, const Instr& in) {
     noiseOver(x, in, [](int dims, const float* p, uint32_t seed, int) { return cellNoise(dims, p, seed); });
@@ -84,12 +89,8 @@ void cellnoise(Exec& x, const Instr& in) {
 void pnoise(Exec& x, const Instr& in) {
     RegView pa = x.view(in.a[3]);
     RegView pb;
-    const bool hasB = in.a[4] >= 0;
-    if (hasB) pb = x.view(in.a[4]);
-    gradientNoiseOver(x, in, true, [&](int k, int i) {
-        const float v = k < pa.comps ? pa.at(k, i) : pb.at(0, i);
-        return std::max(1, int(std::lround(std::min(1e6f, std::max(1.0f, v)))));
-    });
+    if (in.a[4] >= 0) pb = x.view(in.a[4]);
+    gradientNoiseOver(x, in, &pa, &pb);
 }
 
 // A value in [0, 1) per point and call: a hash of the grid's seed, the point and the call.
