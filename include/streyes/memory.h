@@ -21,8 +21,8 @@ struct MemoryShape {
     int samplesPerPixel = 1;
     int tileSize = 32, guardX = 0, guardY = 0;  // bucket tile and the filter's guard band
     bool spacetime = true;                      // a bucket holds every frame of the block
-    uint64_t bodies = 0;                        // bodies made before rendering (roots, and procedurals
-                                                // expanded up front for ray tracing)
+    uint64_t bodyBytes = 0;                     // what the bodies made before rendering hold (roots,
+                                                // and procedurals expanded up front for ray tracing)
     bool occlusion = false;                     // buckets keep coverage and a summed-volume table
     int shadowSlots = 0;                        // lights casting shadows: a colour per sample each
     uint64_t traceBytes = 0;                    // ray tracing's bodies and spacetime hierarchy

@@ -102,6 +102,7 @@ struct RenderStats {
     uint64_t peakMemoryBytes = 0;  // peak resident set of the process
     uint64_t memoryEstimateBytes = 0, memoryBudgetBytes = 0;  // memory.h, before rendering
     uint64_t memoryProgramBytes = 0;  // the part of the estimate that is the executable and its libraries
+    uint64_t memoryBodiesBytes = 0;   // what the bodies made hold (the scene's, and every expansion's)
     int framesSkipped = 0;         // already complete (--resume)
     uint64_t procedurals = 0;      // procedurals made (declared, and produced by expansions)
     std::vector<uint64_t> proceduralsByDepth;

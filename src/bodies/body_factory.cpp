@@ -19,9 +19,6 @@ namespace streyes {
 
 namespace {
 
-// What a body holds in memory, with its allocation (TrilinearBody; memory.h counts the same).
-constexpr uint64_t kBytesPerBody = 256;
-
 // Camera space is single precision. Corners beyond this magnitude would overflow to infinity
 // when a split adds two of them or a measure squares their distance.
 constexpr double kMaxCameraCoordinate = 1e37;
@@ -629,6 +626,7 @@ std::vector<uint64_t> BodyFactory::proceduralsMadeByDepth() const {
 
 void BodyFactory::addPrimitives(const Scene& scene, const std::vector<GeneratedProcedural>& generated, int depth,
                                 const std::function<uint64_t()>& nextId, std::vector<BodyPtr>& out, Keep* keep) {
+    const size_t first = out.size();  // the bodies made here start there (bodyBytes_)
     // Polygons first: each is a patch, faces, or nothing (no area, warned).
     struct Polygon {
         std::optional<BilinearPatchDesc> patch;
@@ -661,6 +659,9 @@ void BodyFactory::addPrimitives(const Scene& scene, const std::vector<GeneratedP
     for (const CurvesDesc& c : scene.curves) addCurves(c, nextId(), out, keep);
     for (const PointsDesc& p : scene.points) addPoints(p, nextId(), out, keep);
     for (const NuPatchDesc& p : scene.nuPatches) addNuPatch(p, nextId(), out, keep);
+    uint64_t bytes = 0;
+    for (size_t i = first; i < out.size(); ++i) bytes += out[i]->memoryBytes();
+    bodyBytes_ += bytes;
 }
 
 uint64_t childPrimitiveId(uint64_t parent, uint64_t index) {
@@ -671,10 +672,11 @@ uint64_t childPrimitiveId(uint64_t parent, uint64_t index) {
 void BodyFactory::addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out,
                               Keep* keep) {
     const uint64_t budget = bodyBudget_.load();
-    if (budget && bodiesMade_.load() * kBytesPerBody > budget)
+    if (budget && bodyBytes_.load() > budget)
         throw InputError("expanding the scene's procedurals for ray tracing (shadows, or --algorithm raytrace) needs "
                          "more than the memory budget of " + std::to_string(renderBudget_.load() >> 20) + " MiB (" +
-                         std::to_string(bodiesMade_.load()) + " bodies so far, " + std::to_string(budget >> 20) +
+                         std::to_string(bodiesMade_.load()) + " bodies so far, " + std::to_string(bodyBytes_.load() >> 20) +
+                         " MiB, with " + std::to_string(budget >> 20) +
                          " MiB left for them): raise --max-memory, or turn shadows off");
     uint64_t index = 0;
     addPrimitives(output.scene, output.procedurals, depth, [&] { return childPrimitiveId(parentId, index++); }, out,

@@ -108,6 +108,9 @@ class BodyFactory final : public ChildBodyMaker {
     void reportOutgrown(ProceduralBody* p) override;
 
     uint64_t bodiesMade() const { return bodiesMade_.load(); }
+    // What the bodies made so far hold (Body::memoryBytes, summed as they are made; an object
+    // instance's expansion, freed by each bucket that makes it, is counted each time).
+    uint64_t bodyBytes() const { return bodyBytes_.load(); }
     // Bytes of what bodies share beyond their own (point clouds), for the memory estimate.
     uint64_t sharedBytes() const { return sharedBytes_.load(); }
     // While set (bytes > 0), expanding procedurals beyond this much memory of bodies is an
@@ -177,7 +180,7 @@ class BodyFactory final : public ChildBodyMaker {
     const Camera* camera_ = nullptr;
     double exposure_ = 1;
     std::vector<ProceduralBody*> outgrown_;
-    std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0}, sharedBytes_{0};
+    std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0}, sharedBytes_{0}, bodyBytes_{0};
     std::atomic<uint64_t> bodyBudget_{0}, renderBudget_{0};
     std::vector<uint64_t> proceduralsByDepth_;  // under mutex_
     std::unordered_map<std::string, std::shared_ptr<const SubdivisionShape>> shapes_;  // under mutex_

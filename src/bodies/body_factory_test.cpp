@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <vector>
 
+#include "procedural/procedural.h"
+#include "streyes/error.h"
+
 #include "pixel_camera.h"
 #include "raster/image_block.h"
 
@@ -61,6 +64,57 @@ TEST(BodyFactory, MeshesOfOneTopologyShareTheirSubdivisionShape) {
     cube.creaseSharpness = {2.0f};
     factory.addSubdivisionMesh(cube, 3, c);
     EXPECT_EQ(factory.subdivisionShapes(), 2u);
+}
+
+// A swaying leaf over a shot: a patch through `keys` motion keys, one a frame from 0.
+BilinearPatchDesc swayingPatch(int keys) {
+    BilinearPatchDesc p;
+    p.attributes = std::make_shared<Attributes>();
+    for (int k = 0; k < keys; ++k) {
+        p.times.push_back(double(k));
+        const double x = 0.1 * k * k;  // keys off a straight line: a keyed body keeps every one
+        p.P.push_back({Vec3d{x, 0, 10}, Vec3d{x + 1, 0, 10}, Vec3d{x, 1, 10}, Vec3d{x + 1, 1, 10}});
+    }
+    return p;
+}
+
+// The factory adds up what the bodies it makes hold (the memory budget counts it): a body with
+// 17 motion keys holds them, a still one only itself, and the sum is the bodies' own figures.
+// The ray tracer's expansion stops at the budget by that sum, not by a count of bodies.
+TEST(BodyFactory, BodiesCountTheMemoryTheyHold) {
+    Log log;
+    const Camera camera = test::pixelCamera(64);
+    BodyFactory factory(MotionTransform(), 0, 16, log);
+    factory.setCamera(&camera);
+    Scene scene;
+    scene.patches = {swayingPatch(17), swayingPatch(1)};
+    std::vector<BodyPtr> roots;
+    uint64_t id = 0;
+    factory.addPrimitives(scene, {}, 0, [&id] { return ++id; }, roots);
+    ASSERT_EQ(roots.size(), 2u);
+    ASSERT_NE(dynamic_cast<const KeyedPatchBody*>(roots[0].get()), nullptr);
+    const size_t keyed = roots[0]->memoryBytes(), still = roots[1]->memoryBytes();
+    EXPECT_GE(keyed, sizeof(KeyedPatchBody) + 17 * (sizeof(TrilinearBody::Corners) + sizeof(double)));
+    EXPECT_GE(still, sizeof(TrilinearBody));
+    EXPECT_LT(still, keyed / 4);
+    EXPECT_EQ(factory.bodyBytes(), uint64_t(keyed + still));
+
+    // A procedural's output of 100 such leaves: about 100 x 1 KiB. Within a budget of 64 KiB
+    // for bodies the first expansion goes through (the check comes before it), the next is refused.
+    ProceduralOutput leaves;
+    for (int i = 0; i < 100; ++i) leaves.scene.patches.push_back(swayingPatch(17));
+    factory.setBodyBudget(uint64_t(1) << 20, uint64_t(64) << 10);
+    std::vector<BodyPtr> children;
+    factory.addChildren(leaves, 1, 1, children);
+    EXPECT_EQ(children.size(), 100u);
+    EXPECT_GT(factory.bodyBytes(), uint64_t(100 * keyed));
+    try {
+        factory.addChildren(leaves, 2, 1, children);
+        FAIL() << "expanding past the budget for bodies was not refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("memory budget of 1 MiB"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("raise --max-memory"), std::string::npos) << e.what();
+    }
 }
 
 }  // namespace

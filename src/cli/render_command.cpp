@@ -460,6 +460,7 @@ int renderCommand(const std::vector<std::string>& args) {
             total.timeWrite += stats.timeWrite;
             total.peakMemoryBytes = std::max(total.peakMemoryBytes, stats.peakMemoryBytes);
             total.memoryEstimateBytes = std::max(total.memoryEstimateBytes, stats.memoryEstimateBytes);
+            total.memoryBodiesBytes = std::max(total.memoryBodiesBytes, stats.memoryBodiesBytes);
             total.framesSkipped += stats.framesSkipped;
             total.procedurals += stats.procedurals;
             total.bodiesGenerated += stats.bodiesGenerated;

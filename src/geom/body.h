@@ -114,6 +114,10 @@ class Body {
     virtual std::unique_ptr<Body> restrictedTo(double a, double b) const = 0;
     // Fills grid with (nu+1) x (nv+1) vertices at t0 and t1 (and at t0 only when not moving).
     virtual void dice(int nu, int nv, Grid& grid) const = 0;
+    // The memory the body holds: the object, with its allocation, and what it alone owns on the
+    // heap (motion keys), not what it shares (a mesh, a material, a point cloud). BodyFactory
+    // adds it up for the memory budget (memory.h).
+    virtual size_t memoryBytes() const = 0;
 
     // How many splits led to this body (regular splits and eye splits), for the limits.
     unsigned char splitDepth = 0;
@@ -182,6 +186,7 @@ class TrilinearBody final : public Body {
     void split(SplitAxis axis, std::unique_ptr<Body> out[2]) const override;
     std::unique_ptr<Body> restrictedTo(double a, double b) const override;
     void dice(int nu, int nv, Grid& grid) const override;
+    size_t memoryBytes() const override;
 
   private:
     Corners P_[2];               // camera space at t0 and t1 (equal when static)
@@ -208,6 +213,7 @@ class KeyedPatchBody final : public Body {
     void split(SplitAxis axis, std::unique_ptr<Body> out[2]) const override;
     std::unique_ptr<Body> restrictedTo(double a, double b) const override;
     void dice(int nu, int nv, Grid& grid) const override;  // not diceable: throws
+    size_t memoryBytes() const override;  // with its keys and their times
 
     size_t keyCount() const { return times_.size(); }
     double keyTime(size_t k) const { return times_[k]; }
@@ -234,6 +240,9 @@ T bilerp(const std::array<T, 4>& c, float u, float v) {
     return lerp(lerp(c[0], c[1], u), lerp(c[2], c[3], u), v);
 }
 Vec3f bilinearNormal(const TrilinearBody::Corners& p, float u, float v);
+
+// A heap block of n bytes, as malloc takes it: a header and rounding to 16 bytes.
+constexpr size_t heapBlockBytes(size_t n) { return (n + 8 + 15) / 16 * 16; }
 
 // Distance in the raster plane (x, y), in double: no overflow for any float coordinates, and
 // far cheaper than std::hypot, which the split loop's measures called millions of times.

@@ -71,6 +71,7 @@ class CurvedBody final : public Body {
     std::unique_ptr<Body> restrictedTo(double a, double b) const override;
     // Dices at least nu x nv micropolygons, more where a side's lattice has more vertices.
     void dice(int nu, int nv, Grid& grid) const override;
+    size_t memoryBytes() const override { return heapBlockBytes(sizeof(*this)); }  // the mesh is shared
     float latticeRate() const override { return mesh_->shadingRate(); }
 
   private:

@@ -154,6 +154,11 @@ std::unique_ptr<Body> KeyedPatchBody::restrictedTo(double a, double b) const {
     return r;
 }
 
+size_t KeyedPatchBody::memoryBytes() const {
+    return heapBlockBytes(sizeof(*this)) + heapBlockBytes(times_.capacity() * sizeof(double)) +
+           heapBlockBytes(keys_.capacity() * sizeof(Corners));
+}
+
 void KeyedPatchBody::dice(int, int, Grid&) const {
     throw std::logic_error("a body with more than two motion keys is diced at its keys (diceKey), not over its span");
 }

@@ -65,6 +65,7 @@ class PointsBody final : public Body {
     void split(SplitAxis axis, std::unique_ptr<Body> out[2]) const override;
     std::unique_ptr<Body> restrictedTo(double a, double b) const override;
     void dice(int nu, int nv, Grid& grid) const override;  // never asked: a group always splits
+    size_t memoryBytes() const override { return heapBlockBytes(sizeof(*this)); }  // the cloud is shared
 
   private:
     const PointCloud* cloud_;
@@ -82,6 +83,7 @@ class DiscBody final : public Body {
     void split(SplitAxis axis, std::unique_ptr<Body> out[2]) const override;
     std::unique_ptr<Body> restrictedTo(double a, double b) const override;
     void dice(int nu, int nv, Grid& grid) const override;
+    size_t memoryBytes() const override { return heapBlockBytes(sizeof(*this)); }
 
   private:
     Vec3f centreAt(int k) const;  // at t0 (k = 0) or t1

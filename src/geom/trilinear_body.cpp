@@ -179,6 +179,8 @@ void Body::startGrid(int nu, int nv, Grid& grid) const {
     grid.primvarCorners = primvarCorners;
 }
 
+size_t TrilinearBody::memoryBytes() const { return heapBlockBytes(sizeof(*this)); }
+
 void TrilinearBody::dice(int nu, int nv, Grid& grid) const {
     startGrid(nu, nv, grid);
     const float du = 1.0f / float(nu), dv = 1.0f / float(nv);

@@ -120,6 +120,7 @@ class ProceduralBody final : public Body {
     std::unique_ptr<Body> restrictedTo(double a, double b) const override;
     std::unique_ptr<ProceduralBody> view(double a, double b, int level) const;
     void dice(int, int, Grid&) const override;
+    size_t memoryBytes() const override;  // with its description; its children are bodies of their own
 
     const ProceduralDesc& desc() const { return root().desc_; }
     const ProceduralGenerator& generator() const { return *root().generator_; }

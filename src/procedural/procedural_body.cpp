@@ -91,6 +91,16 @@ void ProceduralBody::split(SplitAxis, std::unique_ptr<Body>[2]) const {
     throw std::logic_error("a procedural is expanded, not split");
 }
 
+size_t ProceduralBody::memoryBytes() const {
+    size_t bytes = heapBlockBytes(sizeof(*this));
+    if (root_) return bytes;  // a view: the description is its root's
+    auto text = [](const std::string& s) { return s.capacity() > 15 ? heapBlockBytes(s.capacity() + 1) : 0; };
+    bytes += text(desc_.kind) + text(desc_.directory) + text(desc_.proceduralPath) + text(desc_.archivePath);
+    bytes += heapBlockBytes(desc_.args.capacity() * sizeof(std::string));
+    for (const std::string& a : desc_.args) bytes += text(a);
+    return bytes;
+}
+
 void ProceduralBody::dice(int, int, Grid&) const { throw std::logic_error("a procedural is expanded, not diced"); }
 
 bool ProceduralBody::expanded() const {

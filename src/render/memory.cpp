@@ -17,8 +17,6 @@ namespace {
 // Measured: a tiny render's peak resident set is about 31 MiB (the program, oneTBB's threads,
 // OpenEXR; OpenImageIO is not loaded for rendering: it took it to 124 MiB).
 constexpr uint64_t kBaselineBytes = uint64_t(40) << 20;
-// A body: TrilinearBody (two sets of four corners, colours, span) with its allocation.
-constexpr uint64_t kBytesPerBody = 256;
 // Per sample of a bucket (the same in every frame): its position and its still-layer hit.
 constexpr uint64_t kBytesPerSample = 2 * sizeof(float) + sizeof(SampleHit);
 // Per sample and frame: the frame's record of it, at most (records are made only where something
@@ -69,7 +67,7 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     const uint64_t pixels = uint64_t(std::max(0, s.width)) * uint64_t(std::max(0, s.height));
     const uint64_t framesPerBucket = s.spacetime ? uint64_t(e.frameBlock) : 1;
     e.baseline = kBaselineBytes;
-    e.scene = s.bodies * kBytesPerBody + s.sharedBytes;
+    e.scene = s.bodyBytes + s.sharedBytes;
     e.trace = s.traceBytes + s.traceBytesPerFrame * uint64_t(e.frameBlock);
     const uint64_t aov = uint64_t(std::max(0, s.aovFloats)) * sizeof(float);
     e.frameImages = uint64_t(framesHeld(s, e.frameBlock)) * pixels * (kBytesPerPixel + aov);

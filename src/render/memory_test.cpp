@@ -27,7 +27,7 @@ TEST(Memory, ByteSizes) {
     EXPECT_EQ(formatBytes(uint64_t(640) << 20), "640 MiB");
 }
 
-const MemoryShape kHd{1920, 1080, 16, 32, 1, 1, true, 1000};
+const MemoryShape kHd{1920, 1080, 16, 32, 1, 1, true, 1000 * 256};
 
 TEST(Memory, EstimateCountsImagesAndSamplesPerWorker) {
     const MemoryEstimate e = estimateMemory(kHd, 10, 3);
@@ -82,7 +82,7 @@ TEST(Memory, PlanShrinksTheBlockThenTheWorkers) {
 }
 
 TEST(Memory, RefusesWhatDoesNotFitOneFrameAtATime) {
-    MemoryShape huge{65536, 65536, 16, 32, 1, 1, true, 10};
+    MemoryShape huge{65536, 65536, 16, 32, 1, 1, true, 10 * 256};
     const uint64_t need = estimateMemory(huge, 1, 1).total();
     try {
         planMemory(huge, 64, 8, uint64_t(16) << 30);

@@ -265,7 +265,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     // Memory (memory.h), before anything large is allocated: the block shrinks until one worker
     // fits the budget, then as many workers run as fit; a render that does not fit one frame at
     // a time is refused (InputError: the request must change).
-    MemoryShape shape{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, scene_->factory->bodiesMade(),
+    MemoryShape shape{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, scene_->factory->bodyBytes(),
                       usesOcclusion(options_.algorithm)};
     shape.sharedBytes = scene_->factory->sharedBytes();
     shape.aovFloats = AovLayout(options_.aovs).count;
@@ -423,6 +423,21 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.timeWrite = writeSeconds;
     stats.timeTotal = std::chrono::duration<double>(Clock::now() - start).count();
     stats.peakMemoryBytes = peakResidentBytes();
+    stats.memoryBodiesBytes = scene_->factory->bodyBytes();
+    // The estimate the budget is held to counts the bodies made before rendering, not what
+    // procedurals expand into as buckets reach them (kept until the render ends: other buckets
+    // reach the same children). Say so when the render went over the budget (by more than the
+    // program's own size varies), rather than leave the figure in --stats for the user to find.
+    if (budget > 0 && stats.peakMemoryBytes > budget + budget / 20) {
+        std::string why;
+        if (stats.counters.proceduralsExpanded > 0)
+            why = ": procedurals expanded into bodies during the render (" + std::to_string(stats.bodiesGenerated) +
+                  " bodies made, holding " + formatBytes(stats.memoryBodiesBytes) +
+                  "), which the estimate cannot know beforehand; raise --max-memory";
+        log_.warnOnce("memory:over-budget", {},
+                      "the render peaked at " + formatBytes(stats.peakMemoryBytes) + " of memory, over the budget of " +
+                          formatBytes(budget) + why);
+    }
     return stats;
 }
 

@@ -126,6 +126,7 @@ std::string RenderStats::toJson() const {
       << "  \"memory_estimate_bytes\": " << memoryEstimateBytes << ",\n"
       << "  \"memory_budget_bytes\": " << memoryBudgetBytes << ",\n"
       << "  \"memory_program_bytes\": " << memoryProgramBytes << ",\n"
+      << "  \"memory_bodies_bytes\": " << memoryBodiesBytes << ",\n"
       << "  \"frames_skipped\": " << framesSkipped << "\n"
       << "}\n";
     return o.str();

@@ -118,6 +118,7 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
   "memory_estimate_bytes": 524288,
   "memory_budget_bytes": 1073741824,
   "memory_program_bytes": 0,
+  "memory_bodies_bytes": 0,
   "frames_skipped": 2
 }
 )");
