@@ -32,14 +32,22 @@ TEST(BodyFactory, ChildIdsArePureFunctionsOfParentAndIndex) {
     EXPECT_NE(childPrimitiveId(12, 7), childPrimitiveId(13, 7));
 }
 
+// A factory over frames [0, windowEnd] seen by a 64-pixel camera, as a render's is.
+struct FactoryUnderCamera {
+    Log log;
+    const Camera camera = test::pixelCamera(64);
+    BodyFactory factory;
+    explicit FactoryUnderCamera(double windowEnd) : factory(MotionTransform(), 0, windowEnd, log) {
+        factory.setCamera(&camera);
+    }
+};
+
 // Subdivision meshes of one topology and tags share one shape (OpenSubdiv's refined topology,
 // the costly part): the instances of an object, or a mesh written out many times. Different
 // positions keep their own surfaces; a crease makes another shape.
 TEST(BodyFactory, MeshesOfOneTopologyShareTheirSubdivisionShape) {
-    Log log;
-    const Camera camera = test::pixelCamera(64);
-    BodyFactory factory(MotionTransform(), 0, 0, log);
-    factory.setCamera(&camera);
+    FactoryUnderCamera made(0);
+    BodyFactory& factory = made.factory;
     SubdivisionMeshDesc cube;
     cube.faceSizes = {4, 4, 4, 4, 4, 4};
     cube.faceVertices = {0, 1, 3, 2, 2, 3, 5, 4, 4, 5, 7, 6, 6, 7, 1, 0, 1, 7, 5, 3, 6, 0, 2, 4};
@@ -82,10 +90,8 @@ BilinearPatchDesc swayingPatch(int keys) {
 // 17 motion keys holds them, a still one only itself, and the sum is the bodies' own figures.
 // The ray tracer's expansion stops at the budget by that sum, not by a count of bodies.
 TEST(BodyFactory, BodiesCountTheMemoryTheyHold) {
-    Log log;
-    const Camera camera = test::pixelCamera(64);
-    BodyFactory factory(MotionTransform(), 0, 16, log);
-    factory.setCamera(&camera);
+    FactoryUnderCamera made(16);
+    BodyFactory& factory = made.factory;
     Scene scene;
     scene.patches = {swayingPatch(17), swayingPatch(1)};
     std::vector<BodyPtr> roots;
