@@ -27,7 +27,6 @@ class ProceduralGenerator;
 // What expansion knows about the procedural being expanded.
 struct ExpandContext {
     double detail = 0;                 // raster area of the bound in pixels (RenderMan's "detail")
-    double detailScale = 1;            // --detail: multiplies the generators' level-of-detail thresholds
     MotionTransform objectToWorld;     // the procedural's transform
     AttributesPtr attributes;          // its attribute state, inherited by the children
     SourceLoc loc;                     // where it was declared
