@@ -100,6 +100,12 @@ struct RenderOptions {
     // (render/grid_cache.h), in at most this many bytes (less when the memory budget is short);
     // 0: every bucket dices its own. Pixels do not depend on it.
     uint64_t gridCacheBytes = uint64_t(128) << 20;
+    // When what procedurals expand into is freed once no bucket left can reach it
+    // (render/expansion_release.h): once the bodies made hold more than a quarter of the memory
+    // budget (freeing costs the allocator some time: 4–7% of a forest's CPU when all is
+    // freed), always, or never (kept to the end of the render). Pixels do not depend on it.
+    enum class FreeExpansions { UnderPressure, Always, Never };
+    FreeExpansions freeExpansions = FreeExpansions::UnderPressure;
 
     // Ray tracing and shadows (see spacetime_bvh.h).
     HierarchyOptions hierarchy;

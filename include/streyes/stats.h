@@ -38,6 +38,8 @@ namespace streyes {
     COUNT(proceduralsExpanded, "procedurals_expanded")                                                 \
     SHOWN("procedurals_by_depth", s.proceduralsByDepth)                                                \
     LIST(proceduralsExpandedByDepth, "procedurals_expanded_by_depth") /* [0] declared, [1] children */  \
+    COUNT(proceduralsReleased, "procedurals_released") /* expansions freed once no bucket left reached them */ \
+    COUNT(proceduralsMadeAgain, "procedurals_made_again") /* released, then asked for again: made again */ \
     SHOWN("procedurals_never_expanded", s.procedurals - c.proceduralsExpanded)                         \
     SHOWN("bodies_generated", s.bodiesGenerated)                                                       \
     SHOWN("passes", s.passes)                                                                          \

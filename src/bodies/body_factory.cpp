@@ -670,7 +670,7 @@ uint64_t childPrimitiveId(uint64_t parent, uint64_t index) {
 }
 
 void BodyFactory::addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out,
-                              Keep* keep) {
+                              Keep* keep, bool count) {
     const uint64_t budget = bodyBudget_.load();
     if (budget && bodyBytes_.load() > budget)
         throw InputError("expanding the scene's procedurals for ray tracing (shadows, or --algorithm raytrace) needs "
@@ -679,8 +679,27 @@ void BodyFactory::addChildren(const ProceduralOutput& output, uint64_t parentId,
                          " MiB, with " + std::to_string(budget >> 20) +
                          " MiB left for them): raise --max-memory, or turn shadows off");
     uint64_t index = 0;
+    const size_t first = out.size();
     addPrimitives(output.scene, output.procedurals, depth, [&] { return childPrimitiveId(parentId, index++); }, out,
                   keep);
+    if (count) return;
+    // Made again after a release: take back what addPrimitives counted (the same kinds it counts).
+    uint64_t bodies = 0, procedurals = 0, bytes = 0;
+    for (size_t i = first; i < out.size(); ++i) {
+        const Body* b = out[i].get();
+        bytes += b->memoryBytes();
+        if (b->expands()) ++procedurals;
+        else if (dynamic_cast<const TrilinearBody*>(b) || dynamic_cast<const KeyedPatchBody*>(b) ||
+                 dynamic_cast<const CurvedBody*>(b))
+            ++bodies;
+    }
+    bodiesMade_ -= bodies;
+    proceduralsMade_ -= procedurals;
+    bodyBytes_ -= bytes;
+    if (procedurals) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        proceduralsByDepth_[size_t(depth)] -= procedurals;
+    }
 }
 
 void BodyFactory::reportOutgrown(ProceduralBody* p) {

@@ -95,7 +95,7 @@ class BodyFactory final : public ChildBodyMaker {
     // Everything a procedural produced; child ids are derived from the parent's, so they do not
     // depend on which thread expanded it.
     void addChildren(const ProceduralOutput& output, uint64_t parentId, int depth, std::vector<BodyPtr>& out,
-                     Keep* keep = nullptr) override;
+                     Keep* keep = nullptr, bool count = true) override;
 
     // Camera-space box around an object-space box over the whole window (all transform keys), or
     // during [a, b].
@@ -105,6 +105,10 @@ class BodyFactory final : public ChildBodyMaker {
 
     // Procedurals whose children reached outside their declared bound (the renderer renders again).
     std::vector<ProceduralBody*> takeOutgrown();
+    bool anyOutgrown() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return !outgrown_.empty();
+    }
     void reportOutgrown(ProceduralBody* p) override;
 
     uint64_t bodiesMade() const { return bodiesMade_.load(); }

@@ -55,6 +55,8 @@ struct ProceduralChildren {
     std::vector<std::shared_ptr<const void>> keep;  // first: destroyed after the bodies
     std::vector<BodyPtr> bodies;
 };
+// A hold on a kept expansion's children: they live while any hold does (ProceduralBody::children).
+using ChildrenLease = std::shared_ptr<const ProceduralChildren>;
 
 // The code behind a procedural: turns it into more primitives. Implementations are immutable
 // and may be shared; expand may run on any thread.
@@ -84,9 +86,11 @@ class ChildBodyMaker {
     // ids of the children are derived from `parentId`, so they do not depend on the thread. What
     // the bodies point into goes to `keep` when given (the children's owner frees it with them),
     // else it stays with the maker for the whole render.
+    // `count`: false when the same children are made again (after ProceduralBody::release), so
+    // that the counts of what was made do not depend on when the first ones were freed.
     virtual void addChildren(const ProceduralOutput& output, uint64_t parentId, int depth,
                              std::vector<std::unique_ptr<Body>>& out,
-                             std::vector<std::shared_ptr<const void>>* keep = nullptr) = 0;
+                             std::vector<std::shared_ptr<const void>>* keep = nullptr, bool count = true) = 0;
     // A procedural whose children reached outside its declared bound (rendered again).
     virtual void reportOutgrown(ProceduralBody* procedural) = 0;
     // The camera-space box of an object-space box during [a, b].
@@ -128,12 +132,22 @@ class ProceduralBody final : public Body {
     int level(const Camera& camera) const;
 
     // Expands at this body's level (first call for the level, on any thread; the others wait)
-    // and returns the children as camera-space bodies (over the whole shot). Rethrows the
-    // expansion's error on every call. *expandedHere is set when this call did the expansion (so
-    // that counting expansions does not depend on timing).
-    const std::vector<BodyPtr>& children(ChildBodyMaker& maker, const Camera& camera, Log& log,
-                                         bool* expandedHere = nullptr) const;
+    // and returns a hold on the children, camera-space bodies over the whole shot: they live as
+    // long as a hold does. Rethrows the expansion's error on every call. *madeHere is set when
+    // this call made them, and *madeAgain too when they had been made before and released (so
+    // that counting expansions does not depend on timing: count the first only).
+    ChildrenLease children(ChildBodyMaker& maker, const Camera& camera, Log& log, bool* madeHere = nullptr,
+                           bool* madeAgain = nullptr) const;
     bool expanded() const;  // at any level
+    // Lets go of the children of `level` (of the procedural views come from): they are freed when
+    // the last hold on them goes, and a later children() makes them again (the same bodies: child
+    // ids depend on the parent's). The renderer calls it once no bucket left can reach them
+    // (render/expansion_release.h).
+    void release(int level) const;
+    // The procedural views come from, and what holds it: its parent's children (null for a
+    // procedural of the scene, which the render scene holds).
+    const ProceduralBody& rootBody() const { return root(); }
+    ChildrenLease heldBy() const { return root().heldBy_.lock(); }
     // Whether children() keeps what it makes (ProceduralGenerator::keepsChildren); when not, a
     // bucket calls expandInto and owns the children.
     bool keepsChildren() const { return root().generator_->keepsChildren(); }
@@ -151,13 +165,17 @@ class ProceduralBody final : public Body {
     void useGrownBound();
 
   private:
-    struct Expansion {  // the children of one level of detail
+    struct Expansion {  // the children of one level of detail, made once
         std::once_flag once;
-        ProceduralChildren children;
+        std::shared_ptr<ProceduralChildren> children;  // null once released
         std::exception_ptr error;
     };
+    struct Level {
+        std::shared_ptr<Expansion> current;  // shared: a caller may still wait on a released one
+        bool madeBefore = false;             // made and released at least once
+    };
     const ProceduralBody& root() const { return root_ ? *root_ : *this; }
-    void expand(ProceduralChildren& out, int level, ChildBodyMaker& maker, Log& log, bool keep) const;
+    void expand(ProceduralChildren& out, int level, ChildBodyMaker& maker, Log& log, bool own, bool count) const;
 
     // The procedural itself (views point at it and share its expansions).
     const ProceduralBody* root_ = nullptr;
@@ -170,8 +188,9 @@ class ProceduralBody final : public Body {
     bool useGrown_ = false;
     mutable const ProceduralBody* parent_ = nullptr;  // the procedural that produced this one
 
-    mutable std::mutex mutex_;  // guards expansions_ (the map, not what an Expansion holds)
-    mutable std::map<int, std::unique_ptr<Expansion>> expansions_;
+    mutable std::mutex mutex_;  // guards expansions_ (the map, and each Expansion's children pointer)
+    mutable std::map<int, Level> expansions_;
+    mutable std::weak_ptr<const ProceduralChildren> heldBy_;  // the parent's children, which hold this one
     mutable std::atomic<bool> outgrew_{false};
     mutable Bounds3f grown_;  // under mutex_
 };

@@ -108,42 +108,68 @@ bool ProceduralBody::expanded() const {
     return !root().expansions_.empty();
 }
 
-const std::vector<BodyPtr>& ProceduralBody::children(ChildBodyMaker& maker, const Camera& camera, Log& log,
-                                                     bool* expandedHere) const {
+ChildrenLease ProceduralBody::children(ChildBodyMaker& maker, const Camera& camera, Log& log, bool* madeHere,
+                                       bool* madeAgain) const {
     const ProceduralBody& r = root();
     const int lv = level(camera);
-    Expansion* e;
-    {
-        std::lock_guard<std::mutex> lock(r.mutex_);
-        std::unique_ptr<Expansion>& slot = r.expansions_[lv];
-        if (!slot) slot = std::make_unique<Expansion>();
-        e = slot.get();
-    }
-    std::call_once(e->once, [&] {
-        if (expandedHere) *expandedHere = true;
-        // Expansion may run parallel work (a subdivision mesh builds its faces with parallel_for).
-        // A thread waiting for that work takes other tasks meanwhile; were it to take another
-        // bucket that reaches this procedural, it would wait on the once-flag it holds itself,
-        // for ever. Isolated, it takes only tasks of this expansion.
-        tbb::this_task_arena::isolate([&] {
-            try {
-                r.expand(e->children, lv, maker, log, false);
-            } catch (...) {
-                e->error = std::current_exception();
-            }
+    for (;;) {
+        std::shared_ptr<Expansion> e;
+        bool again = false;  // made before and released: made again, not counted again
+        {
+            std::lock_guard<std::mutex> lock(r.mutex_);
+            Level& slot = r.expansions_[lv];
+            if (!slot.current) slot.current = std::make_shared<Expansion>();
+            e = slot.current;
+            again = slot.madeBefore;
+        }
+        std::call_once(e->once, [&] {
+            if (madeHere) *madeHere = true;
+            if (madeAgain) *madeAgain = again;
+            auto made = std::make_shared<ProceduralChildren>();
+            // Expansion may run parallel work (a subdivision mesh builds its faces with
+            // parallel_for). A thread waiting for that work takes other tasks meanwhile; were it
+            // to take another bucket that reaches this procedural, it would wait on the once-flag
+            // it holds itself, for ever. Isolated, it takes only tasks of this expansion.
+            tbb::this_task_arena::isolate([&] {
+                try {
+                    r.expand(*made, lv, maker, log, false, !again);
+                } catch (...) {
+                    e->error = std::current_exception();
+                }
+            });
+            for (const BodyPtr& c : made->bodies)
+                if (c->expands()) static_cast<const ProceduralBody&>(*c).heldBy_ = made;
+            std::lock_guard<std::mutex> lock(r.mutex_);
+            e->children = std::move(made);
         });
-    });
-    if (e->error) std::rethrow_exception(e->error);
-    return e->children.bodies;
+        if (e->error) std::rethrow_exception(e->error);
+        std::lock_guard<std::mutex> lock(r.mutex_);
+        if (e->children) return e->children;
+        // Released between its making and this hold (by a release that did not expect this
+        // caller): make it again.
+    }
+}
+
+void ProceduralBody::release(int level) const {
+    const ProceduralBody& r = root();
+    std::shared_ptr<ProceduralChildren> freed;  // freed after the lock, when no hold is left
+    std::lock_guard<std::mutex> lock(r.mutex_);
+    auto it = r.expansions_.find(level);
+    if (it == r.expansions_.end() || !it->second.current) return;
+    freed = std::move(it->second.current->children);
+    it->second.current.reset();
+    it->second.madeBefore = true;
 }
 
 void ProceduralBody::expandInto(ProceduralChildren& out, ChildBodyMaker& maker, const Camera& camera, Log& log) const {
     const int lv = level(camera);
-    tbb::this_task_arena::isolate([&] { root().expand(out, lv, maker, log, true); });  // as children() does
+    tbb::this_task_arena::isolate([&] { root().expand(out, lv, maker, log, true, true); });  // as children() does
 }
 
-// `own`: the meshes go with the children (out.keep), not to the maker.
-void ProceduralBody::expand(ProceduralChildren& out, int level, ChildBodyMaker& maker, Log& log, bool own) const {
+// `own`: the meshes go with the children (out.keep), not to the maker. `count`: the maker counts
+// the bodies (not when they are made again after release()).
+void ProceduralBody::expand(ProceduralChildren& out, int level, ChildBodyMaker& maker, Log& log, bool own,
+                            bool count) const {
     ExpandContext ctx;
     ctx.detail = detailOfLevel(level);
     ctx.objectToWorld = desc_.objectToWorld;
@@ -159,7 +185,7 @@ void ProceduralBody::expand(ProceduralChildren& out, int level, ChildBodyMaker& 
         setLifetime(output.scene, desc_.life);
         for (GeneratedProcedural& g : output.procedurals) g.desc.life = desc_.life;
     }
-    maker.addChildren(output, primitiveId(), depth_ + 1, out.bodies, own ? &out.keep : nullptr);
+    maker.addChildren(output, primitiveId(), depth_ + 1, out.bodies, own ? &out.keep : nullptr, count);
     for (const BodyPtr& c : out.bodies)
         if (c->expands()) static_cast<const ProceduralBody&>(*c).parent_ = this;
 

@@ -8,6 +8,7 @@
 #include "cull/view_cull.h"
 #include "procedural/procedural.h"
 #include "raster/coverage.h"
+#include "render/expansion_release.h"
 #include "render/grid_cache.h"
 #include "render/split_decision.h"
 #include "shade/aov_fill.h"
@@ -128,6 +129,10 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
         else runDepthFirst();
     }
     ownChildren_.clear();  // nothing holds them now: the split loop is done
+    // Nor the kept expansions: let go of them, but for a procedural that outgrew its bound, which
+    // the renderer keeps (with the procedurals it came from) for the next pass.
+    if (release_ && !leases_.empty() && scene_.factory->anyOutgrown()) release_->keepEverything(std::move(leases_));
+    leases_.clear();
     counters.timeSplit +=
         secondsSince(t) - (counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion - before);
 
@@ -558,13 +563,36 @@ void BucketWorker::process(const Body& body) {
     split(body, axis, false);
 }
 
+Bounds3f BucketWorker::reach(const ProceduralBody& procedural, bool* everywhere) const {
+    // As process() takes a body's raster bound before its view cull (views of a moving procedural
+    // are bounded within their root's bound over the shot).
+    const Camera& cam = scene_.camera;
+    const Bounds3f swept = displaced(procedural, procedural.bound().swept());
+    *everywhere = cam.perspective() && !(swept.lo.z >= cam.eyePlane());
+    if (*everywhere) return swept;
+    Bounds3f raster = procedural.measure(cam).bound.swept();
+    if (procedural.material() && procedural.material()->displacementBound > 0) raster.extend(rasterOfBox(cam, swept));
+    return cam.grownByCoc(raster, swept.lo.z, swept.hi.z);
+}
+
 // The children enter the loop like roots. The expansion itself happens once, in whichever
 // bucket gets there first; the others reuse its children.
 void BucketWorker::expand(const ProceduralBody& procedural) {
     bool expandedHere = false;
     const std::vector<BodyPtr>* made;
     if (procedural.keepsChildren()) {
-        made = &procedural.children(*scene_.factory, scene_.camera, log_, &expandedHere);
+        bool madeHere = false, madeAgain = false;
+        ChildrenLease lease = procedural.children(*scene_.factory, scene_.camera, log_, &madeHere, &madeAgain);
+        made = &lease->bodies;
+        expandedHere = madeHere && !madeAgain;  // made again after a release: counted apart
+        counters.proceduralsMadeAgain += madeHere && madeAgain;
+        if (release_) {
+            const ProceduralBody& root = procedural.rootBody();
+            bool everywhere = false;
+            const Bounds3f raster = reach(root, &everywhere);
+            release_->add(root, procedural.level(scene_.camera), raster, everywhere, bucket_.tileIndex, root.heldBy());
+        }
+        leases_.push_back(std::move(lease));  // holds them until the split loop is done
     } else {  // this bucket's own, freed when it is done (ProceduralGenerator::keepsChildren)
         ProceduralChildren& own = ownChildren_.emplace_back();
         procedural.expandInto(own, *scene_.factory, scene_.camera, log_);

@@ -12,6 +12,7 @@
 #include "cull/occlusion.h"
 #include "film/film.h"
 #include "geom/grid.h"
+#include "procedural/procedural.h"
 #include "raster/image_block.h"
 #include "raster/rasterizer.h"
 #include "shade/grid_shader.h"
@@ -22,8 +23,8 @@
 
 namespace streyes {
 
+class ExpansionRelease;
 class GridCache;
-class ProceduralBody;
 
 struct BucketSpec {
     PixelRect tile;       // the pixels this bucket resolves: tile `tileIndex` of the frames
@@ -49,6 +50,9 @@ class BucketWorker {
     void setShaders(const SceneShaders* shaders) { shader_.setShaders(shaders); }
     // Grids shared with the other buckets of the frame block (null or disabled: none).
     void setGridCache(GridCache* cache) { gridCache_ = cache; }
+    // Where the expansions this worker makes are registered, to be let go once no bucket can reach
+    // them (null: kept to the end). The bucket's index there is its tile's.
+    void setExpansionRelease(ExpansionRelease* release) { release_ = release; }
 
     RenderCounters counters;
 
@@ -74,6 +78,9 @@ class BucketWorker {
     void process(const Body& body);  // one step of the split loop
     bool withinSplitBudget(const Body& body);  // counts a split of the body's primitive
     void expand(const ProceduralBody& procedural);
+    // The raster bound of `procedural` as process() culls it (every bucket takes the same), or
+    // *everywhere when it reaches the eye plane (culled against the frustum instead).
+    Bounds3f reach(const ProceduralBody& procedural, bool* everywhere) const;
     bool occluded(const Body& body, const Bounds3f& raster) const;
     bool hiddenBehindHits(const Body& body, const Bounds3f& raster, float zmin) const;
     void endLayer(float boundary);
@@ -111,6 +118,8 @@ class BucketWorker {
     RasterCounters rasterCounters_;
     std::vector<BodyPtr> stack_;
     std::deque<ProceduralChildren> ownChildren_;  // expansions this bucket made for itself (deque: stable)
+    std::vector<ChildrenLease> leases_;            // holds on the kept expansions it took children from
+    ExpansionRelease* release_ = nullptr;
     // Splits per primitive (and per frame, for pieces cut to one exposure) in this bucket: a
     // frame's budget does not depend on the other frames in its block.
     struct PieceKeyHash {

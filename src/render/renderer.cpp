@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "render/bucket.h"
+#include "render/expansion_release.h"
 #include "render/grid_cache.h"
 #include "streyes/memory.h"
 #include "procedural/procedural.h"
@@ -334,6 +335,12 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
         for (int f = s.firstFrame; f <= s.lastFrame; ++f) written[size_t(f - s.firstFrame)] = options_.frameDone(f);
     auto alreadyWritten = [&](int f) { return written[size_t(f - s.firstFrame)] != 0; };
     const uint64_t bucketsPerBlock = uint64_t(tiles.size()) * uint64_t(spacetime ? 1 : block);
+    // What procedurals expand into is let go once no bucket of the block can reach it: in a
+    // spacetime block (a bucket a tile) that no other block follows (they would make it again),
+    // and without ray tracing (its scene holds the bodies).
+    ExpansionRelease release;
+    std::vector<PixelRect> bucketRects;  // a tile's bucket: the tile and the filter's guard band
+    for (const BucketSpec& b : tiles) bucketRects.push_back(b.rect);
     for (int pass = 1;; ++pass) {
         bool again = false;
         stats.framesSkipped = 0;
@@ -358,17 +365,28 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                     b.frameCount = spacetime ? count : 1;
                     buckets.push_back(b);
                 }
+            using Free = RenderOptions::FreeExpansions;
+            release.start(spacetime ? bucketRects : std::vector<PixelRect>{},
+                          spacetime && !trace && options_.freeExpansions != Free::Never && first + block > s.lastFrame,
+                          options_.freeExpansions == Free::Always ? 0 : budget / 4,
+                          [this] { return scene_->factory->bodyBytes(); });
             auto t = Clock::now();
             if (traceFrames) arena.execute([&] { trace->buildFrames(first, count, options_.hierarchy); });
+            // The workers take the buckets in scanline order, each the next one left: they sweep the
+            // image together, so that the buckets at work are neighbours (what procedurals expand
+            // into is let go behind them). Pixels do not depend on the order.
+            std::atomic<size_t> nextBucket{0};
             arena.execute([&] {
-                tbb::parallel_for(tbb::blocked_range<size_t>(0, buckets.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+                tbb::parallel_for(0, arena.max_concurrency(), [&](int) {
                     std::unique_ptr<BucketWorker>& w = workers.local();
                     if (!w) w = std::make_unique<BucketWorker>(*scene_, options_, patterns, weights, layerDepths, log_);
                     w->setTrace(trace.get());
                     w->setShaders(shaders_.get());
                     w->setGridCache(&gridCache);
-                    for (size_t i = r.begin(); i != r.end(); ++i) {
+                    w->setExpansionRelease(release.enabled() ? &release : nullptr);
+                    for (size_t i; (i = nextBucket++) < buckets.size();) {
                         w->render(buckets[i], resolved);
+                        release.bucketDone(buckets[i].tileIndex);
                         uint64_t n = ++done;
                         if (progress) progress(n, totalBuckets);
                     }
@@ -424,6 +442,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.timeTotal = std::chrono::duration<double>(Clock::now() - start).count();
     stats.peakMemoryBytes = peakResidentBytes();
     stats.memoryBodiesBytes = scene_->factory->bodyBytes();
+    stats.counters.proceduralsReleased = release.released();
     // The estimate the budget is held to counts the bodies made before rendering, not what
     // procedurals expand into as buckets reach them (kept until the render ends: other buckets
     // reach the same children). Say so when the render went over the budget (by more than the

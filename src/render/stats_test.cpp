@@ -88,6 +88,8 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
     "procedurals_expanded": 7,
     "procedurals_by_depth": [1, 129],
     "procedurals_expanded_by_depth": [1, 6],
+    "procedurals_released": 0,
+    "procedurals_made_again": 0,
     "procedurals_never_expanded": 123,
     "bodies_generated": 999,
     "passes": 2,

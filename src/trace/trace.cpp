@@ -99,7 +99,8 @@ void TraceScene::collect(const Body& body, Log& log) {
     } else if (body.expands()) {
         const auto* p = static_cast<const ProceduralBody*>(&body);
         bool expandedHere = false;
-        const std::vector<BodyPtr>& children = p->children(*scene_.factory, scene_.camera, log, &expandedHere);
+        leases_.push_back(p->children(*scene_.factory, scene_.camera, log, &expandedHere));  // held as long as the scene
+        const std::vector<BodyPtr>& children = leases_.back()->bodies;
         if (expandedHere) {
             const size_t d = size_t(p->depth());
             if (proceduralsExpandedByDepth.size() <= d) proceduralsExpandedByDepth.resize(d + 1, 0);

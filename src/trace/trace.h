@@ -21,6 +21,7 @@
 #include "raster/image_block.h"
 #include "shade/grid_shader.h"
 #include "bodies/render_scene.h"
+#include "procedural/procedural.h"
 #include "trace/spacetime_bvh.h"
 #include "trace/tessellate.h"
 #include "streyes/stats.h"
@@ -71,6 +72,7 @@ class TraceScene {
     const RenderScene& scene_;
     std::vector<const TrilinearBody*> bodies_;
     std::vector<BodyPtr> pieces_;  // segments of keyed patches
+    std::vector<ChildrenLease> leases_;  // the procedurals' children it holds
     // Curved bodies met by collect, and where in bodies_ their micropolygons go; then the
     // micropolygons of each (deques: bodies_ points into them).
     struct Curved {

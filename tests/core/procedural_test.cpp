@@ -73,11 +73,16 @@ TEST(Procedural, ChildrenOutsideTheDeclaredBoundAreNotLost) {
     };
     RenderOptions o;
     o.bucketSize = 4;
+    o.freeExpansions = RenderOptions::FreeExpansions::Always;
     RenderResult tooSmall = test::renderRib(scene("0 1 0 1 0 0"), o);
     RenderResult right = test::renderRib(scene("0 20 0 10 0 0"), o);
     EXPECT_TRUE(test::identicalPixels(tooSmall, right));
     EXPECT_EQ(tooSmall.stats.passes, 2);
     EXPECT_EQ(right.stats.passes, 1);
+    // The expansion that outgrew is kept for the second pass; the right one is let go when its
+    // last bucket is done (render/expansion_release.h).
+    EXPECT_EQ(tooSmall.stats.counters.proceduralsReleased, 0u);
+    EXPECT_EQ(right.stats.counters.proceduralsReleased, 1u);
     EXPECT_NEAR(tooSmall.alpha(0, 20, 4), 1.0f, 1e-6f);  // far outside the declared bound
     bool warned = false;
     for (const std::string& w : tooSmall.warnings) warned = warned || w.find("outside the declared bound") != std::string::npos;
@@ -240,15 +245,21 @@ TEST(Procedural, TreeShadersShadeBarkAndCutOutLeaves) {
     }
 }
 
-TEST(Procedural, ForestIsTheSameWhateverTheThreadCount) {
-    Log log;
-    Scene scene = parseRibFile(test::sourcePath("scenes/forest-small.rib"), log);
+// The small forest's frames 1-3 at 96 x 54, as the forest tests render it.
+RenderOptions smallForestOptions() {
     RenderOptions o;
     o.xres = 96;
     o.yres = 54;
     o.hasFrames = true;
     o.firstFrame = 1;
     o.lastFrame = 3;
+    return o;
+}
+
+TEST(Procedural, ForestIsTheSameWhateverTheThreadCount) {
+    Log log;
+    Scene scene = parseRibFile(test::sourcePath("scenes/forest-small.rib"), log);
+    RenderOptions o = smallForestOptions();
     o.threads = 1;
     RenderResult one = test::renderScene(scene, o);
     o.threads = 2;
@@ -257,6 +268,52 @@ TEST(Procedural, ForestIsTheSameWhateverTheThreadCount) {
     EXPECT_EQ(test::differingCounts(one.stats.counters, two.stats.counters), std::vector<std::string>{});
     EXPECT_EQ(one.stats.bodiesGenerated, two.stats.bodiesGenerated);
     EXPECT_GT(one.stats.counters.proceduralsExpanded, 10u);
+}
+
+// What the forest's procedurals expand into is let go once no bucket left reaches it
+// (render/expansion_release.h): the same pixels and the same counts as when it is all kept to
+// the end, on one thread and on two, with every kept expansion let go by the end of a single
+// block, and none made again. By default that happens only under memory pressure. Over several
+// blocks only the last one lets go (the others would make it all again).
+TEST(Procedural, ForestLetsGoOfWhatNoBucketLeftReachesWithTheSamePixels) {
+    Log log;
+    Scene scene = parseRibFile(test::sourcePath("scenes/forest-small.rib"), log);
+    RenderOptions o = smallForestOptions();
+    o.bucketSize = 16;  // 24 buckets
+    o.freeExpansions = RenderOptions::FreeExpansions::Never;
+    RenderResult kept = test::renderScene(scene, o);
+    EXPECT_EQ(kept.stats.counters.proceduralsReleased, 0u);
+    ASSERT_GT(kept.stats.counters.proceduralsExpanded, 10u);
+    o.freeExpansions = RenderOptions::FreeExpansions::Always;
+    for (int threads : {1, 2}) {
+        o.threads = threads;
+        RenderResult released = test::renderScene(scene, o);
+        EXPECT_TRUE(test::identicalPixels(kept, released)) << threads << " threads";
+        RenderCounters a = kept.stats.counters, b = released.stats.counters;
+        EXPECT_EQ(b.proceduralsReleased, b.proceduralsExpanded) << threads << " threads";
+        EXPECT_EQ(b.proceduralsMadeAgain, 0u) << "let go while a bucket could still reach it";
+        a.proceduralsReleased = b.proceduralsReleased = 0;
+        EXPECT_EQ(test::differingCounts(a, b), std::vector<std::string>{}) << threads << " threads";
+        EXPECT_EQ(kept.stats.bodiesGenerated, released.stats.bodiesGenerated);
+        EXPECT_EQ(kept.stats.memoryBodiesBytes, released.stats.memoryBodiesBytes);
+    }
+    // By default only under pressure: once the bodies made hold a quarter of the budget.
+    o.freeExpansions = RenderOptions::FreeExpansions::UnderPressure;
+    o.threads = 2;
+    o.maxMemoryBytes = kept.stats.memoryBodiesBytes * 2;
+    RenderResult pressed = test::renderScene(scene, o);
+    EXPECT_TRUE(test::identicalPixels(kept, pressed));
+    EXPECT_EQ(pressed.stats.counters.proceduralsReleased, pressed.stats.counters.proceduralsExpanded);
+    o.maxMemoryBytes = uint64_t(64) << 30;
+    EXPECT_EQ(test::renderScene(scene, o).stats.counters.proceduralsReleased, 0u);
+    o.maxMemoryBytes = 0;
+    o.freeExpansions = RenderOptions::FreeExpansions::Always;
+    o.maxFrameBlock = 1;  // three blocks: the last lets go of what it made
+    RenderResult blocks = test::renderScene(scene, o);
+    EXPECT_TRUE(test::identicalPixels(kept, blocks));
+    EXPECT_GT(blocks.stats.counters.proceduralsReleased, 0u);
+    EXPECT_LT(blocks.stats.counters.proceduralsReleased, blocks.stats.counters.proceduralsExpanded);
+    EXPECT_EQ(blocks.stats.counters.proceduralsMadeAgain, 0u);
 }
 
 }  // namespace
