@@ -316,5 +316,24 @@ TEST(Procedural, ForestLetsGoOfWhatNoBucketLeftReachesWithTheSamePixels) {
     EXPECT_EQ(blocks.stats.counters.proceduralsMadeAgain, 0u);
 }
 
+// The same under a moving camera: the flyover's procedurals move in camera space, expand per
+// level of detail and are pushed as views; each level is let go once its last bucket is done.
+TEST(Procedural, FlyoverLetsGoOfWhatNoBucketLeftReachesWithTheSamePixels) {
+    Log log;
+    Scene scene = parseRibFile(test::sourcePath("scenes/forest-flyover.rib"), log);
+    RenderOptions o = smallForestOptions();
+    o.bucketSize = 16;
+    o.freeExpansions = RenderOptions::FreeExpansions::Never;
+    RenderResult kept = test::renderScene(scene, o);
+    ASSERT_GT(kept.stats.counters.proceduralsExpanded, 10u);
+    o.freeExpansions = RenderOptions::FreeExpansions::Always;
+    o.threads = 2;
+    RenderResult released = test::renderScene(scene, o);
+    EXPECT_TRUE(test::identicalPixels(kept, released));
+    EXPECT_EQ(released.stats.counters.proceduralsReleased, released.stats.counters.proceduralsExpanded);
+    EXPECT_EQ(released.stats.counters.proceduralsMadeAgain, 0u);
+    EXPECT_EQ(kept.stats.bodiesGenerated, released.stats.bodiesGenerated);
+}
+
 }  // namespace
 }  // namespace streyes
