@@ -138,7 +138,6 @@ class ProceduralBody final : public Body {
     // that counting expansions does not depend on timing: count the first only).
     ChildrenLease children(ChildBodyMaker& maker, const Camera& camera, Log& log, bool* madeHere = nullptr,
                            bool* madeAgain = nullptr) const;
-    bool expanded() const;  // at any level
     // Lets go of the children of `level` (of the procedural views come from): they are freed when
     // the last hold on them goes, and a later children() makes them again (the same bodies: child
     // ids depend on the parent's). The renderer calls it once no bucket left can reach them

@@ -103,11 +103,6 @@ size_t ProceduralBody::memoryBytes() const {
 
 void ProceduralBody::dice(int, int, Grid&) const { throw std::logic_error("a procedural is expanded, not diced"); }
 
-bool ProceduralBody::expanded() const {
-    std::lock_guard<std::mutex> lock(root().mutex_);
-    return !root().expansions_.empty();
-}
-
 ChildrenLease ProceduralBody::children(ChildBodyMaker& maker, const Camera& camera, Log& log, bool* madeHere,
                                        bool* madeAgain) const {
     const ProceduralBody& r = root();

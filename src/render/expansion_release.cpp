@@ -71,11 +71,6 @@ void ExpansionRelease::keepEverything(std::vector<ChildrenLease>&& leases) {
     for (ChildrenLease& l : leases) kept_.push_back(std::move(l));
 }
 
-bool ExpansionRelease::keepingEverything() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return keepAll_;
-}
-
 uint64_t ExpansionRelease::released() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return released_;

@@ -48,7 +48,6 @@ class ExpansionRelease {
     // From now on nothing is let go, and `leases` live until the render ends: a procedural outgrew
     // its bound, and the renderer keeps it, and the procedurals it came from, for the next pass.
     void keepEverything(std::vector<ChildrenLease>&& leases);
-    bool keepingEverything() const;
 
     uint64_t released() const;  // expansions let go so far
 
