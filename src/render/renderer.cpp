@@ -444,14 +444,15 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.memoryBodiesBytes = scene_->factory->bodyBytes();
     stats.counters.proceduralsReleased = release.released();
     // The estimate the budget is held to counts the bodies made before rendering, not what
-    // procedurals expand into as buckets reach them (kept until the render ends: other buckets
-    // reach the same children). Say so when the render went over the budget (by more than the
-    // program's own size varies), rather than leave the figure in --stats for the user to find.
+    // procedurals expand into as buckets reach them (kept while a bucket left can reach it, or to
+    // the end). Say so when the render went over the budget (by more than the program's own size
+    // varies), rather than leave the figure in --stats for the user to find.
     if (budget > 0 && stats.peakMemoryBytes > budget + budget / 20) {
         std::string why;
         if (stats.counters.proceduralsExpanded > 0)
             why = ": procedurals expanded into bodies during the render (" + std::to_string(stats.bodiesGenerated) +
-                  " bodies made, holding " + formatBytes(stats.memoryBodiesBytes) +
+                  " bodies made, " + formatBytes(stats.memoryBodiesBytes) + " in all" +
+                  (stats.counters.proceduralsReleased > 0 ? ", freed once no bucket left could reach them" : "") +
                   "), which the estimate cannot know beforehand; raise --max-memory";
         log_.warnOnce("memory:over-budget", {},
                       "the render peaked at " + formatBytes(stats.peakMemoryBytes) + " of memory, over the budget of " +
