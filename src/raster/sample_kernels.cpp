@@ -333,18 +333,22 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
     const V xmin = hn::Set(kD, q.xmin), xmax = hn::Set(kD, q.xmax), ymin = hn::Set(kD, q.ymin), ymax = hn::Set(kD, q.ymax);
     const V one = hn::Set(kD, 1.0f);
     const auto lanes = hn::Load(kI, kLaneIndex);  // (hn::Iota goes through memory)
-    // The packed candidates: positions, pixels and sample indices of lanes [0, packed). Twice a
-    // vector: a store after fewer than N lanes writes a whole vector (the lanes past it unused;
-    // the positions start at zero so that the lanes past a last partial vector compute on numbers).
-    constexpr size_t kRoom = 2 * hn::MaxLanes(kD);
-    HWY_ALIGN float bx[kRoom] = {}, by[kRoom] = {}, l1s[hn::MaxLanes(kD)], l2s[hn::MaxLanes(kD)];
+    // The packed candidates: positions, pixels and sample indices of lanes [0, packed), gathered
+    // from all the quad's pixels first and tested after, a vector at a time (testing as each
+    // vector filled made a branch that mispredicted and a load from stores in flight). Room for
+    // kVectors vectors and one more: a store after fewer than N lanes writes a whole vector (the
+    // lanes past it unused; the positions start at zero so that the lanes past a last partial
+    // vector compute on numbers). A quad with more candidates tests its full vectors on the way.
+    constexpr size_t kVectors = 16;
+    constexpr size_t kRoom = (kVectors + 1) * hn::MaxLanes(kD);
+    HWY_ALIGN float bx[kRoom], by[kRoom], l1s[hn::MaxLanes(kD)], l2s[hn::MaxLanes(kD)];
     HWY_ALIGN int32_t bpixel[kRoom], bsample[kRoom];  // read only for packed lanes
     size_t packed = 0;
     uint64_t tested = 0;
     size_t hits = *hitCount;
-    // Tests packed lanes [0, n) and appends their hits.
-    auto testPacked = [&](size_t n) {
-        const V x = hn::Load(kD, bx), y = hn::Load(kD, by);
+    // Tests packed lanes [at, at + n) (at a multiple of N) and appends their hits.
+    auto testPacked = [&](size_t at, size_t n) {
+        const V x = hn::Load(kD, bx + at), y = hn::Load(kD, by + at);
         const M t = hn::FirstN(kD, n);
         V ev[5];
         for (int k = 0; k < 5; ++k)
@@ -366,8 +370,8 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
         for (uint64_t left = in; left; left &= left - 1) {
             const int lane = __builtin_ctzll(left);
             QuadHit& h = out[hits++];
-            h.pixel = uint32_t(bpixel[lane]);
-            h.sample = uint16_t(bsample[lane]);
+            h.pixel = uint32_t(bpixel[at + size_t(lane)]);
+            h.sample = uint16_t(bsample[at + size_t(lane)]);
             h.first = uint8_t((fi >> lane) & 1);
             h.l1 = l1s[lane];
             h.l2 = l2s[lane];
@@ -407,19 +411,19 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
                                kI, bsample + packed);
                     packed += k;
                     tested += k;
-                    if (packed >= N) {
-                        testPacked(N);
-                        packed -= N;
-                        hn::Store(hn::LoadU(kD, bx + N), kD, bx);
-                        hn::Store(hn::LoadU(kD, by + N), kD, by);
-                        hn::Store(hn::LoadU(kI, bpixel + N), kI, bpixel);
-                        hn::Store(hn::LoadU(kI, bsample + N), kI, bsample);
+                    if (packed >= kVectors * N) {  // a large quad: test the full vectors, keep the rest
+                        for (size_t at = 0; at < kVectors * N; at += N) testPacked(at, N);
+                        packed -= kVectors * N;
+                        hn::Store(hn::LoadU(kD, bx + kVectors * N), kD, bx);
+                        hn::Store(hn::LoadU(kD, by + kVectors * N), kD, by);
+                        hn::Store(hn::LoadU(kI, bpixel + kVectors * N), kI, bpixel);
+                        hn::Store(hn::LoadU(kI, bsample + kVectors * N), kI, bsample);
                     }
                 }
             }
         }
     }
-    if (packed) testPacked(packed);
+    for (size_t at = 0; at < packed; at += N) testPacked(at, std::min(N, packed - at));
     *hitCount = hits;
     return tested;
 }
