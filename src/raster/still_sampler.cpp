@@ -191,9 +191,45 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                 if (quadHits_.size() < room) quadHits_.resize(room);
                 size_t found = 0;
                 tests += test(q, layout, quadHits_.data(), &found);
-                for (size_t n = 0; n < found; ++n) {
-                    const QuadHit& qh = quadHits_[n];
-                    onHit(qh.pixel, qh.sample, quadHit(qh), q);
+                if (!Counting && intoStill && !seeThrough && A == 0) {
+                    // The usual hit, opaque into the still layer: each triangle's depth and colour
+                    // differences made once for the quad, not at each hit (the same operations:
+                    // beats() takes the differences from the first corner too).
+                    struct Triangle {
+                        float z0, dz1, dz2;
+                        Color c0, dc1, dc2;
+                    };
+                    auto triangle = [&](int a, int b, int c) {
+                        const Color c0 = colorAt(a);
+                        return Triangle{q.z[a], q.z[b] - q.z[a], q.z[c] - q.z[a], c0, colorAt(b) - c0, colorAt(c) - c0};
+                    };
+                    const Triangle tri[2] = {triangle(0, 1, 2), triangle(0, 2, 3)};
+                    hits += found;
+                    for (size_t n = 0; n < found; ++n) {
+                        const QuadHit& qh = quadHits_[n];
+                        const Triangle& t = tri[qh.first ? 0 : 1];
+                        const float zh = t.z0 + qh.l1 * t.dz1 + qh.l2 * t.dz2;
+                        SampleHit& cur = block.still(qh.pixel)[qh.sample];
+                        if (!(zh >= nearZ && zh <= farZ && zh <= cur.z)) continue;
+                        const Color c = t.c0 + t.dc1 * qh.l1 + t.dc2 * qh.l2;
+                        if (zh == cur.z && !cur.beatenBy(zh, id, c)) continue;
+                        if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
+                        cur = {zh, c, 1.0f, id};
+                        block.touch(qh.pixel);
+                        // Frames that already have a record of the pixel (something only they see
+                        // came first) see this too, where it is nearer.
+                        for (int fi = 0, left = block.recordsOf(qh.pixel); left > 0; ++fi) {
+                            SampleHit* rec = block.record(fi, qh.pixel);
+                            if (!rec) continue;
+                            --left;
+                            if (rec[qh.sample].beatenBy(zh, id, c)) rec[qh.sample] = cur;
+                        }
+                    }
+                } else {
+                    for (size_t n = 0; n < found; ++n) {
+                        const QuadHit& qh = quadHits_[n];
+                        onHit(qh.pixel, qh.sample, quadHit(qh), q);
+                    }
                 }
             }
         }
