@@ -30,6 +30,20 @@ inline bool behindStillLayer(const ImageBlock& block, const QuadSetup& q) {
     return true;
 }
 
+// A new hit of the still layer at sample sj of pixel pi: frames that already have a record of the
+// pixel (something only they see came first) see it too, where it is nearer, with its A output
+// variables (at stillAov) when the block keeps them.
+inline void stillHitToRecords(ImageBlock& block, size_t pi, int sj, const SampleHit& hit, int A, const float* stillAov) {
+    for (int fi = 0, left = block.recordsOf(pi); left > 0; ++fi) {
+        SampleHit* rec = block.record(fi, pi);
+        if (!rec) continue;
+        --left;
+        if (!rec[sj].beatenBy(hit.z, hit.id, hit.c)) continue;
+        rec[sj] = hit;
+        if (A) std::copy(stillAov, stillAov + A, block.recordAov(fi, pi) + size_t(sj) * size_t(A));
+    }
+}
+
 }  // namespace
 
 // A still grid: each quad is projected and set up once, then tested against the samples its
@@ -109,16 +123,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     block.touch(pi);
                     float* stillAov = A ? block.stillAov(pi) + size_t(sj) * size_t(A) : nullptr;
                     if (A) writeAovs(stillAov, A, h, [&](int c, int a) { return av[size_t(idx[c]) * size_t(A) + size_t(a)]; });
-                    // Frames that already have a record of the pixel (something only they see came
-                    // first) see this too, where it is nearer.
-                    for (int fi = 0, left = block.recordsOf(pi); left > 0; ++fi) {
-                        SampleHit* rec = block.record(fi, pi);
-                        if (!rec) continue;
-                        --left;
-                        if (!rec[sj].beatenBy(hit.z, hit.id, hit.c)) continue;
-                        rec[sj] = hit;
-                        if (A) std::copy(stillAov, stillAov + A, block.recordAov(fi, pi) + size_t(sj) * size_t(A));
-                    }
+                    stillHitToRecords(block, pi, sj, hit, A, stillAov);
                     return;
                 }
                 // The frames it exists in at the sample's time (the position, and so the inside
@@ -216,14 +221,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
                         cur = {zh, c, 1.0f, id};
                         block.touch(qh.pixel);
-                        // Frames that already have a record of the pixel (something only they see
-                        // came first) see this too, where it is nearer.
-                        for (int fi = 0, left = block.recordsOf(qh.pixel); left > 0; ++fi) {
-                            SampleHit* rec = block.record(fi, qh.pixel);
-                            if (!rec) continue;
-                            --left;
-                            if (rec[qh.sample].beatenBy(zh, id, c)) rec[qh.sample] = cur;
-                        }
+                        stillHitToRecords(block, qh.pixel, qh.sample, cur, 0, nullptr);
                     }
                 } else {
                     for (size_t n = 0; n < found; ++n) {
