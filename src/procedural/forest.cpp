@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -252,12 +251,17 @@ std::vector<double> swayTimes(const ForestParams& f, const ExpandContext& ctx) {
     return ts;
 }
 
-// Rotation of p about the axis `a` (unit) through `c` by `angle` (Rodrigues).
-Vec3d rotateAbout(Vec3d p, Vec3d c, Vec3d a, double angle) {
-    const Vec3d v = p - c;
-    const double cs = std::cos(angle), sn = std::sin(angle);
-    return c + v * cs + cross(a, v) * sn + a * (dot(a, v) * (1 - cs));
-}
+// A rotation about the axis `a` (unit) through `c` by an angle, its cosine and sine taken once for
+// every point it turns (Rodrigues).
+struct Rotation {
+    Vec3d c, a;
+    double cs, sn;
+    Rotation(Vec3d centre, Vec3d axis, double angle) : c(centre), a(axis), cs(std::cos(angle)), sn(std::sin(angle)) {}
+    Vec3d operator()(Vec3d p) const {
+        const Vec3d v = p - c;
+        return c + v * cs + cross(a, v) * sn + a * (dot(a, v) * (1 - cs));
+    }
+};
 
 // ---- Geometry output --------------------------------------------------------------------------------
 
@@ -400,19 +404,20 @@ class BranchGenerator final : public ProceduralGenerator {
         const std::vector<double> times = swayTimes(f, ctx);
         // The sway axis: horizontal, across the wind, so branches swing along it.
         const Vec3d axis = normalize(Vec3d{-f.windZ, 0, f.windX});
-        std::vector<double> angle(times.size());
-        for (size_t k = 0; k < times.size(); ++k)
-            angle[k] = swayAngle(f) * 0.5 * (1 + std::sin(2 * M_PI * times[k] / f.period + b.phase));
-        auto swaying = [&](const Quad& q, const std::function<Quad(const Quad&, size_t)>& local) {
+        std::vector<Rotation> sway;
+        sway.reserve(times.size());
+        for (double t : times) sway.emplace_back(b.base, axis, swayAngle(f) * 0.5 * (1 + std::sin(2 * M_PI * t / f.period + b.phase)));
+        // A quad's keys: turned by `local` at key k (a leaf's flutter), then swayed with the branch.
+        auto swaying = [&](const Quad& q, auto&& local) {
             std::vector<Quad> keys(times.size());
             for (size_t k = 0; k < times.size(); ++k) {
-                Quad lq = local ? local(q, k) : q;
-                for (int c = 0; c < 4; ++c) keys[k][size_t(c)] = rotateAbout(lq[size_t(c)], b.base, axis, angle[k]);
+                const Quad lq = local(q, k);
+                for (int c = 0; c < 4; ++c) keys[k][size_t(c)] = sway[k](lq[size_t(c)]);
             }
             return keys;
         };
         for (const Quad& q : tube(b.base, b.base + b.dir * b.length, b.radius, b.radius * 0.4, 3))
-            emit(out, ctx, times, swaying(q, nullptr), tree_.bark, Part::Bark, &f);
+            emit(out, ctx, times, swaying(q, [](const Quad& quad, size_t) { return quad; }), tree_.bark, Part::Bark, &f);
 
         HashRng r(b.key);
         Vec3d u, v;
@@ -443,9 +448,9 @@ class BranchGenerator final : public ProceduralGenerator {
             const double phase = uniform(r, 0, 2 * M_PI);
             const float shade = 0.85f + 0.3f * r.nextFloat();
             auto flutter = [&](const Quad& q, size_t k) {
-                const double a = flutterAngle(f) * std::sin(2 * M_PI * 3 * times[k] / f.period + phase);
+                const Rotation turn(attach, stem, flutterAngle(f) * std::sin(2 * M_PI * 3 * times[k] / f.period + phase));
                 Quad o;
-                for (int c = 0; c < 4; ++c) o[size_t(c)] = rotateAbout(q[size_t(c)], attach, stem, a);
+                for (int c = 0; c < 4; ++c) o[size_t(c)] = turn(q[size_t(c)]);
                 return o;
             };
             emit(out, ctx, times, swaying(leaf, flutter), tree_.leaf * shade, Part::Leaf, &f);

@@ -67,7 +67,18 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const float *av0 = grid.aov[0].data(), *av1 = grid.aov[1].data();
     const uint64_t id = grid.primitiveId;
     const Color *oi0 = opacities(grid, 0), *oi1 = opacities(grid, 1);
-    const bool anySeeThrough = oi0 || oi1;
+    // Each quad's opacity, once for all its groups: none but opaque ones is the usual case.
+    bool anySeeThrough = false;
+    if (oi0 || oi1) {
+        opacity_.resize(size_t(nu) * size_t(nv));
+        for (int j = 0; j < nv; ++j)
+            for (int i = 0; i < nu; ++i) {
+                const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
+                const QuadOpacity o = quadOpacity(oi0, oi1, ci0, ci1, idx);
+                opacity_[size_t(j * nu + i)] = uint8_t(o);
+                anySeeThrough = anySeeThrough || o != QuadOpacity::Opaque;
+            }
+    }
     const Color kOpaque{1, 1, 1};
     const float* xs = block.xs();
     const float* ys = block.ys();
@@ -182,8 +193,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 if (hole && hole[j * nu + i]) continue;  // trimmed away
                 if (patchHidden_[size_t((j / kPatch) * patchesU + i / kPatch)]) continue;
                 const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
-                const QuadOpacity opacity =
-                    anySeeThrough ? quadOpacity(oi0, oi1, ci0, ci1, idx) : QuadOpacity::Opaque;
+                const QuadOpacity opacity = anySeeThrough ? QuadOpacity(opacity_[size_t(j * nu + i)]) : QuadOpacity::Opaque;
                 if (!Counting && opacity == QuadOpacity::Clear) continue;
                 const bool seeThrough = opacity != QuadOpacity::Opaque;
                 QuadSetup q;

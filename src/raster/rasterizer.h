@@ -120,6 +120,7 @@ class GridRasterizer {
     std::vector<Vec3f> ca_, cb_;  // camera space at the ends of a slice (perspective, moving grids)
     std::vector<uint8_t> exact_;  // per vertex, this slice: projected at each sample's time
     std::vector<uint8_t> patchHidden_;  // per patch of quads, this group: all of it lies behind
+    std::vector<uint8_t> opacity_;      // per quad of a moving grid: its QuadOpacity
     std::vector<QuadHit> quadHits_;  // a still quad's hits
     float lensEdges_[kMaxEdgeValues];  // a still quad's edge values at a pixel's samples, with a lens
     std::vector<Slice> slices_;
