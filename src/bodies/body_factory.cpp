@@ -66,6 +66,31 @@ std::string formatShort(double v) {
     return buf;
 }
 
+// An upper bound of what precisionInPixels finds at any corner of the patch at any time, from
+// its largest object-space coordinate c (each world coordinate is at most c sum_j |m_ji| + |t_i|;
+// corners between keys are convex combinations of the keys'). It costs a few operations where
+// the exact measure transforms 4 corners a key, and lies far below kMaxPrecisionPixels unless
+// the scene is far from the origin (then the exact measure decides). Static affine transforms
+// only: +inf otherwise.
+double precisionBound(const Camera& camera, const MotionTransform& objectToWorld, const MotionTransform& worldToCamera,
+                      const BilinearPatchDesc& p) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    if (!objectToWorld.isStatic() || !worldToCamera.isStatic()) return kInf;
+    const Matrix4 &m = objectToWorld.at(0), &v = worldToCamera.at(0);
+    if (m(0, 3) != 0 || m(1, 3) != 0 || m(2, 3) != 0 || m(3, 3) != 1) return kInf;
+    double c = 0;
+    for (const std::array<Vec3d, 4>& key : p.P)
+        for (const Vec3d& q : key) c = std::max({c, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
+    double world = std::max({std::fabs(v(3, 0)), std::fabs(v(3, 1)), std::fabs(v(3, 2))});
+    for (int i = 0; i < 3; ++i)
+        world = std::max(world, c * (std::fabs(m(0, i)) + std::fabs(m(1, i)) + std::fabs(m(2, i))) + std::fabs(m(3, i)));
+    world *= 1 + 1e-9;  // over the rounding of the sums above and of the interpolation between keys
+    const double error = 4 * world * std::numeric_limits<double>::epsilon();
+    const double scale = std::max(std::fabs(camera.ax()), std::fabs(camera.ay()));
+    if (!camera.perspective()) return error * scale;
+    return camera.nearClip() > 0 ? error * scale / camera.nearClip() : kInf;
+}
+
 // The primitive's object-space corners at time t: linear between its keys, held outside.
 std::array<Vec3d, 4> cornersAt(const BilinearPatchDesc& p, double t) {
     if (p.P.size() == 1 || t <= p.times.front()) return p.P.front();
@@ -186,17 +211,19 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std
     std::vector<TrilinearBody::Corners> corners(ts.size());
     bool finite = true, fits = true;
     double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin, rasterError = 0;
+    // The exact precision measure only where the cheap bound cannot rule the warning out.
+    const bool precision = camera_ && !(precisionBound(*camera_, p.objectToWorld, worldToCamera_, p) <= kMaxPrecisionPixels);
     for (size_t i = 0; i < ts.size(); ++i) {
         Matrix4 m = objectToCamera.at(ts[i]);
         std::array<Vec3d, 4> obj = cornersAt(p, ts[i]);
-        const double worldScale = camera_ ? worldMagnitude(p.objectToWorld.at(ts[i]), worldToCamera_.at(ts[i]), obj) : 0;
+        const double worldScale = precision ? worldMagnitude(p.objectToWorld.at(ts[i]), worldToCamera_.at(ts[i]), obj) : 0;
         for (int c = 0; c < 4; ++c) {
             Vec3d v = m.point(obj[size_t(c)]);
             finite = finite && isFinite(v);
             fits = fits && fitsCameraSpace(v);
             if (finite && fits) corners[i][size_t(c)] = Vec3f(v);
             zmin = std::min(zmin, v.z), zmax = std::max(zmax, v.z);
-            if (camera_) rasterError = std::max(rasterError, precisionInPixels(*camera_, worldScale, v));
+            if (precision) rasterError = std::max(rasterError, precisionInPixels(*camera_, worldScale, v));
         }
     }
     if (!finite) {

@@ -80,5 +80,29 @@ TEST(Coordinates, BeyondDoublePrecisionTheRendererSaysSo) {
     EXPECT_GT(test::meanAbsDifference(r, render("coords_origin.rib")), 1e-4f);
 }
 
+// A patch at camera depth 4 whose world coordinates reach T + 1 (T along x, with the camera):
+// double rounding moves it by 4 (T + 1) 2^-52 scale / 4 pixels, scale = 32 pixels a unit of
+// screen at 64 x 64 and 90 degrees, so the warning starts between T = 1.40e12 (0.00995 pixel) and
+// 1.41e12 (0.01002). With the near plane just before the patch, the cheap bound that spares most
+// patches the exact measure (BodyFactory::addPatch) lies 0.3% above it: a bound that fell short
+// would silence the second render. With it at 0.1, the exact measure decides.
+TEST(Coordinates, ThePrecisionWarningStartsAtAHundredthOfAPixel) {
+    const std::string warning = "double precision moves it by up to";
+    auto rib = [](const char* T, const char* nearPlane) {
+        return std::string("Format 64 64 1\nProjection \"perspective\" \"fov\" [90]\nClipping ") + nearPlane +
+               " 100\nPixelSamples 1 1\nTranslate -" + T + " 0 0\nWorldBegin\nTranslate " + T +
+               " 0 0\nSurface \"constant\"\nPatch \"bilinear\" \"P\" [-1 -1 4  1 -1 4  -1 1 4  1 1 4]\nWorldEnd\n";
+    };
+    for (const char* nearPlane : {"3.99", "0.1"}) {
+        SCOPED_TRACE(nearPlane);
+        const RenderResult below = test::renderRib(rib("1400000000000", nearPlane));
+        EXPECT_TRUE(below.warnings.empty()) << below.warnings.front();
+        EXPECT_GT(below.stats.counters.sampleHits, 200u);  // the patch covers 16 x 16 pixels
+        const RenderResult above = test::renderRib(rib("1410000000000", nearPlane));
+        expectOneWarning(above, warning);
+        EXPECT_NE(above.warnings[0].find("up to 0.01 pixels"), std::string::npos) << above.warnings[0];
+    }
+}
+
 }  // namespace
 }  // namespace streyes
