@@ -80,15 +80,10 @@ inline QuadOpacity quadOpacity(const Color* oi0, const Color* oi1, const Color* 
     return opaque ? QuadOpacity::Opaque : clear ? QuadOpacity::Clear : QuadOpacity::SeeThrough;
 }
 
-// A grid's opacities at slot k, or null where the slot was shaded opaque or where every vertex
-// came out exactly 1 (shaders that set Oi = Os = 1: what a missing opacity means), so that the
-// samplers need not look at each quad's corners.
+// A grid's opacities at slot k, or null where the slot was shaded opaque (GridShader keeps Oi
+// only where some point is see-through).
 inline const Color* opacities(const Grid& grid, int k) {
-    const std::vector<Color>& oi = grid.Oi[k];
-    if (oi.size() != size_t(grid.vertexCount())) return nullptr;
-    bool opaque = true;
-    for (const Color& o : oi) opaque = opaque & (o.x == 1) & (o.y == 1) & (o.z == 1);
-    return opaque ? nullptr : oi.data();
+    return grid.Oi[k].size() == size_t(grid.vertexCount()) ? grid.Oi[k].data() : nullptr;
 }
 
 // With the hit, the K contributions of lights that cast shadows, interpolated the same way.
