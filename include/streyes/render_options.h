@@ -102,8 +102,9 @@ struct RenderOptions {
     uint64_t gridCacheBytes = uint64_t(128) << 20;
     // When what procedurals expand into is freed once no bucket left can reach it
     // (render/expansion_release.h): once the bodies made hold more than a quarter of the memory
-    // budget (freeing costs the allocator some time: 4–7% of a forest's CPU when all is
-    // freed), always, or never (kept to the end of the render). Pixels do not depend on it.
+    // budget (under glibc's malloc freeing costs 4–7% of a forest's CPU when all is freed),
+    // always (what the streyes command asks for when it is linked with jemalloc, where freeing
+    // costs nothing), or never (kept to the end of the render). Pixels do not depend on it.
     enum class FreeExpansions { UnderPressure, Always, Never };
     FreeExpansions freeExpansions = FreeExpansions::UnderPressure;
 

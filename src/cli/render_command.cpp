@@ -266,6 +266,12 @@ std::string withProcessCpu(std::string json) {
 RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
     RenderRequest req;
     RenderOptions& opts = req.opts;
+#ifdef STREYES_JEMALLOC
+    // What procedurals expand into goes as soon as no bucket left can reach it, not only under
+    // memory pressure: under jemalloc freeing costs no time (glibc's malloc took 4-7% more), and
+    // the forests peak at 40-60% less memory (docs/ARCHITECTURE.md, Procedurals).
+    opts.freeExpansions = RenderOptions::FreeExpansions::Always;
+#endif
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> std::string {
