@@ -269,7 +269,7 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
 #ifdef STREYES_JEMALLOC
     // What procedurals expand into goes as soon as no bucket left can reach it, not only under
     // memory pressure: under jemalloc freeing costs no time (glibc's malloc took 4-7% more), and
-    // the forests peak at 40-60% less memory (docs/ARCHITECTURE.md, Procedurals).
+    // the forests peak at a third to three fifths less memory (docs/ARCHITECTURE.md, Procedurals).
     opts.freeExpansions = RenderOptions::FreeExpansions::Always;
 #endif
     for (size_t i = 0; i < args.size(); ++i) {
