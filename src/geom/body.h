@@ -241,14 +241,18 @@ T bilerp(const std::array<T, 4>& c, float u, float v) {
 }
 Vec3f bilinearNormal(const TrilinearBody::Corners& p, float u, float v);
 
-// A heap block of n bytes, as malloc takes it: a header and rounding to 16 bytes.
+// A heap block of n bytes, as glibc's malloc takes it: a header and rounding to 16 bytes (the
+// streyes command's jemalloc keeps no header and rounds to size classes: about the same).
 constexpr size_t heapBlockBytes(size_t n) { return (n + 8 + 15) / 16 * 16; }
 
-// Distance in the raster plane (x, y), in double: no overflow for any float coordinates, and
-// far cheaper than std::hypot, which the split loop's measures called millions of times.
-inline float rasterDistance(Vec3f a, Vec3f b) {
+// Squared distance in the raster plane (x, y), in double: no overflow for any float coordinates.
+inline double rasterDistanceSquared(Vec3f a, Vec3f b) {
     const double dx = double(a.x) - double(b.x), dy = double(a.y) - double(b.y);
-    return float(std::sqrt(dx * dx + dy * dy));
+    return dx * dx + dy * dy;
 }
+// The distance, far cheaper than std::hypot, which the split loop's measures called millions of
+// times. The root and the rounding are monotonic: the largest of several distances is the root
+// of the largest square, bit for bit (KeyedPatchBody::measure takes one root, not one a pair).
+inline float rasterDistance(Vec3f a, Vec3f b) { return float(std::sqrt(rasterDistanceSquared(a, b))); }
 
 }  // namespace streyes

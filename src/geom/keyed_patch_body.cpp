@@ -42,12 +42,9 @@ Bounds3f KeyedPatchBody::boundDuring(double a, double b) const {
 }
 
 RasterMeasure KeyedPatchBody::measure(const Camera& camera) const {
-    // Largest squared distances first, one root each at the end: the root and the rounding to
-    // float are monotonic, so this is rasterDistance's result bit for bit, for 3 roots, not 10 a key.
-    auto d2 = [](Vec3f a, Vec3f b) {
-        const double dx = double(a.x) - double(b.x), dy = double(a.y) - double(b.y);
-        return dx * dx + dy * dy;
-    };
+    // Largest squared distances first, one root each at the end: rasterDistance's result bit for
+    // bit, for 3 roots, not 10 a key.
+    const auto d2 = rasterDistanceSquared;
     RasterMeasure m;
     double eu = 0, ev = 0, mo = 0;
     Corners prev{};
