@@ -205,7 +205,7 @@ void BM_QuadTestKernel(benchmark::State& state) {
     for (auto _ : state)
         for (const micropolygon::QuadSetup& q : quads) {
             size_t n = 0;
-            tests += test(q, layout, hits.data(), &n);
+            tests += test(q, layout, nullptr, hits.data(), &n);
             found += n;
             benchmark::DoNotOptimize(hits.data());
         }

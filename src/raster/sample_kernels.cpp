@@ -320,7 +320,8 @@ HWY_INLINE hn::Vec<D> compressLanes(D d, hn::Vec<D> v, hn::Mask<D> m, uint64_t b
 // micropolygon of about a pixel has a few candidates in each of about four pixels, so testing
 // pixel by pixel ran mostly empty lanes. Packing keeps pixel order then sample order, so the hits
 // come out in the order the scalar reference makes them.
-uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_t* hitCount) {
+uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, const QuadShading* shading, QuadHit* out,
+                  size_t* hitCount) {
     const size_t N = hn::Lanes(kD);
     const hn::RebindToSigned<decltype(kD)> kI;
     V px[5], py[5], dx[5], dy[5], sign[5];
@@ -342,6 +343,7 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
     constexpr size_t kVectors = 16;
     constexpr size_t kRoom = (kVectors + 1) * hn::MaxLanes(kD);
     HWY_ALIGN float bx[kRoom], by[kRoom], l1s[hn::MaxLanes(kD)], l2s[hn::MaxLanes(kD)];
+    HWY_ALIGN float zs[hn::MaxLanes(kD)], rs[hn::MaxLanes(kD)], gs[hn::MaxLanes(kD)], bs[hn::MaxLanes(kD)];
     HWY_ALIGN int32_t bpixel[kRoom], bsample[kRoom];  // read only for packed lanes
     size_t packed = 0;
     uint64_t tested = 0;
@@ -364,8 +366,22 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
         // division: each lane needs only its own triangle's.
         const V e02 = hn::Neg(ev[4]);
         const V inv = hn::Div(one, hn::IfThenElse(first, hn::Add(hn::Add(ev[0], ev[1]), ev[4]), hn::Add(hn::Add(e02, ev[2]), ev[3])));
-        hn::Store(hn::Mul(hn::IfThenElse(first, ev[4], ev[3]), inv), kD, l1s);
-        hn::Store(hn::Mul(hn::IfThenElse(first, ev[0], e02), inv), kD, l2s);
+        const V l1 = hn::Mul(hn::IfThenElse(first, ev[4], ev[3]), inv), l2 = hn::Mul(hn::IfThenElse(first, ev[0], e02), inv);
+        hn::Store(l1, kD, l1s);
+        hn::Store(l2, kD, l2s);
+        if (shading) {  // each lane's triangle's value at its first corner, plus l1 d1, plus l2 d2
+            const QuadShading& s = *shading;
+            auto at = [&](float a0, float a1, float d10, float d11, float d20, float d21, float* to) {
+                const V a = hn::IfThenElse(first, hn::Set(kD, a0), hn::Set(kD, a1));
+                const V d1 = hn::IfThenElse(first, hn::Set(kD, d10), hn::Set(kD, d11));
+                const V d2 = hn::IfThenElse(first, hn::Set(kD, d20), hn::Set(kD, d21));
+                hn::Store(hn::Add(hn::Add(a, hn::Mul(l1, d1)), hn::Mul(l2, d2)), kD, to);
+            };
+            at(s.z0[0], s.z0[1], s.dz1[0], s.dz1[1], s.dz2[0], s.dz2[1], zs);
+            at(s.c0[0].x, s.c0[1].x, s.dc1[0].x, s.dc1[1].x, s.dc2[0].x, s.dc2[1].x, rs);
+            at(s.c0[0].y, s.c0[1].y, s.dc1[0].y, s.dc1[1].y, s.dc2[0].y, s.dc2[1].y, gs);
+            at(s.c0[0].z, s.c0[1].z, s.dc1[0].z, s.dc1[1].z, s.dc2[0].z, s.dc2[1].z, bs);
+        }
         const uint64_t in = maskBits(kD, inside), fi = maskBits(kD, first);
         for (uint64_t left = in; left; left &= left - 1) {
             const int lane = __builtin_ctzll(left);
@@ -375,6 +391,7 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, QuadHit* out, size_
             h.first = uint8_t((fi >> lane) & 1);
             h.l1 = l1s[lane];
             h.l2 = l2s[lane];
+            if (shading) h.z = zs[lane], h.c = {rs[lane], gs[lane], bs[lane]};
         }
     };
     for (int ppy = q.py0; ppy <= q.py1; ++ppy) {
@@ -523,7 +540,8 @@ MovingTest scalarLensTest(const LensQuad& m, const float* xs, const float* ys, c
     return r;
 }
 
-uint64_t scalarQuadTest(const micropolygon::QuadSetup& q, const SampleLayout& L, QuadHit* out, size_t* hitCount) {
+uint64_t scalarQuadTest(const micropolygon::QuadSetup& q, const SampleLayout& L, const QuadShading* shading, QuadHit* out,
+                        size_t* hitCount) {
     float edges[kMaxEdgeValues];
     uint64_t tested = 0;
     size_t hits = *hitCount;
@@ -554,6 +572,11 @@ uint64_t scalarQuadTest(const micropolygon::QuadSetup& q, const SampleLayout& L,
                     const micropolygon::Hit b = pixelHit(edges, n, j, h.first);
                     h.l1 = b.l1;
                     h.l2 = b.l2;
+                    if (shading) {
+                        const int k = h.first ? 0 : 1;
+                        h.z = shading->z0[k] + h.l1 * shading->dz1[k] + h.l2 * shading->dz2[k];
+                        h.c = shading->c0[k] + shading->dc1[k] * h.l1 + shading->dc2[k] * h.l2;
+                    }
                 }
             }
         }

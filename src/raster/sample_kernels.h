@@ -66,6 +66,16 @@ struct QuadHit {
     uint16_t sample;  // j
     uint8_t first;    // in the quad's first triangle (else the second)
     float l1, l2;     // barycentric weights, as micropolygon::hitQuad makes them (quadHit)
+    float z;          // with QuadShading: the depth and colour at the hit
+    Color c;
+};
+// What a still quad's hits carry when asked (the sampler's usual case, an opaque quad with no
+// output variables): each triangle's depth and colour at its first corner, and their differences
+// to its second and third, per triangle (first, second). A hit's depth is z0 + l1 dz1 + l2 dz2 and
+// its colour c0 + dc1 l1 + dc2 l2, in this order, computed many hits at once.
+struct QuadShading {
+    float z0[2], dz1[2], dz2[2];
+    Color c0[2], dc1[2], dc2[2];
 };
 // The stratum, of `strata` across the pixel that starts at p, that coordinate v falls in (clamped
 // to the pixel's): the kernels and the scalar reference visit the strata a quad's bound overlaps.
@@ -73,9 +83,10 @@ inline int stratumAt(float v, int p, int strata) {
     return floorClamped((v - float(p)) * float(strata), 0, strata - 1);
 }
 // Appends the hits to `out` (room for (px1 - px0 + 1) (py1 - py0 + 1) S hits), in pixel order
-// then sample order; returns how many samples were tested.
-using QuadTestFn = uint64_t (*)(const micropolygon::QuadSetup& q, const SampleLayout& layout, QuadHit* out,
-                                size_t* hits);
+// then sample order, with their depths and colours when `shading` is given; returns how many
+// samples were tested.
+using QuadTestFn = uint64_t (*)(const micropolygon::QuadSetup& q, const SampleLayout& layout,
+                                const QuadShading* shading, QuadHit* out, size_t* hits);
 QuadTestFn quadTestKernel();
 QuadTestFn quadTestScalar();
 

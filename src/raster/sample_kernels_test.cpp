@@ -110,13 +110,25 @@ void quadKernelAgrees(QuadTestFn kernel, int sx, int sy) {
             // On a quarter-pixel lattice now and then, so that samples fall on edges and corners.
             q.x[c] = t % 3 == 0 ? std::round(corner(rng) * 4) / 4 : corner(rng);
             q.y[c] = t % 3 == 0 ? std::round((corner(rng) + 10) * 4) / 4 : corner(rng) + 10;
-            q.z[c] = 1;
+            q.z[c] = 1 + jitter(rng);
         }
         if (t % 7 == 0) q.x[1] = q.x[0], q.y[1] = q.y[0];  // a collapsed edge
         if (!boundQuad(q, nullptr, nullptr, nullptr, R, 0, 10)) continue;
         setupEdges(q);
+        // Every other quad asks for its hits' depths and colours, from its corners' as the still
+        // sampler makes them.
+        Color col[4];
+        for (Color& c : col) c = {jitter(rng), jitter(rng), jitter(rng)};
+        QuadShading shading;
+        const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
+        for (int k = 0; k < 2; ++k) {
+            const int* v = tri[k];
+            shading.z0[k] = q.z[v[0]], shading.dz1[k] = q.z[v[1]] - q.z[v[0]], shading.dz2[k] = q.z[v[2]] - q.z[v[0]];
+            shading.c0[k] = col[v[0]], shading.dc1[k] = col[v[1]] - col[v[0]], shading.dc2[k] = col[v[2]] - col[v[0]];
+        }
+        const QuadShading* shade = t % 2 ? &shading : nullptr;
         size_t na = 0, nb = 0;
-        ASSERT_EQ(kernel(q, layout, a.data(), &na), scalar(q, layout, b.data(), &nb)) << "quad " << t;
+        ASSERT_EQ(kernel(q, layout, shade, a.data(), &na), scalar(q, layout, shade, b.data(), &nb)) << "quad " << t;
         ASSERT_EQ(na, nb) << "quad " << t;
         for (size_t n = 0; n < na; ++n) {
             ASSERT_EQ(a[n].pixel, b[n].pixel);
@@ -128,6 +140,14 @@ void quadKernelAgrees(QuadTestFn kernel, int sx, int sy) {
             ASSERT_TRUE(hitQuad(q, xs[i], ys[i], h)) << "quad " << t << " hit " << n;
             const Hit k = quadHit(a[n]);
             EXPECT_TRUE(k.v2 == h.v2 && sameBits(k.l1, h.l1) && sameBits(k.l2, h.l2)) << "quad " << t << " hit " << n;
+            if (!shade) continue;
+            // The depth and colour the sampler's beats() makes of the hit, bit for bit.
+            const float z = q.z[k.v0] + k.l1 * (q.z[k.v1] - q.z[k.v0]) + k.l2 * (q.z[k.v2] - q.z[k.v0]);
+            const Color c = col[k.v0] + (col[k.v1] - col[k.v0]) * k.l1 + (col[k.v2] - col[k.v0]) * k.l2;
+            ASSERT_TRUE(sameBits(a[n].z, z) && sameBits(b[n].z, z)) << "quad " << t << " hit " << n;
+            ASSERT_TRUE(sameBits(a[n].c.x, c.x) && sameBits(a[n].c.y, c.y) && sameBits(a[n].c.z, c.z) &&
+                        sameBits(b[n].c.x, c.x) && sameBits(b[n].c.y, c.y) && sameBits(b[n].c.z, c.z))
+                << "quad " << t << " hit " << n;
         }
         hits += na;
     }

@@ -195,28 +195,25 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                 const size_t room = size_t(q.px1 - q.px0 + 1) * size_t(q.py1 - q.py0 + 1) * size_t(S);
                 if (quadHits_.size() < room) quadHits_.resize(room);
                 size_t found = 0;
-                tests += test(q, layout, quadHits_.data(), &found);
                 if (!Counting && intoStill && !seeThrough && A == 0) {
-                    // The usual hit, opaque into the still layer: each triangle's depth and colour
-                    // differences made once for the quad, not at each hit (the same operations:
-                    // beats() takes the differences from the first corner too).
-                    struct Triangle {
-                        float z0, dz1, dz2;
-                        Color c0, dc1, dc2;
+                    // The usual hit, opaque into the still layer: the kernel gives each hit's depth
+                    // and colour, from each triangle's differences made once for the quad (the
+                    // same operations as beats(), which takes them from the first corner too).
+                    QuadShading shading;
+                    auto triangle = [&](int k, int a, int b, int c) {
+                        shading.z0[k] = q.z[a], shading.dz1[k] = q.z[b] - q.z[a], shading.dz2[k] = q.z[c] - q.z[a];
+                        shading.c0[k] = colorAt(a), shading.dc1[k] = colorAt(b) - colorAt(a), shading.dc2[k] = colorAt(c) - colorAt(a);
                     };
-                    auto triangle = [&](int a, int b, int c) {
-                        const Color c0 = colorAt(a);
-                        return Triangle{q.z[a], q.z[b] - q.z[a], q.z[c] - q.z[a], c0, colorAt(b) - c0, colorAt(c) - c0};
-                    };
-                    const Triangle tri[2] = {triangle(0, 1, 2), triangle(0, 2, 3)};
+                    triangle(0, 0, 1, 2);
+                    triangle(1, 0, 2, 3);
+                    tests += test(q, layout, &shading, quadHits_.data(), &found);
                     hits += found;
                     for (size_t n = 0; n < found; ++n) {
                         const QuadHit& qh = quadHits_[n];
-                        const Triangle& t = tri[qh.first ? 0 : 1];
-                        const float zh = t.z0 + qh.l1 * t.dz1 + qh.l2 * t.dz2;
+                        const float zh = qh.z;
                         SampleHit& cur = block.still(qh.pixel)[qh.sample];
                         if (!(zh >= nearZ && zh <= farZ && zh <= cur.z)) continue;
-                        const Color c = t.c0 + t.dc1 * qh.l1 + t.dc2 * qh.l2;
+                        const Color c = qh.c;
                         if (zh == cur.z && !cur.beatenBy(zh, id, c)) continue;
                         if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
                         cur = {zh, c, 1.0f, id};
@@ -224,6 +221,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         stillHitToRecords(block, qh.pixel, qh.sample, cur, 0, nullptr);
                     }
                 } else {
+                    tests += test(q, layout, nullptr, quadHits_.data(), &found);
                     for (size_t n = 0; n < found; ++n) {
                         const QuadHit& qh = quadHits_[n];
                         onHit(qh.pixel, qh.sample, quadHit(qh), q);
