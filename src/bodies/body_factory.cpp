@@ -52,12 +52,18 @@ double worldMagnitude(const Matrix4& objectToWorld, const Matrix4& worldToCamera
     return m;
 }
 
-// That rounding error (4 ulps of the world magnitude) in raster pixels at camera-space point v.
-double precisionInPixels(const Camera& camera, double worldScale, Vec3d v) {
+// That rounding error (4 ulps of the world magnitude) in raster pixels at camera depth z (any
+// depth without perspective).
+double roundingInPixels(const Camera& camera, double worldScale, double z) {
     const double error = 4 * worldScale * std::numeric_limits<double>::epsilon();
     const double scale = std::max(std::fabs(camera.ax()), std::fabs(camera.ay()));
-    if (!camera.perspective()) return error * scale;
-    return v.z > camera.nearClip() ? error * scale / v.z : 0;  // nearer than `near`: clipped anyway
+    return camera.perspective() ? error * scale / z : error * scale;
+}
+
+// The same at camera-space point v: nothing nearer than `near`, which is clipped anyway.
+double precisionInPixels(const Camera& camera, double worldScale, Vec3d v) {
+    if (camera.perspective() && !(v.z > camera.nearClip())) return 0;
+    return roundingInPixels(camera, worldScale, v.z);
 }
 
 std::string formatShort(double v) {
@@ -85,10 +91,8 @@ double precisionBound(const Camera& camera, const MotionTransform& objectToWorld
     for (int i = 0; i < 3; ++i)
         world = std::max(world, c * (std::fabs(m(0, i)) + std::fabs(m(1, i)) + std::fabs(m(2, i))) + std::fabs(m(3, i)));
     world *= 1 + 1e-9;  // over the rounding of the sums above and of the interpolation between keys
-    const double error = 4 * world * std::numeric_limits<double>::epsilon();
-    const double scale = std::max(std::fabs(camera.ax()), std::fabs(camera.ay()));
-    if (!camera.perspective()) return error * scale;
-    return camera.nearClip() > 0 ? error * scale / camera.nearClip() : kInf;
+    if (camera.perspective() && !(camera.nearClip() > 0)) return kInf;
+    return roundingInPixels(camera, world, camera.nearClip());  // the nearest depth a corner counts at
 }
 
 // The primitive's object-space corners at time t: linear between its keys, held outside.

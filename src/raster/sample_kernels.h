@@ -77,6 +77,17 @@ struct QuadShading {
     float z0[2], dz1[2], dz2[2];
     Color c0[2], dc1[2], dc2[2];
 };
+// A quad's, from its corners' depths and colours (triangles q0 q1 q2 and q0 q2 q3).
+inline QuadShading quadShading(const float* z, const Color* c) {
+    QuadShading s;
+    const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    for (int k = 0; k < 2; ++k) {
+        const int a = tri[k][0], b = tri[k][1], d = tri[k][2];
+        s.z0[k] = z[a], s.dz1[k] = z[b] - z[a], s.dz2[k] = z[d] - z[a];
+        s.c0[k] = c[a], s.dc1[k] = c[b] - c[a], s.dc2[k] = c[d] - c[a];
+    }
+    return s;
+}
 // The stratum, of `strata` across the pixel that starts at p, that coordinate v falls in (clamped
 // to the pixel's): the kernels and the scalar reference visit the strata a quad's bound overlaps.
 inline int stratumAt(float v, int p, int strata) {

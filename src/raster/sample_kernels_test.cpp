@@ -119,13 +119,7 @@ void quadKernelAgrees(QuadTestFn kernel, int sx, int sy) {
         // sampler makes them.
         Color col[4];
         for (Color& c : col) c = {jitter(rng), jitter(rng), jitter(rng)};
-        QuadShading shading;
-        const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
-        for (int k = 0; k < 2; ++k) {
-            const int* v = tri[k];
-            shading.z0[k] = q.z[v[0]], shading.dz1[k] = q.z[v[1]] - q.z[v[0]], shading.dz2[k] = q.z[v[2]] - q.z[v[0]];
-            shading.c0[k] = col[v[0]], shading.dc1[k] = col[v[1]] - col[v[0]], shading.dc2[k] = col[v[2]] - col[v[0]];
-        }
+        const QuadShading shading = quadShading(q.z, col);
         const QuadShading* shade = t % 2 ? &shading : nullptr;
         size_t na = 0, nb = 0;
         ASSERT_EQ(kernel(q, layout, shade, a.data(), &na), scalar(q, layout, shade, b.data(), &nb)) << "quad " << t;

@@ -199,13 +199,8 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     // The usual hit, opaque into the still layer: the kernel gives each hit's depth
                     // and colour, from each triangle's differences made once for the quad (the
                     // same operations as beats(), which takes them from the first corner too).
-                    QuadShading shading;
-                    auto triangle = [&](int k, int a, int b, int c) {
-                        shading.z0[k] = q.z[a], shading.dz1[k] = q.z[b] - q.z[a], shading.dz2[k] = q.z[c] - q.z[a];
-                        shading.c0[k] = colorAt(a), shading.dc1[k] = colorAt(b) - colorAt(a), shading.dc2[k] = colorAt(c) - colorAt(a);
-                    };
-                    triangle(0, 0, 1, 2);
-                    triangle(1, 0, 2, 3);
+                    const Color corners[4] = {colorAt(0), colorAt(1), colorAt(2), colorAt(3)};
+                    const QuadShading shading = quadShading(q.z, corners);
                     tests += test(q, layout, &shading, quadHits_.data(), &found);
                     hits += found;
                     for (size_t n = 0; n < found; ++n) {
