@@ -10,18 +10,28 @@
 
 namespace streyes {
 
+// How large on screen what is read will be, for detail chosen while reading (a Blobby's cells, a
+// cell every 2 pixels). By default the scene's own camera and Format say.
+struct ReadDetail {
+    int xres = 0, yres = 0;    // the image size rendered (--res) in place of the Format's; 0: the Format's
+    double formatScale = 1;    // the Format scaled, where no size is given (--preview renders at half)
+    double pixelsPerUnit = 0;  // a procedural's output, which has no camera of its own: pixels on
+                               // screen per world unit, from the procedural's detail (0: none)
+};
+
 Scene parseRibFile(const std::string& path, Log& log);
 Scene parseRibString(const std::string& text, const std::string& sourceName, Log& log);
 // A file of FrameBegin n ... FrameEnd blocks: each frame, as it ends, is handed to `frame` as a
 // complete scene (Scene::frameNumber, Scene::frameLoc). A file without frame blocks is handed over
 // whole, as one scene with no frame location. Memory holds one frame at a time.
-void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame);
+void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame,
+                    const ReadDetail& detail = {});
 
 // A procedural's RIB output (DelayedReadArchive, RunProgram): requests inside a world block,
 // read under the procedural's transform and attributes into a scene of their own. Every block
 // the text opens must be closed.
 Scene parseRibFragment(const std::string& text, const std::string& sourceName, const MotionTransform& ctm,
-                       const AttributesPtr& attributes, Log& log);
+                       const AttributesPtr& attributes, Log& log, const ReadDetail& detail = {});
 
 // What a scene may reach outside itself for: run programs (RunProgram) and read other files
 // (ReadArchive, DelayedReadArchive). Both by default; a scene asking for what is not allowed is an

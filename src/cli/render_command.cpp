@@ -474,7 +474,11 @@ int renderCommand(const std::vector<std::string>& args) {
         }
         readFrom = std::chrono::steady_clock::now();
     };
-    readSceneBlocks(scenePath, wanted, opts.maxFrameBlock, log, renderBlock);
+    // What is sized while it is read (a Blobby's cells) is sized for the image rendered.
+    ReadDetail detail;
+    detail.xres = opts.xres, detail.yres = opts.yres;
+    if (req.preview && opts.xres <= 0) detail.formatScale = 0.5;  // applyPreview's size
+    readSceneBlocks(scenePath, wanted, opts.maxFrameBlock, log, renderBlock, detail);
     const ResolvedSettings& rs = first;
     RenderStats& stats = total;
     const auto waited = std::chrono::steady_clock::now();

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -16,6 +17,22 @@ int detailLevel(double area) {
 
 double detailOfLevel(int level) {
     return level >= kDetailUnbounded ? std::numeric_limits<double>::infinity() : std::ldexp(1.0, level);
+}
+
+// How many pixels a world unit spans near a procedural seen at `detail`: the side of a square
+// of its raster area over its bound's longest side in world space (its transform's first key),
+// for what its output decides while it is read (a Blobby's cells). Block-invariant, as the level is.
+static double pixelsPerUnit(const ProceduralDesc& d, double detail) {
+    const Bounds3d& b = d.bound;
+    const Matrix4& toWorld = d.objectToWorld.keys().front();
+    Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (int c = 0; c < 8; ++c) {
+        const Vec3d p = toWorld.point({c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z});
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    const double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    return side > 0 && std::isfinite(side) ? std::sqrt(detail) / side : 0;
 }
 
 ProceduralBody::ProceduralBody(ProceduralDesc desc, std::shared_ptr<const ProceduralGenerator> generator,
@@ -167,6 +184,7 @@ void ProceduralBody::expand(ProceduralChildren& out, int level, ChildBodyMaker& 
                             bool count) const {
     ExpandContext ctx;
     ctx.detail = detailOfLevel(level);
+    ctx.pixelsPerUnit = pixelsPerUnit(desc_, ctx.detail);
     ctx.objectToWorld = desc_.objectToWorld;
     ctx.attributes = desc_.attributes;
     ctx.loc = desc_.loc;

@@ -130,14 +130,32 @@ BlobbyKey readBlobbyKey(RibParser& reader, RibArgs& args) {
 
 // Cells along the bound's longest side for a cell every kPixelsPerCell pixels of the bound's
 // extent on screen, seen by the camera as set at WorldBegin (the first keys of the camera and of
-// the object's transform). A bound that reaches behind the eye plane gets the most cells, one
-// wholly behind it the fewest.
+// the object's transform) at the size the frames are rendered (ReadDetail). A bound that reaches
+// behind the eye plane gets the most cells, one wholly behind it the fewest. A procedural's
+// output has no camera: its extent in world units times the procedural's pixels per unit.
 int screenCells(RibParser& reader, const PrimitiveDesc& d, const BlobbyField& field) {
     Vec3d lo, hi;
     if (!field.bound(&lo, &hi)) return kMinCells;
+    const ReadDetail& detail = reader.readDetail();
+    const Matrix4& toWorld = d.objectToWorld.keys().front();
+    auto cellsFor = [](double pixels) {
+        if (!std::isfinite(pixels)) return kMaxCells;
+        return int(std::clamp(std::ceil(pixels / kPixelsPerCell), double(kMinCells), double(kMaxCells)));
+    };
+    if (detail.pixelsPerUnit > 0) {
+        Vec3d wlo{1e300, 1e300, 1e300}, whi{-1e300, -1e300, -1e300};
+        for (int c = 0; c < 8; ++c) {
+            const Vec3d p = toWorld.point({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
+            wlo = {std::min(wlo.x, p.x), std::min(wlo.y, p.y), std::min(wlo.z, p.z)};
+            whi = {std::max(whi.x, p.x), std::max(whi.y, p.y), std::max(whi.z, p.z)};
+        }
+        return cellsFor(std::max({whi.x - wlo.x, whi.y - wlo.y, whi.z - wlo.z}) * detail.pixelsPerUnit);
+    }
     const CameraDesc& cam = reader.scene().camera;
+    const double xres = detail.xres > 0 ? detail.xres : cam.xres * detail.formatScale;
+    const double yres = detail.yres > 0 ? detail.yres : cam.yres * detail.formatScale;
     const bool perspective = cam.projection == ProjectionKind::Perspective;
-    const double aspect = cam.frameAspect > 0 ? cam.frameAspect : cam.pixelAspect * cam.xres / cam.yres;
+    const double aspect = cam.frameAspect > 0 ? cam.frameAspect : cam.pixelAspect * xres / yres;
     double l = -1, r = 1, b = -1, t = 1;
     if (cam.hasScreenWindow) {
         l = cam.screenWindow[0], r = cam.screenWindow[1], b = cam.screenWindow[2], t = cam.screenWindow[3];
@@ -147,8 +165,8 @@ int screenCells(RibParser& reader, const PrimitiveDesc& d, const BlobbyField& fi
         b = -1 / aspect, t = 1 / aspect;
     }
     const double s = perspective ? 1 / std::tan(cam.fov * 3.14159265358979323846 / 360) : 1;
-    const double ax = s * cam.xres / std::abs(r - l), ay = s * cam.yres / std::abs(t - b);
-    const Matrix4 toCamera = d.objectToWorld.keys().front() * cam.worldToCamera.keys().front();
+    const double ax = s * xres / std::abs(r - l), ay = s * yres / std::abs(t - b);
+    const Matrix4 toCamera = toWorld * cam.worldToCamera.keys().front();
     double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
     int behind = 0;
     for (int c = 0; c < 8; ++c) {
@@ -162,9 +180,7 @@ int screenCells(RibParser& reader, const PrimitiveDesc& d, const BlobbyField& fi
     }
     if (behind == 8) return kMinCells;
     if (behind > 0) return kMaxCells;
-    const double pixels = std::max(x1 - x0, y1 - y0);
-    if (!std::isfinite(pixels)) return kMaxCells;
-    return int(std::clamp(std::ceil(pixels / kPixelsPerCell), double(kMinCells), double(kMaxCells)));
+    return cellsFor(std::max(x1 - x0, y1 - y0));
 }
 
 // The polygon mesh of the first key, with "Cs" per leaf blended by each leaf's field.

@@ -218,10 +218,12 @@ Scene parseRibString(const std::string& text, const std::string& sourceName, Log
     return scene;
 }
 
-void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame) {
+void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame,
+                    const ReadDetail& detail) {
     Scene scene;
     scene.sourceName = path;
     RibParser parser(scene, log);
+    parser.setReadDetail(detail);
     parser.setFrameHandler([&](Scene&& s) {
         s.sourceName = path;
         frame(std::move(s));
@@ -232,9 +234,10 @@ void parseRibFrames(const std::string& path, Log& log, const std::function<void(
 }
 
 Scene parseRibFragment(const std::string& text, const std::string& sourceName, const MotionTransform& ctm,
-                       const AttributesPtr& attributes, Log& log) {
+                       const AttributesPtr& attributes, Log& log, const ReadDetail& detail) {
     Scene scene;
     RibParser parser(scene, log);
+    parser.setReadDetail(detail);
     parser.beginFragment(ctm, attributes);
     parser.parseString(text, sourceName);
     parser.finishFragment();

@@ -27,6 +27,7 @@
 #include "scene/rib_lexer.h"
 #include "scene/rib_params.h"
 #include "scene/search_path.h"
+#include "streyes/rib.h"
 #include "streyes/scene.h"
 
 namespace streyes {
@@ -111,6 +112,10 @@ class RibParser {
     void beginFragment(const MotionTransform& ctm, const AttributesPtr& attributes);
     void finishFragment();
 
+    // How large on screen what is read will be (streyes/rib.h): a Blobby's cells follow it.
+    void setReadDetail(const ReadDetail& detail) { detail_ = detail; }
+    const ReadDetail& readDetail() const { return detail_; }
+
     // The graphics state where parsing stands, for requests that create geometry themselves.
     const MotionTransform& currentTransform() const { return state_.ctm; }
     AttributesPtr currentAttributes() const { return state_.attributes; }
@@ -158,6 +163,7 @@ class RibParser {
     Log& log_;
     RibState state_;
     FrameHandler frameHandler_;
+    ReadDetail detail_;
     std::optional<SavedFrame> frame_;  // inside FrameBegin ... FrameEnd: the state before it
     int framesRead_ = 0;
     SourceLoc lastLoc_;  // last line read, for "missing ..." at the end

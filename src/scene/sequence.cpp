@@ -289,35 +289,39 @@ uint64_t fileSize(const std::string& path) {
 }
 
 // One frame's file: a scene, or one FrameBegin block (whose number should be the file's).
-Scene readFrameFile(const std::string& file, int f, Log& log) {
+Scene readFrameFile(const std::string& file, int f, Log& log, const ReadDetail& detail) {
     Scene frame;
     int blocks = 0;
-    parseRibFrames(file, log, [&](Scene&& s) {
-        const bool block = s.frameLoc.line > 0;
-        if (block && ++blocks > 1)
-            throw InputError(s.frameLoc, "a second FrameBegin in the frame file of frame " + std::to_string(f) +
-                                             ": a pattern's file holds one frame");
-        if (block && s.frameNumber != f)
-            log.warnOnce("sequence-number:" + file, s.frameLoc,
-                         "FrameBegin " + std::to_string(s.frameNumber) + " in the file of frame " + std::to_string(f) +
-                             ": the file name's number is used");
-        if (!block) s.frameLoc = SourceLoc{std::make_shared<const std::string>(file), 1, 0};
-        s.frameNumber = f;
-        frame = std::move(s);
-    });
+    parseRibFrames(
+        file, log,
+        [&](Scene&& s) {
+            const bool block = s.frameLoc.line > 0;
+            if (block && ++blocks > 1)
+                throw InputError(s.frameLoc, "a second FrameBegin in the frame file of frame " + std::to_string(f) +
+                                                 ": a pattern's file holds one frame");
+            if (block && s.frameNumber != f)
+                log.warnOnce("sequence-number:" + file, s.frameLoc,
+                             "FrameBegin " + std::to_string(s.frameNumber) + " in the file of frame " + std::to_string(f) +
+                                 ": the file name's number is used");
+            if (!block) s.frameLoc = SourceLoc{std::make_shared<const std::string>(file), 1, 0};
+            s.frameNumber = f;
+            frame = std::move(s);
+        },
+        detail);
     return frame;
 }
 
 }  // namespace
 
-Sequence readScene(const std::string& path, const FrameRequest& req, Log& log) {
+Sequence readScene(const std::string& path, const FrameRequest& req, Log& log, const ReadDetail& detail) {
     Sequence all;
-    readSceneBlocks(path, req, std::numeric_limits<int>::max(), log, [&](Sequence&& s) { all = std::move(s); });
+    readSceneBlocks(
+        path, req, std::numeric_limits<int>::max(), log, [&](Sequence&& s) { all = std::move(s); }, detail);
     return all;
 }
 
 void readSceneBlocks(const std::string& path, const FrameRequest& req, int blockFrames, Log& log,
-                     const std::function<void(Sequence&&)>& block) {
+                     const std::function<void(Sequence&&)>& block, const ReadDetail& detail) {
     SequenceBuilder builder(log);
     uint64_t bytes = 0;
     blockFrames = std::max(1, blockFrames);
@@ -362,7 +366,7 @@ void readSceneBlocks(const std::string& path, const FrameRequest& req, int block
             std::vector<std::exception_ptr> errors(n);
             tbb::parallel_for(size_t(0), n, [&](size_t i) {
                 try {
-                    scenes[i] = readFrameFile(frameFileName(path, frames[b + i]), frames[b + i], log);
+                    scenes[i] = readFrameFile(frameFileName(path, frames[b + i]), frames[b + i], log, detail);
                 } catch (...) {
                     errors[i] = std::current_exception();
                 }
@@ -392,7 +396,7 @@ void readSceneBlocks(const std::string& path, const FrameRequest& req, int block
         read.insert(s.frameNumber);
         if (req.given && (s.frameNumber < req.first || s.frameNumber > req.last)) return;
         add(std::move(s));
-    });
+    }, detail);
     if (!frames) {
         single.stats.bytesRead = fileSize(path);
         block(std::move(single));

@@ -155,6 +155,30 @@ TEST(Cli, PreviewHalvesResolutionAndCapsSamples) {
     EXPECT_NE(s.find("\"tolerance\": 0.1,"), std::string::npos) << s;
 }
 
+// A Blobby is cut while the scene is read, for the size the frames are rendered at: --res and
+// --preview give the same pixels as a scene whose Format is that size.
+TEST(Cli, BlobbyIsCutForTheSizeRendered) {
+    const test::TempDir tempDir("cli-blobby-res");
+    const std::string& dir = tempDir.path();
+    auto render = [&](int format, const std::string& options) {
+        const std::string rib = "Format " + std::to_string(format) + " " + std::to_string(format) +
+                                " 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" [40]\nTranslate 0 0 5\n"
+                                "WorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [1 -1 2]\n"
+                                "Surface \"matte\"\nBlobby 2 [1001 0  1001 16  0 2 0 1]\n"
+                                "[1.5 0 0 0  0 1.5 0 0  0 0 1.5 0  -0.4 0 0 1  1 0 0 0  0 1 0 0  0 0 1 0  0.8 0.3 0 1]"
+                                " [\"\"]\nWorldEnd\n";
+        const std::string scene = writeFile(dir, "blob" + std::to_string(format) + ".rib", rib);
+        const std::string out = dir + "/f" + std::to_string(format) + std::to_string(options.size()) + ".exr";
+        const CliRun r = streyes("render " + scene + " " + options + " -o " + out + " --quiet");
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return readImage(out);
+    };
+    const ImageData at64 = render(64, "");
+    EXPECT_GT(at64.at(32, 32, 3), 0.99f);  // the blob fills the middle
+    EXPECT_EQ(render(32, "--res 64x64").pixels, at64.pixels);
+    EXPECT_EQ(render(128, "--preview").pixels, at64.pixels);  // half of 128, the scene's 4 samples
+}
+
 // "streyes: P% (D/32 buckets), M:SS elapsed, ETA M:SS", exactly.
 bool isProgressLine(const std::string& line) {
     int percent = 0, done = 0, total = 0, em = 0, es = 0, rm = 0, rs = 0, end = 0;

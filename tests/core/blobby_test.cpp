@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <string>
 
 #include "streyes/rib.h"
@@ -159,6 +160,73 @@ TEST(Blobby, CellsFollowTheScreenSizeUnlessGiven) {
     EXPECT_NEAR(large / small, 4, 0.4);
     const std::string fixed = "Attribute \"streyes\" \"float blobbyresolution\" [20]\n";
     EXPECT_EQ(triangles(64, fixed), triangles(128, fixed));
+}
+
+// The triangles of the one Blobby of a RIB file read with `detail`.
+size_t trianglesRead(const std::string& path, const std::string& rib, const ReadDetail& detail) {
+    std::ofstream(path) << rib;
+    Log log;
+    size_t count = 0;
+    parseRibFrames(
+        path, log, [&](Scene&& s) { count = s.polygonMeshes.empty() ? 0 : s.polygonMeshes[0].polygons.size(); },
+        detail);
+    return count;
+}
+
+TEST(Blobby, CellsFollowTheSizeRendered) {
+    // --res and --preview render at another size than the Format's: a Blobby is cut for the size
+    // rendered, so a Format of 64 rendered at 128 is cut as a Format of 128 is, and a Format of 128
+    // rendered at half (a preview) as one of 64.
+    test::TempDir dir("blobby-res");
+    auto triangles = [&](int format, const ReadDetail& detail) {
+        const std::string rib = "Format " + std::to_string(format) + " " + std::to_string(format) +
+                                " 1\nProjection \"orthographic\"\nScreenWindow 0 64 0 64\nWorldBegin\n" +
+                                blobby(1, "1001 0", sphereMatrix(30, 32, 32, 100)) + "WorldEnd\n";
+        return trianglesRead(dir.path() + "/blob.rib", rib, detail);
+    };
+    ReadDetail format, at128, half;
+    at128.xres = at128.yres = 128;
+    half.formatScale = 0.5;
+    const size_t small = triangles(64, format), large = triangles(128, format);
+    EXPECT_GT(large, 3 * small);  // the size matters
+    EXPECT_EQ(triangles(64, at128), large);
+    EXPECT_EQ(triangles(128, half), small);
+}
+
+TEST(Blobby, ProceduralOutputIsCutForItsSizeOnScreen) {
+    // A procedural's output has no camera of its own: a Blobby in it is cut for the procedural's
+    // pixels per world unit. One pixel a unit cuts it as the same Blobby seen by a camera at one
+    // pixel a unit.
+    test::TempDir dir("blobby-procedural");
+    const std::string blob = blobby(1, "1001 0", sphereMatrix(30, 32, 32, 100));
+    const size_t seen = trianglesRead(dir.path() + "/seen.rib",
+                                      "Format 64 64 1\nProjection \"orthographic\"\nScreenWindow 0 64 0 64\n"
+                                      "WorldBegin\n" + blob + "WorldEnd\n",
+                                      {});
+    Log log;
+    ReadDetail onePixel;
+    onePixel.pixelsPerUnit = 1;
+    const Scene fragment = parseRibFragment(blob, "fragment", MotionTransform(), nullptr, log, onePixel);
+    ASSERT_EQ(fragment.polygonMeshes.size(), 1u);
+    EXPECT_EQ(fragment.polygonMeshes[0].polygons.size(), seen);
+    onePixel.pixelsPerUnit = 2;
+    EXPECT_GT(parseRibFragment(blob, "fragment", MotionTransform(), nullptr, log, onePixel).polygonMeshes[0].polygons.size(),
+              3 * seen);
+
+    // Rendered: the same blob read by a DelayedReadArchive, whose bound spans 60 of the 64
+    // pixels, is cut about as finely as inline (before, it was cut for a default camera at the
+    // origin), and covers the disc it should.
+    const std::string archive = dir.path() + "/blob.rib";
+    std::ofstream(archive) << blob;
+    const std::string head = test::orthoHeader(64, 64);
+    const test::RenderResult inline_ = test::renderRib(head + blob + "WorldEnd\n");
+    const test::RenderResult read = test::renderRib(head + "Procedural \"DelayedReadArchive\" [\"" + archive +
+                                                    "\"] [2 62 2 62 70 130]\nWorldEnd\n");
+    const double ratio = double(read.stats.counters.micropolygons) / double(inline_.stats.counters.micropolygons);
+    EXPECT_GT(ratio, 0.8);
+    EXPECT_LT(ratio, 1.6);  // sqrt(detail) rounds the bound's area up to a power of two
+    const double r = 30 * kLevelRadius;
+    EXPECT_NEAR(test::alphaSum(read), kPi * r * r, 0.01 * kPi * r * r);
 }
 
 TEST(Blobby, BadInputNamesFileAndLine) {
