@@ -132,12 +132,16 @@ BlobbyKey readBlobbyKey(RibParser& reader, RibArgs& args) {
 // extent on screen, seen by the camera as set at WorldBegin (the first keys of the camera and of
 // the object's transform) at the size the frames are rendered (ReadDetail). A bound that reaches
 // behind the eye plane gets the most cells, one wholly behind it the fewest. A procedural's
-// output has no camera: its extent in world units times the procedural's pixels per unit.
+// output has no camera: its extent in world units times the procedural's pixels per unit. An
+// object's blobby is sized as if instanced where it is defined.
 int screenCells(RibParser& reader, const PrimitiveDesc& d, const BlobbyField& field) {
     Vec3d lo, hi;
     if (!field.bound(&lo, &hi)) return kMinCells;
     const ReadDetail& detail = reader.readDetail();
-    const Matrix4& toWorld = d.objectToWorld.keys().front();
+    // In an object's definition, as if instanced where it is defined (ObjectBegin's transform).
+    const RibState& st = reader.state();
+    const Matrix4 toWorld = st.defining ? d.objectToWorld.keys().front() * st.defining->ctm.keys().front()
+                                        : d.objectToWorld.keys().front();
     auto cellsFor = [](double pixels) {
         if (!std::isfinite(pixels)) return kMaxCells;
         return int(std::clamp(std::ceil(pixels / kPixelsPerCell), double(kMinCells), double(kMaxCells)));
@@ -151,7 +155,7 @@ int screenCells(RibParser& reader, const PrimitiveDesc& d, const BlobbyField& fi
         }
         return cellsFor(std::max({whi.x - wlo.x, whi.y - wlo.y, whi.z - wlo.z}) * detail.pixelsPerUnit);
     }
-    const CameraDesc& cam = reader.scene().camera;
+    const CameraDesc& cam = reader.camera();
     const double xres = detail.xres > 0 ? detail.xres : cam.xres * detail.formatScale;
     const double yres = detail.yres > 0 ? detail.yres : cam.yres * detail.formatScale;
     const bool perspective = cam.projection == ProjectionKind::Perspective;

@@ -136,6 +136,8 @@ class RibParser {
     // ---- For request handlers (rib_requests.h)
     // Where primitives go: the scene, or the object being defined (ObjectBegin).
     Scene& scene() { return state_.defining ? *state_.defining->object : scene_; }
+    // The scene's camera, also while an object is defined (the object's own scene has none).
+    const CameraDesc& camera() const { return scene_.camera; }
     Log& log() { return log_; }
     RibState& state() { return state_; }
     const RibState& state() const { return state_; }

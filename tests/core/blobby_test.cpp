@@ -229,6 +229,21 @@ TEST(Blobby, ProceduralOutputIsCutForItsSizeOnScreen) {
     EXPECT_NEAR(test::alphaSum(read), kPi * r * r, 0.01 * kPi * r * r);
 }
 
+TEST(Blobby, AnObjectsBlobbyIsCutAsIfInstancedWhereDefined) {
+    // An object's definition has no camera of its own: its blobby is sized by the scene's camera
+    // with ObjectBegin's transform. Instanced there, it is the same as inline, pixel for pixel
+    // (before, a default camera at the origin cut it at 256 cells).
+    const std::string head = test::orthoHeader(64, 64) + "Translate 32 32 0\nScale 0.5 0.5 1\n";
+    const std::string blob = blobby(1, "1001 0", sphereMatrix(50, 0, 0, 100));
+    const test::RenderResult inline_ = test::renderRib(head + blob + "WorldEnd\n");
+    const test::RenderResult instanced = test::renderRib(head + "ObjectBegin \"blob\"\n" + blob +
+                                                         "ObjectEnd\nObjectInstance \"blob\"\nWorldEnd\n");
+    EXPECT_EQ(instanced.stats.counters.micropolygons, inline_.stats.counters.micropolygons);
+    EXPECT_TRUE(test::identicalPixels(instanced, inline_));
+    const double r = 25 * kLevelRadius;
+    EXPECT_NEAR(test::alphaSum(instanced), kPi * r * r, 0.01 * kPi * r * r);
+}
+
 TEST(Blobby, BadInputNamesFileAndLine) {
     const std::string head = "WorldBegin\n";
     const std::string m = sphereMatrix(1, 0, 0, 0);
