@@ -272,6 +272,44 @@ TEST_P(ShadowAlgorithm, MovingOccluderShadowIsTheAnalyticBlurRamp) {
     EXPECT_GT(r.stats.counters.shadowRays, 0u);
 }
 
+// Rays are cast only during the exposures of the frames rendered, so the ray tracer takes only
+// what exists then: one frame of a shot whose occluder is keyed every frame holds that frame's
+// motion segment (and the still floor), not the shot's sixteen, and gives the pixels it gives
+// rendered with the whole shot.
+TEST(Raytrace, OneFrameOfALongShotTracesOnlyItsOwnTime) {
+    std::string keys = "MotionBegin [", moves;
+    for (int k = 0; k <= 16; ++k) {
+        keys += std::to_string(k) + (k < 16 ? " " : "]\n");
+        moves += "Translate " + std::to_string(k) + " 0 0\n";
+    }
+    const std::string rib = "Option \"streyes\" \"int frames\" [0 15]\n" +
+                            orthoHeader(32, 4, "PixelSamples 4 4\nShutter 0 0.5\n") +
+                            "Attribute \"light\" \"shadows\" \"on\"\n"
+                            "LightSource \"distantlight\" 1 \"intensity\" [1.41421356] \"from\" [0 0 0] \"to\" [1 0 1]\n"
+                            "Surface \"matte\" \"Ka\" [0]\n" + square(0, 32, 0, 4, 10) + keys + moves +
+                            "MotionEnd\n" + square(0, 4, 0, 4, 5) + "WorldEnd\n";
+    for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Raytrace}) {
+        SCOPED_TRACE(algorithmName(a));
+        RenderOptions o = test::optionsFor(a);
+        o.hasFrames = true;
+        o.firstFrame = 0;
+        o.lastFrame = 15;
+        const RenderResult shot = renderRib(rib, o);
+        o.firstFrame = o.lastFrame = 5;
+        const RenderResult alone = renderRib(rib, o);
+        EXPECT_EQ(shot.stats.counters.traceBodies, 17u);  // the floor and the occluder's 16 segments
+        EXPECT_EQ(alone.stats.counters.traceBodies, 2u);  // the floor and frame 5's segment
+        RenderResult five;
+        five.frames = {shot.frame(5)};
+        EXPECT_TRUE(test::identicalPixels(five, alone));
+        // Frame 5: the occluder moves from x 5-9 to 5.5-9.5, its shadow from 10-14 to 10.5-14.5.
+        for (int y = 0; y < 4; ++y) {
+            EXPECT_EQ(alone.channel(5, 11, y, 0), 0.0f);  // shadowed throughout
+            EXPECT_NEAR(alone.channel(5, 20, y, 0), 1.0f, 1e-5f);  // lit
+        }
+    }
+}
+
 // A light that casts shadows but has nothing in its way gives the light it gives without them:
 // the shading split into shadowed parts adds back up.
 TEST(Raytrace, UnblockedShadowLightAddsUpToThePlainLight) {
