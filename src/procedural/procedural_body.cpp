@@ -32,7 +32,8 @@ static double pixelsPerUnit(const ProceduralDesc& d, double detail) {
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     }
     const double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-    return side > 0 && std::isfinite(side) ? std::sqrt(detail) / side : 0;
+    if (!(detail < std::numeric_limits<double>::infinity())) return detail;  // reaches the eye plane: the most
+    return side > 0 && std::isfinite(side) ? std::sqrt(detail) / side : std::sqrt(detail);  // a point: per unit
 }
 
 ProceduralBody::ProceduralBody(ProceduralDesc desc, std::shared_ptr<const ProceduralGenerator> generator,
