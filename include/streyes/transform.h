@@ -28,6 +28,7 @@ struct Matrix4 {
 
     Vec3d point(Vec3d p) const;    // p * M, with the homogeneous divide
     Vec3d vector(Vec3d v) const;   // v * M, no translation
+    Bounds3d box(const Bounds3d& b) const;  // the box of b's eight corners, each p * M (empty stays empty)
     bool isFinite() const;
 };
 

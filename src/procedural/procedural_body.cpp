@@ -23,15 +23,8 @@ double detailOfLevel(int level) {
 // of its raster area over its bound's longest side in world space (its transform's first key),
 // for what its output decides while it is read (a Blobby's cells). Block-invariant, as the level is.
 static double pixelsPerUnit(const ProceduralDesc& d, double detail) {
-    const Bounds3d& b = d.bound;
-    const Matrix4& toWorld = d.objectToWorld.keys().front();
-    Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    for (int c = 0; c < 8; ++c) {
-        const Vec3d p = toWorld.point({c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z});
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    }
-    const double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    const Vec3d size = d.objectToWorld.keys().front().box(d.bound).diagonal();
+    const double side = std::max({size.x, size.y, size.z});
     if (!(detail < std::numeric_limits<double>::infinity())) return detail;  // reaches the eye plane: the most
     return side > 0 && std::isfinite(side) ? std::sqrt(detail) / side : std::sqrt(detail);  // a point: per unit
 }

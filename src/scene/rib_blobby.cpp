@@ -147,13 +147,8 @@ int screenCells(RibParser& reader, const PrimitiveDesc& d, const BlobbyField& fi
         return int(std::clamp(std::ceil(pixels / kPixelsPerCell), double(kMinCells), double(kMaxCells)));
     };
     if (detail.pixelsPerUnit > 0) {
-        Vec3d wlo{1e300, 1e300, 1e300}, whi{-1e300, -1e300, -1e300};
-        for (int c = 0; c < 8; ++c) {
-            const Vec3d p = toWorld.point({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
-            wlo = {std::min(wlo.x, p.x), std::min(wlo.y, p.y), std::min(wlo.z, p.z)};
-            whi = {std::max(whi.x, p.x), std::max(whi.y, p.y), std::max(whi.z, p.z)};
-        }
-        return cellsFor(std::max({whi.x - wlo.x, whi.y - wlo.y, whi.z - wlo.z}) * detail.pixelsPerUnit);
+        const Vec3d size = toWorld.box(Bounds3d(lo, hi)).diagonal();
+        return cellsFor(std::max({size.x, size.y, size.z}) * detail.pixelsPerUnit);
     }
     const CameraDesc& cam = reader.camera();
     const double xres = detail.xres > 0 ? detail.xres : cam.xres * detail.formatScale;

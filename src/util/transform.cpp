@@ -44,6 +44,13 @@ Matrix4 Matrix4::rotate(double degrees, Vec3d axis) {
     return r;
 }
 
+Bounds3d Matrix4::box(const Bounds3d& b) const {
+    Bounds3d r;
+    if (b.empty()) return r;
+    for (int c = 0; c < 8; ++c) r.extend(point({c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z}));
+    return r;
+}
+
 Vec3d Matrix4::point(Vec3d p) const {
     double x = p.x * m[0] + p.y * m[4] + p.z * m[8] + m[12];
     double y = p.x * m[1] + p.y * m[5] + p.z * m[9] + m[13];

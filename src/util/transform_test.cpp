@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "streyes/transform.h"
 
 namespace streyes {
@@ -25,6 +27,18 @@ TEST(Transform, InverseUndoes) {
     expectNear((m * inv).point({7, 8, 9}), {7, 8, 9}, 1e-9);
     Matrix4 singular = Matrix4::scale({1, 0, 1});
     EXPECT_FALSE(invert(singular, &inv));
+}
+
+TEST(Transform, BoxHoldsEveryCornerTransformed) {
+    // A quarter turn about z, then a move: x [1, 2] y [0, 3] z [0, 1] goes to x [-3, 0] y [1, 2],
+    // then x [7, 10] y [1, 2] z [0, 1]; a 45-degree turn widens a unit square to its diagonal.
+    const Bounds3d b({1, 0, 0}, {2, 3, 1});
+    const Bounds3d r = (Matrix4::rotate(90, {0, 0, 1}) * Matrix4::translate({10, 0, 0})).box(b);
+    expectNear(r.lo, {7, 1, 0});
+    expectNear(r.hi, {10, 2, 1});
+    const Vec3d d = Matrix4::rotate(45, {0, 0, 1}).box(Bounds3d({0, 0, 0}, {1, 1, 1})).diagonal();
+    expectNear(d, {std::sqrt(2.0), std::sqrt(2.0), 1});
+    EXPECT_TRUE(Matrix4().box(Bounds3d()).empty());  // an empty box stays empty
 }
 
 TEST(MotionTransform, LinearBetweenKeysHeldOutside) {
