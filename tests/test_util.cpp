@@ -75,6 +75,23 @@ RenderResult renderRib(const std::string& rib, const RenderOptions& options) {
     return renderWithLog(scene, options, log);
 }
 
+ShotAndFrame renderShotAndFrame(const std::string& rib, RenderOptions options, int first, int last, int frame) {
+    ShotAndFrame r;
+    options.hasFrames = true;
+    options.firstFrame = first;
+    options.lastFrame = last;
+    r.shot = renderRib(rib, options);
+    options.firstFrame = options.lastFrame = frame;
+    r.alone = renderRib(rib, options);
+    return r;
+}
+
+bool ShotAndFrame::samePixels(int frame) const {
+    RenderResult one;
+    one.frames = {shot.frame(frame)};
+    return identicalPixels(one, alone);
+}
+
 RenderResult renderScene(const Scene& scene, const RenderOptions& options) {
     Log log;
     return renderWithLog(scene, options, log);

@@ -83,6 +83,13 @@ inline RenderOptions optionsFor(Algorithm a) {
 }
 
 RenderResult renderRib(const std::string& rib, const RenderOptions& options = {});
+// Frames [first, last] of a RIB rendered together, and frame `frame` rendered alone (`options`
+// otherwise): for tests of what a frame's render depends on.
+struct ShotAndFrame {
+    RenderResult shot, alone;
+    bool samePixels(int frame) const;  // the shot's frame and the lone render, bit for bit
+};
+ShotAndFrame renderShotAndFrame(const std::string& rib, RenderOptions options, int first, int last, int frame);
 // The InputError a RIB string read as "bad.rib" makes, or "" when it reads.
 std::string ribError(const std::string& rib);
 RenderResult renderScene(const Scene& scene, const RenderOptions& options = {});

@@ -18,7 +18,7 @@ namespace streyes {
 //   SHOWN(key, expression)  written under "counters" but not a member: derived from the counters
 //                           `c`, or the render's own (`s`, a RenderStats)
 #define STREYES_RENDER_COUNTERS(COUNT, LIST, SECONDS, SHOWN)                                          \
-    COUNT(rootBodies, "root_bodies") /* bodies made from the scene (one per motion segment) */         \
+    COUNT(rootBodies, "root_bodies") /* bodies made from the scene (a motion segment the frames reach) */ \
     COUNT(buckets, "buckets")                                                                          \
     COUNT(splitsU, "splits.u")                                                                         \
     COUNT(splitsV, "splits.v")                                                                         \

@@ -437,7 +437,7 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
         addSurface(std::make_unique<BezierMesh>(shape.topology(), segmentSpan(t0, t1, ts, lastOpen), mat, camera_,
                                                 shape.patches(points[i]), std::move(k1), colors),
                    src, primitiveId, out, keep, block, width);
-    });
+    }, wantedStart_, wantedEnd_);
 }
 
 // The topology once, the limit surface per key, a SubdivisionMesh per segment.
@@ -500,7 +500,7 @@ void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t prim
         addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), segmentSpan(t0, t1, ts, lastOpen), mat,
                                                      camera_, colors),
                    src, primitiveId, out, keep, block, width);
-    });
+    }, wantedStart_, wantedEnd_);
 }
 
 // A QuadricMesh per segment: the quadric's arguments and transform at both ends.
@@ -541,7 +541,7 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::ve
         addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, segmentSpan(t0, t1, ts, w.openEnd), mat, camera_,
                                                  colors),
                    src, primitiveId, out, keep);
-    });
+    }, wantedStart_, wantedEnd_);
 }
 
 // A NurbsMesh per segment over the patch's shape (knots, weights, trim), shared by the segments.
@@ -584,7 +584,7 @@ void BodyFactory::addNuPatch(const NuPatchDesc& p, uint64_t primitiveId, std::ve
         addSurface(std::make_unique<NurbsMesh>(shared, points[i], j != i ? points[j] : std::vector<Vec3d>{},
                                                segmentSpan(t0, t1, ts, lastOpen), mat, camera_, colors, varying),
                    src, primitiveId, out, keep);
-    });
+    }, wantedStart_, wantedEnd_);
     // Shaders see a NuPatch's own parameters, [umin, umax] x [vmin, vmax] (RenderMan's rule for NURBS).
     for (size_t b = first; b < out.size(); ++b)
         out[b]->uv = {float(p.umin), float(p.umax), float(p.vmin), float(p.vmax)};

@@ -13,11 +13,12 @@
 #include <atomic>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <map>
-#include <tuple>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -46,6 +47,10 @@ class BodyFactory final : public ChildBodyMaker {
 
     double windowStart() const override { return windowStart_; }
     double windowEnd() const override { return windowEnd_; }
+    // The exposures of the frames rendered, inside the window: a primitive's motion segments
+    // wholly outside them are not made (a frame of a long shot converts only its own keys of a
+    // deforming mesh). The segments made are the same, so the pixels are. Default: every segment.
+    void setWanted(double a, double b) { wantedStart_ = a, wantedEnd_ = b; }
 
     // One body per motion segment of the patch, appended to `out`. Patches whose corners are not
     // finite in camera space, or lie beyond 1e37 (where float overflows when they are split),
@@ -169,6 +174,7 @@ class BodyFactory final : public ChildBodyMaker {
 
     MotionTransform worldToCamera_;
     double windowStart_, windowEnd_;
+    double wantedStart_ = -std::numeric_limits<double>::infinity(), wantedEnd_ = std::numeric_limits<double>::infinity();
     Log& log_;
     std::mutex mutex_;
     const MaterialBinder* binder_ = nullptr;

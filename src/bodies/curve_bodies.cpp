@@ -45,7 +45,7 @@ void BodyFactory::addCurves(const CurvesDesc& c, uint64_t primitiveId, std::vect
         addSurface(std::make_unique<BezierMesh>(ribbons.topology(), segmentSpan(t0, t1, ts, lastOpen), mat, camera_,
                                                 key(i), std::move(k1), colors),
                    src, primitiveId, out, keep);
-    });
+    }, wantedStart_, wantedEnd_);
 }
 
 void BodyFactory::addPoints(const PointsDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep) {
@@ -88,7 +88,7 @@ void BodyFactory::addPoints(const PointsDesc& p, uint64_t primitiveId, std::vect
         }
         std::lock_guard<std::mutex> lock(mutex_);
         clouds_.push_back(std::move(cloud));
-    });
+    }, wantedStart_, wantedEnd_);
 }
 
 }  // namespace streyes

@@ -1,9 +1,12 @@
 #include "bodies/render_scene.h"
 
+#include <algorithm>
+
 namespace streyes {
 
 std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame, int lastFrame, int xres, int yres,
-                                              Log& log, const MaterialBinder* binder) {
+                                              Log& log, const MaterialBinder* binder, int renderedFirst,
+                                              int renderedLast) {
     auto rs = std::make_unique<RenderScene>();
     CameraDesc cam = scene.camera;
     if (xres > 0 && yres > 0) {
@@ -19,6 +22,9 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     rs->factory->setCamera(&rs->camera);
     rs->factory->setExposure(rs->shutter.close - rs->shutter.open);
     rs->factory->setMaterialBinder(binder);
+    if (renderedFirst > INT_MIN || renderedLast < INT_MAX)
+        rs->factory->setWanted(std::max(firstFrame, renderedFirst) + rs->shutter.open,
+                               std::min(lastFrame, renderedLast) + rs->shutter.close);
     // Primitive ids from 1, in the order BodyFactory::addPrimitives takes them.
     uint64_t id = 0;
     rs->factory->addPrimitives(scene, {}, 0, [&id] { return ++id; }, rs->roots);

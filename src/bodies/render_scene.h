@@ -2,6 +2,7 @@
 // for the time window of one render (frames [first, last] with their exposures).
 #pragma once
 
+#include <climits>
 #include <memory>
 #include <vector>
 
@@ -26,7 +27,11 @@ struct RenderScene {
 // the frames rendered lie inside it, and bodies do not depend on which). Camera resolution overrides
 // (xres/yres > 0) replace the scene's Format.
 // `binder` binds the materials' Shading Language shaders (null: built-in shading only).
+// [renderedFirst, renderedLast]: the frames that will be rendered, inside the shot; the motion
+// segments of primitives that none of their exposures meet are not made (BodyFactory::setWanted).
+// Default: the shot.
 std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame, int lastFrame, int xres,
-                                              int yres, Log& log, const MaterialBinder* binder = nullptr);
+                                              int yres, Log& log, const MaterialBinder* binder = nullptr,
+                                              int renderedFirst = INT_MIN, int renderedLast = INT_MAX);
 
 }  // namespace streyes

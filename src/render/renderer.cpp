@@ -157,7 +157,7 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     arena.execute([&] {
         shaders_ = std::make_unique<SceneShaders>(scene, log, options.textureSource);
         scene_ = buildRenderScene(scene, settings_.shotFirst, settings_.shotLast, settings_.width, settings_.height, log,
-                                  shaders_.get());
+                                  shaders_.get(), settings_.firstFrame, settings_.lastFrame);
     });
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }

@@ -278,6 +278,34 @@ std::string orthoHeader(int w, int h) {
            "WorldBegin\nSurface \"constant\"\n";
 }
 
+// A deforming mesh keyed every frame of a 16-frame shot: one frame rendered alone makes only the
+// motion segments its exposure meets (each key is converted to the mesh's limit surface only
+// where a segment needs it), and gives the pixels it gives rendered with the whole shot.
+TEST(CurvedRender, AFrameOfADeformingMeshMakesOnlyItsOwnSegments) {
+    std::string times, keys;
+    for (int k = 0; k <= 16; ++k) {
+        times += std::to_string(k) + (k < 16 ? " " : "");
+        std::string P;
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i)
+                P += std::to_string(4 + 8 * i + k) + " " + std::to_string(4 + 8 * j) + " " +
+                     std::to_string(10 + 0.3 * ((i + j + k) % 3)) + " ";
+        keys += "SubdivisionMesh \"catmull-clark\" [4 4 4 4] [0 1 4 3 1 2 5 4 3 4 7 6 4 5 8 7] "
+                "[\"interpolateboundary\"] [0 0] [] [] \"P\" [" + P + "]\n";
+    }
+    const std::string rib = "Option \"streyes\" \"int frames\" [0 15]\nShutter 0 0.5\n" + orthoHeader(48, 32) +
+                            "MotionBegin [" + times + "]\n" + keys + "MotionEnd\nWorldEnd\n";
+    const test::ShotAndFrame r = test::renderShotAndFrame(rib, {}, 0, 15, 5);
+    const RenderResult &shot = r.shot, &alone = r.alone;
+    // The same bodies for each of the 16 segments; frame 5's exposure [5, 5.5] meets the segment
+    // [5, 6), and touches [4, 5) at its end: kept, as a segment that reaches the window's edge is.
+    ASSERT_GT(shot.stats.counters.rootBodies, 0u);
+    EXPECT_EQ(shot.stats.counters.rootBodies % 16, 0u);
+    EXPECT_EQ(alone.stats.counters.rootBodies, 2 * (shot.stats.counters.rootBodies / 16));
+    EXPECT_TRUE(r.samePixels(5));
+    EXPECT_GT(alphaSum(alone, 5), 200.0);  // the sheet is there: about 16 x 16 pixels of limit surface
+}
+
 TEST(CurvedRender, ConcavePolygonWithAHoleCoversItsArea) {
     // An L-shaped outline (area 380) with a square hole (area 16), and a concave arrow head given
     // as PointsGeneralPolygons (a 12 x 12 square less a notch of area 36); one unit is one pixel,

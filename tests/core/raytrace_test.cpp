@@ -290,18 +290,11 @@ TEST(Raytrace, OneFrameOfALongShotTracesOnlyItsOwnTime) {
                             "MotionEnd\n" + square(0, 4, 0, 4, 5) + "WorldEnd\n";
     for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Raytrace}) {
         SCOPED_TRACE(algorithmName(a));
-        RenderOptions o = test::optionsFor(a);
-        o.hasFrames = true;
-        o.firstFrame = 0;
-        o.lastFrame = 15;
-        const RenderResult shot = renderRib(rib, o);
-        o.firstFrame = o.lastFrame = 5;
-        const RenderResult alone = renderRib(rib, o);
+        const test::ShotAndFrame r = test::renderShotAndFrame(rib, test::optionsFor(a), 0, 15, 5);
+        const RenderResult &shot = r.shot, &alone = r.alone;
         EXPECT_EQ(shot.stats.counters.traceBodies, 17u);  // the floor and the occluder's 16 segments
         EXPECT_EQ(alone.stats.counters.traceBodies, 2u);  // the floor and frame 5's segment
-        RenderResult five;
-        five.frames = {shot.frame(5)};
-        EXPECT_TRUE(test::identicalPixels(five, alone));
+        EXPECT_TRUE(r.samePixels(5));
         // Frame 5: the occluder moves from x 5-9 to 5.5-9.5, its shadow from 10-14 to 10.5-14.5.
         for (int y = 0; y < 4; ++y) {
             EXPECT_EQ(alone.channel(5, 11, y, 0), 0.0f);  // shadowed throughout
