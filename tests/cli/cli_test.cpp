@@ -46,6 +46,12 @@ TEST(Cli, HelpAndUsageErrors) {
     CliRun bad = streyes("render --bogus x.rib");
     EXPECT_EQ(bad.exitCode, 2);
     EXPECT_NE(bad.output.find("unknown option '--bogus'"), std::string::npos);
+    // The message, the synopsis and where the options are; not the whole help, which would scroll
+    // the message away.
+    EXPECT_NE(bad.output.find("usage: streyes render"), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find("streyes render --help lists the options."), std::string::npos) << bad.output;
+    EXPECT_EQ(bad.output.find("--tolerance EPS"), std::string::npos) << bad.output;
+    EXPECT_EQ(bad.output.find("unknown option"), bad.output.find("streyes: ") + 9);  // the first line
     CliRun badFrames = streyes("render x.rib --frames 5-2");
     EXPECT_EQ(badFrames.exitCode, 2);
 }
