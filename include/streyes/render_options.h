@@ -62,7 +62,8 @@ struct RenderOptions {
     // --shot: the whole animation the frames belong to. What is decided once for the animation
     // (motion segments, procedural level of detail and sway keys) is decided over the shot, so that
     // a frame's pixels do not depend on which frames are rendered with it. By default the
-    // scene's frames (Option "streyes" "int frames") joined with those rendered.
+    // scene's frames (Option "streyes" "int frames") joined with those rendered. A shot given must
+    // hold the frames rendered (else resolveSettings throws InputError).
     bool hasShot = false;
     int shotFirst = 0, shotLast = 0;
     int xres = 0, yres = 0;          // --res; 0: the scene's Format

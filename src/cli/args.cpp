@@ -65,7 +65,7 @@ render options:
   --shot A-B          the whole animation these frames belong to: motion segments and procedurals'
                       level of detail are decided over it, so that a frame renders the same
                       whatever other frames are rendered with it (render farms pass it);
-                      default: the scene's frames joined with those rendered
+                      it must hold them; default: the scene's frames joined with those rendered
   --res WxH           image size in pixels; default: the scene's Format
   --samples N         samples per pixel per frame; default: the scene's PixelSamples
   --algorithm NAME    spacetime-occlusion (default): Algorithm S with occlusion culling

@@ -65,6 +65,11 @@ ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& o) {
     if (o.hasShot) {
         r.shotFirst = o.shotFirst;
         r.shotLast = o.shotLast;
+        // Bodies exist over the shot only: a frame outside it would render empty.
+        if (r.firstFrame < r.shotFirst || r.lastFrame > r.shotLast)
+            throw InputError("frames " + std::to_string(r.firstFrame) + "-" + std::to_string(r.lastFrame) +
+                             " lie outside the shot " + std::to_string(r.shotFirst) + "-" + std::to_string(r.shotLast) +
+                             " (--shot): a shot holds every frame rendered with it; widen --shot or leave it out");
     } else {
         r.shotFirst = scene.settings.hasFrames ? std::min(r.firstFrame, scene.settings.firstFrame) : r.firstFrame;
         r.shotLast = scene.settings.hasFrames ? std::max(r.lastFrame, scene.settings.lastFrame) : r.lastFrame;

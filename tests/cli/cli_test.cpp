@@ -108,6 +108,20 @@ TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
     EXPECT_NE(json.find("\"frames\": [3, 4]"), std::string::npos);
 }
 
+// Bodies exist over the shot only: frames outside --shot would render empty, so they are refused.
+TEST(Cli, FramesOutsideTheShotAreBadInput) {
+    const test::TempDir tempDir("cli-shot");
+    const std::string& dir = tempDir.path();
+    const std::string scene = writeFile(dir, "tiny.rib", kTiny);
+    const CliRun r = streyes("render " + scene + " --frames 3 --shot 4-6 -o " + dir + "/f.####.exr");
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("frames 3-3 lie outside the shot 4-6 (--shot)"), std::string::npos) << r.output;
+    EXPECT_EQ(listDir(dir), (std::vector<std::string>{"tiny.rib"}));  // nothing written
+    const CliRun inside = streyes("render " + scene + " --frames 4 --shot 4-6 -q -o " + dir + "/f.####.exr");
+    EXPECT_EQ(inside.exitCode, 0) << inside.output;
+    EXPECT_GT(readImage(dir + "/f.0004.exr").at(8, 4, 3), 0.99f);  // the patch is there
+}
+
 // DepthOfField from the command line: a bad lens exits 2 at its line; --dof-preview writes every
 // frame, blurred (the square's edge spreads over pixels the pinhole leaves empty).
 TEST(Cli, DepthOfFieldPreviewWritesEveryFrameBlurred) {
