@@ -125,6 +125,18 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
     }
 }
 
+// What a render does without a shader it cannot find, for the warning.
+static const char* missingShaderFallback(sl::ShaderType type) {
+    switch (type) {
+    case sl::ShaderType::Surface: return "using defaultsurface";
+    case sl::ShaderType::Light: return "the light is dark";
+    case sl::ShaderType::Displacement: return "the surface is not displaced";
+    case sl::ShaderType::Volume: return "no atmosphere";
+    case sl::ShaderType::Imager: return "no imager runs";
+    }
+    return "skipped";
+}
+
 std::shared_ptr<sl::ShaderInstance> SceneShaders::instance(const std::string& name, const ParamList& params,
                                                            const SourceLoc& loc, sl::ShaderType type) const {
     // Without a search path, the folder of the RIB file that names the shader comes first.
@@ -140,8 +152,7 @@ std::shared_ptr<sl::ShaderInstance> SceneShaders::instance(const std::string& na
         for (const std::string& d : cache_->searchPath()) dirs += (dirs.empty() ? "" : ":") + d;
         log_.warnOnce(std::string(sl::shaderTypeName(type)) + ":" + name, loc,
                       std::string(sl::shaderTypeName(type)) + " shader \"" + name + "\" not found (searchpath " + dirs +
-                          "; see Option \"searchpath\" \"shader\"): " +
-                          (type == sl::ShaderType::Light ? "the light is dark" : "using defaultsurface"));
+                          "; see Option \"searchpath\" \"shader\"): " + missingShaderFallback(type));
         return nullptr;
     }
     sl::ProgramPtr program = cache_->get(file, loc);

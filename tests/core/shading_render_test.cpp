@@ -310,5 +310,46 @@ TEST(ShadingLanguage, ImagerPaintsBehindWhatWasRendered) {
     }
 }
 
+// The shipped `background` imager (shaders/background.sl), as exporters write it: a half-covered
+// pixel is its colour plus half the background, and every pixel is opaque.
+TEST(ShadingLanguage, ShippedBackgroundImagerFillsWhatIsNotCovered) {
+    const std::string rib = view(8, 8, "Imager \"background\" \"color background\" [0.2 0.4 0.6]\n") +
+                            "WorldBegin\nColor [1 0 0]\nSurface \"constant\"\n" + test::square(0, 4.5, 0, 8, 10) +
+                            "WorldEnd\n";
+    const test::RenderResult r = test::renderRib(rib);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    for (int x = 0; x < 8; ++x) {
+        SCOPED_TRACE(x);
+        const float covered = x < 4 ? 1.0f : x == 4 ? 0.5f : 0.0f;
+        EXPECT_NEAR(r.channel(0, x, 3, 0), covered + (1 - covered) * 0.2f, 1e-6f);
+        EXPECT_NEAR(r.channel(0, x, 3, 1), (1 - covered) * 0.4f, 1e-6f);
+        EXPECT_NEAR(r.channel(0, x, 3, 2), (1 - covered) * 0.6f, 1e-6f);
+        EXPECT_EQ(r.alpha(0, x, 3), 1.0f);
+    }
+}
+
+// A shader that cannot be found warns once, saying what the render does without it; the frame
+// renders: the square with defaultsurface, no imager (so the background stays clear).
+TEST(ShadingLanguage, MissingShadersWarnWithWhatTheRenderDoesInstead) {
+    const std::string rib = view(8, 8, "Imager \"noimager\"\n") +
+                            "WorldBegin\nLightSource \"nolight\" 1\nDisplacement \"nodisplacement\"\n"
+                            "Atmosphere \"noatmosphere\"\nSurface \"nosurface\"\n" + test::square(0, 4, 0, 8, 10) +
+                            "WorldEnd\n";
+    const test::RenderResult r = test::renderRib(rib);
+    auto warned = [&](const std::string& name, const std::string& instead) {
+        for (const std::string& w : r.warnings)
+            if (w.find("\"" + name + "\" not found") != std::string::npos && w.find("): " + instead) != std::string::npos)
+                return true;
+        return false;
+    };
+    EXPECT_TRUE(warned("noimager", "no imager runs"));
+    EXPECT_TRUE(warned("nolight", "the light is dark"));
+    EXPECT_TRUE(warned("nodisplacement", "the surface is not displaced"));
+    EXPECT_TRUE(warned("noatmosphere", "no atmosphere"));
+    EXPECT_TRUE(warned("nosurface", "using defaultsurface"));
+    EXPECT_EQ(r.alpha(0, 2, 3), 1.0f);  // the square
+    EXPECT_EQ(r.alpha(0, 6, 3), 0.0f);  // no imager filled the rest
+}
+
 }  // namespace
 }  // namespace streyes
