@@ -53,7 +53,7 @@ const AtomTrace& atom(int mode) {
         a->log.setQuiet(true);
         a->scene = parseRibFile(std::string(STREYES_SOURCE_DIR) + "/scenes/atom.rib", a->log);
         a->rs = buildRenderScene(a->scene, 1, 16, 0, 0, a->log);
-        a->trace = std::make_unique<TraceScene>(*a->rs, a->rs->windowStart, a->rs->windowEnd, RenderOptions{}, a->log);
+        a->trace = std::make_unique<TraceScene>(*a->rs, RenderOptions{}, a->log);
         HierarchyOptions o;
         if (mode == 0) {
             a->trace->buildFrames(1, 16, o);

@@ -18,13 +18,13 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     rs->lights = LightSet(scene.lights, cam.worldToCamera);
     rs->windowStart = firstFrame + rs->shutter.open;
     rs->windowEnd = lastFrame + rs->shutter.close;
+    rs->renderedStart = std::max(firstFrame, renderedFirst) + rs->shutter.open;
+    rs->renderedEnd = std::min(lastFrame, renderedLast) + rs->shutter.close;
     rs->factory = std::make_unique<BodyFactory>(cam.worldToCamera, rs->windowStart, rs->windowEnd, log);
     rs->factory->setCamera(&rs->camera);
     rs->factory->setExposure(rs->shutter.close - rs->shutter.open);
     rs->factory->setMaterialBinder(binder);
-    if (renderedFirst > INT_MIN || renderedLast < INT_MAX)
-        rs->factory->setWanted(std::max(firstFrame, renderedFirst) + rs->shutter.open,
-                               std::min(lastFrame, renderedLast) + rs->shutter.close);
+    rs->factory->setWanted(rs->renderedStart, rs->renderedEnd);
     // Primitive ids from 1, in the order BodyFactory::addPrimitives takes them.
     uint64_t id = 0;
     rs->factory->addPrimitives(scene, {}, 0, [&id] { return ++id; }, rs->roots);

@@ -19,6 +19,9 @@ struct RenderScene {
     Shutter shutter;
     LightSet lights;
     double windowStart = 0, windowEnd = 0;    // the shot's exposures: [first + open, last + close]
+    // The exposures of the frames rendered, inside the window: nothing outside them is sampled or
+    // traced, so motion segments and trace bodies that miss them are not made.
+    double renderedStart = 0, renderedEnd = 0;
     std::unique_ptr<BodyFactory> factory;
     std::vector<BodyPtr> roots;
 };

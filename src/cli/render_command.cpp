@@ -33,6 +33,7 @@ namespace {
 
 // --preview's samples per pixel (at most the scene's own).
 constexpr int kPreviewSamples = 4;
+constexpr int kPreviewDivisor = 2;  // --preview renders the Format's size divided by this
 
 void parseFrames(const std::string& v, RenderOptions& o) {
     parseFrameRange("--frames", v, &o.firstFrame, &o.lastFrame);
@@ -335,8 +336,8 @@ void applyPreview(RenderRequest& req, const Scene& scene) {
     // tolerance never did, so it stays exact.
     RenderOptions& opts = req.opts;
     if (opts.xres <= 0) {
-        opts.xres = std::max(1, scene.camera.xres / 2);
-        opts.yres = std::max(1, scene.camera.yres / 2);
+        opts.xres = std::max(1, scene.camera.xres / kPreviewDivisor);
+        opts.yres = std::max(1, scene.camera.yres / kPreviewDivisor);
     }
     if (opts.samples == 0) opts.samples = std::min(kPreviewSamples, scene.settings.pixelSamplesX * scene.settings.pixelSamplesY);
 }
@@ -477,7 +478,7 @@ int renderCommand(const std::vector<std::string>& args) {
     // What is sized while it is read (a Blobby's cells) is sized for the image rendered.
     ReadDetail detail;
     detail.xres = opts.xres, detail.yres = opts.yres;
-    if (req.preview && opts.xres <= 0) detail.formatScale = 0.5;  // applyPreview's size
+    if (req.preview && opts.xres <= 0) detail.formatScale = 1.0 / kPreviewDivisor;  // applyPreview's size
     readSceneBlocks(scenePath, wanted, opts.maxFrameBlock, log, renderBlock, detail);
     const ResolvedSettings& rs = first;
     RenderStats& stats = total;

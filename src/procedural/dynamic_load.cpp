@@ -134,8 +134,7 @@ void expandThroughStream(const ExpandContext& ctx, const std::string& what, cons
     if (!stream.error().empty()) throw InputError(ctx.loc, what + ": a bad call in Subdivide: " + stream.error());
     Scene& scene = out.scene;
     try {
-        scene = parseRibFragment(stream.text(), what + " calls", ctx.objectToWorld, ctx.attributes, *ctx.log,
-                                 fragmentDetail(ctx));
+        scene = parseRibFragment(stream.text(), what + " calls", ctx.objectToWorld, ctx.attributes, *ctx.log, ctx.read);
     } catch (const InputError& e) {
         // The stream holds one request a line: line n is the n-th call.
         throw InputError(ctx.loc, what + ": a bad call in Subdivide: call " + std::to_string(e.loc.line) + ": " +

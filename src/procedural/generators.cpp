@@ -19,7 +19,7 @@ namespace {
 // A procedural's RIB output, parsed under its transform and attributes.
 void parseFragment(const std::string& text, const std::string& name, const ExpandContext& ctx, ProceduralOutput& output) {
     Scene& out = output.scene;
-    out = parseRibFragment(text, name, ctx.objectToWorld, ctx.attributes, *ctx.log, fragmentDetail(ctx));
+    out = parseRibFragment(text, name, ctx.objectToWorld, ctx.attributes, *ctx.log, ctx.read);
     if (!out.lights.empty()) {
         ctx.log->warnOnce("procedural-lights", ctx.loc, "lights declared by a procedural are ignored");
         out.lights.clear();

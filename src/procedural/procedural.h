@@ -27,8 +27,9 @@ class ProceduralGenerator;
 // What expansion knows about the procedural being expanded.
 struct ExpandContext {
     double detail = 0;                 // raster area of the bound in pixels (RenderMan's "detail")
-    double pixelsPerUnit = 0;          // sqrt(detail) over the bound's longest side in world units:
-                                       // how large what it makes is on screen (ReadDetail)
+    ReadDetail read;                   // what its RIB output is read with: how large it is on
+                                       // screen (pixelsPerUnit: sqrt(detail) over the bound's
+                                       // longest side in world units)
     MotionTransform objectToWorld;     // the procedural's transform
     AttributesPtr attributes;          // its attribute state, inherited by the children
     SourceLoc loc;                     // where it was declared
@@ -36,13 +37,6 @@ struct ExpandContext {
     int depth = 0;                     // nesting: 0 for a procedural declared in the scene
     Log* log = nullptr;
 };
-
-// What a procedural's RIB output is read with: its size on screen (streyes/rib.h, ReadDetail).
-inline ReadDetail fragmentDetail(const ExpandContext& ctx) {
-    ReadDetail d;
-    d.pixelsPerUnit = ctx.pixelsPerUnit;
-    return d;
-}
 
 // A procedural a generator made itself (the forest's cells and trees), with its generator: the
 // description alone does not say how to expand it.

@@ -178,7 +178,7 @@ void ProceduralBody::expand(ProceduralChildren& out, int level, ChildBodyMaker& 
                             bool count) const {
     ExpandContext ctx;
     ctx.detail = detailOfLevel(level);
-    ctx.pixelsPerUnit = pixelsPerUnit(desc_, ctx.detail);
+    ctx.read.pixelsPerUnit = pixelsPerUnit(desc_, ctx.detail);
     ctx.objectToWorld = desc_.objectToWorld;
     ctx.attributes = desc_.attributes;
     ctx.loc = desc_.loc;

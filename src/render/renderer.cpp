@@ -255,8 +255,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
         tbb::task_arena traceArena(threads);
         traceArena.execute([&] {
             scene_->factory->setBodyBudget(budget, budget > others ? budget - others : 1);
-            trace = std::make_unique<TraceScene>(*scene_, s.firstFrame + scene_->shutter.open,
-                                                 s.lastFrame + scene_->shutter.close, options_, log_);
+            trace = std::make_unique<TraceScene>(*scene_, options_, log_);
             scene_->factory->setBodyBudget(0, 0);
             if (!traceFrames) {
                 trace->buildSpacetime(options_.hierarchy);

@@ -56,9 +56,7 @@ void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
 
 // ---- TraceScene -------------------------------------------------------------------------------------
 
-TraceScene::TraceScene(const RenderScene& scene, double windowStart, double windowEnd, const RenderOptions& options,
-                       Log& log)
-    : scene_(scene), windowStart_(windowStart), windowEnd_(windowEnd) {
+TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log) : scene_(scene) {
     for (const BodyPtr& root : scene.roots) collect(*root, log);
     // Curved bodies are tessellated in parallel (splitting and dicing are const and thread-safe,
     // as the buckets use them), each into its own deque, then placed where collect met them: the
@@ -88,7 +86,7 @@ TraceScene::TraceScene(const RenderScene& scene, double windowStart, double wind
     include_.extend(Vec3f{-lens, -lens, 0});
     include_.extend(Vec3f{lens, lens, 0});
     std::vector<CameraLight> lights;
-    for (double t : {windowStart_, windowEnd_}) {
+    for (double t : {scene.renderedStart, scene.renderedEnd}) {
         scene.lights.at(t, lights);
         for (const CameraLight& l : lights)
             if ((l.kind == LightKind::Point || l.kind == LightKind::Shader) && isFinite(l.position)) include_.extend(l.position);
@@ -96,7 +94,7 @@ TraceScene::TraceScene(const RenderScene& scene, double windowStart, double wind
 }
 
 void TraceScene::collect(const Body& body, Log& log) {
-    if (!body.time().overlaps(windowStart_, windowEnd_)) return;  // no ray is cast while it exists
+    if (!body.time().overlaps(scene_.renderedStart, scene_.renderedEnd)) return;  // no ray is cast while it exists
     if (const auto* patch = dynamic_cast<const TrilinearBody*>(&body)) {
         bodies_.push_back(patch);
     } else if (body.expands()) {
@@ -125,7 +123,7 @@ void TraceScene::collect(const Body& body, Log& log) {
 void TraceScene::buildSpacetime(const HierarchyOptions& options) {
     const double cpu = processCpuSeconds();
     frames_.clear();
-    spacetime_.build(bodies_, windowStart_, windowEnd_, include_, options);
+    spacetime_.build(bodies_, scene_.renderedStart, scene_.renderedEnd, include_, options);
     boundingVolumes += spacetime_.nodeCount();
     buildSeconds += processCpuSeconds() - cpu;
 }

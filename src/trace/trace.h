@@ -36,12 +36,12 @@ class TraceScene {
     // (all of them: rays go anywhere, shadow rays off screen too), every other kind of body
     // (curved ones) as its micropolygons, diced at the split loop's rate (trace/tessellate.h),
     // bodies in parallel. Throws what a procedural's expansion throws. Only what exists during
-    // [windowStart, windowEnd], the exposures of the frames rendered, is taken: rays are cast at
-    // those times only, so a frame's rays meet the same bodies whatever else is rendered with it
-    // (a render of one frame of a long shot builds for that frame, not the shot).
-    TraceScene(const RenderScene& scene, double windowStart, double windowEnd, const RenderOptions& options, Log& log);
+    // the exposures of the frames rendered (RenderScene::renderedStart, renderedEnd) is taken:
+    // rays are cast at those times only, so a frame's rays meet the same bodies whatever else is
+    // rendered with it (a render of one frame of a long shot builds for that frame, not the shot).
+    TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log);
 
-    // One 4D hierarchy over the window [windowStart, windowEnd].
+    // One 4D hierarchy over the exposures of the frames rendered.
     void buildSpacetime(const HierarchyOptions& options);
     // One 3D hierarchy per frame of [first, first + count) (over its exposure), replacing those
     // built before: the frame-by-frame baseline. Frames are built in parallel (TBB).
@@ -73,7 +73,6 @@ class TraceScene {
     void collect(const Body& body, Log& log);
 
     const RenderScene& scene_;
-    double windowStart_, windowEnd_;
     std::vector<const TrilinearBody*> bodies_;
     std::vector<BodyPtr> pieces_;  // segments of keyed patches
     std::vector<ChildrenLease> leases_;  // the procedurals' children it holds
