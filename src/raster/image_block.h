@@ -160,6 +160,11 @@ class ImageBlock {
     void touch(size_t i) { touched_[i] = 1; }
     bool touched(size_t i) const { return touched_[i] != 0; }
     void untouchAll() { std::fill(touched_.begin(), touched_.end(), uint8_t(0)); }
+    // The still layer, the touch flags and recordsOf's counts as arrays (a sparse block's), for
+    // the still kernel that writes them itself (sample_kernels.h, StillWrite).
+    SampleHit* stillLayer() { return still_.data(); }
+    uint8_t* touchFlags() { return touched_.data(); }
+    const uint16_t* recordCounts() const { return recordsOf_.data(); }
 
     // Dense mode with shadows: the shadowed parts of the S hits of frame fi's record of pixel i,
     // shadowSlots() colours each, valid where a sample has a hit.

@@ -320,8 +320,13 @@ HWY_INLINE hn::Vec<D> compressLanes(D d, hn::Vec<D> v, hn::Mask<D> m, uint64_t b
 // micropolygon of about a pixel has a few candidates in each of about four pixels, so testing
 // pixel by pixel ran mostly empty lanes. Packing keeps pixel order then sample order, so the hits
 // come out in the order the scalar reference makes them.
-uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, const QuadShading* shading, QuadHit* out,
-                  size_t* hitCount) {
+//
+// With a StillWrite (Write), each vector's hits are depth-tested against the still layer at once
+// (a gather of its samples' depths) and the winners written there; only ties and pixels with
+// records come out as QuadHits.
+template <bool Write>
+HWY_INLINE uint64_t testQuad(const QuadSetup& q, const SampleLayout& L, const QuadShading* shading, StillWrite* write,
+                             QuadHit* out, size_t* hitCount) {
     const size_t N = hn::Lanes(kD);
     const hn::RebindToSigned<decltype(kD)> kI;
     V px[5], py[5], dx[5], dy[5], sign[5];
@@ -343,13 +348,13 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, const QuadShading* 
     constexpr size_t kVectors = 16;
     constexpr size_t kRoom = (kVectors + 1) * hn::MaxLanes(kD);
     HWY_ALIGN float bx[kRoom], by[kRoom], l1s[hn::MaxLanes(kD)], l2s[hn::MaxLanes(kD)];
-    HWY_ALIGN float zs[hn::MaxLanes(kD)], rs[hn::MaxLanes(kD)], gs[hn::MaxLanes(kD)], bs[hn::MaxLanes(kD)];
-    HWY_ALIGN int32_t bpixel[kRoom], bsample[kRoom];  // read only for packed lanes
+    HWY_ALIGN float zs[hn::MaxLanes(kD)] = {}, rs[hn::MaxLanes(kD)] = {}, gs[hn::MaxLanes(kD)] = {}, bs[hn::MaxLanes(kD)] = {};
+    HWY_ALIGN int32_t bpixel[kRoom], bslot[kRoom];  // pixel, and pixel * S + sample; read only for packed lanes
     size_t packed = 0;
     uint64_t tested = 0;
     size_t hits = *hitCount;
     // Tests packed lanes [at, at + n) (at a multiple of N) and appends their hits.
-    auto testPacked = [&](size_t at, size_t n) {
+    auto testPacked = [&](size_t at, size_t n) HWY_ATTR __attribute__((always_inline)) {
         const V x = hn::Load(kD, bx + at), y = hn::Load(kD, by + at);
         const M t = hn::FirstN(kD, n);
         V ev[5];
@@ -382,16 +387,47 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, const QuadShading* 
             at(s.c0[0].y, s.c0[1].y, s.dc1[0].y, s.dc1[1].y, s.dc2[0].y, s.dc2[1].y, gs);
             at(s.c0[0].z, s.c0[1].z, s.dc1[0].z, s.dc1[1].z, s.dc2[0].z, s.dc2[1].z, bs);
         }
-        const uint64_t in = maskBits(kD, inside), fi = maskBits(kD, first);
-        for (uint64_t left = in; left; left &= left - 1) {
-            const int lane = __builtin_ctzll(left);
+        const uint64_t fi = maskBits(kD, first);
+        auto emit = [&](int lane) {
             QuadHit& h = out[hits++];
             h.pixel = uint32_t(bpixel[at + size_t(lane)]);
-            h.sample = uint16_t(bsample[at + size_t(lane)]);
+            h.sample = uint16_t(bslot[at + size_t(lane)] - bpixel[at + size_t(lane)] * L.S);
             h.first = uint8_t((fi >> lane) & 1);
             h.l1 = l1s[lane];
             h.l2 = l2s[lane];
             if (shading) h.z = zs[lane], h.c = {rs[lane], gs[lane], bs[lane]};
+        };
+        if constexpr (Write) {
+            // The depths the hits' samples see (SampleHit is 8 floats, z first); lanes past the
+            // packed ones read sample 0.
+            const auto slot = hn::IfThenElseZero(hn::RebindMask(kI, inside), hn::Load(kI, bslot + at));
+            const V seen = hn::GatherIndex(kD, &write->still[0].z, hn::ShiftLeft<3>(slot));
+            const V z = hn::Load(kD, zs);
+            const M inRange = hn::And(inside, hn::And(hn::Ge(z, hn::Set(kD, write->nearZ)), hn::Le(z, hn::Set(kD, write->farZ))));
+            const uint64_t nearer = maskBits(kD, hn::And(inRange, hn::Lt(z, seen)));
+            const uint64_t tie = maskBits(kD, hn::And(inRange, hn::Eq(z, seen)));
+            write->inside += uint64_t(__builtin_popcountll(maskBits(kD, inside)));
+            // The write's fields in locals: the stores to the layer could alias them.
+            SampleHit* const still = write->still;
+            uint8_t* const touched = write->touched;
+            const uint16_t* const recordsOf = write->recordsOf;
+            const uint64_t id = write->id;
+            uint64_t firstHits = 0;
+            for (uint64_t left = nearer | tie; left; left &= left - 1) {
+                const int lane = __builtin_ctzll(left);
+                const int32_t pixel = bpixel[at + size_t(lane)];
+                if (((tie >> lane) & 1) || recordsOf[pixel]) {
+                    emit(lane);
+                    continue;
+                }
+                SampleHit& cur = still[bslot[at + size_t(lane)]];
+                firstHits += cur.a == 0;
+                cur = {zs[lane], {rs[lane], gs[lane], bs[lane]}, 1.0f, id};
+                touched[pixel] = 1;
+            }
+            write->firstHits += firstHits;
+        } else {
+            for (uint64_t left = maskBits(kD, inside); left; left &= left - 1) emit(__builtin_ctzll(left));
         }
     };
     for (int ppy = q.py0; ppy <= q.py1; ++ppy) {
@@ -424,8 +460,8 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, const QuadShading* 
                     hn::StoreU(compressLanes(kD, x, t, tb), kD, bx + packed);
                     hn::StoreU(compressLanes(kD, y, t, tb), kD, by + packed);
                     hn::StoreU(hn::Set(kI, int32_t(pixel)), kI, bpixel + packed);
-                    hn::StoreU(compressLanes(kI, hn::Add(lanes, hn::Set(kI, int32_t(c0) + int32_t(i))), hn::RebindMask(kI, t), tb),
-                               kI, bsample + packed);
+                    const int32_t first = int32_t(pixel) * L.S + int32_t(c0) + int32_t(i);
+                    hn::StoreU(compressLanes(kI, hn::Add(lanes, hn::Set(kI, first)), hn::RebindMask(kI, t), tb), kI, bslot + packed);
                     packed += k;
                     tested += k;
                     if (packed >= kVectors * N) {  // a large quad: test the full vectors, keep the rest
@@ -434,7 +470,7 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, const QuadShading* 
                         hn::Store(hn::LoadU(kD, bx + kVectors * N), kD, bx);
                         hn::Store(hn::LoadU(kD, by + kVectors * N), kD, by);
                         hn::Store(hn::LoadU(kI, bpixel + kVectors * N), kI, bpixel);
-                        hn::Store(hn::LoadU(kI, bsample + kVectors * N), kI, bsample);
+                        hn::Store(hn::LoadU(kI, bslot + kVectors * N), kI, bslot);
                     }
                 }
             }
@@ -445,8 +481,18 @@ uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, const QuadShading* 
     return tested;
 }
 
+uint64_t TestQuad(const QuadSetup& q, const SampleLayout& L, const QuadShading* shading, QuadHit* out, size_t* hitCount) {
+    return testQuad<false>(q, L, shading, nullptr, out, hitCount);
+}
+
+uint64_t WriteQuad(const QuadSetup& q, const SampleLayout& L, const QuadShading& shading, StillWrite& write, QuadHit* out,
+                   size_t* left) {
+    return testQuad<true>(q, L, &shading, &write, out, left);
+}
+
 PixelTestFn Kernel() { return &TestPixel; }
 QuadTestFn QuadKernel() { return &TestQuad; }
+QuadWriteFn QuadWriteKernel() { return &WriteQuad; }
 MovingTestFn MovingKernel() { return &TestMoving; }
 LensTestFn LensKernel() { return &TestLens; }
 const char* Target() { return hwy::TargetName(HWY_TARGET); }
@@ -460,6 +506,7 @@ namespace streyes {
 
 HWY_EXPORT(Kernel);
 HWY_EXPORT(QuadKernel);
+HWY_EXPORT(QuadWriteKernel);
 HWY_EXPORT(MovingKernel);
 HWY_EXPORT(LensKernel);
 HWY_EXPORT(Target);
@@ -585,7 +632,37 @@ uint64_t scalarQuadTest(const micropolygon::QuadSetup& q, const SampleLayout& L,
     return tested;
 }
 
+// StillWrite's rule, hit by hit, on quadTestScalar's hits (in their order; a quad's hits are of
+// distinct samples, so the order does not change what is written).
+uint64_t scalarQuadWrite(const micropolygon::QuadSetup& q, const SampleLayout& L, const QuadShading& shading,
+                         StillWrite& w, QuadHit* out, size_t* left) {
+    std::vector<QuadHit> found(size_t(q.px1 - q.px0 + 1) * size_t(q.py1 - q.py0 + 1) * size_t(L.S));
+    size_t n = 0;
+    const uint64_t tested = scalarQuadTest(q, L, &shading, found.data(), &n);
+    for (size_t k = 0; k < n; ++k) {
+        const QuadHit& h = found[k];
+        ++w.inside;
+        SampleHit& cur = w.still[size_t(h.pixel) * size_t(L.S) + h.sample];
+        if (!(h.z >= w.nearZ && h.z <= w.farZ && h.z <= cur.z)) continue;  // clipped or hidden
+        if (h.z == cur.z || w.recordsOf[h.pixel]) {
+            out[(*left)++] = h;
+            continue;
+        }
+        w.firstHits += cur.a == 0;
+        cur = {h.z, h.c, 1.0f, w.id};
+        w.touched[h.pixel] = 1;
+    }
+    return tested;
+}
+
 }  // namespace
+
+QuadWriteFn quadWriteKernel() {
+    static const QuadWriteFn kernel = HWY_DYNAMIC_DISPATCH(QuadWriteKernel)();
+    return kernel;
+}
+
+QuadWriteFn quadWriteScalar() { return &scalarQuadWrite; }
 
 QuadTestFn quadTestKernel() {
     static const QuadTestFn kernel = HWY_DYNAMIC_DISPATCH(QuadKernel)();
@@ -670,7 +747,7 @@ std::vector<KernelSet> kernelsOfEveryTarget() {
     for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
         hwy::SetSupportedTargetsForTest(target);  // the next dispatch chooses it
         out.push_back({hwy::TargetName(target), HWY_DYNAMIC_DISPATCH(Kernel)(), HWY_DYNAMIC_DISPATCH(QuadKernel)(),
-                       HWY_DYNAMIC_DISPATCH(MovingKernel)(), HWY_DYNAMIC_DISPATCH(LensKernel)()});
+                       HWY_DYNAMIC_DISPATCH(QuadWriteKernel)(), HWY_DYNAMIC_DISPATCH(MovingKernel)(), HWY_DYNAMIC_DISPATCH(LensKernel)()});
     }
     hwy::SetSupportedTargetsForTest(0);
     return out;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "raster/image_block.h"
 #include "raster/micropolygon.h"
 
 namespace streyes {
@@ -100,6 +101,29 @@ using QuadTestFn = uint64_t (*)(const micropolygon::QuadSetup& q, const SampleLa
                                 const QuadShading* shading, QuadHit* out, size_t* hits);
 QuadTestFn quadTestKernel();
 QuadTestFn quadTestScalar();
+
+// The still sampler's usual case, an opaque quad with no output variables into the still layer
+// (GridRasterizer::sampleStill): the kernel depth-tests its hits against the layer and writes the
+// ones that win, so that they never go through memory as QuadHits. A hit inside the clipping range
+// and strictly nearer than what its sample sees becomes {z, c, 1, id}, its pixel touched
+// (ImageBlock::touch), and counts in firstHits where the sample saw nothing (a == 0). A hit that
+// ties its sample's depth (SampleHit::beatenBy decides), or in a pixel with per-frame records
+// (ImageBlock::recordsOf: the hit must reach them too), is appended to `out` for the sampler, in
+// the order QuadTestFn makes them; any other is hidden or clipped and dropped.
+struct StillWrite {
+    SampleHit* still;            // the block's still layer, S hits a pixel
+    uint8_t* touched;            // per pixel: ImageBlock::touch's flags
+    const uint16_t* recordsOf;   // per pixel: frames with a record of it
+    uint64_t id;                 // the grid's primitive
+    float nearZ, farZ;           // the camera's clipping range
+    uint64_t inside = 0;         // out: the hits (inside the quad), written, left or dropped
+    uint64_t firstHits = 0;      // out: written over a sample that saw nothing
+};
+// Returns how many samples were tested; *left counts the hits appended to out.
+using QuadWriteFn = uint64_t (*)(const micropolygon::QuadSetup& q, const SampleLayout& layout,
+                                 const QuadShading& shading, StillWrite& write, QuadHit* out, size_t* left);
+QuadWriteFn quadWriteKernel();
+QuadWriteFn quadWriteScalar();  // quadTestScalar's hits, then the rule above hit by hit
 
 // A moving quad over a group of time slices (GridRasterizer::sampleMoving): each sample is tested
 // against the quad at its own time, w = clamp((tf - tfA) invSpan, 0, 1) across the group. A corner
@@ -195,6 +219,7 @@ struct KernelSet {
     const char* target;
     PixelTestFn pixel;
     QuadTestFn quad;
+    QuadWriteFn quadWrite;
     MovingTestFn moving;
     LensTestFn lens;
 };

@@ -86,35 +86,56 @@ void pixelKernelAgrees(PixelTestFn kernel) {
 // the same order, each with the same barycentrics bit for bit, and each hit the one hitQuad makes.
 // sx x sy strata a pixel: the kernel packs candidates across pixels, and across the 64-sample
 // chunks of a pixel with more.
-void quadKernelAgrees(QuadTestFn kernel, int sx, int sy) {
-    std::mt19937 rng(5);
-    const int W = 6, H = 5, S = sx * sy;
-    const PixelRect R{10, 20, 10 + W - 1, 20 + H - 1};
-    std::uniform_real_distribution<float> jitter(0.0f, 1.0f), corner(9.0f, 17.0f);
-    std::vector<float> xs(size_t(W * H * S) + 64), ys(xs.size());  // padded as ImageBlock pads them
-    for (int py = 0; py < H; ++py)
-        for (int px = 0; px < W; ++px)
-            for (int j = 0; j < S; ++j) {  // one sample in each stratum, some on a stratum's edge
-                const size_t i = size_t((py * W + px) * S + j);
-                const float u = j % 5 == 0 ? 0.0f : jitter(rng), v = j % 7 == 0 ? 0.0f : jitter(rng);
-                xs[i] = float(R.x0 + px) + (float(j % sx) + u) / float(sx);
-                ys[i] = float(R.y0 + py) + (float(j / sx) + v) / float(sy);
-            }
-    const SampleLayout layout{xs.data(), ys.data(), R.x0, R.y0, W, S, sx, sy};
-    const QuadTestFn scalar = quadTestScalar();
-    std::vector<QuadHit> a(size_t(W * H * S)), b(a.size());
-    uint64_t hits = 0;
-    for (int t = 0; t < 5000; ++t) {
-        QuadSetup q;
+// A block of W x H pixels at (10, 20) with sx x sy strata a pixel: one sample in each stratum,
+// some on a stratum's edge, padded as ImageBlock pads them.
+struct StrataBlock {
+    static constexpr int W = 6, H = 5;
+    int S;
+    PixelRect R{10, 20, 10 + W - 1, 20 + H - 1};
+    std::vector<float> xs, ys;
+    SampleLayout layout;
+    StrataBlock(std::mt19937& rng, int sx, int sy) : S(sx * sy), xs(size_t(W * H * S) + 64), ys(xs.size()) {
+        std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
+        for (int py = 0; py < H; ++py)
+            for (int px = 0; px < W; ++px)
+                for (int j = 0; j < S; ++j) {
+                    const size_t i = size_t((py * W + px) * S + j);
+                    const float u = j % 5 == 0 ? 0.0f : jitter(rng), v = j % 7 == 0 ? 0.0f : jitter(rng);
+                    xs[i] = float(R.x0 + px) + (float(j % sx) + u) / float(sx);
+                    ys[i] = float(R.y0 + py) + (float(j / sx) + v) / float(sy);
+                }
+        layout = {xs.data(), ys.data(), R.x0, R.y0, W, S, sx, sy};
+    }
+    // Quad t of a stream over the block and beyond it: every shape, on a quarter-pixel lattice
+    // now and then (samples on edges and corners), depths in [1, 2]; false when it misses.
+    bool nextQuad(std::mt19937& rng, int t, QuadSetup& q) const {
+        std::uniform_real_distribution<float> jitter(0.0f, 1.0f), corner(9.0f, 17.0f);
         for (int c = 0; c < 4; ++c) {
-            // On a quarter-pixel lattice now and then, so that samples fall on edges and corners.
             q.x[c] = t % 3 == 0 ? std::round(corner(rng) * 4) / 4 : corner(rng);
             q.y[c] = t % 3 == 0 ? std::round((corner(rng) + 10) * 4) / 4 : corner(rng) + 10;
             q.z[c] = 1 + jitter(rng);
         }
         if (t % 7 == 0) q.x[1] = q.x[0], q.y[1] = q.y[0];  // a collapsed edge
-        if (!boundQuad(q, nullptr, nullptr, nullptr, R, 0, 10)) continue;
+        if (!boundQuad(q, nullptr, nullptr, nullptr, R, 0, 10)) return false;
         setupEdges(q);
+        return true;
+    }
+};
+
+void quadKernelAgrees(QuadTestFn kernel, int sx, int sy) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
+    const StrataBlock block(rng, sx, sy);
+    const int S = block.S;
+    const std::vector<float>& xs = block.xs;
+    const std::vector<float>& ys = block.ys;
+    const SampleLayout& layout = block.layout;
+    const QuadTestFn scalar = quadTestScalar();
+    std::vector<QuadHit> a(xs.size()), b(a.size());
+    uint64_t hits = 0;
+    for (int t = 0; t < 5000; ++t) {
+        QuadSetup q;
+        if (!block.nextQuad(rng, t, q)) continue;
         // Every other quad asks for its hits' depths and colours, from its corners' as the still
         // sampler makes them.
         Color col[4];
@@ -307,6 +328,80 @@ void lensKernelAgrees(LensTestFn kernel) {
     EXPECT_GT(hits, 50000u);
 }
 
+bool sameHit(const SampleHit& a, const SampleHit& b) {
+    return sameBits(a.z, b.z) && sameBits(a.c.x, b.c.x) && sameBits(a.c.y, b.c.y) && sameBits(a.c.z, b.c.z) &&
+           sameBits(a.a, b.a) && a.id == b.id;
+}
+
+// The kernel that writes a still quad's hits into the still layer against its scalar reference
+// (StillWrite's rule hit by hit): over a stream of quads into one layer that holds nothing, nearer
+// and farther hits, hits at exactly the depth a quad makes there (ties) and pixels with records,
+// the same samples tested, the same layer, touched pixels and counts bit for bit, and the same hits
+// left to the sampler in the same order. Depths beyond 1.9 are clipped.
+void quadWriteKernelAgrees(QuadWriteFn kernel, int sx, int sy) {
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> jitter(0.0f, 1.0f);
+    const StrataBlock block(rng, sx, sy);
+    const size_t pixels = size_t(block.W * block.H), samples = pixels * size_t(block.S);
+    std::vector<SampleHit> layerA(samples, kNoHit), layerB;
+    for (SampleHit& h : layerA)
+        if (jitter(rng) < 0.3f) h = {1.0f + 1.2f * jitter(rng), {jitter(rng), 0, 0}, 1.0f, 7};
+    layerB = layerA;
+    std::vector<uint8_t> touchedA(pixels, 0), touchedB(pixels, 0);
+    std::vector<uint16_t> recordsOf(pixels, 0);
+    for (size_t p = 0; p < pixels; p += 4) recordsOf[p] = 1;
+    const QuadWriteFn scalar = quadWriteScalar();
+    std::vector<QuadHit> a(samples), b(samples), hits(samples);
+    uint64_t written = 0, ties = 0, left = 0, dropped = 0;
+    for (int t = 0; t < 3000; ++t) {
+        QuadSetup q;
+        if (!block.nextQuad(rng, t, q)) continue;
+        Color col[4];
+        for (Color& c : col) c = {jitter(rng), jitter(rng), jitter(rng)};
+        const QuadShading shading = quadShading(q.z, col);
+        // Every third hit of this quad made a tie: its sample already sees its depth.
+        size_t nh = 0;
+        quadTestScalar()(q, block.layout, &shading, hits.data(), &nh);
+        for (size_t n = 0; n < nh; n += 3) {
+            const size_t i = size_t(hits[n].pixel) * size_t(block.S) + hits[n].sample;
+            layerA[i].z = layerB[i].z = hits[n].z;
+            layerA[i].a = layerB[i].a = 1.0f;
+            ++ties;
+        }
+        const std::vector<SampleHit> before = layerB;
+        StillWrite wa{layerA.data(), touchedA.data(), recordsOf.data(), uint64_t(t), 0.0f, 1.9f};
+        StillWrite wb{layerB.data(), touchedB.data(), recordsOf.data(), uint64_t(t), 0.0f, 1.9f};
+        size_t na = 0, nb = 0;
+        ASSERT_EQ(kernel(q, block.layout, shading, wa, a.data(), &na), scalar(q, block.layout, shading, wb, b.data(), &nb))
+            << "quad " << t;
+        ASSERT_EQ(wa.inside, wb.inside) << "quad " << t;
+        ASSERT_EQ(wa.inside, nh) << "quad " << t;
+        ASSERT_EQ(wa.firstHits, wb.firstHits) << "quad " << t;
+        ASSERT_EQ(na, nb) << "quad " << t;
+        for (size_t n = 0; n < na; ++n) {
+            ASSERT_TRUE(a[n].pixel == b[n].pixel && a[n].sample == b[n].sample && a[n].first == b[n].first)
+                << "quad " << t << " hit " << n;
+            ASSERT_TRUE(sameBits(a[n].l1, b[n].l1) && sameBits(a[n].l2, b[n].l2) && sameBits(a[n].z, b[n].z) &&
+                        sameBits(a[n].c.x, b[n].c.x) && sameBits(a[n].c.y, b[n].c.y) && sameBits(a[n].c.z, b[n].c.z))
+                << "quad " << t << " hit " << n;
+        }
+        for (size_t i = 0; i < samples; ++i) {
+            ASSERT_TRUE(sameHit(layerA[i], layerB[i])) << "quad " << t << " sample " << i;
+            written += !sameHit(layerB[i], before[i]);
+        }
+        ASSERT_EQ(touchedA, touchedB) << "quad " << t;
+        left += na;
+        dropped += nh - na;
+    }
+    dropped -= written;
+    // Every outcome, often: written, left to the sampler (ties and pixels with records), and
+    // dropped (hidden or clipped).
+    EXPECT_GT(written, 5000u);
+    EXPECT_GT(ties, 5000u);
+    EXPECT_GT(left, ties / 2);
+    EXPECT_GT(dropped, 5000u);
+}
+
 // Each kernel of every instruction set this CPU runs (not only the one dispatched to) against
 // its scalar reference: the same scene gives the same pixels on every machine.
 template <typename Check>
@@ -331,6 +426,15 @@ TEST(SampleKernels, QuadKernelGivesTheScalarQuadTestBitForBit) {
     });
 }
 
+TEST(SampleKernels, QuadWriteKernelGivesTheScalarWriteBitForBit) {
+    onEveryTarget([](const KernelSet& k) {
+        for (const auto& [sx, sy] : {std::pair{4, 4}, {3, 3}, {5, 7}, {10, 10}}) {
+            SCOPED_TRACE(::testing::Message() << sx << " x " << sy << " strata");
+            quadWriteKernelAgrees(k.quadWrite, sx, sy);
+        }
+    });
+}
+
 TEST(SampleKernels, MovingKernelGivesTheScalarTestBitForBit) {
     onEveryTarget([](const KernelSet& k) { movingKernelAgrees(k.moving); });
 }
@@ -345,7 +449,7 @@ TEST(SampleKernels, EveryTargetIncludesTheDispatchedOne) {
     ASSERT_FALSE(sets.empty());
     bool found = false;
     for (const KernelSet& k : sets)
-        found = found || (k.pixel == pixelTestKernel() && k.quad == quadTestKernel() && k.moving == movingTestKernel() && k.lens == lensTestKernel() &&
+        found = found || (k.pixel == pixelTestKernel() && k.quad == quadTestKernel() && k.quadWrite == quadWriteKernel() && k.moving == movingTestKernel() && k.lens == lensTestKernel() &&
                           std::string(k.target) == pixelTestTarget());
     EXPECT_TRUE(found) << pixelTestTarget();
 }

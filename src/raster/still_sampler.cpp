@@ -79,6 +79,13 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const QuadTestFn test = Counting ? quadTestScalar() : quadTestKernel();
     const LensTestFn lensTest = Counting ? lensTestScalar() : lensTestKernel();
     const SampleLayout layout{xs, ys, R.x0, R.y0, R.width(), S, sx, sy};
+    // Opaque quads into the still layer go to the kernel that writes them (its gather indexes
+    // the layer's floats with 32-bit lanes).
+    const bool fastStill = !Counting && intoStill && A == 0 &&
+                           pixels * size_t(S) * (sizeof(SampleHit) / sizeof(float)) <= size_t(INT32_MAX);
+    const QuadWriteFn writeQuad = quadWriteKernel();
+    StillWrite write{fastStill ? block.stillLayer() : nullptr, block.touchFlags(), fastStill ? block.recordCounts() : nullptr,
+                     id, nearZ, farZ};
     uint64_t tests = 0, hits = 0, firstHits = 0, fragments = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
@@ -195,14 +202,14 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                 const size_t room = size_t(q.px1 - q.px0 + 1) * size_t(q.py1 - q.py0 + 1) * size_t(S);
                 if (quadHits_.size() < room) quadHits_.resize(room);
                 size_t found = 0;
-                if (!Counting && intoStill && !seeThrough && A == 0) {
-                    // The usual hit, opaque into the still layer: the kernel gives each hit's depth
+                if (fastStill && !seeThrough) {
+                    // The usual hit, opaque into the still layer: the kernel makes each hit's depth
                     // and colour, from each triangle's differences made once for the quad (the
-                    // same operations as beats(), which takes them from the first corner too).
+                    // same operations as beats(), which takes them from the first corner too),
+                    // and writes those that win; ties and pixels with records come back here.
                     const Color corners[4] = {colorAt(0), colorAt(1), colorAt(2), colorAt(3)};
                     const QuadShading shading = quadShading(q.z, corners);
-                    tests += test(q, layout, &shading, quadHits_.data(), &found);
-                    hits += found;
+                    tests += writeQuad(q, layout, shading, write, quadHits_.data(), &found);
                     for (size_t n = 0; n < found; ++n) {
                         const QuadHit& qh = quadHits_[n];
                         const float zh = qh.z;
@@ -226,8 +233,8 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
         }
     }
     counters.sampleTests += tests;
-    counters.sampleHits += hits;
-    counters.firstHits += firstHits;
+    counters.sampleHits += hits + write.inside;
+    counters.firstHits += firstHits + write.firstHits * uint64_t(F);  // a first hit in every frame
     counters.fragments += fragments;
 }
 
