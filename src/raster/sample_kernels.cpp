@@ -57,6 +57,12 @@ HWY_INLINE MD insideTriangleLanes(D d, VD e0, MD c0, VD e1, MD c1, VD e2, MD c2)
 
 template <class D>
 HWY_INLINE uint64_t maskBits(D d, hn::Mask<D> m) {
+#if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX3
+    // AVX-512: the mask is a k register already (StoreMaskBits would go through memory).
+    constexpr size_t kN = hn::MaxLanes(d);
+    const uint64_t bits = uint64_t(m.raw);
+    return kN >= 64 ? bits : bits & ((uint64_t(1) << hn::Lanes(d)) - 1);
+#endif
     uint8_t out[8] = {0};
     hn::StoreMaskBits(d, m, out);
     uint64_t v = 0;
