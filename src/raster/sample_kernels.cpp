@@ -422,7 +422,7 @@ HWY_INLINE uint64_t testQuad(const QuadSetup& q, const SampleLayout& L, const Qu
             for (uint64_t left = nearer | tie; left; left &= left - 1) {
                 const int lane = __builtin_ctzll(left);
                 const int32_t pixel = bpixel[at + size_t(lane)];
-                if (((tie >> lane) & 1) || recordsOf[pixel]) {
+                if (((tie >> lane) & 1) || (recordsOf && recordsOf[pixel])) {
                     emit(lane);
                     continue;
                 }
@@ -436,18 +436,32 @@ HWY_INLINE uint64_t testQuad(const QuadSetup& q, const SampleLayout& L, const Qu
             for (uint64_t left = maskBits(kD, inside); left; left &= left - 1) emit(__builtin_ctzll(left));
         }
     };
+    // Up to 64 samples a pixel (one chunk), a pixel's candidates are its columns' strata in each
+    // of its rows: the columns' bits times one bit a row (sx bits apart, so no carries). The
+    // columns of each pixel of the bound are found once, not once a row.
+    constexpr int kColumns = 8;
+    const bool columnsKnown = L.S <= 64 && q.px1 - q.px0 < kColumns;
+    uint64_t columnBits[kColumns] = {};
+    if (columnsKnown)
+        for (int ppx = q.px0; ppx <= q.px1; ++ppx) {
+            const int ix0 = stratumAt(q.xmin, ppx, L.sx), ix1 = stratumAt(q.xmax, ppx, L.sx);
+            columnBits[ppx - q.px0] = ((uint64_t(2) << (ix1 - ix0)) - 1) << ix0;
+        }
     for (int ppy = q.py0; ppy <= q.py1; ++ppy) {
         const int iy0 = stratumAt(q.ymin, ppy, L.sy);
         const int iy1 = stratumAt(q.ymax, ppy, L.sy);
+        uint64_t rowBits = 0;
+        if (columnsKnown)
+            for (int iy = iy0; iy <= iy1; ++iy) rowBits |= uint64_t(1) << (iy * L.sx);
         for (int ppx = q.px0; ppx <= q.px1; ++ppx) {
-            const int ix0 = stratumAt(q.xmin, ppx, L.sx);
-            const int ix1 = stratumAt(q.xmax, ppx, L.sx);
             const uint32_t pixel = uint32_t((ppy - L.y0) * L.width + (ppx - L.x0));
             const float* xs = L.xs + size_t(pixel) * size_t(L.S);
             const float* ys = L.ys + size_t(pixel) * size_t(L.S);
             for (int c0 = 0; c0 < L.S; c0 += 64) {
                 const int n = std::min(64, L.S - c0);
-                const uint64_t candidates = strataCandidates(L, ix0, ix1, iy0, iy1, c0, n);
+                const uint64_t candidates =
+                    columnsKnown ? columnBits[ppx - q.px0] * rowBits
+                                 : strataCandidates(L, stratumAt(q.xmin, ppx, L.sx), stratumAt(q.xmax, ppx, L.sx), iy0, iy1, c0, n);
                 for (size_t i = 0; i < size_t(n); i += N) {
                     uint64_t bits = candidates >> i;
                     if (N < 64) bits &= (uint64_t(1) << N) - 1;
@@ -650,7 +664,7 @@ uint64_t scalarQuadWrite(const micropolygon::QuadSetup& q, const SampleLayout& L
         ++w.inside;
         SampleHit& cur = w.still[size_t(h.pixel) * size_t(L.S) + h.sample];
         if (!(h.z >= w.nearZ && h.z <= w.farZ && h.z <= cur.z)) continue;  // clipped or hidden
-        if (h.z == cur.z || w.recordsOf[h.pixel]) {
+        if (h.z == cur.z || (w.recordsOf && w.recordsOf[h.pixel])) {
             out[(*left)++] = h;
             continue;
         }

@@ -113,7 +113,7 @@ QuadTestFn quadTestScalar();
 struct StillWrite {
     SampleHit* still;            // the block's still layer, S hits a pixel
     uint8_t* touched;            // per pixel: ImageBlock::touch's flags
-    const uint16_t* recordsOf;   // per pixel: frames with a record of it
+    const uint16_t* recordsOf;   // per pixel: frames with a record of it; null when none has
     uint64_t id;                 // the grid's primitive
     float nearZ, farZ;           // the camera's clipping range
     uint64_t inside = 0;         // out: the hits (inside the quad), written, left or dropped

@@ -84,8 +84,10 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const bool fastStill = !Counting && intoStill && A == 0 &&
                            pixels * size_t(S) * (sizeof(SampleHit) / sizeof(float)) <= size_t(INT32_MAX);
     const QuadWriteFn writeQuad = quadWriteKernel();
-    StillWrite write{fastStill ? block.stillLayer() : nullptr, block.touchFlags(), fastStill ? block.recordCounts() : nullptr,
-                     id, nearZ, farZ};
+    // Without records in the block (none is made while a grid samples into the still layer),
+    // the kernel need not look for them.
+    StillWrite write{fastStill ? block.stillLayer() : nullptr, block.touchFlags(),
+                     fastStill && block.recordCount() ? block.recordCounts() : nullptr, id, nearZ, farZ};
     uint64_t tests = 0, hits = 0, firstHits = 0, fragments = 0;
     for (int j = 0; j < nv; ++j) {
         for (int i = 0; i < nu; ++i) {
