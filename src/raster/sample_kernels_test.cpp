@@ -25,6 +25,15 @@ QuadSetup quad(const float (&x)[4], const float (&y)[4]) {
 
 bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
+// Two kernels' hits: the same sample, triangle and barycentrics, bit for bit, and with `shaded`
+// the same depth and colour.
+bool sameQuadHit(const QuadHit& a, const QuadHit& b, bool shaded) {
+    const bool same = a.pixel == b.pixel && a.sample == b.sample && a.first == b.first && sameBits(a.l1, b.l1) &&
+                      sameBits(a.l2, b.l2);
+    return same && (!shaded || (sameBits(a.z, b.z) && sameBits(a.c.x, b.c.x) && sameBits(a.c.y, b.c.y) &&
+                                sameBits(a.c.z, b.c.z)));
+}
+
 // The kernel against the scalar reference, and both against micropolygon::hitQuad, on quads of
 // every shape (convex, concave, bow-ties, collapsed edges, no area) and samples anywhere, on the
 // corners and on the edges (where the tie rule decides).
@@ -146,10 +155,7 @@ void quadKernelAgrees(QuadTestFn kernel, int sx, int sy) {
         ASSERT_EQ(kernel(q, layout, shade, a.data(), &na), scalar(q, layout, shade, b.data(), &nb)) << "quad " << t;
         ASSERT_EQ(na, nb) << "quad " << t;
         for (size_t n = 0; n < na; ++n) {
-            ASSERT_EQ(a[n].pixel, b[n].pixel);
-            ASSERT_EQ(a[n].sample, b[n].sample);
-            ASSERT_EQ(a[n].first, b[n].first);
-            ASSERT_TRUE(sameBits(a[n].l1, b[n].l1) && sameBits(a[n].l2, b[n].l2)) << "quad " << t << " hit " << n;
+            ASSERT_TRUE(sameQuadHit(a[n], b[n], false)) << "quad " << t << " hit " << n;
             const size_t i = size_t(a[n].pixel) * S + a[n].sample;
             Hit h{};
             ASSERT_TRUE(hitQuad(q, xs[i], ys[i], h)) << "quad " << t << " hit " << n;
@@ -380,13 +386,7 @@ void quadWriteKernelAgrees(QuadWriteFn kernel, int sx, int sy) {
         ASSERT_EQ(wa.inside, nh) << "quad " << t;
         ASSERT_EQ(wa.firstHits, wb.firstHits) << "quad " << t;
         ASSERT_EQ(na, nb) << "quad " << t;
-        for (size_t n = 0; n < na; ++n) {
-            ASSERT_TRUE(a[n].pixel == b[n].pixel && a[n].sample == b[n].sample && a[n].first == b[n].first)
-                << "quad " << t << " hit " << n;
-            ASSERT_TRUE(sameBits(a[n].l1, b[n].l1) && sameBits(a[n].l2, b[n].l2) && sameBits(a[n].z, b[n].z) &&
-                        sameBits(a[n].c.x, b[n].c.x) && sameBits(a[n].c.y, b[n].c.y) && sameBits(a[n].c.z, b[n].c.z))
-                << "quad " << t << " hit " << n;
-        }
+        for (size_t n = 0; n < na; ++n) ASSERT_TRUE(sameQuadHit(a[n], b[n], true)) << "quad " << t << " hit " << n;
         for (size_t i = 0; i < samples; ++i) {
             ASSERT_TRUE(sameHit(layerA[i], layerB[i])) << "quad " << t << " sample " << i;
             written += !sameHit(layerB[i], before[i]);
