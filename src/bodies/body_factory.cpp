@@ -12,6 +12,7 @@
 #include "geom/patch_mesh.h"
 #include "procedural/procedural.h"
 #include "geom/quadric.h"
+#include "geom/root_chunks.h"
 #include "geom/subdivision.h"
 #include "util/sampling.h"
 
@@ -266,6 +267,14 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std
     if (moves && ts.size() > 2) {
         // Several keys: one body for all of them; the split loop cuts it in time where needed.
         auto body = std::make_unique<KeyedPatchBody>(std::move(ts), std::move(corners), cs, mat, w.openEnd);
+        // A render of part of a long shot keeps only the keys the chunks of its frames reach
+        // (a leaf keyed every few frames of a long shot, one frame rendered).
+        if (camera_ && std::isfinite(wantedStart_) && std::isfinite(wantedEnd_)) {
+            // A chunk (geom/root_chunks.h) holding a frame's exposure lies within a chunk's length of it.
+            const double chunk = rootChunkFrames(*body, *camera_);
+            std::unique_ptr<KeyedPatchBody> part = body->keysOver(wantedStart_ - chunk, wantedEnd_ + chunk, *camera_);
+            if (part) body = std::move(part);
+        }
         body->setSource(src);
         body->setPrimitiveId(primitiveId);
         body->primvarCorners = primvarCorners;

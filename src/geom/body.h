@@ -133,7 +133,7 @@ class Body {
     // at its four corners (Material::primvarCorners' layout), kept by the factory. Null: the
     // material's own.
     const float* primvarCorners = nullptr;
-    // As a root, the frames each of its pieces spans (BucketWorker::chunkFrames), made by the first
+    // As a root, the frames each of its pieces spans (geom/root_chunks.h), made by the first
     // bucket that asks: it depends on the body and the camera only, and every bucket asks. 0 until
     // made; a race writes the same value.
     mutable std::atomic<uint8_t> rootChunk{0};
@@ -222,6 +222,12 @@ class KeyedPatchBody final : public Body {
     // (nu+1) x (nv+1) vertices, as a TrilinearBody's dice() places them.
     void startKeyGrid(int nu, int nv, Grid& grid) const;
     void diceKey(size_t k, Grid& grid, int slot) const;
+    // As a root, for a render that reaches only times in [a, b] of it: the same body with only
+    // the keys from the last at or before a to the first at or after b (three at least), or null
+    // when that is every key. What is decided for the whole root from all its keys (whether it
+    // moves, rootChunk) is decided first and kept; every piece the split loop cuts from it over
+    // times in [a, b] (restrictedTo, boundDuring) is the same, bit for bit.
+    std::unique_ptr<KeyedPatchBody> keysOver(double a, double b, const Camera& camera) const;
 
   private:
     // The pieces over keys [i, j]: a KeyedPatchBody, or a TrilinearBody for two keys.

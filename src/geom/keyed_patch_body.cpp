@@ -4,6 +4,7 @@
 
 #include "geom/body.h"
 #include "geom/grid.h"
+#include "geom/root_chunks.h"
 
 namespace streyes {
 
@@ -158,6 +159,26 @@ std::unique_ptr<Body> KeyedPatchBody::restrictedTo(double a, double b) const {
         r = std::make_unique<KeyedPatchBody>(std::move(ts), std::move(ks), Cs_, material_, open);
     }
     r->inheritFrom(*this);
+    return r;
+}
+
+std::unique_ptr<KeyedPatchBody> KeyedPatchBody::keysOver(double a, double b, const Camera& camera) const {
+    const size_t n = times_.size();
+    size_t i0 = size_t(std::upper_bound(times_.begin(), times_.end(), a) - times_.begin());  // the first key after a
+    i0 = i0 > 0 ? i0 - 1 : 0;
+    size_t i1 = std::min(n - 1, size_t(std::lower_bound(times_.begin(), times_.end(), b) - times_.begin()));
+    while (i1 - i0 < 2 && i1 + 1 < n) ++i1;
+    while (i1 - i0 < 2 && i0 > 0) --i0;
+    if (i0 == 0 && i1 == n - 1) return nullptr;
+    rootChunkFrames(*this, camera);  // over every key, kept below
+    auto r = std::make_unique<KeyedPatchBody>(
+        std::vector<double>(times_.begin() + std::ptrdiff_t(i0), times_.begin() + std::ptrdiff_t(i1) + 1),
+        std::vector<Corners>(keys_.begin() + std::ptrdiff_t(i0), keys_.begin() + std::ptrdiff_t(i1) + 1), Cs_, material_,
+        i1 + 1 == n && time_.openEnd);
+    r->moving_ = moving_;
+    r->rootChunk.store(rootChunk.load(std::memory_order_relaxed), std::memory_order_relaxed);
+    r->inheritFrom(*this);
+    r->pieceKey = pieceKey;
     return r;
 }
 

@@ -4,6 +4,7 @@
 
 #include "geom/body.h"
 #include "geom/grid.h"
+#include "geom/root_chunks.h"
 
 namespace streyes {
 namespace {
@@ -83,6 +84,69 @@ TEST(KeyedPatchBody, SplitInUKeepsEveryKey) {
     EXPECT_EQ(h[0]->time().t1, 4.0);
     EXPECT_FLOAT_EQ(h[0]->bound().swept().hi.x, 3.5f);  // the left half at x = 3 is [3, 3.5]
     EXPECT_FLOAT_EQ(h[1]->bound().swept().lo.x, 0.5f);
+}
+
+
+// A leaf keyed every 2 frames over frames 0..32 that stands still over [12, 20] and moves
+// elsewhere, one unit a key, under a perspective camera.
+KeyedPatchBody longLeaf() {
+    std::vector<double> t;
+    std::vector<Corners> k;
+    for (int i = 0; i <= 16; ++i) {
+        t.push_back(2.0 * i);
+        const int x = i < 6 ? i : i <= 10 ? 6 : 6 + (i - 10);
+        k.push_back(square(float(x)));
+    }
+    return KeyedPatchBody(t, k, {}, nullptr);
+}
+
+Camera leafCamera() {
+    CameraDesc cd;
+    cd.projection = ProjectionKind::Perspective;
+    cd.fov = 60;
+    cd.xres = 320, cd.yres = 240;
+    return Camera(cd);
+}
+
+TEST(KeyedPatchBody, KeysOverAWindowKeepThoseBracketingItAndTheWholeRootsDecisions) {
+    const KeyedPatchBody leaf = longLeaf();
+    const Camera cam = leafCamera();
+    const int chunk = rootChunkFrames(leaf, cam);
+    // Over [13, 17.5] (still there): the keys 12 .. 18, and it still counts as moving, with the
+    // chunk of frames measured over every key.
+    std::unique_ptr<KeyedPatchBody> part = leaf.keysOver(13, 17.5, cam);
+    ASSERT_TRUE(part);
+    ASSERT_EQ(part->keyCount(), 4u);
+    EXPECT_EQ(part->keyTime(0), 12.0);
+    EXPECT_EQ(part->keyTime(3), 18.0);
+    EXPECT_FALSE(part->time().openEnd);
+    EXPECT_TRUE(part->moving());
+    EXPECT_EQ(rootChunkFrames(*part, cam), chunk);
+    EXPECT_EQ(part->pieceKey, leaf.pieceKey);
+    // Every piece cut over times inside the window is the whole root's, bit for bit.
+    for (const auto& w : {std::pair<double, double>{13, 13.5}, {12, 18}, {14.25, 17.75}, {13, 17.5}}) {
+        const BodyPtr a = leaf.restrictedTo(w.first, w.second), b = part->restrictedTo(w.first, w.second);
+        EXPECT_EQ(a->diceableInTime(), b->diceableInTime());
+        EXPECT_EQ(a->moving(), b->moving());
+        EXPECT_EQ(a->time().t0, b->time().t0);
+        EXPECT_EQ(a->time().t1, b->time().t1);
+        EXPECT_EQ(a->time().openEnd, b->time().openEnd);
+        const RasterMeasure ma = a->measure(cam), mb = b->measure(cam);
+        EXPECT_EQ(ma.extentU, mb.extentU);
+        EXPECT_EQ(ma.extentV, mb.extentV);
+        EXPECT_EQ(ma.motion, mb.motion);
+        EXPECT_EQ(a->boundDuring(w.first, w.second).lo.x, b->boundDuring(w.first, w.second).lo.x);
+        EXPECT_EQ(a->boundDuring(w.first, w.second).hi.x, b->boundDuring(w.first, w.second).hi.x);
+        EXPECT_EQ(leaf.boundDuring(w.first, w.second).hi.x, part->boundDuring(w.first, w.second).hi.x);
+    }
+    // Three keys at least; near the end, the root's own end.
+    std::unique_ptr<KeyedPatchBody> end = leaf.keysOver(31.5, 32, cam);
+    ASSERT_TRUE(end);
+    EXPECT_EQ(end->keyCount(), 3u);
+    EXPECT_EQ(end->keyTime(2), 32.0);
+    // A window over every key keeps the root as it is.
+    EXPECT_FALSE(leaf.keysOver(-1, 40, cam));
+    EXPECT_FALSE(leaf.keysOver(1, 31, cam));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "cull/view_cull.h"
+#include "geom/root_chunks.h"
 #include "procedural/procedural.h"
 #include "raster/coverage.h"
 #include "render/bucket_bounds.h"
@@ -189,27 +190,8 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
     }
 }
 
-// Frames a moving root's pieces span: a power of two, as many as keep its raster motion over a
-// piece under kChunkMotion pixels (a slow leaf is diced once for several frames, a fast body once
-// an exposure), at most kMaxChunk. A function of the body and the camera only: pieces (and so
-// pixels) do not depend on the block of frames. Bodies reaching the eye plane cannot be measured:
-// one exposure a piece.
-int BucketWorker::chunkFrames(const Body& root) const {
-    if (const uint8_t made = root.rootChunk.load(std::memory_order_relaxed)) return made;
-    constexpr float kChunkMotion = 8.0f;
-    constexpr int kMaxChunk = 8;
-    const Camera& cam = scene_.camera;
-    if (!root.moving() || !(root.bound().swept().lo.z >= cam.eyePlane())) return 1;
-    const TimeSpan& span = root.time();
-    const RasterMeasure m = root.measure(cam);
-    // The motion measured is over the whole span, or between neighbouring keys for a keyed body.
-    const double keys = root.diceableInTime() ? 1.0 : double(static_cast<const KeyedPatchBody&>(root).keyCount() - 1);
-    const double perFrame = double(m.motion) / std::max(1e-9, (span.t1 - span.t0) / keys);
-    int frames = 1;
-    while (frames < kMaxChunk && perFrame * double(2 * frames) <= double(kChunkMotion)) frames *= 2;
-    root.rootChunk.store(uint8_t(frames), std::memory_order_relaxed);
-    return frames;
-}
+// Frames a moving root's pieces span (geom/root_chunks.h).
+int BucketWorker::chunkFrames(const Body& root) const { return rootChunkFrames(root, scene_.camera); }
 
 // A moving root's pieces for the bucket's frames [fa, fb]: one a chunk of `chunk` frames aligned
 // to multiples of `chunk` (absolute frame numbers), cut from the root. The chunks whose time its

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "streyes/rib.h"
@@ -134,6 +135,30 @@ WorldEnd
     EXPECT_NEAR(meanRed(alone, 4), meanRed(traced, 4), 1e-4);
     // At frame 0 it is 2 units away: 0.5 at the centre, falling off towards the corners.
     EXPECT_GT(meanRed(block, 0), 0.2);
+}
+
+
+// Leaves keyed every other frame of a 65-frame shot, turning, under a moving camera: one frame
+// rendered alone keeps only the keys the chunks of its frames reach (BodyFactory::addPatch,
+// KeyedPatchBody::keysOver), and gives the pixels the whole shot gives it.
+TEST(FrameBlockInvariance, OneFrameOfALongKeyedShotKeepsOnlyItsOwnKeys) {
+    std::string rib = "Option \"streyes\" \"int frames\" [0 64]\nFormat 48 32 1\nProjection \"perspective\" \"fov\" 40\n"
+                      "PixelSamples 2 2\nShutter 0 0.5\nMotionBegin [0 64]\nTranslate 0 0 8\nTranslate -1 0 8\nMotionEnd\n"
+                      "WorldBegin\nSurface \"constant\"\n";
+    std::string times;
+    for (int k = 0; k <= 32; ++k) times += std::to_string(2 * k) + (k < 32 ? " " : "");
+    for (int leaf = 0; leaf < 6; ++leaf) {
+        rib += "AttributeBegin\nColor [" + std::to_string(0.2 + 0.15 * leaf) + " 0.6 0.3]\nTranslate " +
+               std::to_string(-2.5 + leaf) + " " + std::to_string(0.4 * (leaf % 3) - 0.4) + " 0\nMotionBegin [" + times + "]\n";
+        for (int k = 0; k <= 32; ++k) rib += "Rotate " + std::to_string(25 * std::sin(0.7 * k + leaf)) + " 0 0 1\n";
+        rib += "MotionEnd\nPatch \"bilinear\" \"P\" [-0.4 -0.3 0  0.4 -0.3 0  -0.4 0.3 0  0.4 0.3 0]\nAttributeEnd\n";
+    }
+    rib += "WorldEnd\n";
+    const test::ShotAndFrame r = test::renderShotAndFrame(rib, {}, 0, 64, 13);
+    EXPECT_TRUE(r.samePixels(13));
+    EXPECT_GT(test::alphaSum(r.alone, 13), 50.0);  // the leaves are there
+    // Each leaf holds 33 keys for the shot; frame 13 alone, those of a chunk of frames either side.
+    EXPECT_LT(r.alone.stats.memoryBodiesBytes * 2, r.shot.stats.memoryBodiesBytes);
 }
 
 }  // namespace

@@ -1,0 +1,22 @@
+#include "geom/root_chunks.h"
+
+#include <algorithm>
+
+namespace streyes {
+
+int rootChunkFrames(const Body& root, const Camera& camera) {
+    if (const uint8_t made = root.rootChunk.load(std::memory_order_relaxed)) return made;
+    constexpr float kChunkMotion = 8.0f;
+    if (!root.moving() || !(root.bound().swept().lo.z >= camera.eyePlane())) return 1;
+    const TimeSpan& span = root.time();
+    const RasterMeasure m = root.measure(camera);
+    // The motion measured is over the whole span, or between neighbouring keys for a keyed body.
+    const double keys = root.diceableInTime() ? 1.0 : double(static_cast<const KeyedPatchBody&>(root).keyCount() - 1);
+    const double perFrame = double(m.motion) / std::max(1e-9, (span.t1 - span.t0) / keys);
+    int frames = 1;
+    while (frames < kMaxChunkFrames && perFrame * double(2 * frames) <= double(kChunkMotion)) frames *= 2;
+    root.rootChunk.store(uint8_t(frames), std::memory_order_relaxed);
+    return frames;
+}
+
+}  // namespace streyes
