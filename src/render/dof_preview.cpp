@@ -79,7 +79,15 @@ RenderStats renderDofPreview(const Scene& scene, const RenderOptions& options, i
     float radius[2] = {0, 0};  // per unit |1/d - 1/z|: raster x and y
     Camera camera;
     {
-        Renderer probe(scene, options, log);
+        // The bodies of the whole shot, whichever of its frames are rendered: a factory making
+        // only what the frames rendered reach (BodyFactory::setWanted) would narrow the depth
+        // range, and so move the layers, with the frames rendered.
+        const ResolvedSettings resolved = resolveSettings(scene, options);
+        RenderOptions whole = options;
+        whole.hasFrames = whole.hasShot = true;
+        whole.firstFrame = whole.shotFirst = resolved.shotFirst;
+        whole.lastFrame = whole.shotLast = resolved.shotLast;
+        Renderer probe(scene, whole, log);
         camera = probe.renderScene().camera;
         for (const BodyPtr& b : probe.renderScene().roots) {
             const Bounds3f box = b->bound().swept();

@@ -72,5 +72,32 @@ TEST(DepthOfFieldPreview, WithoutALensItIsTheRender) {
     EXPECT_TRUE(test::identicalPixels(plain, preview));
 }
 
+// The layers' depth range comes from the whole shot's bodies: frame 13 of a leaf keyed every
+// other frame of a 65-frame shot, receding from depth 3 to 40, is the same alone as in the shot.
+TEST(DepthOfFieldPreview, AFramesLayersDoNotDependOnTheFramesRendered) {
+    std::string rib = "Option \"streyes\" \"int frames\" [0 64]\nFormat 24 16 1\nProjection \"perspective\" \"fov\" [40]\n"
+                      "Clipping 0.1 100\nDepthOfField 2.8 0.5 6\nPixelSamples 2 2\nShutter 0 0.5\nWorldBegin\n"
+                      "Surface \"constant\"\nAttributeBegin\nMotionBegin [";
+    for (int k = 0; k <= 32; ++k) rib += std::to_string(2 * k) + (k < 32 ? " " : "]\n");
+    for (int k = 0; k <= 32; ++k) rib += "Translate 0 0 " + std::to_string(3 + 37.0 * k / 32) + "\n";
+    rib += "MotionEnd\nPatch \"bilinear\" \"P\" [-0.6 -0.4 0  0.6 -0.4 0  -0.6 0.4 0  0.6 0.4 0]\nAttributeEnd\n" +
+           test::square(-3, 3, -2, 2, 30) + "WorldEnd\n";
+    Log log;
+    const Scene scene = parseRibString(rib, "test.rib", log);
+    auto preview = [&](int first, int last) {
+        RenderOptions o;
+        o.hasFrames = true, o.firstFrame = first, o.lastFrame = last;
+        test::RenderResult r;
+        renderDofPreview(scene, o, 4, log, [&](const FrameImage& f) { r.frames.push_back(f); });
+        return r;
+    };
+    const test::RenderResult shot = preview(0, 64), alone = preview(13, 13);
+    ASSERT_EQ(shot.frames.size(), 65u);
+    test::RenderResult thirteen;
+    thirteen.frames = {shot.frame(13)};
+    EXPECT_TRUE(test::identicalPixels(thirteen, alone));
+    EXPECT_GT(test::alphaSum(alone, 13), 10.0);  // the wall is there (4.4 x 2.9 pixels), the leaf before it
+}
+
 }  // namespace
 }  // namespace streyes
