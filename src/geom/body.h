@@ -225,8 +225,8 @@ class KeyedPatchBody final : public Body {
     // As a root, for a render that reaches only times in [a, b] of it: the same body with only
     // the keys from the last at or before a to the first at or after b (three at least), or null
     // when that is every key. What is decided for the whole root from all its keys (whether it
-    // moves, rootChunk) is decided first and kept; every piece the split loop cuts from it over
-    // times in [a, b] (restrictedTo, boundDuring) is the same, bit for bit.
+    // moves, rootChunk, its bound) is decided first and kept; every piece the split loop cuts from
+    // it over times in [a, b] (restrictedTo, boundDuring) is the same, bit for bit.
     std::unique_ptr<KeyedPatchBody> keysOver(double a, double b, const Camera& camera) const;
 
   private:

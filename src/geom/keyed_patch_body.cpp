@@ -176,6 +176,7 @@ std::unique_ptr<KeyedPatchBody> KeyedPatchBody::keysOver(double a, double b, con
         std::vector<Corners>(keys_.begin() + std::ptrdiff_t(i0), keys_.begin() + std::ptrdiff_t(i1) + 1), Cs_, material_,
         i1 + 1 == n && time_.openEnd);
     r->moving_ = moving_;
+    r->bound_ = bound_;  // a root's bound decides no piece, but the depth layers (--layers N) read it
     r->rootChunk.store(rootChunk.load(std::memory_order_relaxed), std::memory_order_relaxed);
     r->inheritFrom(*this);
     r->pieceKey = pieceKey;

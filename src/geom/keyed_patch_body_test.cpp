@@ -123,6 +123,7 @@ TEST(KeyedPatchBody, KeysOverAWindowKeepThoseBracketingItAndTheWholeRootsDecisio
     EXPECT_TRUE(part->moving());
     EXPECT_EQ(rootChunkFrames(*part, cam), chunk);
     EXPECT_EQ(part->pieceKey, leaf.pieceKey);
+    EXPECT_EQ(part->bound().swept().hi.x, leaf.bound().swept().hi.x);  // x = 17 at the last key
     // Every piece cut over times inside the window is the whole root's, bit for bit.
     for (const auto& w : {std::pair<double, double>{13, 13.5}, {12, 18}, {14.25, 17.75}, {13, 17.5}}) {
         const BodyPtr a = leaf.restrictedTo(w.first, w.second), b = part->restrictedTo(w.first, w.second);
