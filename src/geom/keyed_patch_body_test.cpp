@@ -86,7 +86,6 @@ TEST(KeyedPatchBody, SplitInUKeepsEveryKey) {
     EXPECT_FLOAT_EQ(h[1]->bound().swept().lo.x, 0.5f);
 }
 
-
 // A leaf keyed every 2 frames over frames 0..32 that stands still over [12, 20] and moves
 // elsewhere, one unit a key, under a perspective camera.
 KeyedPatchBody longLeaf() {
