@@ -100,6 +100,7 @@ struct RenderStats {
     std::string simd;  // the instruction set the sample kernels ran ("AVX3" is AVX-512; --simd caps it)
     double tolerance = 0;
     int layers = 0;  // 0: adaptive
+    std::vector<float> layerDepths;  // --layers N: the camera depths between its layers
     double timeParse = 0, timeBuild = 0, timeRender = 0, timeWrite = 0, timeTotal = 0;  // wall seconds
     uint64_t peakMemoryBytes = 0;  // peak resident set of the process
     uint64_t memoryEstimateBytes = 0, memoryBudgetBytes = 0;  // memory.h, before rendering

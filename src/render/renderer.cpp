@@ -170,13 +170,23 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
 Renderer::~Renderer() = default;
 
 // Boundaries between --layers N layers, spaced geometrically from the nearest to the farthest
-// depth of the scene's bodies (clipped to the clipping range). Empty in adaptive mode.
+// depth of the scene's bodies over the whole shot (clipped to the clipping range). Empty in
+// adaptive mode. Rendering part of the shot, the render scene holds only the motion segments the
+// frames reach (BodyFactory::setWanted): the range is taken from the whole shot's, made for it
+// here, so that a frame's layers do not depend on the frames rendered with it.
 std::vector<float> Renderer::geometricLayerDepths() const {
     std::vector<float> depths;
     if (options_.layers <= 1) return depths;
     const Camera& cam = scene_->camera;
+    std::unique_ptr<RenderScene> whole;
+    if (settings_.firstFrame > settings_.shotFirst || settings_.lastFrame < settings_.shotLast) {
+        Log quiet;  // its warnings are the render scene's, given already
+        quiet.setQuiet(true);
+        whole = buildRenderScene(source_, settings_.shotFirst, settings_.shotLast, settings_.width, settings_.height,
+                                 quiet, shaders_.get());
+    }
     float zmin = std::numeric_limits<float>::infinity(), zmax = 0;
-    for (const BodyPtr& b : scene_->roots) {
+    for (const BodyPtr& b : (whole ? whole : scene_)->roots) {
         Bounds3f box = b->bound().swept();
         zmin = std::min(zmin, box.lo.z);
         zmax = std::max(zmax, box.hi.z);
@@ -295,6 +305,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.frameBlock = block;
     stats.tolerance = options_.tolerance;
     stats.layers = options_.layers;
+    stats.layerDepths = layerDepths;
     stats.bucketSize = tileSize;
     stats.timeBuild = buildSeconds_;
     stats.counters.rootBodies = scene_->roots.size();

@@ -44,12 +44,18 @@ std::string value(const std::vector<uint64_t>& v) {
     for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + std::to_string(v[i]);
     return s + "]";
 }
+std::string value(const std::vector<float>& v);
 std::string value(uint64_t v) { return std::to_string(v); }
 std::string value(int v) { return std::to_string(v); }
 std::string value(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.6g", v);
     return buf;
+}
+std::string value(const std::vector<float>& v) {
+    std::string s = "[";
+    for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + value(double(v[i]));
+    return s + "]";
 }
 
 // The fields of one JSON object, a line each; fields "group.key" that follow each other share a
@@ -96,8 +102,9 @@ std::string RenderStats::toJson() const {
       << "  \"bucket_size\": " << bucketSize << ",\n"
       << "  \"frame_block\": " << frameBlock << ",\n"
       << "  \"tolerance\": " << value(tolerance) << ",\n"
-      << "  \"layers\": " << (layers > 0 ? std::to_string(layers) : std::string("\"adaptive\"")) << ",\n"
-      << "  \"counters\": {\n";
+      << "  \"layers\": " << (layers > 0 ? std::to_string(layers) : std::string("\"adaptive\"")) << ",\n";
+    if (!layerDepths.empty()) o << "  \"layer_depths\": " << value(layerDepths) << ",\n";
+    o << "  \"counters\": {\n";
     JsonFields counts(o, "    ");
 #define STREYES_FIELD(member, key) counts.add(key, value(c.member));
 #define STREYES_SHOWN(key, expression) counts.add(key, value(expression));

@@ -161,5 +161,35 @@ TEST(FrameBlockInvariance, OneFrameOfALongKeyedShotKeepsOnlyItsOwnKeys) {
     EXPECT_LT(r.alone.stats.memoryBodiesBytes * 2, r.shot.stats.memoryBodiesBytes);
 }
 
+// --layers N spaces its layers over the depth of the whole shot's bodies: a deforming mesh keyed
+// every frame of a 16-frame shot, receding from depth 4 to 40, gives frame 5 rendered alone the
+// layers the shot gives it, although frame 5's render scene holds only its own segments.
+TEST(FrameBlockInvariance, LayerDepthsComeFromTheWholeShot) {
+    std::string times, keys;
+    for (int k = 0; k <= 16; ++k) {
+        times += std::to_string(k) + (k < 16 ? " " : "");
+        std::string P;
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i)
+                P += std::to_string(-1 + i) + " " + std::to_string(-1 + j) + " " + std::to_string(4 + 36.0 * k / 16) + " ";
+        keys += "SubdivisionMesh \"catmull-clark\" [4 4 4 4] [0 1 4 3 1 2 5 4 3 4 7 6 4 5 8 7] "
+                "[\"interpolateboundary\"] [0 0] [] [] \"P\" [" + P + "]\n";
+    }
+    const std::string rib = "Option \"streyes\" \"int frames\" [0 15]\nFormat 32 24 1\nProjection \"perspective\" \"fov\" 40\n"
+                            "Clipping 0.5 100\nPixelSamples 2 2\nShutter 0 0.5\nWorldBegin\nSurface \"constant\"\n"
+                            "MotionBegin [" + times + "]\n" + keys + "MotionEnd\n" +
+                            "Patch \"bilinear\" \"P\" [-30 -20 60  30 -20 60  -30 20 60  30 20 60]\nWorldEnd\n";
+    RenderOptions o;
+    o.layers = 4;
+    o.tolerance = 0.05;
+    const test::ShotAndFrame r = test::renderShotAndFrame(rib, o, 0, 15, 5);
+    ASSERT_EQ(r.shot.stats.layerDepths.size(), 3u);
+    EXPECT_EQ(r.alone.stats.layerDepths, r.shot.stats.layerDepths);
+    // Geometric from the mesh's nearest depth (about 4) to the wall (60).
+    EXPECT_LT(r.shot.stats.layerDepths.front(), 10.0f);
+    EXPECT_GT(r.shot.stats.layerDepths.back(), 20.0f);
+    EXPECT_TRUE(r.samePixels(5));
+}
+
 }  // namespace
 }  // namespace streyes
