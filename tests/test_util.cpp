@@ -187,6 +187,20 @@ std::string orthoHeader(int w, int h, const std::string& extra) {
            "PixelFilter \"box\" 1 1\n" + extra + "WorldBegin\nSurface \"constant\"\n";
 }
 
+std::string keyedSheet(int lastKey, const std::function<std::array<double, 3>(int k, int i, int j)>& vertex) {
+    std::string times, keys;
+    for (int k = 0; k <= lastKey; ++k) {
+        times += std::to_string(k) + (k < lastKey ? " " : "");
+        std::string P;
+        for (int j = 0; j < 3; ++j)
+            for (int i = 0; i < 3; ++i)
+                for (double c : vertex(k, i, j)) P += std::to_string(c) + " ";
+        keys += "SubdivisionMesh \"catmull-clark\" [4 4 4 4] [0 1 4 3 1 2 5 4 3 4 7 6 4 5 8 7] "
+                "[\"interpolateboundary\"] [0 0] [] [] \"P\" [" + P + "]\n";
+    }
+    return "MotionBegin [" + times + "]\n" + keys + "MotionEnd\n";
+}
+
 std::string square(double x0, double x1, double y0, double y1, double z) {
     auto n = [](double v) { return std::to_string(v); };
     return "Patch \"bilinear\" \"P\" [" + n(x0) + " " + n(y0) + " " + n(z) + "  " + n(x1) + " " + n(y0) + " " + n(z) +

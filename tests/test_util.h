@@ -2,6 +2,8 @@
 // in memory (no files, no OpenImageIO).
 #pragma once
 
+#include <array>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -121,6 +123,9 @@ std::vector<std::string> differingCounts(const RenderCounters& a, const RenderCo
 std::string orthoHeader(int w, int h, const std::string& extra = "");
 // Patch "bilinear" of the axis-aligned square [x0, x1] x [y0, y1] at depth z.
 std::string square(double x0, double x1, double y0, double y1, double z);
+// A 2 x 2-face Catmull-Clark sheet keyed at t = 0, 1, ..., lastKey: MotionBegin ... MotionEnd, its
+// 3 x 3 control points at key k (x, y, z for point i + 3 j) from vertex(k, i, j).
+std::string keyedSheet(int lastKey, const std::function<std::array<double, 3>(int k, int i, int j)>& vertex);
 // Fraction of pixel [p, p+1] covered by [a, b].
 double overlap(double p, double a, double b);
 // The algorithm's name as a test name ("raytrace_frames").

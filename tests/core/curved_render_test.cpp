@@ -282,19 +282,11 @@ std::string orthoHeader(int w, int h) {
 // motion segments its exposure meets (each key is converted to the mesh's limit surface only
 // where a segment needs it), and gives the pixels it gives rendered with the whole shot.
 TEST(CurvedRender, AFrameOfADeformingMeshMakesOnlyItsOwnSegments) {
-    std::string times, keys;
-    for (int k = 0; k <= 16; ++k) {
-        times += std::to_string(k) + (k < 16 ? " " : "");
-        std::string P;
-        for (int j = 0; j < 3; ++j)
-            for (int i = 0; i < 3; ++i)
-                P += std::to_string(4 + 8 * i + k) + " " + std::to_string(4 + 8 * j) + " " +
-                     std::to_string(10 + 0.3 * ((i + j + k) % 3)) + " ";
-        keys += "SubdivisionMesh \"catmull-clark\" [4 4 4 4] [0 1 4 3 1 2 5 4 3 4 7 6 4 5 8 7] "
-                "[\"interpolateboundary\"] [0 0] [] [] \"P\" [" + P + "]\n";
-    }
     const std::string rib = "Option \"streyes\" \"int frames\" [0 15]\nShutter 0 0.5\n" + orthoHeader(48, 32) +
-                            "MotionBegin [" + times + "]\n" + keys + "MotionEnd\nWorldEnd\n";
+                            test::keyedSheet(16, [](int k, int i, int j) {
+                                return std::array<double, 3>{4.0 + 8 * i + k, 4.0 + 8 * j, 10 + 0.3 * ((i + j + k) % 3)};
+                            }) +
+                            "WorldEnd\n";
     const test::ShotAndFrame r = test::renderShotAndFrame(rib, {}, 0, 15, 5);
     const RenderResult &shot = r.shot, &alone = r.alone;
     // The same bodies for each of the 16 segments; frame 5's exposure [5, 5.5] meets the segment

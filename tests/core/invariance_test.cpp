@@ -165,19 +165,11 @@ TEST(FrameBlockInvariance, OneFrameOfALongKeyedShotKeepsOnlyItsOwnKeys) {
 // every frame of a 16-frame shot, receding from depth 4 to 40, gives frame 5 rendered alone the
 // layers the shot gives it, although frame 5's render scene holds only its own segments.
 TEST(FrameBlockInvariance, LayerDepthsComeFromTheWholeShot) {
-    std::string times, keys;
-    for (int k = 0; k <= 16; ++k) {
-        times += std::to_string(k) + (k < 16 ? " " : "");
-        std::string P;
-        for (int j = 0; j < 3; ++j)
-            for (int i = 0; i < 3; ++i)
-                P += std::to_string(-1 + i) + " " + std::to_string(-1 + j) + " " + std::to_string(4 + 36.0 * k / 16) + " ";
-        keys += "SubdivisionMesh \"catmull-clark\" [4 4 4 4] [0 1 4 3 1 2 5 4 3 4 7 6 4 5 8 7] "
-                "[\"interpolateboundary\"] [0 0] [] [] \"P\" [" + P + "]\n";
-    }
     const std::string rib = "Option \"streyes\" \"int frames\" [0 15]\nFormat 32 24 1\nProjection \"perspective\" \"fov\" 40\n"
-                            "Clipping 0.5 100\nPixelSamples 2 2\nShutter 0 0.5\nWorldBegin\nSurface \"constant\"\n"
-                            "MotionBegin [" + times + "]\n" + keys + "MotionEnd\n" +
+                            "Clipping 0.5 100\nPixelSamples 2 2\nShutter 0 0.5\nWorldBegin\nSurface \"constant\"\n" +
+                            test::keyedSheet(16, [](int k, int i, int j) {
+                                return std::array<double, 3>{-1.0 + i, -1.0 + j, 4 + 36.0 * k / 16};
+                            }) +
                             "Patch \"bilinear\" \"P\" [-30 -20 60  30 -20 60  -30 20 60  30 20 60]\nWorldEnd\n";
     RenderOptions o;
     o.layers = 4;
