@@ -138,13 +138,16 @@ WorldEnd
 }
 
 
-// Leaves keyed every other frame of a 65-frame shot, turning, under a moving camera: one frame
-// rendered alone keeps only the keys the chunks of its frames reach (BodyFactory::addPatch,
-// KeyedPatchBody::keysOver), and gives the pixels the whole shot gives it.
+// Leaves keyed every other frame of a 65-frame shot, turning under a moving camera and casting
+// shadows on a wall: one frame rendered alone keeps only the keys the chunks of its frames reach
+// (BodyFactory::addPatch, KeyedPatchBody::keysOver), and gives the pixels the whole shot gives
+// it, rasterized frame by frame or in spacetime (shadow rays trace the leaves) and ray traced.
 TEST(FrameBlockInvariance, OneFrameOfALongKeyedShotKeepsOnlyItsOwnKeys) {
     std::string rib = "Option \"streyes\" \"int frames\" [0 64]\nFormat 48 32 1\nProjection \"perspective\" \"fov\" 40\n"
                       "PixelSamples 2 2\nShutter 0 0.5\nMotionBegin [0 64]\nTranslate 0 0 8\nTranslate -1 0 8\nMotionEnd\n"
-                      "WorldBegin\nSurface \"constant\"\n";
+                      "WorldBegin\nAttribute \"light\" \"shadows\" \"on\"\n"
+                      "LightSource \"distantlight\" 1 \"from\" [-1 1 -2] \"to\" [0 0 0]\nSurface \"matte\"\n"
+                      "Patch \"bilinear\" \"P\" [-6 -4 1.5  6 -4 1.5  -6 4 1.5  6 4 1.5]\n";
     std::string times;
     for (int k = 0; k <= 32; ++k) times += std::to_string(2 * k) + (k < 32 ? " " : "");
     for (int leaf = 0; leaf < 6; ++leaf) {
@@ -154,11 +157,15 @@ TEST(FrameBlockInvariance, OneFrameOfALongKeyedShotKeepsOnlyItsOwnKeys) {
         rib += "MotionEnd\nPatch \"bilinear\" \"P\" [-0.4 -0.3 0  0.4 -0.3 0  -0.4 0.3 0  0.4 0.3 0]\nAttributeEnd\n";
     }
     rib += "WorldEnd\n";
-    const test::ShotAndFrame r = test::renderShotAndFrame(rib, {}, 0, 64, 13);
-    EXPECT_TRUE(r.samePixels(13));
-    EXPECT_GT(test::alphaSum(r.alone, 13), 50.0);  // the leaves are there
-    // Each leaf holds 33 keys for the shot; frame 13 alone, those of a chunk of frames either side.
-    EXPECT_LT(r.alone.stats.memoryBodiesBytes * 2, r.shot.stats.memoryBodiesBytes);
+    for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Frames, Algorithm::Raytrace}) {
+        SCOPED_TRACE(algorithmName(a));
+        const test::ShotAndFrame r = test::renderShotAndFrame(rib, test::optionsFor(a), 0, 64, 13);
+        EXPECT_TRUE(r.samePixels(13));
+        EXPECT_GT(test::alphaSum(r.alone, 13), 1000.0);  // the wall fills the frame (48 x 32)
+        // Each leaf holds 33 keys for the shot; frame 13 alone, those of a chunk of frames either side.
+        EXPECT_LT(r.alone.stats.memoryBodiesBytes * 2, r.shot.stats.memoryBodiesBytes);
+        EXPECT_GT(r.alone.stats.counters.shadowRays, 0u);
+    }
 }
 
 // --layers N spaces its layers over the depth of the whole shot's bodies: a deforming mesh keyed
