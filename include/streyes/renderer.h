@@ -16,6 +16,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "streyes/error.h"
@@ -52,6 +53,12 @@ class Renderer {
 
     const RenderScene& renderScene() const { return *scene_; }
     const ResolvedSettings& settings() const { return settings_; }
+    // The nearest and farthest camera depth of the whole shot's bodies, clipped to the clipping
+    // range (--layers N and --dof-preview space their layers over it). Rendering part of the shot,
+    // the render scene holds only the motion segments its frames reach (BodyFactory::setWanted):
+    // the whole shot's are made for it here, so that a frame's layers do not depend on the frames
+    // rendered with it.
+    std::pair<float, float> shotDepthRange() const;
 
   private:
     std::vector<float> geometricLayerDepths() const;

@@ -457,11 +457,13 @@ HWY_INLINE uint64_t testQuad(const QuadSetup& q, const SampleLayout& L, const Qu
             const uint32_t pixel = uint32_t((ppy - L.y0) * L.width + (ppx - L.x0));
             const float* xs = L.xs + size_t(pixel) * size_t(L.S);
             const float* ys = L.ys + size_t(pixel) * size_t(L.S);
+            // Otherwise the pixel's columns, once for all its chunks of 64 samples.
+            const int ix0 = columnsKnown ? 0 : stratumAt(q.xmin, ppx, L.sx);
+            const int ix1 = columnsKnown ? 0 : stratumAt(q.xmax, ppx, L.sx);
             for (int c0 = 0; c0 < L.S; c0 += 64) {
                 const int n = std::min(64, L.S - c0);
-                const uint64_t candidates =
-                    columnsKnown ? columnBits[ppx - q.px0] * rowBits
-                                 : strataCandidates(L, stratumAt(q.xmin, ppx, L.sx), stratumAt(q.xmax, ppx, L.sx), iy0, iy1, c0, n);
+                const uint64_t candidates = columnsKnown ? columnBits[ppx - q.px0] * rowBits
+                                                         : strataCandidates(L, ix0, ix1, iy0, iy1, c0, n);
                 for (size_t i = 0; i < size_t(n); i += N) {
                     uint64_t bits = candidates >> i;
                     if (N < 64) bits &= (uint64_t(1) << N) - 1;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 
 #include "bodies/render_scene.h"
 
@@ -74,29 +75,15 @@ RenderStats renderDofPreview(const Scene& scene, const RenderOptions& options, i
                              const Renderer::FrameSink& sink, const Renderer::Progress& progress) {
     if (!scene.camera.depthOfField() || layers < 1) return Renderer(scene, options, log).render(sink, progress);
     // The lens and the depth range: from the scene as made for rendering (its camera's
-    // resolution, its bodies' camera-space bounds over the whole shot).
-    float zmin = std::numeric_limits<float>::infinity(), zmax = 0;
+    // resolution, its bodies' camera-space bounds over the whole shot: Renderer::shotDepthRange).
     float radius[2] = {0, 0};  // per unit |1/d - 1/z|: raster x and y
     Camera camera;
+    float zmin = 0, zmax = 0;
     {
-        // The bodies of the whole shot, whichever of its frames are rendered: a factory making
-        // only what the frames rendered reach (BodyFactory::setWanted) would narrow the depth
-        // range, and so move the layers, with the frames rendered.
-        const ResolvedSettings resolved = resolveSettings(scene, options);
-        RenderOptions whole = options;
-        whole.hasFrames = whole.hasShot = true;
-        whole.firstFrame = whole.shotFirst = resolved.shotFirst;
-        whole.lastFrame = whole.shotLast = resolved.shotLast;
-        Renderer probe(scene, whole, log);
+        Renderer probe(scene, options, log);
         camera = probe.renderScene().camera;
-        for (const BodyPtr& b : probe.renderScene().roots) {
-            const Bounds3f box = b->bound().swept();
-            zmin = std::min(zmin, box.lo.z);
-            zmax = std::max(zmax, box.hi.z);
-        }
+        std::tie(zmin, zmax) = probe.shotDepthRange();
     }
-    zmin = std::max(zmin, camera.nearClip());
-    zmax = std::min(zmax, camera.farClip());
     if (!(zmax > zmin)) return Renderer(scene, options, log).render(sink, progress);
     const float invD = 1.0f / camera.focalDistance();
     radius[0] = camera.lensRadius() * std::fabs(camera.ax());

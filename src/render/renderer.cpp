@@ -169,15 +169,7 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
 
 Renderer::~Renderer() = default;
 
-// Boundaries between --layers N layers, spaced geometrically from the nearest to the farthest
-// depth of the scene's bodies over the whole shot (clipped to the clipping range). Empty in
-// adaptive mode. Rendering part of the shot, the render scene holds only the motion segments the
-// frames reach (BodyFactory::setWanted): the range is taken from the whole shot's, made for it
-// here, so that a frame's layers do not depend on the frames rendered with it.
-std::vector<float> Renderer::geometricLayerDepths() const {
-    std::vector<float> depths;
-    if (options_.layers <= 1) return depths;
-    const Camera& cam = scene_->camera;
+std::pair<float, float> Renderer::shotDepthRange() const {
     std::unique_ptr<RenderScene> whole;
     if (settings_.firstFrame > settings_.shotFirst || settings_.lastFrame < settings_.shotLast) {
         Log quiet;  // its warnings are the render scene's, given already
@@ -187,12 +179,19 @@ std::vector<float> Renderer::geometricLayerDepths() const {
     }
     float zmin = std::numeric_limits<float>::infinity(), zmax = 0;
     for (const BodyPtr& b : (whole ? whole : scene_)->roots) {
-        Bounds3f box = b->bound().swept();
+        const Bounds3f box = b->bound().swept();
         zmin = std::min(zmin, box.lo.z);
         zmax = std::max(zmax, box.hi.z);
     }
-    zmin = std::max(zmin, cam.nearClip());
-    zmax = std::min(zmax, cam.farClip());
+    return {std::max(zmin, scene_->camera.nearClip()), std::min(zmax, scene_->camera.farClip())};
+}
+
+// Boundaries between --layers N layers, spaced geometrically over shotDepthRange. Empty in
+// adaptive mode.
+std::vector<float> Renderer::geometricLayerDepths() const {
+    std::vector<float> depths;
+    if (options_.layers <= 1) return depths;
+    const auto [zmin, zmax] = shotDepthRange();
     if (!(zmax > zmin)) return depths;
     for (int i = 1; i < options_.layers; ++i)
         depths.push_back(float(double(zmin) * std::pow(double(zmax) / double(zmin), double(i) / options_.layers)));

@@ -44,7 +44,6 @@ std::string value(const std::vector<uint64_t>& v) {
     for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + std::to_string(v[i]);
     return s + "]";
 }
-std::string value(const std::vector<float>& v);
 std::string value(uint64_t v) { return std::to_string(v); }
 std::string value(int v) { return std::to_string(v); }
 std::string value(double v) {
