@@ -218,12 +218,12 @@ BENCHMARK(BM_QuadTestKernel);
 
 // The moving quad test alone (sample_kernels.h, movingTestKernel), as BM_QuadTestKernel is for
 // still quads: BM_Sampler/px_per_frame:4's grid (1-pixel quads moving 4 pixels a frame), each
-// quad's lanes over each group of slices filled beforehand as the sampler fills them (the
-// samples of the group's slices in the pixels of the quad's bound over the group, the group as
-// long as GridRasterizer::kGroupMotion allows), so that only the kernel is timed: each lane's
-// quad at its own time, its five edges, the inside tests and the edge values of the hits.
+// quad's lanes over each group of slices laid out beforehand as the sampler reads them (a call a
+// row of the quad's pixels: the samples of the group's slices in those pixels, the group as long
+// as GridRasterizer::kGroupMotion allows), so that only the kernel is timed: each lane's quad at
+// its own time, its five edges, the inside tests and the edge values of the hits.
 // BM_Sampler/px_per_frame:4 adds the rest of the moving sampler (grouping and projection, each
-// quad's bound, filling the lanes, each hit's depth test, colour and write).
+// quad's bound, gathering the group's samples, each hit's depth test, colour and write).
 void BM_MovingTestKernel(benchmark::State& state) {
     const int size = 64;
     const float motion = 4;
@@ -271,8 +271,8 @@ void BM_MovingTestKernel(benchmark::State& state) {
                 if (!micropolygon::boundQuad(q, xb, yb, zb, R, cam.nearClip(), cam.farClip())) continue;
                 bt.q.tfA = wa, bt.q.invSpan = 1.0f / (wb - wa);
                 bt.q.xmin = q.xmin, bt.q.xmax = q.xmax, bt.q.ymin = q.ymin, bt.q.ymax = q.ymax, bt.q.zmin = q.zmin;
-                bt.first = xs.size();
-                for (int py = q.py0; py <= q.py1; ++py)
+                for (int py = q.py0; py <= q.py1; ++py) {
+                    bt.first = xs.size(), bt.n = 0;
                     for (int px = q.px0; px <= q.px1; ++px) {
                         const size_t pi = block.pixelIndex(px, py);
                         const int perm = block.permutation(0, pi);
@@ -283,9 +283,10 @@ void BM_MovingTestKernel(benchmark::State& state) {
                             ++bt.n;
                         }
                     }
-                if (bt.n > 64) state.SkipWithError("a batch over the kernel's 64 lanes");
-                for (int p = bt.n; p < edgeStride(bt.n); ++p) xs.push_back(0), ys.push_back(0), tfs.push_back(0), zs.push_back(0);
-                batches.push_back(bt);
+                    if (bt.n > 64) state.SkipWithError("a row over the kernel's 64 lanes");
+                    for (int p = bt.n; p < edgeStride(bt.n); ++p) xs.push_back(0), ys.push_back(0), tfs.push_back(0), zs.push_back(0);
+                    batches.push_back(bt);
+                }
             }
     }
     std::vector<float> edges(kMaxEdgeValues);

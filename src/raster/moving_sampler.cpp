@@ -87,10 +87,18 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     // watertightness (the kernel is held to it bit for bit).
     const MovingTestFn movingTest = Counting ? movingTestScalar() : movingTestKernel();
     // The lanes' quad: what the camera gives it is the same for the whole grid.
-    MovingQuad& mq = lanes_.quad;
+    MovingQuad& mq = quad_;
     mq.ax = camera.ax(), mq.bx = camera.bx(), mq.ay = camera.ay(), mq.by = camera.by();
     mq.lens = Lens;
     mq.lensRadius = camera.lensRadius(), mq.invFocal = camera.invFocalDistance(), mq.eyePlane = camera.eyePlane();
+    // The group's slots: up to S a pixel, and room for the kernel to read a whole vector past the last.
+    GroupSamples& gs = group_;
+    const size_t slots = pixels * size_t(S) + size_t(kLanes);
+    if (gs.x.size() < slots) {
+        for (auto* v : {&gs.x, &gs.y, &gs.tf, &gs.z, &gs.lu, &gs.lv}) v->assign(slots, 0.0f);
+        gs.sample.assign(slots, 0);
+    }
+    if (gs.gathered.size() < pixels) gs.gathered.resize(pixels, 0);
 
     // Slices are bounded in groups (kGroupMotion): the grid's largest motion over a slice.
     project(grid, grid.t0, camera, ra_);
@@ -188,6 +196,36 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                     }
                 }
         }
+        // A new serial for the group's slots: every pixel is gathered again when a quad first reaches it.
+        if (++gs.serial == 0) {
+            std::fill(gs.gathered.begin(), gs.gathered.end(), 0u);
+            gs.serial = 1;
+        }
+        const size_t g = s1 - s0;
+        auto gather = [&](size_t pi) {
+            const int perm = block.permutation(fi, pi);
+            const uint16_t* sampleOf = patterns.sampleOfStratum(perm);
+            const float* times = patterns.stratumTimes(perm);
+            const SampleHit* rec = block.record(fi, pi);
+            const SampleHit* seen = rec ? rec : block.still(pi);
+            size_t o = pi * g;
+            for (size_t s = s0; s < s1; ++s, ++o) {
+                const Slice& sl = slices_[s];
+                const int sj = sampleOf[sl.k];
+                gs.sample[o] = uint16_t(sj);
+                if (sl.checkTime && !inTimeSpan(times[sl.k], sl.tfA, sl.tfB, sl.openB)) {
+                    // A sample outside the part of its slice the grid covers meets none of it.
+                    constexpr float kNever = std::numeric_limits<float>::infinity();
+                    gs.x[o] = kNever, gs.y[o] = kNever, gs.tf[o] = 0, gs.z[o] = kNever;
+                    if constexpr (Lens) gs.lu[o] = 0, gs.lv[o] = 0;
+                    continue;
+                }
+                const size_t si = pi * size_t(S) + size_t(sj);
+                gs.x[o] = xs[si], gs.y[o] = ys[si], gs.tf[o] = times[sl.k], gs.z[o] = seen[sj].z;
+                if constexpr (Lens) gs.lu[o] = lus[si], gs.lv[o] = lvs[si];
+            }
+            gs.gathered[pi] = gs.serial;
+        };
         for (int j = 0; j < nv; ++j) {
             for (int i = 0; i < nu; ++i) {
                 if (hole && hole[j * nu + i]) continue;  // trimmed away
@@ -209,7 +247,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 // frame's record of the pixel (null until something only this frame sees lands
                 // there); cur the sample's hit.
                 auto onHit = [&](size_t pi, int sj, SampleHit*& rec, const SampleHit& cur, float w, const Hit& h,
-                                 const QuadSetup& qt, float x, float y) __attribute__((always_inline)) {
+                                 const QuadSetup& qt, float x, float y, size_t slot) __attribute__((always_inline)) {
                     ++hits;
                     if (Counting) {
                         const size_t ci2 = (size_t(fi) * pixels + pi) * size_t(S) + size_t(sj);
@@ -245,6 +283,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                     }
                     if (!rec) rec = block.makeRecord(fi, pi);
                     rec[sj] = hit;
+                    gs.z[slot] = hit.z;  // what the grid's next quads see there
                     block.touch(pi);
                     if (A)
                         writeAovs(block.recordAov(fi, pi) + size_t(sj) * size_t(A), A, h, [&](int c, int a) {
@@ -257,10 +296,10 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             return lerp(cl0[v], cl1[v], sg);
                         });
                 };
-                // Each pixel's samples of the group's slices go into lanes, tested up to 64 at
-                // a time against the quad at each sample's own time, as its lens point sees it
-                // with a lens (sample_kernels.h, MovingQuad); lanes inside the quad's bound are
-                // tests, as one by one.
+                // Each row of the quad's pixels: the group's samples of its pixels lie side by side
+                // in the group's slots, tested up to kLanes at a time against the quad at each
+                // sample's own time, as its lens point sees it with a lens (sample_kernels.h,
+                // MovingQuad); lanes inside the quad's bound are tests, as one by one.
                 for (int c = 0; c < 4; ++c) {
                     const size_t v = size_t(idx[c]);
                     mq.x[0][c] = q.x[c], mq.y[0][c] = q.y[c], mq.z[0][c] = q.z[c];
@@ -275,58 +314,35 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 // A lane whose sample already sees something nearer than all of the quad is not
                 // tested (counted behind); while counting hits, every lane is.
                 mq.zmin = Counting ? std::numeric_limits<float>::quiet_NaN() : q.zmin;
-                int n = 0;
-                auto flush = [&] {
-                    const MovingTest t = movingTest(mq, lanes_.x, lanes_.y, lanes_.tf, lanes_.z, Lens ? lanes_.lu : nullptr,
-                                                    Lens ? lanes_.lv : nullptr, n, lanes_.edges);
-                    tests += uint64_t(__builtin_popcountll(t.tested));
-                    behind += uint64_t(__builtin_popcountll(t.behind));
-                    for (uint64_t b = t.first | t.second; b; b &= b - 1) {
-                        const int l = __builtin_ctzll(b);
-                        const size_t pi = lanes_.pixel[l];
-                        const int sj = lanes_.sample[l];
-                        SampleHit* rec = block.record(fi, pi);
-                        const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
-                        const Hit h = pixelHit(lanes_.edges, n, l, (t.first >> l) & 1);
-                        const float w = movingWeight(mq, lanes_.tf[l]);
-                        QuadSetup qt;
-                        if constexpr (Counting) qt = QuadSetup{};  // set below; GCC cannot tell once onHit is inlined
-                        if (Counting && Lens) movingLensQuadAt(mq, w, lanes_.lu[l], lanes_.lv[l], lanes_.x[l], lanes_.y[l], qt);
-                        else if (Counting) movingQuadAt(mq, w, qt);
-                        else
-                            for (int c = 0; c < 4; ++c) qt.z[c] = movingDepth(mq, c, w);  // all a hit needs
-                        onHit(pi, sj, rec, cur, w, h, qt, lanes_.x[l], lanes_.y[l]);
-                    }
-                    n = 0;
-                };
-                for (int py = q.py0; py <= q.py1; ++py)
-                    for (int px = q.px0; px <= q.px1; ++px) {
-                        const size_t pi = block.pixelIndex(px, py);
-                        // Every sample of the pixel already sees something nearer than all of the
-                        // quad: none of them can change (the usual case deep in foliage).
-                        if (!Counting && pixelBehind(block, fi, pi, q.zmin, S)) {
-                            behind += s1 - s0;
-                            continue;
-                        }
-                        const int perm = block.permutation(fi, pi);
-                        const uint16_t* sampleOf = patterns.sampleOfStratum(perm);
-                        const float* times = patterns.stratumTimes(perm);
-                        const SampleHit* rec = block.record(fi, pi);
-                        const SampleHit* seen = rec ? rec : block.still(pi);
-                        for (size_t s = s0; s < s1; ++s) {
-                            const Slice& sl = slices_[s];
-                            // A sample outside the part of its slice the grid covers meets none of it.
-                            if (sl.checkTime && !inTimeSpan(times[sl.k], sl.tfA, sl.tfB, sl.openB)) continue;
-                            if (n == kLanes) flush();
-                            const int sj = sampleOf[sl.k];
-                            const size_t si = pi * size_t(S) + size_t(sj);
-                            lanes_.x[n] = xs[si], lanes_.y[n] = ys[si], lanes_.tf[n] = times[sl.k], lanes_.z[n] = seen[sj].z;
-                            lanes_.pixel[n] = uint32_t(pi), lanes_.sample[n] = uint16_t(sj);
-                            if constexpr (Lens) lanes_.lu[n] = lus[si], lanes_.lv[n] = lvs[si];
-                            ++n;
+                for (int py = q.py0; py <= q.py1; ++py) {
+                    const size_t row = block.pixelIndex(q.px0, py), rowEnd = row + size_t(q.px1 - q.px0 + 1);
+                    for (size_t pi = row; pi < rowEnd; ++pi)
+                        if (gs.gathered[pi] != gs.serial) gather(pi);
+                    for (size_t first = row * g, end = rowEnd * g; first < end; first += kLanes) {
+                        const int n = int(std::min(end - first, size_t(kLanes)));
+                        const MovingTest t =
+                            movingTest(mq, &gs.x[first], &gs.y[first], &gs.tf[first], &gs.z[first],
+                                       Lens ? &gs.lu[first] : nullptr, Lens ? &gs.lv[first] : nullptr, n, movingEdges_);
+                        tests += uint64_t(__builtin_popcountll(t.tested));
+                        behind += uint64_t(__builtin_popcountll(t.behind));
+                        for (uint64_t b = t.first | t.second; b; b &= b - 1) {
+                            const int l = __builtin_ctzll(b);
+                            const size_t slot = first + size_t(l), pi = slot / g;
+                            const int sj = gs.sample[slot];
+                            SampleHit* rec = block.record(fi, pi);
+                            const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
+                            const Hit h = pixelHit(movingEdges_, n, l, (t.first >> l) & 1);
+                            const float w = movingWeight(mq, gs.tf[slot]);
+                            QuadSetup qt;
+                            if constexpr (Counting) qt = QuadSetup{};  // set below; GCC cannot tell once onHit is inlined
+                            if (Counting && Lens) movingLensQuadAt(mq, w, gs.lu[slot], gs.lv[slot], gs.x[slot], gs.y[slot], qt);
+                            else if (Counting) movingQuadAt(mq, w, qt);
+                            else
+                                for (int c = 0; c < 4; ++c) qt.z[c] = movingDepth(mq, c, w);  // all a hit needs
+                            onHit(pi, sj, rec, cur, w, h, qt, gs.x[slot], gs.y[slot], slot);
                         }
                     }
-                if (n) flush();
+                }
             }
         }
         s0 = s1;

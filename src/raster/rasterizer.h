@@ -124,18 +124,22 @@ class GridRasterizer {
     std::vector<QuadHit> quadHits_;  // a still quad's hits
     float lensEdges_[kMaxEdgeValues];  // a still quad's edge values at a pixel's samples, with a lens
     std::vector<Slice> slices_;
-    // A moving quad's lanes: the samples of its group of slices in the pixels of its bound, tested
-    // up to kLanes at a time (sample_kernels.h, MovingTestFn), each with its pixel.
+    // A moving grid's samples over one group of slices, gathered once a pixel (the first time a
+    // quad's bound reaches it): the group's g samples of block pixel i in slots [i g, i g + g), in
+    // slice order. A quad's lanes over a row of its pixels are then side by side, and the kernel
+    // reads them in place, tested up to kLanes at a time (sample_kernels.h, MovingTestFn). A slot
+    // whose sample lies outside the part of its slice the grid covers sits at x = y = +inf, outside
+    // every bound. z follows the sample's hits as the grid's quads write them.
     static constexpr int kLanes = 64;
-    struct Lanes {
-        MovingQuad quad;
-        float x[kLanes], y[kLanes], tf[kLanes], lu[kLanes], lv[kLanes];  // lu, lv: with a lens
-        float z[kLanes];  // the depth the sample sees so far
-        uint32_t pixel[kLanes];
-        uint16_t sample[kLanes];
-        float edges[kMaxEdgeValues];
+    struct GroupSamples {
+        std::vector<float> x, y, tf, z, lu, lv;  // lu, lv: with a lens
+        std::vector<uint16_t> sample;           // the slot's sample of its pixel
+        std::vector<uint32_t> gathered;         // per pixel: the serial of the group last gathered
+        uint32_t serial = 0;                    // this group's
     };
-    Lanes lanes_{};
+    GroupSamples group_;
+    MovingQuad quad_{};
+    float movingEdges_[kMaxEdgeValues];
     std::vector<FrameSpan> frames_;
     uint32_t* hitCounts_ = nullptr;
     int32_t* windings_ = nullptr;

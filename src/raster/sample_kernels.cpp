@@ -120,7 +120,7 @@ HWY_INLINE void testLanes(D d, VD x, VD y, const VD* cxs, const VD* cys, MD inBo
 // operations in the same order (lerp is a (1 - w) + b w; makeEdge's canonical choice by lane).
 MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, const float* tfs, const float* seenZ,
                       const float* lus, const float* lvs, int n, float* edges) {
-    const hn::CappedTag<float, 8> kD;  // 8 lanes: a pixel group's candidates seldom fill more
+    const hn::CappedTag<float, 8> kD;  // 8 lanes: sixteen were slower (docs/ARCHITECTURE.md)
     using V = hn::Vec<decltype(kD)>;
     using M = hn::Mask<decltype(kD)>;
     const size_t N = hn::Lanes(kD);
