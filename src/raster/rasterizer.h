@@ -69,14 +69,17 @@ class GridRasterizer {
 
     // A moving grid's slices are bounded in groups: as many slices a group as keep the grid's
     // largest raster motion over a group under this many pixels. A quad's bound over a group
-    // holds every sample of it that could hit; a longer group fills the lanes better and sets up
-    // fewer bounds, at the cost of a looser bound. 1 pixel was the best overall of 0.5, 1 and 2
-    // on the moving benchmarks and scenes/dof.rib (2 won 8% at 4 pixels a frame but lost 18% on
-    // the diagonal).
-    static constexpr float kGroupMotion = 1.0f;
+    // holds every sample of it that could hit; a longer group sets up fewer bounds and reads each
+    // quad's set-up over more samples, at the cost of a looser bound. 2 pixels was the best
+    // overall of 1, 1.5, 2, 2.5, 3 and 4 on the moving benchmarks once a group's samples were read
+    // in place (docs/ARCHITECTURE.md); 3 lost 18-25% on the diagonal.
+    static constexpr float kGroupMotion = 2.0f;
     // Slices a group for a grid moving `motionPerSlice` pixels a slice at most, S slices a frame.
+    // A ratio within 1e-3 of a whole number counts as that number: the motion is measured in
+    // float, and 16 pixels a frame over 16 slices must give groups of 2, not of 1.
     static size_t slicesPerGroup(double motionPerSlice, int S) {
-        return motionPerSlice > 0 ? size_t(std::clamp(double(kGroupMotion) / motionPerSlice, 1.0, double(S))) : size_t(S);
+        return motionPerSlice > 0 ? size_t(std::clamp(double(kGroupMotion) / motionPerSlice + 1e-3, 1.0, double(S)))
+                                  : size_t(S);
     }
 
   private:
