@@ -5,10 +5,11 @@
 // many samples at once). Its corners move linearly from t0 to t1 in camera space; a frame's
 // exposure has one time slice per sample of a pixel, each slice holding one sample a pixel. A
 // moving grid is projected at the ends of a group of slices (as many as keep its motion over the
-// group under a pixel, kGroupMotion), the grid's and then each quad's bound over the group
+// group under two pixels, kGroupMotion), the grid's and then each quad's bound over the group
 // rejected against the block (a vertex moving linearly in camera space projects inside the box of
-// its two ends), and each sample tested against the quad at the sample's own time (as its lens
-// point sees it, with depth of field), 8 samples at a time (sample_kernels.h, MovingQuad).
+// its two ends), the group's samples gathered once a pixel, and each sample tested against the
+// quad at the sample's own time (as its lens point sees it, with depth of field), 8 samples at a
+// time, a row of the quad's pixels a call (sample_kernels.h, MovingQuad).
 //
 // A grid that is still and exists over every frame of the block is sampled once, into the
 // block's still layer; any other writes into the frames' records of the pixels it comes nearest

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "geom/body.h"
 #include "pixel_camera.h"
@@ -237,6 +238,42 @@ TEST(GridRasterizer, NearerHitWinsAndEqualDepthGoesToTheEarlierPrimitiveInAnyOrd
         EXPECT_EQ(f.hit(6, 1).c.y, 1.0f);  // the tie beats the far blue
         EXPECT_EQ(f.hit(6, 1).id, 2u);
     }
+}
+
+// A moving grid folded onto itself: its first row of quads (depth 3 to 6.5) lies over its second
+// (6.5 to 10), over the same pixels. The moving sampler gathers a group's samples once, before any
+// quad; the first row's hits must reach what the second row reads, so that the second row finds
+// those samples behind it (not tested, not hit) rather than testing them against stale depths.
+TEST(GridRasterizer, AMovingGridsLaterQuadsSeeItsEarlierHits) {
+    Fixture f;
+    f.reset({0.5f});  // every sample at t = 0.5
+    for (int y = 0; y < f.size; ++y)
+        for (int x = 0; x < f.size; ++x) f.place(x, y, float(x) + 0.5f, float(y) + 0.5f);
+    // x in [1.2, 4.2] moving 1 pixel right; vertex rows at y = 2, 6, 2 (the fold) and depths 3, 6.5, 10.
+    Grid g;
+    diceSquare(1.2f, 2, 4.2f, 6, 3, 1, 1, &f.material, f.size, g);
+    ASSERT_TRUE(g.moving);
+    g.nv = 2;
+    for (int k = 0; k < 2; ++k) {
+        const Vec3f r0a = g.P[k][0], r0b = g.P[k][1];  // the row at y = 2
+        g.P[k] = {r0a, r0b, g.P[k][2], g.P[k][3], r0a, r0b};
+        for (int v = 2; v < 4; ++v) g.P[k][size_t(v)].z = 6.5f;
+        for (int v = 4; v < 6; ++v) g.P[k][size_t(v)].z = 10;
+        g.Ci[k].assign(6, Color{1, 1, 1});
+    }
+    f.raster.rasterize(g, f.cam, Shutter{0, 1}, f.block, f.counters);
+    // At t = 0.5 both rows cover x in [1.7, 4.7], y in [2, 6]: the samples of columns 2-4, rows
+    // 2-5, which the first row hits. Each row's bound over the frame (x in [1.2, 5.2]) adds
+    // column 1, which neither hits.
+    EXPECT_EQ(f.counters.sampleHits, 12u);
+    EXPECT_EQ(f.counters.samplesBehind, 12u);  // the second row, at the first row's hits
+    EXPECT_EQ(f.counters.sampleTests, 16u + 4u);
+    for (int y = 2; y <= 5; ++y)
+        for (int x = 2; x <= 4; ++x) {
+            const float z = f.hit(x, y).z;
+            EXPECT_NEAR(z, 3 + 3.5f * (float(y) + 0.5f - 2) / 4, 1e-5f) << x << "," << y;
+        }
+    EXPECT_EQ(f.hit(1, 3).z, std::numeric_limits<float>::infinity());
 }
 
 // A moving grid wholly behind what every pixel it can reach already sees (a still wall, nearer in
