@@ -95,8 +95,12 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     GroupSamples& gs = group_;
     const size_t slots = pixels * size_t(S) + size_t(kLanes);
     if (gs.x.size() < slots) {
-        for (auto* v : {&gs.x, &gs.y, &gs.tf, &gs.z, &gs.lu, &gs.lv}) v->assign(slots, 0.0f);
+        for (auto* v : {&gs.x, &gs.y, &gs.tf, &gs.z}) v->assign(slots, 0.0f);
         gs.sample.assign(slots, 0);
+    }
+    if (Lens && gs.lu.size() < slots) {  // lens points only with depth of field
+        gs.lu.assign(slots, 0.0f);
+        gs.lv.assign(slots, 0.0f);
     }
     if (gs.gathered.size() < pixels) gs.gathered.resize(pixels, 0);
 
