@@ -148,8 +148,9 @@ Grid stillSquare(int size, const Material& m) {
     return g;
 }
 
-void BM_SamplerStillBlock(benchmark::State& state) {
-    const int size = 40, frames = 48;
+// The still grid on a size x size frame, sampled into a fresh block (untimed, as sampleGrid) of
+// its top-left blockSize x blockSize pixels over `frames` frames.
+void sampleStillGrid(benchmark::State& state, int size, int blockSize, int frames) {
     Camera cam = pixelCamera(size);
     Material m;
     const Grid g = stillSquare(size, m);
@@ -157,9 +158,9 @@ void BM_SamplerStillBlock(benchmark::State& state) {
     ImageBlock block;
     GridRasterizer raster;
     RasterCounters counters;
-    for (auto _ : state) {  // a fresh block each pass, as sampleGrid
+    for (auto _ : state) {
         state.PauseTiming();
-        block.reset({0, 0, 31, 31}, 0, frames, patterns, false);
+        block.reset({0, 0, blockSize - 1, blockSize - 1}, 0, frames, patterns, false);
         state.ResumeTiming();
         raster.rasterize(g, cam, Shutter{0, 0.5}, block, counters);
     }
@@ -167,7 +168,15 @@ void BM_SamplerStillBlock(benchmark::State& state) {
     state.counters["sample_tests/s"] = benchmark::Counter(double(counters.sampleTests), benchmark::Counter::kIsRate);
     state.counters["hit_efficiency"] = double(counters.sampleHits) / double(std::max<uint64_t>(1, counters.sampleTests));
 }
+
+void BM_SamplerStillBlock(benchmark::State& state) { sampleStillGrid(state, 40, 32, 48); }
 BENCHMARK(BM_SamplerStillBlock);
+
+// The same grid in a block the size a render's bucket is (64 pixels and the default gaussian
+// filter's margin, 66 x 66), over 1 or 48 frames: what the block's reset writes before a grid is
+// sampled (the still layer, the frames' rows of records) decides what is still in the cache.
+void BM_SamplerStillBucket(benchmark::State& state) { sampleStillGrid(state, 66, 66, int(state.range(0))); }
+BENCHMARK(BM_SamplerStillBucket)->ArgNames({"frames"})->Arg(1)->Arg(48);
 
 // The still quad test alone (sample_kernels.h, quadTestKernel): the same grid and block as
 // BM_SamplerStillBlock, each quad projected, bounded and set up beforehand, so that only the

@@ -57,19 +57,22 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
         aovChunkWidth_ = aovs_;
     }
     records_ = 0;
-    slot_.assign(size_t(frameCount) * pixels, -1);
-    farthest_.assign(size_t(frameCount) * pixels, -std::numeric_limits<float>::infinity());  // stale
+    slot_.resize(size_t(frameCount) * pixels);  // each frame's row written by makeRow
+    farthest_.resize(size_t(frameCount) * pixels);
+    rowMade_.assign(size_t(frameCount), 0);
     recordsOf_.assign(dense ? 0 : pixels, 0);
     touched_.assign(pixels, 0);
     if (dense) {
         still_.clear();
-        for (int fi = 0; fi < frameCount; ++fi)
+        for (int fi = 0; fi < frameCount; ++fi) {
+            makeRow(fi);
             for (size_t i = 0; i < pixels; ++i) {
                 if (records_ / kRecordsPerChunk >= chunks_.size()) addChunk();
                 slot_[size_t(fi) * pixels + i] = int32_t(records_);
                 SampleHit* h = recordAt(records_++);
                 std::fill(h, h + S_, kNoHit);
             }
+        }
         if (shadowSlots > 0) shadowed_.assign(size_t(frameCount) * n * size_t(shadowSlots), Color{0, 0, 0});
     } else {
         still_.assign(n, kNoHit);
@@ -101,7 +104,16 @@ void ImageBlock::addChunk() {
     if (aovs_ > 0) aovChunks_.push_back(std::make_unique<float[]>(chunkSamples_ * size_t(aovs_)));
 }
 
+void ImageBlock::makeRow(int fi) {
+    const size_t pixels = size_t(pixelCount()), at = size_t(fi) * pixels;
+    std::fill(slot_.begin() + ptrdiff_t(at), slot_.begin() + ptrdiff_t(at + pixels), -1);
+    std::fill(farthest_.begin() + ptrdiff_t(at), farthest_.begin() + ptrdiff_t(at + pixels),
+              -std::numeric_limits<float>::infinity());  // stale
+    rowMade_[size_t(fi)] = 1;
+}
+
 SampleHit* ImageBlock::makeRecord(int fi, size_t i) {
+    if (!rowMade_[size_t(fi)]) makeRow(fi);
     if (records_ / kRecordsPerChunk >= chunks_.size()) addChunk();
     slot_[size_t(fi) * size_t(pixelCount()) + i] = int32_t(records_);
     ++recordsOf_[i];

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 
@@ -173,6 +174,35 @@ TEST(ImageBlock, RecordsCopyTheStillLayerAndDenseBlocksHaveThemAll) {
             ASSERT_TRUE(block.hasRecord(fi, i));
             EXPECT_TRUE(std::isinf(block.record(fi, i)[0].z));
         }
+}
+
+// A block is reused from bucket to bucket: a new bucket has none of the last one's records or
+// farthest bounds, in any frame (each frame's row of them is written when the frame first needs
+// it), and a frame given a record has it for that pixel only.
+TEST(ImageBlock, ANewBucketForgetsTheLastOnesRecordsAndBounds) {
+    const PatternTable t(SamplePattern{2, 1, 0});
+    ImageBlock block;
+    block.reset({0, 0, 1, 0}, 0, 3, t, true);  // dense: every frame has a record of every pixel
+    block.record(2, 1)[0].z = 3.0f;
+    block.reset({0, 0, 1, 0}, 0, 3, t, false);
+    block.makeRecord(1, 0)[0].z = 2.0f;
+    block.farthestBound(1, 0) = 5.0f;
+    block.farthestBound(2, 1) = 4.0f;
+    block.reset({0, 0, 1, 0}, 3, 3, t, false);
+    EXPECT_EQ(block.recordCount(), 0u);
+    for (int fi = 0; fi < 3; ++fi)
+        for (size_t i = 0; i < 2; ++i) {
+            EXPECT_FALSE(block.hasRecord(fi, i)) << fi << " " << i;
+            EXPECT_EQ(block.record(fi, i), nullptr);
+            EXPECT_TRUE(std::isinf(block.hits(fi, i)[0].z));
+            EXPECT_EQ(block.farthestBound(fi, i), -std::numeric_limits<float>::infinity()) << fi << " " << i;
+        }
+    SampleHit* r = block.makeRecord(2, 1);
+    EXPECT_TRUE(std::isinf(r[0].z));  // a copy of this bucket's still layer
+    EXPECT_TRUE(block.hasRecord(2, 1));
+    EXPECT_FALSE(block.hasRecord(2, 0));
+    EXPECT_FALSE(block.hasRecord(1, 0));
+    EXPECT_EQ(block.recordCount(), 1u);
 }
 
 }  // namespace
