@@ -1,6 +1,8 @@
 #include "geom/camera.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace streyes {
 
@@ -9,7 +11,10 @@ Camera::Camera(const CameraDesc& desc) : desc_(desc), worldToCamera_(desc.worldT
     width_ = desc.xres;
     height_ = desc.yres;
     near_ = float(desc.nearClip);
-    far_ = float(desc.farClip);
+    // A finite far plane, whatever the scene's (Clipping's far may be beyond the float range): a
+    // hit inside the clipping range then has a finite depth, so a sample of the still layer has
+    // no hit exactly where its depth is +inf (the still write kernel counts first hits by that).
+    far_ = std::min(float(desc.farClip), std::numeric_limits<float>::max());
 
     // RenderMan's default screen window: the shorter image side spans [-1, 1].
     double aspect = desc.frameAspect > 0 ? desc.frameAspect : desc.pixelAspect * desc.xres / desc.yres;

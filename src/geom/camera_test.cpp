@@ -26,6 +26,18 @@ TEST(Camera, PerspectiveFovSpansTheShorterSide) {
     EXPECT_NEAR(back.x, 6.0f, 1e-4f);
 }
 
+// Clipping's far plane past the float range (RenderMan's RI_INFINITY is 1e38; a scene may write
+// more) is the largest finite float: a hit's depth is then never +inf.
+TEST(Camera, FarClippingPlaneIsFinite) {
+    CameraDesc cd;
+    cd.farClip = 1e39;
+    EXPECT_EQ(Camera(cd).farClip(), std::numeric_limits<float>::max());
+    cd.farClip = 1e38;
+    EXPECT_EQ(Camera(cd).farClip(), 1e38f);
+    cd.farClip = 50;
+    EXPECT_EQ(Camera(cd).farClip(), 50.0f);
+}
+
 TEST(Camera, OrthographicScreenWindow) {
     CameraDesc cd;
     cd.xres = 64;

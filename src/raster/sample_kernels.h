@@ -106,10 +106,11 @@ QuadTestFn quadTestScalar();
 // (GridRasterizer::sampleStill): the kernel depth-tests its hits against the layer and writes the
 // ones that win, so that they never go through memory as QuadHits. A hit inside the clipping range
 // and strictly nearer than what its sample sees becomes {z, c, 1, id}, its pixel touched
-// (ImageBlock::touch), and counts in firstHits where the sample saw nothing (a == 0). A hit that
-// ties its sample's depth (SampleHit::beatenBy decides), or in a pixel with per-frame records
-// (ImageBlock::recordsOf: the hit must reach them too), is appended to `out` for the sampler, in
-// the order QuadTestFn makes them; any other is hidden or clipped and dropped.
+// (ImageBlock::touch), and counts in firstHits where the sample saw nothing (a == 0, which in the
+// still layer is exactly where z is +inf: every hit written there lies inside the finite clipping
+// range). A hit that ties its sample's depth (SampleHit::beatenBy decides), or in a pixel with
+// per-frame records (ImageBlock::recordsOf: the hit must reach them too), is appended to `out` for
+// the sampler, in the order QuadTestFn makes them; any other is hidden or clipped and dropped.
 struct StillWrite {
     SampleHit* still;            // the block's still layer, S hits a pixel
     uint8_t* touched;            // per pixel: ImageBlock::touch's flags
