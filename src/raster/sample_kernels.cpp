@@ -366,6 +366,12 @@ HWY_INLINE uint64_t testQuad(const QuadSetup& q, const SampleLayout& L, const Qu
     auto testPacked = [&](size_t at, size_t n) HWY_ATTR __attribute__((always_inline)) {
         const V x = hn::Load(kD, bx + at), y = hn::Load(kD, by + at);
         const M t = hn::FirstN(kD, n);
+        // With a write, the depths the lanes' samples see (SampleHit is 8 floats, z first),
+        // gathered before the inside test so that the loads overlap it; lanes past n read sample 0.
+        V seen = hn::Zero(kD);
+        if constexpr (Write)
+            seen = hn::GatherIndex(kD, &write->still[0].z,
+                                   hn::ShiftLeft<3>(hn::IfThenElseZero(hn::RebindMask(kI, t), hn::Load(kI, bslot + at))));
         V ev[5];
         for (int k = 0; k < 5; ++k)
             ev[k] = hn::Mul(sign[k], hn::Sub(hn::Mul(dx[k], hn::Sub(y, py[k])), hn::Mul(dy[k], hn::Sub(x, px[k]))));
@@ -407,10 +413,6 @@ HWY_INLINE uint64_t testQuad(const QuadSetup& q, const SampleLayout& L, const Qu
             if (shading) h.z = zs[lane], h.c = {rs[lane], gs[lane], bs[lane]};
         };
         if constexpr (Write) {
-            // The depths the hits' samples see (SampleHit is 8 floats, z first); lanes past the
-            // packed ones read sample 0.
-            const auto slot = hn::IfThenElseZero(hn::RebindMask(kI, inside), hn::Load(kI, bslot + at));
-            const V seen = hn::GatherIndex(kD, &write->still[0].z, hn::ShiftLeft<3>(slot));
             const V z = hn::Load(kD, zs);
             const M inRange = hn::And(inside, hn::And(hn::Ge(z, hn::Set(kD, write->nearZ)), hn::Le(z, hn::Set(kD, write->farZ))));
             const uint64_t nearer = maskBits(kD, hn::And(inRange, hn::Lt(z, seen)));
