@@ -45,6 +45,7 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     }
     permutation_.resize(size_t(frameCount) * pixels);
     timesMade_.assign(size_t(frameCount), 0);
+    keysMade_ = false;
     if (dense)
         for (int fi = 0; fi < frameCount; ++fi) makeTimes(fi);
 
@@ -93,9 +94,14 @@ void ImageBlock::makeFragmentHeads() {
 
 void ImageBlock::makeTimes(int fi) const {
     const size_t pixels = size_t(pixelCount());
-    for (int y = rect_.y0; y <= rect_.y1; ++y)
-        for (int x = rect_.x0; x <= rect_.x1; ++x)
-            permutation_[size_t(fi) * pixels + pixelIndex(x, y)] = uint8_t(patterns_->permutationOf(x, y, firstFrame_ + fi));
+    if (!keysMade_) {  // the first frame to need times hashes each pixel's key for them all
+        permutationKeys_.resize(pixels);
+        for (int y = rect_.y0; y <= rect_.y1; ++y)
+            for (int x = rect_.x0; x <= rect_.x1; ++x) permutationKeys_[pixelIndex(x, y)] = patterns_->permutationKeyOf(x, y);
+        keysMade_ = true;
+    }
+    uint8_t* row = &permutation_[size_t(fi) * pixels];
+    for (size_t i = 0; i < pixels; ++i) row[i] = uint8_t(patterns_->permutationAt(permutationKeys_[i], firstFrame_ + fi));
     timesMade_[size_t(fi)] = 1;
 }
 
@@ -134,7 +140,7 @@ Color* ImageBlock::shadowed(int fi, size_t i) {
 
 size_t ImageBlock::bytes() const {
     return (xs_.capacity() + ys_.capacity() + lus_.capacity() + lvs_.capacity()) * sizeof(float) +
-           permutation_.capacity() + still_.capacity() * sizeof(SampleHit) + slot_.capacity() * sizeof(int32_t) +
+           permutation_.capacity() + permutationKeys_.capacity() * sizeof(uint64_t) + still_.capacity() * sizeof(SampleHit) + slot_.capacity() * sizeof(int32_t) +
            chunks_.size() * chunkSamples_ * sizeof(SampleHit) + shadowed_.capacity() * sizeof(Color) +
            (stillAov_.capacity() + aovChunks_.size() * chunkSamples_ * size_t(aovs_)) * sizeof(float) +
            (stillHeads_.capacity() + recordHeads_.capacity()) * sizeof(int32_t) +

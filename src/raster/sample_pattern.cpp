@@ -175,10 +175,12 @@ int PatternTable::patternOf(int x, int y) const {
     return int(modP_(uint32_t(h >> 32)));
 }
 
-int PatternTable::permutationOf(int x, int y, int frame) const {
-    const uint64_t h =
-        hashCombine(hashCombine(hashCombine(permutationKey_, uint64_t(uint32_t(x))), uint64_t(uint32_t(y))), uint64_t(uint32_t(frame)));
-    return int(modQ_(uint32_t(h >> 32)));
+uint64_t PatternTable::permutationKeyOf(int x, int y) const {
+    return hashCombine(hashCombine(permutationKey_, uint64_t(uint32_t(x))), uint64_t(uint32_t(y)));
+}
+
+int PatternTable::permutationAt(uint64_t pixelKey, int frame) const {
+    return int(modQ_(uint32_t(hashCombine(pixelKey, uint64_t(uint32_t(frame))) >> 32)));
 }
 
 }  // namespace streyes

@@ -60,7 +60,11 @@ class PatternTable {
     // The time permutation of pixel (x, y) in `frame`; for it, the time stratum of each sample,
     // the sample of each stratum (slice), and each stratum's time as a fraction of the exposure,
     // in [k / S, (k + 1) / S).
-    int permutationOf(int x, int y, int frame) const;
+    int permutationOf(int x, int y, int frame) const { return permutationAt(permutationKeyOf(x, y), frame); }
+    // The same in two steps, for a block that needs a pixel's permutation in many frames: the
+    // pixel's key once, then one hash a frame.
+    uint64_t permutationKeyOf(int x, int y) const;
+    int permutationAt(uint64_t pixelKey, int frame) const;
     const uint16_t* stratumOfSample(int q) const { return &stratumOf_[size_t(q) * size_t(S_)]; }
     const uint16_t* sampleOfStratum(int q) const { return &sampleOf_[size_t(q) * size_t(S_)]; }
     const float* stratumTimes(int q) const { return &times_[size_t(q) * size_t(S_)]; }

@@ -6,6 +6,7 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <utility>
 
 #include "raster/image_block.h"
 
@@ -152,6 +153,29 @@ TEST(ImageBlock, PositionsAreSharedByTheFramesAndEachSliceHoldsOneSamplePerPixel
             }
             for (int j = 0; j < 4; ++j) EXPECT_TRUE(std::isinf(block.still(i)[j].z));
         }
+}
+
+// A block's permutations are hashed from keys it makes per pixel when a frame first needs
+// times: a block reused for another bucket (another rect, other frames) makes them again.
+TEST(ImageBlock, AReusedBlockHashesItsOwnPixelsPermutations) {
+    const PatternTable t(SamplePattern{4, 4, 0});
+    ImageBlock block;
+    block.reset({0, 0, 7, 7}, 0, 2, t, false);
+    block.needTimes(1);
+    int differs = 0;
+    for (const auto& [rect, first] : {std::pair{PixelRect{0, 0, 7, 7}, 5}, std::pair{PixelRect{40, 8, 47, 15}, 0}}) {
+        block.reset(rect, first, 2, t, false);
+        for (int fi = 1; fi >= 0; --fi) {  // the later frame first: the keys serve every frame
+            block.needTimes(fi);
+            for (int y = rect.y0; y <= rect.y1; ++y)
+                for (int x = rect.x0; x <= rect.x1; ++x) {
+                    const int q = block.permutation(fi, block.pixelIndex(x, y));
+                    ASSERT_EQ(q, t.permutationOf(x, y, first + fi)) << x << "," << y << " frame " << first + fi;
+                    differs += q != t.permutationOf(x - rect.x0, y - rect.y0, fi);
+                }
+        }
+    }
+    EXPECT_GT(differs, 64);  // the buckets' pixels and frames are not the first block's
 }
 
 // A record starts as the still layer and then differs from it; a dense block has one for every

@@ -24,6 +24,8 @@ constexpr uint64_t kBytesPerSample = 2 * sizeof(float) + sizeof(SampleHit) + 6 *
 // Per sample and frame: the frame's record of it, at most (records are made only where something
 // that frame alone sees comes nearest; dense blocks have them all).
 constexpr uint64_t kBytesPerRecordSample = sizeof(SampleHit);
+// Per pixel of a bucket: the key its time permutations are hashed from (ImageBlock::makeTimes).
+constexpr uint64_t kBytesPerBucketPixel = sizeof(uint64_t);
 // Per pixel and frame: its record's slot, its time permutation and its farthest-depth bound.
 constexpr uint64_t kBytesPerPixelFrame = sizeof(int32_t) + sizeof(uint8_t) + sizeof(float);
 // Per pixel and frame of a bucket, with occlusion culling: its coverage cell and table entry.
@@ -75,7 +77,7 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     e.frameImages = uint64_t(framesHeld(s, e.frameBlock)) * pixels * (kBytesPerPixel + aov);
     const uint64_t S = uint64_t(std::max(1, s.samplesPerPixel));
     const uint64_t recordSample = kBytesPerRecordSample + uint64_t(std::max(0, s.shadowSlots)) * sizeof(Color) + aov;
-    e.perWorker = bucketPixels(s) * (S * (kBytesPerSample + aov) + framesPerBucket * (kBytesPerPixelFrame + S * recordSample)) +
+    e.perWorker = bucketPixels(s) * (kBytesPerBucketPixel + S * (kBytesPerSample + aov) + framesPerBucket * (kBytesPerPixelFrame + S * recordSample)) +
                   s.traceBytesPerWorker + tilePixels(s) * 6 * sizeof(float) +  // resolving: weights, still pixels
                   (s.occlusion ? bucketPixels(s) * framesPerBucket * kOcclusionBytesPerCell : 0);
     // Output variables the same way, as floats, and interleaved then planar while one is encoded.
