@@ -97,11 +97,13 @@ void ImageBlock::makeTimes(int fi) const {
     if (!keysMade_) {  // the first frame to need times hashes each pixel's key for them all
         permutationKeys_.resize(pixels);
         for (int y = rect_.y0; y <= rect_.y1; ++y)
-            for (int x = rect_.x0; x <= rect_.x1; ++x) permutationKeys_[pixelIndex(x, y)] = patterns_->permutationKeyOf(x, y);
+            for (int x = rect_.x0; x <= rect_.x1; ++x)
+                permutationKeys_[pixelIndex(x, y)] = patterns_->permutationKeyOf(x, y);
         keysMade_ = true;
     }
     uint8_t* row = &permutation_[size_t(fi) * pixels];
-    for (size_t i = 0; i < pixels; ++i) row[i] = uint8_t(patterns_->permutationAt(permutationKeys_[i], firstFrame_ + fi));
+    for (size_t i = 0; i < pixels; ++i)
+        row[i] = uint8_t(patterns_->permutationAt(permutationKeys_[i], firstFrame_ + fi));
     timesMade_[size_t(fi)] = 1;
 }
 
@@ -140,7 +142,8 @@ Color* ImageBlock::shadowed(int fi, size_t i) {
 
 size_t ImageBlock::bytes() const {
     return (xs_.capacity() + ys_.capacity() + lus_.capacity() + lvs_.capacity()) * sizeof(float) +
-           permutation_.capacity() + permutationKeys_.capacity() * sizeof(uint64_t) + still_.capacity() * sizeof(SampleHit) + slot_.capacity() * sizeof(int32_t) +
+           permutation_.capacity() + permutationKeys_.capacity() * sizeof(uint64_t) +
+           still_.capacity() * sizeof(SampleHit) + slot_.capacity() * sizeof(int32_t) +
            chunks_.size() * chunkSamples_ * sizeof(SampleHit) + shadowed_.capacity() * sizeof(Color) +
            (stillAov_.capacity() + aovChunks_.size() * chunkSamples_ * size_t(aovs_)) * sizeof(float) +
            (stillHeads_.capacity() + recordHeads_.capacity()) * sizeof(int32_t) +

@@ -77,7 +77,8 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     e.frameImages = uint64_t(framesHeld(s, e.frameBlock)) * pixels * (kBytesPerPixel + aov);
     const uint64_t S = uint64_t(std::max(1, s.samplesPerPixel));
     const uint64_t recordSample = kBytesPerRecordSample + uint64_t(std::max(0, s.shadowSlots)) * sizeof(Color) + aov;
-    e.perWorker = bucketPixels(s) * (kBytesPerBucketPixel + S * (kBytesPerSample + aov) + framesPerBucket * (kBytesPerPixelFrame + S * recordSample)) +
+    e.perWorker = bucketPixels(s) * (kBytesPerBucketPixel + S * (kBytesPerSample + aov) +
+                                     framesPerBucket * (kBytesPerPixelFrame + S * recordSample)) +
                   s.traceBytesPerWorker + tilePixels(s) * 6 * sizeof(float) +  // resolving: weights, still pixels
                   (s.occlusion ? bucketPixels(s) * framesPerBucket * kOcclusionBytesPerCell : 0);
     // Output variables the same way, as floats, and interleaved then planar while one is encoded.
