@@ -91,9 +91,9 @@ class ImageBlock {
 
     // The pattern of pixel i (PatternTable::patternOf, kept: resolving asks for it often).
     int patternOf(size_t i) const { return int(pattern_[i]); }
-    // Raster positions of sample j of pixel i: xs()[i * S + j], ys()[i * S + j].
-    float* xs() { return xs_.data(); }
-    float* ys() { return ys_.data(); }
+    // Raster positions of sample j of pixel i: xs()[i * S + j], ys()[i * S + j], made by reset
+    // from the pixel's pattern (float(x) + offsets[2 j], PatternTable::offsets). Read-only: the
+    // moving sampler computes them from the pattern instead, with the same bits.
     const float* xs() const { return xs_.data(); }
     const float* ys() const { return ys_.data(); }
     // With depth of field, the unit-disc lens position of sample j of pixel i: lus()[i * S + j],

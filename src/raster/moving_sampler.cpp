@@ -80,8 +80,6 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
             }
     }
     const Color kOpaque{1, 1, 1};
-    const float* xs = block.xs();
-    const float* ys = block.ys();
     const float *lus = block.lus(), *lvs = block.lvs();
     // The moving test: the SIMD kernel, or the scalar reference while counting hits for tests of
     // watertightness (the kernel is held to it bit for bit).
@@ -206,7 +204,12 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
             gs.serial = 1;
         }
         const size_t g = s1 - s0;
-        auto gather = [&](size_t pi) {
+        // Pixel pi at (px, py): its samples' positions come from its pattern's offsets (8 KB, in
+        // L1), the way ImageBlock::reset makes xs() and ys() (the same bits), not from those
+        // arrays, whose loads missed the cache in a bucket-sized block.
+        auto gather = [&](size_t pi, int px, int py) {
+            const float* offsets = patterns.offsets(block.patternOf(pi));
+            const float fx = float(px), fy = float(py);
             const int perm = block.permutation(fi, pi);
             const uint16_t* sampleOf = patterns.sampleOfStratum(perm);
             const float* times = patterns.stratumTimes(perm);
@@ -224,9 +227,12 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                     if constexpr (Lens) gs.lu[o] = 0, gs.lv[o] = 0;
                     continue;
                 }
-                const size_t si = pi * size_t(S) + size_t(sj);
-                gs.x[o] = xs[si], gs.y[o] = ys[si], gs.tf[o] = times[sl.k], gs.z[o] = seen[sj].z;
-                if constexpr (Lens) gs.lu[o] = lus[si], gs.lv[o] = lvs[si];
+                gs.x[o] = fx + offsets[2 * sj], gs.y[o] = fy + offsets[2 * sj + 1];
+                gs.tf[o] = times[sl.k], gs.z[o] = seen[sj].z;
+                if constexpr (Lens) {
+                    const size_t si = pi * size_t(S) + size_t(sj);
+                    gs.lu[o] = lus[si], gs.lv[o] = lvs[si];
+                }
             }
             gs.gathered[pi] = gs.serial;
         };
@@ -321,7 +327,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 for (int py = q.py0; py <= q.py1; ++py) {
                     const size_t row = block.pixelIndex(q.px0, py), rowEnd = row + size_t(q.px1 - q.px0 + 1);
                     for (size_t pi = row; pi < rowEnd; ++pi)
-                        if (gs.gathered[pi] != gs.serial) gather(pi);
+                        if (gs.gathered[pi] != gs.serial) gather(pi, q.px0 + int(pi - row), py);
                     for (size_t first = row * g, end = rowEnd * g; first < end; first += kLanes) {
                         const int n = int(std::min(end - first, size_t(kLanes)));
                         const MovingTest t =

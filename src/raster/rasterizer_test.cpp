@@ -33,18 +33,21 @@ struct Fixture {
     GridRasterizer raster;
     RasterCounters counters;
     PatternTable patterns{SamplePattern{1, 1, 0}};
-    // One sample per pixel, placed by the test; at time times[q] in pixels given permutation q.
-    void reset(const std::vector<float>& times = {0.0f}) {
+    // One sample per pixel, at (x, y) + offset in every pixel (where the table's own pattern puts
+    // it when offset is empty), at time times[q] in pixels given permutation q. Positions come
+    // from the pattern table only: both samplers read them from there.
+    void reset(const std::vector<float>& times = {0.0f}, const std::vector<float>& offset = {}) {
         std::vector<std::vector<float>> perPermutation;
         for (float t : times) perPermutation.push_back({t});
-        patterns = PatternTable(SamplePattern{1, 1, 0}, perPermutation);
+        patterns = PatternTable(SamplePattern{1, 1, 0}, perPermutation, offset);
         block.reset({0, 0, size - 1, size - 1}, 0, 1, patterns, false);
         counters = {};
     }
+    // Pixel (x, y)'s sample, which reset's offset put at (sx, sy), takes permutation q.
     void place(int x, int y, float sx, float sy, int permutation = 0) {
         const size_t i = block.pixelIndex(x, y);
-        block.xs()[i] = sx;
-        block.ys()[i] = sy;
+        ASSERT_EQ(block.xs()[i], sx);
+        ASSERT_EQ(block.ys()[i], sy);
         block.setPermutation(0, i, permutation);
     }
     const SampleHit& hit(int x, int y) const { return block.hits(0, block.pixelIndex(x, y))[0]; }
@@ -53,7 +56,7 @@ struct Fixture {
 TEST(GridRasterizer, SamplesOnSharedEdgesAndVerticesAreHitExactlyOnce) {
     for (float shift : {0.0f, 0.5f}) {  // lattice vertices, then edge midpoints
         Fixture f;
-        f.reset();
+        f.reset({0.0f}, {shift, 0.0f});
         // Samples at (x + shift, y): on the grid's vertex lattice or on its vertical edges.
         int inside = 0;
         for (int y = 0; y < f.size; ++y)
@@ -87,7 +90,7 @@ TEST(GridRasterizer, SamplesOnSharedEdgesAndVerticesAreHitExactlyOnce) {
 
 TEST(GridRasterizer, MovingGridIsSampledWhereItIsAtTheSampleTime) {
     Fixture f;
-    f.reset({0.5f});  // every sample at t = 0.5, when the square covers x in [2, 4]
+    f.reset({0.5f}, {0.5f, 0.5f});  // every sample at t = 0.5, when the square covers x in [2, 4]
     // A 2x2-pixel square moving 4 pixels right during [0, 1].
     Grid g;
     diceSquare(0, 2, 2, 4, 10, 4, 2, &f.material, f.size, g);
@@ -169,7 +172,7 @@ struct TimePieces {
 TEST(GridRasterizer, SamplesAtExposureEndsAndKeysAreHitExactlyOnce) {
     for (bool moving : {false, true}) {
         Fixture f;
-        f.reset({0.0f, 0.5f, 0.5f, 0x1.fffffep-1f, 0.25f, 0.75f, 0.49999997f, 0.50000006f});
+        f.reset({0.0f, 0.5f, 0.5f, 0x1.fffffep-1f, 0.25f, 0.75f, 0.49999997f, 0.50000006f}, {0.5f, 0.5f});
         for (int y = 0; y < f.size; ++y)
             for (int x = 0; x < f.size; ++x) f.place(x, y, float(x) + 0.5f, float(y) + 0.5f, (x + y) % 8);
         TimePieces p(0, 0.5, 1, moving);
@@ -228,7 +231,7 @@ TEST(GridRasterizer, NearerHitWinsAndEqualDepthGoesToTheEarlierPrimitiveInAnyOrd
     const std::vector<std::vector<Grid*>> orders = {{&far, &near, &tie}, {&tie, &near, &far}, {&near, &tie, &far}};
     for (const auto& order : orders) {
         Fixture f;
-        f.reset();
+        f.reset({0.0f}, {0.5f, 0.5f});
         for (int y = 0; y < f.size; ++y)
             for (int x = 0; x < f.size; ++x) f.place(x, y, float(x) + 0.5f, float(y) + 0.5f);
         for (Grid* g : order) f.raster.rasterize(*g, f.cam, Shutter{0, 0}, f.block, f.counters);
@@ -246,7 +249,7 @@ TEST(GridRasterizer, NearerHitWinsAndEqualDepthGoesToTheEarlierPrimitiveInAnyOrd
 // those samples behind it (not tested, not hit) rather than testing them against stale depths.
 TEST(GridRasterizer, AMovingGridsLaterQuadsSeeItsEarlierHits) {
     Fixture f;
-    f.reset({0.5f});  // every sample at t = 0.5
+    f.reset({0.5f}, {0.5f, 0.5f});  // every sample at t = 0.5
     for (int y = 0; y < f.size; ++y)
         for (int x = 0; x < f.size; ++x) f.place(x, y, float(x) + 0.5f, float(y) + 0.5f);
     // x in [1.2, 4.2] moving 1 pixel right; vertex rows at y = 2, 6, 2 (the fold) and depths 3, 6.5, 10.
@@ -285,7 +288,7 @@ TEST(GridRasterizer, AMovingGridBehindEverySampleItCanReachIsSkipped) {
     auto start = [](Fixture& f, int size) {
         f.size = size;
         f.cam = pixelCamera(size);
-        f.reset({0.5f});  // every sample at t = 0.5
+        f.reset({0.5f}, {0.5f, 0.5f});  // every sample at t = 0.5
         for (int y = 0; y < f.size; ++y)
             for (int x = 0; x < f.size; ++x) f.place(x, y, float(x) + 0.5f, float(y) + 0.5f);
     };
@@ -341,7 +344,7 @@ TEST(GridRasterizer, HiddenPatchesOfAMovingGridAreSkipped) {
     Fixture f;
     f.size = 12;
     f.cam = pixelCamera(12);
-    f.reset({0.5f});
+    f.reset({0.5f}, {0.5f, 0.5f});
     for (int y = 0; y < f.size; ++y)
         for (int x = 0; x < f.size; ++x) f.place(x, y, float(x) + 0.5f, float(y) + 0.5f);
     Grid wall, grid;
