@@ -94,17 +94,22 @@ void ImageBlock::makeFragmentHeads() {
 
 void ImageBlock::makeTimes(int fi) const {
     const size_t pixels = size_t(pixelCount());
-    if (!keysMade_) {  // the first frame to need times hashes each pixel's key for them all
+    if (!keysMade_) {  // a pixel's key is hashed once for every frame, when first needed
         permutationKeys_.resize(pixels);
-        for (int y = rect_.y0; y <= rect_.y1; ++y)
-            for (int x = rect_.x0; x <= rect_.x1; ++x)
-                permutationKeys_[pixelIndex(x, y)] = patterns_->permutationKeyOf(x, y);
+        keyMade_.assign(pixels, 0);
         keysMade_ = true;
     }
-    uint8_t* row = &permutation_[size_t(fi) * pixels];
-    for (size_t i = 0; i < pixels; ++i)
-        row[i] = uint8_t(patterns_->permutationAt(permutationKeys_[i], firstFrame_ + fi));
+    std::fill_n(&permutation_[size_t(fi) * pixels], pixels, kUnmade);
     timesMade_[size_t(fi)] = 1;
+}
+
+uint8_t ImageBlock::makePermutation(int fi, size_t i) const {
+    if (!keyMade_[i]) {
+        const int x = rect_.x0 + int(i % size_t(width_)), y = rect_.y0 + int(i / size_t(width_));
+        permutationKeys_[i] = patterns_->permutationKeyOf(x, y);
+        keyMade_[i] = 1;
+    }
+    return uint8_t(patterns_->permutationAt(permutationKeys_[i], firstFrame_ + fi));
 }
 
 void ImageBlock::addChunk() {
@@ -142,7 +147,7 @@ Color* ImageBlock::shadowed(int fi, size_t i) {
 
 size_t ImageBlock::bytes() const {
     return (xs_.capacity() + ys_.capacity() + lus_.capacity() + lvs_.capacity()) * sizeof(float) +
-           permutation_.capacity() + permutationKeys_.capacity() * sizeof(uint64_t) +
+           permutation_.capacity() + permutationKeys_.capacity() * sizeof(uint64_t) + keyMade_.capacity() +
            still_.capacity() * sizeof(SampleHit) + slot_.capacity() * sizeof(int32_t) +
            chunks_.size() * chunkSamples_ * sizeof(SampleHit) + shadowed_.capacity() * sizeof(Color) +
            (stillAov_.capacity() + aovChunks_.size() * chunkSamples_ * size_t(aovs_)) * sizeof(float) +

@@ -104,12 +104,17 @@ class ImageBlock {
 
     // Time: the permutation of pixel i in frame fi (PatternTable: stratumOfSample,
     // sampleOfStratum, stratumTimes). The sample of slice k is sampleOfStratum(q)[k]. A frame's
-    // permutations are made when first needed (a still scene never needs them):
+    // permutations are made when first needed (a still scene never needs them), a pixel at a
+    // time (a moving grid that reaches a few pixels of a bucket hashes only those):
     // needTimes(fi) before permutation(fi, ...).
     void needTimes(int fi) const {
         if (!timesMade_[size_t(fi)]) makeTimes(fi);
     }
-    int permutation(int fi, size_t i) const { return int(permutation_[size_t(fi) * size_t(pixelCount()) + i]); }
+    int permutation(int fi, size_t i) const {
+        uint8_t& q = permutation_[size_t(fi) * size_t(pixelCount()) + i];
+        if (q == kUnmade) q = makePermutation(fi, i);
+        return int(q);
+    }
     // For tests: pixel i of frame fi takes the table's permutation q instead.
     void setPermutation(int fi, size_t i, int q) {
         needTimes(fi);
@@ -242,6 +247,8 @@ class ImageBlock {
     std::vector<float> lus_, lvs_;      // with depth of field only
     std::vector<uint8_t> pattern_;      // per pixel
     void makeTimes(int fi) const;
+    uint8_t makePermutation(int fi, size_t i) const;
+    static constexpr uint8_t kUnmade = 0xFF;  // a permutation not hashed yet (tables have fewer)
     // Frame fi's record number of pixel i, or -1. A frame's row of record numbers and farthest
     // bounds is written when the frame first needs one (makeRow), not by reset: 8 bytes a pixel a
     // frame, 1.7 MB for a 66-pixel bucket over 48 frames, which a still bucket never reads.
@@ -251,8 +258,9 @@ class ImageBlock {
     void makeRow(int fi);
     mutable std::vector<uint8_t> permutation_;  // frames x pixels
     mutable std::vector<uint8_t> timesMade_;    // per frame
-    mutable std::vector<uint64_t> permutationKeys_;  // per pixel, once a frame needs times
-    mutable bool keysMade_ = false;
+    mutable std::vector<uint64_t> permutationKeys_;  // per pixel, where keyMade_
+    mutable std::vector<uint8_t> keyMade_;           // per pixel, once a frame needs times
+    mutable bool keysMade_ = false;                  // keyMade_ cleared for this block
     std::vector<SampleHit> still_;
     std::vector<int32_t> slot_;         // frames x pixels: record number, or -1
     std::vector<float> farthest_;       // frames x pixels: farthestBound

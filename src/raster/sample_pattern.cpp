@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "util/sampling.h"
 
@@ -60,6 +61,7 @@ float randfloat(uint32_t i, uint32_t p) {
 // no more than about a million entries however many samples a pixel has.
 constexpr int kMaxPatterns = 64;
 constexpr int kMaxPermutations = 64;
+static_assert(kMaxPermutations < 255, "ImageBlock keeps a permutation in a byte, 255 for none yet");
 constexpr size_t kMaxTableEntries = size_t(1) << 20;
 
 }  // namespace
@@ -152,6 +154,7 @@ PatternTable::PatternTable(const SamplePattern& pattern, const std::vector<std::
         offsets_ = offsets;
     }
     Q_ = int(stratumTimes.size());
+    if (Q_ >= 255) throw std::invalid_argument("a test pattern table holds at most 254 permutations");
     modQ_ = FastMod32(uint32_t(std::max(Q_, 1)));
     stratumOf_.resize(size_t(Q_) * size_t(S_));
     sampleOf_.resize(size_t(Q_) * size_t(S_));

@@ -155,27 +155,34 @@ TEST(ImageBlock, PositionsAreSharedByTheFramesAndEachSliceHoldsOneSamplePerPixel
         }
 }
 
-// A block's permutations are hashed from keys it makes per pixel when a frame first needs
-// times: a block reused for another bucket (another rect, other frames) makes them again.
+// A block's permutations are hashed a pixel at a time, when first asked for, from a key it makes
+// per pixel: whatever order pixels and frames are asked in, each is the table's, and a block
+// reused for another bucket (another rect, other frames) makes its keys again.
 TEST(ImageBlock, AReusedBlockHashesItsOwnPixelsPermutations) {
     const PatternTable t(SamplePattern{4, 4, 0});
     ImageBlock block;
     block.reset({0, 0, 7, 7}, 0, 2, t, false);
     block.needTimes(1);
-    int differs = 0;
+    for (size_t i = 0; i < 64; ++i) block.permutation(1, i);  // every key made
+    int differs = 0, asked = 0;
     for (const auto& [rect, first] : {std::pair{PixelRect{0, 0, 7, 7}, 5}, std::pair{PixelRect{40, 8, 47, 15}, 0}}) {
         block.reset(rect, first, 2, t, false);
-        for (int fi = 1; fi >= 0; --fi) {  // the later frame first: the keys serve every frame
+        // The later frame first, a third of its pixels, backwards; then every pixel of the other.
+        for (int fi = 1; fi >= 0; --fi) {
             block.needTimes(fi);
-            for (int y = rect.y0; y <= rect.y1; ++y)
-                for (int x = rect.x0; x <= rect.x1; ++x) {
+            for (int y = rect.y1; y >= rect.y0; --y)
+                for (int x = rect.x1; x >= rect.x0; --x) {
+                    if (fi == 1 && (x + y) % 3 != 0) continue;
                     const int q = block.permutation(fi, block.pixelIndex(x, y));
                     ASSERT_EQ(q, t.permutationOf(x, y, first + fi)) << x << "," << y << " frame " << first + fi;
+                    ASSERT_EQ(block.permutation(fi, block.pixelIndex(x, y)), q);  // kept
                     differs += q != t.permutationOf(x - rect.x0, y - rect.y0, fi);
+                    ++asked;
                 }
         }
     }
-    EXPECT_GT(differs, 64);  // the buckets' pixels and frames are not the first block's
+    EXPECT_GT(asked, 2 * 64);
+    EXPECT_GT(differs, asked / 2);  // the buckets' pixels and frames are not the first block's
 }
 
 // A record starts as the still layer and then differs from it; a dense block has one for every

@@ -24,8 +24,9 @@ constexpr uint64_t kBytesPerSample = 2 * sizeof(float) + sizeof(SampleHit) + 6 *
 // Per sample and frame: the frame's record of it, at most (records are made only where something
 // that frame alone sees comes nearest; dense blocks have them all).
 constexpr uint64_t kBytesPerRecordSample = sizeof(SampleHit);
-// Per pixel of a bucket: the key its time permutations are hashed from (ImageBlock::makeTimes).
-constexpr uint64_t kBytesPerBucketPixel = sizeof(uint64_t);
+// Per pixel of a bucket: the key its time permutations are hashed from, and whether it is made
+// yet (ImageBlock::makePermutation).
+constexpr uint64_t kBytesPerBucketPixel = sizeof(uint64_t) + sizeof(uint8_t);
 // Per pixel and frame: its record's slot, its time permutation and its farthest-depth bound.
 constexpr uint64_t kBytesPerPixelFrame = sizeof(int32_t) + sizeof(uint8_t) + sizeof(float);
 // Per pixel and frame of a bucket, with occlusion culling: its coverage cell and table entry.
