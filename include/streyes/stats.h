@@ -107,6 +107,9 @@ struct RenderStats {
     uint64_t memoryProgramBytes = 0;  // the part of the estimate that is the executable and its libraries
     uint64_t memoryBodiesBytes = 0;   // what the bodies made hold (the scene's, and every expansion's)
     int framesSkipped = 0;         // already complete (--resume)
+    // EXR files' chunks of 16 scanlines: compressed, or stored as the last file of the same
+    // channels stored them (exr_file.h: an animation's unchanged chunks, the same bytes)
+    uint64_t exrChunksCompressed = 0, exrChunksReused = 0;
     uint64_t procedurals = 0;      // procedurals made (declared, and produced by expansions)
     std::vector<uint64_t> proceduralsByDepth;
     uint64_t bodiesGenerated = 0;  // bodies made, from the scene and by expansions

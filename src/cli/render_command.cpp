@@ -353,6 +353,7 @@ int renderCommand(const std::vector<std::string>& args) {
     if (!req.simd.empty() && !capSimd(req.simd, &simdError)) throw UsageError("--simd: " + simdError);
 
     const auto start = std::chrono::steady_clock::now();
+    const ExrChunkCounts chunksBefore = exrChunkCounts();
     Log log;
     log.setEcho(true);
     log.setQuiet(quiet);
@@ -485,6 +486,8 @@ int renderCommand(const std::vector<std::string>& args) {
     const auto waited = std::chrono::steady_clock::now();
     writer.finish();
     stats.timeWrite += std::chrono::duration<double>(std::chrono::steady_clock::now() - waited).count();
+    stats.exrChunksCompressed = exrChunkCounts().compressed - chunksBefore.compressed;
+    stats.exrChunksReused = exrChunkCounts().reused - chunksBefore.reused;
     bar.finish();
     stats.timeParse = parseSeconds;
     stats.timeTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

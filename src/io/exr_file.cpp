@@ -20,6 +20,7 @@
 #include <immintrin.h>
 #endif
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 
 namespace streyes {
@@ -66,20 +67,45 @@ void zipPredict(const unsigned char* in, size_t n, unsigned char* split, unsigne
     for (size_t i = 1; i < n; ++i) out[i] = static_cast<unsigned char>(split[i] - split[i - 1] + 128);
 }
 
+// The last file encoded in each channel layout (at most kCachedLayouts of them, the most recent):
+// each chunk packed as the file's scanlines, and as stored. Deflate at a fixed level is a
+// function of its input, so a chunk of the next file in that layout whose packed bytes are the
+// same is stored the same: an animation's frames compress only the chunks that changed (in the
+// demo, about 60% of chunks are the frame before's), and each file is what compressing every
+// chunk makes, bit for bit.
+struct ChunkCache {
+    int W = 0, H = 0;
+    std::vector<std::pair<std::string, bool>> layout;  // channel names and half, in file order
+    std::vector<std::vector<unsigned char>> packed, stored;
+};
+constexpr size_t kCachedLayouts = 4;  // a frame's beauty file and a few output-variable files
+struct ChunkCaches {
+    std::mutex mutex;
+    std::vector<std::shared_ptr<const ChunkCache>> recent;  // most recent first
+    std::atomic<uint64_t> reused{0}, compressed{0};
+};
+ChunkCaches& chunkCaches() {
+    static ChunkCaches caches;
+    return caches;
+}
+
 struct DeflateDeleter {
     void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
 };
 
 // Chunks [c0, c1) of the image, each as the file stores it: scanline by scanline, each scanline's
-// channels one after the other in name order, little-endian; then compressed, or kept as they are
-// where compressing would not make them smaller (readers take a chunk of its full size as raw).
-void compressChunks(int W, int H, const std::vector<Plane>& planes, int c0, int c1,
-                    std::vector<std::vector<unsigned char>>& chunks) {
-    std::unique_ptr<libdeflate_compressor, DeflateDeleter> z(libdeflate_alloc_compressor(kDeflateLevel));
-    if (!z) throw std::bad_alloc();
-    std::vector<unsigned char> packed, split, predicted;
+// channels one after the other in name order, little-endian (packedChunks[c]); then compressed,
+// or kept as they are where compressing would not make them smaller (readers take a chunk of its
+// full size as raw); or, where `last` (the last file in this layout) packed the same bytes, what
+// it stored.
+void compressChunks(int W, int H, const std::vector<Plane>& planes, int c0, int c1, const ChunkCache* last,
+                    std::vector<std::vector<unsigned char>>& packedChunks, std::vector<std::vector<unsigned char>>& chunks) {
+    std::unique_ptr<libdeflate_compressor, DeflateDeleter> z;
+    std::vector<unsigned char> split, predicted;
+    uint64_t reused = 0, compressed = 0;
     for (int c = c0; c < c1; ++c) {
         const int y0 = c * kLinesPerChunk, y1 = std::min(H, y0 + kLinesPerChunk);
+        std::vector<unsigned char>& packed = packedChunks[size_t(c)];
         packed.clear();
         for (int y = y0; y < y1; ++y)
             for (const Plane& p : planes) {
@@ -93,16 +119,26 @@ void compressChunks(int W, int H, const std::vector<Plane>& planes, int c0, int 
                         std::memcpy(packed.data() + at + size_t(x) * bytes, row + size_t(x) * p.xs, bytes);
                 }
             }
+        std::vector<unsigned char>& out = chunks[size_t(c)];
+        if (last && last->packed[size_t(c)] == packed) {
+            out = last->stored[size_t(c)];
+            ++reused;
+            continue;
+        }
+        if (!z) z.reset(libdeflate_alloc_compressor(kDeflateLevel));
+        if (!z) throw std::bad_alloc();
         split.resize(packed.size());
         predicted.resize(packed.size());
         zipPredict(packed.data(), packed.size(), split.data(), predicted.data());
-        std::vector<unsigned char>& out = chunks[size_t(c)];
         out.resize(libdeflate_zlib_compress_bound(z.get(), predicted.size()));
         const size_t n =
             libdeflate_zlib_compress(z.get(), predicted.data(), predicted.size(), out.data(), out.size());
         if (n == 0 || n >= packed.size()) out = packed;
         else out.resize(n);
+        ++compressed;
     }
+    chunkCaches().reused += reused;
+    chunkCaches().compressed += compressed;
 }
 
 // OpenEXRCore writes into memory (at the offsets it asks for: the chunk table last) and reports
@@ -133,13 +169,25 @@ std::vector<unsigned char> encodeScanlines(int W, int H, std::vector<Plane> plan
     std::sort(planes.begin(), planes.end(),
               [](const Plane& a, const Plane& b) { return std::strcmp(a.name.c_str(), b.name.c_str()) < 0; });
     const int chunkCount = (H + kLinesPerChunk - 1) / kLinesPerChunk;
+    auto cache = std::make_shared<ChunkCache>();
+    cache->W = W, cache->H = H;
+    for (const Plane& p : planes) cache->layout.emplace_back(p.name, p.half);
+    std::shared_ptr<const ChunkCache> last;
+    {
+        ChunkCaches& caches = chunkCaches();
+        std::lock_guard<std::mutex> lock(caches.mutex);
+        for (const auto& c : caches.recent)
+            if (c->W == W && c->H == H && c->layout == cache->layout) last = c;
+    }
+    std::vector<std::vector<unsigned char>>& packed = cache->packed;
+    packed.resize(size_t(chunkCount));
     std::vector<std::vector<unsigned char>> chunks(static_cast<size_t>(chunkCount));
     if (encodeThreads.load() > 1 && chunkCount > 1) {
         tbb::parallel_for(tbb::blocked_range<int>(0, chunkCount, 4), [&](const tbb::blocked_range<int>& r) {
-            compressChunks(W, H, planes, r.begin(), r.end(), chunks);
+            compressChunks(W, H, planes, r.begin(), r.end(), last.get(), packed, chunks);
         });
     } else {
-        compressChunks(W, H, planes, 0, chunkCount, chunks);
+        compressChunks(W, H, planes, 0, chunkCount, last.get(), packed, chunks);
     }
 
     size_t chunkBytes = 0;
@@ -171,10 +219,30 @@ std::vector<unsigned char> encodeScanlines(int W, int H, std::vector<Plane> plan
         check(exr_write_scanline_chunk(ctxt, part, c * kLinesPerChunk, chunks[size_t(c)].data(),
                                        chunks[size_t(c)].size()));
     check(exr_finish(&ctxt));
+    // This file becomes its layout's last (replacing the one before), the most recent.
+    cache->stored = std::move(chunks);
+    {
+        ChunkCaches& caches = chunkCaches();
+        std::lock_guard<std::mutex> lock(caches.mutex);
+        auto& recent = caches.recent;
+        recent.erase(std::remove_if(recent.begin(), recent.end(),
+                                    [&](const auto& c) { return c->W == W && c->H == H && c->layout == cache->layout; }),
+                     recent.end());
+        recent.insert(recent.begin(), std::move(cache));
+        if (recent.size() > kCachedLayouts) recent.resize(kCachedLayouts);
+    }
     return bytes;
 }
 
 }  // namespace
+
+void forgetExrChunks() {
+    ChunkCaches& caches = chunkCaches();
+    std::lock_guard<std::mutex> lock(caches.mutex);
+    caches.recent.clear();
+}
+
+ExrChunkCounts exrChunkCounts() { return {chunkCaches().reused.load(), chunkCaches().compressed.load()}; }
 
 void setExrEncodeThreads(int threads) {
     threads = std::max(1, threads);

@@ -5,6 +5,7 @@
 // through the image library module (image_library.h), loaded when first needed.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,16 @@ void setExrEncodeThreads(int threads);
 // (the format frames have always had; libdeflate makes it, exr_file.cpp). Nothing in them depends
 // on the time, the thread count or the machine.
 std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z);
+
+// The chunks of 16 scanlines the encoders have stored since the program started: compressed, or
+// reused from the last file of the same size and channels, where that file packed the same bytes
+// there (the file is the same, bit for bit, as if compressed again).
+struct ExrChunkCounts {
+    uint64_t reused = 0, compressed = 0;
+};
+ExrChunkCounts exrChunkCounts();
+// For tests: the next files compress every chunk.
+void forgetExrChunks();
 
 // Floats to half-float bits, rounded to nearest even as Imath's half(float) rounds them: eight at
 // a time by F16C where the CPU has it (Imath uses F16C only when the whole program is compiled

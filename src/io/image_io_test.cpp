@@ -75,13 +75,19 @@ TEST(FrameFiles, EncodingThreadsDoNotChangeTheBytes) {
     f.rgba[(50 * 37 + 3) * 4] = 0.375f;  // exact in half
     std::vector<float> rz(37 * 100 * 2);
     for (size_t i = 0; i < rz.size(); ++i) rz[i] = float(i % 29) * 0.125f;
+    // Every chunk compressed each time (none reused from the file before, which is the same).
+    const ExrChunkCounts before = exrChunkCounts();
     setExrEncodeThreads(1);
+    forgetExrChunks();
     const std::vector<unsigned char> one = encodeExr(f, true, true);
     const std::vector<unsigned char> channels = encodeExrChannels(37, 100, {"R", "Z"}, rz);
     setExrEncodeThreads(3);
+    forgetExrChunks();
     const std::vector<unsigned char> three = encodeExr(f, true, true);
     const std::vector<unsigned char> channels3 = encodeExrChannels(37, 100, {"R", "Z"}, rz);
     setExrEncodeThreads(1);
+    EXPECT_EQ(exrChunkCounts().compressed - before.compressed, 4u * 7u);
+    EXPECT_EQ(exrChunkCounts().reused, before.reused);
     ASSERT_GT(one.size(), 1000u);
     EXPECT_TRUE(one == three);
     EXPECT_TRUE(channels == channels3);
@@ -93,6 +99,54 @@ TEST(FrameFiles, EncodingThreadsDoNotChangeTheBytes) {
     ASSERT_EQ(back.channels.size(), 5u);
     EXPECT_EQ(back.at(36, 99, 4), f.z[99 * 37 + 36]);
     EXPECT_EQ(back.at(3, 50, 0), 0.375f);
+}
+
+// An animation's next frame stores the chunks of 16 scanlines it shares with the last file of
+// the same size and channels as that file stored them, and compresses the others: the file is
+// the same, bit for bit, as one with every chunk compressed. A chunk differing in one half, one
+// depth, or only in the sign of a zero depth is compressed again; files of other channels or
+// another size in between do not make the frame's chunks forgotten or wrongly reused.
+TEST(FrameFiles, AFramesUnchangedChunksAreStoredAsTheLastFilesWereWithTheSameBytes) {
+    FrameImage a;
+    a.resize(37, 100);  // seven chunks, the last short
+    uint32_t h = 777;
+    for (float& v : a.rgba) v = float((h = h * 1664525u + 1013904223u) >> 8) / float(1 << 24);
+    for (size_t i = 0; i < a.z.size(); ++i) a.z[i] = 1.0f + float(i % 11) * 0.25f;
+    a.z[3] = 0.0f;
+    FrameImage b = a;
+    b.rgba[(40 * 37 + 5) * 4] += 0.25f;  // chunk 2: a half that changes
+    b.z[97 * 37 + 36] += 1.0f;           // chunk 6 (the short one): a depth
+    FrameImage c = b;
+    c.z[3] = -0.0f;  // chunk 0: the same number, other bits
+    auto cold = [](const FrameImage& f) {
+        forgetExrChunks();
+        return encodeExr(f, true, true);
+    };
+    const std::vector<unsigned char> coldB = cold(b), coldC = cold(c);
+    ASSERT_NE(coldB, coldC);
+    forgetExrChunks();
+    encodeExr(a, true, true);
+    // In between: other channels, and the same channels at another size.
+    encodeExrChannels(37, 100, {"R", "Z"}, std::vector<float>(37 * 100 * 2, 0.5f));
+    FrameImage small;
+    small.resize(37, 99);
+    encodeExr(small, true, true);
+    ExrChunkCounts n0 = exrChunkCounts();
+    EXPECT_EQ(encodeExr(b, true, true), coldB);
+    ExrChunkCounts n1 = exrChunkCounts();
+    EXPECT_EQ(n1.reused - n0.reused, 5u);      // chunks 0, 1, 3, 4, 5 from a's file
+    EXPECT_EQ(n1.compressed - n0.compressed, 2u);  // chunks 2 and 6
+    EXPECT_EQ(encodeExr(c, true, true), coldC);
+    const ExrChunkCounts n2 = exrChunkCounts();
+    EXPECT_EQ(n2.reused - n1.reused, 6u);
+    EXPECT_EQ(n2.compressed - n1.compressed, 1u);  // chunk 0: -0 is not 0 in the file
+    // The files read back as their frames.
+    const test::TempDir tempDir("chunks");
+    const std::string path = tempDir.path() + "/c.exr";
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(coldC.data()), std::streamsize(coldC.size()));
+    const ImageData back = readImage(path);
+    EXPECT_TRUE(std::signbit(back.at(3, 0, 4)));
+    EXPECT_EQ(back.at(36, 97, 4), c.z[97 * 37 + 36]);
 }
 
 // Frames' colour goes to half floats eight at a time (F16C where the CPU has it): every float

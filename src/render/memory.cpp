@@ -35,9 +35,11 @@ constexpr uint64_t kOcclusionBytesPerCell = sizeof(uint8_t) + sizeof(uint32_t);
 constexpr uint64_t kBytesPerPixel = 5 * sizeof(float);
 // Per pixel of a frame being written: up to five float channels, then the encoded file (at most
 // the half-float data, before compression); the last frame encoded, its pixels and bytes, kept
-// so that an identical next frame reuses them (image_io.cpp); and the writer's queue of two
-// frames' RGBA and Z (io/frame_writer.h).
-constexpr uint64_t kWriterBytesPerPixel = 2 * (5 * sizeof(float) + 5 * 2) + 2 * 5 * sizeof(float);
+// so that an identical next frame reuses them (image_io.cpp); the last file's chunks, packed
+// and as stored (no larger), kept so that the next file's unchanged chunks reuse them
+// (exr_file.cpp); and the writer's queue of two frames' RGBA and Z (io/frame_writer.h).
+constexpr uint64_t kWriterBytesPerPixel =
+    2 * (5 * sizeof(float) + 5 * 2) + 2 * 5 * sizeof(float) + 2 * 5 * sizeof(float);
 
 // The block's frames are held tile by tile (film/tiled_frames.h): at most a copy a frame (where
 // everything moves), the tiles' still pixels when a bucket spans several frames, and the frame
@@ -82,8 +84,9 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
                                      framesPerBucket * (kBytesPerPixelFrame + S * recordSample)) +
                   s.traceBytesPerWorker + tilePixels(s) * 6 * sizeof(float) +  // resolving: weights, still pixels
                   (s.occlusion ? bucketPixels(s) * framesPerBucket * kOcclusionBytesPerCell : 0);
-    // Output variables the same way, as floats, and interleaved then planar while one is encoded.
-    e.writer = pixels * (kWriterBytesPerPixel + 8 * aov);
+    // Output variables the same way, as floats, and interleaved then planar while one is encoded,
+    // and their files' chunks kept packed and as stored.
+    e.writer = pixels * (kWriterBytesPerPixel + 10 * aov);
     e.gridCache = s.gridCacheBytes;
     return e;
 }

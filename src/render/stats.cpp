@@ -133,6 +133,8 @@ std::string RenderStats::toJson() const {
       << "  \"memory_budget_bytes\": " << memoryBudgetBytes << ",\n"
       << "  \"memory_program_bytes\": " << memoryProgramBytes << ",\n"
       << "  \"memory_bodies_bytes\": " << memoryBodiesBytes << ",\n"
+      << "  \"exr_chunks_compressed\": " << exrChunksCompressed << ",\n"
+      << "  \"exr_chunks_reused\": " << exrChunksReused << ",\n"
       << "  \"frames_skipped\": " << framesSkipped << "\n"
       << "}\n";
     return o.str();

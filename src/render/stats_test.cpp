@@ -58,6 +58,7 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
     s.frameBlock = 8, s.bucketSize = 32, s.tolerance = 0.05, s.layers = 0;
     s.timeParse = 0.5, s.timeBuild = 1.5, s.timeRender = 2.5, s.timeWrite = 3.5, s.timeTotal = 8.125;
     s.peakMemoryBytes = 1 << 20, s.memoryEstimateBytes = 1 << 19, s.memoryBudgetBytes = 1 << 30;
+    s.exrChunksCompressed = 23, s.exrChunksReused = 45;
     s.framesSkipped = 2, s.procedurals = 130, s.proceduralsByDepth = {1, 129}, s.bodiesGenerated = 999, s.passes = 2;
     EXPECT_EQ(s.toJson(), R"({
   "algorithm": "spacetime-occlusion",
@@ -121,6 +122,8 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
   "memory_budget_bytes": 1073741824,
   "memory_program_bytes": 0,
   "memory_bodies_bytes": 0,
+  "exr_chunks_compressed": 23,
+  "exr_chunks_reused": 45,
   "frames_skipped": 2
 }
 )");

@@ -44,7 +44,7 @@ TEST(CliMemory, HugeRenderIsRefusedWithTheFigureItNeeds) {
     CliRun r = runStreyesWith(test::kAddressSanitizer ? "" : "ulimit -v 4000000; ",
                               "render " + scene + " --res 65536x65536 --max-memory 64G -o " + dir + "/f.####.exr");
     EXPECT_EQ(r.exitCode, 2) << r.output;
-    EXPECT_NE(r.output.find("streyes: error: this render needs about 560 GiB of memory even one frame at a time "
+    EXPECT_NE(r.output.find("streyes: error: this render needs about 720 GiB of memory even one frame at a time "
                             "(frame images 160 GiB (1 frame of 65536x65536 and one being written)"),
               std::string::npos)
         << r.output;
