@@ -67,6 +67,9 @@ void zipPredict(const unsigned char* in, size_t n, unsigned char* split, unsigne
     for (size_t i = 1; i < n; ++i) out[i] = static_cast<unsigned char>(split[i] - split[i - 1] + 128);
 }
 
+// A file's chunks of scanlines, each as bytes.
+using Chunks = std::vector<std::vector<unsigned char>>;
+
 // The last file encoded in each channel layout (at most kCachedLayouts of them, the most recent):
 // each chunk packed as the file's scanlines, and as stored. Deflate at a fixed level is a
 // function of its input, so a chunk of the next file in that layout whose packed bytes are the
@@ -76,7 +79,7 @@ void zipPredict(const unsigned char* in, size_t n, unsigned char* split, unsigne
 struct ChunkCache {
     int W = 0, H = 0;
     std::vector<std::pair<std::string, bool>> layout;  // channel names and half, in file order
-    std::vector<std::vector<unsigned char>> packed, stored;
+    Chunks packed, stored;
 };
 constexpr size_t kCachedLayouts = 4;  // a frame's beauty file and a few output-variable files
 struct ChunkCaches {
@@ -99,7 +102,7 @@ struct DeflateDeleter {
 // full size as raw); or, where `last` (the last file in this layout) packed the same bytes, what
 // it stored.
 void compressChunks(int W, int H, const std::vector<Plane>& planes, int c0, int c1, const ChunkCache* last,
-                    std::vector<std::vector<unsigned char>>& packedChunks, std::vector<std::vector<unsigned char>>& chunks) {
+                    Chunks& packedChunks, Chunks& chunks) {
     std::unique_ptr<libdeflate_compressor, DeflateDeleter> z;
     std::vector<unsigned char> split, predicted;
     uint64_t reused = 0, compressed = 0;
@@ -179,9 +182,9 @@ std::vector<unsigned char> encodeScanlines(int W, int H, std::vector<Plane> plan
         for (const auto& c : caches.recent)
             if (c->W == W && c->H == H && c->layout == cache->layout) last = c;
     }
-    std::vector<std::vector<unsigned char>>& packed = cache->packed;
+    Chunks& packed = cache->packed;
     packed.resize(size_t(chunkCount));
-    std::vector<std::vector<unsigned char>> chunks(static_cast<size_t>(chunkCount));
+    Chunks chunks(static_cast<size_t>(chunkCount));
     if (encodeThreads.load() > 1 && chunkCount > 1) {
         tbb::parallel_for(tbb::blocked_range<int>(0, chunkCount, 4), [&](const tbb::blocked_range<int>& r) {
             compressChunks(W, H, planes, r.begin(), r.end(), last.get(), packed, chunks);
@@ -225,9 +228,8 @@ std::vector<unsigned char> encodeScanlines(int W, int H, std::vector<Plane> plan
         ChunkCaches& caches = chunkCaches();
         std::lock_guard<std::mutex> lock(caches.mutex);
         auto& recent = caches.recent;
-        recent.erase(std::remove_if(recent.begin(), recent.end(),
-                                    [&](const auto& c) { return c->W == W && c->H == H && c->layout == cache->layout; }),
-                     recent.end());
+        auto sameLayout = [&](const auto& c) { return c->W == W && c->H == H && c->layout == cache->layout; };
+        recent.erase(std::remove_if(recent.begin(), recent.end(), sameLayout), recent.end());
         recent.insert(recent.begin(), std::move(cache));
         if (recent.size() > kCachedLayouts) recent.resize(kCachedLayouts);
     }

@@ -143,7 +143,8 @@ TEST(FrameFiles, AFramesUnchangedChunksAreStoredAsTheLastFilesWereWithTheSameByt
     // The files read back as their frames.
     const test::TempDir tempDir("chunks");
     const std::string path = tempDir.path() + "/c.exr";
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(coldC.data()), std::streamsize(coldC.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(coldC.data()), std::streamsize(coldC.size()));
     const ImageData back = readImage(path);
     EXPECT_TRUE(std::signbit(back.at(3, 0, 4)));
     EXPECT_EQ(back.at(36, 97, 4), c.z[97 * 37 + 36]);
