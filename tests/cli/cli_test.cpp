@@ -108,6 +108,57 @@ TEST(Cli, WritesHalfRgbaAndFloatZWithStats) {
     EXPECT_NE(json.find("\"frames\": [3, 4]"), std::string::npos);
 }
 
+// An animation's EXR chunks (16 scanlines each) that equal the frame before's are stored as it
+// stored them, and --stats counts them: a still background under a box moving in the top rows,
+// 32x64 pixels, 4 chunks a frame. The count is checked against the frames read back: a chunk is
+// reused exactly where its 16 rows equal the frame before's.
+TEST(Cli, StatsCountTheExrChunksReusedFromTheFrameBefore) {
+    const test::TempDir tempDir("cli-chunks");
+    const std::string& dir = tempDir.path();
+    const std::string scene = writeFile(dir, "box.rib", R"(Format 32 64 1
+PixelSamples 2 2
+Projection "orthographic"
+ScreenWindow 0 32 0 64
+Option "streyes" "int frames" [1 3]
+WorldBegin
+Surface "constant"
+Color [0.2 0.3 0.4]
+Patch "bilinear" "P" [0 0 5  32 0 5  0 64 5  32 64 5]
+AttributeBegin
+Color [1 0.5 0]
+MotionBegin [1 3]
+Translate 2 0 0
+Translate 20 0 0
+MotionEnd
+Patch "bilinear" "P" [0 54 2  6 54 2  0 61 2  6 61 2]
+AttributeEnd
+WorldEnd
+)");
+    const CliRun r = streyes("render " + scene + " -o " + dir + "/f.####.exr --stats " + dir + "/stats.json --quiet");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::vector<ImageData> frames;
+    for (const char* f : {"/f.0001.exr", "/f.0002.exr", "/f.0003.exr"}) frames.push_back(readImage(dir + f));
+    int same = 0;
+    for (size_t f = 1; f < frames.size(); ++f) {
+        ASSERT_NE(frames[f - 1].pixels, frames[f].pixels);  // the box moved: no frame is the last
+        for (int chunk = 0; chunk < 4; ++chunk) {
+            bool equal = true;
+            for (int y = chunk * 16; y < chunk * 16 + 16; ++y)
+                for (int x = 0; x < 32; ++x)
+                    for (size_t c = 0; c < frames[f].channels.size(); ++c) {
+                        const float a = frames[f - 1].at(x, y, int(c)), b = frames[f].at(x, y, int(c));
+                        equal = equal && std::memcmp(&a, &b, sizeof a) == 0;
+                    }
+            same += equal;
+        }
+    }
+    EXPECT_EQ(same, 6);  // the box stays in the first chunk's rows
+    std::ifstream in(dir + "/stats.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(json.find("\"exr_chunks_reused\": " + std::to_string(same) + ","), std::string::npos) << json;
+    EXPECT_NE(json.find("\"exr_chunks_compressed\": " + std::to_string(12 - same) + ","), std::string::npos) << json;
+}
+
 // Bodies exist over the shot only: frames outside --shot would render empty, so they are refused.
 TEST(Cli, FramesOutsideTheShotAreBadInput) {
     const test::TempDir tempDir("cli-shot");
