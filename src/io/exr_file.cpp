@@ -175,12 +175,15 @@ std::vector<unsigned char> encodeScanlines(int W, int H, std::vector<Plane> plan
     auto cache = std::make_shared<ChunkCache>();
     cache->W = W, cache->H = H;
     for (const Plane& p : planes) cache->layout.emplace_back(p.name, p.half);
+    auto sameLayout = [&](const std::shared_ptr<const ChunkCache>& c) {
+        return c->W == W && c->H == H && c->layout == cache->layout;
+    };
     std::shared_ptr<const ChunkCache> last;
     {
         ChunkCaches& caches = chunkCaches();
         std::lock_guard<std::mutex> lock(caches.mutex);
-        for (const auto& c : caches.recent)
-            if (c->W == W && c->H == H && c->layout == cache->layout) last = c;
+        const auto found = std::find_if(caches.recent.begin(), caches.recent.end(), sameLayout);
+        if (found != caches.recent.end()) last = *found;
     }
     Chunks& packed = cache->packed;
     packed.resize(size_t(chunkCount));
@@ -228,7 +231,6 @@ std::vector<unsigned char> encodeScanlines(int W, int H, std::vector<Plane> plan
         ChunkCaches& caches = chunkCaches();
         std::lock_guard<std::mutex> lock(caches.mutex);
         auto& recent = caches.recent;
-        auto sameLayout = [&](const auto& c) { return c->W == W && c->H == H && c->layout == cache->layout; };
         recent.erase(std::remove_if(recent.begin(), recent.end(), sameLayout), recent.end());
         recent.insert(recent.begin(), std::move(cache));
         if (recent.size() > kCachedLayouts) recent.resize(kCachedLayouts);

@@ -45,7 +45,8 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     }
     permutation_.resize(size_t(frameCount) * pixels);
     timesMade_.assign(size_t(frameCount), 0);
-    keysMade_ = false;
+    permutationKeys_.resize(pixels);  // made a pixel at a time (makePermutation)
+    keyMade_.assign(pixels, 0);
     if (dense)
         for (int fi = 0; fi < frameCount; ++fi) makeTimes(fi);
 
@@ -94,17 +95,12 @@ void ImageBlock::makeFragmentHeads() {
 
 void ImageBlock::makeTimes(int fi) const {
     const size_t pixels = size_t(pixelCount());
-    if (!keysMade_) {  // a pixel's key is hashed once for every frame, when first needed
-        permutationKeys_.resize(pixels);
-        keyMade_.assign(pixels, 0);
-        keysMade_ = true;
-    }
     std::fill_n(&permutation_[size_t(fi) * pixels], pixels, kUnmade);
     timesMade_[size_t(fi)] = 1;
 }
 
 uint8_t ImageBlock::makePermutation(int fi, size_t i) const {
-    if (!keyMade_[i]) {
+    if (!keyMade_[i]) {  // a pixel's key is hashed once for every frame, when first needed
         const int x = rect_.x0 + int(i % size_t(width_)), y = rect_.y0 + int(i / size_t(width_));
         permutationKeys_[i] = patterns_->permutationKeyOf(x, y);
         keyMade_[i] = 1;

@@ -259,8 +259,7 @@ class ImageBlock {
     mutable std::vector<uint8_t> permutation_;  // frames x pixels
     mutable std::vector<uint8_t> timesMade_;    // per frame
     mutable std::vector<uint64_t> permutationKeys_;  // per pixel, where keyMade_
-    mutable std::vector<uint8_t> keyMade_;           // per pixel, once a frame needs times
-    mutable bool keysMade_ = false;                  // keyMade_ cleared for this block
+    mutable std::vector<uint8_t> keyMade_;           // per pixel, cleared by reset
     std::vector<SampleHit> still_;
     std::vector<int32_t> slot_;         // frames x pixels: record number, or -1
     std::vector<float> farthest_;       // frames x pixels: farthestBound
