@@ -92,7 +92,7 @@ HWY_INLINE hn::Mask<D> lensBound(D, VD x, VD y, const VD* cxs, const VD* cys) {
 template <class D, class VD = hn::Vec<D>, class MD = hn::Mask<D>>
 HWY_INLINE void testLanes(D d, VD x, VD y, const VD* cxs, const VD* cys, MD inBound, float* edges, int stride, size_t i,
                           MovingTest& r) {
-    const VD zero = hn::Zero(d), one = hn::Set(d, 1.0f), minusOne = hn::Set(d, -1.0f);
+    const VD zero = hn::Zero(d);
     static constexpr int kFrom[5] = {0, 1, 2, 3, 2}, kTo[5] = {1, 2, 3, 0, 0};
     VD e[5];
     MD canonical[5];
@@ -101,10 +101,8 @@ HWY_INLINE void testLanes(D d, VD x, VD y, const VD* cxs, const VD* cys, MD inBo
         const VD ax = cxs[kFrom[k]], ay = cys[kFrom[k]], bx = cxs[kTo[k]], by = cys[kTo[k]];
         const MD can = hn::Or(hn::Lt(ax, bx), hn::And(hn::Eq(ax, bx), hn::Lt(ay, by)));
         const VD px = hn::IfThenElse(can, ax, bx), py = hn::IfThenElse(can, ay, by);
-        const VD dx = hn::IfThenElse(can, hn::Sub(bx, ax), hn::Sub(ax, bx));
-        const VD dy = hn::IfThenElse(can, hn::Sub(by, ay), hn::Sub(ay, by));
-        const VD sign = hn::IfThenElse(can, one, minusOne);
-        e[k] = hn::Mul(sign, hn::Sub(hn::Mul(dx, hn::Sub(y, py)), hn::Mul(dy, hn::Sub(x, px))));
+        const VD dx = hn::Sub(bx, ax), dy = hn::Sub(by, ay);
+        e[k] = hn::Sub(hn::Mul(dx, hn::Sub(y, py)), hn::Mul(dy, hn::Sub(x, px)));
         canonical[k] = can;
         if (k == 4) diagonalDegenerate = hn::And(hn::Eq(dx, zero), hn::Eq(dy, zero));
         hn::StoreU(e[k], d, edges + k * stride);
@@ -214,11 +212,10 @@ MovingTest TestLens(const LensQuad& q, const float* xs, const float* ys, const f
 PixelTest TestPixel(const QuadSetup& q, const float* xs, const float* ys, int n, uint64_t candidates, float* edges) {
     const size_t N = hn::Lanes(kD);
     const int stride = edgeStride(n);
-    V px[5], py[5], dx[5], dy[5], sign[5];
+    V px[5], py[5], dx[5], dy[5];
     for (int k = 0; k < 5; ++k) {
         px[k] = hn::Set(kD, q.e[k].px), py[k] = hn::Set(kD, q.e[k].py);
         dx[k] = hn::Set(kD, q.e[k].dx), dy[k] = hn::Set(kD, q.e[k].dy);
-        sign[k] = hn::Set(kD, q.e[k].sign);
     }
     const bool diagonalDegenerate = q.e[4].dx == 0 && q.e[4].dy == 0;
     const bool c02 = diagonalDegenerate ? false : !q.e[4].canonical;
@@ -237,8 +234,8 @@ PixelTest TestPixel(const QuadSetup& q, const float* xs, const float* ys, int n,
         const M tested = hn::And(cand, inBound);
         V e[5];
         for (int k = 0; k < 5; ++k) {
-            // Edge::eval: sign * (dx * (sy - py) - dy * (sx - px)), in this order.
-            e[k] = hn::Mul(sign[k], hn::Sub(hn::Mul(dx[k], hn::Sub(y, py[k])), hn::Mul(dy[k], hn::Sub(x, px[k]))));
+            // Edge::eval: dx * (sy - py) - dy * (sx - px), in this order.
+            e[k] = hn::Sub(hn::Mul(dx[k], hn::Sub(y, py[k])), hn::Mul(dy[k], hn::Sub(x, px[k])));
             hn::StoreU(e[k], kD, edges + k * stride + int(i));
         }
         const M first = hn::And(tested, insideTriangle(e[0], q.e[0].canonical, e[1], q.e[1].canonical, e[4], q.e[4].canonical));
@@ -338,11 +335,10 @@ HWY_INLINE uint64_t testQuad(const QuadSetup& q, const SampleLayout& L, const Qu
                              QuadHit* out, size_t* hitCount) {
     const size_t N = hn::Lanes(kD);
     const hn::RebindToSigned<decltype(kD)> kI;
-    V px[5], py[5], dx[5], dy[5], sign[5];
+    V px[5], py[5], dx[5], dy[5];
     for (int k = 0; k < 5; ++k) {
         px[k] = hn::Set(kD, q.e[k].px), py[k] = hn::Set(kD, q.e[k].py);
         dx[k] = hn::Set(kD, q.e[k].dx), dy[k] = hn::Set(kD, q.e[k].dy);
-        sign[k] = hn::Set(kD, q.e[k].sign);
     }
     const bool c02 = q.e[4].dx == 0 && q.e[4].dy == 0 ? false : !q.e[4].canonical;
     const V xmin = hn::Set(kD, q.xmin), xmax = hn::Set(kD, q.xmax), ymin = hn::Set(kD, q.ymin), ymax = hn::Set(kD, q.ymax);
@@ -374,7 +370,7 @@ HWY_INLINE uint64_t testQuad(const QuadSetup& q, const SampleLayout& L, const Qu
                                    hn::ShiftLeft<3>(hn::IfThenElseZero(hn::RebindMask(kI, t), hn::Load(kI, bslot + at))));
         V ev[5];
         for (int k = 0; k < 5; ++k)
-            ev[k] = hn::Mul(sign[k], hn::Sub(hn::Mul(dx[k], hn::Sub(y, py[k])), hn::Mul(dy[k], hn::Sub(x, px[k]))));
+            ev[k] = hn::Sub(hn::Mul(dx[k], hn::Sub(y, py[k])), hn::Mul(dy[k], hn::Sub(x, px[k])));
         const M first =
             hn::And(t, insideTriangle(ev[0], q.e[0].canonical, ev[1], q.e[1].canonical, ev[4], q.e[4].canonical));
         const M second = hn::AndNot(
