@@ -45,17 +45,20 @@ HWY_INLINE M insideTriangle(V e0, bool c0, V e1, bool c1, V e2, bool c2) {
     return hn::Or(positive, negative);
 }
 
-// insideTriangle with each lane's own canonical directions (a moving quad's edges differ by lane).
+// insideTriangle with each lane's own canonical directions (a moving quad's edges differ by lane),
+// given as a tie value per edge and lane: +1 where the edge is canonical, -1 where not. A lane
+// exactly on an edge (e = 0) takes the tie for its value, and is inside when all three values are
+// > 0, or all < 0, but for a triangle with no area (all three e = 0). That is insideTriangle's rule
+// case by case (NaN fails every comparison), in half the operations of testing each edge's two
+// ways with its canonical mask.
 template <class D, class VD = hn::Vec<D>, class MD = hn::Mask<D>>
-HWY_INLINE MD insideTriangleLanes(D d, VD e0, MD c0, VD e1, MD c1, VD e2, MD c2) {
+HWY_INLINE MD insideTriangleLanes(D d, VD e0, VD tie0, VD e1, VD tie1, VD e2, VD tie2) {
     const VD zero = hn::Zero(d);
-    auto atLeast = [&](VD e, MD orZero) { return hn::Or(hn::Gt(e, zero), hn::And(orZero, hn::Eq(e, zero))); };
-    auto atMost = [&](VD e, MD orZero) { return hn::Or(hn::Lt(e, zero), hn::And(orZero, hn::Eq(e, zero))); };
-    const MD positive = hn::And(hn::And(atLeast(e0, c0), atLeast(e1, c1)),
-                               hn::And(atLeast(e2, c2), hn::Gt(hn::Max(hn::Max(e0, e1), e2), zero)));
-    const MD negative = hn::And(hn::And(atMost(e0, hn::Not(c0)), atMost(e1, hn::Not(c1))),
-                               hn::And(atMost(e2, hn::Not(c2)), hn::Lt(hn::Min(hn::Min(e0, e1), e2), zero)));
-    return hn::Or(positive, negative);
+    const MD z0 = hn::Eq(e0, zero), z1 = hn::Eq(e1, zero), z2 = hn::Eq(e2, zero);
+    const VD t0 = hn::IfThenElse(z0, tie0, e0), t1 = hn::IfThenElse(z1, tie1, e1), t2 = hn::IfThenElse(z2, tie2, e2);
+    const MD positive = hn::And(hn::And(hn::Gt(t0, zero), hn::Gt(t1, zero)), hn::Gt(t2, zero));
+    const MD negative = hn::And(hn::And(hn::Lt(t0, zero), hn::Lt(t1, zero)), hn::Lt(t2, zero));
+    return hn::AndNot(hn::And(hn::And(z0, z1), z2), hn::Or(positive, negative));
 }
 
 template <class D>
@@ -92,10 +95,9 @@ HWY_INLINE hn::Mask<D> lensBound(D, VD x, VD y, const VD* cxs, const VD* cys) {
 template <class D, class VD = hn::Vec<D>, class MD = hn::Mask<D>>
 HWY_INLINE void testLanes(D d, VD x, VD y, const VD* cxs, const VD* cys, MD inBound, float* edges, int stride, size_t i,
                           MovingTest& r) {
-    const VD zero = hn::Zero(d);
+    const VD zero = hn::Zero(d), one = hn::Set(d, 1.0f), minusOne = hn::Set(d, -1.0f);
     static constexpr int kFrom[5] = {0, 1, 2, 3, 2}, kTo[5] = {1, 2, 3, 0, 0};
-    VD e[5];
-    MD canonical[5];
+    VD e[5], tie[5];
     MD diagonalDegenerate = hn::FirstN(d, 0);
     for (int k = 0; k < 5; ++k) {
         const VD ax = cxs[kFrom[k]], ay = cys[kFrom[k]], bx = cxs[kTo[k]], by = cys[kTo[k]];
@@ -103,14 +105,16 @@ HWY_INLINE void testLanes(D d, VD x, VD y, const VD* cxs, const VD* cys, MD inBo
         const VD px = hn::IfThenElse(can, ax, bx), py = hn::IfThenElse(can, ay, by);
         const VD dx = hn::Sub(bx, ax), dy = hn::Sub(by, ay);
         e[k] = hn::Sub(hn::Mul(dx, hn::Sub(y, py)), hn::Mul(dy, hn::Sub(x, px)));
-        canonical[k] = can;
+        tie[k] = hn::IfThenElse(can, one, minusOne);
         if (k == 4) diagonalDegenerate = hn::And(hn::Eq(dx, zero), hn::Eq(dy, zero));
         hn::StoreU(e[k], d, edges + k * stride);
     }
-    const MD c02 = hn::AndNot(diagonalDegenerate, hn::Not(canonical[4]));
-    const MD first = hn::And(inBound, insideTriangleLanes(d, e[0], canonical[0], e[1], canonical[1], e[4], canonical[4]));
+    // Triangle 2 runs the diagonal the other way: the opposite canonical flag, but false where the
+    // diagonal has no length (hitQuad's c02).
+    const VD tie02 = hn::IfThenElse(diagonalDegenerate, minusOne, hn::Neg(tie[4]));
+    const MD first = hn::And(inBound, insideTriangleLanes(d, e[0], tie[0], e[1], tie[1], e[4], tie[4]));
     const MD second =
-        hn::AndNot(first, hn::And(inBound, insideTriangleLanes(d, hn::Neg(e[4]), c02, e[2], canonical[2], e[3], canonical[3])));
+        hn::AndNot(first, hn::And(inBound, insideTriangleLanes(d, hn::Neg(e[4]), tie02, e[2], tie[2], e[3], tie[3])));
     r.first |= maskBits(d, first) << i;
     r.second |= maskBits(d, second) << i;
 }
