@@ -18,8 +18,9 @@ namespace streyes::micropolygon {
 // own direction (dx, dy) = b - a. The neighbour that runs it b -> a has the same start and
 // a - b = -(b - a), so the two values are exactly opposite (IEEE rounding is symmetric in sign),
 // or both zero. That is the canonical edge function times +-1 bit for bit, but for the sign of an
-// exact zero (which no test reads), with one multiplication and three selections fewer a lane in
-// the moving kernel.
+// exact zero (the inside test compares with 0; a corner's weight of -0 instead of +0 reaches a
+// hit's value only where that value is -0 at every corner), with one multiplication and three
+// selections fewer a lane in the moving kernel.
 struct Edge {
     float px, py, dx, dy;
     bool canonical;  // whether the quad runs the edge in canonical direction
