@@ -30,18 +30,18 @@ using V = hn::Vec<decltype(kD)>;
 using M = hn::Mask<decltype(kD)>;
 
 // micropolygon.h's insideTriangle, lane by lane: mixed signs are outside, all zero (a triangle
-// with no area) too; a lane exactly on an edge goes by the edge's canonical direction. Written
-// with few mask operations (AVX-512 runs those on one port): a lane is inside the positive way
-// when every edge is > 0, or = 0 where the edge is canonical, and one is > 0 (their largest);
-// the negative way likewise. NaN fails every comparison, as in the scalar test.
+// with no area) too; a lane exactly on an edge goes by the edge's canonical direction. A lane is
+// inside the positive way when every edge is > 0, or = 0 where the edge is canonical; the negative
+// way likewise. A lane with all three edges 0 passes neither: a triangle's edges go round, so they
+// cannot all run the canonical (increasing) way, and run none of them only where its corners are
+// one point, which nothing is inside. NaN fails every comparison, as in the scalar test.
 HWY_INLINE M insideTriangle(V e0, bool c0, V e1, bool c1, V e2, bool c2) {
+    if (!c0 && !c1 && !c2) return hn::FirstN(kD, 0);
     const V zero = hn::Zero(kD);
     auto atLeast = [&](V e, bool orZero) { return orZero ? hn::Ge(e, zero) : hn::Gt(e, zero); };
     auto atMost = [&](V e, bool orZero) { return orZero ? hn::Le(e, zero) : hn::Lt(e, zero); };
-    const M positive = hn::And(hn::And(atLeast(e0, c0), atLeast(e1, c1)),
-                               hn::And(atLeast(e2, c2), hn::Gt(hn::Max(hn::Max(e0, e1), e2), zero)));
-    const M negative = hn::And(hn::And(atMost(e0, !c0), atMost(e1, !c1)),
-                               hn::And(atMost(e2, !c2), hn::Lt(hn::Min(hn::Min(e0, e1), e2), zero)));
+    const M positive = hn::And(hn::And(atLeast(e0, c0), atLeast(e1, c1)), atLeast(e2, c2));
+    const M negative = hn::And(hn::And(atMost(e0, !c0), atMost(e1, !c1)), atMost(e2, !c2));
     return hn::Or(positive, negative);
 }
 

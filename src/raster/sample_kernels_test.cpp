@@ -125,6 +125,7 @@ struct StrataBlock {
             q.z[c] = 1 + jitter(rng);
         }
         if (t % 7 == 0) q.x[1] = q.x[0], q.y[1] = q.y[0];  // a collapsed edge
+        if (t % 13 == 0) q.x[2] = q.x[0], q.y[2] = q.y[0];  // a collapsed diagonal (with the above, a triangle a point)
         if (!boundQuad(q, nullptr, nullptr, nullptr, R, 0, 10)) return false;
         setupEdges(q);
         return true;
