@@ -121,62 +121,74 @@ HWY_INLINE void testLanes(D d, VD x, VD y, const VD* cxs, const VD* cys, MD inBo
 
 }  // namespace
 
-// Each lane's quad at its own time, set up and tested as movingQuadAt and hitQuad do: the same
-// operations in the same order (lerp is a (1 - w) + b w; makeEdge's canonical choice by lane).
+// Lanes [i, i + Lanes(d)) of TestMoving (those below n): each lane's quad at its own time, set up
+// and tested as movingQuadAt and hitQuad do, the same operations in the same order (lerp is
+// a (1 - w) + b w; makeEdge's canonical choice by lane).
+template <class D>
+HWY_INLINE void movingLanes(D d, const MovingQuad& q, const float* xs, const float* ys, const float* tfs,
+                            const float* seenZ, const float* lus, const float* lvs, size_t i, int n, int stride,
+                            float* edges, MovingTest& r) {
+    using VD = hn::Vec<D>;
+    using MD = hn::Mask<D>;
+    const VD zero = hn::Zero(d), one = hn::Set(d, 1.0f);
+    const VD x = hn::LoadU(d, xs + i), y = hn::LoadU(d, ys + i), tf = hn::LoadU(d, tfs + i);
+    MD inBound = hn::And(hn::And(hn::Not(hn::Lt(x, hn::Set(d, q.xmin))), hn::Not(hn::Gt(x, hn::Set(d, q.xmax)))),
+                         hn::And(hn::Not(hn::Lt(y, hn::Set(d, q.ymin))), hn::Not(hn::Gt(y, hn::Set(d, q.ymax)))));
+    inBound = hn::And(inBound, hn::FirstN(d, size_t(n) - i));
+    const MD behind = hn::And(inBound, hn::Gt(hn::Set(d, q.zmin), hn::LoadU(d, seenZ + i)));
+    r.behind |= maskBits(d, behind) << i;
+    inBound = hn::AndNot(behind, inBound);
+    if (hn::AllFalse(d, inBound)) return;
+    // std::min(1, std::max(0, v)), NaN and signed zeros included.
+    const VD v = hn::Mul(hn::Sub(tf, hn::Set(d, q.tfA)), hn::Set(d, q.invSpan));
+    const VD m = hn::IfThenElse(hn::Lt(zero, v), v, zero);
+    const VD w = hn::IfThenElse(hn::Lt(m, one), m, one), omw = hn::Sub(one, w);
+    auto lerpV = [&](float a, float b) { return hn::Add(hn::Mul(hn::Set(d, a), omw), hn::Mul(hn::Set(d, b), w)); };
+    VD cxs[4], cys[4], zs[4];  // zs: the corners' depths, where read (exact corners, a lens)
+    for (int c = 0; c < 4; ++c) {
+        if (q.exact[c]) {
+            const VD px = lerpV(q.cx[0][c], q.cx[1][c]), py = lerpV(q.cy[0][c], q.cy[1][c]);
+            zs[c] = lerpV(q.cz[0][c], q.cz[1][c]);
+            const VD iz = hn::Div(one, zs[c]);
+            cxs[c] = hn::Add(hn::Mul(hn::Mul(hn::Set(d, q.ax), px), iz), hn::Set(d, q.bx));
+            cys[c] = hn::Add(hn::Mul(hn::Mul(hn::Set(d, q.ay), py), iz), hn::Set(d, q.by));
+        } else {
+            cxs[c] = lerpV(q.x[0][c], q.x[1][c]);
+            cys[c] = lerpV(q.y[0][c], q.y[1][c]);
+            if (q.lens) zs[c] = lerpV(q.z[0][c], q.z[1][c]);
+        }
+    }
+    r.tested |= maskBits(d, inBound) << i;
+    if (q.lens) {  // each corner moved by its lens shift at its depth then (movingLensQuadAt)
+        const VD lu = hn::LoadU(d, lus + i), lv = hn::LoadU(d, lvs + i);
+        const VD eye = hn::Set(d, q.eyePlane), radius = hn::Set(d, q.lensRadius), invFocal = hn::Set(d, q.invFocal);
+        for (int c = 0; c < 4; ++c) {
+            const VD zc = hn::IfThenElse(hn::Lt(zs[c], eye), eye, zs[c]);  // std::max(z, eyePlane)
+            const VD shift = hn::Mul(radius, hn::Sub(invFocal, hn::Div(one, zc)));
+            cxs[c] = hn::Add(cxs[c], hn::Mul(hn::Mul(shift, hn::Set(d, q.ax)), lu));
+            cys[c] = hn::Add(cys[c], hn::Mul(hn::Mul(shift, hn::Set(d, q.ay)), lv));
+        }
+        inBound = hn::And(inBound, lensBound(d, x, y, cxs, cys));
+        if (hn::AllFalse(d, inBound)) return;  // as in TestLens
+    }
+    testLanes(d, x, y, cxs, cys, inBound, edges + i, stride, i, r);
+}
+
+// Sixteen lanes a vector where a whole one of lanes is left (AVX-512), eight for the rest: a
+// quad's row of pixels over a group of slices is often 32 or 40 lanes, where sixteen test fastest,
+// but a group of one or two slices gives rows of 4 to 10, where a sixteen-lane vector tests mostly
+// empty lanes (docs/ARCHITECTURE.md). Lanes do not depend on their vector's width.
 MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, const float* tfs, const float* seenZ,
                       const float* lus, const float* lvs, int n, float* edges) {
-    const hn::CappedTag<float, 8> kD;  // 8 lanes: sixteen were slower (docs/ARCHITECTURE.md)
-    using V = hn::Vec<decltype(kD)>;
-    using M = hn::Mask<decltype(kD)>;
-    const size_t N = hn::Lanes(kD);
+    const hn::CappedTag<float, 16> wide;
+    const hn::CappedTag<float, 8> narrow;
     const int stride = edgeStride(n);
-    const V zero = hn::Zero(kD), one = hn::Set(kD, 1.0f);
-    const V xmin = hn::Set(kD, q.xmin), xmax = hn::Set(kD, q.xmax), ymin = hn::Set(kD, q.ymin), ymax = hn::Set(kD, q.ymax);
-    const V tfA = hn::Set(kD, q.tfA), invSpan = hn::Set(kD, q.invSpan), zmin = hn::Set(kD, q.zmin);
     MovingTest r;
-    for (size_t i = 0; i < size_t(n); i += N) {
-        const V x = hn::LoadU(kD, xs + i), y = hn::LoadU(kD, ys + i), tf = hn::LoadU(kD, tfs + i);
-        M inBound = hn::And(hn::And(hn::Not(hn::Lt(x, xmin)), hn::Not(hn::Gt(x, xmax))),
-                            hn::And(hn::Not(hn::Lt(y, ymin)), hn::Not(hn::Gt(y, ymax))));
-        inBound = hn::And(inBound, hn::FirstN(kD, size_t(n) - i));
-        const M behind = hn::And(inBound, hn::Gt(zmin, hn::LoadU(kD, seenZ + i)));
-        r.behind |= maskBits(kD, behind) << i;
-        inBound = hn::AndNot(behind, inBound);
-        if (hn::AllFalse(kD, inBound)) continue;
-        // std::min(1, std::max(0, v)), NaN and signed zeros included.
-        const V v = hn::Mul(hn::Sub(tf, tfA), invSpan);
-        const V m = hn::IfThenElse(hn::Lt(zero, v), v, zero);
-        const V w = hn::IfThenElse(hn::Lt(m, one), m, one), omw = hn::Sub(one, w);
-        auto lerpV = [&](float a, float b) { return hn::Add(hn::Mul(hn::Set(kD, a), omw), hn::Mul(hn::Set(kD, b), w)); };
-        V cxs[4], cys[4], zs[4];  // zs: the corners' depths, where read (exact corners, a lens)
-        for (int c = 0; c < 4; ++c) {
-            if (q.exact[c]) {
-                const V px = lerpV(q.cx[0][c], q.cx[1][c]), py = lerpV(q.cy[0][c], q.cy[1][c]);
-                zs[c] = lerpV(q.cz[0][c], q.cz[1][c]);
-                const V iz = hn::Div(one, zs[c]);
-                cxs[c] = hn::Add(hn::Mul(hn::Mul(hn::Set(kD, q.ax), px), iz), hn::Set(kD, q.bx));
-                cys[c] = hn::Add(hn::Mul(hn::Mul(hn::Set(kD, q.ay), py), iz), hn::Set(kD, q.by));
-            } else {
-                cxs[c] = lerpV(q.x[0][c], q.x[1][c]);
-                cys[c] = lerpV(q.y[0][c], q.y[1][c]);
-                if (q.lens) zs[c] = lerpV(q.z[0][c], q.z[1][c]);
-            }
-        }
-        r.tested |= maskBits(kD, inBound) << i;
-        if (q.lens) {  // each corner moved by its lens shift at its depth then (movingLensQuadAt)
-            const V lu = hn::LoadU(kD, lus + i), lv = hn::LoadU(kD, lvs + i);
-            const V eye = hn::Set(kD, q.eyePlane), radius = hn::Set(kD, q.lensRadius), invFocal = hn::Set(kD, q.invFocal);
-            for (int c = 0; c < 4; ++c) {
-                const V zc = hn::IfThenElse(hn::Lt(zs[c], eye), eye, zs[c]);  // std::max(z, eyePlane)
-                const V shift = hn::Mul(radius, hn::Sub(invFocal, hn::Div(one, zc)));
-                cxs[c] = hn::Add(cxs[c], hn::Mul(hn::Mul(shift, hn::Set(kD, q.ax)), lu));
-                cys[c] = hn::Add(cys[c], hn::Mul(hn::Mul(shift, hn::Set(kD, q.ay)), lv));
-            }
-            inBound = hn::And(inBound, lensBound(kD, x, y, cxs, cys));
-            if (hn::AllFalse(kD, inBound)) continue;  // as in TestLens
-        }
-        testLanes(kD, x, y, cxs, cys, inBound, edges + i, stride, i, r);
-    }
+    size_t i = 0;
+    if (hn::Lanes(wide) > hn::Lanes(narrow))
+        for (; i + hn::Lanes(wide) <= size_t(n); i += hn::Lanes(wide))
+            movingLanes(wide, q, xs, ys, tfs, seenZ, lus, lvs, i, n, stride, edges, r);
+    for (; i < size_t(n); i += hn::Lanes(narrow)) movingLanes(narrow, q, xs, ys, tfs, seenZ, lus, lvs, i, n, stride, edges, r);
     return r;
 }
 
@@ -184,7 +196,7 @@ MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, con
 // bound's ends found as std::min and std::max of the four corners find them: the first of equals).
 MovingTest TestLens(const LensQuad& q, const float* xs, const float* ys, const float* lus, const float* lvs, int n,
                     float* edges) {
-    const hn::CappedTag<float, 8> kD;  // as TestMoving
+    const hn::CappedTag<float, 8> kD;  // as TestMoving's narrow vectors
     using V = hn::Vec<decltype(kD)>;
     using M = hn::Mask<decltype(kD)>;
     const size_t N = hn::Lanes(kD);
