@@ -188,7 +188,8 @@ MovingTest TestMoving(const MovingQuad& q, const float* xs, const float* ys, con
     if (hn::Lanes(wide) > hn::Lanes(narrow))
         for (; i + hn::Lanes(wide) <= size_t(n); i += hn::Lanes(wide))
             movingLanes(wide, q, xs, ys, tfs, seenZ, lus, lvs, i, n, stride, edges, r);
-    for (; i < size_t(n); i += hn::Lanes(narrow)) movingLanes(narrow, q, xs, ys, tfs, seenZ, lus, lvs, i, n, stride, edges, r);
+    for (; i < size_t(n); i += hn::Lanes(narrow))
+        movingLanes(narrow, q, xs, ys, tfs, seenZ, lus, lvs, i, n, stride, edges, r);
     return r;
 }
 
