@@ -10,9 +10,10 @@
 namespace streyes::micropolygon {
 
 // A quad q0 q1 q2 q3 (grid order (0,0) (1,0) (1,1) (0,1)) is two triangles, (q0 q1 q2) and
-// (q0 q2 q3), sharing the diagonal q0-q2. Its five edges are set up once in canonical form
-// (lexicographically smaller endpoint first), so an edge shared with a neighbouring micropolygon,
-// or the diagonal shared by the two triangles, gives exactly opposite values on its two sides.
+// (q0 q2 q3), sharing the diagonal q0-q2. Its five edges are set up once from their canonical
+// start point (the lexicographically smaller endpoint), so an edge shared with a neighbouring
+// micropolygon, or the diagonal shared by the two triangles, gives exactly opposite values on its
+// two sides.
 
 // An edge a -> b as the quad runs it: from its canonical start point (px, py), along the quad's
 // own direction (dx, dy) = b - a. The neighbour that runs it b -> a has the same start and
