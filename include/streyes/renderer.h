@@ -73,7 +73,7 @@ class Renderer {
 };
 
 // The most frames a render of `scene` with `options` keeps together (before the memory budget
-// shrinks the block): --frame-block, ~1 GiB of resolved pixels, and for spacetime buckets ~16 M
+// shrinks the block): --frame-block, ~4 GiB of resolved pixels, and for spacetime buckets ~16 M
 // samples a bucket. A render farm's blocks longer than this gain no more coherence.
 int frameBlockLimit(const Scene& scene, const RenderOptions& options);
 

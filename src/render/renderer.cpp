@@ -205,12 +205,18 @@ namespace {
 // there; 16 M lets a 64-pixel bucket at 16 samples a pixel hold 64 frames. The memory plan counts
 // a record of every sample (memory.cpp) and shrinks the block further where the budget needs it.
 constexpr int64_t kMaxBucketSamples = int64_t(1) << 24;
+// A block's resolved frames (RGBA + Z floats, 20 bytes a pixel) are held until its last bucket is
+// done: at most ~4 GiB of them, so that 1920x1080 keeps the default 64 frames together and
+// 3840x2160 25. Each block splits, dices, shades and samples the scene again; at 1 GiB (until
+// 2026-11-28: 25 frames at 1920x1080, 6 at 3840x2160) scenes/still.rib's 64 frames at 1920x1080
+// took 1.67 times the CPU of one block. The memory plan shrinks the block where the budget needs it.
+constexpr double kMaxBlockPixelBytes = 4.0 * double(int64_t(1) << 30);
 
 int frameBlockLimit(int width, int height, int samplesPerPixel, int tileSize, const PixelFilter& filter,
                     int maxFrameBlock, bool spacetime, int frames) {
     const double pixelBytes = double(width) * height * sizeof(float) * 5;
     int block = std::min(frames, std::max(1, maxFrameBlock));
-    block = std::min(block, std::max(1, int(double(1 << 30) / pixelBytes)));
+    block = std::min(block, std::max(1, int(kMaxBlockPixelBytes / pixelBytes)));
     if (spacetime) {
         const double perFrame = double(tileSize + 2 * filter.guardX()) * (tileSize + 2 * filter.guardY()) * samplesPerPixel;
         block = std::min(block, std::max(1, int(double(kMaxBucketSamples) / perFrame)));
@@ -243,7 +249,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const bool spacetime = !perFrame(options_.algorithm);
     const std::vector<float> layerDepths = usesOcclusion(options_.algorithm) ? geometricLayerDepths() : std::vector<float>{};
 
-    // Frames rendered together: bounded by the option, by ~1 GiB of resolved pixels, and (for
+    // Frames rendered together: bounded by the option, by ~4 GiB of resolved pixels, and (for
     // spacetime buckets, which hold every frame of the block) by ~16 M samples per bucket.
     int block = frameBlockLimit(W, H, S, tileSize, filter, options_.maxFrameBlock, spacetime, frames);
 

@@ -278,9 +278,14 @@ TEST(Render, FrameBlockLimitFollowsPixelsAndBucketSamples) {
     Scene s;
     s.settings.pixelSamplesX = s.settings.pixelSamplesY = 2;
     RenderOptions o;
-    // ~1 GiB of RGBA + Z floats: 3840x2160 holds 6 frames, 640x360 every one of 64.
+    // ~4 GiB of RGBA + Z floats: 3840x2160 holds 25 frames, 1920x1080 and 640x360 every one of 64.
     o.xres = 3840, o.yres = 2160;
-    EXPECT_EQ(frameBlockLimit(s, o), int((1 << 30) / (3840.0 * 2160 * 20)));
+    EXPECT_EQ(frameBlockLimit(s, o), 25);
+    EXPECT_EQ(frameBlockLimit(s, o), int(4.0 * (1 << 30) / (3840.0 * 2160 * 20)));
+    o.xres = 1920, o.yres = 1080;
+    EXPECT_EQ(frameBlockLimit(s, o), 64);
+    o.xres = 7680, o.yres = 4320;  // 8K: 6 frames
+    EXPECT_EQ(frameBlockLimit(s, o), 6);
     o.xres = 640, o.yres = 360;
     EXPECT_EQ(frameBlockLimit(s, o), 64);
     o.maxFrameBlock = 8;
