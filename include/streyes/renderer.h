@@ -42,7 +42,9 @@ class SceneShaders;  // the Shading Language shaders of the scene (src/shade)
 
 class Renderer {
   public:
-    using FrameSink = std::function<void(const FrameImage&)>;
+    // A sink that keeps a frame may take its pixels, swapping in buffers of its own
+    // (FrameWriter::handOver): the renderer makes the next frame in whatever the sink leaves.
+    using FrameSink = std::function<void(FrameImage&)>;
     using Progress = std::function<void(uint64_t done, uint64_t total)>;
 
     Renderer(const Scene& scene, const RenderOptions& options, Log& log);

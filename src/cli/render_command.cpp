@@ -446,13 +446,13 @@ int renderCommand(const std::vector<std::string>& args) {
                              blockOpts.aovs.front() + ", ...) from the displays, or render with lens samples");
         makeSceneTextures(scene, &madeTextures);
         blockOpts.textureSource = openImageTextures;  // loads OpenImageIO only on a shader's first lookup
-        auto sink = [&](const FrameImage& img) {
+        auto sink = [&](FrameImage& img) {
             std::vector<std::pair<std::string, std::string>> files;
             for (const Output& o : outputsOf(img.frame)) {
                 files.emplace_back(expandFramePattern(o.pattern, img.frame), o.mode);
                 written.push_back(files.back().first);
             }
-            writer.write(img, std::move(files));
+            writer.handOver(img, std::move(files));  // no copy: the renderer gets a written frame's buffers
         };
         auto progress = [&](uint64_t done, uint64_t all) { bar.update(done, all); };
         RenderStats stats = blockOpts.dofPreviewLayers > 0

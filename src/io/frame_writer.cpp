@@ -19,22 +19,32 @@ void FrameWriter::rethrow() {
     if (error_) std::rethrow_exception(error_);
 }
 
-void FrameWriter::write(const FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs) {
-    std::unique_ptr<FrameImage> copy;  // the renderer reuses its images
-    {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (!spare_.empty()) {
-            copy = std::move(spare_.back());
-            spare_.pop_back();
-        }
-    }
-    if (copy) *copy = image;
-    else copy = std::make_unique<FrameImage>(image);
+std::unique_ptr<FrameImage> FrameWriter::takeSpare() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (spare_.empty()) return std::make_unique<FrameImage>();
+    std::unique_ptr<FrameImage> spare = std::move(spare_.back());
+    spare_.pop_back();
+    return spare;
+}
+
+void FrameWriter::queue(std::unique_ptr<FrameImage> image, std::vector<std::pair<std::string, std::string>> outputs) {
     std::unique_lock<std::mutex> lock(mutex_);
     changed_.wait(lock, [this] { return error_ || queue_.size() < capacity_; });
     rethrow();
-    queue_.push_back({std::move(copy), std::move(outputs)});
+    queue_.push_back({std::move(image), std::move(outputs)});
     changed_.notify_all();
+}
+
+void FrameWriter::write(const FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs) {
+    std::unique_ptr<FrameImage> copy = takeSpare();  // the caller keeps its image
+    *copy = image;
+    queue(std::move(copy), std::move(outputs));
+}
+
+void FrameWriter::handOver(FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs) {
+    std::unique_ptr<FrameImage> taken = takeSpare();
+    std::swap(*taken, image);
+    queue(std::move(taken), std::move(outputs));
 }
 
 void FrameWriter::finish() {

@@ -26,6 +26,10 @@ class FrameWriter {
     // Queues `image` to be written to each (path, channel mode). Throws the error of an earlier
     // write, if one failed: the render stops there, as if it had written the frame itself.
     void write(const FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs);
+    // The same without a copy: `image`'s pixels are queued and `image` gets in exchange those of a
+    // frame already written (once the queue has cycled, of the same shape: the renderer assembles
+    // its next frame in them with no new page), or nothing.
+    void handOver(FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs);
     // Waits until every queued frame is written; throws the first write error.
     void finish();
 
@@ -36,14 +40,17 @@ class FrameWriter {
     };
     void run();
     void rethrow();
+    std::unique_ptr<FrameImage> takeSpare();
+    void queue(std::unique_ptr<FrameImage> image, std::vector<std::pair<std::string, std::string>> outputs);
 
     const size_t capacity_;
     std::mutex mutex_;
     std::condition_variable changed_;
     std::deque<Job> queue_;
-    // Copies already written, kept for the next frames: copying into a buffer of the right size
+    // Frames already written, kept for the next frames: copying into a buffer of the right size
     // touches no new page (a fresh 4.6 MB copy a frame was mapped, faulted in and unmapped each
-    // time: half the CPU of a 64-frame still shot). At most capacity + 1 exist at once.
+    // time: half the CPU of a 64-frame still shot), and handOver swaps them out with no copy at
+    // all. At most capacity + 1 exist at once.
     std::vector<std::unique_ptr<FrameImage>> spare_;
     bool busy_ = false, stopping_ = false;
     std::exception_ptr error_;

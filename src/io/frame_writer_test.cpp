@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <set>
 
 #include "streyes/error.h"
 #include "streyes/image_io.h"
@@ -35,6 +36,39 @@ TEST(FrameWriter, WritesEveryQueuedFrameWithItsPixels) {
         const ImageData im = readImage(dir + "/f." + std::to_string(f) + ".exr");
         ASSERT_EQ(im.channels.size(), 5u);
         EXPECT_EQ(im.at(3, 1, 0), 0.125f * float(f)) << f;
+        EXPECT_EQ(im.at(3, 1, 4), 2.0f + 0.125f * float(f)) << f;
+    }
+}
+
+// handOver queues the caller's pixels themselves and gives back the buffers of frames already
+// written: every frame's file has its own pixels, and a shot cycles through a few buffers.
+TEST(FrameWriter, HandOverTakesThePixelsAndGivesBackWrittenBuffers) {
+    const test::TempDir tempDir("writer-hand-over");
+    const std::string& dir = tempDir.path();
+    FrameWriter writer(1);
+    FrameImage img;
+    std::set<const float*> buffers;  // every rgba buffer the caller has filled
+    for (int f = 1; f <= 8; ++f) {
+        const float value = 0.125f * float(f);
+        if (img.rgba.empty()) {
+            img = frameOf(f, value);
+        } else {  // a written frame's buffers, of the same shape: filled again, as the renderer does
+            ASSERT_EQ(img.rgba.size(), 4u * 2u * 4u);
+            img.frame = f;
+            for (float& v : img.rgba) v = value;
+            for (float& z : img.z) z = 2.0f + value;
+        }
+        const float* filled = img.rgba.data();
+        buffers.insert(filled);
+        writer.handOver(img, {{dir + "/f." + std::to_string(f) + ".exr", "rgbaz"}});
+        EXPECT_NE(img.rgba.data(), filled) << "frame " << f << " was copied, not taken";
+    }
+    writer.finish();
+    EXPECT_LE(buffers.size(), 4u);  // the queue (1), the frame being written, the spares (2)
+    for (int f = 1; f <= 8; ++f) {
+        const ImageData im = readImage(dir + "/f." + std::to_string(f) + ".exr");
+        ASSERT_EQ(im.channels.size(), 5u);
+        EXPECT_EQ(im.at(0, 0, 0), 0.125f * float(f)) << f;
         EXPECT_EQ(im.at(3, 1, 4), 2.0f + 0.125f * float(f)) << f;
     }
 }

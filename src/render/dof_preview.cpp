@@ -119,7 +119,7 @@ RenderStats renderDofPreview(const Scene& scene, const RenderOptions& options, i
             total.peakMemoryBytes = std::max(total.peakMemoryBytes, stats.peakMemoryBytes);
         }
     }
-    for (const auto& [frame, img] : composite) sink(img);
+    for (auto& [frame, img] : composite) sink(img);
     return total;
 }
 
