@@ -209,7 +209,7 @@ constexpr int64_t kMaxBucketSamples = int64_t(1) << 24;
 // done: at most ~4 GiB of them, so that 1920x1080 keeps the default 64 frames together and
 // 3840x2160 25. Each block splits, dices, shades and samples the scene again; at 1 GiB (until
 // 2026-11-28: 25 frames at 1920x1080, 6 at 3840x2160) scenes/still.rib's 64 frames at 1920x1080
-// took 1.67 times the CPU of one block. The memory plan shrinks the block where the budget needs it.
+// took 1.85 times the CPU of one block. The memory plan shrinks the block where the budget needs it.
 constexpr double kMaxBlockPixelBytes = 4.0 * double(int64_t(1) << 30);
 
 int frameBlockLimit(int width, int height, int samplesPerPixel, int tileSize, const PixelFilter& filter,
