@@ -338,7 +338,7 @@ void BM_Resolve(benchmark::State& state) {
     for (int fi = 0; fi < (dense ? 8 : 1); ++fi)
         for (size_t i = 0; i < size_t(block.pixelCount()); ++i) {
             SampleHit* h = dense ? block.record(fi, i) : block.still(i);
-            for (int j = 0; j < 16; j += 3) h[j] = {5.0f, {0.5f, 0.5f, 0.5f}, 1.0f, 1};
+            for (int j = 0; j < 16; j += 3) h[j] = {5.0f, {0.5f, 0.5f, 0.5f}, 1};
         }
     const FilterWeights weights(PixelFilter(FilterDesc{"gaussian", 2, 2}), patterns);
     TiledFrames frames;

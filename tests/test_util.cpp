@@ -270,8 +270,8 @@ SampleAgreement compareSamples(const SampleRecord& a, const SampleRecord& b, flo
         const SamplePosition &p = a.positions[i], &q = b.positions[i];
         if (p.x != q.x || p.y != q.y || p.tf != q.tf) throw std::runtime_error("the renders used different samples");
         const SampleHit &x = a.hits[i], &y = b.hits[i];
-        if (std::isnan(x.a) || std::isnan(y.a)) continue;  // neither a hit nor a miss: agrees with nothing
-        const bool hx = x.a > 0, hy = y.a > 0;
+        if (std::isnan(x.z) || std::isnan(y.z)) continue;  // neither a hit nor a miss: agrees with nothing
+        const bool hx = !x.empty(), hy = !y.empty();
         if (hx != hy) continue;
         ++r.hitOrMiss;
         if (!hx) {

@@ -89,20 +89,28 @@ FilterWeights::FilterWeights(const PixelFilter& filter, const PatternTable& patt
 
 namespace {
 
-// R G B A of sample j of `h`, weighted by w, added to acc: four lanes side by side, one multiply
-// and one add each (the background adds w * 0, which leaves a sum as it is).
-inline void accumulate(float* acc, float w, const SampleHit& h) {
-    float v[4];
-    std::memcpy(v, reinterpret_cast<const char*>(&h) + offsetof(SampleHit, c), sizeof v);
-    for (int c = 0; c < 4; ++c) acc[c] += w * v[c];
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Four floats in one register (GCC's and Clang's vector extension): a sample's A R G B weighted
+// and summed lane by lane, one multiply and one add each, as four separate sums would be.
+using Float4 = float __attribute__((vector_size(16)));
+
+// A sample's A R G B, weighted by w, added to acc (A R G B; the background adds w * 0, which
+// leaves a sum as it is).
+inline void accumulate(Float4& acc, float w, const CompositeSample& s) {
+    Float4 v;
+    std::memcpy(&v, &s.a, sizeof v);  // a r g b
+    acc += w * v;
+}
+// R G B A of a pixel from its sums (A R G B) and the weight they are divided by.
+inline void normalise(Float4 acc, float inv, float* out) {
+    for (int c = 0; c < 4; ++c) out[c] = acc[(c + 1) % 4] * inv;
 }
 
-// The depth of tile pixel (x, y): of the pixel's own samples, as the depth filter says.
-template <typename HitsOf>
-float pixelDepth(const ImageBlock& block, const FilterWeights& fw, int x, int y, HitsOf hitsOf) {
+// The depth of tile pixel (x, y): of the opaque hits of the pixel's own samples, as the depth
+// filter says.
+inline float pixelDepth(const ImageBlock& block, const FilterWeights& fw, const SampleHit* own) {
     const int S = block.samplesPerPixel();
-    const SampleHit* own = hitsOf(block.pixelIndex(x, y));
-    constexpr float kInf = std::numeric_limits<float>::infinity();
     float z = kInf;
     switch (fw.depthFilter()) {
         case DepthFilter::Min:
@@ -111,7 +119,7 @@ float pixelDepth(const ImageBlock& block, const FilterWeights& fw, int x, int y,
         case DepthFilter::Max: {
             float far = -kInf;
             for (int j = 0; j < S; ++j)
-                if (own[j].a != 0 && own[j].z < kInf) far = std::max(far, own[j].z);  // fragments alone: no depth
+                if (own[j].z < kInf) far = std::max(far, own[j].z);  // fragments alone: no depth
             if (far > -kInf) z = far;
             break;
         }
@@ -119,7 +127,7 @@ float pixelDepth(const ImageBlock& block, const FilterWeights& fw, int x, int y,
             float sum = 0;
             int n = 0;
             for (int j = 0; j < S; ++j)
-                if (own[j].a != 0 && own[j].z < kInf) sum += own[j].z, ++n;
+                if (own[j].z < kInf) sum += own[j].z, ++n;
             if (n > 0) z = sum / float(n);
             break;
         }
@@ -127,24 +135,22 @@ float pixelDepth(const ImageBlock& block, const FilterWeights& fw, int x, int y,
     return z;
 }
 
-// Gathers what `hitsOf(pixel index)` holds around tile pixel (x, y): R G B A weighted, then Z,
-// the nearest of the pixel's own samples. The neighbours and samples are visited in one fixed
-// order whatever the hits come from, so the same hits give the same bits.
+// Gathers what `hitsOf(pixel index)` holds around tile pixel (x, y): R G B A weighted. The
+// neighbours and samples are visited in one fixed order whatever the hits come from, so the same
+// hits give the same bits.
 template <typename HitsOf>
 inline void gather(const ImageBlock& block, const FilterWeights& fw, int x, int y, float weightSum, HitsOf hitsOf,
                    float* out) {
     const PixelRect& R = block.rect();
     const int S = block.samplesPerPixel(), gx = fw.reachX(), gy = fw.reachY();
-    float acc[4] = {0, 0, 0, 0};
+    Float4 acc = {0, 0, 0, 0};
     for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
         for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx); ++px) {
-            const SampleHit* h = hitsOf(block.pixelIndex(px, py));
+            const CompositeSample* h = hitsOf(block.pixelIndex(px, py));
             const float* w = fw.weights(block.patternOf(block.pixelIndex(px, py)), x - px, y - py);
             for (int j = 0; j < S; ++j) accumulate(acc, w[j], h[j]);
         }
-    const float inv = std::fabs(weightSum) > 1e-8f ? 1.0f / weightSum : 0.0f;
-    for (int c = 0; c < 4; ++c) out[c] = acc[c] * inv;
-    out[4] = pixelDepth(block, fw, x, y, hitsOf);
+    normalise(acc, std::fabs(weightSum) > 1e-8f ? 1.0f / weightSum : 0.0f, out);
 }
 
 // gather for the four tile pixels (x .. x + 3, y), whose filters lie inside the block in x: each
@@ -159,10 +165,10 @@ inline void gatherRun(const ImageBlock& block, const FilterWeights& fw, int x, i
                       HitsOf hitsOf, float* const* out) {
     const PixelRect& R = block.rect();
     const int S = block.samplesPerPixel(), gx = fw.reachX(), gy = fw.reachY();
-    float acc[kGatherRun][4] = {};
+    Float4 acc[kGatherRun] = {};
     for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
         for (int ox = -gx; ox <= gx; ++ox) {  // pixel k's neighbour x + k + ox
-            const SampleHit* h[kGatherRun];
+            const CompositeSample* h[kGatherRun];
             const float* w[kGatherRun];
             for (int k = 0; k < kGatherRun; ++k) {
                 const size_t pi = block.pixelIndex(x + k + ox, py);
@@ -172,19 +178,17 @@ inline void gatherRun(const ImageBlock& block, const FilterWeights& fw, int x, i
             for (int j = 0; j < S; ++j)
                 for (int k = 0; k < kGatherRun; ++k) accumulate(acc[k], w[k][j], h[k][j]);
         }
-    for (int k = 0; k < kGatherRun; ++k) {
-        const float inv = std::fabs(weightSums[k]) > 1e-8f ? 1.0f / weightSums[k] : 0.0f;
-        for (int c = 0; c < 4; ++c) out[k][c] = acc[k][c] * inv;
-        out[k][4] = pixelDepth(block, fw, x + k, y, hitsOf);
-    }
+    for (int k = 0; k < kGatherRun; ++k)
+        normalise(acc[k], std::fabs(weightSums[k]) > 1e-8f ? 1.0f / weightSums[k] : 0.0f, out[k]);
 }
 
 // Gathers the tile pixels `wanted(t)` picks (t: index in the tile) into outOf(t), four neighbours
 // at once (gatherRun) where all four are wanted and their filters lie inside the block, one at a
-// time elsewhere; then finish(x, y, out) for each.
-template <typename Wanted, typename HitsOf, typename OutOf, typename Finish>
+// time elsewhere: R G B A from hitsOf (pixel index -> its samples' CompositeSamples), Z from the
+// pixel's own opaque hits, opaqueOf(pixel index); then finish(x, y, out) for each.
+template <typename Wanted, typename HitsOf, typename OpaqueOf, typename OutOf, typename Finish>
 void gatherTile(const ImageBlock& block, const FilterWeights& fw, const PixelRect& tile, const float* weightSums,
-                Wanted wanted, HitsOf hitsOf, OutOf outOf, Finish finish) {
+                Wanted wanted, HitsOf hitsOf, OpaqueOf opaqueOf, OutOf outOf, Finish finish) {
     const int tw = tile.width();
     for (int y = tile.y0; y <= tile.y1; ++y)
         for (int x = tile.x0; x <= tile.x1;) {
@@ -199,12 +203,16 @@ void gatherTile(const ImageBlock& block, const FilterWeights& fw, const PixelRec
                 float* outs[kGatherRun];
                 for (int k = 0; k < kGatherRun; ++k) outs[k] = outOf(t + size_t(k));
                 gatherRun(block, fw, x, y, weightSums + t, hitsOf, outs);
-                for (int k = 0; k < kGatherRun; ++k) finish(x + k, y, outs[k]);
+                for (int k = 0; k < kGatherRun; ++k) {
+                    outs[k][4] = pixelDepth(block, fw, opaqueOf(block.pixelIndex(x + k, y)));
+                    finish(x + k, y, outs[k]);
+                }
                 x += kGatherRun;
                 continue;
             }
             float* out = outOf(t);
             gather(block, fw, x, y, weightSums[t], hitsOf, out);
+            out[4] = pixelDepth(block, fw, opaqueOf(block.pixelIndex(x, y)));
             finish(x, y, out);
             ++x;
         }
@@ -226,7 +234,7 @@ void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int x, int y, 
             const float* av = aovsOf(i);
             const float* w = fw.weights(block.patternOf(i), x - px, y - py);
             for (int j = 0; j < S; ++j) {
-                if (h[j].a == 0 || w[j] == 0) continue;
+                if (h[j].empty() || w[j] == 0) continue;
                 sum += w[j];
                 for (int a = 0; a < A; ++a) acc[a] += w[j] * av[size_t(j) * size_t(A) + size_t(a)];
             }
@@ -235,22 +243,36 @@ void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int x, int y, 
     for (int a = 0; a < A; ++a) out[a] = acc[a] * inv;
 }
 
+// A sample with no fragments: its opaque hit, of coverage 1 where it has a depth. The hit's
+// z r g b in one register, z replaced by that coverage (SampleHit::empty's test).
+inline CompositeSample opaqueSample(const SampleHit& h) {
+    using Int4 = int32_t __attribute__((vector_size(16)));
+    Float4 v;
+    std::memcpy(&v, &h.z, sizeof v);
+    const Int4 rgbLanes = {0, -1, -1, -1}, one = {0x3f800000, 0, 0, 0};  // 1.0f in lane 0
+    const Int4 covered = v < Float4{kInf, kInf, kInf, kInf};
+    v = Float4((Int4(v) & rgbLanes) | (covered & one));
+    CompositeSample s;
+    std::memcpy(static_cast<void*>(&s), &v, sizeof s);
+    return s;
+}
+
 // The sample whose opaque hit is `opaque` and whose fragments are in lists `a` and `b` (-1: none),
-// composited (film.h): its opaque hit's depth and id, the composited colour and alpha.
-SampleHit composite(const ImageBlock& block, const SampleHit& opaque, int32_t a, int32_t b,
-                    std::vector<SampleFragment>& frags) {
-    if (a < 0 && b < 0) return opaque;
+// composited (film.h): the composited alpha and colour.
+CompositeSample composite(const ImageBlock& block, const SampleHit& opaque, int32_t a, int32_t b,
+                          std::vector<SampleFragment>& frags) {
+    if (a < 0 && b < 0) return opaqueSample(opaque);
     frags.clear();
     for (int32_t list : {a, b})
         for (int32_t k = list; k >= 0; k = block.fragment(k).next) {
             const SampleFragment& f = block.fragment(k);
             if (opaque.beatenBy(f.z, f.id, f.c)) frags.push_back(f);
         }
-    if (frags.empty()) return opaque;
+    if (frags.empty()) return opaqueSample(opaque);
     std::sort(frags.begin(), frags.end(), [](const SampleFragment& x, const SampleFragment& y) { return x.before(y); });
     OverComposite over;
-    for (const SampleFragment& f : frags) over.add(f.c, f.o);
-    return {opaque.z, over.c + over.t * opaque.c, over.alpha(opaque.a), opaque.id};
+    for (const SampleFragment& f : frags) over.add(f.c, f.t);
+    return {over.alpha(opaque.empty() ? 0.0f : 1.0f), over.c + over.t * opaque.c};
 }
 
 }  // namespace
@@ -264,50 +286,66 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
     const int gx = fw.reachX(), gy = fw.reachY();
     const size_t tilePixels = size_t(tw) * size_t(tile.height());
 
-    // The weights each tile pixel sees: the same in every frame.
+    // The weights each tile pixel sees: the same in every frame. Summed in gather's order, four
+    // neighbours at once where their filters lie inside the block (as gatherRun).
     scratch.weightSum.assign(tilePixels, 0.0f);
     for (int y = tile.y0; y <= tile.y1; ++y)
-        for (int x = tile.x0; x <= tile.x1; ++x) {
-            float sum = 0;
+        for (int x = tile.x0; x <= tile.x1;) {
+            float* sums = &scratch.weightSum[size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0)];
+            const int n = x + kGatherRun - 1 <= tile.x1 && gatherRunFits(R, fw, x) ? kGatherRun : 1;
+            float sum[kGatherRun] = {};
             for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
-                for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx); ++px) {
-                    const float* w = fw.weights(block.patternOf(block.pixelIndex(px, py)), x - px, y - py);
-                    for (int j = 0; j < S; ++j) sum += w[j];
+                for (int ox = -gx; ox <= gx; ++ox) {
+                    if (n == 1 && (x + ox < R.x0 || x + ox > R.x1)) continue;
+                    const float* w[kGatherRun];
+                    for (int k = 0; k < n; ++k)
+                        w[k] = fw.weights(block.patternOf(block.pixelIndex(x + k + ox, py)), -ox, y - py);
+                    if (n == 1)
+                        for (int j = 0; j < S; ++j) sum[0] += w[0][j];
+                    else
+                        for (int j = 0; j < S; ++j)
+                            for (int k = 0; k < kGatherRun; ++k) sum[k] += w[k][j];
                 }
-            scratch.weightSum[size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0)] = sum;
+            std::copy(sum, sum + n, sums);
+            x += n;
         }
 
-    // See-through fragments: the still layer's composited here; a frame's when its gather first
-    // asks for a pixel with a record.
+    // What the filter reads of each sample, A R G B (CompositeSample): its see-through
+    // fragments composited over its opaque hit, or the hit and its coverage. The still layer's
+    // here; a frame's when its gather first asks for a pixel with a record. Made once, where the
+    // gather reads each sample once for every pixel its filter reaches.
     const bool dense = block.dense();
     const bool fragments = block.hasFragments();
     const size_t blockPixels = size_t(block.pixelCount());
-    if (fragments) {
-        if (!dense) {
-            scratch.stillComposite.resize(blockPixels * size_t(S));
-            for (size_t i = 0; i < blockPixels; ++i) {
-                const int32_t* heads = block.stillFragments(i);
-                for (int j = 0; j < S; ++j)
-                    scratch.stillComposite[i * size_t(S) + size_t(j)] =
-                        composite(block, block.still(i)[j], heads[j], -1, scratch.fragments);
-            }
+    if (!dense) {
+        scratch.stillComposite.resize(blockPixels * size_t(S));
+        for (size_t i = 0; i < blockPixels; ++i) {
+            const SampleHit* h = block.still(i);
+            const int32_t* heads = fragments ? block.stillFragments(i) : nullptr;
+            CompositeSample* to = &scratch.stillComposite[i * size_t(S)];
+            for (int j = 0; j < S; ++j)
+                to[j] = heads && heads[j] >= 0 ? composite(block, h[j], heads[j], -1, scratch.fragments)
+                                               : opaqueSample(h[j]);
         }
-        scratch.frameComposite.resize(blockPixels * size_t(S));
-        scratch.compositedFrame.assign(blockPixels, -1);
     }
-    auto stillHits = [&](size_t i) { return fragments ? &scratch.stillComposite[i * size_t(S)] : block.still(i); };
-    auto frameHits = [&](int fi, size_t i) -> const SampleHit* {
-        if (!fragments) return block.hits(fi, i);
+    scratch.frameComposite.resize(blockPixels * size_t(S));
+    scratch.compositedFrame.assign(blockPixels, -1);
+    auto stillHits = [&](size_t i) -> const CompositeSample* { return &scratch.stillComposite[i * size_t(S)]; };
+    auto frameHits = [&](int fi, size_t i) -> const CompositeSample* {
         const SampleHit* rec = block.record(fi, i);
-        if (!rec) return &scratch.stillComposite[i * size_t(S)];
-        SampleHit* out = &scratch.frameComposite[i * size_t(S)];
+        if (!rec) return stillHits(i);
+        CompositeSample* to = &scratch.frameComposite[i * size_t(S)];
         if (scratch.compositedFrame[i] != fi) {
-            const int32_t* own = block.recordFragments(fi, i);
-            const int32_t* shared = dense ? nullptr : block.stillFragments(i);
-            for (int j = 0; j < S; ++j) out[j] = composite(block, rec[j], own[j], shared ? shared[j] : -1, scratch.fragments);
+            const int32_t* own = fragments ? block.recordFragments(fi, i) : nullptr;
+            const int32_t* shared = fragments && !dense ? block.stillFragments(i) : nullptr;
+            if (fragments)
+                for (int j = 0; j < S; ++j)
+                    to[j] = composite(block, rec[j], own[j], shared ? shared[j] : -1, scratch.fragments);
+            else
+                for (int j = 0; j < S; ++j) to[j] = opaqueSample(rec[j]);
             scratch.compositedFrame[i] = fi;
         }
-        return out;
+        return to;
     };
 
     // The still layer, resolved once for every frame that shows it.
@@ -315,10 +353,12 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
         scratch.still.resize(tilePixels * 5);
         gatherTile(
             block, fw, tile, scratch.weightSum.data(), [](size_t) { return true; }, stillHits,
-            [&](size_t t) { return &scratch.still[t * 5]; }, [](int, int, float*) {});
+            [&](size_t i) { return block.still(i); }, [&](size_t t) { return &scratch.still[t * 5]; },
+            [](int, int, float*) {});
     }
 
-    // Output variables likewise: the still layer's once, a frame's own where it has records near.
+    // Output variables likewise, weighed by the opaque hits: the still layer's once, a frame's own
+    // where it has records near.
     const int A = block.aovCount();
     const size_t Az = size_t(A);
     if (A > 0) {
@@ -382,7 +422,8 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
         };
         gatherTile(
             block, fw, tile, scratch.weightSum.data(), [&](size_t t) { return scratch.gathered[t] != 0; },
-            [&](size_t i) { return frameHits(fi, i); }, [&](size_t t) { return own + t * size_t(C); }, outputVariables);
+            [&](size_t i) { return frameHits(fi, i); }, [&](size_t i) { return block.hits(fi, i); },
+            [&](size_t t) { return own + t * size_t(C); }, outputVariables);
     }
 }
 

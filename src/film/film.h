@@ -95,9 +95,10 @@ class FilterWeights {
 struct OverComposite {
     Color c{0, 0, 0};  // the colour so far
     Color t{1, 1, 1};  // what still gets through, per channel
-    void add(Color ci, Color oi) {
+    // A layer of colour ci that lets ti (1 - Oi) through.
+    void add(Color ci, Color ti) {
         c += t * ci;
-        t = t * (Color{1, 1, 1} - oi);
+        t = t * ti;
     }
     // Alpha over what lies behind, of coverage a: the channel mean of 1 - t (1 - a).
     float alpha(float a = 0) const {
@@ -105,6 +106,14 @@ struct OverComposite {
         return ((1 - t.x * clear) + (1 - t.y * clear) + (1 - t.z * clear)) / 3;
     }
 };
+
+// A sample with its see-through fragments composited over its opaque hit: what the filter
+// weighs. Alpha first, then R G B, so that film.cpp's accumulate reads the four side by side.
+struct CompositeSample {
+    float a;  // alpha
+    Color c;  // colour, premultiplied
+};
+static_assert(sizeof(CompositeSample) == 4 * sizeof(float));
 
 // What resolving keeps from bucket to bucket.
 struct ResolveScratch {
@@ -115,7 +124,7 @@ struct ResolveScratch {
     std::vector<float> stillAov;   // per tile pixel: output variables resolved from the still layer
     // With see-through fragments: each sample's fragments composited over its opaque hit, for the
     // still layer and (made when first asked for) for the frame being resolved.
-    std::vector<SampleHit> stillComposite, frameComposite;
+    std::vector<CompositeSample> stillComposite, frameComposite;
     std::vector<int32_t> compositedFrame;  // per block pixel: the frame frameComposite holds it for, or -1
     std::vector<SampleFragment> fragments;  // one sample's, being sorted
 };

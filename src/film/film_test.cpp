@@ -79,7 +79,7 @@ TEST(Resolve, SamplesOnPixelCornersBelongToTheirPixel) {
     const PatternTable patterns(SamplePattern{1, 1, 0}, {{0.0f}}, {0.0f, 0.0f});
     ImageBlock block;
     block.reset({0, 0, 7, 7}, 0, 1, patterns, false);
-    for (size_t i = 0; i < 64; ++i) block.still(i)[0] = {2.0f, {0.5f, 0.5f, 0.5f}, 1.0f, 1};
+    for (size_t i = 0; i < 64; ++i) block.still(i)[0] = {2.0f, {0.5f, 0.5f, 0.5f}, 1};
     const PixelFilter box({"box", 1, 1});
     const FilterWeights weights(box, patterns);
     FrameImage img;
@@ -99,7 +99,7 @@ TEST(Resolve, UniformSamplesGiveTheirValueAndZIsTheNearest) {
         block.reset({0, 0, 9, 9}, 0, 1, patterns, dense);
         for (size_t i = 0; i < 100; ++i) {
             SampleHit* h = dense ? block.record(0, i) : block.still(i);
-            for (int k = 0; k < 9; ++k) h[k] = {3.0f + float(k), {0.25f, 0.5f, 0.75f}, 1.0f, 1};
+            for (int k = 0; k < 9; ++k) h[k] = {3.0f + float(k), {0.25f, 0.5f, 0.75f}, 1};
         }
         for (const char* type : {"box", "triangle", "gaussian", "catmull-rom", "sinc", "mitchell", "disk"}) {
             const PixelFilter filter({type, 3, 3});
@@ -123,9 +123,9 @@ TEST(Resolve, AFramesRecordChangesOnlyThePixelsItsFilterReaches) {
     ImageBlock block;
     block.reset({0, 0, 9, 9}, 0, 2, patterns, false);
     for (size_t i = 0; i < 100; ++i)
-        for (int k = 0; k < 4; ++k) block.still(i)[k] = {5.0f, {0.2f, 0.4f, 0.6f}, 1.0f, 1};
+        for (int k = 0; k < 4; ++k) block.still(i)[k] = {5.0f, {0.2f, 0.4f, 0.6f}, 1};
     SampleHit* r = block.makeRecord(1, block.pixelIndex(5, 5));
-    for (int k = 0; k < 4; ++k) r[k] = {2.0f, {1, 0, 0}, 1.0f, 2};
+    for (int k = 0; k < 4; ++k) r[k] = {2.0f, {1, 0, 0}, 2};
     const PixelFilter gauss({"gaussian", 2, 2});  // reaches one pixel on each side
     const FilterWeights weights(gauss, patterns);
     FrameImage img[2];

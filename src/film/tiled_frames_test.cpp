@@ -18,7 +18,7 @@ const PatternTable& patterns() {
 void fillStill(ImageBlock& block, const PixelRect& rect, int firstFrame, int frames, float grey) {
     block.reset(rect, firstFrame, frames, patterns(), false);
     for (size_t i = 0; i < size_t(block.pixelCount()); ++i)
-        for (int k = 0; k < 4; ++k) block.still(i)[k] = {5.0f, {grey, grey, grey}, 1.0f, 1};
+        for (int k = 0; k < 4; ++k) block.still(i)[k] = {5.0f, {grey, grey, grey}, 1};
 }
 
 // A still tile is stored once for all the block's frames; a frame with a record near gets its own
@@ -28,7 +28,7 @@ TEST(TiledFrames, StillFramesShareOneCopyAndAMovingFrameHasItsOwn) {
     ImageBlock block;
     fillStill(block, {0, 0, 9, 9}, 10, 3, 0.25f);
     SampleHit* r = block.makeRecord(1, block.pixelIndex(5, 5));
-    for (int k = 0; k < 4; ++k) r[k] = {2.0f, {1, 0, 0}, 1.0f, 2};
+    for (int k = 0; k < 4; ++k) r[k] = {2.0f, {1, 0, 0}, 2};
     TiledFrames frames;
     frames.reset(10, 10, {PixelRect{0, 0, 9, 9}}, 10, 3, {});
     ResolveScratch scratch;

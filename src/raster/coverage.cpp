@@ -13,7 +13,7 @@ namespace {
 float farthestHit(const SampleHit* s, int S) {
     float z = -std::numeric_limits<float>::infinity();
     for (int k = 0; k < S; ++k) {
-        if (!(s[k].a >= 1.0f) || s[k].z != s[k].z) return std::numeric_limits<float>::infinity();
+        if (!(s[k].z < std::numeric_limits<float>::infinity())) return std::numeric_limits<float>::infinity();
         z = std::max(z, s[k].z);
     }
     return z;

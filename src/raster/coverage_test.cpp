@@ -15,7 +15,6 @@ TEST(Occlusion, CoverageNeedsEverySampleHitNearerThanTheBoundary) {
         SampleHit* r = block.record(fi, block.pixelIndex(x, 0));
         if (!r) r = block.makeRecord(fi, block.pixelIndex(x, 0));
         r[k].z = z;
-        r[k].a = 1;
     };
     hit(0, 0, 0, 5), hit(0, 0, 1, 6);  // pixel 0 frame 0: both samples hit
     hit(1, 0, 0, 5);                   // pixel 1 frame 0: one sample only
@@ -34,7 +33,7 @@ TEST(Occlusion, StillLayerCoversEveryFrameWithoutARecord) {
     const PatternTable patterns(SamplePattern{2, 1, 0});
     ImageBlock block;
     block.reset({0, 0, 0, 0}, 0, 3, patterns, false);  // 1 pixel, 3 frames
-    for (int k = 0; k < 2; ++k) block.still(0)[k] = {4.0f, {1, 1, 1}, 1.0f, 1};
+    for (int k = 0; k < 2; ++k) block.still(0)[k] = {4.0f, {1, 1, 1}, 1};
     SampleHit* r = block.makeRecord(1, 0);  // frame 1: something nearer, then something missing
     r[1] = kNoHit;
     std::vector<uint8_t> coverage;
@@ -49,8 +48,8 @@ TEST(Occlusion, FarthestHitPerCell) {
     const PatternTable patterns(SamplePattern{2, 1, 0});
     ImageBlock block;
     block.reset({0, 0, 1, 0}, 0, 2, patterns, false);  // 2 pixels, 2 frames
-    for (int k = 0; k < 2; ++k) block.still(0)[k] = {4.0f + float(k), {1, 1, 1}, 1.0f, 1};
-    block.still(1)[0] = {3.0f, {1, 1, 1}, 1.0f, 1};  // pixel 1: one sample only
+    for (int k = 0; k < 2; ++k) block.still(0)[k] = {4.0f + float(k), {1, 1, 1}, 1};
+    block.still(1)[0] = {3.0f, {1, 1, 1}, 1};  // pixel 1: one sample only
     SampleHit* r = block.makeRecord(1, 0);          // frame 1 of pixel 0: nearer
     r[1].z = 2.0f;
     block.touch(0), block.touch(1);  // what the samplers mark as they write
@@ -64,11 +63,6 @@ TEST(Occlusion, FarthestHitPerCell) {
     };
     EXPECT_EQ(measure(4.5f), 1u);
     EXPECT_EQ(farthest, (std::vector<float>{5.0f, inf, 4.0f, inf}));
-    block.still(1)[1] = {3.5f, {1, 1, 1}, 0.5f, 1};  // not opaque: still +inf
-    block.touch(1);
-    measure(4.5f);
-    EXPECT_EQ(farthest[1], inf);
-    block.still(1)[1].a = 1.0f;
     block.still(1)[1].z = std::numeric_limits<float>::quiet_NaN();  // never taken for a depth
     block.touch(1);
     measure(4.5f);
@@ -86,8 +80,8 @@ TEST(Occlusion, UntouchedPixelsKeepTheirMeasure) {
     const PatternTable patterns(SamplePattern{2, 1, 0});
     ImageBlock block;
     block.reset({0, 0, 1, 0}, 0, 1, patterns, false);  // 2 pixels, 1 frame
-    for (int k = 0; k < 2; ++k) block.still(0)[k] = {4.0f, {1, 1, 1}, 1.0f, 1};
-    block.still(1)[0] = {3.0f, {1, 1, 1}, 1.0f, 1};
+    for (int k = 0; k < 2; ++k) block.still(0)[k] = {4.0f, {1, 1, 1}, 1};
+    block.still(1)[0] = {3.0f, {1, 1, 1}, 1};
     block.touch(0), block.touch(1);  // what the samplers mark as they write
     std::vector<uint8_t> coverage;
     std::vector<float> farthest;
@@ -97,7 +91,7 @@ TEST(Occlusion, UntouchedPixelsKeepTheirMeasure) {
     block.untouchAll();
     EXPECT_EQ(updateCoverage(block, 4.5f, coverage, -1, &farthest), 1u);  // pixel 0 from its measure
     EXPECT_EQ(coverage, (std::vector<uint8_t>{1, 0}));
-    block.still(1)[1] = {3.0f, {1, 1, 1}, 1.0f, 1};  // written but not touched: not seen
+    block.still(1)[1] = {3.0f, {1, 1, 1}, 1};  // written but not touched: not seen
     EXPECT_EQ(updateCoverage(block, 4.5f, coverage, -1, &farthest), 0u);
     EXPECT_EQ(farthest[1], inf);
     block.touch(1);

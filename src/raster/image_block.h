@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -32,11 +33,17 @@ namespace streyes {
 // The id of "no primitive": no hit yet.
 constexpr uint64_t kNoPrimitive = UINT64_MAX;
 
+// A sample's nearest opaque hit so far. A hit covers its sample fully: there is one exactly where
+// z < +inf (Camera clamps the far plane to the largest finite float), so coverage is not stored.
+// 24 bytes, so that a render bucket's still layer (66 x 66 pixels of 16 samples) fits in 2 MB of L2
+// with the sample positions beside it; see-through coverage lives in fragments (below).
 struct SampleHit {
     float z;      // camera-space depth of the nearest hit so far; +inf when none
     Color c;      // colour of that hit
-    float a;      // its coverage (1 for an opaque hit)
     uint64_t id;  // primitive of that hit (kNoPrimitive when none)
+
+    // No opaque hit yet: coverage 0 (else 1).
+    bool empty() const { return !(z < std::numeric_limits<float>::infinity()); }
 
     // Whether a hit (z, id, c) beats this one. Lexicographic on (depth, primitive, colour): the
     // result does not depend on the order hits arrive in, and at equal depth the primitive
@@ -49,9 +56,11 @@ struct SampleHit {
         return c2.z < c.z;
     }
 };
-// The resolve reads R G B A of a hit as four floats side by side (film.cpp's gather).
-static_assert(offsetof(SampleHit, a) == offsetof(SampleHit, c) + 3 * sizeof(float));
-constexpr SampleHit kNoHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.0f, kNoPrimitive};
+// The resolve reads a hit's z r g b as four floats side by side (film.cpp's accumulate), and the
+// still kernel writes them so (sample_kernels.cpp).
+static_assert(offsetof(SampleHit, c) == sizeof(float) && offsetof(SampleHit, id) == 4 * sizeof(float) &&
+              sizeof(SampleHit) == 24);
+constexpr SampleHit kNoHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, kNoPrimitive};
 
 // A see-through hit (Oi < 1 in some channel) of a sample. Kept apart from SampleHit, in a list per
 // sample, and composited in depth order when the block is resolved (film.h): the SampleHit stays
@@ -60,13 +69,13 @@ constexpr SampleHit kNoHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, 0.
 // order the two arrived in.
 struct SampleFragment {
     float z;
-    Color c;       // Ci (premultiplied by o, as shaders give it)
-    Color o;       // Oi
+    Color c;       // Ci (premultiplied by Oi, as shaders give it)
+    Color t;       // what it lets through, per channel: 1 - Oi
     uint64_t id;   // primitive: with z and c orders fragments independently of arrival
     int32_t next;  // the sample's next fragment (unordered), or -1
 
     // The order fragments are composited in, nearest first: SampleHit::beatenBy's.
-    bool before(const SampleFragment& b) const { return SampleHit{b.z, b.c, 0, b.id}.beatenBy(z, id, c); }
+    bool before(const SampleFragment& b) const { return SampleHit{b.z, b.c, b.id}.beatenBy(z, id, c); }
 };
 
 class ImageBlock {

@@ -285,7 +285,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                     if (!beats(cur, qt.z, h, nearZ, farZ, id,
                                [&](int c) { return lerp(ci0[idx[flat ? 0 : c]], ci1[idx[flat ? 0 : c]], sg); }, &hit))
                         return;
-                    firstHits += cur.a == 0;
+                    firstHits += cur.empty();
                     if (!Counting) {
                         // The pixel's farthest sample came nearer: its bound goes stale.
                         float& bound = block.farthestBound(fi, pi);

@@ -379,12 +379,13 @@ HWY_INLINE uint64_t testQuad(const QuadSetup& q, const SampleLayout& L, const Qu
     auto testPacked = [&](size_t at, size_t n) HWY_ATTR __attribute__((always_inline)) {
         const V x = hn::Load(kD, bx + at), y = hn::Load(kD, by + at);
         const M t = hn::FirstN(kD, n);
-        // With a write, the depths the lanes' samples see (SampleHit is 8 floats, z first),
+        // With a write, the depths the lanes' samples see (SampleHit is 6 floats, z first),
         // gathered before the inside test so that the loads overlap it; lanes past n read sample 0.
         V seen = hn::Zero(kD);
-        if constexpr (Write)
-            seen = hn::GatherIndex(kD, &write->still[0].z,
-                                   hn::ShiftLeft<3>(hn::IfThenElseZero(hn::RebindMask(kI, t), hn::Load(kI, bslot + at))));
+        if constexpr (Write) {
+            const auto slot = hn::IfThenElseZero(hn::RebindMask(kI, t), hn::Load(kI, bslot + at));
+            seen = hn::GatherIndex(kD, &write->still[0].z, hn::Add(hn::ShiftLeft<2>(slot), hn::ShiftLeft<1>(slot)));
+        }
         V ev[5];
         for (int k = 0; k < 5; ++k)
             ev[k] = hn::Sub(hn::Mul(dx[k], hn::Sub(y, py[k])), hn::Mul(dy[k], hn::Sub(x, px[k])));
@@ -444,26 +445,19 @@ HWY_INLINE uint64_t testQuad(const QuadSetup& q, const SampleLayout& L, const Qu
             for (uint64_t left = (nearer | tie) & ~written; left; left &= left - 1) emit(__builtin_ctzll(left));
             if (written) {
                 // A winner's hit is its {z, r, g, b}, interleaved from the four vectors at once,
-                // then {1, 0, id}, the same for the whole quad. A first hit is one over a depth
-                // of +inf: the still layer has no hit exactly there (Camera's far plane is
-                // finite), and loading each winner's coverage instead cost 4-7% of the still sampler.
-                static_assert(offsetof(SampleHit, z) == 0 && offsetof(SampleHit, c) == sizeof(float));
+                // then the quad's id. A first hit is one over a depth of +inf: the still layer
+                // has no hit exactly there (Camera's far plane is finite).
                 HWY_ALIGN float zrgb[4 * hn::MaxLanes(kD)];
                 hn::StoreInterleaved4(z, hn::Load(kD, rs), hn::Load(kD, gs), hn::Load(kD, bs), kD, zrgb);
                 const uint64_t empty = maskBits(kD, hn::Eq(seen, hn::Set(kD, std::numeric_limits<float>::infinity())));
                 write->firstHits += uint64_t(__builtin_popcountll(written & empty));
-                struct {
-                    float a;
-                    uint32_t padding;  // zero: the layer's bytes are the same every run
-                    uint64_t id;
-                } const tail{1.0f, 0, write->id};
-                static_assert(offsetof(SampleHit, id) == offsetof(SampleHit, a) + 8 && sizeof(SampleHit) == offsetof(SampleHit, id) + 8);
+                const uint64_t id = write->id;
                 for (uint64_t left = written; left; left &= left - 1) {
                     const int lane = __builtin_ctzll(left);
                     SampleHit& cur = still[bslot[at + size_t(lane)]];
                     char* const bytes = reinterpret_cast<char*>(&cur);
                     std::memcpy(bytes, zrgb + 4 * lane, 4 * sizeof(float));
-                    std::memcpy(bytes + offsetof(SampleHit, a), &tail, sizeof tail);
+                    std::memcpy(bytes + offsetof(SampleHit, id), &id, sizeof id);
                     touched[bpixel[at + size_t(lane)]] = 1;
                 }
             }

@@ -147,8 +147,8 @@ uint64_t scalarQuadWrite(const micropolygon::QuadSetup& q, const SampleLayout& L
             out[(*left)++] = h;
             continue;
         }
-        w.firstHits += cur.a == 0;
-        cur = {h.z, h.c, 1.0f, w.id};
+        w.firstHits += cur.empty();
+        cur = {h.z, h.c, w.id};
         w.touched[h.pixel] = 1;
     }
     return tested;

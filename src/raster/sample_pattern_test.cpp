@@ -191,10 +191,10 @@ TEST(ImageBlock, RecordsCopyTheStillLayerAndDenseBlocksHaveThemAll) {
     const PatternTable t(SamplePattern{2, 1, 0});
     ImageBlock block;
     block.reset({0, 0, 1, 0}, 0, 2, t, false);
-    block.still(1)[0] = {3.0f, {1, 0, 0}, 1.0f, 7};
+    block.still(1)[0] = {3.0f, {1, 0, 0}, 7};
     SampleHit* r = block.makeRecord(1, 1);
     EXPECT_EQ(r[0].z, 3.0f);
-    r[1] = {2.0f, {0, 1, 0}, 1.0f, 8};
+    r[1] = {2.0f, {0, 1, 0}, 8};
     EXPECT_EQ(block.hits(1, 1)[1].id, 8u);
     EXPECT_EQ(block.hits(0, 1)[1].id, kNoPrimitive);  // frame 0 still sees the still layer
     EXPECT_EQ(block.recordCount(), 1u);

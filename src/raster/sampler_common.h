@@ -37,7 +37,7 @@ template <typename ColorAt>
     const Color c0 = colorAt(h.v0), c1 = colorAt(h.v1), c2 = colorAt(h.v2);
     const Color c = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;
     if (zh == cur.z && !cur.beatenBy(zh, id, c)) return false;
-    *out = {zh, c, 1.0f, id};
+    *out = {zh, c, id};
     return true;
 }
 
@@ -50,7 +50,8 @@ inline bool fragmentBeats(const SampleHit& cur, const float* z, const Hit& h, fl
     if (!beats(cur, z, h, nearZ, farZ, id, colorAt, &hit)) return false;
     const Color o0 = opacityAt(h.v0), o1 = opacityAt(h.v1), o2 = opacityAt(h.v2);
     const Color o = o0 + (o1 - o0) * h.l1 + (o2 - o0) * h.l2;
-    *out = {hit.z, hit.c, {std::clamp(o.x, 0.0f, 1.0f), std::clamp(o.y, 0.0f, 1.0f), std::clamp(o.z, 0.0f, 1.0f)}, id, -1};
+    const Color clamped{std::clamp(o.x, 0.0f, 1.0f), std::clamp(o.y, 0.0f, 1.0f), std::clamp(o.z, 0.0f, 1.0f)};
+    *out = {hit.z, hit.c, Color{1, 1, 1} - clamped, id, -1};
     return true;
 }
 

@@ -127,7 +127,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         return;
                     }
                     if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) return;
-                    if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
+                    if (cur.empty()) firstHits += uint64_t(F);  // a first hit in every frame
                     cur = hit;
                     block.touch(pi);
                     float* stillAov = A ? block.stillAov(pi) + size_t(sj) * size_t(A) : nullptr;
@@ -157,7 +157,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         continue;
                     }
                     if (!beats(cur, q.z, h, nearZ, farZ, id, colorAt, &hit)) continue;
-                    firstHits += cur.a == 0;
+                    firstHits += cur.empty();
                     if (!rec) rec = block.makeRecord(fr.fi, pi);
                     rec[sj] = hit;
                     block.touch(pi);
@@ -219,8 +219,8 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         if (!(zh >= nearZ && zh <= farZ && zh <= cur.z)) continue;
                         const Color c = qh.c;
                         if (zh == cur.z && !cur.beatenBy(zh, id, c)) continue;
-                        if (cur.a == 0) firstHits += uint64_t(F);  // a first hit in every frame
-                        cur = {zh, c, 1.0f, id};
+                        if (cur.empty()) firstHits += uint64_t(F);  // a first hit in every frame
+                        cur = {zh, c, id};
                         block.touch(qh.pixel);
                         stillHitToRecords(block, qh.pixel, qh.sample, cur, 0, nullptr);
                     }

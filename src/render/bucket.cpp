@@ -383,7 +383,7 @@ bool BucketWorker::hiddenBehindHits(const Body& body, const Bounds3f& raster, fl
                 for (int fi = f0; fi <= f1; ++fi) {
                     const SampleHit* h = records ? block_.hits(fi, pi) : block_.still(pi);
                     for (int k = 0; k < S; ++k)
-                        if (!(h[k].a >= 1.0f && h[k].z < limit)) return false;
+                        if (!(h[k].z < limit)) return false;
                     if (!records) break;  // every frame sees the still layer
                 }
             }

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "film/film.h"
 #include "raster/image_block.h"
 #include "streyes/error.h"
 
@@ -17,10 +18,12 @@ namespace {
 // Measured: a tiny render's peak resident set is about 31 MiB (the program, oneTBB's threads,
 // OpenEXR; OpenImageIO is not loaded for rendering: it took it to 124 MiB).
 constexpr uint64_t kBaselineBytes = uint64_t(40) << 20;
-// Per sample of a bucket (the same in every frame): its position and its still-layer hit, and
-// the moving sampler's slot for it (GridRasterizer::GroupSamples: position, time, depth and lens
-// point as floats, and the sample's index; a slot a sample at most).
-constexpr uint64_t kBytesPerSample = 2 * sizeof(float) + sizeof(SampleHit) + 6 * sizeof(float) + sizeof(uint16_t);
+// Per sample of a bucket (the same in every frame): its position and its still-layer hit, the
+// moving sampler's slot for it (GridRasterizer::GroupSamples: position, time, depth and lens
+// point as floats, and the sample's index; a slot a sample at most), and what resolving reads of
+// it, for the still layer and for the frame being resolved (ResolveScratch).
+constexpr uint64_t kBytesPerSample =
+    2 * sizeof(float) + sizeof(SampleHit) + 6 * sizeof(float) + sizeof(uint16_t) + 2 * sizeof(CompositeSample);
 // Per sample and frame: the frame's record of it, at most (records are made only where something
 // that frame alone sees comes nearest; dense blocks have them all).
 constexpr uint64_t kBytesPerRecordSample = sizeof(SampleHit);

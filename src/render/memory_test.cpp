@@ -34,10 +34,11 @@ TEST(Memory, EstimateCountsImagesAndSamplesPerWorker) {
     // RGBA + Z float: the 10 frames, the tiles' still pixels, the frame being written.
     EXPECT_EQ(e.frameImages, uint64_t(12) * 1920 * 1080 * 20);
     // A bucket of 34 x 34 pixels (tile and guard band): an 8-byte permutation key and its flag, and 16 samples
-    // (position, still-layer hit, the moving sampler's slot of 6 floats and an index), for each
-    // of 10 frames a slot, a permutation, a depth bound and at most a record of every sample, and
-    // what resolving keeps (32 x 32 pixels x 6 floats).
-    const uint64_t perPixel = 9 + 16 * (8 + sizeof(SampleHit) + 26) + 10 * (9 + 16 * sizeof(SampleHit));
+    // (position, still-layer hit, the moving sampler's slot of 6 floats and an index, A R G B of
+    // the still layer and of a frame to resolve), for each of 10 frames a slot, a permutation, a
+    // depth bound and at most a record of every sample, and what resolving keeps (32 x 32 pixels x
+    // 6 floats).
+    const uint64_t perPixel = 9 + 16 * (8 + 24 + 26 + 2 * 16) + 10 * (9 + 16 * 24);
     EXPECT_EQ(e.perWorker, uint64_t(34 * 34) * perPixel + uint64_t(32 * 32) * 24);
     // With occlusion culling, a coverage byte and a 32-bit table entry per pixel and frame more.
     MemoryShape culled = kHd;

@@ -28,9 +28,13 @@ double processCpuSeconds() {
 // Calls fn(sample index, time) for every sample of the block, frame by frame, then pixel by
 // pixel: consecutive rays share their frame's part of the hierarchy, which stays in cache (the
 // block's own order, pixel then frame, jumps through time from one ray to the next).
-// fn(hit, shadowed parts, position, frame, time) for every sample of a dense block (every frame
-// has a record of every pixel).
-// The last argument is the sample's list of see-through fragments (its head, -1: none).
+// fn(hit, shadowed parts, position, lens point, frame, time, where) for every sample of a dense
+// block (every frame has a record of every pixel).
+struct SampleAt {
+    int fi;        // the frame's index in the block
+    size_t pixel;  // the block's pixel index
+    int sample;    // of the pixel
+};
 template <typename Fn>
 void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
     const int S = block.samplesPerPixel();
@@ -41,13 +45,12 @@ void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
         for (size_t i = 0; i < size_t(block.pixelCount()); ++i) {
             SampleHit* hits = block.record(fi, i);
             Color* shadowed = K ? block.shadowed(fi, i) : nullptr;
-            const int32_t* fragments = block.hasFragments() ? block.recordFragments(fi, i) : nullptr;
             for (int j = 0; j < S; ++j) {
                 const SamplePosition s = block.position(fi, i, j);
                 const size_t si = i * size_t(S) + size_t(j);
                 const Vec2f lens = block.hasLens() ? Vec2f{block.lus()[si], block.lvs()[si]} : Vec2f{0, 0};
                 fn(hits[j], K ? shadowed + size_t(j) * size_t(K) : nullptr, s, lens, block.firstFrame() + fi,
-                   start + double(s.tf) * exposure, fragments ? fragments[j] : -1);
+                   start + double(s.tf) * exposure, SampleAt{fi, i, j});
             }
         }
     }
@@ -239,13 +242,15 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
     shadowed_.resize(size_t(K));
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
     forEachSampleByFrame(block, scene.shutter, [&](SampleHit& hit, Color*, const SamplePosition& s, Vec2f lens, int frame,
-                                                   double time, int32_t) {
+                                                   double time, const SampleAt& at) {
         const Ray ray = eyeRay(cam, s.x, s.y, lens);
         const SpacetimeBVH& bvh = trace.hierarchy(frame);
         ++counters.eyeRays;
         // Nearest first: a see-through hit (Oi < 1) adds its colour through what is in front and
         // the ray goes on past it, as the rasterizer's fragments are composited (film.h).
         OverComposite over;
+        float nearestZ = 0;  // of the see-through layers
+        uint64_t nearestId = kNoPrimitive;
         float tNear = cam.nearClip();
         TraceHit h;
         while (bvh.intersect(ray, time, tNear, cam.farClip(), &h, ctx_)) {
@@ -266,18 +271,23 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
             o = {std::clamp(o.x, 0.0f, 1.0f), std::clamp(o.y, 0.0f, 1.0f), std::clamp(o.z, 0.0f, 1.0f)};
             const bool opaque = o.x >= 1 && o.y >= 1 && o.z >= 1;
             if (opaque && over.t == Color{1, 1, 1}) {
-                hit = {p.z, c, 1.0f, body.primitiveId()};  // nothing in front: its colour as it is
+                hit = {p.z, c, body.primitiveId()};  // nothing in front: its colour as it is
                 return;
             }
-            over.add(c, o);
+            if (over.t == Color{1, 1, 1}) nearestZ = p.z, nearestId = body.primitiveId();
+            over.add(c, Color{1, 1, 1} - o);
             if (opaque) {  // the opaque hit behind see-through ones
-                hit = {p.z, over.c, 1.0f, body.primitiveId()};
+                hit = {p.z, over.c, body.primitiveId()};
                 return;
             }
             tNear = std::nextafter(h.t, std::numeric_limits<float>::infinity());
         }
         if (over.t == Color{1, 1, 1}) return;  // nothing seen
-        hit = {std::numeric_limits<float>::infinity(), over.c, over.alpha(), kNoPrimitive};
+        // See-through layers alone: one fragment of what they make together, over no opaque hit,
+        // composited when the block is resolved as the rasterizer's fragments are (film.h).
+        block.startFragments();
+        const SampleFragment layers{nearestZ, over.c, over.t, nearestId, -1};
+        block.addFragment(block.recordFragments(at.fi, at.pixel) + at.sample, layers);
     });
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
@@ -297,9 +307,11 @@ void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, Rend
     };
     forEachSampleByFrame(block, scene.shutter,
                          [&](SampleHit& hit, Color* shadowed, const SamplePosition& s, Vec2f lens, int frame,
-                             double time, int32_t fragments) {
+                             double time, const SampleAt& at) {
         const SpacetimeBVH& bvh = trace.hierarchy(frame);
-        if (hit.a != 0) hit.c = addVisibleLights(hit.c, pointAt(s, lens, hit.z), time, shadowed, trace, bvh, counters);
+        const int32_t fragments = block.hasFragments() ? block.recordFragments(at.fi, at.pixel)[at.sample] : -1;
+        if (!hit.empty())
+            hit.c = addVisibleLights(hit.c, pointAt(s, lens, hit.z), time, shadowed, trace, bvh, counters);
         // See-through fragments likewise, each from its own depth.
         for (int32_t k = fragments; k >= 0; k = block.fragment(k).next) {
             SampleFragment& f = block.fragment(k);

@@ -42,7 +42,7 @@ void expectSamplesAgree(const std::string& rib, const char* what) {
     EXPECT_GE(agree.share(), 0.999) << what << ": " << agree.samples - agree.sameSurface << " of " << agree.samples
                                     << " samples differ";
     size_t hits = 0;
-    for (const SampleHit& h : traced.hits) hits += h.a > 0;
+    for (const SampleHit& h : traced.hits) hits += !h.empty();
     EXPECT_GT(hits, agree.samples / 10) << what;  // the scenes are not empty
 }
 
