@@ -321,11 +321,11 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
         scratch.stillComposite.resize(blockPixels * size_t(S));
         for (size_t i = 0; i < blockPixels; ++i) {
             const SampleHit* h = block.still(i);
-            const int32_t* heads = fragments ? block.stillFragments(i) : nullptr;
             CompositeSample* to = &scratch.stillComposite[i * size_t(S)];
-            for (int j = 0; j < S; ++j)
-                to[j] = heads && heads[j] >= 0 ? composite(block, h[j], heads[j], -1, scratch.fragments)
-                                               : opaqueSample(h[j]);
+            if (const int32_t* heads = fragments ? block.stillFragments(i) : nullptr)
+                for (int j = 0; j < S; ++j) to[j] = composite(block, h[j], heads[j], -1, scratch.fragments);
+            else
+                for (int j = 0; j < S; ++j) to[j] = opaqueSample(h[j]);
         }
     }
     scratch.frameComposite.resize(blockPixels * size_t(S));
@@ -336,12 +336,12 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
         if (!rec) return stillHits(i);
         CompositeSample* to = &scratch.frameComposite[i * size_t(S)];
         if (scratch.compositedFrame[i] != fi) {
-            const int32_t* own = fragments ? block.recordFragments(fi, i) : nullptr;
-            const int32_t* shared = fragments && !dense ? block.stillFragments(i) : nullptr;
-            if (fragments)
+            if (fragments) {
+                const int32_t* own = block.recordFragments(fi, i);
+                const int32_t* shared = dense ? nullptr : block.stillFragments(i);
                 for (int j = 0; j < S; ++j)
                     to[j] = composite(block, rec[j], own[j], shared ? shared[j] : -1, scratch.fragments);
-            else
+            } else
                 for (int j = 0; j < S; ++j) to[j] = opaqueSample(rec[j]);
             scratch.compositedFrame[i] = fi;
         }
