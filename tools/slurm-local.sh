@@ -3,8 +3,9 @@
 #
 #   tools/slurm-local.sh start DIR    installs slurm-wlm and munge when missing (as root), then starts
 #                                     munged, slurmctld and slurmd with everything in DIR: a munge key
-#                                     and socket of its own, slurm.conf, state, spool, logs, pid files;
-#                                     returns once sinfo shows the node idle
+#                                     of its own, slurm.conf, state, spool, logs, pid files (munge's
+#                                     socket alone lives in /run/streyes-munge/); returns once sinfo
+#                                     shows the node idle
 #   tools/slurm-local.sh stop DIR     cancels the cluster's jobs and stops its daemons (and any job
 #                                     step left running) by the process ids in DIR's pid files
 #   tools/slurm-local.sh env DIR      prints the line that points Slurm's commands at the cluster:
@@ -18,7 +19,7 @@
 set -euo pipefail
 
 usage() {
-  sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 [ $# -eq 2 ] || usage
@@ -26,6 +27,11 @@ cmd=$1
 mkdir -p "$2" 2>/dev/null || { echo "slurm-local: cannot create the folder '$2'" >&2; exit 2; }
 DIR=$(cd "$2" && pwd)
 CONF=$DIR/slurm.conf
+# munged refuses a socket below any folder that not everyone may pass through, and DIR may be in a
+# home folder only its owner may enter (root's is mode 700 on a fresh machine): the socket alone
+# lives in a folder of /run named after DIR (the rest stays in DIR; munged and slurmd run as root).
+SOCKET_DIR=/run/streyes-munge/$(printf '%s' "$DIR" | sha1sum | cut -c1-16)
+SOCKET=$SOCKET_DIR/munge.socket
 
 log() { echo "slurm-local: $*" >&2; }
 
@@ -99,6 +105,8 @@ stop() {
   if pid=$(live_pid "$DIR/slurmctld.pid" slurmctld); then stop_pid "$pid" slurmctld; fi
   if pid=$(live_pid "$DIR/munge/munged.pid" munged); then stop_pid "$pid" munged; fi
   rm -f "$DIR/slurmd.pid" "$DIR/slurmctld.pid" "$DIR/munge/munged.pid"
+  rm -rf "$SOCKET_DIR"
+  rmdir /run/streyes-munge 2>/dev/null || true
 }
 
 free_port() {
@@ -130,14 +138,14 @@ start() {
   stop  # whatever a previous start in DIR left, alive or dead
   rm -rf "$DIR/state" "$DIR/spool" "$DIR/log" "$DIR/munge" "$CONF"
   mkdir -p "$DIR/state" "$DIR/spool" "$DIR/log" "$DIR/munge"
-  # munged wants every folder above its socket open for all to pass through (not to read).
-  chmod go+x "$DIR"
-  chmod 755 "$DIR/munge"  # munged wants its socket folder open to all (the key stays 0600)
+  # munged wants its socket's folder, and every folder above it, open for all to pass through.
+  mkdir -p "$SOCKET_DIR"
+  chmod 755 /run/streyes-munge "$SOCKET_DIR"
 
   # munge: a key of this cluster's own (created here, so a missing system key does not matter) and
   # a daemon on a socket of its own.
   mungekey --create --keyfile="$DIR/munge/munge.key"
-  munged --socket="$DIR/munge/munge.socket" --key-file="$DIR/munge/munge.key" \
+  munged --socket="$SOCKET" --key-file="$DIR/munge/munge.key" \
          --pid-file="$DIR/munge/munged.pid" --log-file="$DIR/munge/munged.log" \
          --seed-file="$DIR/munge/munged.seed" ||
     { log "munged did not start:"; tail -n 5 "$DIR/munge/munged.log" >&2; exit 1; }
@@ -160,7 +168,7 @@ SlurmUser=root
 SlurmdUser=root
 AuthType=auth/munge
 CredType=cred/munge
-AuthInfo=socket=$DIR/munge/munge.socket
+AuthInfo=socket=$SOCKET
 ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
 SelectType=select/cons_tres

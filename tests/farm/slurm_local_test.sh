@@ -1,19 +1,23 @@
 #!/usr/bin/env bash
-# tools/slurm-local.sh: a cluster that died (daemons killed, a job step orphaned) does not break
-# the next start, and stop leaves no process behind. Run by ctest as root.
+# tools/slurm-local.sh: it starts in a folder below one only its owner may enter (a clone in root's
+# home folder, mode 700 on a fresh machine); a cluster that died (daemons killed, a job step
+# orphaned) does not break the next start, and stop leaves no process behind. Run by ctest as root.
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 LOCAL=$ROOT/tools/slurm-local.sh
-DIR=$(mktemp -d /tmp/streyes-slurm-local-XXXXXX)
+PARENT=$(mktemp -d /tmp/streyes-slurm-local-XXXXXX)  # mode 700, as root's home folder
+chmod 700 "$PARENT"
+DIR=$PARENT/home/cluster
 export SLURM_CONF=$DIR/slurm.conf
 fail() { echo "FAIL: $*" >&2; exit 1; }
-cleanup() { "$LOCAL" stop "$DIR" >/dev/null 2>&1 || true; rm -rf "$DIR"; }
+cleanup() { "$LOCAL" stop "$DIR" >/dev/null 2>&1 || true; rm -rf "$PARENT"; }
 trap cleanup EXIT
 
 alive() { [ -n "$1" ] && [ -d "/proc/$1" ] && ! grep -q '^[0-9]* ([^)]*) Z' "/proc/$1/stat" 2>/dev/null; }
 
-"$LOCAL" start "$DIR" 2>/dev/null
+"$LOCAL" start "$DIR" 2>"$PARENT/start.log" || { cat "$PARENT/start.log" >&2; fail "start failed below a mode-700 folder"; }
 [ "$(sinfo -h -o %t)" = idle ] || fail "the node is not idle after start"
+[ "$(stat -c %a "$PARENT")" = 700 ] || fail "start opened the private folder above the cluster to others"
 first_ctld=$(cat "$DIR/slurmctld.pid")
 
 # A job whose step outlives its cluster: a marker process that sleeps.
@@ -41,4 +45,6 @@ for _ in $(seq 1 200); do [ -z "$(squeue -h -j "$job" -o %i 2>/dev/null)" ] && b
 pids="$(cat "$DIR/slurmctld.pid") $(cat "$DIR/slurmd.pid") $(cat "$DIR/munge/munged.pid")"
 "$LOCAL" stop "$DIR" 2>/dev/null
 for p in $pids; do alive "$p" && fail "process $p still runs after stop"; done
+socket=$(sed -n 's/^AuthInfo=socket=//p' "$DIR/slurm.conf")
+[ -e "$socket" ] && fail "stop left munge's socket $socket"
 echo "PASS: a dead cluster is cleared by the next start; stop leaves nothing running"
