@@ -432,7 +432,12 @@ TEST_F(FarmBadInput, OutputFolderReadOnly) {
     fs::permissions(ro, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
                             fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
     fs::permissions(scene_, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
-    const std::string asNobody = geteuid() == 0 ? "setpriv --reuid=65534 --regid=65534 --clear-groups " : "";
+    // Nobody may not read the cluster's slurm.conf where the build keeps it (a clone in root's home
+    // folder, mode 700, is closed to others): the command reads a copy beside the scene.
+    const std::string conf = writeFile(dir_.path(), "slurm.conf", readFile(std::getenv("SLURM_CONF")));
+    fs::permissions(conf, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+    const std::string asNobody =
+        geteuid() == 0 ? "env SLURM_CONF=" + conf + " setpriv --reuid=65534 --regid=65534 --clear-groups " : "";
     expectRefused(scene_ + " -o " + ro + "/f.####.exr --block 4", "cannot write '" + ro + "/f.0001.exr'", asNobody);
     EXPECT_TRUE(fs::is_empty(ro));
 }
