@@ -23,9 +23,12 @@ Scene parseRibFile(const std::string& path, Log& log);
 Scene parseRibString(const std::string& text, const std::string& sourceName, Log& log);
 // A file of FrameBegin n ... FrameEnd blocks: each frame, as it ends, is handed to `frame` as a
 // complete scene (Scene::frameNumber, Scene::frameLoc). A file without frame blocks is handed over
-// whole, as one scene with no frame location. Memory holds one frame at a time.
+// whole, as one scene with no frame location. Memory holds one frame at a time. `after`, when
+// given, gets what follows the last frame of a file of frames (the state outside the frames: its
+// make requests, RenderSettings::makeTextures and makeShadows, are those not yet handed over with
+// a frame).
 void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame,
-                    const ReadDetail& detail = {});
+                    const ReadDetail& detail = {}, const std::function<void(Scene&&)>& after = {});
 
 // A procedural's RIB output (DelayedReadArchive, RunProgram): requests inside a world block,
 // read under the procedural's transform and attributes into a scene of their own. Every block

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -154,6 +155,23 @@ struct MakeTextureDesc {
     std::string filter = "box";                    // resampling filter of the MIP levels
     double swidth = 1, twidth = 1;
     SourceLoc loc;
+    // Where it comes among the input's frames: its place among the make requests of its file, and
+    // whether it came after the world of the frame it is in (then it runs after that frame's
+    // render, else before it). A file of frames hands these over in order (streyes/passes.h).
+    int serial = 0;
+    bool afterWorld = false;
+};
+
+// MakeShadow "picture" "shadow map": a depth map (what a Display "zfile" wrote) made a shadow map,
+// a float TIFF holding the depths unfiltered (no MIP levels) with the light camera's matrices
+// (docs/SCENE-FORMAT.md). The picture may be written by a frame of the same input: it is made when
+// that frame is done. Names are as written (relative to the working folder, as Display names are;
+// an input not made by the render is looked for beside the RIB file too).
+struct MakeShadowDesc {
+    std::string input, output;
+    SourceLoc loc;
+    int serial = 0;  // as MakeTextureDesc's
+    bool afterWorld = false;
 };
 
 struct RenderSettings {
@@ -192,6 +210,11 @@ struct RenderSettings {
     // empty: the folder of the scene's file.
     std::vector<std::string> textureSearchPath;
     std::vector<MakeTextureDesc> makeTextures;  // in the order the requests came
+    std::vector<MakeShadowDesc> makeShadows;    // likewise (serial orders the two kinds)
+    // Option "shadow" "bias": camera-space units a point must lie behind a shadow map's depth to
+    // be in shadow, where a shadow() call gives none (beyond what the map's own sampling needs:
+    // shade/shadow_map.h).
+    double shadowBias = 0;
 };
 
 // ---- Lights and geometry --------------------------------------------------------------------------
@@ -211,6 +234,11 @@ struct LightDesc {
     MotionTransform lightToWorld;
     SourceLoc loc;
     bool castsShadows = false;   // Attribute "light" "shadows" "on" where it was declared
+    // Attribute "autoshadows" "string shadowmapname" [name] "integer res" [n] (Aqsis): a depth map
+    // of this name is rendered from the light before the frame (streyes/passes.h). Empty: none.
+    std::string autoShadowMap;
+    int autoShadowRes = 300;
+    SourceLoc autoShadowLoc;
     // AreaLightSource: the light is spread over the geometry declared after it in its attribute
     // block, kept here as world-space bilinear patches (corners in RenderMan order); its shader
     // runs at points on them (geom/lights.h).
@@ -393,6 +421,10 @@ struct Scene {
     std::string sourceName;  // the scene file, for messages and default output names
     int frameNumber = 0;     // FrameBegin n, when the scene was one frame of a sequence
     SourceLoc frameLoc;      // where that FrameBegin (or the frame's file) is
+    // A merged frame sequence (streyes/sequence.h): each frame's own world-to-camera transform
+    // (camera space is each frame's own; the merged camera is the identity). Shaders' "world"
+    // space and shadow maps' lookups take the frame's. Empty: camera.worldToCamera for every frame.
+    std::map<int, MotionTransform> frameWorldToCamera;
 };
 
 // Every primitive of the scene (a procedural's output) exists only during `life`.

@@ -1,6 +1,7 @@
 #include "streyes/textures.h"
 
 #include <algorithm>
+#include <filesystem>
 
 #include "io/image_library.h"
 #include "shade/vm/texture_source.h"
@@ -17,6 +18,9 @@ std::shared_ptr<sl::TextureSource> openImageTextures(const std::vector<std::stri
 void makeSceneTextures(const Scene& scene, std::vector<std::string>* done) {
     for (const MakeTextureDesc& d : scene.settings.makeTextures) {
         if (done && std::find(done->begin(), done->end(), d.output) != done->end()) continue;
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(d.input, ec))
+            throw InputError(d.loc, "cannot read the picture '" + d.input + "' to make '" + d.output + "' from");
         std::string error;
         const ImageLibrary* library = nullptr;
         try {

@@ -61,7 +61,7 @@ void geometricApproximation(RibParser& reader, RibArgs& args) {
 
 // Attribute "category" values are kept as "category:name" for the features that read them.
 void attribute(RibParser& reader, RibArgs& args) {
-    static const std::set<std::string> categories = {"identifier", "light", "user", "streyes"};
+    static const std::set<std::string> categories = {"identifier", "light", "user", "streyes", "autoshadows"};
     std::string category = args.string("category");
     if (category == "displacementbound") {
         ParamList params = reader.readParams(args);

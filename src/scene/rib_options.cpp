@@ -215,12 +215,7 @@ void hider(RibParser& reader, RibArgs& args) {
     }
     if (const Param* p = params.find("depthfilter")) {
         const std::string f = params.getString("depthfilter", "min");
-        if (f == "midpoint") {
-            reader.log().warnOnce("hider:midpoint", p->loc,
-                                  "Hider \"hidden\": depthfilter \"midpoint\" is not supported (samples keep one "
-                                  "depth): using \"min\"");
-            settings.depthFilter = "min";
-        } else if (f == "min" || f == "max" || f == "average") {
+        if (f == "min" || f == "max" || f == "average" || f == "midpoint") {
             settings.depthFilter = f;
         } else {
             throw InputError(p->loc, "Hider \"hidden\": depthfilter \"" + f + "\" is not min, max, average or midpoint");
@@ -336,6 +331,25 @@ void shadingOption(RibParser& reader, RibArgs& args) {
     reader.warnUnusedParams(params, {"builtin"}, "Option \"shading\"");
 }
 
+// Option "shadow" "bias" b: how far behind a shadow map's depth a point must be to be in shadow
+// (shade/shadow_map.h). PRMan's and Aqsis's "bias0" and "bias1" give a range over which shadow
+// fades in; streyes takes one bias, their mean.
+void shadowOption(RibParser& reader, RibArgs& args) {
+    ParamList params = reader.readParams(args);
+    RenderSettings& settings = reader.scene().settings;
+    auto value = [&](const char* name, double fallback) {
+        const Param* p = params.find(name);
+        if (!p) return fallback;
+        if (p->nums.size() != 1 || !std::isfinite(p->nums[0]) || p->nums[0] < 0)
+            throw InputError(p->loc, std::string("Option \"shadow\": ") + name + " is one distance >= 0");
+        return p->nums[0];
+    };
+    const double b0 = value("bias0", -1), b1 = value("bias1", -1);
+    if (b0 >= 0 || b1 >= 0) settings.shadowBias = b0 >= 0 && b1 >= 0 ? 0.5 * (b0 + b1) : std::max(b0, b1);
+    settings.shadowBias = value("bias", settings.shadowBias);
+    reader.warnUnusedParams(params, {"bias", "bias0", "bias1"}, "Option \"shadow\"");
+}
+
 void option(RibParser& reader, RibArgs& args) {
     RenderSettings& settings = reader.scene().settings;
     std::string category = args.string("option name");
@@ -349,6 +363,10 @@ void option(RibParser& reader, RibArgs& args) {
     }
     if (category == "limits") {
         limitsOption(reader, args);
+        return;
+    }
+    if (category == "shadow") {
+        shadowOption(reader, args);
         return;
     }
     if (category != "streyes") {

@@ -120,6 +120,8 @@ std::map<std::string, RibParamDecl> predeclaredParams() {
     declare("gridsize", C::Uniform, T::Integer);
     declare("jitter", C::Uniform, T::Integer);
     declare("depthfilter", C::Uniform, T::String);
+    // Option "shadow" (bias1, bias0: PRMan's and Aqsis's range; streyes takes one bias).
+    for (const char* f : {"bias", "bias0", "bias1"}) declare(f, C::Uniform, T::Float);
     return d;
 }
 

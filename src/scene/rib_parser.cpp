@@ -219,7 +219,7 @@ Scene parseRibString(const std::string& text, const std::string& sourceName, Log
 }
 
 void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame,
-                    const ReadDetail& detail) {
+                    const ReadDetail& detail, const std::function<void(Scene&&)>& after) {
     Scene scene;
     scene.sourceName = path;
     RibParser parser(scene, log);
@@ -231,6 +231,7 @@ void parseRibFrames(const std::string& path, Log& log, const std::function<void(
     parser.parseFile(path);
     parser.finish();
     if (parser.framesRead() == 0) frame(std::move(scene));
+    else if (after) after(std::move(scene));
 }
 
 Scene parseRibFragment(const std::string& text, const std::string& sourceName, const MotionTransform& ctm,

@@ -132,6 +132,10 @@ class RibParser {
     void endFrame(const SourceLoc& loc);
     bool inFrame() const { return frame_.has_value(); }
     int framesRead() const { return framesRead_; }
+    // Make requests (MakeTexture, MakeShadow, ...) are numbered in the order they come, and say
+    // whether the world of their frame (or file) has ended: that places them among the frames.
+    int nextMakeSerial() { return ++makeSerial_; }
+    bool afterWorld() const { return state_.world == RibState::World::After; }
 
     // ---- For request handlers (rib_requests.h)
     // Where primitives go: the scene, or the object being defined (ObjectBegin).
@@ -168,6 +172,7 @@ class RibParser {
     ReadDetail detail_;
     std::optional<SavedFrame> frame_;  // inside FrameBegin ... FrameEnd: the state before it
     int framesRead_ = 0;
+    int makeSerial_ = 0;
     SourceLoc lastLoc_;  // last line read, for "missing ..." at the end
     int nesting_ = 0;    // parseFile/parseString calls in progress
 };

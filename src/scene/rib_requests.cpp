@@ -133,7 +133,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
           "TextureCoordinates", "Matte", "Bound", "Detail", "DetailRange", "Perspective", "Skew",
           "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "SolidBegin",
           "SolidEnd", "ArchiveEnd", "MakeBump",
-          "MakeCubeFaceEnvironment", "MakeShadow", "MakeBrickMap", "ErrorHandler", "ArchiveRecord",
+          "MakeCubeFaceEnvironment", "MakeBrickMap", "ErrorHandler", "ArchiveRecord",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
           "System", "Shader", "Bxdf", "Pattern", "Integrator", "DisplayFilter", "SampleFilter",
           "PixelSampleImager", "EditBegin", "EditEnd", "EditAttributeBegin",

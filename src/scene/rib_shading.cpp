@@ -97,6 +97,19 @@ void declareLight(RibParser& reader, RibArgs& args, bool area) {
     light.loc = args.loc();
     light.castsShadows = shadows;
     light.area = area;
+    // Attribute "autoshadows" (Aqsis): a depth map rendered from the light before the frame.
+    if (const Param* map = s.attributes->user.find("autoshadows:shadowmapname")) {
+        if (map->type != ParamType::String || map->strings.size() != 1 || map->strings[0].empty())
+            throw InputError(map->loc, "Attribute \"autoshadows\": shadowmapname is one file name, as in "
+                                       "\"string shadowmapname\" [\"light.shad\"]");
+        light.autoShadowMap = map->strings[0];
+        light.autoShadowLoc = map->loc;
+        if (const Param* res = s.attributes->user.find("autoshadows:res")) {
+            if (res->nums.size() != 1 || !(res->nums[0] >= 1 && res->nums[0] <= 16384))
+                throw InputError(res->loc, "Attribute \"autoshadows\": res is one size from 1 to 16384 pixels");
+            light.autoShadowRes = int(res->nums[0]);
+        }
+    }
     reader.scene().lights.push_back(std::move(light));
     s.mutableAttributes().lights.push_back(index);
     if (area) s.mutableAttributes().areaLight = index;

@@ -1,6 +1,7 @@
-// MakeTexture and MakeLatLongEnvironment: recorded in RenderSettings::makeTextures, made before
-// the render by the io stage (streyes/textures.h): the scene stage reads no images. A missing
-// input is an error here, at the request's line, before anything is made or rendered.
+// MakeTexture, MakeLatLongEnvironment and MakeShadow: recorded in RenderSettings::makeTextures and
+// makeShadows, made by the io stage (streyes/textures.h) when the frames before them are done:
+// the scene stage reads no images. A missing input is an error at the request's line when it is
+// made (a frame of the same input may write it).
 #include <filesystem>
 
 #include "scene/rib_requests.h"
@@ -22,14 +23,15 @@ void checkWrap(RibArgs& args, const RibValue& at, const std::string& wrap) {
         args.fail(at, "wrap mode must be \"black\", \"clamp\" or \"periodic\", not \"" + wrap + "\"");
 }
 
-void readFiles(RibArgs& args, MakeTextureDesc& d) {
-    const RibValue* in = args.peek();
+// The picture may be one a frame of the same input writes: whether it exists is checked when the
+// map is made (streyes/textures.h), after the frames before it are rendered.
+void readFiles(RibParser& reader, RibArgs& args, MakeTextureDesc& d) {
     d.input = besideFile(args, args.string("picture name"));
     d.output = besideFile(args, args.string("texture name"));
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(d.input, ec))
-        args.fail(*in, "cannot read the picture '" + d.input + "' to make '" + d.output + "' from");
+    if (d.input.empty()) args.fail("the picture name is empty");
     if (d.output.empty()) args.fail("the texture name is empty");
+    d.serial = reader.nextMakeSerial();
+    d.afterWorld = reader.afterWorld();
 }
 
 void readFilter(RibParser& reader, RibArgs& args, MakeTextureDesc& d) {
@@ -44,7 +46,7 @@ void readFilter(RibParser& reader, RibArgs& args, MakeTextureDesc& d) {
 void makeTexture(RibParser& reader, RibArgs& args) {
     MakeTextureDesc d;
     d.loc = args.loc();
-    readFiles(args, d);
+    readFiles(reader, args, d);
     const RibValue* sw = args.peek();
     d.swrap = args.string("swrap");
     checkWrap(args, *sw, d.swrap);
@@ -59,11 +61,31 @@ void makeLatLongEnvironment(RibParser& reader, RibArgs& args) {
     MakeTextureDesc d;
     d.loc = args.loc();
     d.latLongEnvironment = true;
-    readFiles(args, d);
+    readFiles(reader, args, d);
     d.swrap = "periodic";
     d.twrap = "clamp";
     readFilter(reader, args, d);
     reader.scene().settings.makeTextures.push_back(std::move(d));
+}
+
+// MakeShadow "picture" "shadow map" [params]: the picture is a depth map (Display "zfile"), of
+// this input's frames or on disk, checked when it is made.
+void makeShadow(RibParser& reader, RibArgs& args) {
+    MakeShadowDesc d;
+    d.loc = args.loc();
+    // Names as written: the frames that write depth maps and the shaders that read them name them
+    // so (relative names are the working folder's, as Display names are; a file on disk is looked
+    // for beside the RIB file too).
+    d.input = args.string("picture name");
+    d.output = args.string("shadow map name");
+    if (d.input.empty()) args.fail("the picture name is empty");
+    if (d.output.empty()) args.fail("the shadow map name is empty");
+    // Parameters ("compression", ...) are not used.
+    const ParamList params = reader.readParams(args);
+    reader.warnUnusedParams(params, {}, args.name());
+    d.serial = reader.nextMakeSerial();
+    d.afterWorld = reader.afterWorld();
+    reader.scene().settings.makeShadows.push_back(std::move(d));
 }
 
 }  // namespace
@@ -73,6 +95,7 @@ void addTextureRequests(RibRequestTable& table) {
               {makeTexture, "MakeTexture \"picture\" \"texture\" \"swrap\" \"twrap\" \"filter\" swidth twidth"});
     table.add("MakeLatLongEnvironment",
               {makeLatLongEnvironment, "MakeLatLongEnvironment \"picture\" \"texture\" \"filter\" swidth twidth"});
+    table.add("MakeShadow", {makeShadow, "MakeShadow \"picture\" \"shadow map\""});
 }
 
 }  // namespace streyes
