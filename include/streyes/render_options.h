@@ -15,6 +15,7 @@ namespace streyes {
 
 class ImageBlock;  // a bucket's samples (src/raster/image_block.h), for sampleObserver
 class Log;
+struct ShadowMapBinding;  // the depth maps shadow() reads (src/shade/shadow_maps.h)
 namespace sl {
 class TextureSource;  // where texture() and environment() read maps (src/shade/vm/texture_source.h)
 }
@@ -125,6 +126,14 @@ struct RenderOptions {
     // OpenImageIO's (streyes/textures.h): the core does not link it. Empty, or a null source:
     // every lookup gives its "fill" value.
     TextureSourceFactory textureSource;
+    // Shadow maps: each frame's depth maps by name, as the passes before this render made them,
+    // and how a map no pass made is read from disk (streyes/passes.h; src/shade/shadow_maps.h).
+    // Null: shadow() of a map name reads 0 (unshadowed), with a warning.
+    std::shared_ptr<const ShadowMapBinding> shadowMaps;
+    // Depth maps only (a depth pass: Display "zfile" | "shadow"): with depthfilter "midpoint"
+    // every opaque surface a sample crosses is kept, for the two nearest depths; colours are not
+    // written.
+    bool depthPass = false;
 };
 
 }  // namespace streyes

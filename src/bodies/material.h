@@ -48,6 +48,7 @@ struct Material {
     // matte, plastic and defaultsurface under the standard lights, three times faster.
     std::shared_ptr<const sl::ShaderInstance> surface;
     bool readsTime = false;  // a shader reads `time`: a still grid is shaded per exposure
+    bool readsMaps = false;  // its surface or a light of it calls shadow(): per exposure where maps vary
     // A Shading Language displacement shader, run on each diced grid before the surface, and how
     // far it may move a point in camera space: the split loop grows the body's bounds by it.
     std::shared_ptr<const sl::ShaderInstance> displacement;

@@ -67,6 +67,7 @@ bool depthFilterFromName(const std::string& name, DepthFilter* out) {
     if (name == "min") *out = DepthFilter::Min;
     else if (name == "max") *out = DepthFilter::Max;
     else if (name == "average") *out = DepthFilter::Average;
+    else if (name == "midpoint") *out = DepthFilter::Midpoint;
     else return false;
     return true;
 }
@@ -131,8 +132,32 @@ inline float pixelDepth(const ImageBlock& block, const FilterWeights& fw, const 
             if (n > 0) z = sum / float(n);
             break;
         }
+        case DepthFilter::Midpoint:  // from the fragments (midpointDepth); the opaque hits alone: the nearest
+            for (int j = 0; j < S; ++j) z = std::min(z, own[j].z);
+            break;
     }
     return z;
+}
+
+// Depthfilter "midpoint": each sample's two nearest surfaces, its opaque hit and the fragments of
+// lists `own` and `shared` (per sample heads, null: none), averaged (+inf with fewer than two); the
+// pixel's depth the nearest of its samples'.
+inline float midpointDepth(const ImageBlock& block, const SampleHit* hits, const int32_t* own, const int32_t* shared) {
+    const int S = block.samplesPerPixel();
+    float best = kInf;
+    for (int j = 0; j < S; ++j) {
+        float z1 = kInf, z2 = kInf;
+        auto add = [&](float z) {
+            if (z < z1) z2 = z1, z1 = z;
+            else if (z < z2) z2 = z;
+        };
+        if (hits[j].z < kInf) add(hits[j].z);
+        for (const int32_t* heads : {own, shared})
+            if (heads)
+                for (int32_t k = heads[j]; k >= 0; k = block.fragment(k).next) add(block.fragment(k).z);
+        if (z2 < kInf) best = std::min(best, 0.5f * (z1 + z2));
+    }
+    return best;
 }
 
 // Gathers what `hitsOf(pixel index)` holds around tile pixel (x, y): R G B A weighted. The
@@ -185,10 +210,10 @@ inline void gatherRun(const ImageBlock& block, const FilterWeights& fw, int x, i
 // Gathers the tile pixels `wanted(t)` picks (t: index in the tile) into outOf(t), four neighbours
 // at once (gatherRun) where all four are wanted and their filters lie inside the block, one at a
 // time elsewhere: R G B A from hitsOf (pixel index -> its samples' CompositeSamples), Z from the
-// pixel's own opaque hits, opaqueOf(pixel index); then finish(x, y, out) for each.
-template <typename Wanted, typename HitsOf, typename OpaqueOf, typename OutOf, typename Finish>
+// pixel's own samples, depthOf(pixel index); then finish(x, y, out) for each.
+template <typename Wanted, typename HitsOf, typename DepthOf, typename OutOf, typename Finish>
 void gatherTile(const ImageBlock& block, const FilterWeights& fw, const PixelRect& tile, const float* weightSums,
-                Wanted wanted, HitsOf hitsOf, OpaqueOf opaqueOf, OutOf outOf, Finish finish) {
+                Wanted wanted, HitsOf hitsOf, DepthOf depthOf, OutOf outOf, Finish finish) {
     const int tw = tile.width();
     for (int y = tile.y0; y <= tile.y1; ++y)
         for (int x = tile.x0; x <= tile.x1;) {
@@ -204,7 +229,7 @@ void gatherTile(const ImageBlock& block, const FilterWeights& fw, const PixelRec
                 for (int k = 0; k < kGatherRun; ++k) outs[k] = outOf(t + size_t(k));
                 gatherRun(block, fw, x, y, weightSums + t, hitsOf, outs);
                 for (int k = 0; k < kGatherRun; ++k) {
-                    outs[k][4] = pixelDepth(block, fw, opaqueOf(block.pixelIndex(x + k, y)));
+                    outs[k][4] = depthOf(block.pixelIndex(x + k, y));
                     finish(x + k, y, outs[k]);
                 }
                 x += kGatherRun;
@@ -212,7 +237,7 @@ void gatherTile(const ImageBlock& block, const FilterWeights& fw, const PixelRec
             }
             float* out = outOf(t);
             gather(block, fw, x, y, weightSums[t], hitsOf, out);
-            out[4] = pixelDepth(block, fw, opaqueOf(block.pixelIndex(x, y)));
+            out[4] = depthOf(block.pixelIndex(x, y));
             finish(x, y, out);
             ++x;
         }
@@ -348,13 +373,27 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
         return to;
     };
 
+    // Pixels' depths: from their own samples' opaque hits, or for "midpoint" from every surface
+    // they cross (the fragments a depth pass keeps).
+    const bool midpoint = fw.depthFilter() == DepthFilter::Midpoint;
+    auto stillDepth = [&](size_t i) {
+        if (!midpoint) return pixelDepth(block, fw, block.still(i));
+        return midpointDepth(block, block.still(i), fragments ? block.stillFragments(i) : nullptr, nullptr);
+    };
+    auto frameDepth = [&](int fi, size_t i) {
+        const SampleHit* rec = block.record(fi, i);
+        if (!rec) return stillDepth(i);
+        if (!midpoint) return pixelDepth(block, fw, rec);
+        return midpointDepth(block, rec, fragments ? block.recordFragments(fi, i) : nullptr,
+                             fragments && !dense ? block.stillFragments(i) : nullptr);
+    };
+
     // The still layer, resolved once for every frame that shows it.
     if (!dense) {
         scratch.still.resize(tilePixels * 5);
         gatherTile(
-            block, fw, tile, scratch.weightSum.data(), [](size_t) { return true; }, stillHits,
-            [&](size_t i) { return block.still(i); }, [&](size_t t) { return &scratch.still[t * 5]; },
-            [](int, int, float*) {});
+            block, fw, tile, scratch.weightSum.data(), [](size_t) { return true; }, stillHits, stillDepth,
+            [&](size_t t) { return &scratch.still[t * 5]; }, [](int, int, float*) {});
     }
 
     // Output variables likewise, weighed by the opaque hits: the still layer's once, a frame's own
@@ -422,7 +461,7 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
         };
         gatherTile(
             block, fw, tile, scratch.weightSum.data(), [&](size_t t) { return scratch.gathered[t] != 0; },
-            [&](size_t i) { return frameHits(fi, i); }, [&](size_t i) { return block.hits(fi, i); },
+            [&](size_t i) { return frameHits(fi, i); }, [&](size_t i) { return frameDepth(fi, i); },
             [&](size_t t) { return own + t * size_t(C); }, outputVariables);
     }
 }

@@ -69,7 +69,10 @@ class PixelFilter {
 // of sample j of a pixel with pattern p for the pixel (ox, oy) away from it.
 // How a pixel's Z comes from the depths of its own samples (Hider "hidden" "depthfilter"): the
 // nearest (misses count as +inf), or the farthest or the mean of those that hit (+inf where none do).
-enum class DepthFilter { Min, Max, Average };
+// Midpoint: each sample's depth is the mean of the two nearest surfaces it crosses (+inf where it
+// crosses fewer), the pixel's the nearest of those; it needs every surface a sample crosses, which
+// a depth pass keeps as fragments (RenderOptions::depthPass).
+enum class DepthFilter { Min, Max, Average, Midpoint };
 bool depthFilterFromName(const std::string& name, DepthFilter* out);
 
 class FilterWeights {

@@ -84,6 +84,8 @@ BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& option
     tracer_.setShader(&shader_);
     grid_.aovCount = aovs_.count;
     shader_.setAovs(&aovs_);
+    shader_.setDepthLayers(options.depthPass && filter.depthFilter() == DepthFilter::Midpoint);
+    shader_.setDepthOnly(options.depthPass);
 }
 
 void BucketWorker::setTrace(const TraceScene* trace) {
@@ -552,7 +554,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
         grid_.t0 = body.keyTime(k);
         grid_.t1 = body.keyTime(k + 1);
         grid_.openEnd = k + 2 < body.keyCount() || body.time().openEnd;  // pieces meet at keys (TimeSpan)
-        grid_.moving = body.keyMoves(k) || shadingVaries(body);
+        grid_.moving = body.keyMoves(k) || shadingMovesWithin(body);
         grid_.hole.clear();
         if (aovs_.count) fillAovs(grid_, aovs_, scene_.camera);
         if (!mat || !mat->oneSided || cullBackFacing(grid_, scene_.camera))
@@ -643,7 +645,7 @@ bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
         counters.timeDice += secondsSince(t);
         return false;  // every micropolygon faces away
     }
-    if (!grid_.moving && grid_.t1 > grid_.t0 && shadingVaries(body)) {
+    if (!grid_.moving && grid_.t1 > grid_.t0 && shadingMovesWithin(body)) {
         // Still geometry under moving lights: shaded at both ends of its span like a moving grid,
         // so that its colour follows the lights through the exposure.
         grid_.resize(grid_.nu, grid_.nv, true);

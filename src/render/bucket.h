@@ -47,7 +47,10 @@ class BucketWorker {
     // for --algorithm raytrace*; otherwise it traces the shadow rays of lights that cast shadows.
     void setTrace(const TraceScene* trace);
     // The scene's Shading Language shaders (null: built-in shading only). Before render().
-    void setShaders(const SceneShaders* shaders) { shader_.setShaders(shaders); }
+    void setShaders(const SceneShaders* shaders) {
+        shaders_ = shaders;
+        shader_.setShaders(shaders);
+    }
     // Grids shared with the other buckets of the frame block (null or disabled: none).
     void setGridCache(GridCache* cache) { gridCache_ = cache; }
     // Where the expansions this worker makes are registered, to be let go once no bucket can reach
@@ -100,14 +103,22 @@ class BucketWorker {
     Log& log_;
     const bool occlusion_;
     const bool shadingVaries_;  // some light moves: still geometry it lights is shaded per exposure
+    const SceneShaders* shaders_ = nullptr;
     // Does anything the body's shading reads change over time, while its grid may stand still in
     // camera space: a light it reads moving, its shader reading `time`, or the world moving
     // against the camera under a Shading Language surface (world-space noise, say)?
+    // Or do the shadow maps it reads differ between frames (constant within each)?
     bool shadingVaries(const Body& body) const {
+        const Material* m = body.material();
+        return shadingMovesWithin(body) || (m && m->readsMaps && shaders_ && shaders_->mapsVary());
+    }
+    // What changes within an exposure (a still grid is then shaded at both ends of its piece and
+    // its colour interpolated between them): all of the above but the maps.
+    bool shadingMovesWithin(const Body& body) const {
         const Material* m = body.material();
         if (!m) return false;
         return (shadingVaries_ && scene_.lights.anyMoves(m->lights)) || m->readsTime ||
-               (m->surface && !scene_.camera.worldToCamera().isStatic());
+               (m->surface && (!scene_.camera.worldToCamera().isStatic() || (shaders_ && shaders_->worldVaries())));
     }
 
     BucketSpec bucket_;

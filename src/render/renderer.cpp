@@ -141,26 +141,17 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     if (!options_.aovs.empty() && raytraces(options_.algorithm))
         throw InputError("output variables are written by the rasterizing algorithms only, not by --algorithm " +
                          std::string(algorithmName(options_.algorithm)));
-    // Shadow maps are not read: a light naming one gets no shadows (shadow() of the name reads 0).
-    for (const LightDesc& l : scene.lights) {
+    for (const LightDesc& l : scene.lights)
         if (l.area && l.areaPatches.empty())
             log_.warnOnce("arealight-empty", l.loc,
                           "AreaLightSource \"" + l.type + "\" has no shape (no bilinear patch, polygon, sphere, cylinder, "
                           "cone or disk follows it in its attribute block): it lights nothing");
-        const Param* name = l.params.find("shadowname");
-        if (name && name->type == ParamType::String && !name->strings.empty() && !name->strings[0].empty() &&
-            name->strings[0] != "raytrace")
-            log_.warnOnce("shadowmap:" + name->strings[0], l.loc,
-                          "LightSource \"" + l.type + "\": shadow map \"" + name->strings[0] +
-                              "\" is not read (streyes ray traces shadows): give \"string shadowname\" [\"raytrace\"] or "
-                              "Attribute \"light\" \"shadows\" \"on\"; this light casts no shadow");
-    }
     auto t = std::chrono::steady_clock::now();
     // In an arena of its own, like the render: building runs parallel work too (subdivision
     // meshes), and --threads holds for every stage.
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        shaders_ = std::make_unique<SceneShaders>(scene, log, options.textureSource);
+        shaders_ = std::make_unique<SceneShaders>(scene, log, options.textureSource, options.shadowMaps);
         scene_ = buildRenderScene(scene, settings_.shotFirst, settings_.shotLast, settings_.width, settings_.height, log,
                                   shaders_.get(), settings_.firstFrame, settings_.lastFrame);
     });
@@ -243,6 +234,9 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const PatternTable patterns(s.pattern);
     DepthFilter depthFilter = DepthFilter::Min;
     depthFilterFromName(source_.settings.depthFilter, &depthFilter);  // the parser checked the name
+    // "midpoint" needs every surface a sample crosses, which only a depth pass keeps: a picture's
+    // Z is the nearest.
+    if (depthFilter == DepthFilter::Midpoint && !options_.depthPass) depthFilter = DepthFilter::Min;
     const FilterWeights weights(filter, patterns, depthFilter);
     const int frames = s.lastFrame - s.firstFrame + 1;
     const int tileSize = settings_.bucketSize;
@@ -262,7 +256,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const bool traceFrames = options_.algorithm == Algorithm::RaytraceFrames;
     std::unique_ptr<TraceScene> trace;
     uint64_t traceBytesPerFrame = 0;
-    if (raytraces(options_.algorithm) || scene_->lights.shadowSlots() > 0) {
+    // (A depth pass runs no lights: it traces no shadows.)
+    if (raytraces(options_.algorithm) || (scene_->lights.shadowSlots() > 0 && !options_.depthPass)) {
         // What the bodies may take: the budget less what rendering one frame needs besides.
         const MemoryShape bare{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, 0,
                                usesOcclusion(options_.algorithm)};

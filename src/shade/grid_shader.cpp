@@ -59,11 +59,23 @@ void GridShader::shadeSlot(Grid& grid, int k, double time) {
     if (m.displacement || m.surface || m.atmosphere) prepare(m, grid, k, time);  // once for all three
     if (m.displacement) displace(m, grid, k, time);
     shadeSurface(grid, k, time);
+    if (depthLayers_) {
+        const size_t n = size_t(grid.vertexCount());
+        std::vector<Color>& oi = grid.Oi[k];
+        const bool given = oi.size() == n;  // else opaque
+        oi.resize(n);
+        for (size_t i = 0; i < n; ++i) {
+            const Color o = given ? oi[i] : Color{1, 1, 1};
+            const bool opaque = o.x >= 1 && o.y >= 1 && o.z >= 1;
+            oi[i] = opaque ? Color{0.5f, 0.5f, 0.5f} : Color{0, 0, 0};
+            grid.Ci[k][i] = Color{0, 0, 0};
+        }
+    }
 }
 
 // A shader's own "object" and "shader" spaces at `time`: the CTM where it was declared.
 void GridShader::useShaderSpace(const MotionTransform* shaderToWorld, double time) {
-    const Matrix4 shaderToCamera = shaderToWorld ? shaderToWorld->at(time) * worldToCamera_ : worldToCamera_;
+    const Matrix4 shaderToCamera = shaderToWorld ? shaderToWorld->at(time) * world_ : world_;
     sgrid_.setSpace(sl::Space::Object, shaderToCamera);
     sgrid_.setSpace(sl::Space::Shader, shaderToCamera);
 }
@@ -103,7 +115,8 @@ void GridShader::shadeSurface(Grid& grid, int k, double time) {
     if (aovs_ && grid.aovCount == aovs_->count) clearShaderOutputs(grid, k);
     const size_t n = size_t(grid.vertexCount());
     if (!m.surface) {
-        shadeGridSlot(grid, k, time, lights_, !camera_.perspective(), lightScratch_);
+        if (depthOnly_) std::fill(grid.Ci[k].begin(), grid.Ci[k].end(), Color{0, 0, 0});
+        else shadeGridSlot(grid, k, time, lights_, !camera_.perspective(), lightScratch_);
         builtinPoints_ += uint64_t(grid.vertexCount());
         if (!(m.Os.x >= 1 && m.Os.y >= 1 && m.Os.z >= 1)) grid.Oi[k].assign(n, clampOpacity(m.Os));
         else grid.Oi[k].clear();
@@ -122,7 +135,7 @@ void GridShader::shadeSurface(Grid& grid, int k, double time) {
                 }
             }
     }
-    if (m.atmosphere) runAtmosphere(m, grid, k, time);
+    if (m.atmosphere && !depthOnly_) runAtmosphere(m, grid, k, time);
 }
 
 // The volume shader takes the surface's Ci and gives what reaches the eye. The parts of the lights
@@ -191,8 +204,11 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     sgrid_.set(Global::du, ValueRef::uniform(&du_));
     sgrid_.set(Global::dv, ValueRef::uniform(&dv_));
     sgrid_.set(Global::time, ValueRef::uniform(&time_));
+    // Primitives are in the render camera's space (a merged sequence bakes each frame's camera
+    // into them): their variables go through it. "world" is the frame's own.
     worldToCamera_ = camera_.worldToCamera().at(time);
-    sgrid_.setSpace(sl::Space::World, worldToCamera_);
+    world_ = shaders_ ? shaders_->worldToCameraAt(time) : worldToCamera_;
+    sgrid_.setSpace(sl::Space::World, world_);
     bindPrimvars(m, grid, n, time);
     sgrid_.flipNormals = m.flipNormals;  // calculatenormal turns as N does (Orientation, mirroring)
     sgrid_.seed = unsigned(grid.primitiveId ^ (grid.primitiveId >> 32));
@@ -317,7 +333,7 @@ void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
     unshadowed_.clear();
     int shadowed = 0;
     for (int li : m.lights) {
-        const sl::ShaderInstance* s = shaders_ ? shaders_->light(size_t(li)) : nullptr;
+        const sl::ShaderInstance* s = shaders_ && !depthOnly_ ? shaders_->light(size_t(li)) : nullptr;
         if (!s) continue;
         if (grid.shadowSlots > 0 && lights_.shadowSlotOf(li) >= 0) {
             ++shadowed;

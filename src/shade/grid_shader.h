@@ -45,6 +45,14 @@ class GridShader {
     // copied into grids that carry it (Grid::aovCount == layout->count); others read 0.
     void setAovs(const AovLayout* layout) { aovs_ = layout && layout->shaderOutputs ? layout : nullptr; }
 
+    // A depth pass with depthfilter "midpoint" (RenderOptions::depthPass): every opaque point is
+    // made a see-through layer (Oi 1/2, Ci 0), so that samples keep each surface they cross as a
+    // fragment, and the rest clear (not a surface of the depth map). Colours mean nothing then.
+    void setDepthLayers(bool on) { depthLayers_ = on; }
+    // A depth pass: only depth and opacity matter. Lights are not run (a light reading the map
+    // this pass makes would read nothing), nor atmospheres; the built-in surfaces are not shaded.
+    void setDepthOnly(bool on) { depthOnly_ = on; }
+
     // Ci (and Cl) of slot k of `grid` from its P[k] and N[k] at `time`.
     void shadeSlot(Grid& grid, int k, double time);
     // Both slots of a moving grid (t0 and t1), or the one of a still grid.
@@ -75,6 +83,7 @@ class GridShader {
     void setIncident(const Grid& grid, int k);
 
     const SceneShaders* shaders_;
+    bool depthLayers_ = false, depthOnly_ = false;
     const Camera& camera_;
     const LightSet& lights_;
     std::vector<CameraLight> lightScratch_;
@@ -82,7 +91,8 @@ class GridShader {
     sl::ShadingGrid sgrid_;
     std::vector<float> u_, v_;
     float du_ = 0, dv_ = 0, time_ = 0;  // uniform inputs the shading grid points at
-    Matrix4 worldToCamera_;             // at the slot's time
+    Matrix4 worldToCamera_;             // at the slot's time: the render camera's (primitives' space)
+    Matrix4 world_;                     // "world" space: the camera of the frame the slot's time falls in
     std::vector<sl::LightRef> unshadowed_, withOne_;
     std::vector<Color> base_, withLight_;
     std::vector<Vec3f> orthoI_;  // I under an orthographic camera

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "shade/vm/ops.h"
 #include "shade/vm/vm.h"
 
 namespace streyes {
@@ -16,8 +17,20 @@ bool isBuiltinSurface(const std::string& name) {
 // Does the shader read `time`? Then a still grid it shades is shaded per exposure.
 bool readsTime(const sl::ShaderInstance& s) { return s.program().globalReg[size_t(sl::Global::time)] >= 0; }
 
-bool isBuiltinLight(const std::string& name) {
-    return name == "ambientlight" || name == "distantlight" || name == "pointlight";
+bool isBuiltinLight(const LightDesc& d) {
+    if (d.type != "ambientlight" && d.type != "distantlight" && d.type != "pointlight") return false;
+    // A shadow map's name: the shader reads it (the built-in light does not), "raytrace" is traced.
+    const Param* map = d.params.find("shadowname");
+    return !map || map->type != ParamType::String || map->strings.empty() || map->strings[0].empty() ||
+           map->strings[0] == "raytrace";
+}
+
+// Does the shader call shadow() (a depth map, unless the name is "raytrace")?
+bool readsMaps(const sl::ShaderInstance* s) {
+    if (!s) return false;
+    for (const sl::Instr& in : s->program().code)
+        if (in.fn == sl::ops::shadow) return true;
+    return false;
 }
 
 sl::BaseType baseTypeOf(const Param& p) {
@@ -99,11 +112,11 @@ bool LazyTextureSource::environment(const std::string& name, const sl::TextureOp
 
 bool LazyTextureSource::shadow(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
                                float* const* out) {
-    sl::TextureSource* s = source();
-    return s && s->shadow(name, o, q, out);
+    return maps_ && maps_->shadow(name, o, q, out[0]);
 }
 
-SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures)
+SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures,
+                           std::shared_ptr<const ShadowMapBinding> maps)
     : worldToCamera_(scene.camera.worldToCamera), builtinShading_(scene.settings.builtinShading), log_(log) {
     // Maps named without a folder: along Option "searchpath" "texture", else beside the scene.
     std::vector<std::string> texturePath = scene.settings.textureSearchPath;
@@ -111,7 +124,8 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
         const std::string dir = std::filesystem::path(scene.sourceName).parent_path().string();
         texturePath.push_back(dir.empty() ? "." : dir);
     }
-    textures_ = std::make_unique<LazyTextureSource>(std::move(textures), std::move(texturePath), log);
+    maps_ = std::make_unique<ShadowMaps>(std::move(maps), scene, texturePath, log);
+    textures_ = std::make_unique<LazyTextureSource>(std::move(textures), std::move(texturePath), maps_.get(), log);
     cache_ = std::make_unique<sl::ShaderCache>(std::vector<std::string>{standardShaderDir()});
     searchPathSet_ = !scene.settings.shaderSearchPath.empty();
     if (searchPathSet_) cache_->setSearchPath(scene.settings.shaderSearchPath);
@@ -120,8 +134,9 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
         imager_ = instance(scene.settings.imager.name, scene.settings.imager.params, scene.settings.imager.loc,
                            sl::ShaderType::Imager);
     for (const LightDesc& d : scene.lights) {
-        builtinLight_.push_back(isBuiltinLight(d.type));
+        builtinLight_.push_back(isBuiltinLight(d));
         lights_.push_back(instance(d.type, d.params, d.loc, sl::ShaderType::Light));
+        lightReadsMaps_.push_back(readsMaps(lights_.back().get()));
     }
 }
 
@@ -213,7 +228,10 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         }
     }
     bool builtinLights = true;
-    for (int i : m.lights) builtinLights = builtinLights && builtinLight_[size_t(i)];
+    for (int i : m.lights) {
+        builtinLights = builtinLights && builtinLight_[size_t(i)];
+        m.readsMaps = m.readsMaps || lightReadsMaps_[size_t(i)];
+    }
     const std::string& name = a.surface.name;
     // The built-in shading reads no primitive variables: a primitive with some runs the shader.
     if (builtinShading_ && builtinLights && isBuiltinSurface(name) && m.primvars.params.empty()) return;
@@ -225,6 +243,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         if (!shader) return;
     }
     m.readsTime = m.readsTime || readsTime(*shader);
+    m.readsMaps = m.readsMaps || readsMaps(shader.get());
     m.surface = std::move(shader);
 }
 

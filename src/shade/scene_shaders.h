@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bodies/material.h"
+#include "shade/shadow_maps.h"
 #include "shade/sl/compiler.h"
 #include "shade/vm/shader_instance.h"
 #include "shade/vm/texture_source.h"
@@ -31,10 +32,12 @@ std::string standardShaderDir();
 // The render's texture source, made by the factory on the first lookup from any thread (a
 // render without lookups never loads the image library), then shared. A factory that fails
 // (the library cannot be loaded) warns once, and lookups give their fill value.
+// shadow() of a map name goes to the render's ShadowMaps (shade/shadow_maps.h), which the
+// library's texture source never sees.
 class LazyTextureSource final : public sl::TextureSource {
   public:
-    LazyTextureSource(TextureSourceFactory factory, std::vector<std::string> searchPath, Log& log)
-        : factory_(std::move(factory)), searchPath_(std::move(searchPath)), log_(log) {}
+    LazyTextureSource(TextureSourceFactory factory, std::vector<std::string> searchPath, ShadowMaps* maps, Log& log)
+        : factory_(std::move(factory)), searchPath_(std::move(searchPath)), maps_(maps), log_(log) {}
     bool texture(const std::string& name, const sl::TextureOptions& o, const sl::TextureQuery& q,
                  float* const* out) override;
     bool environment(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
@@ -46,6 +49,7 @@ class LazyTextureSource final : public sl::TextureSource {
     sl::TextureSource* source();
     TextureSourceFactory factory_;
     std::vector<std::string> searchPath_;
+    ShadowMaps* maps_;
     Log& log_;
     std::once_flag once_;
     std::shared_ptr<sl::TextureSource> source_;
@@ -57,7 +61,9 @@ class SceneShaders final : public MaterialBinder {
     // does not fit its declaration, is an InputError (file:line:column of the shader, or the
     // RIB line of the parameter); a light whose shader is not found warns once and is dark.
     // `textures` makes the texture source when a shader first looks a map up (none: fill values).
-    SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures = {});
+    // `maps`: the depth maps shadow() reads (null: only files on disk... none without a reader).
+    SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures = {},
+                 std::shared_ptr<const ShadowMapBinding> maps = {});
 
     // Sets material.surface (and readsTime) unless the built-in shading serves it.
     void bind(Material& material, const Attributes& attributes) const override;
@@ -73,6 +79,14 @@ class SceneShaders final : public MaterialBinder {
     // Light `i` of the scene as a shader (null when its shader was not found).
     const sl::ShaderInstance* light(size_t i) const { return i < lights_.size() ? lights_[i].get() : nullptr; }
 
+    // World -> current space at time t: the camera's, or in a merged frame sequence the camera of
+    // the frame t falls in (shaders' "world" and "shader" spaces, shadow maps' lookups).
+    Matrix4 worldToCameraAt(double t) const { return maps_->worldToCameraAt(t); }
+    // Do the frames' cameras differ (a still grid's "world" space then changes between frames)?
+    bool worldVaries() const { return maps_->worldVaries(); }
+    // Do frames read different depth maps under one name (what reads maps then varies)?
+    bool mapsVary() const { return maps_->varies(); }
+
   private:
     std::shared_ptr<sl::ShaderInstance> instance(const std::string& name, const ParamList& params,
                                                  const SourceLoc& loc, sl::ShaderType type) const;
@@ -85,7 +99,9 @@ class SceneShaders final : public MaterialBinder {
     std::shared_ptr<sl::ShaderInstance> imager_;
     bool builtinShading_ = true;
     Log& log_;
+    std::unique_ptr<ShadowMaps> maps_;
     std::unique_ptr<LazyTextureSource> textures_;
+    std::vector<bool> lightReadsMaps_;
 };
 
 // Sets `params` on `shader`: RIB's types (inline or Declare'd) are checked against the shader's
