@@ -37,6 +37,10 @@ void checkWritableFolder(const std::string& path, const std::string& option);
 // on failure (a full disk, a file size limit, an unwritable folder) and leaves nothing behind.
 void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode);
 
+// Writes `bytes` to `path` as writeFrame writes a frame: to a temporary file beside it, every
+// write checked and synced, then renamed. Throws RenderError on failure, leaving nothing behind.
+void writeFileAtomically(const std::string& path, const std::vector<unsigned char>& bytes);
+
 // The temporary name process `pid` writes `path` under: ".STEM.tmpPID.EXT" in the same folder.
 std::string temporaryFrameName(const std::string& path, int pid);
 

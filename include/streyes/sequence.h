@@ -55,16 +55,17 @@ struct Sequence {
     SequenceStats stats;
 };
 
-// Builds the merged scene from frames given in increasing, consecutive frame order.
+// Builds the merged scene from the frames of one pass (streyes/passes.h: the same settings) in
+// increasing frame order. Frames may be missing between them (another pass's): a still run goes
+// on over them, and they render what the runs hold (the passes do not write them).
 class SequenceBuilder {
   public:
     explicit SequenceBuilder(Log& log) : log_(log) {}
     // One frame (Scene::frameNumber, Scene::frameLoc). InputError when it cannot join the others:
-    // resolution, shutter, camera projection or sampling differ; a frame missing or out of order.
+    // out of order, another shutter, or exposures that overlap (close - open > 1).
     void add(Scene&& frame);
     int frames() const { return out_.stats.frames; }  // in the block being built
-    // The frames added since the last finish, merged; the next frame starts a new block (checked
-    // against the same first frame and following the last).
+    // The frames added since the last finish, merged; the next frame starts a new block.
     Sequence finish();
 
   private:
@@ -73,20 +74,13 @@ class SequenceBuilder {
         int lastFrame = 0;
         size_t runIndex = 0;
     };
-    struct Reference {  // what later frames are checked against
-        int frame = 0;
-        SourceLoc loc;
-        CameraDesc camera;
-        RenderSettings settings;
-    };
     template <typename Desc>
-    void addPrimitive(char kind, Desc&& p, std::vector<Desc>& merged, std::map<std::string, int>& seen, int frame);
+    void addPrimitive(char kind, Desc&& p, std::vector<Desc>& merged, std::map<std::string, int>& seen, int frame,
+                      int previous);
     AttributesPtr remap(const AttributesPtr& a);
-    void check(const Scene& frame);
 
     Log& log_;
     Sequence out_;
-    std::unique_ptr<Reference> first_;
     int lastFrame_ = 0, blockFirst_ = 0;
     std::unordered_map<std::string, Track> tracks_;
     // This frame's: lights' merged indices, attribute states with them.
@@ -102,17 +96,13 @@ bool isFramePattern(const std::string& path);
 // The pattern with its '#' run replaced by the frame number, zero-padded to the run's length.
 std::string frameFileName(const std::string& pattern, int frame);
 
-// Reads a scene: a frame pattern (every frame of `frames`, or every file there is, which must be
-// consecutive), a file of FrameBegin blocks (the frames of `frames` among them), or an ordinary
-// scene file (isSequence false; `frames` is left to the renderer). A frame file missing or a
-// frame the request names that the file lacks is an InputError. `detail`: the size the frames will
-// be rendered at, for detail chosen while reading (streyes/rib.h).
+// Reads an input of one pass (streyes/passes.h): a frame pattern (every frame of `frames`, or every
+// file there is, which must be consecutive), a file of FrameBegin blocks (the frames of `frames`
+// among them), or an ordinary scene file (isSequence false; `frames` is left to the renderer),
+// merged whole. An input of several passes (depth maps and a picture, or frames with other
+// settings) is an InputError: readPasses reads it. A frame file missing or a frame the request
+// names that the file lacks is an InputError. `detail`: the size the frames will be rendered at,
+// for detail chosen while reading (streyes/rib.h).
 Sequence readScene(const std::string& path, const FrameRequest& frames, Log& log, const ReadDetail& detail = {});
-// The same, a block of at most `blockFrames` consecutive frames at a time: each block is merged and
-// handed to `block` before the next is read, so memory holds one block (and a batch of frames
-// being parsed). An ordinary scene file is handed over once (isSequence false). A frame's pixels
-// do not depend on the block it is rendered in: each renders what its RIB says.
-void readSceneBlocks(const std::string& path, const FrameRequest& frames, int blockFrames, Log& log,
-                     const std::function<void(Sequence&&)>& block, const ReadDetail& detail = {});
 
 }  // namespace streyes

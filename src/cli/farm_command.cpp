@@ -9,6 +9,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -18,6 +19,7 @@
 #include "farm_slurm.h"
 #include "render_request.h"
 #include "streyes/image_io.h"
+#include "streyes/passes.h"
 #include "streyes/rib.h"
 
 namespace streyes::cli {
@@ -225,14 +227,37 @@ int farmSubmit(const std::vector<std::string>& args) {
     Log log;
     log.setEcho(true);
     // A scene, or a frame sequence (a pattern of frame files, FrameBegin blocks), read as the tasks
-    // will read it: InputError naming file and line when it does not parse or its frames disagree.
+    // will read it: InputError naming file and line when it does not parse. The shot is its
+    // pictures' frames (streyes/passes.h: each task renders the depth frames its pictures read).
     FrameRequest wanted;
     wanted.given = !framesArg.empty();
     wanted.first = first, wanted.last = last;
-    Sequence sequence = readScene(scene, wanted, log);
+    PassRequest passes;
+    passes.frames = wanted;
+    passes.blockFrames = std::numeric_limits<int>::max() / 4;
+    Sequence sequence;
+    bool havePicture = false, haveAny = false;
+    int firstPicture = std::numeric_limits<int>::max(), lastPicture = std::numeric_limits<int>::min();
+    readPasses(scene, passes, log, [&](PassJob&& job) {
+        if (job.kind != PassJob::Kind::Render || (havePicture && job.depth) || job.frames.empty()) return;
+        if (!job.depth) {
+            firstPicture = std::min(firstPicture, job.frames.begin()->first);
+            lastPicture = std::max(lastPicture, job.frames.rbegin()->first);
+        }
+        if (!haveAny || (!havePicture && !job.depth)) sequence = std::move(job.sequence);
+        haveAny = true;
+        havePicture = havePicture || !job.depth;
+    });
+    if (!haveAny) throw InputError("'" + scenePath + "' renders no frame");
     Scene& parsed = sequence.scene;
     applyPreview(req, parsed);
-    const ResolvedSettings rs = resolveSettings(parsed, req.opts);
+    RenderOptions shot = req.opts;
+    if (havePicture && sequence.isSequence) {
+        shot.hasFrames = true;
+        shot.firstFrame = firstPicture;
+        shot.lastFrame = lastPicture;
+    }
+    const ResolvedSettings rs = resolveSettings(parsed, shot);
     first = rs.firstFrame;
     last = rs.lastFrame;
     const int frames = last - first + 1;

@@ -15,7 +15,9 @@
 
 #include "commands.h"
 #include "io/exr_file.h"
+#include "io/depth_map_file.h"
 #include "io/frame_writer.h"
+#include "pass_runner.h"
 #include "raster/sample_kernels.h"
 #include "render/dof_preview.h"
 #include "streyes/textures.h"
@@ -113,6 +115,7 @@ std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPatter
     std::string mode = "rgbaz";
     bool primary = true;
     for (const DisplayDesc& d : scene.settings.displays) {
+        if (isDepthDisplay(d)) continue;  // depth maps: written by the passes (pass_runner.h)
         bool file = d.type == "openexr" || d.type == "file" || d.type == "tiff" || d.type == "exr";
         if (!file) {
             log.warn(d.loc, "Display type '" + d.type + "' is not supported: '" + d.name + "' skipped");
@@ -148,30 +151,35 @@ std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPatter
 }
 
 std::map<int, std::vector<Output>> sequenceOutputs(const Sequence& seq, const std::string& oPattern,
-                                                   const std::string& scenePath, int first, int last, Log& log) {
+                                                   const std::string& scenePath, int first, int last, Log& log,
+                                                   const std::set<int>* only) {
     std::map<int, std::vector<Output>> outs;
+    auto skip = [&](int f) { return only && !only->count(f); };  // another pass's frame
     const int frames = last - first + 1;
     if (!oPattern.empty()) {
         Scene none;
         const std::vector<Output> o = chooseOutputs(none, oPattern, scenePath, frames, log);
-        for (int f = first; f <= last; ++f) outs[f] = o;
+        for (int f = first; f <= last; ++f)
+            if (!skip(f)) outs[f] = o;
         return outs;
     }
     // Each frame's own Display names; a name without #### that several frames give gets one.
     std::map<std::string, int> uses;
     for (int f = first; f <= last; ++f) {
         auto it = seq.displays.find(f);
-        if (it == seq.displays.end()) continue;
+        if (it == seq.displays.end() || skip(f)) continue;
         for (const DisplayDesc& d : it->second) ++uses[d.name];
     }
     std::string stem = std::filesystem::path(scenePath).stem().string();
     stem.erase(std::remove(stem.begin(), stem.end(), '#'), stem.end());
     while (!stem.empty() && stem.back() == '.') stem.pop_back();
     for (int f = first; f <= last; ++f) {
+        if (skip(f)) continue;
         std::vector<Output>& o = outs[f];
         auto it = seq.displays.find(f);
         if (it != seq.displays.end())
             for (const DisplayDesc& d : it->second) {
+                if (isDepthDisplay(d)) continue;  // depth maps: written by the passes (pass_runner.h)
                 const bool file = d.type == "openexr" || d.type == "file" || d.type == "tiff" || d.type == "exr";
                 if (!file) {
                     log.warnOnce("display-type:" + d.type, d.loc,
@@ -260,6 +268,43 @@ std::string withProcessCpu(std::string json) {
     std::snprintf(buf, sizeof buf, ",\n  \"cpu_seconds\": %.3f\n", cpu);
     json.replace(end, close - end, buf);
     return json;
+}
+
+// --resume: is this frame of the input written already? A depth frame: each depth map it writes
+// reads back. A picture: each output (-o, else its file displays, else the default name) is a
+// complete image of its size and channels. In doubt, not: then its depth maps are made again.
+bool frameWritten(const Scene& frame, const RenderRequest& req, const std::string& scenePath) {
+    const int f = frame.frameNumber;
+    bool depth = false;
+    std::vector<Output> outs;
+    for (const DisplayDesc& d : frame.settings.displays) {
+        if (isDepthDisplay(d)) {
+            depth = true;
+            DepthMap map;
+            std::string error;
+            if (!readDepthMapFile(frameFileName(d.name, f), &map, &error)) return false;
+        } else if (d.type == "openexr" || d.type == "file" || d.type == "tiff" || d.type == "exr") {
+            outs.push_back({d.name, d.mode.empty() ? "rgbaz" : d.mode});
+        }
+    }
+    if (depth && outs.empty()) return true;
+    if (!req.outPattern.empty()) {
+        const std::string mode = outs.empty() ? "rgbaz" : outs.front().mode;
+        outs = {Output{req.outPattern, mode}};
+    }
+    if (outs.empty()) {
+        std::string stem = std::filesystem::path(scenePath).stem().string();
+        stem.erase(std::remove(stem.begin(), stem.end(), '#'), stem.end());
+        while (!stem.empty() && stem.back() == '.') stem.pop_back();
+        outs.push_back({(stem.empty() ? "frame" : stem) + ".####.exr", "rgbaz"});
+    }
+    int w = req.opts.xres > 0 ? req.opts.xres : frame.camera.xres, h = req.opts.yres > 0 ? req.opts.yres : frame.camera.yres;
+    if (req.preview && req.opts.xres <= 0) w = std::max(1, w / kPreviewDivisor), h = std::max(1, h / kPreviewDivisor);
+    for (const Output& o : outs)
+        if (!isCompleteFrame(expandFramePattern(o.pattern, f), w, h, o.mode) &&
+            !isCompleteFrame(expandFramePattern(addFrameField(o.pattern), f), w, h, o.mode))
+            return false;
+    return true;
 }
 
 }  // namespace
@@ -365,8 +410,7 @@ int renderCommand(const std::vector<std::string>& args) {
     // with EFBIG instead, and the frame is reported and removed like any failed write.
     std::signal(SIGXFSZ, SIG_IGN);
 
-    ProgressBar bar(!quiet);
-    std::vector<std::string> written;
+    std::vector<std::string> written_;  // files, for the summary
     // Frames are encoded and written by a writer thread while the next block renders; OpenEXR
     // compresses each on as many threads as render (after the last block the writer is alone).
     setExrEncodeThreads(opts.threads > 0 ? opts.threads : int(std::max(1u, std::thread::hardware_concurrency())));
@@ -374,16 +418,68 @@ int renderCommand(const std::vector<std::string>& args) {
     RenderStats total;
     ResolvedSettings first;
     int frames = 0, blocks = 0;
-    std::vector<std::string> madeTextures;  // MakeTexture outputs, made once for all blocks
     double parseSeconds = 0;
     auto readFrom = std::chrono::steady_clock::now();
-    // A scene renders whole; a frame sequence a block of frames at a time as it is read (memory
-    // holds one block of the sequence), each block with its own renderer: a frame's pixels do not
-    // depend on the block (streyes/sequence.h).
-    auto renderBlock = [&](Sequence&& seq) {
+    PassRunner runner(log);
+    RenderStats depthTotal;  // the depth passes', added to the pictures' at the end
+    int depthRenders = 0;
+    bool statsChecked = false;
+    auto checkStatsFolder = [&] {  // before the first render, as the outputs' folders
+        if (!statsPath.empty() && !statsChecked) checkWritableFolder(statsPath, "--stats");
+        statsChecked = true;
+    };
+    auto addStats = [&](const RenderStats& stats, bool depth) {
+        RenderStats& into = depth ? depthTotal : total;
+        if ((depth ? depthRenders++ : blocks++) == 0) {
+            into = stats;
+        } else {  // several renders (a sequence's blocks, passes): summed, the largest memory theirs
+            into.counters += stats.counters;
+            into.lastFrame = std::max(into.lastFrame, stats.lastFrame);
+            into.firstFrame = std::min(into.firstFrame, stats.firstFrame);
+            into.timeBuild += stats.timeBuild;
+            into.timeRender += stats.timeRender;
+            into.timeWrite += stats.timeWrite;
+            into.peakMemoryBytes = std::max(into.peakMemoryBytes, stats.peakMemoryBytes);
+            into.memoryEstimateBytes = std::max(into.memoryEstimateBytes, stats.memoryEstimateBytes);
+            into.memoryBodiesBytes = std::max(into.memoryBodiesBytes, stats.memoryBodiesBytes);
+            into.framesSkipped += stats.framesSkipped;
+            into.procedurals += stats.procedurals;
+            into.bodiesGenerated += stats.bodiesGenerated;
+            into.passes = std::max(into.passes, stats.passes);
+        }
+    };
+    // -o names the pictures' files: a frame number that two picture passes render (two shots
+    // numbered alike) goes to the later pass's own name.
+    std::map<int, int> oFrameOf;  // frame -> picture pass written under -o
+    std::map<int, std::string> oPatternOf;
+    auto outPatternFor = [&](const PassJob& job) -> std::string {
+        if (outPattern.empty()) return outPattern;
+        auto known = oPatternOf.find(job.pass);
+        if (known != oPatternOf.end()) return known->second;
+        bool clash = false;
+        for (const auto& [f, frame] : job.frames) {
+            auto it = oFrameOf.find(f);
+            clash = clash || (it != oFrameOf.end() && it->second != job.pass);
+        }
+        std::string pattern = outPattern;
+        if (clash) {
+            const std::filesystem::path p(outPattern);
+            pattern = (p.parent_path() / (p.stem().string() + ".pass" + std::to_string(job.pass + 1) + p.extension().string()))
+                          .string();
+            log.warnOnce("o-pass:" + std::to_string(job.pass), job.frames.begin()->second.loc,
+                         "frames of another pass have these frame numbers: this pass's pictures are written to '" +
+                             pattern + "' (-o names the first)");
+        }
+        for (const auto& [f, frame] : job.frames) oFrameOf.emplace(f, job.pass);
+        return oPatternOf[job.pass] = pattern;
+    };
+    // A picture job: its frames rendered as one scene (a sequence a block of frames at a time as it
+    // is read: memory holds one block), with a renderer of its own: a frame's pixels do not depend
+    // on the block (streyes/sequence.h). Frames of the block another pass has are not written.
+    auto renderPicture = [&](PassJob& job) {
+        Sequence& seq = job.sequence;
         Scene& scene = seq.scene;
-        parseSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - readFrom).count();
-        if (blocks == 0) applyPreview(req, scene);
+        if (frames == 0) applyPreview(req, scene);
         RenderOptions blockOpts = opts;
         if (seq.isSequence) {  // this block's frames
             blockOpts.hasFrames = true;
@@ -391,30 +487,46 @@ int renderCommand(const std::vector<std::string>& args) {
             blockOpts.lastFrame = scene.settings.lastFrame;
         }
         const ResolvedSettings rs = resolveSettings(scene, blockOpts);
-        if (blocks == 0) first = rs;
-        const int blockFrames = rs.lastFrame - rs.firstFrame + 1;
+        if (frames == 0) first = rs;
+        std::set<int> mine;  // the frames this job writes
+        for (const auto& [f, frame] : job.frames) mine.insert(f);
+        const int blockFrames = seq.isSequence ? int(mine.size()) : rs.lastFrame - rs.firstFrame + 1;
         frames += blockFrames;
+        const std::string oPattern = outPatternFor(job);
         // Where each frame goes: -o, or the scene's displays (a sequence's frames each their own).
         std::vector<Output> outputs;
         std::map<int, std::vector<Output>> frameOutputs;
-        if (seq.isSequence) frameOutputs = sequenceOutputs(seq, outPattern, scenePath, rs.firstFrame, rs.lastFrame, log);
-        else outputs = chooseOutputs(scene, outPattern, scenePath, blockFrames, log);
+        if (seq.isSequence) frameOutputs = sequenceOutputs(seq, oPattern, scenePath, rs.firstFrame, rs.lastFrame, log, &mine);
+        else outputs = chooseOutputs(scene, oPattern, scenePath, blockFrames, log);
+        auto isMine = [&](int frame) { return !seq.isSequence || frameOutputs.count(frame) > 0; };
         auto outputsOf = [&](int frame) -> const std::vector<Output>& {
             return seq.isSequence ? frameOutputs.at(frame) : outputs;
         };
+        std::vector<int> written;  // the frames of the block this job writes
+        for (int f = rs.firstFrame; f <= rs.lastFrame; ++f)
+            if (isMine(f)) written.push_back(f);
+        // Depth is "midpoint" only in depth passes (they keep every surface); a picture's Z is the nearest.
+        if (scene.settings.depthFilter == "midpoint" && !written.empty())
+            for (const Output& o : outputsOf(written.front()))
+                if (o.mode.find('z') != std::string::npos)
+                    log.warnOnce("picture-midpoint", {},
+                                 "Hider \"hidden\" \"depthfilter\" \"midpoint\" applies to depth maps (Display \"zfile\" | "
+                                 "\"shadow\"): the picture's Z is the nearest depth");
 
         // Before anything is rendered, every output's folder and the --stats file's folder must
         // take a file: a missing or read-only folder would otherwise be found only when the first
         // frame block is done, perhaps minutes in (exit 1, as then). Writes failing later (a full
         // disk) are still caught, and the frame removed, by writeFrame.
         std::set<std::string> folders;  // each folder once (a sequence names a file a frame)
-        for (int f = rs.firstFrame; f <= rs.lastFrame && (f == rs.firstFrame || seq.isSequence); ++f)
+        for (int f : written) {
             for (const Output& o : outputsOf(f)) {
                 const std::string file = expandFramePattern(o.pattern, f);
                 if (folders.insert(std::filesystem::path(file).parent_path().string()).second)
                     checkWritableFolder(file, "-o");
             }
-        if (!statsPath.empty() && blocks == 0) checkWritableFolder(statsPath, "--stats");
+            if (!seq.isSequence) break;
+        }
+        checkStatsFolder();
 
         // Temporary files of renders of these frames that were killed mid-write go; with --resume,
         // frames whose every output is a complete image of the right size and channels (read
@@ -428,77 +540,120 @@ int renderCommand(const std::vector<std::string>& args) {
         }
         if (stale > 0) log.info("removed " + std::to_string(stale) + " temporary file" + (stale == 1 ? "" : "s") +
                                 " left by an interrupted render");
-        if (resume) {
-            blockOpts.frameDone = [&outputsOf, &rs](int frame) {
-                for (const Output& o : outputsOf(frame))
-                    if (!isCompleteFrame(expandFramePattern(o.pattern, frame), rs.width, rs.height, o.mode)) return false;
-                return true;
-            };
-        }
+        blockOpts.frameDone = [&outputsOf, &rs, &isMine, resume](int frame) {
+            if (!isMine(frame)) return true;  // another pass's frame: rendered with the block, not written
+            if (!resume) return false;
+            for (const Output& o : outputsOf(frame))
+                if (!isCompleteFrame(expandFramePattern(o.pattern, frame), rs.width, rs.height, o.mode)) return false;
+            return true;
+        };
         // The output variables the outputs write (a sequence's frames' own displays among them).
-        for (int f = rs.firstFrame; f <= rs.lastFrame && (f == rs.firstFrame || seq.isSequence); ++f)
+        for (int f : written) {
             for (const Output& o : outputsOf(f))
                 for (const std::string& v : modeVariables(o.mode))
                     if (std::find(blockOpts.aovs.begin(), blockOpts.aovs.end(), v) == blockOpts.aovs.end())
                         blockOpts.aovs.push_back(v);
+            if (!seq.isSequence) break;
+        }
         if (blockOpts.dofPreviewLayers > 0 && !blockOpts.aovs.empty())
             throw UsageError("--dof-preview writes colour, alpha and Z only: drop the output variables (" +
                              blockOpts.aovs.front() + ", ...) from the displays, or render with lens samples");
-        makeSceneTextures(scene, &madeTextures);
         blockOpts.textureSource = openImageTextures;  // loads OpenImageIO only on a shader's first lookup
+        blockOpts.shadowMaps = runner.binding(job);
+        const double open = scene.settings.shutterOpen;
         auto sink = [&](FrameImage& img) {
+            // A picture frame's own depth displays (Display "+x.z" "zfile" "z") are kept and written
+            // before its pixels go to the writer.
+            auto frame = job.frames.find(img.frame);
+            if (frame != job.frames.end()) runner.keep(frame->second, img, open);
             std::vector<std::pair<std::string, std::string>> files;
             for (const Output& o : outputsOf(img.frame)) {
                 files.emplace_back(expandFramePattern(o.pattern, img.frame), o.mode);
-                written.push_back(files.back().first);
+                written_.push_back(files.back().first);
             }
             writer.handOver(img, std::move(files));  // no copy: the renderer gets a written frame's buffers
         };
+        ProgressBar bar(!quiet);
         auto progress = [&](uint64_t done, uint64_t all) { bar.update(done, all); };
         RenderStats stats = blockOpts.dofPreviewLayers > 0
                                 ? renderDofPreview(scene, blockOpts, blockOpts.dofPreviewLayers, log, sink, progress)
                                 : Renderer(scene, blockOpts, log).render(sink, progress);
-        if (blocks++ == 0) {
-            total = stats;
-        } else {  // the blocks of a sequence: summed, the last frame and the largest memory theirs
-            total.counters += stats.counters;
-            total.lastFrame = stats.lastFrame;
-            total.timeBuild += stats.timeBuild;
-            total.timeRender += stats.timeRender;
-            total.timeWrite += stats.timeWrite;
-            total.peakMemoryBytes = std::max(total.peakMemoryBytes, stats.peakMemoryBytes);
-            total.memoryEstimateBytes = std::max(total.memoryEstimateBytes, stats.memoryEstimateBytes);
-            total.memoryBodiesBytes = std::max(total.memoryBodiesBytes, stats.memoryBodiesBytes);
-            total.framesSkipped += stats.framesSkipped;
-            total.procedurals += stats.procedurals;
-            total.bodiesGenerated += stats.bodiesGenerated;
-            total.passes = std::max(total.passes, stats.passes);
+        bar.finish();
+        stats.framesSkipped -= (rs.lastFrame - rs.firstFrame + 1) - int(written.size());  // other passes' frames
+        addStats(stats, false);
+    };
+    // Depth jobs render at their own Format and PixelSamples (--res, --samples and --preview are the
+    // picture's), rasterized (depths need every surface a sample crosses).
+    RenderOptions depthOpts = opts;
+    depthOpts.xres = depthOpts.yres = depthOpts.samples = 0;
+    depthOpts.dofPreviewLayers = 0;
+    depthOpts.aovs.clear();
+    depthOpts.textureSource = openImageTextures;
+    if (depthOpts.algorithm == Algorithm::Raytrace) depthOpts.algorithm = Algorithm::SpacetimeOcclusion;
+    if (depthOpts.algorithm == Algorithm::RaytraceFrames) depthOpts.algorithm = Algorithm::FramesOcclusion;
+    auto onJob = [&](PassJob&& job) {
+        parseSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - readFrom).count();
+        switch (job.kind) {
+            case PassJob::Kind::Render:
+                if (job.depth) {
+                    checkStatsFolder();
+                    addStats(runner.renderDepth(job, depthOpts), true);
+                }
+                else renderPicture(job);
+                break;
+            case PassJob::Kind::MakeShadow: runner.makeShadow(job); break;
+            case PassJob::Kind::MakeTexture: runner.makeTexture(job, writer); break;
         }
+        runner.release(job.release);
         readFrom = std::chrono::steady_clock::now();
     };
     // What is sized while it is read (a Blobby's cells) is sized for the image rendered.
     ReadDetail detail;
     detail.xres = opts.xres, detail.yres = opts.yres;
     if (req.preview && opts.xres <= 0) detail.formatScale = 1.0 / kPreviewDivisor;  // applyPreview's size
-    readSceneBlocks(scenePath, wanted, opts.maxFrameBlock, log, renderBlock, detail);
+    PassRequest passes;
+    passes.frames = wanted;
+    passes.blockFrames = opts.maxFrameBlock;
+    // --resume: depth frames whose maps are on disk are rendered only for pictures still to render.
+    if (resume) passes.done = [&](const Scene& frame) { return frameWritten(frame, req, scenePath); };
+    readPasses(scenePath, passes, log, onJob, detail);
     const ResolvedSettings& rs = first;
     RenderStats& stats = total;
+    if (depthRenders > 0) {  // the depth passes' work counts too; the figures describing the render are the pictures'
+        if (blocks == 0) {
+            total = depthTotal;
+        } else {
+            total.counters += depthTotal.counters;
+            total.timeBuild += depthTotal.timeBuild;
+            total.timeRender += depthTotal.timeRender;
+            total.timeWrite += depthTotal.timeWrite;
+            total.peakMemoryBytes = std::max(total.peakMemoryBytes, depthTotal.peakMemoryBytes);
+            total.memoryEstimateBytes = std::max(total.memoryEstimateBytes, depthTotal.memoryEstimateBytes);
+            total.memoryBodiesBytes = std::max(total.memoryBodiesBytes, depthTotal.memoryBodiesBytes);
+            total.procedurals += depthTotal.procedurals;
+            total.bodiesGenerated += depthTotal.bodiesGenerated;
+        }
+    }
     const auto waited = std::chrono::steady_clock::now();
     writer.finish();
     stats.timeWrite += std::chrono::duration<double>(std::chrono::steady_clock::now() - waited).count();
     stats.exrChunksCompressed = exrChunkCounts().compressed - chunksBefore.compressed;
     stats.exrChunksReused = exrChunkCounts().reused - chunksBefore.reused;
-    bar.finish();
     stats.timeParse = parseSeconds;
     stats.timeTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats.peakMemoryBytes = std::max(stats.peakMemoryBytes, peakResidentBytes());
     if (!statsPath.empty()) writeTextAtomically(statsPath, withProcessCpu(stats.toJson()));
     if (!quiet) {
-        std::fprintf(stderr, "streyes: %d frame%s %dx%d, %d samples/pixel, %s%s, %.2f s: %s%s\n", frames,
-                     frames == 1 ? "" : "s", rs.width, rs.height, rs.pattern.count(), algorithmName(opts.algorithm),
-                     opts.tolerance > 0 ? (" (tolerance " + std::to_string(opts.tolerance).substr(0, 6) + ")").c_str() : "",
-                     stats.timeTotal, written.empty() ? "(nothing written)" : written.front().c_str(),
-                     written.size() > 1 ? (" ... " + written.back()).c_str() : "");
+        if (frames > 0 || runner.mapsWritten() == 0)
+            std::fprintf(stderr, "streyes: %d frame%s %dx%d, %d samples/pixel, %s%s, %.2f s: %s%s\n", frames,
+                         frames == 1 ? "" : "s", rs.width, rs.height, rs.pattern.count(), algorithmName(opts.algorithm),
+                         opts.tolerance > 0 ? (" (tolerance " + std::to_string(opts.tolerance).substr(0, 6) + ")").c_str()
+                                            : "",
+                         stats.timeTotal, written_.empty() ? "(nothing written)" : written_.front().c_str(),
+                         written_.size() > 1 ? (" ... " + written_.back()).c_str() : "");
+        if (runner.mapsWritten() > 0)
+            std::fprintf(stderr, "streyes: %d depth map file%s written\n", runner.mapsWritten(),
+                         runner.mapsWritten() == 1 ? "" : "s");
         if (stats.framesSkipped > 0)
             std::fprintf(stderr, "streyes: %d frame%s already complete, not written again (--resume)\n",
                          stats.framesSkipped, stats.framesSkipped == 1 ? "" : "s");

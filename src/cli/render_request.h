@@ -3,11 +3,13 @@
 #pragma once
 
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "streyes/renderer.h"
 #include "streyes/scene.h"
+#include "streyes/passes.h"
 #include "streyes/sequence.h"
 #include "streyes/error.h"
 
@@ -34,7 +36,9 @@ std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPatter
                                   int frames, Log& log);
 // A frame sequence's outputs, frame by frame: -o for all, else each frame's own file displays (a
 // name without #### that several frames give gets one), else SCENE-NAME.####.exr.
+// `only`: the frames to give outputs (a pass's; the others of first..last are another pass's).
 std::map<int, std::vector<Output>> sequenceOutputs(const Sequence& seq, const std::string& oPattern,
-                                                   const std::string& scenePath, int first, int last, Log& log);
+                                                   const std::string& scenePath, int first, int last, Log& log,
+                                                   const std::set<int>* only = nullptr);
 
 }  // namespace streyes::cli

@@ -219,6 +219,14 @@ void writeFrame(const std::string& path, const FrameImage& image, const std::str
     writeBytesInPlace(path, bytes);
 }
 
+void writeFileAtomically(const std::string& path, const std::vector<unsigned char>& bytes) {
+    const fs::path target(path);
+    const fs::path dir = folderOf(target);
+    requireFolder(path, dir, "-o");
+    if (access(dir.c_str(), W_OK) != 0) throw notWritable(path, dir, errno);
+    writeBytesInPlace(path, bytes);
+}
+
 namespace {
 
 std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage& image, const std::string& mode,

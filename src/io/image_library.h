@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "shade/shadow_map.h"
 #include "streyes/image_io.h"
 #include "streyes/scene.h"
 
@@ -35,6 +36,14 @@ struct ImageLibrary {
     sl::TextureSource* (*makeTextureSource)(const std::vector<std::string>& searchPath, TextureWarning warn);
     // Makes a tiled, MIP-mapped texture or lat-long environment map (maketx). False, with *error.
     bool (*makeTexture)(const MakeTextureDesc& desc, std::string* error);
+    // Depth maps (shade/shadow_map.h) as float TIFF files: one channel "z", the light camera's
+    // matrices as "worldtocamera" and "worldtoscreen" (Pixar's TIFF tags, as PRMan's and Aqsis's
+    // shadow maps carry them). `shadow`: tiled and marked textureformat "Shadow" (MakeShadow's
+    // output, Display "shadow"); else scanlines (Display "zfile"). Encoded in memory.
+    bool (*encodeDepthMap)(const std::string& path, const DepthMap& map, bool shadow, std::vector<unsigned char>* bytes,
+                           std::string* error);
+    // Reads one: false, with *error saying why, when it is not a depth map or does not read whole.
+    bool (*readDepthMap)(const std::string& path, DepthMap* out, std::string* error);
 };
 
 // The module, loaded on first use (beside the executable, then from the installed library

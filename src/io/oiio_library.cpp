@@ -69,7 +69,8 @@ bool resizeWithOiio(const float* rgb, int w, int h, float* out, int nw, int nh, 
     return true;
 }
 
-const ImageLibrary kLibrary{readWithOiio, encodeWithOiio, resizeWithOiio, makeOiioTextureSource, makeOiioTexture};
+const ImageLibrary kLibrary{readWithOiio,           encodeWithOiio,         resizeWithOiio,     makeOiioTextureSource,
+                            makeOiioTexture,        encodeOiioDepthMap,     readOiioDepthMap};
 
 }  // namespace
 

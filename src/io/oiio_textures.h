@@ -11,5 +11,9 @@ namespace streyes {
 
 sl::TextureSource* makeOiioTextureSource(const std::vector<std::string>& searchPath, TextureWarning warn);
 bool makeOiioTexture(const MakeTextureDesc& desc, std::string* error);
+// Depth maps as TIFF (oiio_depth_maps.cpp).
+bool encodeOiioDepthMap(const std::string& path, const DepthMap& map, bool shadow, std::vector<unsigned char>* bytes,
+                        std::string* error);
+bool readOiioDepthMap(const std::string& path, DepthMap* out, std::string* error);
 
 }  // namespace streyes

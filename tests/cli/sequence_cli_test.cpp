@@ -84,15 +84,14 @@ TEST(SequenceCli, FarmPlansASequence) {
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("frames 1-8 (8), 160x90, in 2 blocks of 4"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("BLOCKS=(1-4 5-8)"), std::string::npos) << r.output;
+    // A frame with another shutter is another pass: planned with the others, not refused.
     copyShot(tmp.path(), 2);
     std::string text = readFile(tmp.path() + "/" + shotFile(2));
     text.replace(text.find("Shutter 0 0.5"), 13, "Shutter 0 1");
     writeFile(tmp.path(), shotFile(2), text);
     r = runStreyesWith("cd " + tmp.path() + " && ", "farm submit 'shot.####.rib' -o " + tmp.path() + "/g.####.exr --dry-run");
-    EXPECT_EQ(r.exitCode, 2) << r.output;
-    EXPECT_NE(r.output.find("shot.0002.rib:2: error: frame 2 has Shutter 0 1, Shutter 0 0.5 against frame 1"),
-              std::string::npos)
-        << r.output;
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("frames 1-2 (2)"), std::string::npos) << r.output;
 }
 
 TEST(SequenceCli, AMissingFrameFileIsAnErrorNamingIt) {
@@ -116,27 +115,29 @@ TEST(SequenceCli, AMissingFrameFileIsAnErrorNamingIt) {
     EXPECT_NE(r.output.find("has no FrameBegin 9"), std::string::npos) << r.output;
 }
 
-TEST(SequenceCli, FramesThatDisagreeOnResolutionOrShutterAreRefusedNamingFileAndLine) {
+// Frames of another resolution or shutter are passes of their own (streyes/passes.h): nothing is
+// refused, and each frame is what it is alone.
+TEST(SequenceCli, FramesOfOtherResolutionOrShutterRenderAsPassesOfTheirOwn) {
     test::TempDir tmp("seqcli");
     copyShot(tmp.path(), 3);
-    const std::string two = tmp.path() + "/" + shotFile(2);
-    std::string text = readFile(two);
+    std::string text = readFile(tmp.path() + "/" + shotFile(2));
     text.replace(text.find("Format 160 90"), 13, "Format 320 90");
     writeFile(tmp.path(), shotFile(2), text);
-    test::CliRun r = renderIn(tmp.path(), "'shot.####.rib'");
-    EXPECT_EQ(r.exitCode, 2) << r.output;
-    EXPECT_NE(r.output.find("shot.0002.rib:2: error: frame 2 has resolution 320x90, 160x90 against frame 1 (shot.0001.rib:2)"),
-              std::string::npos)
-        << r.output;
-    EXPECT_EQ(listDir(tmp.path()).size(), 3u);  // nothing written
-
     text = readFile(tmp.path() + "/" + shotFile(3));
     text.replace(text.find("Shutter 0 0.5"), 13, "Shutter 0 0.4");
     writeFile(tmp.path(), shotFile(3), text);
-    r = renderIn(tmp.path(), "'shot.####.rib' --frames 3-3");  // alone it renders
-    EXPECT_EQ(r.exitCode, 0) << r.output;
-    r = renderIn(tmp.path(), "'shot.####.rib' --frames 1-3 --res 160x90");
-    EXPECT_EQ(r.exitCode, 2) << r.output;
+    test::CliRun r = renderIn(tmp.path(), "'shot.####.rib' --algorithm frames");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(readImage(tmp.path() + "/shot.0002.exr").width, 320);
+    EXPECT_EQ(readImage(tmp.path() + "/shot.0001.exr").width, 160);
+    for (int f = 1; f <= 3; ++f) {
+        const std::string name = "shot.000" + std::to_string(f) + ".exr";
+        fs::rename(tmp.path() + "/" + name, tmp.path() + "/all-" + name);
+        r = renderIn(tmp.path(), "'shot.####.rib' --algorithm frames --frames " + std::to_string(f));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        const ImageData a = readImage(tmp.path() + "/all-" + name), b = readImage(tmp.path() + "/" + name);
+        EXPECT_EQ(a.pixels, b.pixels) << name;
+    }
 }
 
 TEST(SequenceCli, AnIdentifierGivenTwiceInAFrameWarnsNamingFileAndLine) {

@@ -7,6 +7,7 @@
 
 #include "scene/rib_parser.h"
 #include "streyes/rib.h"
+#include "streyes/passes.h"
 #include "streyes/sequence.h"
 #include "test_util.h"
 
@@ -75,8 +76,10 @@ TEST(Sequence, EveryFrameIsBitIdenticalToItsRibAloneWithAlgorithmFrames) {
 TEST(Sequence, ReadABlockAtATimeEachBlockRendersItsFramesTheSame) {
     Log log;
     std::vector<Sequence> blocks;
-    readSceneBlocks(sourcePath("scenes/sequence/shot.####.rib"), {}, 3, log,
-                    [&](Sequence&& s) { blocks.push_back(std::move(s)); });
+    PassRequest req;
+    req.blockFrames = 3;
+    readPasses(sourcePath("scenes/sequence/shot.####.rib"), req, log,
+               [&](PassJob&& j) { blocks.push_back(std::move(j.sequence)); });
     ASSERT_EQ(blocks.size(), 3u);
     const int firsts[] = {1, 4, 7}, lasts[] = {3, 6, 8};
     const RenderResult whole = renderScene(readShot("shot.rib").scene, test::optionsFor(Algorithm::Frames));
@@ -268,32 +271,26 @@ std::string errorOf(const std::vector<std::string>& frames) {
     return "";
 }
 
-TEST(Sequence, FramesThatDisagreeOnResolutionOrShutterAreRefusedNamingTheFrame) {
-    std::string other = stillFrame(2);
-    other.replace(other.find("Format 96 64"), 12, "Format 48 32");
-    std::string e = errorOf({stillFrame(1), other});
-    EXPECT_NE(e.find("frame1.rib:1: error: frame 2 has resolution 48x32, 96x64 against frame 1 (frame0.rib:1)"),
+// A builder takes one pass's frames (streyes/passes.h sorts frames into passes, so frames of
+// other resolutions, shutters or lenses are other passes, not errors): in increasing order, gaps
+// allowed (another pass's frames), with one shutter.
+TEST(Sequence, ABuilderTakesOnePassesFramesInIncreasingOrder) {
+    std::string e = errorOf({stillFrame(2), stillFrame(1)});
+    EXPECT_NE(e.find("frame1.rib:1: error: frame 1 comes after frame 2"), std::string::npos) << e;
+    e = errorOf({stillFrame(1), stillFrame(2, "0 0.25")});
+    EXPECT_NE(e.find("frame1.rib:1: error: frame 2 has Shutter 0 0.25, not the other frames' Shutter 0 0.5"),
               std::string::npos)
         << e;
-    e = errorOf({stillFrame(1), stillFrame(2, "0 0.25")});
-    EXPECT_NE(e.find("frame1.rib:1: error: frame 2 has Shutter 0 0.25, Shutter 0 0.5 against frame 1"), std::string::npos)
-        << e;
-    std::string lens = stillFrame(2);
-    lens.insert(lens.find("Shutter"), "DepthOfField 2 1 8\n");
-    e = errorOf({stillFrame(1), lens});
-    EXPECT_NE(e.find("frame1.rib:1: error: frame 2 has another DepthOfField than frame 1"), std::string::npos) << e;
-    EXPECT_EQ(errorOf({lens, [&] {
-                  std::string l = lens;
-                  l.replace(l.find("FrameBegin 2"), 12, "FrameBegin 3");
-                  return l;
-              }()}),
-              "");  // the same lens in every frame
-    e = errorOf({stillFrame(1), stillFrame(3)});
-    EXPECT_NE(e.find("frame1.rib:1: error: frame 3 follows frame 1: frame 2 is missing"), std::string::npos) << e;
-    e = errorOf({stillFrame(2), stillFrame(1)});
-    EXPECT_NE(e.find("frame 1 comes after frame 2"), std::string::npos) << e;
-    e = errorOf({stillFrame(1, "0 1.5")});
+    e = errorOf({stillFrame(1, "0 1.5"), stillFrame(2, "0 1.5")});
     EXPECT_NE(e.find("overlap"), std::string::npos) << e;
+    EXPECT_EQ(errorOf({stillFrame(1, "0 1.5")}), "");  // alone it renders
+    // A gap (frame 2 another pass's): the still set is one run over it.
+    Log log;
+    const Sequence gap = buildFrames({stillFrame(1), stillFrame(3)}, log);
+    EXPECT_EQ(gap.stats.stillRuns, 7u);
+    EXPECT_EQ(gap.scene.settings.firstFrame, 1);
+    EXPECT_EQ(gap.scene.settings.lastFrame, 3);
+    EXPECT_EQ(gap.displays.count(2), 0u);
 }
 
 TEST(Sequence, FrameBlocksMustHoldAWorld) {

@@ -1,0 +1,705 @@
+// Passes (streyes/passes.h): an input's frames grouped into jobs, make requests among them, each
+// name's versions, and the order that makes every version before it is read.
+#include "streyes/passes.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <climits>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <memory>
+#include <utility>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace streyes {
+
+bool isDepthDisplay(const DisplayDesc& d) { return d.type == "zfile" || d.type == "shadow"; }
+
+namespace {
+
+bool isPictureDisplay(const DisplayDesc& d) {
+    return d.type == "openexr" || d.type == "file" || d.type == "tiff" || d.type == "exr";
+}
+
+// Every display that writes a file writes a depth map (and one does).
+bool depthFrame(const Scene& s) {
+    bool depth = false;
+    for (const DisplayDesc& d : s.settings.displays) {
+        if (isPictureDisplay(d)) return false;
+        depth = depth || isDepthDisplay(d);
+    }
+    return depth;
+}
+
+void put(std::string& k, double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g,", v);
+    k += buf;
+}
+
+void put(std::string& k, const std::string& v) {
+    k += std::to_string(v.size());
+    k += ':';
+    k += v;
+    k += ',';
+}
+
+void put(std::string& k, const ParamList& params) {
+    for (const Param& p : params.params) {
+        put(k, p.name);
+        put(k, double(int(p.type)));
+        for (double v : p.nums) put(k, v);
+        for (const std::string& v : p.strings) put(k, v);
+        k += ';';
+    }
+}
+
+}  // namespace
+
+std::string passKey(const Scene& f) {
+    std::string k;
+    const CameraDesc& c = f.camera;
+    const RenderSettings& s = f.settings;
+    k += depthFrame(f) ? "depth|" : "picture|";
+    put(k, double(int(c.projection))), put(k, c.fov), put(k, double(c.hasScreenWindow));
+    for (double v : c.screenWindow) put(k, v);
+    put(k, c.frameAspect), put(k, double(c.xres)), put(k, double(c.yres)), put(k, c.pixelAspect);
+    put(k, c.nearClip), put(k, c.farClip), put(k, c.fstop), put(k, c.focalLength), put(k, c.focalDistance);
+    k += '|';
+    put(k, s.shutterOpen), put(k, s.shutterClose), put(k, double(s.pixelSamplesX)), put(k, double(s.pixelSamplesY));
+    put(k, s.filter.type), put(k, s.filter.xwidth), put(k, s.filter.ywidth);
+    put(k, s.shaderSearchPath), put(k, double(s.builtinShading));
+    put(k, s.imager.name), put(k, s.imager.params);
+    put(k, s.exposureGain), put(k, s.exposureGamma), put(k, double(s.jitter)), put(k, s.depthFilter);
+    put(k, double(s.bucketSize)), put(k, double(s.gridSize)), put(k, s.shadowBias);
+    for (const std::string& t : s.textureSearchPath) put(k, t);
+    k += '|';
+    for (const RenderSettings::ShaderOutput& o : s.shaderOutputs) put(k, o.type), put(k, o.name);
+    // Exposures that overlap (close - open > 1) cannot share a spacetime render: each frame alone.
+    if (s.shutterClose - s.shutterOpen > 1) put(k, double(f.frameNumber)), put(k, f.frameLoc.str());
+    return k;
+}
+
+namespace {
+
+// Every string a shader parameter of the scene gives (lights, surfaces, displacements,
+// atmospheres, the imager, in objects too), with where it is first given: the names a frame may
+// read maps and textures by.
+void stringsOf(const Scene& s, std::map<std::string, SourceLoc>& out) {
+    auto params = [&](const ParamList& l) {
+        for (const Param& p : l.params)
+            for (const std::string& v : p.strings)
+                if (!v.empty()) out.emplace(v, p.loc);
+    };
+    for (const LightDesc& l : s.lights) params(l.params);
+    params(s.settings.imager.params);
+    std::set<const Attributes*> seen;
+    auto attributes = [&](const AttributesPtr& a) {
+        if (!a || !seen.insert(a.get()).second) return;
+        params(a->surface.params);
+        params(a->displacement.params);
+        params(a->atmosphere.params);
+    };
+    auto each = [&](const auto& v) {
+        for (const auto& p : v) attributes(p.attributes);
+    };
+    each(s.patches), each(s.patchMeshes), each(s.subdivisionMeshes), each(s.quadrics), each(s.polygonMeshes);
+    each(s.curves), each(s.points), each(s.nuPatches), each(s.procedurals);
+    for (const ProceduralDesc& p : s.procedurals)
+        if (p.object) stringsOf(*p.object, out);
+}
+
+MotionTransform inverse(const MotionTransform& m) {
+    std::vector<Matrix4> keys;
+    for (const Matrix4& k : m.keys()) {
+        Matrix4 inv;
+        if (!invert(k, &inv)) inv = Matrix4();
+        keys.push_back(inv);
+    }
+    return MotionTransform(m.times(), std::move(keys));
+}
+
+// Attribute "autoshadows" on a light (Aqsis): the depth frame rendered from it before the frame, as
+// Aqsis renders it: the light's space as the camera, the frame's projection over the screen
+// window [-1, 1]^2, res x res pixels, one sample a pixel unjittered under a 1-pixel box, depths
+// by "midpoint", written as a shadow map.
+Scene autoShadowFrame(const Scene& picture, const LightDesc& light) {
+    Scene s = picture;
+    s.camera.worldToCamera = inverse(light.lightToWorld);
+    s.camera.hasScreenWindow = true;
+    s.camera.screenWindow[0] = -1, s.camera.screenWindow[1] = 1, s.camera.screenWindow[2] = -1, s.camera.screenWindow[3] = 1;
+    s.camera.frameAspect = 1;
+    s.camera.xres = s.camera.yres = light.autoShadowRes;
+    s.camera.pixelAspect = 1;
+    s.camera.fstop = std::numeric_limits<double>::infinity();
+    RenderSettings& r = s.settings;
+    r.pixelSamplesX = r.pixelSamplesY = 1;
+    r.filter = FilterDesc{"box", 1, 1};
+    r.jitter = false;
+    r.depthFilter = "midpoint";
+    r.displays = {DisplayDesc{light.autoShadowMap, "shadow", "z", light.autoShadowLoc}};
+    r.imager = ShaderDesc{};
+    r.exposureGain = r.exposureGamma = 1;
+    r.makeTextures.clear();
+    r.makeShadows.clear();
+    s.frameLoc = light.autoShadowLoc;
+    return s;
+}
+
+class Planner {
+  public:
+    Planner(const PassRequest& req, Log& log, const std::function<void(PassJob&&)>& emit)
+        : req_(req), log_(log), emit_(emit), block_(std::max(1, req.blockFrames)) {}
+
+    void beginFile() { serials_.clear(); }
+
+    // A frame (frameLoc set) or an ordinary scene, with the make requests around it.
+    void scene(Scene&& s) {
+        const bool ordinary = s.frameLoc.line == 0;  // a scene without frames (a frame file's has its file's place)
+        makes(s, false);
+        const std::vector<MakeShadowDesc> shadows = s.settings.makeShadows;
+        const std::vector<MakeTextureDesc> textures = s.settings.makeTextures;
+        if (!depthFrame(s))
+            for (const LightDesc& l : s.lights)
+                if (!l.autoShadowMap.empty()) place(autoShadowFrame(s, l), ordinary);
+        place(std::move(s), ordinary);
+        Scene rest;
+        rest.settings.makeShadows = shadows;
+        rest.settings.makeTextures = textures;
+        makes(rest, true);
+    }
+    // What follows a file's last frame.
+    void trailing(const Scene& s) { makes(s, true, true); }
+    const std::set<int>& numbers() const { return numbers_; }
+
+    void finish() {
+        flush();
+        candidates_.clear();
+    }
+
+  private:
+    struct Make {
+        PassJob::Kind kind = PassJob::Kind::MakeShadow;
+        MakeShadowDesc shadow;
+        MakeTextureDesc texture;
+    };
+    struct Node {
+        bool job = true;
+        std::string key;
+        bool depth = false, ordinary = false;
+        int pass = 0, count = 0, last = INT_MIN;
+        std::unique_ptr<SequenceBuilder> builder;
+        Sequence ordinaryScene;
+        std::map<int, PassFrame> frames;
+        std::map<std::string, SourceLoc> namedAt;
+        Make make;
+        FileVersion input = 0, output = 0;
+        std::set<int> deps;
+        std::vector<FileVersion> reads, writes;
+        int order = 0;
+    };
+    struct Version {
+        std::string name;
+        int node = -1;       // the node that writes it (pending, or done once not pending)
+        int candidate = -1;  // or the candidate that would
+        bool superseded = false, emitted = false, released = false;
+        int readers = 0;  // placed nodes reading it, not yet emitted
+    };
+    // A frame or request kept until it is known whether a wanted frame reads what it writes.
+    struct Candidate {
+        bool isMake = false;
+        Scene scene;
+        bool ordinary = false;
+        PassFrame frame;
+        std::map<std::string, SourceLoc> strings;
+        Make make;
+        FileVersion input = 0;
+        std::vector<FileVersion> writes;
+        bool needy = true;  // what it reads is made for it (not for a picture --resume found written)
+        int order = 0;      // its place in the input
+    };
+
+    bool inRange(const Scene& s) const {
+        return !req_.frames.given || (s.frameNumber >= req_.frames.first && s.frameNumber <= req_.frames.last);
+    }
+
+    // The frames an ordinary scene renders (the renderer's rule: --frames, else its own option).
+    std::pair<int, int> ordinaryFrames(const Scene& s) const {
+        if (req_.frames.given) return {req_.frames.first, req_.frames.last};
+        if (s.settings.hasFrames) return {s.settings.firstFrame, s.settings.lastFrame};
+        return {0, 0};
+    }
+
+    // A new version of `name`, made the latest (what readers after it read) by publish(): between
+    // the two, the one who writes it can be registered, so that the versions it supersedes are let
+    // go knowing of it.
+    FileVersion newVersion(const std::string& name) {
+        const FileVersion v = nextVersion_++;
+        versions_[v].name = name;
+        return v;
+    }
+    void publish(FileVersion v) {
+        const std::string& name = versions_[v].name;
+        auto it = latest_.find(name);
+        const FileVersion old = it == latest_.end() ? 0 : it->second;
+        latest_[name] = v;
+        if (old > 0) supersede(old);
+    }
+    void supersede(FileVersion v) {
+        Version& ver = versions_[v];
+        ver.superseded = true;
+        if (ver.emitted && ver.readers == 0 && !ver.released) {
+            ver.released = true;
+            releaseSoon_.push_back(v);
+        }
+        dropDeadCandidates();
+    }
+
+    // A candidate none of whose versions can be read any more (each written again since, and no
+    // candidate reading it) goes; the oldest go too when too many are kept.
+    void dropDeadCandidates() {
+        for (bool again = true; again;) {
+            again = false;
+            for (auto it = candidates_.begin(); it != candidates_.end();) {
+                bool dead = true;
+                for (FileVersion v : it->second.writes) {
+                    if (!versions_[v].superseded) dead = false;
+                    for (const auto& [id, c] : candidates_)
+                        if (c.isMake && c.input == v) dead = false;
+                }
+                if (dead) {
+                    for (FileVersion v : it->second.writes) versions_[v].candidate = -1;
+                    it = candidates_.erase(it);
+                    again = true;
+                } else {
+                    ++it;
+                }
+            }
+        }
+        while (candidates_.size() > size_t(2 * block_ + 16)) {
+            for (FileVersion v : candidates_.begin()->second.writes) versions_[v].candidate = -1;
+            candidates_.erase(candidates_.begin());
+        }
+    }
+
+    // New make requests of a scene (by serial: a frame's scene carries those before it too):
+    // those before its world, or after it.
+    void makes(const Scene& s, bool after, bool all = false) {
+        std::vector<std::pair<int, Make>> found;
+        for (const MakeShadowDesc& d : s.settings.makeShadows)
+            if ((all || d.afterWorld == after) && !serials_.count(d.serial)) found.push_back({d.serial, {PassJob::Kind::MakeShadow, d, {}}});
+        for (const MakeTextureDesc& d : s.settings.makeTextures)
+            if ((all || d.afterWorld == after) && !serials_.count(d.serial)) found.push_back({d.serial, {PassJob::Kind::MakeTexture, {}, d}});
+        std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (auto& [serial, m] : found) {
+            serials_.insert(serial);
+            addMake(std::move(m));
+        }
+    }
+
+    void addMake(Make&& m) {
+        ++order_;
+        if (m.kind == PassJob::Kind::MakeShadow) {
+            auto it = latest_.find(m.shadow.input);
+            const FileVersion input = it == latest_.end() ? 0 : it->second;
+            const FileVersion output = newVersion(m.shadow.output);
+            if (input > 0 && versions_[input].candidate >= 0) {  // made from a frame kept in case: kept too
+                Candidate c;
+                c.isMake = true;
+                c.make = std::move(m);
+                c.input = input;
+                c.writes = {output};
+                c.order = order_;
+                versions_[output].candidate = order_;
+                candidates_.emplace(order_, std::move(c));
+                publish(output);  // (in place, "a.z" -> "a.z": the frame stays, as the request reads it)
+                return;
+            }
+            placeMake(std::move(m), input, output, order_);
+            publish(output);
+            return;
+        }
+        placeMake(std::move(m), 0, 0, order_);
+    }
+
+    void placeMake(Make&& m, FileVersion input, FileVersion output, int order) {
+        const int id = nextNode_++;
+        Node& n = pending_[id];
+        n.job = false;
+        n.order = order;
+        n.make = std::move(m);
+        n.input = input;
+        n.output = output;
+        if (input > 0) {
+            n.reads = {input};
+            ++versions_[input].readers;
+            if (pending_.count(versions_[input].node)) n.deps.insert(versions_[input].node);
+        }
+        if (output > 0) {
+            n.writes = {output};
+            versions_[output].node = id;
+            versions_[output].candidate = -1;
+        }
+        if (n.make.kind == PassJob::Kind::MakeTexture) {
+            // Its picture may be any file a frame before it writes, and frames before it may read
+            // the texture it replaces: it runs after everything before it.
+            for (const auto& [other, node] : pending_)
+                if (other != id) n.deps.insert(other);
+            textures_.push_back({n.make.texture.output, id});
+        }
+    }
+
+    void place(Scene&& s, bool ordinary) {
+        ++order_;
+        if (!ordinary) numbers_.insert(s.frameNumber);
+        Candidate c;
+        c.ordinary = ordinary;
+        c.order = order_;
+        PassFrame& f = c.frame;
+        f.number = s.frameNumber;
+        f.loc = s.frameLoc;
+        f.camera = s.camera;
+        stringsOf(s, c.strings);
+        for (const auto& [name, loc] : c.strings) {
+            auto it = latest_.find(name);
+            if (it != latest_.end()) f.reads[name] = it->second;
+        }
+        // Wanted: in --frames; a depth frame not if --resume finds it written (then only if a
+        // picture still to render reads from it). A picture written already reads from nothing.
+        const bool done = !ordinary && inRange(s) && req_.done && req_.done(s);
+        const bool want = ordinary || (inRange(s) && !(done && depthFrame(s)));
+        c.needy = !done;
+        // The versions it writes, in display order: a frame's depth display named with a frame
+        // field writes that frame's name (an ordinary scene's, one version holding every frame's).
+        for (const DisplayDesc& d : s.settings.displays)
+            if (isDepthDisplay(d)) {
+                const FileVersion v = newVersion(ordinary ? d.name : frameFileName(d.name, s.frameNumber));
+                f.maps.push_back({d, v});
+                c.writes.push_back(v);
+                if (!want) versions_[v].candidate = order_;
+            }
+        const std::vector<FileVersion> writes = c.writes;
+        c.scene = std::move(s);
+        if (want) {
+            placeFrame(std::move(c));
+        } else if (!c.writes.empty()) {
+            candidates_.emplace(order_, std::move(c));
+        }
+        for (FileVersion v : writes) publish(v);
+    }
+
+    // A candidate a wanted frame reads from: placed now, with what it reads from.
+    void promote(int id) {
+        auto it = candidates_.find(id);
+        if (it == candidates_.end()) return;
+        Candidate c = std::move(it->second);
+        candidates_.erase(it);
+        if (c.isMake) {
+            if (c.input > 0 && versions_[c.input].candidate >= 0) promote(versions_[c.input].candidate);
+            placeMake(std::move(c.make), c.input, c.writes.front(), c.order);
+            return;
+        }
+        placeFrame(std::move(c));
+    }
+
+    // Does `from` run after `to` (through the pending nodes' dependencies)?
+    bool reaches(int from, int to) const {
+        std::vector<int> stack{from};
+        std::set<int> seen;
+        while (!stack.empty()) {
+            const int n = stack.back();
+            stack.pop_back();
+            if (n == to) return true;
+            if (!seen.insert(n).second) continue;
+            auto it = pending_.find(n);
+            if (it != pending_.end()) stack.insert(stack.end(), it->second.deps.begin(), it->second.deps.end());
+        }
+        return false;
+    }
+
+    void placeFrame(Candidate&& c) {
+        PassFrame& f = c.frame;
+        if (c.needy)
+            for (const auto& [name, v] : f.reads)
+                if (versions_[v].candidate >= 0) promote(versions_[v].candidate);
+        const std::string key = c.ordinary ? std::string() : passKey(c.scene);
+        // A full job, or two blocks' worth of frames held: render what is held first.
+        auto open = openJob_.find(key);
+        if (!c.ordinary && ((open != openJob_.end() && pending_.count(open->second) &&
+                             pending_.at(open->second).count >= block_) ||
+                            pendingFrames_ >= 2 * block_)) {
+            flush();
+            open = openJob_.end();
+        }
+        std::set<int> deps;
+        for (const auto& [name, v] : f.reads)
+            if (pending_.count(versions_[v].node)) deps.insert(versions_[v].node);
+        for (const auto& [name, node] : textures_)
+            if (pending_.count(node) && (c.strings.count(name) || c.strings.count(std::filesystem::path(name).filename().string())))
+                deps.insert(node);
+        int id = -1;
+        if (!c.ordinary && open != openJob_.end() && pending_.count(open->second)) {
+            const int j = open->second;
+            const Node& n = pending_.at(j);
+            bool fits = n.last < f.number && n.count < block_;
+            for (int d : deps) fits = fits && d != j && !reaches(d, j);
+            if (fits) id = j;
+        }
+        if (id < 0) {
+            id = nextNode_++;
+            Node& n = pending_[id];
+            n.key = key;
+            n.ordinary = c.ordinary;
+            n.depth = depthFrame(c.scene);
+            n.order = c.order;
+            auto p = passOfKey_.find(key);
+            n.pass = c.ordinary ? nextPass_++ : p != passOfKey_.end() ? p->second : (passOfKey_[key] = nextPass_++);
+            if (!c.ordinary) {
+                n.builder = std::make_unique<SequenceBuilder>(log_);
+                openJob_[key] = id;
+            }
+        }
+        Node& n = pending_.at(id);
+        n.deps.insert(deps.begin(), deps.end());
+        for (const auto& [name, v] : f.reads) {
+            n.reads.push_back(v);
+            ++versions_[v].readers;
+        }
+        for (const auto& [d, v] : f.maps) {
+            n.writes.push_back(v);
+            versions_[v].node = id;
+            versions_[v].candidate = -1;
+        }
+        n.namedAt.insert(c.strings.begin(), c.strings.end());
+        ++n.count;
+        ++pendingFrames_;
+        if (c.ordinary) {
+            const auto [first, last] = ordinaryFrames(c.scene);
+            for (int k = first; k <= last; ++k) {
+                PassFrame one = f;
+                one.number = k;
+                n.frames[k] = std::move(one);
+            }
+            n.ordinaryScene.scene = std::move(c.scene);
+        } else {
+            n.last = f.number;
+            n.frames[f.number] = std::move(f);
+            n.builder->add(std::move(c.scene));
+        }
+    }
+
+    // Every pending node, in an order that runs each after what it reads (the input's order
+    // where either would do).
+    void flush() {
+        std::map<int, Node> nodes = std::move(pending_);
+        pending_.clear();
+        openJob_.clear();
+        textures_.clear();
+        pendingFrames_ = 0;
+        std::set<int> left;
+        for (const auto& [id, n] : nodes) left.insert(id);
+        while (!left.empty()) {
+            int next = -1;
+            for (int id : left) {
+                bool ready = true;
+                for (int d : nodes.at(id).deps) ready = ready && !left.count(d);
+                if (ready && (next < 0 || nodes.at(id).order < nodes.at(next).order)) next = id;
+            }
+            if (next < 0) throw std::logic_error("passes: a cycle among the jobs");  // joining rules prevent it
+            left.erase(next);
+            emit(nodes.at(next));
+        }
+    }
+
+    void emit(Node& n) {
+        PassJob job;
+        if (n.job) {
+            job.kind = PassJob::Kind::Render;
+            job.depth = n.depth;
+            job.pass = n.pass;
+            job.frames = std::move(n.frames);
+            job.namedAt = std::move(n.namedAt);
+            job.sequence = n.ordinary ? std::move(n.ordinaryScene) : n.builder->finish();
+        } else {
+            job.kind = n.make.kind;
+            job.makeShadow = std::move(n.make.shadow);
+            job.makeTexture = std::move(n.make.texture);
+            job.input = n.input;
+            job.output = n.output;
+        }
+        for (FileVersion v : n.writes) versions_[v].emitted = true;
+        for (FileVersion v : n.reads) --versions_[v].readers;
+        job.release = std::move(releaseSoon_);
+        releaseSoon_.clear();
+        for (const std::vector<FileVersion>* list : {&n.reads, &n.writes})
+            for (FileVersion v : *list) {
+                Version& ver = versions_[v];
+                if (ver.superseded && ver.emitted && ver.readers == 0 && !ver.released) {
+                    ver.released = true;
+                    job.release.push_back(v);
+                }
+            }
+        emit_(std::move(job));
+    }
+
+    const PassRequest& req_;
+    Log& log_;
+    const std::function<void(PassJob&&)>& emit_;
+    const int block_;
+    std::set<int> serials_;  // the current file's make requests handed over
+    std::set<int> numbers_;  // frame numbers read
+    int order_ = 0, nextNode_ = 0, nextPass_ = 0, pendingFrames_ = 0;
+    FileVersion nextVersion_ = 1;
+    std::map<int, Node> pending_;
+    std::map<std::string, int> openJob_;
+    std::map<std::string, int> passOfKey_;
+    std::vector<std::pair<std::string, int>> textures_;  // pending MakeTexture outputs and nodes
+    std::map<FileVersion, Version> versions_;
+    std::map<std::string, FileVersion> latest_;
+    std::map<int, Candidate> candidates_;
+    std::vector<FileVersion> releaseSoon_;
+};
+
+// ---- Reading ----------------------------------------------------------------------------------
+// The frame numbers of the files a pattern matches, in order.
+std::vector<int> framesOnDisk(const std::string& pattern) {
+    const std::filesystem::path p(pattern);
+    const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
+    const std::string name = p.filename().string();
+    const size_t a = name.find('#');
+    size_t b = a;
+    while (b < name.size() && name[b] == '#') ++b;
+    const std::string prefix = name.substr(0, a), suffix = name.substr(b);
+    std::vector<int> frames;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+        const std::string n = entry.path().filename().string();
+        if (n.size() < prefix.size() + suffix.size() + (b - a) || n.compare(0, prefix.size(), prefix) != 0 ||
+            n.compare(n.size() - suffix.size(), suffix.size(), suffix) != 0)
+            continue;
+        const std::string digits = n.substr(prefix.size(), n.size() - prefix.size() - suffix.size());
+        if (digits.empty() || digits.size() > 9 ||
+            !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+            continue;
+        const int f = std::stoi(digits);
+        if (frameFileName(pattern, f) == (dir / n).string() || frameFileName(pattern, f) == n) frames.push_back(f);
+    }
+    std::sort(frames.begin(), frames.end());
+    return frames;
+}
+
+// One frame's file: a scene, or FrameBegin blocks (the passes of that frame: each takes the file's
+// number), and what follows its last block.
+struct FrameFile {
+    std::vector<Scene> scenes;
+    Scene after;
+};
+
+FrameFile readFrameFile(const std::string& file, int f, Log& log, const ReadDetail& detail) {
+    FrameFile out;
+    parseRibFrames(
+        file, log,
+        [&](Scene&& s) {
+            const bool block = s.frameLoc.line > 0;
+            if (block && s.frameNumber != f)
+                log.warnOnce("sequence-number:" + file, s.frameLoc,
+                             "FrameBegin " + std::to_string(s.frameNumber) + " in the file of frame " + std::to_string(f) +
+                                 ": the file name's number is used");
+            if (!block) s.frameLoc = SourceLoc{std::make_shared<const std::string>(file), 1, 0};
+            s.frameNumber = f;
+            out.scenes.push_back(std::move(s));
+        },
+        detail, [&](Scene&& s) { out.after = std::move(s); });
+    return out;
+}
+
+}  // namespace
+
+void readPasses(const std::string& path, const PassRequest& req, Log& log, const std::function<void(PassJob&&)>& job,
+                const ReadDetail& detail) {
+    Planner planner(req, log, job);
+    if (isFramePattern(path)) {
+        std::vector<int> frames;
+        if (req.frames.given) {
+            for (int f = req.frames.first; f <= req.frames.last; ++f) frames.push_back(f);
+        } else {
+            frames = framesOnDisk(path);
+            if (frames.empty()) throw InputError("no frame file matches the pattern '" + path + "'");
+        }
+        for (size_t i = 0; i < frames.size(); ++i) {
+            const int f = frames[i];
+            const std::string file = frameFileName(path, f);
+            std::error_code ec;
+            if (!std::filesystem::exists(file, ec)) {
+                std::string why = req.frames.given ? "--frames " + std::to_string(req.frames.first) + "-" +
+                                                         std::to_string(req.frames.last) + " asks for it"
+                                                   : "the pattern's files run from " + std::to_string(frames.front()) +
+                                                         " to " + std::to_string(frames.back());
+                throw InputError("missing frame file '" + file + "' (frame " + std::to_string(f) + "): " + why);
+            }
+            if (!req.frames.given && i > 0 && f != frames[i - 1] + 1)
+                throw InputError("missing frame file '" + frameFileName(path, frames[i - 1] + 1) + "' (frame " +
+                                 std::to_string(frames[i - 1] + 1) + "): the pattern's files run from " +
+                                 std::to_string(frames.front()) + " to " + std::to_string(frames.back()) +
+                                 " with a gap; give --frames to render a part");
+        }
+        // Frames are parsed in parallel, a batch at a time (memory holds a batch), and planned in
+        // order; the first frame's error in order is the one reported, whatever thread found it.
+        const size_t batch = size_t(std::max(2, 2 * tbb::this_task_arena::max_concurrency()));
+        for (size_t b = 0; b < frames.size(); b += batch) {
+            const size_t n = std::min(batch, frames.size() - b);
+            std::vector<FrameFile> files(n);
+            std::vector<std::exception_ptr> errors(n);
+            tbb::parallel_for(size_t(0), n, [&](size_t i) {
+                try {
+                    files[i] = readFrameFile(frameFileName(path, frames[b + i]), frames[b + i], log, detail);
+                } catch (...) {
+                    errors[i] = std::current_exception();
+                }
+            });
+            for (size_t i = 0; i < n; ++i) {
+                if (errors[i]) std::rethrow_exception(errors[i]);
+                planner.beginFile();
+                for (Scene& s : files[i].scenes) planner.scene(std::move(s));
+                planner.trailing(files[i].after);
+            }
+        }
+        planner.finish();
+        return;
+    }
+    bool frames = false;
+    planner.beginFile();
+    parseRibFrames(
+        path, log,
+        [&](Scene&& s) {
+            frames = frames || s.frameLoc.line > 0;
+            planner.scene(std::move(s));
+        },
+        detail, [&](Scene&& s) { planner.trailing(s); });
+    if (frames && req.frames.given)
+        for (int f = req.frames.first; f <= req.frames.last; ++f)
+            if (!planner.numbers().count(f))
+                throw InputError("'" + path + "' has no FrameBegin " + std::to_string(f) + ", which --frames " +
+                                 std::to_string(req.frames.first) + "-" + std::to_string(req.frames.last) + " asks for");
+    planner.finish();
+}
+
+Sequence readScene(const std::string& path, const FrameRequest& frames, Log& log, const ReadDetail& detail) {
+    PassRequest req;
+    req.frames = frames;
+    req.blockFrames = INT_MAX / 4;
+    std::vector<Sequence> renders;
+    readPasses(path, req, log, [&](PassJob&& j) {
+        if (j.kind == PassJob::Kind::Render) renders.push_back(std::move(j.sequence));
+    }, detail);
+    if (renders.size() != 1)
+        throw InputError("'" + path + "' holds " + std::to_string(renders.size()) +
+                         " passes (frames with other settings): read it with readPasses");
+    return std::move(renders.front());
+}
+
+}  // namespace streyes
