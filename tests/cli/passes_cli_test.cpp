@@ -104,6 +104,33 @@ TEST(PassesCli, EachPictureReadsTheMapItsOwnFrameMade) {
     EXPECT_LT(rmse(tmp.path() + "/st.0005.exr", tmp.path() + "/one.0005.exr"), 0.005);
 }
 
+// The same shot as a frame pattern, a file a frame each holding its depth frame, MakeShadow and
+// picture (the blocks of a frame's file are its passes): the same pictures as the one file.
+TEST(PassesCli, AFramePatternsFilesHoldEachFramesPasses) {
+    test::TempDir tmp("passes-pattern");
+    const std::string text = readFile(test::sourcePath("scenes/shadows/shot.rib"));
+    for (int f = 1; f <= 3; ++f) {
+        // Frame f: its depth FrameBegin, the MakeShadow after it, its picture FrameBegin.
+        const size_t a = text.find("FrameBegin " + std::to_string(f) + "\n");
+        const size_t b = text.find("FrameBegin " + std::to_string(f + 1) + "\n");
+        char name[32];
+        std::snprintf(name, sizeof name, "shot.%04d.rib", f);
+        writeFile(tmp.path(), name, text.substr(a, b == std::string::npos ? std::string::npos : b - a));
+    }
+    test::CliRun r = renderIn(tmp.path(), "'shot.####.rib' --algorithm frames -o p.####.exr");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+    fs::copy_file(test::sourcePath("scenes/shadows/shot.rib"), tmp.path() + "/whole.rib");
+    r = renderIn(tmp.path(), "whole.rib --algorithm frames -q --frames 1-3 -o w.####.exr");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (int f = 1; f <= 3; ++f) {
+        char a[32], b[32];
+        std::snprintf(a, sizeof a, "/p.%04d.exr", f);
+        std::snprintf(b, sizeof b, "/w.%04d.exr", f);
+        EXPECT_TRUE(samePixels(tmp.path() + a, tmp.path() + b)) << "frame " << f;
+    }
+}
+
 // --frames picks pictures and renders the depth frames they read; -o names the pictures' files
 // only (the maps go to their Display names).
 TEST(PassesCli, FramesPicksPicturesAndOutputNamesOnlyThem) {

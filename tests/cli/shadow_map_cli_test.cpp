@@ -80,10 +80,9 @@ std::string pictureFrame(int n, const std::string& shadowname, const std::string
 }
 
 // The area of the plane in shadow in a picture: each pixel's share of light missing against the
-// unshadowed picture, times the pixel's area (6 x 6 units over 256 x 256 pixels).
-double shadowArea(const ImageData& shadowed, const ImageData& lit) {
+// unshadowed picture, times the pixel's area (by default 6 x 6 units over 256 x 256 pixels).
+double shadowArea(const ImageData& shadowed, const ImageData& lit, double pixel = (6.0 / 256) * (6.0 / 256)) {
     double area = 0;
-    const double pixel = (6.0 / 256) * (6.0 / 256);
     for (int y = 0; y < lit.height; ++y)
         for (int x = 0; x < lit.width; ++x) {
             const float l = lit.at(x, y, 0), s = shadowed.at(x, y, 0);
@@ -131,6 +130,7 @@ TEST(ShadowMapCli, ASpheresShadowFromAShadowSpotMapMatchesTheRayTracedOne) {
     EXPECT_GT(exact, 10.0);
     EXPECT_NEAR(traced, exact, 0.03 * exact);
     EXPECT_NEAR(map, traced, 0.03 * traced) << "map " << map << " traced " << traced << " exact " << exact;
+    std::fprintf(stderr, "shadow area: map %.4f, ray traced %.4f, the scene's %.4f\n", map, traced, exact);
 }
 
 // A plane tilted 80 degrees from the light (its normal 80 degrees from the direction to the light),
@@ -172,6 +172,72 @@ TEST(ShadowMapCli, APlaneTiltedEightyDegreesFromTheLightHasNoAcneAtTheDefaultBia
         }
     EXPECT_GT(covered, 4000);
     EXPECT_EQ(acne, 0);
+}
+
+// The shadow lights a point light and a distant light have: shadowpoint reading six 90-degree
+// maps from the light (one a world axis), shadowdistant an orthographic map. A sphere over a floor,
+// the floor's area in shadow against the ray-traced pointlight's and distantlight's, within 3%.
+TEST(ShadowMapCli, ShadowPointsSixMapsAndShadowDistantsMapMatchRayTracedShadows) {
+    test::TempDir tmp("shadowmap-point");
+    // A light at (0.8, 2.2, 0.4) over a unit sphere at the origin and the floor y = -1.5; the floor
+    // seen from straight above.
+    const V light{0.8, 2.2, 0.4};
+    auto scene = [&](const std::string& lightSource) {
+        return "WorldBegin\n" + lightSource +
+               "\nSurface \"matte\"\nSphere 1 -1 1 360\n"
+               "Patch \"bilinear\" \"P\" [-12 -1.5 -12  12 -1.5 -12  -12 -1.5 12  12 -1.5 12]\nWorldEnd\n";
+    };
+    auto picture = [&](const std::string& lightSource, const std::string& out) {
+        return "FrameBegin 1\nDisplay \"" + out +
+               "\" \"file\" \"rgba\"\nFormat 300 300 1\nPixelSamples 3 3\nProjection \"orthographic\"\n"
+               "ScreenWindow -5 5 -5 5\n" +
+               lookAt({0, 10, 0}, {0, 0, 0}, {0, 0, 1}) + scene(lightSource) + "FrameEnd\n";
+    };
+    const std::string point = "LightSource \"pointlight\" 1 \"intensity\" [30] \"from\" [0.8 2.2 0.4]";
+    // Six faces: +x -x +y -y +z -z, each a 90-degree view from the light.
+    const V axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    const char* names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
+    std::string faces, sfs;
+    for (int k = 0; k < 6; ++k) {
+        const V a = axes[k], up = std::fabs(a.y) > 0.5 ? V{0, 0, 1} : V{0, 1, 0};
+        faces += "FrameBegin 1\nDisplay \"" + std::string(names[k]) +
+                 ".shd\" \"shadow\" \"z\"\nFormat 256 256 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" [90]\n" +
+                 lookAt(light, {light.x + a.x, light.y + a.y, light.z + a.z}, up) + scene("") + "FrameEnd\n";
+        sfs += std::string(" \"sf") + names[k] + "\" [\"" + names[k] + ".shd\"]";
+    }
+    writeFile(tmp.path(), "point.rib",
+              faces + picture("LightSource \"shadowpoint\" 1 \"intensity\" [30] \"from\" [0.8 2.2 0.4]" + sfs, "point.exr"));
+    writeFile(tmp.path(), "point-traced.rib", picture(point + " \"shadowname\" [\"raytrace\"]", "point-traced.exr"));
+    writeFile(tmp.path(), "point-lit.rib", picture(point, "point-lit.exr"));
+    // The distant light: from (3, 4, 1) towards the origin, its map an orthographic view along it
+    // over the sphere (what lies outside the map is lit: nothing there casts a shadow).
+    const std::string distant = "LightSource \"distantlight\" 1 \"intensity\" [1] \"from\" [3 4 1] \"to\" [0 0 0]";
+    writeFile(tmp.path(), "distant.rib",
+              "FrameBegin 1\nDisplay \"sun.z\" \"zfile\" \"z\"\nFormat 512 512 1\nPixelSamples 2 2\n"
+              "Projection \"orthographic\"\nScreenWindow -3 3 -3 3\n" +
+                  lookAt({9, 12, 3}, {0, 0, 0}) + scene("") + "FrameEnd\nMakeShadow \"sun.z\" \"sun.shd\"\n" +
+                  picture("LightSource \"shadowdistant\" 1 \"intensity\" [1] \"from\" [3 4 1] \"to\" [0 0 0] "
+                          "\"shadowname\" [\"sun.shd\"]",
+                          "distant.exr"));
+    writeFile(tmp.path(), "distant-traced.rib", picture(distant + " \"shadowname\" [\"raytrace\"]", "distant-traced.exr"));
+    writeFile(tmp.path(), "distant-lit.rib", picture(distant, "distant-lit.exr"));
+    for (const char* rib : {"point.rib", "point-traced.rib", "point-lit.rib", "distant.rib", "distant-traced.rib",
+                            "distant-lit.rib"}) {
+        const std::string out = runIn(tmp.path(), std::string(rib));
+        EXPECT_EQ(out.find("warning"), std::string::npos) << rib << ": " << out;
+    }
+    // Areas in the picture's units (10 x 10 over 300 x 300 pixels).
+    auto area = [&](const std::string& shadowed, const std::string& lit) {
+        return shadowArea(readImage(tmp.path() + "/" + shadowed), readImage(tmp.path() + "/" + lit),
+                          (10.0 / 300) * (10.0 / 300));
+    };
+    for (const std::string light : {"point", "distant"}) {
+        const double map = area(light + ".exr", light + "-lit.exr");
+        const double traced = area(light + "-traced.exr", light + "-lit.exr");
+        EXPECT_GT(traced, 1.0) << light;
+        EXPECT_NEAR(map, traced, 0.03 * traced) << light << ": map " << map << " traced " << traced;
+        std::fprintf(stderr, "%s shadow area: map %.4f, ray traced %.4f\n", light.c_str(), map, traced);
+    }
 }
 
 }  // namespace

@@ -340,7 +340,9 @@ std::string blockerScene(const std::string& light) {
 
 // "shadowname" "raytrace" on a standard light (RenderMan's convention for ray-traced shadows) gives
 // the same shadows as Attribute "light" "shadows" "on": the renderer traces them per sample and the
-// shader's shadow("raytrace") reads 0. A shadow map name is not read: a warning, no shadow.
+// shader's shadow("raytrace") reads 0. A shadow map's name no pass makes and no file holds: a
+// warning, no shadow (the light's .sl source runs: its pixels are the built-in light's within the
+// 1e-4 the two are held to).
 TEST(Raytrace, ShadownameRaytraceCastsTheSameShadowsAsTheAttribute) {
     const char* lights[] = {
         "LightSource \"spotlight\" 2 \"point from\" [0 5 0] \"point to\" [0 0 0] \"float coneangle\" [1] \"intensity\" [30]",
@@ -358,9 +360,10 @@ TEST(Raytrace, ShadownameRaytraceCastsTheSameShadowsAsTheAttribute) {
         EXPECT_LT(byName.channel(0, 32, 37, 0), 0.5f * unshadowed.channel(0, 32, 37, 0)) << light;
         const test::RenderResult map = test::renderRib(blockerScene(std::string(light) + " \"string shadowname\" [\"light.shad\"]\n"));
         EXPECT_EQ(map.stats.counters.shadowRays, 0u) << light;
-        EXPECT_TRUE(test::identicalPixels(map, unshadowed)) << light;
+        EXPECT_LT(test::maxAbsDifference(map, unshadowed), 1e-4f) << light;
         int warned = 0;
-        for (const std::string& w : map.warnings) warned += w.find("shadow map \"light.shad\" is not read") != std::string::npos;
+        for (const std::string& w : map.warnings)
+            warned += w.find("shadow map \"light.shad\" is written by no pass of this render") != std::string::npos;
         EXPECT_EQ(warned, 1) << light;
     }
 }
