@@ -25,8 +25,8 @@ class TextureSource;
 std::shared_ptr<sl::TextureSource> openImageTextures(const std::vector<std::string>& searchPath, Log& log);
 
 // Makes the scene's MakeTexture and MakeLatLongEnvironment maps, in order. A map that cannot be
-// made (its picture missing among them) is an InputError at its request's line. `done` (may be null) holds the outputs already
-// made by this process: a sequence's blocks make each map once.
+// made (its picture missing among them) is an InputError at its request's line. `done` (may be null) holds the outputs
+// already made by this process: a sequence's blocks make each map once.
 void makeSceneTextures(const Scene& scene, std::vector<std::string>* done = nullptr);
 
 }  // namespace streyes

@@ -45,10 +45,11 @@ void PassRunner::keep(const PassFrame& frame, const FrameImage& image, double sh
     map->width = image.width;
     map->height = image.height;
     map->z.resize(image.z.size());
-    for (size_t i = 0; i < image.z.size(); ++i) map->z[i] = image.z[i] < DepthMap::kNoDepth ? image.z[i] : DepthMap::kNoDepth;
+    for (size_t i = 0; i < image.z.size(); ++i)
+        map->z[i] = image.z[i] < DepthMap::kNoDepth ? image.z[i] : DepthMap::kNoDepth;
     map->worldToCamera = frame.camera.worldToCamera.at(image.frame + shutterOpen);
-    map->worldToScreen = map->worldToCamera * screenProjection(camera.perspective(), camera.ax(), camera.bx(), camera.ay(),
-                                                               camera.by(), image.width, image.height);
+    map->worldToScreen = map->worldToCamera * screenProjection(camera.perspective(), camera.ax(), camera.bx(),
+                                                               camera.ay(), camera.by(), image.width, image.height);
     for (const auto& [display, version] : frame.maps) {
         const std::string path = frameFileName(display.name, image.frame);
         std::shared_ptr<const DepthMap> kept = map;
@@ -78,7 +79,8 @@ RenderStats PassRunner::renderDepth(PassJob& job, const RenderOptions& opts) {
     const std::map<int, PassFrame>& frames = job.frames;
     o.frameDone = [&frames](int f) { return !frames.count(f); };
     for (const auto& [f, frame] : frames)
-        for (const auto& [display, version] : frame.maps) checkWritableFolder(frameFileName(display.name, f), "Display");
+        for (const auto& [display, version] : frame.maps)
+            checkWritableFolder(frameFileName(display.name, f), "Display");
     const double open = scene.settings.shutterOpen;
     auto sink = [&](FrameImage& image) {
         auto it = frames.find(image.frame);

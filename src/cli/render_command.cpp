@@ -298,7 +298,8 @@ bool frameWritten(const Scene& frame, const RenderRequest& req, const std::strin
         while (!stem.empty() && stem.back() == '.') stem.pop_back();
         outs.push_back({(stem.empty() ? "frame" : stem) + ".####.exr", "rgbaz"});
     }
-    int w = req.opts.xres > 0 ? req.opts.xres : frame.camera.xres, h = req.opts.yres > 0 ? req.opts.yres : frame.camera.yres;
+    int w = req.opts.xres > 0 ? req.opts.xres : frame.camera.xres,
+        h = req.opts.yres > 0 ? req.opts.yres : frame.camera.yres;
     if (req.preview && req.opts.xres <= 0) w = std::max(1, w / kPreviewDivisor), h = std::max(1, h / kPreviewDivisor);
     for (const Output& o : outs)
         if (!isCompleteFrame(expandFramePattern(o.pattern, f), w, h, o.mode) &&
@@ -464,7 +465,8 @@ int renderCommand(const std::vector<std::string>& args) {
         std::string pattern = outPattern;
         if (clash) {
             const std::filesystem::path p(outPattern);
-            pattern = (p.parent_path() / (p.stem().string() + ".pass" + std::to_string(job.pass + 1) + p.extension().string()))
+            pattern = (p.parent_path() /
+                       (p.stem().string() + ".pass" + std::to_string(job.pass + 1) + p.extension().string()))
                           .string();
             log.warnOnce("o-pass:" + std::to_string(job.pass), job.frames.begin()->second.loc,
                          "frames of another pass have these frame numbers: this pass's pictures are written to '" +
@@ -496,7 +498,8 @@ int renderCommand(const std::vector<std::string>& args) {
         // Where each frame goes: -o, or the scene's displays (a sequence's frames each their own).
         std::vector<Output> outputs;
         std::map<int, std::vector<Output>> frameOutputs;
-        if (seq.isSequence) frameOutputs = sequenceOutputs(seq, oPattern, scenePath, rs.firstFrame, rs.lastFrame, log, &mine);
+        if (seq.isSequence)
+            frameOutputs = sequenceOutputs(seq, oPattern, scenePath, rs.firstFrame, rs.lastFrame, log, &mine);
         else outputs = chooseOutputs(scene, oPattern, scenePath, blockFrames, log);
         auto isMine = [&](int frame) { return !seq.isSequence || frameOutputs.count(frame) > 0; };
         auto outputsOf = [&](int frame) -> const std::vector<Output>& {
@@ -509,9 +512,10 @@ int renderCommand(const std::vector<std::string>& args) {
         if (scene.settings.depthFilter == "midpoint" && !written.empty())
             for (const Output& o : outputsOf(written.front()))
                 if (o.mode.find('z') != std::string::npos)
-                    log.warnOnce("picture-midpoint", {},
-                                 "Hider \"hidden\" \"depthfilter\" \"midpoint\" applies to depth maps (Display \"zfile\" | "
-                                 "\"shadow\"): the picture's Z is the nearest depth");
+                    log.warnOnce(
+                        "picture-midpoint", {},
+                        "Hider \"hidden\" \"depthfilter\" \"midpoint\" applies to depth maps (Display \"zfile\" | "
+                        "\"shadow\"): the picture's Z is the nearest depth");
 
         // Before anything is rendered, every output's folder and the --stats file's folder must
         // take a file: a missing or read-only folder would otherwise be found only when the first
@@ -645,12 +649,12 @@ int renderCommand(const std::vector<std::string>& args) {
     if (!statsPath.empty()) writeTextAtomically(statsPath, withProcessCpu(stats.toJson()));
     if (!quiet) {
         if (frames > 0 || runner.mapsWritten() == 0)
-            std::fprintf(stderr, "streyes: %d frame%s %dx%d, %d samples/pixel, %s%s, %.2f s: %s%s\n", frames,
-                         frames == 1 ? "" : "s", rs.width, rs.height, rs.pattern.count(), algorithmName(opts.algorithm),
-                         opts.tolerance > 0 ? (" (tolerance " + std::to_string(opts.tolerance).substr(0, 6) + ")").c_str()
-                                            : "",
-                         stats.timeTotal, written_.empty() ? "(nothing written)" : written_.front().c_str(),
-                         written_.size() > 1 ? (" ... " + written_.back()).c_str() : "");
+            std::fprintf(
+                stderr, "streyes: %d frame%s %dx%d, %d samples/pixel, %s%s, %.2f s: %s%s\n", frames,
+                frames == 1 ? "" : "s", rs.width, rs.height, rs.pattern.count(), algorithmName(opts.algorithm),
+                opts.tolerance > 0 ? (" (tolerance " + std::to_string(opts.tolerance).substr(0, 6) + ")").c_str() : "",
+                stats.timeTotal, written_.empty() ? "(nothing written)" : written_.front().c_str(),
+                written_.size() > 1 ? (" ... " + written_.back()).c_str() : "");
         if (runner.mapsWritten() > 0)
             std::fprintf(stderr, "streyes: %d depth map file%s written\n", runner.mapsWritten(),
                          runner.mapsWritten() == 1 ? "" : "s");

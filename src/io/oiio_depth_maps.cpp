@@ -68,7 +68,8 @@ bool encodeOiioDepthMap(const std::string& path, const DepthMap& map, bool shado
     std::error_code ec;
     const std::filesystem::path scratch =
         std::filesystem::temp_directory_path(ec) / ("streyes-depth-" + std::to_string(::getpid()) + ".tif");
-    const bool ok = out->open(scratch.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, map.z.data()) && out->close();
+    const bool ok =
+        out->open(scratch.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, map.z.data()) && out->close();
     if (!ok) *error = out->geterror();
     if (ok) {
         FILE* f = std::fopen(scratch.c_str(), "rb");
@@ -93,8 +94,9 @@ bool readOiioDepthMap(const std::string& path, DepthMap* out, std::string* error
     }
     const OIIO::ImageSpec& spec = in->spec();
     if (spec.nchannels != 1 || spec.channelformat(0) != OIIO::TypeDesc::FLOAT) {
-        *error = "it is not a depth map (" + std::to_string(spec.nchannels) + " channel" + (spec.nchannels == 1 ? "" : "s") +
-                 " of " + spec.channelformat(0).c_str() + "; a depth map has one channel of 32-bit floats)";
+        *error = "it is not a depth map (" + std::to_string(spec.nchannels) + " channel" +
+                 (spec.nchannels == 1 ? "" : "s") + " of " + spec.channelformat(0).c_str() +
+                 "; a depth map has one channel of 32-bit floats)";
         return false;
     }
     const OIIO::ParamValue* toCamera = spec.find_attribute("worldtocamera", OIIO::TypeMatrix);

@@ -131,7 +131,8 @@ Scene autoShadowFrame(const Scene& picture, const LightDesc& light) {
     Scene s = picture;
     s.camera.worldToCamera = inverse(light.lightToWorld);
     s.camera.hasScreenWindow = true;
-    s.camera.screenWindow[0] = -1, s.camera.screenWindow[1] = 1, s.camera.screenWindow[2] = -1, s.camera.screenWindow[3] = 1;
+    const double window[4] = {-1, 1, -1, 1};
+    std::copy(window, window + 4, s.camera.screenWindow);
     s.camera.frameAspect = 1;
     s.camera.xres = s.camera.yres = light.autoShadowRes;
     s.camera.pixelAspect = 1;
@@ -291,9 +292,11 @@ class Planner {
     void makes(const Scene& s, bool after, bool all = false) {
         std::vector<std::pair<int, Make>> found;
         for (const MakeShadowDesc& d : s.settings.makeShadows)
-            if ((all || d.afterWorld == after) && !serials_.count(d.serial)) found.push_back({d.serial, {PassJob::Kind::MakeShadow, d, {}}});
+            if ((all || d.afterWorld == after) && !serials_.count(d.serial))
+                found.push_back({d.serial, {PassJob::Kind::MakeShadow, d, {}}});
         for (const MakeTextureDesc& d : s.settings.makeTextures)
-            if ((all || d.afterWorld == after) && !serials_.count(d.serial)) found.push_back({d.serial, {PassJob::Kind::MakeTexture, {}, d}});
+            if ((all || d.afterWorld == after) && !serials_.count(d.serial))
+                found.push_back({d.serial, {PassJob::Kind::MakeTexture, {}, d}});
         std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         for (auto& [serial, m] : found) {
             serials_.insert(serial);
@@ -439,7 +442,8 @@ class Planner {
         for (const auto& [name, v] : f.reads)
             if (pending_.count(versions_[v].node)) deps.insert(versions_[v].node);
         for (const auto& [name, node] : textures_)
-            if (pending_.count(node) && (c.strings.count(name) || c.strings.count(std::filesystem::path(name).filename().string())))
+            if (pending_.count(node) &&
+                (c.strings.count(name) || c.strings.count(std::filesystem::path(name).filename().string())))
                 deps.insert(node);
         int id = -1;
         if (!c.ordinary && open != openJob_.end() && pending_.count(open->second)) {
@@ -607,8 +611,8 @@ FrameFile readFrameFile(const std::string& file, int f, Log& log, const ReadDeta
             const bool block = s.frameLoc.line > 0;
             if (block && s.frameNumber != f)
                 log.warnOnce("sequence-number:" + file, s.frameLoc,
-                             "FrameBegin " + std::to_string(s.frameNumber) + " in the file of frame " + std::to_string(f) +
-                                 ": the file name's number is used");
+                             "FrameBegin " + std::to_string(s.frameNumber) + " in the file of frame " +
+                                 std::to_string(f) + ": the file name's number is used");
             if (!block) s.frameLoc = SourceLoc{std::make_shared<const std::string>(file), 1, 0};
             s.frameNumber = f;
             out.scenes.push_back(std::move(s));
@@ -684,7 +688,8 @@ void readPasses(const std::string& path, const PassRequest& req, Log& log, const
         for (int f = req.frames.first; f <= req.frames.last; ++f)
             if (!planner.numbers().count(f))
                 throw InputError("'" + path + "' has no FrameBegin " + std::to_string(f) + ", which --frames " +
-                                 std::to_string(req.frames.first) + "-" + std::to_string(req.frames.last) + " asks for");
+                                 std::to_string(req.frames.first) + "-" + std::to_string(req.frames.last) +
+                                 " asks for");
     planner.finish();
 }
 

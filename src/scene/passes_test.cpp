@@ -156,7 +156,8 @@ TEST(Passes, JobsHoldABlockOfFramesAtMost) {
 // A MakeTexture reads a file a frame before it may write, and the frames after it that name its
 // texture read what it makes: it comes after the frames before it, and those after come after it.
 TEST(Passes, MakeTextureRunsAfterTheFramesBeforeIt) {
-    const std::string text = pictureFrame(1, "") + "MakeTexture \"pic.0001.exr\" \"pic.tx\" \"clamp\" \"clamp\" \"box\" 1 1\n" +
+    const std::string text = pictureFrame(1, "") +
+                             "MakeTexture \"pic.0001.exr\" \"pic.tx\" \"clamp\" \"clamp\" \"box\" 1 1\n" +
                              pictureFrame(2, "pic.tx") + pictureFrame(3, "");
     const Read r = readText(text);
     ASSERT_EQ(r.jobs.size(), 3u);

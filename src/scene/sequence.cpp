@@ -147,7 +147,8 @@ void SequenceBuilder::add(Scene&& frame) {
     seen.clear();
     for (PatchMeshDesc& p : frame.patchMeshes) addPrimitive('p', std::move(p), m.patchMeshes, seen, f, previous);
     seen.clear();
-    for (SubdivisionMeshDesc& p : frame.subdivisionMeshes) addPrimitive('s', std::move(p), m.subdivisionMeshes, seen, f, previous);
+    for (SubdivisionMeshDesc& p : frame.subdivisionMeshes)
+        addPrimitive('s', std::move(p), m.subdivisionMeshes, seen, f, previous);
     seen.clear();
     for (QuadricDesc& p : frame.quadrics) addPrimitive('q', std::move(p), m.quadrics, seen, f, previous);
     seen.clear();

@@ -16,8 +16,10 @@ struct Hom {
 
 // p * M without the divide.
 Hom homogeneous(const Matrix4& m, const Vec3d& p) {
-    return {p.x * m(0, 0) + p.y * m(1, 0) + p.z * m(2, 0) + m(3, 0), p.x * m(0, 1) + p.y * m(1, 1) + p.z * m(2, 1) + m(3, 1),
-            p.x * m(0, 2) + p.y * m(1, 2) + p.z * m(2, 2) + m(3, 2), p.x * m(0, 3) + p.y * m(1, 3) + p.z * m(2, 3) + m(3, 3)};
+    return {p.x * m(0, 0) + p.y * m(1, 0) + p.z * m(2, 0) + m(3, 0),
+            p.x * m(0, 1) + p.y * m(1, 1) + p.z * m(2, 1) + m(3, 1),
+            p.x * m(0, 2) + p.y * m(1, 2) + p.z * m(2, 2) + m(3, 2),
+            p.x * m(0, 3) + p.y * m(1, 3) + p.z * m(2, 3) + m(3, 3)};
 }
 
 double det3(const double a[3], const double b[3], const double c[3]) {
@@ -110,7 +112,8 @@ float ShadowLookup::occlusion(const Vec3d& p, const Vec3d& dpdu, const Vec3d& dp
     double fx = 0, fy = 0;
     for (const Vec3d& d : {dpdu, dpdv}) {
         double x, y;
-        if ((d.x != 0 || d.y != 0 || d.z != 0) && texel(p + d, &x, &y)) fx += std::fabs(x - tx), fy += std::fabs(y - ty);
+        if ((d.x != 0 || d.y != 0 || d.z != 0) && texel(p + d, &x, &y))
+            fx += std::fabs(x - tx), fy += std::fabs(y - ty);
     }
     const double hx = std::max(0.5, 0.5 * f.swidth * fx + 0.5 * f.sblur * W);
     const double hy = std::max(0.5, 0.5 * f.twidth * fy + 0.5 * f.tblur * H);
@@ -164,7 +167,8 @@ float ShadowLookup::occlusion(const Vec3d& p, const Vec3d& dpdu, const Vec3d& dp
         return double(zm) < behind(i + 0.5, j + 0.5);
     };
 
-    const int i0 = int(std::floor(x0)), i1 = int(std::ceil(x1)) - 1, j0 = int(std::floor(y0)), j1 = int(std::ceil(y1)) - 1;
+    const int i0 = int(std::floor(x0)), i1 = int(std::ceil(x1)) - 1, j0 = int(std::floor(y0)),
+              j1 = int(std::ceil(y1)) - 1;
     const double texels = double(i1 - i0 + 1) * double(j1 - j0 + 1);
     if (texels <= kExactTexels) {
         double blocked = 0;
@@ -182,7 +186,8 @@ float ShadowLookup::occlusion(const Vec3d& p, const Vec3d& dpdu, const Vec3d& dp
     for (int b = 0; b < m; ++b)
         for (int a = 0; a < m; ++a) {
             seed = mix(seed);
-            const double ja = double(seed & 0xffffff) / double(1 << 24), jb = double((seed >> 24) & 0xffffff) / double(1 << 24);
+            const double ja = double(seed & 0xffffff) / double(1 << 24),
+                         jb = double((seed >> 24) & 0xffffff) / double(1 << 24);
             const double x = x0 + (a + ja) / m * (x1 - x0), y = y0 + (b + jb) / m * (y1 - y0);
             blocked += occluded(int(std::floor(x)), int(std::floor(y)));
         }

@@ -137,7 +137,8 @@ TEST(ShadowMap, BlurWidensThePenumbraByItsShareOfTheMap) {
     wide.samples = 64;
     double err = 0;
     int n = 0;
-    for (double x = 70; x <= 130; x += 0.5, ++n) err += occlusionAtTexel(x, wide) - std::clamp((120 - x) / 40, 0.0, 1.0);
+    for (double x = 70; x <= 130; x += 0.5, ++n)
+        err += occlusionAtTexel(x, wide) - std::clamp((120 - x) / 40, 0.0, 1.0);
     EXPECT_LT(std::fabs(err / n), 0.02);
     EXPECT_EQ(occlusionAtTexel(50, wide), 1.0f);
     EXPECT_EQ(occlusionAtTexel(150, wide), 0.0f);

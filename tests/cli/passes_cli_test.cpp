@@ -247,9 +247,10 @@ TEST(PassesCli, AShadowMapNoPassWritesAndNoFileHoldsWarnsOnceAndLeavesSurfacesLi
 TEST(PassesCli, ABadShadowMapFileIsAnErrorNamingTheLineThatNamesIt) {
     test::TempDir tmp("passes-bad");
     // A good map first, made by a depth frame and MakeShadow.
-    writeFile(tmp.path(), "make.rib",
-              "FrameBegin 1\nDisplay \"good.z\" \"zfile\" \"z\"\nFormat 64 64 1\nProjection \"perspective\" \"fov\" [40]\n"
-              "Translate 0 0 5\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\nFrameEnd\nMakeShadow \"good.z\" \"good.shd\"\n");
+    writeFile(
+        tmp.path(), "make.rib",
+        "FrameBegin 1\nDisplay \"good.z\" \"zfile\" \"z\"\nFormat 64 64 1\nProjection \"perspective\" \"fov\" [40]\n"
+        "Translate 0 0 5\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\nFrameEnd\nMakeShadow \"good.z\" \"good.shd\"\n");
     test::CliRun r = renderIn(tmp.path(), "make.rib -q");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const std::string good = readFile(tmp.path() + "/good.shd");
@@ -298,8 +299,8 @@ TEST(PassesCli, MakeShadowOfNoDepthMapIsAnErrorAtItsLine) {
 TEST(PassesCli, FarmPlansThePicturesOfAMultiPassFile) {
     test::TempDir tmp("passes-farm");
     copyScene(tmp.path(), "shot.rib");
-    const test::CliRun r =
-        runStreyesWith("cd " + tmp.path() + " && ", "farm submit shot.rib -o " + tmp.path() + "/f.####.exr --block 4 --dry-run");
+    const test::CliRun r = runStreyesWith("cd " + tmp.path() + " && ",
+                                          "farm submit shot.rib -o " + tmp.path() + "/f.####.exr --block 4 --dry-run");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("frames 1-8 (8), 320x180, in 2 blocks of 4"), std::string::npos) << r.output;
 }

@@ -38,8 +38,9 @@ std::string lookAt(V eye, V target, V up = {0, 1, 0}) {
     const V x = unit(cross(up, z));
     const V y = cross(z, x);
     char buf[512];
-    std::snprintf(buf, sizeof buf, "Transform [%.17g %.17g %.17g 0 %.17g %.17g %.17g 0 %.17g %.17g %.17g 0 %.17g %.17g %.17g 1]\n",
-                  x.x, y.x, z.x, x.y, y.y, z.y, x.z, y.z, z.z, -dot(eye, x), -dot(eye, y), -dot(eye, z));
+    std::snprintf(buf, sizeof buf,
+                  "Transform [%.17g %.17g %.17g 0 %.17g %.17g %.17g 0 %.17g %.17g %.17g 0 %.17g %.17g %.17g 1]\n", x.x,
+                  y.x, z.x, x.y, y.y, z.y, x.z, y.z, z.z, -dot(eye, x), -dot(eye, y), -dot(eye, z));
     return buf;
 }
 
@@ -155,10 +156,13 @@ TEST(ShadowMapCli, APlaneTiltedEightyDegreesFromTheLightHasNoAcneAtTheDefaultBia
                               "Projection \"perspective\" \"fov\" [40]\n" +
                               lookAt({0, 6, 0}, {0, 0, 0}, {0, 0, 1}) + scene("") + "FrameEnd\n";
     auto picture = [&](const std::string& shadowname, const std::string& out) {
-        return "FrameBegin 1\nDisplay \"" + out + "\" \"file\" \"rgba\"\nFormat 200 200 1\nPixelSamples 2 2\n"
-               "Projection \"perspective\" \"fov\" [30]\n" + lookAt({2, 5, 3}, {0, 0, 0}) + scene(shadowname) + "FrameEnd\n";
+        return "FrameBegin 1\nDisplay \"" + out +
+               "\" \"file\" \"rgba\"\nFormat 200 200 1\nPixelSamples 2 2\n"
+               "Projection \"perspective\" \"fov\" [30]\n" +
+               lookAt({2, 5, 3}, {0, 0, 0}) + scene(shadowname) + "FrameEnd\n";
     };
-    writeFile(tmp.path(), "map.rib", depth + "MakeShadow \"plane.z\" \"plane.shd\"\n" + picture("plane.shd", "map.exr"));
+    writeFile(tmp.path(), "map.rib",
+              depth + "MakeShadow \"plane.z\" \"plane.shd\"\n" + picture("plane.shd", "map.exr"));
     writeFile(tmp.path(), "lit.rib", picture("", "lit.exr"));
     runIn(tmp.path(), "map.rib -q");
     runIn(tmp.path(), "lit.rib -q");
@@ -200,13 +204,15 @@ TEST(ShadowMapCli, ShadowPointsSixMapsAndShadowDistantsMapMatchRayTracedShadows)
     std::string faces, sfs;
     for (int k = 0; k < 6; ++k) {
         const V a = axes[k], up = std::fabs(a.y) > 0.5 ? V{0, 0, 1} : V{0, 1, 0};
-        faces += "FrameBegin 1\nDisplay \"" + std::string(names[k]) +
-                 ".shd\" \"shadow\" \"z\"\nFormat 256 256 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" [90]\n" +
-                 lookAt(light, {light.x + a.x, light.y + a.y, light.z + a.z}, up) + scene("") + "FrameEnd\n";
+        faces +=
+            "FrameBegin 1\nDisplay \"" + std::string(names[k]) +
+            ".shd\" \"shadow\" \"z\"\nFormat 256 256 1\nPixelSamples 2 2\nProjection \"perspective\" \"fov\" [90]\n" +
+            lookAt(light, {light.x + a.x, light.y + a.y, light.z + a.z}, up) + scene("") + "FrameEnd\n";
         sfs += std::string(" \"sf") + names[k] + "\" [\"" + names[k] + ".shd\"]";
     }
-    writeFile(tmp.path(), "point.rib",
-              faces + picture("LightSource \"shadowpoint\" 1 \"intensity\" [30] \"from\" [0.8 2.2 0.4]" + sfs, "point.exr"));
+    writeFile(
+        tmp.path(), "point.rib",
+        faces + picture("LightSource \"shadowpoint\" 1 \"intensity\" [30] \"from\" [0.8 2.2 0.4]" + sfs, "point.exr"));
     writeFile(tmp.path(), "point-traced.rib", picture(point + " \"shadowname\" [\"raytrace\"]", "point-traced.exr"));
     writeFile(tmp.path(), "point-lit.rib", picture(point, "point-lit.exr"));
     // The distant light: from (3, 4, 1) towards the origin, its map an orthographic view along it
@@ -219,7 +225,8 @@ TEST(ShadowMapCli, ShadowPointsSixMapsAndShadowDistantsMapMatchRayTracedShadows)
                   picture("LightSource \"shadowdistant\" 1 \"intensity\" [1] \"from\" [3 4 1] \"to\" [0 0 0] "
                           "\"shadowname\" [\"sun.shd\"]",
                           "distant.exr"));
-    writeFile(tmp.path(), "distant-traced.rib", picture(distant + " \"shadowname\" [\"raytrace\"]", "distant-traced.exr"));
+    writeFile(tmp.path(), "distant-traced.rib",
+              picture(distant + " \"shadowname\" [\"raytrace\"]", "distant-traced.exr"));
     writeFile(tmp.path(), "distant-lit.rib", picture(distant, "distant-lit.exr"));
     for (const char* rib : {"point.rib", "point-traced.rib", "point-lit.rib", "distant.rib", "distant-traced.rib",
                             "distant-lit.rib"}) {

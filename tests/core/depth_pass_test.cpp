@@ -67,8 +67,8 @@ TEST(DepthPass, MidpointOfAMovingSurfaceDoesNotDependOnTheBlock) {
                                         "Hider \"hidden\" \"depthfilter\" \"midpoint\"\nShutter 0 0.5\n"
                                         "Option \"streyes\" \"int frames\" [1 4]\n") +
                             square(0, 40, 0, 40, 8) +
-                            "MotionBegin [1 4]\nTranslate 0 0 0\nTranslate 20 0 0\nMotionEnd\n" + square(0, 10, 10, 30, 3) +
-                            "WorldEnd\n";
+                            "MotionBegin [1 4]\nTranslate 0 0 0\nTranslate 20 0 0\nMotionEnd\n" +
+                            square(0, 10, 10, 30, 3) + "WorldEnd\n";
     RenderOptions depth;
     depth.depthPass = true;
     const test::ShotAndFrame r = test::renderShotAndFrame(rib, depth, 1, 4, 3);
