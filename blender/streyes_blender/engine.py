@@ -50,6 +50,7 @@ class StreyesRenderEngine(bpy.types.RenderEngine):
     bl_label = "streyes"
     bl_use_preview = False
     bl_use_postprocess = True
+    bl_use_eevee_viewport = True  # the viewport's Rendered mode shows Eevee: streyes renders files
     bl_use_shading_nodes_custom = False  # materials are Blender's shader node trees
 
     def render(self, depsgraph):

@@ -94,7 +94,8 @@ def render(scene, engine, folder, animation=True, samples=16):
     if engine == "STREYES":
         scene.streyes.samples = samples
     os.makedirs(folder, exist_ok=True)
-    scene.render.filepath = os.path.join(folder, "frame.####")
+    # A still (F12) is written under the name as given: numbered here as the animation's are.
+    scene.render.filepath = os.path.join(folder, "frame.####" if animation else "frame.%04d" % scene.frame_current)
     bpy.ops.render.render(animation=animation, write_still=not animation)
     return os.path.join(folder, "frame.####.exr")
 

@@ -46,12 +46,12 @@ def camera(scene, location, target, ortho=None, lens=50):
 
 
 def both(scene, name, samples=32):
-    """Renders frame 1 with streyes (keeping the RIB) and with Cycles; returns the two images and
-    the RIB text."""
+    """Renders frame 1 (F12, a still) with streyes (keeping the RIB) and with Cycles; returns the
+    two images and the RIB text."""
     scene.streyes.keep_files = True
     scene.streyes.export_folder = os.path.join(A.work, name, "export") + "/"
-    s = util.render(scene, "STREYES", os.path.join(A.work, name, "streyes"), samples=samples)
-    c = util.render(scene, "CYCLES", os.path.join(A.work, name, "cycles"), samples=samples)
+    s = util.render(scene, "STREYES", os.path.join(A.work, name, "streyes"), animation=False, samples=samples)
+    c = util.render(scene, "CYCLES", os.path.join(A.work, name, "cycles"), animation=False, samples=samples)
     ribs = sorted(os.listdir(os.path.join(A.work, name, "export", "Scene")))
     rib = open(os.path.join(A.work, name, "export", "Scene", [r for r in ribs if r.endswith(".rib")][0])).read()
     si, ci = util.read_exr(util.frame_file(s, 1)), util.read_exr(util.frame_file(c, 1))

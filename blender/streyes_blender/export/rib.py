@@ -6,23 +6,29 @@ reader shares it only when the data are equal)."""
 
 import math
 
+import numpy as np
+
 
 def num(x):
     x = float(x)
-    if x == 0.0:
-        return "0"  # also -0
     if not math.isfinite(x):
         raise ValueError("not a finite number: %r" % x)
-    if x == int(x) and abs(x) < 1e15:
-        return str(int(x))
-    return "%.9g" % x
+    return "%.9g" % (x + 0.0)  # + 0.0: -0 is written 0
 
 
 def nums(values):
+    if isinstance(values, np.ndarray):
+        # Meshes: formatted in one pass (a few million numbers a second).
+        values = values.astype(np.float64).ravel()
+        if not np.isfinite(values).all():
+            raise ValueError("not a finite number among %d values" % len(values))
+        return " ".join(["%.9g" % v for v in (values + 0.0).tolist()])
     return " ".join(num(v) for v in values)
 
 
 def ints(values):
+    if isinstance(values, np.ndarray):
+        return " ".join(map(str, values.astype(np.int64).ravel().tolist()))
     return " ".join(str(int(v)) for v in values)
 
 
@@ -32,8 +38,9 @@ def string(s):
 
 def array(values, kind=None):
     """A RIB array: numbers (floats or whole numbers), or strings."""
-    values = list(values)
-    if kind == "string" or (values and isinstance(values[0], str)):
+    if not isinstance(values, np.ndarray):
+        values = list(values)
+    if kind == "string" or (len(values) and isinstance(values[0], str)):
         return "[" + " ".join(string(v) for v in values) + "]"
     if kind == "int":
         return "[" + ints(values) + "]"
