@@ -11,6 +11,7 @@ import json
 import os
 import shutil
 import tempfile
+import time
 
 import bpy
 
@@ -152,7 +153,10 @@ class StreyesRenderEngine(bpy.types.RenderEngine):
             self.update_progress(0.0)
 
         self.update_stats("", "streyes: exporting %d frame%s" % (len(span), "" if len(span) == 1 else "s"))
+        cpu = time.process_time()
         written = exporter.export(span, STEM, exported)
+        print("streyes: exported %d frame%s in %.2f s of CPU" %
+              (len(span), "" if len(span) == 1 else "s", time.process_time() - cpu))
         for w in warnings:
             self._warn(w)
         if self.test_break():

@@ -5,6 +5,8 @@
                    base colour, a Glass BSDF): warnings, and the frame is rendered
 --case refused     a setting streyes refuses (a 20-pixel filter: PixelFilter wider than 32)
 --case cancel      a heavier 24-frame animation, to be interrupted with SIGINT by the driver
+--case zoom        a camera whose focal length changes over frames 1-3 (per-frame projections are
+                   not in streyes yet: a warning, and every frame takes frame 1's)
 Prints "RENDER-ERROR: <message>" when the render operator reports an error.
 """
 
@@ -49,6 +51,13 @@ def main():
         ball.keyframe_insert("location", frame=24)
         scene.render.use_motion_blur = True
         scene.streyes.samples = 256
+    elif case == "zoom":
+        scene = scene_with_cube((1, 3))
+        cam = scene.camera.data
+        cam.lens = 35
+        cam.keyframe_insert("lens", frame=1)
+        cam.lens = 70
+        cam.keyframe_insert("lens", frame=3)
     else:
         scene = scene_with_cube()
     if case == "node":

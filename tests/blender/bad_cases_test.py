@@ -6,6 +6,8 @@
   add-on's preferences, $STREYES_BIN, PATH);
 - an unsupported node: a warning naming the material and the node, and the frame is rendered;
 - a scene streyes refuses: the render stops with streyes's message, naming the RIB file and line;
+- a projection that changes over the frames (streyes has one a sequence until per-frame
+  projections land): a warning, and every frame takes the first's;
 - cancelling (SIGINT to Blender, as Ctrl+C or Esc): streyes stops at once, and every frame file
   left (Blender's and streyes's) is complete; no temporaries are left.
 """
@@ -121,6 +123,18 @@ def case_refused():
     check(not glob.glob(os.path.join(work, "out", "*")), "no frame is written")
 
 
+def case_zoom():
+    rc, out, work = blender("zoom")
+    check(rc == 0 and "RENDER-DONE" in out, "a zooming camera: the render goes on (exit %d)" % rc)
+    check("camera 'Camera': the projection (focal length, shift, sensor, clipping or focus) changes in frame 2" in out,
+          "a warning says the projection changes and which frame's is used")
+    ribs = [open(os.path.join(work, "export", "Scene", "shot.%04d.rib" % f)).read() for f in (1, 2, 3)]
+    proj = [re.search(r"^\s*Projection .*$", r, re.M).group(0) for r in ribs]
+    check(len(set(proj)) == 1, "every frame has frame 1's projection: %s" % proj)
+    frames = sorted(glob.glob(os.path.join(work, "out", "*.exr")))
+    check(len(frames) == 3, "the three frames are written")
+
+
 def case_cancel():
     proc, work = blender("cancel", wait=False)
     frames_dir = os.path.join(work, "export", "Scene", "frames")
@@ -162,7 +176,7 @@ def case_cancel():
     check(len(blender_frames) < 24, "cancel: the animation was cut short (%d of 24 frames)" % len(blender_frames))
 
 
-for case in (case_missing, case_node, case_refused, case_cancel):
+for case in (case_missing, case_node, case_refused, case_zoom, case_cancel):
     case()
 if failures:
     print("%d check(s) failed" % len(failures))

@@ -211,6 +211,18 @@ part.type = "HAIR"
 part.count = 20
 part.hair_length = 0.5
 part.render_step = 2
+pebble = util.mesh_object("Pebble", [(0, 0, 0), (0.1, 0, 0), (0, 0.1, 0.1)], [(0, 1, 2)])
+pebble.location = (0, 0, -30)  # out of view: only its instances are seen
+ground = util.mesh_object("Ground", [(-1, 2, 0), (1, 2, 0), (1, 3, 0), (-1, 3, 0)], [(0, 1, 2, 3)])
+ground.modifiers.new("Pebbles", "PARTICLE_SYSTEM")
+pp = ground.particle_systems[0].settings
+pp.type = "EMITTER"
+pp.count = 7
+pp.frame_start = pp.frame_end = 1
+pp.lifetime = 100
+pp.physics_type = "NO"
+pp.render_type = "OBJECT"
+pp.instance_object = pebble
 scene.streyes.keep_files = True
 scene.streyes.export_folder = os.path.join(A.work, "structure") + "/"
 util.render(scene, "STREYES", os.path.join(A.work, "structure-frames"), samples=1)
@@ -242,5 +254,7 @@ F.check("Matte 1" in hold_part[:600], "a holdout is Matte")
 m = re.search(r'Curves "linear" \[([^\]]*)\] "nonperiodic"', r2)
 F.check(m is not None and m.group(1).split() == ["5"] * 20, "20 hair strands of 5 points as Curves")
 F.check(os.path.exists(os.path.join(folder, "blender_principled.sl")), "the add-on's shader beside the RIB")
+F.check(len(re.findall(r'ObjectInstance "Pebble:0"', r2)) == 7 and r2.count('ObjectBegin "Pebble:0"') == 1,
+        "7 particle instances of one object (%d)" % len(re.findall(r'ObjectInstance "Pebble:0"', r2)))
 
 F.finish()
