@@ -123,8 +123,14 @@ check(run.wait_for_frame(2, stop) is None, "cancelled while waiting for frame 2"
 check(time.time() - t0 < 5 and not run.running(), "streyes stopped at once (%.2f s)" % (time.time() - t0))
 check(not job.temporaries(out2), "its temporaries removed: %s" % job.temporaries(out2))
 check(os.path.exists(job.frame_path(out2, 1)), "the complete frame 1 kept")
-children = [p for p in os.listdir("/proc") if p.isdigit() and "sleep 60" in
-            open("/proc/%s/cmdline" % p, "rb").read().replace(b"\0", b" ").decode(errors="replace")]
+def cmdline(pid):
+    try:
+        return open("/proc/%s/cmdline" % pid, "rb").read().replace(b"\0", b" ").decode(errors="replace")
+    except OSError:  # gone while we looked
+        return ""
+
+
+children = [p for p in os.listdir("/proc") if p.isdigit() and "sleep 60" in cmdline(p)]
 check(not children, "nothing it started is left running: %s" % children)
 
 # -- the real streyes: its progress and error lines are read ---------------------------------------
