@@ -171,6 +171,8 @@ class Exporter:
             if obj.type == "CURVES":
                 self.warn("object '%s': Curves objects (the new hair) are not exported yet: use a hair particle system" %
                           obj.name)
+            elif obj.type in ("VOLUME", "POINTCLOUD", "GPENCIL"):
+                self.warn("object '%s': %s objects are not exported" % (obj.name, obj.type.lower()))
 
     def _record(self, fr, key, ident, kind):
         rec = fr.records.get(key)
