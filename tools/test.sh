@@ -3,7 +3,7 @@
 #   tools/test.sh           the release build (build/)
 #   tools/test.sh --asan    the same suite under address and undefined-behaviour sanitizers
 #                           (build-asan/, clang), with a brief libFuzzer run of the RIB parser
-source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
+STREYES_SETUP_TESTS=1 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 # The farm tests run on a one-node Slurm cluster that ctest's fixtures start (farm.cluster_start)
 # and stop (farm.cluster_stop, pass or fail); should ctest itself be killed, this stops it too.
 stop_cluster() {

@@ -241,9 +241,11 @@ struct LightDesc {
     SourceLoc autoShadowLoc;
     // AreaLightSource: the light is spread over the geometry declared after it in its attribute
     // block, kept here as world-space bilinear patches (corners in RenderMan order); its shader
-    // runs at points on them (geom/lights.h).
+    // runs at points on them (geom/lights.h). areaToWorld takes the patches to the scene's world:
+    // the identity, but in a frame sequence, whose world is camera space, the frame's camera.
     bool area = false;
     std::vector<std::array<Vec3d, 4>> areaPatches;
+    MotionTransform areaToWorld;
 };
 
 // A bilinear patch (Patch "bilinear"; the bodies stage makes one of a Polygon of 3 or 4 vertices

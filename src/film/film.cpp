@@ -30,6 +30,12 @@ float filter1D(const std::string& type, float x, float r) {
         return 0.0f;
     }
     if (type == "disk") return 1.0f;  // radial: the disk's own table decides (PixelFilter)
+    if (type == "blackman-harris") {
+        // The four-term Blackman-Harris window over [-r, r] (Harris 1978; Cycles' and Blender's
+        // default pixel filter): 1 at the centre, about 6e-5 at the ends.
+        const double pi = 3.14159265358979323846, a = pi * (double(x) / double(r) + 1.0);
+        return float(0.35875 - 0.48829 * std::cos(a) + 0.14128 * std::cos(2 * a) - 0.01168 * std::cos(3 * a));
+    }
     if (type == "catmull-rom") {
         // The Catmull-Rom cubic over [-2, 2], stretched to the filter's radius.
         float t = std::fabs(x) * 2.0f / r;

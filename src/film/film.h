@@ -1,8 +1,8 @@
 // Pixel reconstruction: the pixel filter and the frames it resolves samples into.
 //
 // Filters are tabulated over [-xwidth/2, xwidth/2] x [-ywidth/2, ywidth/2] (RenderMan's widths):
-// box, triangle, gaussian, catmull-rom, sinc and mitchell as separable products f(dx) * f(dy)
-// (the "separable-" names are the same), disk as 1 inside the ellipse the widths span. Colour and alpha are the filter-weighted mean of
+// box, triangle, gaussian, catmull-rom, sinc, mitchell and blackman-harris as separable products
+// f(dx) * f(dy) (the "separable-" names are the same), disk as 1 inside the ellipse the widths span. Colour and alpha are the filter-weighted mean of
 // the samples around the pixel centre; Z is the nearest camera-space depth among the pixel's
 // own samples (+inf where none hit: Z is not filtered), or as DepthFilter says.
 //

@@ -52,6 +52,39 @@ TEST(PixelFilter, EveryFilterFollowsItsFormula) {
     EXPECT_EQ(disk.guardY(), 1);
 }
 
+// Blackman-Harris (Blender's and Cycles' default filter) over the whole width: 1 at the centre,
+// a0 - a2 = 0.21747 halfway out, a0 - a1 + a2 - a3 = 6e-5 at the edge, separable; the Cycles
+// film's "filter width" w is this filter's radius (Cycles doubles it), so Blender's 1.5 px is
+// PixelFilter "blackman-harris" 3 3, which reaches one pixel on each side.
+TEST(PixelFilter, BlackmanHarrisFollowsItsFormula) {
+    const double pi = 3.14159265358979323846;
+    const auto bh = [&](double x, double r) {
+        const double a = pi * (x / r + 1);
+        return 0.35875 - 0.48829 * std::cos(a) + 0.14128 * std::cos(2 * a) - 0.01168 * std::cos(3 * a);
+    };
+    const PixelFilter f({"blackman-harris", 3, 4});  // radii 1.5 and 2
+    EXPECT_NEAR(f.weight(0, 0), 1.0f, 1e-3f);
+    EXPECT_NEAR(f.weightX(0.75f), 0.21747f, 5e-3f);
+    EXPECT_NEAR(f.weightY(-1.0f), 0.21747f, 5e-3f);
+    EXPECT_NEAR(f.weightX(1.499f), 6e-5f, 1e-3f);
+    for (float x : {0.1f, -0.4f, 0.6f, 1.2f, -1.45f}) EXPECT_NEAR(f.weightX(x), bh(x, 1.5), 5e-3) << x;
+    for (float y : {0.3f, -1.1f, 1.8f}) EXPECT_NEAR(f.weightY(y), bh(y, 2.0), 5e-3) << y;
+    EXPECT_NEAR(f.weight(0.6f, -1.1f), f.weightX(0.6f) * f.weightY(-1.1f), 1e-6f);  // separable
+    EXPECT_EQ(f.weight(1.5f, 0), 0.0f);
+    EXPECT_EQ(f.weight(0, 2.0f), 0.0f);
+    EXPECT_GT(f.weight(-1.49f, 0), 0.0f);
+    EXPECT_EQ(f.guardX(), 1);
+    EXPECT_EQ(f.guardY(), 2);
+    // Decreasing from the centre: a window, with no negative lobe.
+    float last = 2;
+    for (int i = 0; i <= 30; ++i) {
+        const float w = f.weightX(1.5f * float(i) / 31);
+        EXPECT_LE(w, last) << i;
+        EXPECT_GE(w, 0.0f) << i;
+        last = w;
+    }
+}
+
 // Resolves `tile` of every frame of the block into images of width x height (zero outside it).
 void resolveInto(const ImageBlock& block, const PixelRect& tile, const FilterWeights& weights, FrameImage* images,
                  int width, int height) {
@@ -101,7 +134,7 @@ TEST(Resolve, UniformSamplesGiveTheirValueAndZIsTheNearest) {
             SampleHit* h = dense ? block.record(0, i) : block.still(i);
             for (int k = 0; k < 9; ++k) h[k] = {3.0f + float(k), {0.25f, 0.5f, 0.75f}, 1};
         }
-        for (const char* type : {"box", "triangle", "gaussian", "catmull-rom", "sinc", "mitchell", "disk"}) {
+        for (const char* type : {"box", "triangle", "gaussian", "catmull-rom", "sinc", "mitchell", "blackman-harris", "disk"}) {
             const PixelFilter filter({type, 3, 3});
             const FilterWeights weights(filter, patterns);
             FrameImage img;

@@ -69,7 +69,7 @@ LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& 
             // Its shader runs at points of its shape, each with "shader" space moved there.
             l.kind = LightKind::Shader;
             sampleArea(d.areaPatches, l);
-            l.lightToWorld = MotionTransform();
+            l.lightToWorld = d.areaToWorld;
             Vec3d c{0, 0, 0};
             for (const Vec3d& p : l.areaP) c = c + p / double(std::max<size_t>(1, l.areaP.size()));
             l.from = c;  // the centre: where a light has one position (the ray tracer's bound)

@@ -19,8 +19,9 @@ struct Light {
     Vec3d from{0, 0, 0}, to{0, 0, 1};  // light space
     MotionTransform lightToWorld;
     bool castsShadows = false;
-    // An area light (AreaLightSource): its shader runs at these world-space points of its shape,
-    // each with the shape's unit normal there, every result weighted 1 / count.
+    // An area light (AreaLightSource): its shader runs at these points of its shape, each with the
+    // shape's unit normal there, every result weighted 1 / count; lightToWorld takes them to
+    // world space (LightDesc::areaToWorld).
     std::vector<Vec3d> areaP, areaN;
 };
 
@@ -63,18 +64,19 @@ class LightSet {
         return lights_[size_t(light)].lightToWorld.at(t) * worldToCamera_.at(t);
     }
     // Area lights: the points the shader runs at (0 for other lights, and for an area light
-    // given no geometry: it lights nothing). Sample j's "shader" space is world space moved to
-    // the point; its normal is the shape's, in camera space.
+    // given no geometry: it lights nothing). Sample j's "shader" space is the shape's space moved
+    // to the point (world space, but in a frame sequence); its normal is the shape's, in camera
+    // space.
     int areaSamples(int light) const { return int(lights_[size_t(light)].areaP.size()); }
     bool isArea(int light) const { return areaLight_[size_t(light)]; }
     Matrix4 areaSampleToCamera(int light, int j, double t) const {
-        return Matrix4::translate(lights_[size_t(light)].areaP[size_t(j)]) * worldToCamera_.at(t);
+        return Matrix4::translate(lights_[size_t(light)].areaP[size_t(j)]) * lightToCamera(light, t);
     }
     Vec3f areaPoint(int light, int j, double t) const {
-        return Vec3f(worldToCamera_.at(t).point(lights_[size_t(light)].areaP[size_t(j)]));
+        return Vec3f(lightToCamera(light, t).point(lights_[size_t(light)].areaP[size_t(j)]));
     }
     Vec3f areaNormal(int light, int j, double t) const {
-        return Vec3f(normalize(worldToCamera_.at(t).vector(lights_[size_t(light)].areaN[size_t(j)])));
+        return Vec3f(normalize(lightToCamera(light, t).vector(lights_[size_t(light)].areaN[size_t(j)])));
     }
 
   private:

@@ -152,11 +152,14 @@ void pixelFilter(RibParser& reader, RibArgs& args) {
     // PRMan's "separable-" names are the separable forms these filters already are.
     if (type.rfind("separable-", 0) == 0) type = type.substr(10);
     if (type == "catmullrom") type = "catmull-rom";
-    static const char* kFilters[] = {"box", "triangle", "gaussian", "catmull-rom", "sinc", "mitchell", "disk"};
+    if (type == "blackmanharris") type = "blackman-harris";
+    static const char* kFilters[] = {"box",  "triangle", "gaussian",       "catmull-rom",
+                                     "sinc", "mitchell", "blackman-harris", "disk"};
     if (std::find(std::begin(kFilters), std::end(kFilters), type) == std::end(kFilters)) {
         reader.log().warnOnce("pixelfilter:" + type, args.loc(),
                               "pixel filter \"" + type +
-                                  "\" is not supported (box, triangle, gaussian, catmull-rom, sinc, mitchell, disk): "
+                                  "\" is not supported (box, triangle, gaussian, catmull-rom, sinc, mitchell, "
+                                  "blackman-harris, disk): "
                                   "using gaussian 2 2");
         settings.filter = FilterDesc{};
         return;

@@ -171,8 +171,11 @@ TEST(RibOptions, DefaultsAndVariants) {
     EXPECT_DOUBLE_EQ(scene.settings.filter.ywidth, 3);
     scene = parse("PixelFilter \"separable-catmull-rom\" 4 4\nWorldBegin\nWorldEnd\n");
     EXPECT_EQ(scene.settings.filter.type, "catmull-rom");
-    for (const char* f : {"triangle", "mitchell", "disk"})
+    for (const char* f : {"triangle", "mitchell", "disk", "blackman-harris"})
         EXPECT_EQ(parse(std::string("PixelFilter \"") + f + "\" 2 2\nWorldBegin\nWorldEnd\n").settings.filter.type, f);
+    // PRMan's spelling without the hyphen, and its separable form.
+    EXPECT_EQ(parse("PixelFilter \"separable-blackmanharris\" 3 3\nWorldBegin\nWorldEnd\n").settings.filter.type,
+              "blackman-harris");
 
     // An unknown filter warns and keeps gaussian 2 2.
     Log log;

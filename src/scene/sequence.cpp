@@ -132,6 +132,7 @@ void SequenceBuilder::add(Scene&& frame) {
     declared_.clear();
     for (LightDesc& l : frame.lights) {
         l.lightToWorld = l.lightToWorld.then(worldToCamera_);
+        if (l.area) l.areaToWorld = l.areaToWorld.then(worldToCamera_);  // its shape, in the frame's world
         std::vector<LightDesc>& lights = out_.scene.lights;
         size_t i = 0;
         while (i < lights.size() && !sameLight(lights[i], l)) ++i;

@@ -54,7 +54,8 @@ bool sameAttributes(const Attributes& a, const Attributes& b) {
 
 bool sameLight(const LightDesc& a, const LightDesc& b) {
     return a.type == b.type && sameParams(a.params, b.params) && sameTransform(a.lightToWorld, b.lightToWorld) &&
-           a.castsShadows == b.castsShadows;
+           a.castsShadows == b.castsShadows && a.area == b.area && a.areaPatches == b.areaPatches &&
+           sameTransform(a.areaToWorld, b.areaToWorld);
 }
 
 bool sameData(const BilinearPatchDesc& a, const BilinearPatchDesc& b) {

@@ -260,6 +260,44 @@ TEST(Sequence, LightsBeforeWorldBeginAreInCameraSpace) {
     EXPECT_GT(a.channel(0, 16, 16, 0), 0.5f);  // lit head-on
 }
 
+// An area light's shape in a frame sequence is in the frame's camera space like everything else:
+// under a camera that is turned and moved (and mirrored, as exporters from right-handed tools
+// write it) and that pans within the frames' exposures, each frame renders as its RIB alone. Two
+// area lights alike but for their shapes (declared under the same transform) stay two lights.
+TEST(Sequence, AreaLightsAreInTheFramesCameraSpace) {
+    auto frame = [](int f) {
+        const std::string t0 = std::to_string(f - 0.25), t1 = std::to_string(f + 0.25);
+        const std::string pan = f >= 3 ? std::to_string(4 * (f - 2)) : "0", pan1 = f >= 3 ? std::to_string(4 * (f - 2) + 2) : "0";
+        return "FrameBegin " + std::to_string(f) +
+               "\nFormat 48 32 1\nProjection \"perspective\" \"fov\" [50]\nShutter -0.25 0.25\nPixelSamples 2 2\n"
+               "Scale 1 1 -1\nMotionBegin [" + t0 + " " + t1 + "]\nRotate " + pan + " 0 1 0\nRotate " + pan1 +
+               " 0 1 0\nMotionEnd\nRotate -56 1 0 0\nTranslate -0.5 6 -4\nWorldBegin\n"
+               "AttributeBegin\nOpacity [0 0 0]\nSurface \"constant\"\n"
+               "AreaLightSource \"arealight\" 7 \"intensity\" [8] \"string shadowname\" [\"raytrace\"]\n"
+               "Translate -2 -1 3\nPatch \"bilinear\" \"P\" [-0.5 -0.5 0  0.5 -0.5 0  -0.5 0.5 0  0.5 0.5 0]\nAttributeEnd\nIlluminate 7 1\n"
+               "AttributeBegin\nOpacity [0 0 0]\nSurface \"constant\"\n"
+               "AreaLightSource \"arealight\" 8 \"intensity\" [8] \"string shadowname\" [\"raytrace\"]\n"
+               "Translate 2 1 3\nPatch \"bilinear\" \"P\" [-0.2 -0.2 0  0.2 -0.2 0  -0.2 0.2 0  0.2 0.2 0]\nAttributeEnd\nIlluminate 8 1\n"
+               "Surface \"matte\"\nPolygon \"P\" [-6 -6 0  6 -6 0  6 6 0  -6 6 0]\n"
+               "Translate 0 0 0.5\nSphere 0.5 -0.5 0.5 360\nWorldEnd\nFrameEnd\n";
+    };
+    std::vector<std::string> frames;
+    for (int f = 1; f <= 4; ++f) frames.push_back(frame(f));
+    Log log;
+    const Sequence seq = buildFrames(frames, log);
+    ASSERT_EQ(seq.scene.lights.size(), 6u);  // frames 1-2 share their two lights; 3 and 4 pan
+    const RenderResult all = renderScene(seq.scene, test::optionsFor(Algorithm::Frames));
+    for (int f = 1; f <= 4; ++f) {
+        Log l;
+        Scene alone = parseRibString(frames[size_t(f - 1)], "alone.rib", l);
+        alone.settings.hasFrames = true;
+        alone.settings.firstFrame = alone.settings.lastFrame = f;
+        const RenderResult one = renderScene(alone, test::optionsFor(Algorithm::Frames));
+        EXPECT_GT(one.channel(f, 24, 20, 0), 0.05f) << "frame " << f << ": the floor is lit";
+        EXPECT_TRUE(test::identicalPixels(oneFrame(all, f), one)) << "frame " << f;
+    }
+}
+
 // ---- Bad sequences ------------------------------------------------------------------------------------
 std::string errorOf(const std::vector<std::string>& frames) {
     Log log;
