@@ -188,7 +188,10 @@ int farmSubmit(const std::vector<std::string>& args) {
         else if (a == "--dry-run") dryRun = true;
         else if (a == "--stats" || a == "--resume" || a == "--threads" || a == "--shot")
             throw UsageError(a + " is set by the farm for each task" +
-                             (a == "--threads" ? std::string(" (use --cpus-per-task N)") : std::string()));
+                             (a == "--threads" ? std::string(" (use --cpus-per-task N)")
+                              : a == "--shot"  ? std::string(" (the shot streyes render --frames A-B would use: the "
+                                                             "scene's frames joined with A-B)")
+                                               : std::string()));
         else if (!a.empty() && a[0] == '-') {
             // A render option, and its value when it takes one: parseRenderArgs checks it below.
             renderOptions.push_back(a);
@@ -317,6 +320,8 @@ int farmSubmit(const std::vector<std::string>& args) {
     m.executable = selfExecutable();
     m.first = first;
     m.last = last;
+    m.shotFirst = rs.shotFirst;  // streyes render --frames first-last's shot
+    m.shotLast = rs.shotLast;
     m.block = block;
     m.blocks = blocks;
     m.seed = seed;
