@@ -7,6 +7,7 @@
 #include <string>
 
 #include "streyes/scene.h"
+#include "streyes/scene_access.h"  // what a scene may reach: programs, files, where it writes
 
 namespace streyes {
 
@@ -32,16 +33,5 @@ void parseRibFrames(const std::string& path, Log& log, const std::function<void(
 // the text opens must be closed.
 Scene parseRibFragment(const std::string& text, const std::string& sourceName, const MotionTransform& ctm,
                        const AttributesPtr& attributes, Log& log, const ReadDetail& detail = {});
-
-// What a scene may reach outside itself for: run programs (RunProgram) and read other files
-// (ReadArchive, DelayedReadArchive). Both by default; a scene asking for what is not allowed is an
-// InputError. The RIB fuzzer allows neither: its inputs are mutated scenes, which could name any
-// program or a file that never ends (/dev/zero).
-struct SceneAccess {
-    bool programs = true;
-    bool files = true;
-};
-void setSceneAccess(SceneAccess access);  // for the whole process
-SceneAccess sceneAccess();
 
 }  // namespace streyes

@@ -100,6 +100,12 @@ render options:
                       images do not depend on it
   --resume            skip frames whose files are already complete (read back and
                       checked), render the rest
+  --safe              for scenes from others (docs/SCENE-FORMAT.md, "What a scene can do"):
+                      no Procedural "RunProgram", no "DynamicLoad" of a plug-in (the built-in
+                      generators stay), and every file the scene asks to write (Display,
+                      MakeTexture ...) only inside -o's folder, else the current one, named
+                      without an absolute path or ".."; refused with exit 2 at file:line
+  --safe-dir DIR      --safe, with DIR as the folder the scene may write in
   --quiet             no progress (a bar on a terminal, else a line per 10%), no summary,
                       no warnings on stderr
 

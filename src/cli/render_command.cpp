@@ -124,6 +124,8 @@ std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPatter
         if (hasVariables && primary) mode = d.mode;
         else if (hasVariables) variables.push_back({d.name, d.mode});
         else if (!d.mode.empty() && modeVariables(mode).empty()) mode = d.mode;
+        // What the scene names is written (-o replaces only the primary display's name).
+        if (oPattern.empty() || (hasVariables && !primary)) checkSceneWrite("Display", d.name, d.loc);
         primary = false;
         if (oPattern.empty()) outs.push_back({d.name, d.mode.empty() ? "rgbaz" : d.mode});
     }
@@ -167,6 +169,7 @@ std::map<int, std::vector<Output>> sequenceOutputs(const Sequence& seq, const st
     std::string stem = std::filesystem::path(scenePath).stem().string();
     stem.erase(std::remove(stem.begin(), stem.end(), '#'), stem.end());
     while (!stem.empty() && stem.back() == '.') stem.pop_back();
+    std::set<std::string> checked;  // names a scene may write (--safe): each once
     for (int f = first; f <= last; ++f) {
         std::vector<Output>& o = outs[f];
         auto it = seq.displays.find(f);
@@ -179,6 +182,7 @@ std::map<int, std::vector<Output>> sequenceOutputs(const Sequence& seq, const st
                     continue;
                 }
                 std::string name = d.name;
+                if (checked.insert(name).second) checkSceneWrite("Display", name, d.loc);
                 if (uses[name] > 1 && !hasFrameField(name)) {
                     const std::string p = addFrameField(name);
                     log.warnOnce("display-field:" + name, d.loc,
@@ -320,6 +324,11 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
             if (v == "0") opts.gridCacheBytes = 0;
             else if (!parseByteSize(v, &opts.gridCacheBytes))
                 throw UsageError("--grid-cache expects a size such as 128M or 1G, or 0 (off), not '" + v + "'");
+        } else if (a == "--safe") req.safe = true;
+        else if (a == "--safe-dir") {
+            req.safe = true;
+            req.safeDir = value();
+            if (req.safeDir.empty()) throw UsageError("--safe-dir needs a folder");
         } else if (a == "--resume") req.resume = true;
         else if (a == "--quiet" || a == "-q") req.quiet = true;
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
@@ -327,6 +336,23 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
         else throw UsageError("more than one scene given ('" + req.scenePath + "' and '" + a + "')");
     }
     return req;
+}
+
+SceneAccess sceneAccessFor(const RenderRequest& req) {
+    SceneAccess access;
+    if (!req.safe) return access;
+    namespace fs = std::filesystem;
+    access.programs = false;
+    access.safe = true;
+    std::string dir = req.safeDir;
+    if (dir.empty()) dir = fs::path(req.outPattern).parent_path().string();
+    if (dir.empty()) dir = ".";
+    std::error_code ec;
+    if (!req.safeDir.empty() && !fs::is_directory(dir, ec))
+        throw InputError("--safe-dir " + dir + ": no such folder (the folder a scene may write in must exist)");
+    access.writeFolder = fs::absolute(dir, ec).lexically_normal().string();
+    if (access.writeFolder.size() > 1 && access.writeFolder.back() == '/') access.writeFolder.pop_back();
+    return access;
 }
 
 void applyPreview(RenderRequest& req, const Scene& scene) {
@@ -351,6 +377,8 @@ int renderCommand(const std::vector<std::string>& args) {
     // On this machine (a farm's tasks may run on CPUs other than the one that submitted them).
     std::string simdError;
     if (!req.simd.empty() && !capSimd(req.simd, &simdError)) throw UsageError("--simd: " + simdError);
+
+    setSceneAccess(sceneAccessFor(req));  // before the scene is read: --safe refuses at the request
 
     const auto start = std::chrono::steady_clock::now();
     const ExrChunkCounts chunksBefore = exrChunkCounts();

@@ -2,7 +2,6 @@
 // the input, and the public entry points (streyes/rib.h).
 #include "scene/rib_parser.h"
 
-#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -243,16 +242,5 @@ Scene parseRibFragment(const std::string& text, const std::string& sourceName, c
     parser.finishFragment();
     return scene;
 }
-
-namespace {
-std::atomic<bool> programsAllowed{true}, filesAllowed{true};
-}  // namespace
-
-void setSceneAccess(SceneAccess access) {
-    programsAllowed = access.programs;
-    filesAllowed = access.files;
-}
-
-SceneAccess sceneAccess() { return {programsAllowed.load(), filesAllowed.load()}; }
 
 }  // namespace streyes

@@ -4,17 +4,22 @@
 #include <filesystem>
 
 #include "scene/rib_requests.h"
+#include "streyes/scene_access.h"
 
 namespace streyes {
 
 namespace {
 
-// A relative name is the folder's of the RIB file that gives the request.
+// The folder of the RIB file that gives the request: relative names are taken from it.
+std::string fileFolder(const RibArgs& args) {
+    return args.loc().file ? std::filesystem::path(*args.loc().file).parent_path().string() : "";
+}
+
 std::string besideFile(const RibArgs& args, const std::string& name) {
     namespace fs = std::filesystem;
-    if (name.empty() || fs::path(name).is_absolute() || !args.loc().file) return name;
-    const fs::path dir = fs::path(*args.loc().file).parent_path();
-    return dir.empty() ? name : (dir / name).string();
+    if (name.empty() || fs::path(name).is_absolute()) return name;
+    const std::string dir = fileFolder(args);
+    return dir.empty() ? name : (fs::path(dir) / name).string();
 }
 
 void checkWrap(RibArgs& args, const RibValue& at, const std::string& wrap) {
@@ -25,11 +30,13 @@ void checkWrap(RibArgs& args, const RibValue& at, const std::string& wrap) {
 void readFiles(RibArgs& args, MakeTextureDesc& d) {
     const RibValue* in = args.peek();
     d.input = besideFile(args, args.string("picture name"));
-    d.output = besideFile(args, args.string("texture name"));
+    const std::string output = args.string("texture name");
+    d.output = besideFile(args, output);
+    if (d.output.empty()) args.fail("the texture name is empty");
+    checkSceneWrite(args.name(), output, args.loc(), fileFolder(args));  // --safe: inside its folder
     std::error_code ec;
     if (!std::filesystem::is_regular_file(d.input, ec))
         args.fail(*in, "cannot read the picture '" + d.input + "' to make '" + d.output + "' from");
-    if (d.output.empty()) args.fail("the texture name is empty");
 }
 
 void readFilter(RibParser& reader, RibArgs& args, MakeTextureDesc& d) {
