@@ -50,9 +50,11 @@ inline int runStreyesLogged(const std::string& args, const std::string& stderrPa
     return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// A run of `streyes ARGS` (split on spaces; no quoting) in folder `cwd`, its address space capped at
-// `addressSpaceBytes` (0: no cap) so that a bug that allocates without bound fails there rather than
-// taking the machine's memory, with its peak resident memory (getrusage's ru_maxrss, from wait4).
+// A run of `streyes ARGS` in folder `cwd`, its address space capped at `addressSpaceBytes` (0: no
+// cap) so that a bug that allocates without bound fails there rather than taking the machine's
+// memory, with its peak resident memory as wait4 reports it (ru_maxrss). That figure starts from
+// the test process's own at the fork (the child's memory before exec counts): an upper bound, for
+// checks of gigabytes; `streyes render --stats` reports the render's own peak.
 struct MeasuredRun {
     int exitCode = -1;  // -1 when the process did not exit normally (a signal, a crash)
     std::string output;  // stdout and stderr
