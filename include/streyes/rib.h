@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "streyes/scene.h"
 #include "streyes/scene_access.h"  // what a scene may reach: programs, files, where it writes
@@ -22,11 +23,18 @@ struct ReadDetail {
 
 Scene parseRibFile(const std::string& path, Log& log);
 Scene parseRibString(const std::string& text, const std::string& sourceName, Log& log);
+// RIB requests read before a scene file, as defaults the file may override: `streyes render
+// --option 'Option "searchpath" "shader" ["dir"]'` (Aqsis's -option). Each is one or more requests
+// of the kind a file gives before WorldBegin (options, Format, PixelSamples ...); messages name them
+// "--option N" (the Nth given).
+using RibDefaults = std::vector<std::string>;
+
 // A file of FrameBegin n ... FrameEnd blocks: each frame, as it ends, is handed to `frame` as a
 // complete scene (Scene::frameNumber, Scene::frameLoc). A file without frame blocks is handed over
-// whole, as one scene with no frame location. Memory holds one frame at a time.
+// whole, as one scene with no frame location. Memory holds one frame at a time. `defaults` are read
+// first (InputError when one leaves a block open or begins the world).
 void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame,
-                    const ReadDetail& detail = {});
+                    const ReadDetail& detail = {}, const RibDefaults& defaults = {});
 
 // A procedural's RIB output (DelayedReadArchive, RunProgram): requests inside a world block,
 // read under the procedural's transform and attributes into a scene of their own. Every block

@@ -107,12 +107,15 @@ std::string frameFileName(const std::string& pattern, int frame);
 // scene file (isSequence false; `frames` is left to the renderer). A frame file missing or a
 // frame the request names that the file lacks is an InputError. `detail`: the size the frames will
 // be rendered at, for detail chosen while reading (streyes/rib.h).
-Sequence readScene(const std::string& path, const FrameRequest& frames, Log& log, const ReadDetail& detail = {});
+Sequence readScene(const std::string& path, const FrameRequest& frames, Log& log, const ReadDetail& detail = {},
+                   const RibDefaults& defaults = {});
 // The same, a block of at most `blockFrames` consecutive frames at a time: each block is merged and
 // handed to `block` before the next is read, so memory holds one block (and a batch of frames
 // being parsed). An ordinary scene file is handed over once (isSequence false). A frame's pixels
 // do not depend on the block it is rendered in: each renders what its RIB says.
+// `defaults` (streyes render --option) are read before each file: before each frame of a pattern.
 void readSceneBlocks(const std::string& path, const FrameRequest& frames, int blockFrames, Log& log,
-                     const std::function<void(Sequence&&)>& block, const ReadDetail& detail = {});
+                     const std::function<void(Sequence&&)>& block, const ReadDetail& detail = {},
+                     const RibDefaults& defaults = {});
 
 }  // namespace streyes

@@ -242,7 +242,7 @@ int farmSubmit(const std::vector<std::string>& args) {
     FrameRequest wanted;
     wanted.given = !framesArg.empty();
     wanted.first = first, wanted.last = last;
-    Sequence sequence = readScene(scene, wanted, log);
+    Sequence sequence = readScene(scene, wanted, log, ReadDetail{}, req.ribOptions);
     Scene& parsed = sequence.scene;
     if (req.safe)  // a program or plug-in the scene names is refused now, not in every task
         for (const ProceduralDesc& p : parsed.procedurals) makeProceduralGenerator(p);

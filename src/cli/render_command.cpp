@@ -338,7 +338,8 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
             if (v == "0") opts.gridCacheBytes = 0;
             else if (!parseByteSize(v, &opts.gridCacheBytes))
                 throw UsageError("--grid-cache expects a size such as 128M or 1G, or 0 (off), not '" + v + "'");
-        } else if (a == "--safe") req.safe = true;
+        } else if (a == "--option") req.ribOptions.push_back(value());
+        else if (a == "--safe") req.safe = true;
         else if (a == "--safe-dir") {
             req.safe = true;
             req.safeDir = value();
@@ -523,7 +524,7 @@ int renderCommand(const std::vector<std::string>& args) {
     ReadDetail detail;
     detail.xres = opts.xres, detail.yres = opts.yres;
     if (req.preview && opts.xres <= 0) detail.formatScale = 1.0 / kPreviewDivisor;  // applyPreview's size
-    readSceneBlocks(scenePath, wanted, opts.maxFrameBlock, log, renderBlock, detail);
+    readSceneBlocks(scenePath, wanted, opts.maxFrameBlock, log, renderBlock, detail, req.ribOptions);
     const ResolvedSettings& rs = first;
     RenderStats& stats = total;
     const auto waited = std::chrono::steady_clock::now();

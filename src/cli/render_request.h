@@ -22,6 +22,7 @@ struct RenderRequest {
     // only inside DIR (default: -o's folder, else the current folder).
     bool safe = false;
     std::string safeDir;
+    RibDefaults ribOptions;  // --option 'RIB request' (any number): read before the scene, which may override them
 };
 
 // Parses `streyes render` arguments (without the command word); UsageError on bad ones.

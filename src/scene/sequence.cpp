@@ -289,7 +289,7 @@ uint64_t fileSize(const std::string& path) {
 }
 
 // One frame's file: a scene, or one FrameBegin block (whose number should be the file's).
-Scene readFrameFile(const std::string& file, int f, Log& log, const ReadDetail& detail) {
+Scene readFrameFile(const std::string& file, int f, Log& log, const ReadDetail& detail, const RibDefaults& defaults) {
     Scene frame;
     int blocks = 0;
     parseRibFrames(
@@ -307,21 +307,24 @@ Scene readFrameFile(const std::string& file, int f, Log& log, const ReadDetail& 
             s.frameNumber = f;
             frame = std::move(s);
         },
-        detail);
+        detail, defaults);
     return frame;
 }
 
 }  // namespace
 
-Sequence readScene(const std::string& path, const FrameRequest& req, Log& log, const ReadDetail& detail) {
+Sequence readScene(const std::string& path, const FrameRequest& req, Log& log, const ReadDetail& detail,
+                   const RibDefaults& defaults) {
     Sequence all;
     readSceneBlocks(
-        path, req, std::numeric_limits<int>::max(), log, [&](Sequence&& s) { all = std::move(s); }, detail);
+        path, req, std::numeric_limits<int>::max(), log, [&](Sequence&& s) { all = std::move(s); }, detail,
+        defaults);
     return all;
 }
 
 void readSceneBlocks(const std::string& path, const FrameRequest& req, int blockFrames, Log& log,
-                     const std::function<void(Sequence&&)>& block, const ReadDetail& detail) {
+                     const std::function<void(Sequence&&)>& block, const ReadDetail& detail,
+                     const RibDefaults& defaults) {
     SequenceBuilder builder(log);
     uint64_t bytes = 0;
     blockFrames = std::max(1, blockFrames);
@@ -366,7 +369,7 @@ void readSceneBlocks(const std::string& path, const FrameRequest& req, int block
             std::vector<std::exception_ptr> errors(n);
             tbb::parallel_for(size_t(0), n, [&](size_t i) {
                 try {
-                    scenes[i] = readFrameFile(frameFileName(path, frames[b + i]), frames[b + i], log, detail);
+                    scenes[i] = readFrameFile(frameFileName(path, frames[b + i]), frames[b + i], log, detail, defaults);
                 } catch (...) {
                     errors[i] = std::current_exception();
                 }
@@ -396,7 +399,7 @@ void readSceneBlocks(const std::string& path, const FrameRequest& req, int block
         read.insert(s.frameNumber);
         if (req.given && (s.frameNumber < req.first || s.frameNumber > req.last)) return;
         add(std::move(s));
-    }, detail);
+    }, detail, defaults);
     if (!frames) {
         single.stats.bytesRead = fileSize(path);
         block(std::move(single));
