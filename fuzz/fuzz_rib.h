@@ -21,7 +21,11 @@ inline Outcome parseAndRender(std::string_view text) {
     // Inputs are mutated scenes: they must not run programs or read other files.
     struct Restricted {
         SceneAccess before = sceneAccess();
-        Restricted() { setSceneAccess({false, false}); }
+        Restricted() {
+            SceneAccess none;
+            none.programs = none.files = false;
+            setSceneAccess(none);
+        }
         ~Restricted() { setSceneAccess(before); }
     } restricted;
     Log log;

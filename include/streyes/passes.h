@@ -86,6 +86,8 @@ struct PassRequest {
     // Frames that need no render (--resume: written already), or null. A frame it calls done is
     // rendered only when a wanted frame reads from it.
     std::function<bool(const Scene& frame)> done;
+    // RIB requests read before each file (streyes render --option; streyes/rib.h).
+    RibDefaults defaults;
 };
 
 // Reads the input at `path` (a frame pattern, a file of frames, or a scene) and hands `job` each

@@ -5,8 +5,10 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "streyes/scene.h"
+#include "streyes/scene_access.h"  // what a scene may reach: programs, files, where it writes
 
 namespace streyes {
 
@@ -21,30 +23,26 @@ struct ReadDetail {
 
 Scene parseRibFile(const std::string& path, Log& log);
 Scene parseRibString(const std::string& text, const std::string& sourceName, Log& log);
+// RIB requests read before a scene file, as defaults the file may override: `streyes render
+// --option 'Option "searchpath" "shader" ["dir"]'` (Aqsis's -option). Each is one or more requests
+// of the kind a file gives before WorldBegin (options, Format, PixelSamples ...); messages name them
+// "--option N" (the Nth given).
+using RibDefaults = std::vector<std::string>;
+
 // A file of FrameBegin n ... FrameEnd blocks: each frame, as it ends, is handed to `frame` as a
 // complete scene (Scene::frameNumber, Scene::frameLoc). A file without frame blocks is handed over
 // whole, as one scene with no frame location. Memory holds one frame at a time. `after`, when
 // given, gets what follows the last frame of a file of frames (the state outside the frames: its
 // make requests, RenderSettings::makeTextures and makeShadows, are those not yet handed over with
-// a frame).
+// a frame). `defaults` are read first (InputError when one leaves a block open or begins the world).
 void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame,
-                    const ReadDetail& detail = {}, const std::function<void(Scene&&)>& after = {});
+                    const ReadDetail& detail = {}, const std::function<void(Scene&&)>& after = {},
+                    const RibDefaults& defaults = {});
 
 // A procedural's RIB output (DelayedReadArchive, RunProgram): requests inside a world block,
 // read under the procedural's transform and attributes into a scene of their own. Every block
 // the text opens must be closed.
 Scene parseRibFragment(const std::string& text, const std::string& sourceName, const MotionTransform& ctm,
                        const AttributesPtr& attributes, Log& log, const ReadDetail& detail = {});
-
-// What a scene may reach outside itself for: run programs (RunProgram) and read other files
-// (ReadArchive, DelayedReadArchive). Both by default; a scene asking for what is not allowed is an
-// InputError. The RIB fuzzer allows neither: its inputs are mutated scenes, which could name any
-// program or a file that never ends (/dev/zero).
-struct SceneAccess {
-    bool programs = true;
-    bool files = true;
-};
-void setSceneAccess(SceneAccess access);  // for the whole process
-SceneAccess sceneAccess();
 
 }  // namespace streyes

@@ -102,7 +102,9 @@ std::string frameFileName(const std::string& pattern, int frame);
 // merged whole. An input of several passes (depth maps and a picture, or frames with other
 // settings) is an InputError: readPasses reads it. A frame file missing or a frame the request
 // names that the file lacks is an InputError. `detail`: the size the frames will be rendered at,
-// for detail chosen while reading (streyes/rib.h).
-Sequence readScene(const std::string& path, const FrameRequest& frames, Log& log, const ReadDetail& detail = {});
+// for detail chosen while reading (streyes/rib.h); `defaults` (streyes render --option) are read
+// before each file: before each frame of a pattern.
+Sequence readScene(const std::string& path, const FrameRequest& frames, Log& log, const ReadDetail& detail = {},
+                   const RibDefaults& defaults = {});
 
 }  // namespace streyes

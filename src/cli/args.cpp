@@ -100,8 +100,21 @@ render options:
                       images do not depend on it
   --resume            skip frames whose files are already complete (read back and
                       checked), render the rest
+  --option 'REQUEST'  a RIB request read before the scene, as a default the scene may
+                      override (Aqsis's -option), e.g. --option 'Option "searchpath"
+                      "shader" ["/studio/shaders:&"]'; any number, read in order
+  --safe              for scenes from others (docs/SCENE-FORMAT.md, "What a scene can do"):
+                      no Procedural "RunProgram", no "DynamicLoad" of a plug-in (the built-in
+                      generators stay), and every file the scene asks to write (Display,
+                      MakeTexture ...) only inside -o's folder, else the current one, named
+                      without an absolute path or ".."; refused with exit 2 at file:line
+  --safe-dir DIR      --safe, with DIR as the folder the scene may write in
   --quiet             no progress (a bar on a terminal, else a line per 10%), no summary,
                       no warnings on stderr
+
+environment: STREYES_SHADERPATH, STREYES_TEXTUREPATH, STREYES_PROCEDURALPATH: folders separated by
+             ':' where shaders, texture maps and plug-ins are looked for after the scene's own
+             search paths (Option "searchpath")
 
 exit codes: 0 done, 1 render failed (e.g. an output folder missing or not writable, found
             before rendering; a full disk), 2 bad input or usage (or more memory than the budget)

@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "farm_plan.h"
 #include "farm_slurm.h"
+#include "procedural/procedural.h"
 #include "render_request.h"
 #include "streyes/image_io.h"
 #include "streyes/passes.h"
@@ -53,8 +54,9 @@ submit options:
   --all-blocks        submit every block (by default, blocks whose frames are all complete
                       are left out; every task skips complete frames anyway)
   --dry-run           print the plan, the batch script and the sbatch line; submit nothing
-  render options      --res, --samples, --algorithm, --preview ... as for streyes render,
-                      passed to every task (not --frames, --shot, --stats or --resume: the farm sets them)
+  render options      --res, --samples, --algorithm, --preview, --safe ... as for streyes
+                      render, passed to every task (not --frames, --shot, --stats or --resume:
+                      the farm sets them); with --safe the scene is checked here first
   -- OPTIONS          anything after -- goes to sbatch (e.g. -- --time=2:00:00 --mem=8G)
 
   Submitting the same shot again (same scene, frames, blocks, seed and options) adds a job to
@@ -190,11 +192,18 @@ int farmSubmit(const std::vector<std::string>& args) {
         else if (a == "--dry-run") dryRun = true;
         else if (a == "--stats" || a == "--resume" || a == "--threads" || a == "--shot")
             throw UsageError(a + " is set by the farm for each task" +
-                             (a == "--threads" ? std::string(" (use --cpus-per-task N)") : std::string()));
-        else if (!a.empty() && a[0] == '-') {
+                             (a == "--threads" ? std::string(" (use --cpus-per-task N)")
+                              : a == "--shot"  ? std::string(" (the shot streyes render --frames A-B would use: the "
+                                                             "scene's frames joined with A-B)")
+                                               : std::string()));
+        else if (a == "--safe-dir") {
+            // The tasks run elsewhere: the folder as this machine names it, absolute.
+            renderOptions.push_back(a);
+            renderOptions.push_back(fs::absolute(value()).lexically_normal().string());
+        } else if (!a.empty() && a[0] == '-') {
             // A render option, and its value when it takes one: parseRenderArgs checks it below.
             renderOptions.push_back(a);
-            static const std::set<std::string> flags = {"--preview", "--quiet", "-q"};
+            static const std::set<std::string> flags = {"--preview", "--quiet", "-q", "--safe"};
             if (!flags.count(a) && i + 1 < args.size()) renderOptions.push_back(args[++i]);
         } else if (scenePath.empty()) scenePath = a;
         else throw UsageError("more than one scene given ('" + scenePath + "' and '" + a + "')");
@@ -218,6 +227,10 @@ int farmSubmit(const std::vector<std::string>& args) {
         check.push_back(framesArg);
     }
     RenderRequest req = parseRenderArgs(check);
+    // --safe: the scene is read here as the tasks will read it, its refusals found before anything
+    // is submitted (the tasks' write folder is -o's, as given here, unless --safe-dir says).
+    req.outPattern = fs::absolute(outPattern).lexically_normal().string();
+    setSceneAccess(sceneAccessFor(req));
 
     // Before anything is submitted: Slurm, the scene, the output folder, the blocks, the partition.
     if (!dryRun) checkSlurmReachable();
@@ -235,6 +248,7 @@ int farmSubmit(const std::vector<std::string>& args) {
     PassRequest passes;
     passes.frames = wanted;
     passes.blockFrames = std::numeric_limits<int>::max() / 4;
+    passes.defaults = req.ribOptions;
     Sequence sequence;
     bool havePicture = false, haveAny = false;
     int firstPicture = std::numeric_limits<int>::max(), lastPicture = std::numeric_limits<int>::min();
@@ -250,6 +264,8 @@ int farmSubmit(const std::vector<std::string>& args) {
     });
     if (!haveAny) throw InputError("'" + scenePath + "' renders no frame");
     Scene& parsed = sequence.scene;
+    if (req.safe)  // a program or plug-in the scene names is refused now, not in every task
+        for (const ProceduralDesc& p : parsed.procedurals) makeProceduralGenerator(p);
     applyPreview(req, parsed);
     RenderOptions shot = req.opts;
     if (havePicture && sequence.isSequence) {
@@ -342,6 +358,8 @@ int farmSubmit(const std::vector<std::string>& args) {
     m.executable = selfExecutable();
     m.first = first;
     m.last = last;
+    m.shotFirst = rs.shotFirst;  // streyes render --frames first-last's shot
+    m.shotLast = rs.shotLast;
     m.block = block;
     m.blocks = blocks;
     m.seed = seed;

@@ -227,9 +227,10 @@ std::string Manifest::statsPath(long job, int task) const {
 
 std::vector<std::string> Manifest::taskCommand(const Block& b, const std::string& stats) const {
     // --shot: every task decides what the whole animation decides (motion segments, procedural
-    // detail) over the same frames, so that its frames equal a single machine's.
+    // detail) over the frames one machine rendering first..last would, so that its frames equal
+    // that machine's.
     std::vector<std::string> cmd = {executable, "render", scene, "--frames", b.str(),
-                                    "--shot", std::to_string(first) + "-" + std::to_string(last),
+                                    "--shot", Block{shotFirst, shotLast}.str(),
                                     "-o", output, "--resume", "--seed", std::to_string(seed)};
     cmd.insert(cmd.end(), renderOptions.begin(), renderOptions.end());
     if (cpusPerTask > 0) {
@@ -288,6 +289,8 @@ bool Manifest::sameShot(const Manifest& o, std::string* difference) const {
     if (output != o.output) return differs("output is", output, o.output);
     if (first != o.first || last != o.last)
         return differs("frames are", Block{first, last}.str(), Block{o.first, o.last}.str());
+    if (shotFirst != o.shotFirst || shotLast != o.shotLast)
+        return differs("shot is", Block{shotFirst, shotLast}.str(), Block{o.shotFirst, o.shotLast}.str());
     if (block != o.block) return differs("block length is", std::to_string(block), std::to_string(o.block));
     if (seed != o.seed) return differs("seed is", std::to_string(seed), std::to_string(o.seed));
     if (renderOptions != o.renderOptions) return differs("render options are", join(renderOptions), join(o.renderOptions));
@@ -318,6 +321,7 @@ Json Manifest::toJson() const {
     j.set("output", Json::string(output));
     j.set("executable", Json::string(executable));
     j.set("frames", pair(first, last));
+    j.set("shot", pair(shotFirst, shotLast));
     j.set("block", Json::number(block));
     Json bl = Json::array();
     for (const Block& b : blocks) bl.push(pair(b.first, b.last));
@@ -359,6 +363,13 @@ Manifest Manifest::fromJson(const Json& j, const std::string& path) {
     if (j["frames"].items().size() != 2) throw bad("\"frames\" is not [first, last]");
     m.first = int(j["frames"].items()[0].num());
     m.last = int(j["frames"].items()[1].num());
+    // Manifests written before the shot was kept: their tasks passed the frames as the shot.
+    m.shotFirst = m.first, m.shotLast = m.last;
+    if (j["shot"].items().size() == 2) {
+        m.shotFirst = int(j["shot"].items()[0].num());
+        m.shotLast = int(j["shot"].items()[1].num());
+    }
+    if (m.shotFirst > m.first || m.shotLast < m.last) throw bad("\"shot\" does not hold \"frames\"");
     m.block = int(j["block"].num());
     for (const Json& b : j["blocks"].items()) {
         if (b.items().size() != 2) throw bad("a block is not [first, last]");

@@ -85,6 +85,10 @@ struct Manifest {
     std::string output;      // absolute #### pattern
     std::string executable;  // the streyes the tasks run (absolute)
     int first = 0, last = 0, block = 0;
+    // The whole animation the frames belong to, as `streyes render --frames first-last` decides it
+    // (the scene's frames joined with those rendered): every task passes it as --shot, so that
+    // motion segments and procedural detail are decided over the frames one machine would use.
+    int shotFirst = 0, shotLast = 0;
     std::vector<Block> blocks;
     uint64_t seed = 0;
     std::vector<std::string> renderOptions;  // the shot's render options, as given (--res, --samples ...)
@@ -107,7 +111,7 @@ struct Manifest {
     // its exit code logged.
     std::string batchScript(int submissionNumber) const;
 
-    // The same shot (scene, frames, blocks, seed, options, output): a resubmission may add to it.
+    // The same shot (scene, frames, shot, blocks, seed, options, output): a resubmission may add to it.
     bool sameShot(const Manifest& o, std::string* difference) const;
 
     Json toJson() const;

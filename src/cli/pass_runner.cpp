@@ -7,6 +7,7 @@
 #include "geom/camera.h"
 #include "io/depth_map_file.h"
 #include "streyes/image_io.h"
+#include "streyes/scene_access.h"
 #include "streyes/textures.h"
 
 namespace streyes::cli {
@@ -79,8 +80,10 @@ RenderStats PassRunner::renderDepth(PassJob& job, const RenderOptions& opts) {
     const std::map<int, PassFrame>& frames = job.frames;
     o.frameDone = [&frames](int f) { return !frames.count(f); };
     for (const auto& [f, frame] : frames)
-        for (const auto& [display, version] : frame.maps)
+        for (const auto& [display, version] : frame.maps) {
+            checkSceneWrite("Display", display.name, display.loc);  // --safe: inside its folder
             checkWritableFolder(frameFileName(display.name, f), "Display");
+        }
     const double open = scene.settings.shutterOpen;
     auto sink = [&](FrameImage& image) {
         auto it = frames.find(image.frame);

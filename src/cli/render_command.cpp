@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -127,6 +128,8 @@ std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPatter
         if (hasVariables && primary) mode = d.mode;
         else if (hasVariables) variables.push_back({d.name, d.mode});
         else if (!d.mode.empty() && modeVariables(mode).empty()) mode = d.mode;
+        // What the scene names is written (-o replaces only the primary display's name).
+        if (oPattern.empty() || (hasVariables && !primary)) checkSceneWrite("Display", d.name, d.loc);
         primary = false;
         if (oPattern.empty()) outs.push_back({d.name, d.mode.empty() ? "rgbaz" : d.mode});
     }
@@ -173,6 +176,7 @@ std::map<int, std::vector<Output>> sequenceOutputs(const Sequence& seq, const st
     std::string stem = std::filesystem::path(scenePath).stem().string();
     stem.erase(std::remove(stem.begin(), stem.end(), '#'), stem.end());
     while (!stem.empty() && stem.back() == '.') stem.pop_back();
+    std::set<std::string> checked;  // names a scene may write (--safe): each once
     for (int f = first; f <= last; ++f) {
         if (skip(f)) continue;
         std::vector<Output>& o = outs[f];
@@ -187,6 +191,7 @@ std::map<int, std::vector<Output>> sequenceOutputs(const Sequence& seq, const st
                     continue;
                 }
                 std::string name = d.name;
+                if (checked.insert(name).second) checkSceneWrite("Display", name, d.loc);
                 if (uses[name] > 1 && !hasFrameField(name)) {
                     const std::string p = addFrameField(name);
                     log.warnOnce("display-field:" + name, d.loc,
@@ -224,31 +229,44 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
     }
 }
 
-// The temporaries of frames first..last of `pattern` whose writers no longer run (image_io.h,
+// Frames first..last of an output pattern.
+struct OutputFrames {
+    std::string pattern;
+    int first = 0, last = 0;
+};
+
+// The temporaries of the outputs' frames whose writers no longer run (image_io.h,
 // removeStaleTemporaries), and only of those frames: on a render farm, tasks on other machines
 // write the pattern's other frames into the same shared folder, and their process ids mean nothing
-// here (a live writer there would look dead from here). One scan of the folder finds whether any
-// temporary is there at all.
-int removeStaleTemporariesOfFrames(const std::string& pattern, int first, int last) {
-    const std::filesystem::path dir = std::filesystem::path(pattern).has_parent_path()
-                                          ? std::filesystem::path(pattern).parent_path()
-                                          : std::filesystem::path(".");
-    std::vector<std::string> temporaries;
-    std::error_code ec;
-    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
-        const std::string name = entry.path().filename().string();
-        if (!name.empty() && name[0] == '.' && name.find(".tmp") != std::string::npos) temporaries.push_back(name);
-    }
+// here (a live writer there would look dead from here). Each folder is listed once, for whether
+// any temporary is there at all: a sequence names its files frame by frame, and a listing a frame
+// read a folder of N frames N times (a 5,000-frame shot spent 90% of its time there).
+int removeStaleTemporariesOfFrames(const std::vector<OutputFrames>& outputs) {
+    std::map<std::string, std::vector<std::string>> temporaries;  // by folder
     int removed = 0;
-    if (temporaries.empty()) return removed;
-    for (int f = first; f <= last; ++f) {
-        const std::string path = expandFramePattern(pattern, f);
-        const std::string prefix = "." + std::filesystem::path(path).stem().string() + ".tmp";
-        for (const std::string& t : temporaries)
-            if (t.compare(0, prefix.size(), prefix) == 0) {
-                removed += removeStaleTemporaries(path);  // a pattern without #: this frame only
-                break;
+    for (const OutputFrames& o : outputs) {
+        const std::filesystem::path dir = std::filesystem::path(o.pattern).has_parent_path()
+                                              ? std::filesystem::path(o.pattern).parent_path()
+                                              : std::filesystem::path(".");
+        auto [listed, isNew] = temporaries.try_emplace(dir.string());
+        if (isNew) {
+            std::error_code ec;
+            for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+                const std::string name = entry.path().filename().string();
+                if (!name.empty() && name[0] == '.' && name.find(".tmp") != std::string::npos)
+                    listed->second.push_back(name);
             }
+        }
+        if (listed->second.empty()) continue;
+        for (int f = o.first; f <= o.last; ++f) {
+            const std::string path = expandFramePattern(o.pattern, f);
+            const std::string prefix = "." + std::filesystem::path(path).stem().string() + ".tmp";
+            for (const std::string& t : listed->second)
+                if (t.compare(0, prefix.size(), prefix) == 0) {
+                    removed += removeStaleTemporaries(path);  // a pattern without #: this frame only
+                    break;
+                }
+        }
     }
     return removed;
 }
@@ -366,6 +384,12 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
             if (v == "0") opts.gridCacheBytes = 0;
             else if (!parseByteSize(v, &opts.gridCacheBytes))
                 throw UsageError("--grid-cache expects a size such as 128M or 1G, or 0 (off), not '" + v + "'");
+        } else if (a == "--option") req.ribOptions.push_back(value());
+        else if (a == "--safe") req.safe = true;
+        else if (a == "--safe-dir") {
+            req.safe = true;
+            req.safeDir = value();
+            if (req.safeDir.empty()) throw UsageError("--safe-dir needs a folder");
         } else if (a == "--resume") req.resume = true;
         else if (a == "--quiet" || a == "-q") req.quiet = true;
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
@@ -373,6 +397,23 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
         else throw UsageError("more than one scene given ('" + req.scenePath + "' and '" + a + "')");
     }
     return req;
+}
+
+SceneAccess sceneAccessFor(const RenderRequest& req) {
+    SceneAccess access;
+    if (!req.safe) return access;
+    namespace fs = std::filesystem;
+    access.programs = false;
+    access.safe = true;
+    std::string dir = req.safeDir;
+    if (dir.empty()) dir = fs::path(req.outPattern).parent_path().string();
+    if (dir.empty()) dir = ".";
+    std::error_code ec;
+    if (!req.safeDir.empty() && !fs::is_directory(dir, ec))
+        throw InputError("--safe-dir " + dir + ": no such folder (the folder a scene may write in must exist)");
+    access.writeFolder = fs::absolute(dir, ec).lexically_normal().string();
+    if (access.writeFolder.size() > 1 && access.writeFolder.back() == '/') access.writeFolder.pop_back();
+    return access;
 }
 
 void applyPreview(RenderRequest& req, const Scene& scene) {
@@ -397,6 +438,8 @@ int renderCommand(const std::vector<std::string>& args) {
     // On this machine (a farm's tasks may run on CPUs other than the one that submitted them).
     std::string simdError;
     if (!req.simd.empty() && !capSimd(req.simd, &simdError)) throw UsageError("--simd: " + simdError);
+
+    setSceneAccess(sceneAccessFor(req));  // before the scene is read: --safe refuses at the request
 
     const auto start = std::chrono::steady_clock::now();
     const ExrChunkCounts chunksBefore = exrChunkCounts();
@@ -535,13 +578,14 @@ int renderCommand(const std::vector<std::string>& args) {
         // Temporary files of renders of these frames that were killed mid-write go; with --resume,
         // frames whose every output is a complete image of the right size and channels (read
         // back) are not rendered.
-        int stale = 0;
+        std::vector<OutputFrames> frameFiles;
         if (seq.isSequence) {
             for (const auto& [f, outs] : frameOutputs)
-                for (const Output& o : outs) stale += removeStaleTemporariesOfFrames(o.pattern, f, f);
+                for (const Output& o : outs) frameFiles.push_back({o.pattern, f, f});
         } else {
-            for (const Output& o : outputs) stale += removeStaleTemporariesOfFrames(o.pattern, rs.firstFrame, rs.lastFrame);
+            for (const Output& o : outputs) frameFiles.push_back({o.pattern, rs.firstFrame, rs.lastFrame});
         }
+        const int stale = removeStaleTemporariesOfFrames(frameFiles);
         if (stale > 0) log.info("removed " + std::to_string(stale) + " temporary file" + (stale == 1 ? "" : "s") +
                                 " left by an interrupted render");
         blockOpts.frameDone = [&outputsOf, &rs, &isMine, resume](int frame) {
@@ -618,6 +662,7 @@ int renderCommand(const std::vector<std::string>& args) {
     PassRequest passes;
     passes.frames = wanted;
     passes.blockFrames = opts.maxFrameBlock;
+    passes.defaults = req.ribOptions;
     // --resume: depth frames whose maps are on disk are rendered only for pictures still to render.
     if (resume) passes.done = [&](const Scene& frame) { return frameWritten(frame, req, scenePath); };
     readPasses(scenePath, passes, log, onJob, detail);

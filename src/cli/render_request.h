@@ -20,12 +20,20 @@ struct RenderRequest {
     std::string scenePath, outPattern, statsPath;
     bool quiet = false, resume = false, preview = false;
     std::string simd;  // --simd: the kernels' instruction set cap, applied on the machine that renders
+    // --safe (or --safe-dir DIR): no programs or plug-ins, and the files the scene asks to write
+    // only inside DIR (default: -o's folder, else the current folder).
+    bool safe = false;
+    std::string safeDir;
+    RibDefaults ribOptions;  // --option 'RIB request' (any number): read before the scene, which may override them
 };
 
 // Parses `streyes render` arguments (without the command word); UsageError on bad ones.
 RenderRequest parseRenderArgs(const std::vector<std::string>& args);
 // --preview's half resolution and samples, from the scene's (options given explicitly win).
 void applyPreview(RenderRequest& req, const Scene& scene);
+// What the scene may reach (streyes/scene_access.h): everything, or --safe's limits, its write
+// folder made absolute (InputError when --safe-dir is not a folder).
+SceneAccess sceneAccessFor(const RenderRequest& req);
 
 // An output: a #### pattern and its channels ("rgbaz", "rgba", "rgb").
 struct Output {

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #if defined(__x86_64__)
 #include <cpuid.h>
@@ -22,6 +23,8 @@
 #include <memory>
 #include <mutex>
 #include <stdexcept>
+
+#include "io/image_size.h"
 
 namespace streyes {
 
@@ -351,10 +354,24 @@ bool readExr(const std::string& path, ImageData* out, std::string* error) {
     try {
         Imf::InputFile file(path.c_str(), 1);
         const Imath::Box2i dw = file.header().dataWindow();
-        const int W = dw.max.x - dw.min.x + 1, H = dw.max.y - dw.min.y + 1;
         std::vector<std::pair<std::string, Imf::PixelType>> channels;
-        for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
+        int64_t sampleBytes = 0;
+        for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
             channels.emplace_back(it.name(), it.channel().type);
+            sampleBytes += it.channel().type == Imf::HALF ? 2 : 4;
+        }
+        // The header is believed only as far as the file can hold it: the pixels are allocated next.
+        const int64_t w64 = int64_t(dw.max.x) - dw.min.x + 1, h64 = int64_t(dw.max.y) - dw.min.y + 1;
+        std::error_code ec;
+        const std::string implausible =
+            implausibleImageSize(w64, h64, channels.empty() ? 0 : int64_t(channels.size()),
+                                 channels.empty() ? 0 : (sampleBytes + int64_t(channels.size()) - 1) / int64_t(channels.size()),
+                                 std::filesystem::file_size(path, ec));
+        if (!implausible.empty()) {
+            if (error) *error = implausible;
+            return false;
+        }
+        const int W = int(w64), H = int(h64);
         std::stable_sort(channels.begin(), channels.end(), [](const auto& a, const auto& b) {
             const int ra = channelRank(a.first), rb = channelRank(b.first);
             return ra != rb ? ra < rb : (ra == 4 && a.first < b.first);

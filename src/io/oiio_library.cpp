@@ -6,7 +6,10 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include <filesystem>
+
 #include "io/image_library.h"
+#include "io/image_size.h"
 #include "io/oiio_textures.h"
 
 namespace streyes {
@@ -20,14 +23,25 @@ bool readWithOiio(const std::string& path, ImageData* out, std::string* error) {
         return false;
     }
     const OIIO::ImageSpec& spec = in->spec();
+    // The header is believed only as far as the file can hold it: the pixels are allocated next.
+    std::error_code ec;
+    const std::string implausible = implausibleImageSize(spec.width, spec.height, spec.nchannels,
+                                                         int64_t(spec.format.size()), std::filesystem::file_size(path, ec));
+    if (!implausible.empty()) {
+        *error = implausible;
+        return false;
+    }
     ImageData img;
     img.width = spec.width;
     img.height = spec.height;
     img.channels = spec.channelnames;
     for (int c = 0; c < spec.nchannels; ++c) img.formats.push_back(spec.channelformat(c).c_str());
     img.pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data())) {
-        *error = in->geterror();
+    // Some readers (TIFF's, for a truncated strip) succeed and report only through geterror.
+    const bool read = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data());
+    *error = in->geterror();
+    if (!read || !error->empty()) {
+        if (error->empty()) *error = "cannot read its pixels";
         return false;
     }
     *out = std::move(img);

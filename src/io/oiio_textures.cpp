@@ -16,6 +16,7 @@
 #include "io/oiio_textures.h"
 
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
 #include <algorithm>
@@ -23,7 +24,9 @@
 #include <mutex>
 #include <shared_mutex>
 #include <unordered_map>
+#include <vector>
 
+#include "io/image_size.h"
 #include "shade/vm/texture_source.h"
 
 namespace streyes {
@@ -31,6 +34,35 @@ namespace streyes {
 namespace {
 
 constexpr int kBatch = OIIO::Tex::BatchWidth;
+
+// "" when every pixel of the open image can be read, else why not: it is read through a band of rows
+// at a time (memory for 64 rows). OpenImageIO's TIFF reader reports a truncated strip only through
+// geterror, and succeeds; its texture lookups and maketx then see zeros, silently.
+std::string unreadablePixels(OIIO::ImageInput& in) {
+    const OIIO::ImageSpec& spec = in.spec();
+    if (spec.tile_width > 0) {  // tiled: a tile at a time
+        std::vector<float> tile(size_t(spec.tile_width) * size_t(spec.tile_height) * size_t(std::max(1, spec.tile_depth)) *
+                                size_t(spec.nchannels));
+        for (int y = spec.y; y < spec.y + spec.height; y += spec.tile_height)
+            for (int x = spec.x; x < spec.x + spec.width; x += spec.tile_width) {
+                const bool read = in.read_tile(x, y, spec.z, OIIO::TypeDesc::FLOAT, tile.data());
+                std::string why = in.geterror();
+                if (!read && why.empty()) why = "cannot read its pixels";
+                if (!why.empty()) return why;
+            }
+        return "";
+    }
+    const int band = 64;
+    std::vector<float> rows(size_t(spec.width) * size_t(spec.nchannels) * band);
+    for (int y = spec.y; y < spec.y + spec.height; y += band) {
+        const int end = std::min(y + band, spec.y + spec.height);
+        const bool read = in.read_scanlines(0, 0, y, end, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, rows.data());
+        std::string why = in.geterror();  // some readers report a short read only here, and succeed
+        if (!read && why.empty()) why = "cannot read its pixels";
+        if (!why.empty()) return why;
+    }
+    return "";
+}
 
 class OiioTextures final : public sl::TextureSource {
   public:
@@ -155,13 +187,45 @@ class OiioTextures final : public sl::TextureSource {
             if (it != handles_.end()) handle = it->second;
         }
         if (!handle) {
-            handle = ts_->get_texture_handle(OIIO::ustring(resolve(name)), thread);
+            const std::string path = resolve(name);
+            handle = ts_->get_texture_handle(OIIO::ustring(path), thread);
+            // A map whose header claims more than its file can hold, or an untiled one whose
+            // pixels cannot all be read, is never looked up (validate).
+            std::string implausible;
+            if (handle && ts_->good(handle)) implausible = validate(handle, thread, path);
             std::unique_lock<std::shared_mutex> lock(mutex_);
             handles_.emplace(name, handle);
+            if (!implausible.empty()) refused_.emplace(name, implausible);
+        }
+        {
+            std::shared_lock<std::shared_mutex> lock(mutex_);
+            const auto it = refused_.find(name);
+            if (it != refused_.end()) return failed(name, o, what, it->second), nullptr;
         }
         if (handle && ts_->good(handle)) return handle;
         failed(name, o, what);
         return nullptr;
+    }
+
+    // Why the map at `path` cannot be read as its header says, or "": a size the file cannot hold
+    // (implausibleImageSize), or, for an untiled map (which OpenImageIO reads whole on the first
+    // lookup, on whichever thread comes first), pixels that cannot be read. OpenImageIO's TIFF reader
+    // reports a truncated strip only through geterror, and its texture lookups not at all: the map
+    // is read through once here, a band of rows at a time, so that every lookup gives the same
+    // answer whatever the order of the buckets.
+    std::string validate(OIIO::TextureSystem::TextureHandle* handle, OIIO::TextureSystem::Perthread* thread,
+                         const std::string& path) {
+        const OIIO::ImageSpec* spec = ts_->imagespec(handle, thread, 0);
+        std::error_code ec;
+        const uint64_t bytes = std::filesystem::file_size(path, ec);
+        if (!spec || ec) return "";
+        std::string why =
+            implausibleImageSize(spec->width, spec->height, spec->nchannels, int64_t(spec->format.size()), bytes);
+        if (!why.empty()) return why;
+        auto in = OIIO::ImageInput::open(path);  // the file's own spec: the cache's calls an untiled image one tile
+        if (!in) return OIIO::geterror();
+        if (in->spec().tile_width > 0) return "";
+        return unreadablePixels(*in);
     }
 
     std::string resolve(const std::string& name) const {
@@ -176,8 +240,8 @@ class OiioTextures final : public sl::TextureSource {
     }
 
     // Reports the map once (the warning's key is its name) and gives false: the caller fills.
-    bool failed(const std::string& name, const sl::TextureOptions& o, const char* what) {
-        std::string why = ts_->geterror();
+    bool failed(const std::string& name, const sl::TextureOptions& o, const char* what, std::string why = "") {
+        if (why.empty()) why = ts_->geterror();
         if (why.empty()) why = "cannot be read";
         while (!why.empty() && why.back() == '\n') why.pop_back();
         warn_("texture:" + name, std::string(what) + "(\"" + name + "\")" +
@@ -192,6 +256,7 @@ class OiioTextures final : public sl::TextureSource {
     std::string path_;  // the folders, for messages
     std::shared_mutex mutex_;
     std::unordered_map<std::string, OIIO::TextureSystem::TextureHandle*> handles_;
+    std::unordered_map<std::string, std::string> refused_;  // maps never read, and why
 };
 
 }  // namespace
@@ -201,6 +266,20 @@ sl::TextureSource* makeOiioTextureSource(const std::vector<std::string>& searchP
 }
 
 bool makeOiioTexture(const MakeTextureDesc& d, std::string* error) {
+    // maketx reads the picture whole: its header is believed only as far as the file can hold it,
+    // and its pixels are read through first (a truncated TIFF would make a map of zeros, silently).
+    if (auto in = OIIO::ImageInput::open(d.input)) {
+        const OIIO::ImageSpec& spec = in->spec();
+        std::error_code ec;
+        *error = implausibleImageSize(spec.width, spec.height, spec.nchannels, int64_t(spec.format.size()),
+                                      std::filesystem::file_size(d.input, ec));
+        if (error->empty()) *error = unreadablePixels(*in);
+        if (!error->empty()) {
+            while (!error->empty() && error->back() == '\n') error->pop_back();
+            *error = "the picture '" + d.input + "': " + *error;
+            return false;
+        }
+    }
     OIIO::ImageSpec config;
     config.attribute("wrapmodes", d.swrap + "," + d.twrap);
     // Halving with bilinear resampling (OIIO's default) averages 2 x 2 texels: RenderMan's box.

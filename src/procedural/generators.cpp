@@ -107,9 +107,12 @@ std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const Procedu
         if (!desc.object || args.size() != 1) throw InputError(loc, "ObjectInstance without its object");
         return std::make_shared<InstanceGenerator>(args[0], desc.object);
     }
-    if ((kind == "DelayedReadArchive" && !access.files) || (kind == "RunProgram" && !access.programs))
-        throw InputError(loc, "Procedural \"" + kind + "\" is not allowed here (" +
-                                  (kind == "RunProgram" ? "no programs are run" : "no other files are read") + ")");
+    if (kind == "DelayedReadArchive" && !access.files)
+        throw InputError(loc, "Procedural \"DelayedReadArchive\" is not allowed here (no other files are read)");
+    if (kind == "RunProgram" && !access.programs)
+        throw InputError(loc, access.safe ? "Procedural \"RunProgram\" is refused by --safe: it would run a program. "
+                                            "Render without --safe only if you trust the scene"
+                                          : "Procedural \"RunProgram\" is not allowed here (no programs are run)");
     if (kind == "DelayedReadArchive") {
         if (args.size() != 1) throw InputError(loc, "Procedural \"DelayedReadArchive\" takes one file name: [\"file.rib\"]");
         // Relative to the folder of the declaring file, else to the current folder. A missing
@@ -151,7 +154,13 @@ std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const Procedu
         if (args[0] == "forest") return makeForestGenerator(block, loc);
         if (args[0] == "tree") return makeTreeGenerator(block, loc);
         // A plug-in runs code, as a program does: allowed where programs are.
-        if (!access.programs) throw InputError(loc, "Procedural \"DynamicLoad\" with a plug-in is not allowed here (no plug-ins are loaded)");
+        if (!access.programs)
+            throw InputError(loc, access.safe ? "Procedural \"DynamicLoad\" \"" + args[0] +
+                                                    "\" is refused by --safe: it would load a plug-in, which runs code "
+                                                    "(the built-in generators, \"forest\" and \"tree\", are allowed). "
+                                                    "Render without --safe only if you trust the scene"
+                                              : "Procedural \"DynamicLoad\" with a plug-in is not allowed here (no "
+                                                "plug-ins are loaded)");
         return makePluginGenerator(desc);
     }
     if (kind == kRiFunctionKind) return makeFunctionGenerator(desc);

@@ -603,7 +603,8 @@ struct FrameFile {
     Scene after;
 };
 
-FrameFile readFrameFile(const std::string& file, int f, Log& log, const ReadDetail& detail) {
+FrameFile readFrameFile(const std::string& file, int f, Log& log, const ReadDetail& detail,
+                        const RibDefaults& defaults) {
     FrameFile out;
     parseRibFrames(
         file, log,
@@ -617,7 +618,7 @@ FrameFile readFrameFile(const std::string& file, int f, Log& log, const ReadDeta
             s.frameNumber = f;
             out.scenes.push_back(std::move(s));
         },
-        detail, [&](Scene&& s) { out.after = std::move(s); });
+        detail, [&](Scene&& s) { out.after = std::move(s); }, defaults);
     return out;
 }
 
@@ -660,7 +661,8 @@ void readPasses(const std::string& path, const PassRequest& req, Log& log, const
             std::vector<std::exception_ptr> errors(n);
             tbb::parallel_for(size_t(0), n, [&](size_t i) {
                 try {
-                    files[i] = readFrameFile(frameFileName(path, frames[b + i]), frames[b + i], log, detail);
+                    files[i] = readFrameFile(frameFileName(path, frames[b + i]), frames[b + i], log, detail,
+                                             req.defaults);
                 } catch (...) {
                     errors[i] = std::current_exception();
                 }
@@ -683,7 +685,7 @@ void readPasses(const std::string& path, const PassRequest& req, Log& log, const
             frames = frames || s.frameLoc.line > 0;
             planner.scene(std::move(s));
         },
-        detail, [&](Scene&& s) { planner.trailing(s); });
+        detail, [&](Scene&& s) { planner.trailing(s); }, req.defaults);
     if (frames && req.frames.given)
         for (int f = req.frames.first; f <= req.frames.last; ++f)
             if (!planner.numbers().count(f))
@@ -693,9 +695,11 @@ void readPasses(const std::string& path, const PassRequest& req, Log& log, const
     planner.finish();
 }
 
-Sequence readScene(const std::string& path, const FrameRequest& frames, Log& log, const ReadDetail& detail) {
+Sequence readScene(const std::string& path, const FrameRequest& frames, Log& log, const ReadDetail& detail,
+                   const RibDefaults& defaults) {
     PassRequest req;
     req.frames = frames;
+    req.defaults = defaults;
     req.blockFrames = INT_MAX / 4;
     std::vector<Sequence> renders;
     readPasses(path, req, log, [&](PassJob&& j) {

@@ -2,7 +2,6 @@
 // the input, and the public entry points (streyes/rib.h).
 #include "scene/rib_parser.h"
 
-#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -219,11 +218,22 @@ Scene parseRibString(const std::string& text, const std::string& sourceName, Log
 }
 
 void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame,
-                    const ReadDetail& detail, const std::function<void(Scene&&)>& after) {
+                    const ReadDetail& detail, const std::function<void(Scene&&)>& after,
+                    const RibDefaults& defaults) {
     Scene scene;
     scene.sourceName = path;
     RibParser parser(scene, log);
     parser.setReadDetail(detail);
+    for (size_t i = 0; i < defaults.size(); ++i) {
+        const std::string name = "--option " + std::to_string(i + 1);
+        parser.parseString(defaults[i], name);
+        const RibState& state = parser.state();
+        if (state.world != RibState::World::Before || !state.blocks.empty() || state.motion || state.defining ||
+            state.skipping || parser.inFrame() || parser.framesRead() > 0)
+            throw InputError(name + " ('" + defaults[i] + "'): give options and other requests of the kind a scene "
+                             "gives before WorldBegin (Option, Format, PixelSamples ...), with every block they open "
+                             "closed");
+    }
     parser.setFrameHandler([&](Scene&& s) {
         s.sourceName = path;
         frame(std::move(s));
@@ -244,16 +254,5 @@ Scene parseRibFragment(const std::string& text, const std::string& sourceName, c
     parser.finishFragment();
     return scene;
 }
-
-namespace {
-std::atomic<bool> programsAllowed{true}, filesAllowed{true};
-}  // namespace
-
-void setSceneAccess(SceneAccess access) {
-    programsAllowed = access.programs;
-    filesAllowed = access.files;
-}
-
-SceneAccess sceneAccess() { return {programsAllowed.load(), filesAllowed.load()}; }
 
 }  // namespace streyes

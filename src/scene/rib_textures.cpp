@@ -5,17 +5,22 @@
 #include <filesystem>
 
 #include "scene/rib_requests.h"
+#include "streyes/scene_access.h"
 
 namespace streyes {
 
 namespace {
 
-// A relative name is the folder's of the RIB file that gives the request.
+// The folder of the RIB file that gives the request: relative names are taken from it.
+std::string fileFolder(const RibArgs& args) {
+    return args.loc().file ? std::filesystem::path(*args.loc().file).parent_path().string() : "";
+}
+
 std::string besideFile(const RibArgs& args, const std::string& name) {
     namespace fs = std::filesystem;
-    if (name.empty() || fs::path(name).is_absolute() || !args.loc().file) return name;
-    const fs::path dir = fs::path(*args.loc().file).parent_path();
-    return dir.empty() ? name : (dir / name).string();
+    if (name.empty() || fs::path(name).is_absolute()) return name;
+    const std::string dir = fileFolder(args);
+    return dir.empty() ? name : (fs::path(dir) / name).string();
 }
 
 void checkWrap(RibArgs& args, const RibValue& at, const std::string& wrap) {
@@ -27,9 +32,11 @@ void checkWrap(RibArgs& args, const RibValue& at, const std::string& wrap) {
 // map is made (streyes/textures.h), after the frames before it are rendered.
 void readFiles(RibParser& reader, RibArgs& args, MakeTextureDesc& d) {
     d.input = besideFile(args, args.string("picture name"));
-    d.output = besideFile(args, args.string("texture name"));
+    const std::string output = args.string("texture name");
+    d.output = besideFile(args, output);
     if (d.input.empty()) args.fail("the picture name is empty");
     if (d.output.empty()) args.fail("the texture name is empty");
+    checkSceneWrite(args.name(), output, args.loc(), fileFolder(args));  // --safe: inside its folder
     d.serial = reader.nextMakeSerial();
     d.afterWorld = reader.afterWorld();
 }
@@ -80,6 +87,7 @@ void makeShadow(RibParser& reader, RibArgs& args) {
     d.output = args.string("shadow map name");
     if (d.input.empty()) args.fail("the picture name is empty");
     if (d.output.empty()) args.fail("the shadow map name is empty");
+    checkSceneWrite(args.name(), d.output, args.loc());  // --safe: inside its folder
     // Parameters ("compression", ...) are not used.
     const ParamList params = reader.readParams(args);
     reader.warnUnusedParams(params, {}, args.name());

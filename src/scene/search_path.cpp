@@ -1,5 +1,7 @@
 #include "scene/search_path.h"
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 
 namespace streyes {
@@ -22,6 +24,19 @@ std::vector<std::string> searchPathFolders(const std::string& path, const std::s
         std::string f = path.substr(start, end - start);
         if (f == "@") f = directory.empty() ? "." : directory;
         if (!f.empty()) folders.push_back(f);
+        start = end + 1;
+    }
+    return folders;
+}
+
+std::vector<std::string> environmentSearchPath(const char* variable) {
+    std::vector<std::string> folders;
+    const char* value = std::getenv(variable);
+    if (!value) return folders;
+    const std::string path = value;
+    for (size_t start = 0; start <= path.size();) {
+        const size_t end = std::min(path.find(':', start), path.size());
+        if (end > start) folders.push_back(path.substr(start, end - start));
         start = end + 1;
     }
     return folders;

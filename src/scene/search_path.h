@@ -1,4 +1,5 @@
-// Search paths: Option "searchpath" "procedural" | "archive" ["dir:dir:..."], RenderMan's way.
+// Search paths: Option "searchpath" "procedural" | "archive" ["dir:dir:..."], RenderMan's way, and
+// the environment's after them.
 //
 // A path is folders separated by ':'. In a new value, '&' stands for the value before and '@'
 // for the default: the folder of the RIB file that names the plug-in or archive. The stored path
@@ -17,6 +18,14 @@ std::string expandSearchPath(const std::string& spec, const std::string& previou
 
 // The folders of `path`, '@' replaced by `directory` (the current folder when it is empty), in order.
 std::vector<std::string> searchPathFolders(const std::string& path, const std::string& directory);
+
+// The folders an environment variable gives, separated by ':' (empty ones dropped); none when it is
+// unset. STREYES_SHADERPATH, STREYES_TEXTUREPATH and STREYES_PROCEDURALPATH (kShaderPathVariable
+// ...) are searched after the RIB's own search paths, as RenderMan renderers do with theirs.
+std::vector<std::string> environmentSearchPath(const char* variable);
+constexpr const char* kShaderPathVariable = "STREYES_SHADERPATH";
+constexpr const char* kTexturePathVariable = "STREYES_TEXTUREPATH";
+constexpr const char* kProceduralPathVariable = "STREYES_PROCEDURALPATH";
 
 // The first existing regular file named `name`, or `name` + a suffix, in the folders of `path`;
 // "" when there is none.

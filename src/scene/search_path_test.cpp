@@ -21,6 +21,18 @@ TEST(SearchPath, AmpersandIsThePathBeforeAndAtIsTheFilesFolder) {
     EXPECT_EQ(searchPathFolders("@", ""), (std::vector<std::string>{"."}));
 }
 
+// STREYES_SHADERPATH and the like: folders separated by ':', nothing special in them.
+TEST(SearchPath, TheEnvironmentsFoldersInOrder) {
+    const char* name = "STREYES_SEARCH_PATH_TEST";
+    unsetenv(name);
+    EXPECT_TRUE(environmentSearchPath(name).empty());
+    setenv(name, "/a::/b c:@:&:", 1);
+    EXPECT_EQ(environmentSearchPath(name), (std::vector<std::string>{"/a", "/b c", "@", "&"}));
+    setenv(name, "", 1);
+    EXPECT_TRUE(environmentSearchPath(name).empty());
+    unsetenv(name);
+}
+
 TEST(SearchPath, FindsTheFirstFolderHoldingTheNameOrTheNameWithASuffix) {
     test::TempDir a("searchpath-a"), b("searchpath-b");
     std::ofstream(b.path() + "/tree.rib") << "\n";

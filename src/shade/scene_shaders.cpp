@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "shade/vm/ops.h"
+#include "scene/search_path.h"
 #include "shade/vm/vm.h"
 
 namespace streyes {
@@ -124,11 +125,14 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
         const std::string dir = std::filesystem::path(scene.sourceName).parent_path().string();
         texturePath.push_back(dir.empty() ? "." : dir);
     }
+    // The environment's folders after the scene's own (search_path.h).
+    for (const std::string& f : environmentSearchPath(kTexturePathVariable)) texturePath.push_back(f);
     maps_ = std::make_unique<ShadowMaps>(std::move(maps), scene, texturePath, log);
     textures_ = std::make_unique<LazyTextureSource>(std::move(textures), std::move(texturePath), maps_.get(), log);
     cache_ = std::make_unique<sl::ShaderCache>(std::vector<std::string>{standardShaderDir()});
     searchPathSet_ = !scene.settings.shaderSearchPath.empty();
     if (searchPathSet_) cache_->setSearchPath(scene.settings.shaderSearchPath);
+    cache_->appendSearchPath(environmentSearchPath(kShaderPathVariable));
 
     if (!scene.settings.imager.name.empty())
         imager_ = instance(scene.settings.imager.name, scene.settings.imager.params, scene.settings.imager.loc,

@@ -9,6 +9,7 @@
 
 #include "ri.h"
 #include "streyes/image_io.h"
+#include "streyes/scene_access.h"
 #include "test_util.h"
 
 namespace streyes {
@@ -101,6 +102,45 @@ TEST(RiSession, RiBeginNullRendersToTheDisplayWithTheProgramsOwnProcedurals) {
     EXPECT_EQ(freed, 2);  // after the render
     ASSERT_TRUE(std::filesystem::exists(out));
     EXPECT_NEAR(alphaSum(readImage(out)), 16.0 + 64.0 + 72.0, 1e-3);
+}
+
+// What --safe refuses (streyes/scene_access.h: no programs, no plug-ins) is what a scene names;
+// a program's own functions are the program's code, and stay.
+TEST(RiSession, WithoutProgramsAndPlugInsTheProgramsOwnProceduralsStay) {
+    test::TempDir dir("ri-session");
+    const SceneAccess before = sceneAccess();
+    SceneAccess safe;
+    safe.programs = false;
+    safe.safe = true;
+    setSceneAccess(safe);
+    const std::string out = dir.path() + "/frame.exr";
+    int subdivided = 0, freed = 0;
+    RiBegin(RI_NULL);
+    view(out);
+    RiWorldBegin();
+    RiSurface("constant", RI_NULL);
+    RtBound a = {2, 6, 2, 6, 5, 5};
+    RiProcedural(new Square{2, 2, 4, &subdivided, &freed}, a, subdivideSquare, freeSquare);
+    RiWorldEnd();
+    RiEnd();
+    EXPECT_EQ(subdivided, 1);
+    ASSERT_TRUE(std::filesystem::exists(out));
+    EXPECT_NEAR(alphaSum(readImage(out)), 16.0, 1e-3);
+
+    const std::string refused = dir.path() + "/refused.exr";
+    RiBegin(RI_NULL);
+    view(refused);
+    RiWorldBegin();
+    RtString menger[2] = {STREYES_PLUGIN_DIR "/menger.so", "level=1 x=20 y=2 z=1 size=9"};
+    RtBound c = {20, 29, 2, 11, 1, 10};
+    RiProcedural(menger, c, RiProcDynamicLoad, nullptr);
+    RiWorldEnd();
+    testing::internal::CaptureStderr();
+    RiEnd();
+    const std::string err = testing::internal::GetCapturedStderr();
+    setSceneAccess(before);
+    EXPECT_NE(err.find("is refused by --safe: it would load a plug-in"), std::string::npos) << err;
+    EXPECT_FALSE(std::filesystem::exists(refused));
 }
 
 TEST(RiSession, ABadCallRendersNothing) {

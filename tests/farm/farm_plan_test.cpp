@@ -215,6 +215,8 @@ Manifest sampleManifest(const std::string& dir) {
     m.executable = dir + "/fake-streyes";
     m.first = 1;
     m.last = 10;
+    m.shotFirst = 1;  // the scene has 48 frames: streyes render --frames 1-10 decides motion over 1-48
+    m.shotLast = 48;
     m.block = 4;
     m.blocks = cutBlocks(1, 10, 4);
     m.seed = 7;
@@ -255,6 +257,26 @@ TEST(FarmManifest, NamesBesideTheFramesAndRoundTrips) {
     other.seed = 8;
     EXPECT_FALSE(m.sameShot(other, &why));
     EXPECT_NE(why.find("seed"), std::string::npos) << why;
+    other = m;
+    other.shotLast = 10;
+    EXPECT_FALSE(m.sameShot(other, &why));
+    EXPECT_NE(why.find("its shot is 1-48, not 1-10"), std::string::npos) << why;
+
+    // A manifest written before the shot was kept: its tasks ran with the frames as the shot.
+    Json old = m.toJson();
+    Json without = Json::object();
+    for (const auto& [k, v] : old.members())
+        if (k != "shot") without.set(k, v);
+    const Manifest o = Manifest::fromJson(without, m.path);
+    EXPECT_EQ(o.shotFirst, 1);
+    EXPECT_EQ(o.shotLast, 10);
+    // A shot that does not hold the frames is not a manifest streyes wrote.
+    Json narrow = old;
+    Json shot = Json::array();
+    shot.push(Json::number(2));
+    shot.push(Json::number(10));
+    narrow.set("shot", shot);
+    EXPECT_THROW(Manifest::fromJson(narrow, m.path), std::runtime_error);
 
     std::ofstream(dir.path + "/not.json") << R"({"scene": "x"})";
     EXPECT_THROW(Manifest::load(dir.path + "/not.json"), std::runtime_error);
@@ -264,7 +286,7 @@ TEST(FarmManifest, TheTaskCommandIsTheContract) {
     Folder dir;
     Manifest m = sampleManifest(dir.path);
     std::vector<std::string> cmd = m.taskCommand(m.blocks[1], "s.json");
-    const std::vector<std::string> want = {m.executable, "render", m.scene, "--frames", "5-8", "--shot", "1-10",
+    const std::vector<std::string> want = {m.executable, "render", m.scene, "--frames", "5-8", "--shot", "1-48",
                                            "-o", m.output, "--resume", "--seed", "7", "--res", "64x48",
                                            "--samples", "4", "--stats", "s.json"};
     EXPECT_EQ(cmd, want);

@@ -180,19 +180,19 @@ class Farm : public ::testing::Test {
     }
 };
 
-// Submits a 16-frame shot in 4 blocks and renders the same frames on this machine with the same
-// seed; every frame must be identical. Then status and gather on the finished shot.
-void expectFarmMatchesOneMachine(const std::string& rib) {
-    const test::TempDir dir("farm-identity");
-    const std::string scene = writeFile(dir.path(), "shot.rib", rib);
+// Submits frames 1-16 of `scene` in 4 blocks and renders the same frames on this machine with the
+// same seed and render `options`; every frame must be identical. Then status and gather on the
+// finished shot.
+void expectFarmMatchesOneMachine(const test::TempDir& dir, const std::string& scene, const std::string& options = "") {
     const std::string ref = dir.path() + "/ref", out = dir.path() + "/farm";
     fs::create_directories(ref);
     fs::create_directories(out);
-    const Ran single = streyes("render " + scene + " --frames 1-16 --seed 7 -o " + ref + "/f.####.exr --quiet");
+    const Ran single =
+        streyes("render " + scene + " --frames 1-16 --seed 7 " + options + " -o " + ref + "/f.####.exr --quiet");
     ASSERT_EQ(single.code, 0) << single.err;
 
     const Ran submit = streyes("farm submit " + scene + " -o " + out + "/f.####.exr --frames 1-16 --block 4 --seed 7 "
-                               "--cpus-per-task 1");
+                               "--cpus-per-task 1 " + options);
     ASSERT_EQ(submit.code, 0) << submit.err;
     const long job = jobId(submit);
     ASSERT_GT(job, 0) << submit.out << submit.err;
@@ -256,12 +256,28 @@ void expectFarmMatchesOneMachine(const std::string& rib) {
     EXPECT_TRUE(fs::exists(m.farmDir() + "/summary.json"));
 }
 
+void expectFarmMatchesOneMachine(const std::string& rib) {
+    const test::TempDir dir("farm-identity");
+    expectFarmMatchesOneMachine(dir, writeFile(dir.path(), "shot.rib", rib));
+}
+
 TEST_F(Farm, StillShotInFourBlocksIsIdenticalToOneMachine) { expectFarmMatchesOneMachine(stillScene()); }
 
 // A frame's pixels never depend on the frames rendered with it (DESIGN.md): moving bodies are cut
 // at each frame's exposure, and every task passes the shot (--shot) so that motion segments (this
 // square turns: its motion is not linear) are made over the same frames as on one machine.
 TEST_F(Farm, MovingShotInFourBlocksIsIdenticalToOneMachine) { expectFarmMatchesOneMachine(movingScene(4, "64x48")); }
+
+// A scene of more frames than are submitted (the demo's 48; frames 1-16 in 4 blocks): one machine
+// rendering --frames 1-16 decides motion over the scene's frames joined with those (1-48), and so
+// must every task, whose own frames are 4.
+TEST_F(Farm, PartOfALongerSceneInFourBlocksIsIdenticalToOneMachine) {
+    const test::TempDir dir("farm-demo");
+    expectFarmMatchesOneMachine(dir, std::string(STREYES_SOURCE_DIR) + "/scenes/demo.rib", "--res 160x90");
+    const farm::Manifest m = farm::Manifest::load(dir.path() + "/farm/f.farm.json");
+    EXPECT_EQ(m.shotFirst, 1);
+    EXPECT_EQ(m.shotLast, 48);
+}
 
 // One task cancelled while it renders (its frames written one at a time, so some are on disk),
 // then the shot submitted again: only the missing frames are rendered, complete ones untouched.
@@ -463,8 +479,8 @@ TEST_F(FarmBadInput, AnotherShotInTheSameOutput) {
     m.path = out_ + "/f.farm.json";
     m.scene = scene_;
     m.output = out_ + "/f.####.exr";
-    m.first = 1;
-    m.last = 16;
+    m.first = m.shotFirst = 1;
+    m.last = m.shotLast = 16;
     m.block = 4;
     m.blocks = farm::cutBlocks(1, 16, 4);
     m.seed = 3;  // not the seed given below

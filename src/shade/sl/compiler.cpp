@@ -74,6 +74,11 @@ void ShaderCache::setSearchPath(const std::string& spec) {
     path_ = out;
 }
 
+void ShaderCache::appendSearchPath(const std::vector<std::string>& folders) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    path_.insert(path_.end(), folders.begin(), folders.end());
+}
+
 std::vector<std::string> ShaderCache::searchPath() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return path_;

@@ -33,6 +33,8 @@ class ShaderCache {
     // RIB's Option "searchpath" "shader": folders separated by ':'; '&' stands for the path
     // before, '@' for the default (the path the cache was made with).
     void setSearchPath(const std::string& colonSeparated);
+    // Folders searched after the path's (STREYES_SHADERPATH's: the environment's after the scene's).
+    void appendSearchPath(const std::vector<std::string>& folders);
     std::vector<std::string> searchPath() const;
     // `name` is "plastic", "plastic.sl", or a path. Not found, or a bad shader: InputError (at
     // `requestedAt` when not found: the RIB line that asked).

@@ -86,6 +86,7 @@ void ShadingVM::run(const ShaderInstance& shader, const ShadingGrid& grid, const
     for (size_t i = 0; i < lights.size(); ++i) lightResults_[i].valid = false;
     randomCalls_ = 0;
     currentLight_ = nullptr;
+    runInstructions_ = 0;
     Frame& f = frameFor(shader.program());
     top_ = &f;
     runFrame(f, shader, grid, &grid.toCurrent[size_t(Space::Shader)]);
@@ -134,6 +135,11 @@ void ShadingVM::execute(Exec& x, int begin, int end) {
         in.fn(x, in);
         ++count;
         lanes += in.varying ? uint64_t(x.n) : 1u;
+        if (instructionBudget_ != 0 && ++runInstructions_ > instructionBudget_) {
+            stats_.instructions += count;
+            throw InputError("shader \"" + x.prog.name + "\" (" + x.prog.path + ") ran more than " +
+                             std::to_string(instructionBudget_) + " instructions over one grid: a loop that never ends?");
+        }
     }
     stats_.instructions += count;
     stats_.laneOps += lanes;

@@ -62,6 +62,10 @@ class ShadingVM {
     TextureSource* textureSource() const { return textures_; }
     // Where printf writes (default: stderr).
     void setPrintSink(std::function<void(const std::string&)> sink) { print_ = std::move(sink); }
+    // At most this many instructions a run (the shader and the lights it calls), else InputError;
+    // 0 (the default): no limit, a shader that loops forever hangs, as in any renderer. The
+    // Shading Language fuzzer sets one (fuzz/fuzz_sl.h).
+    void setInstructionBudget(uint64_t instructions) { instructionBudget_ = instructions; }
 
     // Runs `shader` over `grid`. `lights` are the lights on for the surface (for surface and
     // volume shaders). Bad bindings (a primitive variable whose type differs from the
@@ -132,6 +136,7 @@ class ShadingVM {
     const Matrix4* shaderSpace_ = nullptr;  // of the program running
     int randomCalls_ = 0;
     uint64_t runCount_ = 0;
+    uint64_t instructionBudget_ = 0, runInstructions_ = 0;
     ShadingGrid lightGrid_;  // the grid a light runs over: the surface's shape
     float lightOrigin_[3] = {0, 0, 0};
     float lightNormal_[3] = {0, 0, 0};  // an area light point's N
