@@ -22,6 +22,11 @@ bool writtenAsInteger(double v) {
 
 bool floatRange(double v) { return std::fabs(v) <= double(std::numeric_limits<float>::max()); }
 
+// Bytes of an integer's binary encoding: its lead byte and the 1-4 bytes its value needs. A
+// negative integer takes four: readers that take shorter ones as unsigned (Aqsis) then read the
+// same values as those that take them as signed (the RI Spec, Affine).
+int integerBytes(int32_t i) { return 1 + (i < 0 ? 4 : i < 0x80 ? 1 : i < 0x8000 ? 2 : i < 0x800000 ? 3 : 4); }
+
 // Short strings that recur (parameter names, shader names) are defined once and referred to by
 // index; longer ones are written where they are used.
 constexpr size_t kMaxDefinedString = 64;
@@ -85,9 +90,7 @@ void RibWriter::number(double v) {
 void RibWriter::binaryNumber(double v) {
     if (writtenAsInteger(v)) {
         const int32_t i = int32_t(v);
-        // A negative integer takes four bytes: readers that take shorter ones as unsigned (Aqsis)
-        // then read the same values as those that take them as signed (the RI Spec, Affine).
-        const int count = i < 0 ? 4 : i < 0x80 ? 1 : i < 0x8000 ? 2 : i < 0x800000 ? 3 : 4;
+        const int count = integerBytes(i) - 1;
         bytes(0200 + (count - 1), uint32_t(i), count);
     } else if (encoding_.float32 && floatRange(v)) {
         const float f = float(v);
@@ -155,15 +158,19 @@ void RibWriter::string(std::string_view s) {
 }
 
 void RibWriter::numbers(const std::vector<double>& v) {
-    // A binary float array holds 32-bit floats only: with float32, when every value is one.
-    bool floatArray = encoding_.binary && encoding_.float32 && !v.empty();
-    for (size_t i = 0; floatArray && i < v.size(); ++i) {
+    // A binary float array holds 32-bit floats only: with float32, when every value is one, and
+    // when it is no larger than the values one by one (an array of small integers is smaller as
+    // integers, an array of reals as a float array).
+    const size_t n = v.size();
+    const int count = n < (1u << 8) ? 1 : n < (1u << 16) ? 2 : n < (1u << 24) ? 3 : 4;
+    bool floatArray = encoding_.binary && encoding_.float32 && n > 0;
+    size_t oneByOne = 2;  // [ and ]
+    for (size_t i = 0; floatArray && i < n; ++i) {
         const double w = ribFloat32(v[i]);
         floatArray = floatRange(w) && double(float(w)) == w;
+        oneByOne += writtenAsInteger(v[i]) ? size_t(integerBytes(int32_t(v[i]))) : 5;
     }
-    if (floatArray) {
-        const size_t n = v.size();
-        const int count = n < (1u << 8) ? 1 : n < (1u << 16) ? 2 : n < (1u << 24) ? 3 : 4;
+    if (floatArray && 1 + size_t(count) + 4 * n <= oneByOne) {
         bytes(0310 + (count - 1), uint32_t(n), count);
         for (double x : v) {
             const float f = float(ribFloat32(x));

@@ -136,10 +136,12 @@ TEST(RibWriter, BinaryIsCompactAndDefinesRequestsAndStringsOnce) {
                                  std::string("\245\077\340\000\000\000\000\000\000", 9) + std::string("\246\000", 2) +
                                  std::string("\315\000\222Kd\317\000\317\000", 9);
     EXPECT_EQ(out, expected);
-    // float32: a float array for numbers every one of which a float holds.
+    // float32: a float array for reals (every one of which a float holds), integers one by one.
     RibWriter f({true, true, false});
-    f.numbers({0.5, 2});
-    EXPECT_EQ(f.finish(), std::string("\310\002\077\000\000\000\100\000\000\000", 10));
+    f.numbers({0.5, 0.25, 2});
+    f.numbers({0, 1, 2, 0.5});
+    EXPECT_EQ(f.finish(), std::string("\310\003\077\000\000\000\076\200\000\000\100\000\000\000", 14) +
+                              std::string("[\200\000\200\001\200\002\244\077\000\000\000]", 13));
 }
 
 // Past 256 request names and 65536 strings, the rest are written as ASCII names and inline strings.
