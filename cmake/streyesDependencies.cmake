@@ -22,6 +22,8 @@ endif()
 find_package(hwy 1.0 CONFIG REQUIRED)  # Highway: the sampler's SIMD kernels
 find_package(Imath 3.1 CONFIG REQUIRED)
 find_package(OpenEXR 3.1 CONFIG REQUIRED)
+# zlib: gzip-compressed RIB, read and written (src/scene/rib_gzip.cpp).
+find_package(ZLIB REQUIRED)
 # libdeflate (Debian's 1.14 ships no CMake package): the frames' ZIP compression (src/io/exr_file.cpp).
 streyes_import_library(libdeflate::libdeflate libdeflate.h deflate)
 find_package(OpenImageIO 2.4 CONFIG REQUIRED)

@@ -8,7 +8,9 @@
  *     that expansion's children, on the thread running it;
  *   - between RiBegin and RiEnd (on the thread that called RiBegin): RiBegin(RI_NULL) renders the
  *     scene at RiEnd to its Display files ("ri.exr" when none; needs streyes::io); any other name,
- *     RiBegin("scene.rib"), writes the RIB to that file instead ("-": standard output);
+ *     RiBegin("scene.rib"), writes the RIB to that file instead ("-": standard output), as ASCII
+ *     or, with RiOption("rib", "format", &binary, "compression", &gzip, RI_NULL) before RiBegin or
+ *     inside the session, as binary RIB (32-bit floats) and gzip-compressed;
  *   - anywhere else a call is reported on standard error and ignored.
  * A bad call (a NaN, an undeclared parameter) is reported at RiEnd, or by the procedural that
  * made it, naming the call by its number and name.

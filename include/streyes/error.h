@@ -19,8 +19,13 @@ namespace streyes {
 struct SourceLoc {
     std::shared_ptr<const std::string> file;
     int line = 0;
-    int column = 0;           // 1-based; 0 when unknown (RIB locations carry lines only)
-    std::string str() const;  // "scene.rib:12" ("shader.sl:12:5" with a column), or "" when unknown
+    int column = 0;  // 1-based; 0 when unknown (RIB locations carry lines only)
+    // Binary RIB, where lines mean little: the byte the token or request starts at, counted in the
+    // (decompressed) stream; -1 for text.
+    long long offset = -1;
+    // "scene.rib:12" ("shader.sl:12:5" with a column, "scene.rib, byte 1234" in binary RIB), or ""
+    // when unknown.
+    std::string str() const;
 };
 
 class InputError : public std::runtime_error {

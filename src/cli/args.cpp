@@ -51,6 +51,7 @@ const char* kUsage = R"(usage: streyes render SCENE.rib | SHOT.####.rib [options
        streyes compare A B [options]        (streyes compare --help)
        streyes sheet PATTERN -o FILE [options]   (streyes sheet --help)
        streyes shader FILE.sl ...           check shaders and print their parameters
+       streyes catrib FILE.rib ... [-o OUT] RIB as ASCII, binary or gzip (streyes catrib --help)
        streyes farm submit|status|gather ...     (streyes farm --help: a shot on a Slurm cluster)
        streyes --help | --version
 

@@ -39,6 +39,10 @@ int sheetCommand(const std::vector<std::string>& args);
 extern const char* kShaderUsage;
 int shaderCommand(const std::vector<std::string>& args);
 
+// `streyes catrib FILE.rib ... -o OUT`: RIB written again as ASCII, binary or gzip (catrib_command.cpp).
+extern const char* kCatribUsage;
+int catribCommand(const std::vector<std::string>& args);
+
 // `streyes farm submit|status|gather`: a shot on a Slurm cluster (farm_command.cpp, docs/FARM.md).
 extern const char* kFarmUsage;
 int farmCommand(const std::vector<std::string>& args);

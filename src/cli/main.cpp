@@ -64,8 +64,11 @@ int main(int argc, char** argv) {
             }
             return farmCommand(rest);
         }
-        if (args[0] == "compare" || args[0] == "sheet" || args[0] == "shader") {
-            usage = args[0] == "compare" ? kCompareUsage : args[0] == "sheet" ? kSheetUsage : kShaderUsage;
+        if (args[0] == "compare" || args[0] == "sheet" || args[0] == "shader" || args[0] == "catrib") {
+            usage = args[0] == "compare" ? kCompareUsage
+                    : args[0] == "sheet" ? kSheetUsage
+                    : args[0] == "shader" ? kShaderUsage
+                                          : kCatribUsage;
             command = args[0];
             std::vector<std::string> rest(args.begin() + 1, args.end());
             if (asksForHelp(rest)) {
@@ -73,6 +76,7 @@ int main(int argc, char** argv) {
                 return 0;
             }
             if (args[0] == "shader") return shaderCommand(rest);
+            if (args[0] == "catrib") return catribCommand(rest);
             return args[0] == "compare" ? compareCommand(rest) : sheetCommand(rest);
         }
         throw UsageError("unknown command '" + args[0] + "'");

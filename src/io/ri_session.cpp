@@ -64,6 +64,7 @@ RtVoid RiBegin(RtToken name) {
     session = std::make_unique<Session>();
     session->file = name ? name : "";
     session->stream = std::make_unique<streyes::RiStream>("RiBegin");
+    session->stream->encoding = streyes::pendingRibEncoding();  // Option "rib" before RiBegin
     session->scope = std::make_unique<streyes::RiStreamScope>(session->stream.get());
 }
 
@@ -91,12 +92,21 @@ RtVoid RiEnd(void) {
                      "streyes: RiEnd: '%s' names %zu procedural(s) of the program's own functions, which a RIB file "
                      "cannot hold: they are written as Procedural \"RiFunction\" and will not read back\n",
                      s->file.c_str(), stream.functions().size());
+    // In the encoding Option "rib" asked for: ASCII as the stream has it, or binary, or gzip.
+    const streyes::RibEncoding& encoding = stream.encoding;
+    std::string bytes;
+    try {
+        bytes = encoding.binary || encoding.gzip ? streyes::encodeRib(rib, "RiBegin", encoding) : rib;
+    } catch (const streyes::InputError& e) {
+        std::fprintf(stderr, "%s; nothing written\n", e.report().c_str());
+        return;
+    }
     if (s->file == "-") {
-        std::fwrite(rib.data(), 1, rib.size(), stdout);
+        std::fwrite(bytes.data(), 1, bytes.size(), stdout);
         std::fflush(stdout);
     } else {
         std::ofstream out(s->file, std::ios::binary);
-        out << rib;
+        out << bytes;
         if (!out.flush()) std::fprintf(stderr, "streyes: RiEnd: cannot write '%s'\n", s->file.c_str());
     }
 }

@@ -243,6 +243,19 @@ RtVoid RiDisplay(RtToken name, RtToken type, RtToken mode, ...) {
     RiDisplayV(name, type, mode, p.n(), p.t(), p.v());
 }
 RtVoid RiOptionV(RtToken name, RtInt n, RtToken tokens[], RtPointer values[]) {
+    // Option "rib" says how RiEnd writes the file, before RiBegin (as PRMan has it) or inside: it
+    // is not part of the scene.
+    if (name && std::string(name) == "rib") {
+        RiStream* s = streyes::currentRiStream();
+        streyes::RibEncoding& encoding = s ? s->encoding : streyes::pendingRibEncoding();
+        for (RtInt i = 0; i < n; ++i) {
+            const RtString* v = values ? static_cast<const RtString*>(values[i]) : nullptr;
+            const std::string what =
+                streyes::setRibOutputOption(encoding, tokens && tokens[i] ? tokens[i] : "", v ? v[0] : nullptr);
+            if (!what.empty()) std::fprintf(stderr, "streyes: RiOption: %s\n", what.c_str());
+        }
+        return;
+    }
     RiStream* s = streamFor("RiOption");
     if (!s) return;
     s->request("RiOption", "Option");

@@ -55,6 +55,29 @@ std::string RiStream::addFunction(RtPointer data, RtProcSubdivFunc subdivide, Rt
 
 RiStream* currentRiStream() { return current; }
 
+RibEncoding& pendingRibEncoding() {
+    thread_local RibEncoding pending;
+    return pending;
+}
+
+std::string setRibOutputOption(RibEncoding& encoding, const std::string& token, const char* value) {
+    std::string name = token;
+    if (name.rfind("string ", 0) == 0) name = name.substr(7);  // an inline declaration
+    const std::string v = value ? value : "";
+    if (name == "format") {
+        if (v != "ascii" && v != "binary") return "Option \"rib\" \"format\" is \"ascii\" or \"binary\", not \"" + v + "\"";
+        encoding.binary = v == "binary";
+        encoding.float32 = encoding.binary;  // the calls' values are RtFloats: exact as 32-bit floats
+        return "";
+    }
+    if (name == "compression") {
+        if (v != "none" && v != "gzip") return "Option \"rib\" \"compression\" is \"none\" or \"gzip\", not \"" + v + "\"";
+        encoding.gzip = v == "gzip";
+        return "";
+    }
+    return "Option \"rib\" \"" + name + "\" is not known (\"format\" and \"compression\" are): ignored";
+}
+
 RiStreamScope::RiStreamScope(RiStream* stream) : previous_(current) { current = stream; }
 RiStreamScope::~RiStreamScope() { current = previous_; }
 

@@ -16,6 +16,7 @@
 
 #include "ri.h"
 #include "scene/rib_params.h"
+#include "scene/rib_writer.h"
 
 namespace streyes {
 
@@ -72,6 +73,8 @@ class RiStream {
     int uStep = 3, vStep = 3;  // RiBasis's steps: PatchMesh's varying counts depend on them
     std::vector<std::pair<int, int>> savedSteps;  // by RiAttributeBegin, as the reader saves the Basis
     int nextLight = 1;          // RiLightSource handles, numbered as RIB 3.2 does
+    // How RiEnd writes the session's file: Option "rib" "format" and "compression" (RiOption).
+    RibEncoding encoding;
 
     // Function procedurals written to this stream, by id; also findable with findRiFunction while
     // the stream keeps them.
@@ -88,6 +91,15 @@ class RiStream {
 // The stream Ri calls on this thread write to; nullptr when none (the call is reported on
 // standard error and ignored).
 RiStream* currentRiStream();
+
+// Option "rib" given before RiBegin, as PRMan has it: the encoding the next session on this thread
+// writes its file in (RiBegin takes it).
+RibEncoding& pendingRibEncoding();
+
+// RiOption("rib", ...): "format" "ascii" | "binary" (binary reals are 32-bit floats, what the
+// calls gave), "compression" "none" | "gzip". Returns what was wrong with a token or value ("" if
+// nothing); what it does not know is left alone.
+std::string setRibOutputOption(RibEncoding& encoding, const std::string& token, const char* value);
 // Makes `stream` current on this thread until the scope ends (the previous one again after).
 class RiStreamScope {
   public:

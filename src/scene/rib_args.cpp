@@ -33,10 +33,10 @@ bool isWholeInt(double v) {
            v <= double(std::numeric_limits<int>::max());
 }
 
-void RibArgs::failAt(int line, const std::string& what, bool withUsage) const {
+void RibArgs::failAt(const SourceLoc& loc, const std::string& what, bool withUsage) const {
     std::string msg = request_.name + ": " + what;
     if (withUsage && usage_ && *usage_) msg += " (usage: " + std::string(usage_) + ")";
-    throw InputError(locAt(line), msg);
+    throw InputError(loc, msg);
 }
 
 double RibArgs::number(const char* what) {

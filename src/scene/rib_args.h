@@ -19,6 +19,7 @@ struct RibValue {
     std::vector<double> nums;          // Number: one; Array: its numbers
     std::vector<std::string> strings;  // String: one; Array: its strings
     int line = 0;
+    long long offset = -1;  // binary RIB: the byte the value starts at
 
     bool isString() const { return kind == Kind::String; }
     bool isNumber() const { return kind == Kind::Number; }
@@ -48,7 +49,11 @@ class RibArgs {
     const SourceLoc& loc() const { return request_.loc; }
     const RibRequest& request() const { return request_; }
     const char* usage() const { return usage_; }
-    SourceLoc locAt(int line) const { return {request_.loc.file, line}; }
+    // A line of this request's input; in binary RIB, which has no lines, the request's byte offset.
+    SourceLoc locAt(int line) const { return {request_.loc.file, line, 0, request_.loc.offset}; }
+    SourceLoc locOf(const RibValue& v) const {
+        return {request_.loc.file, v.line, 0, v.offset >= 0 ? v.offset : request_.loc.offset};
+    }
 
     bool done() const { return next_ >= request_.args.size(); }
     size_t remaining() const { return request_.args.size() - next_; }
@@ -59,8 +64,11 @@ class RibArgs {
     // Errors at the request's line, or at the line of one value; the usage is shown for
     // positional-argument mistakes, where it is the most useful hint.
     [[noreturn]] void fail(const std::string& what) const { failAt(request_.loc.line, what, true); }
-    [[noreturn]] void fail(const RibValue& at, const std::string& what) const { failAt(at.line, what, true); }
-    [[noreturn]] void failAt(int line, const std::string& what, bool withUsage) const;
+    [[noreturn]] void fail(const RibValue& at, const std::string& what) const { failAt(locOf(at), what, true); }
+    [[noreturn]] void failAt(int line, const std::string& what, bool withUsage) const {
+        failAt(locAt(line), what, withUsage);
+    }
+    [[noreturn]] void failAt(const SourceLoc& loc, const std::string& what, bool withUsage) const;
 
     double number(const char* what);       // one number (or a one-number array)
     int integer(const char* what);         // a number that is a whole number in int range

@@ -41,7 +41,13 @@ std::string printableChar(unsigned char c) {
 std::string describeToken(const RibToken& token) {
     switch (token.kind) {
     case RibTokenKind::Request: return "the request name '" + token.text + "'";
-    case RibTokenKind::Number: return "the number " + token.text;
+    case RibTokenKind::Number: {
+        if (!token.text.empty()) return "the number " + token.text;
+        char buf[32];  // a binary number: no text as written
+        std::snprintf(buf, sizeof buf, "%.17g", token.number);
+        return std::string("the number ") + buf;
+    }
+    case RibTokenKind::NumberArray: return "an array of " + std::to_string(token.numbers.size()) + " numbers";
     case RibTokenKind::String: return "the string \"" + token.text + "\"";
     case RibTokenKind::ArrayBegin: return "'['";
     case RibTokenKind::ArrayEnd: return "']'";
@@ -89,34 +95,41 @@ void RibLexer::skipSpaceAndComments() {
     }
 }
 
+// Each branch returns the token it makes (no token is moved on the way: this is the hot path).
 RibToken RibLexer::scan() {
-    skipSpaceAndComments();
-    RibToken token;
-    token.line = line_;
-    if (pos_ >= text_.size()) {
-        token.kind = RibTokenKind::End;
-        return token;
-    }
-    char c = text_[pos_];
-    if (c == '[' || c == ']') {
-        ++pos_;
-        token.kind = c == '[' ? RibTokenKind::ArrayBegin : RibTokenKind::ArrayEnd;
-        token.text = std::string(1, c);
-    } else if (c == '"') {
-        token = scanString();
-    } else if (isDigit(c) || c == '-' || c == '+' || c == '.') {
-        token = scanNumber();
-    } else if (isAlpha(c)) {
-        token = scanIdentifier();
-    } else {
-        unsigned char u = (unsigned char)c;
-        std::string hint = u >= 0x80 || u < 0x20
-                               ? " (binary RIB and non-ASCII text outside strings are not supported)"
-                               : " (RIB has requests, numbers, \"strings\", [arrays] and # comments)";
+    while (true) {
+        skipSpaceAndComments();
+        if (pos_ >= text_.size()) {
+            RibToken token;
+            token.kind = RibTokenKind::End;
+            token.line = line_;
+            return token;
+        }
+        const char c = text_[pos_];
+        lastLine_ = line_;  // where the token starts
+        lastOffset_ = -1;
+        if (c == '[' || c == ']') {
+            ++pos_;
+            RibToken token;
+            token.kind = c == '[' ? RibTokenKind::ArrayBegin : RibTokenKind::ArrayEnd;
+            token.text.assign(1, c);
+            token.line = line_;
+            return token;
+        }
+        if (c == '"') return scanString();
+        if (isDigit(c) || c == '-' || c == '+' || c == '.') return scanNumber();
+        if (isAlpha(c)) return scanIdentifier();
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (u >= 0200) {
+            lastOffset_ = static_cast<long long>(pos_);
+            RibToken token;
+            if (scanBinary(token)) return token;
+            continue;  // a definition: on to the next token
+        }
+        const std::string hint = u < 0x20 ? " (a control character: is this a RIB file?)"
+                                          : " (RIB has requests, numbers, \"strings\", [arrays] and # comments)";
         fail(line_, "unexpected character " + printableChar(u) + hint);
     }
-    lastLine_ = token.line;
-    return token;
 }
 
 // ---- Strings ------------------------------------------------------------------------------------

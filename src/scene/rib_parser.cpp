@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "scene/rib_gzip.h"
 #include "streyes/rib.h"
 
 namespace streyes {
@@ -37,9 +38,12 @@ void RibParser::parseString(const std::string& text, const std::string& sourceNa
         int& n;
         ~Unnest() { --n; }
     } unnest{nesting_};
-    RibLexer lexer(text, std::make_shared<const std::string>(sourceName));
+    // Compressed input, told by its first bytes: lines and byte offsets count the inflated stream.
+    const std::string inflated = isGzip(text) ? gunzip(text, sourceName) : std::string();
+    RibLexer lexer(isGzip(text) ? std::string_view(inflated) : std::string_view(text),
+                   std::make_shared<const std::string>(sourceName));
     parseTokens(lexer);
-    lastLoc_ = lexer.loc(lexer.lastLine());
+    lastLoc_ = lexer.lastLoc();
 }
 
 void RibParser::parseTokens(RibLexer& lexer) {
@@ -47,8 +51,8 @@ void RibParser::parseTokens(RibLexer& lexer) {
         RibToken token = lexer.next();
         if (token.kind == RibTokenKind::End) return;
         if (token.kind != RibTokenKind::Request)
-            throw InputError(lexer.loc(token.line), "expected a request name, got " + describeToken(token) +
-                                                        " with no request before it");
+            throw InputError(lexer.loc(token), "expected a request name, got " + describeToken(token) +
+                                                   " with no request before it");
         RibRequest request = readRequest(lexer, std::move(token));
         lastLoc_ = request.loc;
         dispatch(request);
@@ -56,17 +60,25 @@ void RibParser::parseTokens(RibLexer& lexer) {
 }
 
 // ---- Grouping tokens into requests ----------------------------------------------------------------
+namespace {
+// Another place in the same input, for messages: "line 12", or "byte 1234" in binary RIB.
+std::string where(const SourceLoc& loc) {
+    return loc.offset >= 0 ? "byte " + std::to_string(loc.offset) : "line " + std::to_string(loc.line);
+}
+}  // namespace
+
 // A request's arguments are every value up to the next request name.
 RibRequest RibParser::readRequest(RibLexer& lexer, RibToken nameToken) {
     RibRequest request;
     request.name = std::move(nameToken.text);
-    request.loc = lexer.loc(nameToken.line);
+    request.loc = lexer.loc(nameToken);
     while (true) {
         const RibToken& t = lexer.peek();
         if (t.kind == RibTokenKind::Request || t.kind == RibTokenKind::End) break;
         RibToken token = lexer.next();
         RibValue value;
         value.line = token.line;
+        value.offset = token.offset;
         switch (token.kind) {
         case RibTokenKind::Number:
             value.kind = RibValue::Kind::Number;
@@ -76,10 +88,14 @@ RibRequest RibParser::readRequest(RibLexer& lexer, RibToken nameToken) {
             value.kind = RibValue::Kind::String;
             value.strings.push_back(std::move(token.text));
             break;
+        case RibTokenKind::NumberArray:
+            value.kind = RibValue::Kind::Array;
+            value.nums = std::move(token.numbers);
+            break;
         case RibTokenKind::ArrayBegin: value = readArray(lexer, token); break;
         default:
-            throw InputError(lexer.loc(token.line), "unexpected ']' with no '[' before it (in " + request.name +
-                                                        " at line " + std::to_string(request.loc.line) + ")");
+            throw InputError(lexer.loc(token), "unexpected ']' with no '[' before it (in " + request.name + " at " +
+                                                   where(request.loc) + ")");
         }
         request.args.push_back(std::move(value));
     }
@@ -90,31 +106,34 @@ RibValue RibParser::readArray(RibLexer& lexer, const RibToken& open) {
     RibValue array;
     array.kind = RibValue::Kind::Array;
     array.line = open.line;
+    array.offset = open.offset;
+    const SourceLoc opened = lexer.loc(open);
     while (true) {
         RibToken t = lexer.next();
         switch (t.kind) {
         case RibTokenKind::ArrayEnd: return array;
         case RibTokenKind::Number:
             if (!array.strings.empty())
-                throw InputError(lexer.loc(t.line), "array mixes strings and numbers: " + describeToken(t) +
-                                                        " in an array of strings");
+                throw InputError(lexer.loc(t), "array mixes strings and numbers: " + describeToken(t) +
+                                                   " in an array of strings");
             array.nums.push_back(t.number);
             break;
         case RibTokenKind::String:
             if (!array.nums.empty())
-                throw InputError(lexer.loc(t.line), "array mixes numbers and strings: " + describeToken(t) +
-                                                        " in an array of numbers");
+                throw InputError(lexer.loc(t), "array mixes numbers and strings: " + describeToken(t) +
+                                                   " in an array of numbers");
             array.strings.push_back(std::move(t.text));
             break;
         case RibTokenKind::ArrayBegin:
-            throw InputError(lexer.loc(t.line), "arrays cannot be nested: '[' inside the array opened at line " +
-                                                    std::to_string(open.line));
+        case RibTokenKind::NumberArray:
+            throw InputError(lexer.loc(t), "arrays cannot be nested: " +
+                                               std::string(t.kind == RibTokenKind::ArrayBegin ? "'['" : "a binary float array") +
+                                               " inside the array opened at " + where(opened));
         case RibTokenKind::Request:
-            throw InputError(lexer.loc(open.line), "unterminated array: the '[' opened here has no ']' before " +
-                                                       describeToken(t) + " at line " + std::to_string(t.line));
+            throw InputError(opened, "unterminated array: the '[' opened here has no ']' before " + describeToken(t) +
+                                         " at " + where(lexer.loc(t)));
         case RibTokenKind::End:
-            throw InputError(lexer.loc(open.line),
-                             "unterminated array: the '[' opened here has no ']' before the end of the input");
+            throw InputError(opened, "unterminated array: the '[' opened here has no ']' before the end of the input");
         }
     }
 }

@@ -6,6 +6,7 @@ namespace streyes {
 
 std::string SourceLoc::str() const {
     if (!file) return "";
+    if (offset >= 0) return *file + ", byte " + std::to_string(offset);
     std::string s = *file + ":" + std::to_string(line);
     return column > 0 ? s + ":" + std::to_string(column) : s;
 }

@@ -8,6 +8,9 @@
 #include <sstream>
 
 #include "ri.h"
+#include "scene/rib_gzip.h"
+#include "scene/rib_writer.h"
+#include "streyes/rib.h"
 #include "streyes/image_io.h"
 #include "streyes/scene_access.h"
 #include "test_util.h"
@@ -78,6 +81,47 @@ TEST(RiSession, RiBeginWithAFileNameWritesTheRib) {
     double sum = 0;
     for (size_t i = 3; i < r.frame(0).rgba.size(); i += 4) sum += r.frame(0).rgba[i];
     EXPECT_NEAR(sum, 64.0, 1e-4);
+}
+
+// Option "rib" as PRMan has it: "format" before RiBegin, "compression" inside; the file is gzip of
+// binary RIB with the calls' floats as 32-bit floats, and reads as the ASCII session's scene.
+TEST(RiSession, OptionRibWritesBinaryAndGzip) {
+    test::TempDir dir("ri-session");
+    auto session = [&](const std::string& rib, bool stored) {
+        RtString binary = "binary", gzip = "gzip";
+        if (stored) RiOption("rib", "format", &binary, RI_NULL);
+        RiBegin(rib.c_str());
+        if (stored) RiOption("rib", "string compression", &gzip, RI_NULL);
+        view("");
+        RiWorldBegin();
+        RtFloat P[12] = {0.1f, 0.2f, 5, 8.3f, 0, 5, 0, 8, 5, 8, 8.7f, 5};
+        RiPatch(RI_BILINEAR, RI_P, P, RI_NULL);
+        RiSphere(3.3f, -3.3f, 3.3f, 360, RI_NULL);
+        RiWorldEnd();
+        RiEnd();
+        RtString ascii = "ascii", none = "none";
+        RiOption("rib", "format", &ascii, "compression", &none, RI_NULL);  // for the tests after
+    };
+    const std::string text = dir.path() + "/text.rib", stored = dir.path() + "/stored.rib";
+    session(text, false);
+    session(stored, true);
+    std::ifstream in(stored, std::ios::binary);
+    std::stringstream bytes;
+    bytes << in.rdbuf();
+    ASSERT_GT(bytes.str().size(), 2u);
+    EXPECT_EQ(bytes.str().substr(0, 2), "\x1f\x8b");
+    const std::string inflated = gunzip(bytes.str(), stored);
+    EXPECT_EQ(inflated.substr(0, 2), std::string("\314\000", 2));  // request code 0 defined
+    EXPECT_EQ(inflated.find("Option"), std::string::npos);  // Option "rib" is not in the scene
+    // The ASCII file with its floats as 32-bit floats: the same scene, the same pixels.
+    std::ifstream t(text);
+    std::stringstream ascii;
+    ascii << t.rdbuf();
+    Log log;
+    const Scene expected = parseRibString(encodeRib(ascii.str(), text, {false, true, false}), text, log);
+    const test::RenderResult a = test::renderScene(expected), b = test::renderFile(stored);
+    EXPECT_TRUE(test::identicalPixels(a, b));
+    EXPECT_GT(test::alphaSum(b), 64.0);
 }
 
 TEST(RiSession, RiBeginNullRendersToTheDisplayWithTheProgramsOwnProcedurals) {

@@ -118,6 +118,20 @@ TEST(Procedural, RunProgramInPythonWorksEndToEnd) {
     EXPECT_EQ(r.alpha(0, 9, 6), 0.0f);
 }
 
+// A program's answer may be binary RIB or gzip-compressed, read as a file would be.
+TEST(Procedural, RunProgramAnswersInBinaryAndGzip) {
+    const std::string script = test::sourcePath("tests/data/squares.py");
+    auto render = [&](const std::string& a, const std::string& b) {
+        return test::renderRib(header() + "Procedural \"RunProgram\" [\"/usr/bin/python3 " + script + "\" \"3 1 1 2 5" +
+                               a + "\"] [1 11 1 3 5 5]\nProcedural \"RunProgram\" [\"/usr/bin/python3 " + script +
+                               "\" \"2 1.5 9 2 5" + b + "\"] [1.5 7.5 9 11 5 5]\nWorldEnd\n");
+    };
+    const RenderResult ascii = render("", ""), stored = render(" binary", " gzip");
+    EXPECT_EQ(stored.stats.counters.proceduralsExpanded, 2u);
+    EXPECT_NEAR(test::alphaSum(ascii), 5 * 4.0, 1e-4);
+    EXPECT_TRUE(test::identicalPixels(ascii, stored));
+}
+
 // The line number of `needle` in `text`, from 1.
 int lineOf(const std::string& text, const std::string& needle) {
     size_t at = text.find(needle);
