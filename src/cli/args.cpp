@@ -102,6 +102,11 @@ render options:
                       checked), render the rest
   --quiet             no progress (a bar on a terminal, else a line per 10%), no summary,
                       no warnings on stderr
+  --strict            what PRMan and Aqsis warn about and render without (an unknown
+                      request, one in the wrong block, a parameter a shader does not
+                      have, an option or attribute that changes another renderer's
+                      picture, an unknown Blobby opcode, an empty primitive) is an error
+                      naming file:line (exit 2), not a warning
 
 exit codes: 0 done, 1 render failed (e.g. an output folder missing or not writable, found
             before rendering; a full disk), 2 bad input or usage (or more memory than the budget)

@@ -322,6 +322,7 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
                 throw UsageError("--grid-cache expects a size such as 128M or 1G, or 0 (off), not '" + v + "'");
         } else if (a == "--resume") req.resume = true;
         else if (a == "--quiet" || a == "-q") req.quiet = true;
+        else if (a == "--strict") req.strict = true;
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
         else if (req.scenePath.empty()) req.scenePath = a;
         else throw UsageError("more than one scene given ('" + req.scenePath + "' and '" + a + "')");
@@ -357,6 +358,7 @@ int renderCommand(const std::vector<std::string>& args) {
     Log log;
     log.setEcho(true);
     log.setQuiet(quiet);
+    log.setStrict(req.strict);
     FrameRequest wanted;
     wanted.given = opts.hasFrames;
     wanted.first = opts.firstFrame, wanted.last = opts.lastFrame;

@@ -17,6 +17,7 @@ struct RenderRequest {
     RenderOptions opts;
     std::string scenePath, outPattern, statsPath;
     bool quiet = false, resume = false, preview = false;
+    bool strict = false;  // --strict: what the peers warn about and render without is an error (exit 2)
     std::string simd;  // --simd: the kernels' instruction set cap, applied on the machine that renders
 };
 
