@@ -109,7 +109,10 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     for (size_t v = 0; v < ra_.size(); ++v)
         motion = std::max({motion, std::fabs(rb_[v].x - ra_[v].x), std::fabs(rb_[v].y - ra_[v].y)});
     double sliceTime = 0;  // the longest slice, as a share of the grid's span
-    for (const Slice& sl : slices_) sliceTime = std::max(sliceTime, (sl.tb - sl.ta) / span);
+    // A grid of no time (a moving body cut to one instant: a closed shutter's frame at its last
+    // key) is where it is at t0 throughout: no share of its span is taken (0 / 0 made NaN colours).
+    auto share = [&](double t) { return span > 0 ? (t - grid.t0) / span : 0.0; };
+    for (const Slice& sl : slices_) sliceTime = std::max(sliceTime, span > 0 ? (sl.tb - sl.ta) / span : 0.0);
     const double perSlice = double(motion) * sliceTime;
     const size_t group = slicesPerGroup(perSlice, S);
 
@@ -130,7 +133,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
         }
         project(grid, last.tb, camera, rb_, perspective ? &cb_ : nullptr);
         projected = last.tb;
-        const float sA = float((first.ta - grid.t0) / span), sB = float((last.tb - grid.t0) / span);
+        const float sA = float(share(first.ta)), sB = float(share(last.tb));
         mq.tfA = first.tfA, mq.invSpan = last.tfB > first.tfA ? 1.0f / (last.tfB - first.tfA) : 0.0f;
         if (perspective) {
             // A vertex moving linearly in camera space leaves the straight raster segment between

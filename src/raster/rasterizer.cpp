@@ -16,7 +16,7 @@ void GridRasterizer::project(const Grid& grid, double t, const Camera& camera, s
     out.resize(n);
     if (cameraOut) cameraOut->resize(n);
     float s = 0;
-    if (grid.moving) {
+    if (grid.moving && grid.t1 > grid.t0) {
         s = float((t - grid.t0) / (grid.t1 - grid.t0));
         if (t <= grid.t0) s = 0;
         if (t >= grid.t1) s = 1;
