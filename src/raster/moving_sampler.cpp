@@ -61,6 +61,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const double span = grid.t1 - grid.t0;
     const Color *ci0 = grid.Ci[0].data(), *ci1 = grid.Ci[1].data();
     const bool flat = grid.flatShading;  // ShadingInterpolation "constant": the first corner's colour
+    const bool dissolves = grid.dissolves();  // a level of detail's transition: a share of the samples
     const int K = grid.shadowSlots;
     const Color *cl0 = grid.Cl[0].data(), *cl1 = grid.Cl[1].data();
     const int A = grid.aovCount;
@@ -223,8 +224,10 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 const Slice& sl = slices_[s];
                 const int sj = sampleOf[sl.k];
                 gs.sample[o] = uint16_t(sj);
-                if (sl.checkTime && !inTimeSpan(times[sl.k], sl.tfA, sl.tfB, sl.openB)) {
-                    // A sample outside the part of its slice the grid covers meets none of it.
+                if ((sl.checkTime && !inTimeSpan(times[sl.k], sl.tfA, sl.tfB, sl.openB)) ||
+                    (dissolves && !block.dissolveKeeps(fi, pi, sj, grid.dissolveLo, grid.dissolveHi))) {
+                    // A sample outside the part of its slice the grid covers meets none of it; nor
+                    // does one outside the share a dissolving grid is seen by.
                     constexpr float kNever = std::numeric_limits<float>::infinity();
                     gs.x[o] = kNever, gs.y[o] = kNever, gs.tf[o] = 0, gs.z[o] = kNever;
                     if constexpr (Lens) gs.lu[o] = 0, gs.lv[o] = 0;
