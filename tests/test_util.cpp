@@ -17,8 +17,10 @@ namespace streyes::test {
 
 std::string sourcePath(const std::string& relative) { return std::string(STREYES_SOURCE_DIR) + "/" + relative; }
 
-std::string ribError(const std::string& rib) {
+std::string ribError(const std::string& rib, bool strict) {
     Log log;
+    log.setQuiet(true);
+    log.setStrict(strict);
     try {
         parseRibString(rib, "bad.rib", log);
     } catch (const InputError& e) {
@@ -69,8 +71,11 @@ static RenderResult renderWithLog(const Scene& scene, const RenderOptions& optio
     return r;
 }
 
-RenderResult renderRib(const std::string& rib, const RenderOptions& options) {
+RenderResult renderRib(const std::string& rib, const RenderOptions& options) { return renderRib(rib, options, false); }
+
+RenderResult renderRib(const std::string& rib, const RenderOptions& options, bool strict) {
     Log log;
+    log.setStrict(strict);
     Scene scene = parseRibString(rib, "test.rib", log);
     return renderWithLog(scene, options, log);
 }

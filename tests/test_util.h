@@ -85,6 +85,8 @@ inline RenderOptions optionsFor(Algorithm a) {
 }
 
 RenderResult renderRib(const std::string& rib, const RenderOptions& options = {});
+// With `strict` (streyes render --strict): what the peers warn about is an InputError.
+RenderResult renderRib(const std::string& rib, const RenderOptions& options, bool strict);
 // Frames [first, last] of a RIB rendered together, and frame `frame` rendered alone (`options`
 // otherwise): for tests of what a frame's render depends on.
 struct ShotAndFrame {
@@ -93,7 +95,8 @@ struct ShotAndFrame {
 };
 ShotAndFrame renderShotAndFrame(const std::string& rib, RenderOptions options, int first, int last, int frame);
 // The InputError a RIB string read as "bad.rib" makes, or "" when it reads.
-std::string ribError(const std::string& rib);
+// Under `strict` (streyes render --strict), what the peers warn about is an InputError too.
+std::string ribError(const std::string& rib, bool strict = false);
 RenderResult renderScene(const Scene& scene, const RenderOptions& options = {});
 RenderResult renderFile(const std::string& path, const RenderOptions& options = {});
 

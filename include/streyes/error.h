@@ -6,6 +6,7 @@
 // capture them and so that each kind of warning is said once, not once per body.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -49,6 +50,14 @@ class Log {
   public:
     void warn(const SourceLoc& loc, const std::string& what);
     void warnOnce(const std::string& key, const SourceLoc& loc, const std::string& what);
+    // What the peers (PRMan, Aqsis) warn about and render without: a request streyes does not
+    // know or leaves out, one in the wrong block, a parameter a shader does not have, an option
+    // or attribute that changes the picture elsewhere. Said once per key, like warnOnce; under
+    // setStrict(true) (streyes render --strict) an InputError instead, so that a pipeline can
+    // refuse a scene whose picture would lack something it asks for.
+    void lenient(const std::string& key, const SourceLoc& loc, const std::string& what);
+    void setStrict(bool s) { strict_ = s; }
+    bool strict() const { return strict_; }
     void info(const std::string& what);
     std::vector<std::string> warnings() const;
     void setQuiet(bool q) { quiet_ = q; }  // quiet: keep warnings, do not print them
@@ -60,6 +69,7 @@ class Log {
     std::set<std::string> said_;
     bool quiet_ = false;
     bool echo_ = false;
+    std::atomic<bool> strict_{false};
 };
 
 }  // namespace streyes

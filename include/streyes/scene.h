@@ -78,6 +78,19 @@ struct TrimLoops {
     SourceLoc loc;
 };
 
+// Detail and DetailRange (RI Spec 3.2, 4.2.4): the primitives declared under a DetailRange are one
+// representation of a model. A frame draws it where the raster area of the Detail box (the area of
+// the screen rectangle around its corners, times RelativeDetail), seen from that frame's camera,
+// lies in [lowertransition, uppertransition], and not outside [minvisible, maxvisible]; in between
+// the representations of neighbouring ranges dissolve into each other, sample by sample.
+struct LevelOfDetail {
+    Bounds3d bound;                // Detail's box, in the space where it was given
+    MotionTransform boundToWorld;  // the transform in force at Detail
+    bool hasBound = false;         // no Detail before the DetailRange: the area is infinite
+    std::array<double, 4> range{0, 0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    SourceLoc loc;                 // the DetailRange
+};
+
 // The attribute state a primitive was declared with. Shared: many primitives point at one.
 struct Attributes {
     Color color{1, 1, 1};                        // Color (Cs)
@@ -94,7 +107,10 @@ struct Attributes {
     // max(1, motionFactor * blur / 16), blur the pixels it moves in one exposure. 0: off.
     double motionFactor = 0;
     std::vector<int> lights;                     // indices into Scene::lights that are on
-    ParamList user;                              // Attribute "category" "name" values, as "category:name"
+    // Every Attribute value given, as "category:name" ("identifier:name", "user:weight",
+    // "visibility:camera"): what the features that read them and the Shading Language's
+    // attribute() find. Names nobody declared keep the type of their value (Param::declared false).
+    ParamList user;
     BasisDesc uBasis, vBasis;                    // Basis, for bicubic patches
     std::shared_ptr<const TrimLoops> trim;       // TrimCurve (none when empty), for NuPatches
     // Sides 1: only the outside is drawn (micropolygons facing away from the eye are not).
@@ -109,6 +125,8 @@ struct Attributes {
     // AreaLightSource in force (an index into Scene::lights): the geometry declared now also
     // makes up that light's shape. -1: none.
     int areaLight = -1;
+    // Under a DetailRange: the representation of a model it belongs to. None: always drawn.
+    std::shared_ptr<const LevelOfDetail> detail;
 };
 using AttributesPtr = std::shared_ptr<const Attributes>;
 
@@ -215,6 +233,12 @@ struct RenderSettings {
     // be in shadow, where a shadow() call gives none (beyond what the map's own sampling needs:
     // shade/shadow_map.h).
     double shadowBias = 0;
+    // Every Option value given (but "searchpath"), as "category:name" ("user:pass", "limits:eyesplits",
+    // "shadow:bias"): what the Shading Language's option() and later passes read. Names nobody
+    // declared keep the type of their value (a float or a string, Param::declared false).
+    ParamList options;
+    // RelativeDetail: scales every Detail's raster area before DetailRange compares it.
+    double relativeDetail = 1;
 };
 
 // ---- Lights and geometry --------------------------------------------------------------------------
@@ -285,6 +309,10 @@ struct ProceduralDesc {
     // ObjectInstance: the object's primitives in its own space, shared by all its instances
     // (args holds the handle; the bound is the object's).
     std::shared_ptr<const Scene> object;
+    // ... and where attributes were set inside the object's definition, each attribute state its
+    // primitives hold with what they take in this instance: those in force at ObjectInstance with
+    // the object's own settings over them. A state not listed takes `attributes`.
+    std::vector<std::pair<AttributesPtr, AttributesPtr>> objectAttributes;
 };
 
 // ---- Curved and polygonal primitives ----------------------------------------------------------

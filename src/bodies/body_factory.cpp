@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "bodies/level_of_detail.h"
 #include "bodies/motion_segments.h"
 #include "geom/curved_body.h"
 #include "geom/nurbs_mesh.h"
@@ -179,6 +180,8 @@ const Material* BodyFactory::material(const AttributesPtr& attributes, const Mot
     }
     keepAlive_.push_back(a);
     Material m = makeMaterial(*a, facing);
+    if (auto share = dissolveOf_.find(a.get()); share != dissolveOf_.end())
+        m.dissolveLo = share->second.first, m.dissolveHi = share->second.second;
     if (own) {
         m.primvars = *primvars;
         m.primvarToWorld = objectToWorld;
@@ -664,6 +667,22 @@ std::vector<uint64_t> BodyFactory::proceduralsMadeByDepth() const {
     return proceduralsByDepth_;
 }
 
+template <class Desc, class Add>
+void BodyFactory::addWithDetail(const Desc& p, Add add) {
+    const LevelOfDetail* lod = p.attributes ? p.attributes->detail.get() : nullptr;
+    if (!lod || !detailFrames_.set || !camera_) {
+        add(p);
+        return;
+    }
+    const DetailFrames& f = detailFrames_;
+    for (const DetailRun& run : detailRuns(*lod, f.first, f.last, f.shutter, worldToCamera_, *camera_, f.relative)) {
+        Desc q = p;
+        q.life = runLifetime(p.life, run.first, run.last, f.shutter);
+        if (!run.share.all()) q.attributes = dissolving(p.attributes, run.share.lo, run.share.hi);
+        add(q);
+    }
+}
+
 void BodyFactory::addPrimitives(const Scene& scene, const std::vector<GeneratedProcedural>& generated, int depth,
                                 const std::function<uint64_t()>& nextId, std::vector<BodyPtr>& out, Keep* keep) {
     const size_t first = out.size();  // the bodies made here start there (bodyBytes_)
@@ -679,26 +698,42 @@ void BodyFactory::addPrimitives(const Scene& scene, const std::vector<GeneratedP
         if (!polygons[i].patch) polygons[i].faces = cutPolygons(meshes[i], log_);
     }
     size_t next = 0;  // the first polygon not yet placed among the patches
+    // Each primitive takes one id, whatever copies its level of detail makes (they never meet in a frame).
+    auto patch = [&](const BilinearPatchDesc& p) {
+        const uint64_t id = nextId();
+        addWithDetail(p, [&](const BilinearPatchDesc& q) { addPatch(q, id, out); });
+    };
     auto polygonPatchesUpTo = [&](size_t patches) {
         for (; next < meshes.size() && meshes[next].patchesBefore <= patches; ++next)
-            if (polygons[next].patch) addPatch(*polygons[next].patch, nextId(), out);
+            if (polygons[next].patch) patch(*polygons[next].patch);
     };
     for (size_t i = 0; i < scene.patches.size(); ++i) {
         polygonPatchesUpTo(i);
-        addPatch(scene.patches[i], nextId(), out);
+        patch(scene.patches[i]);
     }
     polygonPatchesUpTo(scene.patches.size());
-    for (const ProceduralDesc& p : scene.procedurals) addProcedural(p, nextId(), depth, out);
-    for (const GeneratedProcedural& g : generated) addProcedural(g.desc, g.generator, nextId(), depth, out);
-    for (const PatchMeshDesc& p : scene.patchMeshes) addPatchMesh(p, nextId(), out, keep);
-    for (const SubdivisionMeshDesc& p : scene.subdivisionMeshes) addSubdivisionMesh(p, nextId(), out, keep);
-    for (const QuadricDesc& q : scene.quadrics) addQuadric(q, nextId(), out, keep);
+    auto each = [&](const auto& prims, const auto& addOne) {
+        for (const auto& p : prims) {
+            const uint64_t id = nextId();
+            addWithDetail(p, [&](const auto& q) { addOne(q, id); });
+        }
+    };
+    each(scene.procedurals, [&](const ProceduralDesc& p, uint64_t id) { addProcedural(p, id, depth, out); });
+    for (const GeneratedProcedural& g : generated) {
+        const uint64_t id = nextId();
+        addWithDetail(g.desc, [&](const ProceduralDesc& q) { addProcedural(q, g.generator, id, depth, out); });
+    }
+    each(scene.patchMeshes, [&](const PatchMeshDesc& p, uint64_t id) { addPatchMesh(p, id, out, keep); });
+    each(scene.subdivisionMeshes, [&](const SubdivisionMeshDesc& p, uint64_t id) { addSubdivisionMesh(p, id, out, keep); });
+    each(scene.quadrics, [&](const QuadricDesc& q, uint64_t id) { addQuadric(q, id, out, keep); });
     for (size_t i = 0; i < meshes.size(); ++i)
-        if (!polygons[i].patch && !polygons[i].faces.faces.empty())
-            addPolygonFaces(meshes[i], polygons[i].faces, nextId(), out);
-    for (const CurvesDesc& c : scene.curves) addCurves(c, nextId(), out, keep);
-    for (const PointsDesc& p : scene.points) addPoints(p, nextId(), out, keep);
-    for (const NuPatchDesc& p : scene.nuPatches) addNuPatch(p, nextId(), out, keep);
+        if (!polygons[i].patch && !polygons[i].faces.faces.empty()) {
+            const uint64_t id = nextId();
+            addWithDetail(meshes[i], [&](const PolygonMeshDesc& q) { addPolygonFaces(q, polygons[i].faces, id, out); });
+        }
+    each(scene.curves, [&](const CurvesDesc& c, uint64_t id) { addCurves(c, id, out, keep); });
+    each(scene.points, [&](const PointsDesc& p, uint64_t id) { addPoints(p, id, out, keep); });
+    each(scene.nuPatches, [&](const NuPatchDesc& p, uint64_t id) { addNuPatch(p, id, out, keep); });
     uint64_t bytes = 0;
     for (size_t i = first; i < out.size(); ++i) bytes += out[i]->memoryBytes();
     bodyBytes_ += bytes;

@@ -68,6 +68,12 @@ class BodyFactory final : public ChildBodyMaker {
     void setExposure(double exposure) { exposure_ = exposure; }
     // Binds the Shading Language shaders of every material made from now on (see material.h).
     void setMaterialBinder(const MaterialBinder* binder) { binder_ = binder; }
+    // Level of detail: the frames of the shot, whose cameras decide which representation of a model
+    // each draws (level_of_detail.h), and RelativeDetail. Needs the camera. Unset: every
+    // representation is drawn in every frame.
+    void setDetailFrames(int first, int last, const Shutter& shutter, double relativeDetail) {
+        detailFrames_ = {first, last, shutter, relativeDetail, true};
+    }
     // The meshes the bodies point into go to `keep` when given (freed with the bodies by their
     // owner), else the factory keeps them for the whole render.
     using Keep = std::vector<std::shared_ptr<const void>>;
@@ -154,6 +160,12 @@ class BodyFactory final : public ChildBodyMaker {
     const Material* material(const AttributesPtr& attributes, const MotionTransform& objectToWorld,
                              bool cameraFacing = false, const ParamList* primvars = nullptr, uint64_t primitiveId = 0);
     const SourceLoc* source(const SourceLoc& loc);
+    // Calls add(q) for each copy of primitive p its level of detail draws: p itself when it has
+    // none, else one copy a run of frames that draw it alike, living over those frames'
+    // exposures, with attributes that carry the run's share of samples where it dissolves.
+    template <class Desc, class Add>
+    void addWithDetail(const Desc& p, Add add);
+    AttributesPtr dissolving(const AttributesPtr& attributes, float lo, float hi);
     // A curved primitive's segment times and camera-space points at each (false, with a warning,
     // when they are not finite).
     bool keyedPoints(const PrimitiveDesc& p, const std::vector<std::vector<Vec3d>>& P, std::vector<double>* ts,
@@ -189,6 +201,16 @@ class BodyFactory final : public ChildBodyMaker {
     std::vector<std::shared_ptr<const void>> clouds_;    // point bodies point at these (under mutex_)
     const Camera* camera_ = nullptr;
     double exposure_ = 1;
+    struct DetailFrames {
+        int first = 0, last = 0;
+        Shutter shutter;
+        double relative = 1;
+        bool set = false;
+    } detailFrames_;
+    // Copies of attribute states whose materials see only a share [lo, hi) of a frame's samples
+    // (a level of detail's dissolve), made once per state and share (under mutex_).
+    std::map<std::tuple<const Attributes*, float, float>, AttributesPtr> dissolving_;
+    std::map<const Attributes*, std::pair<float, float>> dissolveOf_;
     std::vector<ProceduralBody*> outgrown_;
     std::atomic<uint64_t> bodiesMade_{0}, proceduralsMade_{0}, sharedBytes_{0}, bodyBytes_{0};
     std::atomic<uint64_t> bodyBudget_{0}, renderBudget_{0};

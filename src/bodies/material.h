@@ -72,6 +72,9 @@ struct Material {
     // The primitive's object-to-world transform: point, vector and normal primitive variables are
     // given in object space.
     MotionTransform primvarToWorld;
+    // A level of detail's dissolve: only the share [dissolveLo, dissolveHi) of a frame's samples
+    // sees this surface (bodies/level_of_detail.h). [0, 1): every sample.
+    float dissolveLo = 0, dissolveHi = 1;
 };
 
 // Binds a material's Shading Language shaders (made by the shading stage, which the bodies

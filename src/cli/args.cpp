@@ -112,6 +112,11 @@ render options:
   --safe-dir DIR      --safe, with DIR as the folder the scene may write in
   --quiet             no progress (a bar on a terminal, else a line per 10%), no summary,
                       no warnings on stderr
+  --strict            what PRMan and Aqsis warn about and render without (an unknown
+                      request, one in the wrong block, a parameter a shader does not
+                      have, an option or attribute that changes another renderer's
+                      picture, an unknown Blobby opcode, an empty primitive) is an error
+                      naming file:line (exit 2), not a warning
 
 environment: STREYES_SHADERPATH, STREYES_TEXTUREPATH, STREYES_PROCEDURALPATH: folders separated by
              ':' where shaders, texture maps and plug-ins are looked for after the scene's own

@@ -203,7 +203,7 @@ int farmSubmit(const std::vector<std::string>& args) {
         } else if (!a.empty() && a[0] == '-') {
             // A render option, and its value when it takes one: parseRenderArgs checks it below.
             renderOptions.push_back(a);
-            static const std::set<std::string> flags = {"--preview", "--quiet", "-q", "--safe"};
+            static const std::set<std::string> flags = {"--preview", "--quiet", "-q", "--safe", "--strict"};
             if (!flags.count(a) && i + 1 < args.size()) renderOptions.push_back(args[++i]);
         } else if (scenePath.empty()) scenePath = a;
         else throw UsageError("more than one scene given ('" + scenePath + "' and '" + a + "')");
@@ -239,6 +239,7 @@ int farmSubmit(const std::vector<std::string>& args) {
     if (!isFramePattern(scene) && !fs::exists(scene)) throw InputError("no scene '" + scenePath + "'");
     Log log;
     log.setEcho(true);
+    log.setStrict(req.strict);  // with --strict, refused here rather than by every task
     // A scene, or a frame sequence (a pattern of frame files, FrameBegin blocks), read as the tasks
     // will read it: InputError naming file and line when it does not parse. The shot is its
     // pictures' frames (streyes/passes.h: each task renders the depth frames its pictures read).

@@ -392,6 +392,7 @@ RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
             if (req.safeDir.empty()) throw UsageError("--safe-dir needs a folder");
         } else if (a == "--resume") req.resume = true;
         else if (a == "--quiet" || a == "-q") req.quiet = true;
+        else if (a == "--strict") req.strict = true;
         else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
         else if (req.scenePath.empty()) req.scenePath = a;
         else throw UsageError("more than one scene given ('" + req.scenePath + "' and '" + a + "')");
@@ -446,6 +447,7 @@ int renderCommand(const std::vector<std::string>& args) {
     Log log;
     log.setEcho(true);
     log.setQuiet(quiet);
+    log.setStrict(req.strict);
     FrameRequest wanted;
     wanted.given = opts.hasFrames;
     wanted.first = opts.firstFrame, wanted.last = opts.lastFrame;

@@ -19,6 +19,7 @@ struct RenderRequest {
     RenderOptions opts;
     std::string scenePath, outPattern, statsPath;
     bool quiet = false, resume = false, preview = false;
+    bool strict = false;  // --strict: what the peers warn about and render without is an error (exit 2)
     std::string simd;  // --simd: the kernels' instruction set cap, applied on the machine that renders
     // --safe (or --safe-dir DIR): no programs or plug-ins, and the files the scene asks to write
     // only inside DIR (default: -o's folder, else the current folder).

@@ -23,6 +23,10 @@ struct Grid {
     uint64_t primitiveId = 0;     // the body's primitive: breaks exact depth ties
     float u0 = 0, u1 = 1, v0 = 0, v1 = 1;  // the body's parameter rectangle (Body::uv)
     bool flatShading = false;     // ShadingInterpolation "constant": a micropolygon has its first vertex's colour
+    // A level of detail's dissolve (Material::dissolveLo/Hi): only this share of a frame's samples
+    // sees the grid. [0, 1): every sample.
+    float dissolveLo = 0, dissolveHi = 1;
+    bool dissolves() const { return dissolveLo > 0 || dissolveHi < 1; }
     const float* primvarCorners = nullptr;  // the body's (Body::primvarCorners)
 
     std::vector<Vec3f> P[2];      // camera-space positions at t0, t1

@@ -1,4 +1,5 @@
 // The procedurals a RIB file can name: archives, helper programs and the built-in generators.
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -60,11 +61,13 @@ class ProgramGenerator final : public ProceduralGenerator {
 };
 
 // ObjectInstance: the object's primitives under the instance's transform (after their own) and
-// its attributes (RI 3.2: an object holds geometry; the graphics state comes from the instance).
+// its attributes, with those set inside the object's definition over them (the scene stage made
+// them: ProceduralDesc::objectAttributes).
 class InstanceGenerator final : public ProceduralGenerator {
   public:
-    InstanceGenerator(std::string handle, std::shared_ptr<const Scene> object)
-        : handle_(std::move(handle)), object_(std::move(object)) {}
+    using AttributeMap = std::vector<std::pair<AttributesPtr, AttributesPtr>>;
+    InstanceGenerator(std::string handle, std::shared_ptr<const Scene> object, AttributeMap attributes)
+        : handle_(std::move(handle)), object_(std::move(object)), attributes_(std::move(attributes)) {}
     std::string describe() const override { return "ObjectInstance " + handle_; }
     // A copy of what the scene holds is cheap to make again: buckets expand it for themselves.
     // An object holding procedurals keeps its children (they report outgrown bounds by address).
@@ -75,7 +78,9 @@ class InstanceGenerator final : public ProceduralGenerator {
         auto place = [&](auto& prims) {
             for (auto& p : prims) {
                 p.objectToWorld = p.objectToWorld.then(ctx.objectToWorld);
-                p.attributes = ctx.attributes;
+                auto own = std::find_if(attributes_.begin(), attributes_.end(),
+                                        [&](const auto& m) { return m.first == p.attributes; });
+                p.attributes = own != attributes_.end() ? own->second : ctx.attributes;
             }
         };
         place(s.patches);
@@ -92,6 +97,7 @@ class InstanceGenerator final : public ProceduralGenerator {
   private:
     std::string handle_;
     std::shared_ptr<const Scene> object_;
+    AttributeMap attributes_;
 };
 
 }  // namespace
@@ -105,7 +111,7 @@ std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const Procedu
     const SceneAccess access = sceneAccess();
     if (kind == "ObjectInstance") {
         if (!desc.object || args.size() != 1) throw InputError(loc, "ObjectInstance without its object");
-        return std::make_shared<InstanceGenerator>(args[0], desc.object);
+        return std::make_shared<InstanceGenerator>(args[0], desc.object, desc.objectAttributes);
     }
     if (kind == "DelayedReadArchive" && !access.files)
         throw InputError(loc, "Procedural \"DelayedReadArchive\" is not allowed here (no other files are read)");

@@ -134,6 +134,18 @@ class ImageBlock {
         const int q = permutation(fi, i);
         return patterns_->stratumTimes(q)[patterns_->stratumOfSample(q)[j]];
     }
+    // A level of detail's dissolve (Grid::dissolveLo/Hi): whether sample j of pixel i is one of
+    // the share [lo, hi) of frame fi's samples that sees a dissolving surface. The pixel's samples
+    // are ranked in that frame by one of the table's permutations, half the table away from the one
+    // that orders their times (so that the share does not follow the time within the exposure): a
+    // pure function of the pixel, frame and seed, as sample times are; two representations whose
+    // shares split [0, 1) are seen by complementary samples. needTimes(fi) first.
+    bool dissolveKeeps(int fi, size_t i, int j, float lo, float hi) const {
+        const int Q = patterns_->permutationCount();
+        const int q = (permutation(fi, i) + Q / 2) % Q;
+        const float u = (float(patterns_->stratumOfSample(q)[j]) + 0.5f) / float(S_);
+        return u >= lo && u < hi;
+    }
     SamplePosition position(int fi, size_t i, int j) const {
         needTimes(fi);
         const size_t s = i * size_t(S_) + size_t(j);

@@ -61,6 +61,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const double span = grid.t1 - grid.t0;
     const Color *ci0 = grid.Ci[0].data(), *ci1 = grid.Ci[1].data();
     const bool flat = grid.flatShading;  // ShadingInterpolation "constant": the first corner's colour
+    const bool dissolves = grid.dissolves();  // a level of detail's transition: a share of the samples
     const int K = grid.shadowSlots;
     const Color *cl0 = grid.Cl[0].data(), *cl1 = grid.Cl[1].data();
     const int A = grid.aovCount;
@@ -109,7 +110,10 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     for (size_t v = 0; v < ra_.size(); ++v)
         motion = std::max({motion, std::fabs(rb_[v].x - ra_[v].x), std::fabs(rb_[v].y - ra_[v].y)});
     double sliceTime = 0;  // the longest slice, as a share of the grid's span
-    for (const Slice& sl : slices_) sliceTime = std::max(sliceTime, (sl.tb - sl.ta) / span);
+    // A grid of no time (a moving body cut to one instant: a closed shutter's frame at its last
+    // key) is where it is at t0 throughout: no share of its span is taken (0 / 0 made NaN colours).
+    auto share = [&](double t) { return span > 0 ? (t - grid.t0) / span : 0.0; };
+    for (const Slice& sl : slices_) sliceTime = std::max(sliceTime, span > 0 ? (sl.tb - sl.ta) / span : 0.0);
     const double perSlice = double(motion) * sliceTime;
     const size_t group = slicesPerGroup(perSlice, S);
 
@@ -130,7 +134,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
         }
         project(grid, last.tb, camera, rb_, perspective ? &cb_ : nullptr);
         projected = last.tb;
-        const float sA = float((first.ta - grid.t0) / span), sB = float((last.tb - grid.t0) / span);
+        const float sA = float(share(first.ta)), sB = float(share(last.tb));
         mq.tfA = first.tfA, mq.invSpan = last.tfB > first.tfA ? 1.0f / (last.tfB - first.tfA) : 0.0f;
         if (perspective) {
             // A vertex moving linearly in camera space leaves the straight raster segment between
@@ -220,8 +224,10 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 const Slice& sl = slices_[s];
                 const int sj = sampleOf[sl.k];
                 gs.sample[o] = uint16_t(sj);
-                if (sl.checkTime && !inTimeSpan(times[sl.k], sl.tfA, sl.tfB, sl.openB)) {
-                    // A sample outside the part of its slice the grid covers meets none of it.
+                if ((sl.checkTime && !inTimeSpan(times[sl.k], sl.tfA, sl.tfB, sl.openB)) ||
+                    (dissolves && !block.dissolveKeeps(fi, pi, sj, grid.dissolveLo, grid.dissolveHi))) {
+                    // A sample outside the part of its slice the grid covers meets none of it; nor
+                    // does one outside the share a dissolving grid is seen by.
                     constexpr float kNever = std::numeric_limits<float>::infinity();
                     gs.x[o] = kNever, gs.y[o] = kNever, gs.tf[o] = 0, gs.z[o] = kNever;
                     if constexpr (Lens) gs.lu[o] = 0, gs.lv[o] = 0;

@@ -16,7 +16,7 @@ void GridRasterizer::project(const Grid& grid, double t, const Camera& camera, s
     out.resize(n);
     if (cameraOut) cameraOut->resize(n);
     float s = 0;
-    if (grid.moving) {
+    if (grid.moving && grid.t1 > grid.t0) {
         s = float((t - grid.t0) / (grid.t1 - grid.t0));
         if (t <= grid.t0) s = 0;
         if (t >= grid.t1) s = 1;
@@ -90,11 +90,12 @@ void GridRasterizer::rasterize(const Grid& grid, const Camera& camera, const Shu
     else collectFrames(grid, shutter, block);
     if (grid.moving ? slices_.empty() : frames_.empty()) return;
     // Sample times, in the frames where they decide (a grid over part of an exposure, or moving).
+    // Permutations too where a level of detail dissolves (dissolveKeeps).
     if (grid.moving) {
         for (const Slice& sl : slices_) block.needTimes(sl.fi);
     } else {
         for (const FrameSpan& fr : frames_)
-            if (!fr.whole) block.needTimes(fr.fi);
+            if (!fr.whole || grid.dissolves()) block.needTimes(fr.fi);
     }
     const bool lens = block.hasLens() && camera.depthOfField();
     // One instance per combination of the three flags: scenes without shadows, counting or a lens

@@ -60,7 +60,10 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const int sx = block.pattern().sx, sy = block.pattern().sy;
     const size_t pixels = size_t(block.pixelCount());
     const float nearZ = camera.nearClip(), farZ = camera.farClip();
-    bool intoStill = !block.dense() && int(frames_.size()) == F;
+    // A dissolving grid (a level of detail's transition) is seen by a share of each frame's samples
+    // that differs from frame to frame: it writes the frames' records.
+    const bool dissolves = grid.dissolves();
+    bool intoStill = !block.dense() && int(frames_.size()) == F && !dissolves;
     for (const FrameSpan& fr : frames_) intoStill = intoStill && fr.whole;
     project(grid, grid.t0, camera, ra_);
     const float* xs = block.xs();
@@ -139,6 +142,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                 // test, is the same in every frame).
                 for (const FrameSpan& fr : frames_) {
                     if (!fr.whole && !inTimeSpan(block.sampleTime(fr.fi, pi, sj), fr.tfA, fr.tfB, fr.openB)) continue;
+                    if (dissolves && !block.dissolveKeeps(fr.fi, pi, sj, grid.dissolveLo, grid.dissolveHi)) continue;
                     ++hits;
                     if (Counting) {
                         const float x = xs[pi * size_t(S) + size_t(sj)], y = ys[pi * size_t(S) + size_t(sj)];

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <functional>
 #include <unordered_map>
 
 namespace streyes {
@@ -116,6 +117,179 @@ bool BlobbyField::bound(Vec3d* lo, Vec3d* hi) const {
     return any;
 }
 
+// ---- BlobbyEvaluator ----------------------------------------------------------------------------
+namespace {
+
+// A leaf's support (where its field is not 0) in object space: the box of its blob-space box.
+bool leafBox(const BlobbyOp& op, Vec3d* lo, Vec3d* hi) {
+    Vec3d blo, bhi;
+    if (op.kind == BlobbyOp::Kind::Ellipsoid) {
+        blo = {-1, -1, -1};
+        bhi = {1, 1, 1};
+    } else if (op.kind == BlobbyOp::Kind::Segment) {
+        const Vec3d r{op.radius, op.radius, op.radius};
+        blo = Vec3d{std::min(op.a.x, op.b.x), std::min(op.a.y, op.b.y), std::min(op.a.z, op.b.z)} - r;
+        bhi = Vec3d{std::max(op.a.x, op.b.x), std::max(op.a.y, op.b.y), std::max(op.a.z, op.b.z)} + r;
+    } else {
+        return false;
+    }
+    const double inf = std::numeric_limits<double>::infinity();
+    *lo = {inf, inf, inf};
+    *hi = {-inf, -inf, -inf};
+    for (int c = 0; c < 8; ++c)
+        grow(op.toObject.point({c & 1 ? bhi.x : blo.x, c & 2 ? bhi.y : blo.y, c & 4 ? bhi.z : blo.z}), lo, hi);
+    return true;
+}
+
+// Instruction i's value from its operands' values in v (BlobbyField::value's arithmetic).
+double evaluateOp(const BlobbyField& field, size_t i, const std::vector<double>& v, Vec3d p) {
+    const BlobbyOp& op = field.ops[i];
+    const std::vector<int>& o = op.operands;
+    double r = 0;
+    switch (op.kind) {
+    case BlobbyOp::Kind::Constant: r = op.value; break;
+    case BlobbyOp::Kind::Ellipsoid:
+    case BlobbyOp::Kind::Segment: r = field.leafValue(i, p); break;
+    case BlobbyOp::Kind::Plane: r = 0; break;  // skipped with a warning when read
+    case BlobbyOp::Kind::Add:
+        for (int k : o) r += v[size_t(k)];
+        break;
+    case BlobbyOp::Kind::Multiply:
+        r = 1;
+        for (int k : o) r *= v[size_t(k)];
+        break;
+    case BlobbyOp::Kind::Max:
+        r = -std::numeric_limits<double>::infinity();
+        for (int k : o) r = std::max(r, v[size_t(k)]);
+        break;
+    case BlobbyOp::Kind::Min:
+        r = std::numeric_limits<double>::infinity();
+        for (int k : o) r = std::min(r, v[size_t(k)]);
+        break;
+    case BlobbyOp::Kind::Subtract: r = v[size_t(o[0])] - v[size_t(o[1])]; break;
+    case BlobbyOp::Kind::Divide: {
+        // x / 0 is taken as 0: outside, and never a NaN that would poison the bisection.
+        const double d = v[size_t(o[1])];
+        r = d != 0 ? v[size_t(o[0])] / d : 0;
+        break;
+    }
+    case BlobbyOp::Kind::Negate: r = -v[size_t(o[0])]; break;
+    case BlobbyOp::Kind::Identity: r = v[size_t(o[0])]; break;
+    }
+    return r;
+}
+
+}  // namespace
+
+BlobbyEvaluator::BlobbyEvaluator(const BlobbyField& field) : field_(field) {
+    const size_t n = field.ops.size();
+    users_.resize(n);
+    fixed_.resize(n);
+    leafLo_.resize(n);
+    leafHi_.resize(n);
+    base_.assign(n, 0);
+    for (size_t i = 0; i < n; ++i) {
+        const BlobbyOp& op = field.ops[i];
+        for (size_t at = 0; at < op.operands.size(); ++at) users_[size_t(op.operands[at])].push_back({i, at});
+        // With no leaf present (every leaf's field 0), at a point where no support reaches.
+        base_[i] = op.kind == BlobbyOp::Kind::Ellipsoid || op.kind == BlobbyOp::Kind::Segment
+                       ? 0
+                       : evaluateOp(field, i, base_, {0, 0, 0});
+        if (op.kind == BlobbyOp::Kind::Add)
+            for (size_t at = 0; at < op.operands.size(); ++at)
+                if (base_[size_t(op.operands[at])] != 0) fixed_[i].push_back(at);
+    }
+    v_ = base_;
+    positions_.resize(n);
+    pending_.assign(n, 0);
+    // Bins: about two leaves a bin along each axis, at most 64 a side.
+    std::vector<size_t> leaves;
+    Vec3d lo, hi;
+    const bool any = field.bound(&lo, &hi);
+    for (size_t i = 0; i < n; ++i)
+        if (leafBox(field.ops[i], &leafLo_[i], &leafHi_[i])) leaves.push_back(i);
+    if (!any || leaves.empty()) return;
+    bins_ = std::clamp(int(std::cbrt(double(leaves.size()))), 1, 64);
+    lo_ = lo;
+    size_ = hi - lo;
+    binLeaves_.resize(size_t(bins_) * size_t(bins_) * size_t(bins_));
+    auto binOf = [&](double x, double l, double s) {
+        return s > 0 ? std::clamp(int(std::floor((x - l) / s * bins_)), 0, bins_ - 1) : 0;
+    };
+    for (size_t i : leaves) {
+        const int x0 = binOf(leafLo_[i].x, lo_.x, size_.x), x1 = binOf(leafHi_[i].x, lo_.x, size_.x);
+        const int y0 = binOf(leafLo_[i].y, lo_.y, size_.y), y1 = binOf(leafHi_[i].y, lo_.y, size_.y);
+        const int z0 = binOf(leafLo_[i].z, lo_.z, size_.z), z1 = binOf(leafHi_[i].z, lo_.z, size_.z);
+        for (int z = z0; z <= z1; ++z)
+            for (int y = y0; y <= y1; ++y)
+                for (int x = x0; x <= x1; ++x)
+                    binLeaves_[size_t(x) + size_t(bins_) * (size_t(y) + size_t(bins_) * size_t(z))].push_back(i);
+    }
+}
+
+const std::vector<size_t>& BlobbyEvaluator::leavesNear(Vec3d p) {
+    near_.clear();
+    if (bins_ == 0) return near_;
+    auto binOf = [&](double x, double l, double s, int* b) {
+        if (!(x >= l && x <= l + s)) return false;
+        *b = s > 0 ? std::clamp(int(std::floor((x - l) / s * bins_)), 0, bins_ - 1) : 0;
+        return true;
+    };
+    int bx, by, bz;
+    if (!binOf(p.x, lo_.x, size_.x, &bx) || !binOf(p.y, lo_.y, size_.y, &by) || !binOf(p.z, lo_.z, size_.z, &bz))
+        return near_;
+    for (size_t i : binLeaves_[size_t(bx) + size_t(bins_) * (size_t(by) + size_t(bins_) * size_t(bz))]) {
+        const Vec3d &l = leafLo_[i], &h = leafHi_[i];
+        if (p.x >= l.x && p.x <= h.x && p.y >= l.y && p.y <= h.y && p.z >= l.z && p.z <= h.z) near_.push_back(i);
+    }
+    return near_;
+}
+
+double BlobbyEvaluator::value(Vec3d p) {
+    const size_t n = field_.ops.size();
+    if (n == 0) return 0;
+    leavesNear(p);
+    if (near_.empty()) return base_.back();
+    // Instructions changed from their base, in code order (operands come before their users): a
+    // min-heap of indices.
+    auto push = [&](size_t i) {
+        if (pending_[i]) return;
+        pending_[i] = 1;
+        heap_.push_back(i);
+        std::push_heap(heap_.begin(), heap_.end(), std::greater<size_t>());
+    };
+    for (size_t i : near_) push(i);
+    while (!heap_.empty()) {
+        std::pop_heap(heap_.begin(), heap_.end(), std::greater<size_t>());
+        const size_t i = heap_.back();
+        heap_.pop_back();
+        changed_.push_back(i);
+        const BlobbyOp& op = field_.ops[i];
+        double r;
+        if (op.kind == BlobbyOp::Kind::Add) {
+            // Its operands in order, but those that are 0 (adding 0 changes no sum).
+            std::vector<size_t>& at = positions_[i];
+            at.insert(at.end(), fixed_[i].begin(), fixed_[i].end());
+            std::sort(at.begin(), at.end());
+            at.erase(std::unique(at.begin(), at.end()), at.end());
+            r = 0;
+            for (size_t k : at) r += v_[size_t(op.operands[k])];
+            at.clear();
+        } else {
+            r = evaluateOp(field_, i, v_, p);
+        }
+        v_[i] = r;
+        for (const auto& [u, k] : users_[i]) {
+            if (field_.ops[u].kind == BlobbyOp::Kind::Add && r != 0) positions_[u].push_back(k);
+            push(u);
+        }
+    }
+    const double result = v_.back();
+    for (size_t i : changed_) v_[i] = base_[i], pending_[i] = 0;
+    changed_.clear();
+    return result;
+}
+
 namespace {
 
 // The six tetrahedra of a cell around its diagonal from corner 0 to corner 7 (corner c is at
@@ -138,7 +312,7 @@ int orientation(int a, int b, int c, int d) {
 class Polygonizer {
   public:
     Polygonizer(const BlobbyField& field, Vec3d origin, double h, int nx, int ny, int nz)
-        : field_(field), origin_(origin), h_(h), n_{nx, ny, nz} {}
+        : eval_(field), origin_(origin), h_(h), n_{nx, ny, nz} {}
 
     BlobbyMesh run() {
         const size_t px = size_t(n_[0]) + 1, py = size_t(n_[1]) + 1, pz = size_t(n_[2]) + 1;
@@ -147,7 +321,7 @@ class Polygonizer {
             for (size_t j = 0; j < py; ++j)
                 for (size_t i = 0; i < px; ++i) {
                     const size_t idx = i + px * (j + py * k);
-                    values_[idx] = field_.value(position(idx), scratch_);
+                    values_[idx] = eval_.value(position(idx));
                     const bool edge = i == 0 || j == 0 || k == 0 || i + 1 == px || j + 1 == py || k + 1 == pz;
                     if (edge && values_[idx] > kBlobbyLevel) mesh_.openAtBound = true;
                 }
@@ -176,7 +350,7 @@ class Polygonizer {
             // Bisection keeps the vertex on the true surface to well below a cell's size.
             for (int it = 0; it < 30; ++it) {
                 const Vec3d m = (a + b) * 0.5;
-                (field_.value(m, scratch_) > kBlobbyLevel ? a : b) = m;
+                (eval_.value(m) > kBlobbyLevel ? a : b) = m;
             }
         }
         const int v = int(mesh_.P.size());
@@ -230,11 +404,11 @@ class Polygonizer {
         }
     }
 
-    const BlobbyField& field_;
+    BlobbyEvaluator eval_;
     Vec3d origin_;
     double h_;
     int n_[3];
-    std::vector<double> values_, scratch_;
+    std::vector<double> values_;
     std::unordered_map<uint64_t, int> vertices_;
     BlobbyMesh mesh_;
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "scene/rib_categories.h"
 #include "scene/rib_requests.h"
 
 namespace streyes {
@@ -59,36 +60,37 @@ void geometricApproximation(RibParser& reader, RibArgs& args) {
     reader.state().mutableAttributes().motionFactor = value;
 }
 
-// Attribute "category" values are kept as "category:name" for the features that read them.
-void attribute(RibParser& reader, RibArgs& args) {
-    static const std::set<std::string> categories = {"identifier", "light", "user", "streyes", "autoshadows"};
-    std::string category = args.string("category");
-    if (category == "displacementbound") {
-        ParamList params = reader.readParams(args);
-        Attributes& a = reader.state().mutableAttributes();
-        const double r = params.getFloat("sphere", a.displacementBound);
-        if (!(r >= 0) || !std::isfinite(r))
-            throw InputError(params.find("sphere")->loc,
-                             "Attribute \"displacementbound\": sphere must be a radius >= 0, not " + formatNumber(r));
-        const std::string space = params.getString("coordinatesystem", a.displacementBoundSpace);
-        if (space != "object" && space != "shader" && space != "world" && space != "camera" && space != "current")
-            throw InputError(params.find("coordinatesystem")->loc,
-                             "Attribute \"displacementbound\": coordinatesystem \"" + space +
-                                 "\" is not one of object, shader, world, camera, current");
-        a.displacementBound = r;
-        a.displacementBoundSpace = space;
-        reader.warnUnusedParams(params, {"sphere", "coordinatesystem"}, "Attribute \"displacementbound\"");
-        return;
-    }
-    if (!categories.count(category)) {
-        reader.log().warnOnce("attribute:" + category, args.loc(),
-                              "Attribute \"" + category + "\" is not supported: ignored");
-        args.skipRest();
-        return;
-    }
-    ParamList params = reader.readParams(args);
+// Attribute "displacementbound" "sphere" r "coordinatesystem" "space".
+void displacementBound(RibParser& reader, const ParamList& params) {
     Attributes& a = reader.state().mutableAttributes();
-    for (Param& p : params.params) {
+    const double r = params.getFloat("sphere", a.displacementBound);
+    if (!(r >= 0) || !std::isfinite(r))
+        throw InputError(params.find("sphere")->loc,
+                         "Attribute \"displacementbound\": sphere must be a radius >= 0, not " + formatNumber(r));
+    std::string space = params.getString("coordinatesystem", a.displacementBoundSpace);
+    if (space != "object" && space != "shader" && space != "world" && space != "camera" && space != "current") {
+        // A named coordinate system (CoordinateSystem, which streyes does not keep), or one of
+        // another renderer's ("surface"): the bound is taken in object space.
+        reader.log().lenient("displacementbound:" + space, params.find("coordinatesystem")->loc,
+                             "Attribute \"displacementbound\": coordinatesystem \"" + space +
+                                 "\" is not one of object, shader, world, camera, current: the bound is taken in object space");
+        space = "object";
+    }
+    a.displacementBound = r;
+    a.displacementBoundSpace = space;
+    reader.warnUnusedParams(params, {"sphere", "coordinatesystem"}, "Attribute \"displacementbound\"");
+}
+
+// Every Attribute value is kept as "category:name" (Attributes::user) for the features and
+// shaders that read them; those of categories streyes does not read are reviewed (silent when they
+// only tune another renderer, else warned: rib_categories.h). A name nobody declared takes the
+// type of its value.
+void attribute(RibParser& reader, RibArgs& args) {
+    static const std::set<std::string> read = {"identifier", "light",           "user",
+                                               "streyes",    "displacementbound", "autoshadows"};
+    const std::string category = args.string("category");
+    ParamList params = reader.readParams(args, true);
+    for (const Param& p : params.params) {
         if ((p.nums.size() + p.strings.size()) % size_t(p.componentsPerItem()) != 0)
             throw InputError(p.loc, "Attribute \"" + category + "\": parameter '" + p.name + "' has " +
                                         plural(p.nums.size() + p.strings.size(), "value") +
@@ -98,14 +100,10 @@ void attribute(RibParser& reader, RibArgs& args) {
             if (v != "on" && v != "off")
                 throw InputError(p.loc, "Attribute \"light\" \"shadows\": expected \"on\" or \"off\", not \"" + v + "\"");
         }
-        p.name = category + ":" + p.name;
-        auto same = std::find_if(a.user.params.begin(), a.user.params.end(),
-                                 [&](const Param& q) { return q.name == p.name; });
-        if (same != a.user.params.end())
-            *same = std::move(p);
-        else
-            a.user.params.push_back(std::move(p));
     }
+    if (category == "displacementbound") displacementBound(reader, params);
+    else if (!read.count(category)) reviewAttribute(reader, category, params, args.loc());
+    keepCategoryValues(category, params, reader.state().mutableAttributes().user);
 }
 
 void basis(RibParser& reader, RibArgs& args) {

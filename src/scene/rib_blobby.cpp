@@ -2,6 +2,7 @@
 // level surface (scene/blobby_field.h), a polygon mesh like PointsPolygons.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "scene/blobby_field.h"
 #include "scene/rib_geometry.h"
@@ -22,8 +23,10 @@ struct BlobbyKey {
     ParamList primvars;  // constant ones (otherParams)
 };
 
-// One key: the code decoded into instructions, every index checked.
-BlobbyKey readBlobbyKey(RibParser& reader, RibArgs& args) {
+// One key: the code decoded into instructions, every index checked. Nothing (with a warning, as the
+// peers give) for a code with an opcode streyes does not know: how many operands follow it is
+// unknown, so the rest of the code cannot be read.
+std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
     BlobbyKey key;
     const RibValue* nleafValue = args.peek();
     key.nleaf = args.integer("nleaf");
@@ -50,6 +53,7 @@ BlobbyKey readBlobbyKey(RibParser& reader, RibArgs& args) {
             bad("instruction " + std::to_string(at) + " (" + what + ") has a singular matrix");
     };
     if (code.empty()) bad("the code has no instructions");
+    std::vector<size_t> pluginLeaves;  // opcode 9000
     size_t pc = 0;
     auto operand = [&](size_t at, const char* what) {
         if (pc >= code.size())
@@ -89,6 +93,19 @@ BlobbyKey readBlobbyKey(RibParser& reader, RibArgs& args) {
                                   "supported: their field is taken as 0");
             break;
         }
+        case 9000: {
+            // Aqsis's field plug-in: 9000 n, then n operands (the plug-in's name, transform, floats
+            // and strings). A leaf; plug-ins are not loaded, so its field is 0.
+            op.kind = K::Constant;
+            op.value = 0;
+            const int n = operand(at, "field plug-in");
+            if (n < 0) bad("instruction " + std::to_string(at) + " (field plug-in) has " + std::to_string(n) + " operands");
+            for (int i = 0; i < n; ++i) operand(at, "field plug-in");
+            pluginLeaves.push_back(at);
+            reader.log().lenient("blobby:plugin", args.loc(),
+                                 "Blobby: field plug-ins (opcode 9000) are not supported: their field is taken as 0");
+            break;
+        }
         case 0: case 1: case 2: case 3: {
             static const K kinds[] = {K::Add, K::Multiply, K::Max, K::Min};
             static const char* names[] = {"add", "multiply", "maximum", "minimum"};
@@ -107,9 +124,12 @@ BlobbyKey readBlobbyKey(RibParser& reader, RibArgs& args) {
             break;
         }
         default:
-            bad("instruction " + std::to_string(at) + " has unknown opcode " + std::to_string(opcode) +
-                " (leaves are 1000-1003, operators 0-7: add, multiply, maximum, minimum, subtract, divide, "
-                "negate, identity)");
+            reader.log().lenient("blobby:opcode:" + std::to_string(opcode), args.loc(),
+                                 "Blobby: instruction " + std::to_string(at) + " has unknown opcode " +
+                                     std::to_string(opcode) +
+                                     " (leaves are 1000-1003, operators 0-7: add, multiply, maximum, minimum, "
+                                     "subtract, divide, negate, identity): the blobby is skipped");
+            return std::nullopt;
         }
         for (int o : op.operands)
             if (o < 0 || size_t(o) >= at)
@@ -118,9 +138,21 @@ BlobbyKey readBlobbyKey(RibParser& reader, RibArgs& args) {
         if (op.leaf()) key.leaves.push_back(at);
         key.field.ops.push_back(std::move(op));
     }
+    // Writers count Aqsis's plug-in leaves in nleaf or not (Aqsis reads both): without them, the
+    // per-leaf values are the other leaves'.
+    const size_t plugins = size_t(std::count_if(key.leaves.begin(), key.leaves.end(), [&](size_t at) {
+        return std::find(pluginLeaves.begin(), pluginLeaves.end(), at) != pluginLeaves.end();
+    }));
+    if (key.leaves.size() != size_t(key.nleaf) && key.leaves.size() - plugins == size_t(key.nleaf))
+        key.leaves.erase(std::remove_if(key.leaves.begin(), key.leaves.end(),
+                                        [&](size_t at) {
+                                            return std::find(pluginLeaves.begin(), pluginLeaves.end(), at) !=
+                                                   pluginLeaves.end();
+                                        }),
+                         key.leaves.end());
     if (key.leaves.size() != size_t(key.nleaf))
         args.fail(*nleafValue, "nleaf is " + std::to_string(key.nleaf) + " but the code has " +
-                                   plural(key.leaves.size(), "leaf") + " (opcodes 1000-1003)");
+                                   plural(key.leaves.size(), "leaf") + " (opcodes 1000-1003 and 9000)");
     ParamList params = reader.readParams(args);
     ClassCounts counts{1, size_t(key.nleaf), size_t(key.nleaf), size_t(key.nleaf)};
     key.Cs = readColors(args, params, counts);
@@ -217,13 +249,19 @@ void addBlobby(RibParser& reader, const BlobbyKey& key, const SourceLoc& loc) {
             d.Cs.values = {key.Cs.values[0]};
         } else {
             d.Cs.cls = ParamClass::Vertex;
+            Color mean{0, 0, 0};
+            for (size_t l = 0; l < key.leaves.size(); ++l) mean = mean + key.Cs.values[l] * (1.0f / float(key.leaves.size()));
+            // Each vertex reads the leaves near it (the others' fields are 0 there and add nothing).
+            std::vector<int> leafOf(key.field.ops.size(), -1);
+            for (size_t l = 0; l < key.leaves.size(); ++l) leafOf[key.leaves[l]] = int(l);
+            BlobbyEvaluator near(key.field);
             for (const Vec3d& p : mesh.P) {
-                Color sum{0, 0, 0}, mean{0, 0, 0};
+                Color sum{0, 0, 0};
                 double weight = 0;
-                for (size_t l = 0; l < key.leaves.size(); ++l) {
-                    const double w = key.field.leafValue(key.leaves[l], p);
-                    sum = sum + key.Cs.values[l] * float(w);
-                    mean = mean + key.Cs.values[l] * (1.0f / float(key.leaves.size()));
+                for (size_t i : near.leavesNear(p)) {
+                    if (leafOf[i] < 0) continue;
+                    const double w = key.field.leafValue(i, p);
+                    sum = sum + key.Cs.values[size_t(leafOf[i])] * float(w);
                     weight += w;
                 }
                 d.Cs.values.push_back(weight > 0 ? sum * float(1 / weight) : mean);
@@ -241,7 +279,9 @@ void blobbyKeys(RibParser& reader, const RibKeys& keys) {
     std::vector<BlobbyKey> read;
     for (const RibRequest& request : keys.requests) {
         RibArgs args(request, keys.usage);
-        read.push_back(readBlobbyKey(reader, args));
+        std::optional<BlobbyKey> key = readBlobbyKey(reader, args);
+        if (!key) return;
+        read.push_back(std::move(*key));
     }
     auto same = [](const RibRequest& a, const RibRequest& b) {
         if (a.args.size() != b.args.size()) return false;

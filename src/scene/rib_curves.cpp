@@ -57,7 +57,11 @@ bool readCurvesKey(RibParser& reader, RibArgs& args, CurvesDesc* d) {
         args.fail(*wrapValue, "the wrap must be \"periodic\" or \"nonperiodic\", got \"" + wrap + "\"");
     d->periodic = wrap == "periodic";
     d->basis = reader.state().attributes->vBasis;
-    if (d->nvertices.empty()) args.fail(*countsValue, "nvertices must name at least one curve");
+    if (d->nvertices.empty()) {
+        args.skipRest();
+        emptyPrimitive(reader, args, 0, "curves");
+        return false;
+    }
     const int step = d->basis.step;
     for (size_t i = 0; i < d->nvertices.size(); ++i) {
         const int n = d->nvertices[i];
@@ -109,7 +113,7 @@ bool readPointsKey(RibParser& reader, RibArgs& args, PointsDesc* d) {
     ParamList params = reader.readParams(args);
     const Param& pos = positionParam(args, params);
     const size_t n = pos.nums.size() / size_t(pos.componentsPerItem());
-    if (n == 0) args.failAt(pos.loc.line, "Points needs at least one point", false);
+    if (emptyPrimitive(reader, args, n, "points")) return false;
     ClassCounts counts;
     counts.uniform = 1;
     counts.varying = counts.vertex = counts.faceVarying = n;

@@ -104,6 +104,12 @@ ParamList otherParams(const RibArgs& args, const ParamList& params, const ClassC
     return out;
 }
 
+bool emptyPrimitive(RibParser& reader, const RibArgs& args, size_t items, const char* what) {
+    if (items > 0) return false;
+    reader.log().lenient("empty:" + args.name(), args.loc(), args.name() + " has no " + what + ": nothing is drawn");
+    return true;
+}
+
 // A bracketed array of whole numbers, each at least `min`.
 std::vector<int> intArray(RibArgs& args, const std::string& what, int min) {
     if (args.done()) args.fail("missing " + what + " (an array of whole numbers)");

@@ -40,6 +40,11 @@ ColorPrimvar readColors(const RibArgs& args, const ParamList& params, const Clas
 ParamList otherParams(const RibArgs& args, const ParamList& params, const ClassCounts& counts, Log& log,
                       bool perVertex = false, bool mesh = false);
 
+// A primitive with nothing in it (a procedural's PointsPolygons with no faces, Points with no
+// points): true, with a warning once ("PointsPolygons has no faces: nothing is drawn"), when
+// `items` is 0; the caller then skips the request.
+bool emptyPrimitive(RibParser& reader, const RibArgs& args, size_t items, const char* what);
+
 // Positional arrays: whole numbers each at least `min`; an array of strings or of numbers.
 std::vector<int> intArray(RibArgs& args, const std::string& what, int min);
 const RibValue& takeArray(RibArgs& args, const std::string& what, bool strings);

@@ -2,13 +2,17 @@
 // places it. Handles are numbers (RI 3.2's RIB form, `ObjectBegin 1`) or strings (the named form,
 // `ObjectBegin "tree"`).
 //
-// An object holds geometry only, in its own space: the transforms inside the block place its
+// An object holds geometry, in its own space: the transforms inside the block place its
 // primitives relative to one another, starting from identity. An instance is the object under the
 // transform and attributes in force at ObjectInstance (its own motion too: a MotionBegin block of
-// transforms before it). Instances share the object: the scene keeps it once, and an instance is
-// a procedural (procedural.h) whose bound is the object's, culled before it is expanded.
+// transforms before it), with the attributes set inside the definition over them, as Aqsis and
+// the exporters that write them (K-3D) expect: the requests that set them are kept with the
+// attribute state they made (RibParser::dispatch) and replayed over each instance's attributes.
+// Instances share the object: the scene keeps it once, and an instance is a procedural
+// (procedural.h) whose bound is the object's, culled before it is expanded.
 #include <algorithm>
 #include <limits>
+#include <set>
 
 #include "scene/rib_requests.h"
 
@@ -100,7 +104,7 @@ void objectBegin(RibParser& reader, RibArgs& args) {
         args.fail("ObjectBegin inside the definition of object " + s.defining->handle + " (line " +
                   std::to_string(s.defining->begin.line) + "): close it with ObjectEnd first");
     s.defining = RibState::ObjectDefinition{handle, args.loc(), std::make_shared<Scene>(), s.ctm, s.attributes,
-                                            s.blocks.size()};
+                                            s.blocks.size(), {}};
     s.defining->object->sourceName = reader.scene().sourceName;
     s.ctm = MotionTransform();  // the object's own space
 }
@@ -129,7 +133,42 @@ void objectEnd(RibParser& reader, RibArgs& args) {
     if (s.objects.count(def.handle))
         reader.log().warnOnce("object-redefined:" + def.handle, def.begin,
                               "object " + def.handle + " is defined again: later instances use this definition");
+    // Only the states the object's primitives hold matter to its instances.
+    std::set<const Attributes*> held;
+    auto hold = [&](const auto& prims) {
+        for (const auto& p : prims) held.insert(p.attributes.get());
+    };
+    const Scene& o = *def.object;
+    hold(o.patches), hold(o.procedurals), hold(o.patchMeshes), hold(o.subdivisionMeshes), hold(o.quadrics);
+    hold(o.polygonMeshes), hold(o.curves), hold(o.points), hold(o.nuPatches);
+    RibState::AttributeEdits& edits = s.objectEdits[def.handle];
+    edits.clear();
+    for (auto& e : def.edits)
+        if (held.count(e.first.get())) edits.push_back(std::move(e));
     s.objects[def.handle] = std::move(def.object);
+    for (auto it = s.instanceAttributes.begin(); it != s.instanceAttributes.end();)
+        it = it->first.first == def.handle ? s.instanceAttributes.erase(it) : std::next(it);
+}
+
+// The object's attribute states as this instance takes them: the requests of the definition that
+// made each, replayed over the attributes in force now (with the current transform as "shader"
+// space for shaders set inside the definition). Made once per attribute state instanced under.
+std::vector<std::pair<AttributesPtr, AttributesPtr>> instanceAttributes(RibParser& reader, const std::string& handle) {
+    RibState& s = reader.state();
+    const RibState::AttributeEdits& edits = s.objectEdits[handle];
+    if (edits.empty()) return {};
+    auto& cached = s.instanceAttributes[{handle, s.attributes.get()}];
+    if (cached.first == s.attributes) return cached.second;
+    const std::shared_ptr<Attributes> instanced = s.attributes;
+    std::vector<std::pair<AttributesPtr, AttributesPtr>> made;
+    for (const auto& [state, requests] : edits) {
+        s.attributes = instanced;  // shared: the first change copies it
+        for (const RibRequest& r : requests) reader.replay(r);
+        made.emplace_back(state, s.attributes);
+    }
+    s.attributes = instanced;
+    cached = {instanced, made};
+    return made;
 }
 
 void objectInstance(RibParser& reader, RibArgs& args) {
@@ -153,6 +192,7 @@ void objectInstance(RibParser& reader, RibArgs& args) {
     p.attributes = s.attributes;
     p.loc = args.loc();
     p.object = it->second;
+    p.objectAttributes = instanceAttributes(reader, handle);
     reader.scene().procedurals.push_back(std::move(p));
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "scene/rib_categories.h"
 #include "scene/rib_requests.h"
 #include "util/aov.h"
 
@@ -228,9 +229,9 @@ void hider(RibParser& reader, RibArgs& args) {
 }
 
 // Option "limits" "bucketsize" [w h] "gridsize" n: buckets are square here, so the larger side.
-void limitsOption(RibParser& reader, RibArgs& args) {
+// The other limits tune another renderer's memory and splitting (rib_categories.cpp).
+void limitsOption(RibParser& reader, const ParamList& params) {
     RenderSettings& settings = reader.scene().settings;
-    ParamList params = reader.readParams(args);
     if (const Param* p = params.find("bucketsize")) {
         if (p->nums.size() != 2 || !(p->nums[0] >= 1 && p->nums[1] >= 1 && p->nums[0] <= 1024 && p->nums[1] <= 1024))
             throw InputError(p->loc, "Option \"limits\": bucketsize is two sizes [w h] from 1 to 1024 pixels");
@@ -244,7 +245,6 @@ void limitsOption(RibParser& reader, RibArgs& args) {
             throw InputError(p->loc, "Option \"limits\": gridsize is one count from 1 to 65536 micropolygons");
         settings.gridSize = int(p->nums[0]);
     }
-    reader.warnUnusedParams(params, {"bucketsize", "gridsize"}, "Option \"limits\"");
 }
 
 // DisplayChannel "type name": declares an output variable a Display mode may name. Only the
@@ -324,8 +324,7 @@ void searchPathOption(RibParser& reader, RibArgs& args) {
     }
 }
 
-void shadingOption(RibParser& reader, RibArgs& args) {
-    ParamList params = reader.readParams(args);
+void shadingOption(RibParser& reader, const ParamList& params) {
     if (const Param* p = params.find("builtin")) {
         const std::string v = params.getString("builtin", "on");
         if (v != "on" && v != "off") throw InputError(p->loc, "Option \"shading\": builtin is \"on\" or \"off\"");
@@ -337,8 +336,7 @@ void shadingOption(RibParser& reader, RibArgs& args) {
 // Option "shadow" "bias" b: how far behind a shadow map's depth a point must be to be in shadow
 // (shade/shadow_map.h). PRMan's and Aqsis's "bias0" and "bias1" give a range over which shadow
 // fades in; streyes takes one bias, their mean.
-void shadowOption(RibParser& reader, RibArgs& args) {
-    ParamList params = reader.readParams(args);
+void shadowOption(RibParser& reader, const ParamList& params) {
     RenderSettings& settings = reader.scene().settings;
     auto value = [&](const char* name, double fallback) {
         const Param* p = params.find(name);
@@ -353,31 +351,8 @@ void shadowOption(RibParser& reader, RibArgs& args) {
     reader.warnUnusedParams(params, {"bias", "bias0", "bias1"}, "Option \"shadow\"");
 }
 
-void option(RibParser& reader, RibArgs& args) {
+void streyesOption(RibParser& reader, const ParamList& params) {
     RenderSettings& settings = reader.scene().settings;
-    std::string category = args.string("option name");
-    if (category == "searchpath") {
-        searchPathOption(reader, args);
-        return;
-    }
-    if (category == "shading") {
-        shadingOption(reader, args);
-        return;
-    }
-    if (category == "limits") {
-        limitsOption(reader, args);
-        return;
-    }
-    if (category == "shadow") {
-        shadowOption(reader, args);
-        return;
-    }
-    if (category != "streyes") {
-        reader.log().warnOnce("option:" + category, args.loc(), "Option \"" + category + "\" is not supported: ignored");
-        args.skipRest();
-        return;
-    }
-    ParamList params = reader.readParams(args);
     if (const Param* frames = params.find("frames")) {
         if (frames->type != ParamType::Integer || frames->nums.size() != 2)
             throw InputError(frames->loc,
@@ -392,6 +367,23 @@ void option(RibParser& reader, RibArgs& args) {
         settings.lastFrame = last;
     }
     reader.warnUnusedParams(params, {"frames"}, "Option \"streyes\"");
+}
+
+// Every value is kept as "category:name" in RenderSettings::options (the Shading Language's
+// option() reads them there); a name nobody declared takes its type from its value.
+void option(RibParser& reader, RibArgs& args) {
+    const std::string category = args.string("option name");
+    if (category == "searchpath") {
+        searchPathOption(reader, args);
+        return;
+    }
+    const ParamList params = reader.readParams(args, true);
+    keepCategoryValues(category, params, reader.scene().settings.options);
+    if (category == "shading") shadingOption(reader, params);
+    else if (category == "limits") limitsOption(reader, params);
+    else if (category == "streyes") streyesOption(reader, params);
+    else if (category == "shadow") shadowOption(reader, params);
+    else reviewOption(reader, category, params, args.loc());
 }
 
 }  // namespace

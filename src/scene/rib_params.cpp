@@ -50,7 +50,9 @@ std::string parseRibDeclaration(const std::string& text, bool withName, RibParam
         {"float", ParamType::Float},   {"integer", ParamType::Integer}, {"int", ParamType::Integer},
         {"string", ParamType::String}, {"point", ParamType::Point},     {"vector", ParamType::Vector},
         {"normal", ParamType::Normal}, {"color", ParamType::Color},     {"hpoint", ParamType::HPoint},
-        {"matrix", ParamType::Matrix}};
+        {"matrix", ParamType::Matrix},
+        // PRMan's "mpoint" (a Blobby leaf's reference frame, "vertex mpoint Pref") is a matrix.
+        {"mpoint", ParamType::Matrix}};
     // clang-format on
 
     RibParamDecl d;
@@ -61,7 +63,7 @@ std::string parseRibDeclaration(const std::string& text, bool withName, RibParam
     auto type = types.find(words[i]);
     if (type == types.end())
         return "unknown type '" + words[i] +
-               "' (types: float, integer, string, point, vector, normal, color, hpoint, matrix; "
+               "' (types: float, integer, string, point, vector, normal, color, hpoint, matrix, mpoint; "
                "classes: constant, uniform, varying, vertex, facevarying)";
     d.type = type->second;
     ++i;
@@ -226,7 +228,9 @@ Param RibParser::makeParam(RibArgs& args, const RibValue& nameValue, const RibVa
                     fail("parameter '" + p.name + "' is declared " + declared + " but has the value " +
                          formatNumber(v));
     }
-    if (p.nums.empty() && p.strings.empty())
+    // An empty array is a count of 0 items: right for the per-face and per-vertex classes of an
+    // empty primitive (a procedural's PointsPolygons with no faces), checked where it is used.
+    if (p.nums.empty() && p.strings.empty() && p.cls == ParamClass::Constant)
         fail("parameter '" + p.name + "' has an empty array: give it a value");
     return p;
 }
@@ -235,7 +239,7 @@ void RibParser::warnUnusedParams(const ParamList& params, const std::vector<std:
                                  const std::string& owner) {
     for (const Param& p : params.params)
         if (std::find(known.begin(), known.end(), p.name) == known.end())
-            log_.warnOnce("param:" + owner + ":" + p.name, p.loc,
+            log_.lenient("param:" + owner + ":" + p.name, p.loc,
                           owner + " has no parameter '" + p.name + "': ignored");
 }
 

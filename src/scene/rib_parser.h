@@ -54,6 +54,10 @@ struct RibState {
         SourceLoc begin;
         int depth = 1;
     };
+    // The attribute requests given inside an object's definition that led to each attribute state
+    // its primitives hold (in order, those of closed AttributeBegin blocks left out): replayed
+    // over the attributes in force at each ObjectInstance (rib_objects.cpp).
+    using AttributeEdits = std::vector<std::pair<AttributesPtr, std::vector<RibRequest>>>;
     // ObjectBegin ... ObjectEnd: primitives go to the object, not the scene (rib_objects.cpp).
     struct ObjectDefinition {
         std::string handle;
@@ -62,6 +66,7 @@ struct RibState {
         MotionTransform ctm;                     // restored at ObjectEnd
         std::shared_ptr<Attributes> attributes;  // restored at ObjectEnd
         size_t blocks = 0;                       // open blocks at ObjectBegin
+        AttributeEdits edits;
     };
     static const char* beginName(BlockKind kind);  // "AttributeBegin"
     static const char* endName(BlockKind kind);    // "AttributeEnd"
@@ -76,6 +81,11 @@ struct RibState {
     std::optional<SkippedBlock> skipping;
     std::optional<ObjectDefinition> defining;                          // the open ObjectBegin
     std::map<std::string, std::shared_ptr<const Scene>> objects;      // handle -> defined object
+    std::map<std::string, AttributeEdits> objectEdits;                 // handle -> its definition's edits
+    // An object's attribute states as instanced under one attribute state (ProceduralDesc::
+    // objectAttributes), made once for every instance under it.
+    std::map<std::pair<std::string, const Attributes*>, std::pair<AttributesPtr, std::vector<std::pair<AttributesPtr, AttributesPtr>>>>
+        instanceAttributes;
     std::map<std::string, RibParamDecl> declarations = predeclaredParams();
     std::vector<int> cameraLights;              // lights declared before WorldBegin (camera-relative)
     std::map<std::string, int> lightHandles;    // handle -> index in Scene::lights
@@ -150,6 +160,9 @@ class RibParser {
     // `shaderParams`: names without a declaration are taken too (Param::declared false), typed
     // later by the shader that receives them.
     ParamList readParams(RibArgs& args, bool shaderParams = false) const;
+    // Runs an attribute request's handler as if it came now (an object's edits replayed at an
+    // instance); nothing is recorded for an object being defined.
+    void replay(const RibRequest& request);
     // Warns once per owner and name about parameters the owner does not have.
     void warnUnusedParams(const ParamList& params, const std::vector<std::string>& known, const std::string& owner);
 

@@ -64,6 +64,7 @@ bool readPolygonsKey(RibParser& reader, RibArgs& args, PolygonMeshDesc* d) {
         }
         d->polygons.push_back(std::move(loops));
     }
+    if (emptyPrimitive(reader, args, d->polygons.size(), "polygons")) return false;
     ClassCounts counts;
     counts.uniform = d->polygons.size();
     counts.varying = counts.vertex = npoints;

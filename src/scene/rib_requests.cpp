@@ -34,7 +34,8 @@ const RibRequestTable& ribRequests() {
         for (auto add : {addUnsupportedRequests, addParamRequests, addOptionRequests, addBlockRequests,
                          addTransformRequests, addAttributeRequests, addShadingRequests, addPatchRequests,
                          addPolygonRequests, addSubdivisionRequests, addQuadricRequests, addArchiveRequests, addObjectRequests,
-                         addCurveRequests, addNurbsRequests, addTextureRequests, addBlobbyRequests})
+                         addCurveRequests, addNurbsRequests, addTextureRequests, addBlobbyRequests,
+                         addGeometryRequests, addDetailRequests})
             add(t);
         return t;
     }();
@@ -52,24 +53,33 @@ void RibParser::dispatch(const RibRequest& request) {
         return;
     }
 
+    // An unknown request is skipped with its arguments (the next request name ends them), as
+    // PRMan and Aqsis do; --strict makes it an error.
     const RibRequestInfo* info = ribRequests().find(name);
     if (!info) {
         const std::string known = ribRequests().sameButForCase(name);
         const std::string hint = known.empty() ? " (see docs/SCENE-FORMAT.md for the requests streyes reads)"
                                                : ": did you mean '" + known + "'? (request names are case-sensitive)";
-        throw InputError(request.loc, "unknown request '" + name + "'" + hint);
+        log_.lenient("unknown-request:" + name, request.loc, "unknown request '" + name + "' ignored" + hint);
+        return;
     }
 
-    // A request that is valid only in part of the file.
-    auto checkPhase = [&] {
-        if (info->phase == RibPhase::Options && state_.world != RibState::World::Before)
-            throw InputError(request.loc, name + " is an option: it must come before WorldBegin (line " +
-                                              std::to_string(state_.worldBegin.line) + ")");
-        if (info->phase == RibPhase::World && state_.world != RibState::World::Inside) {
-            std::string where = state_.world == RibState::World::Before ? "it comes before WorldBegin"
-                                                                        : "it comes after WorldEnd";
-            throw InputError(request.loc, name + " is only valid between WorldBegin and WorldEnd, but " + where);
+    // A request that is valid only in part of the file is skipped elsewhere, with a warning (as
+    // the peers do: an Imager inside the world, geometry before it).
+    auto rightPhase = [&] {
+        if (info->phase == RibPhase::Options && state_.world != RibState::World::Before) {
+            log_.lenient("phase:" + name, request.loc,
+                         name + " is an option: it belongs before WorldBegin (line " +
+                             std::to_string(state_.worldBegin.line) + "); ignored here");
+            return false;
         }
+        if (info->phase == RibPhase::World && state_.world != RibState::World::Inside) {
+            std::string where = state_.world == RibState::World::Before ? "before WorldBegin" : "after WorldEnd";
+            log_.lenient("phase:" + name, request.loc,
+                         name + " belongs between WorldBegin and WorldEnd: ignored " + where);
+            return false;
+        }
+        return true;
     };
 
     // Inside MotionBegin/MotionEnd: keep the requests until MotionEnd, checking what we can now.
@@ -81,7 +91,7 @@ void RibParser::dispatch(const RibRequest& request) {
                                               " has no MotionEnd yet): only transforms (Translate, Rotate, Scale, "
                                               "ConcatTransform, Transform, Identity) or geometry (Patch, PatchMesh, "
                                               "Polygon, SubdivisionMesh, a quadric, ...) can move");
-        checkPhase();
+        if (!rightPhase()) return;
         const std::vector<RibRequest>& held = motion->requests;
         if (!held.empty() && name != held.front().name)
             throw InputError(request.loc, "every request in a motion block must be the same: " + name + " after " +
@@ -95,23 +105,43 @@ void RibParser::dispatch(const RibRequest& request) {
         return;
     }
 
-    checkPhase();
+    if (!rightPhase()) return;
     RibArgs args(request, info->usage);
+    if (!state_.defining) {
+        info->handler(*this, args);
+        return;
+    }
+    // Inside an object's definition: a request that gives the attributes a new state is kept with
+    // that state (the ones before it too), for each instance to replay (rib_objects.cpp).
+    // AttributeEnd and ObjectEnd go back to an earlier state, kept already.
+    const AttributesPtr before = state_.attributes;
     info->handler(*this, args);
+    if (!state_.defining || state_.attributes == before || name == "AttributeEnd") return;
+    RibState::AttributeEdits& edits = state_.defining->edits;
+    std::vector<RibRequest> made;
+    for (const auto& e : edits)
+        if (e.first == before) made = e.second;
+    made.push_back(request);
+    edits.emplace_back(state_.attributes, std::move(made));
+}
+
+void RibParser::replay(const RibRequest& request) {
+    RibArgs args(request, "");
+    ribRequests().find(request.name)->handler(*this, args);
 }
 
 // ---- Requests outside the subset ------------------------------------------------------------------
 namespace {
 
-void version(RibParser&, RibArgs& args) { args.skipRest(); }
+void silent(RibParser&, RibArgs& args) { args.skipRest(); }
 
 void unsupported(RibParser& reader, RibArgs& args) {
-    reader.log().warnOnce("request:" + args.name(), args.loc(), "unsupported request '" + args.name() + "' ignored");
+    reader.log().lenient("request:" + args.name(), args.loc(), "unsupported request '" + args.name() + "' ignored");
     args.skipRest();
 }
 
 void unsupportedGeometry(RibParser& reader, RibArgs& args) {
-    reader.log().warnOnce("request:" + args.name(), args.loc(),
+    reader.log().lenient("request:" + args.name(), args.loc(),
                           "unsupported request '" + args.name() + "' ignored (not supported yet)");
     args.skipRest();
 }
@@ -124,16 +154,17 @@ void unsupportedGeometryKeys(RibParser& reader, const RibKeys& keys) {
 }  // namespace
 
 void addUnsupportedRequests(RibRequestTable& table) {
-    table.add("version", {version, "version number"});
+    // Requests that only tune another renderer or annotate the file: accepted silently.
+    for (const char* name : {"version", "ArchiveRecord", "ErrorHandler", "PixelVariance", "Bound"})
+        table.add(name, {silent, ""});
     // clang-format off
     // RIB requests outside the subset: warned about once and skipped.
     for (const char* name :
-         {"Quantize", "ColorSamples", "CropWindow", "RelativeDetail",
-          "PixelVariance", "Interior", "Exterior", "Deformation",
-          "TextureCoordinates", "Matte", "Bound", "Detail", "DetailRange", "Perspective", "Skew",
+         {"Quantize", "ColorSamples", "CropWindow", "Interior", "Exterior", "Deformation",
+          "TextureCoordinates", "Matte", "Perspective", "Skew",
           "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "SolidBegin",
           "SolidEnd", "ArchiveEnd", "MakeBump",
-          "MakeCubeFaceEnvironment", "MakeBrickMap", "ErrorHandler", "ArchiveRecord",
+          "MakeCubeFaceEnvironment", "MakeBrickMap",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
           "System", "Shader", "Bxdf", "Pattern", "Integrator", "DisplayFilter", "SampleFilter",
           "PixelSampleImager", "EditBegin", "EditEnd", "EditAttributeBegin",
@@ -141,8 +172,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
         table.add(name, {unsupported});
     // Geometry outside the subset: skipped with a warning, also as the keys of a motion block.
     for (const char* name :
-         {"HierarchicalSubdivisionMesh", "Procedural2",
-          "Geometry", "Volume"})
+         {"HierarchicalSubdivisionMesh", "Procedural2", "Volume"})
         table.add(name, {unsupportedGeometry, "", RibPhase::World, unsupportedGeometryKeys});
     // clang-format on
 }

@@ -88,5 +88,7 @@ void addCurveRequests(RibRequestTable& table);        // rib_curves.cpp: Curves,
 void addNurbsRequests(RibRequestTable& table);        // rib_nurbs.cpp: NuPatch, TrimCurve
 void addBlobbyRequests(RibRequestTable& table);       // rib_blobby.cpp: Blobby
 void addTextureRequests(RibRequestTable& table);      // rib_textures.cpp: MakeTexture, MakeLatLongEnvironment
+void addGeometryRequests(RibRequestTable& table);     // rib_teapot.cpp: Geometry "teapot"
+void addDetailRequests(RibRequestTable& table);       // rib_detail.cpp: Detail, DetailRange, RelativeDetail
 
 }  // namespace streyes

@@ -2,6 +2,7 @@
 // attribute block where it is declared and the blocks inside it, or as Illuminate turns it.
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include "scene/rib_requests.h"
 
@@ -58,10 +59,7 @@ void imager(RibParser& reader, RibArgs& args) { reader.scene().settings.imager =
 // LightSource, or AreaLightSource (area: the geometry that follows in the attribute block shapes it).
 void declareLight(RibParser& reader, RibArgs& args, bool area) {
     RibState& s = reader.state();
-    static const std::map<std::string, std::vector<std::string>> builtins = {
-        {"ambientlight", {"intensity", "lightcolor"}},
-        {"distantlight", {"intensity", "lightcolor", "from", "to", "shadowname"}},
-        {"pointlight", {"intensity", "lightcolor", "from", "shadowname"}}};
+    static const std::set<std::string> builtins = {"ambientlight", "distantlight", "pointlight"};
     std::string name = args.string("shader name");
     if (name.empty()) args.fail("the shader name is empty");
 
@@ -76,12 +74,13 @@ void declareLight(RibParser& reader, RibArgs& args, bool area) {
 
     ParamList params = reader.readParams(args, true);
     auto builtin = area ? builtins.end() : builtins.find(name);
-    if (builtin != builtins.end()) {  // other lights are Shading Language shaders, checked when bound
+    if (builtin != builtins.end()) {
+        // The built-in lights' values are checked now; a parameter they do not have is warned about
+        // when the light's shader is bound (shade/scene_shaders.h), as for any light.
         params.getFloat("intensity", 1.0);
         params.getColor("lightcolor", Color(1, 1, 1));
         params.getPoint("from", Vec3d(0, 0, 0));
         params.getPoint("to", Vec3d(0, 0, 1));
-        reader.warnUnusedParams(params, builtin->second, "LightSource \"" + name + "\"");
     }
 
     if (s.world == RibState::World::After) args.fail(args.name() + " after WorldEnd: lights belong in the world");

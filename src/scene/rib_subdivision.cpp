@@ -24,6 +24,11 @@ bool readSubdivisionKey(RibParser& reader, RibArgs& args, SubdivisionMeshDesc* d
         args.fail(*schemeValue, "unknown subdivision scheme \"" + scheme + "\" (use \"catmull-clark\")");
     }
     d->faceSizes = intArray(args, "nvertices", 3);
+    if (d->faceSizes.empty()) {
+        args.skipRest();
+        emptyPrimitive(reader, args, 0, "faces");
+        return false;
+    }
     d->faceVertices = intArray(args, "vertices", 0);
     if (d->faceVertices.size() != sum(d->faceSizes))
         args.fail("vertices has " + indexCount(d->faceVertices.size()) + " but the faces in nvertices need " +
@@ -78,8 +83,11 @@ bool readSubdivisionKey(RibParser& reader, RibArgs& args, SubdivisionMeshDesc* d
             for (double s : fv)
                 if (!(s >= 0)) fail("sharpness must not be negative, got " + formatNumber(s));
             if (tag == "crease") {
-                if (iv.size() < 2 || fv.size() != 1)
-                    fail("give a chain of at least 2 vertices in intargs and one sharpness in floatargs");
+                // A chain of vertices, each consecutive pair an edge, with one sharpness for the chain
+                // or one per edge (as USD and OpenSubdiv's RenderMan readers take them).
+                if (iv.size() < 2 || (fv.size() != 1 && fv.size() != iv.size() - 1))
+                    fail("give a chain of at least 2 vertices in intargs and one sharpness (or one per edge) in "
+                         "floatargs");
                 for (size_t k = 0; k + 1 < iv.size(); ++k) {
                     checkVertex(iv[k]);
                     checkVertex(iv[k + 1]);
@@ -88,7 +96,7 @@ bool readSubdivisionKey(RibParser& reader, RibArgs& args, SubdivisionMeshDesc* d
                              " are not joined by an edge of the mesh");
                     d->creaseEdges.push_back(iv[k]);
                     d->creaseEdges.push_back(iv[k + 1]);
-                    d->creaseSharpness.push_back(float(fv[0]));
+                    d->creaseSharpness.push_back(float(fv[fv.size() == 1 ? 0 : k]));
                 }
             } else if (tag == "corner") {
                 if (iv.empty() || (fv.size() != 1 && fv.size() != iv.size()))

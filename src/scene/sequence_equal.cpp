@@ -1,5 +1,7 @@
 #include "scene/sequence_equal.h"
 
+#include <algorithm>
+
 namespace streyes {
 
 namespace {
@@ -40,6 +42,11 @@ bool sameParams(const ParamList& a, const ParamList& b) {
     return true;
 }
 
+static bool sameDetail(const std::shared_ptr<const LevelOfDetail>& a, const std::shared_ptr<const LevelOfDetail>& b) {
+    return a == b || (a && b && a->hasBound == b->hasBound && a->bound.lo == b->bound.lo && a->bound.hi == b->bound.hi &&
+                      sameTransform(a->boundToWorld, b->boundToWorld) && a->range == b->range);
+}
+
 bool sameAttributes(const Attributes& a, const Attributes& b) {
     auto sameShader = [](const ShaderDesc& x, const ShaderDesc& y) {
         return x.name == y.name && sameParams(x.params, y.params) && sameTransform(x.shaderToWorld, y.shaderToWorld);
@@ -49,7 +56,8 @@ bool sameAttributes(const Attributes& a, const Attributes& b) {
            a.displacementBound == b.displacementBound && a.displacementBoundSpace == b.displacementBoundSpace &&
            a.shadingRate == b.shadingRate && a.motionFactor == b.motionFactor && a.lights == b.lights && sameParams(a.user, b.user) &&
            sameBasis(a.uBasis, b.uBasis) && sameBasis(a.vBasis, b.vBasis) &&  // trim: NuPatchDesc compares its own copy
-           a.twoSided == b.twoSided && a.orientation == b.orientation && a.smoothShading == b.smoothShading;
+           a.twoSided == b.twoSided && a.orientation == b.orientation && a.smoothShading == b.smoothShading &&
+           sameDetail(a.detail, b.detail);
 }
 
 bool sameLight(const LightDesc& a, const LightDesc& b) {
@@ -70,7 +78,11 @@ bool sameData(const ProceduralDesc& a, const ProceduralDesc& b) {
     return a.kind == b.kind && a.args == b.args && a.directory == b.directory && a.proceduralPath == b.proceduralPath &&
            a.archivePath == b.archivePath && a.bound.lo == b.bound.lo &&
            a.bound.hi == b.bound.hi && sameTransform(a.objectToWorld, b.objectToWorld) &&
-           sameAttributesPtr(a.attributes, b.attributes) && sameObject(a.object, b.object);
+           sameAttributesPtr(a.attributes, b.attributes) && sameObject(a.object, b.object) &&
+           std::equal(a.objectAttributes.begin(), a.objectAttributes.end(), b.objectAttributes.begin(),
+                      b.objectAttributes.end(), [](const auto& x, const auto& y) {
+                          return sameAttributesPtr(x.first, y.first) && sameAttributesPtr(x.second, y.second);
+                      });
 }
 
 bool sameData(const PatchMeshDesc& a, const PatchMeshDesc& b) {

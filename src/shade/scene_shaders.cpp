@@ -71,12 +71,15 @@ std::string standardShaderDir() {
     return STREYES_SHADERS_INSTALL_DIR;
 }
 
-void setShaderParams(sl::ShaderInstance& shader, const ParamList& params) {
+void setShaderParams(sl::ShaderInstance& shader, const ParamList& params, Log& log) {
     const sl::ShaderProgram& program = shader.program();
     for (const Param& p : params.params) {
-        if (!program.findParam(p.name))
-            throw InputError(p.loc, "shader \"" + program.name + "\" (" + program.path + ") has no parameter \"" +
-                                        p.name + "\"");
+        if (!program.findParam(p.name)) {
+            log.lenient("shader-param:" + program.path + ":" + p.name, p.loc,
+                        "shader \"" + program.name + "\" (" + program.path + ") has no parameter \"" + p.name +
+                            "\": ignored");
+            continue;
+        }
         if (p.type == ParamType::String) {
             shader.setStrings(p.name, p.strings, p.loc);
             continue;
@@ -175,11 +178,15 @@ std::shared_ptr<sl::ShaderInstance> SceneShaders::instance(const std::string& na
         return nullptr;
     }
     sl::ProgramPtr program = cache_->get(file, loc);
-    if (program->type != type)
-        throw InputError(loc, "\"" + name + "\" (" + program->path + ") is a " + sl::shaderTypeName(program->type) +
-                                  " shader, not a " + sl::shaderTypeName(type) + " shader");
+    if (program->type != type) {
+        // A displacement shader named by Surface, say: the peers warn and go without it.
+        log_.lenient(std::string(sl::shaderTypeName(type)) + "-type:" + name, loc,
+                     "\"" + name + "\" (" + program->path + ") is a " + sl::shaderTypeName(program->type) +
+                         " shader, not a " + sl::shaderTypeName(type) + " shader: " + missingShaderFallback(type));
+        return nullptr;
+    }
     auto shader = std::make_shared<sl::ShaderInstance>(program);
-    setShaderParams(*shader, params);
+    setShaderParams(*shader, params, log_);
     return shader;
 }
 

@@ -106,7 +106,8 @@ class SceneShaders final : public MaterialBinder {
 
 // Sets `params` on `shader`: RIB's types (inline or Declare'd) are checked against the shader's
 // declarations; a parameter named without a declaration takes the shader's type. Errors name
-// the parameter's RIB file:line.
-void setShaderParams(sl::ShaderInstance& shader, const ParamList& params);
+// the parameter's RIB file:line. A parameter the shader does not have is left out with a warning
+// (Log::lenient: an error under --strict), as PRMan and Aqsis do.
+void setShaderParams(sl::ShaderInstance& shader, const ParamList& params, Log& log);
 
 }  // namespace streyes

@@ -384,6 +384,13 @@ inline bool enterBox(const Bounds3f& b, const Ray& r, const Vec3f& inv, float t0
     return true;
 }
 
+// A body another sample's share of a level of detail's dissolve sees (TraceContext::dissolve).
+inline bool dissolvedAway(const TrilinearBody& b, const TraceContext::DissolveSample& s) {
+    const Material* m = b.material();
+    return m && (m->dissolveLo > 0 || m->dissolveHi < 1) &&
+           !s.block->dissolveKeeps(s.frame, s.pixel, s.sample, m->dissolveLo, m->dissolveHi);
+}
+
 // Just above t: a hit at exactly the nearest distance so far still comes back (for ties).
 inline float tieLimit(float t) { return std::nextafter(t, std::numeric_limits<float>::infinity()); }
 
@@ -434,6 +441,7 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
                     if (!intersectBilinearPatch(b.cornersAt(time), ray, tMin, tieLimit(best), &h)) continue;
                     if (found && h.t == best && b.primitiveId() >= bodies_[hit->body]->primitiveId()) continue;
                     if (facesAway(b, time, h, ray)) continue;  // Sides 1 (shadow rays still stop at it)
+                    if (ctx.dissolve.block && dissolvedAway(b, ctx.dissolve)) continue;
                     best = h.t;
                     *hit = {h.t, h.u, h.v, bi};
                     found = true;

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "geom/body.h"
+#include "raster/image_block.h"
 #include "streyes/render_options.h"
 #include "trace/ray_patch.h"
 
@@ -49,6 +50,16 @@ struct TraceContext {
     std::vector<Entry> stack;  // sized once: 16 a level
     uint64_t bodyTests = 0;  // ray/body intersection tests (the paper's "intersections")
     uint64_t boxTests = 0;   // ray/bounding-volume tests (time and box)
+    // An eye ray's sample, while one is traced: nearest hits skip a body whose material a level of
+    // detail dissolves (Material::dissolveLo/Hi) where the sample is outside its share
+    // (ImageBlock::dissolveKeeps), as the rasterizer does; the other representation, which may
+    // coincide with it, is then found. Null block: no such test.
+    struct DissolveSample {
+        const ImageBlock* block = nullptr;
+        int frame = 0;  // in the block
+        size_t pixel = 0;
+        int sample = 0;
+    } dissolve;
 };
 
 class SpacetimeBVH {

@@ -253,6 +253,11 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
         uint64_t nearestId = kNoPrimitive;
         float tNear = cam.nearClip();
         TraceHit h;
+        ctx_.dissolve = {&block, at.fi, at.pixel, at.sample};  // a level of detail's share (TraceContext)
+        struct Reset {
+            TraceContext& ctx;
+            ~Reset() { ctx.dissolve.block = nullptr; }
+        } reset{ctx_};
         while (bvh.intersect(ray, time, tNear, cam.farClip(), &h, ctx_)) {
             const TrilinearBody& body = *bvh.bodies()[h.body];
             const Vec3f p = ray.o + ray.d * h.t;

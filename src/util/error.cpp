@@ -39,6 +39,11 @@ void Log::warnOnce(const std::string& key, const SourceLoc& loc, const std::stri
     warn(loc, what);
 }
 
+void Log::lenient(const std::string& key, const SourceLoc& loc, const std::string& what) {
+    if (strict_) throw InputError(loc, what + " (an error under --strict)");
+    warnOnce(key, loc, what);
+}
+
 void Log::info(const std::string& what) {
     if (echo_ && !quiet_) std::fprintf(stderr, "%s\n", what.c_str());
 }

@@ -32,7 +32,6 @@ const std::string kPatch = "Patch \"bilinear\" \"P\" [0 0 5  1 0 5  0 1 5  1 1 5
 
 std::vector<Malformed> malformedCases() {
     return {
-        {"UnknownRequest", "WorldBegin\n\nTranslat 1 0 0\nWorldEnd\n", "unknown request 'Translat'"},
         {"WrongArgumentCount", "WorldBegin\n\nTranslate 1 2\nWorldEnd\n", "expected 3 numbers"},
         {"WrongArgumentType", "WorldBegin\n\nRotate \"ninety\" 0 0 1\nWorldEnd\n", "got the string \"ninety\""},
         {"UnterminatedString", "WorldBegin\n\nSurface \"matte\nWorldEnd\n", "unterminated string"},
@@ -99,6 +98,41 @@ TEST_P(MalformedRib, Exits2NamingFileAndLineAndWritesNothing) {
 
 INSTANTIATE_TEST_SUITE_P(Cli, MalformedRib, ::testing::ValuesIn(malformedCases()),
                          [](const ::testing::TestParamInfo<Malformed>& info) { return info.param.name; });
+
+// ---- --strict: what the peers warn about is exit 2 -------------------------------------------------
+// An unknown request (a misspelling: it was exit 2 until issue 46), an Imager inside the world, an
+// option streyes does not read, a parameter the shader does not have, an empty primitive: without
+// --strict a warning naming file:line and a frame; with it exit 2 naming the same line, nothing
+// written.
+TEST(Cli, StrictMakesWhatThePeersWarnAboutExit2) {
+    const std::vector<Malformed> cases = {
+        {"unknown request", "WorldBegin\n\nTranslat 1 0 0\n" + kPatch + "\nWorldEnd\n", "unknown request 'Translat' ignored"},
+        {"imager in the world", "WorldBegin\n\nImager \"background\"\n" + kPatch + "\nWorldEnd\n", "Imager is an option"},
+        {"option not read", "\n\nOption \"photon\" \"emit\" 1000\nWorldBegin\n" + kPatch + "\nWorldEnd\n",
+         "Option \"photon\" is not read"},
+        {"shader parameter", "WorldBegin\n\nSurface \"paintedplastic\" \"sheen\" 1\n" + kPatch + "\nWorldEnd\n",
+         "has no parameter \"sheen\""},
+        {"empty primitive", "WorldBegin\n\nPointsPolygons [] [] \"P\" []\n" + kPatch + "\nWorldEnd\n",
+         "PointsPolygons has no polygons"},
+    };
+    for (const Malformed& c : cases) {
+        const test::TempDir tempDir("strict");
+        const std::string& dir = tempDir.path();
+        const std::string scene = writeFile(dir, "bad.rib", c.text);
+        CliRun lenient = runStreyes("render " + scene + " -o " + dir + "/f.####.exr");
+        EXPECT_EQ(lenient.exitCode, 0) << c.name << ": " << lenient.output;
+        EXPECT_NE(lenient.output.find("bad.rib:3: warning: "), std::string::npos) << c.name << ": " << lenient.output;
+        EXPECT_NE(lenient.output.find(c.mentions), std::string::npos) << c.name << ": " << lenient.output;
+        EXPECT_EQ(listDir(dir), (std::vector<std::string>{"bad.rib", "f.0000.exr"})) << c.name;
+        fs::remove(dir + "/f.0000.exr");
+        CliRun strict = runStreyes("render " + scene + " --strict -o " + dir + "/f.####.exr");
+        EXPECT_EQ(strict.exitCode, 2) << c.name << ": " << strict.output;
+        EXPECT_NE(strict.output.find("bad.rib:3: error: "), std::string::npos) << c.name << ": " << strict.output;
+        EXPECT_NE(strict.output.find(c.mentions), std::string::npos) << c.name << ": " << strict.output;
+        EXPECT_NE(strict.output.find("(an error under --strict)"), std::string::npos) << c.name << ": " << strict.output;
+        EXPECT_EQ(listDir(dir), std::vector<std::string>{"bad.rib"}) << c.name;
+    }
+}
 
 // ---- Files --------------------------------------------------------------------------------------
 

@@ -252,7 +252,6 @@ TEST(Blobby, BadInputNamesFileAndLine) {
     };
     const Case cases[] = {
         {blobby(1, "1001 0", "1 0 0"), "needs 16 floats"},
-        {blobby(1, "1001 0 9", m), "unknown opcode 9"},
         {blobby(1, "1001 0 0 1 1", m), "not an earlier one"},
         {blobby(2, "1001 0", m), "nleaf is 2 but the code has 1 leaf"},
         {blobby(1, "1001 0 0 2 0", m), "the code ends inside instruction 1"},
@@ -264,6 +263,27 @@ TEST(Blobby, BadInputNamesFileAndLine) {
         const std::string error = test::ribError(head + c.rib + "WorldEnd\n");
         EXPECT_NE(error.find("bad.rib:2"), std::string::npos) << error;
         EXPECT_NE(error.find(c.message), std::string::npos) << error;
+    }
+    // An unknown opcode: the peers warn and skip the blobby (its operands cannot be counted); an
+    // error under --strict (an error until issue 46).
+    const std::string unknown = head + blobby(1, "1001 0 9", m) + "WorldEnd\n";
+    EXPECT_EQ(test::ribError(unknown), "");
+    const std::string strict = test::ribError(unknown, true);
+    EXPECT_NE(strict.find("bad.rib:2"), std::string::npos) << strict;
+    EXPECT_NE(strict.find("unknown opcode 9"), std::string::npos) << strict;
+    Log log;
+    const Scene skipped = parseRibString(unknown, "w.rib", log);
+    EXPECT_TRUE(skipped.polygonMeshes.empty());
+    ASSERT_EQ(log.warnings().size(), 1u);
+    EXPECT_NE(log.warnings()[0].find("the blobby is skipped"), std::string::npos) << log.warnings()[0];
+    // Aqsis's field plug-in (9000 n, n operands): a leaf whose field is 0, with a warning; counted
+    // in nleaf or not, as writers do.
+    for (int nleaf : {1, 2}) {
+        Log plugin;
+        const Scene s = parseRibString(head + blobby(nleaf, "1001 0 9000 2 0 0 0 2 0 1", m) + "WorldEnd\n", "p.rib", plugin);
+        EXPECT_EQ(s.polygonMeshes.size(), 1u) << nleaf;
+        ASSERT_EQ(plugin.warnings().size(), 1u) << nleaf;
+        EXPECT_NE(plugin.warnings()[0].find("field plug-ins (opcode 9000)"), std::string::npos);
     }
 }
 

@@ -3,6 +3,8 @@
 // by sample against where its squares are at the sample's own time (sample_oracle.h).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "sample_oracle.h"
 #include "streyes/rib.h"
 
@@ -54,6 +56,34 @@ TEST(Time, TenThousandFrames) {
     Checked c = checkScene("time_10000.rib");
     ASSERT_EQ(c.render.frames.size(), 10001u);
     EXPECT_GT(c.oracle.pixelsCovered, 10000);
+}
+
+
+// A curved surface under a camera that moves, with a closed shutter, in the frame at the camera's
+// last key: the root cut to that frame is one instant, a moving grid of no time, whose colours
+// were 0 / 0 (NaN) before. Every pixel of the disk is its colour, in every algorithm.
+TEST(Time, CurvedSurfaceAtTheLastKeyOfAMovingCamera) {
+    const std::string rib = "Format 32 32 1\nProjection \"perspective\" \"fov\" 90\nPixelFilter \"box\" 1 1\n"
+                            "Option \"streyes\" \"int frames\" [0 4]\n"
+                            "MotionBegin [0 4]\nTranslate 0 0 2\nTranslate 0 0 3\nMotionEnd\n"
+                            "WorldBegin\nSurface \"constant\"\nColor 0 1 0\nDisk 0 1 360\nWorldEnd\n";
+    for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Frames}) {
+        RenderOptions o;
+        o.algorithm = a;
+        const RenderResult r = test::renderRib(rib, o);
+        ASSERT_EQ(r.frames.size(), 5u);
+        for (int f = 0; f <= 4; ++f) {
+            double green = 0;
+            for (int y = 0; y < 32; ++y)
+                for (int x = 0; x < 32; ++x) {
+                    ASSERT_FALSE(std::isnan(r.channel(f, x, y, 1))) << algorithmName(a) << " frame " << f;
+                    green += r.channel(f, x, y, 1);
+                }
+            // The disk of radius 1 at depth 2 + f / 4 spans 16 / depth pixels: pi (16 / depth)^2.
+            const double depth = 2 + 0.25 * f, area = 3.14159265358979 * std::pow(16 / depth, 2);
+            EXPECT_NEAR(green, area, 0.03 * area) << algorithmName(a) << " frame " << f;
+        }
+    }
 }
 
 }  // namespace

@@ -196,9 +196,11 @@ TEST(ShadingLanguage, BadShadersAndBindingsNameTheirPlace) {
     shaders.add("takes", "surface takes(float k = 1) { Ci = k; }\n");
     const std::string head = view(8, 8, shaders.option()) + "WorldBegin\n";
     const std::string patch = test::square(0, 8, 0, 8, 5) + "WorldEnd\n";
+    // Under --strict: a light shader named by Surface and a parameter the shader does not have
+    // are what the peers warn about and render without (below); the rest are errors anyway.
     auto error = [&](const std::string& world) {
         try {
-            test::renderRib(head + world + patch);
+            test::renderRib(head + world + patch, {}, true);
         } catch (const InputError& e) {
             return std::string(e.what());
         }
@@ -214,6 +216,18 @@ TEST(ShadingLanguage, BadShadersAndBindingsNameTheirPlace) {
     EXPECT_NE(count.find("takes 1 value, not 2"), std::string::npos) << count;
     const std::string unknown = error("Surface \"takes\" \"uniform float q\" 1\n");
     EXPECT_NE(unknown.find("has no parameter \"q\""), std::string::npos) << unknown;
+    EXPECT_NE(unknown.find("test.rib:8:"), std::string::npos) << unknown;
+    // Without --strict both are warnings (issue 46: they were errors until then): the light
+    // shader is not used as a surface (the default look), the unknown parameter is left out.
+    const test::RenderResult lenient = test::renderRib(head + "Surface \"lit\"\n" + patch);
+    ASSERT_FALSE(lenient.warnings.empty());
+    EXPECT_NE(lenient.warnings[0].find("is a light shader, not a surface shader: using defaultsurface"), std::string::npos)
+        << lenient.warnings[0];
+    const test::RenderResult without = test::renderRib(head + "Surface \"takes\" \"uniform float q\" 1\n" + patch);
+    const test::RenderResult plain = test::renderRib(head + "Surface \"takes\"\n" + patch);
+    ASSERT_FALSE(without.warnings.empty());
+    EXPECT_NE(without.warnings[0].find("has no parameter \"q\": ignored"), std::string::npos) << without.warnings[0];
+    EXPECT_TRUE(test::identicalPixels(without, plain));
     // A shader that is nowhere: a warning, and the default look.
     test::RenderResult r = test::renderRib(head + "Surface \"nowhere\"\n" + patch);
     ASSERT_FALSE(r.warnings.empty());
