@@ -64,6 +64,8 @@ struct ShaderProgram {
     ShaderType type = ShaderType::Surface;
     std::string name;
     std::string path;  // file it came from ("" for a string)
+    std::vector<std::string> sources;   // every file read: path, then what it #included
+    std::vector<std::string> warnings;  // the compiler's ("file:line:column: warning: ...")
     std::vector<ParamInfo> params;
     std::vector<Register> regs;
     std::vector<Instr> code;
