@@ -192,6 +192,9 @@ struct RenderSettings {
     // empty: the folder of the scene's file.
     std::vector<std::string> textureSearchPath;
     std::vector<MakeTextureDesc> makeTextures;  // in the order the requests came
+    // Option values kept for shaders' option() as "category:name" (today Option "user"; the
+    // last request for a name wins).
+    ParamList options;
 };
 
 // ---- Lights and geometry --------------------------------------------------------------------------

@@ -351,6 +351,16 @@ void option(RibParser& reader, RibArgs& args) {
         limitsOption(reader, args);
         return;
     }
+    if (category == "user") {  // for shaders: option("user:name", var)
+        for (Param& p : reader.readParams(args).params) {
+            p.name = category + ":" + p.name;
+            auto same = std::find_if(settings.options.params.begin(), settings.options.params.end(),
+                                     [&](const Param& q) { return q.name == p.name; });
+            if (same != settings.options.params.end()) *same = std::move(p);
+            else settings.options.params.push_back(std::move(p));
+        }
+        return;
+    }
     if (category != "streyes") {
         reader.log().warnOnce("option:" + category, args.loc(), "Option \"" + category + "\" is not supported: ignored");
         args.skipRest();

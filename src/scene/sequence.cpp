@@ -62,6 +62,8 @@ void SequenceBuilder::check(const Scene& frame) {
     if (a.depthOfField() != b.depthOfField() ||
         (a.depthOfField() && (a.fstop != b.fstop || a.focalLength != b.focalLength || a.focalDistance != b.focalDistance)))
         fail("has another DepthOfField than" + against.substr(8) + ": every frame of a sequence needs the same lens");
+    if (!sameParams(s.options, t.options))  // shaders read them (option()): one value for the whole render
+        fail("has other Option \"user\" values than" + against.substr(8) + ": every frame of a sequence needs the same");
     if (s.pixelSamplesX != t.pixelSamplesX || s.pixelSamplesY != t.pixelSamplesY || s.filter.type != t.filter.type ||
         s.filter.xwidth != t.filter.xwidth || s.filter.ywidth != t.filter.ywidth)
         fail("has other PixelSamples or PixelFilter than" + against.substr(8) +

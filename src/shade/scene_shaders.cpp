@@ -103,8 +103,14 @@ bool LazyTextureSource::shadow(const std::string& name, const sl::TextureOptions
     return s && s->shadow(name, o, q, out);
 }
 
+bool LazyTextureSource::textureInfo(const std::string& name, const std::string& field, sl::QueryValue& out) {
+    sl::TextureSource* s = source();
+    return s && s->textureInfo(name, field, out);
+}
+
 SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures)
-    : worldToCamera_(scene.camera.worldToCamera), builtinShading_(scene.settings.builtinShading), log_(log) {
+    : worldToCamera_(scene.camera.worldToCamera), options_(scene), builtinShading_(scene.settings.builtinShading),
+      log_(log) {
     // Maps named without a folder: along Option "searchpath" "texture", else beside the scene.
     std::vector<std::string> texturePath = scene.settings.textureSearchPath;
     if (texturePath.empty()) {
@@ -180,8 +186,11 @@ void SceneShaders::runImager(FrameImage& frame) const {
     g.set(sl::Global::Oi, sl::ValueRef{{rgba + 3, rgba + 3, rgba + 3}, 4});
     g.set(sl::Global::alpha, sl::ValueRef{{rgba + 3, nullptr, nullptr}, 4});
     g.set(sl::Global::P, sl::ValueRef::soa(px.data(), py.data(), frame.z.data()));
+    const SceneQueries state = queries(nullptr);
+    g.state = &state;
     sl::ShadingVM vm;
     vm.setTextureSource(textures());
+    vm.setLog(&log_);
     vm.run(*imager_, g);
     const sl::ValueRef ci = vm.result(sl::Global::Ci), alpha = vm.result(sl::Global::alpha);
     std::vector<float> out(size_t(n) * 4);
