@@ -159,6 +159,7 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
         vm_ = std::make_unique<sl::ShadingVM>();
         vm_->setTextureSource(shaders_ ? shaders_->textures() : nullptr);
         vm_->setLog(shaders_ ? &shaders_->log() : nullptr);
+        vm_->setSpecularExponent(shaders_ ? shaders_->specularExponent() : 8.0f);
     }
     queries_ = shaders_ ? shaders_->queries(m.attributes) : SceneQueries();
     sgrid_.state = &queries_;

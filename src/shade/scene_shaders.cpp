@@ -110,7 +110,7 @@ bool LazyTextureSource::textureInfo(const std::string& name, const std::string& 
 
 SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures)
     : worldToCamera_(scene.camera.worldToCamera), options_(scene), builtinShading_(scene.settings.builtinShading),
-      log_(log) {
+      specularExponent_(float(scene.settings.specularExponent)), log_(log) {
     // Maps named without a folder: along Option "searchpath" "texture", else beside the scene.
     std::vector<std::string> texturePath = scene.settings.textureSearchPath;
     if (texturePath.empty()) {
@@ -221,6 +221,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
             m.readsTime = m.readsTime || readsTime(*m.displacement);
         }
     }
+    m.specularExponent = specularExponent_;  // the built-in plastic's highlight, as specular()'s
     bool builtinLights = true;
     for (int i : m.lights) builtinLights = builtinLights && builtinLight_[size_t(i)];
     const std::string& name = a.surface.name;

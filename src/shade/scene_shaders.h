@@ -76,6 +76,8 @@ class SceneShaders final : public MaterialBinder {
     SceneQueries queries(const Attributes* attributes) const { return SceneQueries(&options_, attributes); }
     // Where shaders' run-time warnings go (an array index out of range, a runaway loop).
     Log& log() const { return log_; }
+    // specular()'s exponent over roughness (RenderSettings::specularExponent).
+    float specularExponent() const { return specularExponent_; }
 
     // Light `i` of the scene as a shader (null when its shader was not found).
     const sl::ShaderInstance* light(size_t i) const { return i < lights_.size() ? lights_[i].get() : nullptr; }
@@ -92,6 +94,7 @@ class SceneShaders final : public MaterialBinder {
     std::vector<bool> builtinLight_;
     std::shared_ptr<sl::ShaderInstance> imager_;
     bool builtinShading_ = true;
+    float specularExponent_ = 8;
     Log& log_;
     std::unique_ptr<LazyTextureSource> textures_;
 };

@@ -383,6 +383,27 @@ TEST(ShadingLanguage, OptionAndAttributeReadTheScene) {
     EXPECT_NEAR(r.channel(0, 24, 8, 2), 0.5f, 1e-6f);  // 2 * 0.25
 }
 
+// Option "shading" "specular": PRMan's highlight by default, the RI Spec's on request; the
+// built-in plastic follows it as the shipped plastic.sl does.
+TEST(ShadingLanguage, SpecularOptionChoosesTheHighlight) {
+    const std::string world =
+        "WorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0.3 -0.4 1] \"intensity\" 0.8\n"
+        "Surface \"plastic\" \"roughness\" 0.2\nTranslate 50 50 100\nSphere 40 -40 40 360\nWorldEnd\n";
+    const std::string off = "Option \"shading\" \"string builtin\" \"off\"\n";
+    const std::string spec = "Option \"shading\" \"string specular\" \"rispec\"\n";
+    test::RenderResult prman = test::renderRib(view(100, 100, "") + world);
+    test::RenderResult prmanSl = test::renderRib(view(100, 100, off) + world);
+    test::RenderResult rispec = test::renderRib(view(100, 100, spec) + world);
+    test::RenderResult rispecSl = test::renderRib(view(100, 100, spec + off) + world);
+    EXPECT_EQ(prmanSl.stats.counters.pointsShadedBuiltin, 0u);
+    EXPECT_LT(test::maxAbsDifference(prman, prmanSl), 1e-4f);
+    EXPECT_LT(test::maxAbsDifference(rispec, rispecSl), 1e-4f);
+    // The spec's highlight is wider: 8 times the exponent's reciprocal.
+    EXPECT_GT(test::meanAbsDifference(prman, rispec), 0.01f);
+    EXPECT_THROW(test::renderRib(view(8, 8, "Option \"shading\" \"string specular\" \"phong\"\n") + "WorldBegin\nWorldEnd\n"),
+                 InputError);
+}
+
 // A shader found along Option "searchpath" "shader" includes a header from the same path, and
 // a run-time error in it (an index outside its array) is warned once, at the shader's line.
 TEST(ShadingLanguage, ShadersIncludeAlongTheSearchPathAndWarnAtRunTime) {

@@ -68,6 +68,10 @@ class ShadingVM {
     // end at its next turn, warned once. Runaway loops cannot hang a render.
     static constexpr uint64_t kDefaultLoopBudget = uint64_t(1) << 20;
     void setLoopBudget(uint64_t iterations) { loopBudget_ = iterations; }
+    // specular() and specularbrdf() raise N.H to the power k / roughness: 8, PRMan's highlight
+    // (the default), or 1, the RI Spec's formula (Option "shading" "specular" "rispec").
+    void setSpecularExponent(float k) { specularExponent_ = k; }
+    float specularExponent() const { return specularExponent_; }
     // Where printf writes (default: stderr).
     void setPrintSink(std::function<void(const std::string&)> sink) { print_ = std::move(sink); }
 
@@ -133,6 +137,7 @@ class ShadingVM {
     TextureSource* textures_ = nullptr;
     Log* log_ = nullptr;
     uint64_t loopBudget_ = kDefaultLoopBudget;
+    float specularExponent_ = 8;
     std::function<void(const std::string&)> print_;
     ShadeStats stats_;
 
