@@ -142,9 +142,10 @@ class OiioTextures final : public sl::TextureSource {
             out = sl::QueryValue::string(t == "Shadow" ? "shadow" : t == "Environment" ? "environment" : "texture");
             return true;
         }
-        if (field == "viewingmatrix" || field == "projectionmatrix") {
+        if (field == "viewingmatrix" || field == "projectionmatrix") {  // OIIO: worldtocamera, worldtoscreen
             float m[16];
-            if (!ts_->get_texture_info(file, 0, OIIO::ustring(field), OIIO::TypeMatrix, m)) return false;
+            const OIIO::ustring key(field == "viewingmatrix" ? "worldtocamera" : "worldtoscreen");
+            if (!ts_->get_texture_info(file, 0, key, OIIO::TypeMatrix, m)) return false;
             out.type = sl::BaseType::Matrix;
             out.count = 1;
             out.floats.assign(m, m + 16);
