@@ -162,6 +162,8 @@ std::shared_ptr<sl::ShaderInstance> SceneShaders::instance(const std::string& na
         return nullptr;
     }
     sl::ProgramPtr program = cache_->get(file, loc);
+    for (const sl::ShaderProgram::Warning& w : program->warnings)
+        log_.warnOnce("shader-compile:" + w.str(), w.loc, w.what);
     if (program->type != type)
         throw InputError(loc, "\"" + name + "\" (" + program->path + ") is a " + sl::shaderTypeName(program->type) +
                                   " shader, not a " + sl::shaderTypeName(type) + " shader");

@@ -404,11 +404,11 @@ TEST(ShadingLanguage, SpecularOptionChoosesTheHighlight) {
                  InputError);
 }
 
-// A shader found along Option "searchpath" "shader" includes a header from the same path, and
-// a run-time error in it (an index outside its array) is warned once, at the shader's line.
+// A shader found along Option "searchpath" "shader" includes a header from the same path; the
+// header's #warning and a run-time error (an index outside its array) are warned once each.
 TEST(ShadingLanguage, ShadersIncludeAlongTheSearchPathAndWarnAtRunTime) {
     ShaderDir shaders;
-    std::ofstream(shaders.dir.path() + "/tints.h") << "#define TINT(c, k) ((c) * (k))\n";
+    std::ofstream(shaders.dir.path() + "/tints.h") << "#define TINT(c, k) ((c) * (k))\n#warning tints.h is old\n";
     shaders.add("tinted",
                 "#include <tints.h>\n"
                 "surface tinted(float k = 0.5) {\n"
@@ -424,6 +424,10 @@ TEST(ShadingLanguage, ShadersIncludeAlongTheSearchPathAndWarnAtRunTime) {
     for (const std::string& w : r.warnings) said += w.find("tinted.sl:4:") != std::string::npos && w.find("array index 5") != std::string::npos;
     EXPECT_EQ(said, 1u);
     EXPECT_GT(r.stats.counters.shadingIndicesClamped, 1u);  // every grid did it; one warning
+    // The compiler's warnings are the render's too, once.
+    size_t compiled = 0;
+    for (const std::string& w : r.warnings) compiled += w.find("tints.h:2:1: warning: #warning tints.h is old") != std::string::npos;
+    EXPECT_EQ(compiled, 1u);
 }
 
 }  // namespace

@@ -53,7 +53,7 @@ ProgramPtr compileShader(const std::string& source, const std::string& file, con
     }
     program->path = file;
     program->sources = std::move(pp.files);
-    program->warnings = std::move(pp.warnings);
+    for (auto& [loc, what] : pp.warnings) program->warnings.push_back({loc, what});
     ProgramPtr shared = program;
     evaluateDefaults(shared);
     return shared;
@@ -153,7 +153,7 @@ int describeShader(const std::string& path, std::ostream& out, std::ostream& err
         err << e.report() << "\n";
         return 2;
     }
-    for (const std::string& w : p->warnings) err << w << "\n";
+    for (const ShaderProgram::Warning& w : p->warnings) err << w.str() << "\n";
     out << shaderTypeName(p->type) << " \"" << p->name << "\"\n";
     for (const ParamInfo& info : p->params) {
         out << "    \"" << info.name << "\" \"" << (info.output ? "output " : "") << detailName(info.detail) << " "

@@ -4,6 +4,7 @@
 #include "shade/sl/preprocess.h"
 
 #include <algorithm>
+#include <cstring>
 #include <deque>
 #include <filesystem>
 #include <fstream>
@@ -79,6 +80,62 @@ struct State {
     SourceLoc loc(const WavePosition& p) {
         return {name(p.get_file().c_str()), int(p.get_line()), int(p.get_column())};
     }
+};
+
+// A backslash C has no escape for ("\%" in a format string, which the Shading Language keeps)
+// would end a string for Wave's C lexer: it becomes byte 0xff (never in UTF-8; one for one, so
+// columns hold), and a backslash again when the text is written.
+constexpr char kHiddenBackslash = '\xff';
+
+std::string hideOddEscapes(std::string text) {
+    const char* const kEscapes = "abfnrtv?'\"\\01234567xuU\r\n";
+    bool inString = false;
+    for (size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i], next = i + 1 < text.size() ? text[i + 1] : '\0';
+        if (!inString) {
+            if (c == '"') {
+                inString = true;
+            } else if (c == '/' && next == '/') {
+                while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+            } else if (c == '/' && next == '*') {
+                const size_t end = text.find("*/", i + 2);
+                i = end == std::string::npos ? text.size() : end + 1;
+            }
+        } else if (c == '"' || c == '\n') {
+            inString = false;  // the end (a newline: an unterminated string, the lexer's to report)
+        } else if (c == '\\' && next != '\0') {
+            if (!std::strchr(kEscapes, next)) text[i] = kHiddenBackslash;
+            ++i;
+        }
+    }
+    return text;
+}
+
+// Wave's load_file_to_string, with hideOddEscapes: how #included files are read.
+struct LoadShaderFile {
+    template <typename IterContextT>
+    class inner {
+      public:
+        template <typename PositionT>
+        static void init_iterators(IterContextT& iter_ctx, PositionT const& act_pos, wave::language_support language) {
+            using iterator_type = typename IterContextT::iterator_type;
+            std::ifstream in(iter_ctx.filename.c_str(), std::ios::binary);
+            if (!in) {
+                BOOST_WAVE_THROW_CTX(iter_ctx.ctx, wave::preprocess_exception, bad_include_file,
+                                     iter_ctx.filename.c_str(), act_pos);
+                return;
+            }
+            std::stringstream ss;
+            ss << in.rdbuf();
+            iter_ctx.instring = hideOddEscapes(ss.str());
+            iter_ctx.first = iterator_type(iter_ctx.instring.begin(), iter_ctx.instring.end(),
+                                           PositionT(iter_ctx.filename), language);
+            iter_ctx.last = iterator_type();
+        }
+
+      private:
+        std::string instring;
+    };
 };
 
 bool isBlank(wave::token_id id) {
@@ -188,14 +245,13 @@ class Hooks : public wave::context_policies::eat_whitespace<WaveToken> {
         if (s_->depth++ == 0) s_->callSite = s_->loc(call);
     }
     void warn(const SourceLoc& at, const std::string& what) {
-        s_->out->warnings.push_back(at.str() + ": warning: " + what);
+        s_->out->warnings.emplace_back(at, what);
     }
 
     State* s_;
 };
 
-using Context = wave::context<std::string::const_iterator, WaveLexIterator,
-                              wave::iteration_context_policies::load_file_to_string, Hooks>;
+using Context = wave::context<std::string::const_iterator, WaveLexIterator, LoadShaderFile, Hooks>;
 
 // C99 (no C++ keywords or alternative tokens), pp-numbers as C has them (1.5x stays one token,
 // for the lexer to refuse), whitespace kept between tokens a macro puts side by side.
@@ -347,7 +403,8 @@ PreprocessedSource preprocess(const std::string& source, const std::string& file
     s.canonicalStack.push_back(s.canonical(file));
     s.directive = {s.name(file), 1, 1};
 
-    Context ctx(source.begin(), source.end(), file.c_str(), Hooks(&s));
+    const std::string input = hideOddEscapes(source);
+    Context ctx(input.begin(), input.end(), file.c_str(), Hooks(&s));
     ctx.set_language(kLanguage);
     ctx.add_macro_definition("STREYES=1", true);
 
@@ -367,8 +424,8 @@ PreprocessedSource preprocess(const std::string& source, const std::string& file
                     if (e.get_errorcode() != wave::preprocess_exception::macro_redefinition) throw;
                     SourceLoc at{s.name(e.file_name()), int(e.line_no()), int(e.column_no())};
                     if (s.directive.file == at.file && s.directive.line == at.line) at.column = s.directive.column;
-                    out.warnings.push_back(at.str() + ": warning: macro '" + e.get_related_name() +
-                                           "' is defined again differently: the first definition is kept");
+                    out.warnings.emplace_back(at, std::string("macro '") + e.get_related_name() +
+                                                      "' is defined again differently: the first definition is kept");
                 }
             }
         };
@@ -385,7 +442,7 @@ PreprocessedSource preprocess(const std::string& source, const std::string& file
             if (id == wave::T_PP_PRAGMA) inPragma = true;  // #pragma: for other tools; nothing here
             if (inPragma || id == wave::T_PLACEHOLDER) continue;
             if (IS_CATEGORY(id, wave::WhiteSpaceTokenType)) {
-                out.text += ' ';
+                out.text += id == wave::T_SPACE || id == wave::T_SPACE2 ? t.get_value().c_str() : " ";
                 continue;
             }
             SourceLoc loc = s.loc(t.get_position());
@@ -401,7 +458,9 @@ PreprocessedSource preprocess(const std::string& source, const std::string& file
                 if (--p.tokens == 0) s.pending.pop_front();
             }
             out.marks.push_back({out.text.size(), std::move(loc)});
+            const size_t at = out.text.size();
             out.text += t.get_value().c_str();
+            std::replace(out.text.begin() + std::ptrdiff_t(at), out.text.end(), kHiddenBackslash, '\\');
         }
         out.marks.push_back({out.text.size(), {s.name(file), endLine, endColumn}});
     } catch (const HookError& e) {

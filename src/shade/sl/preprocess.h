@@ -40,8 +40,8 @@ struct PreprocessedSource {
 
     // Every file read: the shader's own first (as named), then what it included, once each.
     std::vector<std::string> files;
-    // "file:line:column: warning: ..." for #warning and a macro defined twice differently.
-    std::vector<std::string> warnings;
+    // #warning, and a macro defined twice differently: where, and what.
+    std::vector<std::pair<SourceLoc, std::string>> warnings;
 
     // Where each macro expansion was called from. The tokens one expansion made share a file
     // name string of their own (its pointer tells them apart), so an error at one of them can say

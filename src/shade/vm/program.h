@@ -65,7 +65,13 @@ struct ShaderProgram {
     std::string name;
     std::string path;  // file it came from ("" for a string)
     std::vector<std::string> sources;   // every file read: path, then what it #included
-    std::vector<std::string> warnings;  // the compiler's ("file:line:column: warning: ...")
+    // The compiler's warnings (#warning, a macro defined twice), each at its place.
+    struct Warning {
+        SourceLoc loc;
+        std::string what;
+        std::string str() const { return loc.str() + ": warning: " + what; }
+    };
+    std::vector<Warning> warnings;
     std::vector<ParamInfo> params;
     std::vector<Register> regs;
     std::vector<Instr> code;
