@@ -78,6 +78,19 @@ TEST(ShaderCli, IncludePathsAndPreprocessorErrors) {
     EXPECT_NE(wrong.output.find(bad + ":3:8: error: too few arguments for macro 'STRIPE'"), std::string::npos) << wrong.output;
     CliRun noDir = runStreyes("shader -I");
     EXPECT_EQ(noDir.exitCode, 2);
+
+    // An #if without its #endif, and headers that include each other.
+    const std::string open = writeFile(dir.path(), "open.sl", "surface open() {\n  #if defined(STREYES)\n  Ci = 1;\n}\n");
+    CliRun unterminated = runStreyes("shader " + open);
+    EXPECT_EQ(unterminated.exitCode, 2);
+    EXPECT_NE(unterminated.output.find(open + ":2:3: error: this #if has no #endif"), std::string::npos) << unterminated.output;
+    writeFile(dir.path(), "ping.h", "#include \"pong.h\"\n");
+    writeFile(dir.path(), "pong.h", "#include \"ping.h\"\n");
+    const std::string loop = writeFile(dir.path(), "loop.sl", "#include \"ping.h\"\nsurface loop() {}\n");
+    CliRun recursion = runStreyes("shader " + loop);
+    EXPECT_EQ(recursion.exitCode, 2);
+    EXPECT_NE(recursion.output.find(dir.path() + "/pong.h:1:1: error: recursion through #include"), std::string::npos)
+        << recursion.output;
 }
 
 }  // namespace
