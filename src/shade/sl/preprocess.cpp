@@ -42,7 +42,7 @@ struct State {
     // The files being read, outermost first (display names, and canonical ones for recursion).
     std::vector<std::string> stack, canonicalStack;
     SourceLoc directive;   // the last directive's '#'
-    bool inCondition = false;  // macros expanded in #if / #elif make no text
+    bool inDirective = false;  // macros expanded in #if, #elif, #include NAME, #line make no text
     // Macro expansions: nesting, the outermost call, and those whose tokens are still to come.
     int depth = 0;
     SourceLoc callSite;
@@ -151,13 +151,25 @@ class Hooks : public wave::context_policies::eat_whitespace<WaveToken> {
     bool found_directive(ContextT const&, TokenT const& directive) {
         s_->directive = s_->loc(directive.get_position());
         const wave::token_id id = wave::token_id(directive);
-        if (id == wave::T_PP_IF || id == wave::T_PP_ELIF) s_->inCondition = true;
+        if (id == wave::T_PP_IF || id == wave::T_PP_ELIF || id == wave::T_PP_INCLUDE || id == wave::T_PP_LINE)
+            s_->inDirective = true;
         return false;
+    }
+
+    // The ends of the directives whose macros were expanded.
+    template <typename ContextT>
+    bool found_include_directive(ContextT const&, std::string const&, bool) {
+        s_->inDirective = false;
+        return false;
+    }
+    template <typename ContextT, typename ContainerT>
+    void found_line_directive(ContextT const&, ContainerT const&, unsigned int, std::string const&) {
+        s_->inDirective = false;
     }
 
     template <typename ContextT, typename TokenT, typename ContainerT>
     bool evaluated_conditional_expression(ContextT const&, TokenT const&, ContainerT const&, bool) {
-        s_->inCondition = false;
+        s_->inDirective = false;
         return false;
     }
 
@@ -222,7 +234,7 @@ class Hooks : public wave::context_policies::eat_whitespace<WaveToken> {
 
     template <typename ContextT, typename ContainerT>
     void rescanned_macro(ContextT const&, ContainerT const& result) {
-        if (s_->inCondition) return;
+        if (s_->inDirective) return;
         if (--s_->depth > 0) return;
         State::Pending p;
         p.site = s_->callSite;
@@ -241,7 +253,7 @@ class Hooks : public wave::context_policies::eat_whitespace<WaveToken> {
 
   private:
     void entered(const WavePosition& call) {
-        if (s_->inCondition) return;
+        if (s_->inDirective) return;
         if (s_->depth++ == 0) s_->callSite = s_->loc(call);
     }
     void warn(const SourceLoc& at, const std::string& what) {

@@ -235,6 +235,12 @@ TEST(SlPreprocess, ErrorsInHeadersAndMacrosPointThere) {
                                         "#define HALF(x) ((x) / 2 + missing)\n"
                                         "surface s() {\n  float a = 1;\n  Ci = HALF(a);\n}\n");
     expectAt(errorOf(macro), macro + ":1:28: ", "undefined variable 'missing' (in the expansion of the macro at " + macro + ":4:8)");
+    // A macro naming the header makes no text: the error after it is no expansion's.
+    dir.write("lib/empty.h", "\n");
+    const std::string named = dir.write("named.sl", "#define HDR \"lib/empty.h\"\n#include HDR\nnope s() {}\n");
+    const std::string namedMsg = errorOf(named);
+    expectAt(namedMsg, named + ":3:1: ", "found 'nope'");
+    EXPECT_EQ(namedMsg.find("in the expansion"), std::string::npos) << namedMsg;
     // An argument's own error: where the argument is written.
     const std::string arg = dir.write("arg.sl", "#define HALF(x) ((x) / 2)\nsurface s() {\n  Ci = HALF(1 + nope);\n}\n");
     expectAt(errorOf(arg), arg + ":3:17: ", "undefined variable 'nope'");
