@@ -66,7 +66,7 @@ class ShadingVM {
     // Loop iterations one run of a program over one grid may make (the surface's, and each
     // light's, displacement's, ... on their own): a shader whose loops go past it has each loop
     // end at its next turn, warned once. Runaway loops cannot hang a render.
-    static constexpr uint64_t kDefaultLoopBudget = uint64_t(1) << 20;
+    static constexpr uint64_t kDefaultLoopBudget = uint64_t(1) << 18;
     void setLoopBudget(uint64_t iterations) { loopBudget_ = iterations; }
     // specular() and specularbrdf() raise N.H to the power k / roughness: 8, PRMan's highlight
     // (the default), or 1, the RI Spec's formula (Option "shading" "specular" "rispec").
