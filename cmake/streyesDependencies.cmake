@@ -20,6 +20,8 @@ if(NOT TARGET TBB::tbb)
   find_package(TBB 2021 CONFIG REQUIRED COMPONENTS tbb)
 endif()
 find_package(hwy 1.0 CONFIG REQUIRED)  # Highway: the sampler's SIMD kernels
+# Boost.Wave: the C preprocessor in front of the Shading Language compiler (src/shade/sl/preprocess.cpp).
+find_package(Boost 1.74 CONFIG REQUIRED COMPONENTS wave)
 find_package(Imath 3.1 CONFIG REQUIRED)
 find_package(OpenEXR 3.1 CONFIG REQUIRED)
 # zlib: gzip-compressed RIB, read and written (src/scene/rib_gzip.cpp).

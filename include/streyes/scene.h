@@ -206,6 +206,10 @@ struct RenderSettings {
     // Option "shading" "string builtin" ["off"]: shade constant, matte, plastic and
     // defaultsurface with their Shading Language sources too (the same pixels, slower).
     bool builtinShading = true;
+    // Option "shading" "string specular": specular() and specularbrdf() raise N.H to the power
+    // specularExponent / roughness: 8 is PRMan's highlight ("prman", the default: what RenderMan
+    // users' scenes were lit for), 1 the RI Spec 3.2's formula ("rispec").
+    double specularExponent = 8;
     ShaderDesc imager;  // Imager: run over each finished frame's pixels; no name: none
     double exposureGain = 1, exposureGamma = 1;  // Exposure: rgb = (gain * rgb)^(1 / gamma)
     // Hider "hidden": "jitter" 0 puts samples at the centres of their strata (and times at the

@@ -52,6 +52,8 @@ namespace streyes {
     COUNT(pointsShadedSurface, "shading.points_surface") /* vertices Shading Language surfaces ran on */ \
     COUNT(lightShaderRuns, "shading.light_shader_runs")  /* light shader runs over a grid */          \
     COUNT(shadingSanitised, "shading.sanitised")  /* NaN, infinity or out-of-domain results set to 0 */ \
+    COUNT(shadingIndicesClamped, "shading.indices_clamped") /* array accesses out of range (a grid and place each) */ \
+    COUNT(shadingLoopsStopped, "shading.loops_stopped") /* shader runs past the loop budget */        \
     COUNT(sampleTests, "sample_tests")                                                                 \
     COUNT(sampleHits, "sample_hits")                                                                   \
     COUNT(samplesBehind, "samples_behind") /* not tested: the micropolygon lay behind their hit */    \

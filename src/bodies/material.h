@@ -38,6 +38,8 @@ struct Material {
     Color Cs{1, 1, 1};
     Color Os{1, 1, 1};
     float Ka = 1, Kd = 1, Ks = 0.5f, roughness = 0.1f;
+    // The highlight is (N.H)^(specularExponent / roughness) (RenderSettings::specularExponent).
+    float specularExponent = 8;
     Color specularColor{1, 1, 1};
     float shadingRate = 1;
     float motionFactor = 0;  // GeometricApproximation "motionfactor" (motionDicingRate)

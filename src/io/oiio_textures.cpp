@@ -151,6 +151,41 @@ class OiioTextures final : public sl::TextureSource {
         return false;
     }
 
+    // textureinfo(): OIIO's names for RenderMan's ("type" is OIIO's "texturetype").
+    bool textureInfo(const std::string& name, const std::string& field, sl::QueryValue& out) override {
+        const OIIO::ustring file(resolve(name));
+        if (field == "resolution") {
+            int res[2] = {0, 0};
+            if (!ts_->get_texture_info(file, 0, OIIO::ustring("resolution"), OIIO::TypeDesc(OIIO::TypeDesc::INT, 2), res))
+                return false;
+            out = sl::QueryValue::numbers({float(res[0]), float(res[1])});
+            return true;
+        }
+        if (field == "channels") {
+            int channels = 0;
+            if (!ts_->get_texture_info(file, 0, OIIO::ustring("channels"), OIIO::TypeInt, &channels)) return false;
+            out = sl::QueryValue::numbers({float(channels)});
+            return true;
+        }
+        if (field == "type") {
+            OIIO::ustring type;
+            if (!ts_->get_texture_info(file, 0, OIIO::ustring("texturetype"), OIIO::TypeString, &type)) return false;
+            const std::string t = type.string();
+            out = sl::QueryValue::string(t == "Shadow" ? "shadow" : t == "Environment" ? "environment" : "texture");
+            return true;
+        }
+        if (field == "viewingmatrix" || field == "projectionmatrix") {  // OIIO: worldtocamera, worldtoscreen
+            float m[16];
+            const OIIO::ustring key(field == "viewingmatrix" ? "worldtocamera" : "worldtoscreen");
+            if (!ts_->get_texture_info(file, 0, key, OIIO::TypeMatrix, m)) return false;
+            out.type = sl::BaseType::Matrix;
+            out.count = 1;
+            out.floats.assign(m, m + 16);
+            return true;
+        }
+        return false;
+    }
+
   private:
     static OIIO::TextureOptBatch batchOptions(const sl::TextureOptions& o) {
         OIIO::TextureOptBatch opt;

@@ -76,6 +76,7 @@ std::string passKey(const Scene& f) {
     put(k, s.imager.name), put(k, s.imager.params);
     put(k, s.exposureGain), put(k, s.exposureGamma), put(k, double(s.jitter)), put(k, s.depthFilter);
     put(k, double(s.bucketSize)), put(k, double(s.gridSize)), put(k, s.shadowBias);
+    put(k, s.options), put(k, s.specularExponent);  // what shaders' option() and specular() read
     for (const std::string& t : s.textureSearchPath) put(k, t);
     k += '|';
     for (const RenderSettings::ShaderOutput& o : s.shaderOutputs) put(k, o.type), put(k, o.name);

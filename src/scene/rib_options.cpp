@@ -330,7 +330,15 @@ void shadingOption(RibParser& reader, const ParamList& params) {
         if (v != "on" && v != "off") throw InputError(p->loc, "Option \"shading\": builtin is \"on\" or \"off\"");
         reader.scene().settings.builtinShading = v == "on";
     }
-    reader.warnUnusedParams(params, {"builtin"}, "Option \"shading\"");
+    // specular()'s highlight: PRMan's (the default) or the RI Spec's (docs/SCENE-FORMAT.md).
+    if (const Param* p = params.find("specular")) {
+        const std::string v = params.getString("specular", "prman");
+        if (v != "prman" && v != "rispec")
+            throw InputError(p->loc, "Option \"shading\": specular is \"prman\" (exponent 8 / roughness, PRMan's and "
+                                     "Aqsis's highlight) or \"rispec\" (1 / roughness, the RI Spec's), not \"" + v + "\"");
+        reader.scene().settings.specularExponent = v == "prman" ? 8.0 : 1.0;
+    }
+    reader.warnUnusedParams(params, {"builtin", "specular"}, "Option \"shading\"");
 }
 
 // Option "shadow" "bias" b: how far behind a shadow map's depth a point must be to be in shadow

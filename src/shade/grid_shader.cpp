@@ -26,6 +26,8 @@ void GridShader::takeCounters(RenderCounters& out) {
     out.pointsShadedSurface += s.points;
     out.lightShaderRuns += s.lightRuns;
     out.shadingSanitised += s.sanitised;
+    out.shadingIndicesClamped += s.indicesClamped;
+    out.shadingLoopsStopped += s.loopsStopped;
     vm_->resetStats();
 }
 
@@ -169,7 +171,11 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     if (!vm_) {
         vm_ = std::make_unique<sl::ShadingVM>();
         vm_->setTextureSource(shaders_ ? shaders_->textures() : nullptr);
+        vm_->setLog(shaders_ ? &shaders_->log() : nullptr);
+        vm_->setSpecularExponent(shaders_ ? shaders_->specularExponent() : 8.0f);
     }
+    queries_ = shaders_ ? shaders_->queries(m.attributes) : SceneQueries();
+    sgrid_.state = &queries_;
     const int n = grid.vertexCount();
     sgrid_.setShape(grid.nu, grid.nv);
     u_.resize(size_t(n));

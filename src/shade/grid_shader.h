@@ -40,6 +40,7 @@ class GridShader {
     void setShaders(const SceneShaders* shaders) {
         shaders_ = shaders;
         if (vm_) vm_->setTextureSource(shaders ? shaders->textures() : nullptr);
+        if (vm_) vm_->setLog(shaders ? &shaders->log() : nullptr);
     }
     // Output variables (util/aov.h): the surface shader's output parameters the layout names are
     // copied into grids that carry it (Grid::aovCount == layout->count); others read 0.
@@ -89,6 +90,7 @@ class GridShader {
     std::vector<CameraLight> lightScratch_;
     std::unique_ptr<sl::ShadingVM> vm_;  // made when a grid first needs it
     sl::ShadingGrid sgrid_;
+    SceneQueries queries_;  // the grid's material's attributes: what attribute() reads
     std::vector<float> u_, v_;
     float du_ = 0, dv_ = 0, time_ = 0;  // uniform inputs the shading grid points at
     Matrix4 worldToCamera_;             // at the slot's time: the render camera's (primitives' space)

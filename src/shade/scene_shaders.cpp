@@ -119,9 +119,15 @@ bool LazyTextureSource::shadow(const std::string& name, const sl::TextureOptions
     return maps_ && maps_->shadow(name, o, q, out[0]);
 }
 
+bool LazyTextureSource::textureInfo(const std::string& name, const std::string& field, sl::QueryValue& out) {
+    sl::TextureSource* s = source();
+    return s && s->textureInfo(name, field, out);
+}
+
 SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures,
                            std::shared_ptr<const ShadowMapBinding> maps)
-    : worldToCamera_(scene.camera.worldToCamera), builtinShading_(scene.settings.builtinShading), log_(log) {
+    : worldToCamera_(scene.camera.worldToCamera), options_(scene), builtinShading_(scene.settings.builtinShading),
+      specularExponent_(float(scene.settings.specularExponent)), log_(log) {
     // Maps named without a folder: along Option "searchpath" "texture", else beside the scene.
     std::vector<std::string> texturePath = scene.settings.textureSearchPath;
     if (texturePath.empty()) {
@@ -178,6 +184,8 @@ std::shared_ptr<sl::ShaderInstance> SceneShaders::instance(const std::string& na
         return nullptr;
     }
     sl::ProgramPtr program = cache_->get(file, loc);
+    for (const sl::ShaderProgram::Warning& w : program->warnings)
+        log_.warnOnce("shader-compile:" + w.str(), w.loc, w.what);
     if (program->type != type) {
         // A displacement shader named by Surface, say: the peers warn and go without it.
         log_.lenient(std::string(sl::shaderTypeName(type)) + "-type:" + name, loc,
@@ -206,8 +214,11 @@ void SceneShaders::runImager(FrameImage& frame) const {
     g.set(sl::Global::Oi, sl::ValueRef{{rgba + 3, rgba + 3, rgba + 3}, 4});
     g.set(sl::Global::alpha, sl::ValueRef{{rgba + 3, nullptr, nullptr}, 4});
     g.set(sl::Global::P, sl::ValueRef::soa(px.data(), py.data(), frame.z.data()));
+    const SceneQueries state = queries(nullptr);
+    g.state = &state;
     sl::ShadingVM vm;
     vm.setTextureSource(textures());
+    vm.setLog(&log_);
     vm.run(*imager_, g);
     const sl::ValueRef ci = vm.result(sl::Global::Ci), alpha = vm.result(sl::Global::alpha);
     std::vector<float> out(size_t(n) * 4);
@@ -238,6 +249,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
             m.readsTime = m.readsTime || readsTime(*m.displacement);
         }
     }
+    m.specularExponent = specularExponent_;  // the built-in plastic's highlight, as specular()'s
     bool builtinLights = true;
     for (int i : m.lights) {
         builtinLights = builtinLights && builtinLight_[size_t(i)];

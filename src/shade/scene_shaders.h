@@ -15,6 +15,7 @@
 
 #include "bodies/material.h"
 #include "shade/shadow_maps.h"
+#include "shade/scene_queries.h"
 #include "shade/sl/compiler.h"
 #include "shade/vm/shader_instance.h"
 #include "shade/vm/texture_source.h"
@@ -44,6 +45,7 @@ class LazyTextureSource final : public sl::TextureSource {
                      float* const* out) override;
     bool shadow(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
                 float* const* out) override;
+    bool textureInfo(const std::string& name, const std::string& field, sl::QueryValue& out) override;
 
   private:
     sl::TextureSource* source();
@@ -76,6 +78,13 @@ class SceneShaders final : public MaterialBinder {
     // What texture() and environment() read, for every thread's interpreter (null: none).
     sl::TextureSource* textures() const { return textures_.get(); }
 
+    // What option() and attribute() read on a grid whose primitive has `attributes` (may be null).
+    SceneQueries queries(const Attributes* attributes) const { return SceneQueries(&options_, attributes); }
+    // Where shaders' run-time warnings go (an array index out of range, a runaway loop).
+    Log& log() const { return log_; }
+    // specular()'s exponent over roughness (RenderSettings::specularExponent).
+    float specularExponent() const { return specularExponent_; }
+
     // Light `i` of the scene as a shader (null when its shader was not found).
     const sl::ShaderInstance* light(size_t i) const { return i < lights_.size() ? lights_[i].get() : nullptr; }
 
@@ -92,12 +101,14 @@ class SceneShaders final : public MaterialBinder {
                                                  const SourceLoc& loc, sl::ShaderType type) const;
 
     MotionTransform worldToCamera_;
+    OptionValues options_;
     std::unique_ptr<sl::ShaderCache> cache_;  // thread-safe: materials are bound on worker threads too
     bool searchPathSet_ = false;
     std::vector<std::shared_ptr<sl::ShaderInstance>> lights_;
     std::vector<bool> builtinLight_;
     std::shared_ptr<sl::ShaderInstance> imager_;
     bool builtinShading_ = true;
+    float specularExponent_ = 8;
     Log& log_;
     std::unique_ptr<ShadowMaps> maps_;
     std::unique_ptr<LazyTextureSource> textures_;

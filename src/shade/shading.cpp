@@ -50,7 +50,7 @@ Color shadePoint(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthographi
             if (m.kind == SurfaceKind::Plastic) {
                 Vec3f H = normalize(L + V);
                 float ndh = std::max(0.0f, dot(Nf, H));
-                part += m.specularColor * (cl * std::pow(ndh, 1.0f / std::max(m.roughness, 1e-4f))) * m.Ks;
+                part += m.specularColor * (cl * std::pow(ndh, m.specularExponent / std::max(m.roughness, 1e-4f))) * m.Ks;
             }
             shadowed[l.shadowSlot] = part * m.Os;
             continue;
@@ -59,7 +59,7 @@ Color shadePoint(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthographi
         if (m.kind == SurfaceKind::Plastic) {
             Vec3f H = normalize(L + V);
             float ndh = std::max(0.0f, dot(Nf, H));
-            specular += cl * std::pow(ndh, 1.0f / std::max(m.roughness, 1e-4f));
+            specular += cl * std::pow(ndh, m.specularExponent / std::max(m.roughness, 1e-4f));
         }
     }
     Color c = cs * (ambient * m.Ka + diffuse * m.Kd);

@@ -312,3 +312,44 @@ TEST(Textures, MakeTextureOfAMissingPictureExitsTwoAtItsLine) {
 
 }  // namespace
 }  // namespace streyes::test
+
+namespace streyes::test {
+namespace {
+
+// textureinfo() through OpenImageIO: a map's resolution, type and channels; 0 for a map that
+// cannot be read (the variable left as it was).
+TEST(Textures, TextureInfoReadsTheMap) {
+    const TempDir dir("tex-info");
+    writeImage(dir.path() + "/wide.exr", 16, 4, 3, std::vector<float>(16 * 4 * 3, 0.5f));
+    makeMap(dir.path() + "/wide.exr", dir.path() + "/wide.tx");
+    Log log;
+    log.setQuiet(true);
+    std::shared_ptr<sl::TextureSource> source = openImageTextures({dir.path()}, log);
+    ASSERT_TRUE(source);
+    sl::QueryValue v;
+    ASSERT_TRUE(source->textureInfo("wide.tx", "resolution", v));
+    EXPECT_EQ(v.floats, (std::vector<float>{16, 4}));
+    ASSERT_TRUE(source->textureInfo("wide.tx", "channels", v));
+    EXPECT_EQ(v.floats, (std::vector<float>{3}));
+    ASSERT_TRUE(source->textureInfo("wide.tx", "type", v));
+    EXPECT_EQ(v.strings, (std::vector<std::string>{"texture"}));
+    EXPECT_FALSE(source->textureInfo("wide.tx", "viewingmatrix", v));  // not a rendered map
+    EXPECT_FALSE(source->textureInfo("nosuch.tx", "resolution", v));
+
+    // In a render: the resolution reaches the shader.
+    writeFile(dir.path(), "info.sl",
+              "surface info(string map = \"\") {\n  float res[2] = {0, 0};\n"
+              "  float ok = textureinfo(map, \"resolution\", res);\n  Ci = color(ok, res[0] / 100, res[1] / 100);\n}\n");
+    const std::string rib = writeFile(dir.path(), "scene.rib",
+                                      orthoHeader(8, 8) + "Surface \"info\" \"map\" \"wide.tx\"\n" + square(0, 8, 8, 0, 5) +
+                                          "WorldEnd\n");
+    RenderOptions options;
+    options.textureSource = openImageTextures;
+    const RenderResult r = renderFile(rib, options);
+    EXPECT_NEAR(r.channel(0, 4, 4, 0), 1.0f, 1e-6f);
+    EXPECT_NEAR(r.channel(0, 4, 4, 1), 0.16f, 1e-6f);
+    EXPECT_NEAR(r.channel(0, 4, 4, 2), 0.04f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace streyes::test

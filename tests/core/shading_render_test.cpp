@@ -367,3 +367,82 @@ TEST(ShadingLanguage, MissingShadersWarnWithWhatTheRenderDoesInstead) {
 
 }  // namespace
 }  // namespace streyes
+
+namespace streyes {
+namespace {
+
+// option() reads the Format and Option "user"; attribute() the primitive's own attributes.
+TEST(ShadingLanguage, OptionAndAttributeReadTheScene) {
+    ShaderDir shaders;
+    shaders.add("probe",
+                "surface probe() {\n"
+                "  float fmt[3] = {0, 0, 0}, rate = 0;\n"
+                "  string pass = \"\", name = \"\";\n"
+                "  float ok = option(\"Format\", fmt) + option(\"user:pass\", pass) + attribute(\"ShadingRate\", rate) +\n"
+                "             attribute(\"identifier:name\", name) + option(\"user:nosuch\", rate);\n"
+                "  Ci = color(ok / 4, fmt[0] / 100 * (pass == \"beauty\" ? 1 : 0), rate * (name == \"left\" ? 1 : 0.25));\n"
+                "  Oi = 1;\n"
+                "}\n");
+    const std::string rib = view(32, 16, shaders.option() + "Option \"user\" \"string pass\" [\"beauty\"]\n") +
+                            "WorldBegin\nSurface \"probe\"\n"
+                            "AttributeBegin\nAttribute \"identifier\" \"name\" [\"left\"]\nShadingRate 0.5\n" +
+                            test::square(0, 16, 0, 16, 5) + "AttributeEnd\n" +
+                            "AttributeBegin\nAttribute \"identifier\" \"name\" [\"right\"]\nShadingRate 2\n" +
+                            test::square(16, 32, 0, 16, 5) + "AttributeEnd\nWorldEnd\n";
+    test::RenderResult r = test::renderRib(rib);
+    EXPECT_NEAR(r.channel(0, 8, 8, 0), 1.0f, 1e-6f);
+    EXPECT_NEAR(r.channel(0, 8, 8, 1), 0.32f, 1e-6f);
+    EXPECT_NEAR(r.channel(0, 8, 8, 2), 0.5f, 1e-6f);
+    EXPECT_NEAR(r.channel(0, 24, 8, 0), 1.0f, 1e-6f);
+    EXPECT_NEAR(r.channel(0, 24, 8, 2), 0.5f, 1e-6f);  // 2 * 0.25
+}
+
+// Option "shading" "specular": PRMan's highlight by default, the RI Spec's on request; the
+// built-in plastic follows it as the shipped plastic.sl does.
+TEST(ShadingLanguage, SpecularOptionChoosesTheHighlight) {
+    const std::string world =
+        "WorldBegin\nLightSource \"distantlight\" 1 \"from\" [0 0 0] \"to\" [0.3 -0.4 1] \"intensity\" 0.8\n"
+        "Surface \"plastic\" \"roughness\" 0.2\nTranslate 50 50 100\nSphere 40 -40 40 360\nWorldEnd\n";
+    const std::string off = "Option \"shading\" \"string builtin\" \"off\"\n";
+    const std::string spec = "Option \"shading\" \"string specular\" \"rispec\"\n";
+    test::RenderResult prman = test::renderRib(view(100, 100, "") + world);
+    test::RenderResult prmanSl = test::renderRib(view(100, 100, off) + world);
+    test::RenderResult rispec = test::renderRib(view(100, 100, spec) + world);
+    test::RenderResult rispecSl = test::renderRib(view(100, 100, spec + off) + world);
+    EXPECT_EQ(prmanSl.stats.counters.pointsShadedBuiltin, 0u);
+    EXPECT_LT(test::maxAbsDifference(prman, prmanSl), 1e-4f);
+    EXPECT_LT(test::maxAbsDifference(rispec, rispecSl), 1e-4f);
+    // The spec's highlight is wider: 8 times the exponent's reciprocal.
+    EXPECT_GT(test::meanAbsDifference(prman, rispec), 0.01f);
+    EXPECT_THROW(test::renderRib(view(8, 8, "Option \"shading\" \"string specular\" \"phong\"\n") + "WorldBegin\nWorldEnd\n"),
+                 InputError);
+}
+
+// A shader found along Option "searchpath" "shader" includes a header from the same path; the
+// header's #warning and a run-time error (an index outside its array) are warned once each.
+TEST(ShadingLanguage, ShadersIncludeAlongTheSearchPathAndWarnAtRunTime) {
+    ShaderDir shaders;
+    std::ofstream(shaders.dir.path() + "/tints.h") << "#define TINT(c, k) ((c) * (k))\n#warning tints.h is old\n";
+    shaders.add("tinted",
+                "#include <tints.h>\n"
+                "surface tinted(float k = 0.5) {\n"
+                "  float a[2] = {1, 2};\n"
+                "  Ci = TINT(color(1, 0.5, 0.25), k) * a[5];\n"
+                "  Oi = 1;\n"
+                "}\n");
+    test::RenderResult r = test::renderRib(view(64, 64, shaders.option()) + "WorldBegin\nSurface \"tinted\"\n" +
+                                           test::square(0, 64, 0, 64, 5) + "WorldEnd\n");
+    EXPECT_NEAR(r.channel(0, 8, 8, 0), 1.0f, 1e-6f);  // 0.5 * a[1]
+    EXPECT_NEAR(r.channel(0, 8, 8, 2), 0.25f, 1e-6f);
+    size_t said = 0;
+    for (const std::string& w : r.warnings) said += w.find("tinted.sl:4:") != std::string::npos && w.find("array index 5") != std::string::npos;
+    EXPECT_EQ(said, 1u);
+    EXPECT_GT(r.stats.counters.shadingIndicesClamped, 1u);  // every grid did it; one warning
+    // The compiler's warnings are the render's too, once.
+    size_t compiled = 0;
+    for (const std::string& w : r.warnings) compiled += w.find("tints.h:2:1: warning: #warning tints.h is old") != std::string::npos;
+    EXPECT_EQ(compiled, 1u);
+}
+
+}  // namespace
+}  // namespace streyes

@@ -75,6 +75,7 @@ class Table {
             add(n, "f", "f", op);
         add("atan", "f", "ff", atan2_);
         add("pow", "f", "ff", pow_);
+        addGeneric("pow", "Tf", pow_, "cpvn");  // component by component, as PRMan takes it
         add("log", "f", "ff", log2_);
         add("mod", "f", "ff", mod);
         add("step", "f", "ff", step);
@@ -168,6 +169,13 @@ class Table {
         add("lightsource", "f", "s*", lightsource, Special::Lightsource);
         for (const char* n : {"ambient", "diffuse", "specular", "phong"})
             for (const Builtin* b : find(n)) const_cast<Builtin*>(b)->varying = true;
+
+        // Information (RI Spec 3.2, section 15.8).
+        add("option", "f", "s*", option, Special::Query);
+        add("attribute", "f", "s*", attribute, Special::Query);
+        add("rendererinfo", "f", "s*", rendererinfo, Special::Query);
+        add("textureinfo", "f", "ss*", textureinfo, Special::Query);
+        add("shadername", "s", "", shadername);
 
         // Strings.
         add("printf", "x", "s*", printf_, Special::Printf);

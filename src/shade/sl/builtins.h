@@ -22,6 +22,7 @@ enum class Special {
     Spline,       // spline([basis,] value, knots...) / spline([basis,] value, array)
     Filterstep,   // filterstep(edge, s1 [, s2] [, "width", w])
     Lightsource,  // lightsource(name, output var): any type
+    Query,        // option, attribute, rendererinfo (name, output var), textureinfo (map, name, var)
     Printf,
     Format,
     Concat,

@@ -465,6 +465,17 @@ class Checker {
                 e.builtin = b;
                 return BaseType::Float;
             }
+            case Special::Query: {
+                const size_t names = b->name == "textureinfo" ? 2 : 1;
+                bool ok = e.args.size() == names + 1;
+                for (size_t i = 0; ok && i < names; ++i) ok = e.args[i]->type.isString();
+                if (!ok)
+                    fail(e.loc, e.text + (names == 2 ? " takes (string map, string name, output variable)"
+                                                     : " takes (string name, output variable)"));
+                requireVariable(*e.args.back(), e.text + "'s last argument");
+                e.builtin = b;
+                return BaseType::Float;
+            }
             case Special::Filterstep: return checkFilterstep(e);
             default: break;
         }

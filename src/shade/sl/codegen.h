@@ -151,6 +151,10 @@ class CodeGen {
     int maskedNest_ = 0;          // reasons points may be off besides those (breaks, returns)
     const SourceLoc* loc_ = nullptr;
     int lastLabel_ = -1;          // the last position a jump lands on
+    // Generating a value for a variable declared uniform: random() gives one number for the
+    // grid there (`uniform color c = random();`, as RenderMan's compilers have it).
+    bool uniformContext_ = false;
+    Val genFor(const Expr& e, const Var& target);
 };
 
 }  // namespace streyes::sl

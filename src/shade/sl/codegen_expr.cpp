@@ -131,11 +131,20 @@ CodeGen::Val CodeGen::genBinary(const Expr& e) {
     return arith(arithOp(op[0], a.type.isMatrix() && b.type.isMatrix()), a, b, e.type);
 }
 
+CodeGen::Val CodeGen::genFor(const Expr& e, const Var& target) {
+    const bool save = uniformContext_;
+    uniformContext_ = !target.varying() && !target.inferred;
+    Val v = gen(e);
+    uniformContext_ = save;
+    return v;
+}
+
 CodeGen::Val CodeGen::genAssign(const Expr& e, bool needValue) {
     const Expr& lhs = *e.args[0];
     Val v;
     if (e.text == "=") {
-        v = gen(*e.args[1]);
+        const Expr& base = lhs.kind == ExprKind::Index ? *lhs.args[0] : lhs;
+        v = base.kind == ExprKind::Name ? genFor(*e.args[1], *lookup(base.symbol)) : gen(*e.args[1]);
     } else {
         Val cur = gen(lhs);
         Val rhs = gen(*e.args[1]);
@@ -186,7 +195,7 @@ CodeGen::Val CodeGen::genBuiltin(const Expr& e) {
     if (b.lights) prog_.usesLights = true;
     if (b.special != Special::None) return genSpecial(e, b);
     std::vector<Val> args;
-    Detail d = b.varying ? Detail::Varying : Detail::Uniform;
+    Detail d = b.varying && !(uniformContext_ && b.op == ops::random) ? Detail::Varying : Detail::Uniform;
     for (size_t i = 0; i < e.args.size(); ++i) {
         Val v = convert(gen(*e.args[i]), i < b.args.size() ? b.args[i] : b.args.back());
         d = join(d, v.detail);
@@ -338,6 +347,23 @@ CodeGen::Val CodeGen::genSpecial(const Expr& e, const Builtin& b) {
             Val flag = temp(BaseType::Float, Detail::Uniform);
             emit(ops::lightsource, {flag.reg, name.reg, copy.reg}, true);
             assignTo(*e.args[1], copy, e.loc);
+            return flag;
+        }
+        case Special::Query: {
+            // The value is the grid's: a copy of the variable is written when the value fits it,
+            // then stored back (so a miss leaves the variable as it was).
+            std::vector<Val> names;
+            for (size_t i = 0; i + 1 < e.args.size(); ++i) names.push_back(gen(*e.args[i]));
+            Val cur = gen(*e.args.back());
+            setLoc(e.loc);
+            Val copy = temp(cur.type, cur.detail);
+            emit(cur.type.isString() ? ops::smov : ops::mov, {copy.reg, cur.reg}, copy.varying());
+            release(cur);
+            Val flag = temp(BaseType::Float, Detail::Uniform);
+            if (names.size() == 2) emit(b.op, {flag.reg, names[0].reg, names[1].reg, copy.reg}, false);
+            else emit(b.op, {flag.reg, names[0].reg, copy.reg}, false);
+            for (const Val& v : names) release(v);
+            assignTo(*e.args.back(), copy, e.loc);
             return flag;
         }
         case Special::Printf:

@@ -49,9 +49,9 @@ void CodeGen::genDecl(const VarDecl& d) {
         setLoc(dc.loc);
         if (dc.init && dc.init->kind == ExprKind::ArrayInit) {
             for (size_t k = 0; k < dc.init->args.size(); ++k)
-                storeElement(*v, constFloat(float(k)), gen(*dc.init->args[k]), dc.loc);
+                storeElement(*v, constFloat(float(k)), genFor(*dc.init->args[k], *v), dc.loc);
         } else if (dc.init) {
-            store(*v, gen(*dc.init), dc.loc);
+            store(*v, genFor(*dc.init, *v), dc.loc);
         } else if (v->type.isString()) {
             emit(ops::smov, {v->reg, constString("").reg}, false);
         } else {
@@ -160,8 +160,9 @@ void CodeGen::genLoop(const Stmt& s) {
     varyingNest_ = saveVarying;
     maskedNest_ = saveMasked;
     setLoc(s.loc);
-    emit(ops::jmp, {top}, false);
+    const int back = emit(ops::loopBack, {top, -1}, false);  // counts the turn against the budget
     int end = label();
+    patch(back, 1, end);
     for (int j : exitJumps) patch(j, prog_.code[size_t(j)].fn == ops::jmpIfZero ? 1 : 0, end);
     for (int j : loop.breakJumps) patch(j, 0, end);
     if (loop.level >= 0) {
@@ -290,9 +291,9 @@ void CodeGen::genParams() {
         setLoc(dc.loc);
         if (dc.init->kind == ExprKind::ArrayInit) {
             for (size_t k = 0; k < dc.init->args.size(); ++k)
-                storeElement(*v, constFloat(float(k)), gen(*dc.init->args[k]), dc.loc);
+                storeElement(*v, constFloat(float(k)), genFor(*dc.init->args[k], *v), dc.loc);
         } else {
-            store(*v, gen(*dc.init), dc.init->loc);
+            store(*v, genFor(*dc.init, *v), dc.init->loc);
         }
         info.initEnd = label();
         prog_.params.push_back(info);

@@ -38,23 +38,33 @@ void evaluateDefaults(const ProgramPtr& program) {
 
 }  // namespace
 
-ProgramPtr compileShader(const std::string& source, const std::string& file) {
-    CheckedShader checked = checkShader(parseShader(source, file));
+ProgramPtr compileShader(const std::string& source, const std::string& file, const PreprocessOptions& options) {
+    PreprocessedSource pp = preprocess(source, file, options);
     auto program = std::make_shared<ShaderProgram>();
+    try {
+        CheckedShader checked = checkShader(parseShader(pp));
+        program->path = file;
+        generateCode(checked, *program);
+    } catch (const InputError& e) {
+        // An error at a token a macro made: say which call of the macro it is about.
+        const std::string site = pp.expansionOf(e.loc);
+        if (site.empty()) throw;
+        throw InputError(e.loc, e.message + " (" + site + ")");
+    }
     program->path = file;
-    generateCode(checked, *program);
-    program->path = file;
+    program->sources = std::move(pp.files);
+    for (auto& [loc, what] : pp.warnings) program->warnings.push_back({loc, what});
     ProgramPtr shared = program;
     evaluateDefaults(shared);
     return shared;
 }
 
-ProgramPtr compileShaderFile(const std::string& path) {
+ProgramPtr compileShaderFile(const std::string& path, const PreprocessOptions& options) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError("cannot read shader " + path);
     std::stringstream ss;
     ss << in.rdbuf();
-    return compileShader(ss.str(), path);
+    return compileShader(ss.str(), path, options);
 }
 
 // ---- ShaderCache ---------------------------------------------------------------------------------
@@ -106,19 +116,30 @@ std::string ShaderCache::find(const std::string& name) const {
 
 ProgramPtr ShaderCache::get(const std::string& name, const SourceLoc& requestedAt) {
     std::string path = find(name);
+    const std::vector<std::string> dirs = searchPath();
     if (path.empty()) {
-        std::string dirs;
-        for (const std::string& d : searchPath()) dirs += (dirs.empty() ? "" : ":") + d;
-        throw InputError(requestedAt, "shader \"" + name + "\" not found (searchpath " + dirs + ")");
+        std::string list;
+        for (const std::string& d : dirs) list += (list.empty() ? "" : ":") + d;
+        throw InputError(requestedAt, "shader \"" + name + "\" not found (searchpath " + list + ")");
     }
-    std::error_code ec;
-    auto mtime = std::filesystem::last_write_time(path, ec);
+    auto mtimes = [](const std::vector<std::string>& files) {
+        std::vector<std::filesystem::file_time_type> t;
+        for (const std::string& f : files) {
+            std::error_code ec;
+            t.push_back(std::filesystem::last_write_time(f, ec));
+        }
+        return t;
+    };
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = byPath_.find(path);
-    if (it != byPath_.end() && it->second.mtime == mtime) return it->second.program;
-    ProgramPtr p = compileShaderFile(path);  // under the lock: each file is compiled once
+    // The same file and headers, unchanged, found along the same path: the same program.
+    if (it != byPath_.end() && it->second.searchPath == dirs && it->second.mtimes == mtimes(it->second.program->sources))
+        return it->second.program;
+    PreprocessOptions options;
+    options.includePath = dirs;
+    ProgramPtr p = compileShaderFile(path, options);  // under the lock: each file is compiled once
     ++compiled_;
-    byPath_[path] = {mtime, p};
+    byPath_[path] = {mtimes(p->sources), dirs, p};
     return p;
 }
 
@@ -129,14 +150,15 @@ size_t ShaderCache::compiledCount() const {
 
 // ---- describeShader ------------------------------------------------------------------------------
 
-int describeShader(const std::string& path, std::ostream& out, std::ostream& err) {
+int describeShader(const std::string& path, std::ostream& out, std::ostream& err, const PreprocessOptions& options) {
     ProgramPtr p;
     try {
-        p = compileShaderFile(path);
+        p = compileShaderFile(path, options);
     } catch (const InputError& e) {
         err << e.report() << "\n";
         return 2;
     }
+    for (const ShaderProgram::Warning& w : p->warnings) err << w.str() << "\n";
     out << shaderTypeName(p->type) << " \"" << p->name << "\"\n";
     for (const ParamInfo& info : p->params) {
         out << "    \"" << info.name << "\" \"" << (info.output ? "output " : "") << detailName(info.detail) << " "

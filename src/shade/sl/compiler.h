@@ -15,18 +15,23 @@
 #include <string>
 #include <vector>
 
+#include "shade/sl/preprocess.h"
 #include "shade/vm/program.h"
 
 namespace streyes::sl {
 
-// Compiles `source`; `file` names it in errors and in ShaderProgram::path.
-ProgramPtr compileShader(const std::string& source, const std::string& file = "<string>");
+// Compiles `source` (preprocessed first: #include looks in `file`'s folder, then along
+// options.includePath); `file` names it in errors and in ShaderProgram::path.
+ProgramPtr compileShader(const std::string& source, const std::string& file = "<string>",
+                         const PreprocessOptions& options = {});
 // Compiles the file at `path` (InputError when it cannot be read).
-ProgramPtr compileShaderFile(const std::string& path);
+ProgramPtr compileShaderFile(const std::string& path, const PreprocessOptions& options = {});
 
 // Compiled shaders by name, found along a search path, each compiled once per file path and
-// modification time (an edited file is compiled again). Thread-safe: many threads may ask at
-// once; programs are immutable and shared.
+// modification time of the file and of every file it #included (an edited file or header is
+// compiled again); a shader's #include <name> and the headers its folder lacks are looked for
+// along the same search path. Thread-safe: many threads may ask at once; programs are immutable
+// and shared.
 class ShaderCache {
   public:
     explicit ShaderCache(std::vector<std::string> searchPath = {"shaders"});
@@ -45,7 +50,8 @@ class ShaderCache {
 
   private:
     struct Entry {
-        std::filesystem::file_time_type mtime;
+        std::vector<std::filesystem::file_time_type> mtimes;  // of program->sources, in order
+        std::vector<std::string> searchPath;                  // the includes were found along
         ProgramPtr program;
     };
     mutable std::mutex mutex_;
@@ -55,8 +61,9 @@ class ShaderCache {
     size_t compiled_ = 0;
 };
 
-// sloinfo: checks the shader at `path` and prints its type, name and parameters (with storage
-// class, type and default) to `out`. Returns 0, or 2 after printing the error to `err`.
-int describeShader(const std::string& path, std::ostream& out, std::ostream& err);
+// sloinfo: checks the shader at `path` (its #includes found as `options` says) and prints its
+// type, name and parameters (with storage class, type and default) to `out`, its warnings to
+// `err`. Returns 0, or 2 after printing the error to `err`.
+int describeShader(const std::string& path, std::ostream& out, std::ostream& err, const PreprocessOptions& options = {});
 
 }  // namespace streyes::sl

@@ -5,21 +5,11 @@
 
 namespace streyes::sl {
 
-Lexer::Lexer(const std::string& source, std::shared_ptr<const std::string> file)
-    : src_(source), file_(std::move(file)) {}
+Lexer::Lexer(const PreprocessedSource& source) : pp_(source), src_(source.text) {}
 
-void Lexer::fail(const std::string& what) const { throw InputError(loc(line_, col_), what); }
+void Lexer::fail(const std::string& what) const { throw InputError(pp_.locate(pos_), what); }
 
-char Lexer::advance() {
-    char c = src_[pos_++];
-    if (c == '\n') {
-        ++line_;
-        col_ = 1;
-    } else {
-        ++col_;
-    }
-    return c;
-}
+char Lexer::advance() { return src_[pos_++]; }
 
 void Lexer::skipSpaceAndComments() {
     for (;;) {
@@ -30,23 +20,15 @@ void Lexer::skipSpaceAndComments() {
         } else if (c == '/' && peek(1) == '/') {
             while (peek() != '\n' && peek() != '\0') advance();
         } else if (c == '/' && peek(1) == '*') {
-            int line = line_, col = col_;
+            const size_t start = pos_;
             advance();
             advance();
             while (!(peek() == '*' && peek(1) == '/')) {
-                if (peek() == '\0') throw InputError(loc(line, col), "unterminated comment");
+                if (peek() == '\0') throw InputError(pp_.locate(start), "unterminated comment");
                 advance();
             }
             advance();
             advance();
-        } else if (c == '#' && col_ == 1) {
-            // No preprocessor: a #pragma (or a cpp line marker) is ignored, anything else is
-            // refused rather than silently misread.
-            size_t end = src_.find('\n', pos_);
-            std::string directive = src_.substr(pos_, end == std::string::npos ? std::string::npos : end - pos_);
-            if (directive.rfind("#pragma", 0) != 0 && directive.rfind("# ", 0) != 0 && directive.rfind("#line", 0) != 0)
-                fail("preprocessor directives are not supported: '" + directive + "'");
-            while (peek() != '\n' && peek() != '\0') advance();
         } else {
             return;
         }
@@ -58,8 +40,7 @@ std::vector<Token> Lexer::tokenize() {
     for (;;) {
         skipSpaceAndComments();
         Token t;
-        t.line = line_;
-        t.column = col_;
+        t.loc = pp_.locate(pos_);
         t.offset = pos_;
         char c = peek();
         if (c == '\0') {
@@ -85,15 +66,18 @@ std::vector<Token> Lexer::tokenize() {
                 if (peek() == '+' || peek() == '-') t.text += advance();
                 while (std::isdigit(static_cast<unsigned char>(peek()))) t.text += advance();
             }
+            t.number = std::strtod(t.text.c_str(), nullptr);
+            // C's float suffix, as RenderMan's compilers accept it: 0.5f is 0.5.
+            if ((peek() == 'f' || peek() == 'F') && !std::isalnum(static_cast<unsigned char>(peek(1))) && peek(1) != '_')
+                advance();
             if (std::isalpha(static_cast<unsigned char>(peek())) || peek() == '_')
                 fail(std::string("unexpected '") + peek() + "' after the number " + t.text);
-            t.number = std::strtod(t.text.c_str(), nullptr);
         } else if (c == '"') {
             t.kind = TokenKind::String;
             advance();
             for (;;) {
                 char d = peek();
-                if (d == '\0' || d == '\n') throw InputError(loc(t.line, t.column), "unterminated string");
+                if (d == '\0' || d == '\n') throw InputError(t.loc, "unterminated string");
                 advance();
                 if (d == '"') break;
                 if (d == '\\') {

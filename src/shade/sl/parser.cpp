@@ -22,14 +22,13 @@ bool isKeyword(const std::string& s) {
 
 }  // namespace
 
-Module parseShader(const std::string& source, const std::string& file) {
-    Lexer lexer(source, std::make_shared<const std::string>(file));
-    Parser parser(lexer.tokenize(), lexer, source);
+Module parseShader(const PreprocessedSource& source) {
+    Lexer lexer(source);
+    Parser parser(lexer.tokenize(), source.text);
     return parser.parseModule();
 }
 
-Parser::Parser(std::vector<Token> tokens, const Lexer& lexer, const std::string& source)
-    : toks_(std::move(tokens)), lexer_(lexer), source_(source) {}
+Parser::Parser(std::vector<Token> tokens, const std::string& source) : toks_(std::move(tokens)), source_(source) {}
 
 const Token& Parser::peek(int k) const {
     size_t i = pos_ + size_t(k);

@@ -11,12 +11,13 @@
 
 namespace streyes::sl {
 
-// Parses `source` (named `file` in errors). Syntax errors throw InputError "file:line:col: ...".
-Module parseShader(const std::string& source, const std::string& file);
+// Parses the preprocessed `source`. Syntax errors throw InputError "file:line:col: ...".
+Module parseShader(const PreprocessedSource& source);
 
 class Parser {
   public:
-    Parser(std::vector<Token> tokens, const Lexer& lexer, const std::string& source);
+    // `source`: the text the tokens' offsets are in (default values are kept as written).
+    Parser(std::vector<Token> tokens, const std::string& source);
     Module parseModule();
 
   private:
@@ -27,7 +28,7 @@ class Parser {
     bool accept(const char* p);
     void expect(const char* p, const char* what);
     std::string expectIdent(const char* what);
-    SourceLoc locOf(const Token& t) const { return lexer_.loc(t.line, t.column); }
+    static const SourceLoc& locOf(const Token& t) { return t.loc; }
     [[noreturn]] void fail(const Token& at, const std::string& what) const;
 
     bool atTypeName(int k = 0) const;
@@ -56,7 +57,6 @@ class Parser {
 
     std::vector<Token> toks_;
     size_t pos_ = 0;
-    const Lexer& lexer_;
     const std::string& source_;
 };
 

@@ -94,14 +94,17 @@ TEST(SlShaders, MatteWithAmbientLight) {
     EXPECT_NEAR(ci.at(2, 2), 0.4f * 0.5f * 1.0f, 1e-6f);
 }
 
-// Plastic's highlight peaks where N is the half vector of L and V, with value Ks (N.H = 1).
-TEST(SlShaders, PlasticSpecularPeaksAtTheHalfVector) {
-    const int n = 181;
+// Plastic's highlight peaks where N is the half vector of L and V, with value Ks (N.H = 1), and
+// falls off as (N.H)^(k / roughness): k = 8 is PRMan's highlight (the default), k = 1 the RI
+// Spec's formula (Option "shading" "specular" "rispec"). Its width at half the peak is
+// 2 acos(0.5^(roughness / k)) in the angle of N: 15.1 degrees at roughness 0.1 for PRMan's,
+// 42.2 for the spec's.
+void plasticHighlight(float k) {
+    SCOPED_TRACE("exponent " + std::to_string(k) + " / roughness");
+    const int n = 721;  // N every quarter degree
     TestGrid g(n);
-    auto normalAt = [&](int i) {
-        float a = (float(i) / float(n - 1) - 0.5f) * kPi;  // -90 .. 90 degrees about y
-        return Vec3f{std::sin(a), 0, -std::cos(a)};
-    };
+    auto angleAt = [&](int i) { return (float(i) / float(n - 1) - 0.5f) * kPi; };  // -90 .. 90 degrees about y
+    auto normalAt = [&](int i) { return Vec3f{std::sin(angleAt(i)), 0, -std::cos(angleAt(i))}; };
     g.setVarying(Global::P, 3, [](int) { return Vec3f{0, 0, 5}; });
     g.setVarying(Global::N, 3, normalAt);
     g.setVec(Global::Cs, {1, 1, 1});
@@ -112,26 +115,41 @@ TEST(SlShaders, PlasticSpecularPeaksAtTheHalfVector) {
     sun.set("to", BaseType::Point, {0, 0, 0});
     std::vector<LightRef> lights{{&sun, Matrix4()}};
     ShadingVM vm;
+    if (k != 8) vm.setSpecularExponent(k);
     vm.run(plastic, g.grid, lights);
     ValueRef ci = vm.result(Global::Ci);
     const Vec3f L = normalize(Vec3f{1, 0, -1}), V{0, 0, -1}, H = normalize(L + V);
+    const float roughness = 0.1f;
     int best = -1;
-    float bestSpec = -1;
+    float bestSpec = -1, lo = 1e9f, hi = -1e9f;
     for (int i = 1; i < n - 1; ++i) {  // not the two normals perpendicular to the view
         Vec3f N = normalAt(i);
         float ndl = dot(N, L);
         if (std::fabs(ndl) < 1e-4f) continue;  // the cone's edge: either side is right
-        float spec = ndl > 0 ? std::pow(std::max(0.0f, dot(N, H)), 10.0f) : 0.0f;
+        float spec = ndl > 0 ? std::pow(std::max(0.0f, dot(N, H)), k / roughness) : 0.0f;
         EXPECT_NEAR(ci.at(0, i), 0.5f * std::max(0.0f, ndl) + 0.5f * spec, 2e-5f) << i;
         float measured = ci.at(0, i) - 0.5f * std::max(0.0f, ndl);
         if (measured > bestSpec) {
             bestSpec = measured;
             best = i;
         }
+        if (measured >= 0.25f) {  // at least half the peak (Ks / 2)
+            lo = std::min(lo, angleAt(i));
+            hi = std::max(hi, angleAt(i));
+        }
     }
     // H is 22.5 degrees from -z towards +x, and the peak is Ks * 1.
-    EXPECT_NEAR((float(best) / float(n - 1) - 0.5f) * 180.0f, 22.5f, 1.0f);
-    EXPECT_NEAR(bestSpec, 0.5f, 1e-3f);
+    EXPECT_NEAR(angleAt(best) * 180.0f / kPi, 22.5f, 0.25f);
+    EXPECT_NEAR(bestSpec, 0.5f, 1e-4f);
+    const float halfWidth = std::acos(std::pow(0.5f, roughness / k));
+    const float step = kPi / float(n - 1);
+    EXPECT_NEAR(hi - lo, 2 * halfWidth, 2 * step);
+    EXPECT_NEAR(0.5f * (hi + lo), kPi / 8, step);
+}
+
+TEST(SlShaders, PlasticHighlightIsPRMansAndTheSpecsOnRequest) {
+    plasticHighlight(8);
+    plasticHighlight(1);
 }
 
 // RI Spec 3.2's spotlight: cos^beamdistribution / d^2, times smoothstep between the cosines of

@@ -48,6 +48,9 @@ struct Exec {
     uint8_t* mask = nullptr;  // the current mask: 1 where a point runs
     int active = 0;           // points whose mask is 1
     int pc = 0;
+    // Loop iterations of this run (every while and for loop's back edges), against the VM's
+    // budget: past it, each loop ends at its next turn.
+    uint64_t loopIterations = 0, loopBudget = 0;
 
     Exec(ShadingVM& v, Frame& f, const ShaderProgram& p, const ShadingGrid& g, ShadeStats& s)
         : vm(v), frame(f), prog(p), grid(g), stats(s) {}
@@ -69,6 +72,9 @@ struct Exec {
     const SourceLoc* loc(const Instr& in) const { return in.loc >= 0 ? &prog.locs[std::size_t(in.loc)] : nullptr; }
     // Counts a sanitised result at point i (only points that run count).
     void sanitised(int count) const;
+    // An array index of a point that runs was outside [0, length): counted, and warned once a
+    // place in the shader. The caller clamps it.
+    void indexOutOfRange(const Instr& in, int arrayReg, float index) const;
 };
 
 // Statistics of a VM, cumulative until reset.
@@ -82,6 +88,9 @@ struct ShadeStats {
     uint64_t unknownSpaces = 0;   // transforms to or from a space nobody defined (identity used)
     uint64_t textureErrors = 0;   // lookups the TextureSource refused (fill used)
     uint64_t lightRuns = 0;       // light shader runs
+    uint64_t indicesClamped = 0;  // array reads and writes whose index was outside the array for
+                                  // some point that ran (clamped): one a grid and instruction
+    uint64_t loopsStopped = 0;    // runs whose loops went past the iteration budget
 };
 
 // ---- Loops every operation is written with ------------------------------------------------------

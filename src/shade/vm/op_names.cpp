@@ -130,6 +130,12 @@ const char* opName(OpFn fn) {
         {ops::texture, "texture"},
         {ops::environment, "environment"},
         {ops::shadow, "shadow"},
+        {ops::option, "option"},
+        {ops::attribute, "attribute"},
+        {ops::rendererinfo, "rendererinfo"},
+        {ops::textureinfo, "textureinfo"},
+        {ops::shadername, "shadername"},
+        {ops::loopBack, "loopBack"},
     };
     for (const auto& e : table)
         if (e.fn == fn) return e.name;

@@ -12,6 +12,7 @@ namespace streyes::sl::ops {
 
 // ---- Control and moves (shadeops_control.cpp) ----
 STREYES_SL_OP(jmp);            // a0 target
+STREYES_SL_OP(loopBack);       // a0 loop top, a1 loop end: jumps back, or out past the budget
 STREYES_SL_OP(jmpIfZero);      // a0 uniform cond, a1 target
 STREYES_SL_OP(jmpIfNone);      // a0 target: no point runs
 STREYES_SL_OP(maskIf);         // a0 varying cond: push, mask &= cond
@@ -153,6 +154,14 @@ STREYES_SL_OP(saset);          // a0[a1] = a2, uniform index
 STREYES_SL_OP(texture);
 STREYES_SL_OP(environment);
 STREYES_SL_OP(shadow);
+
+// ---- The renderer's state (shadeops_info.cpp) ----
+// a0 = 1 when found and the variable a2 can hold it (then written), else 0 (a2 left alone).
+STREYES_SL_OP(option);         // a1 name
+STREYES_SL_OP(attribute);      // a1 name
+STREYES_SL_OP(rendererinfo);   // a1 name
+STREYES_SL_OP(textureinfo);    // a1 map, a2 field, a3 variable
+STREYES_SL_OP(shadername);     // a0 = the running shader's name (a1 -1), or the grid's a1 shader's
 
 #undef STREYES_SL_OP
 

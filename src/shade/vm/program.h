@@ -64,6 +64,14 @@ struct ShaderProgram {
     ShaderType type = ShaderType::Surface;
     std::string name;
     std::string path;  // file it came from ("" for a string)
+    std::vector<std::string> sources;   // every file read: path, then what it #included
+    // The compiler's warnings (#warning, a macro defined twice), each at its place.
+    struct Warning {
+        SourceLoc loc;
+        std::string what;
+        std::string str() const { return loc.str() + ": warning: " + what; }
+    };
+    std::vector<Warning> warnings;
     std::vector<ParamInfo> params;
     std::vector<Register> regs;
     std::vector<Instr> code;

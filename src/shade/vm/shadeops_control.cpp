@@ -3,10 +3,27 @@
 
 #include "shade/vm/frame.h"
 #include "shade/vm/ops.h"
+#include "shade/vm/vm.h"
 
 namespace streyes::sl::ops {
 
 void jmp(Exec& x, const Instr& in) { x.pc = in.a[0]; }
+
+// A while or for loop's turn: back to its top, or (past the run's iteration budget) out.
+void loopBack(Exec& x, const Instr& in) {
+    if (++x.loopIterations <= x.loopBudget) {
+        x.pc = in.a[0];
+        return;
+    }
+    if (x.loopIterations == x.loopBudget + 1) {
+        ++x.stats.loopsStopped;
+        x.vm.warnOnce(x, in, "loop",
+                      "loops ran more than " + std::to_string(x.loopBudget) +
+                          " turns on one grid (a loop that never ends?): each loop now ends at its next turn; "
+                          "the shader's results on this grid are what it had then");
+    }
+    x.pc = in.a[1];
+}
 
 void jmpIfZero(Exec& x, const Instr& in) {
     if (x.ptr(in.a[0])[0] == 0.0f) x.pc = in.a[1];

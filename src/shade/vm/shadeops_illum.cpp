@@ -247,11 +247,12 @@ void sumLights(Exec& x, const RegView& d, const RegView& N, int Preg, bool specu
     }
 }
 
-// RI Spec 3.2's specularbrdf: pow(max(0, N.H), 1/roughness), H = normalize(L + V). A
-// roughness below 1e-4 counts as 1e-4 (no division by zero).
-inline float specularTerm(V3 l, V3 n, V3 v, float roughness) {
+// specularbrdf: pow(max(0, N.H), k / roughness), H = normalize(L + V), k the VM's specular
+// exponent: 8 PRMan's highlight (the default), 1 the RI Spec 3.2's formula. A roughness below
+// 1e-4 counts as 1e-4 (no division by zero).
+inline float specularTerm(V3 l, V3 n, V3 v, float roughness, float k) {
     V3 h = normalize3(add3(l, v));
-    return std::pow(std::max(0.0f, dot3(n, h)), 1.0f / std::max(roughness, 1e-4f));
+    return std::pow(std::max(0.0f, dot3(n, h)), k / std::max(roughness, 1e-4f));
 }
 
 }  // namespace
@@ -263,8 +264,9 @@ void diffuse(Exec& x, const Instr& in) {
 
 void specular(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]), N = x.view(in.a[1]), V = x.view(in.a[2]), r = x.view(in.a[3]);
+    const float k = x.vm.specularExponent();
     sumLights(x, d, N, in.a[4], true,
-              [&](V3 l, int i) { return specularTerm(l, load3(N, i), load3(V, i), r.at(0, i)); });
+              [&](V3 l, int i) { return specularTerm(l, load3(N, i), load3(V, i), r.at(0, i), k); });
 }
 
 void phong(Exec& x, const Instr& in) {
@@ -278,8 +280,9 @@ void phong(Exec& x, const Instr& in) {
 
 void specularbrdf(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]), L = x.view(in.a[1]), N = x.view(in.a[2]), V = x.view(in.a[3]), r = x.view(in.a[4]);
+    const float k = x.vm.specularExponent();
     for (int i = 0; i < d.w; ++i) {
-        float t = specularTerm(load3(L, i), load3(N, i), load3(V, i), r.at(0, i));
+        float t = specularTerm(load3(L, i), load3(N, i), load3(V, i), r.at(0, i), k);
         store3(d, i, {t, t, t});
     }
 }

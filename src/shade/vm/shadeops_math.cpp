@@ -100,13 +100,21 @@ inline int clampIndex(float f, int len) {
     if (f >= float(len - 1)) return len - 1;
     return int(f);
 }
+inline bool outside(float f, int len) { return !(f >= 0 && f < float(len)); }
 }  // namespace
 
+// Indices outside the array are clamped into it; the first such point that runs is reported.
 void aref(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]), a = x.view(in.a[1]), ix = x.view(in.a[2]);
     const int len = a.elems;
+    bool reported = false;
     for (int i = 0; i < d.w; ++i) {
-        const int e = clampIndex(ix.at(0, i), len);
+        const float f = ix.at(0, i);
+        if (outside(f, len) && !reported && (d.w == 1 ? x.active > 0 : x.mask[i] != 0)) {
+            x.indexOutOfRange(in, in.a[1], f);
+            reported = true;
+        }
+        const int e = clampIndex(f, len);
         for (int c = 0; c < d.comps; ++c) d.comp(c)[i] = a.comp(c, e)[a.varying ? i : 0];
     }
 }
@@ -115,9 +123,15 @@ void aset(Exec& x, const Instr& in) {
     RegView a = x.view(in.a[0]), ix = x.view(in.a[1]), v = x.view(in.a[2]);
     const int len = a.elems;
     const bool all = !a.varying || x.allOn();
+    bool reported = false;
     for (int i = 0; i < a.w; ++i) {
         if (!all && !x.mask[i]) continue;
-        const int e = clampIndex(ix.at(0, i), len);
+        const float f = ix.at(0, i);
+        if (outside(f, len) && !reported && x.active > 0) {
+            x.indexOutOfRange(in, in.a[0], f);
+            reported = true;
+        }
+        const int e = clampIndex(f, len);
         for (int c = 0; c < a.comps; ++c) a.comp(c, e)[i] = v.comp(v.comps > 1 ? c : 0)[v.varying ? i : 0];
     }
 }

@@ -130,15 +130,17 @@ void streq(Exec& x, const Instr& in) { x.ptr(in.a[0])[0] = x.str(in.a[1]) == x.s
 void strne(Exec& x, const Instr& in) { x.ptr(in.a[0])[0] = x.str(in.a[1]) != x.str(in.a[2]) ? 1.0f : 0.0f; }
 
 namespace {
-int stringIndex(Exec& x, int arrayReg, int indexReg) {
+// String arrays take uniform indices; one outside the array is clamped into it and reported.
+int stringIndex(Exec& x, const Instr& in, int arrayReg, int indexReg) {
     const int len = x.reg(arrayReg).type.elements();
     float f = x.ptr(indexReg)[0];
+    if (!(f >= 0 && f < float(len)) && x.active > 0) x.indexOutOfRange(in, arrayReg, f);
     if (!(f >= 0)) return 0;
     return f >= float(len - 1) ? len - 1 : int(f);
 }
 }  // namespace
 
-void saref(Exec& x, const Instr& in) { x.str(in.a[0]) = x.str(in.a[1], stringIndex(x, in.a[1], in.a[2])); }
-void saset(Exec& x, const Instr& in) { x.str(in.a[0], stringIndex(x, in.a[0], in.a[1])) = x.str(in.a[2]); }
+void saref(Exec& x, const Instr& in) { x.str(in.a[0]) = x.str(in.a[1], stringIndex(x, in, in.a[1], in.a[2])); }
+void saset(Exec& x, const Instr& in) { x.str(in.a[0], stringIndex(x, in, in.a[0], in.a[1])) = x.str(in.a[2]); }
 
 }  // namespace streyes::sl::ops

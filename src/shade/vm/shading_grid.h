@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "shade/vm/state_queries.h"
 #include "shade/vm/types.h"
 #include "streyes/error.h"
 #include "streyes/transform.h"
@@ -73,6 +74,7 @@ struct ShadingGrid {
     bool flipNormals = false;  // calculatenormal gives Dv(P) ^ Du(P): orientation vs. handedness
     unsigned seed = 0;         // random() is a hash of (seed, point, call)
     float nearClip = 0, farClip = 1;  // camera-space depths where depth() is 0 and 1
+    const StateQueries* state = nullptr;  // what option() and attribute() read (none: they give 0)
 
     void set(Global g, ValueRef v) { globals[size_t(g)] = v; }
     void setSpace(Space s, const Matrix4& m) { toCurrent[size_t(s)] = m; }

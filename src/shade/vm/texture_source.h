@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <string>
 
+#include "shade/vm/state_queries.h"
+
 namespace streyes::sl {
 
 // The named arguments of a lookup ("blur", "width", "fill", ...), uniform over the grid.
@@ -66,6 +68,14 @@ class TextureSource {
     // The fraction of light blocked at each point: 0 lit, 1 in shadow.
     virtual bool shadow(const std::string& name, const TextureOptions& options, const DirectionQuery& q,
                         float* const* out) = 0;
+    // textureinfo(name, field): "resolution" (float[2]), "type" ("texture", "environment" or
+    // "shadow"), "channels" (float), "viewingmatrix" and "projectionmatrix" (the world to camera
+    // and world to screen matrices of a map rendered by a camera). False when the map cannot be
+    // read or has no such field.
+    virtual bool textureInfo(const std::string& name, const std::string& field, QueryValue& out) {
+        (void)name, (void)field, (void)out;
+        return false;
+    }
 };
 
 }  // namespace streyes::sl

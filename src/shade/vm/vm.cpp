@@ -11,6 +11,26 @@ namespace streyes::sl {
 
 void Exec::sanitised(int count) const { stats.sanitised += uint64_t(count); }
 
+void Exec::indexOutOfRange(const Instr& in, int arrayReg, float index) const {
+    ++stats.indicesClamped;
+    const Register& r = reg(arrayReg);
+    const int len = r.type.elements();
+    char shown[32];
+    std::snprintf(shown, sizeof shown, "%g", double(index));
+    vm.warnOnce(*this, in, "index",
+                std::string("array index ") + shown + " is outside " + (r.name.empty() ? "an array" : "'" + r.name + "'") +
+                    " of " + std::to_string(len) + " (0 to " + std::to_string(len - 1) +
+                    "): clamped into it (warned once here; other points and grids may do it too)");
+}
+
+void ShadingVM::warnOnce(const Exec& x, const Instr& in, const char* kind, const std::string& what) {
+    if (!log_) return;
+    const SourceLoc* loc = x.loc(in);
+    const SourceLoc at = loc ? *loc : SourceLoc{std::make_shared<const std::string>(x.prog.path), 0, 0};
+    log_->warnOnce(std::string("sl:") + kind + ":" + x.prog.path + ":" + at.str(), at,
+                   "shader \"" + x.prog.name + "\": " + what);
+}
+
 void Frame::prepare(const ProgramPtr& program, int points) {
     const ShaderProgram& p = *program;
     if (prog != &p || programId != p.id) {
@@ -108,6 +128,7 @@ void ShadingVM::runFrame(Frame& f, const ShaderInstance& shader, const ShadingGr
     const ShaderProgram& p = shader.program();
     f.prepare(shader.programPtr(), grid.n);
     Exec x(*this, f, p, grid, stats_);
+    x.loopBudget = loopBudget_;
     x.uni = f.arena.data();
     x.vary = x.uni + p.uniformFloats;
     x.strs = f.strs.data();

@@ -60,6 +60,18 @@ class ShadingVM {
 
     void setTextureSource(TextureSource* t) { textures_ = t; }
     TextureSource* textureSource() const { return textures_; }
+    // Where run-time warnings go (an array index out of range, a loop past the budget), once a
+    // place in a shader; without a log they are only counted in stats().
+    void setLog(Log* log) { log_ = log; }
+    // Loop iterations one run of a program over one grid may make (the surface's, and each
+    // light's, displacement's, ... on their own): a shader whose loops go past it has each loop
+    // end at its next turn, warned once. Runaway loops cannot hang a render.
+    static constexpr uint64_t kDefaultLoopBudget = uint64_t(1) << 18;
+    void setLoopBudget(uint64_t iterations) { loopBudget_ = iterations; }
+    // specular() and specularbrdf() raise N.H to the power k / roughness: 8, PRMan's highlight
+    // (the default), or 1, the RI Spec's formula (Option "shading" "specular" "rispec").
+    void setSpecularExponent(float k) { specularExponent_ = k; }
+    float specularExponent() const { return specularExponent_; }
     // Where printf writes (default: stderr).
     void setPrintSink(std::function<void(const std::string&)> sink) { print_ = std::move(sink); }
     // At most this many instructions a run (the shader and the lights it calls), else InputError;
@@ -90,6 +102,8 @@ class ShadingVM {
 
     // ---- Used by the operations (shade/vm) ----
     void print(const std::string& s) const;
+    // A run-time warning at instruction `in` of the running program, once per `kind` and place.
+    void warnOnce(const Exec& x, const Instr& in, const char* kind, const std::string& what);
     // The matrix from space `name` to current space of the program running (its own "shader"
     // and "object" spaces). False (identity given, counted) when nobody defined the space.
     bool spaceToCurrent(const std::string& name, float m[16]);
@@ -125,6 +139,9 @@ class ShadingVM {
     std::vector<std::unique_ptr<Frame>> frames_;
     Frame* top_ = nullptr;  // the surface (or the only) program's frame of the last run
     TextureSource* textures_ = nullptr;
+    Log* log_ = nullptr;
+    uint64_t loopBudget_ = kDefaultLoopBudget;
+    float specularExponent_ = 8;
     std::function<void(const std::string&)> print_;
     ShadeStats stats_;
 
