@@ -3,8 +3,8 @@
 //
 // The input is split at form feeds ('\f') into frame files, shot.0001.rib ... (at most 16), read as
 // the pattern shot.####.rib; an input without one is one file, read for its FrameBegin blocks.
-// readSceneBlocks (streyes/sequence.h) reads them three frames a block, matching each frame's
-// primitives with the previous frame's, and each block is rendered at 4 x 4 pixels with one
+// readPasses (streyes/passes.h) reads them, at most three frames a job, matching each frame's
+// primitives with the previous frame's, and each render job is rendered at 4 x 4 pixels with one
 // sample. Frames that cannot be read together must end in an InputError; anything else (another
 // exception, a crash, a sanitizer report, a hang) is a bug.
 #pragma once
@@ -18,6 +18,7 @@
 #include <string_view>
 
 #include "fuzz_rib.h"
+#include "streyes/passes.h"
 #include "streyes/sequence.h"
 
 namespace streyes::fuzz {
@@ -80,7 +81,12 @@ inline Outcome readFuzzedSequence(std::string_view text) {
     Log log;
     log.setQuiet(true);
     try {
-        readSceneBlocks(path, FrameRequest{}, 3, log, [&](Sequence&& seq) {
+        PassRequest passes;
+        passes.blockFrames = 3;
+        // Render jobs only: the maps and textures other jobs would make are not this fuzzer's.
+        readPasses(path, passes, log, [&](PassJob&& job) {
+            if (job.kind != PassJob::Kind::Render) return;
+            const Sequence& seq = job.sequence;
             RenderOptions o;
             o.xres = o.yres = 4;
             o.samples = 1;
