@@ -28,6 +28,10 @@ Scene parseRibString(const std::string& text, const std::string& sourceName, Log
 // of the kind a file gives before WorldBegin (options, Format, PixelSamples ...); messages name them
 // "--option N" (the Nth given).
 using RibDefaults = std::vector<std::string>;
+// Reads them alone, strictly: InputError at "--option N:line" for a request the reader would warn
+// about in a file (an unknown one, a misplaced one), or one that opens the world or leaves a block
+// open. The commands call it once before reading the scene.
+void checkRibDefaults(const RibDefaults& defaults);
 
 // A file of FrameBegin n ... FrameEnd blocks: each frame, as it ends, is handed to `frame` as a
 // complete scene (Scene::frameNumber, Scene::frameLoc). A file without frame blocks is handed over

@@ -249,6 +249,7 @@ int farmSubmit(const std::vector<std::string>& args) {
     PassRequest passes;
     passes.frames = wanted;
     passes.blockFrames = std::numeric_limits<int>::max() / 4;
+    checkRibDefaults(req.ribOptions);
     passes.defaults = req.ribOptions;
     Sequence sequence;
     bool havePicture = false, haveAny = false;

@@ -664,6 +664,7 @@ int renderCommand(const std::vector<std::string>& args) {
     PassRequest passes;
     passes.frames = wanted;
     passes.blockFrames = opts.maxFrameBlock;
+    checkRibDefaults(req.ribOptions);
     passes.defaults = req.ribOptions;
     // --resume: depth frames whose maps are on disk are rendered only for pictures still to render.
     if (resume) passes.done = [&](const Scene& frame) { return frameWritten(frame, req, scenePath); };

@@ -556,7 +556,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
         grid_.t0 = body.keyTime(k);
         grid_.t1 = body.keyTime(k + 1);
         grid_.openEnd = k + 2 < body.keyCount() || body.time().openEnd;  // pieces meet at keys (TimeSpan)
-        grid_.moving = body.keyMoves(k) || shadingMovesWithin(body);
+        grid_.moving = body.keyMoves(k) || shadingMovesWithin(body, 0.5 * (grid_.t0 + grid_.t1));
         grid_.hole.clear();
         if (aovs_.count) fillAovs(grid_, aovs_, scene_.camera);
         if (!mat || !mat->oneSided || cullBackFacing(grid_, scene_.camera))
@@ -649,7 +649,7 @@ bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
         counters.timeDice += secondsSince(t);
         return false;  // every micropolygon faces away
     }
-    if (!grid_.moving && grid_.t1 > grid_.t0 && shadingMovesWithin(body)) {
+    if (!grid_.moving && grid_.t1 > grid_.t0 && shadingMovesWithin(body, 0.5 * (grid_.t0 + grid_.t1))) {
         // Still geometry under moving lights: shaded at both ends of its span like a moving grid,
         // so that its colour follows the lights through the exposure.
         grid_.resize(grid_.nu, grid_.nv, true);

@@ -110,11 +110,20 @@ class BucketWorker {
     // Or do the shadow maps it reads differ between frames (constant within each)?
     bool shadingVaries(const Body& body) const {
         const Material* m = body.material();
-        return shadingMovesWithin(body) || (m && m->readsMaps && shaders_ && shaders_->mapsVary());
+        return shadingMovesWithin(body) || (m && m->readsMaps && shaders_ && shaders_->mapsVary()) ||
+               (m && m->surface && shaders_ && shaders_->worldVaries());
     }
     // What changes within an exposure (a still grid is then shaded at both ends of its piece and
-    // its colour interpolated between them): all of the above but the maps.
-    bool shadingMovesWithin(const Body& body) const {
+    // its colour interpolated between them): all of the above but the maps, and the world only
+    // where the camera of the frame at `time` (a time in the piece) moves within its exposure: a
+    // frame whose camera stands still is shaded once, as it is when rendered alone.
+    bool shadingMovesWithin(const Body& body, double time) const {
+        const Material* m = body.material();
+        if (!m) return false;
+        return (shadingVaries_ && scene_.lights.anyMoves(m->lights)) || m->readsTime ||
+               (m->surface && (!scene_.camera.worldToCamera().isStatic() || (shaders_ && shaders_->worldMovesAt(time))));
+    }
+    bool shadingMovesWithin(const Body& body) const {  // anywhere in the shot
         const Material* m = body.material();
         if (!m) return false;
         return (shadingVaries_ && scene_.lights.anyMoves(m->lights)) || m->readsTime ||

@@ -236,13 +236,10 @@ Scene parseRibString(const std::string& text, const std::string& sourceName, Log
     return scene;
 }
 
-void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame,
-                    const ReadDetail& detail, const std::function<void(Scene&&)>& after,
-                    const RibDefaults& defaults) {
-    Scene scene;
-    scene.sourceName = path;
-    RibParser parser(scene, log);
-    parser.setReadDetail(detail);
+namespace {
+
+// streyes render --option: each request read as if the file began with it.
+void readDefaults(RibParser& parser, const RibDefaults& defaults) {
     for (size_t i = 0; i < defaults.size(); ++i) {
         const std::string name = "--option " + std::to_string(i + 1);
         parser.parseString(defaults[i], name);
@@ -253,6 +250,26 @@ void parseRibFrames(const std::string& path, Log& log, const std::function<void(
                              "gives before WorldBegin (Option, Format, PixelSamples ...), with every block they open "
                              "closed");
     }
+}
+
+}  // namespace
+
+void checkRibDefaults(const RibDefaults& defaults) {
+    Log log;
+    log.setStrict(true);  // what a file's reader would warn about is a mistake on the command line
+    Scene scene;
+    RibParser parser(scene, log);
+    readDefaults(parser, defaults);
+}
+
+void parseRibFrames(const std::string& path, Log& log, const std::function<void(Scene&&)>& frame,
+                    const ReadDetail& detail, const std::function<void(Scene&&)>& after,
+                    const RibDefaults& defaults) {
+    Scene scene;
+    scene.sourceName = path;
+    RibParser parser(scene, log);
+    parser.setReadDetail(detail);
+    readDefaults(parser, defaults);
     parser.setFrameHandler([&](Scene&& s) {
         s.sourceName = path;
         frame(std::move(s));

@@ -93,6 +93,9 @@ class SceneShaders final : public MaterialBinder {
     Matrix4 worldToCameraAt(double t) const { return maps_->worldToCameraAt(t); }
     // Do the frames' cameras differ (a still grid's "world" space then changes between frames)?
     bool worldVaries() const { return maps_->worldVaries(); }
+    // Does the camera of the frame t falls in move within its exposure ("world" then moves
+    // against current space within it)?
+    bool worldMovesAt(double t) const { return maps_->worldMovesAt(t); }
     // Do frames read different depth maps under one name (what reads maps then varies)?
     bool mapsVary() const { return maps_->varies(); }
 

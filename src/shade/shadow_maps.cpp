@@ -43,6 +43,14 @@ Matrix4 ShadowMaps::worldToCameraAt(double t) const {
     return it->second.at(t);
 }
 
+bool ShadowMaps::worldMovesAt(double t) const {
+    if (frameWorld_.empty()) return !world_.isStatic();
+    const int f = int(std::floor(t - open_ + 1e-6));
+    auto it = frameWorld_.upper_bound(f);
+    if (it != frameWorld_.begin()) --it;
+    return !it->second.isStatic();
+}
+
 const DepthMap* ShadowMaps::map(double time, const std::string& name) {
     static const DepthMap kGap;  // a frame of the render no pass gave this map: nothing to read
     bool anyFrame = false;

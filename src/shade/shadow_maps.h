@@ -51,6 +51,8 @@ class ShadowMaps {
     Matrix4 worldToCameraAt(double t) const;
     // Do the frames' cameras differ (so "world" space moves against current space between them)?
     bool worldVaries() const { return worldVaries_; }
+    // Does the camera of the frame that time t falls in move within its exposure?
+    bool worldMovesAt(double t) const;
 
   private:
     const DepthMap* map(double time, const std::string& name);
