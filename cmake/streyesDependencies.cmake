@@ -24,6 +24,8 @@ find_package(hwy 1.0 CONFIG REQUIRED)  # Highway: the sampler's SIMD kernels
 find_package(Boost 1.74 CONFIG REQUIRED COMPONENTS wave)
 find_package(Imath 3.1 CONFIG REQUIRED)
 find_package(OpenEXR 3.1 CONFIG REQUIRED)
+# nlohmann-json: every JSON file read or written (--stats, the farm's manifest, compare --json).
+find_package(nlohmann_json 3.11 CONFIG REQUIRED)
 # zlib: gzip-compressed RIB, read and written (src/scene/rib_gzip.cpp).
 find_package(ZLIB REQUIRED)
 # libdeflate (Debian's 1.14 ships no CMake package): the frames' ZIP compression (src/io/exr_file.cpp).

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "commands.h"
 #include "streyes/compare.h"
 #include "streyes/image_io.h"
@@ -76,37 +78,29 @@ ImageData readInput(const std::string& path) {
     }
 }
 
-std::string num(double v) {
-    if (std::isinf(v)) return "null";  // PSNR of identical images; JSON has no infinity
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.9g", v);
-    return buf;
+using Json = nlohmann::ordered_json;  // PSNR of identical images is infinite: written as null
+
+Json nonFiniteJson(const NonFiniteCounts& n) {
+    return {{"color_nan", n.colorNaN}, {"color_inf", n.colorInf}, {"z_nan", n.zNaN}, {"z_neg_inf", n.zNegInf}};
 }
 
-std::string jsonString(const std::string& s) {
-    std::string q = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') q += '\\';
-        if (static_cast<unsigned char>(c) < 0x20) continue;
-        q += c;
-    }
-    return q + "\"";
-}
-
-std::string nonFiniteJson(const NonFiniteCounts& n) {
-    return "{\"color_nan\": " + std::to_string(n.colorNaN) + ", \"color_inf\": " + std::to_string(n.colorInf) +
-           ", \"z_nan\": " + std::to_string(n.zNaN) + ", \"z_neg_inf\": " + std::to_string(n.zNegInf) + "}";
-}
-
-std::string errorsJson(const ImageErrors& e) {
-    return "\"pixels\": " + std::to_string(e.pixels) + ", \"pixels_skipped\": " + std::to_string(e.pixelsSkipped) +
-           ", \"rmse_rgb\": " + num(e.rmseRGB()) + ", \"rmse_a\": " + num(e.rmseA()) + ", \"psnr\": " + num(e.psnr()) +
-           ", \"mean_abs\": " + num(e.meanAbsRGB()) + ", \"max_abs\": " + num(e.maxAbsRGB) +
-           ", \"max_abs_a\": " + num(e.maxAbsA) + ", \"share_differing\": " + num(e.shareDiffering()) +
-           ", \"share_over_threshold\": " + num(e.shareOverThreshold()) + ", \"z\": {\"compared\": " +
-           (e.zCompared ? "true" : "false") + ", \"coverage_mismatch\": " + std::to_string(e.zCoverageMismatch) +
-           ", \"depth_mismatch\": " + std::to_string(e.zDepthMismatch) + ", \"max_rel_diff\": " + num(e.zMaxRelDiff) +
-           "}, \"nonfinite\": {\"a\": " + nonFiniteJson(e.nonFiniteA) + ", \"b\": " + nonFiniteJson(e.nonFiniteB) + "}";
+// The error figures, added to `o`.
+void addErrors(Json& o, const ImageErrors& e) {
+    o["pixels"] = e.pixels;
+    o["pixels_skipped"] = e.pixelsSkipped;
+    o["rmse_rgb"] = e.rmseRGB();
+    o["rmse_a"] = e.rmseA();
+    o["psnr"] = e.psnr();
+    o["mean_abs"] = e.meanAbsRGB();
+    o["max_abs"] = e.maxAbsRGB;
+    o["max_abs_a"] = e.maxAbsA;
+    o["share_differing"] = e.shareDiffering();
+    o["share_over_threshold"] = e.shareOverThreshold();
+    o["z"] = {{"compared", e.zCompared},
+              {"coverage_mismatch", e.zCoverageMismatch},
+              {"depth_mismatch", e.zDepthMismatch},
+              {"max_rel_diff", e.zMaxRelDiff}};
+    o["nonfinite"] = {{"a", nonFiniteJson(e.nonFiniteA)}, {"b", nonFiniteJson(e.nonFiniteB)}};
 }
 
 void printRow(const char* label, const ImageErrors& e) {
@@ -183,17 +177,23 @@ int compareCommand(const std::vector<std::string>& args) {
     }
 
     if (json) {
-        std::string o = "{\n  \"a\": " + jsonString(files[0]) + ",\n  \"b\": " + jsonString(files[1]) +
-                        ",\n  \"threshold\": " + num(opts.threshold) + ",\n  \"z_tolerance\": " + num(opts.zTolerance) +
-                        ",\n  \"resized\": " + (opts.resize ? "true" : "false") + ",\n  \"frames\": [\n";
-        for (size_t i = 0; i < pairs.size(); ++i)
-            o += "    {\"frame\": " + (pairs[i].hasFrame ? std::to_string(pairs[i].frame) : std::string("null")) +
-                 ", \"a\": " + jsonString(pairs[i].a) + ", \"b\": " + jsonString(pairs[i].b) + ", " + errorsJson(perFrame[i]) +
-                 "}" + (i + 1 < pairs.size() ? ",\n" : "\n");
-        o += "  ],\n  \"overall\": {\"frames\": " + std::to_string(pairs.size()) + ", " + errorsJson(overall) +
-             "},\n  \"fail\": {\"threshold\": " + (hasFail ? num(fail) : std::string("null")) +
-             ", \"failed\": " + (failure.empty() ? "false" : "true") + ", \"reason\": " + jsonString(failure) + "}\n}\n";
-        std::fputs(o.c_str(), stdout);
+        Json o = {{"a", files[0]},
+                  {"b", files[1]},
+                  {"threshold", opts.threshold},
+                  {"z_tolerance", opts.zTolerance},
+                  {"resized", opts.resize}};
+        Json& frames = o["frames"] = Json::array();
+        for (size_t i = 0; i < pairs.size(); ++i) {
+            Json f = {{"frame", pairs[i].hasFrame ? Json(pairs[i].frame) : Json()}, {"a", pairs[i].a}, {"b", pairs[i].b}};
+            addErrors(f, perFrame[i]);
+            frames.push_back(std::move(f));
+        }
+        Json& all = o["overall"] = {{"frames", pairs.size()}};
+        addErrors(all, overall);
+        o["fail"] = {{"threshold", hasFail ? Json(fail) : Json()}, {"failed", !failure.empty()}, {"reason", failure}};
+        // File names that are not UTF-8 are written with U+FFFD, not refused.
+        const std::string text = o.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+        std::fputs(text.c_str(), stdout);
     } else {
         std::printf("%-8s %10s %10s %8s %10s %9s %8s %8s %12s %8s\n", "frame", "rmse_rgb", "rmse_a", "psnr_dB",
                     "mean_abs", "max_abs", "differ", "over", "z_cover/depth", "nan_inf");

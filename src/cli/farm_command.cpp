@@ -327,7 +327,7 @@ int farmSubmit(const std::vector<std::string>& args) {
     if (old && blockFixed == 0) {
         // kept from the manifest
     } else if (block > 0) {
-        choiceJson.set("mode", Json::string("given"));
+        choiceJson["mode"] = "given";
     } else {
         BlockCurve curve;
         try {
@@ -339,11 +339,11 @@ int farmSubmit(const std::vector<std::string>& args) {
         const int slots = slotsGiven > 0 ? slotsGiven : cluster.slots(cpusPerTask);
         const BlockChoice c = chooseBlock(frames, slots, curve, renderBlock, frames);
         block = c.chosen.block;
-        choiceJson.set("mode", Json::string("auto"));
-        choiceJson.set("curve", Json::string(curve.name));
-        choiceJson.set("slots", Json::number(slots));
-        choiceJson.set("render_frame_block", Json::number(renderBlock));
-        choiceJson.set("why", Json::string(c.why));
+        choiceJson["mode"] = "auto";
+        choiceJson["curve"] = curve.name;
+        choiceJson["slots"] = slots;
+        choiceJson["render_frame_block"] = renderBlock;
+        choiceJson["why"] = c.why;
     }
     const std::vector<Block> blocks = cutBlocks(first, last, block);
     const int arrayLimit = dryRun ? INT_MAX : maxArraySize();
@@ -399,7 +399,7 @@ int farmSubmit(const std::vector<std::string>& args) {
     }
     std::fprintf(stderr, "streyes farm: %s, frames %d-%d (%d), %dx%d, in %zu block%s of %d%s\n", scene.c_str(), first,
                  last, frames, m.width, m.height, blocks.size(), blocks.size() == 1 ? "" : "s", block,
-                 m.blockChoice["why"].isString() ? (" (" + m.blockChoice["why"].str() + ")").c_str() : "");
+                 member(m.blockChoice, "why").is_string() ? (" (" + str(member(m.blockChoice, "why")) + ")").c_str() : "");
     if (tasks.empty()) {
         std::fprintf(stderr, "streyes farm: all %d frames are complete: nothing to submit (--all-blocks submits every "
                              "block anyway)\n", frames);
@@ -556,50 +556,34 @@ int farmStatus(const std::vector<std::string>& args) {
 
     if (json) {
         Json j = Json::object();
-        j.set("manifest", Json::string(m.path));
-        j.set("scene", Json::string(m.scene));
-        j.set("output", Json::string(m.output));
-        j.set("slurm_reachable", Json::boolean(slurm));
-        Json fr = Json::object();
-        fr.set("total", Json::number(total));
-        fr.set("complete", Json::number(complete));
-        fr.set("missing", Json::number(total - complete));
-        fr.set("missing_ranges", Json::string(frameRanges(missingFrames)));
-        j.set("frames", fr);
-        Json jl = Json::array();
-        for (const Submission& s : m.submissions) {
-            Json o = Json::object();
-            o.set("job", Json::number(double(s.job)));
-            o.set("tasks", Json::string(indexList(s.tasks)));
-            o.set("time", Json::string(s.time));
-            o.set("known_to_slurm", Json::boolean(jobs.count(s.job) && jobs[s.job].first));
-            jl.push(o);
-        }
-        j.set("jobs", jl);
-        Json tl = Json::array();
+        j["manifest"] = m.path;
+        j["scene"] = m.scene;
+        j["output"] = m.output;
+        j["slurm_reachable"] = slurm;
+        j["frames"] = {{"total", total},
+                       {"complete", complete},
+                       {"missing", total - complete},
+                       {"missing_ranges", frameRanges(missingFrames)}};
+        Json& jl = j["jobs"] = Json::array();
+        for (const Submission& s : m.submissions)
+            jl.push_back({{"job", s.job},
+                          {"tasks", indexList(s.tasks)},
+                          {"time", s.time},
+                          {"known_to_slurm", jobs.count(s.job) && jobs[s.job].first}});
+        Json& tl = j["tasks"] = Json::array();
         for (const BlockStatus& b : blocks) {
-            Json o = Json::object();
-            o.set("block", Json::number(b.index));
-            o.set("frames", Json::string(b.block.str()));
-            o.set("job", Json::number(double(b.job)));
-            o.set("task", Json::number(b.index));
-            o.set("state", Json::string(b.state));
-            o.set("state_from", Json::string(b.source));
-            o.set("exit_code", Json::string(b.exitCode));
-            o.set("restarts", Json::number(b.restarts));
-            o.set("complete", Json::number(b.complete));
-            o.set("missing", Json::number(double(b.missing.size())));
-            o.set("failed", Json::boolean(b.failed));
-            o.set("log", Json::string(b.log));
+            Json o = {{"block", b.index},         {"frames", b.block.str()},  {"job", b.job},
+                      {"task", b.index},          {"state", b.state},         {"state_from", b.source},
+                      {"exit_code", b.exitCode},  {"restarts", b.restarts},   {"complete", b.complete},
+                      {"missing", b.missing.size()}, {"failed", b.failed},    {"log", b.log}};
             if (b.failed) {
                 bool exists = false;
-                o.set("log_tail", Json::string(readTail(b.log, tailLines, &exists)));
+                o["log_tail"] = readTail(b.log, tailLines, &exists);
             }
-            tl.push(o);
+            tl.push_back(std::move(o));
         }
-        j.set("tasks", tl);
-        j.set("failed_tasks", Json::number(double(failed.size())));
-        std::printf("%s\n", j.dump().c_str());
+        j["failed_tasks"] = failed.size();
+        std::printf("%s\n", dumpJson(j).c_str());
         return 0;
     }
 
@@ -652,26 +636,23 @@ int farmStatus(const std::vector<std::string>& args) {
 
 // ---- gather --------------------------------------------------------------------------------------
 
-// Adds `v` into `sum`: numbers add, objects member by member, arrays item by item.
+// Adds `v` into `sum`: numbers add (whole numbers stay whole), objects member by member, arrays
+// item by item.
 void addInto(Json& sum, const Json& v) {
-    if (v.isNumber()) {
-        sum = Json::number(sum.num(0) + v.num());
-    } else if (v.isObject()) {
-        if (!sum.isObject()) sum = Json::object();
-        for (const auto& [k, x] : v.members()) {
-            Json s = sum[k];
-            addInto(s, x);
-            sum.set(k, s);
+    if (v.is_number()) {
+        if (v.is_number_integer() && (sum.is_null() || sum.is_number_integer()))
+            sum = (sum.is_null() ? 0 : sum.get<int64_t>()) + v.get<int64_t>();
+        else
+            sum = num(sum) + v.get<double>();
+    } else if (v.is_object()) {
+        if (!sum.is_object()) sum = Json::object();
+        for (const auto& [k, x] : v.items()) addInto(sum[k], x);
+    } else if (v.is_array()) {
+        if (!sum.is_array()) sum = Json::array();
+        for (size_t i = 0; i < v.size(); ++i) {
+            if (i == sum.size()) sum.push_back(nullptr);
+            addInto(sum[i], v[i]);
         }
-    } else if (v.isArray()) {
-        Json out = Json::array();
-        const size_t n = std::max(sum.items().size(), v.items().size());
-        for (size_t i = 0; i < n; ++i) {
-            Json s = i < sum.items().size() ? sum.items()[i] : Json();
-            if (i < v.items().size()) addInto(s, v.items()[i]);
-            out.push(s);
-        }
-        sum = out;
     }
 }
 
@@ -714,7 +695,7 @@ int farmGather(const std::vector<std::string>& args) {
                 continue;
             }
             try {
-                found.push_back({s.job, k, Json::load(p)});
+                found.push_back({s.job, k, loadJson(p)});
             } catch (const std::runtime_error& e) {
                 throw InputError(e.what());
             }
@@ -726,50 +707,48 @@ int farmGather(const std::vector<std::string>& args) {
     Json tasks = Json::array();
     for (const TaskStats& t : found) {
         const Json& s = t.stats;
-        const auto& fr = s["frames"].items();
-        const int n = fr.size() == 2 ? int(fr[1].num() - fr[0].num()) + 1 : 0;
-        const int sk = int(s["frames_skipped"].num());
+        const Json& fr = member(s, "frames");
+        const bool hasFrames = fr.is_array() && fr.size() == 2;
+        const int n = hasFrames ? int(num(fr[1]) - num(fr[0])) + 1 : 0;
+        const int sk = int(num(member(s, "frames_skipped")));
         rendered += n - sk;
         skipped += sk;
-        const double c = s["cpu_seconds"].num(0), w = s["seconds"]["total"].num(0), pk = s["peak_memory_bytes"].num(0);
+        const double c = num(member(s, "cpu_seconds")), w = num(member(member(s, "seconds"), "total"));
+        const double pk = num(member(s, "peak_memory_bytes"));
         cpu += c;
         wall += w;
         peak = std::max(peak, pk);
-        addInto(counters, s["counters"]);
-        Json o = Json::object();
-        o.set("job", Json::number(double(t.job)));
-        o.set("task", Json::number(t.task));
-        o.set("frames", Json::string(fr.size() == 2 ? Block{int(fr[0].num()), int(fr[1].num())}.str() : ""));
-        o.set("frames_rendered", Json::number(n - sk));
-        o.set("frames_skipped", Json::number(sk));
-        o.set("cpu_seconds", Json::number(c));
-        o.set("wall_seconds", Json::number(w));
-        o.set("peak_memory_bytes", Json::number(pk));
-        o.set("threads", s["threads"]);
-        tasks.push(o);
+        addInto(counters, member(s, "counters"));
+        tasks.push_back({{"job", t.job},
+                         {"task", t.task},
+                         {"frames", hasFrames ? Block{int(num(fr[0])), int(num(fr[1]))}.str() : ""},
+                         {"frames_rendered", n - sk},
+                         {"frames_skipped", sk},
+                         {"cpu_seconds", c},
+                         {"wall_seconds", w},
+                         {"peak_memory_bytes", pk},
+                         {"threads", member(s, "threads")}});
     }
     // A ratio does not add up: computed again from the summed counts.
-    const double tests = counters["sample_tests"].num(0);
-    if (counters.has("hit_efficiency")) counters.set("hit_efficiency", Json::number(tests > 0 ? counters["sample_hits"].num(0) / tests : 0));
+    const double tests = num(member(counters, "sample_tests"));
+    if (counters.contains("hit_efficiency"))
+        counters["hit_efficiency"] = tests > 0 ? num(member(counters, "sample_hits")) / tests : 0.0;
 
-    Json summary = Json::object();
-    summary.set("manifest", Json::string(m.path));
-    summary.set("scene", Json::string(m.scene));
-    summary.set("frames", Json::string(Block{m.first, m.last}.str()));
-    summary.set("resolution", Json::string(std::to_string(m.width) + "x" + std::to_string(m.height)));
-    summary.set("tasks_with_stats", Json::number(double(found.size())));
-    Json miss = Json::array();
-    for (const std::string& s : missing) miss.push(Json::string(s));
-    summary.set("tasks_without_stats", miss);
-    summary.set("frames_rendered", Json::number(rendered));
-    summary.set("frames_skipped", Json::number(skipped));
-    summary.set("cpu_seconds", Json::number(cpu));
-    summary.set("cpu_seconds_per_frame_rendered", Json::number(rendered ? cpu / rendered : 0));
-    summary.set("task_wall_seconds_sum", Json::number(wall));
-    summary.set("peak_memory_bytes_max", Json::number(peak));
-    summary.set("counters", counters);
-    summary.set("tasks", tasks);
-    const std::string text = summary.dump() + "\n";
+    Json summary = {{"manifest", m.path},
+                    {"scene", m.scene},
+                    {"frames", Block{m.first, m.last}.str()},
+                    {"resolution", std::to_string(m.width) + "x" + std::to_string(m.height)},
+                    {"tasks_with_stats", found.size()},
+                    {"tasks_without_stats", missing},
+                    {"frames_rendered", rendered},
+                    {"frames_skipped", skipped},
+                    {"cpu_seconds", cpu},
+                    {"cpu_seconds_per_frame_rendered", rendered ? cpu / rendered : 0.0},
+                    {"task_wall_seconds_sum", wall},
+                    {"peak_memory_bytes_max", peak},
+                    {"counters", counters},
+                    {"tasks", tasks}};
+    const std::string text = dumpJson(summary) + "\n";
     {
         const std::string tmp = outPath + ".tmp" + std::to_string(getpid());
         std::ofstream f(tmp, std::ios::binary);
@@ -793,20 +772,20 @@ int farmGather(const std::vector<std::string>& args) {
     }
     std::printf("\n\n%-14s %-12s %9s %8s %10s %10s %12s\n", "job_task", "frames", "rendered", "skipped", "CPU s",
                 "wall s", "peak memory");
-    for (const Json& t : tasks.items())
+    for (const Json& t : tasks)
         std::printf("%-14s %-12s %9.0f %8.0f %10.1f %10.1f %12s\n",
-                    (std::to_string(long(t["job"].num())) + "_" + std::to_string(int(t["task"].num()))).c_str(),
-                    t["frames"].str().c_str(), t["frames_rendered"].num(), t["frames_skipped"].num(),
-                    t["cpu_seconds"].num(), t["wall_seconds"].num(), bytesText(t["peak_memory_bytes"].num()).c_str());
+                    (std::to_string(long(num(t["job"]))) + "_" + std::to_string(int(num(t["task"])))).c_str(),
+                    str(t["frames"]).c_str(), num(t["frames_rendered"]), num(t["frames_skipped"]),
+                    num(t["cpu_seconds"]), num(t["wall_seconds"]), bytesText(num(t["peak_memory_bytes"])).c_str());
     std::printf("\ntotal: %d frames rendered, %d skipped (already complete), %.1f CPU s (%.2f a frame rendered), "
                 "peak memory %s (largest task)\n",
                 rendered, skipped, cpu, rendered ? cpu / rendered : 0.0, bytesText(peak).c_str());
-    const Json& splits = counters["splits"];
+    const Json& splits = member(counters, "splits");
     std::printf("counters summed: %.0f splits, %.0f grids, %.0f micropolygons, %.0f sample tests, %.0f procedurals "
                 "expanded, %.0f bodies culled by occlusion\n",
-                splits.isObject() ? splits["total"].num(0) : splits.num(0), counters["grids_diced"].num(0),
-                counters["micropolygons"].num(0), counters["sample_tests"].num(0),
-                counters["procedurals_expanded"].num(0), counters["culled_occlusion"].num(0));
+                splits.is_object() ? num(member(splits, "total")) : num(splits), num(member(counters, "grids_diced")),
+                num(member(counters, "micropolygons")), num(member(counters, "sample_tests")),
+                num(member(counters, "procedurals_expanded")), num(member(counters, "culled_occlusion")));
     std::printf("summary: %s\n", outPath.c_str());
     return 0;
 }

@@ -63,20 +63,23 @@ double BlockCurve::at(double length) const {
 }
 
 std::vector<BlockCurve> readCurves(const Json& doc, const std::string& what) {
-    const Json& curves = doc["curves"];
-    if (!curves.isObject()) throw std::runtime_error(what + ": no \"curves\" object (is it tools/block-curve's output?)");
+    const Json& curves = member(doc, "curves");
+    if (!curves.is_object()) throw std::runtime_error(what + ": no \"curves\" object (is it tools/block-curve's output?)");
     std::vector<BlockCurve> out;
-    for (const auto& [name, c] : curves.members()) {
+    for (const auto& [name, c] : curves.items()) {
         BlockCurve bc;
         bc.name = name;
-        bc.scene = c["scene"].str();
-        if (c["resolution"].items().size() == 2) {
-            bc.width = int(c["resolution"].items()[0].num());
-            bc.height = int(c["resolution"].items()[1].num());
+        bc.scene = str(member(c, "scene"));
+        const Json& res = member(c, "resolution");
+        if (res.is_array() && res.size() == 2) {
+            bc.width = int(num(res[0]));
+            bc.height = int(num(res[1]));
         }
         std::vector<std::pair<int, double>> pts;
-        for (const Json& p : c["points"].items()) {
-            const double L = p["block"].num(0), cpu = p["cpu_per_frame"].num(-1);
+        const Json& points = member(c, "points");
+        if (!points.is_array()) throw std::runtime_error(what + ": curve '" + name + "' has no \"points\" array");
+        for (const Json& p : points) {
+            const double L = num(member(p, "block"), 0), cpu = num(member(p, "cpu_per_frame"), -1);
             if (L < 1 || !(cpu > 0)) throw std::runtime_error(what + ": curve '" + name + "' has a point without a "
                                                               "block of at least 1 and a positive cpu_per_frame");
             pts.emplace_back(int(L), cpu);
@@ -94,7 +97,7 @@ std::vector<BlockCurve> readCurves(const Json& doc, const std::string& what) {
 }
 
 std::vector<BlockCurve> builtinCurves() {
-    return readCurves(Json::parse(kBuiltinBlockCurveJson, "the built-in block curve (docs/results/block-curve.json)"),
+    return readCurves(parseJson(kBuiltinBlockCurveJson, "the built-in block curve (docs/results/block-curve.json)"),
                       "the built-in block curve (docs/results/block-curve.json)");
 }
 
@@ -115,7 +118,7 @@ BlockCurve findCurve(const std::string& spec) {
             name = spec;
         }
     }
-    const std::vector<BlockCurve> curves = file.empty() ? builtinCurves() : readCurves(Json::load(file), file);
+    const std::vector<BlockCurve> curves = file.empty() ? builtinCurves() : readCurves(loadJson(file), file);
     if (!file.empty() && name.empty()) {
         if (curves.size() == 1) return curves[0];
         throw std::runtime_error("'" + file + "' holds several curves (" + names(curves) + "): give one as " + file +
@@ -301,51 +304,31 @@ bool Manifest::sameShot(const Manifest& o, std::string* difference) const {
 }
 
 namespace {
-Json strings(const std::vector<std::string>& v) {
-    Json a = Json::array();
-    for (const std::string& s : v) a.push(Json::string(s));
-    return a;
-}
-Json pair(int a, int b) {
-    Json j = Json::array();
-    j.push(Json::number(a));
-    j.push(Json::number(b));
-    return j;
-}
+Json pair(int a, int b) { return Json::array({a, b}); }
 }  // namespace
 
 Json Manifest::toJson() const {
     Json j = Json::object();
-    j.set("streyes_farm_manifest", Json::number(1));
-    j.set("scene", Json::string(scene));
-    j.set("output", Json::string(output));
-    j.set("executable", Json::string(executable));
-    j.set("frames", pair(first, last));
-    j.set("shot", pair(shotFirst, shotLast));
-    j.set("block", Json::number(block));
-    Json bl = Json::array();
-    for (const Block& b : blocks) bl.push(pair(b.first, b.last));
-    j.set("blocks", bl);
-    j.set("seed", Json::number(double(seed)));
-    j.set("render_options", strings(renderOptions));
-    j.set("resolution", pair(width, height));
-    j.set("channels", Json::string(channels));
-    j.set("partition", Json::string(partition));
-    j.set("cpus_per_task", Json::number(cpusPerTask));
-    j.set("sbatch_options", strings(sbatchOptions));
-    j.set("block_choice", blockChoice);
-    Json subs = Json::array();
-    for (const Submission& s : submissions) {
-        Json o = Json::object();
-        o.set("job", Json::number(double(s.job)));
-        Json t = Json::array();
-        for (int k : s.tasks) t.push(Json::number(k));
-        o.set("tasks", t);
-        o.set("time", Json::string(s.time));
-        o.set("script", Json::string(s.script));
-        subs.push(o);
-    }
-    j.set("submissions", subs);
+    j["streyes_farm_manifest"] = 1;
+    j["scene"] = scene;
+    j["output"] = output;
+    j["executable"] = executable;
+    j["frames"] = pair(first, last);
+    j["shot"] = pair(shotFirst, shotLast);
+    j["block"] = block;
+    Json& bl = j["blocks"] = Json::array();
+    for (const Block& b : blocks) bl.push_back(pair(b.first, b.last));
+    j["seed"] = seed;
+    j["render_options"] = renderOptions;
+    j["resolution"] = pair(width, height);
+    j["channels"] = channels;
+    j["partition"] = partition;
+    j["cpus_per_task"] = cpusPerTask;
+    j["sbatch_options"] = sbatchOptions;
+    j["block_choice"] = blockChoice;
+    Json& subs = j["submissions"] = Json::array();
+    for (const Submission& s : submissions)
+        subs.push_back({{"job", s.job}, {"tasks", s.tasks}, {"time", s.time}, {"script", s.script}});
     return j;
 }
 
@@ -353,58 +336,74 @@ Manifest Manifest::fromJson(const Json& j, const std::string& path) {
     auto bad = [&](const std::string& why) {
         return std::runtime_error("'" + path + "' is not a streyes farm manifest: " + why);
     };
-    if (!j.isObject() || j["streyes_farm_manifest"].num(0) != 1) throw bad("no \"streyes_farm_manifest\": 1");
+    // [first, last] of whole numbers, or false.
+    auto readPair = [](const Json& v, int* a, int* b) {
+        if (!v.is_array() || v.size() != 2 || !v[0].is_number_integer() || !v[1].is_number_integer()) return false;
+        *a = v[0].get<int>();
+        *b = v[1].get<int>();
+        return true;
+    };
+    // An array of strings (absent: none).
+    auto readStrings = [&](const Json& v, const char* key, std::vector<std::string>* out) {
+        if (v.is_null()) return;
+        if (!v.is_array()) throw bad(std::string("\"") + key + "\" is not an array of strings");
+        for (const Json& s : v) {
+            if (!s.is_string()) throw bad(std::string("\"") + key + "\" is not an array of strings");
+            out->push_back(s.get<std::string>());
+        }
+    };
+    if (!j.is_object() || num(member(j, "streyes_farm_manifest")) != 1) throw bad("no \"streyes_farm_manifest\": 1");
     Manifest m;
     m.path = path;
-    m.scene = j["scene"].str();
-    m.output = j["output"].str();
-    m.executable = j["executable"].str();
+    m.scene = str(member(j, "scene"));
+    m.output = str(member(j, "output"));
+    m.executable = str(member(j, "executable"));
     if (m.scene.empty() || m.output.empty()) throw bad("no scene or output");
-    if (j["frames"].items().size() != 2) throw bad("\"frames\" is not [first, last]");
-    m.first = int(j["frames"].items()[0].num());
-    m.last = int(j["frames"].items()[1].num());
+    if (!readPair(member(j, "frames"), &m.first, &m.last)) throw bad("\"frames\" is not [first, last]");
     // Manifests written before the shot was kept: their tasks passed the frames as the shot.
     m.shotFirst = m.first, m.shotLast = m.last;
-    if (j["shot"].items().size() == 2) {
-        m.shotFirst = int(j["shot"].items()[0].num());
-        m.shotLast = int(j["shot"].items()[1].num());
-    }
+    readPair(member(j, "shot"), &m.shotFirst, &m.shotLast);
     if (m.shotFirst > m.first || m.shotLast < m.last) throw bad("\"shot\" does not hold \"frames\"");
-    m.block = int(j["block"].num());
-    for (const Json& b : j["blocks"].items()) {
-        if (b.items().size() != 2) throw bad("a block is not [first, last]");
-        m.blocks.push_back({int(b.items()[0].num()), int(b.items()[1].num())});
+    m.block = int(num(member(j, "block")));
+    const Json& blocks = member(j, "blocks");
+    if (!blocks.is_array() || blocks.empty()) throw bad("no blocks");
+    for (const Json& b : blocks) {
+        Block block;
+        if (!readPair(b, &block.first, &block.last)) throw bad("a block is not [first, last]");
+        m.blocks.push_back(block);
     }
-    if (m.blocks.empty()) throw bad("no blocks");
-    m.seed = uint64_t(j["seed"].num());
-    for (const Json& s : j["render_options"].items()) m.renderOptions.push_back(s.str());
-    if (j["resolution"].items().size() == 2) {
-        m.width = int(j["resolution"].items()[0].num());
-        m.height = int(j["resolution"].items()[1].num());
-    }
-    m.channels = j["channels"].isString() ? j["channels"].str() : "rgbaz";
-    m.partition = j["partition"].str();
-    m.cpusPerTask = int(j["cpus_per_task"].num());
-    for (const Json& s : j["sbatch_options"].items()) m.sbatchOptions.push_back(s.str());
-    m.blockChoice = j["block_choice"];
-    for (const Json& s : j["submissions"].items()) {
+    m.seed = uint64_t(num(member(j, "seed")));
+    readStrings(member(j, "render_options"), "render_options", &m.renderOptions);
+    readPair(member(j, "resolution"), &m.width, &m.height);
+    m.channels = member(j, "channels").is_string() ? str(member(j, "channels")) : "rgbaz";
+    m.partition = str(member(j, "partition"));
+    m.cpusPerTask = int(num(member(j, "cpus_per_task")));
+    readStrings(member(j, "sbatch_options"), "sbatch_options", &m.sbatchOptions);
+    m.blockChoice = member(j, "block_choice");
+    const Json& subs = member(j, "submissions");
+    if (!subs.is_null() && !subs.is_array()) throw bad("\"submissions\" is not an array");
+    for (const Json& s : subs) {
+        if (!s.is_object()) throw bad("a submission is not an object");
         Submission sub;
-        sub.job = long(s["job"].num());
-        for (const Json& t : s["tasks"].items()) sub.tasks.push_back(int(t.num()));
-        sub.time = s["time"].str();
-        sub.script = s["script"].str();
+        sub.job = long(num(member(s, "job")));
+        for (const Json& t : member(s, "tasks")) {
+            if (!t.is_number_integer()) throw bad("a submission's \"tasks\" are not task numbers");
+            sub.tasks.push_back(t.get<int>());
+        }
+        sub.time = str(member(s, "time"));
+        sub.script = str(member(s, "script"));
         m.submissions.push_back(sub);
     }
     return m;
 }
 
-Manifest Manifest::load(const std::string& path) { return fromJson(Json::load(path), fs::absolute(path).string()); }
+Manifest Manifest::load(const std::string& path) { return fromJson(loadJson(path), fs::absolute(path).string()); }
 
 void Manifest::save() const {
     const std::string tmp = path + ".tmp" + std::to_string(getpid());
     {
         std::ofstream f(tmp, std::ios::binary);
-        f << toJson().dump() << "\n";
+        f << dumpJson(toJson()) << "\n";
         f.close();
         if (!f) {
             std::remove(tmp.c_str());

@@ -2,8 +2,11 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -278,14 +281,9 @@ std::string withProcessCpu(std::string json) {
     if (getrusage(RUSAGE_SELF, &ru) != 0) return json;
     const double cpu = double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
                        1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
-    const size_t close = json.rfind('}');
-    if (close == std::string::npos) return json;
-    size_t end = close;
-    while (end > 0 && (json[end - 1] == '\n' || json[end - 1] == ' ')) --end;
-    char buf[64];
-    std::snprintf(buf, sizeof buf, ",\n  \"cpu_seconds\": %.3f\n", cpu);
-    json.replace(end, close - end, buf);
-    return json;
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(json);
+    j["cpu_seconds"] = std::round(cpu * 1000) / 1000;  // milliseconds are all getrusage is good for
+    return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
 
 // --resume: is this frame of the input written already? A depth frame: each depth map it writes

@@ -3,7 +3,8 @@
 #include <sys/resource.h>
 
 #include <cstdio>
-#include <sstream>
+
+#include <nlohmann/json.hpp>
 
 namespace streyes {
 
@@ -39,86 +40,43 @@ uint64_t peakResidentBytes() {
 }
 
 namespace {
-std::string value(const std::vector<uint64_t>& v) {
-    std::string s = "[";
-    for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + std::to_string(v[i]);
-    return s + "]";
-}
-std::string value(uint64_t v) { return std::to_string(v); }
-std::string value(int v) { return std::to_string(v); }
-std::string value(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.6g", v);
-    return buf;
-}
-std::string value(const std::vector<float>& v) {
-    std::string s = "[";
-    for (size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + value(double(v[i]));
-    return s + "]";
-}
+using Json = nlohmann::ordered_json;
 
-// The fields of one JSON object, a line each; fields "group.key" that follow each other share a
-// line as the object "group": {"key": ..., ...}.
-class JsonFields {
-  public:
-    JsonFields(std::ostringstream& out, const char* indent) : out_(out), indent_(indent) {}
-    void add(const std::string& path, const std::string& v) {
-        const size_t dot = path.find('.');
-        const std::string group = dot == std::string::npos ? "" : path.substr(0, dot);
-        const std::string key = dot == std::string::npos ? path : path.substr(dot + 1);
-        if (fields_ > 0 && !group.empty() && group == group_) {
-            out_ << ", ";
-        } else {
-            if (fields_ > 0) out_ << (group_.empty() ? "" : "}") << ",\n";
-            out_ << indent_;
-            if (!group.empty()) out_ << "\"" << group << "\": {";
-        }
-        out_ << "\"" << key << "\": " << v;
-        group_ = group;
-        ++fields_;
-    }
-    void end() { out_ << (group_.empty() ? "" : "}") << "\n"; }
-
-  private:
-    std::ostringstream& out_;
-    const char* indent_;
-    std::string group_;
-    int fields_ = 0;
-};
+// A field "group.key" goes in the object "group" (made when first met), others at the top.
+void setField(Json& object, const std::string& path, Json value) {
+    const size_t dot = path.find('.');
+    if (dot == std::string::npos) object[path] = std::move(value);
+    else object[path.substr(0, dot)][path.substr(dot + 1)] = std::move(value);
+}
 }  // namespace
 
 std::string RenderStats::toJson() const {
     const RenderStats& s = *this;
     const RenderCounters& c = counters;
-    std::ostringstream o;
-    o << "{\n"
-      << "  \"algorithm\": \"" << algorithm << "\",\n"
-      << "  \"frames\": [" << firstFrame << ", " << lastFrame << "],\n"
-      << "  \"resolution\": [" << width << ", " << height << "],\n"
-      << "  \"samples_per_pixel\": " << samplesPerPixel << ",\n"
-      << "  \"threads\": " << threads << ",\n"
-      << "  \"simd\": \"" << simd << "\",\n"
-      << "  \"bucket_size\": " << bucketSize << ",\n"
-      << "  \"frame_block\": " << frameBlock << ",\n"
-      << "  \"tolerance\": " << value(tolerance) << ",\n"
-      << "  \"layers\": " << (layers > 0 ? std::to_string(layers) : std::string("\"adaptive\"")) << ",\n";
-    if (!layerDepths.empty()) o << "  \"layer_depths\": " << value(layerDepths) << ",\n";
-    o << "  \"counters\": {\n";
-    JsonFields counts(o, "    ");
-#define STREYES_FIELD(member, key) counts.add(key, value(c.member));
-#define STREYES_SHOWN(key, expression) counts.add(key, value(expression));
+    Json o = Json::object();
+    o["algorithm"] = algorithm;
+    o["frames"] = {firstFrame, lastFrame};
+    o["resolution"] = {width, height};
+    o["samples_per_pixel"] = samplesPerPixel;
+    o["threads"] = threads;
+    o["simd"] = simd;
+    o["bucket_size"] = bucketSize;
+    o["frame_block"] = frameBlock;
+    o["tolerance"] = tolerance;
+    o["layers"] = layers > 0 ? Json(layers) : Json("adaptive");
+    if (!layerDepths.empty()) o["layer_depths"] = layerDepths;
+    Json& counts = o["counters"] = Json::object();
+#define STREYES_FIELD(member, key) setField(counts, key, c.member);
+#define STREYES_SHOWN(key, expression) setField(counts, key, expression);
 #define STREYES_NOTHING(member, key)
     STREYES_RENDER_COUNTERS(STREYES_FIELD, STREYES_FIELD, STREYES_NOTHING, STREYES_SHOWN)
-    counts.end();
-    o << "  },\n"
-      << "  \"seconds\": {\n";
-    JsonFields seconds(o, "    ");
-    seconds.add("parse", value(timeParse));
-    seconds.add("build_bodies", value(timeBuild));
-    seconds.add("render", value(timeRender));
-    seconds.add("write", value(timeWrite));
-    seconds.add("total", value(timeTotal));
-#define STREYES_SECONDS(member, key) seconds.add(key, value(c.member));
+    Json& seconds = o["seconds"] = Json::object();
+    seconds["parse"] = timeParse;
+    seconds["build_bodies"] = timeBuild;
+    seconds["render"] = timeRender;
+    seconds["write"] = timeWrite;
+    seconds["total"] = timeTotal;
+#define STREYES_SECONDS(member, key) setField(seconds, key, c.member);
 #define STREYES_NOTHING_SHOWN(key, expression)
     STREYES_RENDER_COUNTERS(STREYES_NOTHING, STREYES_NOTHING, STREYES_SECONDS, STREYES_NOTHING_SHOWN)
 #undef STREYES_FIELD
@@ -126,18 +84,16 @@ std::string RenderStats::toJson() const {
 #undef STREYES_NOTHING
 #undef STREYES_SECONDS
 #undef STREYES_NOTHING_SHOWN
-    seconds.end();
-    o << "  },\n"
-      << "  \"peak_memory_bytes\": " << peakMemoryBytes << ",\n"
-      << "  \"memory_estimate_bytes\": " << memoryEstimateBytes << ",\n"
-      << "  \"memory_budget_bytes\": " << memoryBudgetBytes << ",\n"
-      << "  \"memory_program_bytes\": " << memoryProgramBytes << ",\n"
-      << "  \"memory_bodies_bytes\": " << memoryBodiesBytes << ",\n"
-      << "  \"exr_chunks_compressed\": " << exrChunksCompressed << ",\n"
-      << "  \"exr_chunks_reused\": " << exrChunksReused << ",\n"
-      << "  \"frames_skipped\": " << framesSkipped << "\n"
-      << "}\n";
-    return o.str();
+    o["peak_memory_bytes"] = peakMemoryBytes;
+    o["memory_estimate_bytes"] = memoryEstimateBytes;
+    o["memory_budget_bytes"] = memoryBudgetBytes;
+    o["memory_program_bytes"] = memoryProgramBytes;
+    o["memory_bodies_bytes"] = memoryBodiesBytes;
+    o["exr_chunks_compressed"] = exrChunksCompressed;
+    o["exr_chunks_reused"] = exrChunksReused;
+    o["frames_skipped"] = framesSkipped;
+    // NaN and infinities (a ratio of nothing) as null, which JSON readers take.
+    return o.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace streyes

@@ -1,6 +1,9 @@
 #include "streyes/stats.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
 
 #include <algorithm>
 #include <string>
@@ -8,6 +11,8 @@
 
 namespace streyes {
 namespace {
+
+using Json = nlohmann::ordered_json;
 
 // Every counter a different value, by its place in STREYES_RENDER_COUNTERS: counts 100 + i,
 // lists {i, 2i} (one longer for odd i), seconds i + 0.25.
@@ -44,7 +49,8 @@ TEST(RenderCounters, SumAddsEveryCounter) {
 }
 
 // The --stats JSON is read by tools/ (streyes_runs.py, bench, speed-vs-error, occlusion-report):
-// its keys, nesting and layout, here in full. A new counter adds its line.
+// its keys, nesting, order and values, here in full (compared as JSON, not as text: the layout
+// is nlohmann-json's). A new counter adds its line.
 TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
     RenderStats s;
     RenderCounters& c = s.counters;
@@ -60,7 +66,7 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
     s.peakMemoryBytes = 1 << 20, s.memoryEstimateBytes = 1 << 19, s.memoryBudgetBytes = 1 << 30;
     s.exrChunksCompressed = 23, s.exrChunksReused = 45;
     s.framesSkipped = 2, s.procedurals = 130, s.proceduralsByDepth = {1, 129}, s.bodiesGenerated = 999, s.passes = 2;
-    EXPECT_EQ(s.toJson(), R"({
+    const Json expected = Json::parse(R"({
   "algorithm": "spacetime-occlusion",
   "frames": [1, 8],
   "resolution": [64, 36],
@@ -127,8 +133,14 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
   "frames_skipped": 2
 }
 )");
+    const std::string text = s.toJson();
+    EXPECT_EQ(Json::parse(text), expected) << text;  // ordered: the members' order counts too
+    EXPECT_EQ(text.back(), '\n');
     s.layers = 3;  // a number, not "adaptive"
-    EXPECT_NE(s.toJson().find("\n  \"layers\": 3,\n"), std::string::npos);
+    EXPECT_EQ(Json::parse(s.toJson())["layers"], 3);
+    // A ratio of nothing is null (JSON has no NaN), not a file no reader takes.
+    s.tolerance = std::nan("");
+    EXPECT_TRUE(Json::parse(s.toJson())["tolerance"].is_null());
 }
 
 }  // namespace

@@ -191,20 +191,37 @@ TEST(FarmCurve, CurvesFromFilesByName) {
     EXPECT_THROW(findCurve(one), std::runtime_error);
 }
 
-TEST(FarmJson, RoundTripsAndRejectsMalformedText) {
+// The farm's files through nlohmann-json: errors name the file and where the text goes wrong,
+// and what older files lack reads as its fallback.
+TEST(FarmJson, ErrorsNameTheFileAndAbsentMembersFallBack) {
     const std::string text = R"({"a": [1, 2.5, -3e2], "b": {"c": "x\"y\\z\n\u00e9"}, "d": true, "e": null})";
-    const Json j = Json::parse(text, "t");
-    EXPECT_EQ(j["a"].items().size(), 3u);
-    EXPECT_DOUBLE_EQ(j["a"].items()[2].num(), -300);
-    EXPECT_EQ(j["b"]["c"].str(), "x\"y\\z\n\xc3\xa9");
-    EXPECT_TRUE(j["d"].flag());
-    EXPECT_TRUE(j["e"].isNull());
-    EXPECT_TRUE(j["missing"]["deeper"].isNull());
-    const Json again = Json::parse(j.dump(), "dump");
-    EXPECT_EQ(again.dump(), j.dump());
-    EXPECT_DOUBLE_EQ(Json::parse(Json::number(12345678901.0).dump(), "n").num(), 12345678901.0);
-    for (const char* bad : {"", "{", "[1,]x", "{\"a\" 1}", "\"open", "tru", "[1] 2"})
-        EXPECT_THROW(Json::parse(bad, "bad"), std::runtime_error) << bad;
+    const Json j = parseJson(text, "t");
+    EXPECT_EQ(member(j, "a").size(), 3u);
+    EXPECT_DOUBLE_EQ(num(member(j, "a")[2]), -300);
+    EXPECT_EQ(str(member(member(j, "b"), "c")), "x\"y\\z\n\xc3\xa9");
+    EXPECT_TRUE(member(member(j, "missing"), "deeper").is_null());
+    EXPECT_EQ(num(member(j, "d"), 7), 7);  // not a number: the fallback
+    EXPECT_EQ(str(member(j, "a")), "");
+    EXPECT_EQ(parseJson(dumpJson(j), "dump"), j);
+    EXPECT_EQ(num(parseJson(dumpJson(Json(uint64_t(1) << 60)), "n")), double(uint64_t(1) << 60));
+    for (const char* bad : {"", "{", "[1,]x", "{\"a\" 1}", "\"open", "tru", "[1] 2"}) {
+        try {
+            parseJson(bad, "shot.farm.json");
+            ADD_FAILURE() << bad;
+        } catch (const std::runtime_error& e) {
+            const std::string what = e.what();
+            EXPECT_EQ(what.rfind("shot.farm.json: not valid JSON: ", 0), 0u) << what;
+            EXPECT_NE(what.find("line 1, column "), std::string::npos) << what;
+            EXPECT_EQ(what.find("[json.exception"), std::string::npos) << what;  // the library's tag, cut
+        }
+    }
+    try {
+        parseJson("{\n  \"a\": 1,\n  \"b\": ]\n}", "two.json");
+        ADD_FAILURE();
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("line 3, column 8"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(loadJson("/no/such/file.json"), std::runtime_error);
 }
 
 Manifest sampleManifest(const std::string& dir) {
@@ -224,8 +241,7 @@ Manifest sampleManifest(const std::string& dir) {
     m.width = 64;
     m.height = 48;
     m.partition = "render";
-    m.blockChoice = Json::object();
-    m.blockChoice.set("mode", Json::string("given"));
+    m.blockChoice = {{"mode", "given"}};
     m.submissions.push_back({12, {0, 1, 2}, "2026-01-01 00:00:00", dir + "/shot.farm/submission-1.sh"});
     return m;
 }
@@ -243,7 +259,14 @@ TEST(FarmManifest, NamesBesideTheFramesAndRoundTrips) {
     const Manifest r = Manifest::load(m.path);
     std::string why;
     EXPECT_TRUE(r.sameShot(m, &why)) << why;
-    EXPECT_EQ(r.toJson().dump(), m.toJson().dump());
+    EXPECT_EQ(r.toJson(), m.toJson());
+    // The file as tools read it: whole numbers stay whole, names as given.
+    const Json file = loadJson(m.path);
+    EXPECT_EQ(file["frames"], Json::array({1, 10}));
+    EXPECT_EQ(file["shot"], Json::array({1, 48}));
+    EXPECT_EQ(file["blocks"], Json::parse("[[1, 4], [5, 8], [9, 10]]"));
+    EXPECT_EQ(file["scene"], dir.path + "/it's a scene.rib");
+    EXPECT_EQ(file["submissions"][0]["job"], 12);
     ASSERT_EQ(r.submissions.size(), 1u);
     EXPECT_EQ(r.submissions[0].tasks, (std::vector<int>{0, 1, 2}));
     EXPECT_EQ(r.blocks.size(), 3u);
@@ -264,22 +287,45 @@ TEST(FarmManifest, NamesBesideTheFramesAndRoundTrips) {
 
     // A manifest written before the shot was kept: its tasks ran with the frames as the shot.
     Json old = m.toJson();
-    Json without = Json::object();
-    for (const auto& [k, v] : old.members())
-        if (k != "shot") without.set(k, v);
+    Json without = old;
+    without.erase("shot");
     const Manifest o = Manifest::fromJson(without, m.path);
     EXPECT_EQ(o.shotFirst, 1);
     EXPECT_EQ(o.shotLast, 10);
     // A shot that does not hold the frames is not a manifest streyes wrote.
     Json narrow = old;
-    Json shot = Json::array();
-    shot.push(Json::number(2));
-    shot.push(Json::number(10));
-    narrow.set("shot", shot);
+    narrow["shot"] = {2, 10};
     EXPECT_THROW(Manifest::fromJson(narrow, m.path), std::runtime_error);
 
     std::ofstream(dir.path + "/not.json") << R"({"scene": "x"})";
     EXPECT_THROW(Manifest::load(dir.path + "/not.json"), std::runtime_error);
+    // Members of the wrong type: refused naming the file, not a crash or a half-read manifest.
+    const std::string bad = dir.path + "/bad.json";
+    for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
+             {"blocks", R"(["1-4", "5-8"])"},
+             {"frames", R"("1-10")"},
+             {"render_options", "[1, 2]"},
+             {"submissions", R"([{"job": 12, "tasks": ["a"]}])"},
+             {"submissions", "3"}}) {
+        Json j = old;
+        j[key] = Json::parse(value);
+        std::ofstream(bad) << dumpJson(j);
+        try {
+            Manifest::load(bad);
+            ADD_FAILURE() << key << " " << value;
+        } catch (const std::runtime_error& e) {
+            EXPECT_NE(std::string(e.what()).find("bad.json' is not a streyes farm manifest"), std::string::npos) << e.what();
+        }
+    }
+    // Cut short, as a full disk would leave it.
+    const std::string whole = dumpJson(old);
+    std::ofstream(bad, std::ios::trunc) << whole.substr(0, whole.size() / 2);
+    try {
+        Manifest::load(bad);
+        ADD_FAILURE();
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.json: not valid JSON: "), std::string::npos) << e.what();
+    }
 }
 
 TEST(FarmManifest, TheTaskCommandIsTheContract) {

@@ -81,12 +81,12 @@ long jobId(const Ran& submit) {
 Json statusOf(const std::string& what, const std::string& prefix = "") {
     Ran r = streyes("farm status " + what + " --json", prefix);
     EXPECT_EQ(r.code, 0) << r.err;
-    return Json::parse(r.out, "farm status --json");
+    return farm::parseJson(r.out, "farm status --json");
 }
 
 const Json* taskIn(const Json& status, int block) {
-    for (const Json& t : status["tasks"].items())
-        if (int(t["block"].num(-1)) == block) return &t;
+    for (const Json& t : status.at("tasks"))
+        if (int(t.at("block").get<double>()) == block) return &t;
     return nullptr;
 }
 
@@ -205,9 +205,9 @@ void expectFarmMatchesOneMachine(const test::TempDir& dir, const std::string& sc
     EXPECT_EQ(m.submissions[0].tasks, (std::vector<int>{0, 1, 2, 3}));
     for (int k = 0; k < 4; ++k) {
         // Each task rendered its own block, and only it.
-        const Json st = Json::load(m.statsPath(job, k));
-        EXPECT_EQ(st["frames"].dump(), "[" + std::to_string(1 + 4 * k) + ", " + std::to_string(4 + 4 * k) + "]");
-        EXPECT_EQ(st["frames_skipped"].num(-1), 0);
+        const Json st = farm::loadJson(m.statsPath(job, k));
+        EXPECT_EQ(st.at("frames"), Json::array({1 + 4 * k, 4 + 4 * k}));
+        EXPECT_EQ(st.at("frames_skipped").get<double>(), 0);
     }
 
     int covered = 0;
@@ -222,37 +222,37 @@ void expectFarmMatchesOneMachine(const test::TempDir& dir, const std::string& sc
     EXPECT_GT(covered, 16 * 64) << "the frames are nearly empty: the comparison would prove little";
 
     const Json status = statusOf(out + "/f.farm.json");
-    EXPECT_EQ(status["frames"]["complete"].num(), 16);
-    EXPECT_EQ(status["frames"]["missing"].num(), 0);
-    EXPECT_EQ(status["failed_tasks"].num(), 0);
+    EXPECT_EQ(status.at("frames").at("complete").get<double>(), 16);
+    EXPECT_EQ(status.at("frames").at("missing").get<double>(), 0);
+    EXPECT_EQ(status.at("failed_tasks").get<double>(), 0);
     for (int k = 0; k < 4; ++k) {
         ASSERT_NE(taskIn(status, k), nullptr);
-        EXPECT_EQ((*taskIn(status, k))["state"].str(), "COMPLETED") << k;
-        EXPECT_EQ((*taskIn(status, k))["state_from"].str(), "slurm") << k;
+        EXPECT_EQ((*taskIn(status, k)).at("state").get<std::string>(), "COMPLETED") << k;
+        EXPECT_EQ((*taskIn(status, k)).at("state_from").get<std::string>(), "slurm") << k;
     }
     // By job id, through the job's comment: the same answer.
-    EXPECT_EQ(statusOf(std::to_string(job))["frames"]["complete"].num(), 16);
+    EXPECT_EQ(statusOf(std::to_string(job)).at("frames").at("complete").get<double>(), 16);
 
     // gather: sums of the tasks' own stats.
     const Ran gather = streyes("farm gather " + std::to_string(job) + " --json");
     ASSERT_EQ(gather.code, 0) << gather.err;
-    const Json g = Json::parse(gather.out, "gather");
+    const Json g = farm::parseJson(gather.out, "gather");
     double cpu = 0, peak = 0, micropolygons = 0, sampleTests = 0;
     for (int k = 0; k < 4; ++k) {
-        const Json st = Json::load(m.statsPath(job, k));
-        ASSERT_GT(st["cpu_seconds"].num(0), 0);
-        cpu += st["cpu_seconds"].num();
-        peak = std::max(peak, st["peak_memory_bytes"].num());
-        micropolygons += st["counters"]["micropolygons"].num();
-        sampleTests += st["counters"]["sample_tests"].num();
+        const Json st = farm::loadJson(m.statsPath(job, k));
+        ASSERT_GT(st.at("cpu_seconds").get<double>(), 0);
+        cpu += st.at("cpu_seconds").get<double>();
+        peak = std::max(peak, st.at("peak_memory_bytes").get<double>());
+        micropolygons += st.at("counters").at("micropolygons").get<double>();
+        sampleTests += st.at("counters").at("sample_tests").get<double>();
     }
-    EXPECT_EQ(g["tasks_with_stats"].num(), 4);
-    EXPECT_EQ(g["frames_rendered"].num(), 16);
-    EXPECT_EQ(g["frames_skipped"].num(), 0);
-    EXPECT_NEAR(g["cpu_seconds"].num(), cpu, 1e-6);
-    EXPECT_EQ(g["peak_memory_bytes_max"].num(), peak);
-    EXPECT_EQ(g["counters"]["micropolygons"].num(), micropolygons);
-    EXPECT_EQ(g["counters"]["sample_tests"].num(), sampleTests);
+    EXPECT_EQ(g.at("tasks_with_stats").get<double>(), 4);
+    EXPECT_EQ(g.at("frames_rendered").get<double>(), 16);
+    EXPECT_EQ(g.at("frames_skipped").get<double>(), 0);
+    EXPECT_NEAR(g.at("cpu_seconds").get<double>(), cpu, 1e-6);
+    EXPECT_EQ(g.at("peak_memory_bytes_max").get<double>(), peak);
+    EXPECT_EQ(g.at("counters").at("micropolygons").get<double>(), micropolygons);
+    EXPECT_EQ(g.at("counters").at("sample_tests").get<double>(), sampleTests);
     EXPECT_TRUE(fs::exists(m.farmDir() + "/summary.json"));
 }
 
@@ -318,20 +318,20 @@ TEST_F(Farm, CancelledTaskThenResubmittedRendersOnlyTheMissingFrames) {
 
     // Status, from Slurm: the frames on disk and the cancelled task with its log.
     const Json s1 = statusOf(out + "/f.farm.json");
-    EXPECT_EQ(s1["frames"]["complete"].num(), 12 + kept);
-    EXPECT_EQ(s1["frames"]["missing"].num(), 4 - kept);
-    EXPECT_EQ(s1["failed_tasks"].num(), 1);
+    EXPECT_EQ(s1.at("frames").at("complete").get<double>(), 12 + kept);
+    EXPECT_EQ(s1.at("frames").at("missing").get<double>(), 4 - kept);
+    EXPECT_EQ(s1.at("failed_tasks").get<double>(), 1);
     const Json* t1 = taskIn(s1, 1);
     ASSERT_NE(t1, nullptr);
-    EXPECT_EQ((*t1)["state"].str(), "CANCELLED");
-    EXPECT_EQ((*t1)["state_from"].str(), "slurm");
-    EXPECT_TRUE((*t1)["failed"].flag());
-    EXPECT_EQ((*t1)["missing"].num(), 4 - kept);
-    EXPECT_NE((*t1)["log_tail"].str().find("streyes farm: job " + std::to_string(job) + " task 1"), std::string::npos)
-        << (*t1)["log_tail"].str();
+    EXPECT_EQ((*t1).at("state").get<std::string>(), "CANCELLED");
+    EXPECT_EQ((*t1).at("state_from").get<std::string>(), "slurm");
+    EXPECT_TRUE((*t1).at("failed").get<bool>());
+    EXPECT_EQ((*t1).at("missing").get<double>(), 4 - kept);
+    const std::string tail = t1->at("log_tail").get<std::string>();
+    EXPECT_NE(tail.find("streyes farm: job " + std::to_string(job) + " task 1"), std::string::npos) << tail;
     for (int k : {0, 2, 3}) {
-        EXPECT_EQ((*taskIn(s1, k))["state"].str(), "COMPLETED") << k;
-        EXPECT_FALSE((*taskIn(s1, k))["failed"].flag()) << k;
+        EXPECT_EQ((*taskIn(s1, k)).at("state").get<std::string>(), "COMPLETED") << k;
+        EXPECT_FALSE((*taskIn(s1, k)).at("failed").get<bool>()) << k;
     }
     // The text report names the cancelled task and quotes its log.
     const Ran text = streyes("farm status " + out + "/f.farm.json");
@@ -340,10 +340,10 @@ TEST_F(Farm, CancelledTaskThenResubmittedRendersOnlyTheMissingFrames) {
     EXPECT_NE(text.out.find("    | streyes farm: job"), std::string::npos) << text.out;
     // Without Slurm's commands (a machine that only sees the files): the same, from the logs.
     const Json s2 = statusOf(out + "/f.farm.json", "env PATH=/nonexistent ");
-    EXPECT_FALSE(s2["slurm_reachable"].flag());
-    EXPECT_EQ(s2["frames"]["complete"].num(), 12 + kept);
-    EXPECT_EQ((*taskIn(s2, 1))["state"].str(), "ENDED_UNFINISHED");
-    EXPECT_EQ((*taskIn(s2, 0))["state"].str(), "COMPLETED");
+    EXPECT_FALSE(s2.at("slurm_reachable").get<bool>());
+    EXPECT_EQ(s2.at("frames").at("complete").get<double>(), 12 + kept);
+    EXPECT_EQ((*taskIn(s2, 1)).at("state").get<std::string>(), "ENDED_UNFINISHED");
+    EXPECT_EQ((*taskIn(s2, 0)).at("state").get<std::string>(), "COMPLETED");
 
     std::vector<FileId> before;
     for (int f : complete) before.push_back(fileId(frame(out, f)));
@@ -362,28 +362,28 @@ TEST_F(Farm, CancelledTaskThenResubmittedRendersOnlyTheMissingFrames) {
     for (size_t i = 0; i < complete.size(); ++i)
         EXPECT_TRUE(fileId(frame(out, complete[i])) == before[i]) << "frame " << complete[i] << " was written again";
     // The second run's own account: it skipped the frames the cancelled task had finished.
-    const Json st = Json::load(m.statsPath(job2, 1));
-    EXPECT_EQ(st["frames"].dump(), "[5, 8]");
-    EXPECT_EQ(st["frames_skipped"].num(-1), kept);
+    const Json st = farm::loadJson(m.statsPath(job2, 1));
+    EXPECT_EQ(st.at("frames"), Json::array({5, 8}));
+    EXPECT_EQ(st.at("frames_skipped").get<double>(), kept);
     const std::string log = readFile(m.logPath(job2, 1));
     EXPECT_NE(log.find(std::to_string(kept) + " frame" + (kept == 1 ? "" : "s") + " already complete"), std::string::npos)
         << log;
     EXPECT_NE(log.find("streyes farm: exit code 0"), std::string::npos) << log;
 
     const Json s3 = statusOf(out + "/f.farm.json");
-    EXPECT_EQ(s3["frames"]["complete"].num(), 16);
-    EXPECT_EQ(s3["frames"]["missing"].num(), 0);
-    EXPECT_EQ(s3["failed_tasks"].num(), 0);
-    EXPECT_EQ((*taskIn(s3, 1))["job"].num(), job2);
-    EXPECT_EQ((*taskIn(s3, 1))["state"].str(), "COMPLETED");
+    EXPECT_EQ(s3.at("frames").at("complete").get<double>(), 16);
+    EXPECT_EQ(s3.at("frames").at("missing").get<double>(), 0);
+    EXPECT_EQ(s3.at("failed_tasks").get<double>(), 0);
+    EXPECT_EQ((*taskIn(s3, 1)).at("job").get<double>(), job2);
+    EXPECT_EQ((*taskIn(s3, 1)).at("state").get<std::string>(), "COMPLETED");
 
     // gather: the cancelled task left no stats; the rest add up to the shot.
-    const Json g = Json::parse(streyes("farm gather " + out + "/f.farm.json --json").out, "gather");
-    EXPECT_EQ(g["tasks_with_stats"].num(), 4);
-    ASSERT_EQ(g["tasks_without_stats"].items().size(), 1u);
-    EXPECT_EQ(g["tasks_without_stats"].items()[0].str(), std::to_string(job) + "_1");
-    EXPECT_EQ(g["frames_rendered"].num(), 16 - kept);
-    EXPECT_EQ(g["frames_skipped"].num(), kept);
+    const Json g = farm::parseJson(streyes("farm gather " + out + "/f.farm.json --json").out, "gather");
+    EXPECT_EQ(g.at("tasks_with_stats").get<double>(), 4);
+    ASSERT_EQ(g.at("tasks_without_stats").size(), 1u);
+    EXPECT_EQ(g.at("tasks_without_stats")[0].get<std::string>(), std::to_string(job) + "_1");
+    EXPECT_EQ(g.at("frames_rendered").get<double>(), 16 - kept);
+    EXPECT_EQ(g.at("frames_skipped").get<double>(), kept);
 
     // Nothing left to do: a third submit submits nothing.
     const Ran third = streyes(submitArgs);
