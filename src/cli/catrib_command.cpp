@@ -10,31 +10,12 @@
 #include <iterator>
 #include <sstream>
 
+#include "command_line.h"
 #include "commands.h"
 #include "scene/rib_writer.h"
 #include "streyes/error.h"
 
 namespace streyes::cli {
-
-const char* kCatribUsage = R"(usage: streyes catrib [options] FILE.rib ... [-o OUT.rib]
-
-Writes the requests of RIB files again, one file after the other, in another encoding, as PRMan's
-catrib does: comments are dropped, requests and their values kept exactly. The inputs may be ASCII
-or binary RIB (or both mixed), gzip-compressed or not, told by their bytes ("-": standard input).
-
-  --ascii       ASCII RIB, one request a line (the default)
-  --binary      binary RIB (RenderMan Interface Specification 3.2, Appendix C): requests and
-                recurring strings encoded, reals as 64-bit floats (exact)
-  --float32     reals as 32-bit floats, as most binary RIB has them (about half the size; arrays
-                become float arrays); with --ascii, the values those floats have
-  --gzip        gzip-compress the output (what renderers read as .rib.gz)
-  -o FILE       the output file (default: standard output, which must not be a terminal for
-                binary or compressed output)
-
-Only the syntax is checked (a malformed file stops it with file:line, or file and byte offset in
-binary RIB, and exit status 2); what the requests mean is checked by render. Archives are not
-expanded.
-)";
 
 namespace {
 
@@ -51,21 +32,36 @@ std::string readInput(const std::string& path) {
 }  // namespace
 
 int catribCommand(const std::vector<std::string>& args) {
+    CommandLine cl("catrib", "usage: streyes catrib [options] FILE.rib ... [-o OUT.rib]",
+                   "\nWrites the requests of RIB files again, one file after the other, in another encoding, as "
+                   "PRMan's\ncatrib does: comments are dropped, requests and their values kept exactly. The inputs "
+                   "may be ASCII\nor binary RIB (or both mixed), gzip-compressed or not, told by their bytes (\"-\": "
+                   "standard input).");
     RibEncoding encoding;
     std::string output = "-";
     std::vector<std::string> inputs;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--ascii") encoding.binary = false;
-        else if (a == "--binary") encoding.binary = true;
-        else if (a == "--float32") encoding.float32 = true;
-        else if (a == "--gzip") encoding.gzip = true;
-        else if (a == "-o" || a == "--output") {
-            if (i + 1 == args.size()) throw UsageError(a + " needs a file name");
-            output = args[++i];
-        } else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else inputs.push_back(a);
-    }
+    bool ascii = false, binary = false;
+    cl.positionals("files", "the RIB files, \"-\" for standard input", &inputs)->type_name("FILE.rib");
+    cl.flag("--ascii", "ASCII RIB, one request a line (the default)", &ascii);
+    cl.flag("--binary",
+            "binary RIB (RenderMan Interface Specification 3.2, Appendix C): requests and\n"
+            "recurring strings encoded, reals as 64-bit floats (exact)",
+            &binary);
+    cl.flag("--float32",
+            "reals as 32-bit floats, as most binary RIB has them (about half the size; arrays\n"
+            "become float arrays); with --ascii, the values those floats have",
+            &encoding.float32);
+    cl.flag("--gzip", "gzip-compress the output (what renderers read as .rib.gz)", &encoding.gzip);
+    cl.value("-o,--output", "FILE",
+             "the output file (default: standard output, which must not be a terminal for\n"
+             "binary or compressed output)",
+             &output);
+    cl.app().footer("Only the syntax is checked (a malformed file stops it with file:line, or file and byte offset "
+                    "in\nbinary RIB, and exit status 2); what the requests mean is checked by render. Archives are "
+                    "not\nexpanded.");
+    if (!cl.parse(args)) return 0;
+    if (ascii && binary) throw UsageError("--ascii and --binary: give one encoding");
+    encoding.binary = binary;
     if (inputs.empty()) throw UsageError("no RIB file given");
     if (output == "-" && (encoding.binary || encoding.gzip) && isatty(STDOUT_FILENO))
         throw UsageError("binary or compressed RIB is not for a terminal: give -o FILE");

@@ -8,36 +8,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "command_line.h"
 #include "commands.h"
 #include "streyes/compare.h"
 #include "streyes/image_io.h"
 #include "streyes/error.h"
 
 namespace streyes::cli {
-
-const char* kCompareUsage = R"(usage: streyes compare A B [options]
-
-Measures the error of B against the reference A: two image files, or two frame patterns
-(ref.####.exr test.####.exr) compared frame by frame and over all frames.
-
-options:
-  --frames A-B       frames to compare (patterns only); default: every frame of A's pattern on
-                     disk, each of which must exist for B too
-  --threshold X      a pixel is "over" when any of R G B A differs by more than X (default 0.01)
-  --z-tolerance X    relative depth difference that counts as a Z disagreement (default 0.001)
-  --resize           resample B bilinearly to A's size first (a preview rendered at a lower
-                     --res); Z is then not compared
-  --fail X           exit 1 when a frame's RMSE of RGB or of A exceeds X, or when any value is
-                     NaN or infinite (Z = +inf is background and allowed)
-  --json             print the figures as JSON on stdout instead of a table
-
-figures: RMSE of RGB and of A; PSNR in dB (peak 1); mean and max absolute RGB error; share of
-pixels that differ at all and by more than the threshold; Z disagreement (surface against
-background, and depth beyond the tolerance); NaN and Inf counts in each image.
-
-exit codes: 0 compared (within --fail), 1 above --fail, 2 bad input or usage (a missing or
-unreadable file, images of different sizes or channels)
-)";
 
 namespace {
 
@@ -127,30 +104,46 @@ void warnNonFinite(const FramePair& p, const ImageErrors& e) {
 }  // namespace
 
 int compareCommand(const std::vector<std::string>& args) {
+    CommandLine cl("compare", "usage: streyes compare A B [options]",
+                   "\nMeasures the error of B against the reference A: two image files, or two frame patterns\n"
+                   "(ref.####.exr test.####.exr) compared frame by frame and over all frames.");
     CompareOptions opts;
     std::vector<std::string> files;
-    bool json = false, hasRange = false, hasFail = false;
+    bool hasRange = false, hasFail = false, json = false;
     int first = 0, last = 0;
     double fail = 0;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-            return args[++i];
-        };
-        if (a == "--frames") {
-            parseFrameRange(a, value(), &first, &last);
-            hasRange = true;
-        } else if (a == "--threshold") opts.threshold = parseReal(a, value(), 0, 1e30);
-        else if (a == "--z-tolerance") opts.zTolerance = parseReal(a, value(), 0, 1e30);
-        else if (a == "--resize") opts.resize = true;
-        else if (a == "--fail") {
-            fail = parseReal(a, value(), 0, 1e30);
-            hasFail = true;
-        } else if (a == "--json") json = true;
-        else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else files.push_back(a);
-    }
+    cl.positionals("images", "A (the reference) and B: image files, or frame patterns with ####", &files)
+        ->type_name("A B");
+    cl.value("--frames", "A-B",
+             "frames to compare (patterns only); default: every frame of A's pattern on\n"
+             "disk, each of which must exist for B too",
+             [&](const std::string& v) {
+                 parseFrameRange("--frames", v, &first, &last);
+                 hasRange = true;
+             });
+    cl.value("--threshold", "X", "a pixel is \"over\" when any of R G B A differs by more than X (default 0.01)",
+             [&](const std::string& v) { opts.threshold = parseReal("--threshold", v, 0, 1e30); });
+    cl.value("--z-tolerance", "X", "relative depth difference that counts as a Z disagreement (default 0.001)",
+             [&](const std::string& v) { opts.zTolerance = parseReal("--z-tolerance", v, 0, 1e30); });
+    cl.flag("--resize",
+            "resample B bilinearly to A's size first (a preview rendered at a lower\n"
+            "--res); Z is then not compared",
+            &opts.resize);
+    cl.value("--fail", "X",
+             "exit 1 when a frame's RMSE of RGB or of A exceeds X, or when any value is\n"
+             "NaN or infinite (Z = +inf is background and allowed)",
+             [&](const std::string& v) {
+                 fail = parseReal("--fail", v, 0, 1e30);
+                 hasFail = true;
+             });
+    cl.flag("--json", "print the figures as JSON on stdout instead of a table", &json);
+    cl.app().footer(
+        "figures: RMSE of RGB and of A; PSNR in dB (peak 1); mean and max absolute RGB error; share of\n"
+        "pixels that differ at all and by more than the threshold; Z disagreement (surface against\n"
+        "background, and depth beyond the tolerance); NaN and Inf counts in each image.\n\n"
+        "exit codes: 0 compared (within --fail), 1 above --fail, 2 bad input or usage (a missing or\n"
+        "unreadable file, images of different sizes or channels)");
+    if (!cl.parse(args)) return 0;
     if (files.size() != 2) throw UsageError("compare needs two images or frame patterns, A (the reference) and B");
 
     const std::vector<FramePair> pairs = pairFrames(files[0], files[1], hasRange, first, last);

@@ -14,6 +14,7 @@
 #include <memory>
 #include <set>
 
+#include "command_line.h"
 #include "commands.h"
 #include "farm_plan.h"
 #include "farm_slurm.h"
@@ -28,50 +29,32 @@ namespace streyes::cli {
 using namespace streyes::farm;
 namespace fs = std::filesystem;
 
-const char* kFarmUsage = R"(usage: streyes farm submit SCENE -o PATTERN [--frames A-B] [options] [render options] [-- sbatch options]
-       streyes farm status JOB|MANIFEST [--json] [--lines N]
-       streyes farm gather JOB|MANIFEST [--json] [-o FILE]
+namespace {
 
+const char* kFarmSynopsis =
+    "usage: streyes farm submit SCENE -o PATTERN [--frames A-B] [options] [render options] [-- sbatch options]\n"
+    "       streyes farm status JOB|MANIFEST [--json] [--lines N]\n"
+    "       streyes farm gather JOB|MANIFEST [--json] [-o FILE]";
+
+const char* kFarmDescription = R"(
 Renders a shot on a Slurm cluster: the frames are cut into blocks, and one job array runs one
 task per block, each `streyes render SCENE --frames BLOCK -o PATTERN --resume --seed S ...`.
 Frames, logs and stats go beside PATTERN, on a filesystem every node sees: the manifest
 NAME.farm.json and the folder NAME.farm/ (scripts, logs/JOB_TASK.log, stats/JOB_TASK.json).
 
-submit options:
-  -o PATTERN          output frames, with a #### frame field (required)
-  --frames A-B        the shot's frames (default: the scene's)
-  --block N|auto      frames per task (default auto: from the shot's length, the cluster's
-                      size and the measured block-length curve)
-  --curve NAME|FILE   the curve --block auto uses: a built-in one, measured by
-                      tools/block-curve (docs/results/block-curve.md: demo, forest,
-                      forest-flyover ...; default forest), or a file it wrote (FILE or
-                      FILE:NAME)
-  --slots N           plan --block auto for N tasks at once instead of the partition's
-                      (with --dry-run: plan a shot for a cluster you are not on)
-  --partition P       the Slurm partition (default: the cluster's default)
-  --cpus-per-task N   N cores a task, rendering with N threads (default: a whole node a task)
-  --seed N            the shot's sample seed, the same in every task (default 0)
-  --all-blocks        submit every block (by default, blocks whose frames are all complete
-                      are left out; every task skips complete frames anyway)
-  --dry-run           print the plan, the batch script and the sbatch line; submit nothing
-  render options      --res, --samples, --algorithm, --preview, --safe ... as for streyes
-                      render, passed to every task (not --frames, --shot, --stats or --resume:
-                      the farm sets them); with --safe the scene is checked here first
-  -- OPTIONS          anything after -- goes to sbatch (e.g. -- --time=2:00:00 --mem=8G)
+  submit    submits a shot (streyes farm submit --help)
+  status    frames complete and missing (each frame read back), each block's task as Slurm
+            reports it (squeue / scontrol; without accounting Slurm forgets a finished job after
+            MinJobAge, then the task's log tells), and failed tasks with the last lines of their
+            logs (streyes farm status --help)
+  gather    one summary of the tasks' --stats: CPU time, counters summed, peak memory per task;
+            written to NAME.farm/summary.json (or -o FILE) (streyes farm gather --help))";
 
-  Submitting the same shot again (same scene, frames, blocks, seed and options) adds a job to
-  its manifest and renders only the frames still missing.
-
-status: frames complete and missing (each frame read back), each block's task as Slurm reports it
-  (squeue / scontrol; without accounting Slurm forgets a finished job after MinJobAge, then the
-  task's log tells), and failed tasks with the last lines of their logs.
-gather: one summary of the tasks' --stats: CPU time, counters summed, peak memory per task;
-  written to NAME.farm/summary.json (or -o FILE).
-
-exit codes: 0 done, 1 the command failed (sbatch refused the job), 2 bad input: no Slurm, no
+const char* kFarmExitCodes = R"(exit codes: 0 done, 1 the command failed (sbatch refused the job), 2 bad input: no Slurm, no
             controller answering, an unwritable output folder, a block longer than the shot, a
-            scene that does not parse (all found before anything is submitted)
-)";
+            scene that does not parse (all found before anything is submitted))";
+
+}  // namespace
 
 namespace {
 
@@ -164,50 +147,88 @@ bool activeState(const std::string& s) {
 
 // ---- submit --------------------------------------------------------------------------------------
 
-int farmSubmit(const std::vector<std::string>& args) {
-    std::string scenePath, outPattern, blockArg = "auto", curveArg, partition, framesArg;
+int farmSubmit(const std::vector<std::string>& given) {
+    // Anything after -- goes to sbatch.
+    const auto dashes = std::find(given.begin(), given.end(), "--");
+    const std::vector<std::string> args(given.begin(), dashes);
+    const std::vector<std::string> sbatchOptions(dashes == given.end() ? dashes : dashes + 1, given.end());
+
+    CommandLine cl("farm submit",
+                   "usage: streyes farm submit SCENE -o PATTERN [--frames A-B] [options] [render options] "
+                   "[-- sbatch options]",
+                   "\nSubmits a shot to Slurm: one job array, one task a block of frames, each task `streyes render "
+                   "SCENE\n--frames BLOCK -o PATTERN --resume --seed S --shot A-B ...` (docs/FARM.md).");
+    std::string outPattern, blockArg = "auto", curveArg, partition, framesArg;
     int cpusPerTask = 0, slotsGiven = 0;
     uint64_t seed = 0;
     bool allBlocks = false, dryRun = false;
-    std::vector<std::string> renderOptions, sbatchOptions;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-            return args[++i];
-        };
-        if (a == "--") {
-            sbatchOptions.assign(args.begin() + long(i) + 1, args.end());
-            break;
-        }
-        if (a == "-o" || a == "--output") outPattern = value();
-        else if (a == "--frames") framesArg = value();
-        else if (a == "--block") blockArg = value();
-        else if (a == "--curve") curveArg = value();
-        else if (a == "--partition" || a == "-p") partition = value();
-        else if (a == "--cpus-per-task") cpusPerTask = int(parseInt(a, value(), 1, 4096));
-        else if (a == "--slots") slotsGiven = int(parseInt(a, value(), 1, 10000000));
-        else if (a == "--seed") seed = uint64_t(parseInt(a, value(), 0, 0x7fffffffL));
-        else if (a == "--all-blocks") allBlocks = true;
-        else if (a == "--dry-run") dryRun = true;
-        else if (a == "--stats" || a == "--resume" || a == "--threads" || a == "--shot")
-            throw UsageError(a + " is set by the farm for each task" +
-                             (a == "--threads" ? std::string(" (use --cpus-per-task N)")
-                              : a == "--shot"  ? std::string(" (the shot streyes render --frames A-B would use: the "
-                                                             "scene's frames joined with A-B)")
-                                               : std::string()));
-        else if (a == "--safe-dir") {
-            // The tasks run elsewhere: the folder as this machine names it, absolute.
-            renderOptions.push_back(a);
-            renderOptions.push_back(fs::absolute(value()).lexically_normal().string());
-        } else if (!a.empty() && a[0] == '-') {
-            // A render option, and its value when it takes one: parseRenderArgs checks it below.
-            renderOptions.push_back(a);
-            static const std::set<std::string> flags = {"--preview", "--quiet", "-q", "--safe", "--strict"};
-            if (!flags.count(a) && i + 1 < args.size()) renderOptions.push_back(args[++i]);
-        } else if (scenePath.empty()) scenePath = a;
-        else throw UsageError("more than one scene given ('" + scenePath + "' and '" + a + "')");
+    std::vector<std::string> scenes;
+    cl.positionals("scene", "the shot's scene: a RIB file, or a #### pattern of frame files", &scenes)
+        ->type_name("SCENE");
+    cl.value("-o,--output", "PATTERN", "output frames, with a #### frame field (required)", &outPattern);
+    cl.value("--frames", "A-B", "the shot's frames (default: the scene's)", &framesArg);
+    cl.value("--block", "N|auto",
+             "frames per task (default auto: from the shot's length, the cluster's\n"
+             "size and the measured block-length curve)",
+             &blockArg);
+    cl.value("--curve", "NAME|FILE",
+             "the curve --block auto uses: a built-in one, measured by\n"
+             "tools/block-curve (docs/results/block-curve.md: demo, forest,\n"
+             "forest-flyover ...; default forest), or a file it wrote (FILE or\n"
+             "FILE:NAME)",
+             &curveArg);
+    cl.value("--slots", "N",
+             "plan --block auto for N tasks at once instead of the partition's\n"
+             "(with --dry-run: plan a shot for a cluster you are not on)",
+             [&](const std::string& v) { slotsGiven = int(parseInt("--slots", v, 1, 10000000)); });
+    cl.value("-p,--partition", "P", "the Slurm partition (default: the cluster's default)", &partition);
+    cl.value("--cpus-per-task", "N", "N cores a task, rendering with N threads (default: a whole node a task)",
+             [&](const std::string& v) { cpusPerTask = int(parseInt("--cpus-per-task", v, 1, 4096)); });
+    cl.value("--seed", "N", "the shot's sample seed, the same in every task (default 0)",
+             [&](const std::string& v) { seed = uint64_t(parseInt("--seed", v, 0, 0x7fffffffL)); });
+    cl.flag("--all-blocks",
+            "submit every block (by default, blocks whose frames are all complete\n"
+            "are left out; every task skips complete frames anyway)",
+            &allBlocks);
+    cl.flag("--dry-run", "print the plan, the batch script and the sbatch line; submit nothing", &dryRun);
+    // render's options the farm sets for each task: refused, saying what to give instead.
+    for (const char* name : {"--stats", "--resume", "--threads", "--shot"}) {
+        const std::string n = name;
+        const std::string why =
+            n == "--threads" ? " (use --cpus-per-task N)"
+            : n == "--shot"  ? " (the shot streyes render --frames A-B would use: the scene's frames joined with A-B)"
+                             : "";
+        auto refuse = [n, why](const std::string&) -> void { throw UsageError(n + " is set by the farm for each task" + why); };
+        CLI::Option* o = n == "--resume" ? cl.app().add_flag_callback(n, [refuse] { refuse(""); })
+                                         : cl.value(n, "", "", refuse);
+        o->group("");  // not in the help
     }
+    // The rest of render's options, passed to every task as given; checked here by the code the
+    // tasks run (parseRenderArgs).
+    RenderRequest given_;
+    addRenderOptions(cl, given_, {"--frames", "--shot", "-o", "--stats", "--threads", "--seed", "--resume"},
+                     "render options (as for streyes render, passed to every task; with --safe the scene is "
+                     "checked here first)");
+    cl.app().footer("-- OPTIONS: anything after -- goes to sbatch (e.g. -- --time=2:00:00 --mem=8G).\n\n"
+                    "Submitting the same shot again (same scene, frames, blocks, seed and options) adds a job to\n"
+                    "its manifest and renders only the frames still missing.\n\n" +
+                    std::string(kFarmExitCodes));
+    if (!cl.parse(args)) return 0;
+    // The render options in the order given, as the tasks will get them (--safe-dir made absolute:
+    // the tasks run elsewhere, and name the folder as this machine does).
+    std::vector<std::string> renderOptions;
+    std::map<const CLI::Option*, size_t> seen;
+    for (const CLI::Option* o : cl.app().parse_order()) {
+        if (o->get_group().rfind("render options", 0) != 0) continue;
+        const std::string name = o->get_name(false, true).substr(0, o->get_name(false, true).find(','));
+        renderOptions.push_back(name);
+        if (o->get_expected_max() == 0) continue;  // a flag
+        const size_t k = seen[o]++;
+        const std::string v = k < o->results().size() ? o->results()[k] : o->results().back();
+        renderOptions.push_back(name == "--safe-dir" ? fs::absolute(v).lexically_normal().string() : v);
+    }
+    if (scenes.size() > 1) throw UsageError("more than one scene given ('" + scenes[0] + "' and '" + scenes[1] + "')");
+    const std::string scenePath = scenes.empty() ? std::string() : scenes[0];
     if (scenePath.empty()) throw UsageError("no scene given");
     if (outPattern.empty())
         throw UsageError("farm submit needs -o PATTERN (with a #### frame field), in a folder every node of the cluster "
@@ -226,7 +247,8 @@ int farmSubmit(const std::vector<std::string>& args) {
         check.push_back("--frames");
         check.push_back(framesArg);
     }
-    RenderRequest req = parseRenderArgs(check);
+    RenderRequest req;
+    parseRenderArgs(check, &req);
     // --safe: the scene is read here as the tasks will read it, its refusals found before anything
     // is submitted (the tasks' write folder is -o's, as given here, unless --safe-dir says).
     req.outPattern = fs::absolute(outPattern).lexically_normal().string();
@@ -469,21 +491,29 @@ struct BlockStatus {
     bool failed = false;  // ended, frames still missing
 };
 
+// `status` and `gather` take one job or manifest.
+std::string oneTarget(const std::vector<std::string>& targets, const std::string& command) {
+    if (targets.empty())
+        throw UsageError("farm " + command + " needs a job id or a manifest (NAME.farm.json)");
+    if (targets.size() > 1)
+        throw UsageError("give one job or manifest, not '" + targets[0] + "' and '" + targets[1] + "'");
+    return targets[0];
+}
+
 int farmStatus(const std::vector<std::string>& args) {
-    std::string target;
+    CommandLine cl("farm status", "usage: streyes farm status JOB|MANIFEST [--json] [--lines N]",
+                   "\nA shot's frames complete and missing (each frame read back), each block's task as Slurm "
+                   "reports it\n(squeue / scontrol; without accounting Slurm forgets a finished job after MinJobAge, "
+                   "then the\ntask's log tells), and failed tasks with the last lines of their logs.");
+    std::vector<std::string> targets;
     bool json = false;
     int tailLines = 10;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--json") json = true;
-        else if (a == "--lines") {
-            if (i + 1 >= args.size()) throw UsageError("--lines needs a value");
-            tailLines = int(parseInt(a, args[++i], 0, 10000));
-        } else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else if (target.empty()) target = a;
-        else throw UsageError("give one job or manifest");
-    }
-    if (target.empty()) throw UsageError("farm status needs a job id or a manifest (NAME.farm.json)");
+    cl.positionals("shot", "a job id, or the shot's manifest NAME.farm.json", &targets)->type_name("JOB|MANIFEST");
+    cl.flag("--json", "print the status as JSON", &json);
+    cl.value("--lines", "N", "the last N lines of each failed task's log (default 10)",
+             [&](const std::string& v) { tailLines = int(parseInt("--lines", v, 0, 10000)); });
+    if (!cl.parse(args)) return 0;
+    const std::string target = oneTarget(targets, "status");
     const Manifest m = findManifest(target);
 
     // Slurm's view, when it can be asked; the files' otherwise.
@@ -664,19 +694,16 @@ std::string bytesText(double b) {
 }
 
 int farmGather(const std::vector<std::string>& args) {
-    std::string target, outPath;
+    CommandLine cl("farm gather", "usage: streyes farm gather JOB|MANIFEST [--json] [-o FILE]",
+                   "\nOne summary of a shot's tasks' --stats: CPU time, counters summed, peak memory per task.");
+    std::vector<std::string> targets;
+    std::string outPath;
     bool json = false;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--json") json = true;
-        else if (a == "-o" || a == "--output") {
-            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-            outPath = args[++i];
-        } else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else if (target.empty()) target = a;
-        else throw UsageError("give one job or manifest");
-    }
-    if (target.empty()) throw UsageError("farm gather needs a job id or a manifest (NAME.farm.json)");
+    cl.positionals("shot", "a job id, or the shot's manifest NAME.farm.json", &targets)->type_name("JOB|MANIFEST");
+    cl.flag("--json", "print the summary as JSON", &json);
+    cl.value("-o,--output", "FILE", "where the summary goes (default NAME.farm/summary.json)", &outPath);
+    if (!cl.parse(args)) return 0;
+    const std::string target = oneTarget(targets, "gather");
     const Manifest m = findManifest(target);
     if (outPath.empty()) outPath = m.farmDir() + "/summary.json";
 
@@ -793,11 +820,17 @@ int farmGather(const std::vector<std::string>& args) {
 }  // namespace
 
 int farmCommand(const std::vector<std::string>& args) {
+    CommandLine cl("farm", kFarmSynopsis, kFarmDescription);
+    cl.app().footer(kFarmExitCodes);
     if (args.empty()) throw UsageError("farm needs a subcommand: submit, status or gather");
     const std::vector<std::string> rest(args.begin() + 1, args.end());
     if (args[0] == "submit") return farmSubmit(rest);
     if (args[0] == "status") return farmStatus(rest);
     if (args[0] == "gather") return farmGather(rest);
+    if (args[0].size() > 1 && args[0][0] == '-') {  // farm's own: --help
+        if (!cl.parse(args)) return 0;
+        throw UsageError("farm needs a subcommand: submit, status or gather");
+    }
     throw UsageError("unknown farm subcommand '" + args[0] + "' (submit, status or gather)");
 }
 

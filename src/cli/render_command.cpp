@@ -41,18 +41,6 @@ namespace {
 constexpr int kPreviewSamples = 4;
 constexpr int kPreviewDivisor = 2;  // --preview renders the Format's size divided by this
 
-void parseFrames(const std::string& v, RenderOptions& o) {
-    parseFrameRange("--frames", v, &o.firstFrame, &o.lastFrame);
-    o.hasFrames = true;
-}
-
-void parseRes(const std::string& v, RenderOptions& o) {
-    size_t x = v.find('x');
-    if (x == std::string::npos) throw UsageError("--res expects WIDTHxHEIGHT, e.g. 640x360, not '" + v + "'");
-    o.xres = int(parseInt("--res", v.substr(0, x), 1, 65536));
-    o.yres = int(parseInt("--res", v.substr(x + 1), 1, 65536));
-}
-
 // A duration as m:ss, or h:mm:ss from an hour on.
 std::string clockTime(int seconds) {
     char buf[32];
@@ -326,78 +314,6 @@ bool frameWritten(const Scene& frame, const RenderRequest& req, const std::strin
 
 }  // namespace
 
-RenderRequest parseRenderArgs(const std::vector<std::string>& args) {
-    RenderRequest req;
-    RenderOptions& opts = req.opts;
-#ifdef STREYES_JEMALLOC
-    // What procedurals expand into goes as soon as no bucket left can reach it, not only under
-    // memory pressure: under jemalloc freeing costs no time (glibc's malloc took 4-7% more), and
-    // the forests peak at a third to three fifths less memory (docs/ARCHITECTURE.md, Procedurals).
-    opts.freeExpansions = RenderOptions::FreeExpansions::Always;
-#endif
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-            return args[++i];
-        };
-        if (a == "--frames") parseFrames(value(), opts);
-        else if (a == "--shot") {
-            parseFrameRange(a, value(), &opts.shotFirst, &opts.shotLast);
-            opts.hasShot = true;
-        }
-        else if (a == "--res") parseRes(value(), opts);
-        else if (a == "--samples") opts.samples = int(parseInt(a, value(), 1, 4096));
-        else if (a == "--algorithm") {
-            std::string v = value();
-            if (!parseAlgorithm(v, &opts.algorithm))
-                throw UsageError("--algorithm expects spacetime-occlusion, spacetime, frames-occlusion, frames, "
-                                 "raytrace or raytrace-frames, not '" + v + "'");
-        } else if (a == "--tolerance") {
-            opts.tolerance = parseReal(a, value(), 0.0, 1.0);
-        } else if (a == "--layers") {
-            std::string v = value();
-            opts.layers = v == "adaptive" ? 0 : int(parseInt(a, v, 1, 1024));
-        } else if (a == "--preview") {
-            req.preview = true;
-        } else if (a == "--dof-preview") {
-            opts.dofPreviewLayers = int(parseInt(a, value(), 1, 256));
-        } else if (a == "-o" || a == "--output") req.outPattern = value();
-        else if (a == "--stats") req.statsPath = value();
-        else if (a == "--threads") opts.threads = int(parseInt(a, value(), 0, 1024));
-        else if (a == "--seed") opts.seed = uint64_t(parseInt(a, value(), 0, 0x7fffffffL));
-        else if (a == "--bucket") opts.bucketSize = int(parseInt(a, value(), 4, 1024));
-        else if (a == "--simd") {
-            req.simd = value();
-            std::string error;
-            if (!simdNameKnown(req.simd, &error)) throw UsageError("--simd: " + error);
-        }
-        else if (a == "--frame-block") opts.maxFrameBlock = int(parseInt(a, value(), 1, 100000));
-        else if (a == "--max-memory") {
-            std::string v = value();
-            if (!parseByteSize(v, &opts.maxMemoryBytes))
-                throw UsageError("--max-memory expects a size such as 512M, 8G or 1.5GiB, not '" + v + "'");
-        } else if (a == "--grid-cache") {
-            std::string v = value();
-            if (v == "0") opts.gridCacheBytes = 0;
-            else if (!parseByteSize(v, &opts.gridCacheBytes))
-                throw UsageError("--grid-cache expects a size such as 128M or 1G, or 0 (off), not '" + v + "'");
-        } else if (a == "--option") req.ribOptions.push_back(value());
-        else if (a == "--safe") req.safe = true;
-        else if (a == "--safe-dir") {
-            req.safe = true;
-            req.safeDir = value();
-            if (req.safeDir.empty()) throw UsageError("--safe-dir needs a folder");
-        } else if (a == "--resume") req.resume = true;
-        else if (a == "--quiet" || a == "-q") req.quiet = true;
-        else if (a == "--strict") req.strict = true;
-        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else if (req.scenePath.empty()) req.scenePath = a;
-        else throw UsageError("more than one scene given ('" + req.scenePath + "' and '" + a + "')");
-    }
-    return req;
-}
-
 SceneAccess sceneAccessFor(const RenderRequest& req) {
     SceneAccess access;
     if (!req.safe) return access;
@@ -429,7 +345,8 @@ void applyPreview(RenderRequest& req, const Scene& scene) {
 }
 
 int renderCommand(const std::vector<std::string>& args) {
-    RenderRequest req = parseRenderArgs(args);
+    RenderRequest req;
+    if (!parseRenderArgs(args, &req)) return 0;  // --help
     RenderOptions& opts = req.opts;
     const std::string &scenePath = req.scenePath, &outPattern = req.outPattern, &statsPath = req.statsPath;
     const bool quiet = req.quiet, resume = req.resume;

@@ -28,8 +28,18 @@ struct RenderRequest {
     RibDefaults ribOptions;  // --option 'RIB request' (any number): read before the scene, which may override them
 };
 
-// Parses `streyes render` arguments (without the command word); UsageError on bad ones.
-RenderRequest parseRenderArgs(const std::vector<std::string>& args);
+class CommandLine;
+
+// A request with the command's defaults (before any option).
+RenderRequest newRenderRequest();
+// Parses `streyes render` arguments (without the command word) into `req`; UsageError on bad
+// ones. False when --help was asked for (and printed).
+bool parseRenderArgs(const std::vector<std::string>& args, RenderRequest* req);
+// Registers render's options on `cl`, filling `req` as they are parsed, but those named in
+// `leaveOut` ("--frames", "-o" ...: the caller has its own); in the help's `group` when given
+// (render_options.cpp).
+void addRenderOptions(CommandLine& cl, RenderRequest& req, const std::set<std::string>& leaveOut,
+                      const std::string& group);
 // --preview's half resolution and samples, from the scene's (options given explicitly win).
 void applyPreview(RenderRequest& req, const Scene& scene);
 // What the scene may reach (streyes/scene_access.h): everything, or --safe's limits, its write

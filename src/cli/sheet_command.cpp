@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "command_line.h"
 #include "commands.h"
 #include "io/contact_sheet.h"
 #include "streyes/image_io.h"
@@ -11,47 +12,36 @@
 
 namespace streyes::cli {
 
-const char* kSheetUsage = R"(usage: streyes sheet PATTERN -o FILE [options]
-
-Lays the frames of PATTERN (e.g. out/demo.####.exr) out on one image, left to right and top to
-bottom like the lines of a book, each labelled with its frame number.
-
-options:
-  -o FILE            the sheet: a .png or .jpg (8-bit sRGB; frames over black, on a white page)
-  --frames A-B       frames to include (default: every frame of PATTERN on disk)
-  --every N          every Nth frame, counting from the first (default 1)
-  --columns N        frames per row (default: the square root of the count, rounded up)
-  --cell-width W     scale each frame to W pixels wide, keeping its aspect (default: its width)
-  --gap N            pixels between frames and around them (default 4)
-  --no-labels        leave out the frame numbers
-
-exit codes: 0 written, 1 the sheet could not be written, 2 bad input or usage
-)";
-
 int sheetCommand(const std::vector<std::string>& args) {
+    CommandLine cl("sheet", "usage: streyes sheet PATTERN -o FILE [options]",
+                   "\nLays the frames of PATTERN (e.g. out/demo.####.exr) out on one image, left to right and top "
+                   "to\nbottom like the lines of a book, each labelled with its frame number.");
     SheetOptions opts;
-    std::string pattern, out;
-    bool hasRange = false;
+    std::string out;
+    std::vector<std::string> patterns;
+    bool hasRange = false, noLabels = false;
     int first = 0, last = 0, every = 1;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= args.size()) throw UsageError(a + " needs a value");
-            return args[++i];
-        };
-        if (a == "-o" || a == "--output") out = value();
-        else if (a == "--frames") {
-            parseFrameRange(a, value(), &first, &last);
-            hasRange = true;
-        } else if (a == "--every") every = int(parseInt(a, value(), 1, 1000000));
-        else if (a == "--columns") opts.columns = int(parseInt(a, value(), 1, 10000));
-        else if (a == "--cell-width") opts.cellWidth = int(parseInt(a, value(), 1, 65536));
-        else if (a == "--gap") opts.gap = int(parseInt(a, value(), 0, 1000));
-        else if (a == "--no-labels") opts.labels = false;
-        else if (a.size() > 1 && a[0] == '-') throw UsageError("unknown option '" + a + "'");
-        else if (pattern.empty()) pattern = a;
-        else throw UsageError("more than one frame pattern given ('" + pattern + "' and '" + a + "')");
-    }
+    cl.positionals("pattern", "the frames, #### for the frame number", &patterns)->type_name("PATTERN");
+    cl.value("-o,--output", "FILE", "the sheet: a .png or .jpg (8-bit sRGB; frames over black, on a white page)", &out);
+    cl.value("--frames", "A-B", "frames to include (default: every frame of PATTERN on disk)", [&](const std::string& v) {
+        parseFrameRange("--frames", v, &first, &last);
+        hasRange = true;
+    });
+    cl.value("--every", "N", "every Nth frame, counting from the first (default 1)",
+             [&](const std::string& v) { every = int(parseInt("--every", v, 1, 1000000)); });
+    cl.value("--columns", "N", "frames per row (default: the square root of the count, rounded up)",
+             [&](const std::string& v) { opts.columns = int(parseInt("--columns", v, 1, 10000)); });
+    cl.value("--cell-width", "W", "scale each frame to W pixels wide, keeping its aspect (default: its width)",
+             [&](const std::string& v) { opts.cellWidth = int(parseInt("--cell-width", v, 1, 65536)); });
+    cl.value("--gap", "N", "pixels between frames and around them (default 4)",
+             [&](const std::string& v) { opts.gap = int(parseInt("--gap", v, 0, 1000)); });
+    cl.flag("--no-labels", "leave out the frame numbers", &noLabels);
+    cl.app().footer("exit codes: 0 written, 1 the sheet could not be written, 2 bad input or usage");
+    if (!cl.parse(args)) return 0;
+    opts.labels = !noLabels;
+    if (patterns.size() > 1)
+        throw UsageError("more than one frame pattern given ('" + patterns[0] + "' and '" + patterns[1] + "')");
+    const std::string pattern = patterns.empty() ? std::string() : patterns[0];
     if (pattern.empty()) throw UsageError("no frame pattern given");
     if (out.empty()) throw UsageError("no output given: -o sheet.png");
     if (!hasFrameField(pattern)) throw UsageError("'" + pattern + "' is not a frame pattern: use #### for the frame number");
