@@ -85,8 +85,16 @@ bool CommandLine::parse(const std::vector<std::string>& args) {
         const std::string what = e.what();
         const std::string name = what.substr(0, what.find(':'));
         const CLI::Option* opt = app_.get_option_no_throw(name);
-        if (opt && what.find("missing") != std::string::npos)
-            throw UsageError(name + " needs a value (" + name + " " + opt->get_type_name() + ")");
+        if (opt && what.find("missing") != std::string::npos) {
+            // Named as it was given ("-o", not "--output"): the last word that is one of its names.
+            std::string given = name;
+            for (auto a = args.rbegin(); a != args.rend(); ++a)
+                if (opt->check_name(*a)) {
+                    given = *a;
+                    break;
+                }
+            throw UsageError(given + " needs a value (" + given + " " + opt->get_type_name() + ")");
+        }
         throw UsageError(what);
     } catch (const CLI::ParseError& e) {
         throw UsageError(e.what());
