@@ -63,7 +63,8 @@ class Capabilities:
 
     def __init__(self, help_text):
         self.help_text = help_text
-        self.options = set(re.findall(r"(?m)^\s+(--[a-z][a-z0-9-]*)", help_text))
+        # "  --res WxH ..." and "  -q,--quiet ...": the long names.
+        self.options = set(re.findall(r"(?m)^\s+(?:-[a-zA-Z],)?(--[a-z][a-z0-9-]*)", help_text))
         self.algorithms = [a for a in ALGORITHMS if a in self._algorithm_names(help_text)]
 
     @staticmethod
