@@ -247,6 +247,11 @@ void ShadingVM::bindGlobals(Exec& x, const ShadingGrid& g) {
                 if (in(Global::P).valid()) copyIn(d, in(Global::P));
                 else fill(d, 0);
                 break;
+            case Global::Ns:  // outside a light: the surface's own normal
+                if (in(Global::N).valid()) copyIn(d, in(Global::N));
+                else if (in(Global::Ng).valid()) copyIn(d, in(Global::Ng));
+                else fill(d, 0);
+                break;
             case Global::Oi:
                 if (in(Global::Os).valid()) copyIn(d, in(Global::Os));
                 else fill(d, 1);
@@ -469,6 +474,7 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
     for (Global g : {Global::L, Global::Cl, Global::Ol, Global::Ci, Global::Oi, Global::P})
         lightGrid_.globals[size_t(g)] = ValueRef{};
     lightGrid_.set(Global::Ps, ValueRef::soa(res.Ps.data(), res.Ps.data() + n, res.Ps.data() + 2 * n));
+    lightGrid_.set(Global::Ns, grid_->globals[size_t(Global::N)]);  // the surface's normal, as given
     Vec3d o = ref.toCurrent.point({0, 0, 0});
     lightOrigin_[0] = float(o.x);
     lightOrigin_[1] = float(o.y);
