@@ -230,7 +230,7 @@ TEST(ShaderRays, AMovingOccludersOcclusionChangesPerFrameAndNotWithTheBlock) {
         o.hasShot = true;
         o.shotFirst = 0;
         o.shotLast = 3;
-        for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Spacetime, Algorithm::Frames}) {
+        for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Spacetime, Algorithm::Frames, Algorithm::Raytrace}) {
             SCOPED_TRACE(test::testName(a));
             o.algorithm = a;
             test::ShotAndFrame r = test::renderShotAndFrame(rib, o, 0, 3, 2);

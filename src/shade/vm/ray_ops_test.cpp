@@ -119,6 +119,23 @@ TEST(VmRays, WrongArgumentsAreCompileErrorsAtTheirColumn) {
     EXPECT_EQ(test::compileError("surface t() { Ci = indirectdiffuse(P, N, 4, \"environmentmap\", \"sky.tx\"); }"), "");
 }
 
+// A light's Ns is the surface's normal turned to face the eye (Aqsis's occlusion example lights a
+// floor whose N points away from the camera through it).
+TEST(VmRays, LightsSeeNsFacingTheEye) {
+    TestGrid g(1, 0);
+    g.setVarying(Global::P, 3, [](int i) { return Vec3f{float(i), 0, 5}; });
+    g.setVarying(Global::N, 3, [](int i) { return i == 0 ? Vec3f{0, 0, 1} : Vec3f{0, 0, -1}; });
+    g.setVarying(Global::I, 3, [](int i) { return Vec3f{float(i), 0, 5}; });
+    ShaderInstance light(test::compile(
+        "light l() { illuminate(point(0, 0, 0)) { Cl = color(xcomp(Ns), ycomp(Ns), zcomp(Ns)); } }"));
+    ShaderInstance surface(test::compile("surface s() { Ci = 0; illuminance(P) { Ci += Cl; } }"));
+    ShadingVM vm;
+    vm.run(surface, g.grid, {LightRef(&light, Matrix4())});
+    const ValueRef ci = vm.result(Global::Ci);
+    EXPECT_EQ(test::at3(ci, 0), (Vec3f{0, 0, -1}));  // N faced away from the eye: turned
+    EXPECT_EQ(test::at3(ci, 1), (Vec3f{0, 0, -1}));  // N faced the eye already
+}
+
 // The Fresnel equations for unpolarised light going from index 1 into index 1/eta (eta = n1/n2,
 // as the RI Spec's fresnel takes it): the mean of the s and p reflectances.
 double fresnelReflectance(double cosI, double eta) {

@@ -164,6 +164,7 @@ class ShadingVM {
     float lightOrigin_[3] = {0, 0, 0};
     float lightNormal_[3] = {0, 0, 0};  // an area light point's N
     std::vector<uint8_t> lit_;
+    std::vector<float> ns_;  // Ns for a light run: the surface's N facing the eye (3 x n)
 };
 
 }  // namespace streyes::sl
