@@ -66,6 +66,7 @@ namespace streyes {
     COUNT(boundingVolumes, "trace.bounding_volumes") /* nodes built (summed over frames: -frames) */   \
     COUNT(eyeRays, "trace.eye_rays")                                                                   \
     COUNT(shadowRays, "trace.shadow_rays")                                                             \
+    COUNT(shaderRays, "trace.shader_rays") /* rays occlusion(), trace() ... cast (and their hits' shadow rays) */ \
     COUNT(rayBodyTests, "trace.ray_body_tests")      /* ray/body tests (each body once per ray) */     \
     COUNT(rayBoxTests, "trace.ray_box_tests")        /* ray/bounding-volume tests */                   \
     SECONDS(timeSampleGen, "cpu_by_stage.sample_generation")                                           \

@@ -51,6 +51,9 @@ struct Material {
     std::shared_ptr<const sl::ShaderInstance> surface;
     bool readsTime = false;  // a shader reads `time`: a still grid is shaded per exposure
     bool readsMaps = false;  // its surface or a light of it calls shadow(): per exposure where maps vary
+    // Its surface, displacement, atmosphere or a light of it casts rays (occlusion(), trace(),
+    // ...): what they see moves, so a still grid is shaded per exposure, at the exposure's time.
+    bool tracesRays = false;
     // A Shading Language displacement shader, run on each diced grid before the surface, and how
     // far it may move a point in camera space: the split loop grows the body's bounds by it.
     std::shared_ptr<const sl::ShaderInstance> displacement;

@@ -93,6 +93,14 @@ void BucketWorker::setTrace(const TraceScene* trace) {
     traceEyeRays_ = trace && raytraces(options_.algorithm);
     shadowSlots_ = trace && !traceEyeRays_ ? scene_.lights.shadowSlots() : 0;
     grid_.shadowSlots = shadowSlots_;
+    updateShaderRays();
+}
+
+void BucketWorker::updateShaderRays() {
+    const bool wanted = trace_ && shaders_ && shaders_->tracesRays();
+    if (wanted && shaderRays_ && shaderRays_->scene() == trace_ && shaderRays_->shaders() == shaders_) return;
+    shaderRays_ = wanted ? std::make_unique<ShaderRays>(*trace_, shaders_) : nullptr;
+    shader_.setRaySource(shaderRays_.get());
 }
 
 void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
@@ -143,6 +151,7 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
     counters.sampleFragments += rasterCounters_.fragments;
     rasterCounters_ = {};
     shader_.takeCounters(counters);
+    if (shaderRays_) shaderRays_->takeCounters(counters);
 }
 
 // ---- Drivers ---------------------------------------------------------------------------------------

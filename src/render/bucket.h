@@ -18,6 +18,7 @@
 #include "shade/grid_shader.h"
 #include "streyes/render_options.h"
 #include "streyes/stats.h"
+#include "trace/shader_rays.h"
 #include "trace/trace.h"
 #include "util/aov.h"
 
@@ -50,6 +51,7 @@ class BucketWorker {
     void setShaders(const SceneShaders* shaders) {
         shaders_ = shaders;
         shader_.setShaders(shaders);
+        updateShaderRays();
     }
     // Grids shared with the other buckets of the frame block (null or disabled: none).
     void setGridCache(GridCache* cache) { gridCache_ = cache; }
@@ -110,8 +112,9 @@ class BucketWorker {
     // Or do the shadow maps it reads differ between frames (constant within each)?
     bool shadingVaries(const Body& body) const {
         const Material* m = body.material();
+        // A shader casting rays sees what moves anywhere: shaded per exposure (to begin with, always).
         return shadingMovesWithin(body) || (m && m->readsMaps && shaders_ && shaders_->mapsVary()) ||
-               (m && m->surface && shaders_ && shaders_->worldVaries());
+               (m && m->surface && shaders_ && shaders_->worldVaries()) || (m && m->tracesRays);
     }
     // What changes within an exposure (a still grid is then shaded at both ends of its piece and
     // its colour interpolated between them): all of the above but the maps, and the world only
@@ -169,6 +172,9 @@ class BucketWorker {
     bool traceEyeRays_ = false;
     int shadowSlots_ = 0;  // the rasterizer's shadowed light parts per sample
     SampleTracer tracer_;
+    // The rays shaders cast (occlusion(), trace(), ...): made when the scene has such shaders.
+    std::unique_ptr<ShaderRays> shaderRays_;
+    void updateShaderRays();
     AovLayout aovs_;  // output variables per sample (options_.aovs); count 0: none
 };
 

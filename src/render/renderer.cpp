@@ -257,7 +257,9 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     std::unique_ptr<TraceScene> trace;
     uint64_t traceBytesPerFrame = 0;
     // (A depth pass runs no lights: it traces no shadows.)
-    if (raytraces(options_.algorithm) || (scene_->lights.shadowSlots() > 0 && !options_.depthPass)) {
+    // Shaders that cast rays (occlusion(), trace(), ...) need it too.
+    if (raytraces(options_.algorithm) ||
+        ((scene_->lights.shadowSlots() > 0 || (shaders_ && shaders_->tracesRays())) && !options_.depthPass)) {
         // What the bodies may take: the budget less what rendering one frame needs besides.
         const MemoryShape bare{W, H, S, tileSize, filter.guardX(), filter.guardY(), spacetime, 0,
                                usesOcclusion(options_.algorithm)};

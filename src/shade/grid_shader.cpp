@@ -173,6 +173,7 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
         vm_->setTextureSource(shaders_ ? shaders_->textures() : nullptr);
         vm_->setLog(shaders_ ? &shaders_->log() : nullptr);
         vm_->setSpecularExponent(shaders_ ? shaders_->specularExponent() : 8.0f);
+        vm_->setRaySource(rays_);
     }
     queries_ = shaders_ ? shaders_->queries(m.attributes) : SceneQueries();
     sgrid_.state = &queries_;
@@ -207,6 +208,7 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     du_ = du;
     dv_ = dv;
     time_ = float(time);
+    sgrid_.time = time;
     sgrid_.set(Global::du, ValueRef::uniform(&du_));
     sgrid_.set(Global::dv, ValueRef::uniform(&dv_));
     sgrid_.set(Global::time, ValueRef::uniform(&time_));

@@ -42,6 +42,12 @@ class GridShader {
         if (vm_) vm_->setTextureSource(shaders ? shaders->textures() : nullptr);
         if (vm_) vm_->setLog(shaders ? &shaders->log() : nullptr);
     }
+    // Where occlusion(), trace() and the other ray-traced calls go (trace/shader_rays.h; null:
+    // they give their no-hit values). Set by whoever owns the ray tracer, above this stage.
+    void setRaySource(sl::RaySource* rays) {
+        rays_ = rays;
+        if (vm_) vm_->setRaySource(rays);
+    }
     // Output variables (util/aov.h): the surface shader's output parameters the layout names are
     // copied into grids that carry it (Grid::aovCount == layout->count); others read 0.
     void setAovs(const AovLayout* layout) { aovs_ = layout && layout->shaderOutputs ? layout : nullptr; }
@@ -89,6 +95,7 @@ class GridShader {
     const LightSet& lights_;
     std::vector<CameraLight> lightScratch_;
     std::unique_ptr<sl::ShadingVM> vm_;  // made when a grid first needs it
+    sl::RaySource* rays_ = nullptr;
     sl::ShadingGrid sgrid_;
     SceneQueries queries_;  // the grid's material's attributes: what attribute() reads
     std::vector<float> u_, v_;

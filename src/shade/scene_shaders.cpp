@@ -34,6 +34,28 @@ bool readsMaps(const sl::ShaderInstance* s) {
     return false;
 }
 
+// Does the shader cast rays (occlusion, indirectdiffuse, trace, transmission)?
+bool castsRays(const sl::ShaderInstance* s) {
+    if (!s) return false;
+    for (const sl::Instr& in : s->program().code)
+        if (in.fn == sl::ops::occlusion || in.fn == sl::ops::indirectdiffuse || in.fn == sl::ops::trace ||
+            in.fn == sl::ops::transmission)
+            return true;
+    // environment("raytrace", ...): the name is a string constant, or a parameter set to it.
+    const sl::ShaderProgram& p = s->program();
+    bool environment = false;
+    for (const sl::Instr& in : p.code) environment = environment || in.fn == sl::ops::environment;
+    if (!environment) return false;
+    for (const std::string& c : p.constStrings)
+        if (c == "raytrace") return true;
+    for (size_t i = 0; i < p.params.size(); ++i) {
+        const sl::ShaderInstance::Value* v = s->value(int(i));
+        for (const std::string& str : v ? v->strings : p.params[i].defaultStrings)
+            if (str == "raytrace") return true;
+    }
+    return false;
+}
+
 sl::BaseType baseTypeOf(const Param& p) {
     switch (p.type) {
         case ParamType::Float:
@@ -150,6 +172,8 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
         builtinLight_.push_back(isBuiltinLight(d));
         lights_.push_back(instance(d.type, d.params, d.loc, sl::ShaderType::Light));
         lightReadsMaps_.push_back(readsMaps(lights_.back().get()));
+        lightTracesRays_.push_back(castsRays(lights_.back().get()));
+        if (lightTracesRays_.back()) tracesRays_ = true;
     }
 }
 
@@ -233,6 +257,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
     if (!a.atmosphere.name.empty()) {
         m.atmosphere = instance(a.atmosphere.name, a.atmosphere.params, a.atmosphere.loc, sl::ShaderType::Volume);
         if (m.atmosphere) m.readsTime = readsTime(*m.atmosphere);
+        m.tracesRays = castsRays(m.atmosphere.get());
     }
     if (!a.displacement.name.empty()) {
         m.displacement = instance(a.displacement.name, a.displacement.params, a.displacement.loc,
@@ -247,13 +272,22 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
                 scale = largestStretch(worldToCamera_);
             m.displacementBound = float(a.displacementBound * scale);
             m.readsTime = m.readsTime || readsTime(*m.displacement);
+            m.tracesRays = m.tracesRays || castsRays(m.displacement.get());
         }
     }
+    struct NoteRays {  // however bind returns
+        const Material& m;
+        std::atomic<bool>& any;
+        ~NoteRays() {
+            if (m.tracesRays) any = true;
+        }
+    } noteRays{m, tracesRays_};
     m.specularExponent = specularExponent_;  // the built-in plastic's highlight, as specular()'s
     bool builtinLights = true;
     for (int i : m.lights) {
         builtinLights = builtinLights && builtinLight_[size_t(i)];
         m.readsMaps = m.readsMaps || lightReadsMaps_[size_t(i)];
+        m.tracesRays = m.tracesRays || lightTracesRays_[size_t(i)];
     }
     const std::string& name = a.surface.name;
     // The built-in shading reads no primitive variables: a primitive with some runs the shader.
@@ -267,6 +301,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
     }
     m.readsTime = m.readsTime || readsTime(*shader);
     m.readsMaps = m.readsMaps || readsMaps(shader.get());
+    m.tracesRays = m.tracesRays || castsRays(shader.get());
     m.surface = std::move(shader);
 }
 

@@ -8,6 +8,7 @@
 // Option "shading" "builtin" "off" runs every material through its shader.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -98,6 +99,9 @@ class SceneShaders final : public MaterialBinder {
     bool worldMovesAt(double t) const { return maps_->worldMovesAt(t); }
     // Do frames read different depth maps under one name (what reads maps then varies)?
     bool mapsVary() const { return maps_->varies(); }
+    // Has a light, or a material bound so far, a shader that casts rays (the renderer then builds
+    // the ray tracer's scene)?
+    bool tracesRays() const { return tracesRays_.load(std::memory_order_relaxed); }
 
   private:
     std::shared_ptr<sl::ShaderInstance> instance(const std::string& name, const ParamList& params,
@@ -116,6 +120,8 @@ class SceneShaders final : public MaterialBinder {
     std::unique_ptr<ShadowMaps> maps_;
     std::unique_ptr<LazyTextureSource> textures_;
     std::vector<bool> lightReadsMaps_;
+    std::vector<bool> lightTracesRays_;
+    mutable std::atomic<bool> tracesRays_{false};
 };
 
 // Sets `params` on `shader`: RIB's types (inline or Declare'd) are checked against the shader's

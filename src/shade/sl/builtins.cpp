@@ -183,6 +183,13 @@ class Table {
         add("concat", "s", "s*", concat, Special::Concat);
         add("match", "f", "ss", match);
 
+        // Ray tracing (PRMan's signatures; occlusion also takes Aqsis's map name first, traced
+        // all the same). The listed arguments are the positional ones; option pairs follow.
+        add("occlusion", "f", "pnf*", occlusion, Special::Ray).varying = true;
+        add("indirectdiffuse", "c", "pnf*", indirectdiffuse, Special::Ray).varying = true;
+        add("trace", "c", "pv*", trace, Special::Ray).varying = true;
+        add("transmission", "c", "pp*", transmission, Special::Ray).varying = true;
+
         // Texture maps: the float form first (the default without a cast).
         for (const char* r : {"f", "c"}) {
             add("texture", r, "s*", texture, Special::Texture).varying = true;

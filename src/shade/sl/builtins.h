@@ -29,6 +29,7 @@ enum class Special {
     Texture,      // texture, environment, shadow: channels, coordinate forms, options
     Environment,
     Shadow,
+    Ray,          // occlusion, indirectdiffuse, trace, transmission: positional, then options
 };
 
 struct Builtin {

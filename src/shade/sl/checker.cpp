@@ -19,6 +19,14 @@ namespace {
 
 const std::set<std::string> kTextureOptions = {"blur", "sblur", "tblur", "width", "swidth", "twidth",
                                                "fill", "filter", "samples", "bias"};
+// The ray-traced functions' options: those read (floats, and the environment map's name), then
+// PRMan's and Aqsis's others, accepted and ignored (docs/SCENE-FORMAT.md says which).
+const std::set<std::string> kRayFloatOptions = {"samples", "maxdist", "coneangle", "bias", "adaptive",
+                                                "minsamples", "maxvariation", "maxerror", "maxpixeldist",
+                                                "falloff", "falloffmode", "samplebase", "blur", "pointbased",
+                                                "maxsolidangle", "clamp", "sortbleeding", "hitsides"};
+const std::set<std::string> kRayStringOptions = {"environmentmap", "environmentspace", "label", "subset",
+                                                 "distribution", "hitmode", "filename", "hitsides"};
 
 class Checker {
   public:
@@ -454,6 +462,7 @@ class Checker {
             case Special::Texture:
             case Special::Environment:
             case Special::Shadow: return checkTexture(e, want);
+            case Special::Ray: return checkRay(e);
             case Special::Spline: return checkSpline(e);
             case Special::Printf:
             case Special::Format:
@@ -594,6 +603,48 @@ class Checker {
         }
         e.builtin = (want.base == BaseType::Color || (want.isTriple() && kind != Special::Shadow)) ? cands[1] : cands[0];
         return e.builtin->ret;
+    }
+
+    // occlusion(P, N [, samples]), indirectdiffuse(P, N [, samples]), trace(P, R),
+    // transmission(Pfrom, Pto), each followed by (name, value) option pairs; occlusion may take a
+    // map name first (Aqsis's form).
+    SlType checkRay(Expr& e) {
+        const Builtin* b = findBuiltins(e.text)[0];
+        size_t i = 0;
+        if (b->name == "occlusion" && !e.args.empty() && e.args[0]->type.isString()) i = 1;
+        const size_t first = i;
+        while (i < e.args.size() && !e.args[i]->type.isString()) ++i;
+        const size_t given = i - first, listed = b->args.size();
+        const size_t least = b->args.back().isFloat() ? listed - 1 : listed;  // the sample count may be left out
+        if (given < least || given > listed) {
+            std::string form;
+            for (size_t k = 0; k < listed; ++k) form += (k ? ", " : "") + b->args[k].name();
+            fail(e.loc, e.text + " takes (" + form + (least < listed ? " (optional)" : "") + ", options...), not " +
+                            std::to_string(given) + " positional argument" + (given == 1 ? "" : "s"));
+        }
+        static const char* const what[] = {"its first argument", "its second argument", "the sample count"};
+        for (size_t k = 0; k < given; ++k) {
+            Expr& a = *e.args[first + k];
+            const SlType t = b->args[k];
+            if (a.kind == ExprKind::Tuple && flexibleTuple(a, t)) continue;
+            if (t.isPointLike() ? !a.type.isPointLike() && !a.type.isFloat() : conversionCost(a.type, t) < 0)
+                fail(a.loc, "cannot use a " + a.type.name() + " as " + e.text + "'s " + what[k] + " (" + t.name() + ")");
+            if (a.type.isArray()) fail(a.loc, "cannot use an array as " + e.text + "'s " + what[k]);
+        }
+        for (; i < e.args.size(); i += 2) {
+            Expr& name = *e.args[i];
+            if (name.kind != ExprKind::String)
+                fail(name.loc, e.text + ": an option's name must be a string literal (or too many positional arguments)");
+            const bool isFloat = kRayFloatOptions.count(name.text) > 0, isString = kRayStringOptions.count(name.text) > 0;
+            if (!isFloat && !isString) fail(name.loc, "unknown " + e.text + " option \"" + name.text + "\"");
+            if (i + 1 >= e.args.size()) fail(name.loc, e.text + " option \"" + name.text + "\" has no value");
+            const SlType vt = e.args[i + 1]->type;
+            if ((vt.isFloat() && !isFloat) || (vt.isString() && !isString) || (!vt.isFloat() && !vt.isString()))
+                fail(e.args[i + 1]->loc, e.text + " option \"" + name.text + "\" needs a " + (isFloat ? "float" : "string") +
+                                             ", not a " + vt.name());
+        }
+        e.builtin = b;
+        return b->ret;
     }
 
     SlType checkSpline(Expr& e) {

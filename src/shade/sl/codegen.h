@@ -117,6 +117,7 @@ class CodeGen {
     Val genBuiltin(const Expr& e);
     Val genSpecial(const Expr& e, const Builtin& b);
     Val genTexture(const Expr& e, const Builtin& b);
+    Val genRay(const Expr& e, const Builtin& b);
     Val genUserCall(const Expr& e);
     Val convert(Val v, SlType to);
     Val toSpace(Val v, const std::string& space, const SourceLoc& loc);

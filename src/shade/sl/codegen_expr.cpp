@@ -381,6 +381,7 @@ CodeGen::Val CodeGen::genSpecial(const Expr& e, const Builtin& b) {
         case Special::Texture:
         case Special::Environment:
         case Special::Shadow: return genTexture(e, b);
+        case Special::Ray: return genRay(e, b);
         default: break;
     }
     throw InputError(e.loc, "internal error: unhandled function " + b.name);
@@ -409,6 +410,30 @@ CodeGen::Val CodeGen::genTexture(const Expr& e, const Builtin& b) {
     }
     regs.push_back(int32_t(coords.size()));
     regs.insert(regs.end(), coords.begin(), coords.end());
+    for (; i + 1 < e.args.size(); i += 2) {
+        regs.push_back(keep(gen(*e.args[i])));
+        regs.push_back(keep(gen(*e.args[i + 1])));
+    }
+    setLoc(e.loc);
+    Val t = temp(b.ret, Detail::Varying);
+    emit(b.op, {t.reg, extraSpan(regs), int(regs.size())}, true);
+    for (const Val& v : held) release(v);
+    return t;
+}
+
+// extra: the positional count k, k registers (converted to the listed types), option pairs.
+CodeGen::Val CodeGen::genRay(const Expr& e, const Builtin& b) {
+    std::vector<Val> held;
+    auto keep = [&](Val v) {
+        held.push_back(v);
+        return v.reg;
+    };
+    size_t i = b.name == "occlusion" && !e.args.empty() && e.args[0]->type.isString() ? 1 : 0;  // Aqsis's map: traced
+    std::vector<int32_t> positional;
+    for (size_t k = 0; i < e.args.size() && !e.args[i]->type.isString(); ++i, ++k)
+        positional.push_back(keep(convert(gen(*e.args[i]), b.args[k])));
+    std::vector<int32_t> regs{int32_t(positional.size())};
+    regs.insert(regs.end(), positional.begin(), positional.end());
     for (; i + 1 < e.args.size(); i += 2) {
         regs.push_back(keep(gen(*e.args[i])));
         regs.push_back(keep(gen(*e.args[i + 1])));

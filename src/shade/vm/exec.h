@@ -91,6 +91,7 @@ struct ShadeStats {
     uint64_t indicesClamped = 0;  // array reads and writes whose index was outside the array for
                                   // some point that ran (clamped): one a grid and instruction
     uint64_t loopsStopped = 0;    // runs whose loops went past the iteration budget
+    uint64_t raysMissing = 0;     // ray-traced calls made without a RaySource (no-hit values used)
 };
 
 // ---- Loops every operation is written with ------------------------------------------------------

@@ -9,6 +9,10 @@ const char* opName(OpFn fn) {
         const char* name;
     } table[] = {
         {ops::jmp, "jmp"},
+        {ops::occlusion, "occlusion"},
+        {ops::indirectdiffuse, "indirectdiffuse"},
+        {ops::trace, "trace"},
+        {ops::transmission, "transmission"},
         {ops::jmpIfZero, "jmpIfZero"},
         {ops::jmpIfNone, "jmpIfNone"},
         {ops::maskIf, "maskIf"},

@@ -155,6 +155,14 @@ STREYES_SL_OP(texture);
 STREYES_SL_OP(environment);
 STREYES_SL_OP(shadow);
 
+// ---- Ray tracing (shadeops_trace.cpp) ----
+// a0 dst; extra: positional count k, k regs (P then N, R or the far point; occlusion's samples
+// last), then option pairs (name string reg, value reg).
+STREYES_SL_OP(occlusion);
+STREYES_SL_OP(indirectdiffuse);
+STREYES_SL_OP(trace);
+STREYES_SL_OP(transmission);
+
 // ---- The renderer's state (shadeops_info.cpp) ----
 // a0 = 1 when found and the variable a2 can hold it (then written), else 0 (a2 left alone).
 STREYES_SL_OP(option);         // a1 name

@@ -57,6 +57,7 @@ const GlobalInfo& globalInfo(Global g) {
         {"L", BaseType::Vector, Detail::Varying, true},      {"Cl", BaseType::Color, Detail::Varying, true},
         {"Ol", BaseType::Color, Detail::Varying, true},      {"Ps", BaseType::Point, Detail::Varying, false},
         {"alpha", BaseType::Float, Detail::Varying, true},   {"ncomps", BaseType::Float, Detail::Uniform, false},
+        {"Ns", BaseType::Normal, Detail::Varying, false},
     };
     return table[int(g)];
 }

@@ -4,6 +4,7 @@
 // unoccluded) and the refusal is counted in stats().textureErrors. shadow("raytrace") is 0
 // without asking a source: the renderer traces that light's shadow rays itself, per sample at
 // the sample's time (geom/lights.h), and the shader's light must reach the surface unshadowed.
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -96,6 +97,45 @@ float timeOf(const Exec& x) {
 
 enum class Lookup { Texture, Environment, Shadow };
 
+// environment("raytrace", R): the colour seen from P along R, as trace() gives it (the first
+// of the four directions of the four-corner form). A float lookup takes the first channel.
+void rayEnvironment(Exec& x, int rReg, const TextureOptions& opt, const RegView& d) {
+    RaySource* rays = x.vm.raySource();
+    if (!rays) {
+        ++x.stats.raysMissing;
+        return;
+    }
+    const int n = x.n;
+    float* a = scratchArrays(n, 9);
+    const int preg = x.prog.globalReg[size_t(Global::P)];
+    const ValueRef& gp = x.grid.globals[size_t(Global::P)];
+    RegView R = x.view(rReg);
+    RayQuery q;
+    q.n = n;
+    q.active = x.allOn() ? nullptr : x.mask;
+    for (int c = 0; c < 3; ++c) {
+        float* p = a + size_t(c) * size_t(n);
+        float* r = a + size_t(3 + c) * size_t(n);
+        if (preg >= 0) copyComp(x.view(preg), c, n, p);
+        else
+            for (int i = 0; i < n; ++i) p[i] = gp.valid() ? gp.at(c, i) : 0.0f;
+        copyComp(R, c, n, r);
+        q.P[c] = p;
+        q.D[c] = r;
+    }
+    q.time = x.grid.time;
+    q.seed = x.grid.seed;
+    q.site = uint32_t(x.pc);
+    RayOptions o;
+    if (opt.samples > 0) o.samples = opt.samples;
+    if (opt.bias > 0) o.bias = opt.bias;
+    if (opt.sblur > 0) o.coneangle = opt.sblur;  // a blurred lookup: rays over a cone of that half-angle
+    float* out[3] = {a + 6 * size_t(n), a + 7 * size_t(n), a + 8 * size_t(n)};
+    for (int c = 0; c < 3; ++c) std::fill(out[c], out[c] + n, 0.0f);
+    rays->trace(o, q, out);
+    for (int c = 0; c < d.comps; ++c) std::memcpy(d.comp(c), out[std::min(2, opt.firstChannel + c)], sizeof(float) * size_t(n));
+}
+
 void lookup(Exec& x, const Instr& in, Lookup kind) {
     RegView d = x.view(in.a[0]);
     const int32_t* r = x.extra(in.a[1]);
@@ -112,6 +152,10 @@ void lookup(Exec& x, const Instr& in, Lookup kind) {
     fill(d, fillValue);
     if (x.active == 0) return;
     if (kind == Lookup::Shadow && name == "raytrace") return;  // traced per sample by the renderer
+    if (kind == Lookup::Environment && name == "raytrace") {
+        rayEnvironment(x, r[3], opt, d);
+        return;
+    }
     bool ok = false;
     const int n = x.n;
     if (source && !name.empty()) {

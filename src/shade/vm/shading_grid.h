@@ -75,6 +75,7 @@ struct ShadingGrid {
     unsigned seed = 0;         // random() is a hash of (seed, point, call)
     float nearClip = 0, farClip = 1;  // camera-space depths where depth() is 0 and 1
     const StateQueries* state = nullptr;  // what option() and attribute() read (none: they give 0)
+    double time = 0;  // the shading time in frames, exactly (the `time` global is a float): rays go then
 
     void set(Global g, ValueRef v) { globals[size_t(g)] = v; }
     void setSpace(Space s, const Matrix4& m) { toCurrent[size_t(s)] = m; }

@@ -62,6 +62,7 @@ const char* shaderTypeName(ShaderType t);
 enum class Global : uint8_t {
     P, N, Ng, I, E, Cs, Os, Ci, Oi, s, t, u, v, du, dv, dPdu, dPdv, dPdtime, time, dtime,
     L, Cl, Ol, Ps, alpha, ncomps,
+    Ns,  // a light's view of the surface's normal at Ps (PRMan's and Aqsis's)
     Count
 };
 constexpr int kGlobalCount = int(Global::Count);

@@ -247,6 +247,11 @@ void ShadingVM::bindGlobals(Exec& x, const ShadingGrid& g) {
                 if (in(Global::P).valid()) copyIn(d, in(Global::P));
                 else fill(d, 0);
                 break;
+            case Global::Ns:  // outside a light: the surface's own normal
+                if (in(Global::N).valid()) copyIn(d, in(Global::N));
+                else if (in(Global::Ng).valid()) copyIn(d, in(Global::Ng));
+                else fill(d, 0);
+                break;
             case Global::Oi:
                 if (in(Global::Os).valid()) copyIn(d, in(Global::Os));
                 else fill(d, 1);
@@ -469,6 +474,18 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
     for (Global g : {Global::L, Global::Cl, Global::Ol, Global::Ci, Global::Oi, Global::P})
         lightGrid_.globals[size_t(g)] = ValueRef{};
     lightGrid_.set(Global::Ps, ValueRef::soa(res.Ps.data(), res.Ps.data() + n, res.Ps.data() + 2 * n));
+    // Ns: the surface's normal at Ps, turned to face the eye (against I), as the standard
+    // surfaces' Nf is and as Aqsis's lights see it (its envlight example occludes a floor whose
+    // N points away from the teapot).
+    const ValueRef& sn = grid_->globals[size_t(Global::N)];
+    const ValueRef& si = grid_->globals[size_t(Global::I)];
+    ns_.resize(3 * n);
+    for (size_t i = 0; i < n; ++i) {
+        const Vec3f v = sn.valid() ? sn.vec(int(i)) : Vec3f{0, 0, 0};
+        const float side = si.valid() ? dot(v, si.vec(int(i))) : 0.0f;
+        for (int c = 0; c < 3; ++c) ns_[size_t(c) * n + i] = side > 0 ? -v[c] : v[c];
+    }
+    lightGrid_.set(Global::Ns, ValueRef::soa(ns_.data(), ns_.data() + n, ns_.data() + 2 * n));
     Vec3d o = ref.toCurrent.point({0, 0, 0});
     lightOrigin_[0] = float(o.x);
     lightOrigin_[1] = float(o.y);

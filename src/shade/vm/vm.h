@@ -24,6 +24,7 @@
 
 #include "shade/vm/exec.h"
 #include "shade/vm/program.h"
+#include "shade/vm/ray_source.h"
 #include "shade/vm/shader_instance.h"
 #include "shade/vm/shading_grid.h"
 #include "shade/vm/texture_source.h"
@@ -60,6 +61,10 @@ class ShadingVM {
 
     void setTextureSource(TextureSource* t) { textures_ = t; }
     TextureSource* textureSource() const { return textures_; }
+    // What occlusion(), indirectdiffuse(), trace() and transmission() ask (none: they give
+    // their no-hit values, counted in stats().raysMissing).
+    void setRaySource(RaySource* r) { rays_ = r; }
+    RaySource* raySource() const { return rays_; }
     // Where run-time warnings go (an array index out of range, a loop past the budget), once a
     // place in a shader; without a log they are only counted in stats().
     void setLog(Log* log) { log_ = log; }
@@ -139,6 +144,7 @@ class ShadingVM {
     std::vector<std::unique_ptr<Frame>> frames_;
     Frame* top_ = nullptr;  // the surface (or the only) program's frame of the last run
     TextureSource* textures_ = nullptr;
+    RaySource* rays_ = nullptr;
     Log* log_ = nullptr;
     uint64_t loopBudget_ = kDefaultLoopBudget;
     float specularExponent_ = 8;
@@ -158,6 +164,7 @@ class ShadingVM {
     float lightOrigin_[3] = {0, 0, 0};
     float lightNormal_[3] = {0, 0, 0};  // an area light point's N
     std::vector<uint8_t> lit_;
+    std::vector<float> ns_;  // Ns for a light run: the surface's N facing the eye (3 x n)
 };
 
 }  // namespace streyes::sl

@@ -1,0 +1,97 @@
+// occlusion(), indirectdiffuse(), trace() and transmission(): one RaySource call per call site
+// and grid, over the points that run. Without a source the results are what an empty scene
+// gives (occlusion 0, no light, transmission 1) and the call is counted in stats().raysMissing.
+#include <cstring>
+#include <vector>
+
+#include "shade/vm/ops.h"
+#include "shade/vm/vm.h"
+
+namespace streyes::sl::ops {
+
+namespace {
+
+thread_local std::vector<float> rscratch;
+
+int firstActive(const Exec& x) {
+    for (int i = 0; i < x.n; ++i)
+        if (x.mask[i]) return i;
+    return 0;
+}
+
+enum class Call { Occlusion, Indirect, Trace, Transmission };
+
+// Option pairs after the positional arguments. Names the code generator let through but no
+// source reads ("adaptive", "label", ...) are ignored.
+RayOptions options(Exec& x, const int32_t* r, int begin, int count) {
+    RayOptions o;
+    const int lane = firstActive(x);
+    for (int k = begin; k + 1 < count; k += 2) {
+        const std::string& name = x.str(r[k]);
+        if (name == "environmentmap") {
+            o.environmentmap = x.str(r[k + 1]);
+            continue;
+        }
+        if (x.reg(r[k + 1]).type.isString()) continue;
+        const float v = x.view(r[k + 1]).at(0, lane);
+        if (name == "samples") o.samples = v;
+        else if (name == "maxdist") o.maxdist = v > 0 ? v : 0.0f;
+        else if (name == "coneangle") o.coneangle = v;
+        else if (name == "bias") o.bias = v;
+    }
+    return o;
+}
+
+void ray(Exec& x, const Instr& in, Call call) {
+    const RegView d = x.view(in.a[0]);
+    const int32_t* r = x.extra(in.a[1]);
+    const int count = in.a[2];
+    const int k = r[0];
+    const float empty = call == Call::Transmission ? 1.0f : 0.0f;
+    for (int c = 0; c < d.comps; ++c) std::fill(d.comp(c), d.comp(c) + d.w, empty);
+    if (x.active == 0) return;
+    RaySource* source = x.vm.raySource();
+    if (!source) {
+        ++x.stats.raysMissing;
+        return;
+    }
+    RayOptions o = options(x, r, 1 + k, count);
+    o.shader = &x.prog.name;
+    if ((call == Call::Occlusion || call == Call::Indirect) && k >= 3 && o.samples <= 0)
+        o.samples = x.view(r[3]).at(0, firstActive(x));  // the positional count (the named one wins)
+    const int n = x.n;
+    if (rscratch.size() < size_t(n) * 6) rscratch.resize(size_t(n) * 6);
+    float* a = rscratch.data();
+    RayQuery q;
+    q.n = n;
+    q.active = x.allOn() ? nullptr : x.mask;
+    for (int j = 0; j < 2; ++j) {
+        const RegView v = x.view(r[1 + j]);
+        for (int c = 0; c < 3; ++c) {
+            float* dst = a + size_t(3 * j + c) * size_t(n);
+            if (v.varying) std::memcpy(dst, v.comp(c), sizeof(float) * size_t(n));
+            else std::fill(dst, dst + n, v.comp(c)[0]);
+            (j == 0 ? q.P : q.D)[c] = dst;
+        }
+    }
+    q.time = x.grid.time;
+    q.seed = x.grid.seed;
+    q.site = uint32_t(x.pc);
+    // The destination is varying (the code generator makes it so): n floats a component.
+    float* out[3] = {d.comp(0), d.comps > 1 ? d.comp(1) : d.comp(0), d.comps > 2 ? d.comp(2) : d.comp(0)};
+    switch (call) {
+        case Call::Occlusion: source->occlusion(o, q, out[0]); break;
+        case Call::Indirect: source->indirectdiffuse(o, q, out); break;
+        case Call::Trace: source->trace(o, q, out); break;
+        case Call::Transmission: source->transmission(o, q, out); break;
+    }
+}
+
+}  // namespace
+
+void occlusion(Exec& x, const Instr& in) { ray(x, in, Call::Occlusion); }
+void indirectdiffuse(Exec& x, const Instr& in) { ray(x, in, Call::Indirect); }
+void trace(Exec& x, const Instr& in) { ray(x, in, Call::Trace); }
+void transmission(Exec& x, const Instr& in) { ray(x, in, Call::Transmission); }
+
+}  // namespace streyes::sl::ops

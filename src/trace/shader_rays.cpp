@@ -1,0 +1,319 @@
+#include "trace/shader_rays.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "bodies/material.h"
+#include "shade/shading.h"
+
+namespace streyes {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979323846f;
+
+uint64_t mix64(uint64_t h) {
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53ull;
+    h ^= h >> 33;
+    return h;
+}
+
+// A point's own offset of the sample pattern: a hash of its position's bits, the grid's seed
+// and the call site (a pure function of what the point is, never of the block). Not of the
+// time: a point that stays still casts the same rays in every frame, so what stays still does
+// not flicker.
+uint64_t pointHash(Vec3f p, unsigned seed, uint32_t site) {
+    uint32_t bits[3];
+    std::memcpy(bits, &p, sizeof bits);
+    uint64_t h = 0x9e3779b97f4a7c15ull ^ (uint64_t(seed) << 32 | site);
+    for (uint32_t b : bits) h = mix64(h ^ b);
+    return h;
+}
+
+float radicalInverse2(uint32_t i) {
+    i = (i << 16) | (i >> 16);
+    i = ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
+    i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
+    i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
+    i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
+    return float(i) * 2.3283064365386963e-10f;
+}
+
+// Sample j of s: a Hammersley point shifted by the point's offset (Cranley-Patterson), so that
+// each point's s directions are stratified and neighbours' patterns do not line up.
+void sample2(uint32_t j, uint32_t s, uint64_t h, float* a, float* b) {
+    const float ra = float(h >> 40) * (1.0f / 16777216.0f), rb = float((h >> 16) & 0xffffff) * (1.0f / 16777216.0f);
+    *a = (float(j) + 0.5f) / float(s) + ra;
+    *b = radicalInverse2(j) + rb;
+    if (*a >= 1) *a -= 1;
+    if (*b >= 1) *b -= 1;
+}
+
+// An orthonormal frame about unit n (Duff et al. 2017).
+void frameOf(Vec3f n, Vec3f* t, Vec3f* b) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float c = n.x * n.y * a;
+    *t = {1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x};
+    *b = {c, sign + n.y * n.y * a, -n.y};
+}
+
+// A direction in the cone of half-angle `cone` about n (its frame t, b): cosine-weighted
+// (sin^2 of the angle uniform in [0, sin^2 cone]) when `cosine`, else uniform in solid angle.
+Vec3f coneDirection(Vec3f n, Vec3f t, Vec3f b, float cone, bool cosine, float ua, float ub) {
+    float sinT, cosT;
+    if (cosine) {
+        const float s = std::sin(std::min(cone, 0.5f * kPi));
+        sinT = std::sqrt(ua) * s;
+        cosT = std::sqrt(std::max(0.0f, 1 - sinT * sinT));
+    } else {
+        cosT = 1 - ua * (1 - std::cos(cone));
+        sinT = std::sqrt(std::max(0.0f, 1 - cosT * cosT));
+    }
+    const float phi = 2 * kPi * ub;
+    return t * (sinT * std::cos(phi)) + b * (sinT * std::sin(phi)) + n * cosT;
+}
+
+Vec3f at3(const float* const* a, int i) { return {a[0][i], a[1][i], a[2][i]}; }
+
+}  // namespace
+
+ShaderRays::ShaderRays(const TraceScene& trace, const SceneShaders* shaders, int depth, int maxDepth)
+    : trace_(trace), shaders_(shaders), depth_(depth), maxDepth_(maxDepth) {}
+
+ShaderRays::~ShaderRays() = default;
+
+void ShaderRays::takeCounters(RenderCounters& out) {
+    out.shaderRays += rays_;
+    out.rayBodyTests += ctx_.bodyTests - bodyTests_;
+    out.rayBoxTests += ctx_.boxTests - boxTests_;
+    rays_ = 0;
+    bodyTests_ = ctx_.bodyTests;
+    boxTests_ = ctx_.boxTests;
+    if (hitShader_) hitShader_->takeCounters(out);
+    if (next_) next_->takeCounters(out);
+}
+
+// The hierarchy of the frame whose exposure holds `time` (one for all under spacetime tracing).
+const SpacetimeBVH& ShaderRays::hierarchyAt(double time) const {
+    const int frame = int(std::floor(time - trace_.scene().shutter.open + 1e-9));
+    return trace_.hierarchy(frame);
+}
+
+// One pixel's footprint at the point unless the call gives its own: the shadow rays' bias.
+float ShaderRays::biasAt(const sl::RayOptions& o, Vec3f p) const {
+    return o.bias >= 0 ? o.bias : trace_.shadowBias(p.z);
+}
+
+const std::vector<CameraLight>& ShaderRays::lightsAt(double t) {
+    const LightSet& lights = trace_.scene().lights;
+    if (!lightsValid_ || (!lights.isStatic() && t != lightsTime_)) {
+        lights.at(t, lights_);
+        lightsTime_ = t;
+        lightsValid_ = true;
+    }
+    return lights_;
+}
+
+// As SampleTracer::addVisibleLights does for the rasterizer's samples: each light that casts
+// shadows adds its part where a shadow ray reaches it (an area light: the point a hash picks).
+Color ShaderRays::addReachedLights(Color c, Vec3f p, double time, const SpacetimeBVH& bvh) {
+    const LightSet& lights = trace_.scene().lights;
+    const float bias = trace_.shadowBias(p.z);
+    for (int k = 0; k < lights.shadowSlots(); ++k) {
+        const Color part = shadowed_[size_t(k)];
+        if (part.x == 0 && part.y == 0 && part.z == 0) continue;
+        const int li = lights.shadowLight(k);
+        const CameraLight& l = lightsAt(time)[size_t(li)];
+        Ray ray{p, l.direction};
+        float tMax = std::numeric_limits<float>::infinity();
+        if (l.kind == LightKind::Point || l.kind == LightKind::Shader) {
+            Vec3f target = l.position;
+            if (const int n = lights.areaSamples(li); n > 0)
+                target = lights.areaPoint(li, int(pointHash(p, 0, uint32_t(k)) % uint64_t(n)), time);
+            const Vec3f d = target - p;
+            const float dist = length(d);
+            if (!(dist > 2 * bias)) {
+                c += part;
+                continue;
+            }
+            ray.d = d / dist;
+            tMax = dist - bias;
+        }
+        ++rays_;
+        if (!bvh.occluded(ray, time, bias, tMax, ctx_)) c += part;
+    }
+    return c;
+}
+
+// A hit shaded as the eye rays' hits are (SampleTracer::traceSamples): its own surface shader on
+// a grid of one point, at the next ray depth, or the built-in shading.
+Color ShaderRays::shadeHit(const TrilinearBody& body, const TraceHit& h, const Ray& ray, double time, Color* opacity) {
+    const Vec3f p = ray.o + ray.d * h.t;
+    const Vec3f n = bilinearNormal(body.cornersAt(time), h.u, h.v);
+    const Color cs = bilerp(body.colors(), h.u, h.v);
+    const Material& m = *body.material();
+    const RenderScene& scene = trace_.scene();
+    const int K = scene.lights.shadowSlots();
+    shadowed_.resize(size_t(K));
+    *opacity = m.Os;
+    Color c;
+    if (m.surface && shaders_) {
+        if (!hitShader_) {
+            hitShader_ = std::make_unique<GridShader>(shaders_, scene.camera, scene.lights);
+            if (depth_ < maxDepth_) next_ = std::make_unique<ShaderRays>(trace_, shaders_, depth_ + 1, maxDepth_);
+            hitShader_->setRaySource(next_.get());  // null past the depth: no-hit values
+        }
+        c = hitShader_->shadeHit(m, cs, p, n, time, body.uv[0] + h.u * (body.uv[1] - body.uv[0]),
+                                 body.uv[2] + h.v * (body.uv[3] - body.uv[2]), body.primitiveId(),
+                                 K ? shadowed_.data() : nullptr, K, opacity, body.primvarCorners);
+    } else {
+        c = shadePoint(m, cs, p, n, !scene.camera.perspective(), lightsAt(time), K ? shadowed_.data() : nullptr, K);
+    }
+    if (K) c = addReachedLights(c, p, time, hierarchyAt(time));
+    *opacity = {std::clamp(opacity->x, 0.0f, 1.0f), std::clamp(opacity->y, 0.0f, 1.0f), std::clamp(opacity->z, 0.0f, 1.0f)};
+    return c;
+}
+
+bool ShaderRays::shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color* c) {
+    const SpacetimeBVH& bvh = hierarchyAt(time);
+    ++rays_;
+    Color sum{0, 0, 0}, through{1, 1, 1};
+    bool any = false;
+    TraceHit h;
+    while (tMin < tMax && bvh.intersect(ray, time, tMin, tMax, &h, ctx_)) {
+        any = true;
+        Color o;
+        const Color ci = shadeHit(*bvh.bodies()[h.body], h, ray, time, &o);
+        // Ci is premultiplied by Oi, as RenderMan's shaders leave it.
+        sum += through * ci;
+        through = through * (Color{1, 1, 1} - o);
+        if (through.x <= 0 && through.y <= 0 && through.z <= 0) break;
+        tMin = std::nextafter(h.t, std::numeric_limits<float>::infinity());
+    }
+    *c = sum;
+    return any;
+}
+
+void ShaderRays::occlusion(const sl::RayOptions& o, const sl::RayQuery& q, float* out) {
+    if (depth_ > maxDepth_) return;  // the op filled 0
+    const SpacetimeBVH& bvh = hierarchyAt(q.time);
+    const uint32_t s = uint32_t(std::clamp(o.samples > 0 ? o.samples : 16.0f, 1.0f, 65536.0f));
+    const float cone = o.coneangle >= 0 ? o.coneangle : 0.5f * kPi;
+    for (int i = 0; i < q.n; ++i) {
+        if (q.active && !q.active[i]) continue;
+        const Vec3f p = at3(q.P, i);
+        const Vec3f n = normalize(at3(q.D, i));
+        if (!(dot(n, n) > 0.5f)) {
+            out[i] = 0;
+            continue;
+        }
+        Vec3f t, b;
+        frameOf(n, &t, &b);
+        const uint64_t h = pointHash(p, q.seed, q.site);
+        const float bias = biasAt(o, p);
+        uint32_t hits = 0;
+        for (uint32_t j = 0; j < s; ++j) {
+            float ua, ub;
+            sample2(j, s, h, &ua, &ub);
+            const Ray ray{p, coneDirection(n, t, b, cone, true, ua, ub)};
+            hits += bvh.occluded(ray, q.time, bias, o.maxdist, ctx_) ? 1u : 0u;
+        }
+        rays_ += s;
+        out[i] = float(hits) / float(s);
+    }
+}
+
+void ShaderRays::indirectdiffuse(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) {
+    if (depth_ > maxDepth_) return;
+    const uint32_t s = uint32_t(std::clamp(o.samples > 0 ? o.samples : 16.0f, 1.0f, 65536.0f));
+    const float cone = o.coneangle >= 0 ? o.coneangle : 0.5f * kPi;
+    for (int i = 0; i < q.n; ++i) {
+        if (q.active && !q.active[i]) continue;
+        const Vec3f p = at3(q.P, i);
+        const Vec3f n = normalize(at3(q.D, i));
+        Color sum{0, 0, 0};
+        if (dot(n, n) > 0.5f) {
+            Vec3f t, b;
+            frameOf(n, &t, &b);
+            const uint64_t h = pointHash(p, q.seed, q.site);
+            const float bias = biasAt(o, p);
+            for (uint32_t j = 0; j < s; ++j) {
+                float ua, ub;
+                sample2(j, s, h, &ua, &ub);
+                Color c;
+                if (shadeAlong({p, coneDirection(n, t, b, cone, true, ua, ub)}, q.time, bias, o.maxdist, &c)) sum += c;
+            }
+            sum = sum * (1.0f / float(s));
+        }
+        for (int c = 0; c < 3; ++c) out[c][i] = sum[c];
+    }
+}
+
+void ShaderRays::trace(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) {
+    if (depth_ > maxDepth_) return;
+    const float cone = o.coneangle > 0 ? o.coneangle : 0;
+    const uint32_t s = cone > 0 ? uint32_t(std::clamp(o.samples > 0 ? o.samples : 1.0f, 1.0f, 65536.0f)) : 1u;
+    for (int i = 0; i < q.n; ++i) {
+        if (q.active && !q.active[i]) continue;
+        const Vec3f p = at3(q.P, i);
+        const Vec3f d = normalize(at3(q.D, i));
+        Color sum{0, 0, 0};
+        if (dot(d, d) > 0.5f) {
+            const float bias = biasAt(o, p);
+            if (s == 1) {
+                Color c;
+                if (shadeAlong({p, d}, q.time, bias, o.maxdist, &c)) sum = c;
+            } else {  // a blurred reflection: uniform in the cone
+                Vec3f t, b;
+                frameOf(d, &t, &b);
+                const uint64_t h = pointHash(p, q.seed, q.site);
+                for (uint32_t j = 0; j < s; ++j) {
+                    float ua, ub;
+                    sample2(j, s, h, &ua, &ub);
+                    Color c;
+                    if (shadeAlong({p, coneDirection(d, t, b, cone, false, ua, ub)}, q.time, bias, o.maxdist, &c)) sum += c;
+                }
+                sum = sum * (1.0f / float(s));
+            }
+        }
+        for (int c = 0; c < 3; ++c) out[c][i] = sum[c];
+    }
+}
+
+// Each surface crossed between the two points lets (1 - its opacity) through: the Opacity it was
+// given (PRMan's default "transmissionhitmode" "primitive": no shader runs).
+void ShaderRays::transmission(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) {
+    if (depth_ > maxDepth_) return;
+    const SpacetimeBVH& bvh = hierarchyAt(q.time);
+    for (int i = 0; i < q.n; ++i) {
+        if (q.active && !q.active[i]) continue;
+        const Vec3f p = at3(q.P, i);
+        const Vec3f d = at3(q.D, i) - p;
+        const float dist = length(d);
+        Color through{1, 1, 1};
+        const float bias = biasAt(o, p);
+        if (dist > 2 * bias) {
+            const Ray ray{p, d / dist};
+            float tMin = bias;
+            const float tMax = std::min(dist - bias, o.maxdist);
+            TraceHit h;
+            ++rays_;
+            while (tMin < tMax && bvh.intersect(ray, q.time, tMin, tMax, &h, ctx_)) {
+                const Color os = bvh.bodies()[h.body]->material()->Os;
+                through = through * Color{1 - std::clamp(os.x, 0.0f, 1.0f), 1 - std::clamp(os.y, 0.0f, 1.0f),
+                                          1 - std::clamp(os.z, 0.0f, 1.0f)};
+                if (through.x <= 0 && through.y <= 0 && through.z <= 0) break;
+                tMin = std::nextafter(h.t, std::numeric_limits<float>::infinity());
+            }
+        }
+        for (int c = 0; c < 3; ++c) out[c][i] = through[c];
+    }
+}
+
+}  // namespace streyes

@@ -1,0 +1,70 @@
+// The rays shaders cast: occlusion(), indirectdiffuse(), trace() and transmission() answered by
+// the spacetime ray tracer (sl::RaySource, shade/vm/ray_source.h).
+//
+// One per thread and ray depth: a bucket worker's GridShader asks the first (depth 1); hits it
+// shades run their own shaders on a GridShader of its own, whose rays go to the next depth, made
+// when first needed. Past the render's maximum depth every call gives its no-hit value.
+//
+// Determinism: every ray is cast at the time the grid is shaded, through a hierarchy in which
+// whether a ray meets a body does not depend on the rest of the hierarchy, and its directions
+// are a function of the point's position, that time, the grid's seed, the call site and the
+// sample's number: a frame's pixels are the same whatever block it is rendered in, whatever the
+// threads.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "shade/grid_shader.h"
+#include "shade/scene_shaders.h"
+#include "shade/vm/ray_source.h"
+#include "streyes/stats.h"
+#include "trace/trace.h"
+
+namespace streyes {
+
+class ShaderRays final : public sl::RaySource {
+  public:
+    // `depth`: 1 for rays from the grids being rendered. Past `maxDepth` nothing is traced.
+    ShaderRays(const TraceScene& trace, const SceneShaders* shaders, int depth = 1, int maxDepth = kDefaultMaxDepth);
+    ~ShaderRays() override;
+
+    // Option "trace" "maxdepth"'s default, as in PRMan.
+    static constexpr int kDefaultMaxDepth = 10;
+
+    void occlusion(const sl::RayOptions& o, const sl::RayQuery& q, float* out) override;
+    void indirectdiffuse(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) override;
+    void trace(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) override;
+    void transmission(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) override;
+
+    const TraceScene* scene() const { return &trace_; }
+    const SceneShaders* shaders() const { return shaders_; }
+
+    // Adds the rays cast and the hits shaded since the last call (every depth) to `out`.
+    void takeCounters(RenderCounters& out);
+
+  private:
+    const SpacetimeBVH& hierarchyAt(double time) const;
+    float biasAt(const sl::RayOptions& o, Vec3f p) const;
+    // The colour the ray brings back from its nearest hits within (tMin, tMax): shaded at the next
+    // depth, see-through ones composited over what lies behind them. False: nothing is hit.
+    bool shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color* c);
+    Color shadeHit(const TrilinearBody& body, const TraceHit& h, const Ray& ray, double time, Color* opacity);
+    // c plus the parts of the lights that cast shadows a shadow ray from p reaches.
+    Color addReachedLights(Color c, Vec3f p, double time, const SpacetimeBVH& bvh);
+    const std::vector<CameraLight>& lightsAt(double time);
+
+    const TraceScene& trace_;
+    const SceneShaders* shaders_;
+    const int depth_, maxDepth_;
+    TraceContext ctx_;
+    std::unique_ptr<GridShader> hitShader_;  // shades hits; its rays go to next_
+    std::unique_ptr<ShaderRays> next_;
+    std::vector<CameraLight> lights_;
+    double lightsTime_ = 0;
+    bool lightsValid_ = false;
+    std::vector<Color> shadowed_;
+    uint64_t rays_ = 0, bodyTests_ = 0, boxTests_ = 0;
+};
+
+}  // namespace streyes
