@@ -36,6 +36,18 @@ void opacity(RibParser& reader, RibArgs& args) {
     reader.state().mutableAttributes().opacity = Color(float(o[0]), float(o[1]), float(o[2]));
 }
 
+// Matte onoff: 0 (the default, as exporters write it on every object) changes nothing. A matte
+// object (a holdout: it hides what is behind it and leaves black, alpha 0) is not drawn as one yet:
+// it warns once (an error under --strict) and renders as an ordinary surface.
+void matte(RibParser& reader, RibArgs& args) {
+    const double on = args.number("onoff");
+    args.expectEnd();
+    if (!(on == 0 || on == 1)) args.fail("Matte takes 0 (off) or 1 (on), got " + formatNumber(on));
+    if (on != 0)
+        reader.log().lenient("request:Matte", args.loc(),
+                             "Matte 1 (a holdout) is not supported yet: the surface renders as an ordinary one");
+}
+
 void shadingRate(RibParser& reader, RibArgs& args) {
     double rate = args.number("area");
     args.expectEnd();
@@ -184,6 +196,7 @@ void addAttributeRequests(RibRequestTable& table) {
     table.add("ShadingInterpolation", {shadingInterpolation, "ShadingInterpolation \"constant\" | \"smooth\""});
     table.add("Color", {color, "Color r g b"});
     table.add("Opacity", {opacity, "Opacity r g b"});
+    table.add("Matte", {matte, "Matte onoff"});
     table.add("ShadingRate", {shadingRate, "ShadingRate area"});
     table.add("GeometricApproximation", {geometricApproximation, "GeometricApproximation \"motionfactor\" value"});
     table.add("Attribute", {attribute, "Attribute \"category\" parameters..."});

@@ -657,14 +657,16 @@ TEST(RibErrors, UnsupportedRequestWarnsOnceAndParses) {
     Log log;
     Scene scene = parse(std::string("Format 8 8 1\nColorSamples [1 0 0 0 1 0 0 0 1] [1 0 0 0 1 0 0 0 1]\n"
                                     "ColorSamples [1 0 0 0 1 0 0 0 1] [1 0 0 0 1 0 0 0 1]\n"
-                                    "WorldBegin\nPixelVariance 0.01\nMatte 1\n") +
+                                    "WorldBegin\nPixelVariance 0.01\nMatte 0\nMatte 1\n") +
                             kUnitPatch + "WorldEnd\n",
                         log);
     EXPECT_EQ(scene.patches.size(), 1u);
     std::vector<std::string> w = log.warnings();
     ASSERT_EQ(w.size(), 2u);
     EXPECT_EQ(w[0], "test.rib:2: warning: unsupported request 'ColorSamples' ignored");
-    EXPECT_EQ(w[1], "test.rib:6: warning: unsupported request 'Matte' ignored");
+    // Matte 0 (the default) is silent; a holdout is not drawn as one yet.
+    EXPECT_EQ(w[1], "test.rib:7: warning: Matte 1 (a holdout) is not supported yet: the surface renders as an "
+                    "ordinary one");
 }
 
 }  // namespace

@@ -161,7 +161,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
     // RIB requests outside the subset: warned about once and skipped.
     for (const char* name :
          {"Quantize", "ColorSamples", "CropWindow", "Interior", "Exterior", "Deformation",
-          "TextureCoordinates", "Matte", "Perspective", "Skew",
+          "TextureCoordinates", "Perspective", "Skew",
           "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "SolidBegin",
           "SolidEnd", "ArchiveEnd", "MakeBump",
           "MakeCubeFaceEnvironment", "MakeBrickMap",

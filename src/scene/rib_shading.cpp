@@ -21,6 +21,9 @@ void surface(RibParser& reader, RibArgs& args) {
         {"plastic", {"Ka", "Kd", "Ks", "roughness", "specularcolor"}}};
     std::string name = args.string("shader name");
     if (name.empty()) args.fail("the shader name is empty");
+    // "null": no shader of its own, as depth passes write it. Aqsis shades such a surface with its
+    // default surface, without a word; so does streyes (defaultsurface).
+    if (name == "null") name = "defaultsurface";
     ParamList params = reader.readParams(args, true);
     auto builtin = builtins.find(name);
     if (builtin != builtins.end()) {

@@ -342,6 +342,33 @@ TEST(ShadingLanguage, ShippedBackgroundImagerFillsWhatIsNotCovered) {
     }
 }
 
+// Aqsis's background.sl (Larry Gritz's) names its colour "bgcolor", as RhinoMan's files write it; the
+// shipped imager reads both names (their product), without a warning.
+TEST(ShadingLanguage, ShippedBackgroundImagerReadsBgcolor) {
+    const std::string rib = view(8, 8, "Imager \"background\" \"color bgcolor\" [0.2 0.4 0.6]\n") +
+                            "WorldBegin\nColor [1 0 0]\nSurface \"constant\"\n" + test::square(0, 4, 0, 8, 10) + "WorldEnd\n";
+    const test::RenderResult r = test::renderRib(rib);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    EXPECT_NEAR(r.channel(0, 6, 3, 0), 0.2f, 1e-6f);
+    EXPECT_NEAR(r.channel(0, 6, 3, 1), 0.4f, 1e-6f);
+    EXPECT_NEAR(r.channel(0, 6, 3, 2), 0.6f, 1e-6f);
+    EXPECT_EQ(r.alpha(0, 6, 3), 1.0f);
+    EXPECT_EQ(r.channel(0, 2, 3, 0), 1.0f);
+}
+
+// Surface "null" (depth passes write it) is Aqsis's default surface, without a warning: the
+// defaultsurface picture.
+TEST(ShadingLanguage, NullSurfaceIsTheDefaultSurfaceSilently) {
+    auto render = [&](const std::string& surface) {
+        return test::renderRib(view(8, 8, "") + "WorldBegin\nSurface \"" + surface + "\"\n" +
+                               test::square(0, 8, 0, 8, 10) + "WorldEnd\n");
+    };
+    const test::RenderResult null = render("null"), def = render("defaultsurface");
+    EXPECT_TRUE(null.warnings.empty()) << null.warnings.front();
+    EXPECT_GT(def.channel(0, 3, 3, 0), 0.5f);
+    for (int x = 0; x < 8; ++x) EXPECT_EQ(null.channel(0, x, 3, 0), def.channel(0, x, 3, 0)) << x;
+}
+
 // A shader that cannot be found warns once, saying what the render does without it; the frame
 // renders: the square with defaultsurface, no imager (so the background stays clear).
 TEST(ShadingLanguage, MissingShadersWarnWithWhatTheRenderDoesInstead) {
