@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "streyes/frame_image.h"
+#include "streyes/quantize.h"
 
 namespace streyes {
 
@@ -35,7 +36,17 @@ void checkWritableFolder(const std::string& path, const std::string& option);
 // Writes one frame atomically: encoded in memory, written to temporaryFrameName(path, pid) with
 // every write checked and synced, then renamed to `path`. Throws RenderError with a clear message
 // on failure (a full disk, a file size limit, an unwritable folder) and leaves nothing behind.
-void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode);
+// A file that is not EXR (TIFF, PNG, ...) is quantized as `quantize` says (docs/SCENE-FORMAT.md,
+// Quantize): 8- or 16-bit integers, or floats (one = 0, the default here); EXR files always hold
+// floats.
+void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode,
+                const Quantize& quantize = Quantize{});
+
+// One file a frame is written to: its name, display mode and quantization.
+struct FrameOutput {
+    std::string path, mode;
+    Quantize quantize;
+};
 
 // Writes `bytes` to `path` as writeFrame writes a frame: to a temporary file beside it, every
 // write checked and synced, then renamed. Throws RenderError on failure, leaving nothing behind.

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "streyes/error.h"
+#include "streyes/quantize.h"
 #include "streyes/transform.h"
 #include "streyes/vecmath.h"
 
@@ -161,6 +162,12 @@ struct DisplayDesc {
     std::string type;   // "openexr", "file", "tiff", "framebuffer", ...
     std::string mode;   // "rgb", "rgba", "rgbaz"
     SourceLoc loc;
+    // The display's own "quantize" [zero one min max] and "dither" [amplitude] parameters, which
+    // override the Quantize request's (empty: not given).
+    std::vector<double> quantizeParam, ditherParam;
+    // How an 8- or 16-bit file of this display is quantized: set at WorldBegin from the Quantize
+    // request of its mode (or "rgba", or "z" for a depth display) and its own parameters.
+    Quantize quantize = kColorQuantize;
 };
 
 // MakeTexture "in" "out" swrap twrap filter swidth twidth, or MakeLatLongEnvironment "in" "out"
@@ -211,6 +218,12 @@ struct RenderSettings {
     // users' scenes were lit for), 1 the RI Spec 3.2's formula ("rispec").
     double specularExponent = 8;
     ShaderDesc imager;  // Imager: run over each finished frame's pixels; no name: none
+    // Quantize "type" one min max ditheramplitude, by type ("rgba", "z", or a display mode such as
+    // "Cs"); a type not given takes RenderMan's default (kColorQuantize, kDepthQuantize for "z").
+    std::map<std::string, Quantize> quantize;
+    // The Quantize of display mode `mode`: its own type's, else "z"'s for "z" or "rgba"'s, else
+    // RenderMan's default (rib_options.cpp).
+    Quantize quantizeOf(const std::string& mode) const;
     double exposureGain = 1, exposureGamma = 1;  // Exposure: rgb = (gain * rgb)^(1 / gamma)
     // Hider "hidden": "jitter" 0 puts samples at the centres of their strata (and times at the
     // centres of theirs); "depthfilter" makes Z the "min" (default), "max" or "average" depth of a

@@ -117,15 +117,15 @@ std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPatter
         // names ("+normals.####.exr"), and the colour-only ones give way to -o as always.
         const bool hasVariables = !modeVariables(d.mode).empty();
         if (hasVariables && primary) mode = d.mode;
-        else if (hasVariables) variables.push_back({d.name, d.mode});
+        else if (hasVariables) variables.push_back({d.name, d.mode, d.quantize});
         else if (!d.mode.empty() && modeVariables(mode).empty()) mode = d.mode;
         // What the scene names is written (-o replaces only the primary display's name).
         if (oPattern.empty() || (hasVariables && !primary)) checkSceneWrite("Display", d.name, d.loc);
         primary = false;
-        if (oPattern.empty()) outs.push_back({d.name, d.mode.empty() ? "rgbaz" : d.mode});
+        if (oPattern.empty()) outs.push_back({d.name, d.mode.empty() ? "rgbaz" : d.mode, d.quantize});
     }
     if (!oPattern.empty()) {
-        outs.push_back({oPattern, mode});
+        outs.push_back({oPattern, mode, scene.settings.quantizeOf(mode)});
         outs.insert(outs.end(), variables.begin(), variables.end());
     }
     if (outs.empty()) {
@@ -189,7 +189,7 @@ std::map<int, std::vector<Output>> sequenceOutputs(const Sequence& seq, const st
                                  "Display '" + name + "' is named by several frames: writing '" + p + "'");
                     name = p;
                 }
-                o.push_back({name, d.mode.empty() ? "rgbaz" : d.mode});
+                o.push_back({name, d.mode.empty() ? "rgbaz" : d.mode, d.quantize});
             }
         if (o.empty()) {
             o.push_back({(stem.empty() ? "frame" : stem) + ".####.exr", "rgbaz"});
@@ -288,13 +288,14 @@ bool frameWritten(const Scene& frame, const RenderRequest& req, const std::strin
             std::string error;
             if (!readDepthMapFile(frameFileName(d.name, f), &map, &error)) return false;
         } else if (d.type == "openexr" || d.type == "file" || d.type == "tiff" || d.type == "exr") {
-            outs.push_back({d.name, d.mode.empty() ? "rgbaz" : d.mode});
+            outs.push_back({d.name, d.mode.empty() ? "rgbaz" : d.mode, d.quantize});
         }
     }
     if (depth && outs.empty()) return true;
     if (!req.outPattern.empty()) {
         const std::string mode = outs.empty() ? "rgbaz" : outs.front().mode;
-        outs = {Output{req.outPattern, mode}};
+        const Quantize q = outs.empty() ? kColorQuantize : outs.front().quantize;
+        outs = {Output{req.outPattern, mode, q}};
     }
     if (outs.empty()) {
         std::string stem = std::filesystem::path(scenePath).stem().string();
@@ -531,10 +532,10 @@ int renderCommand(const std::vector<std::string>& args) {
             // before its pixels go to the writer.
             auto frame = job.frames.find(img.frame);
             if (frame != job.frames.end()) runner.keep(frame->second, img, open);
-            std::vector<std::pair<std::string, std::string>> files;
+            std::vector<FrameOutput> files;
             for (const Output& o : outputsOf(img.frame)) {
-                files.emplace_back(expandFramePattern(o.pattern, img.frame), o.mode);
-                written_.push_back(files.back().first);
+                files.push_back({expandFramePattern(o.pattern, img.frame), o.mode, o.quantize});
+                written_.push_back(files.back().path);
             }
             writer.handOver(img, std::move(files));  // no copy: the renderer gets a written frame's buffers
         };

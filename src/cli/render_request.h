@@ -49,6 +49,7 @@ SceneAccess sceneAccessFor(const RenderRequest& req);
 // An output: a #### pattern and its channels ("rgbaz", "rgba", "rgb").
 struct Output {
     std::string pattern, mode;
+    Quantize quantize{};  // of a file that is not EXR (streyes/quantize.h); floats unless a Display says
 };
 // Where frames go: -o, else the scene's file displays, else SCENE-NAME.####.exr.
 std::vector<Output> chooseOutputs(const Scene& scene, const std::string& oPattern, const std::string& scenePath,

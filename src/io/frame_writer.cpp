@@ -27,7 +27,7 @@ std::unique_ptr<FrameImage> FrameWriter::takeSpare() {
     return spare;
 }
 
-void FrameWriter::queue(std::unique_ptr<FrameImage> image, std::vector<std::pair<std::string, std::string>> outputs) {
+void FrameWriter::queue(std::unique_ptr<FrameImage> image, std::vector<FrameOutput> outputs) {
     std::unique_lock<std::mutex> lock(mutex_);
     changed_.wait(lock, [this] { return error_ || queue_.size() < capacity_; });
     rethrow();
@@ -35,13 +35,13 @@ void FrameWriter::queue(std::unique_ptr<FrameImage> image, std::vector<std::pair
     changed_.notify_all();
 }
 
-void FrameWriter::write(const FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs) {
+void FrameWriter::write(const FrameImage& image, std::vector<FrameOutput> outputs) {
     std::unique_ptr<FrameImage> copy = takeSpare();  // the caller keeps its image
     *copy = image;
     queue(std::move(copy), std::move(outputs));
 }
 
-void FrameWriter::handOver(FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs) {
+void FrameWriter::handOver(FrameImage& image, std::vector<FrameOutput> outputs) {
     std::unique_ptr<FrameImage> taken = takeSpare();
     std::swap(*taken, image);
     queue(std::move(taken), std::move(outputs));
@@ -65,7 +65,7 @@ void FrameWriter::run() {
         std::exception_ptr failed;
         try {
             if (!error_)
-                for (const auto& [path, mode] : job.outputs) writeFrame(path, *job.image, mode);
+                for (const FrameOutput& o : job.outputs) writeFrame(o.path, *job.image, o.mode, o.quantize);
         } catch (...) {
             failed = std::current_exception();
         }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "streyes/frame_image.h"
+#include "streyes/image_io.h"
 
 namespace streyes {
 
@@ -23,25 +24,25 @@ class FrameWriter {
     explicit FrameWriter(int capacity = 2);
     ~FrameWriter();  // waits for what is queued; errors then are dropped (call finish() to see them)
 
-    // Queues `image` to be written to each (path, channel mode). Throws the error of an earlier
+    // Queues `image` to be written to each output (path, channel mode, quantization). Throws the error of an earlier
     // write, if one failed: the render stops there, as if it had written the frame itself.
-    void write(const FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs);
+    void write(const FrameImage& image, std::vector<FrameOutput> outputs);
     // The same without a copy: `image`'s pixels are queued and `image` gets in exchange those of a
     // frame already written (once the queue has cycled, of the same shape: the renderer assembles
     // its next frame in them with no new page), or nothing.
-    void handOver(FrameImage& image, std::vector<std::pair<std::string, std::string>> outputs);
+    void handOver(FrameImage& image, std::vector<FrameOutput> outputs);
     // Waits until every queued frame is written; throws the first write error.
     void finish();
 
   private:
     struct Job {
         std::unique_ptr<FrameImage> image;
-        std::vector<std::pair<std::string, std::string>> outputs;
+        std::vector<FrameOutput> outputs;
     };
     void run();
     void rethrow();
     std::unique_ptr<FrameImage> takeSpare();
-    void queue(std::unique_ptr<FrameImage> image, std::vector<std::pair<std::string, std::string>> outputs);
+    void queue(std::unique_ptr<FrameImage> image, std::vector<FrameOutput> outputs);
 
     const size_t capacity_;
     std::mutex mutex_;

@@ -151,6 +151,9 @@ struct EncodedFrame {
     std::vector<float> rgba, z, aov;
     std::vector<std::string> aovNames;
     std::vector<unsigned char> bytes;
+    // A quantized file's: its quantization and, where it dithers, the frame (the dither follows it).
+    Quantize quantize;
+    int frame = 0;
 };
 EncodedFrame& lastEncoded() {
     static EncodedFrame last;
@@ -165,7 +168,7 @@ bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
 }
 std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage& image, const std::string& mode,
-                                       const std::string& ext, bool exr, int nch, bool alpha, bool z);
+                                       const std::string& ext, bool exr, int nch, bool alpha, bool z, const Quantize& q);
 void writeBytesInPlace(const std::string& path, const std::vector<unsigned char>& bytes);
 
 // Is channel `channel` one of shader output `name`'s ("name", or "name.X" and the like)?
@@ -190,7 +193,7 @@ std::vector<std::string> channelsOf(const std::string& mode, const FrameImage& i
 
 }  // namespace
 
-void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode) {
+void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode, const Quantize& quantize) {
     const fs::path target(path);
     const fs::path dir = folderOf(target);
     requireFolder(path, dir, "-o");
@@ -201,6 +204,10 @@ void writeFrame(const std::string& path, const FrameImage& image, const std::str
     std::string ext = target.extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     const bool exr = ext == ".exr" || ext.empty();
+    const Quantize q = exr ? Quantize{} : quantize;  // EXR holds floats
+    auto sameQuantize = [&](const Quantize& a) {
+        return a.zero == q.zero && a.one == q.one && a.min == q.min && a.max == q.max && a.dither == q.dither;
+    };
 
     // A frame whose pixels equal the last frame encoded (a still shot: every frame of it) reuses
     // its bytes: the encoding is a function of the pixels and the format only (no date, no frame
@@ -212,10 +219,11 @@ void writeFrame(const std::string& path, const FrameImage& image, const std::str
         const EncodedFrame& last = lastEncoded();
         if (last.width == image.width && last.height == image.height && last.mode == mode && last.ext == ext &&
             sameBits(last.rgba, image.rgba) && sameBits(last.z, image.z) && sameBits(last.aov, image.aov) &&
-            last.aovNames == image.aovNames)
+            last.aovNames == image.aovNames && sameQuantize(last.quantize) &&
+            (q.floats() || q.dither == 0 || last.frame == image.frame))
             bytes = last.bytes;
     }
-    if (bytes.empty()) bytes = encodeFrame(path, image, mode, ext, exr, nch, alpha, z);
+    if (bytes.empty()) bytes = encodeFrame(path, image, mode, ext, exr, nch, alpha, z, q);
     writeBytesInPlace(path, bytes);
 }
 
@@ -229,8 +237,22 @@ void writeFileAtomically(const std::string& path, const std::vector<unsigned cha
 
 namespace {
 
+// Quantizes interleaved pixels of `channels` channels in place (Quantize::apply), then scales them
+// to [0, 1] of the storage's integers, which OpenImageIO's float-to-integer conversion turns back
+// into exactly those integers (round(v / M * M) = v for every v up to 65535 in float).
+void quantizePixels(std::vector<float>& data, int channels, const FrameImage& image, const Quantize& q) {
+    if (q.floats()) return;
+    const double scale = 1 / q.storageMax();
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            float* p = &data[(size_t(y) * size_t(image.width) + size_t(x)) * size_t(channels)];
+            for (int c = 0; c < channels; ++c) p[c] = float(q.apply(p[c], x, y, image.frame) * scale);
+        }
+}
+
 std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage& image, const std::string& mode,
-                                       const std::string& ext, bool exr, int nch, bool alpha, bool z) {
+                                       const std::string& ext, bool exr, int nch, bool alpha, bool z,
+                                       const Quantize& q) {
     // EXR frames through OpenEXR; anything else (a contact sheet's PNG) through the image library.
     std::vector<unsigned char> bytes;
     if (!colourMode(mode)) {
@@ -239,14 +261,16 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
             if (modeChannels(o).empty() && std::none_of(channels.begin(), channels.end(),
                                                         [&](const std::string& c) { return channelOf(c, o); }))
                 throw RenderError("cannot write '" + path + "': the frame has no output variable " + o);
-        const std::vector<float> data = channelPixels(path, image, channels);
+        std::vector<float> data = channelPixels(path, image, channels);
         std::string why;
         try {
             if (exr) bytes = encodeExrChannels(image.width, image.height, channels, data);
         } catch (const std::exception& e) {
             throw RenderError("cannot write '" + path + "': " + e.what());
         }
-        if (!exr && !imageLibrary().encode(path, image.width, image.height, channels, data.data(), &bytes, &why))
+        if (!exr) quantizePixels(data, int(channels.size()), image, q);
+        if (!exr && !imageLibrary().encode(path, image.width, image.height, channels, data.data(), q.storage(), &bytes,
+                                           &why))
             throw RenderError("cannot write '" + path + "': " + why + " ('" + ext + "')");
     } else if (exr) {
         try {
@@ -264,8 +288,9 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
             for (int c = 0; c < 3 + (alpha ? 1 : 0); ++c) d[c] = image.rgba[i * 4 + size_t(c)];
             if (z) d[nch - 1] = image.z[i];
         }
+        quantizePixels(data, nch, image, q);
         std::string why;
-        if (!imageLibrary().encode(path, image.width, image.height, channels, data.data(), &bytes, &why))
+        if (!imageLibrary().encode(path, image.width, image.height, channels, data.data(), q.storage(), &bytes, &why))
             throw RenderError("cannot write '" + path + "': " + why + " ('" + ext + "')");
     }
     std::lock_guard<std::mutex> lock(lastEncodedMutex());
@@ -273,6 +298,7 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
     last.width = image.width, last.height = image.height, last.mode = mode, last.ext = ext;
     last.rgba = image.rgba, last.z = image.z, last.bytes = bytes;
     last.aov = image.aov, last.aovNames = image.aovNames;
+    last.quantize = q, last.frame = image.frame;
     return bytes;
 }
 

@@ -26,9 +26,11 @@ struct ImageLibrary {
     // Reads any image OpenImageIO reads, every channel as float. False, with *error, on failure.
     bool (*read)(const std::string& path, ImageData* out, std::string* error);
     // Encodes interleaved float pixels (channel names given) into the format that `path`'s
-    // extension names, in memory. False, with *error, when the format cannot be written.
+    // extension names, in memory, stored as `storage` ("float": what the format stores; "uint8" or
+    // "uint16": pixels in [0, 1] become integers, as OpenImageIO converts). False, with *error,
+    // when the format cannot be written.
     bool (*encode)(const std::string& path, int width, int height, const std::vector<std::string>& channels,
-                   const float* pixels, std::vector<unsigned char>* bytes, std::string* error);
+                   const float* pixels, const char* storage, std::vector<unsigned char>* bytes, std::string* error);
     // Scales interleaved float RGB pixels from w x h to nw x nh with a filtered resize.
     bool (*resize)(const float* rgb, int w, int h, float* out, int nw, int nh, std::string* error);
     // A texture source on a TextureSystem of its own (one per render; safe from every thread),

@@ -49,7 +49,7 @@ bool readWithOiio(const std::string& path, ImageData* out, std::string* error) {
 }
 
 bool encodeWithOiio(const std::string& path, int width, int height, const std::vector<std::string>& channels,
-                    const float* pixels, std::vector<unsigned char>* bytes, std::string* error) {
+                    const float* pixels, const char* storage, std::vector<unsigned char>* bytes, std::string* error) {
     auto out = OIIO::ImageOutput::create(path);
     if (!out) {
         *error = "no image format for this file name (" + OIIO::geterror() + ")";
@@ -59,7 +59,12 @@ bool encodeWithOiio(const std::string& path, int width, int height, const std::v
         *error = "this format cannot be written safely (use .exr or .png)";
         return false;
     }
-    OIIO::ImageSpec spec(width, height, int(channels.size()), OIIO::TypeDesc::FLOAT);  // the format picks what it stores
+    const std::string store = storage ? storage : "float";
+    // Floats: the format picks what it stores; integers: what quantization made.
+    const OIIO::TypeDesc type = store == "uint8"    ? OIIO::TypeDesc::UINT8
+                                : store == "uint16" ? OIIO::TypeDesc::UINT16
+                                                    : OIIO::TypeDesc::FLOAT;
+    OIIO::ImageSpec spec(width, height, int(channels.size()), type);
     spec.channelnames = channels;
     spec.attribute("DateTime", "2000:01:01 00:00:00");  // fixed: the same pixels give the same bytes
     spec.attribute("Software", "streyes");

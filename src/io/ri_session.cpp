@@ -29,21 +29,21 @@ void render(const std::string& rib) {
     log.setEcho(true);
     try {
         const streyes::Scene scene = streyes::parseRibString(rib, "RiBegin", log);
-        std::vector<std::pair<std::string, std::string>> outputs;
+        std::vector<streyes::FrameOutput> outputs;
         for (const streyes::DisplayDesc& d : scene.settings.displays) {
             if (d.type == "openexr" || d.type == "file" || d.type == "tiff" || d.type == "exr")
-                outputs.push_back({d.name, d.mode});
+                outputs.push_back({d.name, d.mode, d.quantize});
             else
                 log.warn(d.loc, "Display type '" + d.type + "' is not supported: '" + d.name + "' skipped");
         }
-        if (outputs.empty()) outputs.push_back({"ri.exr", "rgba"});
+        if (outputs.empty()) outputs.push_back({"ri.exr", "rgba", {}});
         streyes::makeSceneTextures(scene);
         streyes::RenderOptions options;
         options.textureSource = streyes::openImageTextures;
         streyes::Renderer renderer(scene, options, log);
         renderer.render([&](const streyes::FrameImage& frame) {
-            for (const auto& [pattern, mode] : outputs)
-                streyes::writeFrame(streyes::expandFramePattern(pattern, frame.frame), frame, mode);
+            for (const streyes::FrameOutput& o : outputs)
+                streyes::writeFrame(streyes::expandFramePattern(o.path, frame.frame), frame, o.mode, o.quantize);
         });
     } catch (const streyes::InputError& e) {
         std::fprintf(stderr, "%s\n", e.report().c_str());

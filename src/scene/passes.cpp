@@ -143,7 +143,10 @@ Scene autoShadowFrame(const Scene& picture, const LightDesc& light) {
     r.filter = FilterDesc{"box", 1, 1};
     r.jitter = false;
     r.depthFilter = "midpoint";
-    r.displays = {DisplayDesc{light.autoShadowMap, "shadow", "z", light.autoShadowLoc}};
+    DisplayDesc map;
+    map.name = light.autoShadowMap, map.type = "shadow", map.mode = "z", map.loc = light.autoShadowLoc;
+    map.quantize = kDepthQuantize;
+    r.displays = {map};
     r.imager = ShaderDesc{};
     r.exposureGain = r.exposureGamma = 1;
     r.makeTextures.clear();

@@ -32,6 +32,22 @@ MotionTransform inverseOf(const MotionTransform& m, RibArgs& args) {
 }
 
 // WorldBegin fixes the camera: the CTM so far is world-to-camera, and the world starts at identity.
+// Each display's quantization, now that the options are final (Quantize may follow Display): the
+// Quantize of its mode, else of "z" for a depth display or "rgba", else RenderMan's default; then
+// the display's own "quantize" and "dither".
+void resolveQuantize(RenderSettings& settings) {
+    for (DisplayDesc& d : settings.displays) {
+        d.quantize = settings.quantizeOf(d.mode);
+        if (d.quantizeParam.size() == 4) {
+            d.quantize.zero = d.quantizeParam[0];
+            d.quantize.one = d.quantizeParam[1];
+            d.quantize.min = d.quantizeParam[2];
+            d.quantize.max = d.quantizeParam[3];
+        }
+        if (d.ditherParam.size() == 1) d.quantize.dither = d.ditherParam[0];
+    }
+}
+
 void worldBegin(RibParser& reader, RibArgs& args) {
     RibState& s = reader.state();
     args.expectEnd();
@@ -49,6 +65,7 @@ void worldBegin(RibParser& reader, RibArgs& args) {
         args.fail("a world outside FrameBegin ... FrameEnd in a file of frames: put it in a frame");
     reader.scene().camera.worldToCamera = s.ctm;
     reader.scene().camera.loc = args.loc();
+    resolveQuantize(reader.scene().settings);
     CameraDesc& camera = reader.scene().camera;
     if (camera.depthOfField() && camera.projection == ProjectionKind::Orthographic) {
         reader.log().warnOnce("depthoffield:orthographic", camera.depthOfFieldLoc,

@@ -12,6 +12,13 @@
 
 namespace streyes {
 
+Quantize RenderSettings::quantizeOf(const std::string& mode) const {
+    const bool depth = mode == "z";
+    auto it = quantize.find(mode);
+    if (it == quantize.end()) it = quantize.find(depth ? "z" : "rgba");
+    return it != quantize.end() ? it->second : depth ? kDepthQuantize : kColorQuantize;
+}
+
 namespace {
 
 void format(RibParser& reader, RibArgs& args) {
@@ -169,6 +176,16 @@ void pixelFilter(RibParser& reader, RibArgs& args) {
 }
 
 // A name starting with '+' adds a display; any other name replaces the displays given so far.
+void checkQuantize(const SourceLoc& loc, const std::string& what, const Quantize& q) {
+    for (double x : {q.zero, q.one, q.min, q.max, q.dither})
+        if (!std::isfinite(x)) throw InputError(loc, what + ": every value must be a finite number");
+    if (q.one < 0) throw InputError(loc, what + ": one must be at least 0 (0 writes floats), got " + formatNumber(q.one));
+    if (q.dither < 0)
+        throw InputError(loc, what + ": the dither amplitude must be at least 0, got " + formatNumber(q.dither));
+    if (q.min > q.max)
+        throw InputError(loc, what + ": min " + formatNumber(q.min) + " is above max " + formatNumber(q.max));
+}
+
 void display(RibParser& reader, RibArgs& args) {
     RenderSettings& settings = reader.scene().settings;
     const RibValue* nameValue = args.peek();
@@ -176,7 +193,20 @@ void display(RibParser& reader, RibArgs& args) {
     std::string type = args.string("type");
     const RibValue* modeValue = args.peek();
     std::string mode = args.string("mode");
-    args.skipRest();  // display parameters (compression, quantization, ...) are not used
+    // Display parameters: "quantize" and "dither" are read (as Aqsis and PRMan read them); the
+    // display driver's own ones ("compression", ...) are not used.
+    ParamList params = reader.readParams(args, true);  // a driver's parameters need no declaration
+    std::vector<double> quantizeParam, ditherParam;
+    if (const Param* q = params.find("quantize")) {
+        if (q->nums.size() != 4) throw InputError(q->loc, "Display: \"quantize\" takes four numbers: zero one min max");
+        quantizeParam = q->nums;
+        checkQuantize(q->loc, "Display \"quantize\"", Quantize{q->nums[1], q->nums[2], q->nums[3], 0, q->nums[0]});
+    }
+    if (const Param* d = params.find("dither")) {
+        if (d->nums.size() != 1 || !(d->nums[0] >= 0) || !std::isfinite(d->nums[0]))
+            throw InputError(d->loc, "Display: \"dither\" takes one amplitude of at least 0");
+        ditherParam = d->nums;
+    }
     std::vector<std::string> declared;
     for (const RenderSettings::ShaderOutput& o : settings.shaderOutputs) declared.push_back(o.name);
     std::string why;
@@ -185,7 +215,24 @@ void display(RibParser& reader, RibArgs& args) {
     if (additional) name.erase(0, 1);
     if (name.empty()) args.fail(*nameValue, "the display name is empty");
     if (!additional) settings.displays.clear();
-    settings.displays.push_back(DisplayDesc{name, type, mode, args.loc()});
+    DisplayDesc desc;
+    desc.name = name, desc.type = type, desc.mode = mode, desc.loc = args.loc();
+    desc.quantizeParam = std::move(quantizeParam);
+    desc.ditherParam = std::move(ditherParam);
+    settings.displays.push_back(std::move(desc));
+}
+
+// Quantize "type" one min max ditheramplitude: one, min, max and the amplitude finite, one and the
+// amplitude at least 0, min <= max.
+void quantize(RibParser& reader, RibArgs& args) {
+    const std::string type = args.string("type");
+    std::vector<double> v;
+    for (const char* what : {"one", "min", "max", "ditheramplitude"}) v.push_back(args.number(what));
+    args.expectEnd();
+    if (type.empty()) args.fail("the quantized type is empty (\"rgba\", \"z\", or a display mode)");
+    const Quantize q{v[0], v[1], v[2], v[3]};
+    checkQuantize(args.loc(), "Quantize", q);
+    reader.scene().settings.quantize[type] = q;
 }
 
 // Exposure gain gamma: both positive and finite.
@@ -409,6 +456,7 @@ void addOptionRequests(RibRequestTable& table) {
     table.add("PixelSamples", {pixelSamples, "PixelSamples xsamples ysamples", options});
     table.add("PixelFilter", {pixelFilter, "PixelFilter \"gaussian\" xwidth ywidth", options});
     table.add("Display", {display, "Display \"name\" \"type\" \"mode\"", options});
+    table.add("Quantize", {quantize, "Quantize \"rgba\" one min max ditheramplitude", options});
     table.add("Exposure", {exposure, "Exposure gain gamma", options});
     table.add("Hider", {hider, "Hider \"hidden\" \"jitter\" [1] \"depthfilter\" \"min\"", options});
     table.add("DisplayChannel", {displayChannel, "DisplayChannel \"type name\"", options});
