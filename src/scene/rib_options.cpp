@@ -207,6 +207,28 @@ void display(RibParser& reader, RibArgs& args) {
             throw InputError(d->loc, "Display: \"dither\" takes one amplitude of at least 0");
         ditherParam = d->nums;
     }
+    // A mode that declares its variable inline, "float myval" or "varying color paint" (PRMan's
+    // and Aqsis's form): declared as DisplayChannel declares it, the mode its name.
+    if (mode.find(' ') != std::string::npos && mode.find(',') == std::string::npos) {
+        std::vector<std::string> words;
+        for (size_t a = 0; a < mode.size();) {
+            const size_t b = std::min(mode.find(' ', a), mode.size());
+            if (b > a) words.push_back(mode.substr(a, b - a));
+            a = b + 1;
+        }
+        const std::string type = words.size() >= 2 ? words[words.size() - 2] : "";
+        const std::string var = words.empty() ? "" : words.back();
+        if (words.size() >= 2 && aovTypeWidth(type) > 0 && !findAovVariable(var) && !modeOutputs(var, nullptr).empty()) {
+            bool known = false;
+            for (const RenderSettings::ShaderOutput& o : settings.shaderOutputs) {
+                if (o.name != var) continue;
+                if (o.type != type) args.fail(*modeValue, "display mode \"" + mode + "\": " + var + " was declared a " + o.type);
+                known = true;
+            }
+            if (!known) settings.shaderOutputs.push_back({type, var, args.loc()});
+            mode = var;
+        }
+    }
     std::vector<std::string> declared;
     for (const RenderSettings::ShaderOutput& o : settings.shaderOutputs) declared.push_back(o.name);
     std::string why;
@@ -220,6 +242,21 @@ void display(RibParser& reader, RibArgs& args) {
     desc.quantizeParam = std::move(quantizeParam);
     desc.ditherParam = std::move(ditherParam);
     settings.displays.push_back(std::move(desc));
+}
+
+// CropWindow xmin xmax ymin ymax (fractions of the frame): the whole frame, 0 1 0 1 (what
+// exporters write by default), changes nothing; a smaller window is not cut out yet: it warns once
+// and the whole frame is rendered and written.
+void cropWindow(RibParser& reader, RibArgs& args) {
+    std::vector<double> w;
+    for (const char* what : {"xmin", "xmax", "ymin", "ymax"}) w.push_back(args.number(what));
+    args.expectEnd();
+    for (double x : w)
+        if (!(x >= 0 && x <= 1)) args.fail("CropWindow takes fractions of the frame from 0 to 1, got " + formatNumber(x));
+    if (!(w[0] < w[1]) || !(w[2] < w[3])) args.fail("CropWindow: xmin must be below xmax and ymin below ymax");
+    if (w[0] == 0 && w[1] == 1 && w[2] == 0 && w[3] == 1) return;
+    reader.log().lenient("request:CropWindow", args.loc(),
+                         "CropWindow smaller than the frame is not supported yet: the whole frame is rendered and written");
 }
 
 // Quantize "type" one min max ditheramplitude: one, min, max and the amplitude finite, one and the
@@ -456,6 +493,7 @@ void addOptionRequests(RibRequestTable& table) {
     table.add("PixelSamples", {pixelSamples, "PixelSamples xsamples ysamples", options});
     table.add("PixelFilter", {pixelFilter, "PixelFilter \"gaussian\" xwidth ywidth", options});
     table.add("Display", {display, "Display \"name\" \"type\" \"mode\"", options});
+    table.add("CropWindow", {cropWindow, "CropWindow xmin xmax ymin ymax", options});
     table.add("Quantize", {quantize, "Quantize \"rgba\" one min max ditheramplitude", options});
     table.add("Exposure", {exposure, "Exposure gain gamma", options});
     table.add("Hider", {hider, "Hider \"hidden\" \"jitter\" [1] \"depthfilter\" \"min\"", options});

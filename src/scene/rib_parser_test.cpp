@@ -671,3 +671,34 @@ TEST(RibErrors, UnsupportedRequestWarnsOnceAndParses) {
 
 }  // namespace
 }  // namespace streyes
+
+namespace streyes {
+namespace {
+
+// CropWindow: the whole frame is silent, a smaller window warns (it is not cut out yet), a window
+// outside [0, 1] or empty is an error at its line.
+TEST(RibErrors, CropWindowWholeFrameIsSilentSmallerWarnsBadFails) {
+    {
+        Log log;
+        parse(std::string("CropWindow 0 1 0 1\nWorldBegin\n") + kUnitPatch + "WorldEnd\n", log);
+        EXPECT_TRUE(log.warnings().empty());
+    }
+    {
+        Log log;
+        parse(std::string("CropWindow 0.25 0.75 0 1\nWorldBegin\n") + kUnitPatch + "WorldEnd\n", log);
+        ASSERT_EQ(log.warnings().size(), 1u);
+        EXPECT_NE(log.warnings()[0].find("test.rib:1: warning: CropWindow smaller than the frame"), std::string::npos);
+    }
+    for (const char* bad : {"CropWindow 0 1.5 0 1\n", "CropWindow 0.5 0.5 0 1\n", "CropWindow 0 1 0\n"}) {
+        Log log;
+        try {
+            parse(std::string("Format 8 8 1\n") + bad + "WorldBegin\n" + kUnitPatch + "WorldEnd\n", log);
+            ADD_FAILURE() << bad << " was accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("test.rib:2"), std::string::npos) << e.what();
+        }
+    }
+}
+
+}  // namespace
+}  // namespace streyes

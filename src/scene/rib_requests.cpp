@@ -160,7 +160,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
     // clang-format off
     // RIB requests outside the subset: warned about once and skipped.
     for (const char* name :
-         {"ColorSamples", "CropWindow", "Interior", "Exterior", "Deformation",
+         {"ColorSamples", "Interior", "Exterior", "Deformation",
           "TextureCoordinates", "Perspective", "Skew",
           "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "SolidBegin",
           "SolidEnd", "ArchiveEnd", "MakeBump",

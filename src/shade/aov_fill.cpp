@@ -48,6 +48,11 @@ void fillAovs(Grid& grid, const AovLayout& layout, const Camera& camera) {
                             d[0] = o.x, d[1] = o.y, d[2] = o.z;
                             break;
                         }
+                        case AovVar::Cs: {  // the surface colour the shader was given (Color, or primvar Cs)
+                            const Color c = grid.Cs.size() > size_t(v) ? grid.Cs[size_t(v)] : Color{1, 1, 1};
+                            d[0] = c.x, d[1] = c.y, d[2] = c.z;
+                            break;
+                        }
                         case AovVar::Shader: break;
                         case AovVar::Motion: {
                             if (!moves) {

@@ -16,6 +16,7 @@ const AovVariable kVariables[] = {
     {AovVar::t, "t", "float", 1, {"t", nullptr, nullptr}},
     {AovVar::Ci, "Ci", "color", 3, {"Ci.R", "Ci.G", "Ci.B"}},
     {AovVar::Oi, "Oi", "color", 3, {"Oi.R", "Oi.G", "Oi.B"}},
+    {AovVar::Cs, "Cs", "color", 3, {"Cs.R", "Cs.G", "Cs.B"}},
     {AovVar::Motion, "motion", "vector", 2, {"motion.X", "motion.Y", nullptr}},
 };
 

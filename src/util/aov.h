@@ -13,7 +13,7 @@
 
 namespace streyes {
 
-enum class AovVar { N, P, s, t, Ci, Oi, Motion, Shader };
+enum class AovVar { N, P, s, t, Ci, Oi, Cs, Motion, Shader };
 
 struct AovVariable {
     AovVar var;

@@ -375,3 +375,36 @@ TEST(AovRender, TheRayTracerRefusesOutputVariables) {
 
 }  // namespace
 }  // namespace streyes
+
+namespace streyes {
+namespace {
+
+// Display mode "Cs" (the surface colour the shader was given: Aqsis's multipass example writes
+// it) and a mode that declares a shader output inline, "float myval" (PRMan's and Aqsis's form):
+// a square of Color (0.25, 0.5, 0.75) whose surface writes myval = 0.625, left half of the frame.
+TEST(AovRender, CsAndAnInlineDeclaredShaderOutput) {
+    const test::TempDir dir("aov-shaders");
+    std::ofstream(dir.path() + "/myval.sl")
+        << "surface myval(output varying float myval = 0) { myval = 0.625; Ci = Cs; Oi = Os; }\n";
+    const std::string rib = "Option \"searchpath\" \"shader\" \"" + dir.path() + ":@\"\n" +
+                            "Format 8 4 1\nProjection \"orthographic\"\nScreenWindow -2 2 -1 1\nPixelFilter \"box\" 1 1\n"
+                            "Display \"out.exr\" \"openexr\" \"rgba\"\nDisplay \"+cs.exr\" \"openexr\" \"Cs\"\n"
+                            "Display \"+v.exr\" \"openexr\" \"float myval\"\n"
+                            "WorldBegin\nSurface \"myval\"\nColor [0.25 0.5 0.75]\n"
+                            "Polygon \"P\" [-2.5 -1.5 5  0 -1.5 5  0 1.5 5  -2.5 1.5 5]\nWorldEnd\n";
+    const test::RenderResult r = test::renderRib(rib);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    const FrameImage& f = r.frame(0);
+    ASSERT_EQ(f.aovNames, (std::vector<std::string>{"Cs.R", "Cs.G", "Cs.B", "myval"}));
+    for (int x = 0; x < 8; ++x) {
+        SCOPED_TRACE(x);
+        const bool in = x < 4;
+        EXPECT_EQ(aovAt(f, "Cs.R", x, 2), in ? 0.25f : 0.0f);
+        EXPECT_EQ(aovAt(f, "Cs.G", x, 2), in ? 0.5f : 0.0f);
+        EXPECT_EQ(aovAt(f, "Cs.B", x, 2), in ? 0.75f : 0.0f);
+        EXPECT_EQ(aovAt(f, "myval", x, 2), in ? 0.625f : 0.0f);
+    }
+}
+
+}  // namespace
+}  // namespace streyes

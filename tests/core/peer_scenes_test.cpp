@@ -126,13 +126,14 @@ TEST(PeerScenes, LevelOfDetailDoesNotDependOnTheFrameBlock) {
 }
 
 // ---- A parameter a shader does not have ----------------------------------------------------------
-// Aqsis's blobby scenes give the background imager a "bgcolor" it does not declare: the peers warn
-// and render, so does streyes (the imager runs with its own defaults).
+// A parameter the shader does not declare (here a misspelt "bgcolour"; RhinoMan's pointlight
+// "multiplier" in Aqsis's blobby scenes): the peers warn and render, so does streyes (the shader
+// runs with its own defaults).
 TEST(PeerScenes, AParameterTheShaderDoesNotHaveIsLeftOutWithAWarning) {
-    const std::string rib = test::orthoHeader(8, 8, "Imager \"background\" \"color bgcolor\" [1 0 0]\n") +
+    const std::string rib = test::orthoHeader(8, 8, "Imager \"background\" \"color bgcolour\" [1 0 0]\n") +
                             test::square(0, 4, 0, 8, 5) + "WorldEnd\n";
     const RenderResult r = renderRib(rib);
-    EXPECT_TRUE(warned(r, "has no parameter \"bgcolor\": ignored")) << (r.warnings.empty() ? "" : r.warnings[0]);
+    EXPECT_TRUE(warned(r, "has no parameter \"bgcolour\": ignored")) << (r.warnings.empty() ? "" : r.warnings[0]);
     // The imager ran with its own background (white), not the red it was not given.
     EXPECT_EQ(r.channel(0, 6, 4, 0), 1.0f);
     EXPECT_EQ(r.channel(0, 6, 4, 1), 1.0f);
