@@ -319,6 +319,10 @@ bool makeOiioTexture(const MakeTextureDesc& d, std::string* error) {
     config.attribute("wrapmodes", d.swrap + "," + d.twrap);
     // Halving with bilinear resampling (OIIO's default) averages 2 x 2 texels: RenderMan's box.
     if (d.filter != "box") config.attribute("maketx:filtername", d.filter);
+    // A tiled, MIP-mapped TIFF whatever the name's extension (".tex", ".tx", ".env", as RenderMan
+    // files name maps): OpenImageIO would otherwise pick the writer by the extension, and has none
+    // for ".tex".
+    config.attribute("maketx:fileformatname", "tiff");
     const auto mode = d.latLongEnvironment ? OIIO::ImageBufAlgo::MakeTxEnvLatl : OIIO::ImageBufAlgo::MakeTxTexture;
     if (!OIIO::ImageBufAlgo::make_texture(mode, d.input, d.output, config)) {
         *error = OIIO::geterror();

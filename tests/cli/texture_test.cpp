@@ -298,6 +298,33 @@ TEST(Textures, MakeTextureMakesATiledMipMappedMapBeforeTheRender) {
     EXPECT_NEAR(rgba[size_t(3 * 8 + 3) * size_t(frame->spec().nchannels)], 0.5f, 1e-3f);
 }
 
+// RenderMan files name maps ".tex" (fisheye's and sticky's scenes): whatever the extension the map
+// is a tiled, MIP-mapped TIFF (OpenImageIO has no writer for ".tex" by that name), read back by
+// texture() with the picture's value.
+TEST(Textures, MakeTextureWritesTiledTiffWhateverTheExtension) {
+    const TempDir dir("tex-ext");
+    std::vector<float> px(16 * 16 * 3, 0.25f);
+    writeImage(dir.path() + "/in.exr", 16, 16, 3, px);
+    writeFile(dir.path(), "tex.sl", "surface tex() { Ci = color texture(\"made.tex\", s, t); }\n");
+    const std::string rib = writeFile(dir.path(), "scene.rib",
+                                      "MakeTexture \"in.exr\" \"made.tex\" \"periodic\" \"periodic\" \"box\" 1 1\n" +
+                                          orthoHeader(8, 8) + "Surface \"tex\"\n" + square(0, 8, 8, 0, 5) + "WorldEnd\n");
+    const CliRun run = runStreyes("render " + rib + " -o " + dir.path() + "/out.####.exr");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    auto in = OIIO::ImageInput::open(dir.path() + "/made.tex");
+    ASSERT_TRUE(in);
+    EXPECT_STREQ(in->format_name(), "tiff");
+    EXPECT_EQ(in->spec().tile_width, 64);
+    int levels = 0;
+    while (in->seek_subimage(0, levels)) ++levels;
+    EXPECT_EQ(levels, 5);
+    auto frame = OIIO::ImageInput::open(dir.path() + "/out.0000.exr");
+    ASSERT_TRUE(frame);
+    std::vector<float> rgba(8 * 8 * size_t(frame->spec().nchannels));
+    ASSERT_TRUE(frame->read_image(0, 0, 0, frame->spec().nchannels, OIIO::TypeDesc::FLOAT, rgba.data()));
+    EXPECT_NEAR(rgba[size_t(3 * 8 + 3) * size_t(frame->spec().nchannels)], 0.25f, 1e-3f);
+}
+
 TEST(Textures, MakeTextureOfAMissingPictureExitsTwoAtItsLine) {
     const TempDir dir("tex-make-bad");
     const std::string rib = writeFile(dir.path(), "scene.rib",
