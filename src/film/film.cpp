@@ -289,9 +289,10 @@ inline CompositeSample opaqueSample(const SampleHit& h) {
 }
 
 // The sample whose opaque hit is `opaque` and whose fragments are in lists `a` and `b` (-1: none),
-// composited (film.h): the composited alpha and colour.
+// composited (film.h): the composited alpha and colour. Crossings of solids' boundaries are drawn
+// only where they bound a solid's result (geom/solid_tree.h), walked nearest first with the rest.
 CompositeSample composite(const ImageBlock& block, const SampleHit& opaque, int32_t a, int32_t b,
-                          std::vector<SampleFragment>& frags) {
+                          std::vector<SampleFragment>& frags, SolidWalk& walk) {
     if (a < 0 && b < 0) return opaqueSample(opaque);
     frags.clear();
     for (int32_t list : {a, b})
@@ -302,7 +303,14 @@ CompositeSample composite(const ImageBlock& block, const SampleHit& opaque, int3
     if (frags.empty()) return opaqueSample(opaque);
     std::sort(frags.begin(), frags.end(), [](const SampleFragment& x, const SampleFragment& y) { return x.before(y); });
     OverComposite over;
-    for (const SampleFragment& f : frags) over.add(f.c, f.t);
+    bool walking = false;
+    for (const SampleFragment& f : frags) {
+        if (f.solid >= 0 && block.solids()) {
+            if (!walking) walk.reset(*block.solids()), walking = true;
+            if (!walk.cross(solidLeafOf(f.solid), solidEnters(f.solid))) continue;  // inside or outside the result
+        }
+        over.add(f.c, f.t);
+    }
     return {over.alpha(opaque.empty() ? 0.0f : 1.0f), over.c + over.t * opaque.c};
 }
 
@@ -354,7 +362,7 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
             const SampleHit* h = block.still(i);
             CompositeSample* to = &scratch.stillComposite[i * size_t(S)];
             if (const int32_t* heads = fragments ? block.stillFragments(i) : nullptr)
-                for (int j = 0; j < S; ++j) to[j] = composite(block, h[j], heads[j], -1, scratch.fragments);
+                for (int j = 0; j < S; ++j) to[j] = composite(block, h[j], heads[j], -1, scratch.fragments, scratch.solidWalk);
             else
                 for (int j = 0; j < S; ++j) to[j] = opaqueSample(h[j]);
         }
@@ -371,7 +379,7 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
                 const int32_t* own = block.recordFragments(fi, i);
                 const int32_t* shared = dense ? nullptr : block.stillFragments(i);
                 for (int j = 0; j < S; ++j)
-                    to[j] = composite(block, rec[j], own[j], shared ? shared[j] : -1, scratch.fragments);
+                    to[j] = composite(block, rec[j], own[j], shared ? shared[j] : -1, scratch.fragments, scratch.solidWalk);
             } else
                 for (int j = 0; j < S; ++j) to[j] = opaqueSample(rec[j]);
             scratch.compositedFrame[i] = fi;

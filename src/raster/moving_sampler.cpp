@@ -68,6 +68,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const float *av0 = grid.aov[0].data(), *av1 = grid.aov[1].data();
     const uint64_t id = grid.primitiveId;
     const Color *oi0 = opacities(grid, 0), *oi1 = opacities(grid, 1);
+    const bool solid = grid.solid >= 0;  // a solid's boundary: every crossing a tagged fragment
     // Each quad's opacity, once for all its groups: none but opaque ones is the usual case.
     bool anySeeThrough = false;
     if (oi0 || oi1) {
@@ -248,8 +249,8 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 if (patchHidden_[size_t((j / kPatch) * patchesU + i / kPatch)]) continue;
                 const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
                 const QuadOpacity opacity = anySeeThrough ? QuadOpacity(opacity_[size_t(j * nu + i)]) : QuadOpacity::Opaque;
-                if (!Counting && opacity == QuadOpacity::Clear) continue;
-                const bool seeThrough = opacity != QuadOpacity::Opaque;
+                if (!Counting && opacity == QuadOpacity::Clear && !solid) continue;
+                const bool seeThrough = solid || opacity != QuadOpacity::Opaque;
                 QuadSetup q;
                 float xb[4], yb[4], zb[4];
                 for (int c = 0; c < 4; ++c) {
@@ -278,6 +279,11 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             return lerp(oi0 ? oi0[v] : kOpaque, oi1 ? oi1[v] : kOpaque, sg);
                         };
                         if (!fragmentBeats(cur, qt.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) return;
+                        if (solid) {  // which way the triangle runs at the sample's time
+                            QuadSetup at;
+                            movingQuadAt(mq, w, at);
+                            frag.solid = solidTag(grid.solid, entersSolid(at.x, at.y, h, grid.frontWinding));
+                        }
                         const int32_t fk = keepFrameFragment(block, fi, pi, sj, frag, rec);
                         ++fragments;
                         if (Shadowed)
