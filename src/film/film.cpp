@@ -314,6 +314,34 @@ CompositeSample composite(const ImageBlock& block, const SampleHit& opaque, int3
     return {over.alpha(opaque.empty() ? 0.0f : 1.0f), over.c + over.t * opaque.c};
 }
 
+// With solids: the samples' hits with each depth the nearest opaque surface, which may be a
+// solid's crossing that the walk keeps (composite's walk again, for the depth filters). Into
+// scratch.solidHits; `own` and `shared` the samples' lists (null: none).
+const SampleHit* solidDepths(const ImageBlock& block, const SampleHit* hits, const int32_t* own,
+                             const int32_t* shared, ResolveScratch& scratch) {
+    const int S = block.samplesPerPixel();
+    scratch.solidHits.assign(hits, hits + S);
+    std::vector<SampleFragment>& frags = scratch.fragments;
+    for (int j = 0; j < S; ++j) {
+        frags.clear();
+        for (const int32_t* heads : {own, shared})
+            if (heads)
+                for (int32_t k = heads[j]; k >= 0; k = block.fragment(k).next) {
+                    const SampleFragment& f = block.fragment(k);
+                    if (f.solid >= 0 && hits[j].beatenBy(f.z, f.id, f.c)) frags.push_back(f);
+                }
+        if (frags.empty()) continue;
+        std::sort(frags.begin(), frags.end(), [](const SampleFragment& x, const SampleFragment& y) { return x.before(y); });
+        scratch.solidWalk.reset(*block.solids());
+        for (const SampleFragment& f : frags)
+            if (scratch.solidWalk.cross(solidLeafOf(f.solid), solidEnters(f.solid)) && f.t == Color{0, 0, 0}) {
+                scratch.solidHits[size_t(j)].z = f.z;  // an opaque surface of a solid's result
+                break;
+            }
+    }
+    return scratch.solidHits.data();
+}
+
 }  // namespace
 
 void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& frames, size_t tileIndex,
@@ -390,13 +418,20 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
     // Pixels' depths: from their own samples' opaque hits, or for "midpoint" from every surface
     // they cross (the fragments a depth pass keeps).
     const bool midpoint = fw.depthFilter() == DepthFilter::Midpoint;
+    const bool solidFragments = fragments && block.solids();  // depths may be solids' (solidDepths)
     auto stillDepth = [&](size_t i) {
+        if (!midpoint && solidFragments)
+            return pixelDepth(block, fw, solidDepths(block, block.still(i), block.stillFragments(i), nullptr, scratch));
         if (!midpoint) return pixelDepth(block, fw, block.still(i));
         return midpointDepth(block, block.still(i), fragments ? block.stillFragments(i) : nullptr, nullptr);
     };
     auto frameDepth = [&](int fi, size_t i) {
         const SampleHit* rec = block.record(fi, i);
         if (!rec) return stillDepth(i);
+        if (!midpoint && solidFragments)
+            return pixelDepth(block, fw,
+                              solidDepths(block, rec, block.recordFragments(fi, i), dense ? nullptr : block.stillFragments(i),
+                                          scratch));
         if (!midpoint) return pixelDepth(block, fw, rec);
         return midpointDepth(block, rec, fragments ? block.recordFragments(fi, i) : nullptr,
                              fragments && !dense ? block.stillFragments(i) : nullptr);

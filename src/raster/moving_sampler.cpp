@@ -70,13 +70,15 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const Color *oi0 = opacities(grid, 0), *oi1 = opacities(grid, 1);
     const bool solid = grid.solid >= 0;  // a solid's boundary: every crossing a tagged fragment
     // Each quad's opacity, once for all its groups: none but opaque ones is the usual case.
+    // A solid's boundary counts as see-through everywhere (even where clear): the quads' loop is
+    // then the same as without solids.
     bool anySeeThrough = false;
-    if (oi0 || oi1) {
+    if (oi0 || oi1 || solid) {
         opacity_.resize(size_t(nu) * size_t(nv));
         for (int j = 0; j < nv; ++j)
             for (int i = 0; i < nu; ++i) {
                 const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
-                const QuadOpacity o = quadOpacity(oi0, oi1, ci0, ci1, idx);
+                const QuadOpacity o = solid ? QuadOpacity::SeeThrough : quadOpacity(oi0, oi1, ci0, ci1, idx);
                 opacity_[size_t(j * nu + i)] = uint8_t(o);
                 anySeeThrough = anySeeThrough || o != QuadOpacity::Opaque;
             }
@@ -249,8 +251,8 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                 if (patchHidden_[size_t((j / kPatch) * patchesU + i / kPatch)]) continue;
                 const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
                 const QuadOpacity opacity = anySeeThrough ? QuadOpacity(opacity_[size_t(j * nu + i)]) : QuadOpacity::Opaque;
-                if (!Counting && opacity == QuadOpacity::Clear && !solid) continue;
-                const bool seeThrough = solid || opacity != QuadOpacity::Opaque;
+                if (!Counting && opacity == QuadOpacity::Clear) continue;
+                const bool seeThrough = opacity != QuadOpacity::Opaque;
                 QuadSetup q;
                 float xb[4], yb[4], zb[4];
                 for (int c = 0; c < 4; ++c) {

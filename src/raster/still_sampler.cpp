@@ -99,9 +99,11 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
         for (int i = 0; i < nu; ++i) {
             if (hole && hole[j * nu + i]) continue;  // trimmed away
             const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
-            const QuadOpacity opacity = oi ? quadOpacity(oi, nullptr, ci, nullptr, idx) : QuadOpacity::Opaque;
-            if (!Counting && opacity == QuadOpacity::Clear && !solid) continue;
-            const bool seeThrough = solid || opacity != QuadOpacity::Opaque;
+            const QuadOpacity opacity = solid ? QuadOpacity::SeeThrough
+                                        : oi  ? quadOpacity(oi, nullptr, ci, nullptr, idx)
+                                              : QuadOpacity::Opaque;
+            if (!Counting && opacity == QuadOpacity::Clear) continue;
+            const bool seeThrough = opacity != QuadOpacity::Opaque;
             QuadSetup q;
             for (int c = 0; c < 4; ++c) {
                 const RasterVertex& v = ra_[size_t(idx[c])];

@@ -87,17 +87,21 @@ TEST(Solids, NestedTreeCoversTheClosedForm) {
 TEST(Solids, TheSubtractedSolidsInsideIsTheCavitysWall) {
     const std::string b = primitive(sphere(kAx, kAy, kZ - 45, 20, "0 1 0"));
     const std::string rib = scene(solid("difference", sphereA() + b));
-    const int cx = int(kAx), cy = kH - int(kAy);  // the pixel whose centre is on the axis is (52, 64)
+    const int cx = int(kAx), cy = kH - int(kAy);  // pixel (52, 64) has the axis at its corner
     for (const Algorithm a : kRendered) {
         const test::RenderResult r = test::renderRib(rib, test::optionsFor(a));
         const std::string name = algorithmName(a);
         // On the axis: B's back at 75, A's front at 60: the cavity's wall, green.
         EXPECT_NEAR(r.channel(0, cx, cy, 1), 1, 1e-5) << name;
         EXPECT_NEAR(r.channel(0, cx, cy, 0), 0, 1e-5) << name;
-        // 19 px off the axis (the pixel covers 18.5..19.5): B's back (55 + sqrt(400 - r^2) <= 63.3)
-        // in front of A's front (>= 64.1): A, red.
+        // 19 px off the axis (the pixel covers 19..20): B's back (55 + sqrt(400 - r^2) <= 61.3) in
+        // front of A's front (>= 64.8): A, red.
         EXPECT_NEAR(r.channel(0, cx + 19, cy, 0), 1, 1e-5) << name;
         EXPECT_NEAR(r.channel(0, cx + 19, cy, 1), 0, 1e-5) << name;
+        // Z is the surface seen: the cavity's wall at 55 + 20 on the axis, A's front at
+        // 100 - sqrt(1600 - r^2) (64.8 to 65.5 over the pixel; the nearest sample's is kept).
+        EXPECT_NEAR(r.z(0, cx, cy), 75, 0.2) << name;
+        EXPECT_NEAR(r.z(0, cx + 19, cy), 64.9, 0.15) << name;
     }
     // Plain surfaces would show B's front, green, there.
     const test::RenderResult plain = test::renderRib(scene(sphereA() + b));
