@@ -128,6 +128,9 @@ struct Attributes {
     int areaLight = -1;
     // Under a DetailRange: the representation of a model it belongs to. None: always drawn.
     std::shared_ptr<const LevelOfDetail> detail;
+    // Inside SolidBegin "primitive": the node of Scene::solids whose boundary this geometry is (a
+    // leaf of a solid's tree). -1: not part of a solid.
+    int solid = -1;
 };
 using AttributesPtr = std::shared_ptr<const Attributes>;
 
@@ -452,6 +455,18 @@ struct PointsDesc : PrimitiveDesc {
     ColorPrimvar Cs;                          // varying, vertex: per point
 };
 
+// ---- Solids (SolidBegin ... SolidEnd) ---------------------------------------------------------------
+// A node of a solid's tree: a "primitive" solid is a leaf (the geometry declared in it bounds it);
+// the others combine their children, in order ("difference" subtracts the second and later ones
+// from the first).
+enum class SolidOp { Primitive, Union, Intersection, Difference };
+struct SolidNode {
+    SolidOp op = SolidOp::Primitive;
+    int parent = -1;            // index in Scene::solids; -1: the root of a tree
+    std::vector<int> children;  // indices in Scene::solids, in the order declared
+    SourceLoc loc;              // the SolidBegin
+};
+
 struct Scene {
     CameraDesc camera;
     RenderSettings settings;
@@ -465,6 +480,7 @@ struct Scene {
     std::vector<CurvesDesc> curves;
     std::vector<PointsDesc> points;
     std::vector<NuPatchDesc> nuPatches;
+    std::vector<SolidNode> solids;  // every solid's tree; Attributes::solid points at its leaves
     std::string sourceName;  // the scene file, for messages and default output names
     int frameNumber = 0;     // FrameBegin n, when the scene was one frame of a sequence
     SourceLoc frameLoc;      // where that FrameBegin (or the frame's file) is

@@ -12,7 +12,8 @@ Material makeMaterial(const Attributes& a, Facing facing) {
         m.flipNormals = a.orientation == O::Outside   ? mirrored
                         : a.orientation == O::Inside  ? !mirrored
                                                       : a.orientation == O::RightHanded;
-        m.oneSided = !a.twoSided;
+        m.oneSided = !a.twoSided && a.solid < 0;
+        m.solid = a.solid;
     }
     m.smoothShading = a.smoothShading;
     m.Cs = a.color;

@@ -65,6 +65,9 @@ struct Material {
     // oneSided (Sides 1) drops micropolygons whose outside faces away from the eye.
     bool flipNormals = false;
     bool oneSided = false;
+    // The leaf of a solid this surface bounds (Attributes::solid, geom/solid_tree.h), -1: none.
+    // Such a surface is kept two-sided: its far side is where a line of sight leaves the solid.
+    int solid = -1;
     bool smoothShading = true;  // ShadingInterpolation "smooth"; false: "constant"
     // The primitive's own variables (a material of its own): bound to its shaders' parameters of
     // the same name; constant ones, or four corner values interpolated over a bilinear patch (the

@@ -29,6 +29,7 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     // Primitive ids from 1, in the order BodyFactory::addPrimitives takes them.
     uint64_t id = 0;
     rs->factory->addPrimitives(scene, {}, 0, [&id] { return ++id; }, rs->roots);
+    rs->solids = SolidTree(scene.solids);
     return rs;
 }
 

@@ -10,6 +10,7 @@
 #include "geom/body.h"
 #include "geom/camera.h"
 #include "geom/lights.h"
+#include "geom/solid_tree.h"
 #include "streyes/scene.h"
 
 namespace streyes {
@@ -24,6 +25,7 @@ struct RenderScene {
     double renderedStart = 0, renderedEnd = 0;
     std::unique_ptr<BodyFactory> factory;
     std::vector<BodyPtr> roots;
+    SolidTree solids;  // the scene's solids (Material::solid points at their leaves); empty: none
 };
 
 // Builds the render scene for the shot, frames [firstFrame, lastFrame] (see RenderOptions::hasShot:

@@ -289,9 +289,10 @@ inline CompositeSample opaqueSample(const SampleHit& h) {
 }
 
 // The sample whose opaque hit is `opaque` and whose fragments are in lists `a` and `b` (-1: none),
-// composited (film.h): the composited alpha and colour.
+// composited (film.h): the composited alpha and colour. Crossings of solids' boundaries are drawn
+// only where they bound a solid's result (geom/solid_tree.h), walked nearest first with the rest.
 CompositeSample composite(const ImageBlock& block, const SampleHit& opaque, int32_t a, int32_t b,
-                          std::vector<SampleFragment>& frags) {
+                          std::vector<SampleFragment>& frags, SolidWalk& walk) {
     if (a < 0 && b < 0) return opaqueSample(opaque);
     frags.clear();
     for (int32_t list : {a, b})
@@ -302,8 +303,43 @@ CompositeSample composite(const ImageBlock& block, const SampleHit& opaque, int3
     if (frags.empty()) return opaqueSample(opaque);
     std::sort(frags.begin(), frags.end(), [](const SampleFragment& x, const SampleFragment& y) { return x.before(y); });
     OverComposite over;
-    for (const SampleFragment& f : frags) over.add(f.c, f.t);
+    bool walking = false;
+    for (const SampleFragment& f : frags) {
+        if (f.solid >= 0 && block.solids()) {
+            if (!walking) walk.reset(*block.solids()), walking = true;
+            if (!walk.cross(solidLeafOf(f.solid), solidEnters(f.solid))) continue;  // inside or outside the result
+        }
+        over.add(f.c, f.t);
+    }
     return {over.alpha(opaque.empty() ? 0.0f : 1.0f), over.c + over.t * opaque.c};
+}
+
+// With solids: the samples' hits with each depth the nearest opaque surface, which may be a
+// solid's crossing that the walk keeps (composite's walk again, for the depth filters). Into
+// scratch.solidHits; `own` and `shared` the samples' lists (null: none).
+const SampleHit* solidDepths(const ImageBlock& block, const SampleHit* hits, const int32_t* own,
+                             const int32_t* shared, ResolveScratch& scratch) {
+    const int S = block.samplesPerPixel();
+    scratch.solidHits.assign(hits, hits + S);
+    std::vector<SampleFragment>& frags = scratch.fragments;
+    for (int j = 0; j < S; ++j) {
+        frags.clear();
+        for (const int32_t* heads : {own, shared})
+            if (heads)
+                for (int32_t k = heads[j]; k >= 0; k = block.fragment(k).next) {
+                    const SampleFragment& f = block.fragment(k);
+                    if (f.solid >= 0 && hits[j].beatenBy(f.z, f.id, f.c)) frags.push_back(f);
+                }
+        if (frags.empty()) continue;
+        std::sort(frags.begin(), frags.end(), [](const SampleFragment& x, const SampleFragment& y) { return x.before(y); });
+        scratch.solidWalk.reset(*block.solids());
+        for (const SampleFragment& f : frags)
+            if (scratch.solidWalk.cross(solidLeafOf(f.solid), solidEnters(f.solid)) && f.t == Color{0, 0, 0}) {
+                scratch.solidHits[size_t(j)].z = f.z;  // an opaque surface of a solid's result
+                break;
+            }
+    }
+    return scratch.solidHits.data();
 }
 
 }  // namespace
@@ -354,7 +390,7 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
             const SampleHit* h = block.still(i);
             CompositeSample* to = &scratch.stillComposite[i * size_t(S)];
             if (const int32_t* heads = fragments ? block.stillFragments(i) : nullptr)
-                for (int j = 0; j < S; ++j) to[j] = composite(block, h[j], heads[j], -1, scratch.fragments);
+                for (int j = 0; j < S; ++j) to[j] = composite(block, h[j], heads[j], -1, scratch.fragments, scratch.solidWalk);
             else
                 for (int j = 0; j < S; ++j) to[j] = opaqueSample(h[j]);
         }
@@ -371,7 +407,7 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
                 const int32_t* own = block.recordFragments(fi, i);
                 const int32_t* shared = dense ? nullptr : block.stillFragments(i);
                 for (int j = 0; j < S; ++j)
-                    to[j] = composite(block, rec[j], own[j], shared ? shared[j] : -1, scratch.fragments);
+                    to[j] = composite(block, rec[j], own[j], shared ? shared[j] : -1, scratch.fragments, scratch.solidWalk);
             } else
                 for (int j = 0; j < S; ++j) to[j] = opaqueSample(rec[j]);
             scratch.compositedFrame[i] = fi;
@@ -382,13 +418,20 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
     // Pixels' depths: from their own samples' opaque hits, or for "midpoint" from every surface
     // they cross (the fragments a depth pass keeps).
     const bool midpoint = fw.depthFilter() == DepthFilter::Midpoint;
+    const bool solidFragments = fragments && block.solids();  // depths may be solids' (solidDepths)
     auto stillDepth = [&](size_t i) {
+        if (!midpoint && solidFragments)
+            return pixelDepth(block, fw, solidDepths(block, block.still(i), block.stillFragments(i), nullptr, scratch));
         if (!midpoint) return pixelDepth(block, fw, block.still(i));
         return midpointDepth(block, block.still(i), fragments ? block.stillFragments(i) : nullptr, nullptr);
     };
     auto frameDepth = [&](int fi, size_t i) {
         const SampleHit* rec = block.record(fi, i);
         if (!rec) return stillDepth(i);
+        if (!midpoint && solidFragments)
+            return pixelDepth(block, fw,
+                              solidDepths(block, rec, block.recordFragments(fi, i), dense ? nullptr : block.stillFragments(i),
+                                          scratch));
         if (!midpoint) return pixelDepth(block, fw, rec);
         return midpointDepth(block, rec, fragments ? block.recordFragments(fi, i) : nullptr,
                              fragments && !dense ? block.stillFragments(i) : nullptr);

@@ -130,6 +130,8 @@ struct ResolveScratch {
     std::vector<CompositeSample> stillComposite, frameComposite;
     std::vector<int32_t> compositedFrame;  // per block pixel: the frame frameComposite holds it for, or -1
     std::vector<SampleFragment> fragments;  // one sample's, being sorted
+    SolidWalk solidWalk;                    // one sample's crossings of solids (geom/solid_tree.h)
+    std::vector<SampleHit> solidHits;       // one pixel's hits with solids' depths (film.cpp solidDepths)
 };
 
 // Resolves the samples of every frame of the block into the pixels of tile `tileIndex` of `frames`

@@ -22,7 +22,12 @@ struct Grid {
     const Material* material = nullptr;
     uint64_t primitiveId = 0;     // the body's primitive: breaks exact depth ties
     float u0 = 0, u1 = 1, v0 = 0, v1 = 1;  // the body's parameter rectangle (Body::uv)
-    bool flatShading = false;     // ShadingInterpolation "constant": a micropolygon has its first vertex's colour
+    bool flatShading = false;
+    // The leaf of a solid this grid bounds (Material::solid), -1: none; and which way round a
+    // micropolygon's triangle runs in raster space where its outside faces the eye (+1: the
+    // signed area of (0, 1, 2) is positive there, -1: negative). Set by the bucket after dicing.
+    int solid = -1;
+    int frontWinding = 1;     // ShadingInterpolation "constant": a micropolygon has its first vertex's colour
     // A level of detail's dissolve (Material::dissolveLo/Hi): only this share of a frame's samples
     // sees the grid. [0, 1): every sample.
     float dissolveLo = 0, dissolveHi = 1;

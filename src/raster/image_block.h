@@ -24,6 +24,7 @@
 #include <memory>
 #include <vector>
 
+#include "geom/solid_tree.h"
 #include "raster/sample_pattern.h"
 #include "streyes/render_options.h"
 #include "streyes/vecmath.h"
@@ -74,10 +75,15 @@ struct SampleFragment {
     Color t;       // what it lets through, per channel: 1 - Oi
     uint64_t id;   // primitive: with z and c orders fragments independently of arrival
     int32_t next;  // the sample's next fragment (unordered), or -1
+    // A crossing of a solid's boundary (geom/solid_tree.h solidTag: its leaf and whether it enters),
+    // resolved when the block is: drawn only where it bounds the solid's result. -1: any other
+    // surface. In what was padding: the fragment stays 48 bytes.
+    int32_t solid = -1;
 
     // The order fragments are composited in, nearest first: SampleHit::beatenBy's.
     bool before(const SampleFragment& b) const { return SampleHit{b.z, b.c, b.id}.beatenBy(z, id, c); }
 };
+static_assert(sizeof(SampleFragment) == 48);
 
 class ImageBlock {
   public:
@@ -247,9 +253,15 @@ class ImageBlock {
     // With shadows (dense mode): the shadowed parts of fragment k, shadowSlots() colours.
     Color* fragmentShadowed(int32_t k) { return &fragmentShadowed_[size_t(k) * size_t(shadowSlots_)]; }
 
+    // The scene's solids, which fragments' tags (SampleFragment::solid) point into; null when the
+    // scene has none. Set after reset, read when the block is resolved.
+    void setSolids(const SolidTree* solids) { solids_ = solids; }
+    const SolidTree* solids() const { return solids_; }
+
     size_t bytes() const;
 
   private:
+    const SolidTree* solids_ = nullptr;
     float* recordAovAt(uint32_t r) {
         return &aovChunks_[r / kRecordsPerChunk][size_t(r % kRecordsPerChunk) * size_t(S_) * size_t(aovs_)];
     }

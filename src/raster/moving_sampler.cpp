@@ -68,14 +68,17 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const float *av0 = grid.aov[0].data(), *av1 = grid.aov[1].data();
     const uint64_t id = grid.primitiveId;
     const Color *oi0 = opacities(grid, 0), *oi1 = opacities(grid, 1);
+    const bool solid = grid.solid >= 0;  // a solid's boundary: every crossing a tagged fragment
     // Each quad's opacity, once for all its groups: none but opaque ones is the usual case.
+    // A solid's boundary counts as see-through everywhere (even where clear): the quads' loop is
+    // then the same as without solids.
     bool anySeeThrough = false;
-    if (oi0 || oi1) {
+    if (oi0 || oi1 || solid) {
         opacity_.resize(size_t(nu) * size_t(nv));
         for (int j = 0; j < nv; ++j)
             for (int i = 0; i < nu; ++i) {
                 const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
-                const QuadOpacity o = quadOpacity(oi0, oi1, ci0, ci1, idx);
+                const QuadOpacity o = solid ? QuadOpacity::SeeThrough : quadOpacity(oi0, oi1, ci0, ci1, idx);
                 opacity_[size_t(j * nu + i)] = uint8_t(o);
                 anySeeThrough = anySeeThrough || o != QuadOpacity::Opaque;
             }
@@ -278,6 +281,11 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             return lerp(oi0 ? oi0[v] : kOpaque, oi1 ? oi1[v] : kOpaque, sg);
                         };
                         if (!fragmentBeats(cur, qt.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) return;
+                        if (solid) {  // which way the triangle runs at the sample's time
+                            QuadSetup at;
+                            movingQuadAt(mq, w, at);
+                            frag.solid = solidTag(grid.solid, entersSolid(at.x, at.y, h, grid.frontWinding));
+                        }
                         const int32_t fk = keepFrameFragment(block, fi, pi, sj, frag, rec);
                         ++fragments;
                         if (Shadowed)

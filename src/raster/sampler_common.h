@@ -63,6 +63,16 @@ inline int32_t keepFrameFragment(ImageBlock& block, int fi, size_t pi, int sj, c
     return block.addFragment(block.recordFragments(fi, pi) + sj, f);
 }
 
+// Whether triangle h of a quad with raster corners x, y (at the sample's time) shows its outside to
+// the eye, given which way round such a triangle runs in the grid (Grid::frontWinding): a
+// crossing that enters the solid the grid bounds (geom/solid_tree.h). The winding flips exactly
+// where a closed surface folds over at its silhouette, so front and back layers are told apart
+// sample by sample.
+inline bool entersSolid(const float* x, const float* y, const Hit& h, int frontWinding) {
+    const float a = (x[h.v1] - x[h.v0]) * (y[h.v2] - y[h.v0]) - (y[h.v1] - y[h.v0]) * (x[h.v2] - x[h.v0]);
+    return (a > 0) == (frontWinding > 0);
+}
+
 enum class QuadOpacity { Opaque, SeeThrough, Clear };
 
 // How a quad's corners idx[] (in either slot of a moving grid: oi1, ci1 non-null) let light through.

@@ -77,6 +77,9 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const float* av = grid.aov[0].data();
     const uint64_t id = grid.primitiveId;
     const Color* oi = opacities(grid, 0);
+    // A solid's boundary: every crossing is a fragment, tagged, and resolved with the others
+    // (geom/solid_tree.h); even a clear one counts in classifying inside from outside.
+    const bool solid = grid.solid >= 0;
     // The kernel: SIMD, or scalar while counting hits for tests of watertightness (the counting
     // instance runs the scalar reference: the kernels are held to it bit for bit).
     const QuadTestFn test = Counting ? quadTestScalar() : quadTestKernel();
@@ -96,7 +99,9 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
         for (int i = 0; i < nu; ++i) {
             if (hole && hole[j * nu + i]) continue;  // trimmed away
             const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
-            const QuadOpacity opacity = oi ? quadOpacity(oi, nullptr, ci, nullptr, idx) : QuadOpacity::Opaque;
+            const QuadOpacity opacity = solid ? QuadOpacity::SeeThrough
+                                        : oi  ? quadOpacity(oi, nullptr, ci, nullptr, idx)
+                                              : QuadOpacity::Opaque;
             if (!Counting && opacity == QuadOpacity::Clear) continue;
             const bool seeThrough = opacity != QuadOpacity::Opaque;
             QuadSetup q;
@@ -107,7 +112,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
             if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ, lensMargin<Lens>(camera))) continue;
             if (!Counting && intoStill && behindStillLayer(block, q)) continue;
             auto colorAt = [&](int c) { return ci[idx[flat ? 0 : c]]; };
-            auto opacityAt = [&](int c) { return oi[idx[flat ? 0 : c]]; };
+            auto opacityAt = [&](int c) { return oi ? oi[idx[flat ? 0 : c]] : Color{1, 1, 1}; };
             // A hit of sample sj of pixel pi, h on quad qc (q as the sample sees it).
             auto onHit = [&](size_t pi, int sj, const Hit& h, const QuadSetup& qc) {
                 SampleHit hit;
@@ -124,6 +129,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     SampleHit& cur = block.still(pi)[sj];
                     if (seeThrough) {  // a fragment every frame sees (where nothing opaque of its own is nearer)
                         if (!fragmentBeats(cur, q.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) return;
+                        if (solid) frag.solid = solidTag(grid.solid, entersSolid(q.x, q.y, h, grid.frontWinding));
                         block.startFragments();
                         block.addFragment(block.stillFragments(pi) + sj, frag);
                         ++fragments;
@@ -153,6 +159,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                     const SampleHit& cur = rec ? rec[sj] : block.still(pi)[sj];
                     if (seeThrough) {
                         if (!fragmentBeats(cur, q.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) continue;
+                        if (solid) frag.solid = solidTag(grid.solid, entersSolid(q.x, q.y, h, grid.frontWinding));
                         const int32_t fk = keepFrameFragment(block, fr.fi, pi, sj, frag, rec);
                         ++fragments;
                         if (Shadowed)

@@ -42,6 +42,31 @@ void orientNormals(Grid& grid, int k, const Material* m) {
         for (Vec3f& n : grid.N[k]) n = -n;
 }
 
+// A solid's boundary (Material::solid): which way round a micropolygon runs in raster space where
+// its outside (its oriented normals) faces the eye, from every quad of slot 0, each weighed by its
+// raster area: a quad seen edge-on, or whose normals disagree with its corners, barely counts.
+void setSolid(Grid& grid, const Material* m, const Camera& cam) {
+    grid.solid = m ? m->solid : -1;
+    if (grid.solid < 0) return;
+    const int nu = grid.nu, nv = grid.nv, stride = nu + 1;
+    double sum = 0;
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            const int idx[4] = {j * stride + i, j * stride + i + 1, (j + 1) * stride + i + 1, (j + 1) * stride + i};
+            Vec3f n{0, 0, 0}, c{0, 0, 0}, r[4];
+            for (int k = 0; k < 4; ++k) {
+                const Vec3f& p = grid.P[0][size_t(idx[k])];
+                n = n + grid.N[0][size_t(idx[k])], c = c + p;
+                r[k] = cam.toRaster(p);
+            }
+            const float facing = -dot(n, cam.perspective() ? c : Vec3f{0, 0, 1});
+            const double area = double(r[2].x - r[0].x) * double(r[3].y - r[1].y) -
+                                double(r[2].y - r[0].y) * double(r[3].x - r[1].x);
+            if (std::isfinite(area)) sum += facing > 0 ? area : facing < 0 ? -area : 0.0;
+        }
+    grid.frontWinding = sum < 0 ? -1 : 1;
+}
+
 // Sides 1: marks in grid.hole the micropolygons whose outside faces away from the eye at every
 // end of the grid's span (their corners' normals summed, against the direction from the eye).
 // False when none is left to draw.
@@ -113,6 +138,7 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
     block_.setAovCount(aovs_.count);
     block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, patterns_, traceEyeRays_ || shadowSlots_ > 0,
                  shadowSlots_, scene_.camera.depthOfField());
+    block_.setSolids(scene_.solids.empty() ? nullptr : &scene_.solids);
     counters.timeSampleGen += secondsSince(t);
 
     windowStart_ = bucket.firstFrame + scene_.shutter.open;
@@ -549,6 +575,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
     grid_.dissolveLo = mat ? mat->dissolveLo : 0;
     grid_.dissolveHi = mat ? mat->dissolveHi : 1;
     orientNormals(grid_, 0, mat);
+    setSolid(grid_, mat, scene_.camera);
     auto t1 = Clock::now();
     counters.timeDice += std::chrono::duration<double>(t1 - t).count();
     shader_.shadeSlot(grid_, 0, body.keyTime(k0));
@@ -654,6 +681,7 @@ bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
     grid_.dissolveLo = mat ? mat->dissolveLo : 0;
     grid_.dissolveHi = mat ? mat->dissolveHi : 1;
     for (int k = 0; k < (grid_.moving ? 2 : 1); ++k) orientNormals(grid_, k, mat);
+    setSolid(grid_, mat, scene_.camera);
     if (mat && mat->oneSided && !cullBackFacing(grid_, scene_.camera)) {
         counters.timeDice += secondsSince(t);
         return false;  // every micropolygon faces away

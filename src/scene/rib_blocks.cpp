@@ -6,12 +6,12 @@
 namespace streyes {
 
 const char* RibState::beginName(BlockKind kind) {
-    static const char* names[] = {"WorldBegin", "AttributeBegin", "TransformBegin"};
+    static const char* names[] = {"WorldBegin", "AttributeBegin", "TransformBegin", "SolidBegin"};
     return names[int(kind)];
 }
 
 const char* RibState::endName(BlockKind kind) {
-    static const char* names[] = {"WorldEnd", "AttributeEnd", "TransformEnd"};
+    static const char* names[] = {"WorldEnd", "AttributeEnd", "TransformEnd", "SolidEnd"};
     return names[int(kind)];
 }
 
@@ -120,8 +120,8 @@ void attributeEnd(RibParser& reader, RibArgs& args) {
         args.fail("AttributeEnd without a matching AttributeBegin");
     const RibState::Block& open = s.blocks.back();
     if (open.kind != BlockKind::Attribute)
-        args.fail("AttributeEnd does not match the TransformBegin at line " + std::to_string(open.begin.line) +
-                  ": close that with TransformEnd first");
+        args.fail(std::string("AttributeEnd does not match the ") + RibState::beginName(open.kind) + " at line " +
+                  std::to_string(open.begin.line) + ": close that with " + RibState::endName(open.kind) + " first");
     s.attributes = open.attributes;
     s.ctm = open.ctm;
     s.blocks.pop_back();
@@ -134,8 +134,8 @@ void transformEnd(RibParser& reader, RibArgs& args) {
         args.fail("TransformEnd without a matching TransformBegin");
     const RibState::Block& open = s.blocks.back();
     if (open.kind != BlockKind::Transform)
-        args.fail("TransformEnd does not match the AttributeBegin at line " + std::to_string(open.begin.line) +
-                  ": close that with AttributeEnd first");
+        args.fail(std::string("TransformEnd does not match the ") + RibState::beginName(open.kind) + " at line " +
+                  std::to_string(open.begin.line) + ": close that with " + RibState::endName(open.kind) + " first");
     s.ctm = open.ctm;
     s.blocks.pop_back();
 }

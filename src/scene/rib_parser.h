@@ -35,12 +35,13 @@ namespace streyes {
 // The graphics state where reading stands: what requests build up and later requests read.
 struct RibState {
     enum class World { Before, Inside, After };
-    enum class BlockKind { World, Attribute, Transform };
+    enum class BlockKind { World, Attribute, Transform, Solid };
     struct Block {
         BlockKind kind;
         SourceLoc begin;
-        std::shared_ptr<Attributes> attributes;  // saved by World and Attribute blocks
+        std::shared_ptr<Attributes> attributes;  // saved by World, Attribute and Solid blocks
         MotionTransform ctm;
+        int outerSolid = -1;  // Solid blocks: openSolid before it (restored at SolidEnd)
     };
     struct MotionBlock {
         std::vector<double> times;
@@ -77,6 +78,10 @@ struct RibState {
     std::vector<Block> blocks;  // open World/Attribute/Transform blocks, innermost last
     World world = World::Before;
     SourceLoc worldBegin;
+    // The innermost open SolidBegin's node in Scene::solids (rib_solids.cpp), -1 outside solids,
+    // kNoSolidNode in a solid block that makes no node (inside ObjectBegin or a procedural's output).
+    static constexpr int kNoSolidNode = -2;
+    int openSolid = -1;
     std::optional<MotionBlock> motion;
     std::optional<SkippedBlock> skipping;
     std::optional<ObjectDefinition> defining;                          // the open ObjectBegin
@@ -171,6 +176,8 @@ class RibParser {
     RibRequest readRequest(RibLexer& lexer, RibToken nameToken);
     RibValue readArray(RibLexer& lexer, const RibToken& open);
     void dispatch(const RibRequest& request);  // rib_requests.cpp
+    // Geometry directly inside a non-primitive solid: warned about (rib_solids.cpp).
+    void checkSolidGeometry(const RibRequest& request);
     Param makeParam(RibArgs& args, const RibValue& nameValue, const RibValue& value, bool shaderParam) const;
 
     struct SavedFrame {

@@ -35,7 +35,7 @@ const RibRequestTable& ribRequests() {
                          addTransformRequests, addAttributeRequests, addShadingRequests, addPatchRequests,
                          addPolygonRequests, addSubdivisionRequests, addQuadricRequests, addArchiveRequests, addObjectRequests,
                          addCurveRequests, addNurbsRequests, addTextureRequests, addBlobbyRequests,
-                         addGeometryRequests, addDetailRequests})
+                         addGeometryRequests, addDetailRequests, addSolidRequests})
             add(t);
         return t;
     }();
@@ -106,6 +106,9 @@ void RibParser::dispatch(const RibRequest& request) {
     }
 
     if (!rightPhase()) return;
+    if (state_.openSolid >= 0 && info->phase == RibPhase::World &&
+        (info->motion || name == "Blobby" || name == "Geometry" || name == "ObjectInstance" || name == "Procedural"))
+        checkSolidGeometry(request);
     RibArgs args(request, info->usage);
     if (!state_.defining) {
         info->handler(*this, args);
@@ -162,8 +165,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
     for (const char* name :
          {"ColorSamples", "Interior", "Exterior", "Deformation",
           "TextureCoordinates", "Perspective", "Skew",
-          "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "SolidBegin",
-          "SolidEnd", "ArchiveEnd", "MakeBump",
+          "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "ArchiveEnd", "MakeBump",
           "MakeCubeFaceEnvironment", "MakeBrickMap",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
           "System", "Shader", "Bxdf", "Pattern", "Integrator", "DisplayFilter", "SampleFilter",

@@ -90,5 +90,6 @@ void addBlobbyRequests(RibRequestTable& table);       // rib_blobby.cpp: Blobby
 void addTextureRequests(RibRequestTable& table);      // rib_textures.cpp: MakeTexture, MakeLatLongEnvironment
 void addGeometryRequests(RibRequestTable& table);     // rib_teapot.cpp: Geometry "teapot"
 void addDetailRequests(RibRequestTable& table);       // rib_detail.cpp: Detail, DetailRange, RelativeDetail
+void addSolidRequests(RibRequestTable& table);        // rib_solids.cpp: SolidBegin, SolidEnd
 
 }  // namespace streyes

@@ -94,6 +94,15 @@ void SequenceBuilder::addPrimitive(char kind, Desc&& p, std::vector<Desc>& merge
     tracks_[key] = t;
 }
 
+namespace {
+bool sameSolids(const std::vector<SolidNode>& a, const std::vector<SolidNode>& b) {
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (a[i].op != b[i].op || a[i].parent != b[i].parent || a[i].children != b[i].children) return false;
+    return true;
+}
+}  // namespace
+
 void SequenceBuilder::add(Scene&& frame) {
     const int f = frame.frameNumber;
     if (out_.stats.frames > 0) {
@@ -141,6 +150,15 @@ void SequenceBuilder::add(Scene&& frame) {
     }
 
     Scene& m = out_.scene;
+    // Primitives point at their solid's leaves by index (Attributes::solid): frames merge when they
+    // declare the same solids (the usual animation of one CSG model), with one tree for all.
+    if (m.solids.empty()) {
+        m.solids = std::move(frame.solids);
+    } else if (!frame.solids.empty() && !sameSolids(m.solids, frame.solids)) {
+        throw InputError(frame.solids.front().loc, "frame " + std::to_string(f) +
+                                                       " declares other solids (SolidBegin) than an earlier frame of "
+                                                       "its pass: render such frames one at a time (--frames)");
+    }
     std::map<std::string, int> seen;
     for (BilinearPatchDesc& p : frame.patches) addPrimitive('b', std::move(p), m.patches, seen, f, previous);
     seen.clear();

@@ -56,7 +56,7 @@ bool sameAttributes(const Attributes& a, const Attributes& b) {
            a.displacementBound == b.displacementBound && a.displacementBoundSpace == b.displacementBoundSpace &&
            a.shadingRate == b.shadingRate && a.motionFactor == b.motionFactor && a.lights == b.lights && sameParams(a.user, b.user) &&
            sameBasis(a.uBasis, b.uBasis) && sameBasis(a.vBasis, b.vBasis) &&  // trim: NuPatchDesc compares its own copy
-           a.twoSided == b.twoSided && a.orientation == b.orientation && a.smoothShading == b.smoothShading &&
+           a.twoSided == b.twoSided && a.solid == b.solid && a.orientation == b.orientation && a.smoothShading == b.smoothShading &&
            sameDetail(a.detail, b.detail);
 }
 

@@ -258,10 +258,21 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
             TraceContext& ctx;
             ~Reset() { ctx.dissolve.block = nullptr; }
         } reset{ctx_};
+        bool walking = false;  // through solids' boundaries, from outside every solid at the eye
         while (bvh.intersect(ray, time, tNear, cam.farClip(), &h, ctx_)) {
             const TrilinearBody& body = *bvh.bodies()[h.body];
             const Vec3f p = ray.o + ray.d * h.t;
             const Vec3f n = bilinearNormal(body.cornersAt(time), h.u, h.v);
+            if (const Material* sm = body.material(); sm && sm->solid >= 0 && !scene.solids.empty()) {
+                // A crossing of a solid's boundary is a surface only where the solid's result
+                // begins or ends (the rasterizer's fragments are resolved alike, film.cpp).
+                if (!walking) solidWalk_.reset(scene.solids), walking = true;
+                const bool entering = dot(sm->flipNormals ? -n : n, ray.d) < 0;
+                if (!solidWalk_.cross(sm->solid, entering)) {
+                    tNear = std::nextafter(h.t, std::numeric_limits<float>::infinity());
+                    continue;
+                }
+            }
             const Color cs = bilerp(body.colors(), h.u, h.v);
             const std::vector<CameraLight>& lights =
                 lightsAt(scene.lights, time);  // refreshed per sample only when lights or camera move

@@ -116,6 +116,7 @@ class SampleTracer {
     double lightsTime_ = 0;
     bool lightsValid_ = false;
     std::vector<Color> shadowed_;
+    SolidWalk solidWalk_;  // an eye ray's crossings of solids' boundaries (geom/solid_tree.h)
 };
 
 }  // namespace streyes
