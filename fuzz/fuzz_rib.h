@@ -17,26 +17,38 @@ namespace streyes::fuzz {
 
 enum class Outcome { Rendered, BadInput };
 
+// Inputs are mutated scenes: while one is read and rendered, it may not run programs or read
+// other files.
+struct RestrictedAccess {
+    SceneAccess before = sceneAccess();
+    RestrictedAccess() {
+        SceneAccess none;
+        none.programs = none.files = false;
+        setSceneAccess(none);
+    }
+    ~RestrictedAccess() { setSceneAccess(before); }
+    RestrictedAccess(const RestrictedAccess&) = delete;
+    RestrictedAccess& operator=(const RestrictedAccess&) = delete;
+};
+
+// A render of size x size pixels, one sample, one thread, with a split budget small enough that
+// hard inputs do not take seconds each.
+inline RenderOptions tinyRenderOptions(int size) {
+    RenderOptions o;
+    o.xres = o.yres = size;
+    o.samples = 1;
+    o.threads = 1;
+    o.maxSplitsPerPrimitive = 1 << 14;
+    return o;
+}
+
 inline Outcome parseAndRender(std::string_view text) {
-    // Inputs are mutated scenes: they must not run programs or read other files.
-    struct Restricted {
-        SceneAccess before = sceneAccess();
-        Restricted() {
-            SceneAccess none;
-            none.programs = none.files = false;
-            setSceneAccess(none);
-        }
-        ~Restricted() { setSceneAccess(before); }
-    } restricted;
+    const RestrictedAccess restricted;
     Log log;
     log.setQuiet(true);
     try {
         Scene scene = parseRibString(std::string(text), "fuzz.rib", log);
-        RenderOptions o;
-        o.xres = o.yres = 8;
-        o.samples = 1;
-        o.threads = 1;
-        o.maxSplitsPerPrimitive = 1 << 14;  // hard inputs need not take seconds each
+        RenderOptions o = tinyRenderOptions(8);
         o.hasFrames = true;
         o.firstFrame = o.lastFrame = scene.settings.hasFrames ? scene.settings.firstFrame : 0;
         Renderer renderer(scene, o, log);

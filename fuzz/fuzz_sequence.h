@@ -49,15 +49,7 @@ inline const std::string& fuzzFolder() {
 }
 
 inline Outcome readFuzzedSequence(std::string_view text) {
-    struct Restricted {  // mutated scenes: no programs, no other files (fuzz_rib.h)
-        SceneAccess before = sceneAccess();
-        Restricted() {
-            SceneAccess none;
-            none.programs = none.files = false;
-            setSceneAccess(none);
-        }
-        ~Restricted() { setSceneAccess(before); }
-    } restricted;
+    const RestrictedAccess restricted;  // fuzz_rib.h
     const std::string& dir = fuzzFolder();
     // The frames: pieces between form feeds, written as the pattern's files (those of a longer
     // input before removed), or the whole input as one file of FrameBegin blocks.
@@ -87,11 +79,7 @@ inline Outcome readFuzzedSequence(std::string_view text) {
         readPasses(path, passes, log, [&](PassJob&& job) {
             if (job.kind != PassJob::Kind::Render) return;
             const Sequence& seq = job.sequence;
-            RenderOptions o;
-            o.xres = o.yres = 4;
-            o.samples = 1;
-            o.threads = 1;
-            o.maxSplitsPerPrimitive = 1 << 14;  // hard inputs need not take seconds each
+            RenderOptions o = tinyRenderOptions(4);
             o.hasFrames = true;
             const Scene& scene = seq.scene;
             o.firstFrame = scene.settings.hasFrames ? scene.settings.firstFrame : 0;
