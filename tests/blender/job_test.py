@@ -85,7 +85,8 @@ run = job.Job(fake, "scene.rib", out, 1, 3, ["--resume"], log_path=os.path.join(
 seen = []
 got = run.wait_for_frame(2, lambda: False, lambda p, e, eta: seen.append(p))
 check(got is True and os.path.exists(job.frame_path(out, 2)), "frame 2 is there when waited for")
-check(seen and seen == sorted(seen) and seen[-1] in (30, 60), "progress read from the lines: %s" % seen)
+# On a loaded machine the fake may print frame 3's line before frame 2 is noticed: 90 is fine too.
+check(seen and seen == sorted(seen) and set(seen) <= {30, 60, 90}, "progress read from the lines: %s" % seen)
 check(run.wait_for_frame(3, lambda: False) is True and run.wait(10) == 0, "frame 3, then streyes ends with 0")
 check(run.warnings == ["scene.rib:3: warning: something ignored"], "each warning once: %s" % run.warnings)
 check(run.cpu_seconds is not None and run.cpu_seconds >= 0, "the run's CPU time is known")
