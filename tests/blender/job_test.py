@@ -86,7 +86,7 @@ seen = []
 got = run.wait_for_frame(2, lambda: False, lambda p, e, eta: seen.append(p))
 check(got is True and os.path.exists(job.frame_path(out, 2)), "frame 2 is there when waited for")
 # On a loaded machine the fake may print frame 3's line before frame 2 is noticed: 90 is fine too.
-check(seen and seen == sorted(seen) and set(seen) <= {30, 60, 90}, "progress read from the lines: %s" % seen)
+check(seen and seen == sorted(seen) and set(seen) <= {0, 30, 60, 90} and seen[-1] >= 30, "progress read from the lines: %s" % seen)
 check(run.wait_for_frame(3, lambda: False) is True and run.wait(10) == 0, "frame 3, then streyes ends with 0")
 check(run.warnings == ["scene.rib:3: warning: something ignored"], "each warning once: %s" % run.warnings)
 check(run.cpu_seconds is not None and run.cpu_seconds >= 0, "the run's CPU time is known")
@@ -106,9 +106,9 @@ slow = script("slow-streyes", """
 dir=$(dirname "$6"); mkdir -p "$dir"
 touch "$dir/f.0001.exr"
 touch "$dir/.f.0002.tmp$$.exr"
-sh -c 'sleep 60' &
+sh -c 'sleep 60.%d' &
 wait
-""")
+""" % os.getpid())  # a sleep of its own: other runs of this test may share the machine
 run = job.Job(slow, "s.rib", out2, 1, 2).start()
 check(run.wait_for_frame(1, lambda: False) is True, "frame 1 written before the cancel")
 t0 = time.time()
@@ -131,7 +131,12 @@ def cmdline(pid):
         return ""
 
 
-children = [p for p in os.listdir("/proc") if p.isdigit() and "sleep 60" in cmdline(p)]
+mine = "sleep 60.%d" % os.getpid()
+deadline = time.time() + 2  # a killed process may take a moment to leave /proc on a loaded machine
+children = [p for p in os.listdir("/proc") if p.isdigit() and mine in cmdline(p)]
+while children and time.time() < deadline:
+    time.sleep(0.05)
+    children = [p for p in os.listdir("/proc") if p.isdigit() and mine in cmdline(p)]
 check(not children, "nothing it started is left running: %s" % children)
 
 # -- the real streyes: its progress and error lines are read ---------------------------------------
