@@ -157,23 +157,25 @@ void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPenn
 
 int sidesOf(int level) { return level == 0 ? 8 : level == 1 ? 6 : 4; }
 
-// How far a stem's subtree can reach from its base: every stem lies within its length of its
-// base, a child is at most nLength + |nLengthV| of its parent's length, and leaves add their size.
-double reachOf(const WeberPennParams& p, const WeberPennStem& s) {
-    double reach = s.length, l = s.length;
+// A bound of a stem's subtree: its axis (every path's points) grown by how far what grows on it
+// can reach: a child is at most nLength + |nLengthV| of its parent's length and lies within its
+// length of its base; leaves add their largest size (quality 0.05), radii and a tenth of the stem's
+// length for the spline through the axis points.
+Bounds3d subtreeBound(const WeberPennParams& p, const WeberPennStem& s, double zs) {
+    double reach = 0, l = s.length;
     for (int level = s.level + 1; level < p.levels; ++level) {
         const WeberPennLevel& c = p.level[size_t(std::min(level, 3))];
         l *= c.length + std::fabs(c.lengthV);
         reach += l;
     }
-    // Leaves: at most the largest size the level of detail gives them (quality 0.05).
-    return reach + p.leafScale * std::max(1.0, p.leafScaleX) * std::sqrt(20.0) + s.radius * 2;
-}
-
-Bounds3d ballBound(Vec3d centre, double reach, double zs) {
+    const double flare = s.level == 0 ? (1 + p.flare) * (1 + p.lobeDepth) : 1;
+    reach += p.leafScale * std::max(1.0, p.leafScaleX) * std::sqrt(20.0) + 2 * s.radius * flare + 0.1 * s.length;
     Bounds3d b;
-    b.extend(squash(centre - Vec3d{reach, reach, reach}, zs));
-    b.extend(squash(centre + Vec3d{reach, reach, reach}, zs));
+    for (const auto& path : s.paths)
+        for (Vec3d q : path.points) {
+            b.extend(squash(q - Vec3d{reach, reach, reach}, zs));
+            b.extend(squash(q + Vec3d{reach, reach, reach}, zs));
+        }
     return b;
 }
 
@@ -237,8 +239,7 @@ class WeberPennTreeGenerator final : public ProceduralGenerator {
         }
         for (size_t i = 1; i < stems.size(); ++i) {
             if (stems[i].length <= 0) continue;
-            const Bounds3d bound = ballBound(stems[i].paths[0].points[0], reachOf(p, stems[i]), zs);
-            emitProcedural(out, ctx, std::make_shared<SubtreeGenerator>(p_, stems[i], zs), bound);
+            emitProcedural(out, ctx, std::make_shared<SubtreeGenerator>(p_, stems[i], zs), subtreeBound(p, stems[i], zs));
         }
     }
 
@@ -248,14 +249,15 @@ class WeberPennTreeGenerator final : public ProceduralGenerator {
 
 }  // namespace
 
-// The bound a tree declares for itself: the trunk's reach (with its flare) and its branches'.
+// The bound of what the tree procedural makes: the trunk's and its branches' subtrees.
 Bounds3d weberPennBound(const WeberPennParams& p) {
     const double zs = zScaleOf(p);
     std::vector<WeberPennStem> stems{weberPennTrunk(p, nullptr)};
     weberPennGrowBelow(p, stems, 0, 1, nullptr);
-    Bounds3d b = ballBound({0, 0, 0}, stems[0].length + stems[0].radius * (1 + p.flare) * (1 + p.lobeDepth), zs);
-    for (size_t i = 1; i < stems.size(); ++i) b.extend(ballBound(stems[i].paths[0].points[0], reachOf(p, stems[i]), zs));
-    if (p.levels == 1) b.extend(ballBound({0, 0, 0}, stems[0].length + p.leafScale * std::max(1.0, p.leafScaleX) * 5, zs));
+    WeberPennParams trunkOnly = p;
+    trunkOnly.levels = std::min(p.levels, 1);  // the trunk's own reach (its leaves when it has them)
+    Bounds3d b = subtreeBound(trunkOnly, stems[0], zs);
+    for (size_t i = 1; i < stems.size(); ++i) b.extend(subtreeBound(p, stems[i], zs));
     return b;
 }
 
