@@ -450,6 +450,8 @@ WeberPennParams parseWeberPennParams(const std::string& datablock, const SourceL
             auto c = numbers(key, value, 3);
             return Color{float(c[0]), float(c[1]), float(c[2])};
         };
+        if (key == "model" && value != "weberpenn" && value != "weber-penn")
+            throw InputError(loc, "tree: model must be simple (the default) or weberpenn, not '" + value + "'");
         if (key == "model" || key == "preset") continue;
         if (key == "seed") p.seed = uint64_t(one(0, 1e15));
         else if (key == "Shape") p.shape = int(one(0, 7));
