@@ -6,6 +6,7 @@
 #include <mutex>
 #include <sstream>
 
+#include "procedural/weber_penn.h"
 #include "util/sampling.h"
 
 namespace streyes {
@@ -611,6 +612,8 @@ std::shared_ptr<const ProceduralGenerator> makeForestGenerator(const std::string
 }
 
 std::shared_ptr<const ProceduralGenerator> makeTreeGenerator(const std::string& datablock, const SourceLoc& loc) {
+    // model=weberpenn: the paper's trees (weber_penn.h); the default, model=simple, is this file's.
+    if (isWeberPennDatablock(datablock)) return makeWeberPennGenerator(datablock, loc);
     int species = -1;
     double height = 0;
     ForestParams f = parseParams(datablock, loc, [&](const std::string& key, const std::string& value) {
@@ -619,6 +622,11 @@ std::shared_ptr<const ProceduralGenerator> makeTreeGenerator(const std::string& 
                 if (value == kSpecies[i].name) species = i;
             if (species < 0)
                 throw InputError(loc, "tree: kind must be one of " + speciesNames(", ") + ", not '" + value + "'");
+            return true;
+        }
+        if (key == "model") {
+            if (value != "simple")
+                throw InputError(loc, "tree: model must be simple (the default) or weberpenn, not '" + value + "'");
             return true;
         }
         if (key == "height") {
