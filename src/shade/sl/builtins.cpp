@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "shade/vm/ops.h"
+#include "shade/vm/peers.h"
 
 namespace streyes::sl {
 
@@ -167,6 +168,8 @@ class Table {
         add("specularbrdf", "c", "vnvf", specularbrdf);
         add("phong", "c", "nvf", phong).lights = true;
         add("lightsource", "f", "s*", lightsource, Special::Lightsource);
+        // Message passing (RI Spec 3.2, section 15.8): the other shaders of the primitive.
+        for (int k = 0; k < kPeerCount; ++k) add(peerName(Peer(k)), "f", "s*", message, Special::Message).index = k;
         for (const char* n : {"ambient", "diffuse", "specular", "phong"})
             for (const Builtin* b : find(n)) const_cast<Builtin*>(b)->varying = true;
 

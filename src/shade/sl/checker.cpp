@@ -1,5 +1,6 @@
 #include "shade/sl/checker.h"
 
+#include <cctype>
 #include <map>
 #include <set>
 
@@ -16,6 +17,13 @@ int conversionCost(SlType from, SlType to) {
 }
 
 namespace {
+
+bool isIdentifier(const std::string& s) {
+    if (s.empty() || std::isdigit(static_cast<unsigned char>(s[0]))) return false;
+    for (char c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') return false;
+    return true;
+}
 
 const std::set<std::string> kTextureOptions = {"blur", "sblur", "tblur", "width", "swidth", "twidth",
                                                "fill", "filter", "samples", "bias"};
@@ -471,6 +479,16 @@ class Checker {
                 if (e.args.size() != 2 || !e.args[0]->type.isString())
                     fail(e.loc, "lightsource takes (string name, output variable)");
                 requireVariable(*e.args[1], "lightsource's second argument");
+                e.builtin = b;
+                return BaseType::Float;
+            }
+            case Special::Message: {
+                if (e.args.size() != 2 || !e.args[0]->type.isString())
+                    fail(e.loc, e.text + " takes (string name, output variable): another shader's parameter");
+                if (e.args[0]->kind == ExprKind::String && !isIdentifier(e.args[0]->text))
+                    fail(e.args[0]->loc, e.text + "(\"" + e.args[0]->text +
+                                             "\", ...): a parameter name is an identifier (letters, digits, _)");
+                requireVariable(*e.args[1], e.text + "'s second argument");
                 e.builtin = b;
                 return BaseType::Float;
             }

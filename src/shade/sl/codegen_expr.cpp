@@ -349,6 +349,26 @@ CodeGen::Val CodeGen::genSpecial(const Expr& e, const Builtin& b) {
             assignTo(*e.args[1], copy, e.loc);
             return flag;
         }
+        case Special::Message: {
+            // As the queries: a copy written when the other shader has the parameter and it fits,
+            // then stored back (a miss leaves the variable as it was).
+            Val name = gen(*e.args[0]);
+            Val cur = gen(*e.args[1]);
+            setLoc(e.loc);
+            // Another shader's value may vary: a variable that may turn varying takes it so; one
+            // declared uniform takes the value at the first point that runs.
+            const Expr& target = e.args[1]->kind == ExprKind::Index ? *e.args[1]->args[0] : *e.args[1];
+            const Var* var = lookup(target.symbol);
+            const bool varying = !cur.type.isString() && (cur.varying() || (var && var->inferred));
+            Val copy = temp(cur.type, varying ? Detail::Varying : cur.detail);
+            emit(cur.type.isString() ? ops::smov : ops::mov, {copy.reg, cur.reg}, copy.varying());
+            release(cur);
+            Val flag = temp(BaseType::Float, Detail::Uniform);
+            emit(ops::message, {flag.reg, name.reg, copy.reg, b.index}, false);
+            release(name);
+            assignTo(*e.args[1], copy, e.loc);
+            return flag;
+        }
         case Special::Query: {
             // The value is the grid's: a copy of the variable is written when the value fits it,
             // then stored back (so a miss leaves the variable as it was).

@@ -463,7 +463,9 @@ ExprPtr Parser::parsePrimary() {
         return e;
     }
     if (t.kind == TokenKind::Ident) {
-        if (isKeyword(t.text)) fail(t, "expected an expression");
+        // surface(...) and displacement(...) in an expression are message-passing calls.
+        const bool call = (t.text == "surface" || t.text == "displacement") && isPunct("(", 1);
+        if (isKeyword(t.text) && !call) fail(t, "expected an expression");
         auto e = std::make_unique<Expr>(ExprKind::Name, loc);
         e->text = next().text;
         if (accept("(")) {

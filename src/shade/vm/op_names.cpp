@@ -116,6 +116,7 @@ const char* opName(OpFn fn) {
         {ops::specularbrdf, "specularbrdf"},
         {ops::phong, "phong"},
         {ops::lightsource, "lightsource"},
+        {ops::message, "message"},
         {ops::Du, "Du"},
         {ops::Dv, "Dv"},
         {ops::Deriv, "Deriv"},

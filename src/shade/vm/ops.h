@@ -129,6 +129,9 @@ STREYES_SL_OP(specularbrdf);   // a0 = specularbrdf(a1 L, a2 N, a3 V, a4 roughne
 STREYES_SL_OP(phong);          // a0 = phong(a1 N, a2 V, a3 size), a4 P
 STREYES_SL_OP(lightsource);    // a0 = 1 if the current light has parameter a1, copied into a2
 
+// ---- Message passing (shadeops_message.cpp) ----
+STREYES_SL_OP(message);        // a0 = 1 if peer a3 (Peer) has parameter a1 fitting a2 (then copied)
+
 // ---- Derivatives (shadeops_deriv.cpp) ----
 STREYES_SL_OP(Du);
 STREYES_SL_OP(Dv);
