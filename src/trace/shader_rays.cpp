@@ -316,4 +316,47 @@ void ShaderRays::transmission(const sl::RayOptions& o, const sl::RayQuery& q, fl
     }
 }
 
+// One gather() sample a point: sample j of the loop's s, from the same stratified pattern as
+// occlusion()'s (so the loop's rays together cover the cone as occlusion's do), its nearest hit
+// shaded alone (not composited with what is behind it).
+void ShaderRays::gather(const sl::RayOptions& o, const sl::RayQuery& q, int sample, const sl::GatherHits& out) {
+    const SpacetimeBVH& bvh = hierarchyAt(q.time);
+    const uint32_t s = uint32_t(std::clamp(o.samples, 1.0f, 65536.0f));
+    const uint32_t j = uint32_t(std::max(sample, 0)) % s;
+    const float cone = std::clamp(o.coneangle, 0.0f, kPi);
+    for (int i = 0; i < q.n; ++i) {
+        if (q.active && !q.active[i]) continue;
+        out.hit[i] = 0;
+        const Vec3f p = at3(q.P, i);
+        const Vec3f n = normalize(at3(q.D, i));
+        Vec3f d = n;
+        if (dot(n, n) > 0.5f) {
+            Vec3f t, b;
+            frameOf(n, &t, &b);
+            float ua, ub;
+            sample2(j, s, pointHash(p, q.seed, q.site), &ua, &ub);
+            d = coneDirection(n, t, b, cone, !o.uniform && cone <= 0.5f * kPi, ua, ub);
+        }
+        for (int c = 0; c < 3; ++c) out.dir[c][i] = d[c];
+        if (depth_ > maxDepth_ || !(dot(n, n) > 0.5f)) continue;
+        const Ray ray{p, d};
+        TraceHit h;
+        ++rays_;
+        if (!bvh.intersect(ray, q.time, biasAt(o, p), o.maxdist, &h, ctx_)) continue;
+        out.hit[i] = 1;
+        const TrilinearBody& body = *bvh.bodies()[h.body];
+        Color opacity;
+        const Color ci = shadeHit(body, h, ray, q.time, &opacity);
+        const Vec3f hp = ray.o + ray.d * h.t;
+        const Vec3f hn = bilinearNormal(body.cornersAt(q.time), h.u, h.v);
+        for (int c = 0; c < 3; ++c) {
+            out.Ci[c][i] = ci[c];
+            out.Oi[c][i] = opacity[c];
+            out.P[c][i] = hp[c];
+            out.N[c][i] = hn[c];
+        }
+        out.length[i] = h.t;
+    }
+}
+
 }  // namespace streyes

@@ -192,6 +192,9 @@ class Table {
         add("indirectdiffuse", "c", "pnf*", indirectdiffuse, Special::Ray).varying = true;
         add("trace", "c", "pv*", trace, Special::Ray).varying = true;
         add("transmission", "c", "pp*", transmission, Special::Ray).varying = true;
+        // gather(category, P, dir, angle, samples, ...) stmt: the parser makes it a loop calling
+        // this once a sample (the sample count and number added); 1 where the ray hit.
+        add("$gather", "f", "spvfff*", gather, Special::Gather).varying = true;
 
         // Texture maps: the float form first (the default without a cast).
         for (const char* r : {"f", "c"}) {

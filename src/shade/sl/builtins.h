@@ -32,6 +32,7 @@ enum class Special {
     Environment,
     Shadow,
     Ray,          // occlusion, indirectdiffuse, trace, transmission: positional, then options
+    Gather,       // $gather (the parser's lowering of a gather loop): one ray a point; outputs
 };
 
 struct Builtin {

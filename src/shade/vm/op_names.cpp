@@ -117,6 +117,7 @@ const char* opName(OpFn fn) {
         {ops::phong, "phong"},
         {ops::lightsource, "lightsource"},
         {ops::message, "message"},
+        {ops::gather, "gather"},
         {ops::Du, "Du"},
         {ops::Dv, "Dv"},
         {ops::Deriv, "Deriv"},

@@ -165,6 +165,9 @@ STREYES_SL_OP(occlusion);
 STREYES_SL_OP(indirectdiffuse);
 STREYES_SL_OP(trace);
 STREYES_SL_OP(transmission);
+// a0 = 1 where the ray hit (varying); extra: category, P, dir, angle, samples, sample, then
+// (name string reg, reg) pairs: outputs ("surface:Ci" ...) written, options read (shadeops_gather.cpp).
+STREYES_SL_OP(gather);
 
 // ---- The renderer's state (shadeops_info.cpp) ----
 // a0 = 1 when found and the variable a2 can hold it (then written), else 0 (a2 left alone).
