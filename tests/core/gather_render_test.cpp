@@ -110,3 +110,41 @@ TEST(GatherRender, BadFormsAreErrorsAtTheirPlace) {
 
 }  // namespace
 }  // namespace streyes
+
+namespace streyes {
+namespace {
+
+// Two planes facing each other, each shaded 1 plus what it sees of the other: the floor the
+// camera sees adds up one for each level of rays, trace() and gather() alike, up to
+// Option "trace" "maxdepth" (PRMan's default 10).
+TEST(GatherRender, TraceMaxdepthCountsLevelsAcrossTraceAndGather) {
+    ShaderDir d;
+    d.add("bounce", R"(
+surface bounce() {
+    vector up = zcomp(P) < 105 ? vector(0, 0, 1) : vector(0, 0, -1);
+    color seen = 0, c = 0;
+    if (zcomp(P) < 105) {
+        seen = trace(P, up);
+    } else {
+        gather("", P, up, 0.01, 1, "surface:Ci", c) seen = c;
+    }
+    Ci = 1 + seen;
+    Oi = 1;
+}
+)");
+    const std::string scene = "WorldBegin\nSurface \"bounce\"\n" + test::square(-1e4, 1e4, -1e4, 1e4, 110) +
+                              test::square(0, 8, 0, 8, 100) + "WorldEnd\n";
+    for (int depth : {-1, 0, 1, 4}) {
+        SCOPED_TRACE(depth);
+        const std::string option = depth < 0 ? "" : "Option \"trace\" \"maxdepth\" [" + std::to_string(depth) + "]\n";
+        const test::RenderResult r = test::renderRib(view(d) + option + scene);
+        const float want = 1.0f + float(depth < 0 ? 10 : depth);
+        // Inside the floor, two pixels from its edges: the gather's 0.01-radian cone drifts less
+        // than half a unit over five crossings (the edges' rays may leave the floor).
+        for (int py = 2; py < 6; ++py)
+            for (int px = 2; px < 6; ++px) EXPECT_EQ(r.channel(0, px, py, 0), want) << px << " " << py;
+    }
+}
+
+}  // namespace
+}  // namespace streyes
