@@ -65,6 +65,7 @@ class ShaderRays final : public sl::RaySource {
     double lightsTime_ = 0;
     bool lightsValid_ = false;
     std::vector<Color> shadowed_;
+    const char* rayType_ = "specular";  // what rayinfo("type") says at the hits shaded now
     uint64_t rays_ = 0, bodyTests_ = 0, boxTests_ = 0;
 };
 

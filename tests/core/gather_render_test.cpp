@@ -148,3 +148,38 @@ surface bounce() {
 
 }  // namespace
 }  // namespace streyes
+
+namespace streyes {
+namespace {
+
+// rayinfo() on the floor the eye sees (depth 0, "camera") and on the roof its rays hit: depth 1,
+// "specular" through trace(), "diffuse" through gather(). An unknown name gives 0.
+TEST(GatherRender, RayinfoSaysTheDepthAndTypeOfTheRay) {
+    ShaderDir d;
+    d.add("info", R"(
+surface info() {
+    float depth = -1, t = -1, unknown = 7;
+    string type = "none";
+    rayinfo("depth", depth);
+    rayinfo("type", type);
+    float none = rayinfo("nosuch", unknown);
+    t = type == "camera" ? 1 : type == "specular" ? 2 : type == "diffuse" ? 3 : 0;
+    Ci = color(depth, t, unknown + none);
+    if (zcomp(P) < 105) {
+        color up = trace(P, vector(0, 0, 1)), c = 0, g = 0;
+        gather("", P, vector(0, 0, 1), 0.01, 1, "surface:Ci", c) g = c;
+        Ci += 10 * up + 100 * g;
+    }
+    Oi = 1;
+}
+)");
+    const test::RenderResult r = test::renderRib(view(d) + "WorldBegin\nSurface \"info\"\n" +
+                                                 test::square(-1e4, 1e4, -1e4, 1e4, 110) +
+                                                 test::square(0, 8, 0, 8, 100) + "WorldEnd\n");
+    EXPECT_EQ(r.channel(0, 4, 4, 0), 0 + 10 * 1 + 100 * 1);  // depths 0, 1, 1
+    EXPECT_EQ(r.channel(0, 4, 4, 1), 1 + 10 * 2 + 100 * 3);  // camera, specular, diffuse
+    EXPECT_EQ(r.channel(0, 4, 4, 2), 7 + 10 * 7 + 100 * 7);
+}
+
+}  // namespace
+}  // namespace streyes

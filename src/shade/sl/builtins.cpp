@@ -177,6 +177,7 @@ class Table {
         add("option", "f", "s*", option, Special::Query);
         add("attribute", "f", "s*", attribute, Special::Query);
         add("rendererinfo", "f", "s*", rendererinfo, Special::Query);
+        add("rayinfo", "f", "s*", rayinfo, Special::Query);
         add("textureinfo", "f", "ss*", textureinfo, Special::Query);
         add("shadername", "s", "", shadername);
 

@@ -118,6 +118,7 @@ const char* opName(OpFn fn) {
         {ops::lightsource, "lightsource"},
         {ops::message, "message"},
         {ops::gather, "gather"},
+        {ops::rayinfo, "rayinfo"},
         {ops::Du, "Du"},
         {ops::Dv, "Dv"},
         {ops::Deriv, "Deriv"},

@@ -174,6 +174,7 @@ STREYES_SL_OP(gather);
 STREYES_SL_OP(option);         // a1 name
 STREYES_SL_OP(attribute);      // a1 name
 STREYES_SL_OP(rendererinfo);   // a1 name
+STREYES_SL_OP(rayinfo);        // a1 name: "depth", "type"
 STREYES_SL_OP(textureinfo);    // a1 map, a2 field, a3 variable
 STREYES_SL_OP(shadername);     // a0 = the running shader's name (a1 -1), or the grid's a1 shader's
 
