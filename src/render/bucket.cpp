@@ -124,7 +124,8 @@ void BucketWorker::setTrace(const TraceScene* trace) {
 void BucketWorker::updateShaderRays() {
     const bool wanted = trace_ && shaders_ && shaders_->tracesRays();
     if (wanted && shaderRays_ && shaderRays_->scene() == trace_ && shaderRays_->shaders() == shaders_) return;
-    shaderRays_ = wanted ? std::make_unique<ShaderRays>(*trace_, shaders_) : nullptr;
+    const int maxDepth = shaders_ && shaders_->traceMaxDepth() >= 0 ? shaders_->traceMaxDepth() : ShaderRays::kDefaultMaxDepth;
+    shaderRays_ = wanted ? std::make_unique<ShaderRays>(*trace_, shaders_, 1, maxDepth) : nullptr;
     shader_.setRaySource(shaderRays_.get());
 }
 

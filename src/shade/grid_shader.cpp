@@ -222,6 +222,18 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     sgrid_.seed = unsigned(grid.primitiveId ^ (grid.primitiveId >> 32));
     sgrid_.nearClip = camera_.nearClip();
     sgrid_.farClip = camera_.farClip();
+    // Message passing: this primitive's shaders, each with its own "shader" space.
+    sl::PeerShaders peers;
+    auto peer = [&](sl::Peer which, const sl::ShaderInstance* s, const MotionTransform* shaderToWorld) {
+        peers[size_t(which)].shader = s;
+        peers[size_t(which)].toCurrent = shaderToWorld ? shaderToWorld->at(time) * world_ : world_;
+    };
+    const Attributes* a = m.attributes;
+    peer(sl::Peer::Surface, m.surface.get(), a ? &a->surface.shaderToWorld : nullptr);
+    peer(sl::Peer::Displacement, m.displacement.get(), a ? &a->displacement.shaderToWorld : nullptr);
+    peer(sl::Peer::Atmosphere, m.atmosphere.get(), a ? &a->atmosphere.shaderToWorld : nullptr);
+    peers[size_t(sl::Peer::Incident)] = peers[size_t(sl::Peer::Atmosphere)];  // rays from the eye cross it
+    vm_->setPeers(peers);
 }
 
 void GridShader::bindPrimvars(const Material& m, const Grid& grid, int n, double time) {

@@ -72,6 +72,13 @@ class GridShader {
                    uint64_t primitiveId, Color* shadowed, int slots, Color* opacity = nullptr,
                    const float* primvarCorners = nullptr);
 
+    // What rayinfo() says of the grids shaded next: the depth of the ray whose hits they are (0:
+    // the eye's) and its type ("camera", "specular", "diffuse").
+    void setRayContext(int depth, const char* type) {
+        sgrid_.rayDepth = depth;
+        sgrid_.rayType = type;
+    }
+
     // Adds what was shaded since the last call to `out` (the stats' shading.* counters).
     void takeCounters(RenderCounters& out);
 

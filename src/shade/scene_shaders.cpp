@@ -34,12 +34,12 @@ bool readsMaps(const sl::ShaderInstance* s) {
     return false;
 }
 
-// Does the shader cast rays (occlusion, indirectdiffuse, trace, transmission)?
+// Does the shader cast rays (occlusion, indirectdiffuse, trace, transmission, gather)?
 bool castsRays(const sl::ShaderInstance* s) {
     if (!s) return false;
     for (const sl::Instr& in : s->program().code)
         if (in.fn == sl::ops::occlusion || in.fn == sl::ops::indirectdiffuse || in.fn == sl::ops::trace ||
-            in.fn == sl::ops::transmission)
+            in.fn == sl::ops::transmission || in.fn == sl::ops::gather)
             return true;
     // environment("raytrace", ...): the name is a string constant, or a parameter set to it.
     const sl::ShaderProgram& p = s->program();

@@ -92,6 +92,13 @@ class SceneShaders final : public MaterialBinder {
     // World -> current space at time t: the camera's, or in a merged frame sequence the camera of
     // the frame t falls in (shaders' "world" and "shader" spaces, shadow maps' lookups).
     Matrix4 worldToCameraAt(double t) const { return maps_->worldToCameraAt(t); }
+    // Option "trace" "maxdepth": how many levels of rays shaders may cast (trace(), gather(),
+    // indirectdiffuse() ... counted together); -1 when the scene does not say.
+    int traceMaxDepth() const {
+        const sl::QueryValue* v = options_.find("trace:maxdepth");
+        if (!v || v->floats.empty() || !(v->floats[0] >= 0)) return -1;
+        return v->floats[0] < 1000 ? int(v->floats[0]) : 1000;
+    }
     // Do the frames' cameras differ (a still grid's "world" space then changes between frames)?
     bool worldVaries() const { return maps_->worldVaries(); }
     // Does the camera of the frame t falls in move within its exposure ("world" then moves

@@ -169,6 +169,7 @@ Color ShaderRays::shadeHit(const TrilinearBody& body, const TraceHit& h, const R
             if (depth_ < maxDepth_) next_ = std::make_unique<ShaderRays>(trace_, shaders_, depth_ + 1, maxDepth_);
             hitShader_->setRaySource(next_.get());  // null past the depth: no-hit values
         }
+        hitShader_->setRayContext(depth_, rayType_);
         c = hitShader_->shadeHit(m, cs, p, n, time, body.uv[0] + h.u * (body.uv[1] - body.uv[0]),
                                  body.uv[2] + h.v * (body.uv[3] - body.uv[2]), body.primitiveId(),
                                  K ? shadowed_.data() : nullptr, K, opacity, body.primvarCorners);
@@ -230,6 +231,7 @@ void ShaderRays::occlusion(const sl::RayOptions& o, const sl::RayQuery& q, float
 }
 
 void ShaderRays::indirectdiffuse(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) {
+    rayType_ = "diffuse";
     if (depth_ > maxDepth_) return;
     const uint32_t s = uint32_t(std::clamp(o.samples > 0 ? o.samples : 16.0f, 1.0f, 65536.0f));
     const float cone = o.coneangle >= 0 ? o.coneangle : 0.5f * kPi;
@@ -256,6 +258,7 @@ void ShaderRays::indirectdiffuse(const sl::RayOptions& o, const sl::RayQuery& q,
 }
 
 void ShaderRays::trace(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) {
+    rayType_ = "specular";
     if (depth_ > maxDepth_) return;
     const float cone = o.coneangle > 0 ? o.coneangle : 0;
     const uint32_t s = cone > 0 ? uint32_t(std::clamp(o.samples > 0 ? o.samples : 1.0f, 1.0f, 65536.0f)) : 1u;
@@ -313,6 +316,50 @@ void ShaderRays::transmission(const sl::RayOptions& o, const sl::RayQuery& q, fl
             }
         }
         for (int c = 0; c < 3; ++c) out[c][i] = through[c];
+    }
+}
+
+// One gather() sample a point: sample j of the loop's s, from the same stratified pattern as
+// occlusion()'s (so the loop's rays together cover the cone as occlusion's do), its nearest hit
+// shaded alone (not composited with what is behind it).
+void ShaderRays::gather(const sl::RayOptions& o, const sl::RayQuery& q, int sample, const sl::GatherHits& out) {
+    rayType_ = "diffuse";
+    const SpacetimeBVH& bvh = hierarchyAt(q.time);
+    const uint32_t s = uint32_t(std::clamp(o.samples, 1.0f, 65536.0f));
+    const uint32_t j = uint32_t(std::max(sample, 0)) % s;
+    const float cone = std::clamp(o.coneangle, 0.0f, kPi);
+    for (int i = 0; i < q.n; ++i) {
+        if (q.active && !q.active[i]) continue;
+        out.hit[i] = 0;
+        const Vec3f p = at3(q.P, i);
+        const Vec3f n = normalize(at3(q.D, i));
+        Vec3f d = n;
+        if (dot(n, n) > 0.5f) {
+            Vec3f t, b;
+            frameOf(n, &t, &b);
+            float ua, ub;
+            sample2(j, s, pointHash(p, q.seed, q.site), &ua, &ub);
+            d = coneDirection(n, t, b, cone, !o.uniform && cone <= 0.5f * kPi, ua, ub);
+        }
+        for (int c = 0; c < 3; ++c) out.dir[c][i] = d[c];
+        if (depth_ > maxDepth_ || !(dot(n, n) > 0.5f)) continue;
+        const Ray ray{p, d};
+        TraceHit h;
+        ++rays_;
+        if (!bvh.intersect(ray, q.time, biasAt(o, p), o.maxdist, &h, ctx_)) continue;
+        out.hit[i] = 1;
+        const TrilinearBody& body = *bvh.bodies()[h.body];
+        Color opacity;
+        const Color ci = shadeHit(body, h, ray, q.time, &opacity);
+        const Vec3f hp = ray.o + ray.d * h.t;
+        const Vec3f hn = bilinearNormal(body.cornersAt(q.time), h.u, h.v);
+        for (int c = 0; c < 3; ++c) {
+            out.Ci[c][i] = ci[c];
+            out.Oi[c][i] = opacity[c];
+            out.P[c][i] = hp[c];
+            out.N[c][i] = hn[c];
+        }
+        out.length[i] = h.t;
     }
 }
 

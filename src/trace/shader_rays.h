@@ -36,6 +36,7 @@ class ShaderRays final : public sl::RaySource {
     void indirectdiffuse(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) override;
     void trace(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) override;
     void transmission(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) override;
+    void gather(const sl::RayOptions& o, const sl::RayQuery& q, int sample, const sl::GatherHits& out) override;
 
     const TraceScene* scene() const { return &trace_; }
     const SceneShaders* shaders() const { return shaders_; }
@@ -64,6 +65,7 @@ class ShaderRays final : public sl::RaySource {
     double lightsTime_ = 0;
     bool lightsValid_ = false;
     std::vector<Color> shadowed_;
+    const char* rayType_ = "specular";  // what rayinfo("type") says at the hits shaded now
     uint64_t rays_ = 0, bodyTests_ = 0, boxTests_ = 0;
 };
 

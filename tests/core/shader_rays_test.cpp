@@ -207,7 +207,8 @@ TEST(ShaderRays, IndirectDiffuseOfHalfASkyIsHalf) {
         for (int px = 0; px < 8; ++px) EXPECT_NEAR(r.channel(0, px, py, 0), 0.5f, 4 * 0.5f / 16) << px << " " << py;
 }
 
-// A square moving over the floor's sky, frame by frame: each frame's occlusion is its own (it
+// A square moving over the floor's sky, frame by frame: each frame's occlusion (by occlusion() or
+// a gather() loop) is its own (it
 // changes where the square goes) and the same whatever block renders it; a still scene's is the
 // same in every frame, bit for bit; occlusion culling changes no pixel (the identity at eps = 0).
 std::string movingOccluder(bool moves) {
@@ -220,9 +221,14 @@ std::string movingOccluder(bool moves) {
 
 TEST(ShaderRays, AMovingOccludersOcclusionChangesPerFrameAndNotWithTheBlock) {
     ShaderDir shaders;
-    shaders.add("ao", "surface ao() { Ci = 1 - occlusion(P, normal(0, 0, 1), 32); }\n");
+    // occlusion(), and the same with a gather() loop counting its hits.
+    for (const char* ao : {"surface ao() { Ci = 1 - occlusion(P, normal(0, 0, 1), 32); }\n",
+                           "surface ao() { float h = 0; vector d = 0;\n"
+                           "  gather(\"\", P, normal(0, 0, 1), PI / 2, 32, \"ray:direction\", d) h += 1;\n"
+                           "  Ci = 1 - h / 32; }\n"})
     for (bool moves : {true, false}) {
-        SCOPED_TRACE(moves ? "moving" : "still");
+        shaders.add("ao", ao);
+        SCOPED_TRACE(std::string(ao) + (moves ? "moving" : "still"));
         // One sample a pixel, at its centre in every frame: a still scene's frames may be compared.
         const std::string rib = view(32, 8, shaders.option() + "Hider \"hidden\" \"jitter\" [0]\nPixelSamples 1 1\n") + movingOccluder(moves);
         RenderOptions o;

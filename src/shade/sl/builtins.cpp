@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "shade/vm/ops.h"
+#include "shade/vm/peers.h"
 
 namespace streyes::sl {
 
@@ -167,6 +168,8 @@ class Table {
         add("specularbrdf", "c", "vnvf", specularbrdf);
         add("phong", "c", "nvf", phong).lights = true;
         add("lightsource", "f", "s*", lightsource, Special::Lightsource);
+        // Message passing (RI Spec 3.2, section 15.8): the other shaders of the primitive.
+        for (int k = 0; k < kPeerCount; ++k) add(peerName(Peer(k)), "f", "s*", message, Special::Message).index = k;
         for (const char* n : {"ambient", "diffuse", "specular", "phong"})
             for (const Builtin* b : find(n)) const_cast<Builtin*>(b)->varying = true;
 
@@ -174,6 +177,7 @@ class Table {
         add("option", "f", "s*", option, Special::Query);
         add("attribute", "f", "s*", attribute, Special::Query);
         add("rendererinfo", "f", "s*", rendererinfo, Special::Query);
+        add("rayinfo", "f", "s*", rayinfo, Special::Query);
         add("textureinfo", "f", "ss*", textureinfo, Special::Query);
         add("shadername", "s", "", shadername);
 
@@ -189,6 +193,9 @@ class Table {
         add("indirectdiffuse", "c", "pnf*", indirectdiffuse, Special::Ray).varying = true;
         add("trace", "c", "pv*", trace, Special::Ray).varying = true;
         add("transmission", "c", "pp*", transmission, Special::Ray).varying = true;
+        // gather(category, P, dir, angle, samples, ...) stmt: the parser makes it a loop calling
+        // this once a sample (the sample count and number added); 1 where the ray hit.
+        add("$gather", "f", "spvfff*", gather, Special::Gather).varying = true;
 
         // Texture maps: the float form first (the default without a cast).
         for (const char* r : {"f", "c"}) {

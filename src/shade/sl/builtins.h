@@ -22,6 +22,8 @@ enum class Special {
     Spline,       // spline([basis,] value, knots...) / spline([basis,] value, array)
     Filterstep,   // filterstep(edge, s1 [, s2] [, "width", w])
     Lightsource,  // lightsource(name, output var): any type
+    Message,      // surface, displacement, atmosphere, incident, opposite (name, output var):
+                  // another shader's parameter (Builtin::index: which, vm/vm.h Peer)
     Query,        // option, attribute, rendererinfo (name, output var), textureinfo (map, name, var)
     Printf,
     Format,
@@ -30,6 +32,7 @@ enum class Special {
     Environment,
     Shadow,
     Ray,          // occlusion, indirectdiffuse, trace, transmission: positional, then options
+    Gather,       // $gather (the parser's lowering of a gather loop): one ray a point; outputs
 };
 
 struct Builtin {

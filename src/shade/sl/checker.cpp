@@ -1,5 +1,6 @@
 #include "shade/sl/checker.h"
 
+#include <cctype>
 #include <map>
 #include <set>
 
@@ -16,6 +17,23 @@ int conversionCost(SlType from, SlType to) {
 }
 
 namespace {
+
+// What a gather output holds (void: not one streyes gives).
+SlType gatherOutputType(const std::string& name) {
+    if (name == "surface:Ci" || name == "surface:Oi") return BaseType::Color;
+    if (name == "surface:P" || name == "ray:origin") return BaseType::Point;
+    if (name == "surface:N") return BaseType::Normal;
+    if (name == "ray:direction") return BaseType::Vector;
+    if (name == "ray:length") return BaseType::Float;
+    return BaseType::Void;
+}
+
+bool isIdentifier(const std::string& s) {
+    if (s.empty() || std::isdigit(static_cast<unsigned char>(s[0]))) return false;
+    for (char c : s)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') return false;
+    return true;
+}
 
 const std::set<std::string> kTextureOptions = {"blur", "sblur", "tblur", "width", "swidth", "twidth",
                                                "fill", "filter", "samples", "bias"};
@@ -463,6 +481,7 @@ class Checker {
             case Special::Environment:
             case Special::Shadow: return checkTexture(e, want);
             case Special::Ray: return checkRay(e);
+            case Special::Gather: return checkGather(e);
             case Special::Spline: return checkSpline(e);
             case Special::Printf:
             case Special::Format:
@@ -471,6 +490,16 @@ class Checker {
                 if (e.args.size() != 2 || !e.args[0]->type.isString())
                     fail(e.loc, "lightsource takes (string name, output variable)");
                 requireVariable(*e.args[1], "lightsource's second argument");
+                e.builtin = b;
+                return BaseType::Float;
+            }
+            case Special::Message: {
+                if (e.args.size() != 2 || !e.args[0]->type.isString())
+                    fail(e.loc, e.text + " takes (string name, output variable): another shader's parameter");
+                if (e.args[0]->kind == ExprKind::String && !isIdentifier(e.args[0]->text))
+                    fail(e.args[0]->loc, e.text + "(\"" + e.args[0]->text +
+                                             "\", ...): a parameter name is an identifier (letters, digits, _)");
+                requireVariable(*e.args[1], e.text + "'s second argument");
                 e.builtin = b;
                 return BaseType::Float;
             }
@@ -645,6 +674,47 @@ class Checker {
         }
         e.builtin = b;
         return b->ret;
+    }
+
+    // $gather(category, P, dir, angle, samples, sample, pairs...): the pairs are outputs
+    // ("surface:Ci", variable) or options ("maxdist", value).
+    SlType checkGather(Expr& e) {
+        if (!e.args[0]->type.isString()) fail(e.args[0]->loc, "gather's first argument is a category (a string)");
+        static const char* const what[] = {"position (point)", "direction (vector)", "cone angle (float)", "sample count (float)"};
+        for (size_t k = 1; k <= 4; ++k) {
+            Expr& a = *e.args[k];
+            const bool ok = k <= 2 ? (a.type.isPointLike() || a.type.isFloat() || (a.kind == ExprKind::Tuple && flexibleTuple(a, BaseType::Point)))
+                                   : a.type.isFloat();
+            if (!ok) fail(a.loc, "cannot use a " + a.type.name() + " as gather's " + what[k - 1]);
+        }
+        for (size_t i = 6; i < e.args.size(); i += 2) {
+            Expr& name = *e.args[i];
+            if (name.kind != ExprKind::String)
+                fail(name.loc, "gather: an output's or option's name must be a string literal (\"surface:Ci\", \"maxdist\")");
+            if (i + 1 >= e.args.size()) fail(name.loc, "gather's \"" + name.text + "\" has no value");
+            Expr& v = *e.args[i + 1];
+            if (name.text.find(':') != std::string::npos) {
+                const SlType want = gatherOutputType(name.text);
+                if (want.isVoid())
+                    fail(name.loc, "unknown gather output \"" + name.text +
+                                       "\" (streyes gives surface:Ci, surface:Oi, surface:P, surface:N, ray:length, "
+                                       "ray:direction, ray:origin)");
+                requireVariable(v, "gather's \"" + name.text + "\" variable");
+                if (!(v.type == want || (v.type.isPointLike() && want.isPointLike())))
+                    fail(v.loc, "gather's \"" + name.text + "\" is a " + want.name() + ", not a " + v.type.name());
+                continue;
+            }
+            const bool isFloat = name.text == "maxdist" || name.text == "bias" || name.text == "samplebase";
+            const bool isString = name.text == "distribution" || name.text == "label" || name.text == "subset" ||
+                                  name.text == "hitmode";
+            if (!isFloat && !isString) fail(name.loc, "unknown gather option \"" + name.text + "\"");
+            if (isFloat ? !v.type.isFloat() : !v.type.isString())
+                fail(v.loc, "gather option \"" + name.text + "\" needs a " + (isFloat ? "float" : "string") + ", not a " + v.type.name());
+            if (name.text == "distribution" && v.kind == ExprKind::String && v.text != "uniform" && v.text != "cosine")
+                fail(v.loc, "gather's distribution is \"uniform\" or \"cosine\", not \"" + v.text + "\"");
+        }
+        e.builtin = findBuiltins(e.text)[0];
+        return BaseType::Float;
     }
 
     SlType checkSpline(Expr& e) {

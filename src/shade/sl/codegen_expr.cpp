@@ -349,6 +349,60 @@ CodeGen::Val CodeGen::genSpecial(const Expr& e, const Builtin& b) {
             assignTo(*e.args[1], copy, e.loc);
             return flag;
         }
+        case Special::Message: {
+            // As the queries: a copy written when the other shader has the parameter and it fits,
+            // then stored back (a miss leaves the variable as it was).
+            Val name = gen(*e.args[0]);
+            Val cur = gen(*e.args[1]);
+            setLoc(e.loc);
+            // Another shader's value may vary: a variable that may turn varying takes it so; one
+            // declared uniform takes the value at the first point that runs.
+            const Expr& target = e.args[1]->kind == ExprKind::Index ? *e.args[1]->args[0] : *e.args[1];
+            const Var* var = lookup(target.symbol);
+            const bool varying = !cur.type.isString() && (cur.varying() || (var && var->inferred));
+            Val copy = temp(cur.type, varying ? Detail::Varying : cur.detail);
+            emit(cur.type.isString() ? ops::smov : ops::mov, {copy.reg, cur.reg}, copy.varying());
+            release(cur);
+            Val flag = temp(BaseType::Float, Detail::Uniform);
+            emit(ops::message, {flag.reg, name.reg, copy.reg, b.index}, false);
+            release(name);
+            assignTo(*e.args[1], copy, e.loc);
+            return flag;
+        }
+        case Special::Gather: {
+            // extra: category, P, dir, angle, samples, sample, then (name, register) pairs; an
+            // output's register is a copy of its variable the op writes where the ray hit (the
+            // direction and origin everywhere), stored back after.
+            std::vector<Val> held;
+            auto keep = [&](Val v) {
+                held.push_back(v);
+                return v.reg;
+            };
+            std::vector<int32_t> regs;
+            static const BaseType kinds[] = {BaseType::String, BaseType::Point, BaseType::Vector, BaseType::Float,
+                                             BaseType::Float, BaseType::Float};
+            for (size_t k = 0; k < 6; ++k) regs.push_back(keep(convert(gen(*e.args[k]), kinds[k])));
+            std::vector<std::pair<const Expr*, Val>> outputs;
+            for (size_t k = 6; k + 1 < e.args.size(); k += 2) {
+                regs.push_back(keep(gen(*e.args[k])));
+                if (e.args[k]->text.find(':') == std::string::npos) {
+                    regs.push_back(keep(gen(*e.args[k + 1])));
+                    continue;
+                }
+                Val cur = gen(*e.args[k + 1]);
+                Val copy = temp(cur.type, Detail::Varying);
+                emit(ops::mov, {copy.reg, cur.reg}, true);
+                release(cur);
+                regs.push_back(copy.reg);
+                outputs.emplace_back(e.args[k + 1].get(), copy);
+            }
+            setLoc(e.loc);
+            Val hit = temp(BaseType::Float, Detail::Varying);
+            emit(ops::gather, {hit.reg, extraSpan(regs), int(regs.size())}, true);
+            for (const Val& v : held) release(v);
+            for (auto& [target, copy] : outputs) assignTo(*target, copy, e.loc);
+            return hit;
+        }
         case Special::Query: {
             // The value is the grid's: a copy of the variable is written when the value fits it,
             // then stored back (so a miss leaves the variable as it was).

@@ -294,6 +294,7 @@ StmtPtr Parser::parseStatement() {
             expect(";", "after the returned value");
             return s;
         }
+        if (t.text == "gather" && isPunct("(", 1)) return parseGather();
         if (t.text == "illuminance") return parseLightStatement(StmtKind::Illuminance);
         if (t.text == "illuminate") return parseLightStatement(StmtKind::Illuminate);
         if (t.text == "solar") return parseLightStatement(StmtKind::Solar);
@@ -325,6 +326,75 @@ StmtPtr Parser::parseIf() {
         s->body.push_back(parseStatement());
     }
     return s;
+}
+
+// gather(category, P, dir, angle, samples, "surface:Ci", var, ..., options...) stmt [else stmt]
+// (PRMan's): a loop over the samples, each tracing one ray a point, the first statement where it
+// hits, the second where it misses. Written as the loop it is, with names no shader can spell:
+//   { uniform float gather$nK = samples, gather$iK;
+//     for (gather$iK = 0; gather$iK < gather$nK; gather$iK += 1)
+//       if ($gather(category, P, dir, angle, gather$nK, gather$iK, pairs...)) stmt else stmt }
+StmtPtr Parser::parseGather() {
+    const SourceLoc loc = locOf(next());
+    const std::string k = std::to_string(pos_);
+    expect("(", "after 'gather'");
+    auto call = std::make_unique<Expr>(ExprKind::Call, loc);
+    call->text = "$gather";
+    if (!isPunct(")")) {
+        do {
+            call->args.push_back(parseAssign());
+        } while (accept(","));
+    }
+    expect(")", "after the arguments");
+    if (call->args.size() < 5)
+        throw InputError(loc, "gather takes (category, P, dir, angle, samples, \"surface:Ci\", variable, ..., options...)");
+    auto name = [&](const std::string& n) {
+        auto e = std::make_unique<Expr>(ExprKind::Name, loc);
+        e->text = n;
+        return e;
+    };
+    auto binary = [&](ExprKind kind, const char* op, ExprPtr a, ExprPtr b) {
+        auto e = std::make_unique<Expr>(kind, loc);
+        e->text = op;
+        e->args.push_back(std::move(a));
+        e->args.push_back(std::move(b));
+        return e;
+    };
+    auto number = [&](double v) {
+        auto e = std::make_unique<Expr>(ExprKind::Number, loc);
+        e->number = v;
+        return e;
+    };
+    const std::string n = "gather$n" + k, i = "gather$i" + k;
+    auto block = std::make_unique<Stmt>(StmtKind::Block, loc);
+    auto decl = std::make_unique<Stmt>(StmtKind::Decl, loc);
+    decl->decl.loc = loc;
+    decl->decl.base = BaseType::Float;
+    decl->decl.hasDetail = true;
+    decl->decl.detail = Detail::Uniform;
+    decl->decl.decls.resize(2);
+    decl->decl.decls[0].name = n;
+    decl->decl.decls[0].loc = call->args[4]->loc;
+    decl->decl.decls[0].init = std::move(call->args[4]);
+    decl->decl.decls[1].name = i;
+    decl->decl.decls[1].loc = loc;
+    call->args[4] = name(n);
+    call->args.insert(call->args.begin() + 5, name(i));
+    block->body.push_back(std::move(decl));
+    auto loop = std::make_unique<Stmt>(StmtKind::For, loc);
+    loop->init = binary(ExprKind::Assign, "=", name(i), number(0));
+    loop->expr = binary(ExprKind::Binary, "<", name(i), name(n));
+    loop->step = binary(ExprKind::Assign, "+=", name(i), number(1));
+    auto branch = std::make_unique<Stmt>(StmtKind::If, loc);
+    branch->expr = std::move(call);
+    branch->body.push_back(parseStatement());
+    if (isIdent("else")) {
+        next();
+        branch->body.push_back(parseStatement());
+    }
+    loop->body.push_back(std::move(branch));
+    block->body.push_back(std::move(loop));
+    return block;
 }
 
 // illuminance([category,] P [, axis, angle]) stmt; illuminate(P [, axis, angle]) stmt;
@@ -463,7 +533,9 @@ ExprPtr Parser::parsePrimary() {
         return e;
     }
     if (t.kind == TokenKind::Ident) {
-        if (isKeyword(t.text)) fail(t, "expected an expression");
+        // surface(...) and displacement(...) in an expression are message-passing calls.
+        const bool call = (t.text == "surface" || t.text == "displacement") && isPunct("(", 1);
+        if (isKeyword(t.text) && !call) fail(t, "expected an expression");
         auto e = std::make_unique<Expr>(ExprKind::Name, loc);
         e->text = next().text;
         if (accept("(")) {

@@ -43,6 +43,7 @@ class Parser {
     StmtPtr parseStatement();
     StmtPtr parseBlock();
     StmtPtr parseIf();
+    StmtPtr parseGather();
     StmtPtr parseLightStatement(StmtKind kind);
 
     ExprPtr parseExpr();

@@ -21,6 +21,8 @@ struct Frame {
     ProgramPtr keep;                // holds the program while its registers may be read
     uint64_t programId = 0;         // which program (addresses of freed programs come back)
     uint64_t lastRun = 0;           // the VM's run counter when last used
+    const ShaderInstance* instance = nullptr;  // whose values the parameters hold
+    uint64_t peerGrid = 0;          // the VM's peer-grid counter then (message passing)
     bool constantsLoaded = false;
     int n = 0;
     std::vector<float> arena;       // the uniform area, then varyingArrays arrays of n floats

@@ -129,6 +129,9 @@ STREYES_SL_OP(specularbrdf);   // a0 = specularbrdf(a1 L, a2 N, a3 V, a4 roughne
 STREYES_SL_OP(phong);          // a0 = phong(a1 N, a2 V, a3 size), a4 P
 STREYES_SL_OP(lightsource);    // a0 = 1 if the current light has parameter a1, copied into a2
 
+// ---- Message passing (shadeops_message.cpp) ----
+STREYES_SL_OP(message);        // a0 = 1 if peer a3 (Peer) has parameter a1 fitting a2 (then copied)
+
 // ---- Derivatives (shadeops_deriv.cpp) ----
 STREYES_SL_OP(Du);
 STREYES_SL_OP(Dv);
@@ -162,12 +165,16 @@ STREYES_SL_OP(occlusion);
 STREYES_SL_OP(indirectdiffuse);
 STREYES_SL_OP(trace);
 STREYES_SL_OP(transmission);
+// a0 = 1 where the ray hit (varying); extra: category, P, dir, angle, samples, sample, then
+// (name string reg, reg) pairs: outputs ("surface:Ci" ...) written, options read (shadeops_gather.cpp).
+STREYES_SL_OP(gather);
 
 // ---- The renderer's state (shadeops_info.cpp) ----
 // a0 = 1 when found and the variable a2 can hold it (then written), else 0 (a2 left alone).
 STREYES_SL_OP(option);         // a1 name
 STREYES_SL_OP(attribute);      // a1 name
 STREYES_SL_OP(rendererinfo);   // a1 name
+STREYES_SL_OP(rayinfo);        // a1 name: "depth", "type"
 STREYES_SL_OP(textureinfo);    // a1 map, a2 field, a3 variable
 STREYES_SL_OP(shadername);     // a0 = the running shader's name (a1 -1), or the grid's a1 shader's
 

@@ -23,6 +23,7 @@ struct RayOptions {
     float coneangle = -1;     // half-angle of the cone about D; < 0: the function's default (pi/2; trace 0)
     float bias = -1;          // rays start this far from P; < 0: the source's default
     std::string environmentmap;  // what a ray that hits nothing sees (indirectdiffuse); "": black
+    bool uniform = false;     // gather's "distribution" "uniform": directions uniform in solid angle (else cosine)
     const std::string* shader = nullptr;  // the calling shader's name, for warnings
 };
 
@@ -37,6 +38,17 @@ struct RayQuery {
     unsigned seed = 0;   // the grid's (its primitive's): with each point's P and the call site,
                          // what picks its sample directions
     uint32_t site = 0;   // the call site in the program, so two calls at a point sample differently
+};
+
+// What one gather() sample gives each active point (arrays n long; nullptr: not wanted).
+struct GatherHits {
+    uint8_t* hit = nullptr;            // 1 where the ray hit something (always written)
+    float* dir[3] = {};                // the ray's unit direction (always written)
+    float* Ci[3] = {};                 // the nearest hit's colour, shaded by its own shader
+    float* Oi[3] = {};                 // and opacity
+    float* P[3] = {};                  // where it is
+    float* N[3] = {};                  // its normal
+    float* length = nullptr;           // its distance from P
 };
 
 class RaySource {
@@ -54,6 +66,20 @@ class RaySource {
     // The light that gets from P to D through what lies between: the product of (1 - opacity)
     // of each surface crossed (1 when nothing is).
     virtual void transmission(const RayOptions& o, const RayQuery& q, float* const* out) = 0;
+    // Sample `sample` of o.samples of a gather() loop: one ray a point in the cone of half-angle
+    // o.coneangle about D (cosine-weighted, or uniform with o.uniform), its nearest hit within
+    // maxdist. The default traces nothing: every ray misses, along D.
+    virtual void gather(const RayOptions& o, const RayQuery& q, int sample, const GatherHits& out) {
+        (void)o;
+        (void)sample;
+        missAll(q, out);
+    }
+    static void missAll(const RayQuery& q, const GatherHits& out) {
+        for (int i = 0; i < q.n; ++i) {
+            out.hit[i] = 0;
+            for (int c = 0; c < 3; ++c) out.dir[c][i] = q.D[c][i];
+        }
+    }
 };
 
 }  // namespace streyes::sl

@@ -1,5 +1,5 @@
 // Information functions (RI Spec 3.2, section 15.8): option(), attribute(), rendererinfo(),
-// textureinfo(), shadername(). Each answers once per grid (the values are uniform) and writes
+// textureinfo(), shadername(); PRMan's rayinfo(). Each answers once per grid (the values are uniform) and writes
 // the shader's variable only when the value fits it.
 #include <cstdlib>
 
@@ -67,6 +67,15 @@ void attribute(Exec& x, const Instr& in) {
     QueryValue v;
     const StateQueries* q = x.grid.state;
     x.ptr(in.a[0])[0] = q && q->attribute(x.str(in.a[1]), v) ? store(x, in.a[2], v) : 0.0f;
+}
+
+// rayinfo(): the ray that brought the grid to be shaded (PRMan's "depth" and "type").
+void rayinfo(Exec& x, const Instr& in) {
+    const std::string& name = x.str(in.a[1]);
+    float found = 0;
+    if (name == "depth") found = store(x, in.a[2], QueryValue::numbers({float(x.grid.rayDepth)}));
+    else if (name == "type") found = store(x, in.a[2], QueryValue::string(x.grid.rayType ? x.grid.rayType : "camera"));
+    x.ptr(in.a[0])[0] = found;
 }
 
 // The renderer's name and version: never another renderer's.

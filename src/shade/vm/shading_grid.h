@@ -76,6 +76,10 @@ struct ShadingGrid {
     float nearClip = 0, farClip = 1;  // camera-space depths where depth() is 0 and 1
     const StateQueries* state = nullptr;  // what option() and attribute() read (none: they give 0)
     double time = 0;  // the shading time in frames, exactly (the `time` global is a float): rays go then
+    // rayinfo(): how the points came to be shaded. Depth 0 and "camera" for what the eye sees;
+    // a ray's hits: its depth (1 for rays from those) and "specular" (trace) or "diffuse".
+    int rayDepth = 0;
+    const char* rayType = "camera";
 
     void set(Global g, ValueRef v) { globals[size_t(g)] = v; }
     void setSpace(Space s, const Matrix4& m) { toCurrent[size_t(s)] = m; }

@@ -135,6 +135,8 @@ void ShadingVM::runFrame(Frame& f, const ShaderInstance& shader, const ShadingGr
     x.n = grid.n;
     std::memset(f.mask(0), 1, size_t(grid.n));
     setLevel(x, 0);
+    f.instance = &shader;
+    f.peerGrid = peerGrid_;
     const Matrix4* savedSpace = shaderSpace_;
     shaderSpace_ = shaderSpace;
     bindGlobals(x, grid);

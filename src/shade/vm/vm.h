@@ -16,6 +16,7 @@
 // stats().sanitised, which the caller can read to warn once.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "shade/vm/exec.h"
+#include "shade/vm/peers.h"
 #include "shade/vm/program.h"
 #include "shade/vm/ray_source.h"
 #include "shade/vm/shader_instance.h"
@@ -32,6 +34,13 @@
 namespace streyes::sl {
 
 struct Frame;
+
+// One of the shaders message passing reads (peers.h): its instance and its "shader" space.
+struct PeerShader {
+    const ShaderInstance* shader = nullptr;
+    Matrix4 toCurrent;
+};
+using PeerShaders = std::array<PeerShader, kPeerCount>;
 
 // A light's results over the surface's points (L from the surface towards the light).
 struct LightResult {
@@ -84,6 +93,16 @@ class ShadingVM {
     // Shading Language fuzzer sets one (fuzz/fuzz_sl.h).
     void setInstructionBudget(uint64_t instructions) { instructionBudget_ = instructions; }
 
+    // Message passing: the shaders of the primitive whose grid is shaded next (null: none). Each
+    // call starts a new grid: surface() and the others read a peer's parameters as its last run
+    // over this grid left them (a displacement's after it ran; the surface's as they are when a
+    // light it calls runs), or, for a peer not run yet over it, as bound from the instance, the
+    // primitive variables and the defaults.
+    void setPeers(const PeerShaders& peers) {
+        peers_ = peers;
+        ++peerGrid_;
+    }
+
     // Runs `shader` over `grid`. `lights` are the lights on for the surface (for surface and
     // volume shaders). Bad bindings (a primitive variable whose type differs from the
     // parameter's) throw InputError at the primitive variable's location.
@@ -116,6 +135,9 @@ class ShadingVM {
     // Lights for the running surface at positions P (3 x n, current space): runs each light
     // once per grid and positions.
     const std::vector<LightResult>& lightsAt(Exec& x, const RegView& P);
+    // surface(name, var) and the others: peer `which`'s parameter `name` into register `dst` of
+    // the running program when its type fits (then true).
+    bool readPeer(Exec& x, Peer which, const std::string& name, int dst);
     const LightResult* currentLight() const { return currentLight_; }
     void setCurrentLight(const LightResult* l) { currentLight_ = l; }
     int nextRandom() { return randomCalls_++; }
@@ -141,7 +163,11 @@ class ShadingVM {
     void runLight(size_t index, const RegView& P);
     ValueRef view(const Frame& f, int reg, int element = 0) const;
 
+    Frame* peerFrame(Peer which);
+
     std::vector<std::unique_ptr<Frame>> frames_;
+    PeerShaders peers_{};
+    uint64_t peerGrid_ = 0;
     Frame* top_ = nullptr;  // the surface (or the only) program's frame of the last run
     TextureSource* textures_ = nullptr;
     RaySource* rays_ = nullptr;
