@@ -174,6 +174,11 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
         lightReadsMaps_.push_back(readsMaps(lights_.back().get()));
         lightTracesRays_.push_back(castsRays(lights_.back().get()));
         if (lightTracesRays_.back()) tracesRays_ = true;
+        // Still in world: its own transform (and an area light's shape) has one key, and the
+        // scene's world is the world (a frame sequence's is each frame's camera space, where a
+        // light still in world differs from frame to frame).
+        lightStillInWorld_.push_back(d.lightToWorld.isStatic() && (!d.area || d.areaToWorld.isStatic()) &&
+                                     !maps_->worldVaries());
     }
 }
 
@@ -258,6 +263,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         m.atmosphere = instance(a.atmosphere.name, a.atmosphere.params, a.atmosphere.loc, sl::ShaderType::Volume);
         if (m.atmosphere) m.readsTime = readsTime(*m.atmosphere);
         m.tracesRays = castsRays(m.atmosphere.get());
+        if (m.atmosphere) m.viewUse = ViewUse::Reads;
     }
     if (!a.displacement.name.empty()) {
         m.displacement = instance(a.displacement.name, a.displacement.params, a.displacement.loc,
@@ -273,6 +279,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
             m.displacementBound = float(a.displacementBound * scale);
             m.readsTime = m.readsTime || readsTime(*m.displacement);
             m.tracesRays = m.tracesRays || castsRays(m.displacement.get());
+            m.viewUse = ViewUse::Reads;
         }
     }
     struct NoteRays {  // however bind returns
@@ -288,6 +295,9 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         builtinLights = builtinLights && builtinLight_[size_t(i)];
         m.readsMaps = m.readsMaps || lightReadsMaps_[size_t(i)];
         m.tracesRays = m.tracesRays || lightTracesRays_[size_t(i)];
+        // A light moving in world (or with the camera) lights a world-still point differently
+        // from frame to frame. The built-in constant reads no light.
+        if (!lightStillInWorld_[size_t(i)] && m.kind != SurfaceKind::Constant) m.viewUse = ViewUse::Reads;
     }
     const std::string& name = a.surface.name;
     // The built-in shading reads no primitive variables: a primitive with some runs the shader.
@@ -302,6 +312,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
     m.readsTime = m.readsTime || readsTime(*shader);
     m.readsMaps = m.readsMaps || readsMaps(shader.get());
     m.tracesRays = m.tracesRays || castsRays(shader.get());
+    m.viewUse = ViewUse::Reads;  // a Shading Language surface: assumed to read the view
     m.surface = std::move(shader);
 }
 
