@@ -190,6 +190,8 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
     // The environment's folders after the scene's own (search_path.h).
     for (const std::string& f : environmentSearchPath(kTexturePathVariable)) texturePath.push_back(f);
     maps_ = std::make_unique<ShadowMaps>(std::move(maps), scene, texturePath, log);
+    cameraRigid_ = movesRigidly(scene.camera.worldToCamera);
+    for (const auto& frame : scene.frameWorldToCamera) cameraRigid_ = cameraRigid_ && movesRigidly(frame.second);
     textures_ = std::make_unique<LazyTextureSource>(std::move(textures), std::move(texturePath), maps_.get(), log);
     cache_ = std::make_unique<sl::ShaderCache>(std::vector<std::string>{standardShaderDir()});
     searchPathSet_ = !scene.settings.shaderSearchPath.empty();
@@ -293,7 +295,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
     // Material::viewUse's parts. The analysis (shade/sl/view_use.h) assumes a rigid camera: a
     // scaling or shearing one changes lengths and angles in current space, and a frame
     // sequence's "world" is each frame's camera space.
-    const ViewUse rigid = movesRigidly(worldToCamera_) && !maps_->worldVaries() ? ViewUse::None : ViewUse::Reads;
+    const ViewUse rigid = cameraRigid_ && !maps_->worldVaries() ? ViewUse::None : ViewUse::Reads;
     // A shader's: the compiler's class, its "shader" and "object" spaces still in world.
     auto shaderUse = [&](const sl::ShaderInstance& s, const ShaderDesc& desc) {
         if (!desc.shaderToWorld.isStatic()) return ViewUse::Reads;

@@ -117,6 +117,9 @@ class SceneShaders final : public MaterialBinder {
     std::shared_ptr<sl::ShaderInstance> imager_;
     bool builtinShading_ = true;
     float specularExponent_ = 8;
+    // Every camera of the render (a sequence's frames' too) moves by rotation and translation
+    // only: the view-use analysis's metric rules hold (Material::viewUse).
+    bool cameraRigid_ = true;
     Log& log_;
     std::unique_ptr<ShadowMaps> maps_;
     std::unique_ptr<LazyTextureSource> textures_;

@@ -233,6 +233,7 @@ class Analysis {
     // ---- Statements -------------------------------------------------------------------------
 
     void exec(const Stmt& s) {
+        if (giveUp_) return;
         switch (s.kind) {
             case StmtKind::Block:
                 for (const StmtPtr& b : s.body) exec(*b);
@@ -316,13 +317,17 @@ class Analysis {
     }
 
     void illuminance(const Stmt& s) {
-        const size_t first = s.args[0]->type.isString() ? 1 : 0;
+        const size_t first = !s.args.empty() && s.args[0]->type.isString() ? 1 : 0;
+        if (s.args.size() <= first) {
+            giveUp(s.loc, "illuminance without a position");
+            return;
+        }
         std::vector<Value> a;
         for (const ExprPtr& e : s.args) a.push_back(eval(*e));
         const Value pos = a[first];
         Value c = of(Kind::Invariant, pos.facing);
         if (pos.kind != Kind::Point) c = viewFrom(s.loc, "illuminance from a point that is not world-still", pos);
-        if (a.size() > first + 1) c = join(c, cone(a[first + 1], a[first + 2], s.loc));
+        if (a.size() > first + 2) c = join(c, cone(a[first + 1], a[first + 2], s.loc));
         const Symbol* L = cs_.globals[size_t(Global::L)];
         const Symbol* Cl = cs_.globals[size_t(Global::Cl)];
         const Symbol* Ol = cs_.globals[size_t(Global::Ol)];
@@ -344,16 +349,18 @@ class Analysis {
         Value L = of(Kind::Vector);
         Value c = of(Kind::Invariant);
         if (s.kind == StmtKind::Solar) {
-            if (a.empty()) L = view(s.loc, "solar() without an axis");
+            if (a.size() < 2) L = view(s.loc, "solar() without an axis");
             else {
                 c = cone(a[0], a[1], s.loc);
                 L = a[0].kind == Kind::Vector ? of(Kind::Vector, a[0].facing)
                                               : viewFrom(s.loc, "solar along an axis that is not world-still", a[0]);
             }
+        } else if (a.empty()) {
+            L = view(s.loc, "illuminate() without a position");
         } else {
             L = a[0].kind == Kind::Point ? of(Kind::Vector, a[0].facing)
                                          : viewFrom(s.loc, "illuminate from a point that is not world-still", a[0]);
-            if (a.size() > 1) c = cone(a[1], a[2], s.loc);
+            if (a.size() > 2) c = cone(a[1], a[2], s.loc);
         }
         ctl_.push_back(join(ctl(), c));
         lightL_ = lightL_ ? join(*lightL_, under(L, ctl(), s.loc)) : under(L, ctl(), s.loc);
@@ -385,6 +392,10 @@ class Analysis {
     }
 
     Value eval(const Expr& e) {
+        // Calls are analysed at each call site and loops to a fixed point: a budget keeps nested
+        // calls and loops from taking long (then: Reads).
+        if (++steps_ > kStepBudget) giveUp(e.loc, "the shader is too large to analyse");
+        if (giveUp_) return view(e.loc, "not analysed");
         switch (e.kind) {
             case ExprKind::Number:
             case ExprKind::String: return of(Kind::Invariant);
@@ -657,6 +668,7 @@ class Analysis {
     }
 
     Value transform(const Expr& e, const Builtin& b, const std::vector<Value>& a) {
+        if (a.size() < 2) return pure(a, e.loc, "a transform");
         const Value x = a.back();
         const bool facing = anyFacing(a);
         const bool point = b.index == 0;
@@ -727,6 +739,8 @@ class Analysis {
     std::vector<std::optional<Value>> returns_;  // what each function being analysed returns, joined
     std::optional<Value> lightL_;                 // the L of every illuminate and solar, joined
     int depth_ = 0;
+    static constexpr long kStepBudget = 1000000;
+    long steps_ = 0;
     bool assignsL_ = false;
     bool giveUp_ = false;
     SourceLoc giveUpLoc_;

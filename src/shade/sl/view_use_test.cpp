@@ -190,6 +190,24 @@ TEST(ViewUse, WhyNamesWhereTheViewIsRead) {
     EXPECT_NE(p->viewUseWhy.find("noise"), std::string::npos) << p->viewUseWhy;
 }
 
+// Loops are analysed to a fixed point, each round of an outer loop analysing the inner ones again;
+// once an inner loop's state is settled it takes one round, so deep nests stay cheap and exact.
+TEST(ViewUse, NestedLoopsAreAnalysedInFull) {
+    std::string still = "Ci += tint;", moving = "Ci += noise(q); q = P;", decls;
+    for (int i = 0; i < 25; ++i) {
+        const std::string v = "i" + std::to_string(i);
+        decls += "float " + v + ";\n";
+        still = "for (" + v + " = 0; " + v + " < 2; " + v + " += 1) { " + still + " }";
+        moving = "for (" + v + " = 0; " + v + " < 2; " + v + " += 1) { " + moving + " }";
+    }
+    decls += "point q = transform(\"world\", P);\n";
+    EXPECT_EQ(compileShader("surface t(color tint = 1;) {\n" + decls + still + "\n}\n", "still.sl")->viewUse,
+              ViewUse::None);
+    // The innermost body's second pass sees q = P (a current-space point) in noise().
+    EXPECT_EQ(compileShader("surface t(color tint = 1;) {\n" + decls + moving + "\n}\n", "moving.sl")->viewUse,
+              ViewUse::Reads);
+}
+
 TEST(ViewUse, TheShippedShaders) {
     const std::map<std::string, std::string> expected{
         {"ambientlight", "None"},   {"arealight", "None"},     {"background", "Reads"},     {"bark", "Reads"},
