@@ -118,6 +118,8 @@ class Analysis {
             Value def = dc.init ? eval(*dc.init) : of(Kind::Invariant);
             const bool pointLike = p->type.element().isPointLike();
             Value set = of(pointLike ? (p->type.base == BaseType::Point ? Kind::Point : Kind::Vector) : Kind::Invariant);
+            // A zero vector default is the same in every space (a zero point is the eye).
+            if (pointLike && p->type.base != BaseType::Point && dc.init && isZeroValue(*dc.init)) def = set;
             Value v = join(set, def);
             if (v.kind == Kind::View && !v.where) v = view(dc.loc, "the parameter's default reads the view");
             state_[p] = v;
@@ -442,6 +444,17 @@ class Analysis {
             }
         }
         return view(e.loc, "an expression the analysis does not know");
+    }
+
+    // 0, (0, 0, 0), vector (0, 0, 0), vector 0: a value zero in every component (no space).
+    static bool isZeroValue(const Expr& e) {
+        if (e.kind == ExprKind::Tuple) {
+            for (const ExprPtr& a : e.args)
+                if (!isZero(*a)) return false;
+            return true;
+        }
+        if (e.kind == ExprKind::Cast && e.text.empty()) return isZeroValue(*e.args[0]);
+        return isZero(e);
     }
 
     static bool isZero(const Expr& e) {

@@ -159,6 +159,11 @@ TEST(ViewUse, IlluminanceLightsAndOutputs) {
     EXPECT_EQ(classOf("light l(point from = point \"shader\" (0, 0, 0);) { illuminate(from) Cl = 1 / (L . L); }"), "None");
     EXPECT_EQ(classOf("light l(point from = (0, 0, 0);) { illuminate(from) Cl = 1 / (L . L); }"), "Reads");
     EXPECT_EQ(classOf("light l() { illuminate(point(0, 0, 0)) Cl = 1; }"), "Reads");
+    // A vector parameter defaulting to zero is world-still either way; a zero point is the eye.
+    EXPECT_EQ(classOf("displacement d(vector offset = (0, 0, 0);) { P += offset; }"), "None");
+    EXPECT_EQ(classOf("displacement d(vector offset = vector (0, 0, .1);) { P += offset; }"), "Reads");
+    EXPECT_EQ(classOf("surface t(point origin = (0, 0, 0);) { Ci = length(P - origin); }"), "Reads");
+    EXPECT_EQ(classOf("surface t(point origin = point \"world\" (0, 0, 0);) { Ci = length(P - origin); }"), "None");
     EXPECT_EQ(classOf("light l() { Cl = length(Ps); }"), "Reads");
     // A displacement's P must stay a world-still point, its N a world-still vector.
     EXPECT_EQ(classOf("displacement d() { P += .1 * noise(transform(\"shader\", P)) * normalize(N); "
