@@ -135,6 +135,31 @@ void BM_SamplerPerspective(benchmark::State& state) {
 }
 BENCHMARK(BM_SamplerPerspective)->ArgNames({"px_per_frame"})->Arg(4)->Arg(16);
 
+// A camera pan over still geometry (issue 48 pt 3), what most shots of a film are: the turned
+// square still in world at depth 10 under a perspective camera (60 degrees over 64 pixels) that
+// turns about its vertical axis by enough to move the square's centre `px_per_frame` pixels in
+// the frame, and with dolly 1 also moves 0.5 towards it. Every camera-space point then moves by
+// the same map (a rotation, and a translation with the dolly), which the moving sampler today
+// treats as an independent mover a micropolygon: sample_tests/s per core is the figure to bring
+// to the still kernel's (BM_SamplerStillBlock).
+void BM_SamplerCameraPan(benchmark::State& state) {
+    const float motion = float(state.range(0));
+    const bool dolly = state.range(1) != 0;
+    const int size = 64;
+    Camera cam = perspectiveCamera(size, size);
+    Material m;
+    TrilinearBody::Corners r = turnedSquare(24.37f, 24.61f, size), a, b;
+    const float pixelsPerRadian = float(size) / 2 / std::tan(0.5236f);  // at the centre of the frame
+    const float angle = motion / pixelsPerRadian, c = std::cos(angle), s = std::sin(angle);
+    for (int i = 0; i < 4; ++i) {
+        const Vec3f p = cam.fromRaster(r[size_t(i)].x, float(size) - r[size_t(i)].y, 10.0f);
+        a[size_t(i)] = p;
+        b[size_t(i)] = Vec3f{c * p.x - s * p.z, p.y, s * p.x + c * p.z - (dolly ? 0.5f : 0.0f)};
+    }
+    sampleGrid(state, cam, TrilinearBody({0, 1}, a, b, {}, &m));
+}
+BENCHMARK(BM_SamplerCameraPan)->ArgNames({"px_per_frame", "dolly"})->Args({4, 0})->Args({16, 0})->Args({4, 1});
+
 // A still grid over a block of 48 frames: the spacetime case, diced once and sampled once into the
 // still layer (the samples sit at the same positions in every frame).
 // The still kernels' grid: the turned square on a size x size frame, still over frames 0-100,

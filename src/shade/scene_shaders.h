@@ -68,7 +68,8 @@ class SceneShaders final : public MaterialBinder {
     SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures = {},
                  std::shared_ptr<const ShadowMapBinding> maps = {});
 
-    // Sets material.surface (and readsTime) unless the built-in shading serves it.
+    // Sets material.surface (and readsTime, readsMaps, tracesRays, viewUse) unless the built-in
+    // shading serves it.
     void bind(Material& material, const Attributes& attributes) const override;
 
     // Runs the scene's Imager shader over a finished frame (nothing without one): Ci and alpha
@@ -123,11 +124,15 @@ class SceneShaders final : public MaterialBinder {
     std::shared_ptr<sl::ShaderInstance> imager_;
     bool builtinShading_ = true;
     float specularExponent_ = 8;
+    // Every camera of the render (a sequence's frames' too) moves by rotation and translation
+    // only: the view-use analysis's metric rules hold (Material::viewUse).
+    bool cameraRigid_ = true;
     Log& log_;
     std::unique_ptr<ShadowMaps> maps_;
     std::unique_ptr<LazyTextureSource> textures_;
     std::vector<bool> lightReadsMaps_;
     std::vector<bool> lightTracesRays_;
+    std::vector<bool> lightStillInWorld_;  // Material::viewUse: a light moving in world reads the view
     mutable std::atomic<bool> tracesRays_{false};
 };
 
