@@ -270,8 +270,8 @@ void BucketWorker::push(BodyPtr body) {
 
 // Whether root i surely misses the bucket: the test pushRoot makes for a moving root
 // (boxOutside, with a pixel to spare), on a raster bound made once per worker. What it skips the
-// split loop would have culled by view, so the bodies drawn, and the order of those drawn, are
-// the same.
+// split loop would have culled by view; the others keep their order (occlusion tables may come at
+// other depths, which exact culling does not show).
 bool BucketWorker::rootOutside(size_t i) {
     const std::vector<BodyPtr>& roots = scene_.roots;
     if (rootRasterOf_ != roots.data() || rootRaster_.size() != roots.size()) {
