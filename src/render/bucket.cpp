@@ -280,7 +280,9 @@ bool BucketWorker::rootOutside(size_t i) {
         rootRaster_.resize(roots.size());
         for (size_t r = 0; r < roots.size(); ++r) {
             const Bounds3f box = displaced(*roots[r], roots[r]->bound().swept());
-            if (cam.perspective() && !(box.lo.z >= cam.eyePlane())) {
+            // A procedural's bound grows when its children outgrow it (the renderer then renders
+            // again): it takes the split loop's test every time.
+            if (roots[r]->expands() || (cam.perspective() && !(box.lo.z >= cam.eyePlane()))) {
                 rootRaster_[r] = Bounds3f(Vec3f{-kInf, -kInf, -kInf}, Vec3f{kInf, kInf, kInf});
                 continue;
             }

@@ -157,7 +157,7 @@ class BucketWorker {
     // grown by the circle of confusion), made once per worker: a bucket passes over the roots it
     // cannot see at the cost of a rectangle test, where each went through the heap and the split
     // loop's cull (a Blobby's or a big mesh's million triangles in each of a thousand buckets).
-    // A NaN-free infinite box: a root reaching the eye plane, which only the frustum test culls.
+    // An infinite box: a procedural (its bound may grow) or a root reaching the eye plane.
     std::vector<Bounds3f> rootRaster_;
     const BodyPtr* rootRasterOf_ = nullptr;  // scene_.roots.data() they were made for
     bool rootOutside(size_t i);
