@@ -157,7 +157,8 @@ BodyFactory::Window BodyFactory::windowOf(const Lifetime& life) const {
 }
 
 const Material* BodyFactory::material(const AttributesPtr& attributes, const MotionTransform& objectToWorld,
-                                      bool cameraFacing, const ParamList* primvars, uint64_t primitiveId) {
+                                      bool cameraFacing, const ParamList* primvars, uint64_t primitiveId,
+                                      bool primvarBezier) {
     static const AttributesPtr kDefault = std::make_shared<const Attributes>();
     const AttributesPtr& a = attributes ? attributes : kDefault;
     Facing facing = Facing::Camera;
@@ -185,6 +186,7 @@ const Material* BodyFactory::material(const AttributesPtr& attributes, const Mot
     if (own) {
         m.primvars = *primvars;
         m.primvarToWorld = objectToWorld;
+        m.primvarBezier = primvarBezier;
         for (const Param& v : primvars->params)  // a single face's corners (a mesh's faces carry theirs)
             if (v.cls != ParamClass::Constant && v.nums.size() == 4 * size_t(v.componentsPerItem()))
                 for (double x : v.nums) m.primvarCorners.push_back(float(x));
@@ -351,16 +353,33 @@ bool BodyFactory::keyedPoints(const PrimitiveDesc& p, const std::vector<std::vec
 
 const float* BodyFactory::meshPrimvars(const ParamList& primvars, size_t faces,
                                        const std::function<std::vector<std::array<Color, 4>>(const ColorPrimvar&)>& cornersOf,
-                                       Keep* keep, size_t* width) {
+                                       Keep* keep, size_t* width,
+                                       const std::function<std::vector<BezierPatch>(const std::vector<Vec3d>&)>& bezierOf) {
+    auto controls = [&](const Param& v) -> size_t { return bezierOf && v.cls == ParamClass::Vertex ? 16 : 4; };
     *width = 0;
     for (const Param& v : primvars.params)
-        if (v.cls != ParamClass::Constant) *width += 4 * size_t(v.componentsPerItem());
+        if (v.cls != ParamClass::Constant) *width += controls(v) * size_t(v.componentsPerItem());
     if (*width == 0) return nullptr;
     auto values = std::make_shared<std::vector<float>>(*width * faces);
     size_t offset = 0;  // of the variable in a face's block
     for (const Param& v : primvars.params) {
         if (v.cls == ParamClass::Constant) continue;
         const size_t w = size_t(v.componentsPerItem()), items = v.nums.size() / w;
+        if (controls(v) == 16) {
+            for (size_t g = 0; g < w; g += 3) {  // three components a pass, as points
+                std::vector<Vec3d> points(items);
+                for (size_t i = 0; i < items; ++i)
+                    points[i] = Vec3d(v.nums[i * w + g], g + 1 < w ? v.nums[i * w + g + 1] : 0.0,
+                                      g + 2 < w ? v.nums[i * w + g + 2] : 0.0);
+                const std::vector<BezierPatch> patches = bezierOf(points);
+                for (size_t f = 0; f < faces && f < patches.size(); ++f)
+                    for (size_t c = 0; c < 16; ++c)
+                        for (size_t k = g; k < std::min(w, g + 3); ++k)
+                            (*values)[f * *width + offset + c * w + k] = patches[f][c][int(k - g)];
+            }
+            offset += 16 * w;
+            continue;
+        }
         for (size_t g = 0; g < w; g += 3) {  // three components a pass, as colours
             ColorPrimvar cp;
             cp.cls = v.cls;
@@ -438,12 +457,14 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;
-    const Material* mat = material(p.attributes, p.objectToWorld, false, &p.primvars, primitiveId);
+    const Material* mat = material(p.attributes, p.objectToWorld, false, &p.primvars, primitiveId, p.bicubic);
     const PatchMeshShape shape(p);
     const std::vector<std::array<Color, 4>> colors = shape.colors(p.Cs, mat->Cs);
     size_t width = 0;
+    std::function<std::vector<BezierPatch>(const std::vector<Vec3d>&)> bezierOf;
+    if (p.bicubic) bezierOf = [&](const std::vector<Vec3d>& values) { return shape.patches(values); };
     const float* block = meshPrimvars(p.primvars, colors.size(), [&](const ColorPrimvar& v) { return shape.colors(v, {0, 0, 0}); },
-                                      keep, &width);
+                                      keep, &width, bezierOf);
     const SourceLoc* src = source(p.loc);
     const bool lastOpen = windowOf(p.life).openEnd;
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {

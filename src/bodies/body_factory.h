@@ -158,7 +158,8 @@ class BodyFactory final : public ChildBodyMaker {
     // A primitive with primitive variables gets a material of its own that carries them (one per
     // primitive id: the faces of a mesh share it).
     const Material* material(const AttributesPtr& attributes, const MotionTransform& objectToWorld,
-                             bool cameraFacing = false, const ParamList* primvars = nullptr, uint64_t primitiveId = 0);
+                             bool cameraFacing = false, const ParamList* primvars = nullptr, uint64_t primitiveId = 0,
+                             bool primvarBezier = false);
     const SourceLoc* source(const SourceLoc& loc);
     // Calls add(q) for each copy of primitive p its level of detail draws: p itself when it has
     // none, else one copy a run of frames that draw it alike, living over those frames'
@@ -179,10 +180,12 @@ class BodyFactory final : public ChildBodyMaker {
                     std::vector<BodyPtr>& out, Keep* keep, const float* primvarBlock = nullptr, size_t primvarWidth = 0);
     // The corner values of a mesh's faces for its primitive variables that vary from face to face,
     // from `cornersOf` (the mesh's own reading of "Cs" by class), three components at a time; kept
-    // here (or in `keep`). Null when none varies.
+    // here (or in `keep`). With `bezierOf` (a bicubic patch mesh's change to Bezier form), vertex
+    // ones take a face's 16 Bezier control values instead (Material::primvarBezier). Null when none varies.
     const float* meshPrimvars(const ParamList& primvars, size_t faces,
                               const std::function<std::vector<std::array<Color, 4>>(const ColorPrimvar&)>& cornersOf,
-                              Keep* keep, size_t* width);
+                              Keep* keep, size_t* width,
+                              const std::function<std::vector<BezierPatch>(const std::vector<Vec3d>&)>& bezierOf = nullptr);
 
     MotionTransform worldToCamera_;
     double windowStart_, windowEnd_;

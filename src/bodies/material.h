@@ -90,6 +90,10 @@ struct Material {
     // {0, 1}^2, RenderMan order: each such variable in turn, four corners of its floats. A
     // polygon mesh's faces carry their own (Body::primvarCorners).
     std::vector<float> primvarCorners;
+    // A bicubic patch mesh's: its vertex-class variables follow the patch basis as P does, so a
+    // face's block holds their 16 Bezier control values (row by row, u fastest) rather than four
+    // corners, evaluated at each vertex's (u, v).
+    bool primvarBezier = false;
     // The primitive's object-to-world transform: point, vector and normal primitive variables are
     // given in object space.
     MotionTransform primvarToWorld;

@@ -269,10 +269,41 @@ void BucketWorker::push(BodyPtr body) {
     std::push_heap(heap_.begin(), heap_.end(), FartherFirst());
 }
 
+// Whether root i surely misses the bucket: the test pushRoot makes for a moving root
+// (boxOutside, with a pixel to spare), on a raster bound made once per worker. What it skips the
+// split loop would have culled by view; the others keep their order (occlusion tables may come at
+// other depths, which exact culling does not show).
+bool BucketWorker::rootOutside(size_t i) {
+    const std::vector<BodyPtr>& roots = scene_.roots;
+    if (rootRasterOf_ != roots.data() || rootRaster_.size() != roots.size()) {
+        const Camera& cam = scene_.camera;
+        constexpr float kInf = std::numeric_limits<float>::infinity();
+        rootRaster_.resize(roots.size());
+        for (size_t r = 0; r < roots.size(); ++r) {
+            const Bounds3f box = displaced(*roots[r], roots[r]->bound().swept());
+            // A procedural's bound grows when its children outgrow it (the renderer then renders
+            // again): it takes the split loop's test every time.
+            if (roots[r]->expands() || (cam.perspective() && !(box.lo.z >= cam.eyePlane()))) {
+                rootRaster_[r] = Bounds3f(Vec3f{-kInf, -kInf, -kInf}, Vec3f{kInf, kInf, kInf});
+                continue;
+            }
+            const Bounds3f raster = rasterOfBox(cam, box);
+            rootRaster_[r] = cam.grownByCoc(raster, box.lo.z, box.hi.z);
+        }
+        rootRasterOf_ = roots.data();
+    }
+    const PixelRect& R = bucket_.rect;
+    return rasterOutside(rootRaster_[i], {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1});
+}
+
 // Algorithms S and C: depth first from a stack, root by root.
 void BucketWorker::runDepthFirst() {
-    for (const BodyPtr& root : scene_.roots) {
-        pushRoot(*root);
+    for (size_t i = 0; i < scene_.roots.size(); ++i) {
+        if (rootOutside(i)) {
+            ++counters.culledView;
+            continue;
+        }
+        pushRoot(*scene_.roots[i]);
         while (!stack_.empty()) {
             BodyPtr b = std::move(stack_.back());
             stack_.pop_back();
@@ -298,7 +329,10 @@ void BucketWorker::runNearToFar() {
     farthest_.assign(coverage_.size(), std::numeric_limits<float>::infinity());
     const uint64_t samples = uint64_t(block_.pixelCount()) * uint64_t(block_.frameCount()) * uint64_t(block_.samplesPerPixel());
     const uint64_t adaptiveHits = uint64_t(options_.adaptiveLayerHits * double(samples)) + 1;
-    for (const BodyPtr& root : scene_.roots) pushRoot(*root);
+    for (size_t i = 0; i < scene_.roots.size(); ++i) {
+        if (rootOutside(i)) ++counters.culledView;
+        else pushRoot(*scene_.roots[i]);
+    }
     float lastZmin = -std::numeric_limits<float>::infinity();
     float lastBoundary = 0;  // of the last table
     const Camera& cam = scene_.camera;

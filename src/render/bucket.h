@@ -153,6 +153,14 @@ class BucketWorker {
     std::unordered_map<std::pair<uint64_t, int32_t>, uint32_t, PieceKeyHash> splitsOf_;
     std::vector<WorkItem> heap_;
     uint64_t arrivals_ = 0;
+    // Each root's raster bound as the view cull takes it (its displaced camera bound, projected and
+    // grown by the circle of confusion), made once per worker: a bucket passes over the roots it
+    // cannot see at the cost of a rectangle test, where each went through the heap and the split
+    // loop's cull (a Blobby's or a big mesh's million triangles in each of a thousand buckets).
+    // An infinite box: a procedural (its bound may grow) or a root reaching the eye plane.
+    std::vector<Bounds3f> rootRaster_;
+    const BodyPtr* rootRasterOf_ = nullptr;  // scene_.roots.data() they were made for
+    bool rootOutside(size_t i);
     GridShader shader_;
     std::vector<std::pair<int, int>> levels_;  // (frame index, level of detail) of a moving procedural
     ResolveScratch resolveScratch_;

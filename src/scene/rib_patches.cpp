@@ -63,8 +63,8 @@ bool readPatchMeshKey(RibParser& reader, RibArgs& args, PatchMeshDesc* d) {
     counts.vertex = size_t(d->nu) * size_t(d->nv);
     d->P = {pointsOf(args, pos)};
     d->Cs = readColors(args, params, counts);
-    // One patch: its corners; a mesh: each patch's (as "Cs" is read).
-    d->primvars = otherParams(args, params, counts, reader.log(), counts.uniform == 1, counts.uniform > 1);
+    // Each patch's corners (as "Cs" is read), or a bicubic one's vertex values in Bezier form.
+    d->primvars = otherParams(args, params, counts, reader.log(), false, true);
     return true;
 }
 

@@ -32,6 +32,13 @@ AttributesPtr SequenceBuilder::remap(const AttributesPtr& a) {
     if (it != remapped_.end()) return it->second;
     auto copy = std::make_shared<Attributes>(*a);
     for (int& l : copy->lights) l = lightIndex_[size_t(l)];
+    if (copy->detail && copy->detail->hasBound) {
+        // The Detail box is measured in the render camera's space, into which the frame's
+        // primitives are baked: its transform is baked with them.
+        auto lod = std::make_shared<LevelOfDetail>(*copy->detail);
+        lod->boundToWorld = lod->boundToWorld.then(worldToCamera_);
+        copy->detail = std::move(lod);
+    }
     return remapped_.emplace(a.get(), std::move(copy)).first->second;
 }
 

@@ -272,6 +272,27 @@ void GridShader::bindPrimvars(const Material& m, const Grid& grid, int n, double
             for (int c = 0; c < w; ++c) d[c] = corners[c], comp[c] = d + c;
             v.value = sl::ValueRef{{comp[0], comp[1], comp[2]}, 0};
             at += size_t(w) * size_t(n);
+        } else if (m.primvarBezier && p.cls == ParamClass::Vertex) {
+            // A bicubic patch's vertex variable: its 16 Bezier control values, bicubic in (u, v).
+            const float* controls = block + cornerAt;
+            cornerAt += 16 * size_t(w);
+            for (int c = 0; c < w; ++c) comp[c] = d + size_t(c) * size_t(n);
+            for (int i = 0; i < n; ++i) {
+                const float u = u_[size_t(i)], vv = v_[size_t(i)];
+                const float su = 1 - u, sv = 1 - vv;
+                const float bu[4] = {su * su * su, 3 * u * su * su, 3 * u * u * su, u * u * u};
+                const float bv[4] = {sv * sv * sv, 3 * vv * sv * sv, 3 * vv * vv * sv, vv * vv * vv};
+                for (int c = 0; c < w; ++c) {
+                    float sum = 0;
+                    for (int r = 0; r < 4; ++r) {
+                        const float* row = controls + size_t(r * 4 * w + c);
+                        sum += bv[r] * (bu[0] * row[0] + bu[1] * row[w] + bu[2] * row[2 * w] + bu[3] * row[3 * w]);
+                    }
+                    comp[c][i] = sum;
+                }
+            }
+            v.value = sl::ValueRef{{comp[0], comp[1], comp[2]}, 1};
+            at += size_t(w) * size_t(n);
         } else {
             // Four corners in RenderMan order (the body's, or the material's), bilinear in the body's (u, v).
             const float* corners = block + cornerAt;

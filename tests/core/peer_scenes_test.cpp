@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
+#include "streyes/sequence.h"
 #include "test_util.h"
 
 namespace streyes {
@@ -91,10 +93,34 @@ std::string detailScene() {
            "DetailRange [400 800 1e38 1e38]\nColor 1 0 0\nSphere 1 -1 1 360\nAttributeEnd\nWorldEnd\n";
 }
 
+// The same as a file of frames (FrameBegin f, the camera at D = 2.5 + f / 4 in each), as exporters
+// write it (Aqsis's levelofdetail/detail.rib): the frames' primitives are baked into the camera's
+// space, and so must their Detail boxes be (they were not, and nothing was drawn). Exposures that
+// touch (Shutter 0 1; each frame's camera is still within it): with the instants of Shutter 0 0,
+// the last frame of a file whose camera moves from frame to frame comes out empty in the
+// spacetime algorithms, with or without a level of detail (a bug of its own, not this test's).
+std::string detailFrames() {
+    std::string rib = "Format 64 64 1\nProjection \"perspective\" \"fov\" 90\nPixelSamples 4 4\nPixelFilter \"box\" 1 1\n"
+                      "Shutter 0 1\n";
+    for (int f = 0; f <= 8; ++f)
+        rib += "FrameBegin " + std::to_string(f) + "\nTranslate 0 0 " + std::to_string(2.5 + 0.25 * f) +
+               "\nWorldBegin\nSurface \"constant\"\nAttributeBegin\nTranslate 0.5 0 0\nDetail [-1.5 0.5 -1 1 -1 1]\n"
+               "DetailRange [0 0 400 800]\nColor 0 1 0\nTranslate -0.5 0 0\nSphere 1 -1 1 360\n"
+               "DetailRange [400 800 1e38 1e38]\nColor 1 0 0\nSphere 1 -1 1 360\nAttributeEnd\nWorldEnd\nFrameEnd\n";
+    return rib;
+}
+
 TEST(PeerScenes, LevelOfDetailPicksTheRepresentationFrameByFrame) {
     constexpr int S = 16;
-    for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Frames, Algorithm::Raytrace}) {
-        const RenderResult r = renderRib(detailScene(), test::optionsFor(a));
+    const test::TempDir dir("lod-frames");
+    const std::string file = dir.path() + "/frames.rib";
+    std::ofstream(file) << detailFrames();
+    Log log;
+    const Scene frames = readScene(file, {}, log).scene;
+    for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Frames, Algorithm::Raytrace})
+      for (const bool sequence : {false, true}) {
+        const RenderResult r = sequence ? test::renderScene(frames, test::optionsFor(a))
+                                        : renderRib(detailScene(), test::optionsFor(a));
         ASSERT_EQ(r.frames.size(), 9u);
         int transitions = 0;
         for (int f = 0; f <= 8; ++f) {
@@ -113,7 +139,7 @@ TEST(PeerScenes, LevelOfDetailPicksTheRepresentationFrameByFrame) {
                     EXPECT_EQ(r.alpha(f, x, y), 1.0f);
                 }
         }
-        EXPECT_EQ(transitions, 3) << algorithmName(a);  // D = 3.5, 3.75 and 4: details 655, 542 and 455
+        EXPECT_EQ(transitions, 3) << algorithmName(a) << (sequence ? " (frames)" : "");  // D = 3.5, 3.75 and 4: details 655, 542 and 455
     }
 }
 

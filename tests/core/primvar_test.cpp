@@ -186,6 +186,33 @@ TEST(Primvars, PatchAndSubdivisionMeshesBindPerFaceValues) {
     }
 }
 
+// A bicubic patch's vertex variables follow its basis as P does (sticky.rib's "vertex point Pref"):
+// a flat Bezier patch with evenly spaced control points (x = 32 u) and Pref's x controls 0 0 1 1
+// along u gives Pref.x = 3u^2 - 2u^3 (smoothstep), not the bilinear blend of its corners (u), which
+// differs by up to 0.1; Pref's y controls evenly spaced give v, linear. In both renderers.
+TEST(Primvars, ABicubicPatchsVertexVariableFollowsItsBasis) {
+    const Shaders sh;
+    sh.add("pref", "surface pref(varying point Pref = 0) { Oi = 1; point q = transform(\"object\", Pref); "
+                   "Ci = color(xcomp(q), ycomp(q), 0); }\n");
+    std::string P, pref;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            P += std::to_string(32.0 * i / 3) + " " + std::to_string(16.0 * j / 3) + " 5  ";
+            pref += std::string(i < 2 ? "0 " : "1 ") + std::to_string(j / 3.0) + " 0  ";
+        }
+    const std::string rib = sh.header(32, 16) + "Surface \"pref\"\nPatch \"bicubic\" \"P\" [" + P +
+                            "] \"vertex point Pref\" [" + pref + "]\nWorldEnd\n";
+    for (const Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Raytrace}) {
+        const test::RenderResult r = test::renderRib(rib, test::optionsFor(a));
+        EXPECT_TRUE(r.warnings.empty()) << algorithmName(a) << ": " << (r.warnings.empty() ? "" : r.warnings.front());
+        for (int x : {2, 6, 12, 16, 25, 30}) {
+            const float u = (float(x) + 0.5f) / 32;
+            EXPECT_NEAR(r.channel(0, x, 8, 0), 3 * u * u - 2 * u * u * u, 2e-3f) << algorithmName(a) << " x " << x;
+        }
+        for (int y : {1, 5, 12}) EXPECT_NEAR(r.channel(0, 20, y, 1), (16 - (float(y) + 0.5f)) / 16, 2e-3f) << algorithmName(a);
+    }
+}
+
 // Points, vectors and normals are given in object space: a point moves with the primitive's
 // transform; "N" replaces the shading normal, transformed as a normal (by the inverse transpose:
 // under Scale 2 1 1 a normal (0.6, 0, 0.8) leans back to (0.3, 0, 0.8); on the patch's own side,
