@@ -4,7 +4,7 @@
 
 namespace streyes {
 
-int rootChunkFrames(const Body& root, const Camera& camera) {
+int rootChunkFrames(const Body& root, const Camera& camera, bool stillInWorld) {
     if (const uint8_t made = root.rootChunk.load(std::memory_order_relaxed)) return made;
     constexpr float kChunkMotion = 8.0f;
     if (!root.moving() || !(root.bound().swept().lo.z >= camera.eyePlane())) return 1;
@@ -13,8 +13,10 @@ int rootChunkFrames(const Body& root, const Camera& camera) {
     // The motion measured is over the whole span, or between neighbouring keys for a keyed body.
     const double keys = root.diceableInTime() ? 1.0 : double(static_cast<const KeyedPatchBody&>(root).keyCount() - 1);
     const double perFrame = double(m.motion) / std::max(1e-9, (span.t1 - span.t0) / keys);
+    const int most = stillInWorld ? kMaxWorldChunkFrames : kMaxChunkFrames;
+    const float motion = stillInWorld ? kWorldChunkMotion : kChunkMotion;
     int frames = 1;
-    while (frames < kMaxChunkFrames && perFrame * double(2 * frames) <= double(kChunkMotion)) frames *= 2;
+    while (frames < most && perFrame * double(2 * frames) <= double(motion)) frames *= 2;
     root.rootChunk.store(uint8_t(frames), std::memory_order_relaxed);
     return frames;
 }
