@@ -122,8 +122,9 @@ void BucketWorker::diceShadeSampleFrames(const Body& body, int nu, int nv, const
         else shadeSampleFrames(body, diced, dicedHere);
     };
     // Shared between buckets as other grids are (bucket.cpp, diceShadeSample), but unshaded:
-    // each bucket shades what its frames need.
-    constexpr int kMinBucketsShared = 3;
+    // each bucket shades what its frames need. From two buckets on: the chunk's sweep puts most
+    // such pieces across a bucket's border, and each bucket dicing its own doubled them.
+    constexpr int kMinBucketsShared = 2;
     const int reached = gridCache_ && gridCache_->enabled() ? gridCache_->layout().bucketsReached(raster) : 0;
     const GridKey key{body.pieceKey, body.uv, body.time().t0, body.time().t1, nu, nv, bucket_.firstFrame, bucket_.frameCount};
     GridCache::Lease lease;

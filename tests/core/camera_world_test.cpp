@@ -30,7 +30,7 @@ bool sameFrame(const FrameImage& a, const FrameImage& b) {
 // A still world (a matte floor, a constant card, a plastic sphere and a matte subdivision cube)
 // under a camera that pans and dollies over 16 frames. `camera` replaces the camera block.
 std::string panScene(const std::string& camera, const std::string& sphereSurface = "plastic") {
-    return R"(Format 96 64 1
+    return R"(Format 192 128 1
 Projection "perspective" "fov" [45]
 PixelSamples 2 2
 Shutter 0 0.5
@@ -69,11 +69,13 @@ WorldEnd
 )";
 }
 
+// Issue 48's slow pan and dolly (its creases.rib shot): keyed from Translate 0.4 0 0 at frame 0 to
+// Translate -0.4 0 0.5 at frame 16.
 const char* kPan = R"(MotionBegin [0 16]
-  Translate 0.8 0 0
-  Translate -0.8 0 0.5
+  Translate 0.4 0 0
+  Translate -0.4 0 0.5
 MotionEnd)";
-const char* kStill = "Translate 0.8 0 0";
+const char* kStill = "Translate 0.4 0 0";
 
 RenderOptions shotOptions(Algorithm a, int first, int last, int block) {
     RenderOptions o;
