@@ -205,6 +205,9 @@ const Material* BodyFactory::material(const AttributesPtr& attributes, const Mot
                 for (double x : v.nums) m.primvarCorners.push_back(float(x));
     }
     if (binder_) binder_->bind(m, *a);
+    // A camera-facing primitive's N turns with the eye: a shader reading it reads the view (the
+    // analysis takes N as still in world). Only the built-in constant reads no N.
+    if (facing == Facing::Camera && (m.surface || m.kind != SurfaceKind::Constant)) m.viewUse = ViewUse::Reads;
     materials_.push_back(std::move(m));
     if (own) return ownMaterialOf_.emplace(std::make_tuple(a.get(), facing, primitiveId), &materials_.back()).first->second;
     return materialOf_.emplace(std::make_pair(a.get(), facing), &materials_.back()).first->second;

@@ -40,6 +40,13 @@ Material makeMaterial(const Attributes& a, Facing facing) {
     } else {
         m.kind = SurfaceKind::Default;
     }
+    // The built-in shading (shade/shading.cpp) as it reads the view: constant not at all; matte
+    // through faceforward(N, I) alone (then N.L with the lights'); plastic through its highlight
+    // (H = L + V) and defaultsurface through |N.I|. A camera-facing primitive's N is the
+    // camera's. The binder raises this for lights moving in world and for shaders.
+    m.viewUse = m.kind == SurfaceKind::Constant                              ? ViewUse::None
+                : m.kind == SurfaceKind::Matte && facing != Facing::Camera ? ViewUse::FacingOnly
+                                                                           : ViewUse::Reads;
     return m;
 }
 

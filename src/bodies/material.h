@@ -17,6 +17,16 @@ class ShaderInstance;  // shade/vm: a compiled Shading Language shader and its p
 
 enum class SurfaceKind { Constant, Matte, Plastic, Default };
 
+// What a material's shading (surface, displacement, the lights it is lit by, atmosphere) reads of
+// the view, i.e. of the camera's position and orientation: whether a point still in world space
+// may be shaded once for all the frames of a block under a moving camera (issue 48).
+// None: its values at a world-still point do not change when only the camera moves.
+// FacingOnly: they change only through which side of the surface faces the eye
+//   (faceforward(N, I), or the sign of N.I): shared while that side stays the same.
+// Reads: otherwise (I, E or a camera-space value reaches a result; a light moving in world).
+// Ordered: the larger is the more conservative (combine with std::max).
+enum class ViewUse { None, FacingOnly, Reads };
+
 // The shading rate a surface is diced at when it moves `blur` pixels in one exposure: its
 // ShadingRate, raised for fast movers by GeometricApproximation "motionfactor" as RenderMan does,
 // times max(1, motionfactor * blur / 16). Blurred detail cannot be seen, so it is not diced.
@@ -54,6 +64,9 @@ struct Material {
     // Its surface, displacement, atmosphere or a light of it casts rays (occlusion(), trace(),
     // ...): what they see moves, so a still grid is shaded per exposure, at the exposure's time.
     bool tracesRays = false;
+    // What its shading reads of the view (see ViewUse). Set conservatively: makeMaterial for the
+    // built-in kinds, SceneShaders::bind for shaders and lights; Reads wherever unknown.
+    ViewUse viewUse = ViewUse::Reads;
     // A Shading Language displacement shader, run on each diced grid before the surface, and how
     // far it may move a point in camera space: the split loop grows the body's bounds by it.
     std::shared_ptr<const sl::ShaderInstance> displacement;

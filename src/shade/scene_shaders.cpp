@@ -1,5 +1,6 @@
 #include "shade/scene_shaders.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -82,6 +83,36 @@ double largestStretch(const MotionTransform& m) {
         worst = std::max(worst, std::sqrt(f));
     }
     return worst;
+}
+
+// Does the camera move rigidly: is every key of world -> camera the first key's up to a rotation
+// and translation (key_k = key_0 * R, R orthogonal)? The view-use analysis's metric rules (dot
+// products, lengths, distances of current-space vectors) hold only then. Within 1e-6: keys written
+// with six digits pass, a scale of 1.001 does not.
+bool movesRigidly(const MotionTransform& worldToCamera) {
+    const std::vector<Matrix4>& keys = worldToCamera.keys();
+    Matrix4 inv0;
+    if (keys.empty() || !invert(keys[0], &inv0)) return false;
+    for (size_t k = 1; k < keys.size(); ++k) {
+        const Matrix4 rel = inv0 * keys[k];  // camera space at key 0 -> at key k
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) {
+                double d = 0;
+                for (int i = 0; i < 3; ++i) d += rel(r, i) * rel(c, i);
+                if (std::fabs(d - (r == c ? 1.0 : 0.0)) > 1e-6) return false;
+            }
+    }
+    return true;
+}
+
+ViewUse fromProgram(const sl::ShaderInstance* s) {
+    if (!s) return ViewUse::None;  // a shader not found: nothing runs
+    switch (s->program().viewUse) {
+        case sl::ViewUse::None: return ViewUse::None;
+        case sl::ViewUse::FacingOnly: return ViewUse::FacingOnly;
+        case sl::ViewUse::Reads: break;
+    }
+    return ViewUse::Reads;
 }
 
 }  // namespace
@@ -174,6 +205,11 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
         lightReadsMaps_.push_back(readsMaps(lights_.back().get()));
         lightTracesRays_.push_back(castsRays(lights_.back().get()));
         if (lightTracesRays_.back()) tracesRays_ = true;
+        // Still in world: its own transform (and an area light's shape) has one key, and the
+        // scene's world is the world (a frame sequence's is each frame's camera space, where a
+        // light still in world differs from frame to frame).
+        lightStillInWorld_.push_back(d.lightToWorld.isStatic() && (!d.area || d.areaToWorld.isStatic()) &&
+                                     !maps_->worldVaries());
     }
 }
 
@@ -254,10 +290,20 @@ void SceneShaders::runImager(FrameImage& frame) const {
 }
 
 void SceneShaders::bind(Material& m, const Attributes& a) const {
+    // Material::viewUse's parts. The analysis (shade/sl/view_use.h) assumes a rigid camera: a
+    // scaling or shearing one changes lengths and angles in current space, and a frame
+    // sequence's "world" is each frame's camera space.
+    const ViewUse rigid = movesRigidly(worldToCamera_) && !maps_->worldVaries() ? ViewUse::None : ViewUse::Reads;
+    // A shader's: the compiler's class, its "shader" and "object" spaces still in world.
+    auto shaderUse = [&](const sl::ShaderInstance& s, const ShaderDesc& desc) {
+        if (!desc.shaderToWorld.isStatic()) return ViewUse::Reads;
+        return std::max(fromProgram(&s), rigid);
+    };
     if (!a.atmosphere.name.empty()) {
         m.atmosphere = instance(a.atmosphere.name, a.atmosphere.params, a.atmosphere.loc, sl::ShaderType::Volume);
         if (m.atmosphere) m.readsTime = readsTime(*m.atmosphere);
         m.tracesRays = castsRays(m.atmosphere.get());
+        if (m.atmosphere) m.viewUse = std::max(m.viewUse, shaderUse(*m.atmosphere, a.atmosphere));
     }
     if (!a.displacement.name.empty()) {
         m.displacement = instance(a.displacement.name, a.displacement.params, a.displacement.loc,
@@ -273,6 +319,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
             m.displacementBound = float(a.displacementBound * scale);
             m.readsTime = m.readsTime || readsTime(*m.displacement);
             m.tracesRays = m.tracesRays || castsRays(m.displacement.get());
+            m.viewUse = std::max(m.viewUse, shaderUse(*m.displacement, a.displacement));
         }
     }
     struct NoteRays {  // however bind returns
@@ -289,19 +336,42 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         m.readsMaps = m.readsMaps || lightReadsMaps_[size_t(i)];
         m.tracesRays = m.tracesRays || lightTracesRays_[size_t(i)];
     }
+    // A light moving in world (or with the camera) lights a world-still point differently from
+    // frame to frame; a light's shader may read the view. The built-in constant reads no light
+    // (nor does a shader that calls neither illuminance nor ambient, diffuse, specular, phong).
+    ViewUse lightsUse = ViewUse::None;
+    for (int i : m.lights)
+        lightsUse = std::max(lightsUse, lightStillInWorld_[size_t(i)]
+                                            ? std::max(fromProgram(lights_[size_t(i)].get()), rigid)
+                                            : ViewUse::Reads);
     const std::string& name = a.surface.name;
     // The built-in shading reads no primitive variables: a primitive with some runs the shader.
-    if (builtinShading_ && builtinLights && isBuiltinSurface(name) && m.primvars.params.empty()) return;
+    if (builtinShading_ && builtinLights && isBuiltinSurface(name) && m.primvars.params.empty()) {
+        // makeMaterial set the built-in's own use; a scaling camera changes its N.L too.
+        if (m.kind != SurfaceKind::Constant) m.viewUse = std::max({m.viewUse, lightsUse, rigid});
+        if (m.tracesRays) m.viewUse = ViewUse::Reads;
+        return;
+    }
     std::shared_ptr<sl::ShaderInstance> shader = instance(name, a.surface.params, a.surface.loc, sl::ShaderType::Surface);
     if (!shader) {
         m.kind = SurfaceKind::Default;
-        if (builtinShading_) return;  // defaultsurface reads no light: the built-in serves
+        if (builtinShading_) {  // defaultsurface reads no light: the built-in serves
+            m.viewUse = ViewUse::Reads;  // |N.I|
+            return;
+        }
         shader = instance("defaultsurface", {}, a.surface.loc, sl::ShaderType::Surface);
         if (!shader) return;
     }
     m.readsTime = m.readsTime || readsTime(*shader);
     m.readsMaps = m.readsMaps || readsMaps(shader.get());
     m.tracesRays = m.tracesRays || castsRays(shader.get());
+    // What the compiler proved of the surface, its displacement and atmosphere, with its lights
+    // when it reads them; rays see what moves (and are cast per exposure anyway).
+    m.viewUse = shaderUse(*shader, a.surface);
+    if (m.atmosphere) m.viewUse = std::max(m.viewUse, shaderUse(*m.atmosphere, a.atmosphere));
+    if (m.displacement) m.viewUse = std::max(m.viewUse, shaderUse(*m.displacement, a.displacement));
+    if (shader->program().usesLights) m.viewUse = std::max(m.viewUse, lightsUse);
+    if (m.tracesRays) m.viewUse = ViewUse::Reads;
     m.surface = std::move(shader);
 }
 

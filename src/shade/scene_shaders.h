@@ -68,7 +68,8 @@ class SceneShaders final : public MaterialBinder {
     SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures = {},
                  std::shared_ptr<const ShadowMapBinding> maps = {});
 
-    // Sets material.surface (and readsTime) unless the built-in shading serves it.
+    // Sets material.surface (and readsTime, readsMaps, tracesRays, viewUse) unless the built-in
+    // shading serves it.
     void bind(Material& material, const Attributes& attributes) const override;
 
     // Runs the scene's Imager shader over a finished frame (nothing without one): Ci and alpha
@@ -121,6 +122,7 @@ class SceneShaders final : public MaterialBinder {
     std::unique_ptr<LazyTextureSource> textures_;
     std::vector<bool> lightReadsMaps_;
     std::vector<bool> lightTracesRays_;
+    std::vector<bool> lightStillInWorld_;  // Material::viewUse: a light moving in world reads the view
     mutable std::atomic<bool> tracesRays_{false};
 };
 

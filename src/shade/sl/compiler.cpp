@@ -7,6 +7,7 @@
 #include "shade/sl/checker.h"
 #include "shade/sl/codegen.h"
 #include "shade/sl/parser.h"
+#include "shade/sl/view_use.h"
 #include "shade/vm/vm.h"
 
 namespace streyes::sl {
@@ -45,6 +46,9 @@ ProgramPtr compileShader(const std::string& source, const std::string& file, con
         CheckedShader checked = checkShader(parseShader(pp));
         program->path = file;
         generateCode(checked, *program);
+        const ViewUseResult use = analyzeViewUse(checked);
+        program->viewUse = use.use;
+        program->viewUseWhy = use.why;
     } catch (const InputError& e) {
         // An error at a token a macro made: say which call of the macro it is about.
         const std::string site = pp.expansionOf(e.loc);

@@ -59,6 +59,12 @@ struct ParamInfo {
     SourceLoc loc;
 };
 
+// What a shader's results (a surface's Ci and Oi, a displacement's P and N, a light's Cl and
+// Ol, every output parameter) read of the view, under a rigid camera: the compiler's analysis
+// (shade/sl/view_use.h). None: nothing; FacingOnly: only through which side faces the eye (the
+// sign of N.I or Ng.I); Reads: otherwise, or not proven. Ordered: the larger, the more it reads.
+enum class ViewUse : uint8_t { None, FacingOnly, Reads };
+
 struct ShaderProgram {
     uint64_t id = 0;  // unique per compilation: a VM's registers for it are found by id
     ShaderType type = ShaderType::Surface;
@@ -84,6 +90,8 @@ struct ShaderProgram {
     bool illuminates = false;        // a light with illuminate or solar (else: an ambient light)
     bool usesLights = false;         // calls illuminance, ambient, diffuse, specular, phong
     int maxMaskDepth = 0;            // deepest nesting of varying control flow
+    ViewUse viewUse = ViewUse::Reads;  // what its results read of the view (view_use.h)
+    std::string viewUseWhy;          // where it first reads it ("file:line:col: what"), for messages
     // Filled by finish():
     int uniformFloats = 0;           // size of the uniform area
     int varyingArrays = 0;           // number of n-float arrays
