@@ -29,18 +29,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-// What a material's shading reads of the view, as far as the renderer knows it without the
-// compiler's analysis: the built-in constant reads nothing; the built-in matte reads it only
-// through faceforward(N, I), the side of the surface facing the eye; everything else (plastic's
-// highlight, defaultsurface, every Shading Language shader) is taken to read it.
-enum class ViewUse { None, FacingOnly, Reads };
-ViewUse viewUseOf(const Material& m) {
-    if (m.surface || m.displacement || m.atmosphere) return ViewUse::Reads;
-    if (m.kind == SurfaceKind::Constant) return ViewUse::None;
-    if (m.kind == SurfaceKind::Matte) return ViewUse::FacingOnly;
-    return ViewUse::Reads;
-}
-
 int facingSign(Vec3f n, Vec3f p, bool perspective) {
     const float d = perspective ? dot(n, p) : n.z;  // the eye's direction to p (orthographic: +z)
     return d > 0 ? 1 : d < 0 ? -1 : 0;
@@ -97,10 +85,14 @@ bool BucketWorker::shadesOnceForFrames(const Body& body, const Grid& diced) cons
     const Material* m = body.material();
     if (!m || m->readsTime || (m->readsMaps && shaders_ && shaders_->mapsVary()) || m->tracesRays || aovs_.count)
         return false;
-    const ViewUse use = viewUseOf(*m);
-    if (use == ViewUse::Reads) return false;
+    // Material::viewUse: the compiler's analysis of its shaders and lights (shade/sl/view_use.h).
+    const ViewUse use = m->viewUse;
+    if (use == ViewUse::Reads || scene_.lights.anyMovesInWorld(m->lights)) return false;
     if (use == ViewUse::None) return true;
-    if (scene_.lights.anyMovesInWorld(m->lights)) return false;
+    // Facing only: the side the grid's normals turn to the eye. A displacement (which replaces
+    // N before the surface runs) or a primitive variable "N" (the shading normal) could turn
+    // another normal to the eye than the grid's: per frame.
+    if (m->displacement || m->primvars.find("N")) return false;
     if (!diced.moving) return true;
     std::vector<float> ends;
     exposureEnds(body.time(), scene_.shutter.open, scene_.shutter.close, ends);
