@@ -119,6 +119,21 @@ std::vector<double> segmentTimes(const std::vector<double>& keys, double a, doub
 
 std::vector<double> keysOf(const MotionTransform& m) { return m.isStatic() ? std::vector<double>{} : m.times(); }
 
+// Marks the bodies a primitive appended to `out` (from `first` on) as still in world space when
+// neither its transform nor its own points move: they move in camera space with the camera only
+// (Body::stillInWorld). Marked when the add function returns, whichever way it returns.
+struct MarkStillInWorld {
+    std::vector<BodyPtr>& out;
+    size_t first;
+    bool still;
+    MarkStillInWorld(std::vector<BodyPtr>& o, const MotionTransform& objectToWorld, size_t ownKeys)
+        : out(o), first(o.size()), still(objectToWorld.isStatic() && ownKeys <= 1) {}
+    ~MarkStillInWorld() {
+        if (still)
+            for (size_t b = first; b < out.size(); ++b) out[b]->stillInWorld = true;
+    }
+};
+
 // ---- Motion segments of curved primitives ----------------------------------------------------------
 // Where time t falls among a primitive's keys: between key i and i + 1 at fraction s (held
 // before the first key and after the last, where s = 0).
@@ -211,6 +226,7 @@ const SourceLoc* BodyFactory::source(const SourceLoc& loc) {
 
 void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out,
                            const float* primvarCorners) {
+    const MarkStillInWorld still(out, p.objectToWorld, p.P.size());
     const Material* mat = material(p.attributes, p.objectToWorld, false, &p.primvars, primitiveId);
     std::array<Color, 4> cs;
     for (int c = 0; c < 4; ++c) cs[size_t(c)] = p.hasCs ? p.Cs[size_t(c)] : mat->Cs;
@@ -454,6 +470,7 @@ void BodyFactory::addSurface(std::unique_ptr<SurfaceMesh> mesh, const SourceLoc*
 }
 
 void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep) {
+    const MarkStillInWorld still(out, p.objectToWorld, p.P.size());
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;
@@ -510,6 +527,7 @@ std::shared_ptr<const SubdivisionShape> BodyFactory::subdivisionShape(const Subd
 
 void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out,
                                      Keep* keep) {
+    const MarkStillInWorld still(out, p.objectToWorld, p.P.size());
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;
@@ -541,6 +559,7 @@ void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t prim
 
 // A QuadricMesh per segment: the quadric's arguments and transform at both ends.
 void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep) {
+    const MarkStillInWorld still(out, q.objectToWorld, q.params.size());
     const MotionTransform objectToCamera = q.objectToWorld.then(worldToCamera_);
     std::vector<double> keyTimes = keysOf(objectToCamera);
     if (q.params.size() > 1) keyTimes = unionTimes(keyTimes, q.times);
@@ -582,6 +601,7 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::ve
 
 // A NurbsMesh per segment over the patch's shape (knots, weights, trim), shared by the segments.
 void BodyFactory::addNuPatch(const NuPatchDesc& p, uint64_t primitiveId, std::vector<BodyPtr>& out, Keep* keep) {
+    const MarkStillInWorld still(out, p.objectToWorld, p.P.size());
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;

@@ -81,6 +81,7 @@ class Body {
         exposure = parent.exposure;
         uv = parent.uv;
         primvarCorners = parent.primvarCorners;
+        stillInWorld = parent.stillInWorld;
     }
 
     // A body that is replaced by the bodies it expands into, instead of being split or diced (a
@@ -133,6 +134,11 @@ class Body {
     // at its four corners (Material::primvarCorners' layout), kept by the factory. Null: the
     // material's own.
     const float* primvarCorners = nullptr;
+    // Its control points do not move in world space over the shot (a still object; it moves in
+    // camera space only when the camera does). Such a root under a moving camera is cut into
+    // longer chunks of frames (geom/root_chunks.h) and its grids are diced once for a chunk
+    // (docs/ARCHITECTURE.md, "The split loop"). Set by the factory.
+    bool stillInWorld = false;
     // As a root, the frames each of its pieces spans (geom/root_chunks.h), made by the first
     // bucket that asks: it depends on the body and the camera only, and every bucket asks. 0 until
     // made; a race writes the same value.

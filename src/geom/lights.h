@@ -53,6 +53,14 @@ class LightSet {
             if (moves_[size_t(i)]) return true;
         return false;
     }
+    // Does any of these lights move in world space (a light declared before WorldBegin, which
+    // rides with a moving camera, does)? Under a moving camera, a surface whose shading does
+    // not read the view is shaded alike from every camera only under lights still in the world.
+    bool anyMovesInWorld(const std::vector<int>& lights) const {
+        for (int i : lights)
+            if (!lights_[size_t(i)].lightToWorld.isStatic()) return true;
+        return false;
+    }
     // Lights that cast shadows (not ambient lights), numbered 0 .. shadowSlots()-1 in
     // declaration order; shadowLight(slot) is the light's index.
     int shadowSlots() const { return int(shadowLights_.size()); }

@@ -16,6 +16,17 @@ constexpr int kMaxChunkFrames = 8;
 // 8 pixels (a slow leaf is diced once for several frames, a fast body once an exposure), at most
 // kMaxChunkFrames. A function of the body and the camera only; bodies reaching the eye plane
 // cannot be measured: one frame a piece. Kept in root.rootChunk once made.
-int rootChunkFrames(const Body& root, const Camera& camera);
+//
+// `stillInWorld`: the root moves in camera space only because the camera does
+// (Body::stillInWorld), and the split loop samples each frame of its pieces through that frame's
+// camera (render/bucket_world.cpp): its chunk is kept under kWorldChunkMotion pixels of motion
+// instead, up to kMaxWorldChunkFrames. The caller passes the same for a root every time.
+int rootChunkFrames(const Body& root, const Camera& camera, bool stillInWorld = false);
+
+// A still-in-world root's longest chunk and the raster motion it may make over one: its pieces
+// are split and diced once for the chunk, and their swept bounds reach the buckets that motion
+// crosses (docs/ARCHITECTURE.md, "The split loop").
+constexpr int kMaxWorldChunkFrames = 16;
+constexpr float kWorldChunkMotion = 256.0f;
 
 }  // namespace streyes

@@ -10,6 +10,7 @@
 #include "procedural/procedural.h"
 #include "raster/coverage.h"
 #include "render/bucket_bounds.h"
+#include "render/bucket_grid_ops.h"
 #include "render/expansion_release.h"
 #include "render/grid_cache.h"
 #include "render/split_decision.h"
@@ -35,6 +36,10 @@ struct FartherFirst {
 
 constexpr size_t kMaxLayerStats = 64;  // per-layer counters beyond this go to the last entry
 constexpr float kAdaptiveDepthGrowth = 1.25f;  // adaptive layers: at most this depth ratio apart
+}  // namespace
+
+namespace bucket {
+
 // Sides and Orientation on a diced grid (slot k: the positions and normals at t0 or t1): turns
 // the normals to the side Orientation calls outside.
 void orientNormals(Grid& grid, int k, const Material* m) {
@@ -92,7 +97,7 @@ bool cullBackFacing(Grid& grid, const Camera& cam) {
     return any;
 }
 
-}  // namespace
+}  // namespace bucket
 
 BucketWorker::BucketWorker(const RenderScene& scene, const RenderOptions& options, const PatternTable& patterns,
                            const FilterWeights& filter, const std::vector<float>& layerDepths, Log& log)
@@ -183,16 +188,6 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
 
 // ---- Drivers ---------------------------------------------------------------------------------------
 
-// Does a body's span [t0, t1] reach a sample time in [a, b] (at a only, when a == b)? Motion
-// segments meet at keys: a segment that only touches [a, b] at its end is left to the next one,
-// which covers that instant too (a segment is open at its end exactly when one follows); one that
-// starts where [a, b] ends is never reached (sample times stay below b).
-static bool reachesSamples(const TimeSpan& span, double a, double b) {
-    if (!span.overlaps(a, b)) return false;
-    if (span.t1 == a && span.t0 < span.t1 && span.openEnd) return false;
-    if (span.t0 == b && a < b) return false;
-    return true;
-}
 
 // Each root whose time span meets the bucket's frames enters the loop. A moving root (or any
 // root, while the lights move) is cut at each frame's exposure first, from the root itself: a
@@ -229,7 +224,7 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
 }
 
 // Frames a moving root's pieces span (geom/root_chunks.h).
-int BucketWorker::chunkFrames(const Body& root) const { return rootChunkFrames(root, scene_.camera); }
+int BucketWorker::chunkFrames(const Body& root) const { return rootChunkFrames(root, scene_.camera, worldChunks(root)); }
 
 // A moving root's pieces for the bucket's frames [fa, fb]: one a chunk of `chunk` frames aligned
 // to multiples of `chunk` (absolute frame numbers), cut from the root. The chunks whose time its
@@ -649,6 +644,10 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
 void BucketWorker::diceShadeSample(const Body& body, int nu, int nv, const Bounds3f& raster) {
     if (body.dicesAtKeys()) {
         diceShadeSampleKeys(static_cast<const KeyedPatchBody&>(body), nu, nv);
+        return;
+    }
+    if (dicedForFrames(body)) {
+        diceShadeSampleFrames(body, nu, nv, raster);
         return;
     }
     // Shared when it reaches at least three buckets: a grid on the border of two is mostly hidden

@@ -96,6 +96,20 @@ class BucketWorker {
     bool diceShade(const Body& body, int nu, int nv);
     void sample(const Grid& grid);
     void diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int nv);
+    // Bodies still in world space under a moving camera (Body::stillInWorld; bucket_world.cpp).
+    // Is the root's chunk of frames measured by the still-in-world rule (geom/root_chunks.h)?
+    bool worldChunks(const Body& root) const;
+    // Does the piece span several exposures by that rule: diced once, then shaded once or per frame?
+    bool dicedForFrames(const Body& body) const;
+    void diceShadeSampleFrames(const Body& body, int nu, int nv, const Bounds3f& raster);
+    // Dices the piece into `grid` (normals oriented, not shaded).
+    void diceOnly(const Body& body, int nu, int nv, Grid& grid);
+    // Can the piece's diced grid be shaded once for every frame it spans (what its shading reads
+    // of the view is the same from every camera of its span)?
+    bool shadesOnceForFrames(const Body& body, const Grid& diced) const;
+    // Shades and samples `diced` as it is (once), or cut to each of the bucket's frames.
+    void shadeSampleOnce(const Grid& diced, bool dicedHere);
+    void shadeSampleFrames(const Body& body, const Grid& diced, bool dicedHere);
 
     const RenderScene& scene_;
     const RenderOptions& options_;
@@ -137,6 +151,7 @@ class BucketWorker {
     double windowStart_ = 0, windowEnd_ = 0;  // the bucket's frames' exposures
     ImageBlock block_;
     Grid grid_;
+    Grid diced_;  // a still-in-world piece diced for several frames (diceShadeSampleFrames)
     GridRasterizer rasterizer_;
     RasterCounters rasterCounters_;
     std::vector<BodyPtr> stack_;
