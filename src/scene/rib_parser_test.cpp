@@ -662,11 +662,12 @@ TEST(RibErrors, UnsupportedRequestWarnsOnceAndParses) {
                         log);
     EXPECT_EQ(scene.patches.size(), 1u);
     std::vector<std::string> w = log.warnings();
-    ASSERT_EQ(w.size(), 2u);
+    ASSERT_EQ(w.size(), 1u);
     EXPECT_EQ(w[0], "test.rib:2: warning: unsupported request 'ColorSamples' ignored");
-    // Matte 0 (the default) is silent; a holdout is not drawn as one yet.
-    EXPECT_EQ(w[1], "test.rib:7: warning: Matte 1 (a holdout) is not supported yet: the surface renders as an "
-                    "ordinary one");
+    // Matte 0 and Matte 1 are read silently: the patch after them is a holdout.
+    const Param* matte = scene.patches[0].attributes->user.find("streyes:matte");
+    ASSERT_NE(matte, nullptr);
+    EXPECT_EQ(matte->nums, std::vector<double>{1});
 }
 
 }  // namespace
