@@ -678,17 +678,20 @@ namespace {
 
 // CropWindow: the whole frame is silent, a smaller window warns (it is not cut out yet), a window
 // outside [0, 1] or empty is an error at its line.
-TEST(RibErrors, CropWindowWholeFrameIsSilentSmallerWarnsBadFails) {
+TEST(RibErrors, CropWindowIsReadSilentlyBadFails) {
     {
         Log log;
         parse(std::string("CropWindow 0 1 0 1\nWorldBegin\n") + kUnitPatch + "WorldEnd\n", log);
         EXPECT_TRUE(log.warnings().empty());
     }
     {
+        // Kept among the options (what option("CropWindow") and the renderer read).
         Log log;
-        parse(std::string("CropWindow 0.25 0.75 0 1\nWorldBegin\n") + kUnitPatch + "WorldEnd\n", log);
-        ASSERT_EQ(log.warnings().size(), 1u);
-        EXPECT_NE(log.warnings()[0].find("test.rib:1: warning: CropWindow smaller than the frame"), std::string::npos);
+        const Scene scene = parse(std::string("CropWindow 0.25 0.75 0 1\nWorldBegin\n") + kUnitPatch + "WorldEnd\n", log);
+        EXPECT_TRUE(log.warnings().empty());
+        const Param* crop = scene.settings.options.find("CropWindow");
+        ASSERT_NE(crop, nullptr);
+        EXPECT_EQ(crop->nums, (std::vector<double>{0.25, 0.75, 0, 1}));
     }
     for (const char* bad : {"CropWindow 0 1.5 0 1\n", "CropWindow 0.5 0.5 0 1\n", "CropWindow 0 1 0\n"}) {
         Log log;
