@@ -39,13 +39,21 @@ void checkWritableFolder(const std::string& path, const std::string& option);
 // A file that is not EXR (TIFF, PNG, ...) is quantized as `quantize` says (docs/SCENE-FORMAT.md,
 // Quantize): 8- or 16-bit integers, or floats (one = 0, the default here); EXR files always hold
 // floats.
-void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode,
-                const Quantize& quantize = Quantize{});
+// Where a frame's pixels lie in the whole frame. A crop (CropWindow) is written as RenderMan writes
+// it: an EXR's data window at (x0, y0) inside a display window of fullWidth x fullHeight (other
+// formats hold the crop's pixels alone). fullWidth 0: the pixels are the whole frame.
+struct FrameWindow {
+    int x0 = 0, y0 = 0, fullWidth = 0, fullHeight = 0;
+};
 
-// One file a frame is written to: its name, display mode and quantization.
+void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode,
+                const Quantize& quantize = Quantize{}, const FrameWindow& window = FrameWindow{});
+
+// One file a frame is written to: its name, display mode and quantization, and where its pixels lie.
 struct FrameOutput {
     std::string path, mode;
     Quantize quantize;
+    FrameWindow window;
 };
 
 // Writes `bytes` to `path` as writeFrame writes a frame: to a temporary file beside it, every

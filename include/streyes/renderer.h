@@ -35,6 +35,10 @@ struct ResolvedSettings {
     int shotFirst = 0, shotLast = 0;  // RenderOptions::hasShot
     SamplePattern pattern;
     int bucketSize = kDefaultBucketSize, gridSize = kDefaultGridSize;  // options over Option "limits"
+    // CropWindow in pixels: [cropX0, cropX1) x [cropY0, cropY1), rows from the top (RI Spec 3.2:
+    // from ceil(xres xmin) to ceil(xres xmax) - 1, clamped to the frame). The whole frame when none.
+    int cropX0 = 0, cropY0 = 0, cropX1 = 0, cropY1 = 0;
+    bool cropped() const { return cropX0 > 0 || cropY0 > 0 || cropX1 < width || cropY1 < height; }
 };
 ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& options);
 

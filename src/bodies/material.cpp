@@ -2,6 +2,11 @@
 
 namespace streyes {
 
+bool isMatte(const Attributes& a) {
+    const Param* p = a.user.find("streyes:matte");
+    return p && !p->nums.empty() && p->nums[0] != 0;
+}
+
 Material makeMaterial(const Attributes& a, Facing facing) {
     Material m;
     using O = Attributes::Orientation;
@@ -16,6 +21,7 @@ Material makeMaterial(const Attributes& a, Facing facing) {
         m.solid = a.solid;
     }
     m.smoothShading = a.smoothShading;
+    m.matte = isMatte(a);
     m.Cs = a.color;
     m.Os = a.opacity;
     m.shadingRate = float(a.shadingRate);

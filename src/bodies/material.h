@@ -81,6 +81,9 @@ struct Material {
     // The leaf of a solid this surface bounds (Attributes::solid, geom/solid_tree.h), -1: none.
     // Such a surface is kept two-sided: its far side is where a line of sight leaves the solid.
     int solid = -1;
+    // Matte 1 (Attributes::matte): a holdout, drawn as an opaque surface whose hits resolve to
+    // colour 0 and alpha 0 (kMatteBit in raster/image_block.h), whatever it is shaded.
+    bool matte = false;
     bool smoothShading = true;  // ShadingInterpolation "smooth"; false: "constant"
     // The primitive's own variables (a material of its own): bound to its shaders' parameters of
     // the same name; constant ones, or four corner values interpolated over a bilinear patch (the
@@ -119,5 +122,7 @@ enum class Facing { Object, Mirrored, Camera };
 // Builds a Material from an attribute state; unknown shader names have been handled by the
 // parser (they fall back to defaultsurface).
 Material makeMaterial(const Attributes& attributes, Facing facing = Facing::Object);
+// Matte 1 (kept as the attribute "streyes:matte", rib_attributes.cpp): a holdout.
+bool isMatte(const Attributes& attributes);
 
 }  // namespace streyes

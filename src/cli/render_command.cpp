@@ -510,7 +510,9 @@ int renderCommand(const std::vector<std::string>& args) {
             if (!isMine(frame)) return true;  // another pass's frame: rendered with the block, not written
             if (!resume) return false;
             for (const Output& o : outputsOf(frame))
-                if (!isCompleteFrame(expandFramePattern(o.pattern, frame), rs.width, rs.height, o.mode)) return false;
+                if (!isCompleteFrame(expandFramePattern(o.pattern, frame), rs.cropX1 - rs.cropX0, rs.cropY1 - rs.cropY0,
+                                     o.mode))  // a crop's file holds the crop (CropWindow)
+                    return false;
             return true;
         };
         // The output variables the outputs write (a sequence's frames' own displays among them).
@@ -527,6 +529,8 @@ int renderCommand(const std::vector<std::string>& args) {
         blockOpts.textureSource = openImageTextures;  // loads OpenImageIO only on a shader's first lookup
         blockOpts.shadowMaps = runner.binding(job);
         const double open = scene.settings.shutterOpen;
+        // A crop (CropWindow): the pixels are the crop's, written where they lie in the frame.
+        const FrameWindow window = rs.cropped() ? FrameWindow{rs.cropX0, rs.cropY0, rs.width, rs.height} : FrameWindow{};
         auto sink = [&](FrameImage& img) {
             // A picture frame's own depth displays (Display "+x.z" "zfile" "z") are kept and written
             // before its pixels go to the writer.
@@ -534,7 +538,7 @@ int renderCommand(const std::vector<std::string>& args) {
             if (frame != job.frames.end()) runner.keep(frame->second, img, open);
             std::vector<FrameOutput> files;
             for (const Output& o : outputsOf(img.frame)) {
-                files.push_back({expandFramePattern(o.pattern, img.frame), o.mode, o.quantize});
+                files.push_back({expandFramePattern(o.pattern, img.frame), o.mode, o.quantize, window});
                 written_.push_back(files.back().path);
             }
             writer.handOver(img, std::move(files));  // no copy: the renderer gets a written frame's buffers

@@ -277,6 +277,7 @@ void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int x, int y, 
 // A sample with no fragments: its opaque hit, of coverage 1 where it has a depth. The hit's
 // z r g b in one register, z replaced by that coverage (SampleHit::empty's test).
 inline CompositeSample opaqueSample(const SampleHit& h) {
+    if (matteHit(h)) return {0.0f, {0, 0, 0}};  // a holdout: nothing (Matte 1)
     using Int4 = int32_t __attribute__((vector_size(16)));
     Float4 v;
     std::memcpy(&v, &h.z, sizeof v);
@@ -311,7 +312,9 @@ CompositeSample composite(const ImageBlock& block, const SampleHit& opaque, int3
         }
         over.add(f.c, f.t);
     }
-    return {over.alpha(opaque.empty() ? 0.0f : 1.0f), over.c + over.t * opaque.c};
+    // Over a matte's hit (a holdout): what is in front of it over nothing.
+    const bool matte = matteHit(opaque);
+    return {over.alpha(opaque.empty() || matte ? 0.0f : 1.0f), over.c + over.t * (matte ? Color{0, 0, 0} : opaque.c)};
 }
 
 // With solids: the samples' hits with each depth the nearest opaque surface, which may be a

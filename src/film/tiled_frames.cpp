@@ -26,9 +26,10 @@ const float* TiledFrames::Tile::pixels(int slot) const {
 }
 
 void TiledFrames::reset(int width, int height, const std::vector<PixelRect>& tiles, int firstFrame, int frameCount,
-                        const std::vector<std::string>& aovNames) {
+                        const std::vector<std::string>& aovNames, const PixelRect* window) {
     width_ = width;
     height_ = height;
+    window_ = window ? *window : PixelRect{0, 0, width - 1, height - 1};
     firstFrame_ = firstFrame;
     frameCount_ = frameCount;
     aovNames_ = aovNames;
@@ -45,10 +46,11 @@ void TiledFrames::reset(int width, int height, const std::vector<PixelRect>& til
 
 void TiledFrames::assemble(int slot, FrameImage& out) const {
     const size_t A = aovNames_.size();
-    if (out.width != width_ || out.height != height_ || out.aovNames != aovNames_ ||
-        out.rgba.size() != size_t(width_) * size_t(height_) * 4) {
+    const PixelRect& w = window_;
+    const int W = w.width(), H = w.height();
+    if (out.width != W || out.height != H || out.aovNames != aovNames_ || out.rgba.size() != size_t(W) * size_t(H) * 4) {
         out.aovNames = aovNames_;
-        out.resize(width_, height_);  // every pixel is written below
+        out.resize(W, H);  // every pixel is written below
     }
     out.frame = firstFrame_ + slot;
     for (const Tile& t : tiles_) {
@@ -56,13 +58,14 @@ void TiledFrames::assemble(int slot, FrameImage& out) const {
         if (!p)
             throw std::logic_error("TiledFrames::assemble: a tile of frame " + std::to_string(out.frame) +
                                    " was not resolved");
-        const int C = t.channels_;
-        for (int y = t.rect_.y0; y <= t.rect_.y1; ++y)
-            for (int x = t.rect_.x0; x <= t.rect_.x1; ++x, p += C) {
-                const size_t i = size_t(y) * size_t(width_) + size_t(x);
-                std::copy(p, p + 4, &out.rgba[i * 4]);
-                out.z[i] = p[4];
-                if (A) std::copy(p + 5, p + 5 + A, &out.aov[i * A]);
+        const int C = t.channels_, tw = t.rect_.width();
+        for (int y = std::max(t.rect_.y0, w.y0); y <= std::min(t.rect_.y1, w.y1); ++y)
+            for (int x = std::max(t.rect_.x0, w.x0); x <= std::min(t.rect_.x1, w.x1); ++x) {
+                const float* q = p + (size_t(y - t.rect_.y0) * size_t(tw) + size_t(x - t.rect_.x0)) * size_t(C);
+                const size_t i = size_t(y - w.y0) * size_t(W) + size_t(x - w.x0);
+                std::copy(q, q + 4, &out.rgba[i * 4]);
+                out.z[i] = q[4];
+                if (A) std::copy(q + 5, q + 5 + A, &out.aov[i * A]);
             }
     }
 }

@@ -49,9 +49,10 @@ class TiledFrames {
     };
 
     // Starts a block of `frameCount` frames from `firstFrame`, cut into `tiles` (which cover the
-    // width x height image once), each pixel with the named output variables after R G B A Z.
+    // width x height image once, or all of `window`), each pixel with the named output variables
+    // after R G B A Z. With a window (a CropWindow's pixels), frames are that window only.
     void reset(int width, int height, const std::vector<PixelRect>& tiles, int firstFrame, int frameCount,
-               const std::vector<std::string>& aovNames);
+               const std::vector<std::string>& aovNames, const PixelRect* window = nullptr);
     int firstFrame() const { return firstFrame_; }
     int frameCount() const { return frameCount_; }
     Tile& tile(size_t index) { return tiles_[index]; }
@@ -62,6 +63,7 @@ class TiledFrames {
 
   private:
     int width_ = 0, height_ = 0, firstFrame_ = 0, frameCount_ = 0;
+    PixelRect window_;  // the pixels assembled: the whole frame unless cropped
     std::vector<std::string> aovNames_;
     std::vector<Tile> tiles_;
 };

@@ -27,7 +27,10 @@ struct Grid {
     // micropolygon's triangle runs in raster space where its outside faces the eye (+1: the
     // signed area of (0, 1, 2) is positive there, -1: negative). Set by the bucket after dicing.
     int solid = -1;
-    int frontWinding = 1;     // ShadingInterpolation "constant": a micropolygon has its first vertex's colour
+    int frontWinding = 1;
+    // Matte 1 (Material::matte): a holdout. Sampled as opaque whatever its Oi, its hits tagged
+    // (raster/image_block.h kMatteBit) so that resolving gives them colour 0 and alpha 0.
+    bool matte = false;
     // A level of detail's dissolve (Material::dissolveLo/Hi): only this share of a frame's samples
     // sees the grid. [0, 1): every sample.
     float dissolveLo = 0, dissolveHi = 1;

@@ -1,5 +1,7 @@
 #include "io/exr_file.h"
 
+#include "streyes/image_io.h"
+
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -171,7 +173,9 @@ void keepError(exr_const_context_t ctxt, exr_result_t code, const char* message)
     }
 }
 
-std::vector<unsigned char> encodeScanlines(int W, int H, std::vector<Plane> planes) {
+// `window` (may be null): a crop's place, the data window at (x0, y0) in a display window of
+// fullWidth x fullHeight (RenderMan's crop files); else both windows are the W x H pixels.
+std::vector<unsigned char> encodeScanlines(int W, int H, std::vector<Plane> planes, const FrameWindow* window) {
     std::sort(planes.begin(), planes.end(),
               [](const Plane& a, const Plane& b) { return std::strcmp(a.name.c_str(), b.name.c_str()) < 0; });
     const int chunkCount = (H + kLinesPerChunk - 1) / kLinesPerChunk;
@@ -218,14 +222,24 @@ std::vector<unsigned char> encodeScanlines(int W, int H, std::vector<Plane> plan
     check(exr_start_write(&ctxt, "memory", EXR_WRITE_FILE_DIRECTLY, &init));
     int part = 0;
     check(exr_add_part(ctxt, nullptr, EXR_STORAGE_SCANLINE, &part));
-    check(exr_initialize_required_attr_simple(ctxt, part, W, H, EXR_COMPRESSION_ZIP));
+    const int x0 = window ? window->x0 : 0, y0 = window ? window->y0 : 0;
+    if (window && window->fullWidth > 0) {
+        exr_attr_box2i_t display{}, data{};
+        display.max.x = window->fullWidth - 1, display.max.y = window->fullHeight - 1;
+        data.min.x = x0, data.min.y = y0, data.max.x = x0 + W - 1, data.max.y = y0 + H - 1;
+        exr_attr_v2f_t centre{};
+        check(exr_initialize_required_attr(ctxt, part, &display, &data, 1.0f, &centre, 1.0f, EXR_LINEORDER_INCREASING_Y,
+                                           EXR_COMPRESSION_ZIP));
+    } else {
+        check(exr_initialize_required_attr_simple(ctxt, part, W, H, EXR_COMPRESSION_ZIP));
+    }
     for (const Plane& p : planes)
         check(exr_add_channel(ctxt, part, p.name.c_str(), p.half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT,
                               EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1));
     check(exr_attr_set_string(ctxt, part, "software", "streyes"));
     check(exr_write_header(ctxt));
     for (int c = 0; c < chunkCount; ++c)
-        check(exr_write_scanline_chunk(ctxt, part, c * kLinesPerChunk, chunks[size_t(c)].data(),
+        check(exr_write_scanline_chunk(ctxt, part, y0 + c * kLinesPerChunk, chunks[size_t(c)].data(),
                                        chunks[size_t(c)].size()));
     check(exr_finish(&ctxt));
     // This file becomes its layout's last (replacing the one before), the most recent.
@@ -303,7 +317,7 @@ void floatsToHalves(const float* in, size_t n, uint16_t* out) {
     for (size_t i = 0; i < n; ++i) out[i] = half(in[i]).bits();
 }
 
-std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z) {
+std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z, const FrameWindow* window) {
     const int W = image.width, H = image.height;
     const char* names[] = {"R", "G", "B", "A"};
     const int colour = alpha ? 4 : 3;
@@ -317,11 +331,11 @@ std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z
         const auto* depth = reinterpret_cast<const unsigned char*>(image.z.data());
         planes.push_back({"Z", false, depth, sizeof(float), size_t(W) * sizeof(float)});
     }
-    return encodeScanlines(W, H, std::move(planes));
+    return encodeScanlines(W, H, std::move(planes), window);
 }
 
 std::vector<unsigned char> encodeExrChannels(int W, int H, const std::vector<std::string>& channels,
-                                             const std::vector<float>& pixels) {
+                                             const std::vector<float>& pixels, const FrameWindow* window) {
     const size_t n = size_t(W) * size_t(H), nc = channels.size();
     // Each channel planar in its file type: halves rounded as encodeExr rounds them.
     std::vector<half> halves;
@@ -347,7 +361,7 @@ std::vector<unsigned char> encodeExrChannels(int W, int H, const std::vector<std
         const size_t xs = h ? sizeof(half) : sizeof(float);
         planes.push_back({channels[c], h, base, xs, size_t(W) * xs});
     }
-    return encodeScanlines(W, H, std::move(planes));
+    return encodeScanlines(W, H, std::move(planes), window);
 }
 
 bool readExr(const std::string& path, ImageData* out, std::string* error) {

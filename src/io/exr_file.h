@@ -14,6 +14,8 @@
 
 namespace streyes {
 
+struct FrameWindow;  // image_io.h
+
 // A file's chunks of scanlines are compressed on this many threads (1 at the start). The bytes
 // are the same whatever the count. The render command sets its thread count: after the last block
 // the writer is alone, and one thread encoding 48 frames left the other core idle for a third
@@ -23,7 +25,8 @@ void setExrEncodeThreads(int threads);
 // The frame as an EXR file's bytes: R, G, B (and A) as half floats, Z as float, ZIP compression
 // (the format frames have always had; libdeflate makes it, exr_file.cpp). Nothing in them depends
 // on the time, the thread count or the machine.
-std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z);
+// `window` (may be null): where the pixels lie in the frame (a crop, image_io.h).
+std::vector<unsigned char> encodeExr(const FrameImage& image, bool alpha, bool z, const FrameWindow* window = nullptr);
 
 // The chunks of 16 scanlines the encoders have stored since the program started: compressed, or
 // reused from the last file of the same size and channels, where that file packed the same bytes
@@ -42,8 +45,9 @@ void floatsToHalves(const float* in, size_t n, uint16_t* out);
 
 // Any channels, interleaved floats per pixel (channels.size() each): R, G, B, A as half floats, the
 // others (Z, output variables) as float; ZIP compression, as encodeExr.
+// `window`: where the pixels lie in the frame (a crop, image_io.h), null: the whole frame.
 std::vector<unsigned char> encodeExrChannels(int width, int height, const std::vector<std::string>& channels,
-                                             const std::vector<float>& pixels);
+                                             const std::vector<float>& pixels, const FrameWindow* window = nullptr);
 
 // Reads every pixel of an EXR file as float, channels in the order R, G, B, A, then the others by
 // name (as OpenImageIO presents them). False, with *error saying why, when the file cannot be

@@ -65,7 +65,7 @@ void FrameWriter::run() {
         std::exception_ptr failed;
         try {
             if (!error_)
-                for (const FrameOutput& o : job.outputs) writeFrame(o.path, *job.image, o.mode, o.quantize);
+                for (const FrameOutput& o : job.outputs) writeFrame(o.path, *job.image, o.mode, o.quantize, o.window);
         } catch (...) {
             failed = std::current_exception();
         }

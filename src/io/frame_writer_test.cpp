@@ -28,7 +28,7 @@ TEST(FrameWriter, WritesEveryQueuedFrameWithItsPixels) {
     FrameWriter writer(1);  // a queue of one: write() waits for the thread
     for (int f = 1; f <= 5; ++f) {
         FrameImage img = frameOf(f, 0.125f * float(f));
-        writer.write(img, {{dir + "/f." + std::to_string(f) + ".exr", "rgbaz", {}}});
+        writer.write(img, {{dir + "/f." + std::to_string(f) + ".exr", "rgbaz", {}, {}}});
         img.rgba.assign(img.rgba.size(), -1.0f);  // the renderer reuses its images: the writer holds a copy
     }
     writer.finish();
@@ -60,7 +60,7 @@ TEST(FrameWriter, HandOverTakesThePixelsAndGivesBackWrittenBuffers) {
         }
         const float* filled = img.rgba.data();
         buffers.insert(filled);
-        writer.handOver(img, {{dir + "/f." + std::to_string(f) + ".exr", "rgbaz", {}}});
+        writer.handOver(img, {{dir + "/f." + std::to_string(f) + ".exr", "rgbaz", {}, {}}});
         EXPECT_NE(img.rgba.data(), filled) << "frame " << f << " was copied, not taken";
     }
     writer.finish();
@@ -77,11 +77,11 @@ TEST(FrameWriter, AFailedWriteStopsTheFramesAfterIt) {
     const test::TempDir tempDir("writer-fails");
     const std::string& dir = tempDir.path();
     FrameWriter writer(4);
-    writer.write(frameOf(1, 0.5f), {{dir + "/a.exr", "rgba", {}}});
-    writer.write(frameOf(2, 0.5f), {{dir + "/missing/b.exr", "rgba", {}}});
+    writer.write(frameOf(1, 0.5f), {{dir + "/a.exr", "rgba", {}, {}}});
+    writer.write(frameOf(2, 0.5f), {{dir + "/missing/b.exr", "rgba", {}, {}}});
     bool thrown = false;
     try {
-        writer.write(frameOf(3, 0.5f), {{dir + "/c.exr", "rgba", {}}});
+        writer.write(frameOf(3, 0.5f), {{dir + "/c.exr", "rgba", {}, {}}});
         writer.finish();
     } catch (const RenderError& e) {
         thrown = true;

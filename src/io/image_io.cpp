@@ -146,7 +146,7 @@ namespace {
 
 // The last frame encoded, and its bytes.
 struct EncodedFrame {
-    int width = 0, height = 0;
+    int width = 0, height = 0, x0 = 0, y0 = 0, fullWidth = 0, fullHeight = 0;
     std::string mode, ext;
     std::vector<float> rgba, z, aov;
     std::vector<std::string> aovNames;
@@ -168,7 +168,8 @@ bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
     return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0);
 }
 std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage& image, const std::string& mode,
-                                       const std::string& ext, bool exr, int nch, bool alpha, bool z, const Quantize& q);
+                                       const std::string& ext, bool exr, int nch, bool alpha, bool z, const Quantize& q,
+                                       const FrameWindow& window);
 void writeBytesInPlace(const std::string& path, const std::vector<unsigned char>& bytes);
 
 // Is channel `channel` one of shader output `name`'s ("name", or "name.X" and the like)?
@@ -193,7 +194,8 @@ std::vector<std::string> channelsOf(const std::string& mode, const FrameImage& i
 
 }  // namespace
 
-void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode, const Quantize& quantize) {
+void writeFrame(const std::string& path, const FrameImage& image, const std::string& mode, const Quantize& quantize,
+                const FrameWindow& window) {
     const fs::path target(path);
     const fs::path dir = folderOf(target);
     requireFolder(path, dir, "-o");
@@ -217,13 +219,14 @@ void writeFrame(const std::string& path, const FrameImage& image, const std::str
     {
         std::lock_guard<std::mutex> lock(lastEncodedMutex());
         const EncodedFrame& last = lastEncoded();
-        if (last.width == image.width && last.height == image.height && last.mode == mode && last.ext == ext &&
+        if (last.width == image.width && last.height == image.height && last.x0 == window.x0 && last.y0 == window.y0 &&
+            last.fullWidth == window.fullWidth && last.fullHeight == window.fullHeight && last.mode == mode && last.ext == ext &&
             sameBits(last.rgba, image.rgba) && sameBits(last.z, image.z) && sameBits(last.aov, image.aov) &&
             last.aovNames == image.aovNames && sameQuantize(last.quantize) &&
             (q.floats() || q.dither == 0 || last.frame == image.frame))
             bytes = last.bytes;
     }
-    if (bytes.empty()) bytes = encodeFrame(path, image, mode, ext, exr, nch, alpha, z, q);
+    if (bytes.empty()) bytes = encodeFrame(path, image, mode, ext, exr, nch, alpha, z, q, window);
     writeBytesInPlace(path, bytes);
 }
 
@@ -252,7 +255,7 @@ void quantizePixels(std::vector<float>& data, int channels, const FrameImage& im
 
 std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage& image, const std::string& mode,
                                        const std::string& ext, bool exr, int nch, bool alpha, bool z,
-                                       const Quantize& q) {
+                                       const Quantize& q, const FrameWindow& window) {
     // EXR frames through OpenEXR; anything else (a contact sheet's PNG) through the image library.
     std::vector<unsigned char> bytes;
     if (!colourMode(mode)) {
@@ -264,7 +267,7 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
         std::vector<float> data = channelPixels(path, image, channels);
         std::string why;
         try {
-            if (exr) bytes = encodeExrChannels(image.width, image.height, channels, data);
+            if (exr) bytes = encodeExrChannels(image.width, image.height, channels, data, &window);
         } catch (const std::exception& e) {
             throw RenderError("cannot write '" + path + "': " + e.what());
         }
@@ -274,7 +277,7 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
             throw RenderError("cannot write '" + path + "': " + why + " ('" + ext + "')");
     } else if (exr) {
         try {
-            bytes = encodeExr(image, alpha, z);
+            bytes = encodeExr(image, alpha, z, &window);
         } catch (const std::exception& e) {
             throw RenderError("cannot write '" + path + "': " + e.what());
         }
@@ -296,6 +299,7 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
     std::lock_guard<std::mutex> lock(lastEncodedMutex());
     EncodedFrame& last = lastEncoded();
     last.width = image.width, last.height = image.height, last.mode = mode, last.ext = ext;
+    last.x0 = window.x0, last.y0 = window.y0, last.fullWidth = window.fullWidth, last.fullHeight = window.fullHeight;
     last.rgba = image.rgba, last.z = image.z, last.bytes = bytes;
     last.aov = image.aov, last.aovNames = image.aovNames;
     last.quantize = q, last.frame = image.frame;

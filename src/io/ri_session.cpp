@@ -32,11 +32,11 @@ void render(const std::string& rib) {
         std::vector<streyes::FrameOutput> outputs;
         for (const streyes::DisplayDesc& d : scene.settings.displays) {
             if (d.type == "openexr" || d.type == "file" || d.type == "tiff" || d.type == "exr")
-                outputs.push_back({d.name, d.mode, d.quantize});
+                outputs.push_back({d.name, d.mode, d.quantize, {}});
             else
                 log.warn(d.loc, "Display type '" + d.type + "' is not supported: '" + d.name + "' skipped");
         }
-        if (outputs.empty()) outputs.push_back({"ri.exr", "rgba", {}});
+        if (outputs.empty()) outputs.push_back({"ri.exr", "rgba", {}, {}});
         streyes::makeSceneTextures(scene);
         streyes::RenderOptions options;
         options.textureSource = streyes::openImageTextures;

@@ -62,6 +62,17 @@ struct SampleHit {
 // still kernel writes them so (sample_kernels.cpp).
 static_assert(offsetof(SampleHit, c) == sizeof(float) && offsetof(SampleHit, id) == 4 * sizeof(float) &&
               sizeof(SampleHit) == 24);
+// The top bit of a hit's or fragment's id marks a matte surface's (a holdout's, Matte 1): resolving
+// gives such an opaque hit colour 0 and alpha 0, while it hides and culls as any opaque hit does.
+// The other bits name the primitive (procedurals' children have hashed ids that may set the top
+// bit: it is cleared for every surface that is no matte, hitId).
+constexpr uint64_t kMatteBit = uint64_t(1) << 63;
+constexpr uint64_t hitId(uint64_t primitiveId, bool matte) {
+    return matte ? primitiveId | kMatteBit : primitiveId & ~kMatteBit;
+}
+// Whether a sample's opaque hit is a matte's (an empty hit is none).
+inline bool matteHit(const SampleHit& h) { return (h.id & kMatteBit) != 0 && h.id != kNoPrimitive; }
+
 constexpr SampleHit kNoHit{std::numeric_limits<float>::infinity(), {0, 0, 0}, kNoPrimitive};
 
 // A see-through hit (Oi < 1 in some channel) of a sample. Kept apart from SampleHit, in a list per

@@ -66,8 +66,9 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const Color *cl0 = grid.Cl[0].data(), *cl1 = grid.Cl[1].data();
     const int A = grid.aovCount;
     const float *av0 = grid.aov[0].data(), *av1 = grid.aov[1].data();
-    const uint64_t id = grid.primitiveId;
-    const Color *oi0 = opacities(grid, 0), *oi1 = opacities(grid, 1);
+    const uint64_t id = hitId(grid.primitiveId, grid.matte);
+    // A matte is opaque whatever its Oi.
+    const Color *oi0 = grid.matte ? nullptr : opacities(grid, 0), *oi1 = grid.matte ? nullptr : opacities(grid, 1);
     const bool solid = grid.solid >= 0;  // a solid's boundary: every crossing a tagged fragment
     // Each quad's opacity, once for all its groups: none but opaque ones is the usual case.
     // A solid's boundary counts as see-through everywhere (even where clear): the quads' loop is

@@ -75,8 +75,8 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const Color* cl = grid.Cl[0].data();
     const int A = grid.aovCount;
     const float* av = grid.aov[0].data();
-    const uint64_t id = grid.primitiveId;
-    const Color* oi = opacities(grid, 0);
+    const uint64_t id = hitId(grid.primitiveId, grid.matte);
+    const Color* oi = grid.matte ? nullptr : opacities(grid, 0);  // a matte is opaque whatever its Oi
     // A solid's boundary: every crossing is a fragment, tagged, and resolved with the others
     // (geom/solid_tree.h); even a clear one counts in classifying inside from outside.
     const bool solid = grid.solid >= 0;

@@ -602,6 +602,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
     body.diceKey(k0, grid_, 0);
     const Material* mat = body.material();
     grid_.flatShading = mat && !mat->smoothShading;
+    grid_.matte = mat && mat->matte;
     grid_.dissolveLo = mat ? mat->dissolveLo : 0;
     grid_.dissolveHi = mat ? mat->dissolveHi : 1;
     orientNormals(grid_, 0, mat);
@@ -712,6 +713,7 @@ bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
     ++counters.gridsDiced;
     const Material* mat = body.material();
     grid_.flatShading = mat && !mat->smoothShading;
+    grid_.matte = mat && mat->matte;
     grid_.dissolveLo = mat ? mat->dissolveLo : 0;
     grid_.dissolveHi = mat ? mat->dissolveHi : 1;
     for (int k = 0; k < (grid_.moving ? 2 : 1); ++k) orientNormals(grid_, k, mat);

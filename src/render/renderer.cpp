@@ -86,6 +86,13 @@ ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& o) {
     r.pattern.jitter = scene.settings.jitter;
     r.bucketSize = std::max(4, o.bucketSize > 0 ? o.bucketSize : scene.settings.bucketSize > 0 ? scene.settings.bucketSize : kDefaultBucketSize);
     r.gridSize = o.maxGridSize > 0 ? o.maxGridSize : scene.settings.gridSize > 0 ? scene.settings.gridSize : kDefaultGridSize;
+    // A depth pass is the whole view (a shadow map's): a crop applies to pictures.
+    const Param* cw = o.depthPass ? nullptr : scene.settings.options.find("CropWindow");  // xmin xmax ymin ymax
+    const double crop[4] = {cw ? cw->nums[0] : 0, cw ? cw->nums[1] : 1, cw ? cw->nums[2] : 0, cw ? cw->nums[3] : 1};
+    auto first = [](int n, double f) { return std::clamp(int(std::ceil(double(n) * f)), 0, n - 1); };
+    auto last = [](int n, double f) { return std::clamp(int(std::ceil(double(n) * f - 1)), 0, n - 1); };
+    r.cropX0 = first(r.width, crop[0]), r.cropX1 = std::max(r.cropX0, last(r.width, crop[1])) + 1;
+    r.cropY0 = first(r.height, crop[2]), r.cropY1 = std::max(r.cropY0, last(r.height, crop[3])) + 1;
     return r;
 }
 
@@ -316,10 +323,14 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     const TileLayout layout{W, H, tileSize, filter.guardX(), filter.guardY()};
     std::vector<BucketSpec> tiles;
     std::vector<PixelRect> tileRects;
+    // A crop (CropWindow) renders the tiles that reach it, the same tiles and buckets as the whole
+    // frame's: its pixels are the whole frame's, bit for bit.
+    const PixelRect crop{s.cropX0, s.cropY0, s.cropX1 - 1, s.cropY1 - 1};
     for (int ty = 0; ty * tileSize < H; ++ty)
         for (int tx = 0; tx * tileSize < W; ++tx) {
             BucketSpec b;
             b.tile = layout.tile(tx, ty);
+            if (b.tile.x1 < crop.x0 || b.tile.x0 > crop.x1 || b.tile.y1 < crop.y0 || b.tile.y0 > crop.y1) continue;
             b.tileIndex = tiles.size();
             tileRects.push_back(b.tile);
             b.rect = layout.bucketRect(tx, ty);
@@ -374,7 +385,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                     continue;
                 }
             }
-            resolved.reset(W, H, tileRects, first, count, aovNames);
+            resolved.reset(W, H, tileRects, first, count, aovNames, s.cropped() ? &crop : nullptr);
             // Spacetime: one bucket per tile spans the block's frames. Frames: one per tile and frame.
             std::vector<BucketSpec> buckets;
             for (int f = 0; f < (spacetime ? 1 : count); ++f)

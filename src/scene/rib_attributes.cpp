@@ -36,16 +36,19 @@ void opacity(RibParser& reader, RibArgs& args) {
     reader.state().mutableAttributes().opacity = Color(float(o[0]), float(o[1]), float(o[2]));
 }
 
-// Matte onoff: 0 (the default, as exporters write it on every object) changes nothing. A matte
-// object (a holdout: it hides what is behind it and leaves black, alpha 0) is not drawn as one yet:
-// it warns once (an error under --strict) and renders as an ordinary surface.
+// Matte onoff: 1 makes the geometry a holdout (it hides what is behind it and leaves colour 0,
+// alpha 0); 0, the default, as exporters write it on every object, an ordinary surface. Kept as
+// the attribute "streyes:matte" (Attribute "streyes" "int matte" [1] says the same), which
+// makeMaterial reads.
 void matte(RibParser& reader, RibArgs& args) {
     const double on = args.number("onoff");
     args.expectEnd();
     if (!(on == 0 || on == 1)) args.fail("Matte takes 0 (off) or 1 (on), got " + formatNumber(on));
-    if (on != 0)
-        reader.log().lenient("request:Matte", args.loc(),
-                             "Matte 1 (a holdout) is not supported yet: the surface renders as an ordinary one");
+    Param p;
+    p.name = "matte", p.type = ParamType::Integer, p.nums = {on}, p.loc = args.loc();
+    ParamList given;
+    given.params.push_back(std::move(p));
+    keepCategoryValues("streyes", given, reader.state().mutableAttributes().user);
 }
 
 void shadingRate(RibParser& reader, RibArgs& args) {

@@ -79,6 +79,14 @@ void worldBegin(RibParser& reader, RibArgs& args) {
         light.lightToWorld = light.lightToWorld.then(inverseOf(s.ctm, args));
     }
     s.cameraLights.clear();
+    // Coordinate systems named before WorldBegin were camera-relative: now through the camera's inverse.
+    for (const std::string& name : s.cameraSpaces) {
+        auto it = s.coordinateSystems.find(name);
+        if (it == s.coordinateSystems.end()) continue;
+        it->second = it->second.then(inverseOf(s.ctm, args));
+        keepCoordinateSystem(reader.scene().settings, name, it->second);
+    }
+    s.cameraSpaces.clear();
     s.blocks.push_back(RibState::Block{BlockKind::World, args.loc(), s.attributes, s.ctm});
     s.ctm = MotionTransform();
     s.world = World::Inside;
@@ -97,6 +105,7 @@ void worldEnd(RibParser& reader, RibArgs& args) {
                                          ") comes before its " + RibState::endName(open.kind));
     s.attributes = open.attributes;
     s.ctm = open.ctm;
+    s.endScopedCoordinateSystems(s.blocks.back());
     s.blocks.pop_back();
     s.world = World::After;
 }
@@ -124,6 +133,7 @@ void attributeEnd(RibParser& reader, RibArgs& args) {
                   std::to_string(open.begin.line) + ": close that with " + RibState::endName(open.kind) + " first");
     s.attributes = open.attributes;
     s.ctm = open.ctm;
+    s.endScopedCoordinateSystems(s.blocks.back());
     s.blocks.pop_back();
 }
 
@@ -137,6 +147,7 @@ void transformEnd(RibParser& reader, RibArgs& args) {
         args.fail(std::string("TransformEnd does not match the ") + RibState::beginName(open.kind) + " at line " +
                   std::to_string(open.begin.line) + ": close that with " + RibState::endName(open.kind) + " first");
     s.ctm = open.ctm;
+    s.endScopedCoordinateSystems(s.blocks.back());
     s.blocks.pop_back();
 }
 

@@ -244,9 +244,9 @@ void display(RibParser& reader, RibArgs& args) {
     settings.displays.push_back(std::move(desc));
 }
 
-// CropWindow xmin xmax ymin ymax (fractions of the frame): the whole frame, 0 1 0 1 (what
-// exporters write by default), changes nothing; a smaller window is not cut out yet: it warns once
-// and the whole frame is rendered and written.
+// CropWindow xmin xmax ymin ymax (fractions of the frame, y from the top): only the pixels inside
+// are rendered and written (ResolvedSettings::cropX0...); 0 1 0 1, what exporters write by
+// default, is the whole frame.
 void cropWindow(RibParser& reader, RibArgs& args) {
     std::vector<double> w;
     for (const char* what : {"xmin", "xmax", "ymin", "ymax"}) w.push_back(args.number(what));
@@ -254,9 +254,14 @@ void cropWindow(RibParser& reader, RibArgs& args) {
     for (double x : w)
         if (!(x >= 0 && x <= 1)) args.fail("CropWindow takes fractions of the frame from 0 to 1, got " + formatNumber(x));
     if (!(w[0] < w[1]) || !(w[2] < w[3])) args.fail("CropWindow: xmin must be below xmax and ymin below ymax");
-    if (w[0] == 0 && w[1] == 1 && w[2] == 0 && w[3] == 1) return;
-    reader.log().lenient("request:CropWindow", args.loc(),
-                         "CropWindow smaller than the frame is not supported yet: the whole frame is rendered and written");
+    // Kept among the options as "CropWindow" (what shaders' option("CropWindow") reads, and what
+    // tells passes apart); resolveSettings turns it into pixels.
+    Param p;
+    p.name = "CropWindow", p.arraySize = 4, p.nums = w, p.loc = args.loc();
+    std::vector<Param>& options = reader.scene().settings.options.params;
+    auto same = std::find_if(options.begin(), options.end(), [](const Param& q) { return q.name == "CropWindow"; });
+    if (same != options.end()) *same = std::move(p);
+    else options.push_back(std::move(p));
 }
 
 // Quantize "type" one min max ditheramplitude: one, min, max and the amplitude finite, one and the

@@ -42,6 +42,9 @@ struct RibState {
         std::shared_ptr<Attributes> attributes;  // saved by World, Attribute and Solid blocks
         MotionTransform ctm;
         int outerSolid = -1;  // Solid blocks: openSolid before it (restored at SolidEnd)
+        // ScopedCoordinateSystem names given in the block, with what each meant before (none: it
+        // was not defined): restored at its end (endScopedCoordinateSystems).
+        std::vector<std::pair<std::string, std::optional<MotionTransform>>> scopedSpaces = {};
     };
     struct MotionBlock {
         std::vector<double> times;
@@ -75,6 +78,12 @@ struct RibState {
     // Shared with the primitives made under them: change them through mutableAttributes().
     std::shared_ptr<Attributes> attributes = std::make_shared<Attributes>();
     MotionTransform ctm;  // object to world; before WorldBegin, world to camera
+    // CoordinateSystem and ScopedCoordinateSystem: the CTM where each name was given, as object to
+    // world (one given before WorldBegin is made so at WorldBegin; until then it is camera-relative
+    // and listed in cameraSpaces).
+    std::map<std::string, MotionTransform> coordinateSystems;
+    std::set<std::string> cameraSpaces;
+    void endScopedCoordinateSystems(Block& block);  // at the end of a block: its scoped names undone
     std::vector<Block> blocks;  // open World/Attribute/Transform blocks, innermost last
     World world = World::Before;
     SourceLoc worldBegin;

@@ -662,11 +662,12 @@ TEST(RibErrors, UnsupportedRequestWarnsOnceAndParses) {
                         log);
     EXPECT_EQ(scene.patches.size(), 1u);
     std::vector<std::string> w = log.warnings();
-    ASSERT_EQ(w.size(), 2u);
+    ASSERT_EQ(w.size(), 1u);
     EXPECT_EQ(w[0], "test.rib:2: warning: unsupported request 'ColorSamples' ignored");
-    // Matte 0 (the default) is silent; a holdout is not drawn as one yet.
-    EXPECT_EQ(w[1], "test.rib:7: warning: Matte 1 (a holdout) is not supported yet: the surface renders as an "
-                    "ordinary one");
+    // Matte 0 and Matte 1 are read silently: the patch after them is a holdout.
+    const Param* matte = scene.patches[0].attributes->user.find("streyes:matte");
+    ASSERT_NE(matte, nullptr);
+    EXPECT_EQ(matte->nums, std::vector<double>{1});
 }
 
 }  // namespace
@@ -677,17 +678,20 @@ namespace {
 
 // CropWindow: the whole frame is silent, a smaller window warns (it is not cut out yet), a window
 // outside [0, 1] or empty is an error at its line.
-TEST(RibErrors, CropWindowWholeFrameIsSilentSmallerWarnsBadFails) {
+TEST(RibErrors, CropWindowIsReadSilentlyBadFails) {
     {
         Log log;
         parse(std::string("CropWindow 0 1 0 1\nWorldBegin\n") + kUnitPatch + "WorldEnd\n", log);
         EXPECT_TRUE(log.warnings().empty());
     }
     {
+        // Kept among the options (what option("CropWindow") and the renderer read).
         Log log;
-        parse(std::string("CropWindow 0.25 0.75 0 1\nWorldBegin\n") + kUnitPatch + "WorldEnd\n", log);
-        ASSERT_EQ(log.warnings().size(), 1u);
-        EXPECT_NE(log.warnings()[0].find("test.rib:1: warning: CropWindow smaller than the frame"), std::string::npos);
+        const Scene scene = parse(std::string("CropWindow 0.25 0.75 0 1\nWorldBegin\n") + kUnitPatch + "WorldEnd\n", log);
+        EXPECT_TRUE(log.warnings().empty());
+        const Param* crop = scene.settings.options.find("CropWindow");
+        ASSERT_NE(crop, nullptr);
+        EXPECT_EQ(crop->nums, (std::vector<double>{0.25, 0.75, 0, 1}));
     }
     for (const char* bad : {"CropWindow 0 1.5 0 1\n", "CropWindow 0.5 0.5 0 1\n", "CropWindow 0 1 0\n"}) {
         Log log;

@@ -164,8 +164,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
     // RIB requests outside the subset: warned about once and skipped.
     for (const char* name :
          {"ColorSamples", "Interior", "Exterior", "Deformation",
-          "TextureCoordinates", "Perspective", "Skew",
-          "CoordinateSystem", "CoordSysTransform", "ScopedCoordinateSystem", "ArchiveEnd", "MakeBump",
+          "TextureCoordinates", "Perspective", "Skew", "ArchiveEnd", "MakeBump",
           "MakeCubeFaceEnvironment", "MakeBrickMap",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
           "System", "Shader", "Bxdf", "Pattern", "Integrator", "DisplayFilter", "SampleFilter",

@@ -68,6 +68,7 @@ void solidEnd(RibParser& reader, RibArgs& args) {
     s.attributes = open.attributes;
     s.ctm = open.ctm;
     s.openSolid = open.outerSolid;
+    s.endScopedCoordinateSystems(s.blocks.back());
     s.blocks.pop_back();
 }
 

@@ -217,6 +217,17 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     worldToCamera_ = camera_.worldToCamera().at(time);
     world_ = shaders_ ? shaders_->worldToCameraAt(time) : worldToCamera_;
     sgrid_.setSpace(sl::Space::World, world_);
+    // Named coordinate systems (CoordinateSystem): object to world, then this "world".
+    sgrid_.coordinateSystems = nullptr;
+    if (shaders_ && !shaders_->coordinateSystems().empty()) {
+        const std::vector<sl::NamedSpace>& named = shaders_->coordinateSystems();
+        namedSpaces_.resize(named.size());
+        for (size_t i = 0; i < named.size(); ++i) {
+            namedSpaces_[i].name = named[i].name;
+            namedSpaces_[i].toCurrent = named[i].toCurrent * world_;
+        }
+        sgrid_.coordinateSystems = &namedSpaces_;
+    }
     bindPrimvars(m, grid, n, time);
     sgrid_.flipNormals = m.flipNormals;  // calculatenormal turns as N does (Orientation, mirroring)
     sgrid_.seed = unsigned(grid.primitiveId ^ (grid.primitiveId >> 32));

@@ -109,6 +109,7 @@ class GridShader {
     float du_ = 0, dv_ = 0, time_ = 0;  // uniform inputs the shading grid points at
     Matrix4 worldToCamera_;             // at the slot's time: the render camera's (primitives' space)
     Matrix4 world_;                     // "world" space: the camera of the frame the slot's time falls in
+    std::vector<sl::NamedSpace> namedSpaces_;  // the scene's coordinate systems to current space
     std::vector<sl::LightRef> unshadowed_, withOne_;
     std::vector<Color> base_, withLight_;
     std::vector<Vec3f> orthoI_;  // I under an orthographic camera

@@ -1,5 +1,7 @@
 #include "shade/scene_queries.h"
 
+#include "bodies/material.h"
+
 namespace streyes {
 
 bool queryValueOf(const Param& p, sl::QueryValue& out) {
@@ -34,7 +36,7 @@ OptionValues::OptionValues(const Scene& scene) {
     values_["DeviceResolution"] = values_["Format"];
     const double frameAspect = c.frameAspect > 0 ? c.frameAspect : double(c.xres) * c.pixelAspect / double(c.yres);
     values_["FrameAspectRatio"] = sl::QueryValue::numbers({float(frameAspect)});
-    values_["CropWindow"] = sl::QueryValue::numbers({0, 1, 0, 1});  // CropWindow is not read: the whole frame
+    values_["CropWindow"] = sl::QueryValue::numbers({0, 1, 0, 1});  // the whole frame unless a CropWindow (below)
     if (c.depthOfField())
         values_["DepthOfField"] = sl::QueryValue::numbers({float(c.fstop), float(c.focalLength), float(c.focalDistance)});
     else
@@ -66,7 +68,7 @@ bool SceneQueries::attribute(const std::string& name, sl::QueryValue& out) const
     // RI Spec 3.2, section 15.8.
     if (name == "ShadingRate") out = sl::QueryValue::numbers({float(a.shadingRate)});
     else if (name == "Sides") out = sl::QueryValue::numbers({a.twoSided ? 2.0f : 1.0f});
-    else if (name == "Matte") out = sl::QueryValue::numbers({0});  // Matte is not read: nothing is a matte
+    else if (name == "Matte") out = sl::QueryValue::numbers({isMatte(a) ? 1.0f : 0.0f});
     else if (name == "GeometricApproximation:motionfactor") out = sl::QueryValue::numbers({float(a.motionFactor)});
     else if (name == "displacementbound:sphere") out = sl::QueryValue::numbers({float(a.displacementBound)});
     else if (name == "displacementbound:coordinatesystem") out = sl::QueryValue::string(a.displacementBoundSpace);

@@ -197,6 +197,11 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
     searchPathSet_ = !scene.settings.shaderSearchPath.empty();
     if (searchPathSet_) cache_->setSearchPath(scene.settings.shaderSearchPath);
     cache_->appendSearchPath(environmentSearchPath(kShaderPathVariable));
+    // CoordinateSystem names, as the RIB reader keeps them ("CoordinateSystem:name", a matrix).
+    const std::string prefix = "CoordinateSystem:";
+    for (const Param& p : scene.settings.options.params)
+        if (p.name.compare(0, prefix.size(), prefix) == 0 && p.type == ParamType::Matrix && p.nums.size() == 16)
+            coordinateSystems_.push_back({p.name.substr(prefix.size()), Matrix4::fromRowMajor(p.nums.data())});
 
     if (!scene.settings.imager.name.empty())
         imager_ = instance(scene.settings.imager.name, scene.settings.imager.params, scene.settings.imager.loc,

@@ -19,6 +19,7 @@
 #include "shade/scene_queries.h"
 #include "shade/sl/compiler.h"
 #include "shade/vm/shader_instance.h"
+#include "shade/vm/shading_grid.h"
 #include "shade/vm/texture_source.h"
 #include "streyes/error.h"
 #include "streyes/frame_image.h"
@@ -82,6 +83,9 @@ class SceneShaders final : public MaterialBinder {
 
     // What option() and attribute() read on a grid whose primitive has `attributes` (may be null).
     SceneQueries queries(const Attributes* attributes) const { return SceneQueries(&options_, attributes); }
+    // The scene's named coordinate systems (CoordinateSystem), each's toCurrent its object-to-world
+    // matrix (GridShader follows it with the grid's world space): transform("name", ...).
+    const std::vector<sl::NamedSpace>& coordinateSystems() const { return coordinateSystems_; }
     // Where shaders' run-time warnings go (an array index out of range, a runaway loop).
     Log& log() const { return log_; }
     // specular()'s exponent over roughness (RenderSettings::specularExponent).
@@ -117,6 +121,7 @@ class SceneShaders final : public MaterialBinder {
 
     MotionTransform worldToCamera_;
     OptionValues options_;
+    std::vector<sl::NamedSpace> coordinateSystems_;
     std::unique_ptr<sl::ShaderCache> cache_;  // thread-safe: materials are bound on worker threads too
     bool searchPathSet_ = false;
     std::vector<std::shared_ptr<sl::ShaderInstance>> lights_;

@@ -273,10 +273,20 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
                     continue;
                 }
             }
+            const Material& m = *body.material();
+            if (m.matte) {
+                // A holdout (Matte 1): opaque, and nothing of its own. What is in front of it is
+                // kept as one fragment over its hit, which resolves to colour 0 and alpha 0.
+                hit = {p.z, {0, 0, 0}, hitId(body.primitiveId(), true)};
+                if (over.t == Color{1, 1, 1}) return;
+                block.startFragments();
+                block.addFragment(block.recordFragments(at.fi, at.pixel) + at.sample,
+                                  SampleFragment{nearestZ, over.c, over.t, nearestId, -1});
+                return;
+            }
             const Color cs = bilerp(body.colors(), h.u, h.v);
             const std::vector<CameraLight>& lights =
                 lightsAt(scene.lights, time);  // refreshed per sample only when lights or camera move
-            const Material& m = *body.material();
             Color o = m.Os;
             Color c = m.surface && shader_
                           ? shader_->shadeHit(m, cs, p, n, time, body.uv[0] + h.u * (body.uv[1] - body.uv[0]),
@@ -287,13 +297,13 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
             o = {std::clamp(o.x, 0.0f, 1.0f), std::clamp(o.y, 0.0f, 1.0f), std::clamp(o.z, 0.0f, 1.0f)};
             const bool opaque = o.x >= 1 && o.y >= 1 && o.z >= 1;
             if (opaque && over.t == Color{1, 1, 1}) {
-                hit = {p.z, c, body.primitiveId()};  // nothing in front: its colour as it is
+                hit = {p.z, c, hitId(body.primitiveId(), false)};  // nothing in front: its colour as it is
                 return;
             }
-            if (over.t == Color{1, 1, 1}) nearestZ = p.z, nearestId = body.primitiveId();
+            if (over.t == Color{1, 1, 1}) nearestZ = p.z, nearestId = hitId(body.primitiveId(), false);
             over.add(c, Color{1, 1, 1} - o);
             if (opaque) {  // the opaque hit behind see-through ones
-                hit = {p.z, over.c, body.primitiveId()};
+                hit = {p.z, over.c, hitId(body.primitiveId(), false)};
                 return;
             }
             tNear = std::nextafter(h.t, std::numeric_limits<float>::infinity());

@@ -171,6 +171,24 @@ alpha_agrees("collection instances", si, ci)
 F.check(rib.count("ObjectBegin") == 1 and rib.count("ObjectInstance") == 3,
         "one object definition, three instances (%d, %d)" % (rib.count("ObjectBegin"), rib.count("ObjectInstance")))
 
+# -- holdouts --------------------------------------------------------------------------------------
+# A holdout square (2 x 2, 1 above the lit floor, pixels 18..30 of 48) leaves a hole: colour 0 and
+# alpha 0 where it is, in streyes (Matte 1) as in Cycles; the floor around it as before.
+scene = floor_scene()
+scene.render.film_transparent = True
+light(scene, "SUN", (2, -3, 5), energy=2.0, angle=0.0)
+holdout = util.mesh_object("Holdout", [(-1, -1, 1), (1, -1, 1), (1, 1, 1), (-1, 1, 1)], [(0, 1, 2, 3)])
+holdout.is_holdout = True
+si, ci, rib = both(scene, "holdout")
+F.check("Matte 1" in rib, "the holdout is exported as Matte 1")
+for name, img in (("streyes", si), ("Cycles", ci)):
+    hole, floor = img[20:28, 20:28], img[4:10, 4:10]
+    F.check(float(np.abs(hole).max()) == 0.0, "%s: the holdout leaves colour 0, alpha 0 (max %.4f)" %
+            (name, float(np.abs(hole).max())))
+    F.check(float(floor[..., 3].min()) == 1.0 and float(floor[..., :3].mean()) > 0.02,
+            "%s: the floor beside it is lit and opaque (alpha %.4f)" % (name, float(floor[..., 3].min())))
+alpha_agrees("holdout", si, ci, mean=0.02, within=0.97)
+
 # -- structure -------------------------------------------------------------------------------------
 scene = util.empty_scene(32, 32, (1, 5))
 scene.frame_step = 2

@@ -29,8 +29,8 @@ class Surface:
 
     def write(self, w):
         if self.holdout:
-            # RenderMan's holdout: hides what is behind, leaves alpha 0. A streyes without Matte
-            # warns and draws it black and opaque.
+            # RenderMan's holdout: hides what is behind, leaves colour 0 and alpha 0 (as Cycles'
+            # Holdout; tests/blender/export_test.py compares the two).
             w.write("Matte", "1")
             w.write("Surface", rib.string("constant"))
             w.write("Color", "[0 0 0]")
