@@ -196,7 +196,7 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
     if (fb < 0) fb = bucket_.frameCount - 1;
     const TimeSpan& span = root.time();
     const double a = bucket_.firstFrame + fa + scene_.shutter.open, b = bucket_.firstFrame + fb + scene_.shutter.close;
-    if (!reachesSamples(span, a, b)) return;
+    if (!reachesSamples(span, a, b, scene_.shutter.open == scene_.shutter.close)) return;
     if (root.expands() && root.moving()) {
         pushProceduralViews(static_cast<const ProceduralBody&>(root), fa, fb);
     } else if (root.moving() || (!root.expands() && shadingVaries(root))) {
@@ -233,7 +233,7 @@ void BucketWorker::pushChunks(const Body& root, int chunk, int ca, int cb) {
     const TimeSpan& span = root.time();
     const double open = scene_.shutter.open, close = scene_.shutter.close;
     const double a = std::max(span.t0, double(ca) * chunk + open), b = std::min(span.t1, double(cb + 1) * chunk - 1 + close);
-    if (a > b || !reachesSamples(span, a, b)) return;
+    if (a > b || !reachesSamples(span, a, b, scene_.shutter.open == scene_.shutter.close)) return;
     // Not one piece of these chunks can reach the bucket (the margin keeps this conservative to
     // float rounding: the pieces' own bounds decide, as always, in process()).
     const PixelRect& R = bucket_.rect;

@@ -22,11 +22,13 @@ bool cullBackFacing(Grid& grid, const Camera& cam);
 // Does a body's span [t0, t1] reach a sample time in [a, b] (at a only, when a == b)? Motion
 // segments meet at keys: a segment that only touches [a, b] at its end is left to the next one,
 // which covers that instant too (a segment is open at its end exactly when one follows); one that
-// starts where [a, b] ends is never reached (sample times stay below b).
-inline bool reachesSamples(const TimeSpan& span, double a, double b) {
+// starts where [a, b] ends is not reached while the shutter is open (sample times stay below b),
+// but is when it is closed (`instantExposures`: Shutter 0 0, RenderMan's default, samples every
+// frame at the instant b of the last frame).
+inline bool reachesSamples(const TimeSpan& span, double a, double b, bool instantExposures) {
     if (!span.overlaps(a, b)) return false;
     if (span.t1 == a && span.t0 < span.t1 && span.openEnd) return false;
-    if (span.t0 == b && a < b) return false;
+    if (span.t0 == b && a < b && !instantExposures) return false;
     return true;
 }
 

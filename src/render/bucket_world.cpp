@@ -183,7 +183,7 @@ void BucketWorker::shadeSampleFrames(const Body& body, const Grid& diced, bool d
     const size_t count = size_t(diced.vertexCount());
     for (int fi = 0; fi < bucket_.frameCount; ++fi) {
         const double f = bucket_.firstFrame + fi;
-        if (!reachesSamples(span, f + open, f + close)) continue;
+        if (!reachesSamples(span, f + open, f + close, open == close)) continue;
         const double a = std::max(span.t0, f + open), b = std::min(span.t1, f + close);
         // The frame's part of the piece misses the bucket (the cut's own bound, as pushChunks culls).
         if (boxOutside(cam, displaced(body, body.boundDuring(a, b)), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) continue;

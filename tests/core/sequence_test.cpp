@@ -234,6 +234,33 @@ TEST(Sequence, TouchingExposuresAreJoinedWithoutBleeding) {
     }
 }
 
+// RenderMan's default shutter (Shutter 0 0: every frame an instant) under a camera that moves from
+// frame to frame: the last frame's camera is a body of its own starting at the block's last
+// instant, which is sampled. It was left out of blocks (the last frame empty) and rendered alone.
+TEST(Sequence, InstantExposuresUnderAMovingCameraKeepEveryFrame) {
+    Log log;
+    auto frame = [](int f) {
+        const std::string camera = "Translate " + std::to_string(-4 * f) + " 0 0\n";
+        return "FrameBegin " + std::to_string(f) + "\n" + test::orthoHeader(64, 16, camera) +
+               test::square(20, 28, 4, 12, 1) + "WorldEnd\nFrameEnd\n";
+    };
+    const std::vector<std::string> frames = {frame(1), frame(2), frame(3)};
+    const Sequence seq = buildFrames(frames, log);
+    for (Algorithm a : {Algorithm::Frames, Algorithm::Spacetime, Algorithm::SpacetimeOcclusion}) {
+        const RenderResult all = renderScene(seq.scene, test::optionsFor(a));
+        for (int f = 1; f <= 3; ++f) {
+            EXPECT_DOUBLE_EQ(test::alphaSum(all, f), 64.0) << "frame " << f << " algorithm " << int(a);
+            EXPECT_EQ(all.alpha(f, 24 - 4 * f, 8), 1.0f) << "frame " << f << " algorithm " << int(a);
+            Log l;
+            Scene alone = parseRibString(frames[size_t(f - 1)], "alone.rib", l);
+            alone.settings.hasFrames = true;
+            alone.settings.firstFrame = alone.settings.lastFrame = f;
+            EXPECT_TRUE(test::identicalPixels(oneFrame(all, f), renderScene(alone, test::optionsFor(a))))
+                << "frame " << f << " algorithm " << int(a);
+        }
+    }
+}
+
 // A light declared before WorldBegin is placed in camera space: a headlight.
 TEST(Sequence, LightsBeforeWorldBeginAreInCameraSpace) {
     const std::string header = "Format 32 32 1\nProjection \"perspective\" \"fov\" [60]\n";
