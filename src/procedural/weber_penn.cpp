@@ -438,7 +438,10 @@ WeberPennParams parseWeberPennParams(const std::string& datablock, const SourceL
             throw InputError(loc, "tree: '" + key + "' takes " + std::to_string(n) + " number(s), got '" + value + "'");
         return r;
     };
-    for (const auto& [key, value] : items) {
+    for (const auto& item : items) {
+        // Named copies, not a structured binding: C++17 lambdas cannot capture those (clang refuses).
+        const std::string& key = item.first;
+        const std::string& value = item.second;
         auto one = [&](double lo, double hi) {
             const double v = numbers(key, value, 1)[0];
             if (!(v >= lo && v <= hi))
