@@ -1,11 +1,14 @@
 // Motion segments, as the body factory cuts a primitive's time window at its keys: shared by the
-// factory's files (body_factory.cpp, curve_bodies.cpp).
+// factory's files (body_factory.cpp, surface_bodies.cpp, curve_bodies.cpp).
 #pragma once
 
+#include <algorithm>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "geom/body.h"
+#include "streyes/transform.h"
 
 namespace streyes {
 
@@ -37,5 +40,49 @@ void forEachSegment(const std::vector<double>& ts, const std::vector<Key>& keys,
         i = j;
     }
 }
+
+// Key times of a motion inside (a, b), plus a and b.
+inline std::vector<double> segmentTimes(const std::vector<double>& keys, double a, double b) {
+    std::vector<double> ts{a};
+    for (double t : keys)
+        if (t > a && t < b) ts.push_back(t);
+    if (b > a) ts.push_back(b);
+    return ts;
+}
+
+inline std::vector<double> keysOf(const MotionTransform& m) { return m.isStatic() ? std::vector<double>{} : m.times(); }
+
+// Marks the bodies a primitive appended to `out` (from `first` on) as still in world space when
+// neither its transform nor its own points move: they move in camera space with the camera only
+// (Body::stillInWorld). Marked when the add function returns, whichever way it returns.
+struct MarkStillInWorld {
+    std::vector<BodyPtr>& out;
+    size_t first;
+    bool still;
+    MarkStillInWorld(std::vector<BodyPtr>& o, const MotionTransform& objectToWorld, size_t ownKeys)
+        : out(o), first(o.size()), still(objectToWorld.isStatic() && ownKeys <= 1) {}
+    ~MarkStillInWorld() {
+        if (still)
+            for (size_t b = first; b < out.size(); ++b) out[b]->stillInWorld = true;
+    }
+};
+
+// Where time t falls among a primitive's keys: between key i and i + 1 at fraction s (held
+// before the first key and after the last, where s = 0).
+inline void keyInterval(const std::vector<double>& times, size_t keys, double t, size_t* i, double* s) {
+    *s = 0;
+    if (keys == 1 || t <= times.front()) {
+        *i = 0;
+    } else if (t >= times.back()) {
+        *i = keys - 1;
+    } else {
+        *i = size_t(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
+        *s = (t - times[*i]) / (times[*i + 1] - times[*i]);
+    }
+}
+
+// The warning, given once, for a primitive whose camera-space points are not finite.
+inline constexpr const char* kNonFiniteWarning =
+    "primitive has non-finite coordinates in camera space: skipped (so are any others)";
 
 }  // namespace streyes
