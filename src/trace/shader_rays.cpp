@@ -181,6 +181,22 @@ Color ShaderRays::shadeHit(const TrilinearBody& body, const TraceHit& h, const R
     return c;
 }
 
+// The mean colour the shaded hits of s rays in the cone of half-angle `cone` around `axis` give
+// (cosine-weighted or uniform; misses count black): indirectdiffuse() and blurred trace().
+Color ShaderRays::coneMean(Vec3f p, Vec3f axis, float cone, bool cosine, uint32_t s, uint64_t h, double time,
+                           float bias, float maxdist) {
+    Vec3f t, b;
+    frameOf(axis, &t, &b);
+    Color sum{0, 0, 0};
+    for (uint32_t j = 0; j < s; ++j) {
+        float ua, ub;
+        sample2(j, s, h, &ua, &ub);
+        Color c;
+        if (shadeAlong({p, coneDirection(axis, t, b, cone, cosine, ua, ub)}, time, bias, maxdist, &c)) sum += c;
+    }
+    return sum * (1.0f / float(s));
+}
+
 bool ShaderRays::shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color* c) {
     const SpacetimeBVH& bvh = hierarchyAt(time);
     ++rays_;
@@ -240,19 +256,7 @@ void ShaderRays::indirectdiffuse(const sl::RayOptions& o, const sl::RayQuery& q,
         const Vec3f p = at3(q.P, i);
         const Vec3f n = normalize(at3(q.D, i));
         Color sum{0, 0, 0};
-        if (dot(n, n) > 0.5f) {
-            Vec3f t, b;
-            frameOf(n, &t, &b);
-            const uint64_t h = pointHash(p, q.seed, q.site);
-            const float bias = biasAt(o, p);
-            for (uint32_t j = 0; j < s; ++j) {
-                float ua, ub;
-                sample2(j, s, h, &ua, &ub);
-                Color c;
-                if (shadeAlong({p, coneDirection(n, t, b, cone, true, ua, ub)}, q.time, bias, o.maxdist, &c)) sum += c;
-            }
-            sum = sum * (1.0f / float(s));
-        }
+        if (dot(n, n) > 0.5f) sum = coneMean(p, n, cone, true, s, pointHash(p, q.seed, q.site), q.time, biasAt(o, p), o.maxdist);
         for (int c = 0; c < 3; ++c) out[c][i] = sum[c];
     }
 }
@@ -273,16 +277,7 @@ void ShaderRays::trace(const sl::RayOptions& o, const sl::RayQuery& q, float* co
                 Color c;
                 if (shadeAlong({p, d}, q.time, bias, o.maxdist, &c)) sum = c;
             } else {  // a blurred reflection: uniform in the cone
-                Vec3f t, b;
-                frameOf(d, &t, &b);
-                const uint64_t h = pointHash(p, q.seed, q.site);
-                for (uint32_t j = 0; j < s; ++j) {
-                    float ua, ub;
-                    sample2(j, s, h, &ua, &ub);
-                    Color c;
-                    if (shadeAlong({p, coneDirection(d, t, b, cone, false, ua, ub)}, q.time, bias, o.maxdist, &c)) sum += c;
-                }
-                sum = sum * (1.0f / float(s));
+                sum = coneMean(p, d, cone, false, s, pointHash(p, q.seed, q.site), q.time, bias, o.maxdist);
             }
         }
         for (int c = 0; c < 3; ++c) out[c][i] = sum[c];

@@ -50,6 +50,8 @@ class ShaderRays final : public sl::RaySource {
     // The colour the ray brings back from its nearest hits within (tMin, tMax): shaded at the next
     // depth, see-through ones composited over what lies behind them. False: nothing is hit.
     bool shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color* c);
+    Color coneMean(Vec3f p, Vec3f axis, float cone, bool cosine, uint32_t s, uint64_t h, double time, float bias,
+                   float maxdist);
     Color shadeHit(const TrilinearBody& body, const TraceHit& h, const Ray& ray, double time, Color* opacity);
     // c plus the parts of the lights that cast shadows a shadow ray from p reaches.
     Color addReachedLights(Color c, Vec3f p, double time, const SpacetimeBVH& bvh);
