@@ -192,7 +192,7 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
 // Each root whose time span meets the bucket's frames enters the loop. A moving root (or any
 // root, while the lights move) is cut at each frame's exposure first, from the root itself: a
 // frame's pieces, and so its pixels, are the same whatever block of frames it is rendered in.
-void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
+void BucketWorker::pushRoot(const Body& root, int fa, int fb, FrameRun run) {
     if (fb < 0) fb = bucket_.frameCount - 1;
     const TimeSpan& span = root.time();
     const double a = bucket_.firstFrame + fa + scene_.shutter.open, b = bucket_.firstFrame + fb + scene_.shutter.close;
@@ -208,7 +208,7 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
         }
         const int chunk = chunkFrames(root);
         auto chunkOf = [&](int frame) { return frame >= 0 ? frame / chunk : -((-frame + chunk - 1) / chunk); };
-        pushChunks(root, chunk, chunkOf(bucket_.firstFrame + fa), chunkOf(bucket_.firstFrame + fb));
+        pushChunks(root, chunk, chunkOf(bucket_.firstFrame + fa), chunkOf(bucket_.firstFrame + fb), run);
     } else if (fa > 0 || fb < bucket_.frameCount - 1) {
         // Still, but wanted in some of the bucket's frames only (a moving procedural's children at
         // one level of detail): the piece over those frames.
@@ -227,12 +227,14 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb) {
 int BucketWorker::chunkFrames(const Body& root) const { return rootChunkFrames(root, scene_.camera, worldChunks(root)); }
 
 // A moving root's pieces for the bucket's frames [fa, fb]: one a chunk of `chunk` frames aligned
-// to multiples of `chunk` (absolute frame numbers), cut from the root. The chunks whose time its
-// bound reaches the bucket in are found by halving the range of chunks.
-void BucketWorker::pushChunks(const Body& root, int chunk, int ca, int cb) {
+// to multiples of `chunk` (absolute frame numbers), cut from the root, and within `run` (the
+// frames a procedural's view stands for, as its level of detail has them: see levelRun). The
+// chunks whose time its bound reaches the bucket in are found by halving the range of chunks.
+void BucketWorker::pushChunks(const Body& root, int chunk, int ca, int cb, FrameRun run) {
     const TimeSpan& span = root.time();
     const double open = scene_.shutter.open, close = scene_.shutter.close;
-    const double a = std::max(span.t0, double(ca) * chunk + open), b = std::min(span.t1, double(cb + 1) * chunk - 1 + close);
+    const double first = std::max(double(ca) * chunk, double(run.lo)), last = std::min(double(cb + 1) * chunk - 1, double(run.hi));
+    const double a = std::max(span.t0, first + open), b = std::min(span.t1, last + close);
     if (a > b || !reachesSamples(span, a, b, scene_.shutter.open == scene_.shutter.close)) return;
     // Not one piece of these chunks can reach the bucket (the margin keeps this conservative to
     // float rounding: the pieces' own bounds decide, as always, in process()).
@@ -243,13 +245,15 @@ void BucketWorker::pushChunks(const Body& root, int chunk, int ca, int cb) {
     }
     if (ca < cb) {
         const int mid = ca + (cb - ca) / 2;
-        pushChunks(root, chunk, ca, mid);
-        pushChunks(root, chunk, mid + 1, cb);
+        pushChunks(root, chunk, ca, mid, run);
+        pushChunks(root, chunk, mid + 1, cb, run);
         return;
     }
     BodyPtr piece = root.restrictedTo(a, b);
-    piece->exposure = ca * chunk;
-    piece->pieceKey = hashCombine(root.pieceKey, 0x100000000ull + uint64_t(uint32_t(ca)) * 16 + uint64_t(chunk));
+    piece->exposure = int(first);
+    uint64_t key = 0x100000000ull + uint64_t(uint32_t(ca)) * 16 + uint64_t(chunk);
+    if (!run.whole()) key = hashCombine(key, uint64_t(uint32_t(int(first))));  // two runs of one level in a chunk
+    piece->pieceKey = hashCombine(root.pieceKey, key);
     push(std::move(piece));
 }
 

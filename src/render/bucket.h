@@ -4,6 +4,7 @@
 // split or an exposure cut makes are allocated one by one (docs/ARCHITECTURE.md, "The split loop").
 #pragma once
 
+#include <cstdint>
 #include <deque>
 #include <unordered_map>
 #include <vector>
@@ -33,6 +34,13 @@ struct BucketSpec {
     PixelRect rect;       // tile plus the filter's guard band, clipped to the image
     int firstFrame = 0;   // frames this bucket's split loop covers
     int frameCount = 1;
+};
+
+// Absolute frames [lo, hi] a moving root's pieces may span: the whole shot, or for a moving
+// procedural's child the run of frames at its view's level of detail around the view.
+struct FrameRun {
+    int lo = INT32_MIN, hi = INT32_MAX;
+    bool whole() const { return lo == INT32_MIN && hi == INT32_MAX; }
 };
 
 class BucketWorker {
@@ -75,11 +83,16 @@ class BucketWorker {
     void push(BodyPtr body);
     // A root (or a procedural's child) for the bucket's frames [fa, fb] (indices in the block; -1:
     // to the last).
-    void pushRoot(const Body& body, int fa = 0, int fb = -1);
+    void pushRoot(const Body& body, int fa = 0, int fb = -1, FrameRun run = {});
     void pushProceduralViews(const ProceduralBody& procedural, int fa, int fb);
     void collectLevels(const ProceduralBody& procedural, int fa, int fb);
+    // The level of detail of a moving procedural in an absolute frame (a property of the frame,
+    // whatever the block), and the run of frames at a view's level around the view's frames.
+    int levelInFrame(const ProceduralBody& procedural, int frame) const;
+    bool sameLevelBetween(const ProceduralBody& procedural, int fa, int fb, int level) const;
+    FrameRun levelRun(const ProceduralBody& view, int first, int last) const;
     int chunkFrames(const Body& root) const;
-    void pushChunks(const Body& root, int chunk, int ca, int cb);
+    void pushChunks(const Body& root, int chunk, int ca, int cb, FrameRun run);
     void process(const Body& body);  // one step of the split loop
     bool withinSplitBudget(const Body& body);  // counts a split of the body's primitive
     void expand(const ProceduralBody& procedural);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "cull/view_cull.h"
+#include "geom/root_chunks.h"
 #include "procedural/procedural.h"
 #include "render/bucket.h"
 #include "render/bucket_bounds.h"
@@ -17,14 +18,16 @@ using namespace bucket;
 
 // A moving procedural: the frames whose exposures its bound reaches the bucket in (halving the
 // range, as for moving bodies), each at the level of detail of its own bound; runs of frames that
-// share a level make one view.
+// share a level make one view, across frames whose bound misses the bucket if they share it too
+// (so two views of one level never have their children's pieces meet: see levelRun).
 void BucketWorker::pushProceduralViews(const ProceduralBody& procedural, int fa, int fb) {
     levels_.clear();
     collectLevels(procedural, fa, fb);
     const double open = scene_.shutter.open, close = scene_.shutter.close;
     for (size_t i = 0; i < levels_.size();) {
         size_t j = i + 1;
-        while (j < levels_.size() && levels_[j].first == levels_[j - 1].first + 1 && levels_[j].second == levels_[i].second)
+        while (j < levels_.size() && levels_[j].second == levels_[i].second &&
+               sameLevelBetween(procedural, levels_[j - 1].first, levels_[j].first, levels_[i].second))
             ++j;
         const int first = levels_[i].first, last = levels_[j - 1].first;
         std::unique_ptr<ProceduralBody> view = procedural.view(bucket_.firstFrame + first + open,
@@ -49,13 +52,37 @@ void BucketWorker::collectLevels(const ProceduralBody& procedural, int fa, int f
         collectLevels(procedural, mid + 1, fb);
         return;
     }
+    levels_.push_back({fa, levelInFrame(procedural, bucket_.firstFrame + fa)});
+}
+
+// Are the frames strictly between block indices fa and fb all at `level`?
+bool BucketWorker::sameLevelBetween(const ProceduralBody& procedural, int fa, int fb, int level) const {
+    for (int f = fa + 1; f < fb; ++f)
+        if (levelInFrame(procedural, bucket_.firstFrame + f) != level) return false;
+    return true;
+}
+
+int BucketWorker::levelInFrame(const ProceduralBody& procedural, int frame) const {
+    const Bounds3f box = procedural.boundDuring(frame + scene_.shutter.open, frame + scene_.shutter.close);
     const Camera& cam = scene_.camera;
-    int level = kDetailUnbounded;
-    if (!(cam.perspective() && box.lo.z < cam.eyePlane())) {
-        const Bounds3f r = rasterOfBox(cam, box);
-        level = detailLevel(double(r.hi.x - r.lo.x) * double(r.hi.y - r.lo.y));
-    }
-    levels_.push_back({fa, level});
+    if (cam.perspective() && box.lo.z < cam.eyePlane()) return kDetailUnbounded;
+    const Bounds3f r = rasterOfBox(cam, box);
+    return detailLevel(double(r.hi.x - r.lo.x) * double(r.hi.y - r.lo.y));
+}
+
+// A view stands for a run of the block's frames at one level of detail, cut where the block ends.
+// Its children are cut into chunks of frames (pushChunks) that may reach past the view: they are
+// wanted only in the frames at the view's level, found frame by frame around the view as far as
+// the longest chunk reaches. So a frame's pieces are the same in every block (the run does not end
+// where the block does) and no frame gets the children of two levels.
+FrameRun BucketWorker::levelRun(const ProceduralBody& view, int first, int last) const {
+    const ProceduralBody& procedural = view.rootBody();
+    const int level = view.level(scene_.camera);
+    constexpr int kReach = std::max(kMaxChunkFrames, kMaxWorldChunkFrames) - 1;
+    FrameRun run{first, last};
+    while (run.lo > first - kReach && levelInFrame(procedural, run.lo - 1) == level) --run.lo;
+    while (run.hi < last + kReach && levelInFrame(procedural, run.hi + 1) == level) ++run.hi;
+    return run;
 }
 
 Bounds3f BucketWorker::reach(const ProceduralBody& procedural, bool* everywhere) const {
@@ -109,7 +136,10 @@ void BucketWorker::expand(const ProceduralBody& procedural) {
     const int fa = std::max(0, int(std::lround(procedural.time().t0 - scene_.shutter.open)) - bucket_.firstFrame);
     const int fb = std::min(bucket_.frameCount - 1,
                             int(std::lround(procedural.time().t1 - scene_.shutter.close)) - bucket_.firstFrame);
-    for (const BodyPtr& child : children) pushRoot(*child, fa, fb);
+    FrameRun run;
+    if (&procedural != &procedural.rootBody() && procedural.rootBody().moving())
+        run = levelRun(procedural, bucket_.firstFrame + fa, bucket_.firstFrame + fb);
+    for (const BodyPtr& child : children) pushRoot(*child, fa, fb, run);
 }
 
 }  // namespace streyes

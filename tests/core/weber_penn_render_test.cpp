@@ -20,13 +20,13 @@ int lineOf(const std::string& text, const std::string& needle) {
 }
 
 // One quaking aspen (about 13 m) seen from `distance` m, 6 m up; its bound from weberPennBound.
-std::string aspen(double distance, const std::string& extra = "") {
+std::string aspen(double distance, const std::string& extra = "", const std::string& camera = "") {
     WeberPennParams p = *weberPennPreset("quaking_aspen");
     p.seed = 2;
     const Bounds3d b = weberPennBound(p);
     std::ostringstream rib;
     rib << "Format 96 96 1\nProjection \"perspective\" \"fov\" [40]\nPixelSamples 2 2\nShutter 0 0.5\n"
-        << "Translate 0 -7 " << distance << "\nWorldBegin\n"
+        << (camera.empty() ? "Translate 0 -7 " + std::to_string(distance) + "\n" : camera) << "WorldBegin\n"
         << "LightSource \"distantlight\" 1 \"from\" [-1 2 -1] \"to\" [0 0 0]\nLightSource \"ambientlight\" 2 \"intensity\" [0.3]\n"
         << "Surface \"matte\"\nProcedural \"DynamicLoad\" [\"tree\" \"model=weberpenn preset=quaking_aspen seed=2 " << extra
         << "\"] [" << b.lo.x << " " << b.hi.x << " " << b.lo.y << " " << b.hi.y << " " << b.lo.z << " " << b.hi.z
@@ -66,6 +66,27 @@ TEST(WeberPennRender, AFrameAloneIsTheFrameInABlock) {
         const double alpha = test::alphaSum(r.alone, 2);
         EXPECT_GT(alpha, 600);
         EXPECT_LT(alpha, 0.6 * 96 * 96);
+    }
+}
+
+// A camera dollying in from 60 m to 30 m changes the tree's level of detail (log2 of its raster
+// area: about 3.4x larger from frame 1 to 3) within the block: each frame gets the
+// children of its own level only, cut the same in any block (the runs of frames at one level do
+// not end where the block does). Frame 2 of a 3-frame block differed from frame 2 alone (0.24% of
+// pixels) before.
+TEST(WeberPennRender, ALevelChangingUnderAMovingCameraKeepsAFrameAloneTheFrameInABlock) {
+    const std::string rib = aspen(0, "", "MotionBegin [1 3]\nTranslate 0.5 -7 60\nTranslate -0.5 -7 30\nMotionEnd\n");
+    RenderOptions o;
+    o.hasShot = true;
+    o.shotFirst = 1;
+    o.shotLast = 3;
+    for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Spacetime}) {
+        SCOPED_TRACE(algorithmName(a));
+        o.algorithm = a;
+        const test::ShotAndFrame r = test::renderShotAndFrame(rib, o, 1, 3, 2);
+        ASSERT_EQ(r.shot.frames.size(), 3u);
+        EXPECT_TRUE(r.samePixels(2));
+        EXPECT_GT(test::alphaSum(r.alone, 2), 300) << "the tree is there (about 500 pixels of crown)";
     }
 }
 
