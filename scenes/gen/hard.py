@@ -318,11 +318,12 @@ Motion keys at sampled instants, and bodies that exist for part of the animation
 only between frames 2 and 4 of frames 0-6 and is held before and after, so it is cut into three
 pieces, still over [0, 2], moving over [2, 4] and still over [4, 6]. With the shutter closed
 (instants at whole frames), frames 2 and 4 are sampled exactly at the key times, where two pieces
-meet. A second square moves with keys at every frame, so that every frame is sampled at a key.
+meet. A second square moves with keys at every frame, so that every frame is sampled at a key;
+it zig-zags a pixel up and down between keys (keys on a straight line are one segment, not keys).
 Expected: every sample sees each square where it is, once: no sample is lost or hit twice at a
 boundary between bodies.
 """, 40, 16, moving_square([2, 4], ["2 2 0", "30 2 0"]) +
-    moving_square(list(range(0, 7)), ["%d 10 0" % (2 + 5 * k) for k in range(7)]),
+    moving_square(list(range(0, 7)), ["%d %d 0" % (2 + 5 * k, 10 + k % 2) for k in range(7)]),
     frames=(0, 6))
 
 pixel_scene("time_keys_blur.rib", """
@@ -330,7 +331,7 @@ time_keys.rib with the shutter open from a quarter frame before each frame to a 
 the key times lie inside exposures (at the middle of frames 2 and 4). Expected as for
 time_keys.rib.
 """, 40, 16, moving_square([2, 4], ["2 2 0", "30 2 0"]) +
-    moving_square(list(range(0, 7)), ["%d 10 0" % (2 + 5 * k) for k in range(7)]),
+    moving_square(list(range(0, 7)), ["%d %d 0" % (2 + 5 * k, 10 + k % 2) for k in range(7)]),
     frames=(0, 6), shutter="-0.25 0.25")
 
 pixel_scene("time_10000.rib", """
