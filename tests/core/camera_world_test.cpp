@@ -78,7 +78,7 @@ const char* kPan = R"(MotionBegin [0 16]
 MotionEnd)";
 const char* kStill = "Translate 0.4 0 0";
 
-// The same pan keyed every frame, as a camera exported frame by frame is: 17 keys on the line
+// The same pan keyed every frame, as a baked camera curve is: 17 keys on the line
 // kPan interpolates. Its keys add nothing to the motion (bodies/motion_segments.h, keysOf).
 std::string panKeyedEveryFrame() {
     std::string s = "MotionBegin [";
