@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -50,7 +51,37 @@ inline std::vector<double> segmentTimes(const std::vector<double>& keys, double 
     return ts;
 }
 
-inline std::vector<double> keysOf(const MotionTransform& m) { return m.isStatic() ? std::vector<double>{} : m.times(); }
+// A transform's key times, less the keys it passes through on a straight line: a key equal (to
+// 1e-10 of its entries' size) to the interpolation of the last key kept and the next key is not
+// a key of the motion, since matrices interpolate linearly (streyes/transform.h) and points with
+// them. A camera keyed every frame along a straight pan or dolly (a motion block with a key per
+// frame) is then one segment, whose still-in-world bodies are diced once for a chunk of frames
+// (docs/ARCHITECTURE.md, "The split loop") instead of once a frame. Every later key of a run is
+// checked against its chord, so the error does not drift; a run is cut after kMaxRun keys, which
+// bounds the work. A function of the transform alone: the same in every frame block.
+inline std::vector<double> keysOf(const MotionTransform& m) {
+    if (m.isStatic()) return {};
+    const std::vector<double>& ts = m.times();
+    const std::vector<Matrix4>& ks = m.keys();
+    constexpr size_t kMaxRun = 64;
+    auto onChord = [&](size_t a, size_t k, size_t b) {
+        const Matrix4 l = lerp(ks[a], ks[b], (ts[k] - ts[a]) / (ts[b] - ts[a]));
+        for (size_t e = 0; e < 16; ++e)
+            if (!(std::fabs(ks[k].m[e] - l.m[e]) <= 1e-10 * (1 + std::fabs(ks[k].m[e])))) return false;
+        return true;
+    };
+    std::vector<double> out{ts.front()};
+    size_t a = 0;  // the last key kept
+    for (size_t k = 1; k + 1 < ts.size(); ++k) {
+        bool drop = k - a < kMaxRun;
+        for (size_t i = a + 1; i <= k && drop; ++i) drop = onChord(a, i, k + 1);
+        if (drop) continue;
+        out.push_back(ts[k]);
+        a = k;
+    }
+    if (ts.size() > 1) out.push_back(ts.back());
+    return out;
+}
 
 // Marks the bodies a primitive appended to `out` (from `first` on) as still in world space when
 // neither its transform nor its own points move: they move in camera space with the camera only

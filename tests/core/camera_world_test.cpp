@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "test_util.h"
@@ -77,6 +78,34 @@ const char* kPan = R"(MotionBegin [0 16]
 MotionEnd)";
 const char* kStill = "Translate 0.4 0 0";
 
+// The same pan keyed every frame, as a baked camera curve is: 17 keys on the line
+// kPan interpolates. Its keys add nothing to the motion (bodies/motion_segments.h, keysOf).
+std::string panKeyedEveryFrame() {
+    std::string s = "MotionBegin [";
+    for (int f = 0; f <= 16; ++f) s += std::to_string(f) + (f < 16 ? " " : "]\n");
+    for (int f = 0; f <= 16; ++f) {
+        char buf[128];
+        std::snprintf(buf, sizeof buf, "  Translate %.17g 0 %.17g\n", 0.4 - 0.05 * f, 0.03125 * f);
+        s += buf;
+    }
+    return s + "MotionEnd";
+}
+
+// A camera keyed every frame that turns on an arc (its keys are not on one line): still a root
+// per frame, and still each frame's pixels alone.
+std::string arcKeyedEveryFrame() {
+    std::string s = "MotionBegin [";
+    for (int f = 0; f <= 16; ++f) s += std::to_string(f) + (f < 16 ? " " : "]\n");
+    for (int f = 0; f <= 16; ++f) {
+        const double a = 0.03 * (f - 8);
+        char buf[320];
+        std::snprintf(buf, sizeof buf, "  ConcatTransform [%.17g 0 %.17g 0  0 1 0 0  %.17g 0 %.17g 0  %.17g 0 %.17g 1]\n",
+                      std::cos(a), -std::sin(a), std::sin(a), std::cos(a), 0.4 * std::sin(a * 4), 0.3 * (1 - std::cos(a * 4)));
+        s += buf;
+    }
+    return s + "MotionEnd";
+}
+
 RenderOptions shotOptions(Algorithm a, int first, int last, int block) {
     RenderOptions o;
     o.algorithm = a;
@@ -93,9 +122,15 @@ RenderOptions shotOptions(Algorithm a, int first, int last, int block) {
 // Frames of a camera pan over still geometry: the 16 frames as one block, as blocks of 4 and of 1,
 // and frames 5 and 12 alone, bit for bit; with and without occlusion culling (tolerance 0), which
 // give each other's pixels too.
+// The pan given as one motion segment, keyed every frame, and an arc keyed every frame.
 TEST(CameraWorld, APanOverStillGeometryGivesEachFrameItsPixelsAlone) {
-    const std::string rib = panScene(kPan);
+  for (const std::string& camera : {std::string(kPan), panKeyedEveryFrame(), arcKeyedEveryFrame()}) {
+    SCOPED_TRACE(camera.substr(0, 60));
+    const std::string rib = panScene(camera);
+    // The arc changes nothing on the still-in-world path (a root per frame): one algorithm.
+    const bool arc = camera.find("ConcatTransform") != std::string::npos;
     for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Spacetime, Algorithm::FramesOcclusion}) {
+        if (arc && a != Algorithm::SpacetimeOcclusion) continue;
         SCOPED_TRACE(algorithmName(a));
         const test::RenderResult whole = test::renderRib(rib, shotOptions(a, 0, 15, 16));
         ASSERT_EQ(whole.frames.size(), 16u);
@@ -114,6 +149,7 @@ TEST(CameraWorld, APanOverStillGeometryGivesEachFrameItsPixelsAlone) {
             EXPECT_TRUE(test::identicalPixels(whole, plain)) << "occlusion culling at tolerance 0 changed pixels";
         }
     }
+  }
 }
 
 // A plastic sphere's highlight slides across it as the camera passes: shading that reads the view
@@ -121,7 +157,9 @@ TEST(CameraWorld, APanOverStillGeometryGivesEachFrameItsPixelsAlone) {
 // of the frame rendered as a shot of its own (one exposure: diced and shaded for that frame only,
 // as before). Shared over the 16 frames, the highlight would cross-fade between the chunk's ends.
 TEST(CameraWorld, ASlidingHighlightIsShadedPerFrame) {
-    const std::string rib = panScene(kPan);
+  for (const std::string& camera : {std::string(kPan), panKeyedEveryFrame()}) {
+    SCOPED_TRACE(camera.substr(0, 60));
+    const std::string rib = panScene(camera);
     const test::RenderResult whole = test::renderRib(rib, shotOptions(Algorithm::SpacetimeOcclusion, 0, 15, 16));
     for (int f : {2, 8, 13}) {
         SCOPED_TRACE(f);
@@ -149,6 +187,7 @@ TEST(CameraWorld, ASlidingHighlightIsShadedPerFrame) {
     const auto b0 = brightest(*findFrame(whole, 0)), b15 = brightest(*findFrame(whole, 15));
     EXPECT_GT(b0.second, 0.5f);
     EXPECT_NE(b0.first, b15.first);
+  }
 }
 
 // Micropolygons of a still world under a camera move over a 16-frame block: at most 1.5 times
@@ -160,12 +199,16 @@ TEST(CameraWorld, APanDicesAboutAsManyMicropolygonsAsAStillCamera) {
     o.threads = 1;
     for (const std::string surface : {"matte", "plastic"}) {
         SCOPED_TRACE(surface);
-        const test::RenderResult pan = test::renderRib(panScene(kPan, surface), o);
         const test::RenderResult still = test::renderRib(panScene(kStill, surface), o);
-        const double moving = double(pan.stats.counters.micropolygons);
         const double fixed = double(still.stats.counters.micropolygons);
         ASSERT_GT(fixed, 1000.0);
-        EXPECT_LE(moving, 1.5 * fixed) << moving << " micropolygons under the pan, " << fixed << " still";
+        // The pan as one motion segment and keyed every frame (before, a root per frame: 16 times).
+        for (const std::string& camera : {std::string(kPan), panKeyedEveryFrame()}) {
+            const test::RenderResult pan = test::renderRib(panScene(camera, surface), o);
+            const double moving = double(pan.stats.counters.micropolygons);
+            EXPECT_LE(moving, 1.5 * fixed) << moving << " micropolygons under " << camera.substr(0, 40) << ", " << fixed
+                                           << " still";
+        }
     }
 }
 

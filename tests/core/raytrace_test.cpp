@@ -280,7 +280,9 @@ TEST(Raytrace, OneFrameOfALongShotTracesOnlyItsOwnTime) {
     std::string keys = "MotionBegin [", moves;
     for (int k = 0; k <= 16; ++k) {
         keys += std::to_string(k) + (k < 16 ? " " : "]\n");
-        moves += "Translate " + std::to_string(k) + " 0 0\n";
+        // A zigzag of a thousandth in depth: keys on a straight line would be one segment
+        // (bodies/motion_segments.h, keysOf). It moves the shadow by as much.
+        moves += "Translate " + std::to_string(k) + " 0 " + (k % 2 ? "0.001" : "0") + "\n";
     }
     const std::string rib = "Option \"streyes\" \"int frames\" [0 15]\n" +
                             orthoHeader(32, 4, "PixelSamples 4 4\nShutter 0 0.5\n") +
