@@ -1,7 +1,9 @@
 // Shading Language interpreter throughput: points shaded per second on one core, for the
-// shipped matte, plastic and ground (noise-heavy: six 3D noises a point) under an ambient, a
-// distant and a point light, on 16 x 16 micropolygon grids (289 points), and the built-in
-// C++ shading (shadePoint) for comparison.
+// shipped matte and plastic, the forest's shaders (scenes/forest.rib: matte, ground, sky; its
+// procedural's bark and leaf) and a noise-heavy one (ground: six 3D noises a point), on 16 x 16
+// and 32 x 32 micropolygon grids (289 and 1089 points) under the forest's two lights (an ambient
+// and a distant light: lights:2) or those plus a point light (lights:3), and the built-in C++
+// shading (shadePoint) of the same grids beside them.
 //
 //   build/streyes_bench --benchmark_filter=Shade
 #include <benchmark/benchmark.h>
@@ -21,10 +23,13 @@ namespace {
 using namespace sl;
 
 struct BenchGrid {
-    static constexpr int kNu = 16, kNv = 16;
     ShadingGrid grid;
-    std::vector<Vec3f> P, N, Cs;
-    BenchGrid() {
+    std::vector<Vec3f> P, N, Cs, I;
+    Vec3f eye{0, 0, 0};
+    // An nu x nu grid over a bulging patch in front of the eye (at the origin), bound as the
+    // renderer binds them (grid_shader.cpp: P, N, Ng, Cs and I as arrays of triples).
+    explicit BenchGrid(int nu = 16) {
+        const int kNu = nu, kNv = nu;
         grid.setShape(kNu, kNv);
         const int n = grid.n;
         for (int k = 0; k < n; ++k) {
@@ -34,10 +39,13 @@ struct BenchGrid {
             N.push_back({std::sin(a), std::sin(b), -std::cos(a) * std::cos(b)});
             Cs.push_back({0.8f, 0.5f + 0.3f * u, 0.3f + 0.4f * v});
         }
+        I = P;
         grid.set(Global::P, ValueRef::aos(P.data()));
         grid.set(Global::N, ValueRef::aos(N.data()));
         grid.set(Global::Ng, ValueRef::aos(N.data()));
         grid.set(Global::Cs, ValueRef::aos(Cs.data()));
+        grid.set(Global::I, ValueRef::aos(I.data()));
+        grid.set(Global::E, ValueRef::uniform(eye));
     }
 };
 
@@ -45,21 +53,24 @@ ProgramPtr shader(const std::string& name) {
     return compileShaderFile(std::string(STREYES_SOURCE_DIR) + "/shaders/" + name + ".sl");
 }
 
+// The forest's lights (count 2), or those and a point light (count 3).
 struct Lights {
     ShaderInstance amb{shader("ambientlight")}, sun{shader("distantlight")}, bulb{shader("pointlight")};
     std::vector<LightRef> refs;
-    Lights() {
+    explicit Lights(int count = 3) {
         amb.set("intensity", BaseType::Float, {0.1f});
         sun.set("from", BaseType::Point, {1, 2, -1});
         sun.set("to", BaseType::Point, {0, 0, 0});
         bulb.set("intensity", BaseType::Float, {30});
-        refs = {{&amb, Matrix4()}, {&sun, Matrix4()}, {&bulb, Matrix4::translate({-3, 4, 0})}};
+        refs = {{&amb, Matrix4()}, {&sun, Matrix4()}};
+        if (count > 2) refs.push_back({&bulb, Matrix4::translate({-3, 4, 0})});
     }
 };
 
+// range(0): grid size (16 or 32 micropolygons a side); range(1): lights (2 or 3).
 void shade(benchmark::State& state, const char* name) {
-    BenchGrid g;
-    Lights lights;
+    BenchGrid g(int(state.range(0)));
+    Lights lights(int(state.range(1)));
     ShaderInstance inst(shader(name));
     ShadingVM vm;
     for (auto _ : state) {
@@ -75,14 +86,18 @@ void BM_ShadeMatte(benchmark::State& state) { shade(state, "matte"); }
 void BM_ShadePlastic(benchmark::State& state) { shade(state, "plastic"); }
 void BM_ShadeGround(benchmark::State& state) { shade(state, "ground"); }
 void BM_ShadeBark(benchmark::State& state) { shade(state, "bark"); }
+void BM_ShadeLeaf(benchmark::State& state) { shade(state, "leaf"); }
+void BM_ShadeSky(benchmark::State& state) { shade(state, "sky"); }
 
 // The built-in C++ shading of the same grid, one point at a time.
 void builtin(benchmark::State& state, SurfaceKind kind) {
-    BenchGrid g;
+    BenchGrid g(int(state.range(0)));
+    const int lightCount = int(state.range(1));
     Material m;
     m.kind = kind;
     m.Kd = kind == SurfaceKind::Plastic ? 0.5f : 1.0f;
-    m.lights = {0, 1, 2};
+    m.lights = {0, 1};
+    if (lightCount > 2) m.lights.push_back(2);
     Vec3f toSun = normalize(Vec3f{1, 2, -1});
     std::vector<CameraLight> lights{{LightKind::Ambient, {0.1f, 0.1f, 0.1f}, {}, {}, -1},
                                     {LightKind::Distant, {1, 1, 1}, {}, toSun, -1},
@@ -116,12 +131,20 @@ void BM_Noise(benchmark::State& state) {
 }
 
 BENCHMARK(BM_Noise)->ArgName("kernel")->Arg(0)->Arg(1);
-BENCHMARK(BM_ShadeMatte);
-BENCHMARK(BM_ShadePlastic);
-BENCHMARK(BM_ShadeGround);
-BENCHMARK(BM_ShadeBark);
-BENCHMARK(BM_ShadeBuiltinMatte);
-BENCHMARK(BM_ShadeBuiltinPlastic);
+void gridArgs(benchmark::internal::Benchmark* b) {
+    b->ArgNames({"grid", "lights"});
+    for (int size : {16, 32})
+        for (int lights : {2, 3}) b->Args({size, lights});
+}
+
+BENCHMARK(BM_ShadeMatte)->Apply(gridArgs);
+BENCHMARK(BM_ShadeBuiltinMatte)->Apply(gridArgs);
+BENCHMARK(BM_ShadePlastic)->Apply(gridArgs);
+BENCHMARK(BM_ShadeBuiltinPlastic)->Apply(gridArgs);
+BENCHMARK(BM_ShadeGround)->Apply(gridArgs);
+BENCHMARK(BM_ShadeBark)->Apply(gridArgs);
+BENCHMARK(BM_ShadeLeaf)->Apply(gridArgs);
+BENCHMARK(BM_ShadeSky)->Apply(gridArgs);
 
 }  // namespace
 }  // namespace streyes

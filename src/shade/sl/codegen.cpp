@@ -6,8 +6,8 @@
 
 namespace streyes::sl {
 
-void generateCode(const CheckedShader& checked, ShaderProgram& out) {
-    CodeGen g(checked, out);
+void generateCode(const CheckedShader& checked, ShaderProgram& out, const BackendOptions& options) {
+    CodeGen g(checked, out, options);
     g.generate();
 }
 
@@ -49,6 +49,7 @@ void CodeGen::emitAll() {
     genStmt(*s.body);
     for (int j : body.returnJumps) patch(j, 0, here());
     funcs_.pop_back();
+    if (options_.optimize) removeDeadCode(prog_);
     prog_.finish();
 }
 

@@ -18,17 +18,20 @@
 
 #include "shade/sl/builtins.h"
 #include "shade/sl/checker.h"
+#include "shade/sl/optimize.h"
 #include "shade/vm/program.h"
 
 namespace streyes::sl {
 
 // Generates `out` from `checked` (which the generator annotates no further). Storage-class
 // errors (a varying value assigned to a uniform variable) throw InputError.
-void generateCode(const CheckedShader& checked, ShaderProgram& out);
+// With options.optimize, constants are folded and dead code removed (optimize.h).
+void generateCode(const CheckedShader& checked, ShaderProgram& out, const BackendOptions& options = {});
 
 class CodeGen {
   public:
-    CodeGen(const CheckedShader& checked, ShaderProgram& out) : cs_(checked), prog_(out) {}
+    CodeGen(const CheckedShader& checked, ShaderProgram& out, const BackendOptions& options = {})
+        : cs_(checked), prog_(out), options_(options) {}
     void generate();
 
   private:
@@ -139,6 +142,7 @@ class CodeGen {
 
     const CheckedShader& cs_;
     ShaderProgram& prog_;
+    BackendOptions options_;
     std::set<std::string> varyingKeys_;  // survives restarts
     // Per attempt:
     std::vector<std::unique_ptr<Var>> varStore_;

@@ -65,8 +65,11 @@ CodeGen::Val CodeGen::gen(const Expr& e) {
         }
         case ExprKind::Unary: {
             Val a = gen(*e.args[0]);
+            const OpFn fn = e.text == "!" ? ops::logNot : ops::neg;
+            std::vector<float> folded;
+            if (options_.optimize && foldConstant(prog_, fn, e.type, a.reg, -1, &folded)) return constFloats(e.type, folded);
             Val t = temp(e.type, a.detail);
-            emit(e.text == "!" ? ops::logNot : ops::neg, {t.reg, a.reg}, t.varying());
+            emit(fn, {t.reg, a.reg}, t.varying());
             release(a);
             return t;
         }
@@ -93,6 +96,9 @@ CodeGen::Val CodeGen::gen(const Expr& e) {
 }
 
 CodeGen::Val CodeGen::arith(OpFn fn, Val a, Val b, SlType result) {
+    // Constant operands: the value now, once (constants are not temporaries: nothing to release).
+    std::vector<float> folded;
+    if (options_.optimize && foldConstant(prog_, fn, result, a.reg, b.reg, &folded)) return constFloats(result, folded);
     Val t = temp(result, join(a.detail, b.detail));
     emit(fn, {t.reg, a.reg, b.reg}, t.varying());
     release(a);

@@ -39,13 +39,14 @@ void evaluateDefaults(const ProgramPtr& program) {
 
 }  // namespace
 
-ProgramPtr compileShader(const std::string& source, const std::string& file, const PreprocessOptions& options) {
+ProgramPtr compileShader(const std::string& source, const std::string& file, const PreprocessOptions& options,
+                         const BackendOptions& backend) {
     PreprocessedSource pp = preprocess(source, file, options);
     auto program = std::make_shared<ShaderProgram>();
     try {
         CheckedShader checked = checkShader(parseShader(pp));
         program->path = file;
-        generateCode(checked, *program);
+        generateCode(checked, *program, backend);
         const ViewUseResult use = analyzeViewUse(checked);
         program->viewUse = use.use;
         program->viewUseWhy = use.why;
@@ -63,12 +64,12 @@ ProgramPtr compileShader(const std::string& source, const std::string& file, con
     return shared;
 }
 
-ProgramPtr compileShaderFile(const std::string& path, const PreprocessOptions& options) {
+ProgramPtr compileShaderFile(const std::string& path, const PreprocessOptions& options, const BackendOptions& backend) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError("cannot read shader " + path);
     std::stringstream ss;
     ss << in.rdbuf();
-    return compileShader(ss.str(), path, options);
+    return compileShader(ss.str(), path, options, backend);
 }
 
 // ---- ShaderCache ---------------------------------------------------------------------------------

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "shade/sl/optimize.h"
 #include "shade/sl/preprocess.h"
 #include "shade/vm/program.h"
 
@@ -22,10 +23,12 @@ namespace streyes::sl {
 
 // Compiles `source` (preprocessed first: #include looks in `file`'s folder, then along
 // options.includePath); `file` names it in errors and in ShaderProgram::path.
+// `backend` turns the backend's optimisations off (tests compare the plain program's grids).
 ProgramPtr compileShader(const std::string& source, const std::string& file = "<string>",
-                         const PreprocessOptions& options = {});
+                         const PreprocessOptions& options = {}, const BackendOptions& backend = {});
 // Compiles the file at `path` (InputError when it cannot be read).
-ProgramPtr compileShaderFile(const std::string& path, const PreprocessOptions& options = {});
+ProgramPtr compileShaderFile(const std::string& path, const PreprocessOptions& options = {},
+                             const BackendOptions& backend = {});
 
 // Compiled shaders by name, found along a search path, each compiled once per file path and
 // modification time of the file and of every file it #included (an edited file or header is

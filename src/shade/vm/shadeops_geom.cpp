@@ -96,8 +96,23 @@ void perPoint(Exec& x, const Instr& in, F f) {
 
 }  // namespace
 
+// Triples of a register, for the grid kernels.
+struct Comps3 {
+    const float* p[3];
+    explicit Comps3(const RegView& r) : p{r.comp(0), r.comp(1), r.comp(2)} {}
+};
+struct Out3 {
+    float* p[3];
+    explicit Out3(const RegView& r) : p{r.comp(0), r.comp(1), r.comp(2)} {}
+};
+
+// dot, normalize and faceforward of triples into a varying result run as grid kernels.
 void dot(Exec& x, const Instr& in) {
-    RegView a = x.view(in.a[1]), b = x.view(in.a[2]);
+    RegView a = x.view(in.a[1]), b = x.view(in.a[2]), d = x.view(in.a[0]);
+    if (d.varying && a.comps == 3 && b.comps == 3) {
+        x.vm.kernels().dot(size_t(d.w), Comps3(a).p, a.varying, Comps3(b).p, b.varying, d.p);
+        return;
+    }
     perPoint(x, in, [&](const RegView& d, int i) { d.p[i] = dot3(load3(a, i), load3(b, i)); });
 }
 void cross(Exec& x, const Instr& in) {
@@ -112,7 +127,11 @@ void length(Exec& x, const Instr& in) {
     });
 }
 void normalize(Exec& x, const Instr& in) {
-    RegView a = x.view(in.a[1]);
+    RegView a = x.view(in.a[1]), d = x.view(in.a[0]);
+    if (d.varying && a.comps == 3 && d.comps == 3) {
+        x.vm.kernels().normalize(size_t(d.w), Comps3(a).p, a.varying, Out3(d).p);
+        return;
+    }
     perPoint(x, in, [&](const RegView& d, int i) { store3(d, i, normalize3(load3(a, i))); });
 }
 void distance(Exec& x, const Instr& in) {
@@ -124,7 +143,12 @@ void distance(Exec& x, const Instr& in) {
 }
 // N turned to face against I, judged by Nref (the geometric normal Ng by default).
 void faceforward(Exec& x, const Instr& in) {
-    RegView n = x.view(in.a[1]), I = x.view(in.a[2]), ref = x.view(in.a[3]);
+    RegView n = x.view(in.a[1]), I = x.view(in.a[2]), ref = x.view(in.a[3]), d = x.view(in.a[0]);
+    if (d.varying && n.comps == 3 && I.comps == 3 && ref.comps == 3 && d.comps == 3) {
+        x.vm.kernels().faceforward(size_t(d.w), Comps3(n).p, n.varying, Comps3(I).p, I.varying, Comps3(ref).p, ref.varying,
+                                   Out3(d).p);
+        return;
+    }
     perPoint(x, in, [&](const RegView& d, int i) {
         V3 v = load3(n, i);
         store3(d, i, dot3(load3(I, i), load3(ref, i)) < 0 ? v : mul3(v, -1.0f));

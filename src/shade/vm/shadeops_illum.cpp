@@ -4,10 +4,12 @@
 // Each light runs once per grid (ShadingVM::lightsAt), over all of the surface's points; its
 // L (turned to point from the surface towards the light), Cl and the points its illuminate or
 // solar reached are then read by every loop and function of the surface.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
 #include "shade/vm/frame.h"
+#include "shade/vm/grid_kernels.h"
 #include "shade/vm/ops.h"
 #include "shade/vm/vm.h"
 
@@ -203,48 +205,57 @@ namespace {
 
 // Sum over the lights that illuminate the points, within 90 degrees of N, of Cl times
 // term(normalized L, N, point). N is normalised once for all lights (for the cone test).
-thread_local std::vector<float> unitN;
+thread_local std::vector<float> unitN, termBuf;
 
-template <class Term>
-void sumLights(Exec& x, const RegView& d, const RegView& N, int Preg, bool specularOnes, Term term) {
+// Zeroes d, normalises N into unitN, then calls each(light, its lanes, unit normal) for every
+// light the function sums over.
+template <class Each>
+void forLights(Exec& x, const RegView& d, const RegView& N, int Preg, bool specularOnes, Each each) {
     const std::vector<LightResult>& lights = x.vm.lightsAt(x, x.view(Preg));
     const size_t n = size_t(x.n);
-    const float cosHalf = std::cos(kPi / 2);
     if (unitN.size() < 3 * n) unitN.resize(3 * n);
-    float* nx = unitN.data();
-    float* ny = nx + n;
-    float* nz = ny + n;
-    for (int i = 0; i < d.w; ++i) {
-        V3 v = normalize3(load3(N, i));
-        nx[i] = v.x;
-        ny[i] = v.y;
-        nz[i] = v.z;
+    float* const u[3] = {unitN.data(), unitN.data() + n, unitN.data() + 2 * n};
+    if (N.comps == 3) {
+        const float* const np[3] = {N.comp(0), N.comp(1), N.comp(2)};
+        x.vm.kernels().normalize(size_t(d.w), np, N.varying, u);
+    } else {
+        for (int i = 0; i < d.w; ++i) {
+            V3 v = normalize3(load3(N, i));
+            u[0][i] = v.x;
+            u[1][i] = v.y;
+            u[2][i] = v.z;
+        }
     }
-    float* out0 = d.comp(0);
-    float* out1 = d.comp(1);
-    float* out2 = d.comp(2);
     for (int c = 0; c < 3; ++c) std::memset(d.comp(c), 0, sizeof(float) * size_t(d.w));
     for (size_t k = 0; k < x.vm.lightCount(); ++k) {
         const LightResult& l = lights[k];
         if (l.ambient || (specularOnes ? l.nonSpecular : l.nonDiffuse)) continue;
-        const float* lx = l.Ln.data();
-        const float* ly = lx + n;
-        const float* lz = ly + n;
-        const float* c0 = l.Cl.data();
-        const float* c1 = c0 + n;
-        const float* c2 = c1 + n;
-        const uint8_t* lit = l.lit.data();
+        const LightLanes lanes{{l.Ln.data(), l.Ln.data() + n, l.Ln.data() + 2 * n},
+                               {l.Cl.data(), l.Cl.data() + n, l.Cl.data() + 2 * n},
+                               l.lit.data()};
+        each(l, lanes, u);
+    }
+}
+
+const float kCosHalf = std::cos(kPi / 2);
+
+template <class Term>
+void sumLights(Exec& x, const RegView& d, const RegView& N, int Preg, bool specularOnes, Term term) {
+    float* out0 = d.comp(0);
+    float* out1 = d.comp(1);
+    float* out2 = d.comp(2);
+    forLights(x, d, N, Preg, specularOnes, [&](const LightResult&, const LightLanes& l, float* const* u) {
         for (int i = 0; i < d.w; ++i) {
-            if (!lit[i]) continue;
-            const V3 ln{lx[i], ly[i], lz[i]};
-            if (ln.x * nx[i] + ln.y * ny[i] + ln.z * nz[i] < cosHalf) continue;
+            if (!l.lit[i]) continue;
+            const V3 ln{l.Ln[0][i], l.Ln[1][i], l.Ln[2][i]};
+            if (ln.x * u[0][i] + ln.y * u[1][i] + ln.z * u[2][i] < kCosHalf) continue;
             const float t = term(ln, i);
             if (t <= 0) continue;
-            out0[i] += c0[i] * t;
-            out1[i] += c1[i] * t;
-            out2[i] += c2[i] * t;
+            out0[i] += l.Cl[0][i] * t;
+            out1[i] += l.Cl[1][i] * t;
+            out2[i] += l.Cl[2][i] * t;
         }
-    }
+    });
 }
 
 // specularbrdf: pow(max(0, N.H), k / roughness), H = normalize(L + V), k the VM's specular
@@ -257,16 +268,48 @@ inline float specularTerm(V3 l, V3 n, V3 v, float roughness, float k) {
 
 }  // namespace
 
+// diffuse and specular over whole grids (grid_kernels.h); a uniform result or a float N or V
+// (broadcast) takes the point-by-point loop.
 void diffuse(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]), N = x.view(in.a[1]);
-    sumLights(x, d, N, in.a[2], false, [&](V3 l, int i) { return dot3(l, load3(N, i)); });
+    if (!d.varying || N.comps != 3) {
+        sumLights(x, d, N, in.a[2], false, [&](V3 l, int i) { return dot3(l, load3(N, i)); });
+        return;
+    }
+    const float* const np[3] = {N.comp(0), N.comp(1), N.comp(2)};
+    float* const out[3] = {d.comp(0), d.comp(1), d.comp(2)};
+    const GridKernels& kern = x.vm.kernels();
+    forLights(x, d, N, in.a[2], false, [&](const LightResult&, const LightLanes& l, float* const* u) {
+        kern.diffuseLight(size_t(d.w), l, kCosHalf, u, np, N.varying, out);
+    });
 }
 
 void specular(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]), N = x.view(in.a[1]), V = x.view(in.a[2]), r = x.view(in.a[3]);
     const float k = x.vm.specularExponent();
-    sumLights(x, d, N, in.a[4], true,
-              [&](V3 l, int i) { return specularTerm(l, load3(N, i), load3(V, i), r.at(0, i), k); });
+    if (!d.varying || N.comps != 3 || V.comps != 3) {
+        sumLights(x, d, N, in.a[4], true,
+                  [&](V3 l, int i) { return specularTerm(l, load3(N, i), load3(V, i), r.at(0, i), k); });
+        return;
+    }
+    const float* const np[3] = {N.comp(0), N.comp(1), N.comp(2)};
+    const float* const vp[3] = {V.comp(0), V.comp(1), V.comp(2)};
+    float* const out[3] = {d.comp(0), d.comp(1), d.comp(2)};
+    const GridKernels& kern = x.vm.kernels();
+    const size_t n = size_t(d.w);
+    if (termBuf.size() < n) termBuf.resize(n);
+    float* t = termBuf.data();
+    // The exponent is uniform in nearly every shader: computed once then.
+    const float e0 = k / std::max(r.at(0, 0), 1e-4f);
+    forLights(x, d, N, in.a[4], true, [&](const LightResult&, const LightLanes& l, float* const* u) {
+        kern.specularBase(n, l, kCosHalf, u, np, N.varying, vp, V.varying, t);
+        // pow point by point (std::pow: the same on every machine); -1 marks points left out.
+        for (size_t i = 0; i < n; ++i) {
+            const float e = r.varying ? k / std::max(r.p[i], 1e-4f) : e0;
+            t[i] = t[i] < 0 ? 0.0f : std::pow(t[i], e);
+        }
+        kern.addLight(n, l.Cl, t, out);
+    });
 }
 
 void phong(Exec& x, const Instr& in) {

@@ -5,6 +5,7 @@
 
 #include "shade/vm/frame.h"
 #include "shade/vm/ops.h"
+#include "shade/vm/vm.h"
 
 namespace streyes::sl::ops {
 
@@ -63,7 +64,24 @@ void add(Exec& x, const Instr& in) { map2(x, in, [](float a, float b) { return a
 void sub(Exec& x, const Instr& in) { map2(x, in, [](float a, float b) { return a - b; }); }
 void mul(Exec& x, const Instr& in) { map2(x, in, [](float a, float b) { return a * b; }); }
 void div(Exec& x, const Instr& in) {
-    map2Checked(x, in, [](float a, float b) { return a / b; }, [](float, float b) { return b == 0.0f; });
+    RegView d = x.view(in.a[0]);
+    if (!d.varying) {
+        map2Checked(x, in, [](float a, float b) { return a / b; }, [](float, float b) { return b == 0.0f; });
+        return;
+    }
+    // Varying: the zeros counted, then each component through the grid kernel.
+    RegView a = x.view(in.a[1]), b = x.view(in.a[2]);
+    const int nc = d.comps * d.elems;
+    int count = 0;
+    for (int c = 0; c < nc; ++c) {
+        const float* bp = b.comp(b.comps * b.elems > 1 ? c : 0);
+        count += countBad(x, d.w, [&](int i) { return bp[b.varying ? i : 0] == 0.0f; });
+    }
+    if (count) x.sanitised(count);
+    const GridKernels& k = x.vm.kernels();
+    for (int c = 0; c < nc; ++c)
+        k.divide(size_t(d.w), a.comp(a.comps * a.elems > 1 ? c : 0), a.varying, b.comp(b.comps * b.elems > 1 ? c : 0),
+                 b.varying, d.comp(c));
 }
 
 void logNot(Exec& x, const Instr& in) { map1(x, in, [](float a) { return a == 0.0f ? 1.0f : 0.0f; }); }

@@ -177,7 +177,13 @@ void fill(const RegView& d, float v) {
         for (int i = 0; i < d.w; ++i) d.comp(c)[i] = v;
 }
 
-void copyIn(const RegView& d, const ValueRef& s) {
+void copyIn(const RegView& d, const ValueRef& s, const GridKernels& k) {
+    // Triples stored x y z x y z (the renderer's grids): split by the kernel.
+    if (d.comps == 3 && d.varying && s.stride == 3 && s.comp[1] == s.comp[0] + 1 && s.comp[2] == s.comp[0] + 2) {
+        float* const out[3] = {d.comp(0), d.comp(1), d.comp(2)};
+        k.deinterleave3(size_t(d.w), s.comp[0], out);
+        return;
+    }
     for (int c = 0; c < d.comps && c < 3; ++c) {
         float* out = d.comp(c);
         const float* in = s.comp[c] ? s.comp[c] : s.comp[0];
@@ -226,36 +232,40 @@ void ShadingVM::bindGlobals(Exec& x, const ShadingGrid& g) {
         const Global gk = Global(k);
         const ValueRef& src = in(gk);
         if (src.valid()) {
-            copyIn(d, src);
+            copyIn(d, src, *kernels_);
             continue;
         }
         switch (gk) {
             case Global::N:
             case Global::Ng: {
                 const ValueRef& other = in(gk == Global::N ? Global::Ng : Global::N);
-                if (other.valid()) copyIn(d, other);
+                if (other.valid()) copyIn(d, other, *kernels_);
                 else fill(d, 0);
                 break;
             }
-            case Global::I:
-                for (int i = 0; i < d.w; ++i)
-                    for (int c = 0; c < 3; ++c) {
-                        float P = in(Global::P).valid() ? in(Global::P).at(c, i) : 0.0f;
-                        float E = in(Global::E).valid() ? in(Global::E).at(c, 0) : 0.0f;
-                        d.comp(c)[i] = P - E;
-                    }
+            case Global::I: {
+                const ValueRef& P = in(Global::P);
+                const ValueRef& E = in(Global::E);
+                if (P.valid()) copyIn(d, P, *kernels_);
+                else fill(d, 0);
+                for (int c = 0; c < 3; ++c) {
+                    const float e = E.valid() ? E.at(c, 0) : 0.0f;
+                    float* o = d.comp(c);
+                    for (int i = 0; i < d.w; ++i) o[i] = o[i] - e;
+                }
                 break;
+            }
             case Global::Ps:
-                if (in(Global::P).valid()) copyIn(d, in(Global::P));
+                if (in(Global::P).valid()) copyIn(d, in(Global::P), *kernels_);
                 else fill(d, 0);
                 break;
             case Global::Ns:  // outside a light: the surface's own normal
-                if (in(Global::N).valid()) copyIn(d, in(Global::N));
-                else if (in(Global::Ng).valid()) copyIn(d, in(Global::Ng));
+                if (in(Global::N).valid()) copyIn(d, in(Global::N), *kernels_);
+                else if (in(Global::Ng).valid()) copyIn(d, in(Global::Ng), *kernels_);
                 else fill(d, 0);
                 break;
             case Global::Oi:
-                if (in(Global::Os).valid()) copyIn(d, in(Global::Os));
+                if (in(Global::Os).valid()) copyIn(d, in(Global::Os), *kernels_);
                 else fill(d, 1);
                 break;
             case Global::Cs:
@@ -270,7 +280,7 @@ void ShadingVM::bindGlobals(Exec& x, const ShadingGrid& g) {
                 const bool alongU = gk == Global::u || gk == Global::s;
                 const ValueRef& uv = in(alongU ? Global::u : Global::v);
                 if (uv.valid()) {
-                    copyIn(d, uv);
+                    copyIn(d, uv, *kernels_);
                 } else if (g.nu > 0 && g.nv > 0) {
                     for (int i = 0; i < d.w; ++i) {
                         int iu = i % (g.nu + 1), iv = i / (g.nu + 1);
@@ -314,7 +324,7 @@ void ShadingVM::bindParamValues(Exec& x, const ShaderInstance& shader, const Sha
             if (pv->value.varying() && !d.varying)
                 throw InputError(pv->loc, "primitive variable \"" + pv->name + "\" varies over the surface; shader \"" +
                                               p.name + "\" declares it uniform");
-            copyIn(d, pv->value);
+            copyIn(d, pv->value, *kernels_);
             continue;
         }
         if (const ShaderInstance::Value* v = shader.value(int(k))) {
@@ -468,8 +478,11 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
     const size_t n = size_t(grid_->n);
     // Its positions, kept to reuse the results while P stays the same.
     res.Ps.resize(3 * n);
-    for (int c = 0; c < 3; ++c)
-        for (size_t i = 0; i < n; ++i) res.Ps[size_t(c) * n + i] = P.at(c, int(i));
+    for (int c = 0; c < 3; ++c) {
+        float* o = res.Ps.data() + size_t(c) * n;
+        if (P.varying) std::memcpy(o, P.comp(c), sizeof(float) * n);
+        else std::fill(o, o + n, P.comp(c)[0]);
+    }
     // The light runs over the surface's points: Ps the surface's, P its own origin.
     lightGrid_ = *grid_;
     lightGrid_.primvars = nullptr;
@@ -479,10 +492,11 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
     // Ns: the surface's normal at Ps, turned to face the eye (against I), as the standard
     // surfaces' Nf is and as Aqsis's lights see it (its envlight example occludes a floor whose
     // N points away from the teapot).
+    // (Only for a light that reads Ns.)
     const ValueRef& sn = grid_->globals[size_t(Global::N)];
     const ValueRef& si = grid_->globals[size_t(Global::I)];
     ns_.resize(3 * n);
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t i = 0; i < (lp.globalReg[int(Global::Ns)] >= 0 ? n : 0); ++i) {
         const Vec3f v = sn.valid() ? sn.vec(int(i)) : Vec3f{0, 0, 0};
         const float side = si.valid() ? dot(v, si.vec(int(i))) : 0.0f;
         for (int c = 0; c < 3; ++c) ns_[size_t(c) * n + i] = side > 0 ? -v[c] : v[c];
@@ -539,12 +553,9 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
     } else {
         grab(Global::L, res.L, -1);
         res.Ln.resize(3 * n);
-        for (size_t i = 0; i < n; ++i) {
-            V3 l = normalize3({res.L[i], res.L[n + i], res.L[2 * n + i]});
-            res.Ln[i] = l.x;
-            res.Ln[n + i] = l.y;
-            res.Ln[2 * n + i] = l.z;
-        }
+        const float* const l[3] = {res.L.data(), res.L.data() + n, res.L.data() + 2 * n};
+        float* const ln[3] = {res.Ln.data(), res.Ln.data() + n, res.Ln.data() + 2 * n};
+        kernels_->normalize(n, l, true, ln);
     }
     res.lit = lit_;
     res.shader = ref.shader;

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "shade/vm/exec.h"
+#include "shade/vm/grid_kernels.h"
 #include "shade/vm/peers.h"
 #include "shade/vm/program.h"
 #include "shade/vm/ray_source.h"
@@ -92,6 +93,11 @@ class ShadingVM {
     // 0 (the default): no limit, a shader that loops forever hangs, as in any renderer. The
     // Shading Language fuzzer sets one (fuzz/fuzz_sl.h).
     void setInstructionBudget(uint64_t instructions) { instructionBudget_ = instructions; }
+    // The loops the hot operations run over a grid's points: the SIMD kernels of this CPU (the
+    // default), or another set with the same results bit for bit (gridKernelsScalar(): the plain
+    // path tests compare against).
+    void setKernels(const GridKernels& k) { kernels_ = &k; }
+    const GridKernels& kernels() const { return *kernels_; }
 
     // Message passing: the shaders of the primitive whose grid is shaded next (null: none). Each
     // call starts a new grid: surface() and the others read a peer's parameters as its last run
@@ -176,6 +182,7 @@ class ShadingVM {
     float specularExponent_ = 8;
     std::function<void(const std::string&)> print_;
     ShadeStats stats_;
+    const GridKernels* kernels_ = &gridKernels();
 
     // The run in progress.
     const ShadingGrid* grid_ = nullptr;

@@ -1,0 +1,60 @@
+// The interpreter's hot per-point loops as SIMD kernels over a grid's points (Highway, compiled
+// once per instruction set and chosen at run time, capped as the sample kernels are: capSimd in
+// raster/sample_kernels.h), and the plain C++ reference they must match bit for bit.
+//
+// Same pixels on every machine: each kernel makes exactly the reference's IEEE operations in the
+// same order on each lane (add, subtract, multiply, divide, square root and compares are exactly
+// rounded on every target; the build has -ffp-contract=off so nothing is fused; no approximate
+// reciprocals; pow stays std::pow, point by point). Tails shorter than a vector run the
+// reference code. grid_kernels_test.cpp checks every target this CPU runs against the reference.
+//
+// Operands are component arrays of n floats (a triple: three); `varying` false means one value
+// for every point (read at [0]).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace streyes::sl {
+
+// One light's results over the points, as sumLights reads them (vm.h's LightResult).
+struct LightLanes {
+    const float* Ln[3];   // L normalised
+    const float* Cl[3];
+    const uint8_t* lit;   // 1 where the light reached the point
+};
+
+struct GridKernels {
+    const char* target;  // "SCALAR reference", or Highway's target name
+    // out = normalize(a): 0 where |a|^2 is 0, NaN or infinite (exec.h's normalize3).
+    void (*normalize)(size_t n, const float* const a[3], bool av, float* const out[3]);
+    // out = a . b
+    void (*dot)(size_t n, const float* const a[3], bool av, const float* const b[3], bool bv, float* out);
+    // out = I . ref < 0 ? N : N * -1
+    void (*faceforward)(size_t n, const float* const N[3], bool nv, const float* const I[3], bool iv,
+                        const float* const ref[3], bool rv, float* const out[3]);
+    // out = b == 0 ? 0 : a / b
+    void (*divide)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
+    // diffuse(): out += Cl * (Ln . N) where lit, not Ln . unitN < cosHalf and not Ln . N <= 0.
+    void (*diffuseLight)(size_t n, const LightLanes& l, float cosHalf, const float* const unitN[3],
+                         const float* const N[3], bool nv, float* const out[3]);
+    // specular()'s base before the power: where lit and Ln . unitN >= cosHalf,
+    // max(0, N . normalize(Ln + V)), else -1 (the point takes nothing from this light).
+    void (*specularBase)(size_t n, const LightLanes& l, float cosHalf, const float* const unitN[3],
+                         const float* const N[3], bool nv, const float* const V[3], bool vv, float* base);
+    // out += Cl * t except where t <= 0 (a NaN t is added, as the interpreter always did).
+    void (*addLight)(size_t n, const float* const Cl[3], const float* t, float* const out[3]);
+    // Three component arrays from n triples (x y z x y z ...).
+    void (*deinterleave3)(size_t n, const float* xyz, float* const out[3]);
+};
+
+// The kernels this CPU runs (the widest instruction set allowed), chosen once.
+const GridKernels& gridKernels();
+// The plain C++ reference: the interpreter's plain path.
+const GridKernels& gridKernelsScalar();
+// Every instruction set this CPU runs and this build has kernels for (tests).
+std::vector<const GridKernels*> gridKernelsOfEveryTarget();
+
+}  // namespace streyes::sl

@@ -1,0 +1,193 @@
+// The grid kernels (grid_kernels.h) of every instruction set this CPU runs give the plain C++
+// reference's results bit for bit, kernel by kernel and for whole shaders run by the VM: the
+// shipped ones and shaders with divergent control flow, uniform and varying operands mixed,
+// values that are sanitised, and array indices out of range.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "shade/vm/grid_kernels.h"
+#include "shade/vm/vm_test_util.h"
+
+namespace streyes::sl {
+namespace {
+
+using namespace test;
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Random floats with the awkward ones mixed in: zeros of both signs, NaN, infinities, tiny.
+std::vector<float> awkward(std::mt19937& rng, size_t n) {
+    std::uniform_real_distribution<float> near(-3, 3);
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, inf, -inf, nan, 1e-30f, 1e-45f, 3e38f, -3e38f};
+    std::vector<float> v(n);
+    for (float& f : v) f = rng() % 6 == 0 ? specials[rng() % (sizeof specials / sizeof *specials)] : near(rng);
+    return v;
+}
+
+struct Triple {
+    std::vector<float> c[3];
+    const float* in[3];
+    float* out[3];
+    Triple(std::mt19937& rng, size_t n) {
+        for (auto& v : c) v = awkward(rng, n);
+        for (int k = 0; k < 3; ++k) in[k] = out[k] = c[k].data();
+    }
+    explicit Triple(size_t n) {
+        for (auto& v : c) v.assign(n, 0.0f);
+        for (int k = 0; k < 3; ++k) in[k] = out[k] = c[k].data();
+    }
+};
+
+void expectSame(const std::vector<float>& got, const std::vector<float>& want, const std::string& what) {
+    ASSERT_EQ(got.size(), want.size());
+    for (size_t i = 0; i < got.size(); ++i)
+        ASSERT_TRUE(sameBits(got[i], want[i])) << what << " point " << i << ": " << got[i] << " against " << want[i];
+}
+
+TEST(GridKernels, EveryTargetMatchesTheReferenceBitForBit) {
+    const auto targets = gridKernelsOfEveryTarget();
+    ASSERT_GE(targets.size(), 2u);  // at least a SIMD target and Highway's scalar one
+    const GridKernels& ref = gridKernelsScalar();
+    std::mt19937 rng(47);
+    const float cosHalf = std::cos(3.14159265358979323846f / 2);
+    for (const size_t n : {size_t(1), size_t(7), size_t(16), size_t(37), size_t(289)})
+        for (int flags = 0; flags < 4; ++flags) {
+            const bool av = flags & 1, bv = flags & 2;
+            Triple a(rng, n), b(rng, n), c(rng, n), light(rng, n), cl(rng, n), unit(rng, n);
+            std::vector<uint8_t> lit(n);
+            for (auto& l : lit) l = uint8_t(rng() % 3 != 0);
+            const LightLanes lanes{{light.in[0], light.in[1], light.in[2]}, {cl.in[0], cl.in[1], cl.in[2]}, lit.data()};
+            std::vector<float> t = awkward(rng, n), aos = awkward(rng, 3 * n);
+            for (const GridKernels* k : targets) {
+                const std::string name = k->target;
+                Triple want(n), got(n);
+                ref.normalize(n, a.in, av, want.out);
+                k->normalize(n, a.in, av, got.out);
+                for (int q = 0; q < 3; ++q) expectSame(got.c[q], want.c[q], name + " normalize");
+                ref.faceforward(n, a.in, av, b.in, bv, c.in, !av, want.out);
+                k->faceforward(n, a.in, av, b.in, bv, c.in, !av, got.out);
+                for (int q = 0; q < 3; ++q) expectSame(got.c[q], want.c[q], name + " faceforward");
+                ref.dot(n, a.in, av, b.in, bv, want.out[0]);
+                k->dot(n, a.in, av, b.in, bv, got.out[0]);
+                expectSame(got.c[0], want.c[0], name + " dot");
+                ref.divide(n, a.in[0], av, b.in[1], bv, want.out[0]);
+                k->divide(n, a.in[0], av, b.in[1], bv, got.out[0]);
+                expectSame(got.c[0], want.c[0], name + " divide");
+                // Accumulating kernels: from the same start.
+                Triple accWant(rng, n);
+                Triple accGot = accWant;
+                for (int q = 0; q < 3; ++q) accGot.in[q] = accGot.out[q] = accGot.c[q].data();
+                ref.diffuseLight(n, lanes, cosHalf, unit.in, a.in, av, accWant.out);
+                k->diffuseLight(n, lanes, cosHalf, unit.in, a.in, av, accGot.out);
+                ref.addLight(n, cl.in, t.data(), accWant.out);
+                k->addLight(n, cl.in, t.data(), accGot.out);
+                for (int q = 0; q < 3; ++q) expectSame(accGot.c[q], accWant.c[q], name + " diffuseLight, addLight");
+                ref.specularBase(n, lanes, cosHalf, unit.in, a.in, av, b.in, bv, want.out[1]);
+                k->specularBase(n, lanes, cosHalf, unit.in, a.in, av, b.in, bv, got.out[1]);
+                expectSame(got.c[1], want.c[1], name + " specularBase");
+                ref.deinterleave3(n, aos.data(), want.out);
+                k->deinterleave3(n, aos.data(), got.out);
+                for (int q = 0; q < 3; ++q) expectSame(got.c[q], want.c[q], name + " deinterleave3");
+            }
+        }
+}
+
+// ---- Whole shaders -------------------------------------------------------------------------
+
+// Shaders that use the kernels' operations the way shader libraries do, with divergent control
+// flow (if and while under varying conditions), uniform operands beside varying ones, results
+// that are sanitised (x / 0) and array indices out of range (clamped).
+const char* const kShaders[] = {
+    R"(surface divergent(float Kd = .8; float k = 3;) {
+        normal Nf = faceforward(normalize(N), I);
+        float d = Nf . normalize(-I);
+        color c = 0;
+        if (d > .5) c = Kd * diffuse(Nf);
+        else c = color(1, 0, 0) / (d - .25);
+        float i = 0;
+        while (i < s * 10) { c += .01 * specular(Nf, -normalize(I), .2); i += 1; }
+        uniform float u = k / 2;
+        Ci = c * u + d / s;
+        Oi = 1;
+    })",
+    R"(surface arrays(float a[3] = {1, 2, 3};) {
+        float idx = floor(s * 6) - 1;
+        float v = a[idx];
+        vector V = normalize(vector(v, t, 1)) / (t - .5);
+        Ci = color(V . normalize(N), v, comp(diffuse(normalize(N)), 1));
+        if (s > .5) { Ci /= (s - .75); }
+        Oi = 1;
+    })",
+};
+
+struct Scene {
+    TestGrid g{16, 16};
+    ShaderInstance amb{compileShaderFile(shaderPath("ambientlight"))}, sun{compileShaderFile(shaderPath("distantlight"))},
+        bulb{compileShaderFile(shaderPath("pointlight"))};
+    std::vector<LightRef> lights;
+    std::vector<Vec3f> P;  // bound as the renderer binds it: triples x y z x y z
+    Vec3f eye{0, 0, 0};
+    Scene() {
+        for (int i = 0; i < g.n(); ++i) {
+            const float u = float(i % 17) / 16, v = float(i / 17) / 16;
+            P.push_back({std::sin(u * 1.2f) * 3, std::sin(v * 1.2f) * 3, 8 - std::cos(u) * std::cos(v) * 3});
+        }
+        g.grid.set(Global::P, ValueRef::aos(P.data()));
+        g.grid.set(Global::I, ValueRef::aos(P.data()));
+        g.grid.set(Global::E, ValueRef::uniform(eye));
+        g.setVarying(Global::N, 3, [](int i) { return Vec3f{std::sin(i * .3f), std::cos(i * .7f), -1.0f + (i % 5) * .4f}; });
+        g.setVarying(Global::Cs, 3, [](int i) { return Vec3f{.8f, .5f + .001f * i, .3f}; });
+        bulb.set("intensity", BaseType::Float, {30});
+        sun.set("from", BaseType::Point, {1, 2, -1});
+        lights = {{&amb, Matrix4()}, {&sun, Matrix4()}, {&bulb, Matrix4::translate({-3, 4, 0})}};
+    }
+};
+
+// Every component of every point of Ci and Oi.
+std::vector<float> results(ShadingVM& vm) {
+    std::vector<float> out;
+    for (Global gl : {Global::Ci, Global::Oi}) {
+        ValueRef v = vm.result(gl);
+        for (int c = 0; c < 3; ++c)
+            for (int i = 0; i < 289; ++i) out.push_back(v.at(c, i));
+    }
+    return out;
+}
+
+TEST(GridKernels, ShadersGiveThePlainPathsGridsBitForBit) {
+    Scene scene;
+    std::vector<ProgramPtr> programs;
+    for (const char* name : {"matte", "plastic", "bark", "leaf", "ground", "sky", "metal", "shinymetal", "paintedplastic"})
+        programs.push_back(compileShaderFile(shaderPath(name)));
+    for (const char* src : kShaders) programs.push_back(compile(src));
+    const auto targets = gridKernelsOfEveryTarget();
+    for (const ProgramPtr& p : programs) {
+        ShaderInstance inst(p);
+        ShadingVM plain;
+        plain.setKernels(gridKernelsScalar());
+        plain.run(inst, scene.g.grid, scene.lights);
+        const std::vector<float> want = results(plain);
+        for (const GridKernels* k : targets) {
+            ShadingVM vm;
+            vm.setKernels(*k);
+            vm.run(inst, scene.g.grid, scene.lights);
+            expectSame(results(vm), want, p->name + " on " + k->target);
+            EXPECT_EQ(vm.stats().sanitised, plain.stats().sanitised) << p->name;
+            EXPECT_EQ(vm.stats().indicesClamped, plain.stats().indicesClamped) << p->name;
+        }
+        if (p->name == "divergent") {
+            EXPECT_GT(plain.stats().sanitised, 0u);  // x / 0 met
+        }
+        if (p->name == "arrays") {
+            EXPECT_GT(plain.stats().indicesClamped, 0u);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace streyes::sl
