@@ -59,7 +59,8 @@ void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
 
 // ---- TraceScene -------------------------------------------------------------------------------------
 
-TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log) : scene_(scene) {
+TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log, const SceneShaders* shaders)
+    : scene_(scene), shaders_(shaders) {
     for (const BodyPtr& root : scene.roots) collect(*root, log);
     // Curved bodies are tessellated in parallel (splitting and dicing are const and thread-safe,
     // as the buckets use them), each into its own deque, then placed where collect met them: the
@@ -67,6 +68,11 @@ TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, L
     micropolygons_.resize(curved_.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, curved_.size()), [&](const tbb::blocked_range<size_t>& r) {
         Tessellator tessellator(scene.camera, options, scene.shutter.close - scene.shutter.open, log);
+        std::unique_ptr<GridShader> displacer;  // this task's, for displacement shaders (no rays)
+        if (shaders_) {
+            displacer = std::make_unique<GridShader>(shaders_, scene.camera, scene.lights);
+            tessellator.setDisplacer(displacer.get());
+        }
         for (size_t i = r.begin(); i != r.end(); ++i) tessellator.tessellate(*curved_[i].body, micropolygons_[i]);
     });
     if (!curved_.empty()) {
@@ -98,7 +104,8 @@ TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, L
 
 void TraceScene::collect(const Body& body, Log& log) {
     if (!body.time().overlaps(scene_.renderedStart, scene_.renderedEnd)) return;  // no ray is cast while it exists
-    if (const auto* patch = dynamic_cast<const TrilinearBody*>(&body)) {
+    const auto* patch = dynamic_cast<const TrilinearBody*>(&body);
+    if (patch && !displaced(body)) {
         bodies_.push_back(patch);
     } else if (body.expands()) {
         const auto* p = static_cast<const ProceduralBody*>(&body);
@@ -118,9 +125,26 @@ void TraceScene::collect(const Body& body, Log& log) {
             collect(*h, log);
             pieces_.push_back(std::move(h));
         }
-    } else {  // a curved body: its micropolygons, made after collecting (see the constructor)
+    } else if (displaced(body) && displacementReadsTime(*body.material())) {
+        // Its surface changes with time even where it stands still: the micropolygons of each
+        // frame's exposure apart (the rasterizer shades such a body per exposure), each frame's
+        // cut from the body itself, so a frame's traced surface is the same in any frame block.
+        const double open = scene_.shutter.open, close = scene_.shutter.close;
+        const TimeSpan& span = body.time();
+        const double a0 = std::max(span.t0, scene_.renderedStart), b0 = std::min(span.t1, scene_.renderedEnd);
+        for (double f = std::ceil(a0 - close); f <= std::floor(b0 - open); f += 1) {
+            const double a = std::max(span.t0, f + open), b = std::min(span.t1, f + close);
+            if (a > b || !span.overlaps(a, b)) continue;
+            pieces_.push_back(body.restrictedTo(a, b));
+            curved_.push_back({pieces_.back().get(), bodies_.size()});
+        }
+    } else {  // a curved or displaced body: its micropolygons, made after collecting (see the constructor)
         curved_.push_back({&body, bodies_.size()});
     }
+}
+
+bool TraceScene::displaced(const Body& body) const {
+    return shaders_ && body.material() && body.material()->displacement;
 }
 
 void TraceScene::buildSpacetime(const HierarchyOptions& options) {
