@@ -13,19 +13,14 @@ bool displacementReadsTime(const Material& m) {
     return m.displacement && m.displacement->program().globalReg[size_t(sl::Global::time)] >= 0;
 }
 
-void Tessellator::tessellate(const Body& body, std::deque<TrilinearBody>& out) {
+bool Tessellator::tessellate(const Body& body, std::deque<TrilinearBody>& out) {
     // A counting pass first, which stops at the cap: a body reaching the near plane can measure
     // in millions of pixels. Past the cap the body is left out; it cannot be diced coarser than
     // the split loop does, since a curved body's edges follow lattices made at its own rate.
     count_ = 0;
     out_ = nullptr;
     process(body, 0, 0);
-    if (count_ > kMaxMicropolygonsPerBody) {
-        log_.warnOnce("trace:tessellation", body.source() ? *body.source() : SourceLoc{},
-                      "a surface would make more than " + std::to_string(kMaxMicropolygonsPerBody) +
-                          " micropolygons for the ray tracer: it is left out of ray tracing and shadows");
-        return;
-    }
+    if (count_ > kMaxMicropolygonsPerBody) return false;  // the caller says what it does instead
     dropped_ = behind_ = false;
     out_ = &out;
     process(body, 0, 0);
@@ -38,6 +33,7 @@ void Tessellator::tessellate(const Body& body, std::deque<TrilinearBody>& out) {
         log_.warnOnce("trace:behind", body.source() ? *body.source() : SourceLoc{},
                       "curved surfaces behind the camera (behind half the near clipping distance) are left out of "
                       "ray tracing: they cast no shadows");
+    return true;
 }
 
 void Tessellator::process(const Body& body, int depth, int eyeDepth) {

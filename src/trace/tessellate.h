@@ -41,8 +41,9 @@ class Tessellator {
     // Runs displacement shaders on the grids diced (null: surfaces are traced undisplaced).
     void setDisplacer(GridShader* displacer) { displacer_ = displacer; }
 
-    // Appends the micropolygons of `body` (diceable in time, not a procedural) to `out`.
-    void tessellate(const Body& body, std::deque<TrilinearBody>& out);
+    // Appends the micropolygons of `body` (diceable in time, not a procedural) to `out`. False
+    // (nothing appended, nothing warned) when it would make more than kMaxMicropolygonsPerBody.
+    bool tessellate(const Body& body, std::deque<TrilinearBody>& out);
 
   private:
     // Walks the split tree of `body`; counts micropolygons into count_, and makes them when out_.

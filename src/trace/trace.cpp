@@ -66,6 +66,7 @@ TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, L
     // as the buckets use them), each into its own deque, then placed where collect met them: the
     // body order, and so the hierarchy, does not depend on threads.
     micropolygons_.resize(curved_.size());
+    std::vector<const TrilinearBody*> traceUndisplaced(curved_.size(), nullptr);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, curved_.size()), [&](const tbb::blocked_range<size_t>& r) {
         Tessellator tessellator(scene.camera, options, scene.shutter.close - scene.shutter.open, log);
         std::unique_ptr<GridShader> displacer;  // this task's, for displacement shaders (no rays)
@@ -73,7 +74,24 @@ TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, L
             displacer = std::make_unique<GridShader>(shaders_, scene.camera, scene.lights);
             tessellator.setDisplacer(displacer.get());
         }
-        for (size_t i = r.begin(); i != r.end(); ++i) tessellator.tessellate(*curved_[i].body, micropolygons_[i]);
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const Body& body = *curved_[i].body;
+            if (tessellator.tessellate(body, micropolygons_[i])) continue;
+            const SourceLoc at = body.source() ? *body.source() : SourceLoc{};
+            const std::string many = std::to_string(Tessellator::kMaxMicropolygonsPerBody);
+            if (const auto* patch = dynamic_cast<const TrilinearBody*>(&body)) {
+                // A displaced patch too large to dice (a ground plane to the horizon): traced as
+                // the exact patch, as before displacement was traced.
+                traceUndisplaced[i] = patch;
+                log.warnOnce("trace:displacedtessellation", at,
+                             "a displaced surface would make more than " + many +
+                                 " micropolygons for the ray tracer: it is traced undisplaced");
+            } else {
+                log.warnOnce("trace:tessellation", at,
+                             "a surface would make more than " + many +
+                                 " micropolygons for the ray tracer: it is left out of ray tracing and shadows");
+            }
+        }
     });
     if (!curved_.empty()) {
         std::vector<const TrilinearBody*> all;
@@ -85,6 +103,7 @@ TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, L
         for (size_t i = 0; i < curved_.size(); ++i) {
             for (; next < curved_[i].at; ++next) all.push_back(bodies_[next]);
             for (const TrilinearBody& mp : micropolygons_[i]) all.push_back(&mp);
+            if (traceUndisplaced[i]) all.push_back(traceUndisplaced[i]);
         }
         for (; next < bodies_.size(); ++next) all.push_back(bodies_[next]);
         bodies_ = std::move(all);

@@ -78,6 +78,22 @@ TEST(DisplacedTrace, APlaneDisplacedByAConstantIsHitAndOccludesAtItsDisplacedHei
     }
 }
 
+// A displaced roof too large to dice for the ray tracer (2e5 pixels across) is traced as the
+// exact patch, undisplaced, with one warning: not left out.
+TEST(DisplacedTrace, ASurfaceTooLargeToDiceIsTracedUndisplacedWithAWarning) {
+    ShaderDir d;
+    d.add("lift", kLift);
+    d.add("probe", kProbe);
+    std::string rib = roofScene(d, "\"d\" 4");
+    const std::string small = test::square(-12, 20, -12, 20, 110), huge = test::square(-1e5, 1e5, -1e5, 1e5, 110);
+    rib.replace(rib.find(small), small.size(), huge);
+    const test::RenderResult r = test::renderRib(rib);
+    EXPECT_NEAR(r.channel(0, 4, 4, 0), 110, 1e-3);
+    int said = 0;
+    for (const std::string& w : r.warnings) said += w.find("it is traced undisplaced") != std::string::npos;
+    EXPECT_EQ(said, 1);
+}
+
 // Frame f lifts the roof by 2 f: each frame's hits at 110 - 2 f, and a frame's pixels are the
 // same rendered alone, in one block, or in blocks of one frame.
 TEST(DisplacedTrace, ADisplacementThatChangesPerFrameIsTracedPerFrameWhateverTheBlock) {
