@@ -274,7 +274,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
         tbb::task_arena traceArena(threads);
         traceArena.execute([&] {
             scene_->factory->setBodyBudget(budget, budget > others ? budget - others : 1);
-            trace = std::make_unique<TraceScene>(*scene_, options_, log_);
+            trace = std::make_unique<TraceScene>(*scene_, options_, log_, shaders_.get());
             scene_->factory->setBodyBudget(0, 0);
             if (!traceFrames) {
                 trace->buildSpacetime(options_.hierarchy);

@@ -56,6 +56,16 @@ void GridShader::shade(Grid& grid) {
     for (int k = 0; k < (grid.moving ? 2 : 1); ++k) shadeSlot(grid, k, k == 0 ? grid.t0 : grid.t1);
 }
 
+void GridShader::displaceOnly(Grid& grid) {
+    const Material& m = *grid.material;
+    if (!m.displacement) return;
+    for (int k = 0; k < (grid.moving ? 2 : 1); ++k) {
+        const double time = k == 0 ? grid.t0 : grid.t1;
+        prepare(m, grid, k, time);
+        displace(m, grid, k, time);
+    }
+}
+
 void GridShader::shadeSlot(Grid& grid, int k, double time) {
     const Material& m = *grid.material;
     if (m.displacement || m.surface || m.atmosphere) prepare(m, grid, k, time);  // once for all three

@@ -64,6 +64,9 @@ class GridShader {
     void shadeSlot(Grid& grid, int k, double time);
     // Both slots of a moving grid (t0 and t1), or the one of a still grid.
     void shade(Grid& grid);
+    // Only the material's displacement shader (if any) over each slot, at t0 and t1: the ray
+    // tracer's micropolygons are the displaced grid the rasterizer samples (trace/tessellate.h).
+    void displaceOnly(Grid& grid);
 
     // One point (a ray's hit): its colour, and with `shadowed` the parts of the lights that cast
     // shadows (as shadePoint gives them), and with `opacity` its Oi. No derivatives: du, dv and

@@ -5,22 +5,22 @@
 #include <string>
 
 #include "bodies/material.h"
+#include "shade/vm/shader_instance.h"
 
 namespace streyes {
 
-void Tessellator::tessellate(const Body& body, std::deque<TrilinearBody>& out) {
+bool displacementReadsTime(const Material& m) {
+    return m.displacement && m.displacement->program().globalReg[size_t(sl::Global::time)] >= 0;
+}
+
+bool Tessellator::tessellate(const Body& body, std::deque<TrilinearBody>& out) {
     // A counting pass first, which stops at the cap: a body reaching the near plane can measure
     // in millions of pixels. Past the cap the body is left out; it cannot be diced coarser than
     // the split loop does, since a curved body's edges follow lattices made at its own rate.
     count_ = 0;
     out_ = nullptr;
     process(body, 0, 0);
-    if (count_ > kMaxMicropolygonsPerBody) {
-        log_.warnOnce("trace:tessellation", body.source() ? *body.source() : SourceLoc{},
-                      "a surface would make more than " + std::to_string(kMaxMicropolygonsPerBody) +
-                          " micropolygons for the ray tracer: it is left out of ray tracing and shadows");
-        return;
-    }
+    if (count_ > kMaxMicropolygonsPerBody) return false;  // the caller says what it does instead
     dropped_ = behind_ = false;
     out_ = &out;
     process(body, 0, 0);
@@ -33,6 +33,7 @@ void Tessellator::tessellate(const Body& body, std::deque<TrilinearBody>& out) {
         log_.warnOnce("trace:behind", body.source() ? *body.source() : SourceLoc{},
                       "curved surfaces behind the camera (behind half the near clipping distance) are left out of "
                       "ray tracing: they cast no shadows");
+    return true;
 }
 
 void Tessellator::process(const Body& body, int depth, int eyeDepth) {
@@ -99,6 +100,23 @@ void Tessellator::dice(const Body& body, int nu, int nv) {
         return;
     }
     body.dice(nu, nv, grid_);
+    const Material* m = body.material();
+    if (displacer_ && m && m->displacement) {
+        // As BucketWorker::diceShade prepares a grid for its shaders: normals turned to the
+        // side Orientation calls outside, and a still grid whose displacement reads time
+        // displaced at both ends of its span.
+        grid_.shadowSlots = 0;
+        grid_.aovCount = 0;
+        for (int k = 0; k < (grid_.moving ? 2 : 1); ++k)
+            if (m->flipNormals)
+                for (Vec3f& n : grid_.N[k]) n = -n;
+        if (!grid_.moving && grid_.t1 > grid_.t0 && displacementReadsTime(*m)) {
+            grid_.resize(grid_.nu, grid_.nv, true);
+            grid_.P[1] = grid_.P[0];
+            grid_.N[1] = grid_.N[0];
+        }
+        displacer_->displaceOnly(grid_);
+    }
     const TimeSpan span{grid_.t0, grid_.t1, grid_.openEnd};
     const bool flat = body.material() && !body.material()->smoothShading;
     const std::vector<Vec3f>& P0 = grid_.P[0];

@@ -9,6 +9,10 @@
 // tree depends on the body and the camera only), and the two agree sample for sample. Pieces
 // across the eye plane are split a few times in camera space; what lies behind it cannot be
 // measured or diced and is left out (with one warning): it casts no shadows.
+//
+// A displaced surface (a material with a displacement shader) is diced the same way and its
+// grid displaced before it is cut into micropolygons, as the rasterizer displaces the grids it
+// samples: rays, shadows and occlusion() see the displaced surface.
 #pragma once
 
 #include <deque>
@@ -16,6 +20,7 @@
 
 #include "geom/body.h"
 #include "geom/grid.h"
+#include "shade/grid_shader.h"
 #include "streyes/error.h"
 #include "streyes/render_options.h"
 
@@ -33,8 +38,12 @@ class Tessellator {
     Tessellator(const Camera& camera, const RenderOptions& options, double exposure, Log& log)
         : cam_(camera), options_(options), exposure_(exposure), log_(log) {}
 
-    // Appends the micropolygons of `body` (diceable in time, not a procedural) to `out`.
-    void tessellate(const Body& body, std::deque<TrilinearBody>& out);
+    // Runs displacement shaders on the grids diced (null: surfaces are traced undisplaced).
+    void setDisplacer(GridShader* displacer) { displacer_ = displacer; }
+
+    // Appends the micropolygons of `body` (diceable in time, not a procedural) to `out`. False
+    // (nothing appended, nothing warned) when it would make more than kMaxMicropolygonsPerBody.
+    bool tessellate(const Body& body, std::deque<TrilinearBody>& out);
 
   private:
     // Walks the split tree of `body`; counts micropolygons into count_, and makes them when out_.
@@ -50,6 +59,11 @@ class Tessellator {
     bool dropped_ = false, behind_ = false;
     std::deque<TrilinearBody>* out_ = nullptr;
     Grid grid_;  // reused: dicing allocates nothing once warm
+    GridShader* displacer_ = nullptr;
 };
+
+// Does the material's displacement shader read `time` (so its surface changes while it stands
+// still, and the ray tracer takes it frame by frame)?
+bool displacementReadsTime(const Material& m);
 
 }  // namespace streyes

@@ -59,15 +59,39 @@ void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
 
 // ---- TraceScene -------------------------------------------------------------------------------------
 
-TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log) : scene_(scene) {
+TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log, const SceneShaders* shaders)
+    : scene_(scene), shaders_(shaders) {
     for (const BodyPtr& root : scene.roots) collect(*root, log);
     // Curved bodies are tessellated in parallel (splitting and dicing are const and thread-safe,
     // as the buckets use them), each into its own deque, then placed where collect met them: the
     // body order, and so the hierarchy, does not depend on threads.
     micropolygons_.resize(curved_.size());
+    std::vector<const TrilinearBody*> traceUndisplaced(curved_.size(), nullptr);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, curved_.size()), [&](const tbb::blocked_range<size_t>& r) {
         Tessellator tessellator(scene.camera, options, scene.shutter.close - scene.shutter.open, log);
-        for (size_t i = r.begin(); i != r.end(); ++i) tessellator.tessellate(*curved_[i].body, micropolygons_[i]);
+        std::unique_ptr<GridShader> displacer;  // this task's, for displacement shaders (no rays)
+        if (shaders_) {
+            displacer = std::make_unique<GridShader>(shaders_, scene.camera, scene.lights);
+            tessellator.setDisplacer(displacer.get());
+        }
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const Body& body = *curved_[i].body;
+            if (tessellator.tessellate(body, micropolygons_[i])) continue;
+            const SourceLoc at = body.source() ? *body.source() : SourceLoc{};
+            const std::string many = std::to_string(Tessellator::kMaxMicropolygonsPerBody);
+            if (const auto* patch = dynamic_cast<const TrilinearBody*>(&body)) {
+                // A displaced patch too large to dice (a ground plane to the horizon): traced as
+                // the exact patch, as before displacement was traced.
+                traceUndisplaced[i] = patch;
+                log.warnOnce("trace:displacedtessellation", at,
+                             "a displaced surface would make more than " + many +
+                                 " micropolygons for the ray tracer: it is traced undisplaced");
+            } else {
+                log.warnOnce("trace:tessellation", at,
+                             "a surface would make more than " + many +
+                                 " micropolygons for the ray tracer: it is left out of ray tracing and shadows");
+            }
+        }
     });
     if (!curved_.empty()) {
         std::vector<const TrilinearBody*> all;
@@ -79,6 +103,7 @@ TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, L
         for (size_t i = 0; i < curved_.size(); ++i) {
             for (; next < curved_[i].at; ++next) all.push_back(bodies_[next]);
             for (const TrilinearBody& mp : micropolygons_[i]) all.push_back(&mp);
+            if (traceUndisplaced[i]) all.push_back(traceUndisplaced[i]);
         }
         for (; next < bodies_.size(); ++next) all.push_back(bodies_[next]);
         bodies_ = std::move(all);
@@ -98,7 +123,8 @@ TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, L
 
 void TraceScene::collect(const Body& body, Log& log) {
     if (!body.time().overlaps(scene_.renderedStart, scene_.renderedEnd)) return;  // no ray is cast while it exists
-    if (const auto* patch = dynamic_cast<const TrilinearBody*>(&body)) {
+    const auto* patch = dynamic_cast<const TrilinearBody*>(&body);
+    if (patch && !displaced(body)) {
         bodies_.push_back(patch);
     } else if (body.expands()) {
         const auto* p = static_cast<const ProceduralBody*>(&body);
@@ -118,9 +144,26 @@ void TraceScene::collect(const Body& body, Log& log) {
             collect(*h, log);
             pieces_.push_back(std::move(h));
         }
-    } else {  // a curved body: its micropolygons, made after collecting (see the constructor)
+    } else if (displaced(body) && displacementReadsTime(*body.material())) {
+        // Its surface changes with time even where it stands still: the micropolygons of each
+        // frame's exposure apart (the rasterizer shades such a body per exposure), each frame's
+        // cut from the body itself, so a frame's traced surface is the same in any frame block.
+        const double open = scene_.shutter.open, close = scene_.shutter.close;
+        const TimeSpan& span = body.time();
+        const double a0 = std::max(span.t0, scene_.renderedStart), b0 = std::min(span.t1, scene_.renderedEnd);
+        for (double f = std::ceil(a0 - close); f <= std::floor(b0 - open); f += 1) {
+            const double a = std::max(span.t0, f + open), b = std::min(span.t1, f + close);
+            if (a > b || !span.overlaps(a, b)) continue;
+            pieces_.push_back(body.restrictedTo(a, b));
+            curved_.push_back({pieces_.back().get(), bodies_.size()});
+        }
+    } else {  // a curved or displaced body: its micropolygons, made after collecting (see the constructor)
         curved_.push_back({&body, bodies_.size()});
     }
+}
+
+bool TraceScene::displaced(const Body& body) const {
+    return shaders_ && body.material() && body.material()->displacement;
 }
 
 void TraceScene::buildSpacetime(const HierarchyOptions& options) {

@@ -39,7 +39,11 @@ class TraceScene {
     // the exposures of the frames rendered (RenderScene::renderedStart, renderedEnd) is taken:
     // rays are cast at those times only, so a frame's rays meet the same bodies whatever else is
     // rendered with it (a render of one frame of a long shot builds for that frame, not the shot).
-    TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log);
+    // A displaced surface (its material has a displacement shader, and `shaders` is given) is
+    // traced as its displaced micropolygons, whatever its kind; one whose displacement reads
+    // `time` as its micropolygons of each frame's exposure, displaced at that exposure's ends.
+    TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log,
+               const SceneShaders* shaders = nullptr);
 
     // One 4D hierarchy over the exposures of the frames rendered.
     void buildSpacetime(const HierarchyOptions& options);
@@ -71,10 +75,12 @@ class TraceScene {
 
   private:
     void collect(const Body& body, Log& log);
+    bool displaced(const Body& body) const;
 
     const RenderScene& scene_;
+    const SceneShaders* shaders_;
     std::vector<const TrilinearBody*> bodies_;
-    std::vector<BodyPtr> pieces_;  // segments of keyed patches
+    std::vector<BodyPtr> pieces_;  // segments of keyed patches, frames of time-displaced bodies
     std::vector<ChildrenLease> leases_;  // the procedurals' children it holds
     // Curved bodies met by collect, and where in bodies_ their micropolygons go; then the
     // micropolygons of each (deques: bodies_ points into them).
