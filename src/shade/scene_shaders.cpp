@@ -289,10 +289,17 @@ void SceneShaders::runImager(FrameImage& frame) const {
     vm.setLog(&log_);
     vm.run(*imager_, g);
     const sl::ValueRef ci = vm.result(sl::Global::Ci), alpha = vm.result(sl::Global::alpha);
+    // The pixel's alpha: the imager's alpha when it names it, else the mean of its Oi (as Aqsis
+    // takes it: an imager that draws over an empty world, a fisheye's disc, sets Oi).
+    const sl::ShaderProgram& p = imager_->program();
+    const bool ownAlpha = p.globalReg[size_t(sl::Global::alpha)] >= 0;
+    const sl::ValueRef oi = vm.result(sl::Global::Oi);
+    const bool fromOi = !ownAlpha && p.globalReg[size_t(sl::Global::Oi)] >= 0 && oi.valid();
     std::vector<float> out(size_t(n) * 4);
     for (int i = 0; i < n; ++i) {
         for (int c = 0; c < 3; ++c) out[size_t(i) * 4 + size_t(c)] = ci.valid() ? ci.at(c, i) : rgba[size_t(i) * 4 + size_t(c)];
-        out[size_t(i) * 4 + 3] = alpha.valid() ? alpha.at(0, i) : rgba[size_t(i) * 4 + 3];
+        out[size_t(i) * 4 + 3] = fromOi ? (oi.at(0, i) + oi.at(1, i) + oi.at(2, i)) / 3
+                                 : alpha.valid() ? alpha.at(0, i) : rgba[size_t(i) * 4 + 3];
     }
     frame.rgba = std::move(out);
 }
