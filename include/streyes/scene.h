@@ -92,11 +92,30 @@ struct LevelOfDetail {
     SourceLoc loc;                 // the DetailRange
 };
 
+// ShaderLayer / ConnectShaderLayers (RI 3.x shader networks, as PRMan 16 and Aqsis read them): a
+// surface made of layers, each a shader instance with its own parameters, run in order over the
+// grid. After a layer runs, its connections set a later layer's parameter (or a predefined
+// variable such as Cs, which every later layer then sees) to the value one of its parameters (or
+// a predefined variable) has then. The last layer's Ci and Oi are the surface's.
+struct ShaderConnection {
+    int from = 0, to = 0;    // indices into ShaderNetwork::layers, from < to
+    std::string fromVar, toVar;
+    SourceLoc loc;           // the ConnectShaderLayers request
+};
+struct ShaderNetwork {
+    std::vector<ShaderDesc> layers;
+    std::vector<std::string> names;  // each layer's name, as ShaderLayer gave it
+    std::vector<ShaderConnection> connections;
+};
+
 // The attribute state a primitive was declared with. Shared: many primitives point at one.
 struct Attributes {
     Color color{1, 1, 1};                        // Color (Cs)
     Color opacity{1, 1, 1};                      // Opacity (Os)
     ShaderDesc surface{"defaultsurface", {}, {}, {}};
+    // ShaderLayer "surface": the layers (surface is then the last one's description); empty after
+    // a Surface request.
+    ShaderNetwork surfaceLayers;
     ShaderDesc displacement;                     // Displacement; no name: none
     ShaderDesc atmosphere;                       // Atmosphere (a volume shader); no name: none
     // Attribute "displacementbound" "sphere" r: how far displacement may move a point, in the

@@ -14,6 +14,7 @@ namespace streyes {
 namespace sl {
 class ShaderInstance;  // shade/vm: a compiled Shading Language shader and its parameter values
 }
+struct SurfaceNetwork;  // shade/surface_network.h: a layered surface's shaders and connections
 
 enum class SurfaceKind { Constant, Matte, Plastic, Default };
 
@@ -59,6 +60,9 @@ struct Material {
     // shading stage. Null: the built-in `kind` above, which reproduces the shipped constant,
     // matte, plastic and defaultsurface under the standard lights, three times faster.
     std::shared_ptr<const sl::ShaderInstance> surface;
+    // A layered surface (ShaderLayer): its layers, run in order over each grid; `surface` is the
+    // last of them. Null: `surface` alone.
+    std::shared_ptr<const SurfaceNetwork> layers;
     bool readsTime = false;  // a shader reads `time`: a still grid is shaded per exposure
     bool readsMaps = false;  // its surface or a light of it calls shadow(): per exposure where maps vary
     // Its surface, displacement, atmosphere or a light of it casts rays (occlusion(), trace(),

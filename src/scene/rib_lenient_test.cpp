@@ -52,8 +52,8 @@ TEST(RibLenient, RequestsInTheWrongBlockAreSkippedWithAWarning) {
          "test.rib:3: warning: Patch belongs between WorldBegin and WorldEnd: ignored before WorldBegin", 1},
         {"geometry after the world", "WorldBegin\nWorldEnd\n" + patch,
          "test.rib:3: warning: Patch belongs between WorldBegin and WorldEnd: ignored after WorldEnd", 0},
-        {"an unknown request, with its arguments", "WorldBegin\n\nShaderLayer \"plastic\" \"a\" \"Kd\" 1\n" + patch + "WorldEnd\n",
-         "test.rib:3: warning: unknown request 'ShaderLayer' ignored", 1},
+        {"an unknown request, with its arguments", "WorldBegin\n\nShaderGroupBegin \"plastic\" \"a\" \"Kd\" 1\n" + patch + "WorldEnd\n",
+         "test.rib:3: warning: unknown request 'ShaderGroupBegin' ignored", 1},
         {"a request misspelled in case", "WorldBegin\n\ntranslate 1 0 0\n" + patch + "WorldEnd\n",
          "did you mean 'Translate'", 1},
     };

@@ -34,7 +34,83 @@ void surface(RibParser& reader, RibArgs& args) {
         params.getColor("specularcolor", Color(1, 1, 1));
         reader.warnUnusedParams(params, builtin->second, "Surface \"" + name + "\"");
     }
-    reader.state().mutableAttributes().surface = ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm};
+    Attributes& a = reader.state().mutableAttributes();
+    a.surface = ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm};
+    a.surfaceLayers = {};  // a Surface replaces a layered surface
+}
+
+// ShaderLayer "surface" "name" "layername" parameters...: a layer of the current surface when it
+// is layered, else the first layer of a new one (as Aqsis and PRMan 16 read it). The built-in
+// surfaces run as their shipped .sl files here. Layered displacements and imagers are warned
+// about and left out.
+void shaderLayer(RibParser& reader, RibArgs& args) {
+    const std::string type = args.string("shader type");
+    std::string name = args.string("shader name");
+    const std::string layer = args.string("layer name");
+    if (name.empty()) args.fail("the shader name is empty");
+    if (layer.empty()) args.fail("the layer name is empty");
+    ParamList params = reader.readParams(args, true);
+    if (type != "surface") {
+        reader.log().lenient("shaderlayer:" + type, args.loc(),
+                             "ShaderLayer \"" + type + "\": only surface shaders are layered here; layer '" + layer +
+                                 "' ignored");
+        return;
+    }
+    if (name == "null") name = "defaultsurface";
+    Attributes& a = reader.state().mutableAttributes();
+    ShaderNetwork& net = a.surfaceLayers;
+    for (const std::string& n : net.names)
+        if (n == layer)
+            reader.log().lenient("shaderlayer-name:" + layer, args.loc(),
+                                 "the surface already has a layer named '" + layer +
+                                     "': later connections name the new one");
+    net.layers.push_back(ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm});
+    net.names.push_back(layer);
+    a.surface = net.layers.back();  // what the surface is when the network cannot run: its last layer
+}
+
+// ConnectShaderLayers "surface" "layer1" "variable1" "layer2" "variable2": after layer1 runs,
+// layer2's variable2 takes layer1's variable1. Layers must be declared (in this attribute state)
+// before, and layer1 before layer2, as they run in order; else warned and skipped, as the peers
+// skip what they cannot connect. The variables are checked against the shaders when the render
+// binds them (shade/scene_shaders.cpp).
+void connectShaderLayers(RibParser& reader, RibArgs& args) {
+    const std::string type = args.string("shader type");
+    ShaderConnection c;
+    const std::string layer1 = args.string("layer1");
+    c.fromVar = args.string("variable1");
+    const std::string layer2 = args.string("layer2");
+    c.toVar = args.string("variable2");
+    args.expectEnd();
+    c.loc = args.loc();
+    if (type != "surface") {
+        reader.log().lenient("shaderlayer:" + type, args.loc(),
+                             "ConnectShaderLayers \"" + type + "\": only surface shaders are layered here; ignored");
+        return;
+    }
+    const ShaderNetwork& net = reader.state().attributes->surfaceLayers;
+    auto find = [&](const std::string& n) {
+        for (size_t i = net.names.size(); i-- > 0;)  // the latest of that name
+            if (net.names[i] == n) return int(i);
+        return -1;
+    };
+    c.from = find(layer1);
+    c.to = find(layer2);
+    const std::string what = "ConnectShaderLayers " + layer1 + "." + c.fromVar + " -> " + layer2 + "." + c.toVar;
+    for (const auto& [index, n] : {std::pair<int, std::string>{c.from, layer1}, {c.to, layer2}})
+        if (index < 0) {
+            reader.log().lenient("connect:" + what, args.loc(),
+                                 what + ": the surface has no layer named '" + n +
+                                     "' (ShaderLayer \"surface\" declares layers first): not connected");
+            return;
+        }
+    if (c.from >= c.to) {
+        reader.log().lenient("connect:" + what, args.loc(),
+                             what + ": layers run in the order they are declared, and '" + layer2 +
+                                 "' does not come after '" + layer1 + "': not connected");
+        return;
+    }
+    reader.state().mutableAttributes().surfaceLayers.connections.push_back(std::move(c));
 }
 
 // A shader request's name and parameters, with the CTM as its "shader" space. "null" (the RI
@@ -143,6 +219,9 @@ void illuminate(RibParser& reader, RibArgs& args) {
 
 void addShadingRequests(RibRequestTable& table) {
     table.add("Surface", {surface, "Surface \"name\" parameters..."});
+    table.add("ShaderLayer", {shaderLayer, "ShaderLayer \"type\" \"name\" \"layername\" parameters..."});
+    table.add("ConnectShaderLayers",
+              {connectShaderLayers, "ConnectShaderLayers \"type\" \"layer1\" \"variable1\" \"layer2\" \"variable2\""});
     table.add("Displacement", {displacement, "Displacement \"name\" parameters..."});
     table.add("Atmosphere", {atmosphere, "Atmosphere \"name\" parameters..."});
     table.add("Imager", {imager, "Imager \"name\" parameters...", RibPhase::Options});

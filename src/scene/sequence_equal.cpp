@@ -51,7 +51,19 @@ bool sameAttributes(const Attributes& a, const Attributes& b) {
     auto sameShader = [](const ShaderDesc& x, const ShaderDesc& y) {
         return x.name == y.name && sameParams(x.params, y.params) && sameTransform(x.shaderToWorld, y.shaderToWorld);
     };
+    auto sameNetwork = [&](const ShaderNetwork& x, const ShaderNetwork& y) {
+        if (x.layers.size() != y.layers.size() || x.names != y.names || x.connections.size() != y.connections.size())
+            return false;
+        for (size_t i = 0; i < x.layers.size(); ++i)
+            if (!sameShader(x.layers[i], y.layers[i])) return false;
+        for (size_t i = 0; i < x.connections.size(); ++i) {
+            const ShaderConnection &c = x.connections[i], &d = y.connections[i];
+            if (c.from != d.from || c.to != d.to || c.fromVar != d.fromVar || c.toVar != d.toVar) return false;
+        }
+        return true;
+    };
     return a.color == b.color && a.opacity == b.opacity && sameShader(a.surface, b.surface) &&
+           sameNetwork(a.surfaceLayers, b.surfaceLayers) &&
            sameShader(a.displacement, b.displacement) && sameShader(a.atmosphere, b.atmosphere) &&
            a.displacementBound == b.displacementBound && a.displacementBoundSpace == b.displacementBoundSpace &&
            a.shadingRate == b.shadingRate && a.motionFactor == b.motionFactor && a.lights == b.lights && sameParams(a.user, b.user) &&

@@ -404,7 +404,7 @@ void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
         addLight(s, li, time, unshadowed_);
     }
     const int n = grid.vertexCount();
-    vm_->run(*m.surface, sgrid_, unshadowed_);
+    runSurfaceShaders(m, unshadowed_);
     if (aovs_ && grid.aovCount == aovs_->count) copyShaderOutputs(grid, k);
     const sl::ValueRef ci = vm_->result(sl::Global::Ci);
     std::vector<Color>& Ci = grid.Ci[k];
@@ -420,13 +420,18 @@ void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
                 if (slot < 0 || !s) continue;
                 withOne_.assign(unshadowed_.begin(), unshadowed_.end());
                 addLight(s, li, time, withOne_);
-                vm_->run(*m.surface, sgrid_, withOne_);
+                runSurfaceShaders(m, withOne_);
                 const sl::ValueRef c = vm_->result(sl::Global::Ci);
                 for (int i = 0; i < n; ++i)
                     cl[size_t(i) * size_t(grid.shadowSlots) + size_t(slot)] = c.vec(i) - base_[size_t(i)];
             }
         }
     }
+}
+
+void GridShader::runSurfaceShaders(const Material& m, const std::vector<sl::LightRef>& lights) {
+    if (m.layers) network_.run(*vm_, *m.layers, sgrid_, lights);
+    else vm_->run(*m.surface, sgrid_, lights);
 }
 
 // A shader output no shader writes reads 0 (the grid's arrays are reused from grid to grid).

@@ -25,6 +25,7 @@
 #include "geom/grid.h"
 #include "geom/lights.h"
 #include "shade/scene_shaders.h"
+#include "shade/surface_network.h"
 #include "shade/vm/vm.h"
 #include "streyes/stats.h"
 #include "util/aov.h"
@@ -89,6 +90,8 @@ class GridShader {
     void displace(const Material& m, Grid& grid, int k, double time);
     void shadeSurface(Grid& grid, int k, double time);
     void runSurface(const Material& m, Grid& grid, int k, double time);
+    // The surface's shader, or each layer of a layered one, over sgrid_ with `lights`.
+    void runSurfaceShaders(const Material& m, const std::vector<sl::LightRef>& lights);
     void runAtmosphere(const Material& m, Grid& grid, int k, double time);
     // The shading grid's inputs for slot k (once per slot, before any of its shaders runs).
     void prepare(const Material& m, const Grid& grid, int k, double time);
@@ -117,6 +120,7 @@ class GridShader {
     std::vector<Color> base_, withLight_;
     std::vector<Vec3f> orthoI_;  // I under an orthographic camera
     std::vector<sl::Primvar> primvars_;
+    SurfaceNetworkRunner network_;
     std::vector<float> primvarData_;  // their values: constant ones, or n per component
     Grid hit_;  // one point, for shadeHit
     uint64_t builtinPoints_ = 0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "shade/surface_network.h"
 #include "shade/vm/ops.h"
 #include "scene/search_path.h"
 #include "shade/vm/vm.h"
@@ -288,10 +289,17 @@ void SceneShaders::runImager(FrameImage& frame) const {
     vm.setLog(&log_);
     vm.run(*imager_, g);
     const sl::ValueRef ci = vm.result(sl::Global::Ci), alpha = vm.result(sl::Global::alpha);
+    // The pixel's alpha: the imager's alpha when it names it, else the mean of its Oi (as Aqsis
+    // takes it: an imager that draws over an empty world, a fisheye's disc, sets Oi).
+    const sl::ShaderProgram& p = imager_->program();
+    const bool ownAlpha = p.globalReg[size_t(sl::Global::alpha)] >= 0;
+    const sl::ValueRef oi = vm.result(sl::Global::Oi);
+    const bool fromOi = !ownAlpha && p.globalReg[size_t(sl::Global::Oi)] >= 0 && oi.valid();
     std::vector<float> out(size_t(n) * 4);
     for (int i = 0; i < n; ++i) {
         for (int c = 0; c < 3; ++c) out[size_t(i) * 4 + size_t(c)] = ci.valid() ? ci.at(c, i) : rgba[size_t(i) * 4 + size_t(c)];
-        out[size_t(i) * 4 + 3] = alpha.valid() ? alpha.at(0, i) : rgba[size_t(i) * 4 + 3];
+        out[size_t(i) * 4 + 3] = fromOi ? (oi.at(0, i) + oi.at(1, i) + oi.at(2, i)) / 3
+                                 : alpha.valid() ? alpha.at(0, i) : rgba[size_t(i) * 4 + 3];
     }
     frame.rgba = std::move(out);
 }
@@ -352,14 +360,42 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
                                             ? std::max(fromProgram(lights_[size_t(i)].get()), rigid)
                                             : ViewUse::Reads);
     const std::string& name = a.surface.name;
+    // A layered surface: each layer's shader (one not found is warned about and left out, with
+    // its connections), the last one Material::surface.
+    std::vector<std::shared_ptr<const sl::ShaderInstance>> layers;
+    std::vector<const ShaderDesc*> layerDescs;
+    if (!a.surfaceLayers.layers.empty()) {
+        ShaderNetwork found;
+        std::vector<int> index;
+        for (size_t i = 0; i < a.surfaceLayers.layers.size(); ++i) {
+            const ShaderDesc& d = a.surfaceLayers.layers[i];
+            std::shared_ptr<sl::ShaderInstance> s = instance(d.name, d.params, d.loc, sl::ShaderType::Surface);
+            index.push_back(s ? int(layers.size()) : -1);
+            if (!s) continue;
+            layers.push_back(std::move(s));
+            layerDescs.push_back(&d);
+            found.layers.push_back(d);
+            found.names.push_back(a.surfaceLayers.names[i]);
+        }
+        for (ShaderConnection c : a.surfaceLayers.connections) {
+            c.from = index[size_t(c.from)];
+            c.to = index[size_t(c.to)];
+            if (c.from >= 0 && c.to >= 0) found.connections.push_back(std::move(c));
+        }
+        if (layers.size() > 1) m.layers = bindSurfaceNetwork(found, layers, log_);
+    }
     // The built-in shading reads no primitive variables: a primitive with some runs the shader.
-    if (builtinShading_ && builtinLights && isBuiltinSurface(name) && m.primvars.params.empty()) {
+    if (layers.empty() && builtinShading_ && builtinLights && isBuiltinSurface(name) && m.primvars.params.empty()) {
         // makeMaterial set the built-in's own use; a scaling camera changes its N.L too.
         if (m.kind != SurfaceKind::Constant) m.viewUse = std::max({m.viewUse, lightsUse, rigid});
         if (m.tracesRays) m.viewUse = ViewUse::Reads;
         return;
     }
-    std::shared_ptr<sl::ShaderInstance> shader = instance(name, a.surface.params, a.surface.loc, sl::ShaderType::Surface);
+    std::shared_ptr<const sl::ShaderInstance> shader =
+        !layers.empty() ? layers.back()
+                        : !a.surfaceLayers.layers.empty()
+                              ? nullptr  // every layer's shader is missing (warned)
+                              : instance(name, a.surface.params, a.surface.loc, sl::ShaderType::Surface);
     if (!shader) {
         m.kind = SurfaceKind::Default;
         if (builtinShading_) {  // defaultsurface reads no light: the built-in serves
@@ -369,15 +405,25 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         shader = instance("defaultsurface", {}, a.surface.loc, sl::ShaderType::Surface);
         if (!shader) return;
     }
-    m.readsTime = m.readsTime || readsTime(*shader);
-    m.readsMaps = m.readsMaps || readsMaps(shader.get());
-    m.tracesRays = m.tracesRays || castsRays(shader.get());
-    // What the compiler proved of the surface, its displacement and atmosphere, with its lights
-    // when it reads them; rays see what moves (and are cast per exposure anyway).
-    m.viewUse = shaderUse(*shader, a.surface);
+    if (layers.empty()) {
+        layers.push_back(shader);
+        layerDescs.push_back(&a.surface);
+    }
+    // What the compiler proved of the surface (each layer), its displacement and atmosphere, with
+    // its lights when it reads them; rays see what moves (and are cast per exposure anyway).
+    m.viewUse = ViewUse::None;
+    bool usesLights = false;
+    for (size_t i = 0; i < layers.size(); ++i) {
+        const sl::ShaderInstance& s = *layers[i];
+        m.readsTime = m.readsTime || readsTime(s);
+        m.readsMaps = m.readsMaps || readsMaps(&s);
+        m.tracesRays = m.tracesRays || castsRays(&s);
+        m.viewUse = std::max(m.viewUse, shaderUse(s, *layerDescs[i]));
+        usesLights = usesLights || s.program().usesLights;
+    }
     if (m.atmosphere) m.viewUse = std::max(m.viewUse, shaderUse(*m.atmosphere, a.atmosphere));
     if (m.displacement) m.viewUse = std::max(m.viewUse, shaderUse(*m.displacement, a.displacement));
-    if (shader->program().usesLights) m.viewUse = std::max(m.viewUse, lightsUse);
+    if (usesLights) m.viewUse = std::max(m.viewUse, lightsUse);
     if (m.tracesRays) m.viewUse = ViewUse::Reads;
     m.surface = std::move(shader);
 }

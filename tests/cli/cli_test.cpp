@@ -78,12 +78,12 @@ TEST(Cli, MalformedRibExits2WithFileAndLine) {
 TEST(Cli, UnknownRequestWarnsOnceAndRenders) {
     const test::TempDir tempDir("cli-warn");
     const std::string& dir = tempDir.path();
-    std::string rib = std::string("ShaderLayer \"plastic\" \"a\"\n") + kTiny;  // a later RenderMan's request
-    rib.insert(rib.find("WorldEnd"), "ShaderLayer \"plastic\" \"b\"\n");
+    std::string rib = std::string("ShaderGroupBegin \"plastic\" \"a\"\n") + kTiny;  // a later RenderMan's request
+    rib.insert(rib.find("WorldEnd"), "ShaderGroupBegin \"plastic\" \"b\"\n");
     std::string scene = writeFile(dir, "warn.rib", rib);
     CliRun r = streyes("render " + scene + " -o " + dir + "/out.####.exr");
     EXPECT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("warn.rib:1: warning: unknown request 'ShaderLayer' ignored"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("warn.rib:1: warning: unknown request 'ShaderGroupBegin' ignored"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("warn.rib:7: warning:"), std::string::npos) << "warned twice: " << r.output;
     ImageData img = readImage(dir + "/out.0000.exr");
     EXPECT_EQ(img.width, 16);
