@@ -78,8 +78,12 @@ std::shared_ptr<const SurfaceNetwork> bindSurfaceNetwork(const ShaderNetwork& ne
         l.string = src.type.isString();
         out->links.push_back(std::move(l));
     }
-    std::stable_sort(out->links.begin(), out->links.end(),
-                     [](const SurfaceNetwork::Link& a, const SurfaceNetwork::Link& b) { return a.from < b.from; });
+    // In order of their source layer, connections of one layer in the file's order: a stable
+    // insertion sort over a handful of links (std::stable_sort's temporary buffer trips the
+    // sanitizer's new/delete pairing in the clang build).
+    std::vector<SurfaceNetwork::Link>& links = out->links;
+    for (size_t i = 1; i < links.size(); ++i)
+        for (size_t j = i; j > 0 && links[j].from < links[j - 1].from; --j) std::swap(links[j], links[j - 1]);
     return out;
 }
 
