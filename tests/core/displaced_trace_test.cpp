@@ -7,26 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 
+#include "shader_test_util.h"
 #include "test_util.h"
 
 namespace streyes {
 namespace {
-
-struct ShaderDir {
-    test::TempDir dir{"shaders"};
-    void add(const std::string& name, const std::string& source) const {
-        std::ofstream(dir.path() + "/" + name + ".sl") << source;
-    }
-    std::string option() const { return "Option \"searchpath\" \"shader\" \"" + dir.path() + ":@\"\n"; }
-};
-
-std::string view(int w, int h, const std::string& extra) {
-    return "Format " + std::to_string(w) + " " + std::to_string(h) + " 1\nProjection \"orthographic\"\n" +
-           "ScreenWindow 0 " + std::to_string(w) + " 0 " + std::to_string(h) + "\nPixelFilter \"box\" 1 1\n" +
-           "PixelSamples 2 2\n" + extra;
-}
 
 // Moves every point d towards the camera (-z in camera space), d = k * time + c.
 const char* kLift = "displacement lift(float d = 0, k = 0) { P += vector(0, 0, -(d + k * time)); N = calculatenormal(P); }\n";
@@ -48,8 +34,8 @@ surface probe(float m = 10) {
 
 // A roof 10 behind the floor (depth 110) displaced by lift; the floor [0, 8]^2 at 100. Rays
 // that reach the roof within maxdist 10 go at most 8 sideways: the roof reaches beyond them.
-std::string roofScene(const ShaderDir& d, const std::string& lift) {
-    return view(8, 8, d.option()) + "WorldBegin\nAttributeBegin\nSurface \"constant\"\n" +
+std::string roofScene(const test::ShaderDir& d, const std::string& lift) {
+    return test::orthographicView(8, 8, d.option()) + "WorldBegin\nAttributeBegin\nSurface \"constant\"\n" +
            "Attribute \"displacementbound\" \"sphere\" [8]\nDisplacement \"lift\" " + lift + "\n" +
            test::square(-12, 20, -12, 20, 110) + "AttributeEnd\nSurface \"probe\"\n" + test::square(0, 8, 0, 8, 100) +
            "WorldEnd\n";
@@ -58,7 +44,7 @@ std::string roofScene(const ShaderDir& d, const std::string& lift) {
 // Rays from the floor meet a roof at height h above it within maxdist m with the cosine-weighted
 // share of directions whose cosine exceeds h/m: 1 - (h/m)^2.
 TEST(DisplacedTrace, APlaneDisplacedByAConstantIsHitAndOccludesAtItsDisplacedHeight) {
-    ShaderDir d;
+    test::ShaderDir d;
     d.add("lift", kLift);
     d.add("probe", kProbe);
     for (double lift : {0.0, 4.0}) {
@@ -81,7 +67,7 @@ TEST(DisplacedTrace, APlaneDisplacedByAConstantIsHitAndOccludesAtItsDisplacedHei
 // A displaced roof too large to dice for the ray tracer (2e5 pixels across) is traced as the
 // exact patch, undisplaced, with one warning: not left out.
 TEST(DisplacedTrace, ASurfaceTooLargeToDiceIsTracedUndisplacedWithAWarning) {
-    ShaderDir d;
+    test::ShaderDir d;
     d.add("lift", kLift);
     d.add("probe", kProbe);
     std::string rib = roofScene(d, "\"d\" 4");
@@ -97,7 +83,7 @@ TEST(DisplacedTrace, ASurfaceTooLargeToDiceIsTracedUndisplacedWithAWarning) {
 // Frame f lifts the roof by 2 f: each frame's hits at 110 - 2 f, and a frame's pixels are the
 // same rendered alone, in one block, or in blocks of one frame.
 TEST(DisplacedTrace, ADisplacementThatChangesPerFrameIsTracedPerFrameWhateverTheBlock) {
-    ShaderDir d;
+    test::ShaderDir d;
     d.add("lift", kLift);
     d.add("probe", kProbe);
     const std::string rib = roofScene(d, "\"k\" 2");
@@ -125,11 +111,11 @@ TEST(DisplacedTrace, ADisplacementThatChangesPerFrameIsTracedPerFrameWhateverThe
 // d, whose edge at (y = 26, depth 90) would fall on the floor (depth 100) at y = 16, above the
 // picture: displaced, at y = 16 - d. The floor's rows below it are lit, those above dark.
 TEST(DisplacedTrace, APlaneDisplacedByAConstantCastsItsShadowFromItsDisplacedPlace) {
-    ShaderDir d;
+    test::ShaderDir d;
     d.add("lift", kLift);
     for (double lift : {0.0, 6.0}) {
         SCOPED_TRACE("lift " + std::to_string(lift));
-        const std::string rib = view(16, 16, d.option()) + "WorldBegin\n" +
+        const std::string rib = test::orthographicView(16, 16, d.option()) + "WorldBegin\n" +
                                 "Attribute \"light\" \"shadows\" \"on\"\n" +
                                 "LightSource \"distantlight\" 1 \"from\" [0 1 -1] \"to\" [0 0 0]\nAttributeBegin\n" +
                                 "Attribute \"displacementbound\" \"sphere\" [8]\nDisplacement \"lift\" \"d\" " +
@@ -153,7 +139,7 @@ TEST(DisplacedTrace, APlaneDisplacedByAConstantCastsItsShadowFromItsDisplacedPla
 // the light's, onto the floor's own pixels (y' = y at depth 100); the ray tracer casts the
 // shadow of it onto the floor. Pixel for pixel the same, but where the two dicings differ.
 TEST(DisplacedTrace, ABumpsTracedShadowIsTheRasterizersSilhouetteSeenFromTheLight) {
-    ShaderDir d;
+    test::ShaderDir d;
     // In world space: the two renders' cameras differ.
     d.add("bump", "displacement bump(float h = 0, R = 8) {\n"
                   "  point W = transform(\"world\", P);\n"
@@ -168,13 +154,13 @@ TEST(DisplacedTrace, ABumpsTracedShadowIsTheRasterizersSilhouetteSeenFromTheLigh
     };
     // The rasterizer's silhouette from the light: alpha under the sheared camera.
     auto silhouette = [&](double h) {
-        const std::string rib = view(W, H, d.option()) + "Transform [1 0 0 0  0 1 0 0  0 1 1 0  0 -100 0 1]\nWorldBegin\n" +
+        const std::string rib = test::orthographicView(W, H, d.option()) + "Transform [1 0 0 0  0 1 0 0  0 1 1 0  0 -100 0 1]\nWorldBegin\n" +
                                 occluder(h) + "WorldEnd\n";
         return test::renderRib(rib);
     };
     // The traced shadow on the floor: 1 - lit share.
     auto shadow = [&](double h) {
-        const std::string rib = view(W, H, d.option()) + "WorldBegin\n" +
+        const std::string rib = test::orthographicView(W, H, d.option()) + "WorldBegin\n" +
                                 "Attribute \"light\" \"shadows\" \"on\"\n" +
                                 "LightSource \"distantlight\" 1 \"from\" [0 1 -1] \"to\" [0 0 0]\n" + occluder(h) + "Surface \"matte\" \"Ka\" 0\n" +
                                 test::square(0, W, 0, H, 100) + "WorldEnd\n";

@@ -2,22 +2,14 @@
 // direction of rays that all miss (cosine-weighted: 2/3 along the axis), the hit positions.
 #include <gtest/gtest.h>
 
-#include <fstream>
 
+#include "shader_test_util.h"
 #include "test_util.h"
 
 namespace streyes {
 namespace {
 
-struct ShaderDir {
-    test::TempDir dir{"shaders"};
-    void add(const std::string& name, const std::string& source) const {
-        std::ofstream(dir.path() + "/" + name + ".sl") << source;
-    }
-    std::string option() const { return "Option \"searchpath\" \"shader\" \"" + dir.path() + ":@\"\n"; }
-};
-
-std::string view(const ShaderDir& d) {
+std::string view(const test::ShaderDir& d) {
     return "Format 8 8 1\nProjection \"orthographic\"\nScreenWindow 0 8 0 8\nPixelFilter \"box\" 1 1\n"
            "PixelSamples 1 1\n" +
            d.option();
@@ -47,7 +39,7 @@ surface gatherer(float samples = 256) {
 )";
 
 TEST(GatherRender, AUniformRoofGivesItsColourAndItsHeight) {
-    ShaderDir d;
+    test::ShaderDir d;
     d.add("gatherer", kGatherer);
     // A roof 10 above the floor, 1e5 wide: rays within 0.006 degrees of the horizon miss it.
     const std::string rib = view(d) + "WorldBegin\nAttributeBegin\nSurface \"constant\"\nColor [0.6 0.3 0.2]\n" +
@@ -64,7 +56,7 @@ TEST(GatherRender, AUniformRoofGivesItsColourAndItsHeight) {
 }
 
 TEST(GatherRender, MissesRunTheElseBranchAlongCosineWeightedDirections) {
-    ShaderDir d;
+    test::ShaderDir d;
     d.add("gatherer", kGatherer);
     const std::string rib = view(d) + "WorldBegin\nSurface \"gatherer\"\n" + test::square(0, 8, 0, 8, 100) + "WorldEnd\n";
     const test::RenderResult r = test::renderRib(rib);
@@ -77,7 +69,7 @@ TEST(GatherRender, MissesRunTheElseBranchAlongCosineWeightedDirections) {
 }
 
 TEST(GatherRender, BadFormsAreErrorsAtTheirPlace) {
-    ShaderDir d;
+    test::ShaderDir d;
     const std::string head = view(d) + "WorldBegin\n";
     const std::string floor = test::square(0, 4, 0, 4, 100) + "WorldEnd\n";
     struct Case {
@@ -118,7 +110,7 @@ namespace {
 // camera sees adds up one for each level of rays, trace() and gather() alike, up to
 // Option "trace" "maxdepth" (PRMan's default 10).
 TEST(GatherRender, TraceMaxdepthCountsLevelsAcrossTraceAndGather) {
-    ShaderDir d;
+    test::ShaderDir d;
     d.add("bounce", R"(
 surface bounce() {
     vector up = zcomp(P) < 105 ? vector(0, 0, 1) : vector(0, 0, -1);
@@ -155,7 +147,7 @@ namespace {
 // rayinfo() on the floor the eye sees (depth 0, "camera") and on the roof its rays hit: depth 1,
 // "specular" through trace(), "diffuse" through gather(). An unknown name gives 0.
 TEST(GatherRender, RayinfoSaysTheDepthAndTypeOfTheRay) {
-    ShaderDir d;
+    test::ShaderDir d;
     d.add("info", R"(
 surface info() {
     float depth = -1, t = -1, unknown = 7;

@@ -3,22 +3,14 @@
 // by setting Oi); an imager that names neither keeps the rendered alpha.
 #include <gtest/gtest.h>
 
-#include <fstream>
 
+#include "shader_test_util.h"
 #include "test_util.h"
 
 namespace streyes {
 namespace {
 
-struct ShaderDir {
-    test::TempDir dir{"imager-alpha"};
-    void add(const std::string& name, const std::string& source) const {
-        std::ofstream(dir.path() + "/" + name + ".sl") << source;
-    }
-    std::string option() const { return "Option \"searchpath\" \"shader\" \"" + dir.path() + ":@\"\n"; }
-};
-
-test::RenderResult render(const ShaderDir& d, const std::string& imager) {
+test::RenderResult render(const test::ShaderDir& d, const std::string& imager) {
     // The left half covered by an opaque square; the right half empty.
     return test::renderRib("Format 8 8 1\nProjection \"orthographic\"\nScreenWindow 0 8 0 8\nPixelFilter \"box\" 1 1\n"
                            "PixelSamples 2 2\n" +
@@ -27,7 +19,7 @@ test::RenderResult render(const ShaderDir& d, const std::string& imager) {
 }
 
 TEST(ImagerAlpha, TheMeanOfTheImagersOiWhenItSetsIt) {
-    ShaderDir d;
+    test::ShaderDir d{"imager-alpha"};
     d.add("opacity", "imager opacity() { Oi = color(0.1, 0.2, 0.6); Ci = Oi; }\n");
     const test::RenderResult r = render(d, "opacity");
     for (int x = 0; x < 8; ++x) {
@@ -37,14 +29,14 @@ TEST(ImagerAlpha, TheMeanOfTheImagersOiWhenItSetsIt) {
 }
 
 TEST(ImagerAlpha, ItsOwnAlphaWhenItNamesIt) {
-    ShaderDir d;
+    test::ShaderDir d{"imager-alpha"};
     d.add("both", "imager both() { Oi = 0.25; alpha = 0.75; }\n");
     const test::RenderResult r = render(d, "both");
     for (int x = 0; x < 8; ++x) EXPECT_NEAR(r.alpha(0, x, 3), 0.75f, 1e-6f) << x;
 }
 
 TEST(ImagerAlpha, TheRenderedAlphaWhenItNamesNeither) {
-    ShaderDir d;
+    test::ShaderDir d{"imager-alpha"};
     d.add("tint", "imager tint() { Ci *= 0.5; }\n");
     const test::RenderResult r = render(d, "tint");
     for (int x = 0; x < 8; ++x) {

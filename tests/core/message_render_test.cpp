@@ -3,29 +3,21 @@
 // the renderer's own order of shaders (displacement, surface with its lights, atmosphere).
 #include <gtest/gtest.h>
 
-#include <fstream>
 
+#include "shader_test_util.h"
 #include "test_util.h"
 
 namespace streyes {
 namespace {
 
-struct ShaderDir {
-    test::TempDir dir{"shaders"};
-    void add(const std::string& name, const std::string& source) const {
-        std::ofstream(dir.path() + "/" + name + ".sl") << source;
-    }
-    std::string option() const { return "Option \"searchpath\" \"shader\" \"" + dir.path() + ":@\"\n"; }
-};
-
-std::string view(const ShaderDir& d) {
+std::string view(const test::ShaderDir& d) {
     return "Format 8 8 1\nProjection \"orthographic\"\nScreenWindow 0 8 0 8\nPixelFilter \"box\" 1 1\n"
            "PixelSamples 2 2\n" +
            d.option();
 }
 
-ShaderDir messageShaders() {
-    ShaderDir d;
+test::ShaderDir messageShaders() {
+    test::ShaderDir d;
     // The light shines the surface's Kd and tells it, through an output, what it found.
     d.add("reader", "light reader(output varying float found = -1) {\n"
                     "  float k = 0;\n  found = surface(\"Kd\", k);\n"
@@ -43,7 +35,7 @@ ShaderDir messageShaders() {
 }
 
 TEST(MessageRender, LightSurfaceDisplacementAndAtmosphereReadEachOther) {
-    const ShaderDir d = messageShaders();
+    const test::ShaderDir d = messageShaders();
     const std::string rib = view(d) + "WorldBegin\nLightSource \"reader\" 1\n" +
                             "Displacement \"lifter\"\nAtmosphere \"marker\"\n"
                             "Surface \"tinted\" \"float Kd\" [0.75]\n" +
@@ -58,7 +50,7 @@ TEST(MessageRender, LightSurfaceDisplacementAndAtmosphereReadEachOther) {
 }
 
 TEST(MessageRender, WithoutTheOtherShadersTheVariablesKeepTheirValues) {
-    const ShaderDir d = messageShaders();
+    const test::ShaderDir d = messageShaders();
     // No displacement, no atmosphere; the light still finds Kd (the default).
     const std::string rib = view(d) + "WorldBegin\nLightSource \"reader\" 1\nSurface \"tinted\"\n" +
                             test::square(0, 8, 0, 8, 10) + "WorldEnd\n";

@@ -6,31 +6,24 @@
 
 #include <fstream>
 
+#include "shader_test_util.h"
 #include "test_util.h"
 
 namespace streyes {
 namespace {
 
-struct ShaderDir {
-    test::TempDir dir{"layers"};
-    void add(const std::string& name, const std::string& source) const {
-        std::ofstream(dir.path() + "/" + name + ".sl") << source;
-    }
-    std::string option() const { return "Option \"searchpath\" \"shader\" \"" + dir.path() + ":@\"\n"; }
-};
-
 // An 8 x 8 square filling the frame, u along x and v along y (up): with jitter 0 each pixel's
 // samples are symmetric about its centre, so a colour linear in s and t averages to its value
 // at the centre, s = (px + 0.5) / 8, t = 1 - (py + 0.5) / 8.
-std::string view(const ShaderDir& d) {
+std::string view(const test::ShaderDir& d) {
     return "Format 8 8 1\nProjection \"orthographic\"\nScreenWindow 0 8 0 8\nPixelFilter \"box\" 1 1\n"
            "PixelSamples 2 2\nHider \"hidden\" \"jitter\" [0]\n" +
            d.option();
 }
 const std::string kSquare = test::square(0, 8, 0, 8, 10);
 
-ShaderDir layerShaders() {
-    ShaderDir d;
+test::ShaderDir layerShaders() {
+    test::ShaderDir d{"layers"};
     // Layer 1: a gradient in an output, and Ci and Oi of its own.
     d.add("gradient", "surface gradient(float scale = 1; output varying color Cout = 0) {\n"
                       "  Cout = color(s * scale, t, 0.25);\n  Ci = 0.125;\n  Oi = 1;\n}\n");
@@ -44,7 +37,7 @@ float s(int px) { return (float(px) + 0.5f) / 8; }
 float t(int py) { return 1 - (float(py) + 0.5f) / 8; }
 
 TEST(ShaderLayer, TheSecondLayerReadsTheFirstsOutputAndCi) {
-    const ShaderDir d = layerShaders();
+    const test::ShaderDir d = layerShaders();
     const std::string rib = view(d) + "WorldBegin\n"
                             "ShaderLayer \"surface\" \"gradient\" \"base\" \"float scale\" [2]\n"
                             "ShaderLayer \"surface\" \"mixer\" \"top\" \"float gain\" [0.5]\n"
@@ -63,7 +56,7 @@ TEST(ShaderLayer, TheSecondLayerReadsTheFirstsOutputAndCi) {
 }
 
 TEST(ShaderLayer, UnconnectedTheSecondLayerKeepsItsOwnValue) {
-    const ShaderDir d = layerShaders();
+    const test::ShaderDir d = layerShaders();
     const std::string rib = view(d) + "WorldBegin\n"
                             "ShaderLayer \"surface\" \"gradient\" \"base\"\n"
                             "ShaderLayer \"surface\" \"mixer\" \"top\"\n" +
@@ -77,7 +70,7 @@ TEST(ShaderLayer, UnconnectedTheSecondLayerKeepsItsOwnValue) {
 
 TEST(ShaderLayer, AnOutputConnectedToCsColoursTheShippedConstant) {
     // As Aqsis's layered.rib connects a texture's output to matte's Cs.
-    const ShaderDir d = layerShaders();
+    const test::ShaderDir d = layerShaders();
     const std::string rib = view(d) + "WorldBegin\nColor [0 1 0]\n"
                             "ShaderLayer \"surface\" \"gradient\" \"paint\"\n"
                             "ShaderLayer \"surface\" \"constant\" \"shade\"\n"
@@ -94,7 +87,7 @@ TEST(ShaderLayer, AnOutputConnectedToCsColoursTheShippedConstant) {
 }
 
 TEST(ShaderLayer, ASurfaceRequestReplacesTheLayers) {
-    const ShaderDir d = layerShaders();
+    const test::ShaderDir d = layerShaders();
     const std::string rib = view(d) + "WorldBegin\nColor [0.5 0.25 1]\n"
                             "ShaderLayer \"surface\" \"gradient\" \"base\"\n"
                             "ShaderLayer \"surface\" \"mixer\" \"top\"\n"
@@ -107,7 +100,7 @@ TEST(ShaderLayer, ASurfaceRequestReplacesTheLayers) {
 }
 
 TEST(ShaderLayer, ConnectionsThatCannotBeMadeAreWarnedAboutAndLeftOut) {
-    const ShaderDir d = layerShaders();
+    const test::ShaderDir d = layerShaders();
     struct Case {
         std::string connect, warning;
     };

@@ -7,26 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 
+#include "shader_test_util.h"
 #include "test_util.h"
 
 namespace streyes {
 namespace {
-
-struct ShaderDir {
-    test::TempDir dir{"shaders"};
-    void add(const std::string& name, const std::string& source) const {
-        std::ofstream(dir.path() + "/" + name + ".sl") << source;
-    }
-    std::string option() const { return "Option \"searchpath\" \"shader\" \"" + dir.path() + ":@\"\n"; }
-};
-
-std::string view(int w, int h, const std::string& extra) {
-    return "Format " + std::to_string(w) + " " + std::to_string(h) + " 1\nProjection \"orthographic\"\n" +
-           "ScreenWindow 0 " + std::to_string(w) + " 0 " + std::to_string(h) + "\nPixelFilter \"box\" 1 1\n" +
-           "PixelSamples 2 2\n" + extra;
-}
 
 std::string patch(const double p[12]) {
     std::string s = "Patch \"bilinear\" \"P\" [";
@@ -76,11 +62,11 @@ double analyticOcclusion(double x, double y) {
 }
 
 TEST(ShaderRays, OcclusionUnderAHalfOpenBoxIsTheFormFactor) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     // The floor's rays go to +z, away from the camera, into the box.
     shaders.add("ao", "surface ao(float samples = 1024) {\n"
                       "  Ci = occlusion(P, normal(0, 0, 1), samples, \"bias\", 0.001); Oi = 1;\n}\n");
-    const std::string rib = view(kW, kH, shaders.option() + "ShadingRate 0.25\n") + "WorldBegin\n" +
+    const std::string rib = test::orthographicView(kW, kH, shaders.option() + "ShadingRate 0.25\n") + "WorldBegin\n" +
                             "AttributeBegin\nSurface \"constant\"\n" + halfOpenBox() + "AttributeEnd\n" +
                             "Surface \"ao\"\n" + test::square(0, kW, 0, kH, kFloor) + "WorldEnd\n";
     test::RenderResult r = test::renderRib(rib);
@@ -110,9 +96,9 @@ TEST(ShaderRays, OcclusionUnderAHalfOpenBoxIsTheFormFactor) {
 }
 
 TEST(ShaderRays, OcclusionWithoutOccludersIsZeroAndMaxdistCuts) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("ao", "surface ao(float d = 1e30) { Ci = occlusion(P, normal(0, 0, 1), 64, \"maxdist\", d); }\n");
-    const std::string head = view(8, 8, shaders.option()) + "WorldBegin\n";
+    const std::string head = test::orthographicView(8, 8, shaders.option()) + "WorldBegin\n";
     const std::string floor = test::square(0, 8, 0, 8, kFloor);
     const std::string roof = "AttributeBegin\nSurface \"constant\"\n" + test::square(-1e5, 1e5, -1e5, 1e5, 110) + "AttributeEnd\n";
     // Nothing above: 0. A roof 10 away covering the sky (but for rays within 0.006 degrees of the
@@ -125,7 +111,7 @@ TEST(ShaderRays, OcclusionWithoutOccludersIsZeroAndMaxdistCuts) {
 // A mirror tilted 45 degrees about x (depth 100 + y) sends the camera's rays up (+y) to a checker
 // in the plane y = 64: pixel (x, y) sees the checker at (x, depth 100 + y).
 TEST(ShaderRays, MirrorMadeWithTraceShowsTheCheckerWhereTheGeometrySays) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("mirror", "surface mirror() { Ci = trace(P, reflect(normalize(I), normalize(N))); Oi = 1; }\n");
     std::string checker = "AttributeBegin\nSurface \"constant\"\n";
     for (int i = 0; i < 4; ++i)
@@ -136,7 +122,7 @@ TEST(ShaderRays, MirrorMadeWithTraceShowsTheCheckerWhereTheGeometrySays) {
         }
     checker += "AttributeEnd\n";
     const double mirror[12] = {0, 0, kFloor, kW, 0, kFloor, 0, kH, kFloor + kH, kW, kH, kFloor + kH};
-    const std::string rib = view(kW, kH, shaders.option()) + "WorldBegin\n" + checker + "Surface \"mirror\"\n" +
+    const std::string rib = test::orthographicView(kW, kH, shaders.option()) + "WorldBegin\n" + checker + "Surface \"mirror\"\n" +
                             patch(mirror) + "WorldEnd\n";
     test::RenderResult r = test::renderRib(rib);
     int checked = 0;
@@ -154,10 +140,10 @@ TEST(ShaderRays, MirrorMadeWithTraceShowsTheCheckerWhereTheGeometrySays) {
 }
 
 TEST(ShaderRays, TransmissionThroughASheetOfOpacityHalfIsHalf) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("tr", "surface tr() { Ci = transmission(P, P + vector(0, 0, 50)); Oi = 1; }\n");
     // The sheet, behind the floor, covers its left half.
-    const std::string rib = view(16, 8, shaders.option()) + "WorldBegin\nAttributeBegin\nOpacity [0.5 0.5 0.5]\n" +
+    const std::string rib = test::orthographicView(16, 8, shaders.option()) + "WorldBegin\nAttributeBegin\nOpacity [0.5 0.5 0.5]\n" +
                             test::square(-10, 8, -10, 18, 120) + "AttributeEnd\nSurface \"tr\"\n" +
                             test::square(0, 16, 0, 8, kFloor) + "WorldEnd\n";
     test::RenderResult r = test::renderRib(rib);
@@ -169,7 +155,7 @@ TEST(ShaderRays, TransmissionThroughASheetOfOpacityHalfIsHalf) {
 }
 
 TEST(ShaderRays, IndirectDiffuseOfAWhitePlaneUnderAWhiteSurroundingIsOne) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("gi", "surface gi(float samples = 64) {\n"
                       "  Ci = Cs * indirectdiffuse(P, normal(0, 0, 1), samples); Oi = 1;\n}\n");
     // A white box around the floor's sky (constant: it gives exactly its colour); the walls run
@@ -182,8 +168,8 @@ TEST(ShaderRays, IndirectDiffuseOfAWhitePlaneUnderAWhiteSurroundingIsOne) {
     const std::string box = "AttributeBegin\nSurface \"constant\"\nColor [1 1 1]\n" + test::square(-L, L, -L, L, L) +
                             patch(wx0) + patch(wx1) + patch(wy0) + patch(wy1) + "AttributeEnd\n";
     const std::string floor = "Surface \"gi\"\nColor [1 1 1]\n" + test::square(0, 8, 0, 8, kFloor);
-    test::RenderResult lit = test::renderRib(view(8, 8, shaders.option()) + "WorldBegin\n" + box + floor + "WorldEnd\n");
-    test::RenderResult dark = test::renderRib(view(8, 8, shaders.option()) + "WorldBegin\n" + floor + "WorldEnd\n");
+    test::RenderResult lit = test::renderRib(test::orthographicView(8, 8, shaders.option()) + "WorldBegin\n" + box + floor + "WorldEnd\n");
+    test::RenderResult dark = test::renderRib(test::orthographicView(8, 8, shaders.option()) + "WorldBegin\n" + floor + "WorldEnd\n");
     for (int py = 0; py < 8; ++py)
         for (int px = 0; px < 8; ++px)
             for (int c = 0; c < 3; ++c) {
@@ -196,11 +182,11 @@ TEST(ShaderRays, IndirectDiffuseOfHalfASkyIsHalf) {
     // A white wall over half the hemisphere (the plane x = 4.5, from either side, fills half of it,
     // cosine-weighted, but for the sliver above its top): 1/2 within the noise of 256 stratified
     // samples. (A wall through the floor's vertices would hide from them: their rays start on it.)
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("gi", "surface gi() { Ci = indirectdiffuse(P, normal(0, 0, 1), 256, \"bias\", 0.001); }\n");
     const double L = 1000;
     const double wall[12] = {4.5, -L, 0, 4.5, L, 0, 4.5, -L, L, 4.5, L, L};
-    const std::string rib = view(8, 8, shaders.option()) + "WorldBegin\nAttributeBegin\nSurface \"constant\"\n" +
+    const std::string rib = test::orthographicView(8, 8, shaders.option()) + "WorldBegin\nAttributeBegin\nSurface \"constant\"\n" +
                             patch(wall) + "AttributeEnd\nSurface \"gi\"\n" + test::square(0, 8, 0, 8, kFloor) + "WorldEnd\n";
     test::RenderResult r = test::renderRib(rib);
     for (int py = 0; py < 8; ++py)
@@ -220,7 +206,7 @@ std::string movingOccluder(bool moves) {
 }
 
 TEST(ShaderRays, AMovingOccludersOcclusionChangesPerFrameAndNotWithTheBlock) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     // occlusion(), and the same with a gather() loop counting its hits.
     for (const char* ao : {"surface ao() { Ci = 1 - occlusion(P, normal(0, 0, 1), 32); }\n",
                            "surface ao() { float h = 0; vector d = 0;\n"
@@ -230,7 +216,7 @@ TEST(ShaderRays, AMovingOccludersOcclusionChangesPerFrameAndNotWithTheBlock) {
         shaders.add("ao", ao);
         SCOPED_TRACE(std::string(ao) + (moves ? "moving" : "still"));
         // One sample a pixel, at its centre in every frame: a still scene's frames may be compared.
-        const std::string rib = view(32, 8, shaders.option() + "Hider \"hidden\" \"jitter\" [0]\nPixelSamples 1 1\n") + movingOccluder(moves);
+        const std::string rib = test::orthographicView(32, 8, shaders.option() + "Hider \"hidden\" \"jitter\" [0]\nPixelSamples 1 1\n") + movingOccluder(moves);
         RenderOptions o;
         o.hasFrames = true;
         o.hasShot = true;
@@ -273,8 +259,8 @@ TEST(ShaderRays, AMovingOccludersOcclusionChangesPerFrameAndNotWithTheBlock) {
 }
 
 TEST(ShaderRays, WrongArgumentsAreErrorsAtTheirPlace) {
-    ShaderDir shaders;
-    const std::string head = view(4, 4, shaders.option()) + "WorldBegin\n";
+    test::ShaderDir shaders;
+    const std::string head = test::orthographicView(4, 4, shaders.option()) + "WorldBegin\n";
     const std::string floor = test::square(0, 4, 0, 4, kFloor) + "WorldEnd\n";
     struct Case {
         const char* source;

@@ -6,20 +6,13 @@
 #include <cmath>
 #include <fstream>
 
+#include "shader_test_util.h"
 #include "test_util.h"
 
 namespace streyes {
 namespace {
 
 // A folder holding `name`.sl with `source`, and the RIB option that puts it first on the path.
-struct ShaderDir {
-    test::TempDir dir{"shaders"};
-    void add(const std::string& name, const std::string& source) const {
-        std::ofstream(dir.path() + "/" + name + ".sl") << source;
-    }
-    std::string option() const { return "Option \"searchpath\" \"shader\" \"" + dir.path() + ":@\"\n"; }
-};
-
 // An orthographic W x H view of [0, W] x [0, H] (one unit a pixel), box filter, `extra` options.
 std::string view(int w, int h, const std::string& extra) {
     return "Format " + std::to_string(w) + " " + std::to_string(h) + " 1\nProjection \"orthographic\"\n" +
@@ -28,7 +21,7 @@ std::string view(int w, int h, const std::string& extra) {
 }
 
 TEST(ShadingLanguage, SurfaceSeesSAndTOverThePatch) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("st", "surface st() { Ci = color(s, t, 0); Oi = 1; }\n");
     // A 64 x 64 patch split and diced into many grids: s and t must run 0..1 across all of them.
     const std::string rib = view(64, 64, shaders.option()) + "WorldBegin\nSurface \"st\"\n" + test::square(0, 64, 0, 64, 5) +
@@ -124,7 +117,7 @@ TEST(ShadingLanguage, BuiltinShadingGivesTheShippedShadersPixels) {
 }
 
 TEST(ShadingLanguage, RayTracerShadesShaderSurfacesAsTheRasterizer) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("stripes", "surface stripes(float n = 4) { Ci = mod(floor(s * n), 2) == 0 ? color(1, 0, 0) : color(0, 0, 1); }\n");
     const std::string rib = view(64, 64, shaders.option()) + "WorldBegin\nSurface \"stripes\" \"n\" 8\n" +
                             test::square(0, 64, 0, 64, 5) + "WorldEnd\n";
@@ -144,7 +137,7 @@ TEST(ShadingLanguage, RayTracerShadesShaderSurfacesAsTheRasterizer) {
 }
 
 TEST(ShadingLanguage, ParametersFromRibReachTheShader) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("tint", "surface tint(color c = 0; float k = 1; string mode = \"a\") {\n"
                         "  Ci = k * c; if (mode == \"half\") Ci *= 0.5; }\n");
     const std::string rib = view(8, 8, shaders.option()) + "Declare \"k\" \"uniform float\"\nWorldBegin\n" +
@@ -157,7 +150,7 @@ TEST(ShadingLanguage, ParametersFromRibReachTheShader) {
 }
 
 TEST(ShadingLanguage, ShaderReadingTimeIsShadedPerFrameAndBlockInvariant) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("pulse", "surface pulse() { Ci = color(time / 8, 0, 0); }\n");
     const std::string rib = view(8, 8, shaders.option() + "Shutter 0 0\n") + "WorldBegin\nSurface \"pulse\"\n" +
                             test::square(0, 8, 0, 8, 5) + "WorldEnd\n";
@@ -176,7 +169,7 @@ TEST(ShadingLanguage, ShaderReadingTimeIsShadedPerFrameAndBlockInvariant) {
 }
 
 TEST(ShadingLanguage, DivisionByZeroNeverReachesTheFrame) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("bad", "surface bad() { float z = 0; Ci = color(1 / z, sqrt(-1), log(-2)); }\n");
     test::RenderResult r = test::renderRib(view(8, 8, shaders.option()) + "WorldBegin\nSurface \"bad\"\n" +
                                            test::square(0, 8, 0, 8, 5) + "WorldEnd\n");
@@ -190,7 +183,7 @@ TEST(ShadingLanguage, DivisionByZeroNeverReachesTheFrame) {
 }
 
 TEST(ShadingLanguage, BadShadersAndBindingsNameTheirPlace) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("broken", "surface broken() {\n  Ci = undefinedthing;\n}\n");
     shaders.add("lit", "light lit() { illuminate(point(0, 0, 0)) { Cl = 1; } }\n");
     shaders.add("takes", "surface takes(float k = 1) { Ci = k; }\n");
@@ -245,7 +238,7 @@ namespace {
 const char* kShift = "displacement shift(float dx = 0; float dz = 0) { P += vector(dx, 0, dz); N = calculatenormal(P); }\n";
 
 TEST(ShadingLanguage, DisplacementByAConstantMovesThePlane) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("shift", kShift);
     // A red plane over [0, 32] x [0, 64] at z = 10, moved 16 pixels right and 2 units back. Small
     // buckets: those right of x = 32 see the plane only through its displacement bound.
@@ -266,7 +259,7 @@ TEST(ShadingLanguage, DisplacementByAConstantMovesThePlane) {
 }
 
 TEST(ShadingLanguage, OcclusionCullingStaysExactWithDisplacement) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("shift", kShift);
     // A red plane at z = 10 displaced to z = 4, in front of a blue one at z = 5: culling by the
     // undisplaced bound would hide the red plane behind the blue one.
@@ -311,7 +304,7 @@ namespace streyes {
 namespace {
 
 TEST(ShadingLanguage, ImagerPaintsBehindWhatWasRendered) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("backdrop", "imager backdrop(color bg = 0) { Ci += (1 - alpha) * bg; alpha = 1; }\n");
     const std::string rib = view(8, 8, shaders.option() + "Imager \"backdrop\" \"bg\" [0 0 1]\n") +
                             "WorldBegin\nColor [1 0 0]\nSurface \"constant\"\n" + test::square(0, 4, 0, 8, 10) + "WorldEnd\n";
@@ -400,7 +393,7 @@ namespace {
 
 // option() reads the Format and Option "user"; attribute() the primitive's own attributes.
 TEST(ShadingLanguage, OptionAndAttributeReadTheScene) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     shaders.add("probe",
                 "surface probe() {\n"
                 "  float fmt[3] = {0, 0, 0}, rate = 0;\n"
@@ -448,7 +441,7 @@ TEST(ShadingLanguage, SpecularOptionChoosesTheHighlight) {
 // A shader found along Option "searchpath" "shader" includes a header from the same path; the
 // header's #warning and a run-time error (an index outside its array) are warned once each.
 TEST(ShadingLanguage, ShadersIncludeAlongTheSearchPathAndWarnAtRunTime) {
-    ShaderDir shaders;
+    test::ShaderDir shaders;
     std::ofstream(shaders.dir.path() + "/tints.h") << "#define TINT(c, k) ((c) * (k))\n#warning tints.h is old\n";
     shaders.add("tinted",
                 "#include <tints.h>\n"
