@@ -180,6 +180,7 @@ class Table {
         add("rayinfo", "f", "s*", rayinfo, Special::Query);
         add("textureinfo", "f", "ss*", textureinfo, Special::Query);
         add("shadername", "s", "", shadername);
+        add("shadername", "s", "s", shadername);
 
         // Strings.
         add("printf", "x", "s*", printf_, Special::Printf);

@@ -459,6 +459,7 @@ class Checker {
 
     SlType checkCall(Expr& e, SlType want) {
         auto uf = functions_.find(e.text);
+        if (uf == functions_.end() && e.text == "arraylength") return checkArrayLength(e);
         const auto& builtins = findBuiltins(e.text);
         if (uf == functions_.end() && builtins.empty()) fail(e.loc, "unknown function '" + e.text + "'");
         // texture("name"[channel], ...): the channel comes off the name.
@@ -518,6 +519,18 @@ class Checker {
             default: break;
         }
         return resolveBuiltin(e, builtins, want);
+    }
+
+    // arraylength(a): arrays have their length at compile time (an unsized one takes its
+    // initialiser's), so the call is that number.
+    SlType checkArrayLength(Expr& e) {
+        if (e.args.size() != 1) fail(e.loc, "arraylength takes one array");
+        const SlType t = check(*e.args[0], SlType());
+        if (!t.isArray()) fail(e.args[0]->loc, "arraylength of a " + t.name() + ", not an array");
+        e.kind = ExprKind::Number;
+        e.number = t.arrayLen;
+        e.args.clear();
+        return BaseType::Float;
     }
 
     void requireVariable(Expr& a, const std::string& what) {

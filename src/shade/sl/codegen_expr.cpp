@@ -281,7 +281,10 @@ CodeGen::Val CodeGen::genSpecial(const Expr& e, const Builtin& b) {
             Val t = temp(b.ret, d);
             int from = -1, to = -1, mat = -1;
             const Val& src = v.back();
-            if (v.size() == 3) {
+            if (v.size() == 3 && v[1].type.isMatrix()) {
+                from = v[0].reg;
+                mat = v[1].reg;
+            } else if (v.size() == 3) {
                 from = v[0].reg;
                 to = v[1].reg;
             } else if (v[0].type.isMatrix()) {

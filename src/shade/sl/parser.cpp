@@ -200,17 +200,30 @@ void Parser::parseDeclarators(VarDecl& d, bool formal) {
         Declarator dc;
         dc.loc = locOf(peek());
         dc.name = expectIdent("a name");
+        bool unsized = false;
         if (accept("[")) {
             const Token& n = peek();
-            if (n.kind != TokenKind::Number || n.number < 1 || n.number != std::floor(n.number))
-                fail(n, "expected a positive whole array length");
-            dc.arrayLen = int(next().number);
+            if (isPunct("]")) {
+                unsized = true;  // float a[] = {...}: the initialiser's length
+            } else {
+                if (n.kind != TokenKind::Number || n.number < 1 || n.number != std::floor(n.number))
+                    fail(n, "expected a positive whole array length");
+                dc.arrayLen = int(next().number);
+            }
             expect("]", "after the array length");
         }
         if (accept("=")) {
             const Token& first = peek();
             dc.init = isPunct("{") ? parseArrayInit() : parseAssign();
             dc.initText = textBetween(first, peek());
+        }
+        if (unsized) {
+            // Arrays have their length at compile time: an unsized one (a parameter, or a local)
+            // takes its initialiser's; PRMan's resizable arrays (resize, push, pop) are not read.
+            if (!dc.init || dc.init->kind != ExprKind::ArrayInit || dc.init->args.empty())
+                throw InputError(dc.loc, "array '" + dc.name + "' has no length: give one (" + dc.name +
+                                 "[3]) or an initialiser {...} to take it from");
+            dc.arrayLen = int(dc.init->args.size());
         }
         d.decls.push_back(std::move(dc));
         // In formals a ',' may also separate declarators of one type (float a, b).

@@ -696,6 +696,9 @@ class Analysis {
                 return view(e.loc, "a transform between spaces named at run time", facing);
             return through(spaceClass(e0), spaceClass(e.args[1].get()), x, point, e.loc, facing);
         }
+        // (from, m, x): x taken from `from` to current space, then through m.
+        if (e.args.size() == 3 && (e0->kind != ExprKind::String || e0->text != "current"))
+            return view(e.loc, "a transform from a named space through a matrix", facing);
         // Through a matrix: invariant only of invariants.
         return pure(a, e.loc, "a transform by a matrix of a value that reads the view");
     }

@@ -148,5 +148,34 @@ TEST(VmMessage, BadCallsAreCompileErrorsAtTheirPlace) {
     EXPECT_EQ(test::compileError(head + "  string n = \"Kd\";\n  opposite(n, x);\n}\n"), "");
 }
 
+TEST(VmMessage, ShaderNameOfATypeNamesTheGridsShaderOfThatType) {
+    // shadername(type): the primitive's shader of that type, "" when it has none; the running
+    // shader's own type names itself.
+    Chain c;
+    c.displacement = std::make_unique<ShaderInstance>(test::compile(R"(
+        displacement bumpy(output uniform float ok = 0) {
+            ok = (shadername("surface") == "marble" ? 1 : 0) + (shadername("displacement") == "bumpy" ? 2 : 0) +
+                 (shadername("atmosphere") == "" ? 4 : 0) + (shadername("imager") == "" ? 8 : 0);
+        })"));
+    c.surface = std::make_unique<ShaderInstance>(test::compile(R"(
+        surface marble(output uniform float ok = 0) {
+            string which = "displacement";
+            ok = (shadername(which) == "bumpy" ? 1 : 0) + (shadername("surface") == "marble" ? 2 : 0) +
+                 (shadername() == "marble" ? 4 : 0) + (shadername("lightsource") == "" ? 8 : 0);
+            Ci = 0;
+        })"));
+    TestGrid g = grid();
+    ShadingVM vm;
+    c.peers(vm);
+    vm.run(*c.displacement, g.grid);
+    EXPECT_EQ(vm.output("ok").at(0, 0), 15.0f);
+    vm.run(*c.surface, g.grid);
+    EXPECT_EQ(vm.output("ok").at(0, 0), 15.0f);
+    // Without peers, another type's name is "" (and its own type still names the surface).
+    ShadingVM alone;
+    alone.run(*c.surface, g.grid);
+    EXPECT_EQ(alone.output("ok").at(0, 0), 2.0f + 4.0f + 8.0f);
+}
+
 }  // namespace
 }  // namespace streyes::sl

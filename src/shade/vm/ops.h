@@ -97,7 +97,8 @@ STREYES_SL_OP(setcomp);        // a0 (a copy of a1) with component a2 set to a3
 STREYES_SL_OP(mcomp);          // a0 = a1[a2][a3]
 STREYES_SL_OP(msetcomp);       // a0 (a copy of a1) with [a2][a3] = a4
 STREYES_SL_OP(xform);          // a0 = a1 moved from space a2 (-1: current) to a3 (-1: current),
-                               // or by matrix a4; a5: 0 point, 1 vector, 2 normal
+                               // or by matrix a4 (after space a2 to current when both are
+                               // given); a5: 0 point, 1 vector, 2 normal
 STREYES_SL_OP(spaceMatrix);    // a0 = matrix from space a1 to current (matrix "space" ...) times a2
 STREYES_SL_OP(depth);
 STREYES_SL_OP(ptlined);        // a0 = distance from a3 to the segment a1-a2

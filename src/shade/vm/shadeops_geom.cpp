@@ -231,10 +231,14 @@ void msetcomp(Exec& x, const Instr& in) {
 void xform(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]), s = x.view(in.a[1]);
     const int kind = in.a[5];
+    // transform(from, m, p): p taken from space `from` to current, then through m.
+    M4 fromToCurrent = identityM();
+    const bool fromThenMatrix = in.a[4] >= 0 && in.a[2] >= 0 && x.str(in.a[2]) != "current";
+    if (fromThenMatrix) x.vm.spaceToCurrent(x.str(in.a[2]), fromToCurrent.m);
     if (in.a[4] >= 0 && x.varying(in.a[4])) {
         RegView mv = x.view(in.a[4]);
         for (int i = 0; i < d.w; ++i) {
-            M4 m = loadM(mv, i);
+            M4 m = fromThenMatrix ? mulM(fromToCurrent, loadM(mv, i)) : loadM(mv, i);
             V3 v = load3(s, i);
             store3(d, i, kind == 0 ? xformPoint(m, v) : kind == 1 ? xformVector(m, v) : xformNormal(invertM(m), v));
         }
@@ -242,7 +246,7 @@ void xform(Exec& x, const Instr& in) {
     }
     M4 m;
     if (in.a[4] >= 0) {
-        m = loadM(x.view(in.a[4]), 0);
+        m = mulM(fromToCurrent, loadM(x.view(in.a[4]), 0));
     } else {
         M4 a = identityM(), b = identityM();
         const std::string* from = in.a[2] >= 0 ? &x.str(in.a[2]) : nullptr;

@@ -94,6 +94,24 @@ void textureinfo(Exec& x, const Instr& in) {
     x.ptr(in.a[0])[0] = t && t->textureInfo(x.str(in.a[1]), x.str(in.a[2]), v) ? store(x, in.a[3], v) : 0.0f;
 }
 
-void shadername(Exec& x, const Instr& in) { x.str(in.a[0]) = x.prog.name; }
+// shadername(): the running shader's name; shadername(type): the grid's shader of that type
+// ("surface", "displacement", "atmosphere"; the running shader's own type names it), else "".
+void shadername(Exec& x, const Instr& in) {
+    if (in.a[1] < 0) {
+        x.str(in.a[0]) = x.prog.name;
+        return;
+    }
+    const std::string& type = x.str(in.a[1]);
+    std::string name;
+    if (type == shaderTypeName(x.prog.type) || (type == "lightsource" && x.prog.type == ShaderType::Light))
+        name = x.prog.name;
+    else if (type == "surface")
+        name = x.vm.peerShaderName(Peer::Surface);
+    else if (type == "displacement")
+        name = x.vm.peerShaderName(Peer::Displacement);
+    else if (type == "atmosphere")
+        name = x.vm.peerShaderName(Peer::Atmosphere);
+    x.str(in.a[0]) = name;
+}
 
 }  // namespace streyes::sl::ops

@@ -23,6 +23,12 @@ bool fits(SlType from, SlType to) {
 
 }  // namespace
 
+const std::string& ShadingVM::peerShaderName(Peer which) const {
+    static const std::string none;
+    const ShaderInstance* s = peers_[size_t(which)].shader;
+    return s ? s->program().name : none;
+}
+
 Frame* ShadingVM::peerFrame(Peer which) {
     const PeerShader& peer = peers_[size_t(which)];
     const ShaderProgram& p = peer.shader->program();

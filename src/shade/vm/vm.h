@@ -108,6 +108,8 @@ class ShadingVM {
         peers_ = peers;
         ++peerGrid_;
     }
+    // The name of the grid's shader `which` (shadername(type)); "" when it has none.
+    const std::string& peerShaderName(Peer which) const;
 
     // Runs `shader` over `grid`. `lights` are the lights on for the surface (for surface and
     // volume shaders). Bad bindings (a primitive variable whose type differs from the

@@ -281,6 +281,45 @@ TEST(VmFunctions, PrimitiveVariablesBindParameters) {
 }
 
 // A point moved to "world" and back is itself; named spaces come from the grid.
+TEST(VmSpaces, TransformFromANamedSpaceThroughAMatrix) {
+    // transform(from, m, p) (RI Spec 3.2, 15.2): p taken from `from` to current space, then
+    // through m; as the two steps written out, for points, vectors and normals, and a varying m.
+    const char* src = R"(
+        surface s(output varying point a = 0; output varying point b = 0; output varying vector va = 0;
+                  output varying vector vb = 0; output varying normal na = 0; output varying normal nb = 0;
+                  output varying point ca = 0; output varying point cb = 0) {
+            matrix m = translate(scale(matrix 1, point(1, 2, 3)), vector(s, 1, -2));
+            point p = point(1, s, 2);
+            a = transform("world", m, p);
+            b = transform(m, transform("world", "current", p));
+            va = vtransform("world", m, vector p);
+            vb = vtransform(m, vtransform("world", "current", vector p));
+            na = ntransform("world", m, normal p);
+            nb = ntransform(m, ntransform("world", "current", normal p));
+            ca = transform("current", m, p);
+            cb = transform(m, p);
+            Ci = 0;
+        })";
+    TestGrid g(5);
+    g.setVarying(Global::P, 3, [](int i) { return Vec3f{float(i), 2, -1}; });
+    g.grid.setSpace(Space::World, Matrix4::scale({2, 2, 2}) * Matrix4::rotate(90, {1, 0, 0}) * Matrix4::translate({1, 2, 3}));
+    ShaderInstance inst(test::compile(src));
+    ShadingVM vm;
+    vm.run(inst, g.grid);
+    for (const char* pair : {"ab", "v", "n", "c"}) {
+        const std::string x = pair[0] == 'a' ? "a" : std::string(1, pair[0]) + "a";
+        const std::string y = pair[0] == 'a' ? "b" : std::string(1, pair[0]) + "b";
+        for (int i = 0; i < g.n(); ++i) {
+            const Vec3f u = test::at3(vm.output(x), i), v = test::at3(vm.output(y), i);
+            EXPECT_NEAR(u.x, v.x, 1e-4f) << x << " " << i;
+            EXPECT_NEAR(u.y, v.y, 1e-4f) << x << " " << i;
+            EXPECT_NEAR(u.z, v.z, 1e-4f) << x << " " << i;
+        }
+    }
+    // Not the matrix alone: world space is not current here.
+    EXPECT_GT(std::abs(test::at3(vm.output("a"), 1).x - test::at3(vm.output("cb"), 1).x), 0.1f);
+}
+
 TEST(VmSpaces, TransformsToNamedSpacesAndBack) {
     const char* src = R"(
         surface s(output varying point w = 0; output varying point back = 0; output varying vector nw = 0;
@@ -422,6 +461,36 @@ TEST(VmStrings, PrintfFormatConcatMatch) {
     EXPECT_EQ(vm.paramStrings("joined")[0], "bark-7:0.50");
     EXPECT_EQ(vm.output("matched").at(0, 0), 1.0f);
     EXPECT_EQ(printed, "u 1.0 1 0 0\nonce bark\n");
+}
+
+TEST(VmFunctions, ArrayLengthAndUnsizedArraysTakingTheirInitialisersLength) {
+    ProgramPtr prog = test::compile(R"(
+        surface s(float weights[] = {1, 2, 3, 4}; output uniform float n = 0; output uniform float sum = 0;
+                  output uniform float m = 0) {
+            color ramp[] = {color 0, color 1, color 2};
+            float fixed[5];
+            uniform float i;
+            for (i = 0; i < arraylength(weights); i += 1) sum += weights[i];
+            n = arraylength(weights);
+            m = arraylength(ramp) * 10 + arraylength(fixed);
+            Ci = 0;
+        })");
+    ShaderInstance inst(prog);
+    ShadingVM vm;
+    TestGrid g(3);
+    vm.run(inst, g.grid);
+    EXPECT_EQ(vm.output("n").at(0, 0), 4.0f);
+    EXPECT_EQ(vm.output("sum").at(0, 0), 10.0f);
+    EXPECT_EQ(vm.output("m").at(0, 0), 35.0f);
+    // A value bound to the unsized parameter (4 floats, its length) is summed.
+    ShaderInstance bound(prog);
+    bound.set("weights", BaseType::Float, {0.5f, 0.25f, 2, 8});
+    vm.run(bound, g.grid);
+    EXPECT_EQ(vm.output("sum").at(0, 0), 10.75f);
+    // Errors at the declaration or the call.
+    EXPECT_NE(test::compileError("surface s() { float a[]; Ci = 0; }").find("array 'a' has no length"), std::string::npos);
+    EXPECT_NE(test::compileError("surface s() { float a = 1; Ci = arraylength(a); }").find("arraylength of a float, not an array"),
+              std::string::npos);
 }
 
 }  // namespace
