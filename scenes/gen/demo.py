@@ -37,13 +37,14 @@ w('Surface "sky" "cloudscale" [0.6]\n')
 w(patch((-80, 45, 60), (80, 45, 60), (-80, -20, 60), (80, -20, 60)))
 w("AttributeEnd\n")
 
-# Floor: 12 x 12 tiles, two tones.
+# Floor: 20 x 14 tiles, two tones, from under the camera's lowest ray (it meets the floor 9
+# units in front of the camera, at z = -9) to past the pillar, and wide enough to fill the frame.
 w("AttributeBegin\n")
 w('Surface "matte"\n')
-n, size = 12, 2.0
-for j in range(n):
-    for i in range(n):
-        x0, z0 = -n / 2 * size + i * size, -n / 2 * size + j * size + 4
+nx, nz, size = 20, 14, 2.0
+for j in range(nz):
+    for i in range(nx):
+        x0, z0 = -nx / 2 * size + i * size, -12 + j * size
         c = (0.75, 0.72, 0.65) if (i + j) % 2 == 0 else (0.25, 0.3, 0.38)
         w("Color [%s]\n" % " ".join(fmt(v) for v in c))
         w(patch((x0, 0, z0), (x0 + size, 0, z0), (x0, 0, z0 + size), (x0 + size, 0, z0 + size)))
