@@ -1,5 +1,7 @@
 // Blobby nleaf [code] [floats] [strings] ...: implicit surfaces, kept as the triangles of their
-// level surface (scene/blobby_field.h), a polygon mesh like PointsPolygons.
+// level surface (scene/blobby_field.h), a polygon mesh like PointsPolygons. Its varying, vertex and
+// facevarying variables have a value per leaf; the mesh gets, at each vertex, the leaves' values
+// weighted by each leaf's field there (RI Spec 3.2, 5.6), as "vertex" variables.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -20,8 +22,18 @@ struct BlobbyKey {
     BlobbyField field;
     std::vector<size_t> leaves;  // the leaf instructions, in order: "Cs" is given per leaf
     ColorPrimvar Cs;
-    ParamList primvars;  // constant ones (otherParams)
+    ParamList primvars;           // constant ones (otherParams)
+    std::vector<Param> leafVars;  // a value per leaf: float, color, point, vector, normal, mpoint
 };
+
+// A variable with a value per leaf that the mesh can carry per vertex: one float, colour, point,
+// vector or normal ("st" two floats), or PRMan's "mpoint" (a matrix: each leaf's reference frame).
+bool perLeafVariable(const Param& p) {
+    if (p.cls != ParamClass::Varying && p.cls != ParamClass::Vertex && p.cls != ParamClass::FaceVarying) return false;
+    if (p.name == "st" && p.type == ParamType::Float && p.arraySize == 2) return true;
+    return p.arraySize == 1 && (p.type == ParamType::Float || p.type == ParamType::Color || p.type == ParamType::Point ||
+                                p.type == ParamType::Vector || p.type == ParamType::Normal || p.type == ParamType::Matrix);
+}
 
 // One key: the code decoded into instructions, every index checked. Nothing (with a warning, as the
 // peers give) for a code with an opcode streyes does not know: how many operands follow it is
@@ -156,7 +168,16 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
     ParamList params = reader.readParams(args);
     ClassCounts counts{1, size_t(key.nleaf), size_t(key.nleaf), size_t(key.nleaf)};
     key.Cs = readColors(args, params, counts);
-    key.primvars = otherParams(args, params, counts, reader.log());
+    ParamList constant;
+    for (Param& p : params.params) {
+        if (p.name == "P" || p.name == "Pw" || p.name == "Cs" || !perLeafVariable(p)) {
+            constant.params.push_back(std::move(p));
+            continue;
+        }
+        checkCount(args, p, size_t(key.nleaf));
+        key.leafVars.push_back(std::move(p));
+    }
+    key.primvars = otherParams(args, constant, counts, reader.log());
     return key;
 }
 
@@ -214,7 +235,76 @@ int screenCells(RibParser& reader, const PrimitiveDesc& d, const BlobbyField& fi
     return cellsFor(std::max(x1 - x0, y1 - y0));
 }
 
-// The polygon mesh of the first key, with "Cs" per leaf blended by each leaf's field.
+// One leaf's value of a per-leaf variable at object-space point p: as given, or for an "mpoint"
+// p carried from the leaf's blob space into its reference frame (a point that moves with the blob).
+void leafValueAt(const BlobbyKey& key, const Param& v, size_t leaf, Vec3d p, double* out) {
+    const size_t w = size_t(v.componentsPerItem());
+    const double* given = &v.nums[leaf * w];
+    if (v.type != ParamType::Matrix) {
+        std::copy(given, given + w, out);
+        return;
+    }
+    const Vec3d q = Matrix4::fromRowMajor(given).point(key.field.ops[key.leaves[leaf]].toBlob.point(p));
+    out[0] = q.x, out[1] = q.y, out[2] = q.z;
+}
+
+// The per-leaf "Cs" and variables at the mesh's vertices: the sum of the leaves' values weighted by
+// each leaf's field there, over the sum of those fields. Where no leaf's field reaches (a surface
+// made by constants alone), the mean of the leaves' values.
+void blendLeafValues(const BlobbyKey& key, const std::vector<Vec3d>& P, PolygonMeshDesc& d) {
+    const bool blendCs = key.Cs.given() && key.Cs.cls != ParamClass::Constant && key.Cs.cls != ParamClass::Uniform;
+    if (!blendCs && key.leafVars.empty()) return;
+    std::vector<Param> out;
+    for (const Param& v : key.leafVars) {
+        Param q = v;
+        q.cls = ParamClass::Vertex;
+        if (v.type == ParamType::Matrix) q.type = ParamType::Point;
+        q.nums.assign(P.size() * size_t(q.componentsPerItem()), 0.0);
+        out.push_back(std::move(q));
+    }
+    const size_t leaves = key.leaves.size();
+    Color meanCs{0, 0, 0};
+    if (blendCs) {
+        d.Cs.cls = ParamClass::Vertex;
+        for (size_t l = 0; l < leaves; ++l) meanCs = meanCs + key.Cs.values[l] * (1.0f / float(leaves));
+    }
+    std::vector<int> leafOf(key.field.ops.size(), -1);
+    for (size_t l = 0; l < leaves; ++l) leafOf[key.leaves[l]] = int(l);
+    // Each vertex reads the leaves near it (the others' fields are 0 there and add nothing).
+    BlobbyEvaluator near(key.field);
+    std::vector<std::pair<size_t, double>> weights;  // leaf, its field at the vertex
+    double value[3];
+    for (size_t i = 0; i < P.size(); ++i) {
+        weights.clear();
+        double total = 0;
+        for (size_t at : near.leavesNear(P[i])) {
+            if (leafOf[at] < 0) continue;
+            const double w = key.field.leafValue(at, P[i]);
+            if (w > 0) weights.push_back({size_t(leafOf[at]), w}), total += w;
+        }
+        if (blendCs) {
+            Color sum{0, 0, 0};
+            for (const auto& [l, w] : weights) sum = sum + key.Cs.values[l] * float(w);
+            d.Cs.values.push_back(total > 0 ? sum * float(1 / total) : meanCs);
+        }
+        if (!(total > 0)) {
+            weights.clear();
+            for (size_t l = 0; l < leaves; ++l) weights.push_back({l, 1.0});
+            total = double(leaves);
+        }
+        for (size_t k = 0; k < out.size(); ++k) {
+            const size_t n = size_t(out[k].componentsPerItem());
+            double* at = &out[k].nums[i * n];
+            for (const auto& [l, w] : weights) {
+                leafValueAt(key, key.leafVars[k], l, P[i], value);
+                for (size_t c = 0; c < n; ++c) at[c] += value[c] * (w / total);
+            }
+        }
+    }
+    for (Param& q : out) d.primvars.params.push_back(std::move(q));
+}
+
+// The polygon mesh of the first key, with the per-leaf values blended by each leaf's field.
 void addBlobby(RibParser& reader, const BlobbyKey& key, const SourceLoc& loc) {
     PolygonMeshDesc d;
     placePrimitive(reader, d, {0.0}, loc);
@@ -243,31 +333,11 @@ void addBlobby(RibParser& reader, const BlobbyKey& key, const SourceLoc& loc) {
     d.request = "Blobby";
     for (const std::array<int, 3>& t : mesh.triangles) d.polygons.push_back({{t[0], t[1], t[2]}});
     d.primvars = key.primvars;
-    if (key.Cs.given()) {
-        if (key.Cs.cls == ParamClass::Constant || key.Cs.cls == ParamClass::Uniform) {
-            d.Cs.cls = ParamClass::Constant;
-            d.Cs.values = {key.Cs.values[0]};
-        } else {
-            d.Cs.cls = ParamClass::Vertex;
-            Color mean{0, 0, 0};
-            for (size_t l = 0; l < key.leaves.size(); ++l) mean = mean + key.Cs.values[l] * (1.0f / float(key.leaves.size()));
-            // Each vertex reads the leaves near it (the others' fields are 0 there and add nothing).
-            std::vector<int> leafOf(key.field.ops.size(), -1);
-            for (size_t l = 0; l < key.leaves.size(); ++l) leafOf[key.leaves[l]] = int(l);
-            BlobbyEvaluator near(key.field);
-            for (const Vec3d& p : mesh.P) {
-                Color sum{0, 0, 0};
-                double weight = 0;
-                for (size_t i : near.leavesNear(p)) {
-                    if (leafOf[i] < 0) continue;
-                    const double w = key.field.leafValue(i, p);
-                    sum = sum + key.Cs.values[size_t(leafOf[i])] * float(w);
-                    weight += w;
-                }
-                d.Cs.values.push_back(weight > 0 ? sum * float(1 / weight) : mean);
-            }
-        }
+    if (key.Cs.given() && (key.Cs.cls == ParamClass::Constant || key.Cs.cls == ParamClass::Uniform)) {
+        d.Cs.cls = ParamClass::Constant;
+        d.Cs.values = {key.Cs.values[0]};
     }
+    blendLeafValues(key, mesh.P, d);
     d.P = {std::move(mesh.P)};
     d.patchesBefore = reader.scene().patches.size();
     reader.scene().polygonMeshes.push_back(std::move(d));

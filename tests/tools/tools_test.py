@@ -308,5 +308,67 @@ class EndToEnd(unittest.TestCase):
             self.assertIn("### scenes/ramp.rib", f.read())
 
 
+class AqsisComparePlugins(unittest.TestCase):
+    """tools/aqsis-compare builds a scene's DynamicLoad plug-in from its source beside the scene, for
+    streyes against this checkout's include/ri.h, for Aqsis against the prefix given with --aqsis."""
+    PLUGIN = """#include <ri.h>
+AQSIS_EXPORT RtPointer ConvertParameters(RtString p) { (void)p; return 0; }
+AQSIS_EXPORT RtVoid Subdivide(RtPointer d, RtFloat detail) { (void)d; (void)detail; RiSphere(1, -1, 1, 360, RI_NULL); }
+AQSIS_EXPORT RtVoid Free(RtPointer d) { (void)d; }
+"""
+    SCENE = """Format 32 32 1
+Display "out.exr" "openexr" "rgba"
+Projection "orthographic"
+ScreenWindow -2 2 -2 2
+WorldBegin
+Translate 0 0 5
+Procedural "DynamicLoad" ["ball" ""] [-1 1 -1 1 -1 1]
+WorldEnd
+"""
+
+    def setUp(self):
+        if not os.access(EXE, os.X_OK):
+            self.fail("no streyes executable at '%s': build it, or set STREYES_EXE" % EXE)
+        self.dir = tempfile.mkdtemp(prefix="streyes-tools-")
+        for name, text in (("ball.c", self.PLUGIN), ("scene.rib", self.SCENE)):
+            with open(os.path.join(self.dir, name), "w") as f:
+                f.write(text)
+        self.tool = load_script("aqsis-compare")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def test_streyes_renders_the_plugin_built_against_its_ri_h(self):
+        self.tool.build_plugins("streyes", self.dir, "scene.rib", "/unused")
+        self.assertTrue(os.path.exists(os.path.join(self.dir, "ball.so")))
+        r = subprocess.run([EXE, "render", "scene.rib", "--stats", "stats.json"], cwd=self.dir, capture_output=True,
+                           text=True)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertNotIn("warning", r.stderr)
+        with open(os.path.join(self.dir, "stats.json")) as f:
+            counters = json.load(f)["counters"]
+        # The plug-in was loaded and expanded, and its sphere (the only geometry) was diced.
+        self.assertEqual(counters["procedurals_expanded"], 1)
+        self.assertGreater(counters["micropolygons"], 100)
+
+    def test_aqsis_builds_against_the_prefix_given(self):
+        calls = []
+
+        class Done:
+            returncode = 0
+            stdout = b""
+        real = self.tool.subprocess.run
+        self.tool.subprocess.run = lambda cmd, **kw: calls.append(cmd) or Done()
+        try:
+            self.tool.build_plugins("aqsis", self.dir, "scene.rib", "/opt/aqsis-x")
+        finally:
+            self.tool.subprocess.run = real
+        self.assertEqual(len(calls), 1)
+        cmd = " ".join(calls[0])
+        for part in ("ball.c -o ball.so", "-I /opt/aqsis-x/include/aqsis/ri", "-L /opt/aqsis-x/lib", "-laqsis_core"):
+            self.assertIn(part, cmd)
+        self.assertNotIn(os.path.join(ROOT, "include"), cmd)
+
+
 if __name__ == "__main__":
     unittest.main()
