@@ -34,7 +34,7 @@ TEST(MaterialViewUse, BuiltInSurfacesUnderLightsStillInWorld) {
     EXPECT_EQ(viewUseOf(lights + "Surface \"constant\"\nSphere 1 -1 1 360"), ViewUse::None);
     // matte reads the view only through faceforward(N, I).
     EXPECT_EQ(viewUseOf(lights + "Surface \"matte\"\nSphere 1 -1 1 360"), ViewUse::FacingOnly);
-    // plastic's highlight reads I; defaultsurface's brightness is |N.I|.
+    // plastic's highlight reads I; defaultsurface's brightness is (N.I)^2.
     EXPECT_EQ(viewUseOf(lights + "Surface \"plastic\"\nSphere 1 -1 1 360"), ViewUse::Reads);
     EXPECT_EQ(viewUseOf(lights + "Sphere 1 -1 1 360"), ViewUse::Reads);
 }

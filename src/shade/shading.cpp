@@ -20,8 +20,8 @@ Color shadePoint(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthographi
     Vec3f I = orthographic ? Vec3f{0, 0, 1} : normalize(p);
     Vec3f Nf = faceForward(normalize(n), I);
     if (m.kind == SurfaceKind::Default) {
-        float d = std::fabs(dot(Nf, I));
-        return cs * m.Os * (0.2f + 0.8f * d);
+        const float d = dot(Nf, I);  // Pixar's defaultsurface: Ka + Kd (N.I)^2
+        return cs * m.Os * (0.2f + 0.8f * (d * d));
     }
     Color ambient{0, 0, 0}, diffuse{0, 0, 0}, specular{0, 0, 0};
     Vec3f V = -I;

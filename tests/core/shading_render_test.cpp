@@ -116,6 +116,19 @@ TEST(ShadingLanguage, BuiltinShadingGivesTheShippedShadersPixels) {
     EXPECT_GT(test::meanAbsDifference(builtin, test::renderRib(view(100, 100, "") + "WorldBegin\nWorldEnd\n")), 0.05f);
 }
 
+// defaultsurface is Pixar's: 0.2 + 0.8 (N.I)^2. A square turned 60 degrees from the view
+// (orthographic: I along z) is 0.2 + 0.8/4 = 0.4 in the built-in, the shipped shader and the ray
+// tracer (|N.I| would give 0.6).
+TEST(ShadingLanguage, DefaultSurfaceIsPixarsSquaredCosine) {
+    const std::string world = "WorldBegin\nSurface \"defaultsurface\"\nTranslate 32 32 50\nRotate 60 0 1 0\n"
+                              "Patch \"bilinear\" \"P\" [-40 -40 0  40 -40 0  -40 40 0  40 40 0]\nWorldEnd\n";
+    for (const std::string& extra : {std::string(), std::string("Option \"shading\" \"string builtin\" \"off\"\n")})
+        for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Raytrace}) {
+            const test::RenderResult r = test::renderRib(view(64, 64, extra) + world, test::optionsFor(a));
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.channel(0, 32, 32, c), 0.4f, 1e-4f) << extra << algorithmName(a);
+        }
+}
+
 TEST(ShadingLanguage, RayTracerShadesShaderSurfacesAsTheRasterizer) {
     test::ShaderDir shaders;
     shaders.add("stripes", "surface stripes(float n = 4) { Ci = mod(floor(s * n), 2) == 0 ? color(1, 0, 0) : color(0, 0, 1); }\n");
