@@ -130,9 +130,10 @@ TEST(Passes, AZoomIsOnePassKeepingEachFramesProjection) {
     const std::string fov40 = "Projection \"perspective\" \"fov\" 40", fov30 = "Projection \"perspective\" \"fov\" 30";
     const Read zoom = readText(frame(1, fov40, "") + frame(2, fov30, "") + frame(3, fov40, "ScreenWindow -0.5 0.5 -0.5 0.5\n") +
                                frame(4, fov40, "FrameAspectRatio 2\n") + frame(5, fov40, ""));
-    ASSERT_EQ(zoom.renders().size(), 1u);
-    const Scene& merged = zoom.renders()[0].sequence.scene;
-    EXPECT_EQ(framesOf(zoom.renders()[0]), (std::vector<int>{1, 2, 3, 4, 5}));
+    const std::vector<PassJob> jobs = zoom.renders();
+    ASSERT_EQ(jobs.size(), 1u);
+    const Scene& merged = jobs[0].sequence.scene;
+    EXPECT_EQ(framesOf(jobs[0]), (std::vector<int>{1, 2, 3, 4, 5}));
     EXPECT_EQ(merged.camera.fov, 40);
     ASSERT_EQ(merged.frameCamera.size(), 3u);  // frames 2, 3, 4: frame 5 projects as frame 1
     EXPECT_EQ(merged.frameCamera.at(2).fov, 30);
