@@ -90,7 +90,7 @@ void BM_TraceAtom(benchmark::State& state) {
                     if (!bvh.intersect(eye, t, cam.nearClip(), cam.farClip(), &h, ctx)) continue;
                     const Vec3f p = eye.d * h.t;
                     ++rays;
-                    const float bias = a.trace->shadowBias(p.z);
+                    const float bias = a.trace->shadowBias(p.z, 0);
                     benchmark::DoNotOptimize(bvh.occluded(Ray{p, light.direction}, t, bias, 1e30f, ctx));
                 }
         }

@@ -5,6 +5,7 @@
 // buckets, frames blocks or rasters. Times are in frames throughout.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <map>
@@ -173,6 +174,13 @@ struct CameraDesc {
     SourceLoc depthOfFieldLoc;
     bool depthOfField() const { return fstop < std::numeric_limits<double>::infinity(); }
 };
+
+// Whether two cameras project alike: the same field of view, screen window and frame aspect ratio
+// (what a zoom changes; the projection's kind, resolution and clipping are compared elsewhere).
+inline bool sameZoom(const CameraDesc& a, const CameraDesc& b) {
+    return a.fov == b.fov && a.hasScreenWindow == b.hasScreenWindow && a.frameAspect == b.frameAspect &&
+           std::equal(a.screenWindow, a.screenWindow + 4, b.screenWindow);
+}
 
 struct FilterDesc {
     std::string type = "gaussian";  // box | triangle | gaussian | catmull-rom | sinc | mitchell | disk
@@ -507,6 +515,9 @@ struct Scene {
     // (camera space is each frame's own; the merged camera is the identity). Shaders' "world"
     // space and shadow maps' lookups take the frame's. Empty: camera.worldToCamera for every frame.
     std::map<int, MotionTransform> frameWorldToCamera;
+    // A merged frame sequence under a zoom: the camera (its projection) of each frame whose
+    // field of view, screen window or frame aspect ratio differs from `camera`'s. Empty: none.
+    std::map<int, CameraDesc> frameCamera;
 };
 
 // Every primitive of the scene (a procedural's output) exists only during `life`.

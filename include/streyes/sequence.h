@@ -89,6 +89,8 @@ class SequenceBuilder {
     std::map<std::string, SourceLoc> declared_;  // where each identifier was given in this frame
     MotionTransform worldToCamera_;
     double open_ = 0, close_ = 0;
+    CameraDesc previousCamera_;  // the last frame's, for zooms
+    bool zoomed_ = false;        // this frame projects otherwise than the last: no run goes on
 };
 
 // True when `path` holds a frame field (a run of '#').

@@ -43,6 +43,7 @@ namespace streyes {
     SHOWN("procedurals_never_expanded", s.procedurals - c.proceduralsExpanded)                         \
     SHOWN("bodies_generated", s.bodiesGenerated)                                                       \
     SHOWN("passes", s.passes)                                                                          \
+    SHOWN("renders", s.renders)        /* spacetime renders run: one per block of each pass */         \
     COUNT(gridsDiced, "grids_diced")                                                                   \
     COUNT(micropolygons, "micropolygons")  /* diced (and shaded) */                                    \
     COUNT(gridsShared, "grids_shared")     /* sampled from a grid another bucket diced (grid_cache.h) */ \
@@ -117,6 +118,7 @@ struct RenderStats {
     std::vector<uint64_t> proceduralsByDepth;
     uint64_t bodiesGenerated = 0;  // bodies made, from the scene and by expansions
     int passes = 1;                // > 1 when procedurals outgrew their bounds
+    int renders = 1;               // spacetime renders: a file's passes' blocks, summed (a zoom is one pass)
 
     std::string toJson() const;
 };

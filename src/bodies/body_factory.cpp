@@ -200,7 +200,7 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std
     bool finite = true, fits = true;
     double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin, rasterError = 0;
     // The exact precision measure only where the cheap bound cannot rule the warning out.
-    const bool precision = camera_ && !(precisionBound(*camera_, p.objectToWorld, worldToCamera_, p) <= kMaxPrecisionPixels);
+    const bool precision = camera_ && !(precisionBound(*cameraOf(p.life), p.objectToWorld, worldToCamera_, p) <= kMaxPrecisionPixels);
     for (size_t i = 0; i < ts.size(); ++i) {
         Matrix4 m = objectToCamera.at(ts[i]);
         std::array<Vec3d, 4> obj = cornersAt(p, ts[i]);
@@ -211,7 +211,7 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std
             fits = fits && fitsCameraSpace(v);
             if (finite && fits) corners[i][size_t(c)] = Vec3f(v);
             zmin = std::min(zmin, v.z), zmax = std::max(zmax, v.z);
-            if (precision) rasterError = std::max(rasterError, precisionInPixels(*camera_, worldScale, v));
+            if (precision) rasterError = std::max(rasterError, precisionInPixels(*cameraOf(p.life), worldScale, v));
         }
     }
     if (!finite) {
@@ -254,8 +254,8 @@ void BodyFactory::addPatch(const BilinearPatchDesc& p, uint64_t primitiveId, std
         // (a leaf keyed every few frames of a long shot, one frame rendered).
         if (camera_ && std::isfinite(wantedStart_) && std::isfinite(wantedEnd_)) {
             // A chunk (geom/root_chunks.h) holding a frame's exposure lies within a chunk's length of it.
-            const double chunk = rootChunkFrames(*body, *camera_);
-            std::unique_ptr<KeyedPatchBody> part = body->keysOver(wantedStart_ - chunk, wantedEnd_ + chunk, *camera_);
+            const double chunk = rootChunkFrames(*body, *cameraOf(p.life));
+            std::unique_ptr<KeyedPatchBody> part = body->keysOver(wantedStart_ - chunk, wantedEnd_ + chunk, *cameraOf(p.life));
             if (part) body = std::move(part);
         }
         body->setSource(src);
@@ -452,7 +452,7 @@ void BodyFactory::addWithDetail(const Desc& p, Add add) {
         return;
     }
     const DetailFrames& f = detailFrames_;
-    for (const DetailRun& run : detailRuns(*lod, f.first, f.last, f.shutter, worldToCamera_, *camera_, f.relative)) {
+    for (const DetailRun& run : detailRuns(*lod, f.first, f.last, f.shutter, worldToCamera_, *camera_, f.relative, cameras_)) {
         Desc q = p;
         q.life = runLifetime(p.life, run.first, run.last, f.shutter);
         if (!run.share.all()) q.attributes = dissolving(p.attributes, run.share.lo, run.share.hi);

@@ -63,7 +63,11 @@ class BodyFactory final : public ChildBodyMaker {
     // Curved primitives: a SurfaceMesh per motion segment (kept by the factory) and a CurvedBody
     // per face. The camera must be set: curved bodies
     // measure their edges in raster space. A subdivision mesh OpenSubdiv rejects is an InputError.
-    void setCamera(const Camera* camera) { camera_ = camera; }
+    // Under a zoom, `cameras` gives each frame's (a primitive is measured under its life's).
+    void setCamera(const Camera* camera, const FrameCameras* cameras = nullptr) {
+        camera_ = camera;
+        cameras_ = cameras;
+    }
     // The shutter's length in frames: GeometricApproximation "motionfactor" measures motion per exposure.
     void setExposure(double exposure) { exposure_ = exposure; }
     // Binds the Shading Language shaders of every material made from now on (see material.h).
@@ -203,6 +207,11 @@ class BodyFactory final : public ChildBodyMaker {
     std::deque<std::unique_ptr<SurfaceMesh>> surfaces_;  // curved bodies point at these
     std::vector<std::shared_ptr<const void>> clouds_;    // point bodies point at these (under mutex_)
     const Camera* camera_ = nullptr;
+    const FrameCameras* cameras_ = nullptr;
+    // The camera a primitive living during `life` is measured under (a zoom's frame's).
+    const Camera* cameraOf(const Lifetime& life) const {
+        return camera_ && cameras_ ? &cameras_->during(life.t0, life.t1) : camera_;
+    }
     double exposure_ = 1;
     struct DetailFrames {
         int first = 0, last = 0;

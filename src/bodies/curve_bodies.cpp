@@ -42,7 +42,7 @@ void BodyFactory::addCurves(const CurvesDesc& c, uint64_t primitiveId, std::vect
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
         std::vector<BezierPatch> k1;
         if (j != i) k1 = key(j);
-        addSurface(std::make_unique<BezierMesh>(ribbons.topology(), segmentSpan(t0, t1, ts, lastOpen), mat, camera_,
+        addSurface(std::make_unique<BezierMesh>(ribbons.topology(), segmentSpan(t0, t1, ts, lastOpen), mat, cameraOf(c.life),
                                                 key(i), std::move(k1), colors),
                    src, primitiveId, out, keep);
     }, wantedStart_, wantedEnd_);

@@ -33,11 +33,12 @@ DetailShare detailShare(const std::array<double, 4>& r, double area) {
 }
 
 std::vector<DetailRun> detailRuns(const LevelOfDetail& lod, int first, int last, const Shutter& shutter,
-                                  const MotionTransform& worldToCamera, const Camera& camera, double relativeDetail) {
+                                  const MotionTransform& worldToCamera, const Camera& camera, double relativeDetail,
+                                  const FrameCameras* cameras) {
     std::vector<DetailRun> runs;
     for (int f = first; f <= last; ++f) {
         const double t = f + 0.5 * (shutter.open + shutter.close);
-        const double area = detailArea(lod, worldToCamera, camera, t) * relativeDetail;
+        const double area = detailArea(lod, worldToCamera, cameras ? cameras->ofFrame(f) : camera, t) * relativeDetail;
         const DetailShare share = detailShare(lod.range, std::isnan(area) ? 0 : area);
         if (share.none()) continue;
         if (!runs.empty() && runs.back().last == f - 1 && runs.back().share == share) runs.back().last = f;

@@ -34,13 +34,14 @@ double detailArea(const LevelOfDetail& lod, const MotionTransform& worldToCamera
 DetailShare detailShare(const std::array<double, 4>& range, double area);
 
 // Frames [first, last] grouped into runs of consecutive frames that draw one share; frames that
-// draw nothing are left out.
+// draw nothing are left out. Under a zoom, `cameras` gives each frame's camera.
 struct DetailRun {
     int first, last;
     DetailShare share;
 };
 std::vector<DetailRun> detailRuns(const LevelOfDetail& lod, int first, int last, const Shutter& shutter,
-                                  const MotionTransform& worldToCamera, const Camera& camera, double relativeDetail);
+                                  const MotionTransform& worldToCamera, const Camera& camera, double relativeDetail,
+                                  const FrameCameras* cameras = nullptr);
 
 // A primitive's lifetime cut to the exposures of frames [a, b]: open at the end where the next
 // frame's exposure begins there (Shutter 0 1).

@@ -15,13 +15,23 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     }
     rs->camera = Camera(cam);
     rs->shutter = {scene.settings.shutterOpen, scene.settings.shutterClose};
+    rs->cameras.setShutter(rs->shutter);
+    // A zoom: each frame's projection; all else (camera space, clipping, lens, resolution) the scene's.
+    for (const auto& [frame, desc] : scene.frameCamera) {
+        CameraDesc c = cam;
+        c.fov = desc.fov;
+        c.hasScreenWindow = desc.hasScreenWindow;
+        std::copy(desc.screenWindow, desc.screenWindow + 4, c.screenWindow);
+        c.frameAspect = desc.frameAspect;
+        rs->cameras.add(frame, c);
+    }
     rs->lights = LightSet(scene.lights, cam.worldToCamera);
     rs->windowStart = firstFrame + rs->shutter.open;
     rs->windowEnd = lastFrame + rs->shutter.close;
     rs->renderedStart = std::max(firstFrame, renderedFirst) + rs->shutter.open;
     rs->renderedEnd = std::min(lastFrame, renderedLast) + rs->shutter.close;
     rs->factory = std::make_unique<BodyFactory>(cam.worldToCamera, rs->windowStart, rs->windowEnd, log);
-    rs->factory->setCamera(&rs->camera);
+    rs->factory->setCamera(&rs->camera, &rs->cameras);
     rs->factory->setExposure(rs->shutter.close - rs->shutter.open);
     rs->factory->setMaterialBinder(binder);
     rs->factory->setWanted(rs->renderedStart, rs->renderedEnd);

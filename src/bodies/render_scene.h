@@ -16,7 +16,8 @@
 namespace streyes {
 
 struct RenderScene {
-    Camera camera;
+    Camera camera;  // the first frame's; camera space, clipping, lens and resolution are every frame's
+    FrameCameras cameras{&camera};  // each frame's projection (a zoom); bodies ask by their time
     Shutter shutter;
     LightSet lights;
     double windowStart = 0, windowEnd = 0;    // the shot's exposures: [first + open, last + close]

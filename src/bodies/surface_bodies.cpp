@@ -81,7 +81,7 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
         std::vector<BezierPatch> k1;
         if (j != i) k1 = shape.patches(points[j]);
-        addSurface(std::make_unique<BezierMesh>(shape.topology(), segmentSpan(t0, t1, ts, lastOpen), mat, camera_,
+        addSurface(std::make_unique<BezierMesh>(shape.topology(), segmentSpan(t0, t1, ts, lastOpen), mat, cameraOf(p.life),
                                                 shape.patches(points[i]), std::move(k1), colors),
                    src, primitiveId, out, keep, block, width);
     }, wantedStart_, wantedEnd_);
@@ -146,7 +146,7 @@ void BodyFactory::addSubdivisionMesh(const SubdivisionMeshDesc& p, uint64_t prim
     const bool lastOpen = windowOf(p.life).openEnd;
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
         addSurface(std::make_unique<SubdivisionMesh>(shape, keyAt(i), keyAt(j), segmentSpan(t0, t1, ts, lastOpen), mat,
-                                                     camera_, colors),
+                                                     cameraOf(p.life), colors),
                    src, primitiveId, out, keep, block, width);
     }, wantedStart_, wantedEnd_);
 }
@@ -187,7 +187,7 @@ void BodyFactory::addQuadric(const QuadricDesc& q, uint64_t primitiveId, std::ve
     forEachSegment(ts, keys, [&](double t0, double t1, size_t i, size_t j) {
         const QuadricMesh::Params params[2] = {keys[i].params, keys[j].params};
         const Matrix4 toCamera[2] = {keys[i].toCamera, keys[j].toCamera};
-        addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, segmentSpan(t0, t1, ts, w.openEnd), mat, camera_,
+        addSurface(std::make_unique<QuadricMesh>(q.kind, params, toCamera, segmentSpan(t0, t1, ts, w.openEnd), mat, cameraOf(q.life),
                                                  colors),
                    src, primitiveId, out, keep);
     }, wantedStart_, wantedEnd_);
@@ -232,7 +232,7 @@ void BodyFactory::addNuPatch(const NuPatchDesc& p, uint64_t primitiveId, std::ve
     const size_t first = out.size();
     forEachSegment(ts, points, [&](double t0, double t1, size_t i, size_t j) {
         addSurface(std::make_unique<NurbsMesh>(shared, points[i], j != i ? points[j] : std::vector<Vec3d>{},
-                                               segmentSpan(t0, t1, ts, lastOpen), mat, camera_, colors, varying),
+                                               segmentSpan(t0, t1, ts, lastOpen), mat, cameraOf(p.life), colors, varying),
                    src, primitiveId, out, keep);
     }, wantedStart_, wantedEnd_);
     // Shaders see a NuPatch's own parameters, [umin, umax] x [vmin, vmax] (RenderMan's rule for NURBS).

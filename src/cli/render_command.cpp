@@ -408,6 +408,7 @@ int renderCommand(const std::vector<std::string>& args) {
             into.procedurals += stats.procedurals;
             into.bodiesGenerated += stats.bodiesGenerated;
             into.passes = std::max(into.passes, stats.passes);
+            into.renders += stats.renders;
         }
     };
     // -o names the pictures' files: a frame number that two picture passes render (two shots
@@ -604,6 +605,7 @@ int renderCommand(const std::vector<std::string>& args) {
             total.memoryBodiesBytes = std::max(total.memoryBodiesBytes, depthTotal.memoryBodiesBytes);
             total.procedurals += depthTotal.procedurals;
             total.bodiesGenerated += depthTotal.bodiesGenerated;
+            total.renders += depthTotal.renders;
         }
     }
     const auto waited = std::chrono::steady_clock::now();

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "streyes/scene.h"
 #include "streyes/vecmath.h"
@@ -101,6 +102,37 @@ class Camera {
     float near_ = 1e-4f, far_ = 1e30f;
     float ax_ = 1, bx_ = 0, ay_ = -1, by_ = 0;  // raster = a * screen + b
     float lensRadius_ = 0, focalDistance_ = 0, invFocal_ = 0;
+};
+
+// The cameras of a render's frames: one, or under a zoom (docs/ARCHITECTURE.md, "Zooms") one per
+// frame whose projection or screen window differs from the render's first frame's. Camera space,
+// clipping, the lens and the resolution are one for all frames (the passes see to it). A body
+// lives within frames of one projection (the frame sequence cuts still runs where it changes), so
+// every raster-space question about it takes the camera of any time of its life.
+class FrameCameras {
+  public:
+    explicit FrameCameras(const Camera* common = nullptr) : common_(common) {}
+    void setShutter(Shutter s) { centre_ = 0.5 * (s.open + s.close); }
+    void add(int frame, const CameraDesc& desc) { frames_.insert_or_assign(frame, Camera(desc)); }
+    bool zooms() const { return !frames_.empty(); }
+    const Camera& common() const { return *common_; }
+    // The camera of the frame whose exposure holds the middle of [t0, t1].
+    const Camera& during(double t0, double t1) const {
+        const double mid = 0.5 * (t0 + t1) - centre_;
+        if (frames_.empty() || !(std::fabs(mid) < 1e9)) return *common_;  // an ordinary scene's bodies live always
+        const auto it = frames_.find(int(std::lround(mid)));
+        return it == frames_.end() ? *common_ : it->second;
+    }
+    const Camera& ofFrame(int frame) const {
+        if (frames_.empty()) return *common_;
+        const auto it = frames_.find(frame);
+        return it == frames_.end() ? *common_ : it->second;
+    }
+
+  private:
+    const Camera* common_;
+    std::map<int, Camera> frames_;
+    double centre_ = 0;
 };
 
 }  // namespace streyes

@@ -202,7 +202,7 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb, FrameRun run) {
     } else if (root.moving() || (!root.expands() && shadingVaries(root))) {
         // Its bound over the whole shot (made once) misses the bucket: nothing to cut.
         const PixelRect& R = bucket_.rect;
-        if (boxOutside(scene_.camera, displaced(root, root.bound().swept()), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
+        if (boxOutside(cameraOf(root), displaced(root, root.bound().swept()), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
             ++counters.culledView;
             return;
         }
@@ -224,7 +224,7 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb, FrameRun run) {
 }
 
 // Frames a moving root's pieces span (geom/root_chunks.h).
-int BucketWorker::chunkFrames(const Body& root) const { return rootChunkFrames(root, scene_.camera, worldChunks(root)); }
+int BucketWorker::chunkFrames(const Body& root) const { return rootChunkFrames(root, cameraOf(root), worldChunks(root)); }
 
 // A moving root's pieces for the bucket's frames [fa, fb]: one a chunk of `chunk` frames aligned
 // to multiples of `chunk` (absolute frame numbers), cut from the root, and within `run` (the
@@ -239,7 +239,7 @@ void BucketWorker::pushChunks(const Body& root, int chunk, int ca, int cb, Frame
     // Not one piece of these chunks can reach the bucket (the margin keeps this conservative to
     // float rounding: the pieces' own bounds decide, as always, in process()).
     const PixelRect& R = bucket_.rect;
-    if (boxOutside(scene_.camera, displaced(root, root.boundDuring(a, b)), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
+    if (boxOutside(cameraOf(root), displaced(root, root.boundDuring(a, b)), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
         ++counters.culledView;
         return;
     }
@@ -275,10 +275,10 @@ void BucketWorker::push(BodyPtr body) {
 bool BucketWorker::rootOutside(size_t i) {
     const std::vector<BodyPtr>& roots = scene_.roots;
     if (rootRasterOf_ != roots.data() || rootRaster_.size() != roots.size()) {
-        const Camera& cam = scene_.camera;
         constexpr float kInf = std::numeric_limits<float>::infinity();
         rootRaster_.resize(roots.size());
         for (size_t r = 0; r < roots.size(); ++r) {
+            const Camera& cam = cameraOf(*roots[r]);
             const Bounds3f box = displaced(*roots[r], roots[r]->bound().swept());
             // A procedural's bound grows when its children outgrow it (the renderer then renders
             // again): it takes the split loop's test every time.
@@ -475,7 +475,7 @@ bool BucketWorker::hiddenBehindHits(const Body& body, const Bounds3f& raster, fl
 // One body: cull against the bucket's spacetime block and the nearer coverage, then dice it if
 // it is small enough or split it along its longest direction in raster spacetime (u, v or t).
 void BucketWorker::process(const Body& body) {
-    const Camera& cam = scene_.camera;
+    const Camera& cam = cameraOf(body);
     const Bounds3f swept = displaced(body, body.bound().swept());
     if (!(swept.hi.z >= cam.nearClip() && swept.lo.z <= cam.farClip())) {
         ++counters.culledClip;  // wholly in front of the near plane or beyond the far plane (or NaN)
@@ -610,7 +610,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
     grid_.dissolveLo = mat ? mat->dissolveLo : 0;
     grid_.dissolveHi = mat ? mat->dissolveHi : 1;
     orientNormals(grid_, 0, mat);
-    setSolid(grid_, mat, scene_.camera);
+    setSolid(grid_, mat, cameraOf(body));
     auto t1 = Clock::now();
     counters.timeDice += std::chrono::duration<double>(t1 - t).count();
     shader_.shadeSlot(grid_, 0, body.keyTime(k0));
@@ -629,9 +629,9 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
         grid_.openEnd = k + 2 < body.keyCount() || body.time().openEnd;  // pieces meet at keys (TimeSpan)
         grid_.moving = body.keyMoves(k) || shadingMovesWithin(body, 0.5 * (grid_.t0 + grid_.t1));
         grid_.hole.clear();
-        if (aovs_.count) fillAovs(grid_, aovs_, scene_.camera);
-        if (!mat || !mat->oneSided || cullBackFacing(grid_, scene_.camera))
-            rasterizer_.rasterize(grid_, scene_.camera, scene_.shutter, block_, rasterCounters_);
+        if (aovs_.count) fillAovs(grid_, aovs_, cameraOf(body));
+        if (!mat || !mat->oneSided || cullBackFacing(grid_, cameraOf(body)))
+            rasterizer_.rasterize(grid_, cameraOf(body), scene_.shutter, block_, rasterCounters_);
         counters.timeSample += secondsSince(tc);
         if (k + 2 < keys) {
             std::swap(grid_.P[0], grid_.P[1]);
@@ -721,8 +721,8 @@ bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
     grid_.dissolveLo = mat ? mat->dissolveLo : 0;
     grid_.dissolveHi = mat ? mat->dissolveHi : 1;
     for (int k = 0; k < (grid_.moving ? 2 : 1); ++k) orientNormals(grid_, k, mat);
-    setSolid(grid_, mat, scene_.camera);
-    if (mat && mat->oneSided && !cullBackFacing(grid_, scene_.camera)) {
+    setSolid(grid_, mat, cameraOf(body));
+    if (mat && mat->oneSided && !cullBackFacing(grid_, cameraOf(body))) {
         counters.timeDice += secondsSince(t);
         return false;  // every micropolygon faces away
     }
@@ -736,14 +736,14 @@ bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
     auto t1 = Clock::now();
     counters.timeDice += std::chrono::duration<double>(t1 - t).count();
     shader_.shade(grid_);
-    if (aovs_.count) fillAovs(grid_, aovs_, scene_.camera);
+    if (aovs_.count) fillAovs(grid_, aovs_, cameraOf(body));
     counters.timeShade += secondsSince(t1);
     return true;
 }
 
 void BucketWorker::sample(const Grid& grid) {
     auto t = Clock::now();
-    rasterizer_.rasterize(grid, scene_.camera, scene_.shutter, block_, rasterCounters_);
+    rasterizer_.rasterize(grid, gridCamera(grid), scene_.shutter, block_, rasterCounters_);
     counters.timeSample += secondsSince(t);
 }
 

@@ -114,6 +114,10 @@ class BucketWorker {
     bool worldChunks(const Body& root) const;
     // Does the piece span several exposures by that rule: diced once, then shaded once or per frame?
     bool dicedForFrames(const Body& body) const;
+    // The camera a body or grid is projected by: its frames' (a zoom's projection per frame; a
+    // body lives under one, see FrameCameras).
+    const Camera& cameraOf(const Body& body) const { return scene_.cameras.during(body.time().t0, body.time().t1); }
+    const Camera& gridCamera(const Grid& grid) const { return scene_.cameras.during(grid.t0, grid.t1); }
     void diceShadeSampleFrames(const Body& body, int nu, int nv, const Bounds3f& raster);
     // Dices the piece into `grid` (normals oriented, not shaded).
     void diceOnly(const Body& body, int nu, int nv, Grid& grid);

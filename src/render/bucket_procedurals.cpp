@@ -42,7 +42,7 @@ void BucketWorker::collectLevels(const ProceduralBody& procedural, int fa, int f
     const double a = bucket_.firstFrame + fa + scene_.shutter.open, b = bucket_.firstFrame + fb + scene_.shutter.close;
     const Bounds3f box = procedural.boundDuring(a, b);
     const PixelRect& R = bucket_.rect;
-    if (boxOutside(scene_.camera, box, {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
+    if (boxOutside(cameraOf(procedural), box, {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) {
         ++counters.culledView;
         return;
     }
@@ -64,7 +64,7 @@ bool BucketWorker::sameLevelBetween(const ProceduralBody& procedural, int fa, in
 
 int BucketWorker::levelInFrame(const ProceduralBody& procedural, int frame) const {
     const Bounds3f box = procedural.boundDuring(frame + scene_.shutter.open, frame + scene_.shutter.close);
-    const Camera& cam = scene_.camera;
+    const Camera& cam = scene_.cameras.ofFrame(frame);
     if (cam.perspective() && box.lo.z < cam.eyePlane()) return kDetailUnbounded;
     const Bounds3f r = rasterOfBox(cam, box);
     return detailLevel(double(r.hi.x - r.lo.x) * double(r.hi.y - r.lo.y));
@@ -77,7 +77,7 @@ int BucketWorker::levelInFrame(const ProceduralBody& procedural, int frame) cons
 // where the block does) and no frame gets the children of two levels.
 FrameRun BucketWorker::levelRun(const ProceduralBody& view, int first, int last) const {
     const ProceduralBody& procedural = view.rootBody();
-    const int level = view.level(scene_.camera);
+    const int level = view.level(cameraOf(view));
     constexpr int kReach = std::max(kMaxChunkFrames, kMaxWorldChunkFrames) - 1;
     FrameRun run{first, last};
     while (run.lo > first - kReach && levelInFrame(procedural, run.lo - 1) == level) --run.lo;
@@ -88,7 +88,7 @@ FrameRun BucketWorker::levelRun(const ProceduralBody& view, int first, int last)
 Bounds3f BucketWorker::reach(const ProceduralBody& procedural, bool* everywhere) const {
     // As process() takes a body's raster bound before its view cull (views of a moving procedural
     // are bounded within their root's bound over the shot).
-    const Camera& cam = scene_.camera;
+    const Camera& cam = cameraOf(procedural);
     const Bounds3f swept = displaced(procedural, procedural.bound().swept());
     *everywhere = cam.perspective() && !(swept.lo.z >= cam.eyePlane());
     if (*everywhere) return swept;
@@ -102,7 +102,7 @@ void BucketWorker::expand(const ProceduralBody& procedural) {
     const std::vector<BodyPtr>* made;
     if (procedural.keepsChildren()) {
         bool madeHere = false, madeAgain = false;
-        ChildrenLease lease = procedural.children(*scene_.factory, scene_.camera, log_, &madeHere, &madeAgain);
+        ChildrenLease lease = procedural.children(*scene_.factory, cameraOf(procedural), log_, &madeHere, &madeAgain);
         made = &lease->bodies;
         expandedHere = madeHere && !madeAgain;  // made again after a release: counted apart
         counters.proceduralsMadeAgain += madeHere && madeAgain;
@@ -110,16 +110,16 @@ void BucketWorker::expand(const ProceduralBody& procedural) {
             const ProceduralBody& root = procedural.rootBody();
             bool everywhere = false;
             const Bounds3f raster = reach(root, &everywhere);
-            release_->add(root, procedural.level(scene_.camera), raster, everywhere, bucket_.tileIndex, root.heldBy());
+            release_->add(root, procedural.level(cameraOf(procedural)), raster, everywhere, bucket_.tileIndex, root.heldBy());
         }
         leases_.push_back(std::move(lease));  // holds them until the split loop is done
     } else {  // this bucket's own, freed when it is done (ProceduralGenerator::keepsChildren)
         ProceduralChildren& own = ownChildren_.emplace_back();
-        procedural.expandInto(own, *scene_.factory, scene_.camera, log_);
+        procedural.expandInto(own, *scene_.factory, cameraOf(procedural), log_);
         // Every bucket that expands it makes the same children: keyed by the procedural, the
         // level and their place, their grids are shared as a kept expansion's are.
         const uint64_t key =
-            hashCombine(procedural.rootKey(), 0x300000000ull + uint64_t(uint32_t(procedural.level(scene_.camera))));
+            hashCombine(procedural.rootKey(), 0x300000000ull + uint64_t(uint32_t(procedural.level(cameraOf(procedural)))));
         for (size_t i = 0; i < own.bodies.size(); ++i) own.bodies[i]->pieceKey = hashCombine(key, i);
         made = &own.bodies;
         expandedHere = true;

@@ -154,15 +154,15 @@ void BucketWorker::shadeSampleOnce(const Grid& diced, bool dicedHere) {
     auto t = Clock::now();
     grid_ = diced;
     const Material* mat = grid_.material;
-    setSolid(grid_, mat, scene_.camera);
-    if (mat && mat->oneSided && !cullBackFacing(grid_, scene_.camera)) {
+    setSolid(grid_, mat, gridCamera(grid_));
+    if (mat && mat->oneSided && !cullBackFacing(grid_, gridCamera(grid_))) {
         counters.timeDice += secondsSince(t);
         return;
     }
     auto t1 = Clock::now();
     counters.timeDice += std::chrono::duration<double>(t1 - t).count();
     shader_.shade(grid_);
-    if (aovs_.count) fillAovs(grid_, aovs_, scene_.camera);
+    if (aovs_.count) fillAovs(grid_, aovs_, gridCamera(grid_));
     counters.timeShade += secondsSince(t1);
     sample(grid_);
     if (!dicedHere) {
@@ -176,7 +176,6 @@ void BucketWorker::shadeSampleFrames(const Body& body, const Grid& diced, bool d
     const TimeSpan& span = body.time();
     const double open = scene_.shutter.open, close = scene_.shutter.close, len = span.t1 - span.t0;
     const Material* mat = body.material();
-    const Camera& cam = scene_.camera;
     const PixelRect& R = bucket_.rect;
     const uint64_t n = uint64_t(diced.nu) * uint64_t(diced.nv);
     uint64_t sampled = 0;
@@ -184,6 +183,7 @@ void BucketWorker::shadeSampleFrames(const Body& body, const Grid& diced, bool d
     for (int fi = 0; fi < bucket_.frameCount; ++fi) {
         const double f = bucket_.firstFrame + fi;
         if (!reachesSamples(span, f + open, f + close, open == close)) continue;
+        const Camera& cam = scene_.cameras.ofFrame(int(f));  // a zoom's frame's
         const double a = std::max(span.t0, f + open), b = std::min(span.t1, f + close);
         // The frame's part of the piece misses the bucket (the cut's own bound, as pushChunks culls).
         if (boxOutside(cam, displaced(body, body.boundDuring(a, b)), {R.x0 - 1, R.y0 - 1, R.x1 + 1, R.y1 + 1})) continue;

@@ -100,6 +100,7 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
     "procedurals_never_expanded": 123,
     "bodies_generated": 999,
     "passes": 2,
+    "renders": 1,
     "grids_diced": 0,
     "micropolygons": 0,
     "grids_shared": 0,

@@ -65,9 +65,17 @@ std::string passKey(const Scene& f) {
     const CameraDesc& c = f.camera;
     const RenderSettings& s = f.settings;
     k += depthFrame(f) ? "depth|" : "picture|";
-    put(k, double(int(c.projection))), put(k, c.fov), put(k, double(c.hasScreenWindow));
-    for (double v : c.screenWindow) put(k, v);
-    put(k, c.frameAspect), put(k, double(c.xres)), put(k, double(c.yres)), put(k, c.pixelAspect);
+    // A picture's field of view, screen window and frame aspect ratio are not: a zoom is one pass,
+    // each frame with its own projection (Scene::frameCamera). Perspective and orthographic
+    // frames are other passes. A depth frame's projection is its light's cone: the frames of one
+    // light are a pass, another light's (numbered alike) another, so that each light's maps
+    // stay one still spacetime render.
+    put(k, double(int(c.projection)));
+    if (depthFrame(f)) {
+        put(k, c.fov), put(k, double(c.hasScreenWindow)), put(k, c.frameAspect);
+        for (double v : c.screenWindow) put(k, v);
+    }
+    put(k, double(c.xres)), put(k, double(c.yres)), put(k, c.pixelAspect);
     put(k, c.nearClip), put(k, c.farClip), put(k, c.fstop), put(k, c.focalLength), put(k, c.focalDistance);
     k += '|';
     put(k, s.shutterOpen), put(k, s.shutterClose), put(k, double(s.pixelSamplesX)), put(k, double(s.pixelSamplesY));

@@ -119,6 +119,43 @@ TEST(Passes, FramesWithOtherSettingsAreOtherPasses) {
     EXPECT_EQ(shots.renders()[0].pass, shots.renders()[1].pass);
 }
 
+// A zoom (field of view, screen window or frame aspect ratio changing) is one pass whose merged
+// scene keeps each frame's projection; another kind of projection is another pass, and so is a
+// depth frame from a light with another cone (each light's maps one pass).
+TEST(Passes, AZoomIsOnePassKeepingEachFramesProjection) {
+    auto frame = [](int n, const std::string& projection, const std::string& more) {
+        return "FrameBegin " + std::to_string(n) + "\nDisplay \"pic.####.exr\" \"file\" \"rgba\"\nFormat 64 48 1\n" +
+               projection + "\n" + more + "WorldBegin\nTranslate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\nFrameEnd\n";
+    };
+    const std::string fov40 = "Projection \"perspective\" \"fov\" 40", fov30 = "Projection \"perspective\" \"fov\" 30";
+    const Read zoom = readText(frame(1, fov40, "") + frame(2, fov30, "") + frame(3, fov40, "ScreenWindow -0.5 0.5 -0.5 0.5\n") +
+                               frame(4, fov40, "FrameAspectRatio 2\n") + frame(5, fov40, ""));
+    const std::vector<PassJob> jobs = zoom.renders();
+    ASSERT_EQ(jobs.size(), 1u);
+    const Scene& merged = jobs[0].sequence.scene;
+    EXPECT_EQ(framesOf(jobs[0]), (std::vector<int>{1, 2, 3, 4, 5}));
+    EXPECT_EQ(merged.camera.fov, 40);
+    ASSERT_EQ(merged.frameCamera.size(), 3u);  // frames 2, 3, 4: frame 5 projects as frame 1
+    EXPECT_EQ(merged.frameCamera.at(2).fov, 30);
+    EXPECT_TRUE(merged.frameCamera.at(3).hasScreenWindow);
+    EXPECT_EQ(merged.frameCamera.at(3).screenWindow[1], 0.5);
+    EXPECT_EQ(merged.frameCamera.at(4).frameAspect, 2);
+    // The sphere is a still primitive, but its run ends at each change of projection.
+    EXPECT_EQ(merged.quadrics.size(), 5u);
+    const Read kinds = readText(frame(1, fov40, "") + frame(2, "Projection \"orthographic\"", "") + frame(3, fov30, ""));
+    ASSERT_EQ(kinds.renders().size(), 2u);
+    EXPECT_EQ(framesOf(kinds.renders()[0]), (std::vector<int>{1, 3}));
+    const Read lights = readText(depthFrame(1, "a.z") + depthFrame(2, "b.z") +
+                                 [] {
+                                     std::string d = depthFrame(3, "c.z");
+                                     d.replace(d.find("\"fov\" 40"), 8, "\"fov\" 60");
+                                     return d;
+                                 }());
+    ASSERT_EQ(lights.renders().size(), 2u);
+    EXPECT_EQ(framesOf(lights.renders()[0]), (std::vector<int>{1, 2}));
+    EXPECT_EQ(framesOf(lights.renders()[1]), (std::vector<int>{3}));
+}
+
 // At most a block of frames a job; a flush renders what is held, in an order that makes what each
 // job reads first.
 TEST(Passes, JobsHoldABlockOfFramesAtMost) {

@@ -80,7 +80,7 @@ void SequenceBuilder::addPrimitive(char kind, Desc&& p, std::vector<Desc>& merge
     p.attributes = remap(p.attributes);
     ++out_.stats.primitivesRead;
     auto it = tracks_.find(key);
-    if (it != tracks_.end() && it->second.lastFrame == previous) {
+    if (it != tracks_.end() && it->second.lastFrame == previous && !zoomed_) {
         Desc& run = merged[it->second.run];
         if (stillWithinFrame(p) && stillWithinFrame(run) && sameData(run, p)) {
             run.life.t1 = frame + close_;
@@ -140,6 +140,18 @@ void SequenceBuilder::add(Scene&& frame) {
     ++out_.stats.frames;
     out_.displays[f] = frame.settings.displays;
     out_.scene.frameWorldToCamera[f] = frame.camera.worldToCamera;
+    // A zoom: frames of one pass may differ in projection (streyes/passes.h). A still primitive's
+    // run ends where it changes, so that each body lives under one projection and is split and
+    // diced as its frames alone would (docs/ARCHITECTURE.md, "Zooms").
+    zoomed_ = out_.stats.frames > 1 && !sameZoom(frame.camera, previousCamera_);
+    if (!sameZoom(frame.camera, out_.scene.camera)) {
+        CameraDesc& c = out_.scene.frameCamera[f] = out_.scene.camera;  // camera space: the merged one
+        c.fov = frame.camera.fov;
+        c.hasScreenWindow = frame.camera.hasScreenWindow;
+        std::copy(frame.camera.screenWindow, frame.camera.screenWindow + 4, c.screenWindow);
+        c.frameAspect = frame.camera.frameAspect;
+    }
+    previousCamera_ = frame.camera;
 
     // Lights in camera space, shared with earlier frames where equal.
     worldToCamera_ = frame.camera.worldToCamera;

@@ -106,8 +106,8 @@ const SpacetimeBVH& ShaderRays::hierarchyAt(double time) const {
 }
 
 // One pixel's footprint at the point unless the call gives its own: the shadow rays' bias.
-float ShaderRays::biasAt(const sl::RayOptions& o, Vec3f p) const {
-    return o.bias >= 0 ? o.bias : trace_.shadowBias(p.z);
+float ShaderRays::biasAt(const sl::RayOptions& o, Vec3f p, double time) const {
+    return o.bias >= 0 ? o.bias : trace_.shadowBias(p.z, time);
 }
 
 const std::vector<CameraLight>& ShaderRays::lightsAt(double t) {
@@ -124,7 +124,7 @@ const std::vector<CameraLight>& ShaderRays::lightsAt(double t) {
 // shadows adds its part where a shadow ray reaches it (an area light: the point a hash picks).
 Color ShaderRays::addReachedLights(Color c, Vec3f p, double time, const SpacetimeBVH& bvh) {
     const LightSet& lights = trace_.scene().lights;
-    const float bias = trace_.shadowBias(p.z);
+    const float bias = trace_.shadowBias(p.z, time);
     for (int k = 0; k < lights.shadowSlots(); ++k) {
         const Color part = shadowed_[size_t(k)];
         if (part.x == 0 && part.y == 0 && part.z == 0) continue;
@@ -233,7 +233,7 @@ void ShaderRays::occlusion(const sl::RayOptions& o, const sl::RayQuery& q, float
         Vec3f t, b;
         frameOf(n, &t, &b);
         const uint64_t h = pointHash(p, q.seed, q.site);
-        const float bias = biasAt(o, p);
+        const float bias = biasAt(o, p, q.time);
         uint32_t hits = 0;
         for (uint32_t j = 0; j < s; ++j) {
             float ua, ub;
@@ -256,7 +256,7 @@ void ShaderRays::indirectdiffuse(const sl::RayOptions& o, const sl::RayQuery& q,
         const Vec3f p = at3(q.P, i);
         const Vec3f n = normalize(at3(q.D, i));
         Color sum{0, 0, 0};
-        if (dot(n, n) > 0.5f) sum = coneMean(p, n, cone, true, s, pointHash(p, q.seed, q.site), q.time, biasAt(o, p), o.maxdist);
+        if (dot(n, n) > 0.5f) sum = coneMean(p, n, cone, true, s, pointHash(p, q.seed, q.site), q.time, biasAt(o, p, q.time), o.maxdist);
         for (int c = 0; c < 3; ++c) out[c][i] = sum[c];
     }
 }
@@ -272,7 +272,7 @@ void ShaderRays::trace(const sl::RayOptions& o, const sl::RayQuery& q, float* co
         const Vec3f d = normalize(at3(q.D, i));
         Color sum{0, 0, 0};
         if (dot(d, d) > 0.5f) {
-            const float bias = biasAt(o, p);
+            const float bias = biasAt(o, p, q.time);
             if (s == 1) {
                 Color c;
                 if (shadeAlong({p, d}, q.time, bias, o.maxdist, &c)) sum = c;
@@ -295,7 +295,7 @@ void ShaderRays::transmission(const sl::RayOptions& o, const sl::RayQuery& q, fl
         const Vec3f d = at3(q.D, i) - p;
         const float dist = length(d);
         Color through{1, 1, 1};
-        const float bias = biasAt(o, p);
+        const float bias = biasAt(o, p, q.time);
         if (dist > 2 * bias) {
             const Ray ray{p, d / dist};
             float tMin = bias;
@@ -341,7 +341,7 @@ void ShaderRays::gather(const sl::RayOptions& o, const sl::RayQuery& q, int samp
         const Ray ray{p, d};
         TraceHit h;
         ++rays_;
-        if (!bvh.intersect(ray, q.time, biasAt(o, p), o.maxdist, &h, ctx_)) continue;
+        if (!bvh.intersect(ray, q.time, biasAt(o, p, q.time), o.maxdist, &h, ctx_)) continue;
         out.hit[i] = 1;
         const TrilinearBody& body = *bvh.bodies()[h.body];
         Color opacity;

@@ -46,7 +46,7 @@ class ShaderRays final : public sl::RaySource {
 
   private:
     const SpacetimeBVH& hierarchyAt(double time) const;
-    float biasAt(const sl::RayOptions& o, Vec3f p) const;
+    float biasAt(const sl::RayOptions& o, Vec3f p, double time) const;
     // The colour the ray brings back from its nearest hits within (tMin, tMax): shaded at the next
     // depth, see-through ones composited over what lies behind them. False: nothing is hit.
     bool shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color* c);

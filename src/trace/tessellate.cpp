@@ -43,11 +43,12 @@ void Tessellator::process(const Body& body, int depth, int eyeDepth) {
         return;
     }
     const Bounds3f swept = body.bound().swept();
-    if (cam_.perspective() && !(swept.lo.z >= cam_.eyePlane())) {
+    const Camera& cam = cameras_.during(body.time().t0, body.time().t1);
+    if (cam.perspective() && !(swept.lo.z >= cam.eyePlane())) {
         // Cannot be projected, so cannot be measured or diced (a curved body's lattices are made
         // in raster space): split across the eye plane as the split loop does, a few times, and
         // leave out what lies behind it.
-        if (eyeDepth >= kMaxEyeSplits || !(swept.hi.z >= cam_.eyePlane())) {
+        if (eyeDepth >= kMaxEyeSplits || !(swept.hi.z >= cam.eyePlane())) {
             behind_ = true;
             return;
         }
@@ -58,7 +59,7 @@ void Tessellator::process(const Body& body, int depth, int eyeDepth) {
         return;
     }
     // The split loop's rule (decideSplit).
-    const RasterMeasure m = body.measure(cam_);
+    const RasterMeasure m = body.measure(cam);
     const float side = std::sqrt(std::max(dicingRate(body, m, exposure_), 1e-4f));
     const float size = std::max(m.extentU, m.extentV);
     SplitAxis axis;

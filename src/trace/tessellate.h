@@ -35,8 +35,9 @@ class Tessellator {
     static constexpr int kMaxEyeSplits = 12;
 
     // `exposure`: the shutter's length in frames (GeometricApproximation "motionfactor" needs it).
-    Tessellator(const Camera& camera, const RenderOptions& options, double exposure, Log& log)
-        : cam_(camera), options_(options), exposure_(exposure), log_(log) {}
+    // `cameras`: each frame's (a zoom); a body is measured under its own frames'.
+    Tessellator(const FrameCameras& cameras, const RenderOptions& options, double exposure, Log& log)
+        : cameras_(cameras), options_(options), exposure_(exposure), log_(log) {}
 
     // Runs displacement shaders on the grids diced (null: surfaces are traced undisplaced).
     void setDisplacer(GridShader* displacer) { displacer_ = displacer; }
@@ -51,7 +52,7 @@ class Tessellator {
     void split(const Body& body, SplitAxis axis, int depth, int eyeDepth);
     void dice(const Body& body, int nu, int nv);
 
-    const Camera& cam_;
+    const FrameCameras& cameras_;
     const RenderOptions& options_;
     double exposure_;
     Log& log_;

@@ -68,7 +68,7 @@ TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, L
     micropolygons_.resize(curved_.size());
     std::vector<const TrilinearBody*> traceUndisplaced(curved_.size(), nullptr);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, curved_.size()), [&](const tbb::blocked_range<size_t>& r) {
-        Tessellator tessellator(scene.camera, options, scene.shutter.close - scene.shutter.open, log);
+        Tessellator tessellator(scene.cameras, options, scene.shutter.close - scene.shutter.open, log);
         std::unique_ptr<GridShader> displacer;  // this task's, for displacement shaders (no rays)
         if (shaders_) {
             displacer = std::make_unique<GridShader>(shaders_, scene.camera, scene.lights);
@@ -129,7 +129,7 @@ void TraceScene::collect(const Body& body, Log& log) {
     } else if (body.expands()) {
         const auto* p = static_cast<const ProceduralBody*>(&body);
         bool expandedHere = false;
-        leases_.push_back(p->children(*scene_.factory, scene_.camera, log, &expandedHere));  // held as long as the scene
+        leases_.push_back(p->children(*scene_.factory, scene_.cameras.during(p->time().t0, p->time().t1), log, &expandedHere));  // held as long as the scene
         const std::vector<BodyPtr>& children = leases_.back()->bodies;
         if (expandedHere) {
             const size_t d = size_t(p->depth());
@@ -200,8 +200,8 @@ size_t TraceScene::bytes() const {
            micropolygonCount_ * sizeof(TrilinearBody) + hierarchyBytes();
 }
 
-float TraceScene::shadowBias(float z) const {
-    const Camera& cam = scene_.camera;
+float TraceScene::shadowBias(float z, double time) const {
+    const Camera& cam = scene_.cameras.during(time, time);  // a zoom's frame's pixel
     const float pixel = 1.0f / std::min(std::fabs(cam.ax()), std::fabs(cam.ay()));  // screen units
     return cam.perspective() ? pixel * std::fabs(z) : pixel;
 }
@@ -235,7 +235,7 @@ const std::vector<CameraLight>& SampleTracer::lightsAt(const LightSet& lights, d
 Color SampleTracer::addVisibleLights(Color c, Vec3f p, double time, const Color* shadowed, const TraceScene& trace,
                                      const SpacetimeBVH& bvh, RenderCounters& counters) {
     const LightSet& lights = trace.scene().lights;
-    const float bias = trace.shadowBias(p.z);
+    const float bias = trace.shadowBias(p.z, time);
     for (int k = 0; k < lights.shadowSlots(); ++k) {
         const Color part = shadowed[k];
         if (part.x == 0 && part.y == 0 && part.z == 0) continue;  // the light does not reach p anyway
@@ -286,7 +286,7 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
     forEachSampleByFrame(block, scene.shutter, [&](SampleHit& hit, Color*, const SamplePosition& s, Vec2f lens, int frame,
                                                    double time, const SampleAt& at) {
-        const Ray ray = eyeRay(cam, s.x, s.y, lens);
+        const Ray ray = eyeRay(scene.cameras.ofFrame(frame), s.x, s.y, lens);  // a zoom's frame's
         const SpacetimeBVH& bvh = trace.hierarchy(frame);
         ++counters.eyeRays;
         // Nearest first: a see-through hit (Oi < 1) adds its colour through what is in front and
@@ -367,9 +367,9 @@ void SampleTracer::traceSamples(ImageBlock& block, const TraceScene& trace, Rend
 void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, RenderCounters& counters) {
     const RenderScene& scene = trace.scene();
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
-    const Camera& cam = scene.camera;
     // The point a sample's eye ray (through its lens point, with depth of field) meets at depth z.
-    auto pointAt = [&](const SamplePosition& s, Vec2f lens, float z) {
+    auto pointAt = [&](const SamplePosition& s, Vec2f lens, float z, int frame) {
+        const Camera& cam = scene.cameras.ofFrame(frame);
         if (!cam.depthOfField()) return cam.fromRaster(s.x, s.y, z);
         const Ray ray = eyeRay(cam, s.x, s.y, lens);
         return ray.o + ray.d * z;
@@ -380,11 +380,11 @@ void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, Rend
         const SpacetimeBVH& bvh = trace.hierarchy(frame);
         const int32_t fragments = block.hasFragments() ? block.recordFragments(at.fi, at.pixel)[at.sample] : -1;
         if (!hit.empty())
-            hit.c = addVisibleLights(hit.c, pointAt(s, lens, hit.z), time, shadowed, trace, bvh, counters);
+            hit.c = addVisibleLights(hit.c, pointAt(s, lens, hit.z, frame), time, shadowed, trace, bvh, counters);
         // See-through fragments likewise, each from its own depth.
         for (int32_t k = fragments; k >= 0; k = block.fragment(k).next) {
             SampleFragment& f = block.fragment(k);
-            f.c = addVisibleLights(f.c, pointAt(s, lens, f.z), time, block.fragmentShadowed(k), trace, bvh, counters);
+            f.c = addVisibleLights(f.c, pointAt(s, lens, f.z, frame), time, block.fragmentShadowed(k), trace, bvh, counters);
         }
     });
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;

@@ -64,7 +64,7 @@ class TraceScene {
     size_t hierarchyBytes() const;
     size_t mailboxBytes() const { return bodies_.size() * sizeof(uint32_t); }
     // Shadow rays start this far (camera-space units) from a surface at depth z: one pixel.
-    float shadowBias(float z) const;
+    float shadowBias(float z, double time) const;
 
     // Totals over every build so far: nodes built, and CPU seconds spent building (builds run
     // in parallel, alone).

@@ -1,8 +1,9 @@
 // A zooming, panning camera over a still world, as a file of FrameBegin blocks (issue 48 point 4):
-// each frame's projection differs, so its frames render as passes of their own (docs/
-// ARCHITECTURE.md, "Passes"); a frame rendered alone is the frame rendered with the others.
+// the frames are one pass, each frame under its own projection (docs/ARCHITECTURE.md, "Zooms");
+// a frame rendered alone is the frame rendered with the others.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -70,6 +71,61 @@ TEST(CameraWorldCli, AZoomingCamerasFrameAloneIsTheFrameInItsShot) {
         return blue;
     };
     EXPECT_GT(covered(5), 2 * covered(1));
+}
+
+// A unit square facing the camera at depth 5, seen through a zoom whose every frame puts its edges
+// on pixel edges: frame f covers exactly its analytic pixels (a box filter one pixel wide, so a
+// pixel's alpha is the share of its samples the square covers: 1 inside, 0 outside). The field of
+// view narrows (frames 1-3), the screen window halves (frame 4) and moves (frame 5).
+TEST(CameraWorldCli, AZoomCoversEachFramesAnalyticPixels) {
+    struct Zoom {
+        double tanHalf;      // tan(fov / 2): the square's half-width on screen is 0.1 / tanHalf
+        const char* window;  // ScreenWindow, or none
+        int x0, x1, y0, y1;  // the pixels it covers: [x0, x1) x [y0, y1) of 64 x 64
+    };
+    const Zoom zooms[] = {{0.4, "", 24, 40, 24, 40},
+                          {0.32, "", 22, 42, 22, 42},
+                          {0.2, "", 16, 48, 16, 48},
+                          {0.4, "ScreenWindow -0.5 0.5 -0.5 0.5\n", 16, 48, 16, 48},
+                          {0.4, "ScreenWindow 0 1 -0.5 0.5\n", 0, 16, 16, 48}};
+    std::string rib;
+    for (int f = 1; f <= 5; ++f) {
+        const Zoom& z = zooms[f - 1];
+        char head[512];
+        std::snprintf(head, sizeof head,
+                      "FrameBegin %d\nFormat 64 64 1\nPixelSamples 4 4\nPixelFilter \"box\" 1 1\n"
+                      "Display \"sq.%04d.exr\" \"openexr\" \"rgba\"\nProjection \"perspective\" \"fov\" [%.17g]\n%s",
+                      f, f, 2 * std::atan(z.tanHalf) * 180 / M_PI, z.window);
+        rib += head;
+        rib += "WorldBegin\nSurface \"constant\"\nPatch \"bilinear\" \"P\" [-0.5 -0.5 5  0.5 -0.5 5  -0.5 0.5 5  0.5 0.5 5]\n"
+               "WorldEnd\nFrameEnd\n";
+    }
+    test::TempDir tmp("zoomsquare");
+    test::writeFile(tmp.path(), "sq.rib", rib);
+    const std::string cd = "cd " + tmp.path() + " && ";
+    const test::CliRun r = test::runStreyesWith(cd, "render sq.rib -q --stats sq.json");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string json = test::readFile(tmp.path() + "/sq.json");
+    EXPECT_NE(json.find("\"renders\": 1,"), std::string::npos) << json;  // one pass, one block
+    for (int f = 1; f <= 5; ++f) {
+        const Zoom& z = zooms[f - 1];
+        char n[16];
+        std::snprintf(n, sizeof n, "/sq.%04d.exr", f);
+        const ImageData im = readImage(tmp.path() + n);
+        ASSERT_EQ(im.width, 64);
+        const int a = im.channelIndex("A");
+        double wrong = 0, sum = 0;
+        for (int y = 0; y < im.height; ++y)
+            for (int x = 0; x < im.width; ++x) {
+                const bool inside = x >= z.x0 && x < z.x1 && y >= z.y0 && y < z.y1;
+                const float alpha = im.at(x, y, a);
+                const double off = std::fabs(double(alpha) - (inside ? 1.0 : 0.0));
+                if (!(off <= wrong)) wrong = off;  // a NaN stays
+                sum += alpha;
+            }
+        EXPECT_LT(wrong, 1e-6) << "frame " << f;
+        EXPECT_NEAR(sum, double((z.x1 - z.x0) * (z.y1 - z.y0)), 1e-3) << "frame " << f;
+    }
 }
 
 }  // namespace
