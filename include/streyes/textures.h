@@ -24,9 +24,10 @@ class TextureSource;
 // Fits RenderOptions::textureSource. Throws RenderError when the module cannot be loaded.
 std::shared_ptr<sl::TextureSource> openImageTextures(const std::vector<std::string>& searchPath, Log& log);
 
-// Makes the scene's MakeTexture, MakeLatLongEnvironment and MakeCubeFaceEnvironment maps, in order. A map that cannot be
-// made (its picture missing among them) is an InputError at its request's line. `done` (may be null) holds the outputs
-// already made by this process: a sequence's blocks make each map once.
+// Makes the scene's MakeTexture, MakeLatLongEnvironment and MakeCubeFaceEnvironment maps, in order.
+// A map that cannot be made (its picture missing among them) is an InputError at its request's
+// line. `done` (may be null) holds the outputs already made by this process: a sequence's blocks
+// make each map once.
 void makeSceneTextures(const Scene& scene, std::vector<std::string>* done = nullptr);
 
 }  // namespace streyes

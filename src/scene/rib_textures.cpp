@@ -1,7 +1,7 @@
-// MakeTexture, MakeLatLongEnvironment, MakeCubeFaceEnvironment and MakeShadow: recorded in RenderSettings::makeTextures and
-// makeShadows, made by the io stage (streyes/textures.h) when the frames before them are done:
-// the scene stage reads no images. A missing input is an error at the request's line when it is
-// made (a frame of the same input may write it).
+// MakeTexture, MakeLatLongEnvironment, MakeCubeFaceEnvironment and MakeShadow: recorded in
+// RenderSettings::makeTextures and makeShadows, made by the io stage (streyes/textures.h) when the
+// frames before them are done: the scene stage reads no images. A missing input is an error at the
+// request's line when it is made (a frame of the same input may write it).
 #include <cmath>
 #include <filesystem>
 

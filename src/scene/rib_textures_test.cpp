@@ -51,7 +51,7 @@ TEST(RibTextures, ABadWrapIsAnErrorAtItsLineAPictureNotYetThereIsNot) {
 // MakeCubeFaceEnvironment: its six faces (+x, -x, +y, -y, +z, -z) beside the file, the map a
 // lat-long environment, the fov kept; a fov outside (0, 180) is an error at the value.
 TEST(RibTextures, CubeFaceEnvironmentRecordsItsFacesInOrderAndItsFov) {
-    const TempDir dir("rib-textures-cube");
+    const test::TempDir dir("rib-textures-cube");
     std::ofstream(dir.path() + "/scene.rib")
         << "Format 8 8 1\nMakeCubeFaceEnvironment \"a.tif\" \"b.tif\" \"c.tif\" \"d.tif\" \"e.tif\" \"/abs/f.tif\" "
            "\"cube.env\" 95.5 \"gaussian\" 2 2\nWorldBegin\nWorldEnd\n";
