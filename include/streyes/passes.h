@@ -10,14 +10,14 @@
 // written). Exporters interleave a depth frame and a picture frame per frame of a shot: the depth
 // frames form one job, the pictures another, each frame's pictures reading its own frame's maps.
 //
-// Requests between frames (MakeShadow, MakeTexture, MakeLatLongEnvironment) become jobs of their
-// own, run when what they read is made. Names are *versioned*: every frame or request writing a
-// name makes a new version of it, and a reader reads the latest version written before it in the
-// input (what rendering the input frame by frame in order would give). Depth maps (a depth
-// display's output, a MakeShadow's) are kept per version in memory, so that the picture of each
-// frame reads the map its own frame made however many frames a job renders and however often the
-// input writes one name; other files are read from disk, and a job never holds two frames that
-// read different versions of one.
+// Requests between frames (MakeShadow, MakeTexture, MakeLatLongEnvironment,
+// MakeCubeFaceEnvironment) become jobs of their own, run when what they read is made. Names are
+// *versioned*: every frame or request writing a name makes a new version of it, and a reader reads
+// the latest version written before it in the input (what rendering the input frame by frame in
+// order would give). Depth maps (a depth display's output, a MakeShadow's) are kept per version in
+// memory, so that the picture of each frame reads the map its own frame made however many frames a
+// job renders and however often the input writes one name; other files are read from disk, and a
+// job never holds two frames that read different versions of one.
 //
 // With FrameRequest given, only the frames numbered there are wanted (and with `done`, those it
 // does not call done), plus every frame and request a wanted frame reads from (a picture's depth
@@ -71,7 +71,7 @@ struct PassJob {
     std::map<int, PassFrame> frames;
     // Where the scene names each string it gives a shader (maps among them), for messages.
     std::map<std::string, SourceLoc> namedAt;
-    // MakeShadow / MakeTexture (and MakeLatLongEnvironment): the request, the version of its
+    // MakeShadow / MakeTexture (and MakeLatLongEnvironment, MakeCubeFaceEnvironment): the request, the version of its
     // input it reads (0: the file on disk) and the version it makes.
     MakeShadowDesc makeShadow;
     MakeTextureDesc makeTexture;

@@ -200,12 +200,18 @@ struct DisplayDesc {
     Quantize quantize = kColorQuantize;
 };
 
-// MakeTexture "in" "out" swrap twrap filter swidth twidth, or MakeLatLongEnvironment "in" "out"
-// filter swidth twidth: a tiled, MIP-mapped map made from an image before the render (streyes/
-// textures.h; the scene layer only records it). Relative names are the RIB file's folder's.
+// MakeTexture "in" "out" swrap twrap filter swidth twidth, MakeLatLongEnvironment "in" "out"
+// filter swidth twidth, or MakeCubeFaceEnvironment "px" "nx" "py" "ny" "pz" "nz" "out" fov filter
+// swidth twidth: a tiled, MIP-mapped map made from images before the render (streyes/textures.h;
+// the scene layer only records it). Relative names are the RIB file's folder's.
 struct MakeTextureDesc {
     bool latLongEnvironment = false;
     std::string input, output;
+    // MakeCubeFaceEnvironment: the six face pictures, the views along +x, -x, +y, -y, +z, -z (input
+    // is the first), and the field of view they were rendered with, in degrees (0 < fov < 180).
+    // The map made is a lat-long environment map (docs/SCENE-FORMAT.md, Textures).
+    std::vector<std::string> cubeFaces;
+    double cubeFov = 90;
     std::string swrap = "black", twrap = "black";  // "black", "clamp" or "periodic"
     std::string filter = "box";                    // resampling filter of the MIP levels
     double swidth = 1, twidth = 1;

@@ -31,7 +31,7 @@ class PassRunner {
     // version and written as a shadow map. InputError at the request's line when the input is
     // neither, or is not a depth map.
     void makeShadow(const PassJob& job);
-    // MakeTexture and MakeLatLongEnvironment, once the frames before them are written.
+    // MakeTexture, MakeLatLongEnvironment and MakeCubeFaceEnvironment, once the frames before them are written.
     void makeTexture(const PassJob& job, FrameWriter& writer);
     // The maps each frame of a render job reads, and how others are read from disk.
     std::shared_ptr<const ShadowMapBinding> binding(const PassJob& job) const;

@@ -300,17 +300,40 @@ sl::TextureSource* makeOiioTextureSource(const std::vector<std::string>& searchP
     return new OiioTextures(searchPath, std::move(warn));
 }
 
+std::string pictureProblem(const std::string& path) {
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) {
+        std::string why = OIIO::geterror();
+        while (!why.empty() && why.back() == '\n') why.pop_back();
+        return why.empty() ? "cannot be read" : why;
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    std::error_code ec;
+    std::string why = implausibleImageSize(spec.width, spec.height, spec.nchannels, int64_t(spec.format.size()),
+                                           std::filesystem::file_size(path, ec));
+    if (why.empty()) why = unreadablePixels(*in);
+    while (!why.empty() && why.back() == '\n') why.pop_back();
+    return why;
+}
+
 bool makeOiioTexture(const MakeTextureDesc& d, std::string* error) {
-    // maketx reads the picture whole: its header is believed only as far as the file can hold it,
-    // and its pixels are read through first (a truncated TIFF would make a map of zeros, silently).
-    if (auto in = OIIO::ImageInput::open(d.input)) {
-        const OIIO::ImageSpec& spec = in->spec();
-        std::error_code ec;
-        *error = implausibleImageSize(spec.width, spec.height, spec.nchannels, int64_t(spec.format.size()),
-                                      std::filesystem::file_size(d.input, ec));
-        if (error->empty()) *error = unreadablePixels(*in);
+    // MakeCubeFaceEnvironment: the faces resampled into a lat-long picture in memory (checked there).
+    OIIO::ImageBuf latLong;
+    if (!d.cubeFaces.empty()) {
+        CubeFaceLatLong picture;
+        if (!resampleCubeFaces(d, &picture, error)) return false;
+        OIIO::ImageSpec spec(picture.width, picture.height, int(picture.channels.size()),
+                             OIIO::TypeDesc(picture.format.c_str()));
+        spec.channelnames = picture.channels;
+        spec.alpha_channel = picture.alphaChannel;
+        latLong.reset(spec);
+        latLong.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, picture.pixels.data());
+    } else if (auto in = OIIO::ImageInput::open(d.input)) {
+        // maketx reads the picture whole: its header is believed only as far as the file can hold
+        // it, and its pixels are read through first (a truncated TIFF would make a map of zeros, silently).
+        in.reset();
+        *error = pictureProblem(d.input);
         if (!error->empty()) {
-            while (!error->empty() && error->back() == '\n') error->pop_back();
             *error = "the picture '" + d.input + "': " + *error;
             return false;
         }
@@ -324,7 +347,9 @@ bool makeOiioTexture(const MakeTextureDesc& d, std::string* error) {
     // for ".tex".
     config.attribute("maketx:fileformatname", "tiff");
     const auto mode = d.latLongEnvironment ? OIIO::ImageBufAlgo::MakeTxEnvLatl : OIIO::ImageBufAlgo::MakeTxTexture;
-    if (!OIIO::ImageBufAlgo::make_texture(mode, d.input, d.output, config)) {
+    const bool made = d.cubeFaces.empty() ? OIIO::ImageBufAlgo::make_texture(mode, d.input, d.output, config)
+                                          : OIIO::ImageBufAlgo::make_texture(mode, latLong, d.output, config);
+    if (!made) {
         *error = OIIO::geterror();
         while (!error->empty() && error->back() == '\n') error->pop_back();
         if (error->empty()) *error = "maketx failed";

@@ -15,23 +15,35 @@ std::shared_ptr<sl::TextureSource> openImageTextures(const std::vector<std::stri
     return std::shared_ptr<sl::TextureSource>(library.makeTextureSource(searchPath, std::move(warn)));
 }
 
+namespace {
+
+const char* requestName(const MakeTextureDesc& d) {
+    if (!d.cubeFaces.empty()) return "MakeCubeFaceEnvironment";
+    return d.latLongEnvironment ? "MakeLatLongEnvironment" : "MakeTexture";
+}
+
+}  // namespace
+
 void makeSceneTextures(const Scene& scene, std::vector<std::string>* done) {
     for (const MakeTextureDesc& d : scene.settings.makeTextures) {
         if (done && std::find(done->begin(), done->end(), d.output) != done->end()) continue;
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(d.input, ec))
-            throw InputError(d.loc, "cannot read the picture '" + d.input + "' to make '" + d.output + "' from");
+        const std::vector<std::string> pictures = d.cubeFaces.empty() ? std::vector<std::string>{d.input} : d.cubeFaces;
+        for (const std::string& picture : pictures) {
+            std::error_code ec;
+            if (!std::filesystem::is_regular_file(picture, ec))
+                throw InputError(d.loc, std::string(requestName(d)) + ": cannot read the picture '" + picture +
+                                            "' to make '" + d.output + "' from");
+        }
         std::string error;
         const ImageLibrary* library = nullptr;
         try {
             library = &imageLibrary();
         } catch (const RenderError& e) {
-            throw InputError(d.loc, std::string(d.latLongEnvironment ? "MakeLatLongEnvironment" : "MakeTexture") +
-                                        ": " + e.what());
+            throw InputError(d.loc, std::string(requestName(d)) + ": " + e.what());
         }
         if (!library->makeTexture(d, &error))
-            throw InputError(d.loc, std::string(d.latLongEnvironment ? "MakeLatLongEnvironment" : "MakeTexture") +
-                                        " '" + d.input + "' -> '" + d.output + "': " + error);
+            throw InputError(d.loc, std::string(requestName(d)) + (d.cubeFaces.empty() ? " '" + d.input + "'" : "") +
+                                        " -> '" + d.output + "': " + error);
         if (done) done->push_back(d.output);
     }
 }

@@ -164,8 +164,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
     // RIB requests outside the subset: warned about once and skipped.
     for (const char* name :
          {"ColorSamples", "Interior", "Exterior", "Deformation",
-          "TextureCoordinates", "Perspective", "Skew", "ArchiveEnd", "MakeBump",
-          "MakeCubeFaceEnvironment", "MakeBrickMap",
+          "TextureCoordinates", "Perspective", "Skew", "ArchiveEnd", "MakeBump", "MakeBrickMap",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
           "System", "Shader", "Bxdf", "Pattern", "Integrator", "DisplayFilter", "SampleFilter",
           "PixelSampleImager", "EditBegin", "EditEnd", "EditAttributeBegin",

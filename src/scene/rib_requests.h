@@ -90,7 +90,7 @@ void addArchiveRequests(RibRequestTable& table);      // rib_archives.cpp: ReadA
 void addCurveRequests(RibRequestTable& table);        // rib_curves.cpp: Curves, Points
 void addNurbsRequests(RibRequestTable& table);        // rib_nurbs.cpp: NuPatch, TrimCurve
 void addBlobbyRequests(RibRequestTable& table);       // rib_blobby.cpp: Blobby
-void addTextureRequests(RibRequestTable& table);      // rib_textures.cpp: MakeTexture, MakeLatLongEnvironment
+void addTextureRequests(RibRequestTable& table);      // rib_textures.cpp: the Make* requests
 void addGeometryRequests(RibRequestTable& table);     // rib_teapot.cpp: Geometry "teapot"
 void addDetailRequests(RibRequestTable& table);       // rib_detail.cpp: Detail, DetailRange, RelativeDetail
 void addSolidRequests(RibRequestTable& table);        // rib_solids.cpp: SolidBegin, SolidEnd

@@ -1,7 +1,8 @@
-// MakeTexture, MakeLatLongEnvironment and MakeShadow: recorded in RenderSettings::makeTextures and
-// makeShadows, made by the io stage (streyes/textures.h) when the frames before them are done:
-// the scene stage reads no images. A missing input is an error at the request's line when it is
-// made (a frame of the same input may write it).
+// MakeTexture, MakeLatLongEnvironment, MakeCubeFaceEnvironment and MakeShadow: recorded in
+// RenderSettings::makeTextures and makeShadows, made by the io stage (streyes/textures.h) when the
+// frames before them are done: the scene stage reads no images. A missing input is an error at the
+// request's line when it is made (a frame of the same input may write it).
+#include <cmath>
 #include <filesystem>
 
 #include "scene/rib_requests.h"
@@ -75,6 +76,42 @@ void makeLatLongEnvironment(RibParser& reader, RibArgs& args) {
     reader.scene().settings.makeTextures.push_back(std::move(d));
 }
 
+// MakeCubeFaceEnvironment "px" "nx" "py" "ny" "pz" "nz" "texture" fov "filter" swidth twidth: six
+// perspective views from the cube's centre, rendered with field of view `fov` (90: the faces meet
+// edge to edge; more: they overlap, as PRMan's users render them to hide the seams).
+void makeCubeFaceEnvironment(RibParser& reader, RibArgs& args) {
+    MakeTextureDesc d;
+    d.loc = args.loc();
+    d.latLongEnvironment = true;  // what it makes (io/oiio_cube_faces.cpp)
+    static const char* const kFaces[6] = {"+x face", "-x face", "+y face", "-y face", "+z face", "-z face"};
+    for (const char* face : kFaces) {
+        const std::string name = args.string(face);
+        if (name.empty()) args.fail(std::string("the ") + face + " picture name is empty");
+        d.cubeFaces.push_back(besideFile(args, name));
+    }
+    d.input = d.cubeFaces.front();
+    const std::string output = args.string("texture name");
+    d.output = besideFile(args, output);
+    if (d.output.empty()) args.fail("the texture name is empty");
+    checkSceneWrite(args.name(), output, args.loc(), fileFolder(args));  // --safe: inside its folder
+    d.serial = reader.nextMakeSerial();
+    d.afterWorld = reader.afterWorld();
+    const RibValue* at = args.peek();
+    d.cubeFov = args.number("fov");
+    if (!std::isfinite(d.cubeFov) || d.cubeFov <= 0 || d.cubeFov >= 180)
+        args.fail(*at, "the field of view of the faces must be more than 0 and less than 180 degrees (90: faces that "
+                       "meet edge to edge), not " + formatNumber(d.cubeFov));
+    if (d.cubeFov < 90)
+        reader.log().warnOnce("cubeface-fov", args.loc(),
+                              "MakeCubeFaceEnvironment: faces of field of view " + formatNumber(d.cubeFov) +
+                                  " degrees (under 90) leave gaps between them: directions there take the nearest "
+                                  "edge of their face");
+    d.swrap = "periodic";
+    d.twrap = "clamp";
+    readFilter(reader, args, d);
+    reader.scene().settings.makeTextures.push_back(std::move(d));
+}
+
 // MakeShadow "picture" "shadow map" [params]: the picture is a depth map (Display "zfile"), of
 // this input's frames or on disk, checked when it is made.
 void makeShadow(RibParser& reader, RibArgs& args) {
@@ -103,6 +140,9 @@ void addTextureRequests(RibRequestTable& table) {
               {makeTexture, "MakeTexture \"picture\" \"texture\" \"swrap\" \"twrap\" \"filter\" swidth twidth"});
     table.add("MakeLatLongEnvironment",
               {makeLatLongEnvironment, "MakeLatLongEnvironment \"picture\" \"texture\" \"filter\" swidth twidth"});
+    table.add("MakeCubeFaceEnvironment",
+              {makeCubeFaceEnvironment, "MakeCubeFaceEnvironment \"px\" \"nx\" \"py\" \"ny\" \"pz\" \"nz\" \"texture\" "
+                                        "fov \"filter\" swidth twidth"});
     table.add("MakeShadow", {makeShadow, "MakeShadow \"picture\" \"shadow map\""});
 }
 

@@ -48,5 +48,38 @@ TEST(RibTextures, ABadWrapIsAnErrorAtItsLineAPictureNotYetThereIsNot) {
     EXPECT_NE(e.find("\"mirror\""), std::string::npos) << e;
 }
 
+// MakeCubeFaceEnvironment: its six faces (+x, -x, +y, -y, +z, -z) beside the file, the map a
+// lat-long environment, the fov kept; a fov outside (0, 180) is an error at the value.
+TEST(RibTextures, CubeFaceEnvironmentRecordsItsFacesInOrderAndItsFov) {
+    const test::TempDir dir("rib-textures-cube");
+    std::ofstream(dir.path() + "/scene.rib")
+        << "Format 8 8 1\nMakeCubeFaceEnvironment \"a.tif\" \"b.tif\" \"c.tif\" \"d.tif\" \"e.tif\" \"/abs/f.tif\" "
+           "\"cube.env\" 95.5 \"gaussian\" 2 2\nWorldBegin\nWorldEnd\n";
+    Log log;
+    const Scene scene = parseRibFile(dir.path() + "/scene.rib", log);
+    EXPECT_TRUE(log.warnings().empty());
+    ASSERT_EQ(scene.settings.makeTextures.size(), 1u);
+    const MakeTextureDesc& c = scene.settings.makeTextures[0];
+    EXPECT_TRUE(c.latLongEnvironment);
+    const std::vector<std::string> faces = {dir.path() + "/a.tif", dir.path() + "/b.tif", dir.path() + "/c.tif",
+                                            dir.path() + "/d.tif", dir.path() + "/e.tif", "/abs/f.tif"};
+    EXPECT_EQ(c.cubeFaces, faces);
+    EXPECT_EQ(c.input, faces[0]);
+    EXPECT_EQ(c.output, dir.path() + "/cube.env");
+    EXPECT_EQ(c.cubeFov, 95.5);
+    EXPECT_EQ(c.filter, "gaussian");
+    EXPECT_EQ(c.swrap, "periodic");
+    EXPECT_EQ(c.twrap, "clamp");
+    EXPECT_EQ(c.loc.line, 2);
+
+    const std::string request = "MakeCubeFaceEnvironment \"a\" \"b\" \"c\" \"d\" \"e\" \"f\" \"o.env\" ";
+    for (const char* fov : {"0", "180", "-1"}) {
+        const std::string e = test::ribError(request + fov + " \"box\" 1 1\n");
+        EXPECT_NE(e.find("field of view"), std::string::npos) << fov << ": " << e;
+    }
+    EXPECT_NE(test::ribError(request + "90 \"box\" 1\n"), "");  // twidth missing
+    EXPECT_EQ(test::ribError(request + "90 \"box\" 1 1\nWorldBegin\nWorldEnd\n"), "");
+}
+
 }  // namespace
 }  // namespace streyes
