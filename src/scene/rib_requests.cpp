@@ -163,7 +163,7 @@ void addUnsupportedRequests(RibRequestTable& table) {
     // clang-format off
     // RIB requests outside the subset: warned about once and skipped.
     for (const char* name :
-         {"ColorSamples", "Interior", "Exterior", "Deformation",
+         {"ColorSamples", "Deformation",
           "TextureCoordinates", "Perspective", "Skew", "ArchiveEnd", "MakeBump",
           "MakeCubeFaceEnvironment", "MakeBrickMap",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",

@@ -53,6 +53,19 @@ class ShaderRays final : public sl::RaySource {
     Color coneMean(Vec3f p, Vec3f axis, float cone, bool cosine, uint32_t s, uint64_t h, double time, float bias,
                    float maxdist);
     Color shadeHit(const TrilinearBody& body, const TraceHit& h, const Ray& ray, double time, Color* opacity);
+    // The GridShader hits and volumes run on (its rays go to the next depth), made when first needed.
+    GridShader& hitShader();
+    // The volume over the part of `ray` on the side of hit h's surface the ray meets it from:
+    // its Interior where the ray leaves the surface (meets it from inside), else its Exterior
+    // (`after`: the part past the hit, on the side the ray goes on into). Null: none.
+    struct Volume {
+        const Material* material = nullptr;
+        const sl::ShaderInstance* shader = nullptr;
+        const MotionTransform* space = nullptr;
+    };
+    Volume volumeAt(const TrilinearBody& body, const TraceHit& h, const Ray& ray, double time, bool after) const;
+    // The volume's shader over [from, to] on what the ray brings from `to` on (c, *o).
+    Color runVolume(const Volume& v, Vec3f from, Vec3f to, double time, Color c, Color* o);
     // c plus the parts of the lights that cast shadows a shadow ray from p reaches.
     Color addReachedLights(Color c, Vec3f p, double time, const SpacetimeBVH& bvh);
     const std::vector<CameraLight>& lightsAt(double time);
@@ -67,6 +80,12 @@ class ShaderRays final : public sl::RaySource {
     double lightsTime_ = 0;
     bool lightsValid_ = false;
     std::vector<Color> shadowed_;
+    struct Layer {  // a hit along a ray, with the volume of the part of the ray before it
+        Color ci, oi;
+        float t;
+        Volume volume;
+    };
+    std::vector<Layer> layers_;
     const char* rayType_ = "specular";  // what rayinfo("type") says at the hits shaded now
     uint64_t rays_ = 0, bodyTests_ = 0, boxTests_ = 0;
 };
