@@ -326,6 +326,8 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         if (desc->name.empty()) continue;
         *out = instance(desc->name, desc->params, desc->loc, sl::ShaderType::Volume);
         m.tracesRays = m.tracesRays || castsRays(out->get());
+        const ShaderDesc* none = nullptr;
+        if (*out) firstVolume_.compare_exchange_strong(none, desc, std::memory_order_relaxed);
     }
     if (!a.displacement.name.empty()) {
         m.displacement = instance(a.displacement.name, a.displacement.params, a.displacement.loc,
