@@ -48,10 +48,16 @@ class ShaderRays final : public sl::RaySource {
     const SpacetimeBVH& hierarchyAt(double time) const;
     float biasAt(const sl::RayOptions& o, Vec3f p) const;
     // The colour the ray brings back from its nearest hits within (tMin, tMax): shaded at the next
-    // depth, see-through ones composited over what lies behind them. False: nothing is hit.
-    bool shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color* c);
+    // depth, see-through ones composited over what lies behind them, and over `background` (what
+    // it meets past them: an environment map's colour, or black). False: nothing is hit.
+    bool shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color background, Color* c);
+    // `env`: the call's environment map for rays that hit nothing (null: black).
     Color coneMean(Vec3f p, Vec3f axis, float cone, bool cosine, uint32_t s, uint64_t h, double time, float bias,
-                   float maxdist);
+                   float maxdist, const sl::RayOptions* env = nullptr);
+    // The environment map o.environmentmap in current-space directions d[0, n) (into o's
+    // "environmentspace"), each filtered over a cone of about `width` radians: into out (left as
+    // it is where the map cannot be read; the texture source warns).
+    void environmentColors(const sl::RayOptions& o, const Vec3f* d, uint32_t n, float width, double time, Color* out);
     Color shadeHit(const TrilinearBody& body, const TraceHit& h, const Ray& ray, double time, Color* opacity);
     // The GridShader hits and volumes run on (its rays go to the next depth), made when first needed.
     GridShader& hitShader();
@@ -86,6 +92,9 @@ class ShaderRays final : public sl::RaySource {
         Volume volume;
     };
     std::vector<Layer> layers_;
+    std::vector<Vec3f> directions_;  // coneMean's, a point at a time
+    std::vector<Color> background_;  // and what each brings where it hits nothing
+    std::vector<float> envScratch_;  // environmentColors' query and result arrays
     const char* rayType_ = "specular";  // what rayinfo("type") says at the hits shaded now
     uint64_t rays_ = 0, bodyTests_ = 0, boxTests_ = 0;
 };
