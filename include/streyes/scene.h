@@ -119,6 +119,9 @@ struct Attributes {
     ShaderNetwork surfaceLayers;
     ShaderDesc displacement;                     // Displacement; no name: none
     ShaderDesc atmosphere;                       // Atmosphere (a volume shader); no name: none
+    // Interior and Exterior: volume shaders run over the segments of rays (trace(), transmission()
+    // and the others) inside and outside the surface. No name: none.
+    ShaderDesc interior, exterior;
     // Attribute "displacementbound" "sphere" r: how far displacement may move a point, in the
     // "coordinatesystem" named there ("object", "shader", "world" or "camera").
     double displacementBound = 0;

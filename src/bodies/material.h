@@ -77,6 +77,9 @@ struct Material {
     float displacementBound = 0;
     // A volume shader (Atmosphere) run on the surface's colour after the surface shader.
     std::shared_ptr<const sl::ShaderInstance> atmosphere;
+    // Volume shaders (Interior, Exterior) run over the segments of shaders' rays that end on this
+    // surface from its inside or its outside (trace/shader_rays.h). Null: none.
+    std::shared_ptr<const sl::ShaderInstance> interior, exterior;
     // Sides and Orientation. Bodies compute N = dPdu x dPdv in camera space; flipNormals turns
     // it to the side Orientation calls outside (the primitive's transform may mirror), and
     // oneSided (Sides 1) drops micropolygons whose outside faces away from the eye.

@@ -265,6 +265,15 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     uint64_t traceBytesPerFrame = 0;
     // (A depth pass runs no lights: it traces no shadows.)
     // Shaders that cast rays (occlusion(), trace(), ...) need it too.
+    // Interior and Exterior run over shaders' rays only (what the camera sees through the air runs
+    // Atmosphere, as in RenderMan): without a shader that casts rays they change nothing.
+    if (shaders_ && shaders_->firstVolume() && !shaders_->tracesRays()) {
+        const ShaderDesc& v = *shaders_->firstVolume();
+        log_.warnOnce("volume-untraced", v.loc,
+                      "volume shader \"" + v.name + "\" (Interior or Exterior) runs on the rays shaders cast (trace(), "
+                      "transmission(), indirectdiffuse()), and no shader here casts any: it changes nothing (what the "
+                      "camera sees through the air is Atmosphere's)");
+    }
     if (raytraces(options_.algorithm) ||
         ((scene_->lights.shadowSlots() > 0 || (shaders_ && shaders_->tracesRays())) && !options_.depthPass)) {
         // What the bodies may take: the budget less what rendering one frame needs besides.

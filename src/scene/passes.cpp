@@ -112,6 +112,8 @@ void stringsOf(const Scene& s, std::map<std::string, SourceLoc>& out) {
         params(a->surface.params);
         params(a->displacement.params);
         params(a->atmosphere.params);
+        params(a->interior.params);
+        params(a->exterior.params);
     };
     auto each = [&](const auto& v) {
         for (const auto& p : v) attributes(p.attributes);

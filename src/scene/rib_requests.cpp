@@ -163,8 +163,9 @@ void addUnsupportedRequests(RibRequestTable& table) {
     // clang-format off
     // RIB requests outside the subset: warned about once and skipped.
     for (const char* name :
-         {"ColorSamples", "Interior", "Exterior", "Deformation",
-          "TextureCoordinates", "Perspective", "Skew", "ArchiveEnd", "MakeBump", "MakeBrickMap",
+         {"ColorSamples", "Deformation",
+          "TextureCoordinates", "Perspective", "Skew", "ArchiveEnd", "MakeBump",
+          "MakeBrickMap",
           "Resource", "ResourceBegin", "ResourceEnd", "Camera", "IfBegin", "IfEnd", "Else", "ElseIf",
           "System", "Shader", "Bxdf", "Pattern", "Integrator", "DisplayFilter", "SampleFilter",
           "PixelSampleImager", "EditBegin", "EditEnd", "EditAttributeBegin",

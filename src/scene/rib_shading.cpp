@@ -131,6 +131,11 @@ void displacement(RibParser& reader, RibArgs& args) {
 
 void atmosphere(RibParser& reader, RibArgs& args) { reader.state().mutableAttributes().atmosphere = readShader(reader, args); }
 
+// Interior, Exterior: volume shaders over the segments of shaders' rays inside and outside the
+// surfaces that follow (trace/shader_rays.h).
+void interior(RibParser& reader, RibArgs& args) { reader.state().mutableAttributes().interior = readShader(reader, args); }
+void exterior(RibParser& reader, RibArgs& args) { reader.state().mutableAttributes().exterior = readShader(reader, args); }
+
 void imager(RibParser& reader, RibArgs& args) { reader.scene().settings.imager = readShader(reader, args); }
 
 // A light is on in the attribute block where it is declared (and the blocks inside it): its index
@@ -224,6 +229,8 @@ void addShadingRequests(RibRequestTable& table) {
               {connectShaderLayers, "ConnectShaderLayers \"type\" \"layer1\" \"variable1\" \"layer2\" \"variable2\""});
     table.add("Displacement", {displacement, "Displacement \"name\" parameters..."});
     table.add("Atmosphere", {atmosphere, "Atmosphere \"name\" parameters..."});
+    table.add("Interior", {interior, "Interior \"name\" parameters..."});
+    table.add("Exterior", {exterior, "Exterior \"name\" parameters..."});
     table.add("Imager", {imager, "Imager \"name\" parameters...", RibPhase::Options});
     table.add("LightSource", {lightSource, "LightSource \"name\" handle parameters..."});
     table.add("AreaLightSource", {areaLightSource, "AreaLightSource \"name\" handle parameters...", RibPhase::World});

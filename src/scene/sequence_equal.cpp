@@ -65,6 +65,7 @@ bool sameAttributes(const Attributes& a, const Attributes& b) {
     return a.color == b.color && a.opacity == b.opacity && sameShader(a.surface, b.surface) &&
            sameNetwork(a.surfaceLayers, b.surfaceLayers) &&
            sameShader(a.displacement, b.displacement) && sameShader(a.atmosphere, b.atmosphere) &&
+           sameShader(a.interior, b.interior) && sameShader(a.exterior, b.exterior) &&
            a.displacementBound == b.displacementBound && a.displacementBoundSpace == b.displacementBoundSpace &&
            a.shadingRate == b.shadingRate && a.motionFactor == b.motionFactor && a.lights == b.lights && sameParams(a.user, b.user) &&
            sameBasis(a.uBasis, b.uBasis) && sameBasis(a.vBasis, b.vBasis) &&  // trim: NuPatchDesc compares its own copy

@@ -56,6 +56,34 @@ void GridShader::shade(Grid& grid) {
     for (int k = 0; k < (grid.moving ? 2 : 1); ++k) shadeSlot(grid, k, k == 0 ? grid.t0 : grid.t1);
 }
 
+Color GridShader::runVolume(const Material& m, const sl::ShaderInstance& shader, const MotionTransform* shaderToWorld,
+                            Vec3f from, Vec3f to, double time, Color ci, Color* oi) {
+    hit_.shadowSlots = 0;
+    hit_.resize(0, 0, false);
+    hit_.material = &m;
+    hit_.primitiveId = 0;
+    hit_.primvarCorners = nullptr;
+    hit_.t0 = hit_.t1 = time;
+    hit_.u0 = hit_.u1 = hit_.v0 = hit_.v1 = 0;
+    hit_.P[0][0] = to;
+    hit_.N[0][0] = normalize(to - from);
+    hit_.Cs[0] = m.Cs;
+    prepare(m, hit_, 0, time);
+    volumeI_ = to - from;
+    volumeE_ = from;
+    volumeCi_ = ci;
+    volumeOi_ = *oi;
+    sgrid_.set(sl::Global::I, sl::ValueRef::aos(&volumeI_));
+    sgrid_.set(sl::Global::E, sl::ValueRef::uniform(volumeE_));
+    sgrid_.set(sl::Global::Ci, sl::ValueRef::aos(&volumeCi_));
+    sgrid_.set(sl::Global::Oi, sl::ValueRef::aos(&volumeOi_));
+    useShaderSpace(shaderToWorld, time);
+    vm_->run(shader, sgrid_, {});
+    const sl::ValueRef rc = vm_->result(sl::Global::Ci), ro = vm_->result(sl::Global::Oi);
+    if (ro.valid()) *oi = ro.vec(0);
+    return rc.valid() ? rc.vec(0) : ci;
+}
+
 void GridShader::displaceOnly(Grid& grid) {
     const Material& m = *grid.material;
     if (!m.displacement) return;

@@ -76,6 +76,12 @@ class GridShader {
                    uint64_t primitiveId, Color* shadowed, int slots, Color* opacity = nullptr,
                    const float* primvarCorners = nullptr);
 
+    // A volume shader (m's Interior or Exterior) over one segment of a ray, from `from` to `to`:
+    // its P is `to`, I the segment (to - from), E `from`, and Ci, Oi what the ray brings from `to`
+    // on; gives its Ci and sets *oi to its Oi. Its "shader" space is where the request was given.
+    Color runVolume(const Material& m, const sl::ShaderInstance& shader, const MotionTransform* shaderToWorld,
+                    Vec3f from, Vec3f to, double time, Color ci, Color* oi);
+
     // What rayinfo() says of the grids shaded next: the depth of the ray whose hits they are (0:
     // the eye's) and its type ("camera", "specular", "diffuse").
     void setRayContext(int depth, const char* type) {
@@ -122,7 +128,9 @@ class GridShader {
     std::vector<sl::Primvar> primvars_;
     SurfaceNetworkRunner network_;
     std::vector<float> primvarData_;  // their values: constant ones, or n per component
-    Grid hit_;  // one point, for shadeHit
+    Grid hit_;  // one point, for shadeHit and runVolume
+    Vec3f volumeI_, volumeE_;
+    Color volumeCi_, volumeOi_;
     uint64_t builtinPoints_ = 0;
     const AovLayout* aovs_ = nullptr;  // set when it names shader outputs
     void clearShaderOutputs(Grid& grid, int k) const;

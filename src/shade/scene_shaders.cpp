@@ -320,6 +320,15 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         m.tracesRays = castsRays(m.atmosphere.get());
         if (m.atmosphere) m.viewUse = std::max(m.viewUse, shaderUse(*m.atmosphere, a.atmosphere));
     }
+    // Interior and Exterior run over rays' segments (trace/shader_rays.h), not over this
+    // surface's grids: they do not change how it is shaded, but rays they cast are its rays.
+    for (auto [desc, out] : {std::pair{&a.interior, &m.interior}, std::pair{&a.exterior, &m.exterior}}) {
+        if (desc->name.empty()) continue;
+        *out = instance(desc->name, desc->params, desc->loc, sl::ShaderType::Volume);
+        m.tracesRays = m.tracesRays || castsRays(out->get());
+        const ShaderDesc* none = nullptr;
+        if (*out) firstVolume_.compare_exchange_strong(none, desc, std::memory_order_relaxed);
+    }
     if (!a.displacement.name.empty()) {
         m.displacement = instance(a.displacement.name, a.displacement.params, a.displacement.loc,
                                   sl::ShaderType::Displacement);

@@ -114,6 +114,9 @@ class SceneShaders final : public MaterialBinder {
     // Has a light, or a material bound so far, a shader that casts rays (the renderer then builds
     // the ray tracer's scene)?
     bool tracesRays() const { return tracesRays_.load(std::memory_order_relaxed); }
+    // The first Interior or Exterior of a material bound so far (null: none). They run on
+    // shaders' rays only: the renderer warns when no shader casts any.
+    const ShaderDesc* firstVolume() const { return firstVolume_.load(std::memory_order_relaxed); }
 
   private:
     std::shared_ptr<sl::ShaderInstance> instance(const std::string& name, const ParamList& params,
@@ -139,6 +142,7 @@ class SceneShaders final : public MaterialBinder {
     std::vector<bool> lightTracesRays_;
     std::vector<bool> lightStillInWorld_;  // Material::viewUse: a light moving in world reads the view
     mutable std::atomic<bool> tracesRays_{false};
+    mutable std::atomic<const ShaderDesc*> firstVolume_{nullptr};
 };
 
 // Sets `params` on `shader`: RIB's types (inline or Declare'd) are checked against the shader's

@@ -164,12 +164,7 @@ Color ShaderRays::shadeHit(const TrilinearBody& body, const TraceHit& h, const R
     *opacity = m.Os;
     Color c;
     if (m.surface && shaders_) {
-        if (!hitShader_) {
-            hitShader_ = std::make_unique<GridShader>(shaders_, scene.camera, scene.lights);
-            if (depth_ < maxDepth_) next_ = std::make_unique<ShaderRays>(trace_, shaders_, depth_ + 1, maxDepth_);
-            hitShader_->setRaySource(next_.get());  // null past the depth: no-hit values
-        }
-        hitShader_->setRayContext(depth_, rayType_);
+        hitShader().setRayContext(depth_, rayType_);
         c = hitShader_->shadeHit(m, cs, p, n, time, body.uv[0] + h.u * (body.uv[1] - body.uv[0]),
                                  body.uv[2] + h.v * (body.uv[3] - body.uv[2]), body.primitiveId(),
                                  K ? shadowed_.data() : nullptr, K, opacity, body.primvarCorners);
@@ -181,38 +176,140 @@ Color ShaderRays::shadeHit(const TrilinearBody& body, const TraceHit& h, const R
     return c;
 }
 
+GridShader& ShaderRays::hitShader() {
+    if (!hitShader_) {
+        const RenderScene& scene = trace_.scene();
+        hitShader_ = std::make_unique<GridShader>(shaders_, scene.camera, scene.lights);
+        if (depth_ < maxDepth_) next_ = std::make_unique<ShaderRays>(trace_, shaders_, depth_ + 1, maxDepth_);
+        hitShader_->setRaySource(next_.get());  // null past the depth: no-hit values
+    }
+    return *hitShader_;
+}
+
+ShaderRays::Volume ShaderRays::volumeAt(const TrilinearBody& body, const TraceHit& h, const Ray& ray, double time,
+                                        bool after) const {
+    const Material* m = body.material();
+    if (!m || !shaders_ || (!m->interior && !m->exterior)) return {};
+    Vec3f n = bilinearNormal(body.cornersAt(time), h.u, h.v);
+    if (m->flipNormals) n = -n;  // the side Orientation calls outside
+    const bool leaves = dot(ray.d, n) > 0;
+    const bool inside = after ? !leaves : leaves;
+    const Attributes* a = m->attributes;
+    if (inside) return {m, m->interior.get(), a ? &a->interior.shaderToWorld : nullptr};
+    return {m, m->exterior.get(), a ? &a->exterior.shaderToWorld : nullptr};
+}
+
+Color ShaderRays::runVolume(const Volume& v, Vec3f from, Vec3f to, double time, Color c, Color* o) {
+    GridShader& g = hitShader();
+    g.setRayContext(depth_, rayType_);
+    return g.runVolume(*v.material, *v.shader, v.space, from, to, time, c, o);
+}
+
 // The mean colour the shaded hits of s rays in the cone of half-angle `cone` around `axis` give
-// (cosine-weighted or uniform; misses count black): indirectdiffuse() and blurred trace().
+// (cosine-weighted or uniform): indirectdiffuse() and blurred trace(). A ray that hits nothing
+// brings the environment map's colour in its direction (looked up for the point's s rays at once,
+// each over its share of the cone), or black.
 Color ShaderRays::coneMean(Vec3f p, Vec3f axis, float cone, bool cosine, uint32_t s, uint64_t h, double time,
-                           float bias, float maxdist) {
+                           float bias, float maxdist, const sl::RayOptions* env) {
     Vec3f t, b;
     frameOf(axis, &t, &b);
-    Color sum{0, 0, 0};
+    directions_.resize(s);
+    background_.assign(s, Color{0, 0, 0});
     for (uint32_t j = 0; j < s; ++j) {
         float ua, ub;
         sample2(j, s, h, &ua, &ub);
+        directions_[j] = coneDirection(axis, t, b, cone, cosine, ua, ub);
+    }
+    if (env && !env->environmentmap.empty()) {
+        const float solidAngle = 2 * kPi * (1 - std::cos(std::min(cone, kPi)));
+        environmentColors(*env, directions_.data(), s, std::sqrt(solidAngle / float(s)), time, background_.data());
+    }
+    Color sum{0, 0, 0};
+    for (uint32_t j = 0; j < s; ++j) {
         Color c;
-        if (shadeAlong({p, coneDirection(axis, t, b, cone, cosine, ua, ub)}, time, bias, maxdist, &c)) sum += c;
+        shadeAlong({p, directions_[j]}, time, bias, maxdist, background_[j], &c);
+        sum += c;
     }
     return sum * (1.0f / float(s));
 }
 
-bool ShaderRays::shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color* c) {
+void ShaderRays::environmentColors(const sl::RayOptions& o, const Vec3f* d, uint32_t n, float width, double time,
+                                   Color* out) {
+    sl::TextureSource* textures = shaders_ ? shaders_->textures() : nullptr;
+    if (!textures || n == 0) return;
+    envScratch_.resize(size_t(n) * 12);
+    float* a = envScratch_.data();
+    auto column = [&](int k) { return a + size_t(k) * n; };
+    sl::DirectionQuery q;
+    q.n = int(n);
+    q.time = float(time);
+    float* result[3];
+    for (int c = 0; c < 3; ++c) {
+        q.R[c] = column(c);
+        q.dRdu[c] = column(3 + c);
+        q.dRdv[c] = column(6 + c);
+        result[c] = column(9 + c);
+    }
+    const float* m = o.environmentFromCurrent;  // row vectors: r = d * M
+    for (uint32_t i = 0; i < n; ++i) {
+        const Vec3f r = normalize(Vec3f{d[i].x * m[0] + d[i].y * m[4] + d[i].z * m[8],
+                                        d[i].x * m[1] + d[i].y * m[5] + d[i].z * m[9],
+                                        d[i].x * m[2] + d[i].y * m[6] + d[i].z * m[10]});
+        Vec3f t, b;
+        frameOf(r, &t, &b);
+        for (int c = 0; c < 3; ++c) {
+            column(c)[i] = r[c];
+            column(3 + c)[i] = t[c] * width;
+            column(6 + c)[i] = b[c] * width;
+        }
+    }
+    sl::TextureOptions opt;
+    opt.channels = 3;
+    opt.shader = o.shader;
+    if (!textures->environment(o.environmentmap, opt, q, result)) return;
+    for (uint32_t i = 0; i < n; ++i) out[i] = {result[0][i], result[1][i], result[2][i]};
+}
+
+// Hits are shaded front to back until one is opaque; where a part of the ray between them lies in
+// an Interior or Exterior volume, they are composited back to front, each part's volume run on
+// what the ray brings from its far end (as RenderMan runs a volume over a ray's segment).
+bool ShaderRays::shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color background, Color* c) {
     const SpacetimeBVH& bvh = hierarchyAt(time);
     ++rays_;
     Color sum{0, 0, 0}, through{1, 1, 1};
-    bool any = false;
+    bool any = false, volumes = false;
+    std::vector<Layer> layers;  // this call's own: shading a hit may trace (at the next depth) but not here
+    layers.swap(layers_);
+    layers.clear();
     TraceHit h;
     while (tMin < tMax && bvh.intersect(ray, time, tMin, tMax, &h, ctx_)) {
         any = true;
         Color o;
-        const Color ci = shadeHit(*bvh.bodies()[h.body], h, ray, time, &o);
+        const TrilinearBody& body = *bvh.bodies()[h.body];
+        const Color ci = shadeHit(body, h, ray, time, &o);
+        const Volume v = volumeAt(body, h, ray, time, false);
+        volumes = volumes || v.shader;
+        layers.push_back({ci, o, h.t, v});
         // Ci is premultiplied by Oi, as RenderMan's shaders leave it.
         sum += through * ci;
         through = through * (Color{1, 1, 1} - o);
         if (through.x <= 0 && through.y <= 0 && through.z <= 0) break;
         tMin = std::nextafter(h.t, std::numeric_limits<float>::infinity());
     }
+    sum += through * background;
+    if (volumes) {
+        Color back = background, backO{0, 0, 0};
+        for (size_t i = layers.size(); i-- > 0;) {
+            const Layer& l = layers[i];
+            back = l.ci + (Color{1, 1, 1} - l.oi) * back;
+            backO = l.oi + (Color{1, 1, 1} - l.oi) * backO;
+            if (!l.volume.shader) continue;
+            const Vec3f from = i ? ray.o + ray.d * layers[i - 1].t : ray.o;
+            back = runVolume(l.volume, from, ray.o + ray.d * l.t, time, back, &backO);
+        }
+        sum = back;
+    }
+    layers.swap(layers_);
     *c = sum;
     return any;
 }
@@ -256,7 +353,8 @@ void ShaderRays::indirectdiffuse(const sl::RayOptions& o, const sl::RayQuery& q,
         const Vec3f p = at3(q.P, i);
         const Vec3f n = normalize(at3(q.D, i));
         Color sum{0, 0, 0};
-        if (dot(n, n) > 0.5f) sum = coneMean(p, n, cone, true, s, pointHash(p, q.seed, q.site), q.time, biasAt(o, p, q.time), o.maxdist);
+        if (dot(n, n) > 0.5f)
+            sum = coneMean(p, n, cone, true, s, pointHash(p, q.seed, q.site), q.time, biasAt(o, p, q.time), o.maxdist, &o);
         for (int c = 0; c < 3; ++c) out[c][i] = sum[c];
     }
 }
@@ -275,7 +373,7 @@ void ShaderRays::trace(const sl::RayOptions& o, const sl::RayQuery& q, float* co
             const float bias = biasAt(o, p, q.time);
             if (s == 1) {
                 Color c;
-                if (shadeAlong({p, d}, q.time, bias, o.maxdist, &c)) sum = c;
+                if (shadeAlong({p, d}, q.time, bias, o.maxdist, Color{0, 0, 0}, &c)) sum = c;
             } else {  // a blurred reflection: uniform in the cone
                 sum = coneMean(p, d, cone, false, s, pointHash(p, q.seed, q.site), q.time, bias, o.maxdist);
             }
@@ -302,12 +400,28 @@ void ShaderRays::transmission(const sl::RayOptions& o, const sl::RayQuery& q, fl
             const float tMax = std::min(dist - bias, o.maxdist);
             TraceHit h;
             ++rays_;
+            // Each part of the segment in an Interior or Exterior volume lets through what its
+            // shader leaves of white (Ci 1, Oi 0 in): the part before each hit, and past the last.
+            Vec3f from = p;
+            Volume last;
             while (tMin < tMax && bvh.intersect(ray, q.time, tMin, tMax, &h, ctx_)) {
-                const Color os = bvh.bodies()[h.body]->material()->Os;
+                const TrilinearBody& body = *bvh.bodies()[h.body];
+                const Vec3f at = ray.o + ray.d * h.t;
+                if (const Volume v = volumeAt(body, h, ray, q.time, false); v.shader) {
+                    Color o{0, 0, 0};
+                    through = through * runVolume(v, from, at, q.time, Color{1, 1, 1}, &o);
+                }
+                const Color os = body.material()->Os;
                 through = through * Color{1 - std::clamp(os.x, 0.0f, 1.0f), 1 - std::clamp(os.y, 0.0f, 1.0f),
                                           1 - std::clamp(os.z, 0.0f, 1.0f)};
+                from = at;
+                last = volumeAt(body, h, ray, q.time, true);
                 if (through.x <= 0 && through.y <= 0 && through.z <= 0) break;
                 tMin = std::nextafter(h.t, std::numeric_limits<float>::infinity());
+            }
+            if (last.shader && (through.x > 0 || through.y > 0 || through.z > 0)) {
+                Color o{0, 0, 0};
+                through = through * runVolume(last, from, at3(q.D, i), q.time, Color{1, 1, 1}, &o);
             }
         }
         for (int c = 0; c < 3; ++c) out[c][i] = through[c];

@@ -48,11 +48,30 @@ class ShaderRays final : public sl::RaySource {
     const SpacetimeBVH& hierarchyAt(double time) const;
     float biasAt(const sl::RayOptions& o, Vec3f p, double time) const;
     // The colour the ray brings back from its nearest hits within (tMin, tMax): shaded at the next
-    // depth, see-through ones composited over what lies behind them. False: nothing is hit.
-    bool shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color* c);
+    // depth, see-through ones composited over what lies behind them, and over `background` (what
+    // it meets past them: an environment map's colour, or black). False: nothing is hit.
+    bool shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color background, Color* c);
+    // `env`: the call's environment map for rays that hit nothing (null: black).
     Color coneMean(Vec3f p, Vec3f axis, float cone, bool cosine, uint32_t s, uint64_t h, double time, float bias,
-                   float maxdist);
+                   float maxdist, const sl::RayOptions* env = nullptr);
+    // The environment map o.environmentmap in current-space directions d[0, n) (into o's
+    // "environmentspace"), each filtered over a cone of about `width` radians: into out (left as
+    // it is where the map cannot be read; the texture source warns).
+    void environmentColors(const sl::RayOptions& o, const Vec3f* d, uint32_t n, float width, double time, Color* out);
     Color shadeHit(const TrilinearBody& body, const TraceHit& h, const Ray& ray, double time, Color* opacity);
+    // The GridShader hits and volumes run on (its rays go to the next depth), made when first needed.
+    GridShader& hitShader();
+    // The volume over the part of `ray` on the side of hit h's surface the ray meets it from:
+    // its Interior where the ray leaves the surface (meets it from inside), else its Exterior
+    // (`after`: the part past the hit, on the side the ray goes on into). Null: none.
+    struct Volume {
+        const Material* material = nullptr;
+        const sl::ShaderInstance* shader = nullptr;
+        const MotionTransform* space = nullptr;
+    };
+    Volume volumeAt(const TrilinearBody& body, const TraceHit& h, const Ray& ray, double time, bool after) const;
+    // The volume's shader over [from, to] on what the ray brings from `to` on (c, *o).
+    Color runVolume(const Volume& v, Vec3f from, Vec3f to, double time, Color c, Color* o);
     // c plus the parts of the lights that cast shadows a shadow ray from p reaches.
     Color addReachedLights(Color c, Vec3f p, double time, const SpacetimeBVH& bvh);
     const std::vector<CameraLight>& lightsAt(double time);
@@ -67,6 +86,15 @@ class ShaderRays final : public sl::RaySource {
     double lightsTime_ = 0;
     bool lightsValid_ = false;
     std::vector<Color> shadowed_;
+    struct Layer {  // a hit along a ray, with the volume of the part of the ray before it
+        Color ci, oi;
+        float t;
+        Volume volume;
+    };
+    std::vector<Layer> layers_;
+    std::vector<Vec3f> directions_;  // coneMean's, a point at a time
+    std::vector<Color> background_;  // and what each brings where it hits nothing
+    std::vector<float> envScratch_;  // environmentColors' query and result arrays
     const char* rayType_ = "specular";  // what rayinfo("type") says at the hits shaded now
     uint64_t rays_ = 0, bodyTests_ = 0, boxTests_ = 0;
 };

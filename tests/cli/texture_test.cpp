@@ -201,6 +201,28 @@ TEST(Textures, ARenderShowsTheMapWithTZeroAtTheTop) {
                     << "pixel " << x << "," << y << " channel " << c;
 }
 
+// indirectdiffuse()'s "environmentmap" read through OpenImageIO: under a lat-long map of one
+// colour every ray that hits nothing brings that colour, and a white floor shows it.
+TEST(Textures, IndirectDiffuseUnderAConstantEnvironmentMapIsItsColour) {
+    const TempDir dir("tex-envlight");
+    const float c[3] = {0.2f, 0.5f, 0.9f};
+    std::vector<float> px;
+    for (int i = 0; i < 16 * 8; ++i) px.insert(px.end(), {c[0], c[1], c[2]});
+    writeImage(dir.path() + "/sky.exr", 16, 8, 3, px);
+    makeMap(dir.path() + "/sky.exr", dir.path() + "/sky.env", true);
+    writeFile(dir.path(), "gi.sl",
+              "surface gi() { Ci = indirectdiffuse(P, normal(0, 0, 1), 64, \"environmentmap\", \"sky.env\"); }\n");
+    const std::string rib =
+        writeFile(dir.path(), "scene.rib", orthoHeader(8, 8) + "Surface \"gi\"\n" + square(0, 8, 8, 0, 5) + "WorldEnd\n");
+    RenderOptions options;
+    options.textureSource = openImageTextures;
+    const RenderResult r = renderFile(rib, options);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x)
+            for (int k = 0; k < 3; ++k) EXPECT_NEAR(r.channel(0, x, y, k), c[k], 1e-3f) << x << "," << y;
+}
+
 // The shipped paintedplastic multiplies its colour by the map (ambient light only: Ci = the map).
 TEST(Textures, ThePaintedPlasticShaderPaintsWithTheMap) {
     const TempDir dir("tex-painted");

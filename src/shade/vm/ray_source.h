@@ -23,6 +23,10 @@ struct RayOptions {
     float coneangle = -1;     // half-angle of the cone about D; < 0: the function's default (pi/2; trace 0)
     float bias = -1;          // rays start this far from P; < 0: the source's default
     std::string environmentmap;  // what a ray that hits nothing sees (indirectdiffuse); "": black
+    // "environmentspace": current-space directions times this (row vectors, row-major; its 3 x 3
+    // part) are the map's directions. Identity without the option: the map is in current space,
+    // as environment() takes what it is given.
+    float environmentFromCurrent[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     bool uniform = false;     // gather's "distribution" "uniform": directions uniform in solid angle (else cosine)
     const std::string* shader = nullptr;  // the calling shader's name, for warnings
 };
@@ -58,7 +62,8 @@ class RaySource {
     // within maxdist: 0 open, 1 covered.
     virtual void occlusion(const RayOptions& o, const RayQuery& q, float* out) = 0;
     // The light arriving at P over the cone about D, cosine-weighted and normalised (a uniform
-    // white surrounding gives 1): hits shaded, misses the environment map (or black).
+    // white surrounding gives 1): hits shaded, misses the environment map in their direction
+    // (or black without one).
     virtual void indirectdiffuse(const RayOptions& o, const RayQuery& q, float* const* out) = 0;
     // The colour seen from P along D (the nearest hit, shaded; black when nothing is hit or the
     // ray depth is spent), averaged over `samples` rays in the cone about D.

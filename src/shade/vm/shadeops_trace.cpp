@@ -32,6 +32,10 @@ RayOptions options(Exec& x, const int32_t* r, int begin, int count) {
             o.environmentmap = x.str(r[k + 1]);
             continue;
         }
+        if (name == "environmentspace") {  // an unknown space is counted and warned as transform()'s
+            if (x.reg(r[k + 1]).type.isString()) x.vm.currentToSpace(x.str(r[k + 1]), o.environmentFromCurrent);
+            continue;
+        }
         if (x.reg(r[k + 1]).type.isString()) continue;
         const float v = x.view(r[k + 1]).at(0, lane);
         if (name == "samples") o.samples = v;
