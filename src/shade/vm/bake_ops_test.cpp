@@ -34,7 +34,7 @@ const char* kRead =
     "  Ci = color(v, comp(c, 0), ok);\n}\n";
 
 TEST(VmBake3d, ValuesReadBackExactlyAtTheBakedPoints) {
-    test::TempDir dir("bake3d");
+    streyes::test::TempDir dir("bake3d");
     const std::string file = dir.path() + "/sq.ptc";
     TestGrid g = square();
     Log log;
@@ -89,7 +89,7 @@ TEST(VmBake3d, InterpolateBakesMicropolygonCentresWithTheirCornersMeanAndReach) 
 }
 
 TEST(VmBake3d, MissingCloudAndUnknownChannelWarnOnceAtTheCallAndLeaveTheVariables) {
-    test::TempDir dir("bake3d");
+    streyes::test::TempDir dir("bake3d");
     TestGrid g = square();
     Log log;
     PointClouds clouds(log);
@@ -128,7 +128,7 @@ TEST(VmBake, WritesSTAndValueOfEveryPointThatRuns) {
     TestGrid g = square();
     g.setVarying(Global::s, 1, [](int i) { return Vec3f{float(i % 4) / 4, 0, 0}; });
     g.setVarying(Global::t, 1, [](int i) { return Vec3f{float(i / 4) / 4, 0, 0}; });
-    test::TempDir dir("bake");
+    streyes::test::TempDir dir("bake");
     const std::string file = dir.path() + "/s.bake";
     Log log;
     PointClouds clouds(log);
