@@ -28,6 +28,9 @@ find_package(OpenEXR 3.1 CONFIG REQUIRED)
 find_package(nlohmann_json 3.11 CONFIG REQUIRED)
 # zlib: gzip-compressed RIB, read and written (src/scene/rib_gzip.cpp).
 find_package(ZLIB REQUIRED)
+# nanoflann (header only; Debian's 1.4.3 ships no CMake package): the k-d tree texture3d() finds a
+# point cloud's nearest points with (src/shade/point_cloud.cpp).
+find_path(NANOFLANN_INCLUDE_DIR nanoflann.hpp REQUIRED)
 # libdeflate (Debian's 1.14 ships no CMake package): the frames' ZIP compression (src/io/exr_file.cpp).
 streyes_import_library(libdeflate::libdeflate libdeflate.h deflate)
 find_package(OpenImageIO 2.4 CONFIG REQUIRED)

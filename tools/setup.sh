@@ -6,7 +6,7 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
 PACKAGES=(cmake ninja-build g++ pkg-config
-          libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev libdeflate-dev zlib1g-dev libosd-dev libtbb-dev libhwy-dev libjemalloc-dev libboost-wave-dev
+          libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev libdeflate-dev zlib1g-dev libosd-dev libtbb-dev libhwy-dev libjemalloc-dev libboost-wave-dev libnanoflann-dev
           nlohmann-json3-dev libcli11-dev
           libgtest-dev libbenchmark-dev python3 python3-openimageio python3-numpy
           gnuplot-nox clang libclang-rt-14-dev)

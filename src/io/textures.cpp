@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 
+#include "io/bake_file.h"
+#include "io/exr_file.h"
 #include "io/image_library.h"
 #include "shade/vm/texture_source.h"
 
@@ -41,7 +44,23 @@ void makeSceneTextures(const Scene& scene, std::vector<std::string>* done) {
         } catch (const RenderError& e) {
             throw InputError(d.loc, std::string(requestName(d)) + ": " + e.what());
         }
-        if (!library->makeTexture(d, &error))
+        MakeTextureDesc made = d;
+        std::string picture;  // a bake file's picture, made beside the output and removed after
+        if (!d.latLongEnvironment && d.cubeFaces.empty() && isBakeFile(d.input)) {
+            std::vector<float> rgb;
+            int size = 0;
+            if (!bakeToPicture(d.input, &size, &rgb, &error))
+                throw InputError(d.loc, "MakeTexture: bake file '" + d.input + "': " + error);
+            picture = d.output + ".bake.exr";
+            const std::vector<unsigned char> bytes = encodeExrChannels(size, size, {"R", "G", "B"}, rgb);
+            std::ofstream out(picture, std::ios::binary | std::ios::trunc);
+            out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+            if (!out) throw InputError(d.loc, "MakeTexture: cannot write '" + picture + "' (the bake file's picture)");
+            made.input = picture;
+        }
+        const bool ok = library->makeTexture(made, &error);
+        if (!picture.empty()) std::filesystem::remove(picture, ec);
+        if (!ok)
             throw InputError(d.loc, std::string(requestName(d)) + (d.cubeFaces.empty() ? " '" + d.input + "'" : "") +
                                         " -> '" + d.output + "': " + error);
         if (done) done->push_back(d.output);

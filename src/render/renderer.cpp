@@ -496,6 +496,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                       "the render peaked at " + formatBytes(stats.peakMemoryBytes) + " of memory, over the budget of " +
                           formatBytes(budget) + why);
     }
+    // What bake3d() and bake() gathered, once every frame is shaded (point_clouds.h).
+    if (shaders_) shaders_->pointClouds()->write();
     return stats;
 }
 

@@ -212,6 +212,7 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
         vm_->setLog(shaders_ ? &shaders_->log() : nullptr);
         vm_->setSpecularExponent(shaders_ ? shaders_->specularExponent() : 8.0f);
         vm_->setRaySource(rays_);
+        vm_->setPointClouds(shaders_ ? shaders_->pointClouds() : nullptr);
     }
     queries_ = shaders_ ? shaders_->queries(m.attributes) : SceneQueries();
     sgrid_.state = &queries_;

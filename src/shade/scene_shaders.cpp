@@ -194,6 +194,7 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
     cameraRigid_ = movesRigidly(scene.camera.worldToCamera);
     for (const auto& frame : scene.frameWorldToCamera) cameraRigid_ = cameraRigid_ && movesRigidly(frame.second);
     textures_ = std::make_unique<LazyTextureSource>(std::move(textures), std::move(texturePath), maps_.get(), log);
+    clouds_ = std::make_unique<PointClouds>(log);
     cache_ = std::make_unique<sl::ShaderCache>(std::vector<std::string>{standardShaderDir()});
     searchPathSet_ = !scene.settings.shaderSearchPath.empty();
     if (searchPathSet_) cache_->setSearchPath(scene.settings.shaderSearchPath);

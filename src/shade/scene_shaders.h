@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bodies/material.h"
+#include "shade/point_clouds.h"
 #include "shade/shadow_maps.h"
 #include "shade/scene_queries.h"
 #include "shade/sl/compiler.h"
@@ -80,6 +81,8 @@ class SceneShaders final : public MaterialBinder {
 
     // What texture() and environment() read, for every thread's interpreter (null: none).
     sl::TextureSource* textures() const { return textures_.get(); }
+    // What bake3d(), texture3d() and bake() write and read (written when the render ends).
+    PointClouds* pointClouds() const { return clouds_.get(); }
 
     // What option() and attribute() read on a grid whose primitive has `attributes` (may be null).
     SceneQueries queries(const Attributes* attributes) const { return SceneQueries(&options_, attributes); }
@@ -138,6 +141,7 @@ class SceneShaders final : public MaterialBinder {
     Log& log_;
     std::unique_ptr<ShadowMaps> maps_;
     std::unique_ptr<LazyTextureSource> textures_;
+    std::unique_ptr<PointClouds> clouds_;
     std::vector<bool> lightReadsMaps_;
     std::vector<bool> lightTracesRays_;
     std::vector<bool> lightStillInWorld_;  // Material::viewUse: a light moving in world reads the view

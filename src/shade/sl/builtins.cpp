@@ -198,6 +198,12 @@ class Table {
         // this once a sample (the sample count and number added); 1 where the ray hit.
         add("$gather", "f", "spvfff*", gather, Special::Gather).varying = true;
 
+        // Point clouds and bake files (PRMan's signatures; the listed arguments are the
+        // positional ones, (name, value) pairs follow).
+        add("bake3d", "f", "sspn*", bake3d, Special::PointCloud).varying = true;
+        add("texture3d", "f", "spn*", texture3d, Special::PointCloud).varying = true;
+        add("bake", "x", "sff*", bake, Special::Bake);
+
         // Texture maps: the float form first (the default without a cast).
         for (const char* r : {"f", "c"}) {
             add("texture", r, "s*", texture, Special::Texture).varying = true;

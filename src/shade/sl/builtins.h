@@ -33,6 +33,8 @@ enum class Special {
     Shadow,
     Ray,          // occlusion, indirectdiffuse, trace, transmission: positional, then options
     Gather,       // $gather (the parser's lowering of a gather loop): one ray a point; outputs
+    PointCloud,   // bake3d (file, channels, P, N, pairs), texture3d (file, P, N, output pairs)
+    Bake,         // bake (file, s, t, value)
 };
 
 struct Builtin {

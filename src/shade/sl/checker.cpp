@@ -41,10 +41,10 @@ const std::set<std::string> kTextureOptions = {"blur", "sblur", "tblur", "width"
 // PRMan's and Aqsis's others, accepted and ignored (docs/SCENE-FORMAT.md says which).
 const std::set<std::string> kRayFloatOptions = {"samples", "maxdist", "coneangle", "bias", "adaptive",
                                                 "minsamples", "maxvariation", "maxerror", "maxpixeldist",
-                                                "falloff", "falloffmode", "samplebase", "blur", "pointbased",
+                                                "falloff", "falloffmode", "samplebase", "blur", "pointbased", "microbufres",
                                                 "maxsolidangle", "clamp", "sortbleeding", "hitsides"};
 const std::set<std::string> kRayStringOptions = {"environmentmap", "environmentspace", "label", "subset",
-                                                 "distribution", "hitmode", "filename", "hitsides"};
+                                                 "distribution", "hitmode", "filename", "hitsides", "coordsystem"};
 
 class Checker {
   public:
@@ -483,6 +483,18 @@ class Checker {
             case Special::Shadow: return checkTexture(e, want);
             case Special::Ray: return checkRay(e);
             case Special::Gather: return checkGather(e);
+            case Special::PointCloud: return checkPointCloud(e);
+            case Special::Bake: {
+                if (e.args.size() != 4) fail(e.loc, "bake takes (string file, float s, float t, value)");
+                if (!e.args[0]->type.isString()) fail(e.args[0]->loc, "bake's first argument is a file name (a string)");
+                expectType(*e.args[1], BaseType::Float, "bake's s");
+                expectType(*e.args[2], BaseType::Float, "bake's t");
+                const SlType v = e.args[3]->type;
+                if (v.isArray() || !(v.isFloat() || v.isTriple()))
+                    fail(e.args[3]->loc, "bake writes a float or a color (or point, vector, normal), not a " + v.name());
+                e.builtin = b;
+                return BaseType::Void;
+            }
             case Special::Spline: return checkSpline(e);
             case Special::Printf:
             case Special::Format:
@@ -687,6 +699,48 @@ class Checker {
         }
         e.builtin = b;
         return b->ret;
+    }
+
+    // bake3d(file, displaychannels, P, N, pairs...) and texture3d(file, P, N, pairs...): each pair a
+    // name (a string) and a float, triple or matrix (texture3d: a variable, written), or one of
+    // the options (bake3d's "interpolate", "radius", "radiusscale"; both's "coordsystem").
+    SlType checkPointCloud(Expr& e) {
+        const Builtin* b = findBuiltins(e.text)[0];
+        const bool bake = b->name == "bake3d";
+        const size_t positional = bake ? 4 : 3;
+        if (e.args.size() < positional || (e.args.size() - positional) % 2 != 0)
+            fail(e.loc, bake ? "bake3d takes (string file, string displaychannels, point P, normal N, then \"name\", value pairs)"
+                             : "texture3d takes (string file, point P, normal N, then \"name\", variable pairs)");
+        for (size_t k = 0; k < positional - 2; ++k)
+            if (!e.args[k]->type.isString())
+                fail(e.args[k]->loc, e.text + "'s " + (k == 0 ? "first argument is a file name" : "second argument names the display channels") + " (a string)");
+        for (size_t k = positional - 2; k < positional; ++k) {
+            Expr& a = *e.args[k];
+            if (a.kind == ExprKind::Tuple && flexibleTuple(a, BaseType::Point)) continue;
+            if (a.type.isArray() || !(a.type.isPointLike() || a.type.isFloat()))
+                fail(a.loc, "cannot use a " + a.type.name() + " as " + e.text + "'s " + (k == positional - 2 ? "position" : "normal"));
+        }
+        for (size_t i = positional; i < e.args.size(); i += 2) {
+            Expr& name = *e.args[i];
+            Expr& v = *e.args[i + 1];
+            if (!name.type.isString()) fail(name.loc, e.text + ": a channel's name must be a string");
+            const bool literal = name.kind == ExprKind::String;
+            if (literal && name.text == "coordsystem") {
+                if (!v.type.isString()) fail(v.loc, e.text + "'s \"coordsystem\" needs a string (a space name)");
+                continue;
+            }
+            if (literal && (bake ? name.text == "interpolate" || name.text == "radius" || name.text == "radiusscale"
+                                 : name.text == "filterradius" || name.text == "filterscale" || name.text == "maxdepth")) {
+                if (!v.type.isFloat()) fail(v.loc, e.text + "'s \"" + name.text + "\" needs a float");
+                continue;
+            }
+            if (v.type.isArray() || !(v.type.isFloat() || v.type.isTriple() || v.type.isMatrix()))
+                fail(v.loc, e.text + "'s channel \"" + (literal ? name.text : std::string("...")) +
+                                "\" must be a float, color, point, vector, normal or matrix, not a " + v.type.name());
+            if (!bake) requireVariable(v, "texture3d's channel \"" + (literal ? name.text : std::string("...")) + "\"");
+        }
+        e.builtin = b;
+        return BaseType::Float;
     }
 
     // $gather(category, P, dir, angle, samples, sample, pairs...): the pairs are outputs

@@ -445,6 +445,60 @@ CodeGen::Val CodeGen::genSpecial(const Expr& e, const Builtin& b) {
         case Special::Environment:
         case Special::Shadow: return genTexture(e, b);
         case Special::Ray: return genRay(e, b);
+        case Special::PointCloud: {
+            // extra: file, [display channels], P, N, then (name, register) pairs; texture3d's
+            // channels are copies of their variables the op writes where it found the cloud,
+            // stored back after.
+            const bool bake = b.name == "bake3d";
+            const size_t positional = bake ? 4 : 3;
+            std::vector<Val> held;
+            auto keep = [&](Val v) {
+                held.push_back(v);
+                return v.reg;
+            };
+            std::vector<int32_t> regs;
+            for (size_t k = 0; k < positional; ++k) {
+                const BaseType want = k + 2 < positional ? BaseType::String : k + 1 < positional ? BaseType::Point : BaseType::Normal;
+                regs.push_back(keep(want == BaseType::String ? gen(*e.args[k]) : convert(gen(*e.args[k]), want)));
+            }
+            std::vector<std::pair<const Expr*, Val>> outputs;
+            for (size_t k = positional; k + 1 < e.args.size(); k += 2) {
+                regs.push_back(keep(gen(*e.args[k])));
+                const Expr& v = *e.args[k + 1];
+                const bool option = e.args[k]->kind == ExprKind::String &&
+                                    (e.args[k]->text == "coordsystem" || e.args[k]->text == "filterradius" ||
+                                     e.args[k]->text == "filterscale" || e.args[k]->text == "maxdepth");
+                if (bake || option || v.type.isString()) {
+                    regs.push_back(keep(gen(v)));
+                    continue;
+                }
+                Val cur = gen(v);
+                Val copy = temp(cur.type, Detail::Varying);
+                emit(ops::mov, {copy.reg, cur.reg}, true);
+                release(cur);
+                regs.push_back(copy.reg);
+                outputs.emplace_back(&v, copy);
+            }
+            setLoc(e.loc);
+            Val flag = temp(BaseType::Float, Detail::Varying);
+            emit(b.op, {flag.reg, extraSpan(regs), int(regs.size())}, true);
+            for (const Val& v : held) release(v);
+            for (auto& [target, copy] : outputs) assignTo(*target, copy, e.loc);
+            return flag;
+        }
+        case Special::Bake: {
+            std::vector<Val> held;
+            std::vector<int32_t> regs;
+            held.push_back(gen(*e.args[0]));
+            held.push_back(convert(gen(*e.args[1]), BaseType::Float));
+            held.push_back(convert(gen(*e.args[2]), BaseType::Float));
+            held.push_back(gen(*e.args[3]));
+            for (const Val& v : held) regs.push_back(v.reg);
+            setLoc(e.loc);
+            emit(b.op, {-1, extraSpan(regs), int(regs.size())}, true);
+            for (const Val& v : held) release(v);
+            return Val{};
+        }
         default: break;
     }
     throw InputError(e.loc, "internal error: unhandled function " + b.name);

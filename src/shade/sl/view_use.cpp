@@ -560,6 +560,13 @@ class Analysis {
         };
         switch (b.special) {
             case Special::Ray: return view(e.loc, "a ray (what it meets may move)");
+            case Special::PointCloud:
+                // texture3d's variables: what a file holds near the point (taken as reading the
+                // view, conservatively: a cloud may hold anything).
+                if (n == "texture3d")
+                    for (size_t i = 4; i < e.args.size(); i += 2)
+                        assign(*e.args[i], view(e.loc, "a point cloud lookup"), e.loc);
+                return of(Kind::Invariant);
             case Special::Lightsource:
                 if (a.size() > 1) assign(*e.args[1], view(e.loc, "a value passed from another shader"), e.loc);
                 return view(e.loc, "a value passed from another shader");

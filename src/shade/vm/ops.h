@@ -170,6 +170,14 @@ STREYES_SL_OP(transmission);
 // (name string reg, reg) pairs: outputs ("surface:Ci" ...) written, options read (shadeops_gather.cpp).
 STREYES_SL_OP(gather);
 
+// ---- Point clouds and bake files (shadeops_bake.cpp) ----
+// a0 = 1 where a point was written; extra: file, display channels, P, N, then (name, value) pairs.
+STREYES_SL_OP(bake3d);
+// a0 = 1 where the cloud was read; extra: file, P, N, then (name, output copy) pairs.
+STREYES_SL_OP(texture3d);
+// extra: file, s, t, value.
+STREYES_SL_OP(bake);
+
 // ---- The renderer's state (shadeops_info.cpp) ----
 // a0 = 1 when found and the variable a2 can hold it (then written), else 0 (a2 left alone).
 STREYES_SL_OP(option);         // a1 name

@@ -26,6 +26,7 @@
 #include "shade/vm/exec.h"
 #include "shade/vm/grid_kernels.h"
 #include "shade/vm/peers.h"
+#include "shade/vm/point_cloud_source.h"
 #include "shade/vm/program.h"
 #include "shade/vm/ray_source.h"
 #include "shade/vm/shader_instance.h"
@@ -75,6 +76,10 @@ class ShadingVM {
     // their no-hit values, counted in stats().raysMissing).
     void setRaySource(RaySource* r) { rays_ = r; }
     RaySource* raySource() const { return rays_; }
+    // Where bake3d(), texture3d() and bake() write and read (none: they write nothing and find
+    // nothing).
+    void setPointClouds(PointCloudSource* p) { clouds_ = p; }
+    PointCloudSource* pointClouds() const { return clouds_; }
     // Where run-time warnings go (an array index out of range, a loop past the budget), once a
     // place in a shader; without a log they are only counted in stats().
     void setLog(Log* log) { log_ = log; }
@@ -179,6 +184,7 @@ class ShadingVM {
     Frame* top_ = nullptr;  // the surface (or the only) program's frame of the last run
     TextureSource* textures_ = nullptr;
     RaySource* rays_ = nullptr;
+    PointCloudSource* clouds_ = nullptr;
     Log* log_ = nullptr;
     uint64_t loopBudget_ = kDefaultLoopBudget;
     float specularExponent_ = 8;
