@@ -59,7 +59,10 @@ void makeSceneTextures(const Scene& scene, std::vector<std::string>* done) {
             made.input = picture;
         }
         const bool ok = library->makeTexture(made, &error);
-        if (!picture.empty()) std::filesystem::remove(picture, ec);
+        if (!picture.empty()) {
+            std::error_code ec;
+            std::filesystem::remove(picture, ec);
+        }
         if (!ok)
             throw InputError(d.loc, std::string(requestName(d)) + (d.cubeFaces.empty() ? " '" + d.input + "'" : "") +
                                         " -> '" + d.output + "': " + error);
