@@ -437,9 +437,15 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
                     if (intersectBilinearPatch(b.cornersAt(time), ray, tMin, best, &h)) return true;
                 } else {
                     // At equal distance the primitive declared first wins, as in the rasterizer
-                    // (SampleHit::beatenBy): the result does not depend on traversal order.
+                    // (SampleHit::beatenBy), and between pieces of one primitive (micropolygons
+                    // meeting at a vertex a ray grazes) the first in the scene's body order: the
+                    // result does not depend on traversal order, which depends on the hierarchy
+                    // and so on the frames it was built over.
                     if (!intersectBilinearPatch(b.cornersAt(time), ray, tMin, tieLimit(best), &h)) continue;
-                    if (found && h.t == best && b.primitiveId() >= bodies_[hit->body]->primitiveId()) continue;
+                    if (found && h.t == best) {
+                        const uint64_t id = b.primitiveId(), bestId = bodies_[hit->body]->primitiveId();
+                        if (id > bestId || (id == bestId && bi > hit->body)) continue;
+                    }
                     if (facesAway(b, time, h, ray)) continue;  // Sides 1 (shadow rays still stop at it)
                     if (ctx.dissolve.block && dissolvedAway(b, ctx.dissolve)) continue;
                     best = h.t;

@@ -258,6 +258,36 @@ TEST(ShaderRays, AMovingOccludersOcclusionChangesPerFrameAndNotWithTheBlock) {
     }
 }
 
+// An opaque sphere moving from x = 4 (frame 0) to x = 28 (frame 3), turned so that its poles lie
+// off the view axis, coloured by the side its normal turns to the floor's rays (z > 0: away from
+// them, the far side). The floor's trace() ray from (16, 4) grazes its rim in frame 2 where four
+// micropolygons meet, two of the near side and two of the far: equally near, so which one is
+// shaded must not depend on the hierarchy the frame's rays go through (built over the block).
+TEST(ShaderRays, ARayGrazingAMovingSurfaceWhereFacetsMeetIsTheSameWhateverTheBlock) {
+    test::ShaderDir shaders;
+    shaders.add("see", "surface see() { Ci = trace(P, normalize(I)); Oi = 1; }\n");
+    shaders.add("side", "surface side() { Ci = zcomp(normalize(N)) > 0 ? color(1) : color(0.25); Oi = 1; }\n");
+    const std::string rib = test::orthographicView(32, 8, shaders.option() + "Hider \"hidden\" \"jitter\" [0]\nPixelSamples 1 1\n") +
+                            "Shutter 0 0\nFrameBegin 0\nWorldBegin\nAttributeBegin\nSurface \"side\"\n" +
+                            "MotionBegin [0 3]\nTranslate 4 4 150\nTranslate 28 4 150\nMotionEnd\nRotate 90 1 0 0\n" +
+                            "Sphere 4 -4 4 360\nAttributeEnd\nSurface \"see\"\n" + test::square(0, 32, 0, 8, kFloor) +
+                            "WorldEnd\nFrameEnd\n";
+    RenderOptions o;
+    o.hasFrames = true;
+    o.hasShot = true;
+    o.shotFirst = 0;
+    o.shotLast = 3;
+    for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Frames, Algorithm::Raytrace, Algorithm::RaytraceFrames}) {
+        SCOPED_TRACE(test::testName(a));
+        o.algorithm = a;
+        const test::ShotAndFrame r = test::renderShotAndFrame(rib, o, 0, 3, 2);
+        EXPECT_TRUE(r.samePixels(2)) << "frame 2 alone differs from frame 2 of the shot";
+        // The sphere is seen where it is in frame 2 (centre x = 20): its near side, 0.25.
+        EXPECT_EQ(r.shot.channel(2, 20, 4, 0), 0.25f);
+        EXPECT_EQ(r.shot.channel(2, 4, 4, 0), 0.0f);  // where it was in frame 0, nothing
+    }
+}
+
 TEST(ShaderRays, WrongArgumentsAreErrorsAtTheirPlace) {
     test::ShaderDir shaders;
     const std::string head = test::orthographicView(4, 4, shaders.option()) + "WorldBegin\n";
