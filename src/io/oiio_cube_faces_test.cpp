@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "cli/cli_run.h"
+#include "image_test_util.h"
 #include "shade/vm/texture_source.h"
 #include "streyes/textures.h"
 #include "test_util.h"
@@ -18,15 +19,6 @@ namespace streyes::test {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-void writeFloatImage(const std::string& path, int w, int h, int channels, const std::vector<float>& pixels) {
-    auto out = OIIO::ImageOutput::create(path);
-    ASSERT_TRUE(out) << path;
-    OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::FLOAT);
-    ASSERT_TRUE(out->open(path, spec)) << out->geterror();
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) << out->geterror();
-    ASSERT_TRUE(out->close());
-}
 
 const char* const kFaceNames[6] = {"px.exr", "nx.exr", "py.exr", "ny.exr", "pz.exr", "nz.exr"};
 

@@ -8,22 +8,13 @@
 #include <filesystem>
 
 #include "cli_run.h"
+#include "image_test_util.h"
 #include "streyes/textures.h"
 #include "shade/vm/texture_source.h"
 #include "test_util.h"
 
 namespace streyes::test {
 namespace {
-
-// Writes a float image (interleaved, `channels` a pixel).
-void writeImage(const std::string& path, int w, int h, int channels, const std::vector<float>& pixels) {
-    auto out = OIIO::ImageOutput::create(path);
-    ASSERT_TRUE(out) << path;
-    OIIO::ImageSpec spec(w, h, channels, OIIO::TypeDesc::FLOAT);
-    ASSERT_TRUE(out->open(path, spec)) << out->geterror();
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) << out->geterror();
-    ASSERT_TRUE(out->close());
-}
 
 void makeMap(const std::string& in, const std::string& out, bool latLong = false) {
     Scene scene;
@@ -67,7 +58,7 @@ TEST(Textures, TexelCentresGiveTheTexel) {
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c) px.push_back(texel(x, y, c));
-    writeImage(dir.path() + "/img.exr", w, h, 3, px);
+    writeFloatImage(dir.path() + "/img.exr", w, h, 3, px);
     makeMap(dir.path() + "/img.exr", dir.path() + "/img.tx");
     Log log;
     auto source = openImageTextures({dir.path()}, log);
@@ -105,7 +96,7 @@ TEST(Textures, AFootprintGivesTheMeanOfTheTexelsItCovers) {
     const int w = 4, h = 4;
     std::vector<float> px;  // channel 0: distinct values 0, 1, 4, 9, ...; channels 1, 2: 0
     for (int i = 0; i < w * h; ++i) px.insert(px.end(), {float(i * i % 17), 0.0f, 0.0f});
-    writeImage(dir.path() + "/img.exr", w, h, 3, px);
+    writeFloatImage(dir.path() + "/img.exr", w, h, 3, px);
     makeMap(dir.path() + "/img.exr", dir.path() + "/img.tx");
     Log log;
     auto source = openImageTextures({dir.path()}, log);
@@ -142,7 +133,7 @@ TEST(Textures, EnvironmentReadsALatLongMapByDirection) {
     std::vector<float> px;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) px.insert(px.end(), {float(x / 4 + 10 * (y / 4)), 0.0f, 0.0f});
-    writeImage(dir.path() + "/sky.exr", w, h, 3, px);
+    writeFloatImage(dir.path() + "/sky.exr", w, h, 3, px);
     makeMap(dir.path() + "/sky.exr", dir.path() + "/sky.env", true);
     Log log;
     auto source = openImageTextures({dir.path()}, log);
@@ -182,7 +173,7 @@ TEST(Textures, ARenderShowsTheMapWithTZeroAtTheTop) {
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c) px.push_back(colours[(y < h / 2 ? 0 : 2) + (x < w / 2 ? 0 : 1)][c]);
-    writeImage(dir.path() + "/quads.exr", w, h, 3, px);
+    writeFloatImage(dir.path() + "/quads.exr", w, h, 3, px);
     makeMap(dir.path() + "/quads.exr", dir.path() + "/quads.tx");
     writeFile(dir.path(), "tex.sl", "surface tex(string map = \"\") { Ci = color texture(map, s, t); }\n");
     // v = 0 (t = 0) along the frame's top edge (screen y = 8: raster row 0).
@@ -208,7 +199,7 @@ TEST(Textures, IndirectDiffuseUnderAConstantEnvironmentMapIsItsColour) {
     const float c[3] = {0.2f, 0.5f, 0.9f};
     std::vector<float> px;
     for (int i = 0; i < 16 * 8; ++i) px.insert(px.end(), {c[0], c[1], c[2]});
-    writeImage(dir.path() + "/sky.exr", 16, 8, 3, px);
+    writeFloatImage(dir.path() + "/sky.exr", 16, 8, 3, px);
     makeMap(dir.path() + "/sky.exr", dir.path() + "/sky.env", true);
     writeFile(dir.path(), "gi.sl",
               "surface gi() { Ci = indirectdiffuse(P, normal(0, 0, 1), 64, \"environmentmap\", \"sky.env\"); }\n");
@@ -229,7 +220,7 @@ TEST(Textures, ThePaintedPlasticShaderPaintsWithTheMap) {
     std::vector<float> px;
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) px.insert(px.end(), {x < 4 ? 0.2f : 0.9f, 0.5f, y < 4 ? 0.1f : 0.7f});
-    writeImage(dir.path() + "/paint.exr", 8, 8, 3, px);
+    writeFloatImage(dir.path() + "/paint.exr", 8, 8, 3, px);
     const std::string rib = writeFile(dir.path(), "scene.rib",
                                       orthoHeader(8, 8) + "LightSource \"ambientlight\" 1 \"intensity\" 1\n" +
                                           "Surface \"paintedplastic\" \"texturename\" \"paint.exr\" \"Ka\" 1 \"Kd\" 0 "
@@ -248,8 +239,8 @@ TEST(Textures, ThePaintedPlasticShaderPaintsWithTheMap) {
 
 TEST(Textures, TheSearchPathIsTakenInOrder) {
     const TempDir a("tex-path-a"), b("tex-path-b");
-    writeImage(a.path() + "/m.exr", 2, 2, 3, std::vector<float>(12, 0.25f));
-    writeImage(b.path() + "/m.exr", 2, 2, 3, std::vector<float>(12, 0.75f));
+    writeFloatImage(a.path() + "/m.exr", 2, 2, 3, std::vector<float>(12, 0.25f));
+    writeFloatImage(b.path() + "/m.exr", 2, 2, 3, std::vector<float>(12, 0.75f));
     Log log;
     EXPECT_NEAR(lookUp(*openImageTextures({a.path(), b.path()}, log), "m.exr", {0.5f}, {0.5f}, 0.1f, 0.1f)[0][0], 0.25f,
                 1e-6f);
@@ -265,7 +256,7 @@ TEST(Textures, ThreadsShareTheRendersTextures) {
     std::vector<float> px;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) px.insert(px.end(), {float(x) / w, float(y) / h, float((x * 7 + y * 3) % 11) / 11});
-    writeImage(dir.path() + "/ramp.exr", w, h, 3, px);
+    writeFloatImage(dir.path() + "/ramp.exr", w, h, 3, px);
     writeFile(dir.path(), "tex.sl", "surface tex() { Ci = color texture(\"ramp.exr\", s, t); }\n");
     const std::string rib = writeFile(dir.path(), "scene.rib",
                                       orthoHeader(64, 64) + "Surface \"tex\"\n" + square(0, 64, 64, 0, 5) + "WorldEnd\n");
@@ -299,7 +290,7 @@ TEST(Textures, AMissingMapWarnsOnceNamingItAndTheShaderAndGivesTheFill) {
 TEST(Textures, MakeTextureMakesATiledMipMappedMapBeforeTheRender) {
     const TempDir dir("tex-make");
     std::vector<float> px(16 * 16 * 3, 0.5f);
-    writeImage(dir.path() + "/in.exr", 16, 16, 3, px);
+    writeFloatImage(dir.path() + "/in.exr", 16, 16, 3, px);
     writeFile(dir.path(), "tex.sl", "surface tex() { Ci = color texture(\"made.tx\", s, t); }\n");
     const std::string rib = writeFile(dir.path(), "scene.rib",
                                       "MakeTexture \"in.exr\" \"made.tx\" \"periodic\" \"clamp\" \"box\" 1 1\n" +
@@ -326,7 +317,7 @@ TEST(Textures, MakeTextureMakesATiledMipMappedMapBeforeTheRender) {
 TEST(Textures, MakeTextureWritesTiledTiffWhateverTheExtension) {
     const TempDir dir("tex-ext");
     std::vector<float> px(16 * 16 * 3, 0.25f);
-    writeImage(dir.path() + "/in.exr", 16, 16, 3, px);
+    writeFloatImage(dir.path() + "/in.exr", 16, 16, 3, px);
     writeFile(dir.path(), "tex.sl", "surface tex() { Ci = color texture(\"made.tex\", s, t); }\n");
     const std::string rib = writeFile(dir.path(), "scene.rib",
                                       "MakeTexture \"in.exr\" \"made.tex\" \"periodic\" \"periodic\" \"box\" 1 1\n" +
@@ -369,7 +360,7 @@ namespace {
 // cannot be read (the variable left as it was).
 TEST(Textures, TextureInfoReadsTheMap) {
     const TempDir dir("tex-info");
-    writeImage(dir.path() + "/wide.exr", 16, 4, 3, std::vector<float>(16 * 4 * 3, 0.5f));
+    writeFloatImage(dir.path() + "/wide.exr", 16, 4, 3, std::vector<float>(16 * 4 * 3, 0.5f));
     makeMap(dir.path() + "/wide.exr", dir.path() + "/wide.tx");
     Log log;
     log.setQuiet(true);

@@ -35,6 +35,16 @@ std::string slab(const std::string& volume) {
 // micropolygons fall: left out.
 bool nearEdge(int px) { return px == 15 || px == 16; }
 
+// Every pixel away from the slab's edge: `behind` where the slab covers (x < 16), 1 beside it.
+void expectBehindTheSlab(const test::RenderResult& r, double behind) {
+    for (int py = 0; py < kH; ++py)
+        for (int px = 0; px < kW; ++px) {
+            if (nearEdge(px)) continue;
+            const double want = px < 16 ? behind : 1.0;
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.channel(0, px, py, c), want, 1e-4) << px << " " << py;
+        }
+}
+
 // trace() from a floor at depth 100 through the slab onto a white wall at 150: exp(-k L) of the
 // white where the slab is, 1 beside it.
 TEST(VolumeRays, TraceThroughAnAbsorbingSlabIsExpOfMinusDensityTimesThickness) {
@@ -48,12 +58,7 @@ TEST(VolumeRays, TraceThroughAnAbsorbingSlabIsExpOfMinusDensityTimesThickness) {
                                 "AttributeEnd\nSurface \"see\"\n" + test::square(0, kW, 0, kH, 100) + "WorldEnd\n";
         const test::RenderResult r = test::renderRib(rib);
         ASSERT_GT(r.stats.counters.shaderRays, 0u);
-        for (int py = 0; py < kH; ++py)
-            for (int px = 0; px < kW; ++px) {
-                if (nearEdge(px)) continue;
-                const double want = px < 16 ? std::exp(-k * 2) : 1.0;
-                for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.channel(0, px, py, c), want, 1e-4) << px << " " << py;
-            }
+        expectBehindTheSlab(r, std::exp(-k * 2));
     }
 }
 
@@ -67,12 +72,7 @@ TEST(VolumeRays, TransmissionThroughAnAbsorbingSlabIsExpOfMinusDensityTimesThick
                                 slab("Interior \"absorb\" \"k\" " + std::to_string(k)) + "Surface \"through\"\n" +
                                 test::square(0, kW, 0, kH, 100) + "WorldEnd\n";
         const test::RenderResult r = test::renderRib(rib);
-        for (int py = 0; py < kH; ++py)
-            for (int px = 0; px < kW; ++px) {
-                if (nearEdge(px)) continue;
-                const double want = px < 16 ? std::exp(-k * 2) : 1.0;
-                for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.channel(0, px, py, c), want, 1e-4) << px << " " << py;
-            }
+        expectBehindTheSlab(r, std::exp(-k * 2));
     }
 }
 
