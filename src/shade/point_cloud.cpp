@@ -56,9 +56,9 @@ class Reader {
 }  // namespace
 
 // nanoflann reads the points through this adaptor (positions are the first three floats).
-struct PointCloud::Tree {
+struct BakedPointCloud::Tree {
     struct Adaptor {
-        const PointCloud* cloud;
+        const BakedPointCloud* cloud;
         size_t kdtree_get_point_count() const { return cloud->size(); }
         float kdtree_get_pt(size_t i, size_t dim) const { return cloud->point(i)[dim]; }
         template <class Box>
@@ -69,24 +69,24 @@ struct PointCloud::Tree {
     using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Adaptor>, Adaptor, 3, size_t>;
     Adaptor adaptor;
     Index index;
-    explicit Tree(const PointCloud* c)
+    explicit Tree(const BakedPointCloud* c)
         : adaptor{c}, index(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
         index.buildIndex();
     }
 };
 
-PointCloud::PointCloud(std::vector<PointChannel> channels, std::vector<float> data)
+BakedPointCloud::BakedPointCloud(std::vector<PointChannel> channels, std::vector<float> data)
     : channels_(std::move(channels)), data_(std::move(data)) {
     stride_ = kHeaderFloats;
     for (const PointChannel& c : channels_) stride_ += size_t(c.comps);
 }
 
-PointCloud::PointCloud() = default;
-PointCloud::~PointCloud() = default;
-PointCloud::PointCloud(PointCloud&&) noexcept = default;
-PointCloud& PointCloud::operator=(PointCloud&&) noexcept = default;
+BakedPointCloud::BakedPointCloud() = default;
+BakedPointCloud::~BakedPointCloud() = default;
+BakedPointCloud::BakedPointCloud(BakedPointCloud&&) noexcept = default;
+BakedPointCloud& BakedPointCloud::operator=(BakedPointCloud&&) noexcept = default;
 
-bool PointCloud::channel(const std::string& name, int* offset, int* comps) const {
+bool BakedPointCloud::channel(const std::string& name, int* offset, int* comps) const {
     int at = kHeaderFloats;
     for (const PointChannel& c : channels_) {
         if (c.name == name) {
@@ -99,7 +99,7 @@ bool PointCloud::channel(const std::string& name, int* offset, int* comps) const
     return false;
 }
 
-bool PointCloud::write(const std::string& path, std::string* error) const {
+bool BakedPointCloud::write(const std::string& path, std::string* error) const {
     std::string out(kMagic, sizeof kMagic);
     put<uint32_t>(out, kVersion);
     put<uint32_t>(out, uint32_t(channels_.size()));
@@ -119,7 +119,7 @@ bool PointCloud::write(const std::string& path, std::string* error) const {
     return true;
 }
 
-bool PointCloud::read(const std::string& path, std::string* error) {
+bool BakedPointCloud::read(const std::string& path, std::string* error) {
     std::ifstream f(path, std::ios::binary);
     if (!f) {
         *error = "cannot open point cloud \"" + path + "\" (no such file, or not readable)";
@@ -152,7 +152,7 @@ bool PointCloud::read(const std::string& path, std::string* error) {
     }
     uint64_t points = 0;
     if (!r.get(&points)) return bad("truncated in its header");
-    PointCloud cloud(std::move(channels), {});
+    BakedPointCloud cloud(std::move(channels), {});
     const uint64_t floats = uint64_t(cloud.stride_);
     if (points > r.left() / (floats * sizeof(float)) || r.left() != points * floats * sizeof(float))
         return bad("holds " + std::to_string(r.left()) + " bytes of points where its header says " +
@@ -166,16 +166,16 @@ bool PointCloud::read(const std::string& path, std::string* error) {
     return true;
 }
 
-void PointCloud::prepare() {
+void BakedPointCloud::prepare() {
     if (!tree_ && size() > 0) tree_ = std::make_unique<Tree>(this);
 }
 
-int PointCloud::nearest(const float p[3], int k, size_t* index, float* dist2) const {
+int BakedPointCloud::nearest(const float p[3], int k, size_t* index, float* dist2) const {
     if (!tree_ || k <= 0) return 0;
     return int(tree_->index.knnSearch(p, size_t(k), index, dist2));
 }
 
-void filterPointCloud(const PointCloud& cloud, const float p[3], const float n[3], int offset, int comps, float* out) {
+void filterPointCloud(const BakedPointCloud& cloud, const float p[3], const float n[3], int offset, int comps, float* out) {
     constexpr int kNear = 4;
     size_t index[kNear];
     float dist2[kNear];

@@ -24,16 +24,16 @@ struct PointChannel {
     int comps = 1;
 };
 
-class PointCloud {
+class BakedPointCloud {
   public:
     static constexpr int kHeaderFloats = 7;  // P, N, radius
     static constexpr uint32_t kVersion = 1;
 
-    PointCloud();
-    PointCloud(std::vector<PointChannel> channels, std::vector<float> data);
-    ~PointCloud();
-    PointCloud(PointCloud&&) noexcept;
-    PointCloud& operator=(PointCloud&&) noexcept;
+    BakedPointCloud();
+    BakedPointCloud(std::vector<PointChannel> channels, std::vector<float> data);
+    ~BakedPointCloud();
+    BakedPointCloud(BakedPointCloud&&) noexcept;
+    BakedPointCloud& operator=(BakedPointCloud&&) noexcept;
 
     // Reads `path`; false with `error` saying what is wrong (missing, not a point cloud, another
     // version, truncated).
@@ -67,6 +67,6 @@ class PointCloud {
 // channel (offset, comps) into out. A point of the cloud at p itself gives its own values exactly;
 // elsewhere the four nearest points are blended as Aqsis does, each weighted by
 // max(0, n . N_i) exp(-1.3 d_i^2 / r_i^2) (normalised; all weights 0: 0).
-void filterPointCloud(const PointCloud& cloud, const float p[3], const float n[3], int offset, int comps, float* out);
+void filterPointCloud(const BakedPointCloud& cloud, const float p[3], const float n[3], int offset, int comps, float* out);
 
 }  // namespace streyes

@@ -22,23 +22,23 @@ std::string bytesOf(const std::string& path) {
 
 // A 3 x 3 lattice of points one unit apart in z = 0 facing +z, radius 0.5, channel "v" = x + 10 y
 // and "c" = (x, y, 1).
-PointCloud lattice() {
+BakedPointCloud lattice() {
     std::vector<float> data;
     for (int y = 0; y < 3; ++y)
         for (int x = 0; x < 3; ++x) {
             const float rec[] = {float(x), float(y), 0, 0, 0, 1, 0.5f, float(x) + 10 * float(y), float(x), float(y), 1};
             data.insert(data.end(), std::begin(rec), std::end(rec));
         }
-    return PointCloud({{"v", 1}, {"c", 3}}, data);
+    return BakedPointCloud({{"v", 1}, {"c", 3}}, data);
 }
 
-TEST(PointCloud, WritesAndReadsBackEveryFloat) {
+TEST(BakedPointCloud, WritesAndReadsBackEveryFloat) {
     test::TempDir dir("ptc");
     const std::string path = dir.path() + "/a.ptc";
-    const PointCloud a = lattice();
+    const BakedPointCloud a = lattice();
     std::string error;
     ASSERT_TRUE(a.write(path, &error)) << error;
-    PointCloud b;
+    BakedPointCloud b;
     ASSERT_TRUE(b.read(path, &error)) << error;
     ASSERT_EQ(b.size(), 9u);
     ASSERT_EQ(b.channels().size(), 2u);
@@ -53,10 +53,10 @@ TEST(PointCloud, WritesAndReadsBackEveryFloat) {
     EXPECT_FALSE(b.channel("nope", &offset, &comps));
 }
 
-TEST(PointCloud, RefusesMissingTruncatedForeignAndNewerFiles) {
+TEST(BakedPointCloud, RefusesMissingTruncatedForeignAndNewerFiles) {
     test::TempDir dir("ptc");
     std::string error;
-    PointCloud c;
+    BakedPointCloud c;
     EXPECT_FALSE(c.read(dir.path() + "/none.ptc", &error));
     EXPECT_NE(error.find("cannot open"), std::string::npos) << error;
 
@@ -67,7 +67,7 @@ TEST(PointCloud, RefusesMissingTruncatedForeignAndNewerFiles) {
         const std::string p = dir.path() + "/bad.ptc";
         std::ofstream(p, std::ios::binary) << b;
         error.clear();
-        PointCloud x;
+        BakedPointCloud x;
         const bool ok = x.read(p, &error);
         return ok ? std::string("read") : error;
     };
@@ -85,8 +85,8 @@ TEST(PointCloud, RefusesMissingTruncatedForeignAndNewerFiles) {
     EXPECT_EQ(tryBytes(bytes), "read");
 }
 
-TEST(PointCloud, LookupAtABakedPointGivesItsValueExactly) {
-    PointCloud c = lattice();
+TEST(BakedPointCloud, LookupAtABakedPointGivesItsValueExactly) {
+    BakedPointCloud c = lattice();
     c.prepare();
     int offset = 0, comps = 0;
     ASSERT_TRUE(c.channel("v", &offset, &comps));
@@ -100,8 +100,8 @@ TEST(PointCloud, LookupAtABakedPointGivesItsValueExactly) {
         }
 }
 
-TEST(PointCloud, BetweenPointsTheFourNearestBlendByTheGaussianOfDistanceOverRadius) {
-    PointCloud c = lattice();
+TEST(BakedPointCloud, BetweenPointsTheFourNearestBlendByTheGaussianOfDistanceOverRadius) {
+    BakedPointCloud c = lattice();
     c.prepare();
     int offset = 0, comps = 0;
     ASSERT_TRUE(c.channel("v", &offset, &comps));
@@ -174,7 +174,7 @@ TEST(PointClouds, ChannelsOfEveryCallAreMergedInNameOrderWithZerosWhereACallLack
     const float r2[] = {1, 0, 0, 0, 0, 1, 1, 2, 3, 4};
     clouds.bake3d("f", {&first, r1, 1});
     clouds.bake3d("f", {&second, r2, 1});
-    const PointCloud c = clouds.gathered("f");
+    const BakedPointCloud c = clouds.gathered("f");
     ASSERT_EQ(c.channels().size(), 2u);
     EXPECT_EQ(c.channels()[0].name, "a");
     EXPECT_EQ(c.channels()[1].name, "z");

@@ -41,7 +41,7 @@ void appendPositiveZeros(std::vector<float>& to, const float* from, size_t count
 
 void PointClouds::bake3d(const std::string& file, const sl::BakeRecords& r) {
     std::vector<std::pair<std::string, int>> signature;
-    size_t stride = PointCloud::kHeaderFloats;
+    size_t stride = BakedPointCloud::kHeaderFloats;
     for (const sl::CloudChannel& c : *r.channels) {
         signature.emplace_back(c.name, c.comps);
         stride += size_t(c.comps);
@@ -59,7 +59,7 @@ void PointClouds::bake(const std::string& file, int comps, const float* records,
 
 // Every call's records into one cloud: the channels of all, in name order (a name baked with two
 // float counts keeps the smaller, warned), 0 where a call did not bake a channel.
-PointCloud PointClouds::merge(const std::string& file, const Baked& b) const {
+BakedPointCloud PointClouds::merge(const std::string& file, const Baked& b) const {
     std::map<std::string, int> comps;
     for (const auto& entry : b.bySignature)
         for (const auto& c : entry.first) {
@@ -75,7 +75,7 @@ PointCloud PointClouds::merge(const std::string& file, const Baked& b) const {
         }
     std::vector<PointChannel> channels;
     std::map<std::string, int> offset;
-    int stride = PointCloud::kHeaderFloats;
+    int stride = BakedPointCloud::kHeaderFloats;
     for (const auto& [name, k] : comps) {
         channels.push_back({name, k});
         offset[name] = stride;
@@ -84,15 +84,15 @@ PointCloud PointClouds::merge(const std::string& file, const Baked& b) const {
     std::vector<float> data;
     for (const auto& entry : b.bySignature) {
         const auto& signature = entry.first;
-        size_t inStride = PointCloud::kHeaderFloats;
+        size_t inStride = BakedPointCloud::kHeaderFloats;
         for (const auto& c : signature) inStride += size_t(c.second);
         const std::vector<float>& in = entry.second;
         for (size_t at = 0; at + inStride <= in.size(); at += inStride) {
             const float* src = in.data() + at;
             const size_t base = data.size();
             data.resize(base + size_t(stride), 0.0f);
-            std::copy(src, src + PointCloud::kHeaderFloats, data.begin() + std::ptrdiff_t(base));
-            size_t from = PointCloud::kHeaderFloats;
+            std::copy(src, src + BakedPointCloud::kHeaderFloats, data.begin() + std::ptrdiff_t(base));
+            size_t from = BakedPointCloud::kHeaderFloats;
             for (const auto& c : signature) {
                 if (comps[c.first] == c.second)
                     std::copy(src + from, src + from + size_t(c.second), data.begin() + std::ptrdiff_t(base) + offset[c.first]);
@@ -100,13 +100,13 @@ PointCloud PointClouds::merge(const std::string& file, const Baked& b) const {
             }
         }
     }
-    return PointCloud(std::move(channels), sortedUnique(data, size_t(stride)));
+    return BakedPointCloud(std::move(channels), sortedUnique(data, size_t(stride)));
 }
 
-PointCloud PointClouds::gathered(const std::string& file) const {
+BakedPointCloud PointClouds::gathered(const std::string& file) const {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = baked_.find(file);
-    return it == baked_.end() ? PointCloud() : merge(file, it->second);
+    return it == baked_.end() ? BakedPointCloud() : merge(file, it->second);
 }
 
 void PointClouds::write() {
@@ -143,7 +143,7 @@ void writeBakeFile(const std::string& path, int comps, const std::vector<float>&
 
 bool PointClouds::texture3d(const std::string& file, const sl::CloudQuery& q, std::string* error,
                             std::vector<std::string>* missing) {
-    std::shared_ptr<const PointCloud> cloud;
+    std::shared_ptr<const BakedPointCloud> cloud;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         auto it = read_.find(file);
@@ -154,7 +154,7 @@ bool PointClouds::texture3d(const std::string& file, const sl::CloudQuery& q, st
                 *error = bad->second;
                 return false;
             }
-            auto c = std::make_shared<PointCloud>();
+            auto c = std::make_shared<BakedPointCloud>();
             std::string why;
             if (!c->read(file, &why)) {
                 readErrors_[file] = why;

@@ -39,7 +39,7 @@ class PointClouds final : public sl::PointCloudSource {
     // cannot be written.
     void write();
     // The cloud bake3d() gathered for `file` so far, as write() would write it (tests).
-    PointCloud gathered(const std::string& file) const;
+    BakedPointCloud gathered(const std::string& file) const;
 
   private:
     struct Baked {
@@ -48,13 +48,13 @@ class PointClouds final : public sl::PointCloudSource {
     struct Baked2D {
         std::map<int, std::vector<float>> byComps;
     };
-    PointCloud merge(const std::string& file, const Baked& b) const;
+    BakedPointCloud merge(const std::string& file, const Baked& b) const;
 
     Log& log_;
     mutable std::mutex mutex_;
     std::map<std::string, Baked> baked_;
     std::map<std::string, Baked2D> baked2D_;
-    std::map<std::string, std::shared_ptr<const PointCloud>> read_;
+    std::map<std::string, std::shared_ptr<const BakedPointCloud>> read_;
     std::map<std::string, std::string> readErrors_;
 };
 

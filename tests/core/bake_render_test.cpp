@@ -58,7 +58,7 @@ TEST(BakeRender, CloudIsTheSameBytesWhateverTheThreadsAndTheFrameBlock) {
 
     // The points cover both squares' visible and hidden parts: positions within them, x in world
     // space as baked, and the areas of the front square's micropolygons add up to about its 25.
-    PointCloud c;
+    BakedPointCloud c;
     std::string error;
     ASSERT_TRUE(c.read(out.path() + "/a.ptc", &error)) << error;
     int xo = 0, xc = 0, ao = 0, ac = 0;

@@ -46,7 +46,7 @@ TEST(VmBake3d, ValuesReadBackExactlyAtTheBakedPoints) {
         vm.setPointClouds(&clouds);
         vm.run(s, g.grid);
         for (int i = 0; i < 16; ++i) EXPECT_EQ(vm.result(Global::Ci).at(0, i), 1.0f);
-        const PointCloud c = clouds.gathered(file);
+        const BakedPointCloud c = clouds.gathered(file);
         ASSERT_EQ(c.size(), 16u);
         // Half the micropolygon's diagonal: sqrt(2) / 2.
         for (size_t i = 0; i < c.size(); ++i) EXPECT_FLOAT_EQ(c.point(i)[6], std::sqrt(2.0f) / 2);
@@ -77,7 +77,7 @@ TEST(VmBake3d, InterpolateBakesMicropolygonCentresWithTheirCornersMeanAndReach) 
     ShadingVM vm;
     vm.setPointClouds(&clouds);
     vm.run(s, g.grid);
-    const PointCloud c = clouds.gathered("m");
+    const BakedPointCloud c = clouds.gathered("m");
     ASSERT_EQ(c.size(), 9u);  // 3 x 3 micropolygons
     for (size_t i = 0; i < 9; ++i) {
         const float* p = c.point(i);
@@ -110,7 +110,7 @@ TEST(VmBake3d, MissingCloudAndUnknownChannelWarnOnceAtTheCallAndLeaveTheVariable
     // A cloud with "v" only: "c" is warned about and left; "v" is read.
     const std::string file = dir.path() + "/v.ptc";
     const float rec[] = {1, 1, 0, 0, 0, 1, 1, 42};
-    ASSERT_TRUE(PointCloud({{"v", 1}}, {std::begin(rec), std::end(rec)}).write(file, nullptr));
+    ASSERT_TRUE(BakedPointCloud({{"v", 1}}, {std::begin(rec), std::end(rec)}).write(file, nullptr));
     Log log2;
     PointClouds clouds2(log2);
     s.setStrings("f", {file});
