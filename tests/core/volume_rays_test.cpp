@@ -221,15 +221,21 @@ std::string movingVolume(const test::ShaderDir& d, const std::string& turn) {
            "AttributeEnd\nSurface \"see\"\n" + test::square(0, 32, 0, 8, 100) + "WorldEnd\nFrameEnd\n";
 }
 
-TEST(VolumeRays, AMovingVolumeIsSeenWhereItIsInEachFrameWhateverTheBlock) {
-    test::ShaderDir d;
-    addShaders(d);
-    const std::string rib = movingVolume(d, "");
+// The moving volume's shot: frames 0 to 3.
+RenderOptions shotOfFrames0To3() {
     RenderOptions o;
     o.hasFrames = true;
     o.hasShot = true;
     o.shotFirst = 0;
     o.shotLast = 3;
+    return o;
+}
+
+TEST(VolumeRays, AMovingVolumeIsSeenWhereItIsInEachFrameWhateverTheBlock) {
+    test::ShaderDir d;
+    addShaders(d);
+    const std::string rib = movingVolume(d, "");
+    RenderOptions o = shotOfFrames0To3();
     for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Frames}) {
         SCOPED_TRACE(test::testName(a));
         o.algorithm = a;
@@ -257,11 +263,7 @@ TEST(VolumeRays, AMovingTurnedVolumeIsTheSameWhateverTheBlock) {
     test::ShaderDir d;
     addShaders(d);
     const std::string rib = movingVolume(d, "Rotate 90 1 0 0\n");
-    RenderOptions o;
-    o.hasFrames = true;
-    o.hasShot = true;
-    o.shotFirst = 0;
-    o.shotLast = 3;
+    RenderOptions o = shotOfFrames0To3();
     for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Frames}) {
         SCOPED_TRACE(test::testName(a));
         o.algorithm = a;
