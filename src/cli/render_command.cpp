@@ -417,6 +417,10 @@ int renderCommand(const std::vector<std::string>& args) {
     std::map<int, std::string> oPatternOf;
     auto outPatternFor = [&](const PassJob& job) -> std::string {
         if (outPattern.empty()) return outPattern;
+        // Frames rendered for a texture's pictures (--frames left them out) write what the texture reads.
+        if (!job.frames.empty() &&
+            std::all_of(job.frames.begin(), job.frames.end(), [](const auto& f) { return f.second.madeFrom; }))
+            return std::string();
         auto known = oPatternOf.find(job.pass);
         if (known != oPatternOf.end()) return known->second;
         bool clash = false;
