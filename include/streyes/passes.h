@@ -21,7 +21,8 @@
 //
 // With FrameRequest given, only the frames numbered there are wanted (and with `done`, those it
 // does not call done), plus every frame and request a wanted frame reads from (a picture's depth
-// frames). Memory holds at most about two blocks of frames (merged per job), and the few frames
+// frames; the frames whose pictures a MakeTexture, MakeLatLongEnvironment or
+// MakeCubeFaceEnvironment turns into a texture a wanted frame names, said by a Log::info line). Memory holds at most about two blocks of frames (merged per job), and the few frames
 // kept until it is known whether a later wanted frame reads them.
 #pragma once
 
@@ -57,6 +58,9 @@ struct PassFrame {
     std::vector<std::pair<DisplayDesc, FileVersion>> maps;
     // Depth maps it reads: the name (as a shader parameter gives it) and the version it sees.
     std::map<std::string, FileVersion> reads;
+    // Not wanted itself (--frames): rendered because a texture a wanted frame reads is made from its
+    // pictures. Its displays write under their own names, never -o's.
+    bool madeFrom = false;
 };
 
 struct PassJob {

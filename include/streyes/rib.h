@@ -14,11 +14,26 @@ namespace streyes {
 
 // How large on screen what is read will be, for detail chosen while reading (a Blobby's cells, a
 // cell every 2 pixels). By default the scene's own camera and Format say.
+// A depth map as a Blobby's repelling plane (opcode 1003) reads it: each pixel the depth, in the
+// map camera's space, of what it saw (from the top-left pixel, row by row; FLT_MAX: nothing), the
+// camera (world -> its camera space) and its projection (world -> screen, [-1, 1] across the image).
+struct BlobbyDepthImage {
+    int width = 0, height = 0;
+    std::vector<float> z;
+    Matrix4 worldToCamera, worldToScreen;
+};
+// Reads the depth map a Blobby names: true with *out; false with *error empty when there is no such
+// file, with *error saying why when the file is there but is not a depth map.
+using BlobbyDepthReader = std::function<bool(const std::string& name, BlobbyDepthImage* out, std::string* error)>;
+
 struct ReadDetail {
     int xres = 0, yres = 0;    // the image size rendered (--res) in place of the Format's; 0: the Format's
     double formatScale = 1;    // the Format scaled, where no size is given (--preview renders at half)
     double pixelsPerUnit = 0;  // a procedural's output, which has no camera of its own: pixels on
                                // screen per world unit, from the procedural's detail (0: none)
+    // Where a Blobby's repelling planes find their depth maps (the image library lives above the
+    // reader); none: every map is taken as missing.
+    BlobbyDepthReader readDepthMap;
 };
 
 Scene parseRibFile(const std::string& path, Log& log);

@@ -417,6 +417,10 @@ int renderCommand(const std::vector<std::string>& args) {
     std::map<int, std::string> oPatternOf;
     auto outPatternFor = [&](const PassJob& job) -> std::string {
         if (outPattern.empty()) return outPattern;
+        // Frames rendered for a texture's pictures (--frames left them out) write what the texture reads.
+        if (!job.frames.empty() &&
+            std::all_of(job.frames.begin(), job.frames.end(), [](const auto& f) { return f.second.madeFrom; }))
+            return std::string();
         auto known = oPatternOf.find(job.pass);
         if (known != oPatternOf.end()) return known->second;
         bool clash = false;
@@ -582,6 +586,17 @@ int renderCommand(const std::vector<std::string>& args) {
     ReadDetail detail;
     detail.xres = opts.xres, detail.yres = opts.yres;
     if (req.preview && opts.xres <= 0) detail.formatScale = 1.0 / kPreviewDivisor;  // applyPreview's size
+    // A Blobby's repelling planes read their depth maps (named from the working folder) as they are read.
+    detail.readDepthMap = [](const std::string& name, BlobbyDepthImage* out, std::string* error) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(name, ec)) return false;
+        DepthMap map;
+        if (!readDepthMapFile(name, &map, error)) return false;
+        out->width = map.width, out->height = map.height;
+        out->z = std::move(map.z);
+        out->worldToCamera = map.worldToCamera, out->worldToScreen = map.worldToScreen;
+        return true;
+    };
     PassRequest passes;
     passes.frames = wanted;
     passes.blockFrames = opts.maxFrameBlock;

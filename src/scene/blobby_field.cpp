@@ -17,6 +17,61 @@ double blobFalloff(double r2) {
 
 namespace {
 
+// Aqsis's (libs/core/geometry/blobby.cpp): the lowest-degree polynomials with these ends.
+double repulsionBump(double r) {
+    if (r <= 0 || r >= 2) return 0;
+    return (((6 - r) * r - 12) * r + 8) * r * r * r;
+}
+double repulsionEase(double r) {
+    if (r <= 0) return 0;
+    if (r >= 1) return 1;
+    return r * r * (3 - 2 * r);
+}
+
+}  // namespace
+
+double blobbyRepulsion(double z, double A, double B, double C, double D) {
+    if (!(A > 0) || !(z < A)) return 0;  // A = 0: no repulsion; z infinite: no ground
+    z = std::max(z, 1e-6);
+    return (D * repulsionBump(z / C) - B / z) * (1 - repulsionEase(z / A));
+}
+
+double BlobbyGround::height(Vec3d p) const {
+    const double inf = std::numeric_limits<double>::infinity();
+    const double depth = objectToCamera.point(p).z;
+    if (!(depth > 0) || map.width < 1 || map.height < 1) return inf;
+    const Vec3d s = objectToScreen.point(p);
+    // Pixel coordinates, pixel centres at half-integers; y down from the top row.
+    const double x = (s.x + 1) * 0.5 * map.width, y = (1 - s.y) * 0.5 * map.height;
+    if (!(x >= 0 && x <= map.width && y >= 0 && y <= map.height)) return inf;
+    auto at = [&](int i, int j) {
+        i = std::clamp(i, 0, map.width - 1);
+        j = std::clamp(j, 0, map.height - 1);
+        return double(map.z[size_t(j) * size_t(map.width) + size_t(i)]);
+    };
+    const double fx = x - 0.5, fy = y - 0.5;
+    const int i0 = int(std::floor(fx)), j0 = int(std::floor(fy));
+    const double tx = fx - i0, ty = fy - j0;
+    const double z00 = at(i0, j0), z10 = at(i0 + 1, j0), z01 = at(i0, j0 + 1), z11 = at(i0 + 1, j0 + 1);
+    const double none = double(std::numeric_limits<float>::max());
+    double ground;
+    if (z00 < none && z10 < none && z01 < none && z11 < none) {
+        ground = (z00 * (1 - tx) + z10 * tx) * (1 - ty) + (z01 * (1 - tx) + z11 * tx) * ty;
+    } else {
+        ground = at(int(std::floor(x)), int(std::floor(y)));
+        if (!(ground < none)) return inf;
+    }
+    return ground - depth;
+}
+
+namespace {
+
+// A repelling plane's field at p.
+double planeValue(const BlobbyOp& op, Vec3d p) {
+    const double z = op.ground ? op.ground->height(p) : -p.z;
+    return blobbyRepulsion(z, op.repel[0], op.repel[1], op.repel[2], op.repel[3]);
+}
+
 // Squared distance from q to the segment a-b.
 double segmentDistance2(Vec3d q, Vec3d a, Vec3d b) {
     const Vec3d ab = b - a;
@@ -59,7 +114,7 @@ double BlobbyField::value(Vec3d p, std::vector<double>& v) const {
         case BlobbyOp::Kind::Constant: r = op.value; break;
         case BlobbyOp::Kind::Ellipsoid:
         case BlobbyOp::Kind::Segment: r = leafValue(i, p); break;
-        case BlobbyOp::Kind::Plane: r = 0; break;  // skipped with a warning when read
+        case BlobbyOp::Kind::Plane: r = planeValue(op, p); break;
         case BlobbyOp::Kind::Add:
             for (int k : o) r += v[size_t(k)];
             break;
@@ -150,7 +205,7 @@ double evaluateOp(const BlobbyField& field, size_t i, const std::vector<double>&
     case BlobbyOp::Kind::Constant: r = op.value; break;
     case BlobbyOp::Kind::Ellipsoid:
     case BlobbyOp::Kind::Segment: r = field.leafValue(i, p); break;
-    case BlobbyOp::Kind::Plane: r = 0; break;  // skipped with a warning when read
+    case BlobbyOp::Kind::Plane: r = planeValue(op, p); break;
     case BlobbyOp::Kind::Add:
         for (int k : o) r += v[size_t(k)];
         break;
@@ -192,7 +247,9 @@ BlobbyEvaluator::BlobbyEvaluator(const BlobbyField& field) : field_(field) {
         const BlobbyOp& op = field.ops[i];
         for (size_t at = 0; at < op.operands.size(); ++at) users_[size_t(op.operands[at])].push_back({i, at});
         // With no leaf present (every leaf's field 0), at a point where no support reaches.
-        base_[i] = op.kind == BlobbyOp::Kind::Ellipsoid || op.kind == BlobbyOp::Kind::Segment
+        if (op.kind == BlobbyOp::Kind::Plane) planes_.push_back(i);
+        base_[i] = op.kind == BlobbyOp::Kind::Ellipsoid || op.kind == BlobbyOp::Kind::Segment ||
+                           op.kind == BlobbyOp::Kind::Plane
                        ? 0
                        : evaluateOp(field, i, base_, {0, 0, 0});
         if (op.kind == BlobbyOp::Kind::Add)
@@ -249,7 +306,7 @@ double BlobbyEvaluator::value(Vec3d p) {
     const size_t n = field_.ops.size();
     if (n == 0) return 0;
     leavesNear(p);
-    if (near_.empty()) return base_.back();
+    if (near_.empty() && planes_.empty()) return base_.back();
     // Instructions changed from their base, in code order (operands come before their users): a
     // min-heap of indices.
     auto push = [&](size_t i) {
@@ -259,6 +316,7 @@ double BlobbyEvaluator::value(Vec3d p) {
         std::push_heap(heap_.begin(), heap_.end(), std::greater<size_t>());
     };
     for (size_t i : near_) push(i);
+    for (size_t i : planes_) push(i);
     while (!heap_.empty()) {
         std::pop_heap(heap_.begin(), heap_.end(), std::greater<size_t>());
         const size_t i = heap_.back();

@@ -19,8 +19,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "streyes/rib.h"
 #include "streyes/transform.h"
 
 namespace streyes {
@@ -29,6 +31,25 @@ constexpr double kBlobbyLevel = 0.5;
 
 // The field of one leaf blob at squared distance r2 in its own space.
 double blobFalloff(double r2);
+
+// A repelling plane's field (opcode 1003, as PRMan and Aqsis define it) at height z above its
+// ground: 0 from z = A up; below, (D bump(z / C) - B / z) (1 - ease(z / A)), z taken as at least
+// 1e-6 (at and under the ground the field is about -B 10^6: nothing is there). bump rises from 0 at
+// 0 to 1 at 1 and back to 0 at 2 (flat to the second derivative at both ends), ease from 0 to 1
+// over [0, 1] (flat at both): D pulls the surface toward height C, B pushes it off the ground.
+double blobbyRepulsion(double z, double A, double B, double C, double D);
+
+// A repelling plane's ground: the depth map it names, read from the blobby's object space.
+struct BlobbyGround {
+    BlobbyDepthImage map;
+    Matrix4 objectToCamera;  // object -> the map's camera
+    Matrix4 objectToScreen;  // object -> the map's screen (homogeneous)
+    // The height of p above the ground along the map camera's view: the map's depth where p
+    // projects (bilinear between the four nearest pixels when they all saw something, else the
+    // nearest) minus p's depth. Infinite (no repulsion) off the map, behind its camera or where
+    // it saw nothing.
+    double height(Vec3d p) const;
+};
 
 struct BlobbyOp {
     // The RI Spec opcodes: leaves 1000-1003, operators 0-7.
@@ -43,6 +64,8 @@ struct BlobbyOp {
     Matrix4 toBlob;             // its inverse
     Vec3d a, b;                 // Segment: its ends and radius, in blob space
     double radius = 1;
+    double repel[4] = {0, 0, 0, 0};       // Plane: A, B, C, D
+    std::shared_ptr<const BlobbyGround> ground;  // Plane: null: the plane z = 0 of object space (Aqsis)
     bool leaf() const {
         return kind == Kind::Constant || kind == Kind::Ellipsoid || kind == Kind::Segment || kind == Kind::Plane;
     }
@@ -53,7 +76,8 @@ struct BlobbyField {
 
     // The field at an object-space point; scratch holds one value per instruction.
     double value(Vec3d p, std::vector<double>& scratch) const;
-    // The field of leaf instruction i alone (0 for a constant or a repelling plane).
+    // The field of leaf instruction i alone (0 for a constant or a repelling plane: the weights
+    // of per-leaf variables are the blobs' alone).
     double leafValue(size_t i, Vec3d p) const;
     // Where the ellipsoids and segment blobs are not 0, in object space; false when there are none.
     bool bound(Vec3d* lo, Vec3d* hi) const;
@@ -83,6 +107,7 @@ class BlobbyEvaluator {
     Vec3d lo_, size_;                          // the bins' box
     int bins_ = 0;                             // along each axis
     std::vector<std::vector<size_t>> binLeaves_;
+    std::vector<size_t> planes_;               // repelling planes: their field reaches everywhere
     // Scratch: values (base_ but where a point changed them), the instructions changed, the
     // leaves near the point.
     std::vector<double> v_;

@@ -2,6 +2,8 @@
 // name's versions, and the order that makes every version before it is read.
 #include "streyes/passes.h"
 
+#include "scene/pass_scenes.h"
+
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -95,76 +97,6 @@ std::string passKey(const Scene& f) {
 
 namespace {
 
-// Every string a shader parameter of the scene gives (lights, surfaces, displacements,
-// atmospheres, the imager, in objects too), with where it is first given: the names a frame may
-// read maps and textures by.
-void stringsOf(const Scene& s, std::map<std::string, SourceLoc>& out) {
-    auto params = [&](const ParamList& l) {
-        for (const Param& p : l.params)
-            for (const std::string& v : p.strings)
-                if (!v.empty()) out.emplace(v, p.loc);
-    };
-    for (const LightDesc& l : s.lights) params(l.params);
-    params(s.settings.imager.params);
-    std::set<const Attributes*> seen;
-    auto attributes = [&](const AttributesPtr& a) {
-        if (!a || !seen.insert(a.get()).second) return;
-        params(a->surface.params);
-        params(a->displacement.params);
-        params(a->atmosphere.params);
-        params(a->interior.params);
-        params(a->exterior.params);
-    };
-    auto each = [&](const auto& v) {
-        for (const auto& p : v) attributes(p.attributes);
-    };
-    each(s.patches), each(s.patchMeshes), each(s.subdivisionMeshes), each(s.quadrics), each(s.polygonMeshes);
-    each(s.curves), each(s.points), each(s.nuPatches), each(s.procedurals);
-    for (const ProceduralDesc& p : s.procedurals)
-        if (p.object) stringsOf(*p.object, out);
-}
-
-MotionTransform inverse(const MotionTransform& m) {
-    std::vector<Matrix4> keys;
-    for (const Matrix4& k : m.keys()) {
-        Matrix4 inv;
-        if (!invert(k, &inv)) inv = Matrix4();
-        keys.push_back(inv);
-    }
-    return MotionTransform(m.times(), std::move(keys));
-}
-
-// Attribute "autoshadows" on a light (Aqsis): the depth frame rendered from it before the frame, as
-// Aqsis renders it: the light's space as the camera, the frame's projection over the screen
-// window [-1, 1]^2, res x res pixels, one sample a pixel unjittered under a 1-pixel box, depths
-// by "midpoint", written as a shadow map.
-Scene autoShadowFrame(const Scene& picture, const LightDesc& light) {
-    Scene s = picture;
-    s.camera.worldToCamera = inverse(light.lightToWorld);
-    s.camera.hasScreenWindow = true;
-    const double window[4] = {-1, 1, -1, 1};
-    std::copy(window, window + 4, s.camera.screenWindow);
-    s.camera.frameAspect = 1;
-    s.camera.xres = s.camera.yres = light.autoShadowRes;
-    s.camera.pixelAspect = 1;
-    s.camera.fstop = std::numeric_limits<double>::infinity();
-    RenderSettings& r = s.settings;
-    r.pixelSamplesX = r.pixelSamplesY = 1;
-    r.filter = FilterDesc{"box", 1, 1};
-    r.jitter = false;
-    r.depthFilter = "midpoint";
-    DisplayDesc map;
-    map.name = light.autoShadowMap, map.type = "shadow", map.mode = "z", map.loc = light.autoShadowLoc;
-    map.quantize = kDepthQuantize;
-    r.displays = {map};
-    r.imager = ShaderDesc{};
-    r.exposureGain = r.exposureGamma = 1;
-    r.makeTextures.clear();
-    r.makeShadows.clear();
-    s.frameLoc = light.autoShadowLoc;
-    return s;
-}
-
 class Planner {
   public:
     Planner(const PassRequest& req, Log& log, const std::function<void(PassJob&&)>& emit)
@@ -233,6 +165,7 @@ class Planner {
         std::map<std::string, SourceLoc> strings;
         Make make;
         FileVersion input = 0;
+        std::vector<FileVersion> textureInputs;  // a texture make's pictures kept in case
         std::vector<FileVersion> writes;
         bool needy = true;  // what it reads is made for it (not for a picture --resume found written)
         int order = 0;      // its place in the input
@@ -284,7 +217,8 @@ class Planner {
                 for (FileVersion v : it->second.writes) {
                     if (!versions_[v].superseded) dead = false;
                     for (const auto& [id, c] : candidates_)
-                        if (c.isMake && c.input == v) dead = false;
+                        if (c.isMake && (c.input == v || std::count(c.textureInputs.begin(), c.textureInputs.end(), v)))
+                            dead = false;
                 }
                 if (dead) {
                     for (FileVersion v : it->second.writes) versions_[v].candidate = -1;
@@ -340,7 +274,68 @@ class Planner {
             publish(output);
             return;
         }
-        placeMake(std::move(m), 0, 0, order_);
+        // A texture made from pictures a frame kept in case writes (a frame --frames leaves out):
+        // kept too, until a wanted frame reads the texture (then the frames are rendered for it).
+        std::vector<FileVersion> kept;
+        for (const std::string& name : textureInputs(m.texture)) {
+            auto it = latest_.find(pictureKey(name));
+            if (it != latest_.end() && versions_[it->second].candidate >= 0) kept.push_back(it->second);
+        }
+        const FileVersion made = newVersion(textureKey(m.texture.output));
+        if (!kept.empty()) {
+            Candidate c;
+            c.isMake = true;
+            c.make = std::move(m);
+            c.textureInputs = std::move(kept);
+            c.writes = {made};
+            c.order = order_;
+            versions_[made].candidate = order_;
+            candidates_.emplace(order_, std::move(c));
+        }
+        publish(made);
+        if (versions_[made].candidate < 0) placeMake(std::move(m), 0, 0, order_);
+    }
+
+    // Names under which the versions of pictures (a frame's picture displays) and textures (a
+    // make request's output) are kept: apart from the depth maps' (what frames read by name).
+    static std::string pictureKey(const std::string& name) { return std::string("\x01picture:") + name; }
+    static std::string textureKey(const std::string& name) { return std::string("\x01texture:") + name; }
+    static std::vector<std::string> textureInputs(const MakeTextureDesc& d) {
+        return d.cubeFaces.empty() ? std::vector<std::string>{d.input} : d.cubeFaces;
+    }
+    static std::string frameList(const std::set<int>& frames) {
+        std::string out;
+        for (int f : frames) out += (out.empty() ? "" : ", ") + std::to_string(f);
+        return out;
+    }
+
+    // The texture makes kept in case that a wanted frame reads (by a shader string naming the
+    // texture, or its file name), placed with the frames whose pictures they read; says which.
+    void promoteTextures(const Candidate& reader) {
+        std::set<int> frames;
+        std::vector<int> makes;
+        std::string where;
+        for (const auto& [id, c] : candidates_) {
+            if (!c.isMake || c.make.kind != PassJob::Kind::MakeTexture || versions_[c.writes.front()].superseded)
+                continue;
+            const std::string& out = c.make.texture.output;
+            if (!reader.strings.count(out) && !reader.strings.count(std::filesystem::path(out).filename().string()))
+                continue;
+            makes.push_back(id);
+            if (where.empty()) where = c.make.texture.loc.str();
+            for (FileVersion v : c.textureInputs) {
+                auto f = versions_[v].candidate >= 0 ? candidates_.find(versions_[v].candidate) : candidates_.end();
+                if (f == candidates_.end() || f->second.isMake) continue;
+                f->second.frame.madeFrom = true;
+                frames.insert(f->second.frame.number);
+            }
+        }
+        for (int id : makes) promote(id);
+        if (!frames.empty())
+            log_.info("frame" + std::string(frames.size() > 1 ? "s " : " ") + frameList(frames) +
+                      " rendered for frame " + std::to_string(reader.frame.number) +
+                      ": the texture it reads is made from " + (frames.size() > 1 ? "their pictures" : "its picture") +
+                      " (" + where + ")");
     }
 
     void placeMake(Make&& m, FileVersion input, FileVersion output, int order) {
@@ -399,12 +394,34 @@ class Planner {
                 c.writes.push_back(v);
                 if (!want) versions_[v].candidate = order_;
             }
+        // Its pictures, versioned apart: a texture made from one that --frames leaves out keeps
+        // this frame in case a wanted frame reads the texture.
+        for (const DisplayDesc& d : s.settings.displays)
+            if (!isDepthDisplay(d) && !d.name.empty()) {
+                const FileVersion v = newVersion(pictureKey(ordinary ? d.name : frameFileName(d.name, s.frameNumber)));
+                c.writes.push_back(v);
+                if (!want) versions_[v].candidate = order_;
+            }
         const std::vector<FileVersion> writes = c.writes;
         c.scene = std::move(s);
         if (want) {
             placeFrame(std::move(c));
         } else if (!c.writes.empty()) {
+            const bool picturesOnly = c.frame.maps.empty();
             candidates_.emplace(order_, std::move(c));
+            // Frames kept only because a texture might be made from their pictures: the latest few
+            // (a cube face environment's six and more), not a whole shot's.
+            if (picturesOnly) {
+                pictureCandidates_.push_back(order_);
+                if (pictureCandidates_.size() > kPictureCandidates) {
+                    auto old = candidates_.find(pictureCandidates_.front());
+                    pictureCandidates_.pop_front();
+                    if (old != candidates_.end() && !old->second.isMake) {
+                        for (FileVersion v : old->second.writes) versions_[v].candidate = -1;
+                        candidates_.erase(old);
+                    }
+                }
+            }
         }
         for (FileVersion v : writes) publish(v);
     }
@@ -417,7 +434,14 @@ class Planner {
         candidates_.erase(it);
         if (c.isMake) {
             if (c.input > 0 && versions_[c.input].candidate >= 0) promote(versions_[c.input].candidate);
-            placeMake(std::move(c.make), c.input, c.writes.front(), c.order);
+            for (FileVersion v : c.textureInputs)
+                if (versions_[v].candidate >= 0) promote(versions_[v].candidate);
+            if (c.make.kind == PassJob::Kind::MakeTexture) {
+                versions_[c.writes.front()].candidate = -1;
+                placeMake(std::move(c.make), 0, 0, c.order);
+            } else {
+                placeMake(std::move(c.make), c.input, c.writes.front(), c.order);
+            }
             return;
         }
         placeFrame(std::move(c));
@@ -440,10 +464,13 @@ class Planner {
 
     void placeFrame(Candidate&& c) {
         PassFrame& f = c.frame;
-        if (c.needy)
+        if (c.needy) {
             for (const auto& [name, v] : f.reads)
                 if (versions_[v].candidate >= 0) promote(versions_[v].candidate);
-        const std::string key = c.ordinary ? std::string() : passKey(c.scene);
+            promoteTextures(c);
+        }
+        // Frames rendered only for a texture's pictures are jobs of their own (never under -o).
+        const std::string key = c.ordinary ? std::string() : passKey(c.scene) + (f.madeFrom ? "|made-from" : "");
         // A full job, or two blocks' worth of frames held: render what is held first.
         auto open = openJob_.find(key);
         if (!c.ordinary && ((open != openJob_.end() && pending_.count(open->second) &&
@@ -492,6 +519,7 @@ class Planner {
             versions_[v].node = id;
             versions_[v].candidate = -1;
         }
+        for (FileVersion v : c.writes) versions_[v].candidate = -1;  // its pictures too: made now
         n.namedAt.insert(c.strings.begin(), c.strings.end());
         ++n.count;
         ++pendingFrames_;
@@ -580,6 +608,8 @@ class Planner {
     std::map<std::string, FileVersion> latest_;
     std::map<int, Candidate> candidates_;
     std::vector<FileVersion> releaseSoon_;
+    static constexpr size_t kPictureCandidates = 12;
+    std::deque<int> pictureCandidates_;  // candidates kept for their pictures alone, oldest first
 };
 
 // ---- Reading ----------------------------------------------------------------------------------

@@ -24,6 +24,7 @@ struct BlobbyKey {
     ColorPrimvar Cs;
     ParamList primvars;           // constant ones (otherParams)
     std::vector<Param> leafVars;  // a value per leaf: float, color, point, vector, normal, mpoint
+    std::vector<std::pair<size_t, std::string>> planeMaps;  // repelling planes: instruction, depth map name
 };
 
 // A variable with a value per leaf that the mesh can carry per vertex: one float, colour, point,
@@ -47,7 +48,8 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
     const std::vector<int> code = intArray(args, "code", 0);
     const RibValue& floatsValue = takeArray(args, "floats", false);
     const std::vector<double>& floats = floatsValue.nums;
-    takeArray(args, "strings", true);
+    const RibValue& stringsValue = takeArray(args, "strings", true);
+    const std::vector<std::string>& strings = stringsValue.strings;
     auto bad = [&](const std::string& what) { args.fail(*codeValue, what); };
     auto floatsAt = [&](size_t at, int index, size_t n, const char* what) {
         if (index < 0 || size_t(index) + n > floats.size())
@@ -97,12 +99,17 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
             break;
         }
         case 1003: {
+            // 1003 nameindex floatindex: the depth map's name, then A B C D.
             op.kind = K::Plane;
-            operand(at, "repelling plane");
-            floatsAt(at, operand(at, "repelling plane"), 4, "repelling plane");
-            reader.log().warnOnce("blobby:plane", args.loc(),
-                                  "Blobby: repelling planes (opcode 1003) need depth maps, which are not "
-                                  "supported: their field is taken as 0");
+            const int name = operand(at, "repelling plane");
+            if (name < 0 || size_t(name) >= strings.size())
+                bad("instruction " + std::to_string(at) + " (repelling plane) names string " + std::to_string(name) +
+                    " but there are " + plural(strings.size(), "string"));
+            const double* f = floatsAt(at, operand(at, "repelling plane"), 4, "repelling plane");
+            std::copy(f, f + 4, op.repel);
+            if (op.repel[0] > 0 && !(op.repel[2] != 0))
+                bad("instruction " + std::to_string(at) + " (repelling plane) has C = 0: the bump's width must not be 0");
+            key.planeMaps.push_back({at, strings[size_t(name)]});
             break;
         }
         case 9000: {
@@ -304,10 +311,43 @@ void blendLeafValues(const BlobbyKey& key, const std::vector<Vec3d>& P, PolygonM
     for (Param& q : out) d.primvars.params.push_back(std::move(q));
 }
 
+// Each repelling plane's ground: its depth map seen from object space (the object's transform at
+// its first key, as the triangles are). A map that is not there leaves the plane z = 0 of object
+// space, as Aqsis takes it, with a warning; one that is there but is no depth map is an error.
+void readGrounds(RibParser& reader, BlobbyKey& key, const Matrix4& objectToWorld, const SourceLoc& loc) {
+    for (const auto& [at, name] : key.planeMaps) {
+        if (!(key.field.ops[at].repel[0] > 0)) continue;  // A = 0: no repulsion, no map needed
+        const BlobbyDepthReader& read = reader.readDetail().readDepthMap;
+        auto ground = std::make_shared<BlobbyGround>();
+        std::string error;
+        if (read && read(name, &ground->map, &error)) {
+            if (ground->map.width < 1 || ground->map.height < 1 ||
+                ground->map.z.size() != size_t(ground->map.width) * size_t(ground->map.height))
+                throw InputError(loc, "Blobby: the repelling plane's depth map \"" + name + "\" has no pixels");
+            ground->objectToCamera = objectToWorld * ground->map.worldToCamera;
+            ground->objectToScreen = objectToWorld * ground->map.worldToScreen;
+            key.field.ops[at].ground = std::move(ground);
+        } else if (!error.empty()) {
+            throw InputError(loc, "Blobby: the repelling plane's depth map \"" + name + "\": " + error +
+                                      ": give a depth map (Display \"zfile\" | \"shadow\" \"z\", or MakeShadow)");
+        } else {
+            reader.log().warnOnce("blobby:planemap:" + name, loc,
+                                  "Blobby: the repelling plane's depth map \"" + name + "\" " +
+                                      (read ? "is not a file" : "is not read in a procedural's output") +
+                                      ": the ground is taken as the plane z = 0 of the blobby's space, as Aqsis does");
+        }
+    }
+}
+
 // The polygon mesh of the first key, with the per-leaf values blended by each leaf's field.
-void addBlobby(RibParser& reader, const BlobbyKey& key, const SourceLoc& loc) {
+void addBlobby(RibParser& reader, BlobbyKey& key, const SourceLoc& loc) {
     PolygonMeshDesc d;
     placePrimitive(reader, d, {0.0}, loc);
+    const RibState& st = reader.state();  // in an object's definition, as if instanced where it is defined
+    readGrounds(reader, key,
+                st.defining ? d.objectToWorld.keys().front() * st.defining->ctm.keys().front()
+                            : d.objectToWorld.keys().front(),
+                loc);
     const Param* given = reader.state().attributes->user.find("streyes:blobbyresolution");
     int cells = given ? int(reader.state().attributes->user.getFloat("streyes:blobbyresolution", 0))
                       : screenCells(reader, d, key.field);
