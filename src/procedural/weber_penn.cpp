@@ -351,6 +351,25 @@ bool weberPennInsideEnvelope(const WeberPennParams& p, double scaleTree, Vec3d q
     return std::hypot(q.x, q.z) / scaleTree < p.pruneWidth * weberPennEnvelope(p, ratio);
 }
 
+void weberPennBendLeaf(double leafBend, WeberPennLeaf* leaf) {
+    WeberPennLeaf& l = *leaf;
+    const Vec3d n = l.normal;
+    if (std::hypot(l.position.x, l.position.z) > 0 && std::hypot(n.x, n.z) > 0) {
+        // About -y: the turn that increases atan2(z, x), the azimuth in the ground plane.
+        const double theta = std::remainder(std::atan2(l.position.z, l.position.x) - std::atan2(n.z, n.x), 2 * M_PI);
+        const Vec3d down{0, -1, 0};
+        l.direction = normalize(turn(l.direction, down, leafBend * theta));
+        l.normal = normalize(turn(l.normal, down, leafBend * theta));
+    }
+    const Vec3d across = cross(l.direction, l.normal);
+    if (length(across) < 1e-12) return;
+    const Vec3d a = normalize(across);
+    const double phi = std::atan2(std::hypot(l.normal.x, l.normal.z), l.normal.y);
+    const double towardUp = dot(cross(a, l.normal), kUp) >= 0 ? 1 : -1;
+    l.direction = normalize(turn(l.direction, a, towardUp * leafBend * phi));
+    l.normal = normalize(turn(l.normal, a, towardUp * leafBend * phi));
+}
+
 double weberPennScaleTree(const WeberPennParams& p) {
     HashRng r(mix64(p.seed ^ 0x57e9be4ULL));  // the trunk's generator: its first draw
     return p.scale + pm(r) * p.scaleV;
@@ -439,6 +458,7 @@ void weberPennGrowBelow(const WeberPennParams& p, std::vector<WeberPennStem>& st
             l.position = at;
             l.direction = f.z;
             l.normal = normalize(cross(f.z, f.x));
+            if (p.leafBend != 0) weberPennBendLeaf(p.leafBend, &l);
             l.stem = int(index);
             leaves->push_back(l);
         }
@@ -539,6 +559,7 @@ WeberPennParams parseWeberPennParams(const std::string& datablock, const SourceL
         else if (key == "LeafShape") p.leafShape = int(one(0, 2));
         else if (key == "LeafScale") p.leafScale = one(0, 1e3);
         else if (key == "LeafScaleX") p.leafScaleX = one(0, 1e3);
+        else if (key == "LeafBend") p.leafBend = one(0, 1);
         else if (key == "AttractionUp") p.attractionUp = one(-100, 100);
         else if (key == "WindSpeed") p.windSpeed = one(0, 1e4);
         else if (key == "WindGust") p.windGust = one(0, 1e4);

@@ -51,6 +51,7 @@ struct WeberPennParams {
     double leaves = 0;             // Leaves: most leaves of a stem of the last level
     int leafShape = 0;             // LeafShape: 0 ellipse, 1 ovate (pointed), 2 lanceolate
     double leafScale = 0.2, leafScaleX = 1;  // LeafScale, LeafScaleX
+    double leafBend = 0;           // LeafBend: leaves turn to face out from the trunk and up, 0..1 of the way
     double attractionUp = 0;       // AttractionUp: stems of level >= 2 bend up (down when < 0)
     // Pruning: stems of level >= 1 leaving the envelope are shortened, blended by PruneRatio.
     double pruneRatio = 0;         // PruneRatio: 0 no pruning, 1 stems wholly inside
@@ -126,6 +127,12 @@ struct WeberPennTree {
     std::vector<WeberPennStem> stems;
     std::vector<WeberPennLeaf> leaves;
 };
+
+// The paper's leaf orientation, by LeafBend of the way: the leaf turns about the vertical so that its
+// face's horizontal direction nears its position's about the trunk (theta_bend = theta_position -
+// theta_normal, the short way round), then about its own x axis (across the blade) towards facing
+// up (phi_bend = the face's angle from the vertical). Both about the leaf's base.
+void weberPennBendLeaf(double leafBend, WeberPennLeaf* leaf);
 
 // The radius of a stem at fraction z (0..1) of its length: the paper's taper, and the trunk's
 // flare (with trunk = true).
