@@ -183,6 +183,7 @@ void growAxis(const WeberPennParams& p, WeberPennStem& s, Vec3d base, Frame f0, 
                 } else {
                     WeberPennStem::Path clone;
                     clone.before = s.paths[o.path].points[s.paths[o.path].points.size() - 2];
+                    clone.from = int(o.path);
                     s.paths.push_back(clone);
                     open.push_back({s.paths.size() - 1, i + 1, o.at, g});
                     path = &s.paths[o.path];
@@ -194,7 +195,8 @@ void growAxis(const WeberPennParams& p, WeberPennStem& s, Vec3d base, Frame f0, 
 
 // Where along the stem (path length `offset` from its base) a child sits: the point and frame of
 // the segment there, on path `pick` among those that reach it.
-void placeOn(const WeberPennStem& s, double offset, int pick, Vec3d* at, Frame* f) {
+void placeOn(const WeberPennStem& s, double offset, int pick, Vec3d* at, Frame* f, int* onPath = nullptr,
+             int* onSegment = nullptr) {
     const int res = int(s.paths[0].points.size()) - 1;
     const double segLength = s.length / std::max(1, res);
     const double u = segLength > 0 ? offset / segLength : 0;
@@ -208,6 +210,8 @@ void placeOn(const WeberPennStem& s, double offset, int pick, Vec3d* at, Frame* 
     *at = lerp(a, b, std::clamp(u - k, 0.0, 1.0));
     f->z = length(b - a) > 0 ? normalize(b - a) : kUp;
     f->x = normalize(path.xAxis[i] - f->z * dot(path.xAxis[i], f->z));
+    if (onPath) *onPath = int(&path - s.paths.data());
+    if (onSegment) *onSegment = k;
 }
 
 // The frame of a child of `parent` (frame pf) rotated `rotate` about the parent and tilted `down`
@@ -234,6 +238,44 @@ double nextRotate(const WeberPennLevel& c, double* acc, HashRng& r) {
     return *acc + pm(r) * c.rotateV;
 }
 
+// The paper's pruning of a stem of level >= 1: with the same random draws a shorter stem is the
+// same axis scaled about its base, so the largest length whose segment points all lie inside the
+// envelope is searched on scaled copies (32 steps down, then bisection), and the stem regrown at
+// full + (pruned - full) PruneRatio. A stem whose base lies outside prunes to nothing.
+void growPruned(const WeberPennParams& p, WeberPennStem& s, Vec3d base, const Frame& f, HashRng& r) {
+    const double scaleTree = weberPennScaleTree(p);
+    const HashRng start = r;
+    growAxis(p, s, base, f, r);
+    auto fits = [&](const WeberPennStem& stem, double scale) {
+        for (const auto& path : stem.paths)
+            for (Vec3d q : path.points)
+                if (!weberPennInsideEnvelope(p, scaleTree, base + (q - base) * scale)) return false;
+        return true;
+    };
+    if (fits(s, 1)) return;
+    const double full = s.length;
+    double lo = 0, hi = 1;
+    for (int k = 31; k >= 1; --k) {
+        if (fits(s, k / 32.0)) {
+            lo = k / 32.0;
+            break;
+        }
+        hi = k / 32.0;
+    }
+    if (lo > 0 || fits(s, 0))
+        for (int i = 0; i < 24; ++i) (fits(s, 0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+    double pruned = lo * full;
+    for (int attempt = 0;; ++attempt) {
+        s.length = full + (pruned - full) * p.pruneRatio;
+        s.paths.clear();
+        r = start;
+        growAxis(p, s, base, f, r);
+        // Regrown points differ from the scaled ones by rounding: at PruneRatio 1 shrink until they fit.
+        if (p.pruneRatio < 1 || pruned <= 0 || fits(s, 1)) break;
+        pruned = attempt < 8 ? pruned * (1 - 1e-9 * std::pow(10.0, attempt)) : 0;
+    }
+}
+
 // Child j of n, offset `offset` along its parent.
 WeberPennStem makeChild(const WeberPennParams& p, const WeberPennStem& parent, double offset, double rotate, int j) {
     WeberPennStem s;
@@ -252,6 +294,16 @@ WeberPennStem makeChild(const WeberPennParams& p, const WeberPennStem& parent, d
         s.length = s.lengthChildMax * (parent.length - 0.6 * offset);
     }
     s.length = std::max(0.0, s.length);
+    Vec3d at;
+    Frame pf;
+    placeOn(parent, offset, j, &at, &pf, &s.parentPath, &s.parentSegment);
+    const Frame f = childFrame(pf, rotate, downAngle(c, parent, offset, r));
+    s.direction = f.z;
+    const bool pruned = p.pruneRatio > 0 && s.length > 0;
+    if (pruned) growPruned(p, s, at, f, r);
+    else if (s.length > 0) growAxis(p, s, at, f, r);
+    if (s.length <= 0) s.paths.assign(1, WeberPennStem::Path{0, at, {at, at}, {f.x, f.x}, 0});
+    // The radius and the stems it carries follow the (pruned) length.
     s.radius = parent.length > 0 ? parent.radius * std::pow(s.length / parent.length, p.ratioPower) : 0;
     s.radius = std::min(s.radius, weberPennRadiusAt(p, parent, parent.length > 0 ? offset / parent.length : 0));
     if (s.level < p.levels - 1) {
@@ -263,13 +315,7 @@ WeberPennStem makeChild(const WeberPennParams& p, const WeberPennStem& parent, d
     } else {
         s.leaves = rounded(p.leaves * weberPennShapeRatio(4, parent.length > 0 ? offset / parent.length : 0));
     }
-    Vec3d at;
-    Frame pf;
-    placeOn(parent, offset, j, &at, &pf);
-    const Frame f = childFrame(pf, rotate, downAngle(c, parent, offset, r));
-    s.direction = f.z;
-    if (s.length > 0) growAxis(p, s, at, f, r);
-    else s.paths.assign(1, WeberPennStem::Path{0, at, {at, at}, {f.x, f.x}});
+    if (pruned && s.length <= 0) s.children = s.leaves = 0;  // pruned away: nothing grows on it
     return s;
 }
 
@@ -291,6 +337,42 @@ double weberPennShapeRatio(int shape, double ratio) {
     case 6: return 1.0 - 0.8 * ratio;                                   // inverse conical
     default: return ratio <= 0.7 ? 0.5 + 0.5 * ratio / 0.7 : 0.5 + 0.5 * (1 - ratio) / 0.3;  // 7: tend flame
     }
+}
+
+double weberPennEnvelope(const WeberPennParams& p, double ratio) {
+    if (!(ratio >= 0 && ratio <= 1)) return 0;
+    const double peak = p.pruneWidthPeak;
+    if (ratio < 1 - peak) return std::pow(ratio / (1 - peak), p.prunePowerHigh);
+    return peak > 0 ? std::pow((1 - ratio) / peak, p.prunePowerLow) : 1;
+}
+
+bool weberPennInsideEnvelope(const WeberPennParams& p, double scaleTree, Vec3d q) {
+    const double ratio = (scaleTree - q.y) / (scaleTree * (1 - p.baseSize));
+    return std::hypot(q.x, q.z) / scaleTree < p.pruneWidth * weberPennEnvelope(p, ratio);
+}
+
+void weberPennBendLeaf(double leafBend, WeberPennLeaf* leaf) {
+    WeberPennLeaf& l = *leaf;
+    const Vec3d n = l.normal;
+    if (std::hypot(l.position.x, l.position.z) > 0 && std::hypot(n.x, n.z) > 0) {
+        // About -y: the turn that increases atan2(z, x), the azimuth in the ground plane.
+        const double theta = std::remainder(std::atan2(l.position.z, l.position.x) - std::atan2(n.z, n.x), 2 * M_PI);
+        const Vec3d down{0, -1, 0};
+        l.direction = normalize(turn(l.direction, down, leafBend * theta));
+        l.normal = normalize(turn(l.normal, down, leafBend * theta));
+    }
+    const Vec3d across = cross(l.direction, l.normal);
+    if (length(across) < 1e-12) return;
+    const Vec3d a = normalize(across);
+    const double phi = std::atan2(std::hypot(l.normal.x, l.normal.z), l.normal.y);
+    const double towardUp = dot(cross(a, l.normal), kUp) >= 0 ? 1 : -1;
+    l.direction = normalize(turn(l.direction, a, towardUp * leafBend * phi));
+    l.normal = normalize(turn(l.normal, a, towardUp * leafBend * phi));
+}
+
+double weberPennScaleTree(const WeberPennParams& p) {
+    HashRng r(mix64(p.seed ^ 0x57e9be4ULL));  // the trunk's generator: its first draw
+    return p.scale + pm(r) * p.scaleV;
 }
 
 const WeberPennParams* weberPennPreset(const std::string& name) {
@@ -338,7 +420,7 @@ WeberPennStem weberPennTrunk(const WeberPennParams& p, double* scaleTree) {
     if (p.levels > 1) s.children = rounded(column(p, 1).branches);
     else s.leaves = rounded(p.leaves);
     if (s.length > 0) growAxis(p, s, {0, 0, 0}, {{1, 0, 0}, kUp}, r);
-    else s.paths.assign(1, WeberPennStem::Path{0, {}, {{}, {}}, {{1, 0, 0}, {1, 0, 0}}});
+    else s.paths.assign(1, WeberPennStem::Path{0, {}, {{}, {}}, {{1, 0, 0}, {1, 0, 0}}, 0});
     if (scaleTree) *scaleTree = scale;
     return s;
 }
@@ -369,13 +451,14 @@ void weberPennGrowBelow(const WeberPennParams& p, std::vector<WeberPennStem>& st
             const double offset = childOffset(s, j, s.leaves);
             Vec3d at;
             Frame pf;
-            placeOn(s, offset, j, &at, &pf);
+            WeberPennLeaf l;
+            placeOn(s, offset, j, &at, &pf, &l.path, &l.segment);
             const double rot = nextRotate(c, &acc, r);
             const Frame f = childFrame(pf, rot, c.downAngle + pm(r) * std::fabs(c.downAngleV));
-            WeberPennLeaf l;
             l.position = at;
             l.direction = f.z;
             l.normal = normalize(cross(f.z, f.x));
+            if (p.leafBend != 0) weberPennBendLeaf(p.leafBend, &l);
             l.stem = int(index);
             leaves->push_back(l);
         }
@@ -476,7 +559,17 @@ WeberPennParams parseWeberPennParams(const std::string& datablock, const SourceL
         else if (key == "LeafShape") p.leafShape = int(one(0, 2));
         else if (key == "LeafScale") p.leafScale = one(0, 1e3);
         else if (key == "LeafScaleX") p.leafScaleX = one(0, 1e3);
+        else if (key == "LeafBend") p.leafBend = one(0, 1);
         else if (key == "AttractionUp") p.attractionUp = one(-100, 100);
+        else if (key == "WindSpeed") p.windSpeed = one(0, 1e4);
+        else if (key == "WindGust") p.windGust = one(0, 1e4);
+        else if (key == "windtime") p.windTime = one(0, 1e9);
+        else if (key == "keystep") p.keyStep = one(1e-3, 1e9);
+        else if (key == "PruneRatio") p.pruneRatio = one(0, 1);
+        else if (key == "PruneWidth") p.pruneWidth = one(0, 1e3);
+        else if (key == "PruneWidthPeak") p.pruneWidthPeak = one(0, 1);
+        else if (key == "PrunePowerLow") p.prunePowerLow = one(0, 100);
+        else if (key == "PrunePowerHigh") p.prunePowerHigh = one(0, 100);
         else if (key == "barkcolor") p.barkColor = color();
         else if (key == "leafcolor") p.leafColor = color();
         else if (key == "detail") p.detail = one(1e-6, 1e9);

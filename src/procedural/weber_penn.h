@@ -51,7 +51,17 @@ struct WeberPennParams {
     double leaves = 0;             // Leaves: most leaves of a stem of the last level
     int leafShape = 0;             // LeafShape: 0 ellipse, 1 ovate (pointed), 2 lanceolate
     double leafScale = 0.2, leafScaleX = 1;  // LeafScale, LeafScaleX
+    double leafBend = 0;           // LeafBend: leaves turn to face out from the trunk and up, 0..1 of the way
     double attractionUp = 0;       // AttractionUp: stems of level >= 2 bend up (down when < 0)
+    // Pruning: stems of level >= 1 leaving the envelope are shortened, blended by PruneRatio.
+    double pruneRatio = 0;         // PruneRatio: 0 no pruning, 1 stems wholly inside
+    double pruneWidth = 0.5;       // PruneWidth: the envelope's largest radius / scale_tree
+    double pruneWidthPeak = 0.5;   // PruneWidthPeak: height of the widest point, share of the crown
+    double prunePowerLow = 0.5, prunePowerHigh = 0.5;  // PrunePowerLow/High: the profile's curvature below/above it
+    // Wind sway (weber_penn_wind.h): each stem's segments turn about its x and y axes.
+    double windSpeed = 0, windGust = 0;  // WindSpeed, WindGust
+    double windTime = 50;          // (streyes) the paper's time units a frame
+    double keyStep = 4;            // (streyes) frames between motion keys
     // Not the paper's: looks, and the level of detail's reach.
     Color barkColor{0.33f, 0.27f, 0.21f}, leafColor{0.25f, 0.45f, 0.12f};
     double detail = 1;             // scales the level-of-detail thresholds (2: more detail)
@@ -66,6 +76,17 @@ std::vector<std::string> weberPennPresetNames();
 // The paper's ShapeRatio(shape, ratio), shapes 0-7.
 double weberPennShapeRatio(int shape, double ratio);
 
+// The paper's pruning envelope, ShapeRatio 8: its relative width at ratio = (scale_tree - y) /
+// (scale_tree (1 - BaseSize)), 0 outside [0, 1]: (ratio / (1 - PruneWidthPeak))^PrunePowerHigh above
+// the peak, ((1 - ratio) / PruneWidthPeak)^PrunePowerLow below it (the paper prints 1 - PruneWidthPeak
+// in the second denominator too, which leaves the profile discontinuous at the peak but for 0.5).
+double weberPennEnvelope(const WeberPennParams& p, double ratio);
+// Whether the point q (tree space, y up, before ZScale) lies inside the envelope: its distance from
+// the trunk's axis over scale_tree below PruneWidth times the envelope at its height.
+bool weberPennInsideEnvelope(const WeberPennParams& p, double scaleTree, Vec3d q);
+// scale_tree = Scale ± ScaleV, as the trunk draws it.
+double weberPennScaleTree(const WeberPennParams& p);
+
 // A grown tree, y up, the trunk's foot at the origin.
 struct WeberPennStem {
     int level = 0;
@@ -77,6 +98,7 @@ struct WeberPennStem {
     double lengthChildMax = 0;   // nLength ± nLengthV drawn for it (its length's factor)
     double radius = 0;           // radius_stem (at its base, before flare)
     double baseLength = 0;       // the trunk's length_base (BaseSize * scale_tree); 0 for others
+    int parentPath = 0, parentSegment = 0;  // where on its parent it grows (the segment moves it in the wind)
     int children = 0;            // child stems it carries (the paper's count); leaves on the last level
     int leaves = 0;
     // The axis: segments of length length / nCurveRes; a segment's start is a point of a path.
@@ -87,6 +109,7 @@ struct WeberPennStem {
         Vec3d before;              // the point before its first (a clone: its parent path's), for the tangent
         std::vector<Vec3d> points;
         std::vector<Vec3d> xAxis;  // the stem's frame at each point (x across, for rotations)
+        int from = 0;              // a clone: the path it split from
     };
     std::vector<Path> paths;
     Vec3d direction{0, 1, 0};    // at its base
@@ -95,6 +118,7 @@ struct WeberPennStem {
 struct WeberPennLeaf {
     Vec3d position, direction, normal;  // base of the leaf, along its blade, its face
     int stem = 0;
+    int path = 0, segment = 0;  // where on its stem it grows
 };
 
 struct WeberPennTree {
@@ -103,6 +127,12 @@ struct WeberPennTree {
     std::vector<WeberPennStem> stems;
     std::vector<WeberPennLeaf> leaves;
 };
+
+// The paper's leaf orientation, by LeafBend of the way: the leaf turns about the vertical so that its
+// face's horizontal direction nears its position's about the trunk (theta_bend = theta_position -
+// theta_normal, the short way round), then about its own x axis (across the blade) towards facing
+// up (phi_bend = the face's angle from the vertical). Both about the leaf's base.
+void weberPennBendLeaf(double leafBend, WeberPennLeaf* leaf);
 
 // The radius of a stem at fraction z (0..1) of its length: the paper's taper, and the trunk's
 // flare (with trunk = true).

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "procedural/weber_penn.h"
+#include "procedural/weber_penn_wind.h"
 #include "util/sampling.h"
 
 namespace streyes {
@@ -38,27 +39,37 @@ PatchMeshDesc meshOf(const ExpandContext& ctx, Color cs) {
     return m;
 }
 
+// The key times of a windy expansion and, for each, the poses of the stems it makes (empty: still).
+struct Motion {
+    std::vector<double> times{0.0};
+    std::vector<std::vector<WeberPennPose>> poses;  // [key][stem]
+    bool moving() const { return !poses.empty(); }
+};
+
 // One patch mesh per path of the stem (the stem and each clone). `sides` control points around;
-// `extraRings` adds rings inside the first segment (the trunk's flare).
+// the trunk's flare adds rings inside its first segment. Moving, each control ring is keyed by the
+// motion of the segment it lies on (a joint's: the segment leaving it).
 void emitStem(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennParams& p, const WeberPennStem& s,
-              int sides, double zs) {
+              int sides, double zs, const Motion& motion = {}, size_t stemIndex = 0) {
     if (s.length <= 0 || s.radius <= 0) return;
     const int res = int(s.paths[0].points.size()) - 1;
     // The B-spline ring passes inside its control polygon: at a control point's angle, by
     // (4 + 2 cos(2 pi / sides)) / 6. Scale it back so the radius is the paper's.
     const double ringScale = 6 / (4 + 2 * std::cos(2 * M_PI / sides));
-    for (const WeberPennStem::Path& path : s.paths) {
+    for (size_t pathIndex = 0; pathIndex < s.paths.size(); ++pathIndex) {
+        const WeberPennStem::Path& path = s.paths[pathIndex];
         struct Ring {
             Vec3d at, x;
             double z;
+            int segment;
         };
         std::vector<Ring> rings;
         for (size_t i = 0; i < path.points.size(); ++i) {
             const double z = double(path.firstSegment + int(i)) / res;
             if (s.level == 0 && p.flare > 0 && i == 1 && path.firstSegment == 0)
                 for (double f : {0.03, 0.08, 0.16, 0.3, 0.55})  // the flare lies in the trunk's first eighth
-                    rings.push_back({lerp(path.points[0], path.points[1], f), path.xAxis[0], f / res});
-            rings.push_back({path.points[i], path.xAxis[i], z});
+                    rings.push_back({lerp(path.points[0], path.points[1], f), path.xAxis[0], f / res, 0});
+            rings.push_back({path.points[i], path.xAxis[i], z, path.firstSegment + int(i)});
         }
         if (rings.size() < 2) continue;
         const size_t n = rings.size();
@@ -70,8 +81,10 @@ void emitStem(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennPa
         PatchMeshDesc m = meshOf(ctx, p.barkColor);
         m.nu = sides;
         m.nv = int(n) + 2;
-        std::vector<Vec3d> P;
-        P.reserve(size_t(m.nu * m.nv));
+        // Each control point before ZScale, with the path and segment whose motion moves it.
+        std::vector<Vec3d> rest;
+        std::vector<std::pair<int, int>> on;
+        rest.reserve(size_t(m.nu * m.nv));
         auto ring = [&](long i) {
             const size_t k = size_t(std::clamp<long>(i, 0, long(n) - 1));
             Vec3d tangent = pointOf(long(k) + 1) - pointOf(long(k) - 1);
@@ -85,22 +98,34 @@ void emitStem(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennPa
             for (int j = 0; j < sides; ++j) {
                 const double a = 2 * M_PI * j / sides;
                 const double lobe = s.level == 0 && p.lobes > 0 ? 1 + p.lobeDepth * std::sin(p.lobes * a) : 1;
-                P.push_back(squash(rings[k].at + (x * std::cos(a) + y * std::sin(a)) * (r * lobe), zs));
+                rest.push_back(rings[k].at + (x * std::cos(a) + y * std::sin(a)) * (r * lobe));
+                on.emplace_back(int(pathIndex), rings[k].segment);
             }
         };
         // The first control ring: before the first (for a clone, on its parent's path, so that the
         // clone leaves the split along the curve) or the first again.
-        if (path.firstSegment == 0) {
-            ring(0);
-        } else {
-            const size_t first = P.size();
-            ring(0);
-            const Vec3d shift = squash(path.before - rings[0].at, zs);
-            for (size_t i = first; i < P.size(); ++i) P[i] = P[i] + shift;
-        }
+        ring(0);
+        const Vec3d shift = path.before - rings[0].at;
+        if (path.firstSegment > 0)
+            for (auto& o : on) o = {path.from, path.firstSegment - 1};
         for (size_t k = 0; k < n; ++k) ring(long(k));
         ring(long(n) - 1);
-        m.P = {std::move(P)};
+        const size_t shifted = path.firstSegment > 0 ? size_t(sides) : 0;
+        if (!motion.moving()) {
+            std::vector<Vec3d> P(rest.size());
+            for (size_t i = 0; i < rest.size(); ++i) P[i] = squash(rest[i], zs);
+            for (size_t i = 0; i < shifted; ++i) P[i] = P[i] + squash(shift, zs);
+            m.P = {std::move(P)};
+        } else {
+            m.times = motion.times;
+            for (const auto& poses : motion.poses) {
+                const WeberPennPose& pose = poses[stemIndex];
+                std::vector<Vec3d> P(rest.size());
+                for (size_t i = 0; i < rest.size(); ++i)
+                    P[i] = squash(pose.of(on[i].first, on[i].second)(i < shifted ? rest[i] + shift : rest[i]), zs);
+                m.P.push_back(std::move(P));
+            }
+        }
         out.scene.patchMeshes.push_back(std::move(m));
     }
 }
@@ -123,7 +148,8 @@ const std::vector<std::pair<double, double>>& outline(int shape) {
 
 // All the leaves of an expansion as one PointsPolygons, a colour each (the leaf colour varied).
 void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennParams& p,
-                const std::vector<WeberPennLeaf>& leaves, double quality, uint64_t key, double zs) {
+                const std::vector<WeberPennLeaf>& leaves, double quality, uint64_t key, double zs,
+                const Motion& motion = {}) {
     if (leaves.empty() || p.leafScale <= 0) return;
     const auto& shape = outline(p.leafShape);
     // The paper's reduction for distant trees: fewer leaves, larger, the same area.
@@ -137,6 +163,7 @@ void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPenn
     m.loc = ctx.loc;
     m.Cs.cls = ParamClass::Uniform;
     std::vector<Vec3d> P;
+    std::vector<size_t> leafOf;  // moving: the leaf each point belongs to
     HashRng r(hashCombine(key, 0x1ea7e5));
     const size_t every = quality >= 1 ? 1 : size_t(std::lround(1 / quality));
     for (size_t i = 0; i < leaves.size(); i += every) {
@@ -146,12 +173,27 @@ void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPenn
         std::vector<int> loop;
         for (const auto& [u, w] : shape) {
             loop.push_back(int(P.size()));
-            P.push_back(squash(l.position + l.direction * (u * len) + across * (w * half), zs));
+            const Vec3d q = l.position + l.direction * (u * len) + across * (w * half);
+            P.push_back(motion.moving() ? q : squash(q, zs));
+            if (motion.moving()) leafOf.push_back(i);
         }
         m.polygons.push_back({std::move(loop)});
         m.Cs.values.push_back(p.leafColor * (0.8f + 0.4f * r.nextFloat()));
     }
-    m.P = {std::move(P)};
+    if (!motion.moving()) {
+        m.P = {std::move(P)};
+    } else {
+        // Each leaf moves with the segment of its stem it grows on.
+        m.times = motion.times;
+        for (const auto& poses : motion.poses) {
+            std::vector<Vec3d> K(P.size());
+            for (size_t i = 0; i < P.size(); ++i) {
+                const WeberPennLeaf& l = leaves[leafOf[i]];
+                K[i] = squash(poses[size_t(l.stem)].of(l.path, l.segment)(P[i]), zs);
+            }
+            m.P.push_back(std::move(K));
+        }
+    }
     out.scene.polygonMeshes.push_back(std::move(m));
 }
 
@@ -161,7 +203,7 @@ int sidesOf(int level) { return level == 0 ? 8 : level == 1 ? 6 : 4; }
 // can reach: a child is at most nLength + |nLengthV| of its parent's length and lies within its
 // length of its base; leaves add their largest size (quality 0.05), radii and a tenth of the stem's
 // length for the spline through the axis points.
-Bounds3d subtreeBound(const WeberPennParams& p, const WeberPennStem& s, double zs) {
+double subtreeReach(const WeberPennParams& p, const WeberPennStem& s) {
     double reach = 0, l = s.length;
     for (int level = s.level + 1; level < p.levels; ++level) {
         const WeberPennLevel& c = p.level[size_t(std::min(level, 3))];
@@ -169,7 +211,11 @@ Bounds3d subtreeBound(const WeberPennParams& p, const WeberPennStem& s, double z
         reach += l;
     }
     const double flare = s.level == 0 ? (1 + p.flare) * (1 + p.lobeDepth) : 1;
-    reach += p.leafScale * std::max(1.0, p.leafScaleX) * std::sqrt(20.0) + 2 * s.radius * flare + 0.1 * s.length;
+    return reach + p.leafScale * std::max(1.0, p.leafScaleX) * std::sqrt(20.0) + 2 * s.radius * flare + 0.1 * s.length;
+}
+
+Bounds3d subtreeBound(const WeberPennParams& p, const WeberPennStem& s, double zs) {
+    const double reach = subtreeReach(p, s);
     Bounds3d b;
     for (const auto& path : s.paths)
         for (Vec3d q : path.points) {
@@ -198,25 +244,66 @@ double qualityAt(const WeberPennParams& p, const ExpandContext& ctx) {
     return std::clamp(size * p.detail / 300, 0.05, 1.0);
 }
 
+// In the wind a stem's subtree keeps its shape along its axes: every point of it stays within the
+// stem's length and its subtree's reach of the stem's base (moved by its parent's pose), whatever
+// the angles. The bound of each key's ball.
+Bounds3d swayingBound(const WeberPennParams& p, const WeberPennStem& s, double zs, const std::vector<Vec3d>& bases) {
+    const double r = s.length + subtreeReach(p, s);
+    Bounds3d b;
+    for (Vec3d q : bases) {
+        b.extend(squash(q - Vec3d{r, r, r}, zs));
+        b.extend(squash(q + Vec3d{r, r, r}, zs));
+    }
+    return b;
+}
+
+// The trunk's poses at the key times (its foot stays put).
+std::vector<WeberPennPose> trunkPoses(const WeberPennParams& p, const WeberPennStem& trunk, const std::vector<double>& times) {
+    std::vector<WeberPennPose> poses;
+    for (double t : times) poses.push_back(weberPennPoseStem(p, trunk, WeberPennRigid{}, t));
+    return poses;
+}
+
 class SubtreeGenerator final : public ProceduralGenerator {
   public:
-    SubtreeGenerator(std::shared_ptr<const WeberPennParams> p, WeberPennStem stem, double zs)
-        : p_(std::move(p)), stem_(std::move(stem)), zs_(zs) {}
+    SubtreeGenerator(std::shared_ptr<const WeberPennParams> p, std::shared_ptr<const WeberPennStem> trunk,
+                     WeberPennStem stem, double zs)
+        : p_(std::move(p)), trunk_(std::move(trunk)), stem_(std::move(stem)), zs_(zs) {}
     std::string describe() const override { return "weberpenn branch"; }
     void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
         const WeberPennParams& p = *p_;
         std::vector<WeberPennStem> stems{stem_};
         std::vector<WeberPennLeaf> leaves;
         weberPennGrowBelow(p, stems, 0, p.levels, &leaves);
+        Motion motion;
+        if (weberPennWindy(p)) {
+            // Each stem posed at each key after its parent where it grows; the branch after the trunk.
+            motion.times = weberPennKeyTimes(p, ctx.windowStart, ctx.windowEnd);
+            const std::vector<WeberPennPose> trunk = trunkPoses(p, *trunk_, motion.times);
+            for (size_t k = 0; k < motion.times.size(); ++k) {
+                std::vector<WeberPennPose> poses;
+                poses.reserve(stems.size());
+                for (size_t i = 0; i < stems.size(); ++i) {
+                    const WeberPennStem& s = stems[i];
+                    const WeberPennPose& parent = i == 0 ? trunk[k] : poses[size_t(s.parent)];
+                    poses.push_back(weberPennPoseStem(p, s, parent.of(s.parentPath, s.parentSegment), motion.times[k]));
+                }
+                motion.poses.push_back(std::move(poses));
+            }
+        }
         // Stems under a quarter of a pixel across are left out (their leaves stay).
         const double ppu = ctx.read.pixelsPerUnit;
-        for (const WeberPennStem& s : stems)
-            if (s.level <= 1 || ppu <= 0 || 2 * s.radius * ppu >= 0.25 / p.detail) emitStem(out, ctx, p, s, sidesOf(s.level), zs_);
-        emitLeaves(out, ctx, p, leaves, qualityAt(p, ctx), stem_.key, zs_);
+        for (size_t i = 0; i < stems.size(); ++i) {
+            const WeberPennStem& s = stems[i];
+            if (s.level <= 1 || ppu <= 0 || 2 * s.radius * ppu >= 0.25 / p.detail)
+                emitStem(out, ctx, p, s, sidesOf(s.level), zs_, motion, i);
+        }
+        emitLeaves(out, ctx, p, leaves, qualityAt(p, ctx), stem_.key, zs_, motion);
     }
 
   private:
     std::shared_ptr<const WeberPennParams> p_;
+    std::shared_ptr<const WeberPennStem> trunk_;
     WeberPennStem stem_;
     double zs_;
 };
@@ -230,16 +317,30 @@ class WeberPennTreeGenerator final : public ProceduralGenerator {
         const double zs = zScaleOf(p);
         std::vector<WeberPennStem> stems{weberPennTrunk(p, nullptr)};
         weberPennGrowBelow(p, stems, 0, 1, nullptr);
-        emitStem(out, ctx, p, stems[0], sidesOf(0), zs);
+        Motion motion;
+        if (weberPennWindy(p)) {
+            motion.times = weberPennKeyTimes(p, ctx.windowStart, ctx.windowEnd);
+            for (WeberPennPose& pose : trunkPoses(p, stems[0], motion.times)) motion.poses.push_back({std::move(pose)});
+        }
+        emitStem(out, ctx, p, stems[0], sidesOf(0), zs, motion, 0);
         if (p.levels == 1) {
             std::vector<WeberPennLeaf> leaves;
             weberPennGrowBelow(p, stems, 0, 1, &leaves);
-            emitLeaves(out, ctx, p, leaves, qualityAt(p, ctx), stems[0].key, zs);
+            emitLeaves(out, ctx, p, leaves, qualityAt(p, ctx), stems[0].key, zs, motion);
             return;
         }
+        const auto trunk = std::make_shared<const WeberPennStem>(stems[0]);
         for (size_t i = 1; i < stems.size(); ++i) {
-            if (stems[i].length <= 0) continue;
-            emitProcedural(out, ctx, std::make_shared<SubtreeGenerator>(p_, stems[i], zs), subtreeBound(p, stems[i], zs));
+            const WeberPennStem& s = stems[i];
+            if (s.length <= 0) continue;
+            Bounds3d bound = subtreeBound(p, s, zs);
+            if (motion.moving()) {
+                std::vector<Vec3d> bases;
+                for (const auto& poses : motion.poses)
+                    bases.push_back(poses[0].of(s.parentPath, s.parentSegment)(s.paths[0].points[0]));
+                bound = swayingBound(p, s, zs, bases);
+            }
+            emitProcedural(out, ctx, std::make_shared<SubtreeGenerator>(p_, trunk, s, zs), bound);
         }
     }
 
@@ -258,6 +359,15 @@ Bounds3d weberPennBound(const WeberPennParams& p) {
     trunkOnly.levels = std::min(p.levels, 1);  // the trunk's own reach (its leaves when it has them)
     Bounds3d b = subtreeBound(trunkOnly, stems[0], zs);
     for (size_t i = 1; i < stems.size(); ++i) b.extend(subtreeBound(p, stems[i], zs));
+    if (weberPennWindy(p)) {
+        // Swaying, the tree stays within its trunk's length and reach and its longest branch's of
+        // the trunk's foot, which never moves.
+        double branch = 0;
+        for (size_t i = 1; i < stems.size(); ++i) branch = std::max(branch, stems[i].length + subtreeReach(p, stems[i]));
+        const double r = stems[0].length + subtreeReach(trunkOnly, stems[0]) + branch;
+        b.extend(squash(Vec3d{-r, -r, -r}, zs));
+        b.extend(squash(Vec3d{r, r, r}, zs));
+    }
     return b;
 }
 

@@ -23,6 +23,8 @@ int lineOf(const std::string& text, const std::string& needle) {
 std::string aspen(double distance, const std::string& extra = "", const std::string& camera = "") {
     WeberPennParams p = *weberPennPreset("quaking_aspen");
     p.seed = 2;
+    if (extra.find("Wind") != std::string::npos)  // the wind widens the bound
+        p = parseWeberPennParams("model=weberpenn preset=quaking_aspen seed=2 " + extra, {});
     const Bounds3d b = weberPennBound(p);
     std::ostringstream rib;
     rib << "Format 96 96 1\nProjection \"perspective\" \"fov\" [40]\nPixelSamples 2 2\nShutter 0 0.5\n"
@@ -67,6 +69,27 @@ TEST(WeberPennRender, AFrameAloneIsTheFrameInABlock) {
         EXPECT_GT(alpha, 600);
         EXPECT_LT(alpha, 0.6 * 96 * 96);
     }
+}
+
+// The paper's wind sway keys every branch over the shot: a frame alone is still the frame in a
+// block (keys at multiples of keystep, whatever the block), nothing outgrows its bound, and the
+// tree moves: the windy frames differ from each other and from the still tree.
+TEST(WeberPennRender, AWindyTreesFrameAloneIsTheFrameInABlock) {
+    const std::string windy = aspen(35, "WindSpeed=4 WindGust=2 keystep=1 windtime=200");
+    RenderOptions o;
+    o.hasShot = true;
+    o.shotFirst = 1;
+    o.shotLast = 3;
+    o.algorithm = Algorithm::SpacetimeOcclusion;
+    const test::ShotAndFrame r = test::renderShotAndFrame(windy, o, 1, 3, 2);
+    ASSERT_EQ(r.shot.frames.size(), 3u);
+    EXPECT_TRUE(r.samePixels(2));
+    EXPECT_TRUE(r.shot.warnings.empty()) << r.shot.warnings.front();
+    o.hasFrames = true;
+    o.firstFrame = o.lastFrame = 1;
+    const test::RenderResult still = test::renderRib(aspen(35), o);
+    EXPECT_GT(test::differingPixels(r.shot.frames[0], still.frames.at(0), 0.05f), 50u) << "the wind moves the tree";
+    EXPECT_GT(test::differingPixels(r.shot.frames[0], r.shot.frames[2], 0.05f), 50u) << "and it keeps moving";
 }
 
 // A camera dollying in from 60 m to 30 m changes the tree's level of detail (log2 of its raster
