@@ -11,6 +11,7 @@ namespace streyes {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
+constexpr float kHalfPi = 1.57079632679f;
 
 float dot(const float a[3], const float b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
@@ -34,6 +35,7 @@ void sortNearestFirst(std::pair<float, int32_t>* a, int n) {
 // True when a sphere (centre c relative to the point, radius r) lies wholly outside the cone of
 // half-angle `cone` about unit n.
 bool outsideCone(const float c[3], float r, const float n[3], float cone) {
+    if (cone == kHalfPi) return dot(c, n) < -r;  // the hemisphere: wholly below the tangent plane
     const float len = std::sqrt(dot(c, c));
     if (len <= r) return false;
     const float half = std::asin(std::min(1.0f, r / len));
@@ -195,6 +197,7 @@ void CubeMicrobuffer::integrate(const DiscHierarchy& tree, const float P[3], con
     const std::vector<DiscCluster>& clusters = tree.clusters();
     const std::vector<CloudDisc>& discs = tree.discs();
     const float cone = std::clamp(s.coneAngle, 0.0f, kPi);
+    const float sliver = 4 * kPi / float(6 * res_ * res_) / 16;  // a sixteenth of a pixel
     if (!clusters.empty()) {
         // Depth first, nearest child first: at most 7 siblings wait a level.
         int32_t stack[8 * (DiscHierarchy::kMaxDepth + 2)];
@@ -236,8 +239,14 @@ void CubeMicrobuffer::integrate(const DiscHierarchy& tree, const float P[3], con
                 const float p[3] = {d.P[0] - P[0], d.P[1] - P[1], d.P[2] - P[2]};
                 if (dot(p, d.N) >= 0) continue;  // seen from behind, or edge on
                 if (outsideCone(p, d.radius, N, cone)) continue;
+                // Exactly when near (its bounding solid angle at least maxsolidangle) and not so
+                // nearly edge on that it covers under a sixteenth of a pixel (the discs of the
+                // shading point's own surface, seen along it): drawing those exactly costs whole
+                // faces of ray tests and point-samples a sliver.
                 const float d2 = dot(p, p);
-                if (kPi * d.radius * d.radius >= s.maxSolidAngle * d2) drawExact(p, d.N, d.radius, colour ? d.radiosity : nullptr);
+                const float seen = d.area * -dot(p, d.N) / (d2 * std::sqrt(d2));
+                if (kPi * d.radius * d.radius >= s.maxSolidAngle * d2 && seen >= sliver)
+                    drawExact(p, d.N, d.radius, colour ? d.radiosity : nullptr);
                 else drawSquare(p, d.N, d.area, colour ? d.radiosity : nullptr);
             }
         }

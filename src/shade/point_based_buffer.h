@@ -6,7 +6,8 @@
 // Drawing walks the disc hierarchy (point_based_tree.h) front to back: a cluster whose
 // solid angle (its area over its distance squared) is under maxsolidangle is drawn as one disc,
 // else opened; a leaf's discs are drawn one by one, those of solid angle maxsolidangle or more
-// exactly (each pixel whose centre's ray meets the disc, at its radius), the rest, and the
+// (and not edge on: seen as a sixteenth of a pixel or more) exactly (each pixel whose centre's ray meets the
+// disc, at its radius), the rest, and the
 // clusters, as rectangles of the disc's projected area (shaped as its projected ellipse's
 // extents), box-filtered into the pixels they touch.
 // Discs seen from behind are left out (as Aqsis does): a surface hides what lies on the side its
