@@ -53,7 +53,7 @@ void BM_PointBasedShadePoint(benchmark::State& state) {
     const bool colour = state.range(1) != 0;
     int k = 0;
     for (auto _ : state) {
-        const float P[3] = {-0.9f + 1.8f * float(k % 17) / 16, -0.999f, -0.9f + 1.8f * float((k / 17) % 17) / 16};
+        const float P[3] = {-0.9f + 1.8f * float(k % 17) / 16, -0.99999f, -0.9f + 1.8f * float((k / 17) % 17) / 16};
         const float N[3] = {0, 1, 0};
         float occ = 0, rgb[3];
         buffer.integrate(tree, P, N, s, &occ, colour ? rgb : nullptr);

@@ -139,44 +139,43 @@ void CubeMicrobuffer::drawExact(const float p[3], const float n[3], float radius
 // resolved beyond their area anyway. Its sides have the proportions of the projected ellipse's
 // extents along the face's axes, so the thin slivers a plane makes towards its horizon tile as
 // slivers (squares of their area would overlap row on row, and leave gaps between).
-void CubeMicrobuffer::drawSquare(const float p[3], const float n[3], float area, const float* colour) {
+void CubeMicrobuffer::drawSquare(const float p[3], const float n[3], float area, float distance, const float* colour) {
     int a = 0;
     for (int k = 1; k < 3; ++k)
         if (std::fabs(p[k]) > std::fabs(p[a])) a = k;
     const float pa = std::fabs(p[a]);
     if (!(pa > 0)) return;
+    const float inv = 1 / pa, sa = p[a] < 0 ? -1.0f : 1.0f;
     const int face = 2 * a + (p[a] < 0 ? 1 : 0);
     const int ua = (a + 1) % 3, va = (a + 2) % 3;
+    const float u = p[ua] * inv, v = p[va] * inv;
     // The disc's area seen from the point, moved onto the face's plane at distance 1.
-    const float projected = area * std::fabs(dot(p, n)) / (pa * pa * pa);
-    // The extents of the projected disc along u and v: the gradients of u = x_u / x_a and v, at
-    // p, over the disc's plane.
-    const float sa = p[a] < 0 ? -1.0f : 1.0f;
-    float gu[3] = {0, 0, 0}, gv[3] = {0, 0, 0};
-    gu[ua] = 1 / pa, gu[a] = -sa * p[ua] / (pa * pa);
-    gv[va] = 1 / pa, gv[a] = -sa * p[va] / (pa * pa);
-    const float gun = dot(gu, n), gvn = dot(gv, n);
-    const float eu = std::sqrt(std::max(0.0f, dot(gu, gu) - gun * gun));
-    const float ev = std::sqrt(std::max(0.0f, dot(gv, gv) - gvn * gvn));
-    if (!(eu > 0) || !(ev > 0) || !(projected > 0)) return;
+    const float projected = area * std::fabs(dot(p, n)) * inv * inv * inv;
+    // The squared extents of the projected disc along u and v (times pa^2): the gradients of
+    // u = x_u / x_a and of v at p, (e_u - sa u e_a) / pa, over the disc's plane.
+    const float gun = n[ua] - sa * u * n[a], gvn = n[va] - sa * v * n[a];
+    const float eu2 = 1 + u * u - gun * gun, ev2 = 1 + v * v - gvn * gvn;
+    if (!(eu2 > 0) || !(ev2 > 0) || !(projected > 0)) return;
     const float scale = 0.5f * float(res_);
-    const float hu = 0.5f * std::sqrt(projected * eu / ev) * scale, hv = 0.5f * std::sqrt(projected * ev / eu) * scale;
-    const float depth = std::sqrt(dot(p, p));
-    squareOnFace(face, p, hu, hv, depth, colour);
-    const float x = (p[ua] / pa + 1) * scale, y = (p[va] / pa + 1) * scale;
-    // A neighbour face shares the axis along the edge crossed; the other axis swaps roles.
-    if (x - hu < 0) squareOnFace(2 * ua + 1, p, hv, hu, depth, colour);
-    else if (x + hu > float(res_)) squareOnFace(2 * ua, p, hv, hu, depth, colour);
-    if (y - hv < 0) squareOnFace(2 * va + 1, p, hv, hu, depth, colour);
-    else if (y + hv > float(res_)) squareOnFace(2 * va, p, hv, hu, depth, colour);
+    const float hu = 0.5f * scale * std::sqrt(projected * std::sqrt(eu2 / ev2));
+    const float hv = 0.25f * scale * scale * projected / hu;
+    const float x = (u + 1) * scale, y = (v + 1) * scale;
+    rectOnFace(face, x, y, hu, hv, distance, colour);
+    // Spilling over an edge: the neighbour across it shares the axis along the edge; the other
+    // axis swaps roles (its extent there is taken as the other one's).
+    auto neighbour = [&](int f) {
+        const int na = axis(f);
+        const float q = side(f) * p[na];
+        if (!(q > 0)) return;
+        rectOnFace(f, (p[(na + 1) % 3] / q + 1) * scale, (p[(na + 2) % 3] / q + 1) * scale, hv, hu, distance, colour);
+    };
+    if (x - hu < 0) neighbour(2 * ua + 1);
+    else if (x + hu > float(res_)) neighbour(2 * ua);
+    if (y - hv < 0) neighbour(2 * va + 1);
+    else if (y + hv > float(res_)) neighbour(2 * va);
 }
 
-void CubeMicrobuffer::squareOnFace(int face, const float p[3], float hu, float hv, float depth, const float* colour) {
-    const int a = axis(face);
-    const float pa = side(face) * p[a];
-    if (!(pa > 0)) return;
-    const float half = 0.5f * float(res_);
-    const float x = (p[(a + 1) % 3] / pa + 1) * half, y = (p[(a + 2) % 3] / pa + 1) * half;
+void CubeMicrobuffer::rectOnFace(int face, float x, float y, float hu, float hv, float depth, const float* colour) {
     const float x0 = x - hu, x1 = x + hu, y0 = y - hv, y1 = y + hv;
     if (x1 <= 0 || y1 <= 0 || x0 >= float(res_) || y0 >= float(res_)) return;
     const int iu0 = std::max(0, int(std::floor(x0))), iu1 = std::min(res_, int(std::ceil(x1)));
@@ -211,7 +210,7 @@ void CubeMicrobuffer::integrate(const DiscHierarchy& tree, const float P[3], con
                 const float p[3] = {node.P[0] - P[0], node.P[1] - P[1], node.P[2] - P[2]};
                 const float d2 = dot(p, p);
                 if (node.drawable && dot(c, c) > node.bound * node.bound && node.area < s.maxSolidAngle * d2) {
-                    if (dot(p, node.N) < 0) drawSquare(p, node.N, node.area, colour ? node.radiosity : nullptr);
+                    if (dot(p, node.N) < 0) drawSquare(p, node.N, node.area, std::sqrt(d2), colour ? node.radiosity : nullptr);
                     continue;
                 }
                 std::pair<float, int32_t> order[8];
@@ -244,24 +243,29 @@ void CubeMicrobuffer::integrate(const DiscHierarchy& tree, const float P[3], con
                 // shading point's own surface, seen along it): drawing those exactly costs whole
                 // faces of ray tests and point-samples a sliver.
                 const float d2 = dot(p, p);
-                const float seen = d.area * -dot(p, d.N) / (d2 * std::sqrt(d2));
+                const float seen = d.area * -dot(p, d.N) / (d2 * std::sqrt(d2));  // solid angle
                 if (kPi * d.radius * d.radius >= s.maxSolidAngle * d2 && seen >= sliver)
                     drawExact(p, d.N, d.radius, colour ? d.radiosity : nullptr);
-                else drawSquare(p, d.N, d.area, colour ? d.radiosity : nullptr);
+                else drawSquare(p, d.N, d.area, std::sqrt(d2), colour ? d.radiosity : nullptr);
             }
         }
     }
     const float cosCone = std::cos(cone);
     double wsum = 0, occ = 0, col[3] = {};
-    const size_t n = cover_.size();
-    for (size_t i = 0; i < n; ++i) {
-        const float w = dot(&dir_[i * 3], N);
-        if (!(w > cosCone) || !(w > 0)) continue;
-        const double wo = double(w) * omega_[i];
-        wsum += wo;
-        occ += wo * std::min(1.0f, cover_[i]);
-        if (colour)
-            for (int c = 0; c < 3; ++c) col[c] += wo * colour_[i * 3 + size_t(c)];
+    const size_t perFace = size_t(res_) * size_t(res_);
+    for (int f = 0; f < 6; ++f) {
+        // (side e_a + u e_u + v e_v) . N over the face is at most this: at most 0, all below.
+        const int a = axis(f);
+        if (side(f) * N[a] + std::fabs(N[(a + 1) % 3]) + std::fabs(N[(a + 2) % 3]) <= 0) continue;
+        for (size_t i = size_t(f) * perFace; i < size_t(f + 1) * perFace; ++i) {
+            const float w = dot(&dir_[i * 3], N);
+            if (!(w > cosCone) || !(w > 0)) continue;
+            const double wo = double(w) * omega_[i];
+            wsum += wo;
+            occ += wo * std::min(1.0f, cover_[i]);
+            if (colour)
+                for (int c = 0; c < 3; ++c) col[c] += wo * colour_[i * 3 + size_t(c)];
+        }
     }
     *occlusion = wsum > 0 ? float(occ / wsum) : 0.0f;
     if (colour)

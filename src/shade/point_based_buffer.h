@@ -59,8 +59,8 @@ class CubeMicrobuffer {
   private:
     void clear();
     void drawExact(const float p[3], const float n[3], float radius, const float* colour);
-    void drawSquare(const float p[3], const float n[3], float area, const float* colour);
-    void squareOnFace(int face, const float p[3], float hu, float hv, float depth, const float* colour);
+    void drawSquare(const float p[3], const float n[3], float area, float distance, const float* colour);
+    void rectOnFace(int face, float x, float y, float hu, float hv, float depth, const float* colour);
     void add(int px, float depth, float cover, const float* colour);
 
     int res_ = 0;
