@@ -6,6 +6,7 @@
 #include <numeric>
 #include <set>
 
+#include "shade/point_based_buffer.h"
 #include "streyes/scene_access.h"
 
 namespace streyes {
@@ -141,30 +142,34 @@ void writeBakeFile(const std::string& path, int comps, const std::vector<float>&
     if (!ok) throw InputError("cannot write bake file \"" + path + "\" (bake): disk full or not writable");
 }
 
+std::shared_ptr<const BakedPointCloud> PointClouds::load(const std::string& file, std::string* error) {
+    // (mutex_ held)
+    auto it = read_.find(file);
+    if (it != read_.end()) return it->second;
+    auto bad = readErrors_.find(file);
+    if (bad != readErrors_.end()) {
+        *error = bad->second;
+        return nullptr;
+    }
+    auto c = std::make_shared<BakedPointCloud>();
+    std::string why;
+    if (!c->read(file, &why)) {
+        readErrors_[file] = why;
+        *error = why;
+        return nullptr;
+    }
+    c->prepare();
+    read_[file] = c;
+    return c;
+}
+
 bool PointClouds::texture3d(const std::string& file, const sl::CloudQuery& q, std::string* error,
                             std::vector<std::string>* missing) {
     std::shared_ptr<const BakedPointCloud> cloud;
     {
         std::lock_guard<std::mutex> lock(mutex_);
-        auto it = read_.find(file);
-        if (it != read_.end()) cloud = it->second;
-        else {
-            auto bad = readErrors_.find(file);
-            if (bad != readErrors_.end()) {
-                *error = bad->second;
-                return false;
-            }
-            auto c = std::make_shared<BakedPointCloud>();
-            std::string why;
-            if (!c->read(file, &why)) {
-                readErrors_[file] = why;
-                *error = why;
-                return false;
-            }
-            c->prepare();
-            read_[file] = c;
-            cloud = c;
-        }
+        cloud = load(file, error);
+        if (!cloud) return false;
     }
     for (size_t k = 0; k < q.channels->size(); ++k) {
         const sl::CloudChannel& want = (*q.channels)[k];
@@ -182,6 +187,43 @@ bool PointClouds::texture3d(const std::string& file, const sl::CloudQuery& q, st
             filterPointCloud(*cloud, p, n, offset, comps, v);
             for (int c = 0; c < comps; ++c) out[size_t(c) * size_t(q.n) + size_t(i)] = v[c];
         }
+    }
+    return true;
+}
+
+bool PointClouds::pointBased(const std::string& file, const sl::PointBasedQuery& q, std::string* error) {
+    std::shared_ptr<const DiscHierarchy> tree;
+    {
+        // Built once a cloud, under the lock: the first grid to ask waits, the rest share it.
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto it = hierarchies_.find(file);
+        if (it != hierarchies_.end()) tree = it->second;
+        else {
+            std::shared_ptr<const BakedPointCloud> cloud = load(file, error);
+            if (!cloud) return false;
+            tree = std::make_shared<const DiscHierarchy>(*cloud);
+            hierarchies_[file] = tree;
+        }
+    }
+    if (q.indirect && !tree->hasRadiosity() && !tree->empty()) {
+        *error = "point cloud \"" + file + "\" has no \"_radiosity\" color channel (bake3d it with that name)";
+        return false;
+    }
+    // One buffer a worker thread, reused from point to point and grid to grid.
+    thread_local CubeMicrobuffer buffer;
+    PointBasedSettings s;
+    s.res = std::clamp(q.microbufres, 1, 256);
+    s.maxSolidAngle = q.maxsolidangle;
+    s.coneAngle = q.coneangle;
+    for (int i = 0; i < q.n; ++i) {
+        if (q.active && !q.active[i]) continue;
+        const float p[3] = {q.P[0][i], q.P[1][i], q.P[2][i]};
+        const float n[3] = {q.N[0][i], q.N[1][i], q.N[2][i]};
+        float occlusion = 0, colour[3] = {};
+        buffer.integrate(*tree, p, n, s, &occlusion, q.indirect ? colour : nullptr);
+        q.out[0][i] = occlusion;
+        if (q.indirect)
+            for (int c = 0; c < 3; ++c) q.out[1 + c][i] = colour[c];
     }
     return true;
 }

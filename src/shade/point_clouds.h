@@ -12,6 +12,8 @@
 // by an earlier frame of the input is there when the later frame renders in a job of its own
 // (another pass: the bake frame and the beauty frame differ in their settings, as they do in
 // every scene that bakes). A render that both bakes and reads one file reads the earlier file.
+// Point-based occlusion() and indirectdiffuse() read clouds the same way, through a disc
+// hierarchy built once a cloud and shared by every thread (point_based_tree.h).
 #pragma once
 
 #include <map>
@@ -20,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "shade/point_based_tree.h"
 #include "shade/point_cloud.h"
 #include "shade/vm/point_cloud_source.h"
 #include "streyes/error.h"
@@ -34,6 +37,7 @@ class PointClouds final : public sl::PointCloudSource {
     bool texture3d(const std::string& file, const sl::CloudQuery& q, std::string* error,
                    std::vector<std::string>* missing) override;
     void bake(const std::string& file, int comps, const float* records, int count) override;
+    bool pointBased(const std::string& file, const sl::PointBasedQuery& q, std::string* error) override;
 
     // Writes every file baked into in this render (and forgets them). InputError when a file
     // cannot be written.
@@ -49,6 +53,8 @@ class PointClouds final : public sl::PointCloudSource {
         std::map<int, std::vector<float>> byComps;
     };
     BakedPointCloud merge(const std::string& file, const Baked& b) const;
+    // The cloud on disk at `file`, read once a render (null with `error` when it cannot be).
+    std::shared_ptr<const BakedPointCloud> load(const std::string& file, std::string* error);
 
     Log& log_;
     mutable std::mutex mutex_;
@@ -56,6 +62,7 @@ class PointClouds final : public sl::PointCloudSource {
     std::map<std::string, Baked2D> baked2D_;
     std::map<std::string, std::shared_ptr<const BakedPointCloud>> read_;
     std::map<std::string, std::string> readErrors_;
+    std::map<std::string, std::shared_ptr<const DiscHierarchy>> hierarchies_;
 };
 
 // Aqsis's bake file (the text bake() writes): "Aqsis bake file", the value count, then a line of

@@ -35,6 +35,21 @@ struct CloudQuery {
     float* const* out = nullptr;
 };
 
+// Point-based occlusion() / indirectdiffuse() (shade/point_based_buffer.h): n points (world-space
+// P and unit N, structure of arrays) seen against the discs of a baked cloud; out[0] the
+// occlusion, out[1..3] (indirect only) the colour, n floats each.
+struct PointBasedQuery {
+    int n = 0;
+    const uint8_t* active = nullptr;  // nullptr: every point
+    const float* P[3] = {};
+    const float* N[3] = {};
+    bool indirect = false;
+    int microbufres = 10;
+    float maxsolidangle = 0.03f;
+    float coneangle = 1.57079632679f;
+    float* const* out = nullptr;
+};
+
 class PointCloudSource {
   public:
     virtual ~PointCloudSource() = default;
@@ -44,6 +59,13 @@ class PointCloudSource {
     // as it was and named in `missing`.
     virtual bool texture3d(const std::string& file, const CloudQuery& q, std::string* error,
                            std::vector<std::string>* missing) = 0;
+    // False with `error` when the cloud cannot be read, or (indirect) has no "_radiosity" color;
+    // then nothing is written. The default has no clouds.
+    virtual bool pointBased(const std::string& file, const PointBasedQuery& q, std::string* error) {
+        (void)q;
+        *error = "no point clouds in this render (\"" + file + "\")";
+        return false;
+    }
     // bake(): `count` records of (s, t, comps values).
     virtual void bake(const std::string& file, int comps, const float* records, int count) = 0;
 };

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "shade/vm/ops.h"
+#include "shade/vm/point_based_ops.h"
 #include "shade/vm/vm.h"
 
 namespace streyes::sl::ops {
@@ -54,6 +55,7 @@ void ray(Exec& x, const Instr& in, Call call) {
     const float empty = call == Call::Transmission ? 1.0f : 0.0f;
     for (int c = 0; c < d.comps; ++c) std::fill(d.comp(c), d.comp(c) + d.w, empty);
     if (x.active == 0) return;
+    if ((call == Call::Occlusion || call == Call::Indirect) && pointBasedCall(x, in, call == Call::Indirect)) return;
     RaySource* source = x.vm.raySource();
     if (!source) {
         ++x.stats.raysMissing;
