@@ -7,6 +7,16 @@ bool isMatte(const Attributes& a) {
     return p && !p->nums.empty() && p->nums[0] != 0;
 }
 
+namespace {
+
+// Attribute "cull" NAME 0: the cull is off (PRMan's default is 1, on).
+bool cullOff(const Attributes& a, const char* name) {
+    const Param* p = a.user.find(std::string("cull:") + name);
+    return p && !p->nums.empty() && p->nums[0] == 0;
+}
+
+}  // namespace
+
 Material makeMaterial(const Attributes& a, Facing facing) {
     Material m;
     using O = Attributes::Orientation;
@@ -22,6 +32,8 @@ Material makeMaterial(const Attributes& a, Facing facing) {
     }
     m.smoothShading = a.smoothShading;
     m.matte = isMatte(a);
+    m.shadeHidden = cullOff(a, "hidden");
+    m.shadeBackFacing = cullOff(a, "backfacing");
     m.Cs = a.color;
     m.Os = a.opacity;
     m.shadingRate = float(a.shadingRate);

@@ -85,6 +85,13 @@ struct Material {
     // oneSided (Sides 1) drops micropolygons whose outside faces away from the eye.
     bool flipNormals = false;
     bool oneSided = false;
+    // Attribute "cull" "hidden" 0 / "backfacing" 0 (PRMan's, for baking passes): the surface's
+    // grids are shaded even where the occlusion cull would drop them as hidden, or where Sides 1
+    // turns every micropolygon away, so that what their shaders bake (bake3d()) covers the whole
+    // surface. What is drawn does not change: hidden samples lose to nearer ones, and
+    // back-facing micropolygons are still not drawn.
+    bool shadeHidden = false;
+    bool shadeBackFacing = false;
     // The leaf of a solid this surface bounds (Attributes::solid, geom/solid_tree.h), -1: none.
     // Such a surface is kept two-sided: its far side is where a line of sight leaves the solid.
     int solid = -1;

@@ -519,14 +519,16 @@ void BucketWorker::process(const Body& body) {
         ++counters.culledView;
         return;
     }
-    if (haveTable_ && occluded(body, raster)) {
+    const Material* cullMat = body.material();
+    const bool mayCullHidden = !cullMat || !cullMat->shadeHidden;  // Attribute "cull" "hidden"
+    if (mayCullHidden && haveTable_ && occluded(body, raster)) {
         ++counters.culledOcclusion;
         const size_t li = std::min<size_t>(size_t(layer_), kMaxLayerStats - 1);
         if (counters.culledOcclusionByLayer.size() <= li) counters.culledOcclusionByLayer.resize(li + 1, 0);
         ++counters.culledOcclusionByLayer[li];
         return;
     }
-    if (occlusion_ && hiddenBehindHits(body, raster, swept.lo.z)) {
+    if (mayCullHidden && occlusion_ && hiddenBehindHits(body, raster, swept.lo.z)) {
         ++counters.culledHidden;
         return;
     }
@@ -722,7 +724,7 @@ bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
     grid_.dissolveHi = mat ? mat->dissolveHi : 1;
     for (int k = 0; k < (grid_.moving ? 2 : 1); ++k) orientNormals(grid_, k, mat);
     setSolid(grid_, mat, cameraOf(body));
-    if (mat && mat->oneSided && !cullBackFacing(grid_, cameraOf(body))) {
+    if (mat && mat->oneSided && !cullBackFacing(grid_, cameraOf(body)) && !mat->shadeBackFacing) {
         counters.timeDice += secondsSince(t);
         return false;  // every micropolygon faces away
     }

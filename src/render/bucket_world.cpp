@@ -155,7 +155,7 @@ void BucketWorker::shadeSampleOnce(const Grid& diced, bool dicedHere) {
     grid_ = diced;
     const Material* mat = grid_.material;
     setSolid(grid_, mat, gridCamera(grid_));
-    if (mat && mat->oneSided && !cullBackFacing(grid_, gridCamera(grid_))) {
+    if (mat && mat->oneSided && !cullBackFacing(grid_, gridCamera(grid_)) && !mat->shadeBackFacing) {
         counters.timeDice += secondsSince(t);
         return;
     }
@@ -206,7 +206,7 @@ void BucketWorker::shadeSampleFrames(const Body& body, const Grid& diced, bool d
             }
         }
         setSolid(grid_, mat, cam);
-        if (mat && mat->oneSided && !cullBackFacing(grid_, cam)) {
+        if (mat && mat->oneSided && !cullBackFacing(grid_, cam) && !mat->shadeBackFacing) {
             counters.timeDice += secondsSince(t);
             continue;
         }

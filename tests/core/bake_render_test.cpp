@@ -99,5 +99,66 @@ TEST(BakeRender, ALaterRenderReadsTheCloudBackWhereItWasBaked) {
         }
 }
 
+// Counts a cloud's points at depth z (world z here: the view looks down +z from the origin); a
+// render that baked no point writes no file.
+size_t pointsAtDepth(const std::string& file, float z) {
+    if (!std::ifstream(file)) return 0;
+    BakedPointCloud c;
+    std::string error;
+    EXPECT_TRUE(c.read(file, &error)) << error;
+    size_t n = 0;
+    for (size_t i = 0; i < c.size(); ++i) n += std::fabs(c.point(i)[2] - z) < 1e-3f;
+    return n;
+}
+
+// Attribute "cull" "hidden" 0 and "backfacing" 0, as baking passes set them (Aqsis's cornell box):
+// a surface wholly hidden behind another, or one-sided and turned away, is shaded all the same,
+// so what its shader bakes covers it; the picture does not change.
+TEST(BakeRender, CullAttributesOffBakeHiddenAndBackFacingSurfaces) {
+    ShaderDir shaders;
+    TempDir out("bake3d-cull");
+    shaders.add("b", "surface b(string f = \"\") {\n  bake3d(f, \"\", P, normalize(N), \"_area\", area(P));\n  Ci = 1;\n}\n");
+    // A 16 x 16 square at depth 3 hides the square behind it (4..9 at depth 5) wholly.
+    auto hidden = [&](const std::string& attribute, const std::string& name) {
+        const std::string file = out.path() + "/" + name;
+        const std::string scene = orthographicView(16, 16, shaders.option()) + "WorldBegin\nSurface \"b\" \"f\" \"" + file +
+                                  "\"\nPatch \"bilinear\" \"P\" [0 0 3  16 0 3  0 16 3  16 16 3]\nAttributeBegin\n" +
+                                  attribute + "Patch \"bilinear\" \"P\" [4 4 5  9 4 5  4 9 5  9 9 5]\nAttributeEnd\nWorldEnd\n";
+        RenderResult r = renderRib(scene, RenderOptions{});
+        EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+        return std::make_pair(pointsAtDepth(file, 5), r);
+    };
+    const auto [culled, culledImage] = hidden("", "culled.ptc");
+    const auto [kept, keptImage] = hidden("Attribute \"cull\" \"int hidden\" 0\n", "kept.ptc");
+    EXPECT_EQ(culled, 0u) << "the hidden square is culled unshaded by default";
+    EXPECT_GE(kept, 36u) << "a grid over the 5 x 5 square: at least 6 x 6 points";
+    EXPECT_TRUE(culledImage.frames.at(0).rgba == keptImage.frames.at(0).rgba) << "the picture is the same";
+
+    // Sides 1: one of the two orientations of a square faces away from the eye and is not drawn;
+    // with "backfacing" 0 it is shaded (and baked) all the same, still not drawn.
+    auto oneSided = [&](const std::string& attribute, bool reversed, const std::string& name) {
+        const std::string file = out.path() + "/" + name;
+        const std::string scene = orthographicView(16, 16, shaders.option()) + "WorldBegin\nSurface \"b\" \"f\" \"" + file +
+                                  "\"\nSides 1\n" + (reversed ? "ReverseOrientation\n" : "") + attribute +
+                                  "Patch \"bilinear\" \"P\" [4 4 5  9 4 5  4 9 5  9 9 5]\nWorldEnd\n";
+        RenderResult r = renderRib(scene, RenderOptions{});
+        EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+        float coverage = 0;  // the frame's summed alpha
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x) coverage += r.alpha(0, x, y);
+        return std::make_pair(pointsAtDepth(file, 5), coverage);
+    };
+    const auto [frontPoints, frontAlpha] = oneSided("", false, "f.ptc");
+    const auto [backPoints, backAlpha] = oneSided("", true, "b.ptc");
+    const bool firstFaces = frontAlpha > 0;
+    EXPECT_NE(frontAlpha > 0, backAlpha > 0) << "exactly one orientation faces the eye";
+    EXPECT_EQ(firstFaces ? backPoints : frontPoints, 0u) << "the turned-away square is culled unshaded by default";
+    EXPECT_GE(firstFaces ? frontPoints : backPoints, 36u);
+    const auto [turnedPoints, turnedAlpha] =
+        oneSided("Attribute \"cull\" \"int backfacing\" 0\n", firstFaces, "t.ptc");
+    EXPECT_EQ(turnedAlpha, 0.0f) << "still not drawn";
+    EXPECT_EQ(turnedPoints, firstFaces ? frontPoints : backPoints) << "baked as the square facing the eye is";
+}
+
 }  // namespace
 }  // namespace streyes::test
