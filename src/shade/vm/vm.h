@@ -8,8 +8,10 @@
 // Each instruction runs once per grid over all points (structure of arrays); uniform values
 // are computed once; varying control flow runs under a mask stack. Light shaders run over the
 // surface's points when an illuminance loop (or ambient, diffuse, specular, phong) first needs
-// them, once per grid and light. Nothing is allocated per grid once the VM has seen grids of
-// that size and programs of that shape.
+// them, once per grid and light; a light whose run read nothing varying (an ambient light, a
+// distant light without shadows) is run once and its results given again to the grids after,
+// while everything uniform it could read is the same. Nothing is allocated per grid once the VM
+// has seen grids of that size and programs of that shape.
 //
 // Never NaN or infinity: division by zero, sqrt, log and pow outside their domains give 0,
 // and so does any non-finite value reaching an output; each such point is counted in
