@@ -88,6 +88,8 @@ struct ShadeStats {
     uint64_t unknownSpaces = 0;   // transforms to or from a space nobody defined (identity used)
     uint64_t textureErrors = 0;   // lookups the TextureSource refused (fill used)
     uint64_t lightRuns = 0;       // light shader runs
+    uint64_t lightReuses = 0;     // light results taken from an earlier grid instead of a run
+                                  // (ShadingVM: lights whose results do not depend on the point)
     uint64_t indicesClamped = 0;  // array reads and writes whose index was outside the array for
                                   // some point that ran (clamped): one a grid and instruction
     uint64_t loopsStopped = 0;    // runs whose loops went past the iteration budget

@@ -1,10 +1,18 @@
 #include "shade/vm/shader_instance.h"
 
+#include <atomic>
 #include <sstream>
 
 namespace streyes::sl {
 
-ShaderInstance::ShaderInstance(ProgramPtr program) : program_(std::move(program)) {}
+namespace {
+uint64_t nextRevision() {
+    static std::atomic<uint64_t> counter{0};
+    return ++counter;
+}
+}  // namespace
+
+ShaderInstance::ShaderInstance(ProgramPtr program) : program_(std::move(program)), revision_(nextRevision()) {}
 
 const ShaderInstance::Value* ShaderInstance::value(int param) const {
     for (const Value& v : values_)
@@ -54,6 +62,7 @@ void ShaderInstance::set(const std::string& name, SlType type, const std::vector
     Value& v = slot(k);
     v.floats = values;
     v.strings.clear();
+    revision_ = nextRevision();
 }
 
 void ShaderInstance::setStrings(const std::string& name, const std::vector<std::string>& values, const SourceLoc& loc) {
@@ -68,6 +77,7 @@ void ShaderInstance::setStrings(const std::string& name, const std::vector<std::
     Value& v = slot(k);
     v.strings = values;
     v.floats.clear();
+    revision_ = nextRevision();
 }
 
 bool parseDeclaration(const std::string& declaration, SlType* type, std::string* name) {

@@ -3,6 +3,7 @@
 // declarations when they are set; what is not set keeps its default.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -34,11 +35,15 @@ class ShaderInstance {
     };
     // The value set for parameter index `param`, or null (its default applies).
     const Value* value(int param) const;
+    // Unique to this instance and its values (a new one at each set): what the interpreter keys
+    // results on that it keeps from grid to grid (an address alone may come back with other values).
+    uint64_t revision() const { return revision_; }
 
   private:
     Value& slot(int param);
     ProgramPtr program_;
     std::vector<Value> values_;
+    uint64_t revision_;
 };
 
 // Parses "[uniform|varying|constant|vertex|facevarying] type[n] name" (the type optional):

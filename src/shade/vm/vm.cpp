@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "shade/vm/frame.h"
+#include "shade/vm/ops.h"
 
 namespace streyes::sl {
 
@@ -155,6 +156,7 @@ void ShadingVM::execute(Exec& x, int begin, int end) {
     x.pc = begin;
     while (x.pc < end) {
         const Instr& in = code[x.pc++];
+        if (pointFreeWatch_ == &x.frame && !pointFreeInstr(x, in)) pointFreeWatch_ = nullptr;
         in.fn(x, in);
         ++count;
         lanes += in.varying ? uint64_t(x.n) : 1u;
@@ -516,12 +518,47 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
     }
     lightGrid_.toCurrent[size_t(Space::Shader)] = ref.toCurrent;
     lightGrid_.toCurrent[size_t(Space::Object)] = ref.toCurrent;
-    lit_.assign(n, lp.illuminates ? 0 : 1);
     illuminateFrom = solarAxis = -1;
+    // Results an earlier grid's run left that this run would give again.
+    const bool keyed = n > 0 && pointFreeKey(lp);
+    if (keyed)
+        for (const PointFreeLight& e : pointFree_) {
+            if (!samePointFree(e, ref)) continue;
+            res.ambient = e.ambient;
+            for (std::vector<float>* v : {&res.L, &res.Cl, &res.Ln}) v->resize(3 * n);
+            for (int c = 0; c < 3; ++c) {
+                std::fill(res.L.begin() + std::ptrdiff_t(size_t(c) * n), res.L.begin() + std::ptrdiff_t(size_t(c + 1) * n), e.L[c]);
+                std::fill(res.Cl.begin() + std::ptrdiff_t(size_t(c) * n), res.Cl.begin() + std::ptrdiff_t(size_t(c + 1) * n), e.Cl[c]);
+                std::fill(res.Ln.begin() + std::ptrdiff_t(size_t(c) * n), res.Ln.begin() + std::ptrdiff_t(size_t(c + 1) * n), e.Ln[c]);
+            }
+            res.lit.assign(n, e.lit);
+            res.shader = ref.shader;
+            res.nonDiffuse = e.nonDiffuse;
+            res.nonSpecular = e.nonSpecular;
+            res.category = e.category;
+            res.outFloats = e.outFloats;
+            res.outStrings = e.outStrings;
+            res.outOffset = e.outOffset;
+            res.outVarying.assign(lp.params.size(), 0);
+            res.valid = true;
+            ++stats_.lightReuses;
+            return;
+        }
+    lit_.assign(n, lp.illuminates ? 0 : 1);
     const LightResult* savedLight = currentLight_;
     currentLight_ = nullptr;
     Frame& f = frameFor(lp);
+    const ShadeStats before = stats_;
+    const Frame* savedWatch = pointFreeWatch_;
+    pointFreeWatch_ = keyed ? &f : nullptr;
     runFrame(f, *ref.shader, lightGrid_, &ref.toCurrent);
+    // Point-free: every instruction passed, and nothing was counted (a space nobody defined,
+    // a result sanitised ...) that a reuse would not count again.
+    const bool pointFree = keyed && pointFreeWatch_ == &f && stats_.sanitised == before.sanitised &&
+                           stats_.unknownSpaces == before.unknownSpaces && stats_.textureErrors == before.textureErrors &&
+                           stats_.indicesClamped == before.indicesClamped && stats_.loopsStopped == before.loopsStopped &&
+                           stats_.raysMissing == before.raysMissing;
+    pointFreeWatch_ = savedWatch;
     currentLight_ = savedLight;
     ++stats_.lightRuns;
 
@@ -586,6 +623,124 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
         res.outFloats.insert(res.outFloats.end(), base, base + count);
     }
     res.valid = true;
+    if (pointFree) keepPointFree(ref, lp, res, n);
+}
+
+// ---- Lights whose results do not depend on the point -------------------------------------------------
+
+// An instruction that gives every point the same value from uniform operands, reading nothing of
+// the grid but uniform registers and the spaces (which key the results), under a mask with every
+// point on. Anything else (a varying operand, an operation not listed: noise, texture,
+// illuminate from Ps, attribute() ...) makes the run's results the points' own.
+bool ShadingVM::pointFreeInstr(const Exec& x, const Instr& in) {
+    if (!x.allOn()) return false;
+    auto uniformAt = [&](std::initializer_list<int> operands) {
+        for (int k : operands)
+            if (in.a[k] >= 0 && x.varying(in.a[k])) return false;
+        return true;
+    };
+    const OpFn f = in.fn;
+    if (f == ops::mov || f == ops::movm || f == ops::neg || f == ops::logNot) return uniformAt({1});
+    if (f == ops::add || f == ops::sub || f == ops::mul || f == ops::div || f == ops::eq || f == ops::ne ||
+        f == ops::lt || f == ops::gt || f == ops::le || f == ops::ge || f == ops::logAnd || f == ops::logOr)
+        return uniformAt({1, 2});
+    if (f == ops::triple) return uniformAt({1, 2, 3});
+    if (f == ops::xform) return uniformAt({1, 4});
+    if (f == ops::jmpIfZero) return uniformAt({0});
+    if (f == ops::solar) return in.a[0] >= 0 && uniformAt({0, 1});
+    return f == ops::smov || f == ops::streq || f == ops::strne || f == ops::jmp || f == ops::maskPop;
+}
+
+// The uniform predefined variables the light about to run has, as lightGrid_ binds them; false
+// when one of them would be derived from the grid's points (not bound: I from P, du from nu ...).
+bool ShadingVM::pointFreeKey(const ShaderProgram& lp) {
+    pointFreeKey_.clear();
+    for (int k = 0; k < kGlobalCount; ++k) {
+        const int r = lp.globalReg[k];
+        if (r < 0 || lp.regs[size_t(r)].varying()) continue;
+        const ValueRef& v = lightGrid_.globals[size_t(k)];
+        if (!v.valid()) {
+            switch (Global(k)) {
+                case Global::N: case Global::Ng: case Global::I: case Global::Ps: case Global::Ns: case Global::Oi:
+                case Global::u: case Global::v: case Global::s: case Global::t: case Global::du: case Global::dv:
+                    return false;
+                default: continue;  // a constant fill (bindGlobals)
+            }
+        }
+        const int comps = std::min(3, lp.regs[size_t(r)].type.comps());
+        for (int c = 0; c < comps; ++c) pointFreeKey_.push_back((v.comp[c] ? v.comp[c] : v.comp[0])[0]);
+    }
+    return true;
+}
+
+bool ShadingVM::samePointFree(const PointFreeLight& e, const LightRef& ref) const {
+    if (e.shader != ref.shader || e.revision != ref.shader->revision() || e.hasNormal != ref.hasNormal) return false;
+    if (std::memcmp(&e.weight, &ref.weight, sizeof(float)) != 0 || std::memcmp(&e.normal, &ref.normal, sizeof(Vec3f)) != 0)
+        return false;
+    if (std::memcmp(e.toCurrent.m.data(), ref.toCurrent.m.data(), sizeof(double) * 16) != 0) return false;
+    if (e.globals.size() != pointFreeKey_.size() ||
+        std::memcmp(e.globals.data(), pointFreeKey_.data(), sizeof(float) * e.globals.size()) != 0)
+        return false;
+    for (int s = 0; s < kSpaceCount; ++s)
+        if (std::memcmp(e.spaces[size_t(s)].m.data(), lightGrid_.toCurrent[size_t(s)].m.data(), sizeof(double) * 16) != 0)
+            return false;
+    const size_t named = lightGrid_.coordinateSystems ? lightGrid_.coordinateSystems->size() : 0;
+    if (e.named.size() != named) return false;
+    for (size_t i = 0; i < named; ++i) {
+        const NamedSpace& a = e.named[i];
+        const NamedSpace& b = (*lightGrid_.coordinateSystems)[i];
+        if (a.name != b.name || std::memcmp(a.toCurrent.m.data(), b.toCurrent.m.data(), sizeof(double) * 16) != 0)
+            return false;
+    }
+    return true;
+}
+
+// Keeps a point-free run's results when they are what it says: each the same at every point,
+// and no output parameter varying.
+void ShadingVM::keepPointFree(const LightRef& ref, const ShaderProgram& lp, const LightResult& res, size_t n) {
+    for (const ParamInfo& info : lp.params)
+        if (info.output && lp.regs[size_t(info.reg)].varying()) return;
+    auto constant = [n](const std::vector<float>& v, float* out) {
+        for (size_t c = 0; c < 3; ++c) {
+            const float* a = v.data() + c * n;
+            for (size_t i = 1; i < n; ++i)
+                if (std::memcmp(a + i, a, sizeof(float)) != 0) return false;
+            out[c] = a[0];
+        }
+        return true;
+    };
+    float L[3], Cl[3], Ln[3];
+    if (!constant(res.L, L) || !constant(res.Cl, Cl) || !constant(res.Ln, Ln)) return;
+    for (size_t i = 1; i < n; ++i)
+        if (res.lit[i] != res.lit[0]) return;
+    // A few lights and times a thread meets at once; the oldest goes first. Entries are
+    // overwritten in place (no allocation once their vectors have grown).
+    constexpr size_t kKept = 16;
+    if (pointFree_.size() < kKept) {
+        pointFree_.emplace_back();
+        pointFreeNext_ = pointFree_.size() - 1;
+    }
+    PointFreeLight& e = pointFree_[pointFreeNext_];
+    pointFreeNext_ = (pointFreeNext_ + 1) % kKept;
+    for (int c = 0; c < 3; ++c) e.L[c] = L[c], e.Cl[c] = Cl[c], e.Ln[c] = Ln[c];
+    e.shader = ref.shader;
+    e.revision = ref.shader->revision();
+    e.toCurrent = ref.toCurrent;
+    e.normal = ref.normal;
+    e.hasNormal = ref.hasNormal;
+    e.weight = ref.weight;
+    e.spaces = lightGrid_.toCurrent;
+    e.named.clear();
+    if (lightGrid_.coordinateSystems) e.named.assign(lightGrid_.coordinateSystems->begin(), lightGrid_.coordinateSystems->end());
+    e.globals.assign(pointFreeKey_.begin(), pointFreeKey_.end());
+    e.ambient = res.ambient;
+    e.nonDiffuse = res.nonDiffuse;
+    e.nonSpecular = res.nonSpecular;
+    e.lit = res.lit[0];
+    e.category = res.category;
+    e.outFloats.assign(res.outFloats.begin(), res.outFloats.end());
+    e.outStrings.assign(res.outStrings.begin(), res.outStrings.end());
+    e.outOffset.assign(res.outOffset.begin(), res.outOffset.end());
 }
 
 }  // namespace streyes::sl

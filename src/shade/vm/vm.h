@@ -8,8 +8,10 @@
 // Each instruction runs once per grid over all points (structure of arrays); uniform values
 // are computed once; varying control flow runs under a mask stack. Light shaders run over the
 // surface's points when an illuminance loop (or ambient, diffuse, specular, phong) first needs
-// them, once per grid and light. Nothing is allocated per grid once the VM has seen grids of
-// that size and programs of that shape.
+// them, once per grid and light; a light whose run read nothing varying (an ambient light, a
+// distant light without shadows) is run once and its results given again to the grids after,
+// while everything uniform it could read is the same. Nothing is allocated per grid once the VM
+// has seen grids of that size and programs of that shape.
 //
 // Never NaN or infinity: division by zero, sqrt, log and pow outside their domains give 0,
 // and so does any non-finite value reaching an output; each such point is counted in
@@ -174,6 +176,32 @@ class ShadingVM {
     void sanitiseOutputs(Exec& x);
     void execute(Exec& x, int begin, int end);
     void runLight(size_t index, const RegView& P);
+    // A light's results that do not depend on the point (an ambient light, a distant light
+    // without shadows: no instruction of its run read a varying value), kept from grid to grid
+    // with everything uniform the run could read, and given again without running while that is
+    // the same: the values a run would give, bit for bit (runLight).
+    struct PointFreeLight {
+        const ShaderInstance* shader = nullptr;
+        uint64_t revision = 0;
+        Matrix4 toCurrent;
+        Vec3f normal{0, 0, 0};
+        bool hasNormal = false;
+        float weight = 1;
+        std::array<Matrix4, kSpaceCount> spaces{};
+        std::vector<NamedSpace> named;
+        std::vector<float> globals;  // the uniform predefined variables the light has, as bound
+        bool ambient = false, nonDiffuse = false, nonSpecular = false;
+        uint8_t lit = 0;
+        float L[3] = {0, 0, 0}, Cl[3] = {0, 0, 0}, Ln[3] = {0, 0, 0};
+        std::string category;
+        std::vector<float> outFloats;
+        std::vector<std::string> outStrings;
+        std::vector<int> outOffset;
+    };
+    bool pointFreeKey(const ShaderProgram& lp);
+    bool samePointFree(const PointFreeLight& e, const LightRef& ref) const;
+    void keepPointFree(const LightRef& ref, const ShaderProgram& lp, const LightResult& res, size_t n);
+    static bool pointFreeInstr(const Exec& x, const Instr& in);
     ValueRef view(const Frame& f, int reg, int element = 0) const;
 
     Frame* peerFrame(Peer which);
@@ -206,6 +234,10 @@ class ShadingVM {
     float lightNormal_[3] = {0, 0, 0};  // an area light point's N
     std::vector<uint8_t> lit_;
     std::vector<float> ns_;  // Ns for a light run: the surface's N facing the eye (3 x n)
+    std::vector<PointFreeLight> pointFree_;
+    size_t pointFreeNext_ = 0;
+    std::vector<float> pointFreeKey_;    // the light about to run: its uniform globals as bound
+    const Frame* pointFreeWatch_ = nullptr;  // the light frame whose instructions are checked
 };
 
 }  // namespace streyes::sl
