@@ -111,6 +111,9 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     settings_ = resolveSettings(scene, options);
     options_.bucketSize = settings_.bucketSize;
     options_.maxGridSize = settings_.gridSize;
+    // A merged frame sequence: each frame's lights are in its own camera space, which the still
+    // vertices' test (made once, at one time) does not follow yet: shadows per sample there.
+    if (!scene.frameWorldToCamera.empty()) options_.shadowsPerSample = true;
     // Option "trace" "string shadowtest": where ray-traced shadows are tested (render_options.h).
     if (const Param* p = scene.settings.options.find("trace:shadowtest"); p && !p->strings.empty()) {
         const std::string& v = p->strings[0];

@@ -271,7 +271,8 @@ bool rayMeetsBox(Vec3f d, const Bounds3f& c) {
 // (orthographic) or, under perspective, where the rasterizer rebuilds them from a raster
 // position inside the projected vertices and a depth between theirs: x / z and y / z within the
 // vertices' range, z within theirs. Depth of field moves them along lens rays: no cull then.
-unsigned SampleTracer::unblockedByMoving(const Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& ls) {
+unsigned SampleTracer::unblockedByMoving(const Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& ls,
+                                         double lightTime) {
     const RenderScene& scene = trace.scene();
     if (!trace.anyMovingOccluder()) return 0x7fu;
     const Camera& cam = scene.camera;
@@ -310,7 +311,7 @@ unsigned SampleTracer::unblockedByMoving(const Grid& grid, const TraceScene& tra
             // Segments from the grid's box to the light's point(s) lie in the box of both.
             Bounds3f hull = g;
             if (const int n = lights.areaSamples(li); n > 0) {
-                for (int j = 0; j < n; ++j) hull.extend(lights.areaPoint(li, j, trace.stillTime()));
+                for (int j = 0; j < n; ++j) hull.extend(lights.areaPoint(li, j, lightTime));
             } else {
                 hull.extend(l.position);
             }
@@ -520,8 +521,11 @@ void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, Rend
 void SampleTracer::occludeStillVertices(Grid& grid, const TraceScene& trace, RenderCounters& counters) {
     const LightSet& lights = trace.scene().lights;
     const SpacetimeBVH& bvh = trace.stillOccluders();
-    const double time = trace.stillTime();  // still occluders, lights and camera: any time answers alike
-    const std::vector<CameraLight>& ls = lightsAt(lights, time);
+    const double time = trace.stillTime();  // still occluders and camera: any time answers alike
+    // The lights at the grid's own time: in a frame sequence, a frame's area light is in that
+    // frame's camera space (the grid lives within its frame).
+    const double lightTime = std::clamp(grid.t0, trace.scene().renderedStart, trace.scene().renderedEnd);
+    const std::vector<CameraLight>& ls = lightsAt(lights, lightTime);
     const int K = grid.shadowSlots;
     const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
     Color* cl = grid.Cl[0].data();
@@ -555,7 +559,7 @@ void SampleTracer::occludeStillVertices(Grid& grid, const TraceScene& trace, Ren
                 // pixel's samples spread over them): the share it sees, smooth over the grid.
                 int seen = 0;
                 for (int j = 0; j < n; ++j) {
-                    const Vec3f target = lights.areaPoint(li, j, time);
+                    const Vec3f target = lights.areaPoint(li, j, lightTime);
                     seen += reaches(&target);
                 }
                 if (seen < n) part = part * (float(seen) / float(n));
@@ -565,7 +569,7 @@ void SampleTracer::occludeStillVertices(Grid& grid, const TraceScene& trace, Ren
             }
         }
     }
-    grid.stillShadows = uint8_t(1u | (unblockedByMoving(grid, trace, ls) << 1));
+    grid.stillShadows = uint8_t(1u | (unblockedByMoving(grid, trace, ls, lightTime) << 1));
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
 }

@@ -150,7 +150,8 @@ class SampleTracer {
                            const SpacetimeBVH& bvh, RenderCounters& counters, const SpacetimeBVH* also = nullptr,
                            unsigned unblocked = 0);
 
-    unsigned unblockedByMoving(const Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& lights);
+    unsigned unblockedByMoving(const Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& lights,
+                               double lightTime);
 
     TraceContext ctx_;
     GridShader* shader_ = nullptr;
