@@ -112,6 +112,11 @@ struct RenderOptions {
 
     // Ray tracing and shadows (see spacetime_bvh.h).
     HierarchyOptions hierarchy;
+    // Ray-traced shadows of the rasterizer: false (the default) tests occluders that stand still
+    // through the shot once per vertex of a still grid under still lights, at the shading rate as
+    // RenderMan shades shadows, and only moving occluders per sample; true tests every occluder
+    // per sample (Option "trace" "string shadowtest" "sample"; docs/SCENE-FORMAT.md).
+    bool shadowsPerSample = false;
     // For tests and tools: sees each bucket's samples (hits before the filter) and the tile it
     // resolves. Called from worker threads, one bucket at a time each.
     std::function<void(const ImageBlock& block, const PixelRect& tile)> sampleObserver;

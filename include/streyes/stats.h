@@ -66,7 +66,8 @@ namespace streyes {
     COUNT(traceBodies, "trace.bodies")     /* bodies the ray tracer holds (trilinear segments) */      \
     COUNT(boundingVolumes, "trace.bounding_volumes") /* nodes built (summed over frames: -frames) */   \
     COUNT(eyeRays, "trace.eye_rays")                                                                   \
-    COUNT(shadowRays, "trace.shadow_rays")                                                             \
+    COUNT(shadowRays, "trace.shadow_rays") /* per sample (or eye-ray hit) */                          \
+    COUNT(shadowVertexRays, "trace.shadow_vertex_rays") /* per vertex of still grids, at still occluders */ \
     COUNT(shaderRays, "trace.shader_rays") /* rays occlusion(), trace() ... cast (and their hits' shadow rays) */ \
     COUNT(rayBodyTests, "trace.ray_body_tests")      /* ray/body tests (each body once per ray) */     \
     COUNT(rayBoxTests, "trace.ray_box_tests")        /* ray/bounding-volume tests */                   \

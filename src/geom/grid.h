@@ -53,6 +53,11 @@ struct Grid {
     // t0 and t1), kept out of Ci for the per-sample shadow test. Set shadowSlots before dicing.
     int shadowSlots = 0;
     std::vector<Color> Cl[2];
+    // Bit 0: Cl[0] already carries the shadow of the occluders that stand still through the shot
+    // (a still grid under still lights, tested once per vertex: trace.h, occludeStillVertices),
+    // and its samples' own shadow rays test only the moving occluders. Bit k + 1: no moving
+    // occluder can come between the grid and light slot k's light (no ray at all). 0: neither.
+    uint8_t stillShadows = 0;
 
     // Output variables (util/aov.h) per vertex at t0, t1: aovCount floats each, laid out as the
     // render's AovLayout; empty when no display asks for one. Set aovCount before dicing.

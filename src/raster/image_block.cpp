@@ -76,15 +76,18 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
             }
         }
         if (shadowSlots > 0) shadowed_.assign(size_t(frameCount) * n * size_t(shadowSlots), Color{0, 0, 0});
+        stillTested_.assign(shadowSlots > 0 ? size_t(frameCount) * n : 0, 0);
     } else {
         still_.assign(n, kNoHit);
         shadowed_.clear();
+        stillTested_.clear();
     }
     // Read only where a sample has a hit, which writes them: no clearing needed beyond sizing.
     stillAov_.resize(dense ? 0 : n * size_t(aovs_));
     fragmentsOn_ = false;
     fragments_.clear();
     fragmentShadowed_.clear();
+    fragmentStillTested_.clear();
 }
 
 void ImageBlock::makeFragmentHeads() {
@@ -146,6 +149,7 @@ size_t ImageBlock::bytes() const {
            permutation_.capacity() + permutationKeys_.capacity() * sizeof(uint64_t) + keyMade_.capacity() +
            still_.capacity() * sizeof(SampleHit) + slot_.capacity() * sizeof(int32_t) +
            chunks_.size() * chunkSamples_ * sizeof(SampleHit) + shadowed_.capacity() * sizeof(Color) +
+           stillTested_.capacity() + fragmentStillTested_.capacity() +
            (stillAov_.capacity() + aovChunks_.size() * chunkSamples_ * size_t(aovs_)) * sizeof(float) +
            (stillHeads_.capacity() + recordHeads_.capacity()) * sizeof(int32_t) +
            fragments_.capacity() * sizeof(SampleFragment) + fragmentShadowed_.capacity() * sizeof(Color);

@@ -217,6 +217,12 @@ class ImageBlock {
     // shadowSlots() colours each, valid where a sample has a hit.
     int shadowSlots() const { return shadowSlots_; }
     Color* shadowed(int fi, size_t i);
+    // Beside them, one flag a sample: non-zero where its parts already carry the still occluders'
+    // shadow (tested at the still grid's vertices: Grid::stillShadows, whose bits it holds), so that its own
+    // shadow rays test only what moves (trace.h, SampleTracer::shadeShadows).
+    uint8_t* stillTested(int fi, size_t i) {
+        return &stillTested_[(size_t(fi) * size_t(pixelCount()) + i) * size_t(S_)];
+    }
 
     // Output variables (util/aov.h): aovCount() floats per sample beside each hit, in arrays
     // parallel to the still layer and the records (a record's copy of the still layer copies them
@@ -252,7 +258,10 @@ class ImageBlock {
         f.next = *head;
         *head = int32_t(fragments_.size());
         fragments_.push_back(f);
-        if (shadowSlots_ > 0) fragmentShadowed_.resize(fragments_.size() * size_t(shadowSlots_));
+        if (shadowSlots_ > 0) {
+            fragmentShadowed_.resize(fragments_.size() * size_t(shadowSlots_));
+            fragmentStillTested_.resize(fragments_.size());
+        }
         return *head;
     }
     // Makes the list heads (call before the first addFragment of a bucket; then a no-op).
@@ -263,6 +272,7 @@ class ImageBlock {
     SampleFragment& fragment(int32_t k) { return fragments_[size_t(k)]; }
     // With shadows (dense mode): the shadowed parts of fragment k, shadowSlots() colours.
     Color* fragmentShadowed(int32_t k) { return &fragmentShadowed_[size_t(k) * size_t(shadowSlots_)]; }
+    uint8_t* fragmentStillTested(int32_t k) { return &fragmentStillTested_[size_t(k)]; }  // as stillTested()
 
     // The scene's solids, which fragments' tags (SampleFragment::solid) point into; null when the
     // scene has none. Set after reset, read when the block is resolved.
@@ -316,6 +326,7 @@ class ImageBlock {
     uint32_t records_ = 0;
     int shadowSlots_ = 0;
     std::vector<Color> shadowed_;       // dense: frames x pixels x S x shadowSlots
+    std::vector<uint8_t> stillTested_;  // dense with shadows: frames x pixels x S
     int aovs_ = 0;
     std::vector<float> stillAov_;       // pixels x S x aovs_
     std::vector<std::unique_ptr<float[]>> aovChunks_;  // beside chunks_, one to one
@@ -326,6 +337,7 @@ class ImageBlock {
     std::vector<int32_t> recordHeads_;   // records x S
     std::vector<SampleFragment> fragments_;
     std::vector<Color> fragmentShadowed_;  // fragments x shadowSlots
+    std::vector<uint8_t> fragmentStillTested_;  // per fragment
 };
 
 }  // namespace streyes

@@ -290,7 +290,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                         const int32_t fk = keepFrameFragment(block, fi, pi, sj, frag, rec);
                         ++fragments;
                         if (Shadowed)
-                            writeShadowed(block.fragmentShadowed(fk), K, h, [&](int c, int k) {
+                            writeShadowed(block.fragmentShadowed(fk), block.fragmentStillTested(fk), false, K, h, [&](int c, int k) {
                                 const size_t v = size_t(idx[flat ? 0 : c] * K + k);
                                 return lerp(cl0[v], cl1[v], sg);
                             });
@@ -316,7 +316,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             return lerp(av0[v], av1[v], sg);
                         });
                     if (Shadowed)
-                        writeShadowed(block.shadowed(fi, pi) + size_t(sj) * size_t(K), K, h, [&](int c, int k) {
+                        writeShadowed(block.shadowed(fi, pi) + size_t(sj) * size_t(K), block.stillTested(fi, pi) + sj, false, K, h, [&](int c, int k) {
                             const size_t v = size_t(idx[flat ? 0 : c] * K + k);
                             return lerp(cl0[v], cl1[v], sg);
                         });

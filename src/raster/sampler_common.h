@@ -99,7 +99,8 @@ inline const Color* opacities(const Grid& grid, int k) {
 
 // With the hit, the K contributions of lights that cast shadows, interpolated the same way.
 template <typename PartAt>
-inline void writeShadowed(Color* out, int K, const Hit& h, PartAt partAt) {
+inline void writeShadowed(Color* out, uint8_t* tested, uint8_t stillTested, int K, const Hit& h, PartAt partAt) {
+    *tested = stillTested;  // Grid::stillShadows
     for (int k = 0; k < K; ++k) {
         const Color c0 = partAt(h.v0, k), c1 = partAt(h.v1, k), c2 = partAt(h.v2, k);
         out[k] = c0 + (c1 - c0) * h.l1 + (c2 - c0) * h.l2;

@@ -73,6 +73,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     const bool flat = grid.flatShading;  // ShadingInterpolation "constant": the first corner's colour
     const int K = grid.shadowSlots;
     const Color* cl = grid.Cl[0].data();
+    const uint8_t stillTested = grid.stillShadows;
     const int A = grid.aovCount;
     const float* av = grid.aov[0].data();
     const uint64_t id = hitId(grid.primitiveId, grid.matte);
@@ -163,7 +164,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         const int32_t fk = keepFrameFragment(block, fr.fi, pi, sj, frag, rec);
                         ++fragments;
                         if (Shadowed)
-                            writeShadowed(block.fragmentShadowed(fk), K, h,
+                            writeShadowed(block.fragmentShadowed(fk), block.fragmentStillTested(fk), stillTested, K, h,
                                           [&](int c, int k) { return cl[size_t(idx[flat ? 0 : c] * K + k)]; });
                         continue;
                     }
@@ -176,7 +177,8 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         writeAovs(block.recordAov(fr.fi, pi) + size_t(sj) * size_t(A), A, h,
                                   [&](int c, int a) { return av[size_t(idx[c]) * size_t(A) + size_t(a)]; });
                     if (Shadowed)
-                        writeShadowed(block.shadowed(fr.fi, pi) + size_t(sj) * size_t(K), K, h,
+                        writeShadowed(block.shadowed(fr.fi, pi) + size_t(sj) * size_t(K), block.stillTested(fr.fi, pi) + sj,
+                                      stillTested, K, h,
                                       [&](int c, int k) { return cl[size_t(idx[flat ? 0 : c] * K + k)]; });
                 }
             };

@@ -123,6 +123,10 @@ void BucketWorker::setTrace(const TraceScene* trace) {
     traceEyeRays_ = trace && raytraces(options_.algorithm);
     shadowSlots_ = trace && !traceEyeRays_ ? scene_.lights.shadowSlots() : 0;
     grid_.shadowSlots = shadowSlots_;
+    // Still grids test the still occluders at their vertices where lights and camera stand still
+    // (a zoom's pixel, which sets the shadow bias, changes from frame to frame).
+    stillShadows_ = shadowSlots_ > 0 && trace->hasShadowHierarchies() && !options_.shadowsPerSample &&
+                    scene_.lights.isStatic() && !scene_.cameras.zooms();
     updateShaderRays();
 }
 
@@ -150,7 +154,8 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
     windowStart_ = bucket.firstFrame + scene_.shutter.open;
     windowEnd_ = bucket.firstFrame + bucket.frameCount - 1 + scene_.shutter.close;
     t = Clock::now();
-    const double before = counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion;
+    const double before =
+        counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion + counters.timeTrace;
     if (!traceEyeRays_) {  // the ray tracer traces the samples instead (below)
         if (occlusion_) runNearToFar();
         else runDepthFirst();
@@ -161,7 +166,8 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
     if (release_ && !leases_.empty() && scene_.factory->anyOutgrown()) release_->keepEverything(std::move(leases_));
     leases_.clear();
     counters.timeSplit +=
-        secondsSince(t) - (counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion - before);
+        secondsSince(t) - (counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion +
+                           counters.timeTrace - before);
 
     if (trace_) {  // eye rays (raytrace*), or the shadow rays of the rasterizer's hits
         t = Clock::now();
@@ -598,6 +604,7 @@ void BucketWorker::split(const Body& body, SplitAxis axis, bool eyeSplit) {
 void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int nv) {
     auto t = Clock::now();
     body.startKeyGrid(nu, nv, grid_);
+    grid_.stillShadows = 0;
     ++counters.gridsDiced;
     // The key intervals that meet the bucket's frames (a piece spans a whole chunk of frames, which
     // may reach beyond the block).
@@ -740,7 +747,19 @@ bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
     shader_.shade(grid_);
     if (aovs_.count) fillAovs(grid_, aovs_, cameraOf(body));
     counters.timeShade += secondsSince(t1);
+    testStillShadows(grid_);
     return true;
+}
+
+// A still grid's vertices, once, against the occluders that stand still through the shot; its
+// samples then test only the moving ones (trace.h). The vertices are the still body's dicing,
+// which does not depend on the frames rendered with it (its colours do not either).
+void BucketWorker::testStillShadows(Grid& grid) {
+    grid.stillShadows = 0;
+    if (!stillShadows_ || grid.moving || grid.shadowSlots == 0) return;
+    auto t = Clock::now();
+    tracer_.occludeStillVertices(grid, *trace_, counters);
+    counters.timeTrace += secondsSince(t);
 }
 
 void BucketWorker::sample(const Grid& grid) {

@@ -211,6 +211,8 @@ class BucketWorker {
     const TraceScene* trace_ = nullptr;
     bool traceEyeRays_ = false;
     int shadowSlots_ = 0;  // the rasterizer's shadowed light parts per sample
+    bool stillShadows_ = false;  // still grids test still occluders at their vertices (testStillShadows)
+    void testStillShadows(Grid& grid);
     SampleTracer tracer_;
     // The rays shaders cast (occlusion(), trace(), ...): made when the scene has such shaders.
     std::unique_ptr<ShaderRays> shaderRays_;

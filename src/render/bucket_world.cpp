@@ -164,6 +164,7 @@ void BucketWorker::shadeSampleOnce(const Grid& diced, bool dicedHere) {
     shader_.shade(grid_);
     if (aovs_.count) fillAovs(grid_, aovs_, gridCamera(grid_));
     counters.timeShade += secondsSince(t1);
+    testStillShadows(grid_);
     sample(grid_);
     if (!dicedHere) {
         const uint64_t n = uint64_t(grid_.nu) * uint64_t(grid_.nv);
@@ -196,6 +197,7 @@ void BucketWorker::shadeSampleFrames(const Body& body, const Grid& diced, bool d
         grid_.t1 = b;
         grid_.openEnd = b == span.t1 ? span.openEnd : false;
         grid_.moving = a < b;
+        grid_.stillShadows = 0;  // shaded frame by frame: its samples test every occluder
         for (size_t i = 0; i < count; ++i) {
             const Vec3f p0 = diced.P[0][i], p1 = diced.P[1][i], n0 = diced.N[0][i], n1 = diced.N[1][i];
             grid_.P[0][i] = lerp(p0, p1, sa);

@@ -82,7 +82,9 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     const uint64_t aov = uint64_t(std::max(0, s.aovFloats)) * sizeof(float);
     e.frameImages = uint64_t(framesHeld(s, e.frameBlock)) * pixels * (kBytesPerPixel + aov);
     const uint64_t S = uint64_t(std::max(1, s.samplesPerPixel));
-    const uint64_t recordSample = kBytesPerRecordSample + uint64_t(std::max(0, s.shadowSlots)) * sizeof(Color) + aov;
+    // With shadows, a sample's shadowed parts and its still-tested flag (ImageBlock::stillTested).
+    const uint64_t recordSample =
+        kBytesPerRecordSample + (s.shadowSlots > 0 ? uint64_t(s.shadowSlots) * sizeof(Color) + 1 : 0) + aov;
     e.perWorker = bucketPixels(s) * (kBytesPerBucketPixel + S * (kBytesPerSample + aov) +
                                      framesPerBucket * (kBytesPerPixelFrame + S * recordSample)) +
                   s.traceBytesPerWorker + tilePixels(s) * 6 * sizeof(float) +  // resolving: weights, still pixels

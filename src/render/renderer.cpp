@@ -111,6 +111,19 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     settings_ = resolveSettings(scene, options);
     options_.bucketSize = settings_.bucketSize;
     options_.maxGridSize = settings_.gridSize;
+    // A merged frame sequence: each frame's lights are in its own camera space, which the still
+    // vertices' test (made once, at one time) does not follow yet: shadows per sample there.
+    if (!scene.frameWorldToCamera.empty()) options_.shadowsPerSample = true;
+    // Option "trace" "string shadowtest": where ray-traced shadows are tested (render_options.h).
+    if (const Param* p = scene.settings.options.find("trace:shadowtest"); p && !p->strings.empty()) {
+        const std::string& v = p->strings[0];
+        if (v == "sample") options_.shadowsPerSample = true;
+        else if (v == "shadingrate") options_.shadowsPerSample = false;
+        else
+            log_.warnOnce("trace-shadowtest", p->loc,
+                          "Option \"trace\" \"shadowtest\" \"" + v +
+                              "\" is not known (\"shadingrate\" or \"sample\"): using \"shadingrate\"");
+    }
     // The output variables the displays name, beside any the caller asked for: built-in ones by
     // name, shader outputs as "type name" from their DisplayChannel declarations.
     auto carry = [&](const std::string& v, const SourceLoc* loc) {
@@ -285,8 +298,13 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
             scene_->factory->setBodyBudget(budget, budget > others ? budget - others : 1);
             trace = std::make_unique<TraceScene>(*scene_, options_, log_, shaders_.get());
             scene_->factory->setBodyBudget(0, 0);
+            // The rasterizer's shadows go through their own two hierarchies (trace.h); the one
+            // over every body is for eye rays and the rays shaders cast.
+            const bool shadowHierarchies =
+                !raytraces(options_.algorithm) && scene_->lights.shadowSlots() > 0 && !options_.depthPass;
             if (!traceFrames) {
-                trace->buildSpacetime(options_.hierarchy);
+                if (!shadowHierarchies || (shaders_ && shaders_->tracesRays())) trace->buildSpacetime(options_.hierarchy);
+                if (shadowHierarchies) trace->buildShadowHierarchies(options_.hierarchy);
             } else {
                 trace->buildFrames(s.firstFrame, 1, options_.hierarchy);
                 traceBytesPerFrame = trace->hierarchyBytes();

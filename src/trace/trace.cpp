@@ -174,6 +174,28 @@ void TraceScene::buildSpacetime(const HierarchyOptions& options) {
     buildSeconds += processCpuSeconds() - cpu;
 }
 
+void TraceScene::buildShadowHierarchies(const HierarchyOptions& options) {
+    const double cpu = processCpuSeconds();
+    stillBodies_.clear();
+    movingBodies_.clear();
+    // windowStart and windowEnd are the shot's (RenderScene): the parting is the same whatever
+    // frames are rendered, and so is every still vertex's test.
+    movingBound_ = Bounds3f{};
+    for (const TrilinearBody* b : bodies_) {
+        const bool still = !b->moving() && b->time().t0 <= scene_.windowStart && b->time().t1 >= scene_.windowEnd;
+        (still ? stillBodies_ : movingBodies_).push_back(b);
+        if (!still && b->time().overlaps(scene_.renderedStart, scene_.renderedEnd))
+            movingBound_.extend(b->boundDuring(std::max(scene_.renderedStart, b->time().t0),
+                                               std::min(scene_.renderedEnd, b->time().t1)));
+    }
+    // Shadow rays start on surfaces: the root cells need not hold the eye and the lights.
+    still_.build(stillBodies_, scene_.renderedStart, scene_.renderedEnd, Bounds3f{}, options);
+    moving_.build(movingBodies_, scene_.renderedStart, scene_.renderedEnd, Bounds3f{}, options);
+    shadowSplit_ = true;
+    boundingVolumes += still_.nodeCount() + moving_.nodeCount();
+    buildSeconds += processCpuSeconds() - cpu;
+}
+
 void TraceScene::buildFrames(int first, int count, const HierarchyOptions& options) {
     HierarchyOptions o = options;
     o.splitTime = false;
@@ -190,7 +212,8 @@ void TraceScene::buildFrames(int first, int count, const HierarchyOptions& optio
 }
 
 size_t TraceScene::hierarchyBytes() const {
-    size_t b = spacetime_.bytes();
+    size_t b = spacetime_.bytes() + still_.bytes() + moving_.bytes() +
+               (stillBodies_.capacity() + movingBodies_.capacity()) * sizeof(const TrilinearBody*);
     for (const SpacetimeBVH& h : frames_) b += h.bytes();
     return b;
 }
@@ -223,6 +246,82 @@ int areaPointOf(Vec3f p, double time, int n) {
 }
 }  // namespace
 
+namespace {
+// Whether the ray from the origin along d (s >= 0) meets box c (slabs).
+bool rayMeetsBox(Vec3f d, const Bounds3f& c) {
+    float s0 = 0, s1 = std::numeric_limits<float>::infinity();
+    const float o[3] = {0, 0, 0}, dd[3] = {d.x, d.y, d.z}, lo[3] = {c.lo.x, c.lo.y, c.lo.z}, hi[3] = {c.hi.x, c.hi.y, c.hi.z};
+    for (int a = 0; a < 3; ++a) {
+        if (dd[a] == 0) {
+            if (o[a] < lo[a] || o[a] > hi[a]) return false;
+            continue;
+        }
+        float ta = (lo[a] - o[a]) / dd[a], tb = (hi[a] - o[a]) / dd[a];
+        if (ta > tb) std::swap(ta, tb);
+        s0 = std::max(s0, ta);
+        s1 = std::min(s1, tb);
+        if (s0 > s1) return false;
+    }
+    return true;
+}
+}  // namespace
+
+// The light slots (bit k: slot k, the first seven) that no moving occluder can shadow at any
+// point a sample of the grid may stand on. Those points lie in the box of the grid's vertices
+// (orthographic) or, under perspective, where the rasterizer rebuilds them from a raster
+// position inside the projected vertices and a depth between theirs: x / z and y / z within the
+// vertices' range, z within theirs. Depth of field moves them along lens rays: no cull then.
+unsigned SampleTracer::unblockedByMoving(const Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& ls,
+                                         double lightTime) {
+    const RenderScene& scene = trace.scene();
+    if (!trace.anyMovingOccluder()) return 0x7fu;
+    const Camera& cam = scene.camera;
+    if (cam.depthOfField()) return 0;
+    Bounds3f g;
+    if (cam.perspective()) {
+        float rx0 = std::numeric_limits<float>::infinity(), rx1 = -rx0, ry0 = rx0, ry1 = -rx0, z0 = rx0, z1 = -rx0;
+        for (const Vec3f& p : grid.P[0]) {
+            if (!(p.z > 0)) return 0;
+            rx0 = std::min(rx0, p.x / p.z), rx1 = std::max(rx1, p.x / p.z);
+            ry0 = std::min(ry0, p.y / p.z), ry1 = std::max(ry1, p.y / p.z);
+            z0 = std::min(z0, p.z), z1 = std::max(z1, p.z);
+        }
+        for (float rx : {rx0, rx1})
+            for (float ry : {ry0, ry1})
+                for (float z : {z0, z1}) g.extend(Vec3f{rx * z, ry * z, z});
+    } else {
+        for (const Vec3f& p : grid.P[0]) g.extend(p);
+    }
+    // Rounding in the rebuilt points: a generous margin (it only makes the cull test more).
+    const float pad = 1e-3f * (std::max({std::fabs(g.lo.x), std::fabs(g.hi.x), std::fabs(g.lo.y), std::fabs(g.hi.y),
+                                         std::fabs(g.lo.z), std::fabs(g.hi.z)}) + 1.0f);
+    g.lo = g.lo - Vec3f{pad, pad, pad};
+    g.hi = g.hi + Vec3f{pad, pad, pad};
+    const Bounds3f& b = trace.movingBound();
+    const LightSet& lights = scene.lights;
+    unsigned bits = 0;
+    for (int k = 0; k < std::min(grid.shadowSlots, 7); ++k) {
+        const int li = lights.shadowLight(k);
+        const CameraLight& l = ls[size_t(li)];
+        bool clear;
+        if (l.kind != LightKind::Point && l.kind != LightKind::Shader) {
+            // Rays g + s d, s >= 0, from any g in the grid's box meet b only if s d meets b - g.
+            clear = !rayMeetsBox(l.direction, Bounds3f{b.lo - g.hi, b.hi - g.lo});
+        } else {
+            // Segments from the grid's box to the light's point(s) lie in the box of both.
+            Bounds3f hull = g;
+            if (const int n = lights.areaSamples(li); n > 0) {
+                for (int j = 0; j < n; ++j) hull.extend(lights.areaPoint(li, j, lightTime));
+            } else {
+                hull.extend(l.position);
+            }
+            clear = !hull.overlaps(b);
+        }
+        if (clear) bits |= 1u << k;
+    }
+    return bits;
+}
+
 const std::vector<CameraLight>& SampleTracer::lightsAt(const LightSet& lights, double t) {
     if (!lightsValid_ || (!lights.isStatic() && t != lightsTime_)) {
         lights.at(t, lights_);
@@ -233,12 +332,17 @@ const std::vector<CameraLight>& SampleTracer::lightsAt(const LightSet& lights, d
 }
 
 Color SampleTracer::addVisibleLights(Color c, Vec3f p, double time, const Color* shadowed, const TraceScene& trace,
-                                     const SpacetimeBVH& bvh, RenderCounters& counters) {
+                                     const SpacetimeBVH& bvh, RenderCounters& counters, const SpacetimeBVH* also,
+                                     unsigned unblocked) {
     const LightSet& lights = trace.scene().lights;
     const float bias = trace.shadowBias(p.z, time);
     for (int k = 0; k < lights.shadowSlots(); ++k) {
         const Color part = shadowed[k];
         if (part.x == 0 && part.y == 0 && part.z == 0) continue;  // the light does not reach p anyway
+        if (k < 31 && (unblocked >> k) & 1u) {
+            c += part;
+            continue;
+        }
         const int li = lights.shadowLight(k);
         const CameraLight& l = lightsAt(lights, time)[size_t(li)];
         Ray ray{p, l.direction};
@@ -258,7 +362,8 @@ Color SampleTracer::addVisibleLights(Color c, Vec3f p, double time, const Color*
             tMax = dist - bias;
         }
         ++counters.shadowRays;
-        if (!bvh.occluded(ray, time, bias, tMax, ctx_)) c += part;
+        if (!bvh.occluded(ray, time, bias, tMax, ctx_) && !(also && also->occluded(ray, time, bias, tMax, ctx_)))
+            c += part;
     }
     return c;
 }
@@ -374,19 +479,97 @@ void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, Rend
         const Ray ray = eyeRay(cam, s.x, s.y, lens);
         return ray.o + ray.d * z;
     };
+    const bool split = trace.hasShadowHierarchies();
+    const bool anyMoving = split && trace.anyMovingOccluder();
+    const int K = scene.lights.shadowSlots();
+    // c plus the parts whose lights the sample at depth z sees (`tested`: the still occluders'
+    // shadow is in the parts already, from its grid's vertices).
+    // `tested`: Grid::stillShadows' bits.
+    auto lit = [&](Color c, const Color* parts, uint8_t tested, const SamplePosition& s, Vec2f lens, float z, int frame,
+                   double time) {
+        if (!split) return addVisibleLights(c, pointAt(s, lens, z, frame), time, parts, trace, trace.hierarchy(frame), counters);
+        if (!(tested & 1))
+            return addVisibleLights(c, pointAt(s, lens, z, frame), time, parts, trace, trace.stillOccluders(), counters,
+                                    anyMoving ? &trace.movingOccluders() : nullptr);
+        const unsigned unblocked = unsigned(tested) >> 1;
+        if (anyMoving && unblocked != (1u << std::min(K, 7)) - 1u)
+            return addVisibleLights(c, pointAt(s, lens, z, frame), time, parts, trace, trace.movingOccluders(), counters,
+                                    nullptr, unblocked);
+        for (int k = 0; k < K; ++k) {  // no moving occluder in the way: no ray at all (zero parts skipped as there)
+            const Color part = parts[k];
+            if (part.x == 0 && part.y == 0 && part.z == 0) continue;
+            c += part;
+        }
+        return c;
+    };
     forEachSampleByFrame(block, scene.shutter,
                          [&](SampleHit& hit, Color* shadowed, const SamplePosition& s, Vec2f lens, int frame,
                              double time, const SampleAt& at) {
-        const SpacetimeBVH& bvh = trace.hierarchy(frame);
         const int32_t fragments = block.hasFragments() ? block.recordFragments(at.fi, at.pixel)[at.sample] : -1;
         if (!hit.empty())
-            hit.c = addVisibleLights(hit.c, pointAt(s, lens, hit.z, frame), time, shadowed, trace, bvh, counters);
+            hit.c = lit(hit.c, shadowed, block.stillTested(at.fi, at.pixel)[at.sample], s, lens, hit.z, frame, time);
         // See-through fragments likewise, each from its own depth.
         for (int32_t k = fragments; k >= 0; k = block.fragment(k).next) {
             SampleFragment& f = block.fragment(k);
-            f.c = addVisibleLights(f.c, pointAt(s, lens, f.z, frame), time, block.fragmentShadowed(k), trace, bvh, counters);
+            f.c = lit(f.c, block.fragmentShadowed(k), *block.fragmentStillTested(k), s, lens, f.z, frame, time);
         }
     });
+    counters.rayBodyTests += ctx_.bodyTests - testsBefore;
+    counters.rayBoxTests += ctx_.boxTests - boxesBefore;
+}
+
+void SampleTracer::occludeStillVertices(Grid& grid, const TraceScene& trace, RenderCounters& counters) {
+    const LightSet& lights = trace.scene().lights;
+    const SpacetimeBVH& bvh = trace.stillOccluders();
+    const double time = trace.stillTime();  // still occluders and camera: any time answers alike
+    // The lights at the grid's own time: in a frame sequence, a frame's area light is in that
+    // frame's camera space (the grid lives within its frame).
+    const double lightTime = std::clamp(grid.t0, trace.scene().renderedStart, trace.scene().renderedEnd);
+    const std::vector<CameraLight>& ls = lightsAt(lights, lightTime);
+    const int K = grid.shadowSlots;
+    const uint64_t testsBefore = ctx_.bodyTests, boxesBefore = ctx_.boxTests;
+    Color* cl = grid.Cl[0].data();
+    for (int v = 0; v < grid.vertexCount(); ++v) {
+        const Vec3f p = grid.P[0][size_t(v)];
+        const float bias = trace.shadowBias(p.z, time);
+        for (int k = 0; k < K; ++k) {
+            Color& part = cl[size_t(v) * size_t(K) + size_t(k)];
+            if (part.x == 0 && part.y == 0 && part.z == 0) continue;  // the light does not reach p anyway
+            const int li = lights.shadowLight(k);
+            const CameraLight& l = ls[size_t(li)];
+            // Whether a ray from p to `target` (a point light's) or along the light's direction
+            // reaches it past the still occluders.
+            auto reaches = [&](const Vec3f* target) {
+                Ray ray{p, l.direction};
+                float tMax = std::numeric_limits<float>::infinity();
+                if (target) {
+                    const Vec3f d = *target - p;
+                    const float dist = length(d);
+                    if (!(dist > 2 * bias)) return true;  // the light sits on the surface: nothing between
+                    ray.d = d / dist;
+                    tMax = dist - bias;
+                }
+                ++counters.shadowVertexRays;
+                return !bvh.occluded(ray, time, bias, tMax, ctx_);
+            };
+            if (l.kind != LightKind::Point && l.kind != LightKind::Shader) {
+                if (!reaches(nullptr)) part = {0, 0, 0};
+            } else if (const int n = lights.areaSamples(li); n > 0) {
+                // Every point of the area light (the per-sample path picks one a sample, and a
+                // pixel's samples spread over them): the share it sees, smooth over the grid.
+                int seen = 0;
+                for (int j = 0; j < n; ++j) {
+                    const Vec3f target = lights.areaPoint(li, j, lightTime);
+                    seen += reaches(&target);
+                }
+                if (seen < n) part = part * (float(seen) / float(n));
+            } else {
+                const Vec3f target = l.position;
+                if (!reaches(&target)) part = {0, 0, 0};
+            }
+        }
+    }
+    grid.stillShadows = uint8_t(1u | (unblockedByMoving(grid, trace, ls, lightTime) << 1));
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
 }

@@ -50,6 +50,22 @@ class TraceScene {
     // One 3D hierarchy per frame of [first, first + count) (over its exposure), replacing those
     // built before: the frame-by-frame baseline. Frames are built in parallel (TBB).
     void buildFrames(int first, int count, const HierarchyOptions& options);
+    // Shadows of the rasterizer's hits (docs/ARCHITECTURE.md, "Shadows"): the bodies parted into
+    // those that stand still through the whole shot (not moving, existing from the shot's first
+    // exposure to its last: whether a body is one depends on the body alone, not on the frames
+    // rendered) and the rest, one hierarchy over each. A still occluder blocks a ray the same at
+    // every time, so it is tested once per vertex of a still grid; the moving ones per sample.
+    void buildShadowHierarchies(const HierarchyOptions& options);
+    bool hasShadowHierarchies() const { return shadowSplit_; }
+    const SpacetimeBVH& stillOccluders() const { return still_; }
+    const SpacetimeBVH& movingOccluders() const { return moving_; }
+    bool anyMovingOccluder() const { return !movingBodies_.empty(); }
+    // A box holding every moving occluder during the frames rendered: a ray that misses it
+    // meets none of them (a cull that cannot change a pixel, whatever frames it is made over).
+    const Bounds3f& movingBound() const { return movingBound_; }
+    // The time the still occluders' tests run at: any time of the render gives the same answer.
+    double stillTime() const { return scene_.renderedStart; }
+
     // The hierarchy rays of frame f go through.
     const SpacetimeBVH& hierarchy(int frame) const {
         return frames_.empty() ? spacetime_ : frames_[size_t(frame - framesFirst_)];
@@ -94,6 +110,10 @@ class TraceScene {
     Bounds3f include_;  // the eye and the point lights: part of the root cell, as in the paper
     SpacetimeBVH spacetime_;
     std::vector<SpacetimeBVH> frames_;
+    bool shadowSplit_ = false;
+    std::vector<const TrilinearBody*> stillBodies_, movingBodies_;
+    SpacetimeBVH still_, moving_;
+    Bounds3f movingBound_;
     int framesFirst_ = 0;
 };
 
@@ -108,13 +128,30 @@ class SampleTracer {
     void traceSamples(ImageBlock& block, const TraceScene& trace, RenderCounters& counters);
     // The rasterizer's shadows: adds to each hit sample the contributions the rasterizer kept
     // apart (block.shadowed()) of the lights its shadow rays reach.
+    // With the shadow hierarchies built (TraceScene::buildShadowHierarchies): a sample whose
+    // parts were tested at its grid's vertices (ImageBlock::stillTested) casts rays against the
+    // moving occluders only (none at all when nothing moves); the others against both.
     void shadeShadows(ImageBlock& block, const TraceScene& trace, RenderCounters& counters);
+    // A still grid under still lights, after shading: scales each vertex's parts (Cl[0]) by the
+    // share of its light that the still occluders leave it (0 or 1; for an area light, the share
+    // of its points a ray reaches: every point tested, not one picked per sample), and sets
+    // Grid::stillShadows: bit 0, and bit k + 1 for each light slot k that no moving occluder can
+    // shadow anywhere on the grid (its samples then cast no ray for it). Needs the shadow
+    // hierarchies.
+    void occludeStillVertices(Grid& grid, const TraceScene& trace, RenderCounters& counters);
 
   private:
     const std::vector<CameraLight>& lightsAt(const LightSet& lights, double t);
     // c plus each shadowed[k] whose light a shadow ray from p at `time` reaches.
+    // With `also`, a ray blocked by either hierarchy is blocked (the still and the moving
+    // occluders: together what `bvh` alone would hold). Slot k with bit k of `unblocked` set is
+    // added without a ray (nothing in `bvh` can block it).
     Color addVisibleLights(Color c, Vec3f p, double time, const Color* shadowed, const TraceScene& trace,
-                           const SpacetimeBVH& bvh, RenderCounters& counters);
+                           const SpacetimeBVH& bvh, RenderCounters& counters, const SpacetimeBVH* also = nullptr,
+                           unsigned unblocked = 0);
+
+    unsigned unblockedByMoving(const Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& lights,
+                               double lightTime);
 
     TraceContext ctx_;
     GridShader* shader_ = nullptr;

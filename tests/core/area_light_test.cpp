@@ -67,7 +67,7 @@ TEST(AreaLight, ALargeLightCastsASoftShadow) {
     const test::RenderResult areaOpen = test::renderRib(floorUnder(area));
     const test::RenderResult pointShadowed = test::renderRib(floorUnder(point, blocker));
     const test::RenderResult pointOpen = test::renderRib(floorUnder(point));
-    EXPECT_GT(areaShadowed.stats.counters.shadowRays, 0u);
+    EXPECT_GT(areaShadowed.stats.counters.shadowRays + areaShadowed.stats.counters.shadowVertexRays, 0u);
     EXPECT_LE(penumbra(pointShadowed, pointOpen), 4);
     EXPECT_GE(penumbra(areaShadowed, areaOpen), 10);
     // Under the blocker's middle the light is mostly hidden; at the image's edge not at all.

@@ -107,6 +107,10 @@ TEST(DisplacedTrace, ADisplacementThatChangesPerFrameIsTracedPerFrameWhateverThe
     }
 }
 
+// Shadows tested per sample, as the ray tracer tests them (the rasterizer's default tests still
+// occluders at a still floor's vertices: tests/core/still_shadow_test.cpp).
+const char* kPerSampleShadows = "Option \"trace\" \"string shadowtest\" [\"sample\"]\n";
+
 // A distant light along (0, -1, 1) casts the shadow of a plane displaced towards the camera by
 // d, whose edge at (y = 26, depth 90) would fall on the floor (depth 100) at y = 16, above the
 // picture: displaced, at y = 16 - d. The floor's rows below it are lit, those above dark.
@@ -115,14 +119,15 @@ TEST(DisplacedTrace, APlaneDisplacedByAConstantCastsItsShadowFromItsDisplacedPla
     d.add("lift", kLift);
     for (double lift : {0.0, 6.0}) {
         SCOPED_TRACE("lift " + std::to_string(lift));
-        const std::string rib = test::orthographicView(16, 16, d.option()) + "WorldBegin\n" +
+        // Per sample: the edge's place exact per pixel row (at the shading rate, a one-micropolygon ramp).
+        const std::string rib = test::orthographicView(16, 16, d.option()) + kPerSampleShadows + "WorldBegin\n" +
                                 "Attribute \"light\" \"shadows\" \"on\"\n" +
                                 "LightSource \"distantlight\" 1 \"from\" [0 1 -1] \"to\" [0 0 0]\nAttributeBegin\n" +
                                 "Attribute \"displacementbound\" \"sphere\" [8]\nDisplacement \"lift\" \"d\" " +
                                 std::to_string(lift) + "\n" + test::square(-10, 26, 26, 76, 90) + "AttributeEnd\n" +
                                 "Surface \"matte\" \"Ka\" 0\n" + test::square(0, 16, 0, 16, 100) + "WorldEnd\n";
         const test::RenderResult r = test::renderRib(rib);
-        ASSERT_GT(r.stats.counters.shadowRays, 0u);
+        ASSERT_GT(r.stats.counters.shadowRays + r.stats.counters.shadowVertexRays, 0u);
         const float lit = float(std::sqrt(0.5));  // Kd 1, the light at 45 degrees
         for (int py = 0; py < 16; ++py) {
             const double y0 = 16 - py - 1;  // the pixel row is [y0, y0 + 1]
@@ -160,7 +165,7 @@ TEST(DisplacedTrace, ABumpsTracedShadowIsTheRasterizersSilhouetteSeenFromTheLigh
     };
     // The traced shadow on the floor: 1 - lit share.
     auto shadow = [&](double h) {
-        const std::string rib = test::orthographicView(W, H, d.option()) + "WorldBegin\n" +
+        const std::string rib = test::orthographicView(W, H, d.option()) + kPerSampleShadows + "WorldBegin\n" +
                                 "Attribute \"light\" \"shadows\" \"on\"\n" +
                                 "LightSource \"distantlight\" 1 \"from\" [0 1 -1] \"to\" [0 0 0]\n" + occluder(h) + "Surface \"matte\" \"Ka\" 0\n" +
                                 test::square(0, W, 0, H, 100) + "WorldEnd\n";
@@ -170,7 +175,7 @@ TEST(DisplacedTrace, ABumpsTracedShadowIsTheRasterizersSilhouetteSeenFromTheLigh
     double area[2][2] = {};  // [flat, bumped][silhouette, shadow]
     for (int b = 0; b < 2; ++b) {
         const test::RenderResult sil = silhouette(b * kH), sh = shadow(b * kH);
-        ASSERT_GT(sh.stats.counters.shadowRays, 0u);
+        ASSERT_GT(sh.stats.counters.shadowRays + sh.stats.counters.shadowVertexRays, 0u);
         int differ = 0;
         for (int py = 0; py < H; ++py)
             for (int px = 0; px < W; ++px) {

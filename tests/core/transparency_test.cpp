@@ -189,6 +189,7 @@ TEST(Transparency, TheSceneAgreesWithTheRayTracer) {
     o.hasFrames = true;
     o.firstFrame = 4;
     o.lastFrame = 4;
+    o.shadowsPerSample = true;  // as the ray tracer tests them: the comparison is of transparency
     const test::RenderResult raster = test::renderFile(test::sourcePath("scenes/transparency.rib"), o);
     o.algorithm = Algorithm::Raytrace;
     const test::RenderResult traced = test::renderFile(test::sourcePath("scenes/transparency.rib"), o);
