@@ -57,6 +57,9 @@ struct PassFrame {
     std::vector<std::pair<DisplayDesc, FileVersion>> maps;
     // Depth maps it reads: the name (as a shader parameter gives it) and the version it sees.
     std::map<std::string, FileVersion> reads;
+    // A version it writes with Display "append" -> the version of that file it adds its map to
+    // (the latest written before it in the input; none: the file starts with this map).
+    std::map<FileVersion, FileVersion> appends;
 };
 
 struct PassJob {
