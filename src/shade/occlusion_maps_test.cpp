@@ -127,13 +127,15 @@ TEST(OcclusionMaps, AWallBesideThePointBlocksTheCosineWeightedShareOfTheMapsThat
     }
     // cos 30 + cos 60 over 1 + 2 cos 30 + 3 cos 60.
     EXPECT_NEAR(blocked / total, (std::cos(kPi / 6) + 0.5) / (1 + 2 * std::cos(kPi / 6) + 1.5), 1e-12);
-    EXPECT_NEAR(v.occlusion({0, 0, 0}, {0, 0, 1}, 0, 0.01f, 16), blocked / total, 1e-6);
-    // The normal's length does not matter; a normal along -x turns away from the wall's maps.
-    EXPECT_NEAR(v.occlusion({0, 0, 0}, {0, 0, 7}, 0, 0.01f, 16), blocked / total, 1e-6);
+    // (A bias of 0.2 clears the ground's own slope across a texel in the tilted maps: P's depth is
+    // compared as one constant, as Aqsis does.)
+    EXPECT_NEAR(v.occlusion({0, 0, 0}, {0, 0, 1}, 0, 0.2f, 16), blocked / total, 1e-6);
+    // The normal's length does not matter.
+    EXPECT_NEAR(v.occlusion({0, 0, 0}, {0, 0, 7}, 0, 0.2f, 16), blocked / total, 1e-6);
     // N = -x: the facing maps are the two whose sky lies at x < 0, away from the wall: open.
-    EXPECT_EQ(v.occlusion({0, 0, 0}, {-1, 0, 0}, 0, 0.01f, 16), 0.0f);
+    EXPECT_EQ(v.occlusion({0, 0, 0}, {-1, 0, 0}, 0, 0.2f, 16), 0.0f);
     // 3 units from the wall every ray toward +x at these angles still meets it below its top.
-    EXPECT_NEAR(v.occlusion({-3, 0, 0}, {0, 0, 1}, 0, 0.01f, 16), blocked / total, 1e-6);
+    EXPECT_NEAR(v.occlusion({-3, 0, 0}, {0, 0, 1}, 0, 0.2f, 16), blocked / total, 1e-6);
 }
 
 // "blur" averages over a box of that share of the map: across the wall's shadow edge in one map
@@ -156,12 +158,15 @@ TEST(OcclusionMaps, BlurAveragesTheCoveredShareOfTheBox) {
 }
 
 TEST(OcclusionMaps, BiasKeepsTheGroundFromCoveringItself) {
-    // The map sees the ground at the point's own depth (10): never in front at any bias >= 0.
+    // A map 40 degrees off the normal sees the ground sloping across its texels: P's depth taken as
+    // one constant over the box (Aqsis's), the nearer half of the box covers P at bias 0; a bias
+    // above the slope across the box clears it.
     auto file = chainOf({mapFrom(polar(40, 30), 64, false)});
     OcclusionViews v;
     std::string error;
     ASSERT_TRUE(v.set(*file, Matrix4(), &error)) << error;
-    EXPECT_EQ(v.occlusion({0.3, 0.2, 0}, {0, 0, 1}, 0.02f, 0.0f, 16), 0.0f);
+    EXPECT_GT(v.occlusion({0.3, 0.2, 0}, {0, 0, 1}, 0.02f, 0.0f, 16), 0.2f);
+    EXPECT_EQ(v.occlusion({0.3, 0.2, 0}, {0, 0, 1}, 0.02f, 0.2f, 16), 0.0f);
     // A bias larger than the roof's height above the point lets the roof through.
     DepthMap m = mapFrom({0, 0, 1}, 16, false);
     for (float& z : m.z) z = 9.5f;  // 0.5 above the ground

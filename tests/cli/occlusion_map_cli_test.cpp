@@ -58,7 +58,7 @@ const char* kGeometry =
     "Patch \"bilinear\" \"P\" [0.6 -20 0  0.6 20 0  0.6 -20 20  0.6 20 20]\n";
 
 const char* kShader =
-    "surface occlview(string map = \"occl.sm\"; float blur = 0; float bias = 0.05;) {\n"
+    "surface occlview(string map = \"occl.sm\"; float blur = 0; float bias = 0.2;) {\n"
     "    normal Nf = faceforward(normalize(N), I);\n"
     "    float o = occlusion(map, P, Nf, 0, \"blur\", blur, \"bias\", bias);\n"
     "    Ci = 1 - o;\n"
