@@ -61,6 +61,9 @@ struct PassFrame {
     // Not wanted itself (--frames): rendered because a texture a wanted frame reads is made from its
     // pictures. Its displays write under their own names, never -o's.
     bool madeFrom = false;
+    // A version it writes with Display "append" -> the version of that file it adds its map to
+    // (the latest written before it in the input; none: the file starts with this map).
+    std::map<FileVersion, FileVersion> appends;
 };
 
 struct PassJob {

@@ -198,6 +198,9 @@ struct DisplayDesc {
     // The display's own "quantize" [zero one min max] and "dither" [amplitude] parameters, which
     // override the Quantize request's (empty: not given).
     std::vector<double> quantizeParam, ditherParam;
+    // A depth display's "append" (Aqsis's "float append" [1]): the frame's map is added to the maps
+    // its file holds so far in the input (a multi-map file, read by occlusion() as an occlusion map).
+    bool append = false;
     // How an 8- or 16-bit file of this display is quantized: set at WorldBegin from the Quantize
     // request of its mode (or "rgba", or "z" for a depth display) and its own parameters.
     Quantize quantize = kColorQuantize;

@@ -54,10 +54,20 @@ void PassRunner::keep(const PassFrame& frame, const FrameImage& image, double sh
     for (const auto& [display, version] : frame.maps) {
         const std::string path = frameFileName(display.name, image.frame);
         std::shared_ptr<const DepthMap> kept = map;
+        auto appends = frame.appends.find(version);
+        if (appends != frame.appends.end()) {
+            // Display "append": the file as it stood (kept: a job keeps its frames in order) plus this map.
+            auto appended = std::make_shared<DepthMap>(*map);
+            appended->previous = mapOf(appends->second, image.frame);
+            if (!appended->previous)
+                throw RenderError("Display \"" + display.name + "\" \"append\": the maps written before frame " +
+                                  std::to_string(image.frame) + "'s are not kept (an internal error)");
+            kept = std::move(appended);
+        }
         // A still light over a still set makes the same map every frame: one kept for all of them,
         // so that what reads it is still too.
         auto last = lastOfName_.find(path);
-        if (last != lastOfName_.end() && last->second->sameAs(*map)) kept = last->second;
+        if (last != lastOfName_.end() && last->second->sameAs(*kept)) kept = last->second;
         lastOfName_[path] = kept;
         maps_[version][image.frame] = kept;
         writeMap(path, version, *kept, display.type == "shadow");

@@ -10,10 +10,12 @@
 namespace streyes {
 
 // Writes `map` to `path` as a shadow map (`shadow`: tiled, textureformat "Shadow") or a zfile,
-// atomically (a temporary file renamed into place). Throws RenderError when it cannot.
+// atomically (a temporary file renamed into place), with the maps before it (map.previous) as
+// the file's first directories. Throws RenderError when it cannot.
 void writeDepthMapFile(const std::string& path, const DepthMap& map, bool shadow);
 
-// Reads a depth map: false, with *error saying why (missing, not a depth map, truncated).
+// Reads a depth map (a file of several: the last, the others chained as its `previous`): false,
+// with *error saying why (missing, not a depth map, truncated).
 bool readDepthMapFile(const std::string& path, DepthMap* out, std::string* error);
 
 }  // namespace streyes

@@ -216,9 +216,11 @@ class Planner {
                 bool dead = true;
                 for (FileVersion v : it->second.writes) {
                     if (!versions_[v].superseded) dead = false;
-                    for (const auto& [id, c] : candidates_)
+                    for (const auto& [id, c] : candidates_) {
                         if (c.isMake && (c.input == v || std::count(c.textureInputs.begin(), c.textureInputs.end(), v)))
                             dead = false;
+                        for (const auto& [w, prior] : c.frame.appends) dead = dead && prior != v;
+                    }
                 }
                 if (dead) {
                     for (FileVersion v : it->second.writes) versions_[v].candidate = -1;
@@ -389,7 +391,10 @@ class Planner {
         // field writes that frame's name (an ordinary scene's, one version holding every frame's).
         for (const DisplayDesc& d : s.settings.displays)
             if (isDepthDisplay(d)) {
-                const FileVersion v = newVersion(ordinary ? d.name : frameFileName(d.name, s.frameNumber));
+                const std::string file = ordinary ? d.name : frameFileName(d.name, s.frameNumber);
+                auto prior = d.append ? latest_.find(file) : latest_.end();
+                const FileVersion v = newVersion(file);
+                if (prior != latest_.end()) f.appends[v] = prior->second;
                 f.maps.push_back({d, v});
                 c.writes.push_back(v);
                 if (!want) versions_[v].candidate = order_;
@@ -467,6 +472,8 @@ class Planner {
         if (c.needy) {
             for (const auto& [name, v] : f.reads)
                 if (versions_[v].candidate >= 0) promote(versions_[v].candidate);
+            for (const auto& [w, prior] : f.appends)
+                if (versions_[prior].candidate >= 0) promote(versions_[prior].candidate);
             promoteTextures(c);
         }
         // Frames rendered only for a texture's pictures are jobs of their own (never under -o).
@@ -486,12 +493,18 @@ class Planner {
             if (pending_.count(node) &&
                 (c.strings.count(name) || c.strings.count(std::filesystem::path(name).filename().string())))
                 deps.insert(node);
+        // A file it appends to: made before it, by an earlier job or earlier in its own (a job keeps
+        // its frames' maps in frame order).
+        std::set<int> appendDeps;
+        for (const auto& [w, prior] : f.appends)
+            if (pending_.count(versions_[prior].node)) appendDeps.insert(versions_[prior].node);
         int id = -1;
         if (!c.ordinary && open != openJob_.end() && pending_.count(open->second)) {
             const int j = open->second;
             const Node& n = pending_.at(j);
             bool fits = n.last < f.number && n.count < block_;
             for (int d : deps) fits = fits && d != j && !reaches(d, j);
+            for (int d : appendDeps) fits = fits && (d == j || !reaches(d, j));
             if (fits) id = j;
         }
         if (id < 0) {
@@ -510,9 +523,15 @@ class Planner {
         }
         Node& n = pending_.at(id);
         n.deps.insert(deps.begin(), deps.end());
+        for (int d : appendDeps)
+            if (d != id) n.deps.insert(d);
         for (const auto& [name, v] : f.reads) {
             n.reads.push_back(v);
             ++versions_[v].readers;
+        }
+        for (const auto& [w, prior] : f.appends) {
+            n.reads.push_back(prior);
+            ++versions_[prior].readers;
         }
         for (const auto& [d, v] : f.maps) {
             n.writes.push_back(v);

@@ -203,5 +203,32 @@ TEST(Passes, MakeTextureRunsAfterTheFramesBeforeIt) {
     EXPECT_EQ(framesOf(r.jobs[2]), (std::vector<int>{2, 3}));
 }
 
+// Aqsis's occlusion maps (occlmap.rib): frame 1 writes the file, frames 2.. append to it with
+// "float append" [1]. The frames stay one depth job (a job keeps its maps in frame order), each
+// appending frame adds to the version the frame before it made, and the picture reads the last.
+TEST(Passes, AppendingDepthFramesAddToTheVersionBeforeThemInOneJob) {
+    std::string text;
+    for (int f = 1; f <= 4; ++f) {
+        std::string frame = depthFrame(f, "occl.sm", 0.1 * f);
+        if (f > 1) frame.replace(frame.find("\"zfile\" \"z\""), 12, "\"shadow\" \"z\" \"float append\" [1]");
+        text += frame;
+    }
+    text += pictureFrame(5, "occl.sm");
+    const Read r = readText(text);
+    const std::vector<PassJob> jobs = r.renders();
+    ASSERT_EQ(jobs.size(), 2u);
+    EXPECT_EQ(framesOf(jobs[0]), (std::vector<int>{1, 2, 3, 4}));
+    const auto& frames = jobs[0].frames;
+    EXPECT_TRUE(frames.at(1).appends.empty());
+    for (int f = 2; f <= 4; ++f) {
+        ASSERT_EQ(frames.at(f).maps.size(), 1u);
+        EXPECT_TRUE(frames.at(f).maps[0].first.append);
+        ASSERT_EQ(frames.at(f).appends.size(), 1u);
+        EXPECT_EQ(frames.at(f).appends.begin()->first, frames.at(f).maps[0].second);
+        EXPECT_EQ(frames.at(f).appends.begin()->second, frames.at(f - 1).maps[0].second) << "frame " << f;
+    }
+    EXPECT_EQ(jobs[1].frames.at(5).reads.at("occl.sm"), frames.at(4).maps[0].second);
+}
+
 }  // namespace
 }  // namespace streyes

@@ -207,6 +207,12 @@ void display(RibParser& reader, RibArgs& args) {
             throw InputError(d->loc, "Display: \"dither\" takes one amplitude of at least 0");
         ditherParam = d->nums;
     }
+    bool append = false;
+    if (const Param* a = params.find("append")) {
+        if (a->nums.size() != 1 || !std::isfinite(a->nums[0]))
+            throw InputError(a->loc, "Display: \"append\" takes one number (1: add this frame's map to the file's)");
+        append = a->nums[0] != 0;
+    }
     // A mode that declares its variable inline, "float myval" or "varying color paint" (PRMan's
     // and Aqsis's form): declared as DisplayChannel declares it, the mode its name.
     if (mode.find(' ') != std::string::npos && mode.find(',') == std::string::npos) {
@@ -241,6 +247,7 @@ void display(RibParser& reader, RibArgs& args) {
     desc.name = name, desc.type = type, desc.mode = mode, desc.loc = args.loc();
     desc.quantizeParam = std::move(quantizeParam);
     desc.ditherParam = std::move(ditherParam);
+    desc.append = append;
     settings.displays.push_back(std::move(desc));
 }
 

@@ -32,7 +32,7 @@ bool isBuiltinLight(const LightDesc& d) {
 bool readsMaps(const sl::ShaderInstance* s) {
     if (!s) return false;
     for (const sl::Instr& in : s->program().code)
-        if (in.fn == sl::ops::shadow) return true;
+        if (in.fn == sl::ops::shadow || in.fn == sl::ops::occlusionmap) return true;
     return false;
 }
 
@@ -40,8 +40,8 @@ bool readsMaps(const sl::ShaderInstance* s) {
 bool castsRays(const sl::ShaderInstance* s) {
     if (!s) return false;
     for (const sl::Instr& in : s->program().code)
-        if (in.fn == sl::ops::occlusion || in.fn == sl::ops::indirectdiffuse || in.fn == sl::ops::trace ||
-            in.fn == sl::ops::transmission || in.fn == sl::ops::gather)
+        if (in.fn == sl::ops::occlusion || in.fn == sl::ops::occlusionmap || in.fn == sl::ops::indirectdiffuse ||
+            in.fn == sl::ops::trace || in.fn == sl::ops::transmission || in.fn == sl::ops::gather)
             return true;
     // environment("raytrace", ...): the name is a string constant, or a parameter set to it.
     const sl::ShaderProgram& p = s->program();
@@ -171,6 +171,11 @@ bool LazyTextureSource::environment(const std::string& name, const sl::TextureOp
 bool LazyTextureSource::shadow(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
                                float* const* out) {
     return maps_ && maps_->shadow(name, o, q, out[0]);
+}
+
+bool LazyTextureSource::occlusionMap(const std::string& name, const sl::TextureOptions& o,
+                                     const sl::DirectionQuery& q, const float* const* normal, float* out) {
+    return maps_ && maps_->occlusion(name, o, q, normal, out);
 }
 
 bool LazyTextureSource::textureInfo(const std::string& name, const std::string& field, sl::QueryValue& out) {

@@ -48,6 +48,8 @@ class LazyTextureSource final : public sl::TextureSource {
                      float* const* out) override;
     bool shadow(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
                 float* const* out) override;
+    bool occlusionMap(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
+                      const float* const* normal, float* out) override;
     bool textureInfo(const std::string& name, const std::string& field, sl::QueryValue& out) override;
 
   private:

@@ -49,6 +49,8 @@ uint64_t bitsOf(double v) {
 }  // namespace
 
 bool DepthMap::sameAs(const DepthMap& o) const {
+    if (bool(previous) != bool(o.previous)) return false;
+    if (previous && previous != o.previous && !previous->sameAs(*o.previous)) return false;
     return width == o.width && height == o.height && worldToCamera == o.worldToCamera &&
            worldToScreen == o.worldToScreen && z.size() == o.z.size() &&
            (z.empty() || std::memcmp(z.data(), o.z.data(), z.size() * sizeof(float)) == 0);

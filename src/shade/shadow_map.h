@@ -38,7 +38,11 @@ struct DepthMap {
     std::vector<float> z;   // width x height, row-major from the top-left pixel
     Matrix4 worldToCamera;  // the light camera (row vectors, p * M, as RenderMan)
     Matrix4 worldToScreen;  // world -> screen: x and y in [-1, 1] across the image, y up (homogeneous)
-    bool sameAs(const DepthMap& o) const;  // every pixel and matrix the same bits
+    // A multi-map file (Display "append", an occlusion map: shade/occlusion_maps.h): the file as it
+    // was before this map was added (null: this is its first), so that the file's maps are this
+    // chain, the first map at its end. shadow() reads this one, the file's last.
+    std::shared_ptr<const DepthMap> previous;
+    bool sameAs(const DepthMap& o) const;  // every pixel and matrix the same bits (previous maps too)
 };
 
 // The camera of a depth pass frame: world -> camera and camera -> screen (the projection, the

@@ -46,6 +46,11 @@ class ShadowMaps {
     // shadow(): the fraction of light blocked at each active point of q into out. False when
     // `name` is no map (warned once): the caller leaves the points unshadowed.
     bool shadow(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q, float* out);
+    // occlusion(mapname, P, N): the map-based occlusion at each active point of q (R: P) about
+    // normal[c][i] over the maps of the name's file (shade/occlusion_maps.h, which defines it).
+    // False, as shadow(), when `name` is no map.
+    bool occlusion(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
+                   const float* const* normal, float* out);
     bool varies() const { return varies_; }
     // World -> the current (camera) space of the frame that time t falls in.
     Matrix4 worldToCameraAt(double t) const;

@@ -545,7 +545,10 @@ CodeGen::Val CodeGen::genRay(const Expr& e, const Builtin& b) {
         held.push_back(v);
         return v.reg;
     };
-    size_t i = b.name == "occlusion" && !e.args.empty() && e.args[0]->type.isString() ? 1 : 0;  // Aqsis's map: traced
+    // occlusion(mapname, P, N, ...): the map-based form (shadeops_occlmap.cpp), the name first.
+    const bool mapForm = b.name == "occlusion" && !e.args.empty() && e.args[0]->type.isString();
+    size_t i = mapForm ? 1 : 0;
+    const int32_t mapName = mapForm ? keep(gen(*e.args[0])) : -1;
     std::vector<int32_t> positional;
     for (size_t k = 0; i < e.args.size() && !e.args[i]->type.isString(); ++i, ++k)
         positional.push_back(keep(convert(gen(*e.args[i]), b.args[k])));
@@ -555,9 +558,10 @@ CodeGen::Val CodeGen::genRay(const Expr& e, const Builtin& b) {
         regs.push_back(keep(gen(*e.args[i])));
         regs.push_back(keep(gen(*e.args[i + 1])));
     }
+    if (mapForm) regs.insert(regs.begin(), mapName);
     setLoc(e.loc);
     Val t = temp(b.ret, Detail::Varying);
-    emit(b.op, {t.reg, extraSpan(regs), int(regs.size())}, true);
+    emit(mapForm ? ops::occlusionmap : b.op, {t.reg, extraSpan(regs), int(regs.size())}, true);
     for (const Val& v : held) release(v);
     return t;
 }

@@ -10,6 +10,7 @@ const char* opName(OpFn fn) {
     } table[] = {
         {ops::jmp, "jmp"},
         {ops::occlusion, "occlusion"},
+        {ops::occlusionmap, "occlusionmap"},
         {ops::indirectdiffuse, "indirectdiffuse"},
         {ops::trace, "trace"},
         {ops::transmission, "transmission"},

@@ -163,6 +163,9 @@ STREYES_SL_OP(shadow);
 // a0 dst; extra: positional count k, k regs (P then N, R or the far point; occlusion's samples
 // last), then option pairs (name string reg, value reg).
 STREYES_SL_OP(occlusion);
+// occlusion(mapname, ...): as occlusion with the map name's string reg before the count
+// (shadeops_occlmap.cpp); "raytrace" or "" runs occlusion.
+STREYES_SL_OP(occlusionmap);
 STREYES_SL_OP(indirectdiffuse);
 STREYES_SL_OP(trace);
 STREYES_SL_OP(transmission);

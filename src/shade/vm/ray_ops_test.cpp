@@ -93,16 +93,20 @@ TEST(VmRays, WithoutASourceTheyGiveWhatNothingHitGives) {
     EXPECT_EQ(vm.stats().raysMissing, 5u);
 }
 
+// Aqsis's map form reads the map through the texture source (none here: 0, counted as a texture
+// error, no ray); the map name "raytrace" is the traced form.
 TEST(VmRays, AqsisMapFormAndEnvironmentRaytrace) {
     TestGrid g = lineOfPoints();
     ShaderInstance s(test::compile(
         "surface t() {\n  float o = occlusion(\"occlmap.sm\", P, N, 0, \"samples\", 64, \"blur\", 0.1);\n"
-        "  Ci = color(o, 0, 0) + color environment(\"raytrace\", vector(0, 5, 0));\n}\n"));
+        "  float r = occlusion(\"raytrace\", P, N, 0, \"samples\", 64);\n"
+        "  Ci = color(o + r, 0, 0) + color environment(\"raytrace\", vector(0, 5, 0));\n}\n"));
     RecordingRays rays;
     ShadingVM vm;
     vm.setRaySource(&rays);
     vm.run(s, g.grid);
     EXPECT_EQ(rays.calls, 2);
+    EXPECT_EQ(vm.stats().textureErrors, 1u);
     const ValueRef ci = vm.result(Global::Ci);
     EXPECT_EQ(test::at3(ci, 2), (Vec3f{0.2f, 5, 0}));
 }

@@ -68,6 +68,13 @@ class TextureSource {
     // The fraction of light blocked at each point: 0 lit, 1 in shadow.
     virtual bool shadow(const std::string& name, const TextureOptions& options, const DirectionQuery& q,
                         float* const* out) = 0;
+    // occlusion(mapname, P, N, ...): the occlusion at each point R of q about normal[c][i] from
+    // the depth maps of a multi-map file (shade/occlusion_maps.h). False: not read (0, counted).
+    virtual bool occlusionMap(const std::string& name, const TextureOptions& options, const DirectionQuery& q,
+                              const float* const* normal, float* out) {
+        (void)name, (void)options, (void)q, (void)normal, (void)out;
+        return false;
+    }
     // textureinfo(name, field): "resolution" (float[2]), "type" ("texture", "environment" or
     // "shadow"), "channels" (float), "viewingmatrix" and "projectionmatrix" (the world to camera
     // and world to screen matrices of a map rendered by a camera). False when the map cannot be
