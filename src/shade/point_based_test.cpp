@@ -16,6 +16,7 @@
 #include "shade/point_based_buffer.h"
 #include "shade/point_clouds.h"
 #include "streyes/error.h"
+#include "form_factor_util.h"
 #include "test_util.h"
 
 namespace streyes {
@@ -46,24 +47,7 @@ struct CloudMaker {
     BakedPointCloud cloud() const { return BakedPointCloud({{"_area", 1}, {"_radiosity", 3}}, data); }
 };
 
-// Lambert's form factor from a point of the plane z = pz (normal +z) to a polygon: the cosine-
-// weighted share of the hemisphere it covers.
-double formFactor(const Vec& p, const std::vector<Vec>& poly) {
-    double sum = 0;
-    for (size_t i = 0; i < poly.size(); ++i) {
-        const Vec& a = poly[i];
-        const Vec& b = poly[(i + 1) % poly.size()];
-        const Vec r0 = {a[0] - p[0], a[1] - p[1], a[2] - p[2]}, r1 = {b[0] - p[0], b[1] - p[1], b[2] - p[2]};
-        const Vec c = {r0[1] * r1[2] - r0[2] * r1[1], r0[2] * r1[0] - r0[0] * r1[2], r0[0] * r1[1] - r0[1] * r1[0]};
-        const double cl = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-        if (cl == 0) continue;
-        const double l0 = std::sqrt(r0[0] * r0[0] + r0[1] * r0[1] + r0[2] * r0[2]);
-        const double l1 = std::sqrt(r1[0] * r1[0] + r1[1] * r1[1] + r1[2] * r1[2]);
-        const double angle = std::acos(std::clamp((r0[0] * r1[0] + r0[1] * r1[1] + r0[2] * r1[2]) / (l0 * l1), -1.0, 1.0));
-        sum += angle * c[2] / cl;
-    }
-    return std::fabs(sum) / (2 * M_PI);
-}
+double formFactor(const Vec& p, const std::vector<Vec>& poly) { return test::lambertFormFactor(p, poly); }
 
 // Does the ray from p along d meet the rectangle corner + [0,1] eu + [0,1] ev?
 bool hitsRect(const Vec& p, const Vec& d, const Vec& corner, const Vec& eu, const Vec& ev) {

@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "shade/point_cloud.h"
+#include "form_factor_util.h"
 #include "shader_test_util.h"
 #include "test_util.h"
 
@@ -25,22 +26,7 @@ constexpr double kFloor = 100, kRoof = 116;
 // would otherwise lie in their plane, edge on to their discs.
 constexpr double kX0 = -0.05, kX1 = kW + 0.05;
 
-double formFactor(const Vec& p, const std::vector<Vec>& poly) {
-    double sum = 0;
-    for (size_t i = 0; i < poly.size(); ++i) {
-        const Vec& a = poly[i];
-        const Vec& b = poly[(i + 1) % poly.size()];
-        const Vec r0 = {a[0] - p[0], a[1] - p[1], a[2] - p[2]}, r1 = {b[0] - p[0], b[1] - p[1], b[2] - p[2]};
-        const Vec c = {r0[1] * r1[2] - r0[2] * r1[1], r0[2] * r1[0] - r0[0] * r1[2], r0[0] * r1[1] - r0[1] * r1[0]};
-        const double cl = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-        if (cl == 0) continue;
-        const double l0 = std::sqrt(r0[0] * r0[0] + r0[1] * r0[1] + r0[2] * r0[2]);
-        const double l1 = std::sqrt(r1[0] * r1[0] + r1[1] * r1[1] + r1[2] * r1[2]);
-        const double angle = std::acos(std::clamp((r0[0] * r1[0] + r0[1] * r1[1] + r0[2] * r1[2]) / (l0 * l1), -1.0, 1.0));
-        sum += angle * c[2] / cl;
-    }
-    return std::fabs(sum) / (2 * M_PI);
-}
+double formFactor(const Vec& p, const std::vector<Vec>& poly) { return lambertFormFactor(p, poly); }
 
 double boxFormFactor(double x, double y) {
     const Vec p = {x, y, kFloor};

@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "form_factor_util.h"
 #include "shader_test_util.h"
 #include "test_util.h"
 
@@ -20,24 +21,9 @@ std::string patch(const double p[12]) {
     return s + "]\n";
 }
 
-// Lambert's form factor from a point of the plane z = z0 (normal +z) to a polygon: the cosine-
-// weighted share of the hemisphere it covers, 1/(2 pi) sum over edges of the edge's angle times
-// the z of its unit normal.
+// Lambert's form factor from (px, py, pz) on the floor to a polygon (tests/form_factor_util.h).
 double formFactor(const double px, const double py, const double pz, const std::vector<std::array<double, 3>>& poly) {
-    double sum = 0;
-    for (size_t i = 0; i < poly.size(); ++i) {
-        const auto& a = poly[i];
-        const auto& b = poly[(i + 1) % poly.size()];
-        const double r0[3] = {a[0] - px, a[1] - py, a[2] - pz}, r1[3] = {b[0] - px, b[1] - py, b[2] - pz};
-        const double c[3] = {r0[1] * r1[2] - r0[2] * r1[1], r0[2] * r1[0] - r0[0] * r1[2], r0[0] * r1[1] - r0[1] * r1[0]};
-        const double cl = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-        if (cl == 0) continue;
-        const double l0 = std::sqrt(r0[0] * r0[0] + r0[1] * r0[1] + r0[2] * r0[2]);
-        const double l1 = std::sqrt(r1[0] * r1[0] + r1[1] * r1[1] + r1[2] * r1[2]);
-        const double angle = std::acos(std::clamp((r0[0] * r1[0] + r0[1] * r1[1] + r0[2] * r1[2]) / (l0 * l1), -1.0, 1.0));
-        sum += angle * c[2] / cl;
-    }
-    return std::fabs(sum) / (2 * M_PI);
+    return test::lambertFormFactor({px, py, pz}, poly);
 }
 
 constexpr int kW = 32, kH = 32;
