@@ -96,7 +96,6 @@ double outlineWeight(CubeMicrobuffer& b, const std::function<bool(const Vec&)>& 
 }
 
 const Vec kUp = {0, 0, 1};
-const Vec kNone = {0, 0, 0};
 
 TEST(PointBased, DiscOverheadIsItsFormFactorWithinTheMicrobufferError) {
     // A disc of radius R at height h over the point, facing it: sin^2 of its half-angle.
