@@ -679,7 +679,8 @@ bool ShadingVM::samePointFree(const PointFreeLight& e, const LightRef& ref) cons
         return false;
     if (std::memcmp(e.toCurrent.m.data(), ref.toCurrent.m.data(), sizeof(double) * 16) != 0) return false;
     if (e.globals.size() != pointFreeKey_.size() ||
-        std::memcmp(e.globals.data(), pointFreeKey_.data(), sizeof(float) * e.globals.size()) != 0)
+        (!e.globals.empty() &&  // memcmp of no bytes may still not be given a null pointer
+         std::memcmp(e.globals.data(), pointFreeKey_.data(), sizeof(float) * e.globals.size()) != 0))
         return false;
     for (int s = 0; s < kSpaceCount; ++s)
         if (std::memcmp(e.spaces[size_t(s)].m.data(), lightGrid_.toCurrent[size_t(s)].m.data(), sizeof(double) * 16) != 0)
