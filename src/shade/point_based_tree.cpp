@@ -103,8 +103,13 @@ void DiscHierarchy::build(int32_t node, uint32_t* idx, size_t n, const float lo[
         const float* p = input_[i].P;
         return int(p[0] > mid[0]) + 2 * int(p[1] > mid[1]) + 4 * int(p[2] > mid[2]);
     };
-    // Stable order within an octant: the tree is the same bytes whatever the input order gave.
-    std::stable_sort(idx, idx + n, [&](uint32_t a, uint32_t b) { return octant(a) < octant(b); });
+    // Ascending indices within an octant (as a stable sort of the ascending input gives): the tree
+    // is the same bytes whatever the sort's order of equal keys. (std::stable_sort's temporary
+    // buffer trips the address sanitizer with clang and libstdc++ 12.)
+    std::sort(idx, idx + n, [&](uint32_t a, uint32_t b) {
+        const int oa = octant(a), ob = octant(b);
+        return oa < ob || (oa == ob && a < b);
+    });
     size_t begin[9] = {};
     for (size_t i = 0; i < n; ++i) ++begin[octant(idx[i]) + 1];
     for (int o = 0; o < 8; ++o) begin[o + 1] += begin[o];
