@@ -525,11 +525,11 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
         for (const PointFreeLight& e : pointFree_) {
             if (!samePointFree(e, ref)) continue;
             res.ambient = e.ambient;
-            for (std::vector<float>* v : {&res.L, &res.Cl, &res.Ln}) v->resize(3 * n);
-            for (int c = 0; c < 3; ++c) {
-                std::fill(res.L.begin() + std::ptrdiff_t(size_t(c) * n), res.L.begin() + std::ptrdiff_t(size_t(c + 1) * n), e.L[c]);
-                std::fill(res.Cl.begin() + std::ptrdiff_t(size_t(c) * n), res.Cl.begin() + std::ptrdiff_t(size_t(c + 1) * n), e.Cl[c]);
-                std::fill(res.Ln.begin() + std::ptrdiff_t(size_t(c) * n), res.Ln.begin() + std::ptrdiff_t(size_t(c + 1) * n), e.Ln[c]);
+            // Each component's stored value broadcast over the n points (component-major).
+            const std::pair<std::vector<float>*, const float*> broadcast[3] = {{&res.L, e.L}, {&res.Cl, e.Cl}, {&res.Ln, e.Ln}};
+            for (const auto& [to, value] : broadcast) {
+                to->resize(3 * n);
+                for (size_t c = 0; c < 3; ++c) std::fill_n(to->begin() + std::ptrdiff_t(c * n), n, value[c]);
             }
             res.lit.assign(n, e.lit);
             res.shader = ref.shader;
