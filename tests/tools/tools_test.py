@@ -370,5 +370,29 @@ WorldEnd
         self.assertNotIn(os.path.join(ROOT, "include"), cmd)
 
 
+class AqsisComparePictures(unittest.TestCase):
+    """Scenes of one folder that write pictures of one name (Aqsis's cornell box passes all write
+    cornellbox.tif) each keep their own: a later scene's render must not replace an earlier one's."""
+
+    def test_each_scene_keeps_its_own_picture(self):
+        tool = load_script("aqsis-compare")
+        work = tempfile.mkdtemp(prefix="streyes-tools-")
+        try:
+            folder = os.path.join(work, "scenes")
+            os.makedirs(folder)
+            kept = {}
+            for scene in ("bake_pass", "beauty_pass"):
+                with open(os.path.join(folder, "cornellbox.exr"), "w") as f:
+                    f.write(scene)  # what this scene's render wrote
+                kept[scene] = os.path.join(work, "done", scene)
+                self.assertTrue(tool.keep_pictures(folder, ["cornellbox.exr", "absent.exr"], kept[scene]))
+            for scene, dest in kept.items():
+                with open(os.path.join(dest, "cornellbox.exr")) as f:
+                    self.assertEqual(f.read(), scene)
+                self.assertFalse(os.path.exists(os.path.join(dest, "absent.exr")))
+        finally:
+            shutil.rmtree(work, ignore_errors=True)
+
+
 if __name__ == "__main__":
     unittest.main()
