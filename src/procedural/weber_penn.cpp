@@ -131,7 +131,7 @@ void growAxis(const WeberPennParams& p, WeberPennStem& s, Vec3d base, Frame f0, 
             double bend = c.curveBack == 0 ? c.curve / res
                                            : (i < (res + 1) / 2 ? c.curve / std::max(1, res / 2)
                                                                 : c.curveBack / std::max(1, res / 2));
-            bend += pm(r) * std::fabs(c.curveV) / res;
+            if (c.curveV > 0) bend += pm(r) * c.curveV / res;  // nCurveV < 0: a helix, drawn by emitStem
             Frame& f = o.f;
             f.z = normalize(turn(f.z, f.x, bend * kDeg));
             if (s.level >= 2 && p.attractionUp != 0) {

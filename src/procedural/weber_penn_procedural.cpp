@@ -46,6 +46,8 @@ struct Motion {
     bool moving() const { return !poses.empty(); }
 };
 
+constexpr int kHelixRings = 10;  // control rings a turn of a helical stem (nCurveV < 0)
+
 // One patch mesh per path of the stem (the stem and each clone). `sides` control points around;
 // the trunk's flare adds rings inside its first segment. Moving, each control ring is keyed by the
 // motion of the segment it lies on (a joint's: the segment leaving it).
@@ -56,6 +58,12 @@ void emitStem(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennPa
     // The B-spline ring passes inside its control polygon: at a control point's angle, by
     // (4 + 2 cos(2 pi / sides)) / 6. Scale it back so the radius is the paper's.
     const double ringScale = 6 / (4 + 2 * std::cos(2 * M_PI / sides));
+    // nCurveV < 0: each segment one turn of a helix whose tangent leans |nCurveV| from the segment
+    // (the helix's circumference is the segment's length times tan |nCurveV|).
+    const double curveV = p.level[size_t(std::clamp(s.level, 0, 3))].curveV;
+    const double helixRadius = curveV < 0 && curveV > -90
+                                   ? std::tan(-curveV * M_PI / 180) * s.length / std::max(1, res) / (2 * M_PI)
+                                   : 0;
     for (size_t pathIndex = 0; pathIndex < s.paths.size(); ++pathIndex) {
         const WeberPennStem::Path& path = s.paths[pathIndex];
         struct Ring {
@@ -64,11 +72,31 @@ void emitStem(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennPa
             int segment;
         };
         std::vector<Ring> rings;
+        // The helix's rings inside the segment from a to b: kHelixRings - 1 of them, each on the
+        // segment the stem's motion moves (the one leaving a). The B-spline through control points on
+        // a circle passes inside it, as the ring's does: the offsets are scaled back by the same rule.
+        auto addHelixRings = [&](std::vector<Ring>& out, Vec3d a, Vec3d b, Vec3d xAxis, double radius,
+                                 double segment, int segments) {
+            const Vec3d d = b - a;
+            const Vec3d t = normalize(d);
+            Vec3d x = xAxis - t * dot(xAxis, t);
+            x = length(x) > 1e-9 ? normalize(x) : normalize(std::fabs(t.y) < 0.9 ? cross(t, kUp) : cross(t, Vec3d{1, 0, 0}));
+            const Vec3d y = cross(t, x);
+            const double scaled = radius * 6 / (4 + 2 * std::cos(2 * M_PI / kHelixRings));
+            for (int k = 1; k < kHelixRings; ++k) {
+                const double f = double(k) / kHelixRings, angle = 2 * M_PI * f;
+                const Vec3d at = a + d * f + (x * (std::cos(angle) - 1) + y * std::sin(angle)) * scaled;
+                out.push_back({at, xAxis, (segment + f) / segments, int(segment)});
+            }
+        };
         for (size_t i = 0; i < path.points.size(); ++i) {
             const double z = double(path.firstSegment + int(i)) / res;
-            if (s.level == 0 && p.flare > 0 && i == 1 && path.firstSegment == 0)
+            if (s.level == 0 && p.flare > 0 && i == 1 && path.firstSegment == 0 && helixRadius == 0)
                 for (double f : {0.03, 0.08, 0.16, 0.3, 0.55})  // the flare lies in the trunk's first eighth
                     rings.push_back({lerp(path.points[0], path.points[1], f), path.xAxis[0], f / res, 0});
+            if (helixRadius > 0 && i > 0)
+                addHelixRings(rings, path.points[i - 1], path.points[i], path.xAxis[i - 1], helixRadius,
+                              double(path.firstSegment + int(i) - 1), res);
             rings.push_back({path.points[i], path.xAxis[i], z, path.firstSegment + int(i)});
         }
         if (rings.size() < 2) continue;
@@ -204,11 +232,19 @@ int sidesOf(int level) { return level == 0 ? 8 : level == 1 ? 6 : 4; }
 // length of its base; leaves add their largest size (quality 0.05), radii and a tenth of the stem's
 // length for the spline through the axis points.
 double subtreeReach(const WeberPennParams& p, const WeberPennStem& s) {
-    double reach = 0, l = s.length;
+    // A helical stem (nCurveV < 0) leaves its axis by at most twice its helix's radius (scaled as
+    // emitStem scales it, under 1.1).
+    auto helixReach = [&](const WeberPennLevel& c, double length) {
+        return c.curveV < 0 && c.curveV > -90
+                   ? 2.2 * std::tan(-c.curveV * M_PI / 180) * length / std::max(1, c.curveRes) / (2 * M_PI)
+                   : 0.0;
+    };
+    double l = s.length;
+    double reach = helixReach(p.level[size_t(std::clamp(s.level, 0, 3))], l);
     for (int level = s.level + 1; level < p.levels; ++level) {
         const WeberPennLevel& c = p.level[size_t(std::min(level, 3))];
         l *= c.length + std::fabs(c.lengthV);
-        reach += l;
+        reach += l + helixReach(c, l);
     }
     const double flare = s.level == 0 ? (1 + p.flare) * (1 + p.lobeDepth) : 1;
     return reach + p.leafScale * std::max(1.0, p.leafScaleX) * std::sqrt(20.0) + 2 * s.radius * flare + 0.1 * s.length;
