@@ -167,6 +167,30 @@ ForestParams parseParams(const std::string& datablock, const SourceLoc& loc, Ext
             f.leafShader = value.substr(comma + 1);
             f.looks = std::make_shared<ForestLooks>();
         }
+        else if (key == "model") {
+            if (value == "weberpenn") {
+                if (f.weberPennPresets.empty()) f.weberPennPresets = weberPennPresetNames();
+            } else if (value != "simple") {
+                throw InputError(loc, "forest: model must be simple (the default) or weberpenn, not '" + value + "'");
+            }
+        } else if (key == "presets") {
+            std::vector<std::string> names;
+            std::stringstream list(value);
+            std::string name;
+            while (std::getline(list, name, ','))
+                if (!weberPennPreset(name))
+                    throw InputError(loc, "forest: presets takes names of Weber-Penn presets (" +
+                                              [] {
+                                                  std::string all;
+                                                  for (const auto& n : weberPennPresetNames()) all += (all.empty() ? "" : ", ") + n;
+                                                  return all;
+                                              }() +
+                                              "), not '" + name + "'");
+                else
+                    names.push_back(name);
+            if (names.empty()) throw InputError(loc, "forest: presets names no preset");
+            f.weberPennPresets = names;
+        }
         else if (!extra(key, value)) throw InputError(loc, "forest: unknown parameter '" + key + "'");
     }
     return f;
@@ -568,13 +592,45 @@ void forEachTreeInCell(const ForestParams& f, const CellGrid& g, int cell, Fn fn
     }
 }
 
+// model=weberpenn: the forest's tree `t` as a Weber-Penn tree of a preset drawn from presets=,
+// with its own seed, turned about its foot by a drawn angle and standing where `t` stands; the
+// forest's wind (wind w: WindSpeed 4w, WindGust 2w, its keystep) and detail.
+struct WeberPennPlacement {
+    WeberPennParams params;
+    Matrix4 local;  // tree space to the forest's
+};
+
+WeberPennPlacement weberPennTreeOf(const ForestParams& f, const Tree& t) {
+    HashRng r(hashCombine(t.key, 0x57e6b1ULL));
+    const size_t n = f.weberPennPresets.size();
+    const size_t pick = std::min(n - 1, size_t(double(r.nextFloat()) * double(n)));
+    WeberPennPlacement w{*weberPennPreset(f.weberPennPresets[pick]), {}};
+    w.params.seed = t.key % uint64_t(1e15);
+    w.params.windSpeed = 4 * f.wind, w.params.windGust = 2 * f.wind, w.params.keyStep = f.keyStep;
+    w.params.detail = f.detail;
+    w.local = Matrix4::rotate(360.0 * double(r.nextFloat()), {0, 1, 0}) * Matrix4::translate({t.x, 0, t.z});
+    return w;
+}
+
 class CellGenerator final : public ProceduralGenerator {
   public:
     CellGenerator(std::shared_ptr<const ForestParams> f, int cell) : f_(std::move(f)), cell_(cell) {}
     std::string describe() const override { return "forest cell"; }
     void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
         forEachTreeInCell(*f_, cellGrid(*f_), cell_, [&](const Tree& t) {
-            emitProcedural(out, ctx, std::make_shared<TreeGenerator>(f_, t), treeBound(*f_, t));
+            if (f_->weberPennPresets.empty()) {
+                emitProcedural(out, ctx, std::make_shared<TreeGenerator>(f_, t), treeBound(*f_, t));
+                return;
+            }
+            WeberPennPlacement w = weberPennTreeOf(*f_, t);
+            GeneratedProcedural g;
+            g.desc.kind = "DynamicLoad";
+            g.desc.bound = weberPennBound(w.params);  // in the tree's own space
+            g.desc.objectToWorld = MotionTransform(w.local).then(ctx.objectToWorld);
+            g.desc.attributes = ctx.attributes;
+            g.desc.loc = ctx.loc;
+            g.generator = makeWeberPennGenerator(std::move(w.params));
+            out.procedurals.push_back(std::move(g));
         });
     }
 
@@ -589,9 +645,18 @@ class ForestGenerator final : public ProceduralGenerator {
     std::string describe() const override { return "DynamicLoad forest"; }
     void expand(const ExpandContext& ctx, ProceduralOutput& out) const override {
         const CellGrid g = cellGrid(*f_);
+        std::map<std::string, Bounds3d> footBounds;  // model=weberpenn: each preset's, about its foot
+        for (const std::string& name : f_->weberPennPresets) footBounds[name] = weberPennFootBound(*weberPennPreset(name));
         for (int cell = 0; cell < g.nx * g.nz; ++cell) {
             Bounds3d bound;
-            forEachTreeInCell(*f_, g, cell, [&](const Tree& t) { bound.extend(treeBound(*f_, t)); });
+            forEachTreeInCell(*f_, g, cell, [&](const Tree& t) {
+                if (f_->weberPennPresets.empty()) {
+                    bound.extend(treeBound(*f_, t));
+                    return;
+                }
+                const WeberPennPlacement w = weberPennTreeOf(*f_, t);
+                bound.extend(w.local.box(footBounds.at(w.params.name)));
+            });
             if (bound.empty()) continue;
             emitProcedural(out, ctx, std::make_shared<CellGenerator>(f_, cell), bound);
         }
@@ -622,11 +687,6 @@ std::shared_ptr<const ProceduralGenerator> makeTreeGenerator(const std::string& 
                 if (value == kSpecies[i].name) species = i;
             if (species < 0)
                 throw InputError(loc, "tree: kind must be one of " + speciesNames(", ") + ", not '" + value + "'");
-            return true;
-        }
-        if (key == "model") {
-            if (value != "simple")
-                throw InputError(loc, "tree: model must be simple (the default) or weberpenn, not '" + value + "'");
             return true;
         }
         if (key == "height") {

@@ -13,6 +13,9 @@
 #include <memory>
 #include <string>
 
+#include <string>
+#include <vector>
+
 #include "procedural/procedural.h"
 
 namespace streyes {
@@ -35,10 +38,13 @@ struct ForestParams {
     std::string barkShader, leafShader;
     // The attribute states made for those (one per parent state, shared by every tree).
     std::shared_ptr<struct ForestLooks> looks;
+    // model=weberpenn (presets=a,b,...): each tree a Weber-Penn tree of one of these presets, drawn
+    // evenly; empty: the forest's own trees (model=simple).
+    std::vector<std::string> weberPennPresets;
 };
 
 // Parses "key=value ..." (count seed area=X,Z species=a,b,c leafsize wind winddir=X,Z period
-// keystep detail cell shaders=BARK,LEAF); unknown keys or bad values throw InputError at `loc`.
+// keystep detail cell shaders=BARK,LEAF model=simple|weberpenn presets=NAME,...); unknown keys or bad values throw InputError at `loc`.
 ForestParams parseForestParams(const std::string& datablock, const SourceLoc& loc);
 
 std::shared_ptr<const ProceduralGenerator> makeForestGenerator(const std::string& datablock, const SourceLoc& loc);

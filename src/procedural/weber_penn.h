@@ -155,5 +155,10 @@ bool isWeberPennDatablock(const std::string& datablock);
 // A bound of the tree the procedural makes (object space, before wind): for Procedural's bound.
 Bounds3d weberPennBound(const WeberPennParams& p);
 std::shared_ptr<const ProceduralGenerator> makeWeberPennGenerator(const std::string& datablock, const SourceLoc& loc);
+std::shared_ptr<const ProceduralGenerator> makeWeberPennGenerator(WeberPennParams p);
+// A bound about the trunk's foot of every tree these parameters make, whatever the seed and the
+// wind (no stem is longer than its lengths' largest draw, and turning stems about their joints
+// keeps their path lengths from the foot): for a forest's cells, without growing their trees.
+Bounds3d weberPennFootBound(const WeberPennParams& p);
 
 }  // namespace streyes

@@ -411,4 +411,24 @@ std::shared_ptr<const ProceduralGenerator> makeWeberPennGenerator(const std::str
     return std::make_shared<WeberPennTreeGenerator>(parseWeberPennParams(datablock, loc));
 }
 
+std::shared_ptr<const ProceduralGenerator> makeWeberPennGenerator(WeberPennParams p) {
+    return std::make_shared<WeberPennTreeGenerator>(std::move(p));
+}
+
+Bounds3d weberPennFootBound(const WeberPennParams& p) {
+    // The longest trunk the draws allow, with the widest radius; subtreeReach adds what grows on it.
+    const WeberPennLevel& c = p.level[0];
+    WeberPennStem trunk;
+    trunk.level = 0;
+    trunk.length = (p.scale + std::fabs(p.scaleV)) * (c.length + std::fabs(c.lengthV));
+    trunk.radius = trunk.length * p.ratio * (p.scale0 + std::fabs(p.scale0V));
+    // weberPennBound's windy cube counts a branch's leaves, radius and spline allowance on top of
+    // the trunk's: those are added here once more.
+    const double branch = trunk.length * (p.level[1].length + std::fabs(p.level[1].lengthV));
+    const double d = trunk.length + subtreeReach(p, trunk) + p.leafScale * std::max(1.0, p.leafScaleX) * std::sqrt(20.0) +
+                     2 * trunk.radius * (1 + p.flare) * (1 + p.lobeDepth) + 0.1 * branch;
+    const double zs = std::max(1e-6, p.zScale + std::fabs(p.zScaleV));
+    return Bounds3d({-d, -d * zs, -d}, {d, d * zs, d});
+}
+
 }  // namespace streyes
