@@ -46,6 +46,12 @@ inline bool slowUnderSanitizers(const std::string& sceneFile) {
     return false;
 }
 
+// The ray tracer expands every procedural up front: the 100,000 trees of these scenes take
+// minutes, so the scene tests render them with the rasterizer only.
+inline bool tooLargeToRayTrace(const std::string& sceneFile) {
+    return sceneFile == "scenes/forest.rib" || sceneFile == "scenes/forest-flyover.rib";
+}
+
 // Absolute path of a file in the source tree, e.g. sourcePath("scenes/ramp.rib").
 std::string sourcePath(const std::string& relative);
 

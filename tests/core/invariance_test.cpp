@@ -24,11 +24,6 @@ std::vector<std::string> everyScene() {
     return files;
 }
 
-// The ray tracer expands every procedural up front: the 100,000 trees of these take minutes.
-bool tooLargeToRayTrace(const std::string& file) {
-    return file == "scenes/forest.rib" || file == "scenes/forest-flyover.rib";
-}
-
 const FrameImage* findFrame(const test::RenderResult& r, int frame) {
     for (const FrameImage& f : r.frames)
         if (f.frame == frame) return &f;
@@ -57,7 +52,7 @@ TEST_P(FrameBlockInvariance, AFramesPixelsDoNotDependOnItsBlock) {
     o.shotFirst = first;
     o.shotLast = first + 2;
     for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Frames, Algorithm::Raytrace}) {
-        if (a == Algorithm::Raytrace && tooLargeToRayTrace(GetParam())) continue;
+        if (a == Algorithm::Raytrace && test::tooLargeToRayTrace(GetParam())) continue;
         SCOPED_TRACE(algorithmName(a));
         o.algorithm = a;
         o.hasFrames = true;

@@ -84,12 +84,6 @@ void recordChecksum(const std::string& key, const std::string& value) {
 
 class SceneChecksums : public testing::TestWithParam<std::string> {};
 
-// The ray tracer expands every procedural (rays go anywhere): the 100,000 trees of these take
-// minutes, so they are checked with the rasterizer only.
-bool tooLargeToRayTrace(const std::string& file) {
-    return file == "scenes/forest.rib" || file == "scenes/forest-flyover.rib";
-}
-
 // Two frames at 64 pixels wide, 4 samples, with the default algorithm and with the ray tracer.
 TEST_P(SceneChecksums, PixelsMatchTheRecordedChecksums) {
     Log log;
@@ -104,7 +98,7 @@ TEST_P(SceneChecksums, PixelsMatchTheRecordedChecksums) {
     const bool record = std::getenv("STREYES_RECORD_CHECKSUMS") != nullptr;
     const std::map<std::string, std::string> recorded = record ? std::map<std::string, std::string>{} : readChecksums();
     for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Raytrace}) {
-        if (a == Algorithm::Raytrace && tooLargeToRayTrace(GetParam())) continue;
+        if (a == Algorithm::Raytrace && test::tooLargeToRayTrace(GetParam())) continue;
         if (a == Algorithm::Raytrace && test::slowUnderSanitizers(GetParam())) continue;  // minutes there
         o.algorithm = a;
         char hex[17];
