@@ -2,7 +2,8 @@
 // closed forms: a disc overhead and a half-open box over a point of a plane give Lambert's form
 // factor within the microbuffer's resolution error, counted pixel by pixel (the weight of the
 // pixels the outline may cross); a plane of one colour gives that colour times its coverage;
-// an empty cloud gives 0; and the render's store gives the same bits whatever the threads.
+// an empty cloud gives 0 (and under an environment map, the map); a disc under a map mixes the
+// two by its form factor; and the render's store gives the same bits whatever the threads.
 #include <gtest/gtest.h>
 
 #include <array>

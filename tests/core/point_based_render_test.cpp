@@ -1,7 +1,8 @@
 // Point-based occlusion() in renders: a floor under a half-open box whose discs are in a cloud
 // on disk gives the box's form factor (Lambert's, as the ray-traced test has it) without casting
 // a ray; the same pixels whatever the threads and the frame block; a missing cloud warns once
-// and gives 0; "pointbased" 0 keeps the ray tracer.
+// and gives 0; "pointbased" 0 keeps the ray tracer. indirectdiffuse() under an environment map
+// sees the map where no disc covers, and its "occlusion" output is occlusion()'s bits.
 //
 // The camera looks along +z, one unit a pixel (raster y = H - y): the floor at depth 100, its
 // shader's normal +z (away from the camera), the box's discs behind it (the camera never sees
