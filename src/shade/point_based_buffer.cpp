@@ -190,7 +190,8 @@ void CubeMicrobuffer::rectOnFace(int face, float x, float y, float hu, float hv,
 }
 
 void CubeMicrobuffer::integrate(const DiscHierarchy& tree, const float P[3], const float N[3],
-                                const PointBasedSettings& s, float* occlusion, float* colour) {
+                                const PointBasedSettings& s, float* occlusion, float* colour, const float* environment,
+                                float* environmentSeen) {
     setResolution(std::max(1, s.res));
     clear();
     const std::vector<DiscCluster>& clusters = tree.clusters();
@@ -251,7 +252,7 @@ void CubeMicrobuffer::integrate(const DiscHierarchy& tree, const float P[3], con
         }
     }
     const float cosCone = std::cos(cone);
-    double wsum = 0, occ = 0, col[3] = {};
+    double wsum = 0, occ = 0, col[3] = {}, env[3] = {};
     const size_t perFace = size_t(res_) * size_t(res_);
     for (int f = 0; f < 6; ++f) {
         // (side e_a + u e_u + v e_v) . N over the face is at most this: at most 0, all below.
@@ -262,14 +263,19 @@ void CubeMicrobuffer::integrate(const DiscHierarchy& tree, const float P[3], con
             if (!(w > cosCone) || !(w > 0)) continue;
             const double wo = double(w) * omega_[i];
             wsum += wo;
-            occ += wo * std::min(1.0f, cover_[i]);
+            const float cover = std::min(1.0f, cover_[i]);
+            occ += wo * cover;
             if (colour)
                 for (int c = 0; c < 3; ++c) col[c] += wo * colour_[i * 3 + size_t(c)];
+            if (environment && cover < 1)
+                for (int c = 0; c < 3; ++c) env[c] += wo * (1 - cover) * environment[i * 3 + size_t(c)];
         }
     }
     *occlusion = wsum > 0 ? float(occ / wsum) : 0.0f;
     if (colour)
-        for (int c = 0; c < 3; ++c) colour[c] = wsum > 0 ? float(col[c] / wsum) : 0.0f;
+        for (int c = 0; c < 3; ++c) colour[c] = wsum > 0 ? float((col[c] + env[c]) / wsum) : 0.0f;
+    if (environmentSeen)
+        for (int c = 0; c < 3; ++c) environmentSeen[c] = wsum > 0 ? float(env[c] / wsum) : 0.0f;
 }
 
 }  // namespace streyes

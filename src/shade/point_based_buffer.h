@@ -15,7 +15,8 @@
 // what is drawn after the pixel is full adds nothing, and an exactly drawn disc nearer than
 // what filled the pixel replaces it (the walk's order is only nearly front to back).
 //
-// Occlusion is sum(w cover) / sum(w), indirect diffuse sum(w colour) / sum(w), over the pixels
+// Occlusion is sum(w cover) / sum(w), indirect diffuse sum(w (colour + (1 - cover) env)) / sum(w)
+// (env: the environment map in the pixel's direction, black without one), over the pixels
 // whose centre direction d makes d.N > cos(coneangle), w = (d.N) x the pixel's solid angle. The
 // microbuffer's own error (a disc drawn exactly; pixel-centre sampling): at most the weight of
 // the pixels its outline crosses. A face spans pi/2 radians in res pixels, so an outline of
@@ -47,10 +48,21 @@ class CubeMicrobuffer {
     float coverage(int face, int iu, int iv) const { return cover_[size_t(pixel(face, iu, iv))]; }
     int pixel(int face, int iu, int iv) const { return (face * res_ + iv) * res_ + iu; }
 
+    // Every pixel's centre direction (x, y, z interleaved) and solid angle, in pixel() order
+    // (setResolution first): where a caller looks an environment map up once for every point.
+    int pixels() const { return 6 * res_ * res_; }
+    const float* directions() const { return dir_.data(); }
+    const float* solidAngles() const { return omega_.data(); }
+
     // Draws `tree` seen from P (world) and integrates over the cone about unit N: the covered
     // fraction into *occlusion, and, when colour is not null, the colour seen into colour[3].
+    // `environment` (null: black): what each pixel sees where no disc covers it (RGB, pixels()
+    // of them in pixel() order); its uncovered share, 1 - coverage, adds that to the colour
+    // seen, and, when environmentSeen is not null, alone into environmentSeen[3] (occlusion()'s
+    // "environmentcolor": the environment the discs let through).
     void integrate(const DiscHierarchy& tree, const float P[3], const float N[3], const PointBasedSettings& s,
-                   float* occlusion, float* colour);
+                   float* occlusion, float* colour, const float* environment = nullptr,
+                   float* environmentSeen = nullptr);
 
     // Face f's axis is f / 2 (x, y, z), its side + for even f; its (u, v) axes the next two.
     static int axis(int face) { return face >> 1; }

@@ -2,7 +2,8 @@
 // closed forms: a disc overhead and a half-open box over a point of a plane give Lambert's form
 // factor within the microbuffer's resolution error, counted pixel by pixel (the weight of the
 // pixels the outline may cross); a plane of one colour gives that colour times its coverage;
-// an empty cloud gives 0; and the render's store gives the same bits whatever the threads.
+// an empty cloud gives 0 (and under an environment map, the map); a disc under a map mixes the
+// two by its form factor; and the render's store gives the same bits whatever the threads.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -254,6 +255,79 @@ TEST(PointBased, EmptyCloudAndDiscsBehindGiveZero) {
     facing.rect({-5, -5, 1}, {10, 0, 0}, {0, 10, 0}, 20, 20, {0, 0, -1}, {1, 1, 1});
     b.integrate(DiscHierarchy(facing.cloud()), P, N, s, &occ, colour);
     EXPECT_GT(occ, 0.9f);
+}
+
+// "environmentmap" on the point-based path: what no disc covers sees the map (one RGB a pixel,
+// as the shading op looks it up). A cloud of nothing under a constant map gives the map's colour;
+// a disc overhead gives its radiosity over its form factor and the map over the rest; the
+// occlusion is the same bits with or without colour and map; the environment alone ("environmentcolor")
+// is the map times the uncovered share.
+std::vector<float> constantEnvironment(const CubeMicrobuffer& b, const Vec& c) {
+    std::vector<float> env(size_t(b.pixels()) * 3);
+    for (size_t i = 0; i < env.size(); ++i) env[i] = float(c[i % 3]);
+    return env;
+}
+
+TEST(PointBased, NothingUnderAConstantEnvironmentIsItsColour) {
+    const Vec sky = {0.2, 0.5, 0.9};
+    const DiscHierarchy empty{BakedPointCloud({{"_area", 1}, {"_radiosity", 3}}, {})};
+    CloudMaker far;  // a small disc below the horizon: drawn nowhere in the cone
+    far.disc({0, 0, -3}, {0, 0, 1}, 0.1, 0.0314, {1, 1, 1});
+    const DiscHierarchy below(far.cloud());
+    for (int res : {4, 10, 33}) {
+        CubeMicrobuffer b;
+        b.setResolution(res);
+        const std::vector<float> env = constantEnvironment(b, sky);
+        PointBasedSettings s;
+        s.res = res;
+        for (const DiscHierarchy* tree : {&empty, &below})
+            for (const Vec& n : {Vec{0, 0, 1}, Vec{0.6, 0, 0.8}}) {
+                const float P[3] = {0, 0, 0}, N[3] = {float(n[0]), float(n[1]), float(n[2])};
+                float occ = -1, colour[3] = {-1, -1, -1}, seen[3] = {-1, -1, -1};
+                b.integrate(*tree, P, N, s, &occ, colour, env.data());
+                EXPECT_EQ(occ, 0.0f);
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(colour[c], sky[size_t(c)], 1e-6) << res << " " << c;
+                b.integrate(*tree, P, N, s, &occ, nullptr, env.data(), seen);
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(seen[c], sky[size_t(c)], 1e-6) << res << " " << c;
+            }
+    }
+}
+
+TEST(PointBased, DiscOverheadUnderAnEnvironmentMixesByItsFormFactor) {
+    // A disc of radius R at height h of radiosity r under a constant sky e: r F + e (1 - F),
+    // F = R^2 / (R^2 + h^2), within the microbuffer's error |r - e| times the outline's weight.
+    const double R = 0.8, h = 1.0, F = R * R / (R * R + h * h);
+    const Vec disc = {0.9, 0.6, 0.1}, sky = {0.2, 0.5, 0.9};
+    CloudMaker m;
+    m.disc({0, 0, h}, {0, 0, -1}, R, M_PI * R * R, disc);
+    const DiscHierarchy tree(m.cloud());
+    auto inDisc = [&](const Vec& d) { return d[2] > 0 && (d[0] * d[0] + d[1] * d[1]) * h * h < R * R * d[2] * d[2]; };
+    for (int res : {8, 16, 32}) {
+        CubeMicrobuffer b;
+        b.setResolution(res);
+        const std::vector<float> env = constantEnvironment(b, sky);
+        PointBasedSettings s;
+        s.res = res;
+        const float P[3] = {0, 0, 0}, N[3] = {0, 0, 1};
+        float occ = -1, occPlain = -1, colour[3], plain[3], seen[3];
+        b.integrate(tree, P, N, s, &occ, colour, env.data());
+        b.integrate(tree, P, N, s, &occPlain, plain);
+        const double bound = outlineWeight(b, inDisc, inDisc);
+        float occOnly = -1;
+        b.integrate(tree, P, N, s, &occOnly, nullptr, env.data(), seen);
+        // One drawing, three integrals: the occlusion is the same bits whatever else is asked.
+        EXPECT_EQ(occ, occPlain) << res;
+        EXPECT_EQ(occ, occOnly) << res;
+        for (int c = 0; c < 3; ++c) {
+            const double want = disc[size_t(c)] * F + sky[size_t(c)] * (1 - F);
+            EXPECT_LE(std::fabs(colour[c] - want), bound * std::fabs(disc[size_t(c)] - sky[size_t(c)]) + 1e-6)
+                << "res " << res << " channel " << c << ": " << colour[c] << " against " << want;
+            // The map fills exactly what the discs leave: colour = discs' + sky (1 - occlusion).
+            EXPECT_NEAR(colour[c], plain[c] + sky[size_t(c)] * (1 - occ), 1e-6) << res << " " << c;
+            EXPECT_NEAR(seen[c], sky[size_t(c)] * (1 - occ), 1e-6) << res << " " << c;
+        }
+        EXPECT_GT(std::fabs(colour[0] - plain[0]), 0.05f);  // the map is there
+    }
 }
 
 // The render's store: a cloud file read once, its hierarchy shared; the same bits whatever the

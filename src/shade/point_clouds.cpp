@@ -220,9 +220,10 @@ bool PointClouds::pointBased(const std::string& file, const sl::PointBasedQuery&
         const float p[3] = {q.P[0][i], q.P[1][i], q.P[2][i]};
         const float n[3] = {q.N[0][i], q.N[1][i], q.N[2][i]};
         float occlusion = 0, colour[3] = {};
-        buffer.integrate(*tree, p, n, s, &occlusion, q.indirect ? colour : nullptr);
+        buffer.integrate(*tree, p, n, s, &occlusion, q.indirect ? colour : nullptr, q.environment,
+                         !q.indirect && q.environmentColour ? colour : nullptr);
         q.out[0][i] = occlusion;
-        if (q.indirect)
+        if (q.indirect || q.environmentColour)
             for (int c = 0; c < 3; ++c) q.out[1 + c][i] = colour[c];
     }
     return true;

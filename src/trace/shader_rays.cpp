@@ -210,7 +210,7 @@ Color ShaderRays::runVolume(const Volume& v, Vec3f from, Vec3f to, double time, 
 // brings the environment map's colour in its direction (looked up for the point's s rays at once,
 // each over its share of the cone), or black.
 Color ShaderRays::coneMean(Vec3f p, Vec3f axis, float cone, bool cosine, uint32_t s, uint64_t h, double time,
-                           float bias, float maxdist, const sl::RayOptions* env) {
+                           float bias, float maxdist, const sl::RayOptions* env, float* hitShare) {
     Vec3f t, b;
     frameOf(axis, &t, &b);
     directions_.resize(s);
@@ -225,49 +225,28 @@ Color ShaderRays::coneMean(Vec3f p, Vec3f axis, float cone, bool cosine, uint32_
         environmentColors(*env, directions_.data(), s, std::sqrt(solidAngle / float(s)), time, background_.data());
     }
     Color sum{0, 0, 0};
+    uint32_t hits = 0;
     for (uint32_t j = 0; j < s; ++j) {
         Color c;
-        shadeAlong({p, directions_[j]}, time, bias, maxdist, background_[j], &c);
+        hits += shadeAlong({p, directions_[j]}, time, bias, maxdist, background_[j], &c) ? 1 : 0;
         sum += c;
     }
+    if (hitShare) *hitShare = float(hits) / float(s);
     return sum * (1.0f / float(s));
 }
 
 void ShaderRays::environmentColors(const sl::RayOptions& o, const Vec3f* d, uint32_t n, float width, double time,
                                    Color* out) {
-    sl::TextureSource* textures = shaders_ ? shaders_->textures() : nullptr;
-    if (!textures || n == 0) return;
-    envScratch_.resize(size_t(n) * 12);
-    float* a = envScratch_.data();
-    auto column = [&](int k) { return a + size_t(k) * n; };
-    sl::DirectionQuery q;
-    q.n = int(n);
-    q.time = float(time);
-    float* result[3];
-    for (int c = 0; c < 3; ++c) {
-        q.R[c] = column(c);
-        q.dRdu[c] = column(3 + c);
-        q.dRdv[c] = column(6 + c);
-        result[c] = column(9 + c);
-    }
-    const float* m = o.environmentFromCurrent;  // row vectors: r = d * M
-    for (uint32_t i = 0; i < n; ++i) {
-        const Vec3f r = normalize(Vec3f{d[i].x * m[0] + d[i].y * m[4] + d[i].z * m[8],
-                                        d[i].x * m[1] + d[i].y * m[5] + d[i].z * m[9],
-                                        d[i].x * m[2] + d[i].y * m[6] + d[i].z * m[10]});
-        Vec3f t, b;
-        frameOf(r, &t, &b);
-        for (int c = 0; c < 3; ++c) {
-            column(c)[i] = r[c];
-            column(3 + c)[i] = t[c] * width;
-            column(6 + c)[i] = b[c] * width;
-        }
-    }
-    sl::TextureOptions opt;
-    opt.channels = 3;
-    opt.shader = o.shader;
-    if (!textures->environment(o.environmentmap, opt, q, result)) return;
-    for (uint32_t i = 0; i < n; ++i) out[i] = {result[0][i], result[1][i], result[2][i]};
+    if (n == 0) return;
+    envDirections_.resize(size_t(n) * 6);
+    float* dirs = envDirections_.data();
+    float* rgb = dirs + size_t(n) * 3;
+    for (uint32_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) dirs[size_t(i) * 3 + size_t(c)] = d[i][c];
+    if (!sl::lookupEnvironment(shaders_ ? shaders_->textures() : nullptr, o, dirs, int(n), nullptr, width, float(time),
+                               envScratch_, rgb))
+        return;
+    for (uint32_t i = 0; i < n; ++i) out[i] = {rgb[size_t(i) * 3], rgb[size_t(i) * 3 + 1], rgb[size_t(i) * 3 + 2]};
 }
 
 // Hits are shaded front to back until one is opaque; where a part of the ray between them lies in
@@ -353,9 +332,12 @@ void ShaderRays::indirectdiffuse(const sl::RayOptions& o, const sl::RayQuery& q,
         const Vec3f p = at3(q.P, i);
         const Vec3f n = normalize(at3(q.D, i));
         Color sum{0, 0, 0};
+        float hitShare = 0;
         if (dot(n, n) > 0.5f)
-            sum = coneMean(p, n, cone, true, s, pointHash(p, q.seed, q.site), q.time, biasAt(o, p, q.time), o.maxdist, &o);
+            sum = coneMean(p, n, cone, true, s, pointHash(p, q.seed, q.site), q.time, biasAt(o, p, q.time), o.maxdist, &o,
+                           &hitShare);
         for (int c = 0; c < 3; ++c) out[c][i] = sum[c];
+        if (out[3]) out[3][i] = hitShare;
     }
 }
 

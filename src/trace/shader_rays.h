@@ -17,6 +17,7 @@
 
 #include "shade/grid_shader.h"
 #include "shade/scene_shaders.h"
+#include "shade/vm/environment_lookup.h"
 #include "shade/vm/ray_source.h"
 #include "streyes/stats.h"
 #include "trace/trace.h"
@@ -51,9 +52,10 @@ class ShaderRays final : public sl::RaySource {
     // depth, see-through ones composited over what lies behind them, and over `background` (what
     // it meets past them: an environment map's colour, or black). False: nothing is hit.
     bool shadeAlong(const Ray& ray, double time, float tMin, float tMax, Color background, Color* c);
-    // `env`: the call's environment map for rays that hit nothing (null: black).
+    // `env`: the call's environment map for rays that hit nothing (null: black); `hitShare`
+    // (when not null): the share of the s rays that hit something.
     Color coneMean(Vec3f p, Vec3f axis, float cone, bool cosine, uint32_t s, uint64_t h, double time, float bias,
-                   float maxdist, const sl::RayOptions* env = nullptr);
+                   float maxdist, const sl::RayOptions* env = nullptr, float* hitShare = nullptr);
     // The environment map o.environmentmap in current-space directions d[0, n) (into o's
     // "environmentspace"), each filtered over a cone of about `width` radians: into out (left as
     // it is where the map cannot be read; the texture source warns).
@@ -94,7 +96,8 @@ class ShaderRays final : public sl::RaySource {
     std::vector<Layer> layers_;
     std::vector<Vec3f> directions_;  // coneMean's, a point at a time
     std::vector<Color> background_;  // and what each brings where it hits nothing
-    std::vector<float> envScratch_;  // environmentColors' query and result arrays
+    std::vector<float> envScratch_;     // environmentColors' query and result arrays
+    std::vector<float> envDirections_;  // its directions and colours, interleaved
     const char* rayType_ = "specular";  // what rayinfo("type") says at the hits shaded now
     uint64_t rays_ = 0, bodyTests_ = 0, boxTests_ = 0;
 };

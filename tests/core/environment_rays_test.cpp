@@ -106,6 +106,31 @@ TEST(EnvironmentRays, HitsAreShadedAndMissesBringTheMap) {
                 EXPECT_NEAR(r.channel(0, px, py, k), 0.5f + 0.5f * c[k], 4 * 0.5f / 16) << px << " " << py;
 }
 
+// indirectdiffuse()'s "occlusion" output: the share of its rays that hit something, written by
+// the same call: 1/2 under the wall over half the hemisphere (within the noise of 256 stratified
+// rays, as above), 0 under the open sky, whatever the map.
+TEST(EnvironmentRays, TheOcclusionOutputIsTheShareOfRaysThatHit) {
+    const std::string wall = "AttributeBegin\nSurface \"constant\"\nPatch \"bilinear\" \"P\" [4.5 -1000 0 4.5 1000 0 4.5 -1000 1000 4.5 1000 1000]\nAttributeEnd\n";
+    auto render = [](const std::string& extra) {
+        test::ShaderDir d;
+        d.add("gio", "surface gio() {\n  float o = -1;\n"
+                     "  color c = indirectdiffuse(P, normal(0, 0, 1), 256, \"environmentmap\", \"constant.env\", \"bias\", 0.001, "
+                     "\"occlusion\", o);\n  Ci = color(o, comp(c, 2), 0); Oi = 1;\n}\n");
+        return test::renderRib(test::orthographicView(kN, kN, d.option()) + "WorldBegin\n" + extra + "Surface \"gio\"\n" +
+                                   test::square(0, kN, 0, kN, 100) + "WorldEnd\n",
+                               withSkies());
+    };
+    const test::RenderResult walled = render(wall), open = render("");
+    for (int py = 0; py < kN; ++py)
+        for (int px = 0; px < kN; ++px) {
+            EXPECT_NEAR(walled.channel(0, px, py, 0), 0.5f, 4 * 0.5f / 16) << px << " " << py;
+            // The colour is what it was without the output: the map's blue where rays miss.
+            EXPECT_NEAR(walled.channel(0, px, py, 1), 0.5f + 0.5f * 0.9f, 4 * 0.5f / 16) << px << " " << py;
+            EXPECT_EQ(open.channel(0, px, py, 0), 0.0f) << px << " " << py;
+            EXPECT_NEAR(open.channel(0, px, py, 1), 0.9f, 1e-5f) << px << " " << py;
+        }
+}
+
 // "environmentspace" names the map's space: a coordinate system turned half a turn about x
 // sees the floor's hemisphere (current +z) as its -z, where "upper.env" is 0.25; without it
 // the map is read in current space, where the hemisphere is its upper half.

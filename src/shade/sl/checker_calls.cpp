@@ -1,6 +1,7 @@
 // The Shading Language checker: the calls with rules of their own (texture, environment and shadow;
 // the ray-traced functions; bake3d and texture3d; gather; spline; printf, format and concat; filterstep).
 #include "shade/sl/checker_impl.h"
+#include "shade/vm/ray_source.h"
 
 namespace streyes::sl::detail {
 
@@ -68,6 +69,16 @@ SlType Checker::checkRay(Expr& e) {
         Expr& name = *e.args[i];
         if (name.kind != ExprKind::String)
             fail(name.loc, e.text + ": an option's name must be a string literal (or too many positional arguments)");
+        if (isRayOutputOption(b->name, name.text)) {  // written: a variable of the output's type
+            if (i + 1 >= e.args.size()) fail(name.loc, e.text + " output \"" + name.text + "\" has no variable");
+            Expr& v = *e.args[i + 1];
+            const bool wantFloat = name.text == "occlusion";
+            if (v.type.isArray() || (wantFloat ? !v.type.isFloat() : !v.type.isTriple()))
+                fail(v.loc, e.text + " output \"" + name.text + "\" needs a " + (wantFloat ? "float" : "color") +
+                                " variable, not a " + v.type.name());
+            requireVariable(v, e.text + "'s \"" + name.text + "\"");
+            continue;
+        }
         const bool isFloat = kRayFloatOptions.count(name.text) > 0, isString = kRayStringOptions.count(name.text) > 0;
         if (!isFloat && !isString) fail(name.loc, "unknown " + e.text + " option \"" + name.text + "\"");
         if (i + 1 >= e.args.size()) fail(name.loc, e.text + " option \"" + name.text + "\" has no value");

@@ -3,6 +3,7 @@
 
 #include "shade/sl/codegen.h"
 #include "shade/vm/ops.h"
+#include "shade/vm/ray_source.h"
 
 namespace streyes::sl {
 
@@ -554,8 +555,18 @@ CodeGen::Val CodeGen::genRay(const Expr& e, const Builtin& b) {
         positional.push_back(keep(convert(gen(*e.args[i]), b.args[k])));
     std::vector<int32_t> regs{int32_t(positional.size())};
     regs.insert(regs.end(), positional.begin(), positional.end());
+    std::vector<std::pair<const Expr*, Val>> outputs;  // output options: varying copies stored back after
     for (; i + 1 < e.args.size(); i += 2) {
         regs.push_back(keep(gen(*e.args[i])));
+        if (isRayOutputOption(b.name, e.args[i]->text)) {
+            Val cur = gen(*e.args[i + 1]);
+            Val copy = temp(cur.type, Detail::Varying);
+            emit(ops::mov, {copy.reg, cur.reg}, true);
+            release(cur);
+            regs.push_back(copy.reg);
+            outputs.emplace_back(e.args[i + 1].get(), copy);
+            continue;
+        }
         regs.push_back(keep(gen(*e.args[i + 1])));
     }
     if (mapForm) regs.insert(regs.begin(), mapName);
@@ -563,6 +574,7 @@ CodeGen::Val CodeGen::genRay(const Expr& e, const Builtin& b) {
     Val t = temp(b.ret, Detail::Varying);
     emit(mapForm ? ops::occlusionmap : b.op, {t.reg, extraSpan(regs), int(regs.size())}, true);
     for (const Val& v : held) release(v);
+    for (auto& [target, copy] : outputs) assignTo(*target, copy, e.loc);
     return t;
 }
 

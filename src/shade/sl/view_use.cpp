@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "shade/sl/builtins.h"
+#include "shade/vm/ray_source.h"
 
 namespace streyes::sl {
 
@@ -559,7 +560,16 @@ class Analysis {
             return true;
         };
         switch (b.special) {
-            case Special::Ray: return view(e.loc, "a ray (what it meets may move)");
+            case Special::Ray:
+                // Its output options ("occlusion", "environmentcolor") are what the rays meet too.
+                {
+                    size_t i = b.name == "occlusion" && !e.args.empty() && e.args[0]->type.isString() ? 1 : 0;
+                    while (i < e.args.size() && !e.args[i]->type.isString()) ++i;  // the positional arguments
+                    for (; i + 1 < e.args.size(); i += 2)
+                        if (e.args[i]->kind == ExprKind::String && isRayOutputOption(b.name, e.args[i]->text))
+                            assign(*e.args[i + 1], view(e.loc, "a ray (what it meets may move)"), e.loc);
+                }
+                return view(e.loc, "a ray (what it meets may move)");
             case Special::PointCloud:
                 // texture3d's variables: what a file holds near the point (taken as reading the
                 // view, conservatively: a cloud may hold anything).

@@ -37,7 +37,7 @@ struct CloudQuery {
 
 // Point-based occlusion() / indirectdiffuse() (shade/point_based_buffer.h): n points (world-space
 // P and unit N, structure of arrays) seen against the discs of a baked cloud; out[0] the
-// occlusion, out[1..3] (indirect only) the colour, n floats each.
+// occlusion, out[1..3] (indirect, or environmentColour) the colour, n floats each.
 struct PointBasedQuery {
     int n = 0;
     const uint8_t* active = nullptr;  // nullptr: every point
@@ -47,6 +47,11 @@ struct PointBasedQuery {
     int microbufres = 10;
     float maxsolidangle = 0.03f;
     float coneangle = 1.57079632679f;
+    // What each microbuffer pixel sees where no disc covers it (RGB, CubeMicrobuffer's 6
+    // microbufres^2 pixels in its order: the "environmentmap" looked up once a grid); null: black.
+    const float* environment = nullptr;
+    // occlusion()'s "environmentcolor": out[1..3] the environment the discs let through.
+    bool environmentColour = false;
     float* const* out = nullptr;
 };
 

@@ -123,6 +123,32 @@ TEST(VmRays, WrongArgumentsAreCompileErrorsAtTheirColumn) {
     EXPECT_EQ(test::compileError("surface t() { Ci = indirectdiffuse(P, N, 4, \"environmentmap\", \"sky.tx\"); }"), "");
 }
 
+// The output options: indirectdiffuse's "occlusion" takes a float variable, occlusion's
+// "environmentcolor" a color variable; neither is the other's.
+TEST(VmRays, OutputOptionsTakeAVariableOfTheirType) {
+    EXPECT_EQ(test::compileError("surface t() { float o; Ci = indirectdiffuse(P, N, 4, \"occlusion\", o); }"), "");
+    EXPECT_EQ(test::compileError("surface t() { color e; Ci = occlusion(P, N, 4, \"environmentcolor\", e); }"), "");
+    EXPECT_NE(test::compileError("surface t() { Ci = indirectdiffuse(P, N, 4, \"occlusion\", 0.5); }").find("must be a variable"),
+              std::string::npos);
+    EXPECT_NE(test::compileError("surface t() { color o; Ci = indirectdiffuse(P, N, 4, \"occlusion\", o); }").find("needs a float"),
+              std::string::npos);
+    EXPECT_NE(test::compileError("surface t() { float e; Ci = occlusion(P, N, 4, \"environmentcolor\", e); }").find("needs a color"),
+              std::string::npos);
+    EXPECT_NE(test::compileError("surface t() { float o; Ci = occlusion(P, N, 4, \"occlusion\", o); }").find("unknown"),
+              std::string::npos);
+}
+
+// Without a ray source (nothing traced) the "occlusion" output is 0, as the result is black: the
+// variable's own value (-1) does not survive the call.
+TEST(VmRays, TheOcclusionOutputIsWrittenWithoutASource) {
+    TestGrid g(4, 0);
+    ShaderInstance s(test::compile("surface t() { float o = -1; color c = indirectdiffuse(P, N, 4, \"occlusion\", o); Ci = color(o, comp(c, 0), 0); }"));
+    ShadingVM vm;
+    vm.run(s, g.grid, {});
+    const ValueRef ci = vm.result(Global::Ci);
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(test::at3(ci, i), (Vec3f{0, 0, 0})) << i;
+}
+
 // A light's Ns is the surface's normal turned to face the eye (Aqsis's occlusion example lights a
 // floor whose N points away from the camera through it).
 TEST(VmRays, LightsSeeNsFacingTheEye) {

@@ -31,6 +31,13 @@ struct RayOptions {
     const std::string* shader = nullptr;  // the calling shader's name, for warnings
 };
 
+// The named arguments a call writes (output variables, after PRMan): indirectdiffuse()'s
+// "occlusion" (float: the occlusion the same samples give) and occlusion()'s "environmentcolor"
+// (color: the environment map the occluders let through; point-based only).
+inline bool isRayOutputOption(const std::string& function, const std::string& name) {
+    return (function == "indirectdiffuse" && name == "occlusion") || (function == "occlusion" && name == "environmentcolor");
+}
+
 struct RayQuery {
     int n = 0;
     const uint8_t* active = nullptr;  // nullptr: every point
@@ -63,7 +70,8 @@ class RaySource {
     virtual void occlusion(const RayOptions& o, const RayQuery& q, float* out) = 0;
     // The light arriving at P over the cone about D, cosine-weighted and normalised (a uniform
     // white surrounding gives 1): hits shaded, misses the environment map in their direction
-    // (or black without one).
+    // (or black without one). out[0..2] the colour; out[3], when not null, the share of the
+    // same rays that hit something within maxdist (the call's "occlusion" output).
     virtual void indirectdiffuse(const RayOptions& o, const RayQuery& q, float* const* out) = 0;
     // The colour seen from P along D (the nearest hit, shaded; black when nothing is hit or the
     // ray depth is spent), averaged over `samples` rays in the cone about D.

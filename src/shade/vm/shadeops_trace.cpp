@@ -1,6 +1,7 @@
 // occlusion(), indirectdiffuse(), trace() and transmission(): one RaySource call per call site
 // and grid, over the points that run. Without a source the results are what an empty scene
 // gives (occlusion 0, no light, transmission 1) and the call is counted in stats().raysMissing.
+#include <algorithm>
 #include <cstring>
 #include <vector>
 
@@ -56,6 +57,23 @@ void ray(Exec& x, const Instr& in, Call call) {
     for (int c = 0; c < d.comps; ++c) std::fill(d.comp(c), d.comp(c) + d.w, empty);
     if (x.active == 0) return;
     if ((call == Call::Occlusion || call == Call::Indirect) && pointBasedCall(x, in, call == Call::Indirect)) return;
+    // The destination and the output options are varying (the code generator makes them so): n
+    // floats a component. indirectdiffuse's "occlusion" is out[3] (0, nothing hit, unless the
+    // source writes it); occlusion()'s "environmentcolor" is point-based only: left as it was
+    // here, warned once.
+    float* out[4] = {d.comp(0), d.comps > 1 ? d.comp(1) : d.comp(0), d.comps > 2 ? d.comp(2) : d.comp(0), nullptr};
+    const char* fn = call == Call::Indirect ? "indirectdiffuse" : call == Call::Occlusion ? "occlusion" : "";
+    for (int j = 1 + k; j + 1 < count; j += 2) {
+        if (!isRayOutputOption(fn, x.str(r[j]))) continue;
+        if (call == Call::Indirect) {
+            out[3] = x.view(r[j + 1]).comp(0);
+            std::fill(out[3], out[3] + x.n, 0.0f);
+        } else {
+            x.vm.warnOnce(x, in, "ray-environmentcolor",
+                          "occlusion(): \"environmentcolor\" is computed on the point-based path only (give a \"filename\"); "
+                          "the variable is left as it was");
+        }
+    }
     RaySource* source = x.vm.raySource();
     if (!source) {
         ++x.stats.raysMissing;
@@ -83,8 +101,6 @@ void ray(Exec& x, const Instr& in, Call call) {
     q.time = x.grid.time;
     q.seed = x.grid.seed;
     q.site = uint32_t(x.pc);
-    // The destination is varying (the code generator makes it so): n floats a component.
-    float* out[3] = {d.comp(0), d.comps > 1 ? d.comp(1) : d.comp(0), d.comps > 2 ? d.comp(2) : d.comp(0)};
     switch (call) {
         case Call::Occlusion: source->occlusion(o, q, out[0]); break;
         case Call::Indirect: source->indirectdiffuse(o, q, out); break;
