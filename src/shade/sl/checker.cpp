@@ -8,6 +8,9 @@ namespace streyes::sl {
 
 int conversionCost(SlType from, SlType to) {
     if (from == to) return 0;
+    // A resizable array (an unsized formal, or a local or parameter being assigned) takes an
+    // array of any length of its element type.
+    if (to.isResizable() && from.isArray() && from.base == to.base) return 1;
     if (from.isArray() || to.isArray()) return -1;
     if (from.isPointLike() && to.isPointLike()) return 1;
     if (from.isFloat() && (to.isTriple() || to.isMatrix())) return 2;

@@ -191,7 +191,7 @@ SlType Checker::checkSpline(Expr& e) {
     if (knot.isPointLike()) knot = BaseType::Point;
     if (k0.isArray()) {
         if (e.args.size() != i + 2) fail(e.loc, "spline with an array of knots takes ([basis,] value, array)");
-        if (k0.arrayLen < 4) fail(e.loc, "a spline needs at least 4 knots");
+        if (!k0.isResizable() && k0.arrayLen < 4) fail(e.loc, "a spline needs at least 4 knots");
     } else {
         if (e.args.size() - i - 1 < 4) fail(e.loc, "a spline needs at least 4 knots");
         for (size_t k = i + 1; k < e.args.size(); ++k) expectType(*e.args[k], knot, "a spline knot");

@@ -140,7 +140,7 @@ class Checker {
         if (!dc.init) return;
         if (dc.init->kind == ExprKind::ArrayInit) {
             if (!t.isArray()) fail(dc.init->loc, "'" + dc.name + "' is not an array: no {...} initialiser");
-            if (int(dc.init->args.size()) != t.arrayLen)
+            if (!t.isResizable() && int(dc.init->args.size()) != t.arrayLen)
                 fail(dc.init->loc, "'" + dc.name + "' has " + std::to_string(t.arrayLen) + " elements, the initialiser " +
                                        std::to_string(dc.init->args.size()));
             for (auto& e : dc.init->args) expectType(*e, t.element(), "an element of '" + dc.name + "'");
@@ -456,6 +456,7 @@ class Checker {
     SlType checkCall(Expr& e, SlType want) {
         auto uf = functions_.find(e.text);
         if (uf == functions_.end() && e.text == "arraylength") return checkArrayLength(e);
+        if (uf == functions_.end() && (e.text == "resize" || e.text == "push" || e.text == "pop")) return checkResizing(e);
         const auto& builtins = findBuiltins(e.text);
         if (uf == functions_.end() && builtins.empty()) fail(e.loc, "unknown function '" + e.text + "'");
         // texture("name"[channel], ...): the channel comes off the name.
@@ -529,16 +530,47 @@ class Checker {
         return resolveBuiltin(e, builtins, want);
     }
 
-    // arraylength(a): arrays have their length at compile time (an unsized one takes its
-    // initialiser's), so the call is that number.
+    // arraylength(a): a fixed array's length is known here, so the call is that number; a
+    // resizable one's is read at run time (the code generator's alen).
     SlType checkArrayLength(Expr& e) {
         if (e.args.size() != 1) fail(e.loc, "arraylength takes one array");
         const SlType t = check(*e.args[0], SlType());
         if (!t.isArray()) fail(e.args[0]->loc, "arraylength of a " + t.name() + ", not an array");
+        if (t.isResizable()) {
+            if (e.args[0]->kind != ExprKind::Name) fail(e.args[0]->loc, "arraylength takes an array variable");
+            e.number = -1;
+            return BaseType::Float;
+        }
         e.kind = ExprKind::Number;
         e.number = t.arrayLen;
         e.args.clear();
         return BaseType::Float;
+    }
+
+    // resize(a, n), push(a, v), pop(a): only on arrays declared without a length (RSL 2's
+    // resizable arrays), written as variables.
+    SlType checkResizing(Expr& e) {
+        const size_t want = e.text == "pop" ? 1 : 2;
+        if (e.args.size() != want)
+            fail(e.loc, e.text + (e.text == "resize" ? " takes (array, float length)"
+                                  : e.text == "push" ? " takes (array, value)"
+                                                     : " takes (array)"));
+        Expr& a = *e.args[0];
+        const SlType t = check(a, SlType());
+        if (a.kind != ExprKind::Name) fail(a.loc, e.text + "'s first argument must be an array variable (it is changed)");
+        if (!t.isArray()) fail(a.loc, e.text + " needs an array, not the " + t.name() + " '" + a.text + "'");
+        if (!t.isResizable())
+            fail(a.loc, e.text + " of '" + a.text + "', a " + t.name() +
+                            " of fixed length: only arrays declared without a length (" + baseTypeName(t.base) + " " +
+                            a.text + "[]) can be resized, pushed onto or popped");
+        if (t.isString()) fail(a.loc, e.text + " of '" + a.text + "': string arrays cannot be resized (streyes)");
+        checkWritable(*a.symbol, a.loc);
+        if (e.text == "resize") expectType(*e.args[1], BaseType::Float, "resize's length");
+        if (e.text == "push") {
+            if (e.args[1]->kind == ExprKind::ArrayInit) fail(e.args[1]->loc, "push takes one element, not {...}");
+            expectType(*e.args[1], t.element(), "the value pushed onto '" + a.text + "'");
+        }
+        return e.text == "pop" ? t.element() : SlType(BaseType::Void);
     }
 
     void requireVariable(Expr& a, const std::string& what) {

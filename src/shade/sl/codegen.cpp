@@ -66,7 +66,7 @@ int CodeGen::newReg(SlType t, Detail d, const std::string& name) {
 
 CodeGen::Val CodeGen::temp(SlType t, Detail d) {
     if (t.isString()) d = Detail::Uniform;
-    auto key = std::make_pair(int(t.base) | (t.arrayLen << 4), int(d));
+    auto key = std::make_pair(int(t.base) + 16 * t.arrayLen, int(d));
     auto& list = freeTemps_[key];
     Val v;
     v.type = t;
@@ -84,7 +84,7 @@ CodeGen::Val CodeGen::temp(SlType t, Detail d) {
 void CodeGen::release(const Val& v) {
     if (!v.temp || v.reg < 0) return;
     const Register& r = prog_.regs[size_t(v.reg)];
-    freeTemps_[std::make_pair(int(r.type.base) | (r.type.arrayLen << 4), int(r.detail))].push_back(v.reg);
+    freeTemps_[std::make_pair(int(r.type.base) + 16 * r.type.arrayLen, int(r.detail))].push_back(v.reg);
 }
 
 CodeGen::Val CodeGen::constFloats(SlType t, const std::vector<float>& values) {
@@ -248,6 +248,8 @@ void CodeGen::store(Var& var, Val v, const SourceLoc& loc) {
     }
     if (!var.varying() && var.inferred && maskedNest_ > var.maskedAtDecl) makeVarying(var);
     const bool maskedStore = var.varying() && (varyingNest_ > 0 || maskedNest_ > 0);
+    // A resizable array takes the length of the array assigned to it (one a grid), then its elements.
+    if (prog_.regs[size_t(var.reg)].resizable() && v.reg != var.reg) emit(ops::alike, {var.reg, v.reg}, false);
     if (var.type.isString()) {
         if (v.reg != var.reg) emit(ops::smov, {var.reg, v.reg}, false);
     } else if (maskedStore) {
@@ -292,6 +294,7 @@ void CodeGen::assignTo(const Expr& lhs, Val v, const SourceLoc& loc) {
 
 CodeGen::Val CodeGen::convert(Val v, SlType to) {
     if (v.type == to || to.isVoid()) return v;
+    if (to.isResizable() && v.type.isArray() && v.type.base == to.base) return v;  // any length: as it is
     if ((v.type.isTriple() && to.isTriple()) || (v.type.isArray() && v.type == to)) {
         v.type = to;
         return v;

@@ -122,6 +122,7 @@ class CodeGen {
     Val genTexture(const Expr& e, const Builtin& b);
     Val genRay(const Expr& e, const Builtin& b);
     Val genUserCall(const Expr& e);
+    Val genArrayCall(const Expr& e);  // arraylength, resize, push, pop of resizable arrays
     Val convert(Val v, SlType to);
     Val toSpace(Val v, const std::string& space, const SourceLoc& loc);
     Val arith(OpFn fn, Val a, Val b, SlType result);
@@ -129,6 +130,7 @@ class CodeGen {
     // Statements (codegen_stmt.cpp).
     void genStmt(const Stmt& s);
     void genDecl(const VarDecl& d);
+    void initResizable(Var& v, const Declarator& dc);
     void genIf(const Stmt& s);
     void genLoop(const Stmt& s);
     void genBreak(const Stmt& s);

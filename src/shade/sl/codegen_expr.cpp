@@ -194,7 +194,50 @@ CodeGen::Val CodeGen::toSpace(Val v, const std::string& space, const SourceLoc& 
 
 CodeGen::Val CodeGen::genCall(const Expr& e) {
     if (e.function) return genUserCall(e);
+    if (!e.builtin) return genArrayCall(e);
     return genBuiltin(e);
+}
+
+// The length of a resizable array is one value a grid: resize, push and pop change it for
+// every point, so they are refused under varying conditions (as a uniform variable's store is).
+CodeGen::Val CodeGen::genArrayCall(const Expr& e) {
+    const Expr& arrayArg = *e.args.at(0);
+    Var* var = lookup(arrayArg.symbol);
+    const bool resizable = prog_.regs[size_t(var->reg)].resizable();
+    setLoc(e.loc);
+    if (e.text == "arraylength") {
+        if (!resizable) return constFloat(float(var->type.elements()));  // an unsized formal given a fixed array
+        Val t = temp(BaseType::Float, Detail::Uniform);
+        emit(ops::alen, {t.reg, var->reg}, false);
+        return t;
+    }
+    if (!resizable)  // an unsized output formal, given an array of fixed length at this call
+        throw InputError(arrayArg.loc, e.text + " of '" + arrayArg.text + "', here a " + var->type.name() +
+                                           " of fixed length: pass an array declared without a length (" +
+                                           baseTypeName(var->type.base) + " a[])");
+    if (varyingNest_ > var->varyingAtDecl)
+        throw InputError(e.loc, e.text + " of '" + arrayArg.text +
+                                    "' under a varying condition: an array's length is one value for the whole grid "
+                                    "(move the call out of the varying if or loop, or store into an element there)");
+    if (e.text == "resize") {
+        Val n = convert(gen(*e.args[1]), BaseType::Float);
+        if (n.varying()) throw InputError(e.args[1]->loc, "resize's length is one value for the whole grid: give a uniform one");
+        setLoc(e.loc);
+        emit(ops::aresize, {var->reg, n.reg}, false);
+        release(n);
+        return Val{};
+    }
+    if (e.text == "push") {
+        Val v = gen(*e.args[1]);
+        setLoc(e.loc);
+        Val index = temp(BaseType::Float, Detail::Uniform);
+        emit(ops::apush, {var->reg, index.reg}, false);
+        storeElement(*var, index, v, e.loc);
+        return Val{};
+    }
+    Val t = temp(var->type.element(), var->detail);  // pop
+    emit(ops::apop, {t.reg, var->reg}, t.varying());
+    return t;
 }
 
 CodeGen::Val CodeGen::genBuiltin(const Expr& e) {
@@ -644,14 +687,17 @@ CodeGen::Val CodeGen::genUserCall(const Expr& e) {
             if (d.hasDetail && d.detail == Detail::Uniform && v.varying())
                 throw InputError(arg.loc, "parameter '" + dc.name + "' of " + f.name + " is uniform; the value passed is varying");
             if (d.hasDetail && d.detail == Detail::Varying && !v.varying()) {
-                Val t = temp(sym->type, Detail::Varying);
+                if (v.type.isResizable())
+                    throw InputError(arg.loc, "parameter '" + dc.name + "' of " + f.name +
+                                                  " is varying; a uniform resizable array cannot be passed to it (declare it varying)");
+                Val t = temp(v.type, Detail::Varying);
                 emit(ops::mov, {t.reg, v.reg}, true);
                 release(v);
                 v = t;
             }
             auto var = std::make_unique<Var>();
             var->reg = v.reg;
-            var->type = sym->type;
+            var->type = sym->type.isResizable() ? v.type : sym->type;  // an unsized formal: the array passed
             var->detail = v.detail;
             var->name = dc.name;
             ctx.vars[sym] = var.get();

@@ -47,7 +47,9 @@ void CodeGen::genDecl(const VarDecl& d) {
     for (const Declarator& dc : d.decls) {
         Var* v = declareVar(dc.symbol, d.detail, d.hasDetail);
         setLoc(dc.loc);
-        if (dc.init && dc.init->kind == ExprKind::ArrayInit) {
+        if (prog_.regs[size_t(v->reg)].resizable()) {
+            initResizable(*v, dc);
+        } else if (dc.init && dc.init->kind == ExprKind::ArrayInit) {
             for (size_t k = 0; k < dc.init->args.size(); ++k)
                 storeElement(*v, constFloat(float(k)), genFor(*dc.init->args[k], *v), dc.loc);
         } else if (dc.init) {
@@ -59,6 +61,18 @@ void CodeGen::genDecl(const VarDecl& d) {
             emit(ops::mov, {v->reg, constFloat(0).reg}, v->detail == Detail::Varying);
         }
     }
+}
+
+// A resizable array's declaration: its length set (0, or its initialiser's) wherever it is
+// declared, so that a loop's next turn starts it afresh; then its elements.
+void CodeGen::initResizable(Var& v, const Declarator& dc) {
+    if (dc.init && dc.init->kind != ExprKind::ArrayInit) {
+        store(v, genFor(*dc.init, v), dc.loc);
+        return;
+    }
+    const size_t count = dc.init ? dc.init->args.size() : 0;
+    emit(ops::aresize, {v.reg, constFloat(float(count)).reg}, false);
+    for (size_t k = 0; k < count; ++k) storeElement(v, constFloat(float(k)), genFor(*dc.init->args[k], v), dc.loc);
 }
 
 void CodeGen::genIf(const Stmt& s) {
@@ -289,7 +303,9 @@ void CodeGen::genParams() {
         info.defaultText = dc.initText;
         info.initBegin = here();
         setLoc(dc.loc);
-        if (dc.init->kind == ExprKind::ArrayInit) {
+        if (prog_.regs[size_t(v->reg)].resizable()) {
+            initResizable(*v, dc);
+        } else if (dc.init->kind == ExprKind::ArrayInit) {
             for (size_t k = 0; k < dc.init->args.size(); ++k)
                 storeElement(*v, constFloat(float(k)), genFor(*dc.init->args[k], *v), dc.loc);
         } else {

@@ -30,8 +30,9 @@ void evaluateDefaults(const ProgramPtr& program) {
         }
         const int comps = info.type.comps(), elems = info.type.elements();
         info.defaultFloats.clear();
-        for (int e = 0; e < elems; ++e) {
+        for (int e = 0; info.type.isResizable() || e < elems; ++e) {  // resizable: as long as its default
             ValueRef v = vm.param(info.name, e);
+            if (!v.valid()) break;
             for (int c = 0; c < comps; ++c) info.defaultFloats.push_back(info.type.isMatrix() ? v.comp[0][c] : v.at(c, 0));
         }
     }

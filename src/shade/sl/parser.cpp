@@ -217,9 +217,13 @@ void Parser::parseDeclarators(VarDecl& d, bool formal) {
             dc.init = isPunct("{") ? parseArrayInit() : parseAssign();
             dc.initText = textBetween(first, peek());
         }
-        if (unsized) {
-            // Arrays have their length at compile time: an unsized one (a parameter, or a local)
-            // takes its initialiser's; PRMan's resizable arrays (resize, push, pop) are not read.
+        if (unsized && (d.base != BaseType::String || (formal && !dc.init))) {
+            // Resizable (PRMan's RSL 2): a parameter sized by its value, a local that resize,
+            // push and pop change, a function's formal taking an array of any length.
+            dc.arrayLen = SlType::kResizable;
+        } else if (unsized) {
+            // String arrays have their length at compile time: an unsized one takes its
+            // initialiser's.
             if (!dc.init || dc.init->kind != ExprKind::ArrayInit || dc.init->args.empty())
                 throw InputError(dc.loc, "array '" + dc.name + "' has no length: give one (" + dc.name +
                                  "[3]) or an initialiser {...} to take it from");
@@ -228,7 +232,6 @@ void Parser::parseDeclarators(VarDecl& d, bool formal) {
         d.decls.push_back(std::move(dc));
         // In formals a ',' may also separate declarators of one type (float a, b).
     } while (accept(","));
-    (void)formal;
 }
 
 ExprPtr Parser::parseArrayInit() {

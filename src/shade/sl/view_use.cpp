@@ -546,6 +546,9 @@ class Analysis {
 
     Value call(const Expr& e) {
         if (e.function) return userCall(e);
+        if (!e.builtin && !e.args.empty() && e.args[0]->kind == ExprKind::Name && e.args[0]->symbol &&
+            (e.text == "arraylength" || e.text == "resize" || e.text == "push" || e.text == "pop"))
+            return arrayCall(e);
         if (!e.builtin) return view(e.loc, "a call the analysis does not know");
         const Builtin& b = *e.builtin;
         std::vector<Value> a;
@@ -736,6 +739,18 @@ class Analysis {
             return viewFrom(loc, "a current-space value read as given in another space", x);
         }
         return view(loc, "a transform to or from a space that follows the camera (screen, raster, NDC, named)", facing);
+    }
+
+    // A resizable array's length and elements: resize and push join what they are given into
+    // the array (as an element's assignment does); arraylength and pop read it.
+    Value arrayCall(const Expr& e) {
+        const Symbol* sym = e.args[0]->symbol;
+        const Value arr = get(sym);
+        if (e.text == "resize" || e.text == "push") {
+            state_[sym] = join(arr, under(eval(*e.args[1]), ctl(), e.loc));
+            return of(Kind::Invariant);
+        }
+        return arr;
     }
 
     Value userCall(const Expr& e) {

@@ -50,5 +50,37 @@ TEST(VmAllocation, NoneOnceWarm) {
     }
 }
 
+// Resizable arrays grow inside resize and push, by doubling; their storage is kept between
+// grids, so once a shader has run at its largest nothing more is allocated.
+TEST(VmAllocation, NoneOnceWarmWithResizableArrays) {
+    test::TestGrid g(16, 16);
+    ProgramPtr p = compileShader(
+        "surface grow(float w[] = {1}; output varying float total = 0) {\n"
+        "  float a[];\n"
+        "  uniform float i;\n"
+        "  for (i = 0; i < 100; i += 1) push(a, u + i);\n"
+        "  color c[] = {1, 2};\n"
+        "  resize(c, 50);\n"
+        "  for (i = 0; i < arraylength(w); i += 1) total += w[i];\n"
+        "  total += pop(a) + comp(c[1], 0) + arraylength(a);\n"
+        "}\n",
+        "grow.sl");
+    ShaderInstance inst(p);
+    std::vector<float> weights(64, 0.5f);
+    inst.set("w", SlType(), weights, {});
+    ShadingVM vm;
+    vm.run(inst, g.grid);  // warm up
+    allocations = 0;
+    counting = true;
+    for (int k = 0; k < 10; ++k) vm.run(inst, g.grid);
+    counting = false;
+    EXPECT_EQ(allocations, 0u);
+    // 64 halves, the last pushed (u + 99), c[1]'s 2 and the 99 left.
+    for (int i : {0, 100, 288}) {
+        const float u = float(i % 17) / 16.0f;  // the grid's own parameterisation (no u given)
+        EXPECT_FLOAT_EQ(vm.output("total").at(0, i), 32.0f + (u + 99.0f) + 2.0f + 99.0f) << i;
+    }
+}
+
 }  // namespace
 }  // namespace streyes::sl

@@ -8,7 +8,9 @@
 // sanitised results, and calls with side effects (texture lookups, printf, lights).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -35,6 +37,27 @@ struct RegView {
     float at(int c, int i) const { return comp(c)[varying ? i : 0]; }
 };
 
+// The elements of one resizable array register (an unsized parameter or local, SlType::
+// kResizable) over one grid: `length` elements, one per grid (uniform), laid out as a fixed
+// register's (element e, component c: w floats at (e * comps + c) * w), so growing appends
+// floats and never moves what is there. `data` only grows (doubling, by resize/push, once per
+// instruction and grid, never per point) and is kept between grids: no allocation once the
+// shader has run at its largest.
+struct ResizableArray {
+    int length = 0;
+    std::vector<float> data;
+    // Makes room for `elems` elements of `floatsPerElement` floats; false (nothing changed)
+    // past kMaxFloats, the bound on one array (256 MiB) that keeps a runaway resize from
+    // exhausting memory.
+    static constexpr std::size_t kMaxFloats = std::size_t(1) << 26;
+    bool reserve(std::size_t elems, std::size_t floatsPerElement) {
+        const std::size_t need = elems * floatsPerElement;
+        if (floatsPerElement != 0 && elems > kMaxFloats / floatsPerElement) return false;
+        if (data.size() < need) data.resize(std::max(need, std::min(kMaxFloats, 2 * data.size())));
+        return true;
+    }
+};
+
 struct Exec {
     ShadingVM& vm;
     Frame& frame;
@@ -44,6 +67,7 @@ struct Exec {
     float* uni = nullptr;
     float* vary = nullptr;
     std::string* strs = nullptr;
+    ResizableArray* arrays = nullptr;  // the frame's resizable arrays, by Register::slot
     int n = 0;
     uint8_t* mask = nullptr;  // the current mask: 1 where a point runs
     int active = 0;           // points whose mask is 1
@@ -60,11 +84,17 @@ struct Exec {
     int width(int r) const { return varying(r) ? n : 1; }
     float* ptr(int r) const {
         const Register& g = reg(r);
+        if (g.resizable()) return arrays[g.slot].data.data();
         return g.varying() ? vary + std::size_t(g.slot) * std::size_t(n) : uni + g.slot;
+    }
+    // Elements of register r now: a resizable array's current length, else its type's.
+    int elements(int r) const {
+        const Register& g = reg(r);
+        return g.resizable() ? arrays[g.slot].length : g.type.elements();
     }
     RegView view(int r) const {
         const Register& g = reg(r);
-        return {ptr(r), g.varying() ? n : 1, g.type.comps(), g.type.elements(), g.varying()};
+        return {ptr(r), g.varying() ? n : 1, g.type.comps(), elements(r), g.varying()};
     }
     std::string& str(int r, int e = 0) const { return strs[reg(r).slot + e]; }
     bool allOn() const { return active == n; }
@@ -76,6 +106,10 @@ struct Exec {
     // place in the shader. The caller clamps it.
     void indexOutOfRange(const Instr& in, int arrayReg, float index) const;
 };
+
+// Sets resizable array register r's length (new elements 0); false, leaving it, when the
+// array would pass ResizableArray::kMaxFloats (shadeops_arrays.cpp).
+bool setLength(Exec& x, int r, int elems);
 
 // Statistics of a VM, cumulative until reset.
 struct ShadeStats {

@@ -27,6 +27,7 @@ struct Frame {
     int n = 0;
     std::vector<float> arena;       // the uniform area, then varyingArrays arrays of n floats
     std::vector<std::string> strs;  // string slots
+    std::vector<ResizableArray> arrays;  // resizable arrays (exec.h), emptied at each prepare
     std::vector<uint8_t> masks;     // level d: [d n, (d+1) n)
     std::vector<uint8_t> conts;     // loops: points that continued; illuminance: points that broke
     std::vector<int> lightIndex;    // illuminance levels: the light being visited

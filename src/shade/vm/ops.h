@@ -52,6 +52,12 @@ STREYES_SL_OP(ge);
 STREYES_SL_OP(select);         // a0 = a1 ? a2 : a3, per point
 STREYES_SL_OP(aref);           // a0 = a1[a2]  (index clamped into the array)
 STREYES_SL_OP(aset);           // a0[a1] = a2 where the mask is on
+// ---- Resizable arrays (shadeops_arrays.cpp): the length is uniform, one a grid ----
+STREYES_SL_OP(alen);           // a0 = arraylength(a1)
+STREYES_SL_OP(aresize);        // resize(a0, a1): keeps the first min(old, new) elements, new ones 0
+STREYES_SL_OP(apush);          // a0 one element longer (0); a1 = its index (the caller stores into it)
+STREYES_SL_OP(apop);           // a0 = a1's last element, then a1 one shorter (empty: 0, warned once)
+STREYES_SL_OP(alike);          // a0 (resizable) as long as a1, before a whole-array move
 STREYES_SL_OP(sin_);
 STREYES_SL_OP(cos_);
 STREYES_SL_OP(tan_);

@@ -26,6 +26,7 @@ const char* baseTypeName(BaseType b) {
 std::string SlType::name() const {
     std::string s = baseTypeName(base);
     if (arrayLen > 0) s += "[" + std::to_string(arrayLen) + "]";
+    if (arrayLen == kResizable) s += "[]";
     return s;
 }
 
@@ -89,9 +90,11 @@ int ShaderProgram::paramIndex(const std::string& n) const {
 void ShaderProgram::finish() {
     static std::atomic<uint64_t> nextId{1};
     id = nextId++;
-    uniformFloats = varyingArrays = stringSlots = 0;
+    uniformFloats = varyingArrays = stringSlots = resizableArrays = 0;
     for (Register& r : regs) {
-        if (r.type.isString()) {
+        if (r.resizable()) {
+            r.slot = resizableArrays++;
+        } else if (r.type.isString()) {
             r.slot = stringSlots;
             stringSlots += r.type.elements();
         } else if (r.varying()) {

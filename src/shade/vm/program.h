@@ -38,9 +38,11 @@ struct Register {
     int constant = -1;  // a constant: first index into constFloats (or constStrings), or -1
     std::string name;   // variable name; "" for temporaries
     // Assigned by finish(): uniform registers' float offset in the uniform area; varying
-    // registers' first lane array; string registers' first string slot.
+    // registers' first lane array; string registers' first string slot; resizable arrays'
+    // index among the frame's resizable stores (frame.h).
     int slot = 0;
     int floats() const { return type.comps() * type.elements(); }
+    bool resizable() const { return type.isResizable() && !type.isString(); }
     bool varying() const { return detail == Detail::Varying; }
 };
 
@@ -96,6 +98,7 @@ struct ShaderProgram {
     int uniformFloats = 0;           // size of the uniform area
     int varyingArrays = 0;           // number of n-float arrays
     int stringSlots = 0;
+    int resizableArrays = 0;         // resizable (unsized) float-based arrays: a store each
 
     ShaderProgram() { for (int& r : globalReg) r = -1; }
     const ParamInfo* findParam(const std::string& n) const;

@@ -1,6 +1,7 @@
 // Arithmetic, comparisons, logic, arrays and the math functions, component-wise over the grid.
 // Results that would be NaN or infinite from a bad operand (x/0, sqrt(-1), log(0), pow(-1, .5))
 // are 0, and each point that runs and gets one is counted.
+#include <algorithm>
 #include <cmath>
 
 #include "shade/vm/frame.h"
@@ -125,6 +126,11 @@ inline bool outside(float f, int len) { return !(f >= 0 && f < float(len)); }
 void aref(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]), a = x.view(in.a[1]), ix = x.view(in.a[2]);
     const int len = a.elems;
+    if (len == 0) {  // an empty resizable array: 0
+        if (x.active > 0) x.indexOutOfRange(in, in.a[1], ix.at(0, 0));
+        for (int c = 0; c < d.comps; ++c) std::fill(d.comp(c), d.comp(c) + d.w, 0.0f);
+        return;
+    }
     bool reported = false;
     for (int i = 0; i < d.w; ++i) {
         const float f = ix.at(0, i);
@@ -140,6 +146,10 @@ void aref(Exec& x, const Instr& in) {
 void aset(Exec& x, const Instr& in) {
     RegView a = x.view(in.a[0]), ix = x.view(in.a[1]), v = x.view(in.a[2]);
     const int len = a.elems;
+    if (len == 0) {  // an empty resizable array: written nowhere
+        if (x.active > 0) x.indexOutOfRange(in, in.a[0], ix.at(0, 0));
+        return;
+    }
     const bool all = !a.varying || x.allOn();
     bool reported = false;
     for (int i = 0; i < a.w; ++i) {
@@ -284,6 +294,10 @@ void splineArray(Exec& x, const Instr& in) {
     static const std::string none;
     const Basis* b = basisNamed(in.a[1] >= 0 ? x.str(in.a[1]) : none);
     if (!b) b = basisNamed("");
+    if (arr.elems < 4) {  // a resizable array of knots shorter than a spline needs: 0
+        for (int c = 0; c < d.comps; ++c) std::fill(d.comp(c), d.comp(c) + d.w, 0.0f);
+        return;
+    }
     for (int c = 0; c < d.comps; ++c)
         for (int i = 0; i < d.w; ++i)
             d.comp(c)[i] = evalSpline(*b, arr.elems, value.at(0, i), c, i,

@@ -14,6 +14,7 @@ namespace {
 // A peer's parameter of type `from` fits a variable of type `to`: the same shape; colours only
 // into colours, point, vector and normal into each other.
 bool fits(SlType from, SlType to) {
+    if (from.isResizable() || to.isResizable()) return false;  // resizable arrays are not passed
     if (from.isString() != to.isString() || from.elements() != to.elements()) return false;
     if (from.isString()) return true;
     if (from.base == to.base) return true;

@@ -3,6 +3,8 @@
 #include <atomic>
 #include <sstream>
 
+#include "shade/vm/exec.h"
+
 namespace streyes::sl {
 
 namespace {
@@ -52,11 +54,18 @@ void ShaderInstance::set(const std::string& name, SlType type, const std::vector
     if (type.base != BaseType::Void) {
         const bool same = type.base == info.type.base || (SlType(type.base).isPointLike() && info.type.element().isPointLike());
         if (!same) throw InputError(loc, what + ", not " + baseTypeName(type.base));
-        if (type.arrayLen != 0 && type.arrayLen != info.type.arrayLen)
+        if (type.arrayLen != 0 && type.arrayLen != info.type.arrayLen && !info.type.isResizable())
             throw InputError(loc, what + ", not " + type.name());
     }
     const size_t want = size_t(info.type.comps() * info.type.elements());
-    if (values.size() != want)
+    if (info.type.isResizable()) {  // declared without a length: as many elements as given
+        const size_t comps = size_t(info.type.comps());
+        if (values.size() % comps != 0)
+            throw InputError(loc, what + ": it takes " + std::to_string(comps) + " values an element, not " +
+                                      std::to_string(values.size()) + " in all");
+        if (values.size() > ResizableArray::kMaxFloats)
+            throw InputError(loc, what + ": " + std::to_string(values.size()) + " values are more than an array holds (2^26)");
+    } else if (values.size() != want)
         throw InputError(loc, what + ": it takes " + std::to_string(want) + " value" + (want == 1 ? "" : "s") + ", not " +
                                   std::to_string(values.size()));
     Value& v = slot(k);

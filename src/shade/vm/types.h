@@ -13,12 +13,17 @@ enum class Detail : uint8_t { Uniform, Varying };
 
 struct SlType {
     BaseType base = BaseType::Void;
-    int arrayLen = 0;  // 0: a single value; > 0: a fixed-size array
+    int arrayLen = 0;  // 0: a single value; > 0: a fixed-size array; kResizable: length at run time
+    // An array declared without a length (`float a[]`): a parameter sized by its value, a local
+    // that resize/push/pop change, a function's formal taking any length. Its length is one
+    // value per grid (uniform); the VM keeps its elements apart from the fixed registers.
+    static constexpr int kResizable = -1;
 
     constexpr SlType() = default;
     constexpr SlType(BaseType b, int len = 0) : base(b), arrayLen(len) {}  // NOLINT: implicit on purpose
 
-    bool isArray() const { return arrayLen > 0; }
+    bool isArray() const { return arrayLen != 0; }
+    bool isResizable() const { return arrayLen == kResizable; }
     SlType element() const { return {base, 0}; }
     bool is(BaseType b) const { return base == b && arrayLen == 0; }
     bool isFloat() const { return is(BaseType::Float); }
@@ -36,6 +41,7 @@ struct SlType {
     }
     // Floats per point of one element: the interpreter keeps one float array per component.
     int comps() const { return compsOf(base); }
+    // Elements of a fixed register (a resizable array's are counted at run time: 1 here).
     int elements() const { return arrayLen > 0 ? arrayLen : 1; }
     static int compsOf(BaseType b) {
         switch (b) {

@@ -15,13 +15,19 @@ void Exec::sanitised(int count) const { stats.sanitised += uint64_t(count); }
 void Exec::indexOutOfRange(const Instr& in, int arrayReg, float index) const {
     ++stats.indicesClamped;
     const Register& r = reg(arrayReg);
-    const int len = r.type.elements();
+    const int len = elements(arrayReg);
     char shown[32];
     std::snprintf(shown, sizeof shown, "%g", double(index));
+    const std::string name = r.name.empty() ? "an array" : "'" + r.name + "'";
+    if (len == 0) {
+        vm.warnOnce(*this, in, "index",
+                    std::string("array index ") + shown + " of " + name +
+                        ", which is empty: read as 0, written nowhere (warned once here; other points and grids may do it too)");
+        return;
+    }
     vm.warnOnce(*this, in, "index",
-                std::string("array index ") + shown + " is outside " + (r.name.empty() ? "an array" : "'" + r.name + "'") +
-                    " of " + std::to_string(len) + " (0 to " + std::to_string(len - 1) +
-                    "): clamped into it (warned once here; other points and grids may do it too)");
+                std::string("array index ") + shown + " is outside " + name + " of " + std::to_string(len) + " (0 to " +
+                    std::to_string(len - 1) + "): clamped into it (warned once here; other points and grids may do it too)");
 }
 
 void ShadingVM::warnOnce(const Exec& x, const Instr& in, const char* kind, const std::string& what) {
@@ -44,6 +50,10 @@ void Frame::prepare(const ProgramPtr& program, int points) {
     const size_t need = size_t(p.uniformFloats) + size_t(p.varyingArrays) * size_t(n);
     if (arena.size() < need) arena.resize(need);
     if (strs.size() < size_t(p.stringSlots)) strs.resize(size_t(p.stringSlots));
+    // Kept (with their storage) between runs; every run starts each at length 0, its
+    // declaration or parameter binding giving it its elements.
+    if (arrays.size() < size_t(p.resizableArrays)) arrays.resize(size_t(p.resizableArrays));
+    for (ResizableArray& a : arrays) a.length = 0;
     const size_t levels = size_t(p.maxMaskDepth) + 2;
     if (masks.size() < levels * size_t(n)) {
         masks.resize(levels * size_t(n));
@@ -133,6 +143,7 @@ void ShadingVM::runFrame(Frame& f, const ShaderInstance& shader, const ShadingGr
     x.uni = f.arena.data();
     x.vary = x.uni + p.uniformFloats;
     x.strs = f.strs.data();
+    x.arrays = f.arrays.data();
     x.n = grid.n;
     std::memset(f.mask(0), 1, size_t(grid.n));
     setLevel(x, 0);
@@ -335,7 +346,13 @@ void ShadingVM::bindParamValues(Exec& x, const ShaderInstance& shader, const Sha
                 continue;
             }
             const int comps = info.type.comps();
-            for (int e = 0; e < info.type.elements(); ++e) {
+            int elems = info.type.elements();
+            if (p.regs[size_t(info.reg)].resizable()) {  // sized by the value given
+                elems = int(v->floats.size()) / comps;
+                if (!setLength(x, info.reg, elems)) throw InputError("parameter \"" + info.name + "\" of shader \"" + p.name + "\": too many values");
+                d = x.view(info.reg);
+            }
+            for (int e = 0; e < elems; ++e) {
                 float val[16];
                 for (int c = 0; c < comps; ++c) val[c] = v->floats[size_t(e * comps + c)];
                 if (info.type.element().isPointLike() && shaderSpace_) fromShaderSpace(val, info.type.base, *shaderSpace_);
@@ -379,7 +396,10 @@ void ShadingVM::sanitiseOutputs(Exec& x) {
 
 ValueRef ShadingVM::view(const Frame& f, int reg, int element) const {
     const Register& r = f.prog->regs[size_t(reg)];
-    const float* base = f.arena.data() + (r.varying() ? size_t(f.prog->uniformFloats) + size_t(r.slot) * size_t(f.n) : size_t(r.slot));
+    if (r.resizable() && element >= f.arrays[size_t(r.slot)].length) return {};
+    const float* base = r.resizable() ? f.arrays[size_t(r.slot)].data.data()
+                                      : f.arena.data() + (r.varying() ? size_t(f.prog->uniformFloats) + size_t(r.slot) * size_t(f.n)
+                                                                      : size_t(r.slot));
     const size_t w = r.varying() ? size_t(f.n) : 1;
     ValueRef v;
     const int comps = r.type.comps();
@@ -399,7 +419,7 @@ ValueRef ShadingVM::result(Global g) const {
 ValueRef ShadingVM::param(const std::string& name, int element) const {
     if (!top_ || !top_->prog) return {};
     const ParamInfo* info = top_->prog->findParam(name);
-    if (!info || info->type.isString() || element >= info->type.elements()) return {};
+    if (!info || info->type.isString() || (!info->type.isResizable() && element >= info->type.elements())) return {};
     return view(*top_, info->reg, element);
 }
 
@@ -612,6 +632,7 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
             for (int e = 0; e < info.type.elements(); ++e) res.outStrings.push_back(f.strs[size_t(r.slot + e)]);
             continue;
         }
+        if (r.resizable()) continue;  // a light's resizable output: not passed on (lightsource() misses)
         ValueRef v = view(f, info.reg);
         if (info.type.isFloat() && info.name == "__nondiffuse") res.nonDiffuse = v.at(0, 0) != 0;
         if (info.type.isFloat() && info.name == "__nonspecular") res.nonSpecular = v.at(0, 0) != 0;

@@ -463,7 +463,7 @@ TEST(VmStrings, PrintfFormatConcatMatch) {
     EXPECT_EQ(printed, "u 1.0 1 0 0\nonce bark\n");
 }
 
-TEST(VmFunctions, ArrayLengthAndUnsizedArraysTakingTheirInitialisersLength) {
+TEST(VmFunctions, ArrayLengthAndUnsizedArraysTakingTheirValuesLength) {
     ProgramPtr prog = test::compile(R"(
         surface s(float weights[] = {1, 2, 3, 4}; output uniform float n = 0; output uniform float sum = 0;
                   output uniform float m = 0) {
@@ -487,8 +487,9 @@ TEST(VmFunctions, ArrayLengthAndUnsizedArraysTakingTheirInitialisersLength) {
     bound.set("weights", BaseType::Float, {0.5f, 0.25f, 2, 8});
     vm.run(bound, g.grid);
     EXPECT_EQ(vm.output("sum").at(0, 0), 10.75f);
-    // Errors at the declaration or the call.
-    EXPECT_NE(test::compileError("surface s() { float a[]; Ci = 0; }").find("array 'a' has no length"), std::string::npos);
+    // Errors at the declaration or the call. (`float a[];` is an empty resizable array,
+    // resizable_arrays_test.cpp; string arrays do not resize, so they take an initialiser's length.)
+    EXPECT_NE(test::compileError("surface s() { string a[]; Ci = 0; }").find("array 'a' has no length"), std::string::npos);
     EXPECT_NE(test::compileError("surface s() { float a = 1; Ci = arraylength(a); }").find("arraylength of a float, not an array"),
               std::string::npos);
 }
