@@ -1,6 +1,7 @@
 #include "geom/lights.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace streyes {
 
@@ -46,6 +47,20 @@ void sampleArea(const std::vector<std::array<Vec3d, 4>>& patches, Light& l) {
 
 }  // namespace
 
+bool isParallelLightShader(const std::string& type) { return type == "sunlight"; }
+
+int coneShadowSamples(const CameraLight& l) { return l.coneTan > 0 ? kConeShadowSamples : 1; }
+
+Vec3f coneShadowDirection(const CameraLight& l, int j) {
+    if (!(l.coneTan > 0)) return l.direction;
+    const Vec3f d = l.direction;
+    const Vec3f u = normalize(std::fabs(d.y) < 0.9f ? cross(d, Vec3f{0, 1, 0}) : cross(d, Vec3f{1, 0, 0}));
+    const Vec3f v = cross(d, u);
+    const float r = l.coneTan * std::sqrt((float(j) + 0.5f) / float(kConeShadowSamples));
+    const float phi = float(j) * 2.39996323f;  // the golden angle
+    return normalize(d + u * (r * std::cos(phi)) + v * (r * std::sin(phi)));
+}
+
 LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& worldToCamera)
     : worldToCamera_(worldToCamera) {
     static_ = worldToCamera.isStatic();
@@ -65,6 +80,14 @@ LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& 
                       ? Color{0, 0, 0}
                       : d.params.getColor("lightcolor", {1, 1, 1}) * float(d.params.getFloat("intensity", 1));
         l.lightToWorld = d.lightToWorld;
+        if (l.kind == LightKind::Shader && isParallelLightShader(d.type)) {
+            l.parallel = true;
+            // sunlight.sl's own defaults where RIB gives none: the sun up and towards -z.
+            if (!from) l.from = {0, 1, 1};
+            if (!to) l.to = {0, 0, 0};
+            const double angle = std::clamp(d.params.getFloat("angle", kSunAngleDegrees), 0.0, 10.0);
+            l.coneTan = float(std::tan(angle * M_PI / 180));
+        }
         if (d.area) {
             // Its shader runs at points of its shape, each with "shader" space moved there.
             l.kind = LightKind::Shader;
@@ -100,10 +123,10 @@ void LightSet::at(double t, std::vector<CameraLight>& out) const {
     int slot = 0;
     for (const Light& l : lights_) {
         Matrix4 m = l.lightToWorld.at(t) * w2c;
-        CameraLight c{l.kind, l.color, {}, {}, l.castsShadows ? slot++ : -1};
+        CameraLight c{l.kind, l.color, {}, {}, l.castsShadows ? slot++ : -1, l.parallel, l.coneTan};
         Vec3d from = m.point(l.from);
         if (l.kind == LightKind::Point || l.kind == LightKind::Shader) c.position = Vec3f(from);
-        if (l.kind == LightKind::Distant) c.direction = Vec3f(normalize(from - m.point(l.to)));
+        if (l.kind == LightKind::Distant || l.parallel) c.direction = Vec3f(normalize(from - m.point(l.to)));
         out.push_back(c);
     }
 }

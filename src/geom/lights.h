@@ -2,6 +2,7 @@
 // motion, evaluated at an instant. Shading reads them; so does the ray tracer, for shadow rays.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "streyes/scene.h"
@@ -10,8 +11,15 @@
 namespace streyes {
 
 // Shader: a Shading Language light (spotlight, a studio's own); only Shading Language surfaces
-// see it, and its shadow rays go to its "from" point.
+// see it, and its shadow rays go to its "from" point (but the shipped sun's: parallel, below).
 enum class LightKind { Ambient, Distant, Point, Shader };
+
+// Light shaders that are distant lights (shaders/sunlight.sl): their shadow rays are parallel to
+// from - to, as distantlight's, spread over a cone of half-angle "angle" (degrees; the shader's
+// default 0.27, the sun's angular radius) by kConeShadowSamples directions.
+bool isParallelLightShader(const std::string& type);
+constexpr double kSunAngleDegrees = 0.27;  // sunlight.sl's default "angle"
+constexpr int kConeShadowSamples = 16;
 
 struct Light {
     LightKind kind = LightKind::Ambient;
@@ -19,6 +27,8 @@ struct Light {
     Vec3d from{0, 0, 0}, to{0, 0, 1};  // light space
     MotionTransform lightToWorld;
     bool castsShadows = false;
+    bool parallel = false;  // a Shader light whose shadow rays run along from - to (isParallelLightShader)
+    float coneTan = 0;      // its cone: the tangent of the half-angle
     // An area light (AreaLightSource): its shader runs at these points of its shape, each with the
     // shape's unit normal there, every result weighted 1 / count; lightToWorld takes them to
     // world space (LightDesc::areaToWorld).
@@ -35,7 +45,20 @@ struct CameraLight {
     Vec3f position;   // point and shader lights
     Vec3f direction;  // distant lights: unit vector from the surface towards the light
     int shadowSlot = -1;  // >= 0: the light casts shadows (its slot among those that do)
+    bool parallel = false;  // a Shader light with a direction (isParallelLightShader)
+    float coneTan = 0;      // > 0: shadow rays spread over the cone of this tangent about direction
 };
+
+// Whether the light's shadow rays go to its point (point lights, light shaders but parallel ones)
+// rather than along its direction.
+inline bool shadowsTowardsPoint(const CameraLight& l) {
+    return l.kind == LightKind::Point || (l.kind == LightKind::Shader && !l.parallel);
+}
+// Shadow directions of a directional light: l.direction without a cone; with one, the j-th of
+// kConeShadowSamples directions spread evenly over its disc (a Vogel spiral), the same set for
+// every point, so that the still test and the per-sample path agree.
+Vec3f coneShadowDirection(const CameraLight& l, int j);
+int coneShadowSamples(const CameraLight& l);  // 1 without a cone
 
 class LightSet {
   public:

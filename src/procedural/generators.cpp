@@ -8,6 +8,7 @@
 
 #include "procedural/dynamic_load.h"
 #include "procedural/forest.h"
+#include "procedural/grass.h"
 #include "procedural/run_program.h"
 #include "procedural/procedural.h"
 #include "scene/ri_stream.h"
@@ -159,11 +160,12 @@ std::shared_ptr<const ProceduralGenerator> makeProceduralGenerator(const Procedu
         const std::string block = args.size() > 1 ? args[1] : "";
         if (args[0] == "forest") return makeForestGenerator(block, loc);
         if (args[0] == "tree") return makeTreeGenerator(block, loc);
+        if (args[0] == "grass") return makeGrassGenerator(block, loc);
         // A plug-in runs code, as a program does: allowed where programs are.
         if (!access.programs)
             throw InputError(loc, access.safe ? "Procedural \"DynamicLoad\" \"" + args[0] +
                                                     "\" is refused by --safe: it would load a plug-in, which runs code "
-                                                    "(the built-in generators, \"forest\" and \"tree\", are allowed). "
+                                                    "(the built-in generators, \"forest\", \"tree\" and \"grass\", are allowed). "
                                                     "Render without --safe only if you trust the scene"
                                               : "Procedural \"DynamicLoad\" with a plug-in is not allowed here (no "
                                                 "plug-ins are loaded)");

@@ -132,7 +132,9 @@ Color ShaderRays::addReachedLights(Color c, Vec3f p, double time, const Spacetim
         const CameraLight& l = lightsAt(time)[size_t(li)];
         Ray ray{p, l.direction};
         float tMax = std::numeric_limits<float>::infinity();
-        if (l.kind == LightKind::Point || l.kind == LightKind::Shader) {
+        if (const int n = coneShadowSamples(l); n > 1)  // a cone: one of its directions, as for area lights
+            ray.d = coneShadowDirection(l, int(pointHash(p, 0, uint32_t(k)) % uint64_t(n)));
+        if (shadowsTowardsPoint(l)) {
             Vec3f target = l.position;
             if (const int n = lights.areaSamples(li); n > 0)
                 target = lights.areaPoint(li, int(pointHash(p, 0, uint32_t(k)) % uint64_t(n)), time);

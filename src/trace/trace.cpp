@@ -117,7 +117,7 @@ TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, L
     for (double t : {scene.renderedStart, scene.renderedEnd}) {
         scene.lights.at(t, lights);
         for (const CameraLight& l : lights)
-            if ((l.kind == LightKind::Point || l.kind == LightKind::Shader) && isFinite(l.position)) include_.extend(l.position);
+            if (shadowsTowardsPoint(l) && isFinite(l.position)) include_.extend(l.position);
     }
 }
 
@@ -304,9 +304,12 @@ unsigned SampleTracer::unblockedByMoving(const Grid& grid, const TraceScene& tra
         const int li = lights.shadowLight(k);
         const CameraLight& l = ls[size_t(li)];
         bool clear;
-        if (l.kind != LightKind::Point && l.kind != LightKind::Shader) {
-            // Rays g + s d, s >= 0, from any g in the grid's box meet b only if s d meets b - g.
-            clear = !rayMeetsBox(l.direction, Bounds3f{b.lo - g.hi, b.hi - g.lo});
+        if (!shadowsTowardsPoint(l)) {
+            // Rays g + s d, s >= 0, from any g in the grid's box meet b only if s d meets b - g
+            // (each of a cone's directions).
+            clear = true;
+            for (int j = 0; j < coneShadowSamples(l) && clear; ++j)
+                clear = !rayMeetsBox(coneShadowDirection(l, j), Bounds3f{b.lo - g.hi, b.hi - g.lo});
         } else {
             // Segments from the grid's box to the light's point(s) lie in the box of both.
             Bounds3f hull = g;
@@ -347,7 +350,10 @@ Color SampleTracer::addVisibleLights(Color c, Vec3f p, double time, const Color*
         const CameraLight& l = lightsAt(lights, time)[size_t(li)];
         Ray ray{p, l.direction};
         float tMax = std::numeric_limits<float>::infinity();
-        if (l.kind == LightKind::Point || l.kind == LightKind::Shader) {
+        // A cone (the sun's disc): one of its directions, picked by the hash that picks an area
+        // light's point, so that a pixel's samples spread over it (soft shadows) alike in any block.
+        if (const int n = coneShadowSamples(l); n > 1) ray.d = coneShadowDirection(l, areaPointOf(p, time, n));
+        if (shadowsTowardsPoint(l)) {
             // An area light: towards one of its points, picked by a hash of the shaded point, so
             // that a pixel's samples spread over the light (soft shadows) the same in any block.
             Vec3f target = l.position;
@@ -539,8 +545,8 @@ void SampleTracer::occludeStillVertices(Grid& grid, const TraceScene& trace, Ren
             const CameraLight& l = ls[size_t(li)];
             // Whether a ray from p to `target` (a point light's) or along the light's direction
             // reaches it past the still occluders.
-            auto reaches = [&](const Vec3f* target) {
-                Ray ray{p, l.direction};
+            auto reaches = [&](const Vec3f* target, const Vec3f* direction = nullptr) {
+                Ray ray{p, direction ? *direction : l.direction};
                 float tMax = std::numeric_limits<float>::infinity();
                 if (target) {
                     const Vec3f d = *target - p;
@@ -552,8 +558,20 @@ void SampleTracer::occludeStillVertices(Grid& grid, const TraceScene& trace, Ren
                 ++counters.shadowVertexRays;
                 return !bvh.occluded(ray, time, bias, tMax, ctx_);
             };
-            if (l.kind != LightKind::Point && l.kind != LightKind::Shader) {
-                if (!reaches(nullptr)) part = {0, 0, 0};
+            if (!shadowsTowardsPoint(l)) {
+                // A directional light: along its direction, or the share of its cone's directions
+                // that get through (the per-sample path picks one a sample).
+                const int n = coneShadowSamples(l);
+                if (n == 1) {
+                    if (!reaches(nullptr)) part = {0, 0, 0};
+                } else {
+                    int seen = 0;
+                    for (int j = 0; j < n; ++j) {
+                        const Vec3f d = coneShadowDirection(l, j);
+                        seen += reaches(nullptr, &d);
+                    }
+                    if (seen < n) part = part * (float(seen) / float(n));
+                }
             } else if (const int n = lights.areaSamples(li); n > 0) {
                 // Every point of the area light (the per-sample path picks one a sample, and a
                 // pixel's samples spread over them): the share it sees, smooth over the grid.

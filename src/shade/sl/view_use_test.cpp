@@ -221,6 +221,7 @@ TEST(ViewUse, TheShippedShaders) {
         {"matte", "FacingOnly"},    {"metal", "Reads"},        {"paintedplastic", "Reads"}, {"plastic", "Reads"},
         {"pointlight", "None"},     {"shadowdistant", "None"}, {"shadowpoint", "None"},     {"shadowspot", "None"},
         {"shinymetal", "Reads"},    {"sky", "Reads"},          {"spotlight", "None"},
+        {"preethamsky", "Reads"},   {"sunlight", "None"},
     };
     size_t seen = 0;
     for (const auto& entry : std::filesystem::directory_iterator(std::string(STREYES_SOURCE_DIR) + "/shaders")) {
