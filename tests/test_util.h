@@ -41,7 +41,7 @@ inline bool slowUnderSanitizers(const std::string& sceneFile) {
     const size_t slash = sceneFile.find_last_of('/');
     const std::string name = sceneFile.substr(slash == std::string::npos ? 0 : slash + 1);
     for (const char* slow : {"atom.rib", "blobby.rib", "forest.rib", "forest-flyover.rib", "forest-small.rib",
-                             "grove.rib", "split_budget.rib", "trees-presets.rib"})
+                             "grove.rib", "meadow-sky.rib", "split_budget.rib", "trees-presets.rib"})
         if (name == slow) return kAddressSanitizer;
     return false;
 }
