@@ -226,11 +226,19 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     v_.resize(size_t(n));
     const float du = grid.nu > 0 ? (grid.u1 - grid.u0) / float(grid.nu) : 0.0f;
     const float dv = grid.nv > 0 ? (grid.v1 - grid.v0) / float(grid.nv) : 0.0f;
+    const bool placed = grid.paramU.size() == size_t(n) && grid.paramV.size() == size_t(n);
     for (int j = 0; j <= grid.nv; ++j)
         for (int i = 0; i <= grid.nu; ++i) {
             // The borders exactly, as the dicers place them: neighbours agree on shared vertices.
-            u_[size_t(grid.index(i, j))] = i == grid.nu ? grid.u1 : grid.u0 + float(i) * du;
-            v_[size_t(grid.index(i, j))] = j == grid.nv ? grid.v1 : grid.v0 + float(j) * dv;
+            const size_t at = size_t(grid.index(i, j));
+            if (placed) {  // where the dicer put the vertex (a curved body's sides)
+                const float fu = grid.paramU[at], fv = grid.paramV[at];
+                u_[at] = fu >= 1 ? grid.u1 : grid.u0 + fu * (grid.u1 - grid.u0);
+                v_[at] = fv >= 1 ? grid.v1 : grid.v0 + fv * (grid.v1 - grid.v0);
+                continue;
+            }
+            u_[at] = i == grid.nu ? grid.u1 : grid.u0 + float(i) * du;
+            v_[at] = j == grid.nv ? grid.v1 : grid.v0 + float(j) * dv;
         }
     static const Vec3f kEye{0, 0, 0};
     using sl::Global;
@@ -384,6 +392,10 @@ void GridShader::bindPrimvars(const Material& m, const Grid& grid, int n, double
                 sgrid_.set(sl::Global::N, v.value);
                 continue;
             }
+        }
+        if (p.name == "Cs" && p.type == ParamType::Color) {  // a bicubic mesh's vertex colour (addPatchMesh)
+            sgrid_.set(sl::Global::Cs, v.value);
+            continue;
         }
         if (p.name == "Os" && p.type == ParamType::Color) {  // the opacity a shader starts from
             sgrid_.set(sl::Global::Os, v.value);
