@@ -151,7 +151,7 @@ const Material* BodyFactory::material(const AttributesPtr& attributes, const Mot
         if (it != ownMaterialOf_.end()) return it->second;
     } else {
         auto it = materialOf_.find({a.get(), facing});
-        if (it != materialOf_.end()) return it->second;
+        if (it != materialOf_.end()) return withObjectSpace(it->second, objectToWorld, facing, primitiveId);
     }
     keepAlive_.push_back(a);
     Material m = makeMaterial(*a, facing);
@@ -159,7 +159,8 @@ const Material* BodyFactory::material(const AttributesPtr& attributes, const Mot
         m.dissolveLo = share->second.first, m.dissolveHi = share->second.second;
     if (own) {
         m.primvars = *primvars;
-        m.primvarToWorld = objectToWorld;
+        m.objectToWorld = objectToWorld;
+        m.objectSpaceKnown = true;
         m.primvarBezier = primvarBezier;
         for (const Param& v : primvars->params)  // a single face's corners (a mesh's faces carry theirs)
             if (v.cls != ParamClass::Constant && v.nums.size() == 4 * size_t(v.componentsPerItem()))
@@ -171,7 +172,24 @@ const Material* BodyFactory::material(const AttributesPtr& attributes, const Mot
     if (facing == Facing::Camera && (m.surface || m.kind != SurfaceKind::Constant)) m.viewUse = ViewUse::Reads;
     materials_.push_back(std::move(m));
     if (own) return ownMaterialOf_.emplace(std::make_tuple(a.get(), facing, primitiveId), &materials_.back()).first->second;
-    return materialOf_.emplace(std::make_pair(a.get(), facing), &materials_.back()).first->second;
+    const Material* shared = materialOf_.emplace(std::make_pair(a.get(), facing), &materials_.back()).first->second;
+    return withObjectSpace(shared, objectToWorld, facing, primitiveId);
+}
+
+// A shared material whose shaders name "object" space is copied per primitive with its
+// transform (the RI Spec's "object" space is the primitive's, not the shader's); called with
+// mutex_ held. Other materials stay shared.
+const Material* BodyFactory::withObjectSpace(const Material* shared, const MotionTransform& objectToWorld, Facing facing,
+                                             uint64_t primitiveId) {
+    if (!shared->readsObjectSpace) return shared;
+    const auto key = std::make_tuple(shared->attributes, facing, primitiveId);
+    auto it = ownMaterialOf_.find(key);
+    if (it != ownMaterialOf_.end()) return it->second;
+    Material m = *shared;
+    m.objectToWorld = objectToWorld;
+    m.objectSpaceKnown = true;
+    materials_.push_back(std::move(m));
+    return ownMaterialOf_.emplace(key, &materials_.back()).first->second;
 }
 
 const SourceLoc* BodyFactory::source(const SourceLoc& loc) {

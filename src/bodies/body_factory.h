@@ -164,6 +164,8 @@ class BodyFactory final : public ChildBodyMaker {
     const Material* material(const AttributesPtr& attributes, const MotionTransform& objectToWorld,
                              bool cameraFacing = false, const ParamList* primvars = nullptr, uint64_t primitiveId = 0,
                              bool primvarBezier = false);
+    const Material* withObjectSpace(const Material* shared, const MotionTransform& objectToWorld, Facing facing,
+                                    uint64_t primitiveId);
     const SourceLoc* source(const SourceLoc& loc);
     // Calls add(q) for each copy of primitive p its level of detail draws: p itself when it has
     // none, else one copy a run of frames that draw it alike, living over those frames'

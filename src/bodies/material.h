@@ -111,9 +111,17 @@ struct Material {
     // face's block holds their 16 Bezier control values (row by row, u fastest) rather than four
     // corners, evaluated at each vertex's (u, v).
     bool primvarBezier = false;
-    // The primitive's object-to-world transform: point, vector and normal primitive variables are
-    // given in object space.
-    MotionTransform primvarToWorld;
+    // The primitive's object-to-world transform (the CTM where it was given): its shaders'
+    // "object" space, and the space its point, vector and normal primitive variables are given
+    // in. Set (objectSpaceKnown) on a material of its own: one with primitive variables, or one
+    // whose shaders may name "object" space (readsObjectSpace); otherwise the shaders' "object"
+    // space cannot be told from their "shader" space and is taken as that.
+    MotionTransform objectToWorld;
+    bool objectSpaceKnown = false;
+    // Its surface (or a layer), displacement or atmosphere names "object" space (a string
+    // constant or parameter value "object"): the factory gives each primitive its own copy
+    // with objectToWorld. Set by MaterialBinder::bind.
+    bool readsObjectSpace = false;
     // A level of detail's dissolve: only the share [dissolveLo, dissolveHi) of a frame's samples
     // sees this surface (bodies/level_of_detail.h). [0, 1): every sample.
     float dissolveLo = 0, dissolveHi = 1;

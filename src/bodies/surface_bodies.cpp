@@ -68,13 +68,29 @@ void BodyFactory::addPatchMesh(const PatchMeshDesc& p, uint64_t primitiveId, std
     std::vector<double> ts;
     std::vector<std::vector<Vec3d>> points;
     if (!keyedPoints(p, p.P, &ts, &points)) return;
-    const Material* mat = material(p.attributes, p.objectToWorld, false, &p.primvars, primitiveId, p.bicubic);
+    // A bicubic mesh's vertex "Cs" follows its basis as P does: carried as a primitive variable
+    // (its 16 Bezier controls a patch), which the shading stage binds to Cs. The corner colours
+    // below stay what the body holds (built-in shading of a grid without a shader run).
+    const ParamList* primvars = &p.primvars;
+    ParamList withCs;
+    if (p.bicubic && p.Cs.given() && p.Cs.cls == ParamClass::Vertex) {
+        withCs = p.primvars;
+        Param cs;
+        cs.name = "Cs";
+        cs.type = ParamType::Color;
+        cs.cls = ParamClass::Vertex;
+        cs.loc = p.loc;
+        for (const Color& c : p.Cs.values) cs.nums.insert(cs.nums.end(), {double(c.x), double(c.y), double(c.z)});
+        withCs.params.push_back(std::move(cs));
+        primvars = &withCs;
+    }
+    const Material* mat = material(p.attributes, p.objectToWorld, false, primvars, primitiveId, p.bicubic);
     const PatchMeshShape shape(p);
     const std::vector<std::array<Color, 4>> colors = shape.colors(p.Cs, mat->Cs);
     size_t width = 0;
     std::function<std::vector<BezierPatch>(const std::vector<Vec3d>&)> bezierOf;
     if (p.bicubic) bezierOf = [&](const std::vector<Vec3d>& values) { return shape.patches(values); };
-    const float* block = meshPrimvars(p.primvars, colors.size(), [&](const ColorPrimvar& v) { return shape.colors(v, {0, 0, 0}); },
+    const float* block = meshPrimvars(*primvars, colors.size(), [&](const ColorPrimvar& v) { return shape.colors(v, {0, 0, 0}); },
                                       keep, &width, bezierOf);
     const SourceLoc* src = source(p.loc);
     const bool lastOpen = windowOf(p.life).openEnd;

@@ -560,6 +560,9 @@ void CurvedBody::dice(int nu, int nv, Grid& grid) const {
     columnMap(sides[3], NV);
 
     startGrid(NU, NV, grid);
+    grid.paramU.resize(size_t(grid.vertexCount()));
+    grid.paramV.resize(size_t(grid.vertexCount()));
+    const double du = rect_.u1 - rect_.u0, dv = rect_.v1 - rect_.v0;
     const float s[2] = {keyFraction(time_.t0), keyFraction(time_.t1)};
     for (int j = 0; j <= NV; ++j) {
         for (int i = 0; i <= NU; ++i) {
@@ -586,6 +589,8 @@ void CurvedBody::dice(int nu, int nv, Grid& grid) const {
                 grid.N[t][idx] = atTime(N, s[t]);
             }
             grid.Cs[idx] = mesh_->colorAt(face_, u, v);
+            grid.paramU[idx] = i == 0 ? 0.0f : i == NU ? 1.0f : du > 0 ? float((u - rect_.u0) / du) : 0.0f;
+            grid.paramV[idx] = j == 0 ? 0.0f : j == NV ? 1.0f : dv > 0 ? float((v - rect_.v0) / dv) : 0.0f;
         }
     }
     // Micropolygons whose centre a trim curve cuts away (a NuPatch's TrimCurve); none elsewhere.

@@ -44,6 +44,11 @@ struct Grid {
     // Empty when none is: every dice starts it empty (Body::startGrid); resize() keeps it, as a
     // still grid made moving to be shaded at both ends is the same grid.
     std::vector<uint8_t> hole;
+    // Where a dicer does not space vertices evenly over the body's parameter rectangle (a curved
+    // body's sides follow its neighbours' lattices to stay crack-free): each vertex's fraction
+    // of the rectangle in u and in v, which u, v and the primitive variables are evaluated at.
+    // Empty: evenly spaced. Every dice starts them empty (Body::startGrid).
+    std::vector<float> paramU, paramV;
     std::vector<Color> Ci[2];     // shaded colour at t0, t1 (written by the shading stage)
     // Shaded opacity at t0, t1 (RenderMan's Oi; Ci is premultiplied by it). Empty for a slot
     // shaded opaque (the usual case): the rasterizer reads a missing slot as Oi = 1. Written by the

@@ -170,6 +170,8 @@ uint64_t Body::newIdentity() {
 void Body::startGrid(int nu, int nv, Grid& grid) const {
     grid.resize(nu, nv, moving_);
     grid.hole.clear();
+    grid.paramU.clear();
+    grid.paramV.clear();
     grid.t0 = time_.t0;
     grid.t1 = time_.t1;
     grid.openEnd = time_.openEnd;

@@ -77,7 +77,7 @@ Color GridShader::runVolume(const Material& m, const sl::ShaderInstance& shader,
     sgrid_.set(sl::Global::E, sl::ValueRef::uniform(volumeE_));
     sgrid_.set(sl::Global::Ci, sl::ValueRef::aos(&volumeCi_));
     sgrid_.set(sl::Global::Oi, sl::ValueRef::aos(&volumeOi_));
-    useShaderSpace(shaderToWorld, time);
+    useShaderSpace(shaderToWorld, nullptr, time);
     vm_->run(shader, sgrid_, {});
     const sl::ValueRef rc = vm_->result(sl::Global::Ci), ro = vm_->result(sl::Global::Oi);
     if (ro.valid()) *oi = ro.vec(0);
@@ -113,11 +113,15 @@ void GridShader::shadeSlot(Grid& grid, int k, double time) {
     }
 }
 
-// A shader's own "object" and "shader" spaces at `time`: the CTM where it was declared.
-void GridShader::useShaderSpace(const MotionTransform* shaderToWorld, double time) {
+// A shader's "shader" space at `time`: the CTM where it was declared; its "object" space: the
+// CTM of the primitive it shades (RI Spec 3.2, section 4.1), in the render camera's space as the
+// primitive's points are. A material that does not know its primitive's transform
+// (Material::objectSpaceKnown: its shaders never name "object"), or no material: the shader's.
+void GridShader::useShaderSpace(const MotionTransform* shaderToWorld, const Material* m, double time) {
     const Matrix4 shaderToCamera = shaderToWorld ? shaderToWorld->at(time) * world_ : world_;
-    sgrid_.setSpace(sl::Space::Object, shaderToCamera);
     sgrid_.setSpace(sl::Space::Shader, shaderToCamera);
+    sgrid_.setSpace(sl::Space::Object,
+                    m && m->objectSpaceKnown ? m->objectToWorld.at(time) * worldToCamera_ : shaderToCamera);
 }
 
 // I for the grid's positions: from the eye at the origin, or from the eye plane z = 0 along +z
@@ -135,7 +139,7 @@ void GridShader::setIncident(const Grid& grid, int k) {
 
 // The displacement shader moves P (and sets N) over the grid; they replace the diced ones.
 void GridShader::displace(const Material& m, Grid& grid, int k, double time) {
-    useShaderSpace(m.attributes ? &m.attributes->displacement.shaderToWorld : nullptr, time);
+    useShaderSpace(m.attributes ? &m.attributes->displacement.shaderToWorld : nullptr, &m, time);
     vm_->run(*m.displacement, sgrid_, {});
     const sl::ValueRef P = vm_->result(sl::Global::P), N = vm_->result(sl::Global::N);
     const int n = grid.vertexCount();
@@ -182,7 +186,7 @@ void GridShader::shadeSurface(Grid& grid, int k, double time) {
 // that cast shadows go through it by superposition too: Cl' = atm(Ci + Cl) - atm(Ci), exact for
 // atmospheres affine in Ci (fog, depthcue).
 void GridShader::runAtmosphere(const Material& m, Grid& grid, int k, double time) {
-    useShaderSpace(m.attributes ? &m.attributes->atmosphere.shaderToWorld : nullptr, time);
+    useShaderSpace(m.attributes ? &m.attributes->atmosphere.shaderToWorld : nullptr, &m, time);
     const int n = grid.vertexCount();
     const int slots = grid.shadowSlots;
     base_.assign(grid.Ci[k].begin(), grid.Ci[k].end());  // the surface's colour, kept for the slots
@@ -222,11 +226,19 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     v_.resize(size_t(n));
     const float du = grid.nu > 0 ? (grid.u1 - grid.u0) / float(grid.nu) : 0.0f;
     const float dv = grid.nv > 0 ? (grid.v1 - grid.v0) / float(grid.nv) : 0.0f;
+    const bool placed = grid.paramU.size() == size_t(n) && grid.paramV.size() == size_t(n);
     for (int j = 0; j <= grid.nv; ++j)
         for (int i = 0; i <= grid.nu; ++i) {
             // The borders exactly, as the dicers place them: neighbours agree on shared vertices.
-            u_[size_t(grid.index(i, j))] = i == grid.nu ? grid.u1 : grid.u0 + float(i) * du;
-            v_[size_t(grid.index(i, j))] = j == grid.nv ? grid.v1 : grid.v0 + float(j) * dv;
+            const size_t at = size_t(grid.index(i, j));
+            if (placed) {  // where the dicer put the vertex (a curved body's sides)
+                const float fu = grid.paramU[at], fv = grid.paramV[at];
+                u_[at] = fu >= 1 ? grid.u1 : grid.u0 + fu * (grid.u1 - grid.u0);
+                v_[at] = fv >= 1 ? grid.v1 : grid.v0 + fv * (grid.v1 - grid.v0);
+                continue;
+            }
+            u_[at] = i == grid.nu ? grid.u1 : grid.u0 + float(i) * du;
+            v_[at] = j == grid.nv ? grid.v1 : grid.v0 + float(j) * dv;
         }
     static const Vec3f kEye{0, 0, 0};
     using sl::Global;
@@ -360,7 +372,7 @@ void GridShader::bindPrimvars(const Material& m, const Grid& grid, int n, double
         }
         // Points, vectors and normals: from the primitive's object space to current space.
         if (p.type == ParamType::Point || p.type == ParamType::Vector || p.type == ParamType::Normal) {
-            const Matrix4 toCurrent = m.primvarToWorld.at(time) * worldToCamera_;
+            const Matrix4 toCurrent = m.objectToWorld.at(time) * worldToCamera_;
             Matrix4 inverse;
             if (!invert(toCurrent, &inverse)) inverse = Matrix4();
             const int count = v.value.stride ? n : 1;
@@ -380,6 +392,10 @@ void GridShader::bindPrimvars(const Material& m, const Grid& grid, int n, double
                 sgrid_.set(sl::Global::N, v.value);
                 continue;
             }
+        }
+        if (p.name == "Cs" && p.type == ParamType::Color) {  // a bicubic mesh's vertex colour (addPatchMesh)
+            sgrid_.set(sl::Global::Cs, v.value);
+            continue;
         }
         if (p.name == "Os" && p.type == ParamType::Color) {  // the opacity a shader starts from
             sgrid_.set(sl::Global::Os, v.value);
@@ -419,7 +435,7 @@ void GridShader::addLight(const sl::ShaderInstance* s, int li, double time, std:
 }
 
 void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
-    useShaderSpace(m.attributes ? &m.attributes->surface.shaderToWorld : nullptr, time);
+    useShaderSpace(m.attributes ? &m.attributes->surface.shaderToWorld : nullptr, &m, time);
     // The material's lights, those that cast shadows apart.
     unshadowed_.clear();
     int shadowed = 0;

@@ -101,7 +101,7 @@ class GridShader {
     void runAtmosphere(const Material& m, Grid& grid, int k, double time);
     // The shading grid's inputs for slot k (once per slot, before any of its shaders runs).
     void prepare(const Material& m, const Grid& grid, int k, double time);
-    void useShaderSpace(const MotionTransform* shaderToWorld, double time);
+    void useShaderSpace(const MotionTransform* shaderToWorld, const Material* m, double time);
     // The material's primitive variables over the grid (u_, v_ set): bound by name, s and t
     // from "s", "t" or "st".
     void bindPrimvars(const Material& m, const Grid& grid, int n, double time);

@@ -36,6 +36,21 @@ bool readsMaps(const sl::ShaderInstance* s) {
     return false;
 }
 
+// Can the shader name "object" space? Only through a string constant or a string parameter's
+// value (a name built at run time by concat() or format() is not seen).
+bool namesObjectSpace(const sl::ShaderInstance* s) {
+    if (!s) return false;
+    const sl::ShaderProgram& p = s->program();
+    for (const std::string& c : p.constStrings)
+        if (c == "object") return true;
+    for (size_t i = 0; i < p.params.size(); ++i) {
+        const sl::ShaderInstance::Value* v = s->value(int(i));
+        for (const std::string& str : v ? v->strings : p.params[i].defaultStrings)
+            if (str == "object") return true;
+    }
+    return false;
+}
+
 // Does the shader cast rays (occlusion, indirectdiffuse, trace, transmission, gather)?
 bool castsRays(const sl::ShaderInstance* s) {
     if (!s) return false;
@@ -323,6 +338,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
     if (!a.atmosphere.name.empty()) {
         m.atmosphere = instance(a.atmosphere.name, a.atmosphere.params, a.atmosphere.loc, sl::ShaderType::Volume);
         if (m.atmosphere) m.readsTime = readsTime(*m.atmosphere);
+        m.readsObjectSpace = namesObjectSpace(m.atmosphere.get());
         m.tracesRays = castsRays(m.atmosphere.get());
         if (m.atmosphere) m.viewUse = std::max(m.viewUse, shaderUse(*m.atmosphere, a.atmosphere));
     }
@@ -348,6 +364,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
                 scale = largestStretch(worldToCamera_);
             m.displacementBound = float(a.displacementBound * scale);
             m.readsTime = m.readsTime || readsTime(*m.displacement);
+            m.readsObjectSpace = m.readsObjectSpace || namesObjectSpace(m.displacement.get());
             m.tracesRays = m.tracesRays || castsRays(m.displacement.get());
             m.viewUse = std::max(m.viewUse, shaderUse(*m.displacement, a.displacement));
         }
@@ -432,6 +449,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         const sl::ShaderInstance& s = *layers[i];
         m.readsTime = m.readsTime || readsTime(s);
         m.readsMaps = m.readsMaps || readsMaps(&s);
+        m.readsObjectSpace = m.readsObjectSpace || namesObjectSpace(&s);
         m.tracesRays = m.tracesRays || castsRays(&s);
         m.viewUse = std::max(m.viewUse, shaderUse(s, *layerDescs[i]));
         usesLights = usesLights || s.program().usesLights;

@@ -101,6 +101,8 @@ void Tessellator::dice(const Body& body, int nu, int nv) {
         return;
     }
     body.dice(nu, nv, grid_);
+    nu = grid_.nu;  // a curved body may dice finer (its sides' lattices), or one cut quad where trimmed away
+    nv = grid_.nv;
     const Material* m = body.material();
     if (displacer_ && m && m->displacement) {
         // As BucketWorker::diceShade prepares a grid for its shaders: normals turned to the
@@ -123,6 +125,8 @@ void Tessellator::dice(const Body& body, int nu, int nv) {
     const std::vector<Vec3f>& P0 = grid_.P[0];
     const std::vector<Vec3f>& P1 = grid_.moving ? grid_.P[1] : grid_.P[0];
     const float du = (grid_.u1 - grid_.u0) / float(nu), dv = (grid_.v1 - grid_.v0) / float(nv);
+    const size_t vertices = size_t(grid_.vertexCount());
+    const bool placed = grid_.paramU.size() == vertices && grid_.paramV.size() == vertices;
     for (int j = 0; j < nv; ++j)
         for (int i = 0; i < nu; ++i) {
             if (!grid_.hole.empty() && grid_.hole[size_t(j * nu + i)]) continue;
@@ -142,6 +146,13 @@ void Tessellator::dice(const Body& body, int nu, int nv) {
             mp.inheritFrom(body);
             mp.uv = {grid_.u0 + du * float(i), grid_.u0 + du * float(i + 1), grid_.v0 + dv * float(j),
                      grid_.v0 + dv * float(j + 1)};
+            if (placed) {  // a curved body's sides: the rectangle nearest its corners' own parameters
+                const float* pu = grid_.paramU.data();
+                const float* pv = grid_.paramV.data();
+                const float su = grid_.u1 - grid_.u0, sv = grid_.v1 - grid_.v0;
+                mp.uv = {grid_.u0 + su * 0.5f * (pu[idx[0]] + pu[idx[2]]), grid_.u0 + su * 0.5f * (pu[idx[1]] + pu[idx[3]]),
+                         grid_.v0 + sv * 0.5f * (pv[idx[0]] + pv[idx[1]]), grid_.v0 + sv * 0.5f * (pv[idx[2]] + pv[idx[3]])};
+            }
         }
 }
 

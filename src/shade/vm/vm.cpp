@@ -150,7 +150,10 @@ void ShadingVM::runFrame(Frame& f, const ShaderInstance& shader, const ShadingGr
     f.instance = &shader;
     f.peerGrid = peerGrid_;
     const Matrix4* savedSpace = shaderSpace_;
+    const Matrix4* savedObject = objectSpace_;
     shaderSpace_ = shaderSpace;
+    // "object" space is the primitive's: the grid's (a light's own grid holds its shader space).
+    objectSpace_ = &grid.toCurrent[size_t(Space::Object)];
     bindGlobals(x, grid);
     bindParamValues(x, shader, grid);
     if (body) {
@@ -158,6 +161,7 @@ void ShadingVM::runFrame(Frame& f, const ShaderInstance& shader, const ShadingGr
         sanitiseOutputs(x);
     }
     shaderSpace_ = savedSpace;
+    objectSpace_ = savedObject;
     ++stats_.grids;
 }
 
@@ -448,7 +452,8 @@ bool ShadingVM::spaceToCurrent(const std::string& name, float m[16]) {
     for (int s = 0; s < kSpaceCount; ++s) {
         if (name != spaceName(Space(s))) continue;
         if (Space(s) == Space::Current || Space(s) == Space::Camera) found = &identity;
-        else if ((Space(s) == Space::Shader || Space(s) == Space::Object) && shaderSpace_) found = shaderSpace_;
+        else if (Space(s) == Space::Shader && shaderSpace_) found = shaderSpace_;
+        else if (Space(s) == Space::Object && objectSpace_) found = objectSpace_;
         else found = &grid_->toCurrent[size_t(s)];
     }
     if (!found && grid_ && grid_->coordinateSystems)

@@ -226,6 +226,7 @@ class ShadingVM {
     std::vector<LightResult> lightResults_;
     const LightResult* currentLight_ = nullptr;
     const Matrix4* shaderSpace_ = nullptr;  // of the program running
+    const Matrix4* objectSpace_ = nullptr;  // of the primitive it shades (a light's: its shader space)
     int randomCalls_ = 0;
     uint64_t runCount_ = 0;
     uint64_t instructionBudget_ = 0, runInstructions_ = 0;
