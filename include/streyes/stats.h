@@ -68,6 +68,7 @@ namespace streyes {
     COUNT(eyeRays, "trace.eye_rays")                                                                   \
     COUNT(shadowRays, "trace.shadow_rays") /* per sample (or eye-ray hit) */                          \
     COUNT(shadowVertexRays, "trace.shadow_vertex_rays") /* per vertex of still grids, at still occluders */ \
+    COUNT(shadowFoldedGrids, "trace.shadow_folded_grids") /* still grids whose shadows are in their colour */ \
     COUNT(shaderRays, "trace.shader_rays") /* rays occlusion(), trace() ... cast (and their hits' shadow rays) */ \
     COUNT(rayBodyTests, "trace.ray_body_tests")      /* ray/body tests (each body once per ray) */     \
     COUNT(rayBoxTests, "trace.ray_box_tests")        /* ray/bounding-volume tests */                   \

@@ -14,6 +14,12 @@ namespace streyes {
 
 struct Material;
 
+// Grid::stillShadows: the light slots whose "no moving occluder" bit it has, and the value of a
+// grid whose shadows are folded into its colour (every bit set: no other value has them all).
+constexpr int kUnblockedSlots = 6;
+constexpr unsigned kUnblockedBits = (1u << kUnblockedSlots) - 1u;
+constexpr uint8_t kFoldedShadows = 0xFF;
+
 struct Grid {
     int nu = 0, nv = 0;           // micropolygons along u and v
     double t0 = 0, t1 = 0;        // time span, in frames
@@ -61,8 +67,21 @@ struct Grid {
     // Bit 0: Cl[0] already carries the shadow of the occluders that stand still through the shot
     // (a still grid under still lights, tested once per vertex: trace.h, occludeStillVertices),
     // and its samples' own shadow rays test only the moving occluders. Bit k + 1: no moving
-    // occluder can come between the grid and light slot k's light (no ray at all). 0: neither.
+    // occluder can come between the grid and light slot k's light (no ray at all; slots 0 to
+    // kUnblockedSlots - 1). 0: neither. kFoldedShadows: every shadow was decided at the vertices
+    // for the whole shot and added into Ci (Cl zero): its samples need no shadow pass.
     uint8_t stillShadows = 0;
+    // Where not empty: stillShadows for the samples of each frame frameShadowsFirst + i (bits for
+    // the lights no moving body can shadow in that frame), which they take instead (stillShadowsOf).
+    std::vector<uint8_t> frameShadows;
+    int frameShadowsFirst = 0;
+    // Where a frame's value is kFoldedShadows: Ci[0] with the parts added, the colour of that
+    // frame's samples (as a grid folded in every frame has it in Ci).
+    std::vector<Color> CiFolded;
+    uint8_t stillShadowsOf(int frame) const {
+        const long i = long(frame) - frameShadowsFirst;
+        return i >= 0 && i < long(frameShadows.size()) ? frameShadows[size_t(i)] : stillShadows;
+    }
 
     // Output variables (util/aov.h) per vertex at t0, t1: aovCount floats each, laid out as the
     // render's AovLayout; empty when no display asks for one. Set aovCount before dicing.

@@ -1,5 +1,7 @@
 #include "raster/image_block.h"
 
+#include "geom/grid.h"
+
 #include <algorithm>
 #include <limits>
 
@@ -79,7 +81,7 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
         stillTested_.assign(shadowSlots > 0 ? size_t(frameCount) * n : 0, 0);
     } else {
         still_.assign(n, kNoHit);
-        shadowed_.clear();
+        shadowed_.clear();  // grown record by record (makeRecord)
         stillTested_.clear();
     }
     // Read only where a sample has a hit, which writes them: no clearing needed beyond sizing.
@@ -136,12 +138,18 @@ SampleHit* ImageBlock::makeRecord(int fi, size_t i) {
     }
     ++records_;
     if (fragmentsOn_) recordHeads_.resize(size_t(records_) * size_t(S_), -1);
+    if (shadowSlots_ > 0) {
+        // The still layer holds only grids whose shadows are in their colour: no parts to add.
+        shadowed_.resize(size_t(records_) * size_t(S_) * size_t(shadowSlots_), Color{0, 0, 0});
+        stillTested_.resize(size_t(records_) * size_t(S_), kFoldedShadows);
+    }
     std::copy(still(i), still(i) + S_, r);
     return r;
 }
 
+// By record (a dense block's record of frame fi, pixel i is fi x pixels + i).
 Color* ImageBlock::shadowed(int fi, size_t i) {
-    return &shadowed_[((size_t(fi) * size_t(pixelCount()) + i) * size_t(S_)) * size_t(shadowSlots_)];
+    return &shadowed_[size_t(slotOf(fi, i)) * size_t(S_) * size_t(shadowSlots_)];
 }
 
 size_t ImageBlock::bytes() const {

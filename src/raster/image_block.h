@@ -8,8 +8,10 @@
 // grid, or a still one that exists in part of the block) comes nearer than the still layer at one
 // of its samples. Resolving (film.h) then filters the still layer once for the block and only the
 // pixels near a record again per frame. In *dense* mode every frame has a record of every pixel
-// from the start and the still layer is unused: for the ray tracer, and for shadows, whose rays
-// leave every sample at its own time.
+// from the start and the still layer is unused: for the ray tracer, and for shadows tested per
+// sample, whose rays leave every sample at its own time. Shadows tested at still grids' vertices
+// keep the block sparse: a still grid whose shadows are folded into its colour writes the still
+// layer, any other grid the records, which carry its lights' parts for the per-sample test.
 //
 // Layout: pixel index i = (y - y0) * width + (x - x0); sample j of a pixel is in (x, y) stratum
 // (j % sx, j / sx). A still micropolygon visits only the strata its bound overlaps; a moving one
@@ -100,7 +102,9 @@ class ImageBlock {
   public:
     // Sizes the block, places the samples and clears the hits (reusing memory). shadowSlots > 0
     // also keeps, with each record's hits, the contribution of each light that casts shadows
-    // before its shadow test (shadowed()); it needs dense mode. `lens` also places each sample's
+    // before its shadow test (shadowed()), per record; the still layer of a sparse block holds
+    // only hits whose shadows are in their colour (Grid::stillShadows == kFoldedShadows), and a
+    // record made from it starts so. `lens` also places each sample's
     // lens position (depth of field: lus(), lvs()).
     void reset(const PixelRect& rect, int firstFrame, int frameCount, const PatternTable& patterns, bool dense,
                int shadowSlots = 0, bool lens = false);
@@ -213,16 +217,14 @@ class ImageBlock {
     uint8_t* touchFlags() { return touched_.data(); }
     const uint16_t* recordCounts() const { return recordsOf_.data(); }
 
-    // Dense mode with shadows: the shadowed parts of the S hits of frame fi's record of pixel i,
-    // shadowSlots() colours each, valid where a sample has a hit.
+    // With shadows: the shadowed parts of the S hits of frame fi's record of pixel i (which it
+    // must have), shadowSlots() colours each, valid where a sample has a hit.
     int shadowSlots() const { return shadowSlots_; }
     Color* shadowed(int fi, size_t i);
     // Beside them, one flag a sample: non-zero where its parts already carry the still occluders'
     // shadow (tested at the still grid's vertices: Grid::stillShadows, whose bits it holds), so that its own
     // shadow rays test only what moves (trace.h, SampleTracer::shadeShadows).
-    uint8_t* stillTested(int fi, size_t i) {
-        return &stillTested_[(size_t(fi) * size_t(pixelCount()) + i) * size_t(S_)];
-    }
+    uint8_t* stillTested(int fi, size_t i) { return &stillTested_[size_t(slotOf(fi, i)) * size_t(S_)]; }
 
     // Output variables (util/aov.h): aovCount() floats per sample beside each hit, in arrays
     // parallel to the still layer and the records (a record's copy of the still layer copies them
@@ -270,7 +272,7 @@ class ImageBlock {
     }
     const SampleFragment& fragment(int32_t k) const { return fragments_[size_t(k)]; }
     SampleFragment& fragment(int32_t k) { return fragments_[size_t(k)]; }
-    // With shadows (dense mode): the shadowed parts of fragment k, shadowSlots() colours.
+    // With shadows: the shadowed parts of fragment k, shadowSlots() colours.
     Color* fragmentShadowed(int32_t k) { return &fragmentShadowed_[size_t(k) * size_t(shadowSlots_)]; }
     uint8_t* fragmentStillTested(int32_t k) { return &fragmentStillTested_[size_t(k)]; }  // as stillTested()
 
@@ -325,8 +327,8 @@ class ImageBlock {
     size_t chunkSamples_ = 0;           // S x kRecordsPerChunk when the chunks were made
     uint32_t records_ = 0;
     int shadowSlots_ = 0;
-    std::vector<Color> shadowed_;       // dense: frames x pixels x S x shadowSlots
-    std::vector<uint8_t> stillTested_;  // dense with shadows: frames x pixels x S
+    std::vector<Color> shadowed_;       // with shadows: records x S x shadowSlots
+    std::vector<uint8_t> stillTested_;  // with shadows: records x S
     int aovs_ = 0;
     std::vector<float> stillAov_;       // pixels x S x aovs_
     std::vector<std::unique_ptr<float[]>> aovChunks_;  // beside chunks_, one to one

@@ -33,6 +33,8 @@ inline bool behindStillLayer(const ImageBlock& block, const QuadSetup& q) {
 // A new hit of the still layer at sample sj of pixel pi: frames that already have a record of the
 // pixel (something only they see came first) see it too, where it is nearer, with its A output
 // variables (at stillAov) when the block keeps them.
+// With shadows the still layer's hits are folded still grids': the record's sample needs no
+// shadow pass.
 inline void stillHitToRecords(ImageBlock& block, size_t pi, int sj, const SampleHit& hit, int A, const float* stillAov) {
     for (int fi = 0, left = block.recordsOf(pi); left > 0; ++fi) {
         SampleHit* rec = block.record(fi, pi);
@@ -41,6 +43,7 @@ inline void stillHitToRecords(ImageBlock& block, size_t pi, int sj, const Sample
         if (!rec[sj].beatenBy(hit.z, hit.id, hit.c)) continue;
         rec[sj] = hit;
         if (A) std::copy(stillAov, stillAov + A, block.recordAov(fi, pi) + size_t(sj) * size_t(A));
+        if (block.shadowSlots() > 0) block.stillTested(fi, pi)[sj] = kFoldedShadows;
     }
 }
 
@@ -63,17 +66,20 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
     // A dissolving grid (a level of detail's transition) is seen by a share of each frame's samples
     // that differs from frame to frame: it writes the frames' records.
     const bool dissolves = grid.dissolves();
-    bool intoStill = !block.dense() && int(frames_.size()) == F && !dissolves;
+    // With shadows, only a grid whose shadows are in its colour: any other's samples carry its
+    // lights' parts, per frame.
+    bool intoStill = !block.dense() && int(frames_.size()) == F && !dissolves &&
+                     (!Shadowed || grid.stillShadows == kFoldedShadows);
     for (const FrameSpan& fr : frames_) intoStill = intoStill && fr.whole;
     project(grid, grid.t0, camera, ra_);
     const float* xs = block.xs();
     const float* ys = block.ys();
     const float *lus = block.lus(), *lvs = block.lvs();
     const Color* ci = grid.Ci[0].data();
+    const Color* ciNow = ci;  // the colours colorAt reads: a frame's folded ones (Grid::CiFolded) where it has them
     const bool flat = grid.flatShading;  // ShadingInterpolation "constant": the first corner's colour
     const int K = grid.shadowSlots;
     const Color* cl = grid.Cl[0].data();
-    const uint8_t stillTested = grid.stillShadows;
     const int A = grid.aovCount;
     const float* av = grid.aov[0].data();
     const uint64_t id = hitId(grid.primitiveId, grid.matte);
@@ -112,7 +118,7 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
             }
             if (!boundQuad(q, nullptr, nullptr, nullptr, R, nearZ, farZ, lensMargin<Lens>(camera))) continue;
             if (!Counting && intoStill && behindStillLayer(block, q)) continue;
-            auto colorAt = [&](int c) { return ci[idx[flat ? 0 : c]]; };
+            auto colorAt = [&](int c) { return ciNow[idx[flat ? 0 : c]]; };
             auto opacityAt = [&](int c) { return oi ? oi[idx[flat ? 0 : c]] : Color{1, 1, 1}; };
             // A hit of sample sj of pixel pi, h on quad qc (q as the sample sees it).
             auto onHit = [&](size_t pi, int sj, const Hit& h, const QuadSetup& qc) {
@@ -150,6 +156,8 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                 for (const FrameSpan& fr : frames_) {
                     if (!fr.whole && !inTimeSpan(block.sampleTime(fr.fi, pi, sj), fr.tfA, fr.tfB, fr.openB)) continue;
                     if (dissolves && !block.dissolveKeeps(fr.fi, pi, sj, grid.dissolveLo, grid.dissolveHi)) continue;
+                    const uint8_t stillTested = Shadowed ? grid.stillShadowsOf(block.firstFrame() + fr.fi) : 0;
+                    ciNow = Shadowed && stillTested == kFoldedShadows && !grid.CiFolded.empty() ? grid.CiFolded.data() : ci;
                     ++hits;
                     if (Counting) {
                         const float x = xs[pi * size_t(S) + size_t(sj)], y = ys[pi * size_t(S) + size_t(sj)];

@@ -144,9 +144,12 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
     splitsOf_.clear();
     auto t = Clock::now();
     // Dense (every frame its own samples from the start) when rays leave every sample at its own
-    // time: eye rays, and shadow rays.
+    // time: eye rays, and shadow rays tested per sample. Shadows tested at still grids' vertices
+    // keep it sparse: still grids whose shadows are folded into their colour share the still
+    // layer across frames (SampleTracer::occludeStillVertices), the rest write records.
     block_.setAovCount(aovs_.count);
-    block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, patterns_, traceEyeRays_ || shadowSlots_ > 0,
+    block_.reset(bucket.rect, bucket.firstFrame, bucket.frameCount, patterns_,
+                 traceEyeRays_ || (shadowSlots_ > 0 && !stillShadows_),
                  shadowSlots_, scene_.camera.depthOfField());
     block_.setSolids(scene_.solids.empty() ? nullptr : &scene_.solids);
     counters.timeSampleGen += secondsSince(t);
@@ -605,6 +608,7 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
     auto t = Clock::now();
     body.startKeyGrid(nu, nv, grid_);
     grid_.stillShadows = 0;
+    grid_.frameShadows.clear();
     ++counters.gridsDiced;
     // The key intervals that meet the bucket's frames (a piece spans a whole chunk of frames, which
     // may reach beyond the block).
@@ -756,9 +760,10 @@ bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
 // which does not depend on the frames rendered with it (its colours do not either).
 void BucketWorker::testStillShadows(Grid& grid) {
     grid.stillShadows = 0;
+    grid.frameShadows.clear();
     if (!stillShadows_ || grid.moving || grid.shadowSlots == 0) return;
     auto t = Clock::now();
-    tracer_.occludeStillVertices(grid, *trace_, counters);
+    tracer_.occludeStillVertices(grid, *trace_, counters, bucket_.firstFrame, bucket_.frameCount);
     counters.timeTrace += secondsSince(t);
 }
 

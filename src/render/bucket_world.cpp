@@ -198,6 +198,7 @@ void BucketWorker::shadeSampleFrames(const Body& body, const Grid& diced, bool d
         grid_.openEnd = b == span.t1 ? span.openEnd : false;
         grid_.moving = a < b;
         grid_.stillShadows = 0;  // shaded frame by frame: its samples test every occluder
+        grid_.frameShadows.clear();
         for (size_t i = 0; i < count; ++i) {
             const Vec3f p0 = diced.P[0][i], p1 = diced.P[1][i], n0 = diced.N[0][i], n1 = diced.N[1][i];
             grid_.P[0][i] = lerp(p0, p1, sa);

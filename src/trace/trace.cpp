@@ -28,8 +28,9 @@ double processCpuSeconds() {
 // Calls fn(sample index, time) for every sample of the block, frame by frame, then pixel by
 // pixel: consecutive rays share their frame's part of the hierarchy, which stays in cache (the
 // block's own order, pixel then frame, jumps through time from one ray to the next).
-// fn(hit, shadowed parts, position, lens point, frame, time, where) for every sample of a dense
-// block (every frame has a record of every pixel).
+// fn(hit, shadowed parts, position, lens point, frame, time, where) for every sample of every
+// record (of a dense block: every frame's every pixel; of a sparse one, the still layer's
+// samples are folded still grids', which need no shadow ray).
 struct SampleAt {
     int fi;        // the frame's index in the block
     size_t pixel;  // the block's pixel index
@@ -44,6 +45,7 @@ void forEachSampleByFrame(ImageBlock& block, const Shutter& shutter, Fn fn) {
         const double start = block.firstFrame() + fi + shutter.open;
         for (size_t i = 0; i < size_t(block.pixelCount()); ++i) {
             SampleHit* hits = block.record(fi, i);
+            if (!hits) continue;  // a sparse block's pixel that frame sees in the still layer
             Color* shadowed = K ? block.shadowed(fi, i) : nullptr;
             for (int j = 0; j < S; ++j) {
                 const SamplePosition s = block.position(fi, i, j);
@@ -188,12 +190,53 @@ void TraceScene::buildShadowHierarchies(const HierarchyOptions& options) {
             movingBound_.extend(b->boundDuring(std::max(scene_.renderedStart, b->time().t0),
                                                std::min(scene_.renderedEnd, b->time().t1)));
     }
+    collectShotMovers();
     // Shadow rays start on surfaces: the root cells need not hold the eye and the lights.
     still_.build(stillBodies_, scene_.renderedStart, scene_.renderedEnd, Bounds3f{}, options);
     moving_.build(movingBodies_, scene_.renderedStart, scene_.renderedEnd, Bounds3f{}, options);
     shadowSplit_ = true;
     boundingVolumes += still_.nodeCount() + moving_.nodeCount();
     buildSeconds += processCpuSeconds() - cpu;
+}
+
+void TraceScene::collectShotMovers() {
+    shotMoverBoxes_.clear();
+    const double open = scene_.shutter.open, close = scene_.shutter.close;
+    // A root stands still through the shot as buildShadowHierarchies' bodies do; a procedural may
+    // hold moving children, and a displaced body may be displaced by time: both count as moving.
+    std::vector<const Body*> movers;
+    for (const BodyPtr& root : scene_.roots) {
+        const Body& b = *root;
+        const bool still = !b.moving() && !b.expands() && !(b.material() && b.material()->displacement) &&
+                           b.time().t0 <= scene_.windowStart && b.time().t1 >= scene_.windowEnd;
+        if (!still && b.time().overlaps(scene_.windowStart, scene_.windowEnd)) movers.push_back(&b);
+    }
+    shotMoverRoots_ = movers.size();
+    if (movers.empty()) return;
+    const double first = std::round(scene_.windowStart - open), last = std::round(scene_.windowEnd - close);
+    const size_t frames = size_t(std::max(0.0, last - first) + 1);
+    // Frames a box covers: one where the boxes fit, more (consecutive frames) where they would not.
+    const size_t group = std::max<size_t>(1, (frames * movers.size() + kShotMoverBoxes - 1) / kShotMoverBoxes);
+    shotFirstFrame_ = long(first);
+    shotMoverGroup_ = group;
+    shotMoverGroups_ = (frames + group - 1) / group;
+    for (const Body* b : movers) {
+        const TimeSpan& span = b->time();
+        for (size_t f0 = 0; f0 < frames; f0 += group) {
+            const double a = std::max(span.t0, first + double(f0) + open);
+            const double e = std::min(span.t1, first + double(std::min(frames, f0 + group) - 1) + close);
+            if (a > e || !span.overlaps(a, e)) {
+                shotMoverBoxes_.push_back(Bounds3f{});  // not there in these frames
+                continue;
+            }
+            Bounds3f box = b->boundDuring(a, e);
+            if (const float r = b->material() ? b->material()->displacementBound : 0.0f; r > 0) {
+                box.lo = box.lo - Vec3f{r, r, r};
+                box.hi = box.hi + Vec3f{r, r, r};
+            }
+            shotMoverBoxes_.push_back(box);
+        }
+    }
 }
 
 void TraceScene::buildFrames(int first, int count, const HierarchyOptions& options) {
@@ -271,10 +314,79 @@ bool rayMeetsBox(Vec3f d, const Bounds3f& c) {
 // (orthographic) or, under perspective, where the rasterizer rebuilds them from a raster
 // position inside the projected vertices and a depth between theirs: x / z and y / z within the
 // vertices' range, z within theirs. Depth of field moves them along lens rays: no cull then.
-unsigned SampleTracer::unblockedByMoving(const Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& ls,
-                                         double lightTime) {
+namespace {
+
+// Whether a segment from somewhere in box g to the point L can meet box b. Segments from g to L
+// lie in the box of both; and where g and b lie on one side of L along an axis (distance d > 0
+// along it), seen from L (x / d, y / d across it) a segment is a point of g's outline, so b can
+// meet one only if their outlines overlap and b begins before g ends.
+bool segmentsMeetBox(const Bounds3f& g, const Bounds3f& b, Vec3f L) {
+    Bounds3f hull = g;
+    hull.extend(L);
+    if (!hull.overlaps(b)) return false;
+    for (int a = 0; a < 3; ++a) {
+        const int u = (a + 1) % 3, v = (a + 2) % 3;
+        for (float sign : {1.0f, -1.0f}) {
+            // Each box's outline seen from L along sign * axis a, and its range of distances.
+            auto outline = [&](const Bounds3f& box, float r[6]) {
+                r[0] = r[2] = r[4] = std::numeric_limits<float>::infinity();
+                r[1] = r[3] = r[5] = -r[0];
+                for (int c = 0; c < 8; ++c) {
+                    const Vec3f p{(c & 1) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y, (c & 4) ? box.hi.z : box.lo.z};
+                    const float d = sign * (p[a] - L[a]);
+                    if (!(d > 0)) return false;
+                    const float x = (p[u] - L[u]) / d, y = (p[v] - L[v]) / d;
+                    r[0] = std::min(r[0], x), r[1] = std::max(r[1], x);
+                    r[2] = std::min(r[2], y), r[3] = std::max(r[3], y);
+                    r[4] = std::min(r[4], d), r[5] = std::max(r[5], d);
+                }
+                return true;
+            };
+            float rg[6], rb[6];
+            if (!outline(g, rg) || !outline(b, rb)) continue;
+            // A margin for the divisions' rounding.
+            const float eps = 1e-5f * (1.0f + std::max({std::fabs(rg[0]), std::fabs(rg[1]), std::fabs(rg[2]), std::fabs(rg[3])}));
+            if (rb[0] > rg[1] + eps || rb[1] < rg[0] - eps || rb[2] > rg[3] + eps || rb[3] < rg[2] - eps) return false;
+            if (rb[4] > rg[5] * (1.0f + 1e-5f)) return false;  // all of b beyond all of g
+        }
+    }
+    return true;
+}
+
+// Whether a ray from somewhere in box g to light l (slot k's light li) can meet box b.
+bool lightMeetsBox(const Bounds3f& g, const Bounds3f& b, const CameraLight& l, const LightSet& lights, int li,
+                   double lightTime) {
+    if (!shadowsTowardsPoint(l)) {
+        // Rays g + s d, s >= 0, from any g in the grid's box meet b only if s d meets b - g
+        // (each of a cone's directions).
+        for (int j = 0; j < coneShadowSamples(l); ++j)
+            if (rayMeetsBox(coneShadowDirection(l, j), Bounds3f{b.lo - g.hi, b.hi - g.lo})) return true;
+        return false;
+    }
+    if (const int n = lights.areaSamples(li); n > 0) {
+        for (int j = 0; j < n; ++j)
+            if (segmentsMeetBox(g, b, lights.areaPoint(li, j, lightTime))) return true;
+        return false;
+    }
+    return segmentsMeetBox(g, b, l.position);
+}
+
+// Rounding in points rebuilt from samples: a generous margin (it only makes the cull test more).
+Bounds3f paddedForRounding(Bounds3f g) {
+    const float pad = 1e-3f * (std::max({std::fabs(g.lo.x), std::fabs(g.hi.x), std::fabs(g.lo.y), std::fabs(g.hi.y),
+                                         std::fabs(g.lo.z), std::fabs(g.hi.z)}) + 1.0f);
+    g.lo = g.lo - Vec3f{pad, pad, pad};
+    g.hi = g.hi + Vec3f{pad, pad, pad};
+    return g;
+}
+
+}  // namespace
+
+unsigned SampleTracer::unblockedByMoving(Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& ls,
+                                         double lightTime, int firstFrame, int frameCount) {
     const RenderScene& scene = trace.scene();
-    if (!trace.anyMovingOccluder()) return 0x7fu;
+    grid.frameShadows.clear();
+    if (!trace.anyMovingOccluder()) return kUnblockedBits;
     const Camera& cam = scene.camera;
     if (cam.depthOfField()) return 0;
     Bounds3f g;
@@ -292,37 +404,67 @@ unsigned SampleTracer::unblockedByMoving(const Grid& grid, const TraceScene& tra
     } else {
         for (const Vec3f& p : grid.P[0]) g.extend(p);
     }
-    // Rounding in the rebuilt points: a generous margin (it only makes the cull test more).
-    const float pad = 1e-3f * (std::max({std::fabs(g.lo.x), std::fabs(g.hi.x), std::fabs(g.lo.y), std::fabs(g.hi.y),
-                                         std::fabs(g.lo.z), std::fabs(g.hi.z)}) + 1.0f);
-    g.lo = g.lo - Vec3f{pad, pad, pad};
-    g.hi = g.hi + Vec3f{pad, pad, pad};
+    g = paddedForRounding(g);
     const Bounds3f& b = trace.movingBound();
     const LightSet& lights = scene.lights;
+    const int K = std::min(grid.shadowSlots, kUnblockedSlots);
     unsigned bits = 0;
-    for (int k = 0; k < std::min(grid.shadowSlots, 7); ++k) {
+    for (int k = 0; k < K; ++k) {
         const int li = lights.shadowLight(k);
-        const CameraLight& l = ls[size_t(li)];
-        bool clear;
-        if (!shadowsTowardsPoint(l)) {
-            // Rays g + s d, s >= 0, from any g in the grid's box meet b only if s d meets b - g
-            // (each of a cone's directions).
-            clear = true;
-            for (int j = 0; j < coneShadowSamples(l) && clear; ++j)
-                clear = !rayMeetsBox(coneShadowDirection(l, j), Bounds3f{b.lo - g.hi, b.hi - g.lo});
-        } else {
-            // Segments from the grid's box to the light's point(s) lie in the box of both.
-            Bounds3f hull = g;
-            if (const int n = lights.areaSamples(li); n > 0) {
-                for (int j = 0; j < n; ++j) hull.extend(lights.areaPoint(li, j, lightTime));
-            } else {
-                hull.extend(l.position);
+        if (!lightMeetsBox(g, b, ls[size_t(li)], lights, li, lightTime)) bits |= 1u << k;
+    }
+    // Frame by frame, against the moving roots' boxes of that frame, where the block-wide box
+    // leaves some light.
+    const unsigned all = (1u << K) - 1u;
+    grid.frameShadows.clear();
+    if (bits == all || frameCount <= 0 || trace.shotMoverGroups() == 0) return bits;
+    grid.frameShadowsFirst = firstFrame;
+    grid.frameShadows.resize(size_t(frameCount));
+    const std::vector<Bounds3f>& boxes = trace.shotMoverBoxes();
+    const size_t roots = trace.shotMoverRoots(), groups = trace.shotMoverGroups();
+    for (int fi = 0; fi < frameCount; ++fi) {
+        unsigned fb = bits;
+        const long gi = trace.shotMoverGroupOf(firstFrame + fi);
+        if (gi >= 0) {
+            for (int k = 0; k < K; ++k) {
+                if (fb & (1u << k)) continue;
+                const int li = lights.shadowLight(k);
+                bool clear = true;
+                for (size_t r = 0; r < roots && clear; ++r) {
+                    const Bounds3f& box = boxes[r * groups + size_t(gi)];
+                    clear = box.empty() || !lightMeetsBox(g, box, ls[size_t(li)], lights, li, lightTime);
+                }
+                if (clear) fb |= 1u << k;
             }
-            clear = !hull.overlaps(b);
         }
-        if (clear) bits |= 1u << k;
+        grid.frameShadows[size_t(fi)] = uint8_t(1u | (fb << 1));
     }
     return bits;
+}
+
+bool SampleTracer::frameClear(const Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& ls,
+                              double lightTime, int frame) {
+    if (trace.shotMoverRoots() == 0) return true;
+    const long gi = trace.shotMoverGroupOf(frame);
+    if (gi < 0) return false;
+    // A sample's hit lies on a micropolygon: in the box of the grid's vertices.
+    Bounds3f g;
+    for (const Vec3f& p : grid.P[0]) {
+        if (!isFinite(p)) return false;
+        g.extend(p);
+    }
+    g = paddedForRounding(g);
+    const LightSet& lights = trace.scene().lights;
+    const std::vector<Bounds3f>& boxes = trace.shotMoverBoxes();
+    for (size_t r = 0; r < trace.shotMoverRoots(); ++r) {
+        const Bounds3f& b = boxes[r * trace.shotMoverGroups() + size_t(gi)];
+        if (b.empty()) continue;
+        for (int k = 0; k < grid.shadowSlots; ++k) {
+            const int li = lights.shadowLight(k);
+            if (lightMeetsBox(g, b, ls[size_t(li)], lights, li, lightTime)) return false;
+        }
+    }
+    return true;
 }
 
 const std::vector<CameraLight>& SampleTracer::lightsAt(const LightSet& lights, double t) {
@@ -493,12 +635,13 @@ void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, Rend
     // `tested`: Grid::stillShadows' bits.
     auto lit = [&](Color c, const Color* parts, uint8_t tested, const SamplePosition& s, Vec2f lens, float z, int frame,
                    double time) {
+        if (tested == kFoldedShadows) return c;  // the parts are in c already
         if (!split) return addVisibleLights(c, pointAt(s, lens, z, frame), time, parts, trace, trace.hierarchy(frame), counters);
         if (!(tested & 1))
             return addVisibleLights(c, pointAt(s, lens, z, frame), time, parts, trace, trace.stillOccluders(), counters,
                                     anyMoving ? &trace.movingOccluders() : nullptr);
         const unsigned unblocked = unsigned(tested) >> 1;
-        if (anyMoving && unblocked != (1u << std::min(K, 7)) - 1u)
+        if (anyMoving && unblocked != (1u << std::min(K, kUnblockedSlots)) - 1u)
             return addVisibleLights(c, pointAt(s, lens, z, frame), time, parts, trace, trace.movingOccluders(), counters,
                                     nullptr, unblocked);
         for (int k = 0; k < K; ++k) {  // no moving occluder in the way: no ray at all (zero parts skipped as there)
@@ -524,7 +667,10 @@ void SampleTracer::shadeShadows(ImageBlock& block, const TraceScene& trace, Rend
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
 }
 
-void SampleTracer::occludeStillVertices(Grid& grid, const TraceScene& trace, RenderCounters& counters) {
+void SampleTracer::occludeStillVertices(Grid& grid, const TraceScene& trace, RenderCounters& counters, int firstFrame,
+                                        int frameCount) {
+    grid.frameShadows.clear();
+    grid.CiFolded.clear();
     const LightSet& lights = trace.scene().lights;
     const SpacetimeBVH& bvh = trace.stillOccluders();
     const double time = trace.stillTime();  // still occluders and camera: any time answers alike
@@ -587,7 +733,42 @@ void SampleTracer::occludeStillVertices(Grid& grid, const TraceScene& trace, Ren
             }
         }
     }
-    grid.stillShadows = uint8_t(1u | (unblockedByMoving(grid, trace, ls, lightTime) << 1));
+    // Frame by frame: whether no moving root's box of that frame (made over the shot: the same
+    // whatever frames are rendered) meets the rays from this grid to its lights. In such a frame
+    // its shadows are all decided here, and its samples take the colour with them added
+    // (CiFolded); in every frame of the block, the grid's own colour is that (folded: it samples
+    // into the still layer as an unshadowed still grid does). Either way a frame's samples get
+    // the same colours whatever its block.
+    bool all = frameCount > 0;
+    foldFrames_.assign(size_t(std::max(frameCount, 0)), 0);
+    for (int fi = 0; fi < frameCount; ++fi) {
+        foldFrames_[size_t(fi)] = frameClear(grid, trace, ls, lightTime, firstFrame + fi);
+        all = all && foldFrames_[size_t(fi)];
+    }
+    bool any = false;
+    for (uint8_t f : foldFrames_) any = any || f;
+    if (all) {
+        Color* ci = grid.Ci[0].data();
+        for (int v = 0; v < grid.vertexCount(); ++v) {
+            Color* parts = &cl[size_t(v) * size_t(K)];
+            for (int k = 0; k < K; ++k) ci[v] += parts[k], parts[k] = {0, 0, 0};
+        }
+        grid.stillShadows = kFoldedShadows;
+        ++counters.shadowFoldedGrids;
+    } else {
+        grid.stillShadows = uint8_t(1u | (unblockedByMoving(grid, trace, ls, lightTime, firstFrame, frameCount) << 1));
+        if (any) {
+            grid.CiFolded.assign(grid.Ci[0].begin(), grid.Ci[0].end());
+            for (int v = 0; v < grid.vertexCount(); ++v)
+                for (int k = 0; k < K; ++k) grid.CiFolded[size_t(v)] += cl[size_t(v) * size_t(K) + size_t(k)];
+            if (grid.frameShadows.empty()) {
+                grid.frameShadowsFirst = firstFrame;
+                grid.frameShadows.assign(size_t(frameCount), grid.stillShadows);
+            }
+            for (int fi = 0; fi < frameCount; ++fi)
+                if (foldFrames_[size_t(fi)]) grid.frameShadows[size_t(fi)] = kFoldedShadows;
+        }
+    }
     counters.rayBodyTests += ctx_.bodyTests - testsBefore;
     counters.rayBoxTests += ctx_.boxTests - boxesBefore;
 }

@@ -63,6 +63,22 @@ class TraceScene {
     // A box holding every moving occluder during the frames rendered: a ray that misses it
     // meets none of them (a cull that cannot change a pixel, whatever frames it is made over).
     const Bounds3f& movingBound() const { return movingBound_; }
+    // Boxes holding every root body that does not stand still through the shot, frame by frame
+    // over the whole shot (RenderScene::windowStart, windowEnd; frames grouped when there would be
+    // more than kShotMoverBoxes): made from the scene's roots, not from the bodies rendered, so
+    // they are the same whatever frames are rendered. A still grid whose rays to its lights meet
+    // none of them has its shadows decided at its vertices for every frame of the shot
+    // (SampleTracer::occludeStillVertices folds them into its colour).
+    const std::vector<Bounds3f>& shotMoverBoxes() const { return shotMoverBoxes_; }
+    static constexpr size_t kShotMoverBoxes = 4096;
+    // The boxes of frame f: one for each moving root (empty where it does not exist then), at
+    // shotMoverBoxes()[root * shotMoverGroups() + shotMoverGroupOf(f)]; -1 for a frame outside the shot.
+    size_t shotMoverRoots() const { return shotMoverRoots_; }
+    size_t shotMoverGroups() const { return shotMoverGroups_; }
+    long shotMoverGroupOf(int frame) const {
+        const long g = (long(frame) - shotFirstFrame_) / long(shotMoverGroup_);
+        return frame < shotFirstFrame_ || g >= long(shotMoverGroups_) ? -1 : g;
+    }
     // The time the still occluders' tests run at: any time of the render gives the same answer.
     double stillTime() const { return scene_.renderedStart; }
 
@@ -91,6 +107,7 @@ class TraceScene {
 
   private:
     void collect(const Body& body, Log& log);
+    void collectShotMovers();
     bool displaced(const Body& body) const;
 
     const RenderScene& scene_;
@@ -114,6 +131,9 @@ class TraceScene {
     std::vector<const TrilinearBody*> stillBodies_, movingBodies_;
     SpacetimeBVH still_, moving_;
     Bounds3f movingBound_;
+    std::vector<Bounds3f> shotMoverBoxes_;
+    size_t shotMoverRoots_ = 0, shotMoverGroups_ = 0, shotMoverGroup_ = 1;
+    long shotFirstFrame_ = 0;
     int framesFirst_ = 0;
 };
 
@@ -137,8 +157,15 @@ class SampleTracer {
     // of its points a ray reaches: every point tested, not one picked per sample), and sets
     // Grid::stillShadows: bit 0, and bit k + 1 for each light slot k that no moving occluder can
     // shadow anywhere on the grid (its samples then cast no ray for it). Needs the shadow
-    // hierarchies.
-    void occludeStillVertices(Grid& grid, const TraceScene& trace, RenderCounters& counters);
+    // hierarchies. Where no moving root can come between the grid and any of its lights in any
+    // frame of the shot (TraceScene::shotMoverBoxes: decided over the shot, not the block), the
+    // parts are added into its colour (Ci[0]) and zeroed, and Grid::stillShadows is
+    // kFoldedShadows: its samples need no shadow pass and may sit in the still layer.
+    // A grid left unfolded gets, for each frame of the block [firstFrame, firstFrame + frameCount),
+    // the lights no moving root's box of that frame can shadow (Grid::frameShadows): its samples
+    // of that frame cast no ray for them (as the block-wide bits: a cull that cannot change a pixel).
+    void occludeStillVertices(Grid& grid, const TraceScene& trace, RenderCounters& counters, int firstFrame = 0,
+                              int frameCount = 0);
 
   private:
     const std::vector<CameraLight>& lightsAt(const LightSet& lights, double t);
@@ -150,8 +177,12 @@ class SampleTracer {
                            const SpacetimeBVH& bvh, RenderCounters& counters, const SpacetimeBVH* also = nullptr,
                            unsigned unblocked = 0);
 
-    unsigned unblockedByMoving(const Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& lights,
-                               double lightTime);
+    // Whether no moving root's box of `frame` meets a ray from the grid's box to any of its lights.
+    bool frameClear(const Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& lights, double lightTime,
+                    int frame);
+    std::vector<uint8_t> foldFrames_;  // occludeStillVertices' scratch: frameClear per frame of the block
+    unsigned unblockedByMoving(Grid& grid, const TraceScene& trace, const std::vector<CameraLight>& lights,
+                               double lightTime, int firstFrame, int frameCount);
 
     TraceContext ctx_;
     GridShader* shader_ = nullptr;

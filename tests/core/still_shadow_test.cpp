@@ -73,12 +73,67 @@ TEST(StillShadow, SphereShadowAtTheShadingRateIsTheAnalyticEllipse) {
                 EXPECT_NEAR(vertex.channel(0, x, y, 0), sample.channel(0, x, y, 0), 1e-5f) << x << " " << y;
             }
         EXPECT_GT(far, 2000u);
-        // Nothing moves: the still floor's samples cast no ray; its vertices did.
+        // Nothing moves: the still floor's samples cast no ray; its vertices did, and its grids
+        // carry their shadows in their colour.
         EXPECT_EQ(vertex.stats.counters.shadowRays, 0u);
+        EXPECT_GT(vertex.stats.counters.shadowFoldedGrids, 0u);
+        EXPECT_EQ(sample.stats.counters.shadowFoldedGrids, 0u);
         EXPECT_GT(vertex.stats.counters.shadowVertexRays, 0u);
         EXPECT_GT(sample.stats.counters.shadowRays, 0u);
         EXPECT_EQ(sample.stats.counters.shadowVertexRays, 0u);
     }
+}
+
+// The sphere's shadow with a square moving over the floor's left end (x 2 to 6, up and down, at
+// z = 35: the light's rays from x 7 to 11 of the floor cross its path): the floor's grids there
+// test it per sample, frame by frame, and the rest (the ellipse's) fold their shadows into their
+// colour and share the still layer. The ellipse is as analytic as without the mover, the same as
+// the per-sample test away from its edge, and frame 2 alone is frame 2 of frames 0-3.
+std::string sphereShadowWithMover(const std::string& options = "") {
+    std::string rib = sphereShadowScene("Option \"streyes\" \"int frames\" [0 3]\n" + options);
+    rib.insert(rib.find("WorldEnd"), "AttributeBegin\nSurface \"constant\"\nMotionBegin [0 1 2 3]\n"
+                                     "Translate 0 2 0\nTranslate 0 12 0\nTranslate 0 22 0\nTranslate 0 30 0\nMotionEnd\n" +
+                                         test::square(2, 6, 0, 4, 35) + "AttributeEnd\n");
+    return rib;
+}
+
+TEST(StillShadow, FoldedShadowsBesideAMoverKeepTheAnalyticEllipse) {
+    const double expected = 64 * kPi * std::sqrt(2.0);
+    const RenderOptions options = test::optionsFor(Algorithm::SpacetimeOcclusion);
+    const RenderResult vertex = renderRib(sphereShadowWithMover(), options);
+    const RenderResult sample = renderRib(sphereShadowWithMover(kPerSample), options);
+    ASSERT_EQ(vertex.frames.size(), 4u);
+    ASSERT_EQ(sample.frames.size(), 4u);
+    EXPECT_GT(vertex.stats.counters.shadowFoldedGrids, 0u);
+    EXPECT_GT(vertex.stats.counters.shadowRays, 0u);  // where the mover may come between
+    for (int f = 0; f < 4; ++f) {
+        SCOPED_TRACE(f);
+        double area = 0, areaSample = 0;
+        size_t far = 0;
+        for (int y = 0; y < 40; ++y)
+            for (int x = 30; x < 96; ++x) {
+                area += 1.0 - double(vertex.channel(f, x, y, 0));
+                areaSample += 1.0 - double(sample.channel(f, x, y, 0));
+                if (fromShadowEdge(x, y) <= 2) continue;
+                ++far;
+                EXPECT_NEAR(vertex.channel(f, x, y, 0), sample.channel(f, x, y, 0), 1e-5f) << x << " " << y;
+            }
+        EXPECT_GT(far, 2000u);
+        EXPECT_NEAR(area, expected, 0.025 * expected);
+        EXPECT_NEAR(areaSample, expected, 0.01 * expected);
+        // The mover's own shadow, under it at the floor's left end: as dark per vertex as per sample.
+        double moverShadow = 0, moverShadowSample = 0;
+        for (int y = 0; y < 40; ++y)
+            for (int x = 0; x < 20; ++x) {
+                moverShadow += 1.0 - double(vertex.channel(f, x, y, 0));
+                moverShadowSample += 1.0 - double(sample.channel(f, x, y, 0));
+            }
+        EXPECT_GT(moverShadowSample, 8.0);
+        EXPECT_NEAR(moverShadow, moverShadowSample, 0.1 * moverShadowSample);
+    }
+    const test::ShotAndFrame r = test::renderShotAndFrame(sphereShadowWithMover(), options, 0, 3, 2);
+    EXPECT_TRUE(r.samePixels(2));
+    EXPECT_GT(r.alone.stats.counters.shadowFoldedGrids, 0u);
 }
 
 // An unknown value warns and keeps the default.
