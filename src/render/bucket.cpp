@@ -543,9 +543,9 @@ void BucketWorker::process(const Body& body) {
         ++counters.culledOcclusionByLayer[li];
         return;
     }
-    // The waiting batch is sampled first where it could be under this body's bound: the test
-    // reads the samples there.
-    if (mayCullHidden && occlusion_ && !pending_.empty() && pendingMeets(raster, nullptr)) flushPending();
+    // The test reads the samples under the body's bound without the waiting batch's: it culls
+    // only bodies strictly behind opaque hits, so a stale sample culls less, never more, and a
+    // body it lets through is sampled behind those hits, which changes no pixel.
     if (mayCullHidden && occlusion_ && hiddenBehindHits(body, raster, swept.lo.z)) {
         ++counters.culledHidden;
         return;
