@@ -92,6 +92,10 @@ struct RenderOptions {
     int maxSplitDepth = 60;          // a body split this often and still too large is dropped
     int maxEyeSplits = 40;           // the same for splits at the eye plane
     int maxSplitsPerPrimitive = 1 << 20;  // splits of one primitive in one bucket (bounds the work)
+    // Small grids of one material at one key time (a keyed body's keys: leaves) shaded together in
+    // one interpreter run each batch (GridShader::shadeSlots); the pixels are the same either way.
+    // Off: one run a grid. Only with tolerance 0 (the batch is sampled later, which moves layers).
+    bool shadeBatching = true;
     // Split t when motion > ratio * size and > this many pixels. Off by default: a moving grid is
     // diced once an exposure (as RenderMan dices it) and its micropolygons move; cutting in time
     // only adds dicing (every piece is diced in each bucket it reaches) for tighter sampling

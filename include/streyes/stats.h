@@ -52,6 +52,8 @@ namespace streyes {
     COUNT(pointsShadedBuiltin, "shading.points_builtin") /* vertices the built-in shading shaded */   \
     COUNT(pointsShadedSurface, "shading.points_surface") /* vertices Shading Language surfaces ran on */ \
     COUNT(lightShaderRuns, "shading.light_shader_runs")  /* light shader runs over a grid */          \
+    COUNT(shadingBatchRuns, "shading.batch_runs") /* surface runs over several small grids at once */ \
+    COUNT(shadingBatchedGrids, "shading.batched_grids") /* grid slots shaded in those runs */         \
     COUNT(shadingSanitised, "shading.sanitised")  /* NaN, infinity or out-of-domain results set to 0 */ \
     COUNT(shadingIndicesClamped, "shading.indices_clamped") /* array accesses out of range (a grid and place each) */ \
     COUNT(shadingLoopsStopped, "shading.loops_stopped") /* shader runs past the loop budget */        \

@@ -159,9 +159,17 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
     t = Clock::now();
     const double before =
         counters.timeDice + counters.timeShade + counters.timeSample + counters.timeOcclusion + counters.timeTrace;
+    // Small keyed grids shaded in batches (bucket_batch.cpp): only where the culling is exact,
+    // since the batch is sampled later (tables may come at other depths).
+    batching_ = options_.shadeBatching && options_.tolerance == 0 && aovs_.count == 0;
+    pending_.clear();
+    pendingIntervals_.clear();
+    keyGridsUsed_ = 0;
+    pendingPoints_ = 0;
     if (!traceEyeRays_) {  // the ray tracer traces the samples instead (below)
         if (occlusion_) runNearToFar();
         else runDepthFirst();
+        flushPending();
     }
     ownChildren_.clear();  // nothing holds them now: the split loop is done
     // Nor the kept expansions: let go of them, but for a procedural that outgrew its bound, which
@@ -374,6 +382,7 @@ void BucketWorker::runNearToFar() {
 // replaces the last. Every body still to come has zmin >= boundary: strictly farther than what
 // covers those cells, so culling against the table never hides a surface that would be seen.
 void BucketWorker::endLayer(float boundary) {
+    flushPending();  // the table is made of everything sampled so far
     auto t = Clock::now();
     // While nothing in the bucket has a frame's record, every frame sees the still layer: one
     // frame's coverage and a summed-area table stand for all of them (a block of n frames covers
@@ -537,6 +546,9 @@ void BucketWorker::process(const Body& body) {
         ++counters.culledOcclusionByLayer[li];
         return;
     }
+    // The test reads the samples under the body's bound without the waiting batch's: it culls
+    // only bodies strictly behind opaque hits, so a stale sample culls less, never more, and a
+    // body it lets through is sampled behind those hits, which changes no pixel.
     if (mayCullHidden && occlusion_ && hiddenBehindHits(body, raster, swept.lo.z)) {
         ++counters.culledHidden;
         return;
@@ -660,6 +672,13 @@ void BucketWorker::diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int n
 // A grid whose bound reaches other buckets of the block is made once, by the first bucket that
 // needs it, and left in the grid cache for the others (grid_cache.h); the rest are made here.
 void BucketWorker::diceShadeSample(const Body& body, int nu, int nv, const Bounds3f& raster) {
+    if (body.dicesAtKeys() ? batchKeys(static_cast<const KeyedPatchBody&>(body), nu, nv, raster)
+                           : !dicedForFrames(body) && batchGrid(body, nu, nv, raster))
+        return;
+    // What waits of this primitive where this grid may fall is sampled before it, as it came
+    // before it; other primitives' hits do not depend on the order (pendingMeets).
+    const uint64_t primitive = body.primitiveId();
+    if (!pending_.empty() && pendingMeets(raster, &primitive)) flushPending();
     if (body.dicesAtKeys()) {
         diceShadeSampleKeys(static_cast<const KeyedPatchBody&>(body), nu, nv);
         return;
@@ -668,12 +687,6 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv, const Bound
         diceShadeSampleFrames(body, nu, nv, raster);
         return;
     }
-    // Shared when it reaches at least three buckets: a grid on the border of two is mostly hidden
-    // in one of them in dense scenes, and keeping it costs more than dicing it again. On the
-    // flyover (frames 1-2) sharing from two buckets on cost 7% more CPU than none, from three on
-    // 0.6% (2-4% over frames 1-8); the moving sphere's micropolygons are 1.33x the still
-    // sphere's from three on, 1.67x from two (docs/ARCHITECTURE.md, "Grids shared between buckets").
-    constexpr int kMinBucketsShared = 3;
     const int reached = gridCache_ && gridCache_->enabled() ? gridCache_->layout().bucketsReached(raster) : 0;
     const int others = reached - 1;
     const GridKey key{body.pieceKey, body.uv, body.time().t0, body.time().t1, nu, nv, bucket_.firstFrame,
@@ -725,6 +738,16 @@ void BucketWorker::diceShadeSample(const Body& body, int nu, int nv, const Bound
 }
 
 bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
+    if (!diceForShading(body, nu, nv)) return false;
+    auto t1 = Clock::now();
+    shader_.shade(grid_);
+    if (aovs_.count) fillAovs(grid_, aovs_, cameraOf(body));
+    counters.timeShade += secondsSince(t1);
+    testStillShadows(grid_);
+    return true;
+}
+
+bool BucketWorker::diceForShading(const Body& body, int nu, int nv) {
     auto t = Clock::now();
     body.dice(nu, nv, grid_);
     ++counters.gridsDiced;
@@ -746,12 +769,7 @@ bool BucketWorker::diceShade(const Body& body, int nu, int nv) {
         grid_.P[1] = grid_.P[0];
         grid_.N[1] = grid_.N[0];
     }
-    auto t1 = Clock::now();
-    counters.timeDice += std::chrono::duration<double>(t1 - t).count();
-    shader_.shade(grid_);
-    if (aovs_.count) fillAovs(grid_, aovs_, cameraOf(body));
-    counters.timeShade += secondsSince(t1);
-    testStillShadows(grid_);
+    counters.timeDice += secondsSince(t);
     return true;
 }
 

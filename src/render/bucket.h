@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -105,10 +106,55 @@ class BucketWorker {
     void split(const Body& body, SplitAxis axis, bool eyeSplit);
     // `raster`: the body's raster bound as the view cull took it (the buckets it reaches).
     void diceShadeSample(const Body& body, int nu, int nv, const Bounds3f& raster);
+    // Shared when it reaches at least three buckets: a grid on the border of two is mostly hidden
+    // in one of them in dense scenes, and keeping it costs more than dicing it again. On the
+    // flyover (frames 1-2) sharing from two buckets on cost 7% more CPU than none, from three on
+    // 0.6% (2-4% over frames 1-8); the moving sphere's micropolygons are 1.33x the still
+    // sphere's from three on, 1.67x from two (docs/ARCHITECTURE.md, "Grids shared between buckets").
+    static constexpr int kMinBucketsShared = 3;
     // Dices and shades the body into grid_; false when nothing of it is left to sample.
     bool diceShade(const Body& body, int nu, int nv);
     void sample(const Grid& grid);
     void diceShadeSampleKeys(const KeyedPatchBody& body, int nu, int nv);
+    // Small keyed grids wait to be shaded together with others of their material (at each key
+    // time) and are sampled when the batch is flushed, in the order they came (bucket_batch.cpp).
+    // False: the body cannot wait (shade it now).
+    bool batchKeys(const KeyedPatchBody& body, int nu, int nv, const Bounds3f& raster);
+    // The same for a small grid diced over its span (shaded at t0, and t1 when it moves) that no
+    // other bucket shares.
+    bool batchGrid(const Body& body, int nu, int nv, const Bounds3f& raster);
+    // diceShade's dicing: the body into grid_, oriented, ready to shade; false when every
+    // micropolygon faces away (nothing to shade or sample).
+    bool diceForShading(const Body& body, int nu, int nv);
+    Grid& spareGrid();  // the next grid of the pool
+    // Shades and samples every waiting body. Called before anything else is sampled or anything
+    // reads the samples (a table, the hits behind a body whose bound meets the waiting ones'), at
+    // the end of the split loop, and when the batch is full.
+    void flushPending();
+    struct PendingBody {
+        bool keyed = false;             // a keyed body's keys, or one grid (keys == 1)
+        size_t firstKey = 0, keys = 0;  // its grids: keyGrids_[firstKey, firstKey + keys)
+        const Camera* camera = nullptr;
+        const Material* material = nullptr;
+        size_t firstInterval = 0;  // its key intervals in pendingIntervals_ (keys - 1 of them)
+        Bounds3f raster;           // its raster bound as the view cull took it
+        uint64_t primitive = 0;    // its primitive (Body::primitiveId)
+    };
+    // Does a waiting body's raster bound meet `raster` (of primitive `*primitive` only, when given)?
+    // Hits at equal depth are ordered by primitive: only grids of one primitive depend on the
+    // order they are sampled in.
+    bool pendingMeets(const Bounds3f& raster, const uint64_t* primitive) const;
+    struct PendingInterval {
+        double t0 = 0, t1 = 0;
+        bool openEnd = false, moving = false;
+    };
+    std::vector<PendingBody> pending_;
+    std::vector<PendingInterval> pendingIntervals_;
+    std::vector<std::unique_ptr<Grid>> keyGrids_;  // a pool: [0, keyGridsUsed_) wait
+    size_t keyGridsUsed_ = 0;
+    int pendingPoints_ = 0;
+    std::vector<GridShader::Slot> pendingSlots_;
+    bool batching_ = false;  // options_.shadeBatching where it is sound
     // Bodies still in world space under a moving camera (Body::stillInWorld; bucket_world.cpp).
     // Is the root's chunk of frames measured by the still-in-world rule (geom/root_chunks.h)?
     bool worldChunks(const Body& root) const;

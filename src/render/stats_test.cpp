@@ -106,7 +106,7 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
     "grids_shared": 0,
     "micropolygons_shared": 0,
     "grids_evicted": 0,
-    "shading": {"points_builtin": 0, "points_surface": 0, "light_shader_runs": 0, "sanitised": 0, "indices_clamped": 0, "loops_stopped": 0},
+    "shading": {"points_builtin": 0, "points_surface": 0, "light_shader_runs": 0, "batch_runs": 0, "batched_grids": 0, "sanitised": 0, "indices_clamped": 0, "loops_stopped": 0},
     "sample_tests": 8,
     "sample_hits": 6,
     "samples_behind": 0,

@@ -21,6 +21,9 @@ GridShader::~GridShader() = default;
 void GridShader::takeCounters(RenderCounters& out) {
     out.pointsShadedBuiltin += builtinPoints_;
     builtinPoints_ = 0;
+    out.shadingBatchRuns += batchRuns_;
+    out.shadingBatchedGrids += batchedGrids_;
+    batchRuns_ = batchedGrids_ = 0;
     if (!vm_) return;
     const sl::ShadeStats& s = vm_->stats();
     out.pointsShadedSurface += s.points;
@@ -222,6 +225,8 @@ void GridShader::prepare(const Material& m, const Grid& grid, int k, double time
     sgrid_.state = &queries_;
     const int n = grid.vertexCount();
     sgrid_.setShape(grid.nu, grid.nv);
+    sgrid_.parts = nullptr;  // one grid (shadeBatch sets its parts after this)
+    sgrid_.partCount = 0;
     u_.resize(size_t(n));
     v_.resize(size_t(n));
     const float du = grid.nu > 0 ? (grid.u1 - grid.u0) / float(grid.nu) : 0.0f;

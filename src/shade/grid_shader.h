@@ -40,6 +40,8 @@ class GridShader {
 
     void setShaders(const SceneShaders* shaders) {
         shaders_ = shaders;
+        safePrograms_.clear();
+        refused_.clear();
         if (vm_) vm_->setTextureSource(shaders ? shaders->textures() : nullptr);
         if (vm_) vm_->setLog(shaders ? &shaders->log() : nullptr);
     }
@@ -65,6 +67,26 @@ class GridShader {
     void shadeSlot(Grid& grid, int k, double time);
     // Both slots of a moving grid (t0 and t1), or the one of a still grid.
     void shade(Grid& grid);
+    // A slot to shade (shadeSlots): slot k of `grid` at `time`.
+    struct Slot {
+        Grid* grid = nullptr;
+        int k = 0;
+        double time = 0;
+    };
+    // Grids of at most this many points may share a run; a run takes at most kBatchPoints.
+    static constexpr int kBatchGridPoints = 64;
+    static constexpr int kBatchPoints = 512;
+    // Can a grid of `points` points under `m` share an interpreter run with others (shadeSlots)?
+    // A language surface without displacement, atmosphere, layers, primitive variables or shader
+    // output variables, whose programs (the surface's and its lights') batchProgramSafe() accepts.
+    bool batchable(const Material* m, int points, int aovCount);
+    // Each slot as shadeSlot(*grid, k, time) shades it, bit for bit; the slots of batchable grids
+    // whose runs would see the same uniform values (one material, shading time, du and dv, shadow
+    // slots) are shaded together, up to kBatchPoints a run, each grid differenced on its own.
+    void shadeSlots(const Slot* slots, size_t count);
+    // Off: shadeSlots shades one slot a run (for comparing).
+    void setBatching(bool on) { batching_ = on; }
+
     // Only the material's displacement shader (if any) over each slot, at t0 and t1: the ray
     // tracer's micropolygons are the displaced grid the rasterizer samples (trace/tessellate.h).
     void displaceOnly(Grid& grid);
@@ -93,6 +115,10 @@ class GridShader {
     void takeCounters(RenderCounters& out);
 
   private:
+    // The batch's slots (all batchable, one key) in one run over their points together.
+    void shadeBatch(const Slot* const* slots, size_t count);
+    bool programSafe(const sl::ShaderProgram& p);
+
     void displace(const Material& m, Grid& grid, int k, double time);
     void shadeSurface(Grid& grid, int k, double time);
     void runSurface(const Material& m, Grid& grid, int k, double time);
@@ -132,6 +158,16 @@ class GridShader {
     Vec3f volumeI_, volumeE_;
     Color volumeCi_, volumeOi_;
     uint64_t builtinPoints_ = 0;
+    uint64_t batchRuns_ = 0, batchedGrids_ = 0;
+    bool batching_ = true;
+    std::vector<std::pair<const sl::ShaderProgram*, bool>> safePrograms_;  // batchProgramSafe, once a program
+    Grid batch_;                                  // the batch's points, concatenated
+    std::vector<sl::ShadingGridPart> parts_;      // its grids' shapes
+    // Materials whose batched run refused (a grid-wide operation ran): shaded alone. Only speed
+    // depends on it (a material freed and another made at its address is shaded alone too).
+    std::vector<const Material*> refused_;
+    std::vector<const Slot*> group_;              // slots of one key, in order
+    std::vector<uint8_t> slotDone_;
     const AovLayout* aovs_ = nullptr;  // set when it names shader outputs
     void clearShaderOutputs(Grid& grid, int k) const;
     void copyShaderOutputs(Grid& grid, int k) const;

@@ -16,34 +16,81 @@ namespace {
 bool hasShape(const ShadingGrid& g) { return g.nu > 0 && g.nv >= 0 && g.n == (g.nu + 1) * (g.nv + 1); }
 }  // namespace
 
+namespace {
+// Along u over one grid of (nu + 1) x (nv + 1) points.
+void diffUShape(int nu, int nv, const float* f, float* out) {
+    if (nu < 1) {
+        std::memset(out, 0, sizeof(float) * size_t(nu + 1) * size_t(nv + 1));
+        return;
+    }
+    const int w = nu + 1;
+    for (int j = 0; j <= nv; ++j) {
+        const float* r = f + size_t(j) * size_t(w);
+        float* o = out + size_t(j) * size_t(w);
+        o[0] = r[1] - r[0];
+        for (int i = 1; i < nu; ++i) o[i] = 0.5f * (r[i + 1] - r[i - 1]);
+        o[nu] = r[nu] - r[nu - 1];
+    }
+}
+
+void diffVShape(int nu, int nv, const float* f, float* out) {
+    const size_t w = size_t(nu + 1);
+    if (nv < 1) {
+        std::memset(out, 0, sizeof(float) * w * size_t(nv + 1));
+        return;
+    }
+    for (int j = 0; j <= nv; ++j) {
+        const float* up = f + size_t(j == nv ? j : j + 1) * w;
+        const float* dn = f + size_t(j == 0 ? 0 : j - 1) * w;
+        const float k = (j == 0 || j == nv) ? 1.0f : 0.5f;
+        float* o = out + size_t(j) * w;
+        for (size_t i = 0; i < w; ++i) o[i] = k * (up[i] - dn[i]);
+    }
+}
+
+// A batch of grids (ShadingGrid::parts): each differenced on its own, as if shaded alone.
+bool partsCover(const ShadingGrid& g) {
+    int n = 0;
+    for (int p = 0; p < g.partCount; ++p) {
+        const ShadingGridPart& q = g.parts[p];
+        if (q.offset != n || q.nu < 0 || q.nv < 0) return false;
+        n += (q.nu + 1) * (q.nv + 1);
+    }
+    return n == g.n;
+}
+
+void diffParts(const ShadingGrid& g, const float* f, float* out, bool alongU) {
+    if (!partsCover(g)) {
+        std::memset(out, 0, sizeof(float) * size_t(g.n));
+        return;
+    }
+    for (int p = 0; p < g.partCount; ++p) {
+        const ShadingGridPart& q = g.parts[p];
+        if (q.nu < 1) {  // a part without a shape (as a grid alone: nu > 0 or no derivatives)
+            std::memset(out + q.offset, 0, sizeof(float) * size_t(q.nu + 1) * size_t(q.nv + 1));
+            continue;
+        }
+        (alongU ? diffUShape : diffVShape)(q.nu, q.nv, f + q.offset, out + q.offset);
+    }
+}
+}  // namespace
+
 void diffU(const ShadingGrid& g, const float* f, float* out) {
+    if (g.parts) return diffParts(g, f, out, true);
     if (!hasShape(g) || g.nu < 1) {
         std::memset(out, 0, sizeof(float) * size_t(g.n));
         return;
     }
-    const int w = g.nu + 1;
-    for (int j = 0; j <= g.nv; ++j) {
-        const float* r = f + size_t(j) * size_t(w);
-        float* o = out + size_t(j) * size_t(w);
-        o[0] = r[1] - r[0];
-        for (int i = 1; i < g.nu; ++i) o[i] = 0.5f * (r[i + 1] - r[i - 1]);
-        o[g.nu] = r[g.nu] - r[g.nu - 1];
-    }
+    diffUShape(g.nu, g.nv, f, out);
 }
 
 void diffV(const ShadingGrid& g, const float* f, float* out) {
+    if (g.parts) return diffParts(g, f, out, false);
     if (!hasShape(g) || g.nv < 1) {
         std::memset(out, 0, sizeof(float) * size_t(g.n));
         return;
     }
-    const size_t w = size_t(g.nu + 1);
-    for (int j = 0; j <= g.nv; ++j) {
-        const float* up = f + size_t(j == g.nv ? j : j + 1) * w;
-        const float* dn = f + size_t(j == 0 ? 0 : j - 1) * w;
-        const float k = (j == 0 || j == g.nv) ? 1.0f : 0.5f;
-        float* o = out + size_t(j) * w;
-        for (size_t i = 0; i < w; ++i) o[i] = k * (up[i] - dn[i]);
-    }
+    diffVShape(g.nu, g.nv, f, out);
 }
 
 float duAt(const ShadingGrid& g, int i) {

@@ -62,6 +62,13 @@ struct Primvar {
     SourceLoc loc;                // named by errors (type mismatch)
 };
 
+// One grid of a batch shaded in one run (GridShader::shadeSlots): its points are [offset,
+// offset + (nu + 1) * (nv + 1)) of the batch, u fastest. Derivatives difference within it only.
+struct ShadingGridPart {
+    int offset = 0;
+    int nu = 0, nv = 0;
+};
+
 struct ShadingGrid {
     int n = 0;           // points
     int nu = 0, nv = 0;  // micropolygons: n == (nu + 1) * (nv + 1), u fastest. 0 0: no shape,
@@ -80,6 +87,11 @@ struct ShadingGrid {
     // a ray's hits: its depth (1 for rays from those) and "specular" (trace) or "diffuse".
     int rayDepth = 0;
     const char* rayType = "camera";
+    // Several small grids shaded in one run: their shapes, in order, covering the n points (nu
+    // and nv are then 0). Null: one grid of nu x nv. Only programs batchProgramSafe() accepts may
+    // run over such a grid: their values at a point depend on its own grid's data alone.
+    const ShadingGridPart* parts = nullptr;
+    int partCount = 0;
 
     void set(Global g, ValueRef v) { globals[size_t(g)] = v; }
     void setSpace(Space s, const Matrix4& m) { toCurrent[size_t(s)] = m; }

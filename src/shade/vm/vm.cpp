@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "shade/vm/batch_safety.h"
 #include "shade/vm/frame.h"
 #include "shade/vm/ops.h"
 
@@ -117,6 +118,7 @@ void ShadingVM::run(const ShaderInstance& shader, const ShadingGrid& grid, const
     for (size_t i = 0; i < lights.size(); ++i) lightResults_[i].valid = false;
     randomCalls_ = 0;
     currentLight_ = nullptr;
+    pointFreeWatch_ = nullptr;  // a light run a refused batch left (batch_safety.h) watches nothing now
     runInstructions_ = 0;
     Frame& f = frameFor(shader.program());
     top_ = &f;
@@ -172,6 +174,7 @@ void ShadingVM::execute(Exec& x, int begin, int end) {
     while (x.pc < end) {
         const Instr& in = code[x.pc++];
         if (pointFreeWatch_ == &x.frame && !pointFreeInstr(x, in)) pointFreeWatch_ = nullptr;
+        if (x.grid.parts && gridWideOp(in.fn)) throw BatchRefused();  // batch_safety.h
         in.fn(x, in);
         ++count;
         lanes += in.varying ? uint64_t(x.n) : 1u;
