@@ -83,7 +83,8 @@ TEST(WeberPennHelix, ANegativeCurveVDrawsNoRandomBend) {
     }
     p = parseWeberPennParams(std::string(kTrunk) + "0CurveV=30", {});
     double off = 0;
-    for (const Vec3d& q : weberPennTrunk(p, nullptr).paths[0].points) off = std::max(off, std::hypot(q.x, q.z));
+    const WeberPennStem bent = weberPennTrunk(p, nullptr);  // named: a loop over a temporary's member would dangle
+    for (const Vec3d& q : bent.paths[0].points) off = std::max(off, std::hypot(q.x, q.z));
     EXPECT_GT(off, 0.01) << "the positive nCurveV must bend the trunk (the test's own check)";
 }
 

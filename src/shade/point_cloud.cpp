@@ -159,7 +159,8 @@ bool BakedPointCloud::read(const std::string& path, std::string* error) {
                    std::to_string(points) + " points of " + std::to_string(floats * sizeof(float)) +
                    " bytes (truncated or corrupt)");
     cloud.data_.resize(size_t(points * floats));
-    std::memcpy(cloud.data_.data(), r.here(), cloud.data_.size() * sizeof(float));
+    if (!cloud.data_.empty())  // an empty cloud's data() may be null: memcpy must not see it
+        std::memcpy(cloud.data_.data(), r.here(), cloud.data_.size() * sizeof(float));
     for (float v : cloud.data_)
         if (!std::isfinite(v)) return bad("a value is not finite (NaN or infinity)");
     *this = std::move(cloud);
