@@ -4,105 +4,28 @@
 #include <optional>
 
 #include "shade/sl/builtins.h"
+#include "shade/sl/view_use_value.h"
 #include "shade/vm/ray_source.h"
 
 namespace streyes::sl {
 
 namespace {
 
-enum class Kind : uint8_t { Invariant, Point, Vector, View };
-// What a value is, where the facing rules need it: the renderer's N or Ng (normalized or
-// negated), I (normalized or negated), or a dot product of the two.
-enum class Shape : uint8_t { None, Normal, Incident, NdotI };
-
-struct Value {
-    Kind kind = Kind::Invariant;
-    bool facing = false;
-    Shape shape = Shape::None;
-    // Where a view value first read the view, and how (for the result's message).
-    const SourceLoc* where = nullptr;
-    const char* what = nullptr;
-
-    bool operator==(const Value& o) const { return kind == o.kind && facing == o.facing && shape == o.shape; }
-    bool operator!=(const Value& o) const { return !(*this == o); }
-};
-
-Value of(Kind k, bool facing = false, Shape shape = Shape::None) { return Value{k, facing, shape, nullptr, nullptr}; }
-
-Value view(const SourceLoc& loc, const char* what, bool facing = false) {
-    return Value{Kind::View, facing, Shape::None, &loc, what};
-}
-
-// A view value made from `a` and `b`: it keeps the first origin it has.
-Value viewFrom(const SourceLoc& loc, const char* what, const Value& a, const Value& b = {}) {
-    if (a.kind == Kind::View && a.where) return Value{Kind::View, a.facing || b.facing, Shape::None, a.where, a.what};
-    if (b.kind == Kind::View && b.where) return Value{Kind::View, a.facing || b.facing, Shape::None, b.where, b.what};
-    return view(loc, what, a.facing || b.facing);
-}
-
-// Either value, at different points or on different paths.
-Value join(const Value& a, const Value& b) {
-    Value r;
-    r.facing = a.facing || b.facing;
-    r.shape = a.shape == b.shape ? a.shape : Shape::None;
-    r.kind = a.kind == b.kind ? a.kind : Kind::View;
-    if (r.kind == Kind::View) {
-        const Value& src = a.kind == Kind::View && a.where ? a : b;
-        r.where = src.where;
-        r.what = src.what;
-    }
-    return r;
-}
-
-// A value computed where `ctl` decides whether it is: view when the decision is.
-Value under(Value v, const Value& ctl, const SourceLoc& loc) {
-    v.facing = v.facing || ctl.facing;
-    if (ctl.kind != Kind::Invariant && v.kind != Kind::View) {
-        v.kind = Kind::View;
-        v.shape = Shape::None;
-        v.where = ctl.where ? ctl.where : &loc;
-        v.what = ctl.where ? ctl.what : "assigned under a condition that reads the view";
-    }
-    return v;
-}
-
-bool allInvariant(const std::vector<Value>& v) {
-    for (const Value& x : v)
-        if (x.kind != Kind::Invariant) return false;
-    return true;
-}
-
-bool anyFacing(const std::vector<Value>& v) {
-    for (const Value& x : v)
-        if (x.facing) return true;
-    return false;
-}
-
-// A pure function of its arguments: invariant when they all are.
-Value pure(const std::vector<Value>& args, const SourceLoc& loc, const char* what) {
-    if (allInvariant(args)) return of(Kind::Invariant, anyFacing(args));
-    for (const Value& a : args)
-        if (a.kind == Kind::View && a.where) return viewFrom(loc, what, a);
-    return view(loc, what, anyFacing(args));
-}
+using namespace viewuse;
 
 enum class SpaceClass { Current, Still, Other };
 
 // "world", "object" and "shader" stay with the world (the renderer checks the shader's own
 // transform); "current" and "camera" are current space; the rest (screen, raster, NDC, named
 // coordinate systems, a name known only at run time) are taken to follow the camera.
-SpaceClass spaceClass(const Expr* e) {
-    if (!e || e->kind != ExprKind::String) return SpaceClass::Other;
-    const std::string& s = e->text;
+SpaceClass spaceClass(const std::string& s) {
     if (s == "current" || s == "camera") return SpaceClass::Current;
     if (s == "world" || s == "object" || s == "shader") return SpaceClass::Still;
     return SpaceClass::Other;
 }
 
-SpaceClass spaceClass(const std::string& s) {
-    if (s == "current" || s == "camera") return SpaceClass::Current;
-    if (s == "world" || s == "object" || s == "shader") return SpaceClass::Still;
-    return SpaceClass::Other;
+SpaceClass spaceClass(const Expr* e) {
+    return e && e->kind == ExprKind::String ? spaceClass(e->text) : SpaceClass::Other;
 }
 
 class Analysis {
