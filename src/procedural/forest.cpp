@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "procedural/weber_penn.h"
+#include "procedural/number_list.h"
 #include "util/sampling.h"
 
 namespace streyes {
@@ -97,20 +98,7 @@ std::string speciesNames(const std::string& separator) {
 // ---- Parameters ---------------------------------------------------------------------------------
 
 std::vector<double> numbersOf(const std::string& key, const std::string& value, size_t n, const SourceLoc& loc) {
-    std::vector<double> r;
-    std::stringstream in(value);
-    std::string part;
-    while (std::getline(in, part, ',')) {
-        char* end = nullptr;
-        double v = std::strtod(part.c_str(), &end);
-        if (part.empty() || *end != '\0' || !std::isfinite(v))
-            throw InputError(loc, "forest: '" + key + "=" + value + "' is not " + std::to_string(n) + " number(s)");
-        r.push_back(v);
-    }
-    if (r.size() != n)
-        throw InputError(loc, "forest: '" + key + "' takes " + std::to_string(n) + " comma-separated number(s), got '" +
-                                  value + "'");
-    return r;
+    return parseNumberList("forest", key, value, n, loc);
 }
 
 // Reads key=value pairs; `extra` handles keys only a single tree takes.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "procedural/number_list.h"
 #include "util/sampling.h"
 
 namespace streyes {
@@ -508,18 +509,7 @@ WeberPennParams parseWeberPennParams(const std::string& datablock, const SourceL
             p = *preset;
         }
     auto numbers = [&](const std::string& key, const std::string& value, size_t n) {
-        std::vector<double> r;
-        std::stringstream in(value);
-        std::string part;
-        while (std::getline(in, part, ',')) {
-            char* end = nullptr;
-            const double v = std::strtod(part.c_str(), &end);
-            if (part.empty() || *end != '\0' || !std::isfinite(v)) break;
-            r.push_back(v);
-        }
-        if (r.size() != n)
-            throw InputError(loc, "tree: '" + key + "' takes " + std::to_string(n) + " number(s), got '" + value + "'");
-        return r;
+        return parseNumberList("tree", key, value, n, loc);
     };
     for (const auto& item : items) {
         // Named copies, not a structured binding: C++17 lambdas cannot capture those (clang refuses).
