@@ -5,8 +5,11 @@
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
+# Boost.Wave's CMake package asks for Boost's atomic, chrono and thread packages, which Debian's
+# libboost-wave-dev does not depend on: without them a fresh machine stops at configuring.
 PACKAGES=(cmake ninja-build g++ pkg-config
           libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev libdeflate-dev zlib1g-dev libosd-dev libtbb-dev libhwy-dev libjemalloc-dev libboost-wave-dev libnanoflann-dev
+          libboost-atomic-dev libboost-chrono-dev libboost-thread-dev
           nlohmann-json3-dev libcli11-dev
           libgtest-dev libbenchmark-dev python3 python3-openimageio python3-numpy
           gnuplot-nox clang libclang-rt-14-dev)
@@ -35,7 +38,9 @@ if ((${#missing[@]})); then
 fi
 
 cd "$ROOT"
-if [ ! -f build/CMakeCache.txt ]; then
+# build.ninja, not CMakeCache.txt: a configure that failed (a package missing) leaves the cache
+# behind, and the next run must configure again rather than stop at "loading build.ninja".
+if [ ! -f build/build.ninja ]; then
   echo "== Configuring (release preset, build/)"
   cmake --preset release >/dev/null
 fi

@@ -19,7 +19,7 @@ if [ "${1:-}" = "--asan" ]; then
   if [ -f build-asan/CMakeCache.txt ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang' build-asan/CMakeCache.txt; then
     rm -rf build-asan/CMakeCache.txt build-asan/CMakeFiles
   fi
-  [ -f build-asan/CMakeCache.txt ] || cmake --preset asan >/dev/null
+  [ -f build-asan/build.ninja ] || cmake --preset asan >/dev/null  # not the cache: see setup.sh
   echo "== Building with sanitizers (build-asan/)"
   cmake --build --preset asan -j "$(nproc)"
   echo "== Testing with sanitizers"
