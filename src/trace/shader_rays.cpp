@@ -295,32 +295,48 @@ bool ShaderRays::shadeAlong(const Ray& ray, double time, float tMin, float tMax,
     return any;
 }
 
-void ShaderRays::occlusion(const sl::RayOptions& o, const sl::RayQuery& q, float* out) {
+// With "environmentcolor" wanted (out[1]), the directions of the rays that hit nothing are kept
+// and the map looked up in them at once, each over its share of the cone (as coneMean does): the
+// sum of what they see over all s rays, so that a constant map c gives c (1 - occlusion) with the
+// occlusion of the same rays.
+void ShaderRays::occlusion(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) {
     if (depth_ > maxDepth_) return;  // the op filled 0
     const SpacetimeBVH& bvh = hierarchyAt(q.time);
     const uint32_t s = uint32_t(std::clamp(o.samples > 0 ? o.samples : 16.0f, 1.0f, 65536.0f));
     const float cone = o.coneangle >= 0 ? o.coneangle : 0.5f * kPi;
+    const bool seen = out[1] && !o.environmentmap.empty();
+    const float width = std::sqrt(2 * kPi * (1 - std::cos(std::min(cone, kPi))) / float(s));
+    if (seen) directions_.resize(s);
     for (int i = 0; i < q.n; ++i) {
         if (q.active && !q.active[i]) continue;
         const Vec3f p = at3(q.P, i);
         const Vec3f n = normalize(at3(q.D, i));
         if (!(dot(n, n) > 0.5f)) {
-            out[i] = 0;
+            out[0][i] = 0;
             continue;
         }
         Vec3f t, b;
         frameOf(n, &t, &b);
         const uint64_t h = pointHash(p, q.seed, q.site);
         const float bias = biasAt(o, p, q.time);
-        uint32_t hits = 0;
+        uint32_t hits = 0, misses = 0;
         for (uint32_t j = 0; j < s; ++j) {
             float ua, ub;
             sample2(j, s, h, &ua, &ub);
             const Ray ray{p, coneDirection(n, t, b, cone, true, ua, ub)};
-            hits += bvh.occluded(ray, q.time, bias, o.maxdist, ctx_) ? 1u : 0u;
+            if (bvh.occluded(ray, q.time, bias, o.maxdist, ctx_)) ++hits;
+            else if (seen) directions_[misses++] = ray.d;
         }
         rays_ += s;
-        out[i] = float(hits) / float(s);
+        out[0][i] = float(hits) / float(s);
+        if (!seen || misses == 0) continue;
+        background_.assign(misses, Color{0, 0, 0});
+        environmentColors(o, directions_.data(), misses, width, q.time, background_.data());
+        // Summed in double: a constant map's sum is exact, so the mean is c (1 - occlusion) rounded once.
+        double sum[3] = {0, 0, 0};
+        for (uint32_t j = 0; j < misses; ++j)
+            for (int c = 0; c < 3; ++c) sum[c] += double(background_[j][c]);
+        for (int c = 0; c < 3; ++c) out[1 + c][i] = float(sum[c] / double(s));
     }
 }
 

@@ -33,7 +33,7 @@ class ShaderRays final : public sl::RaySource {
     // Option "trace" "maxdepth"'s default, as in PRMan.
     static constexpr int kDefaultMaxDepth = 10;
 
-    void occlusion(const sl::RayOptions& o, const sl::RayQuery& q, float* out) override;
+    void occlusion(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) override;
     void indirectdiffuse(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) override;
     void trace(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) override;
     void transmission(const sl::RayOptions& o, const sl::RayQuery& q, float* const* out) override;

@@ -1,5 +1,6 @@
 // indirectdiffuse()'s "environmentmap": a ray that hits nothing brings the map's colour in its
-// direction (in "environmentspace" when given, else current space), against closed forms. The
+// direction (in "environmentspace" when given, else current space), and ray-traced occlusion()'s
+// "environmentcolor" output (the map its unoccluded rays see), against closed forms. The
 // maps are analytic (a texture source of the test's own), so the answers are the integrals of
 // the cosine-weighted hemisphere over them: a constant c gives c, a cap of half-angle a about
 // the normal sin^2 a.
@@ -143,6 +144,95 @@ TEST(EnvironmentRays, TheEnvironmentSpaceTurnsTheDirections) {
             EXPECT_NEAR(turned.channel(0, px, py, 0), 0.25f, 1e-5f) << px << " " << py;
             EXPECT_NEAR(plain.channel(0, px, py, 0), 1.0f, 1e-5f) << px << " " << py;
         }
+}
+
+// Ray-traced occlusion()'s "environmentcolor": the map in the directions of the rays that hit
+// nothing, over all the rays. Under the open sky of a constant map, the map itself (the rays'
+// sum is exact: within 1e-6); in "environmentspace"; black without a map (the variable's -1 does
+// not survive the call).
+test::RenderResult occludedFloor(const std::string& options, const std::string& extra = "") {
+    test::ShaderDir d;
+    d.add("aoe", "surface aoe() {\n  color e = -1;\n"
+                 "  float o = occlusion(P, normal(0, 0, 1), 256, \"bias\", 0.001" + options +
+                     ", \"environmentcolor\", e);\n"
+                 "  Ci = e; Oi = 1;\n}\n");
+    return test::renderRib(test::orthographicView(kN, kN, d.option()) + "WorldBegin\n" + extra + "Surface \"aoe\"\n" +
+                               test::square(0, kN, 0, kN, 100) + "WorldEnd\n",
+                           withSkies());
+}
+
+TEST(EnvironmentRays, OcclusionsEnvironmentColourUnderTheOpenSkyIsTheMap) {
+    const float c[3] = {0.2f, 0.5f, 0.9f};
+    const std::string sky = "AttributeBegin\nRotate 180 1 0 0\nCoordinateSystem \"sky\"\nAttributeEnd\n";
+    const test::RenderResult constant = occludedFloor(", \"environmentmap\", \"constant.env\"");
+    const test::RenderResult turned = occludedFloor(", \"environmentmap\", \"upper.env\", \"environmentspace\", \"sky\"", sky);
+    const test::RenderResult none = occludedFloor("");
+    for (int py = 0; py < kN; ++py)
+        for (int px = 0; px < kN; ++px)
+            for (int k = 0; k < 3; ++k) {
+                EXPECT_NEAR(constant.channel(0, px, py, k), c[k], 1e-6f) << px << " " << py;
+                EXPECT_NEAR(turned.channel(0, px, py, k), 0.25f, 1e-6f) << px << " " << py;
+                EXPECT_EQ(none.channel(0, px, py, k), 0.0f) << px << " " << py;
+            }
+}
+
+// Under a half-open box (a roof 16 over the floor and two walls; open at two sides) the same
+// call's occlusion o and colour e: e = c (1 - o) at every pixel within rounding, for a constant
+// map c, and the box covers most of the sky (a dropped face or a colour from hit rays would show).
+TEST(EnvironmentRays, OcclusionsEnvironmentColourIsTheMapTimesTheOpenShareOfTheSameRays) {
+    constexpr int W = 16;
+    const double f = 100, roof = 116, x0 = -0.05, x1 = W + 0.05;
+    auto wall = [&](double x) {
+        return "Patch \"bilinear\" \"P\" [" + std::to_string(x) + " 0 " + std::to_string(f) + " " + std::to_string(x) + " " +
+               std::to_string(W) + " " + std::to_string(f) + " " + std::to_string(x) + " 0 " + std::to_string(roof) + " " +
+               std::to_string(x) + " " + std::to_string(W) + " " + std::to_string(roof) + "]\n";
+    };
+    const std::string box = "AttributeBegin\nSurface \"constant\"\n" + test::square(x0, x1, 0, W, roof) + wall(x0) + wall(x1) +
+                            "AttributeEnd\n";
+    test::ShaderDir d;
+    d.add("aoe", "surface aoe() {\n  color e = -1;\n"
+                 "  float o = occlusion(P, normal(0, 0, 1), 256, \"bias\", 0.001, \"environmentmap\", \"constant.env\", "
+                 "\"environmentcolor\", e);\n"
+                 "  Ci = color(o, comp(e, 0) - 0.2 * (1 - o), comp(e, 2) - 0.9 * (1 - o)); Oi = 1;\n}\n");
+    const test::RenderResult r = test::renderRib(
+        test::orthographicView(W, W, d.option()) + "WorldBegin\n" + box + "Surface \"aoe\"\n" + test::square(0, W, 0, W, f) + "WorldEnd\n",
+        withSkies());
+    double sum = 0;
+    int partly = 0;
+    for (int py = 0; py < W; ++py)
+        for (int px = 0; px < W; ++px) {
+            const float o = r.channel(0, px, py, 0);
+            sum += o;
+            partly += o > 0 && o < 1;
+            EXPECT_NEAR(r.channel(0, px, py, 1), 0.0f, 1e-6f) << px << " " << py;
+            EXPECT_NEAR(r.channel(0, px, py, 2), 0.0f, 1e-6f) << px << " " << py;
+        }
+    EXPECT_GT(sum / (W * W), 0.5);
+    EXPECT_EQ(partly, W * W);  // every pixel sees some of the sky and some of the box
+}
+
+// A square moving over the floor's sky, frame by frame, with the colour output in use: each
+// frame's is its own and the same whatever the block renders it.
+TEST(EnvironmentRays, OcclusionsEnvironmentColourIsTheSameWhateverTheBlock) {
+    test::ShaderDir d;
+    d.add("aoe", "surface aoe() {\n  color e = 0;\n"
+                 "  float o = occlusion(P, normal(0, 0, 1), 32, \"environmentmap\", \"cap.env\", \"environmentcolor\", e);\n"
+                 "  Ci = e; Oi = 1;\n}\n");
+    const std::string rib = test::orthographicView(32, 8, d.option() + "Hider \"hidden\" \"jitter\" [0]\nPixelSamples 1 1\n") +
+                            "Shutter 0 0\nFrameBegin 0\nWorldBegin\nAttributeBegin\nSurface \"constant\"\n"
+                            "MotionBegin [0 3]\nTranslate 0 0 0\nTranslate 24 0 0\nMotionEnd\n" +
+                            test::square(-4, 4, 0, 8, 104) + "AttributeEnd\nSurface \"aoe\"\n" + test::square(0, 32, 0, 8, 100) +
+                            "WorldEnd\nFrameEnd\n";
+    RenderOptions o = withSkies();
+    o.hasFrames = true;
+    o.hasShot = true;
+    o.shotFirst = 0;
+    o.shotLast = 3;
+    const test::ShotAndFrame r = test::renderShotAndFrame(rib, o, 0, 3, 2);
+    EXPECT_TRUE(r.samePixels(2)) << "frame 2 alone differs from frame 2 of the shot";
+    // Under the square (x in [-4, 4] + 8 t) the cap is hidden: frame 0 has it over pixel 2, frame 3 over 26.
+    EXPECT_LT(r.shot.channel(0, 2, 4, 0), r.shot.channel(3, 2, 4, 0) - 0.2f);
+    EXPECT_LT(r.shot.channel(3, 26, 4, 0), r.shot.channel(0, 26, 4, 0) - 0.2f);
 }
 
 }  // namespace

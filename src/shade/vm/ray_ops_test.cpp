@@ -17,9 +17,9 @@ class RecordingRays final : public RaySource {
     RayOptions last;
     double time = -1;
     int calls = 0, activeSeen = 0;
-    void occlusion(const RayOptions& o, const RayQuery& q, float* out) override {
+    void occlusion(const RayOptions& o, const RayQuery& q, float* const* out) override {
         note(o, q);
-        for (int i = 0; i < q.n; ++i) out[i] = q.P[0][i] / 10;
+        for (int i = 0; i < q.n; ++i) out[0][i] = q.P[0][i] / 10;
     }
     void indirectdiffuse(const RayOptions& o, const RayQuery& q, float* const* out) override { copyD(o, q, out); }
     void trace(const RayOptions& o, const RayQuery& q, float* const* out) override { copyD(o, q, out); }

@@ -33,7 +33,8 @@ struct RayOptions {
 
 // The named arguments a call writes (output variables, after PRMan): indirectdiffuse()'s
 // "occlusion" (float: the occlusion the same samples give) and occlusion()'s "environmentcolor"
-// (color: the environment map the occluders let through; point-based only).
+// (color: the environment map the occluders let through, as a sum over all the samples, so that
+// a constant map c gives c (1 - occlusion)).
 inline bool isRayOutputOption(const std::string& function, const std::string& name) {
     return (function == "indirectdiffuse" && name == "occlusion") || (function == "occlusion" && name == "environmentcolor");
 }
@@ -66,8 +67,10 @@ class RaySource {
   public:
     virtual ~RaySource() = default;
     // The fraction of the cone about D (cosine-weighted) in which a ray from P hits something
-    // within maxdist: 0 open, 1 covered.
-    virtual void occlusion(const RayOptions& o, const RayQuery& q, float* out) = 0;
+    // within maxdist: 0 open, 1 covered, into out[0]. out[1..3], when not null: the call's
+    // "environmentcolor", the environment map in the directions of the same rays that hit
+    // nothing, summed and divided by all the rays (black without a map).
+    virtual void occlusion(const RayOptions& o, const RayQuery& q, float* const* out) = 0;
     // The light arriving at P over the cone about D, cosine-weighted and normalised (a uniform
     // white surrounding gives 1): hits shaded, misses the environment map in their direction
     // (or black without one). out[0..2] the colour; out[3], when not null, the share of the

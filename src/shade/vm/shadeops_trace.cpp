@@ -58,21 +58,18 @@ void ray(Exec& x, const Instr& in, Call call) {
     if (x.active == 0) return;
     if ((call == Call::Occlusion || call == Call::Indirect) && pointBasedCall(x, in, call == Call::Indirect)) return;
     // The destination and the output options are varying (the code generator makes them so): n
-    // floats a component. indirectdiffuse's "occlusion" is out[3] (0, nothing hit, unless the
-    // source writes it); occlusion()'s "environmentcolor" is point-based only: left as it was
-    // here, warned once.
+    // floats a component, 0 (nothing hit, no map seen) unless the source writes them.
+    // indirectdiffuse's "occlusion" is out[3]; occlusion()'s "environmentcolor" is env[1..3].
     float* out[4] = {d.comp(0), d.comps > 1 ? d.comp(1) : d.comp(0), d.comps > 2 ? d.comp(2) : d.comp(0), nullptr};
+    float* env[4] = {d.comp(0), nullptr, nullptr, nullptr};
     const char* fn = call == Call::Indirect ? "indirectdiffuse" : call == Call::Occlusion ? "occlusion" : "";
     for (int j = 1 + k; j + 1 < count; j += 2) {
         if (!isRayOutputOption(fn, x.str(r[j]))) continue;
-        if (call == Call::Indirect) {
-            out[3] = x.view(r[j + 1]).comp(0);
-            std::fill(out[3], out[3] + x.n, 0.0f);
-        } else {
-            x.vm.warnOnce(x, in, "ray-environmentcolor",
-                          "occlusion(): \"environmentcolor\" is computed on the point-based path only (give a \"filename\"); "
-                          "the variable is left as it was");
-        }
+        const RegView v = x.view(r[j + 1]);
+        for (int c = 0; c < v.comps; ++c) std::fill(v.comp(c), v.comp(c) + v.w, 0.0f);
+        if (call == Call::Indirect) out[3] = v.comp(0);
+        else
+            for (int c = 0; c < 3; ++c) env[1 + c] = v.comp(std::min(c, v.comps - 1));
     }
     RaySource* source = x.vm.raySource();
     if (!source) {
@@ -102,7 +99,7 @@ void ray(Exec& x, const Instr& in, Call call) {
     q.seed = x.grid.seed;
     q.site = uint32_t(x.pc);
     switch (call) {
-        case Call::Occlusion: source->occlusion(o, q, out[0]); break;
+        case Call::Occlusion: source->occlusion(o, q, env); break;
         case Call::Indirect: source->indirectdiffuse(o, q, out); break;
         case Call::Trace: source->trace(o, q, out); break;
         case Call::Transmission: source->transmission(o, q, out); break;
