@@ -563,7 +563,6 @@ class Checker {
             fail(a.loc, e.text + " of '" + a.text + "', a " + t.name() +
                             " of fixed length: only arrays declared without a length (" + baseTypeName(t.base) + " " +
                             a.text + "[]) can be resized, pushed onto or popped");
-        if (t.isString()) fail(a.loc, e.text + " of '" + a.text + "': string arrays cannot be resized (streyes)");
         checkWritable(*a.symbol, a.loc);
         if (e.text == "resize") expectType(*e.args[1], BaseType::Float, "resize's length");
         if (e.text == "push") {

@@ -161,7 +161,7 @@ std::vector<VarDecl> Parser::parseFormals() {
     std::vector<VarDecl> out;
     while (!accept(")")) {
         VarDecl d = parseDeclHead(true);
-        parseDeclarators(d, true);
+        parseDeclarators(d);
         out.push_back(std::move(d));
         if (accept(";")) continue;
         if (isPunct(")")) continue;
@@ -195,7 +195,7 @@ VarDecl Parser::parseDeclHead(bool formal) {
     return d;
 }
 
-void Parser::parseDeclarators(VarDecl& d, bool formal) {
+void Parser::parseDeclarators(VarDecl& d) {
     do {
         Declarator dc;
         dc.loc = locOf(peek());
@@ -217,17 +217,11 @@ void Parser::parseDeclarators(VarDecl& d, bool formal) {
             dc.init = isPunct("{") ? parseArrayInit() : parseAssign();
             dc.initText = textBetween(first, peek());
         }
-        if (unsized && (d.base != BaseType::String || (formal && !dc.init))) {
+        if (unsized) {
             // Resizable (PRMan's RSL 2): a parameter sized by its value, a local that resize,
-            // push and pop change, a function's formal taking an array of any length.
+            // push and pop change, a function's formal taking an array of any length (string
+            // arrays too).
             dc.arrayLen = SlType::kResizable;
-        } else if (unsized) {
-            // String arrays have their length at compile time: an unsized one takes its
-            // initialiser's.
-            if (!dc.init || dc.init->kind != ExprKind::ArrayInit || dc.init->args.empty())
-                throw InputError(dc.loc, "array '" + dc.name + "' has no length: give one (" + dc.name +
-                                 "[3]) or an initialiser {...} to take it from");
-            dc.arrayLen = int(dc.init->args.size());
         }
         d.decls.push_back(std::move(dc));
         // In formals a ',' may also separate declarators of one type (float a, b).
@@ -320,7 +314,7 @@ StmtPtr Parser::parseStatement() {
         if (atDeclStart()) {
             auto s = std::make_unique<Stmt>(StmtKind::Decl, loc);
             s->decl = parseDeclHead(false);
-            parseDeclarators(s->decl, false);
+            parseDeclarators(s->decl);
             expect(";", "after the declaration");
             return s;
         }

@@ -38,7 +38,7 @@ class Parser {
     void parseShaderDef(Module& m);
     std::vector<VarDecl> parseFormals();
     VarDecl parseDeclHead(bool formal);
-    void parseDeclarators(VarDecl& d, bool formal);
+    void parseDeclarators(VarDecl& d);
 
     StmtPtr parseStatement();
     StmtPtr parseBlock();

@@ -42,10 +42,12 @@ struct RegView {
 // register's (element e, component c: w floats at (e * comps + c) * w), so growing appends
 // floats and never moves what is there. `data` only grows (doubling, by resize/push, once per
 // instruction and grid, never per point) and is kept between grids: no allocation once the
-// shader has run at its largest.
+// shader has run at its largest. A string array's elements are `strings` (uniform, as every
+// string), kept likewise.
 struct ResizableArray {
     int length = 0;
     std::vector<float> data;
+    std::vector<std::string> strings;
     // Makes room for `elems` elements of `floatsPerElement` floats; false (nothing changed)
     // past kMaxFloats, the bound on one array (256 MiB) that keeps a runaway resize from
     // exhausting memory.
@@ -96,7 +98,10 @@ struct Exec {
         const Register& g = reg(r);
         return {ptr(r), g.varying() ? n : 1, g.type.comps(), elements(r), g.varying()};
     }
-    std::string& str(int r, int e = 0) const { return strs[reg(r).slot + e]; }
+    std::string& str(int r, int e = 0) const {
+        const Register& g = reg(r);
+        return g.resizable() ? arrays[g.slot].strings[std::size_t(e)] : strs[g.slot + e];
+    }
     bool allOn() const { return active == n; }
     const int32_t* extra(int begin) const { return prog.extra.data() + begin; }
     const SourceLoc* loc(const Instr& in) const { return in.loc >= 0 ? &prog.locs[std::size_t(in.loc)] : nullptr; }

@@ -39,10 +39,10 @@ struct Register {
     std::string name;   // variable name; "" for temporaries
     // Assigned by finish(): uniform registers' float offset in the uniform area; varying
     // registers' first lane array; string registers' first string slot; resizable arrays'
-    // index among the frame's resizable stores (frame.h).
+    // (string ones too) index among the frame's resizable stores (frame.h).
     int slot = 0;
     int floats() const { return type.comps() * type.elements(); }
-    bool resizable() const { return type.isResizable() && !type.isString(); }
+    bool resizable() const { return type.isResizable(); }
     bool varying() const { return detail == Detail::Varying; }
 };
 

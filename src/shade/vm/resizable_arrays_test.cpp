@@ -293,5 +293,95 @@ TEST(ResizableArrays, AnOutputFormalPushesIntoTheCallersArray) {
     EXPECT_EQ(vm.output("lastv").at(0, 0), 9.0f);
 }
 
+// String arrays resize, push and pop as the numeric ones (uniform: one list a grid); an empty
+// one reads "" and pops "", warned once; a whole-array assignment takes the source's length.
+TEST(ResizableArrays, StringArraysPushPopResizeAndCount) {
+    ProgramPtr p = compileShader(
+        "surface strs(uniform float n = 3; output uniform float len = -1; output uniform float len2 = -1;\n"
+        "             output uniform float len3 = -1; output uniform float hits = 0; output uniform float copied = -1;\n"
+        "             output uniform string last = \"x\"; output uniform string gone = \"x\"; output uniform string grown = \"x\";\n"
+        "             output uniform string oob = \"x\") {\n"
+        "  string a[];\n"
+        "  uniform float i;\n"
+        "  for (i = 0; i < n; i += 1) push(a, format(\"s%d\", i));\n"
+        "  len = arraylength(a);\n"
+        "  for (i = 0; i < len; i += 1) if (a[i] == format(\"s%d\", i)) hits += 1;\n"
+        "  last = pop(a);\n"
+        "  len2 = arraylength(a);\n"
+        "  string b[] = a;\n"
+        "  copied = arraylength(b);\n"
+        "  resize(a, 0);\n"
+        "  gone = pop(a);\n"
+        "  resize(a, 2);\n"
+        "  grown = concat(a[0], a[1], \"|\");\n"
+        "  len3 = arraylength(a);\n"
+        "  oob = b[len + 5];\n"
+        "}\n",
+        "strs.sl");
+    Log log;
+    log.setQuiet(true);
+    ShadingVM vm;
+    vm.setLog(&log);
+    TestGrid g = uGrid();
+    for (int n : {3, 1000, 1}) {
+        SCOPED_TRACE(n);
+        ShaderInstance inst(p);
+        inst.set("n", SlType(), {float(n)}, {});
+        vm.run(inst, g.grid);
+        EXPECT_EQ(vm.output("len").at(0, 0), float(n));
+        EXPECT_EQ(vm.output("hits").at(0, 0), float(n));
+        EXPECT_EQ(vm.paramStrings("last"), std::vector<std::string>{"s" + std::to_string(n - 1)});
+        EXPECT_EQ(vm.output("len2").at(0, 0), float(n - 1));
+        EXPECT_EQ(vm.output("copied").at(0, 0), float(n - 1));
+        EXPECT_EQ(vm.paramStrings("gone"), std::vector<std::string>{""});  // popped from an empty array
+        EXPECT_EQ(vm.paramStrings("grown"), std::vector<std::string>{"|"});  // resize grows with ""
+        EXPECT_EQ(vm.output("len3").at(0, 0), 2.0f);
+        // b[len + 5]: clamped to the last, or "" from an empty b (n = 1).
+        EXPECT_EQ(vm.paramStrings("oob"), std::vector<std::string>{n > 1 ? "s" + std::to_string(n - 2) : ""});
+    }
+    const std::vector<std::string> w = log.warnings();
+    EXPECT_EQ(countWith(w, "strs.sl:15:"), 1u);  // the empty pop, once over three grids
+    EXPECT_EQ(countWith(w, "pop of 'a', which is empty: \"\""), 1u);
+    EXPECT_EQ(countWith(w, "strs.sl:19:"), 1u);  // b[len + 5], once
+}
+
+// An unsized string parameter takes as many strings as it is given (its default's otherwise).
+TEST(ResizableArrays, AnUnsizedStringParameterTakesTheLengthOfItsValue) {
+    ProgramPtr p = compileShader(
+        "surface names(string s[] = {\"a\", \"b\"}; output uniform float count = -1; output uniform string first = \"\") {\n"
+        "  count = arraylength(s);\n"
+        "  push(s, \"z\");\n"
+        "  first = s[0];\n"
+        "}\n",
+        "names.sl");
+    EXPECT_EQ(p->params[0].type.name(), "string[]");
+    EXPECT_EQ(p->params[0].defaultStrings, (std::vector<std::string>{"a", "b"}));
+    ShaderInstance byDefault(p), given(p), none(p);
+    given.setStrings("s", {"x", "y", "w", "v"}, {});
+    none.setStrings("s", {}, {});
+    ShadingVM vm;
+    TestGrid g = uGrid();
+    vm.run(given, g.grid);
+    EXPECT_EQ(vm.output("count").at(0, 0), 4.0f);
+    EXPECT_EQ(vm.paramStrings("s"), (std::vector<std::string>{"x", "y", "w", "v", "z"}));
+    EXPECT_EQ(vm.paramStrings("first"), std::vector<std::string>{"x"});
+    vm.run(byDefault, g.grid);
+    EXPECT_EQ(vm.output("count").at(0, 0), 2.0f);
+    EXPECT_EQ(vm.paramStrings("s"), (std::vector<std::string>{"a", "b", "z"}));
+    vm.run(none, g.grid);
+    EXPECT_EQ(vm.output("count").at(0, 0), 0.0f);
+    EXPECT_EQ(vm.paramStrings("first"), std::vector<std::string>{"z"});
+}
+
+TEST(ResizableArrays, StringArrayMisuseIsACompileErrorAtItsPlace) {
+    expectError("surface s() {\n  string f[2] = {\"a\", \"b\"};\n  push(f, \"c\");\n}\n", 3, 8,
+                "push of 'f', a string[2] of fixed length: only arrays declared without a length (string f[])");
+    expectError("surface s() {\n  string a[];\n  push(a, 1);\n}\n", 3, 11, "cannot use a float");
+    expectError("surface s() {\n  string a[];\n  float x = pop(a);\n}\n", 3, 13, "cannot use a string");
+    expectError("surface s() {\n  string a[];\n  if (u > 0.5)\n    push(a, \"x\");\n}\n", 4, 5,
+                "push of 'a' under a varying condition");
+    expectError("surface s() {\n  string a[];\n  resize(a, \"x\");\n}\n", 3, 13, "resize's length");
+}
+
 }  // namespace
 }  // namespace streyes::sl

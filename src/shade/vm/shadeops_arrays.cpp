@@ -15,9 +15,16 @@ namespace streyes::sl {
 bool setLength(Exec& x, int r, int elems) {
     const Register& g = x.reg(r);
     ResizableArray& a = x.arrays[g.slot];
+    if (elems < 0) elems = 0;
+    if (g.type.isString()) {  // one string an element, under the same bound; new ones ""
+        if (std::size_t(elems) > ResizableArray::kMaxFloats) return false;
+        if (a.strings.size() < std::size_t(elems)) a.strings.resize(std::max(std::size_t(elems), 2 * a.strings.size()));
+        for (int e = a.length; e < elems; ++e) a.strings[std::size_t(e)].clear();
+        a.length = elems;
+        return true;
+    }
     const std::size_t w = g.varying() ? std::size_t(x.n) : 1;
     const std::size_t perElement = std::size_t(g.type.comps()) * w;
-    if (elems < 0) elems = 0;
     if (!a.reserve(std::size_t(elems), perElement)) return false;
     // New elements start at 0 (the storage holds what earlier grids left).
     if (elems > a.length)
@@ -63,17 +70,29 @@ void apush(Exec& x, const Instr& in) {
 }
 
 void apop(Exec& x, const Instr& in) {
-    RegView d = x.view(in.a[0]), a = x.view(in.a[1]);
-    const int len = a.elems;
+    const bool isString = x.reg(in.a[1]).type.isString();
+    const int len = x.elements(in.a[1]);
     if (len == 0) {
         if (x.active > 0) {
             ++x.stats.indicesClamped;
             const Register& r = x.reg(in.a[1]);
-            x.vm.warnOnce(x, in, "pop", "pop of '" + r.name + "', which is empty: 0 (warned once here; other grids may do it too)");
+            x.vm.warnOnce(x, in, "pop", "pop of '" + r.name + "', which is empty: " + (isString ? "\"\"" : "0") +
+                                            " (warned once here; other grids may do it too)");
         }
+        if (isString) {
+            x.str(in.a[0]).clear();
+            return;
+        }
+        RegView d = x.view(in.a[0]);
         for (int c = 0; c < d.comps; ++c) std::fill(d.comp(c), d.comp(c) + d.w, 0.0f);
         return;
     }
+    if (isString) {
+        x.str(in.a[0]) = x.str(in.a[1], len - 1);
+        setLength(x, in.a[1], len - 1);
+        return;
+    }
+    RegView d = x.view(in.a[0]), a = x.view(in.a[1]);
     for (int c = 0; c < d.comps; ++c) {
         const float* s = a.comp(c, len - 1);
         for (int i = 0; i < d.w; ++i) d.comp(c)[i] = s[a.varying ? i : 0];

@@ -55,6 +55,7 @@ bool ShadingVM::readPeer(Exec& x, Peer which, const std::string& name, int dst) 
     const Frame& f = *peerFrame(which);
     const Register& src = p.regs[size_t(info->reg)];
     if (d.type.isString()) {
+        if (src.resizable() || d.resizable()) return false;  // resizable string arrays are not passed
         for (int e = 0; e < d.type.elements(); ++e) x.str(dst, e) = f.strs[size_t(src.slot + e)];
         return true;
     }

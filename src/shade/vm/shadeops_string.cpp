@@ -121,9 +121,13 @@ void match(Exec& x, const Instr& in) {
 }
 
 void smov(Exec& x, const Instr& in) {
-    const int elems = x.reg(in.a[0]).type.elements();
-    const int selems = x.reg(in.a[1]).type.elements();
-    for (int e = 0; e < elems; ++e) x.str(in.a[0], e) = x.str(in.a[1], std::min(e, selems - 1));
+    // A resizable destination was given the source's length first (alike).
+    const int elems = x.elements(in.a[0]);
+    const int selems = x.elements(in.a[1]);
+    for (int e = 0; e < elems; ++e) {
+        if (selems == 0) x.str(in.a[0], e).clear();
+        else x.str(in.a[0], e) = x.str(in.a[1], std::min(e, selems - 1));
+    }
 }
 
 void streq(Exec& x, const Instr& in) { x.ptr(in.a[0])[0] = x.str(in.a[1]) == x.str(in.a[2]) ? 1.0f : 0.0f; }
@@ -131,16 +135,25 @@ void strne(Exec& x, const Instr& in) { x.ptr(in.a[0])[0] = x.str(in.a[1]) != x.s
 
 namespace {
 // String arrays take uniform indices; one outside the array is clamped into it and reported.
+// -1: the array is empty (a resizable one): read as "", written nowhere.
 int stringIndex(Exec& x, const Instr& in, int arrayReg, int indexReg) {
-    const int len = x.reg(arrayReg).type.elements();
+    const int len = x.elements(arrayReg);
     float f = x.ptr(indexReg)[0];
     if (!(f >= 0 && f < float(len)) && x.active > 0) x.indexOutOfRange(in, arrayReg, f);
+    if (len == 0) return -1;
     if (!(f >= 0)) return 0;
     return f >= float(len - 1) ? len - 1 : int(f);
 }
 }  // namespace
 
-void saref(Exec& x, const Instr& in) { x.str(in.a[0]) = x.str(in.a[1], stringIndex(x, in, in.a[1], in.a[2])); }
-void saset(Exec& x, const Instr& in) { x.str(in.a[0], stringIndex(x, in, in.a[0], in.a[1])) = x.str(in.a[2]); }
+void saref(Exec& x, const Instr& in) {
+    const int e = stringIndex(x, in, in.a[1], in.a[2]);
+    if (e < 0) x.str(in.a[0]).clear();
+    else x.str(in.a[0]) = x.str(in.a[1], e);
+}
+void saset(Exec& x, const Instr& in) {
+    const int e = stringIndex(x, in, in.a[0], in.a[1]);
+    if (e >= 0) x.str(in.a[0], e) = x.str(in.a[2]);
+}
 
 }  // namespace streyes::sl::ops

@@ -80,7 +80,11 @@ void ShaderInstance::setStrings(const std::string& name, const std::vector<std::
     const ParamInfo& info = p.params[size_t(k)];
     if (!info.type.isString())
         throw InputError(loc, "parameter \"" + name + "\" of shader \"" + p.name + "\" is " + info.type.name() + ", not string");
-    if (values.size() != size_t(info.type.elements()))
+    if (info.type.isResizable()) {  // declared without a length: as many strings as given
+        if (values.size() > ResizableArray::kMaxFloats)
+            throw InputError(loc, "parameter \"" + name + "\" of shader \"" + p.name + "\": " + std::to_string(values.size()) +
+                                      " strings are more than an array holds (2^26)");
+    } else if (values.size() != size_t(info.type.elements()))
         throw InputError(loc, "parameter \"" + name + "\" of shader \"" + p.name + "\" takes " +
                                   std::to_string(info.type.elements()) + " string(s), not " + std::to_string(values.size()));
     Value& v = slot(k);

@@ -320,6 +320,12 @@ void ShadingVM::bindGlobals(Exec& x, const ShadingGrid& g) {
 
 void ShadingVM::bindParamValues(Exec& x, const ShaderInstance& shader, const ShadingGrid& g) {
     const ShaderProgram& p = x.prog;
+    // A string parameter's elements from a value or primitive variable (a resizable one: all of them).
+    auto bindStrings = [&](const ParamInfo& info, const std::vector<std::string>& from) {
+        if (p.regs[size_t(info.reg)].resizable() && !setLength(x, info.reg, int(from.size())))
+            throw InputError("parameter \"" + info.name + "\" of shader \"" + p.name + "\": too many values");
+        for (int e = 0; e < x.elements(info.reg) && e < int(from.size()); ++e) x.str(info.reg, e) = from[size_t(e)];
+    };
     for (size_t k = 0; k < p.params.size(); ++k) {
         const ParamInfo& info = p.params[k];
         RegView d = x.view(info.reg);
@@ -333,7 +339,7 @@ void ShadingVM::bindParamValues(Exec& x, const ShaderInstance& shader, const Sha
                 throw InputError(pv->loc, "primitive variable \"" + pv->name + "\" is a " + pv->type.name() +
                                               "; shader \"" + p.name + "\" declares it " + info.type.name());
             if (info.type.isString()) {
-                for (int e = 0; e < info.type.elements() && e < int(pv->strings.size()); ++e) x.str(info.reg, e) = pv->strings[size_t(e)];
+                bindStrings(info, pv->strings);
                 continue;
             }
             if (info.type.isMatrix()) {
@@ -349,7 +355,7 @@ void ShadingVM::bindParamValues(Exec& x, const ShaderInstance& shader, const Sha
         }
         if (const ShaderInstance::Value* v = shader.value(int(k))) {
             if (info.type.isString()) {
-                for (int e = 0; e < info.type.elements() && e < int(v->strings.size()); ++e) x.str(info.reg, e) = v->strings[size_t(e)];
+                bindStrings(info, v->strings);
                 continue;
             }
             const int comps = info.type.comps();
@@ -443,6 +449,11 @@ std::vector<std::string> ShadingVM::paramStrings(const std::string& name) const 
     const ParamInfo* info = top_->prog->findParam(name);
     if (!info || !info->type.isString()) return out;
     const Register& r = top_->prog->regs[size_t(info->reg)];
+    if (r.resizable()) {
+        const ResizableArray& a = top_->arrays[size_t(r.slot)];
+        out.assign(a.strings.begin(), a.strings.begin() + a.length);
+        return out;
+    }
     for (int e = 0; e < info->type.elements(); ++e) out.push_back(top_->strs[size_t(r.slot + e)]);
     return out;
 }
@@ -634,8 +645,8 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
         const ParamInfo& info = lp.params[k];
         const Register& r = lp.regs[size_t(info.reg)];
         if (info.type.isString()) {
-            if (info.name == "__category") res.category = f.strs[size_t(r.slot)];
-            if (!info.output) continue;
+            if (info.name == "__category" && !r.resizable()) res.category = f.strs[size_t(r.slot)];
+            if (!info.output || r.resizable()) continue;  // a resizable output: not passed on, as below
             res.outOffset[k] = int(res.outStrings.size());
             for (int e = 0; e < info.type.elements(); ++e) res.outStrings.push_back(f.strs[size_t(r.slot + e)]);
             continue;
