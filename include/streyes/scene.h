@@ -94,10 +94,12 @@ struct LevelOfDetail {
 };
 
 // ShaderLayer / ConnectShaderLayers (RI 3.x shader networks, as PRMan 16 and Aqsis read them): a
-// surface made of layers, each a shader instance with its own parameters, run in order over the
-// grid. After a layer runs, its connections set a later layer's parameter (or a predefined
-// variable such as Cs, which every later layer then sees) to the value one of its parameters (or
-// a predefined variable) has then. The last layer's Ci and Oi are the surface's.
+// surface, displacement or imager made of layers, each a shader instance with its own parameters,
+// run in order over the grid (the image, for an imager). After a layer runs, its connections set
+// a later layer's parameter (or a predefined variable such as Cs, which every later layer then
+// sees) to the value one of its parameters (or a predefined variable) has then. Each layer starts
+// from what the one before left: Ci and Oi (surface), P and N (displacement), Ci, Oi and alpha
+// (imager); the last layer's are the result.
 struct ShaderConnection {
     int from = 0, to = 0;    // indices into ShaderNetwork::layers, from < to
     std::string fromVar, toVar;
@@ -118,14 +120,21 @@ struct Attributes {
     // a Surface request.
     ShaderNetwork surfaceLayers;
     ShaderDesc displacement;                     // Displacement; no name: none
+    // ShaderLayer "displacement": its layers (displacement is then the last one's); empty after a
+    // Displacement request.
+    ShaderNetwork displacementLayers;
     ShaderDesc atmosphere;                       // Atmosphere (a volume shader); no name: none
     // Interior and Exterior: volume shaders run over the segments of rays (trace(), transmission()
     // and the others) inside and outside the surface. No name: none.
     ShaderDesc interior, exterior;
     // Attribute "displacementbound" "sphere" r: how far displacement may move a point, in the
-    // "coordinatesystem" named there ("object", "shader", "world" or "camera").
+    // "coordinatesystem" named there: "object" (the primitive's CTM), "shader" (the displacement
+    // shader's), "world", "camera" or "current" (camera), or a name CoordinateSystem gave, whose
+    // transform the reader keeps in displacementBoundToWorld (also for PRMan's "null": the CTM at
+    // the Attribute request).
     double displacementBound = 0;
     std::string displacementBoundSpace = "object";
+    MotionTransform displacementBoundToWorld;
     double shadingRate = 1.0;                    // pixels of area per micropolygon
     // GeometricApproximation "motionfactor": a moving surface is diced at a shading rate raised by
     // max(1, motionFactor * blur / 16), blur the pixels it moves in one exposure. 0: off.
@@ -260,6 +269,8 @@ struct RenderSettings {
     // users' scenes were lit for), 1 the RI Spec 3.2's formula ("rispec").
     double specularExponent = 8;
     ShaderDesc imager;  // Imager: run over each finished frame's pixels; no name: none
+    // ShaderLayer "imager": its layers (imager is then the last one's); empty after an Imager.
+    ShaderNetwork imagerLayers;
     // Quantize "type" one min max ditheramplitude, by type ("rgba", "z", or a display mode such as
     // "Cs"); a type not given takes RenderMan's default (kColorQuantize, kDepthQuantize for "z").
     std::map<std::string, Quantize> quantize;

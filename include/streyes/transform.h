@@ -62,4 +62,8 @@ class MotionTransform {
 // Sorted union of key times (exactly equal times merged).
 std::vector<double> unionTimes(const std::vector<double>& a, const std::vector<double>& b);
 
+// An upper bound on how much `m` stretches a vector over all its keys (the Frobenius norm of
+// the linear part, never below the largest singular value).
+double largestStretch(const MotionTransform& m);
+
 }  // namespace streyes

@@ -167,6 +167,7 @@ const Material* BodyFactory::material(const AttributesPtr& attributes, const Mot
                 for (double x : v.nums) m.primvarCorners.push_back(float(x));
     }
     if (binder_) binder_->bind(m, *a);
+    if (own) m.displacementBound = objectSpaceBound(m, objectToWorld);
     // A camera-facing primitive's N turns with the eye: a shader reading it reads the view (the
     // analysis takes N as still in world). Only the built-in constant reads no N.
     if (facing == Facing::Camera && (m.surface || m.kind != SurfaceKind::Constant)) m.viewUse = ViewUse::Reads;
@@ -176,16 +177,29 @@ const Material* BodyFactory::material(const AttributesPtr& attributes, const Mot
     return withObjectSpace(shared, objectToWorld, facing, primitiveId);
 }
 
-// A shared material whose shaders name "object" space is copied per primitive with its
-// transform (the RI Spec's "object" space is the primitive's, not the shader's); called with
-// mutex_ held. Other materials stay shared.
+// The displacement bound of `m` on a primitive with `objectToWorld`: a bound given in "object"
+// space scales with the primitive's transform (the shared material's took the displacement
+// shader's, which is the primitive's in most files).
+float BodyFactory::objectSpaceBound(const Material& m, const MotionTransform& objectToWorld) const {
+    if (!(m.displacementBoundInObject > 0) || !m.attributes) return m.displacementBound;
+    const double stretch = largestStretch(objectToWorld);
+    if (stretch == largestStretch(m.attributes->displacement.shaderToWorld)) return m.displacementBound;
+    return float(double(m.displacementBoundInObject) * stretch * largestStretch(worldToCamera_));
+}
+
+// A shared material whose shaders name "object" space, or whose displacement bound is given in
+// object space and the primitive's transform stretches otherwise than the shader's, is copied per
+// primitive with its transform (the RI Spec's "object" space is the primitive's, not the
+// shader's); called with mutex_ held. Other materials stay shared.
 const Material* BodyFactory::withObjectSpace(const Material* shared, const MotionTransform& objectToWorld, Facing facing,
                                              uint64_t primitiveId) {
-    if (!shared->readsObjectSpace) return shared;
+    const float bound = objectSpaceBound(*shared, objectToWorld);
+    if (!shared->readsObjectSpace && bound == shared->displacementBound) return shared;
     const auto key = std::make_tuple(shared->attributes, facing, primitiveId);
     auto it = ownMaterialOf_.find(key);
     if (it != ownMaterialOf_.end()) return it->second;
     Material m = *shared;
+    m.displacementBound = bound;
     m.objectToWorld = objectToWorld;
     m.objectSpaceKnown = true;
     materials_.push_back(std::move(m));

@@ -164,6 +164,7 @@ class BodyFactory final : public ChildBodyMaker {
     const Material* material(const AttributesPtr& attributes, const MotionTransform& objectToWorld,
                              bool cameraFacing = false, const ParamList* primvars = nullptr, uint64_t primitiveId = 0,
                              bool primvarBezier = false);
+    float objectSpaceBound(const Material& m, const MotionTransform& objectToWorld) const;
     const Material* withObjectSpace(const Material* shared, const MotionTransform& objectToWorld, Facing facing,
                                     uint64_t primitiveId);
     const SourceLoc* source(const SourceLoc& loc);

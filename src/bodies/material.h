@@ -14,7 +14,7 @@ namespace streyes {
 namespace sl {
 class ShaderInstance;  // shade/vm: a compiled Shading Language shader and its parameter values
 }
-struct SurfaceNetwork;  // shade/surface_network.h: a layered surface's shaders and connections
+struct LayerNetwork;  // shade/layer_network.h: a layered shader's shaders and connections
 
 enum class SurfaceKind { Constant, Matte, Plastic, Default };
 
@@ -62,7 +62,7 @@ struct Material {
     std::shared_ptr<const sl::ShaderInstance> surface;
     // A layered surface (ShaderLayer): its layers, run in order over each grid; `surface` is the
     // last of them. Null: `surface` alone.
-    std::shared_ptr<const SurfaceNetwork> layers;
+    std::shared_ptr<const LayerNetwork> layers;
     bool readsTime = false;  // a shader reads `time`: a still grid is shaded per exposure
     bool readsMaps = false;  // its surface or a light of it calls shadow(): per exposure where maps vary
     // Its surface, displacement, atmosphere or a light of it casts rays (occlusion(), trace(),
@@ -74,7 +74,14 @@ struct Material {
     // A Shading Language displacement shader, run on each diced grid before the surface, and how
     // far it may move a point in camera space: the split loop grows the body's bounds by it.
     std::shared_ptr<const sl::ShaderInstance> displacement;
+    // A layered displacement (ShaderLayer "displacement"): its layers, run in order, each from the
+    // P and N the one before left; `displacement` is the last of them. Null: `displacement` alone.
+    std::shared_ptr<const LayerNetwork> displacementLayers;
     float displacementBound = 0;
+    // A bound given in "object" space: its radius there (else 0). The shared material's
+    // displacementBound takes the displacement shader's transform for the primitive's; the
+    // factory gives a primitive whose transform stretches otherwise its own copy (withObjectSpace).
+    float displacementBoundInObject = 0;
     // A volume shader (Atmosphere) run on the surface's colour after the surface shader.
     std::shared_ptr<const sl::ShaderInstance> atmosphere;
     // Volume shaders (Interior, Exterior) run over the segments of shaders' rays that end on this

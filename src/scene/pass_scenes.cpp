@@ -21,11 +21,14 @@ void stringsOf(const Scene& s, std::map<std::string, SourceLoc>& out) {
     };
     for (const LightDesc& l : s.lights) params(l.params);
     params(s.settings.imager.params);
+    for (const ShaderDesc& d : s.settings.imagerLayers.layers) params(d.params);
     std::set<const Attributes*> seen;
     auto attributes = [&](const AttributesPtr& a) {
         if (!a || !seen.insert(a.get()).second) return;
         params(a->surface.params);
+        for (const ShaderDesc& d : a->surfaceLayers.layers) params(d.params);
         params(a->displacement.params);
+        for (const ShaderDesc& d : a->displacementLayers.layers) params(d.params);
         params(a->atmosphere.params);
         params(a->interior.params);
         params(a->exterior.params);
@@ -77,6 +80,7 @@ Scene autoShadowFrame(const Scene& picture, const LightDesc& light) {
     map.quantize = kDepthQuantize;
     r.displays = {map};
     r.imager = ShaderDesc{};
+    r.imagerLayers = {};
     r.exposureGain = r.exposureGamma = 1;
     r.makeTextures.clear();
     r.makeShadows.clear();

@@ -84,6 +84,10 @@ std::string passKey(const Scene& f) {
     put(k, s.filter.type), put(k, s.filter.xwidth), put(k, s.filter.ywidth);
     put(k, s.shaderSearchPath), put(k, double(s.builtinShading));
     put(k, s.imager.name), put(k, s.imager.params);
+    for (size_t i = 0; i < s.imagerLayers.layers.size(); ++i)
+        put(k, s.imagerLayers.names[i]), put(k, s.imagerLayers.layers[i].name), put(k, s.imagerLayers.layers[i].params);
+    for (const ShaderConnection& c : s.imagerLayers.connections)
+        put(k, double(c.from)), put(k, double(c.to)), put(k, c.fromVar), put(k, c.toVar);
     put(k, s.exposureGain), put(k, s.exposureGamma), put(k, double(s.jitter)), put(k, s.depthFilter);
     put(k, double(s.bucketSize)), put(k, double(s.gridSize)), put(k, s.shadowBias);
     put(k, s.options), put(k, s.specularExponent);  // what shaders' option() and specular() read

@@ -83,13 +83,26 @@ void displacementBound(RibParser& reader, const ParamList& params) {
         throw InputError(params.find("sphere")->loc,
                          "Attribute \"displacementbound\": sphere must be a radius >= 0, not " + formatNumber(r));
     std::string space = params.getString("coordinatesystem", a.displacementBoundSpace);
-    if (space != "object" && space != "shader" && space != "world" && space != "camera" && space != "current") {
-        // A named coordinate system (CoordinateSystem, which streyes does not keep), or one of
-        // another renderer's ("surface"): the bound is taken in object space.
-        reader.log().lenient("displacementbound:" + space, params.find("coordinatesystem")->loc,
-                             "Attribute \"displacementbound\": coordinatesystem \"" + space +
-                                 "\" is not one of object, shader, world, camera, current: the bound is taken in object space");
-        space = "object";
+    const bool given = params.find("coordinatesystem") != nullptr;
+    const RibState& s = reader.state();
+    // The standard spaces ("current" is camera space, as in PRMan) are placed when the render
+    // binds the displacement; a name CoordinateSystem gave, and PRMan's "null" (the CTM at this
+    // request), are placed now.
+    if (given && space != "object" && space != "shader" && space != "world" && space != "camera" && space != "current") {
+        auto named = s.coordinateSystems.find(space);
+        if (space == "null") {
+            a.displacementBoundToWorld = s.ctm;
+        } else if (named != s.coordinateSystems.end() && !s.cameraSpaces.count(space)) {
+            a.displacementBoundToWorld = named->second;
+        } else {
+            // Another renderer's name ("surface", which Aqsis does not know either), or a name not
+            // given to CoordinateSystem (in the world): the bound is taken in object space.
+            reader.log().lenient("displacementbound:" + space, params.find("coordinatesystem")->loc,
+                                 "Attribute \"displacementbound\": coordinatesystem \"" + space +
+                                     "\" is none of object, shader, world, camera, current, null or a name "
+                                     "CoordinateSystem gave: the bound is taken in object space");
+            space = "object";
+        }
     }
     a.displacementBound = r;
     a.displacementBoundSpace = space;

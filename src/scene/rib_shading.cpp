@@ -39,10 +39,42 @@ void surface(RibParser& reader, RibArgs& args) {
     a.surfaceLayers = {};  // a Surface replaces a layered surface
 }
 
-// ShaderLayer "surface" "name" "layername" parameters...: a layer of the current surface when it
-// is layered, else the first layer of a new one (as Aqsis and PRMan 16 read it). The built-in
-// surfaces run as their shipped .sl files here. Layered displacements and imagers are warned
-// about and left out.
+// The layered shader a ShaderLayer or ConnectShaderLayers of `type` ("surface", "displacement",
+// "imager") adds to, and the description of it that stands for the whole (the last layer's, what
+// the render falls back on): the attribute state's, or the options' for an imager. Null (warned
+// about and ignored) for another type, or for an imager inside the world (an option, as Imager).
+struct LayerTarget {
+    ShaderNetwork* net = nullptr;
+    ShaderDesc* last = nullptr;
+};
+LayerTarget layerTarget(RibParser& reader, RibArgs& args, const std::string& type, const std::string& request) {
+    LayerTarget t;
+    if (type == "imager") {
+        if (reader.state().world != RibState::World::Before) {
+            reader.log().lenient("phase:" + request + ":imager", args.loc(),
+                                 request + " \"imager\" makes an option: it belongs before WorldBegin; ignored here");
+            return t;
+        }
+        RenderSettings& s = reader.scene().settings;
+        t.net = &s.imagerLayers;
+        t.last = &s.imager;
+        return t;
+    }
+    if (type != "surface" && type != "displacement") {
+        reader.log().lenient("shaderlayer:" + type, args.loc(),
+                             request + " \"" + type +
+                                 "\": only surface, displacement and imager shaders are layered; ignored");
+        return t;
+    }
+    Attributes& a = reader.state().mutableAttributes();
+    t.net = type == "surface" ? &a.surfaceLayers : &a.displacementLayers;
+    t.last = type == "surface" ? &a.surface : &a.displacement;
+    return t;
+}
+
+// ShaderLayer "type" "name" "layername" parameters...: a layer of the current surface,
+// displacement or imager when it is layered, else the first layer of a new one (as Aqsis and
+// PRMan 16 read it). The built-in surfaces run as their shipped .sl files here.
 void shaderLayer(RibParser& reader, RibArgs& args) {
     const std::string type = args.string("shader type");
     std::string name = args.string("shader name");
@@ -50,30 +82,25 @@ void shaderLayer(RibParser& reader, RibArgs& args) {
     if (name.empty()) args.fail("the shader name is empty");
     if (layer.empty()) args.fail("the layer name is empty");
     ParamList params = reader.readParams(args, true);
-    if (type != "surface") {
-        reader.log().lenient("shaderlayer:" + type, args.loc(),
-                             "ShaderLayer \"" + type + "\": only surface shaders are layered here; layer '" + layer +
-                                 "' ignored");
-        return;
-    }
-    if (name == "null") name = "defaultsurface";
-    Attributes& a = reader.state().mutableAttributes();
-    ShaderNetwork& net = a.surfaceLayers;
+    const LayerTarget t = layerTarget(reader, args, type, "ShaderLayer");
+    if (!t.net) return;
+    if (name == "null" && type == "surface") name = "defaultsurface";
+    ShaderNetwork& net = *t.net;
     for (const std::string& n : net.names)
         if (n == layer)
             reader.log().lenient("shaderlayer-name:" + layer, args.loc(),
-                                 "the surface already has a layer named '" + layer +
+                                 "the " + type + " already has a layer named '" + layer +
                                      "': later connections name the new one");
     net.layers.push_back(ShaderDesc{name, std::move(params), args.loc(), reader.state().ctm});
     net.names.push_back(layer);
-    a.surface = net.layers.back();  // what the surface is when the network cannot run: its last layer
+    *t.last = net.layers.back();  // what the shader is when the network cannot run: its last layer
 }
 
-// ConnectShaderLayers "surface" "layer1" "variable1" "layer2" "variable2": after layer1 runs,
-// layer2's variable2 takes layer1's variable1. Layers must be declared (in this attribute state)
-// before, and layer1 before layer2, as they run in order; else warned and skipped, as the peers
-// skip what they cannot connect. The variables are checked against the shaders when the render
-// binds them (shade/scene_shaders.cpp).
+// ConnectShaderLayers "type" "layer1" "variable1" "layer2" "variable2": after layer1 runs,
+// layer2's variable2 takes layer1's variable1. Layers must be declared (in this attribute state,
+// or the options for an imager) before, and layer1 before layer2, as they run in order; else
+// warned and skipped, as the peers skip what they cannot connect. The variables are checked
+// against the shaders when the render binds them (shade/scene_shaders.cpp).
 void connectShaderLayers(RibParser& reader, RibArgs& args) {
     const std::string type = args.string("shader type");
     ShaderConnection c;
@@ -83,15 +110,11 @@ void connectShaderLayers(RibParser& reader, RibArgs& args) {
     c.toVar = args.string("variable2");
     args.expectEnd();
     c.loc = args.loc();
-    if (type != "surface") {
-        reader.log().lenient("shaderlayer:" + type, args.loc(),
-                             "ConnectShaderLayers \"" + type + "\": only surface shaders are layered here; ignored");
-        return;
-    }
-    const ShaderNetwork& net = reader.state().attributes->surfaceLayers;
+    ShaderNetwork* const net = layerTarget(reader, args, type, "ConnectShaderLayers").net;
+    if (!net) return;
     auto find = [&](const std::string& n) {
-        for (size_t i = net.names.size(); i-- > 0;)  // the latest of that name
-            if (net.names[i] == n) return int(i);
+        for (size_t i = net->names.size(); i-- > 0;)  // the latest of that name
+            if (net->names[i] == n) return int(i);
         return -1;
     };
     c.from = find(layer1);
@@ -100,8 +123,8 @@ void connectShaderLayers(RibParser& reader, RibArgs& args) {
     for (const auto& [index, n] : {std::pair<int, std::string>{c.from, layer1}, {c.to, layer2}})
         if (index < 0) {
             reader.log().lenient("connect:" + what, args.loc(),
-                                 what + ": the surface has no layer named '" + n +
-                                     "' (ShaderLayer \"surface\" declares layers first): not connected");
+                                 what + ": the " + type + " has no layer named '" + n + "' (ShaderLayer \"" + type +
+                                     "\" declares layers first): not connected");
             return;
         }
     if (c.from >= c.to) {
@@ -110,7 +133,7 @@ void connectShaderLayers(RibParser& reader, RibArgs& args) {
                                  "' does not come after '" + layer1 + "': not connected");
         return;
     }
-    reader.state().mutableAttributes().surfaceLayers.connections.push_back(std::move(c));
+    net->connections.push_back(std::move(c));
 }
 
 // A shader request's name and parameters, with the CTM as its "shader" space. "null" (the RI
@@ -126,7 +149,9 @@ ShaderDesc readShader(RibParser& reader, RibArgs& args) {
 // depthcue) run on every surface point after its surface, along I; Imager (an option): over each
 // finished frame. All bound and checked when the render starts (shade/scene_shaders.h).
 void displacement(RibParser& reader, RibArgs& args) {
-    reader.state().mutableAttributes().displacement = readShader(reader, args);
+    Attributes& a = reader.state().mutableAttributes();
+    a.displacement = readShader(reader, args);
+    a.displacementLayers = {};  // a Displacement replaces a layered one
 }
 
 void atmosphere(RibParser& reader, RibArgs& args) { reader.state().mutableAttributes().atmosphere = readShader(reader, args); }
@@ -136,7 +161,10 @@ void atmosphere(RibParser& reader, RibArgs& args) { reader.state().mutableAttrib
 void interior(RibParser& reader, RibArgs& args) { reader.state().mutableAttributes().interior = readShader(reader, args); }
 void exterior(RibParser& reader, RibArgs& args) { reader.state().mutableAttributes().exterior = readShader(reader, args); }
 
-void imager(RibParser& reader, RibArgs& args) { reader.scene().settings.imager = readShader(reader, args); }
+void imager(RibParser& reader, RibArgs& args) {
+    reader.scene().settings.imager = readShader(reader, args);
+    reader.scene().settings.imagerLayers = {};  // an Imager replaces a layered one
+}
 
 // A light is on in the attribute block where it is declared (and the blocks inside it): its index
 // goes into the current attributes' light list, which AttributeEnd restores.

@@ -63,10 +63,11 @@ bool sameAttributes(const Attributes& a, const Attributes& b) {
         return true;
     };
     return a.color == b.color && a.opacity == b.opacity && sameShader(a.surface, b.surface) &&
-           sameNetwork(a.surfaceLayers, b.surfaceLayers) &&
+           sameNetwork(a.surfaceLayers, b.surfaceLayers) && sameNetwork(a.displacementLayers, b.displacementLayers) &&
            sameShader(a.displacement, b.displacement) && sameShader(a.atmosphere, b.atmosphere) &&
            sameShader(a.interior, b.interior) && sameShader(a.exterior, b.exterior) &&
            a.displacementBound == b.displacementBound && a.displacementBoundSpace == b.displacementBoundSpace &&
+           sameTransform(a.displacementBoundToWorld, b.displacementBoundToWorld) &&
            a.shadingRate == b.shadingRate && a.motionFactor == b.motionFactor && a.lights == b.lights && sameParams(a.user, b.user) &&
            sameBasis(a.uBasis, b.uBasis) && sameBasis(a.vBasis, b.vBasis) &&  // trim: NuPatchDesc compares its own copy
            a.twoSided == b.twoSided && a.solid == b.solid && a.orientation == b.orientation && a.smoothShading == b.smoothShading &&

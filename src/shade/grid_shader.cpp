@@ -140,11 +140,14 @@ void GridShader::setIncident(const Grid& grid, int k) {
     sgrid_.set(sl::Global::I, sl::ValueRef::aos(orthoI_.data()));
 }
 
-// The displacement shader moves P (and sets N) over the grid; they replace the diced ones.
+// The displacement shader (or each layer of a layered one, in the last layer's "shader" space)
+// moves P (and sets N) over the grid; they replace the diced ones.
 void GridShader::displace(const Material& m, Grid& grid, int k, double time) {
     useShaderSpace(m.attributes ? &m.attributes->displacement.shaderToWorld : nullptr, &m, time);
-    vm_->run(*m.displacement, sgrid_, {});
-    const sl::ValueRef P = vm_->result(sl::Global::P), N = vm_->result(sl::Global::N);
+    if (m.displacementLayers) network_.run(*vm_, *m.displacementLayers, sgrid_, {});
+    else vm_->run(*m.displacement, sgrid_, {});
+    auto result = [&](sl::Global g) { return m.displacementLayers ? network_.result(*vm_, g) : vm_->result(g); };
+    const sl::ValueRef P = result(sl::Global::P), N = result(sl::Global::N);
     const int n = grid.vertexCount();
     // Read both before writing: a result the shader did not touch is the grid's own array.
     base_.resize(size_t(n) * 2);
@@ -170,7 +173,7 @@ void GridShader::shadeSurface(Grid& grid, int k, double time) {
     } else {
         runSurface(m, grid, k, time);
         // The shader's Oi (Os where it writes none): kept only when some point is see-through.
-        const sl::ValueRef oi = vm_->result(sl::Global::Oi);
+        const sl::ValueRef oi = surfaceResult(m, sl::Global::Oi);
         grid.Oi[k].clear();
         if (oi.valid())
             for (size_t i = 0; i < n; ++i) {
@@ -456,7 +459,7 @@ void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
     const int n = grid.vertexCount();
     runSurfaceShaders(m, unshadowed_);
     if (aovs_ && grid.aovCount == aovs_->count) copyShaderOutputs(grid, k);
-    const sl::ValueRef ci = vm_->result(sl::Global::Ci);
+    const sl::ValueRef ci = surfaceResult(m, sl::Global::Ci);
     std::vector<Color>& Ci = grid.Ci[k];
     for (int i = 0; i < n; ++i) Ci[size_t(i)] = ci.valid() ? ci.vec(i) : Color{0, 0, 0};
     if (grid.shadowSlots > 0) {
@@ -471,7 +474,7 @@ void GridShader::runSurface(const Material& m, Grid& grid, int k, double time) {
                 withOne_.assign(unshadowed_.begin(), unshadowed_.end());
                 addLight(s, li, time, withOne_);
                 runSurfaceShaders(m, withOne_);
-                const sl::ValueRef c = vm_->result(sl::Global::Ci);
+                const sl::ValueRef c = surfaceResult(m, sl::Global::Ci);
                 for (int i = 0; i < n; ++i)
                     cl[size_t(i) * size_t(grid.shadowSlots) + size_t(slot)] = c.vec(i) - base_[size_t(i)];
             }

@@ -25,7 +25,7 @@
 #include "geom/grid.h"
 #include "geom/lights.h"
 #include "shade/scene_shaders.h"
-#include "shade/surface_network.h"
+#include "shade/layer_network.h"
 #include "shade/vm/vm.h"
 #include "streyes/stats.h"
 #include "util/aov.h"
@@ -124,6 +124,10 @@ class GridShader {
     void runSurface(const Material& m, Grid& grid, int k, double time);
     // The surface's shader, or each layer of a layered one, over sgrid_ with `lights`.
     void runSurfaceShaders(const Material& m, const std::vector<sl::LightRef>& lights);
+    // After runSurfaceShaders: the surface's value of `g` (a layered one's, LayerNetworkRunner::result).
+    sl::ValueRef surfaceResult(const Material& m, sl::Global g) const {
+        return m.layers ? network_.result(*vm_, g) : vm_->result(g);
+    }
     void runAtmosphere(const Material& m, Grid& grid, int k, double time);
     // The shading grid's inputs for slot k (once per slot, before any of its shaders runs).
     void prepare(const Material& m, const Grid& grid, int k, double time);
@@ -152,7 +156,7 @@ class GridShader {
     std::vector<Color> base_, withLight_;
     std::vector<Vec3f> orthoI_;  // I under an orthographic camera
     std::vector<sl::Primvar> primvars_;
-    SurfaceNetworkRunner network_;
+    LayerNetworkRunner network_;  // a layered surface's or displacement's (one after the other)
     std::vector<float> primvarData_;  // their values: constant ones, or n per component
     Grid hit_;  // one point, for shadeHit and runVolume
     Vec3f volumeI_, volumeE_;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "shade/surface_network.h"
+#include "shade/layer_network.h"
 #include "shade/vm/ops.h"
 #include "scene/search_path.h"
 #include "shade/vm/vm.h"
@@ -86,19 +86,6 @@ sl::BaseType baseTypeOf(const Param& p) {
         case ParamType::HPoint: break;
     }
     throw InputError(p.loc, "parameter '" + p.name + "': the Shading Language has no hpoint type");
-}
-
-// An upper bound on how much `m` stretches a vector over all its keys (the Frobenius norm of
-// the linear part, never below the largest singular value).
-double largestStretch(const MotionTransform& m) {
-    double worst = 0;
-    for (const Matrix4& k : m.keys()) {
-        double f = 0;
-        for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) f += k(r, c) * k(r, c);
-        worst = std::max(worst, std::sqrt(f));
-    }
-    return worst;
 }
 
 // Does the camera move rigidly: is every key of world -> camera the first key's up to a rotation
@@ -225,9 +212,14 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
         if (p.name.compare(0, prefix.size(), prefix) == 0 && p.type == ParamType::Matrix && p.nums.size() == 16)
             coordinateSystems_.push_back({p.name.substr(prefix.size()), Matrix4::fromRowMajor(p.nums.data())});
 
-    if (!scene.settings.imager.name.empty())
+    if (!scene.settings.imagerLayers.layers.empty()) {
+        BoundLayers im = bindLayers(scene.settings.imagerLayers, sl::ShaderType::Imager);
+        if (!im.shaders.empty()) imager_ = im.shaders.back();
+        imagerLayers_ = std::move(im.network);
+    } else if (!scene.settings.imager.name.empty()) {
         imager_ = instance(scene.settings.imager.name, scene.settings.imager.params, scene.settings.imager.loc,
                            sl::ShaderType::Imager);
+    }
     for (const LightDesc& d : scene.lights) {
         builtinLight_.push_back(isBuiltinLight(d));
         lights_.push_back(instance(d.type, d.params, d.loc, sl::ShaderType::Light));
@@ -287,6 +279,29 @@ std::shared_ptr<sl::ShaderInstance> SceneShaders::instance(const std::string& na
     return shader;
 }
 
+SceneShaders::BoundLayers SceneShaders::bindLayers(const ShaderNetwork& net, sl::ShaderType type) const {
+    BoundLayers out;
+    ShaderNetwork found;
+    std::vector<int> index;
+    for (size_t i = 0; i < net.layers.size(); ++i) {
+        const ShaderDesc& d = net.layers[i];
+        std::shared_ptr<sl::ShaderInstance> s = instance(d.name, d.params, d.loc, type);
+        index.push_back(s ? int(out.shaders.size()) : -1);
+        if (!s) continue;
+        out.shaders.push_back(std::move(s));
+        out.descs.push_back(&d);
+        found.layers.push_back(d);
+        found.names.push_back(net.names[i]);
+    }
+    for (ShaderConnection c : net.connections) {
+        c.from = index[size_t(c.from)];
+        c.to = index[size_t(c.to)];
+        if (c.from >= 0 && c.to >= 0) found.connections.push_back(std::move(c));
+    }
+    if (out.shaders.size() > 1) out.network = bindLayerNetwork(found, type, out.shaders, log_);
+    return out;
+}
+
 void SceneShaders::runImager(FrameImage& frame) const {
     if (!imager_ || frame.width == 0 || frame.height == 0) return;
     const int n = frame.width * frame.height;
@@ -308,14 +323,22 @@ void SceneShaders::runImager(FrameImage& frame) const {
     sl::ShadingVM vm;
     vm.setTextureSource(textures());
     vm.setLog(&log_);
-    vm.run(*imager_, g);
-    const sl::ValueRef ci = vm.result(sl::Global::Ci), alpha = vm.result(sl::Global::alpha);
-    // The pixel's alpha: the imager's alpha when it names it, else the mean of its Oi (as Aqsis
-    // takes it: an imager that draws over an empty world, a fisheye's disc, sets Oi).
-    const sl::ShaderProgram& p = imager_->program();
-    const bool ownAlpha = p.globalReg[size_t(sl::Global::alpha)] >= 0;
-    const sl::ValueRef oi = vm.result(sl::Global::Oi);
-    const bool fromOi = !ownAlpha && p.globalReg[size_t(sl::Global::Oi)] >= 0 && oi.valid();
+    LayerNetworkRunner layers;  // its results stay valid until it goes
+    if (imagerLayers_) layers.run(vm, *imagerLayers_, g, {});
+    else vm.run(*imager_, g);
+    auto result = [&](sl::Global v) { return imagerLayers_ ? layers.result(vm, v) : vm.result(v); };
+    const sl::ValueRef ci = result(sl::Global::Ci), alpha = result(sl::Global::alpha);
+    // The pixel's alpha: the imager's alpha when it (a layer of it) names it, else the mean of its
+    // Oi (as Aqsis takes it: an imager that draws over an empty world, a fisheye's disc, sets Oi).
+    auto names = [&](sl::Global v) {
+        if (!imagerLayers_) return imager_->program().globalReg[size_t(v)] >= 0;
+        for (const auto& l : imagerLayers_->layers)
+            if (l->program().globalReg[size_t(v)] >= 0) return true;
+        return false;
+    };
+    const bool ownAlpha = names(sl::Global::alpha);
+    const sl::ValueRef oi = result(sl::Global::Oi);
+    const bool fromOi = !ownAlpha && names(sl::Global::Oi) && oi.valid();
     std::vector<float> out(size_t(n) * 4);
     for (int i = 0; i < n; ++i) {
         for (int c = 0; c < 3; ++c) out[size_t(i) * 4 + size_t(c)] = ci.valid() ? ci.at(c, i) : rgba[size_t(i) * 4 + size_t(c)];
@@ -351,23 +374,41 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         const ShaderDesc* none = nullptr;
         if (*out) firstVolume_.compare_exchange_strong(none, desc, std::memory_order_relaxed);
     }
-    if (!a.displacement.name.empty()) {
-        m.displacement = instance(a.displacement.name, a.displacement.params, a.displacement.loc,
-                                  sl::ShaderType::Displacement);
-        if (m.displacement) {
-            // The bound's radius in camera space.
-            const std::string& space = a.displacementBoundSpace;
-            double scale = 1;
-            if (space == "object" || space == "shader")
-                scale = largestStretch(a.displacement.shaderToWorld) * largestStretch(worldToCamera_);
-            else if (space == "world")
-                scale = largestStretch(worldToCamera_);
-            m.displacementBound = float(a.displacementBound * scale);
-            m.readsTime = m.readsTime || readsTime(*m.displacement);
-            m.readsObjectSpace = m.readsObjectSpace || namesObjectSpace(m.displacement.get());
-            m.tracesRays = m.tracesRays || castsRays(m.displacement.get());
-            m.viewUse = std::max(m.viewUse, shaderUse(*m.displacement, a.displacement));
+    // The displacement: its shader, or each layer of a layered one (the last is
+    // Material::displacement, whose "shader" space every layer runs in).
+    BoundLayers displacement;
+    if (!a.displacementLayers.layers.empty()) {
+        displacement = bindLayers(a.displacementLayers, sl::ShaderType::Displacement);
+    } else if (!a.displacement.name.empty()) {
+        if (auto s = instance(a.displacement.name, a.displacement.params, a.displacement.loc, sl::ShaderType::Displacement)) {
+            displacement.shaders.push_back(std::move(s));
+            displacement.descs.push_back(&a.displacement);
         }
+    }
+    if (!displacement.shaders.empty()) {
+        m.displacement = displacement.shaders.back();
+        m.displacementLayers = displacement.network;
+        // The bound's radius in camera space: "camera" and "current" are camera space; "object"
+        // is the primitive's (taken here as the shader's; the factory corrects a primitive whose
+        // transform stretches otherwise: Material::displacementBoundInObject).
+        const std::string& space = a.displacementBoundSpace;
+        double scale = 1;
+        if (space == "object" || space == "shader")
+            scale = largestStretch(a.displacement.shaderToWorld) * largestStretch(worldToCamera_);
+        else if (space == "world")
+            scale = largestStretch(worldToCamera_);
+        else if (space != "camera" && space != "current")  // a CoordinateSystem's, or PRMan's "null"
+            scale = largestStretch(a.displacementBoundToWorld) * largestStretch(worldToCamera_);
+        m.displacementBound = float(a.displacementBound * scale);
+        if (space == "object") m.displacementBoundInObject = float(a.displacementBound);
+        for (size_t i = 0; i < displacement.shaders.size(); ++i) {
+            const sl::ShaderInstance& s = *displacement.shaders[i];
+            m.readsTime = m.readsTime || readsTime(s);
+            m.readsObjectSpace = m.readsObjectSpace || namesObjectSpace(&s);
+            m.tracesRays = m.tracesRays || castsRays(&s);
+            m.viewUse = std::max(m.viewUse, shaderUse(s, *displacement.descs[i]));
+        }
+        if (m.displacementLayers && connectsViewValues(*m.displacementLayers)) m.viewUse = ViewUse::Reads;
     }
     struct NoteRays {  // however bind returns
         const Material& m;
@@ -397,24 +438,10 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
     std::vector<std::shared_ptr<const sl::ShaderInstance>> layers;
     std::vector<const ShaderDesc*> layerDescs;
     if (!a.surfaceLayers.layers.empty()) {
-        ShaderNetwork found;
-        std::vector<int> index;
-        for (size_t i = 0; i < a.surfaceLayers.layers.size(); ++i) {
-            const ShaderDesc& d = a.surfaceLayers.layers[i];
-            std::shared_ptr<sl::ShaderInstance> s = instance(d.name, d.params, d.loc, sl::ShaderType::Surface);
-            index.push_back(s ? int(layers.size()) : -1);
-            if (!s) continue;
-            layers.push_back(std::move(s));
-            layerDescs.push_back(&d);
-            found.layers.push_back(d);
-            found.names.push_back(a.surfaceLayers.names[i]);
-        }
-        for (ShaderConnection c : a.surfaceLayers.connections) {
-            c.from = index[size_t(c.from)];
-            c.to = index[size_t(c.to)];
-            if (c.from >= 0 && c.to >= 0) found.connections.push_back(std::move(c));
-        }
-        if (layers.size() > 1) m.layers = bindSurfaceNetwork(found, layers, log_);
+        BoundLayers surface = bindLayers(a.surfaceLayers, sl::ShaderType::Surface);
+        layers = std::move(surface.shaders);
+        layerDescs = std::move(surface.descs);
+        m.layers = std::move(surface.network);
     }
     // The built-in shading reads no primitive variables: a primitive with some runs the shader.
     if (layers.empty() && builtinShading_ && builtinLights && isBuiltinSurface(name) && m.primvars.params.empty()) {
@@ -455,9 +482,12 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         usesLights = usesLights || s.program().usesLights;
     }
     if (m.atmosphere) m.viewUse = std::max(m.viewUse, shaderUse(*m.atmosphere, a.atmosphere));
-    if (m.displacement) m.viewUse = std::max(m.viewUse, shaderUse(*m.displacement, a.displacement));
+    for (size_t i = 0; i < displacement.shaders.size(); ++i)
+        m.viewUse = std::max(m.viewUse, shaderUse(*displacement.shaders[i], *displacement.descs[i]));
     if (usesLights) m.viewUse = std::max(m.viewUse, lightsUse);
     if (m.tracesRays) m.viewUse = ViewUse::Reads;
+    for (const LayerNetwork* net : {m.layers.get(), m.displacementLayers.get()})
+        if (net && connectsViewValues(*net)) m.viewUse = ViewUse::Reads;
     m.surface = std::move(shader);
 }
 

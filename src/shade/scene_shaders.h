@@ -76,8 +76,9 @@ class SceneShaders final : public MaterialBinder {
     // shading serves it.
     void bind(Material& material, const Attributes& attributes) const override;
 
-    // Runs the scene's Imager shader over a finished frame (nothing without one): Ci and alpha
-    // are the pixel's, P its raster position (x + 0.5, y + 0.5, depth).
+    // Runs the scene's Imager shader (or each layer of a layered one) over a finished frame
+    // (nothing without one): Ci and alpha are the pixel's, P its raster position (x + 0.5, y + 0.5,
+    // depth).
     void runImager(FrameImage& frame) const;
     bool hasImager() const { return imager_ != nullptr; }
 
@@ -126,6 +127,14 @@ class SceneShaders final : public MaterialBinder {
   private:
     std::shared_ptr<sl::ShaderInstance> instance(const std::string& name, const ParamList& params,
                                                  const SourceLoc& loc, sl::ShaderType type) const;
+    // A layered shader of `type` (ShaderLayer): each layer's instance, a layer whose shader is not
+    // found warned about and left out with its connections; the network when more than one is left.
+    struct BoundLayers {
+        std::vector<std::shared_ptr<const sl::ShaderInstance>> shaders;
+        std::vector<const ShaderDesc*> descs;
+        std::shared_ptr<const LayerNetwork> network;  // null: one layer or none
+    };
+    BoundLayers bindLayers(const ShaderNetwork& net, sl::ShaderType type) const;
 
     MotionTransform worldToCamera_;
     OptionValues options_;
@@ -134,7 +143,8 @@ class SceneShaders final : public MaterialBinder {
     bool searchPathSet_ = false;
     std::vector<std::shared_ptr<sl::ShaderInstance>> lights_;
     std::vector<bool> builtinLight_;
-    std::shared_ptr<sl::ShaderInstance> imager_;
+    std::shared_ptr<const sl::ShaderInstance> imager_;       // the last layer of a layered one
+    std::shared_ptr<const LayerNetwork> imagerLayers_;      // a layered imager (ShaderLayer "imager")
     bool builtinShading_ = true;
     float specularExponent_ = 8;
     // Every camera of the render (a sequence's frames' too) moves by rotation and translation

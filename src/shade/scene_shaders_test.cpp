@@ -1,6 +1,8 @@
 // What SceneShaders::bind and makeMaterial say a material reads of the view (Material::viewUse).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "shade/scene_shaders.h"
@@ -100,6 +102,27 @@ TEST(MaterialViewUse, ACameraThatScalesOrShearsReadsTheView) {
     EXPECT_EQ(viewUseOf(lights + "Surface \"matte\"\nSphere 1 -1 1 360", zoomByScale), ViewUse::Reads);
     // The built-in constant reads nothing of the view, whatever the camera.
     EXPECT_EQ(viewUseOf(lights + "Surface \"constant\"\nSphere 1 -1 1 360", zoomByScale), ViewUse::None);
+}
+
+// A layered displacement: the widest of its layers; a connection that carries a predefined
+// variable of the view (I) into a layer's parameter, which the analysis takes as given, reads it.
+TEST(MaterialViewUse, ALayeredDisplacementCombinesItsLayersAndItsConnections) {
+    const std::string dir = ::testing::TempDir() + "/view_use_layers";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/pushdir.sl") << "displacement pushdir(varying vector dir = 0) { P += 0.01 * dir; N = calculatenormal(P); }\n";
+    const std::string path = "Option \"searchpath\" \"shader\" \"" + dir + ":@\"\n";
+    const std::string lights = kStillLights, layers = "Surface \"constant\"\n"
+                                                      "ShaderLayer \"displacement\" \"bumpy\" \"one\"\n"
+                                                      "ShaderLayer \"displacement\" \"pushdir\" \"two\"\n";
+    EXPECT_EQ(viewUseOf(lights + layers + "Sphere 1 -1 1 360", path), ViewUse::None);
+    EXPECT_EQ(viewUseOf(lights + layers + "ConnectShaderLayers \"displacement\" \"one\" \"I\" \"two\" \"dir\"\n"
+                                          "Sphere 1 -1 1 360",
+                        path),
+              ViewUse::Reads);
+    // A layered surface (sky reads the view) over a matte one: the widest.
+    EXPECT_EQ(viewUseOf(lights + "ShaderLayer \"surface\" \"sky\" \"one\"\nShaderLayer \"surface\" \"matte\" \"two\"\n"
+                                 "Sphere 1 -1 1 360"),
+              ViewUse::Reads);
 }
 
 }  // namespace

@@ -158,4 +158,15 @@ std::vector<double> unionTimes(const std::vector<double>& a, const std::vector<d
     return r;
 }
 
+double largestStretch(const MotionTransform& m) {
+    double worst = 0;
+    for (const Matrix4& k : m.keys()) {
+        double f = 0;
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) f += k(r, c) * k(r, c);
+        worst = std::max(worst, std::sqrt(f));
+    }
+    return worst;
+}
+
 }  // namespace streyes

@@ -1,4 +1,4 @@
-#include "shade/surface_network.h"
+#include "shade/layer_network.h"
 
 #include <algorithm>
 
@@ -34,11 +34,15 @@ VarInfo lookUp(const sl::ShaderProgram& p, const std::string& name) {
 
 }  // namespace
 
-std::shared_ptr<const SurfaceNetwork> bindSurfaceNetwork(const ShaderNetwork& net,
-                                                         std::vector<std::shared_ptr<const sl::ShaderInstance>> layers,
-                                                         Log& log) {
-    auto out = std::make_shared<SurfaceNetwork>();
+std::shared_ptr<const LayerNetwork> bindLayerNetwork(const ShaderNetwork& net, sl::ShaderType type,
+                                                     std::vector<std::shared_ptr<const sl::ShaderInstance>> layers,
+                                                     Log& log) {
+    auto out = std::make_shared<LayerNetwork>();
     out->layers = std::move(layers);
+    using G = sl::Global;
+    out->carried = type == sl::ShaderType::Displacement ? std::vector<G>{G::P, G::N}
+                   : type == sl::ShaderType::Imager     ? std::vector<G>{G::Ci, G::Oi, G::alpha}
+                                                        : std::vector<G>{G::Ci, G::Oi};
     for (const ShaderConnection& c : net.connections) {
         const sl::ShaderProgram& from = out->layers[size_t(c.from)]->program();
         const sl::ShaderProgram& to = out->layers[size_t(c.to)]->program();
@@ -67,7 +71,7 @@ std::shared_ptr<const SurfaceNetwork> bindSurfaceNetwork(const ShaderNetwork& ne
             skip(c.fromVar + " varies over the surface; shader \"" + to.name + "\" declares " + c.toVar + " uniform");
             continue;
         }
-        SurfaceNetwork::Link l;
+        LayerNetwork::Link l;
         l.from = c.from;
         l.to = c.to;
         l.fromName = c.fromVar;
@@ -81,13 +85,27 @@ std::shared_ptr<const SurfaceNetwork> bindSurfaceNetwork(const ShaderNetwork& ne
     // In order of their source layer, connections of one layer in the file's order: a stable
     // insertion sort over a handful of links (std::stable_sort's temporary buffer trips the
     // sanitizer's new/delete pairing in the clang build).
-    std::vector<SurfaceNetwork::Link>& links = out->links;
+    std::vector<LayerNetwork::Link>& links = out->links;
     for (size_t i = 1; i < links.size(); ++i)
         for (size_t j = i; j > 0 && links[j].from < links[j - 1].from; --j) std::swap(links[j], links[j - 1]);
     return out;
 }
 
-void SurfaceNetworkRunner::run(sl::ShadingVM& vm, const SurfaceNetwork& net, sl::ShadingGrid& grid,
+bool connectsViewValues(const LayerNetwork& net) {
+    using G = sl::Global;
+    for (const LayerNetwork::Link& l : net.links) {
+        switch (l.fromGlobal) {
+            case G::Count:  // a parameter: an output the analysis checked, or an input it takes as given
+            case G::Cs: case G::Os: case G::Ci: case G::Oi: case G::alpha:
+            case G::s: case G::t: case G::u: case G::v: case G::du: case G::dv: case G::time:
+                break;
+            default: return true;
+        }
+    }
+    return false;
+}
+
+void LayerNetworkRunner::run(sl::ShadingVM& vm, const LayerNetwork& net, sl::ShadingGrid& grid,
                                const std::vector<sl::LightRef>& lights) {
     const auto savedGlobals = grid.globals;
     const std::vector<sl::Primvar>* savedPrimvars = grid.primvars;
@@ -100,8 +118,9 @@ void SurfaceNetworkRunner::run(sl::ShadingVM& vm, const SurfaceNetwork& net, sl:
     }
     if (values_.size() < net.links.size()) values_.resize(net.links.size());
     if (strings_.size() < net.links.size()) strings_.resize(net.links.size());
-    ci_.resize(3 * n);
-    oi_.resize(3 * n);
+    if (carried_.size() < net.carried.size()) carried_.resize(net.carried.size());
+    carriedViews_.assign(net.carried.size(), sl::ValueRef{});
+    last_ = &net;
 
     // The value `v` copied into `dst` (comps x n, or comps when uniform): a view of it.
     auto keep = [n](const sl::ValueRef& v, int comps, std::vector<float>& dst) {
@@ -120,13 +139,17 @@ void SurfaceNetworkRunner::run(sl::ShadingVM& vm, const SurfaceNetwork& net, sl:
         grid.primvars = &primvars_[i];
         vm.run(*net.layers[i], grid, lights);
         if (i + 1 == layers) break;
-        // What this layer leaves for the next: Ci and Oi, then its connections' values.
-        for (sl::Global g : {sl::Global::Ci, sl::Global::Oi}) {
+        // What this layer leaves for the next (Ci and Oi, or P and N ...), then its connections'
+        // values. A result the layer did not touch is its input, kept as it is.
+        for (size_t c = 0; c < net.carried.size(); ++c) {
+            const sl::Global g = net.carried[c];
             const sl::ValueRef r = vm.result(g);
-            if (r.valid()) grid.set(g, keep(r, 3, g == sl::Global::Ci ? ci_ : oi_));
+            if (!r.valid()) continue;
+            carriedViews_[c] = keep(r, sl::globalInfo(g).type.comps(), carried_[c]);
+            grid.set(g, carriedViews_[c]);
         }
         for (; link < net.links.size() && net.links[link].from == int(i); ++link) {
-            const SurfaceNetwork::Link& l = net.links[link];
+            const LayerNetwork::Link& l = net.links[link];
             sl::Primvar pv;
             pv.name = l.toName;
             pv.type = l.type;
@@ -149,6 +172,13 @@ void SurfaceNetworkRunner::run(sl::ShadingVM& vm, const SurfaceNetwork& net, sl:
     }
     grid.globals = savedGlobals;
     grid.primvars = savedPrimvars;
+}
+
+sl::ValueRef LayerNetworkRunner::result(const sl::ShadingVM& vm, sl::Global g) const {
+    if (last_ && !last_->layers.empty() && last_->layers.back()->program().globalReg[size_t(g)] < 0)
+        for (size_t c = 0; c < last_->carried.size() && c < carriedViews_.size(); ++c)
+            if (last_->carried[c] == g && carriedViews_[c].valid()) return carriedViews_[c];
+    return vm.result(g);
 }
 
 }  // namespace streyes

@@ -1,0 +1,87 @@
+// Attribute "displacementbound" "coordinatesystem": the bound's radius is measured in the space
+// named there, "shader" (the displacement's CTM), "object" (the primitive's), "world", "camera",
+// "current", PRMan's "null" (the CTM at the Attribute) or a CoordinateSystem's. A displacement
+// of 16 pixels with a bound of 2.25 given in a space scaled by 8 draws the whole displaced plane;
+// the same bound in an unscaled space is too small (at most 3 x 2.25 = 6.75 pixels: the bound's
+// stretch is the Frobenius norm, up to sqrt(3) a transform) and loses the buckets right of x = 40
+// (which shows the test can fail).
+#include <gtest/gtest.h>
+
+#include "shader_test_util.h"
+#include "test_util.h"
+
+namespace streyes {
+namespace {
+
+const char* kShiftX = "displacement shiftx(float dx = 0) { P += vector(dx, 0, 0); N = calculatenormal(P); }\n";
+
+// The plane [0, 32] x [0, 64] at depth 10 moved 16 pixels right: its pixels are x in [16, 48).
+// `before` comes before the Displacement, `between` between it and the plane (as transforms).
+test::RenderResult shifted(const test::ShaderDir& d, const std::string& bound, const std::string& before,
+                           const std::string& between, const std::string& plane = test::square(0, 32, 0, 64, 10)) {
+    const std::string rib = test::orthographicView(64, 64, d.option()) + "WorldBegin\nSurface \"constant\"\n" +
+                            "TransformBegin\n" + before + "Attribute \"displacementbound\" \"sphere\" [2.25] " +
+                            bound + "\nDisplacement \"shiftx\" \"dx\" 16\nTransformEnd\n" + between + plane +
+                            "WorldEnd\n";
+    RenderOptions o;
+    o.bucketSize = 8;  // buckets right of x = 40 see the plane only through its bound
+    return test::renderRib(rib, o);
+}
+
+// Whether the displaced plane is drawn whole, and nothing else.
+bool whole(const test::RenderResult& r) {
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            if (r.alpha(0, x, y) != (x >= 16 && x < 48 ? 1.0f : 0.0f)) return false;
+    return true;
+}
+
+TEST(DisplacementBound, TheRadiusIsMeasuredInTheSpaceNamed) {
+    test::ShaderDir d;
+    d.add("shiftx", kShiftX);
+    const std::string scale = "Scale 8 8 8\n";
+    struct Case {
+        std::string what, bound, before, between;
+        bool whole;
+    };
+    const std::string plane = test::square(0, 32, 0, 64, 10);
+    const std::vector<Case> cases = {
+        // The displacement's shader space is scaled by 8: 2.25 there is 18 pixels.
+        {"shader", "\"coordinatesystem\" [\"shader\"]", scale, "", true},
+        {"world", "\"coordinatesystem\" [\"world\"]", scale, "", false},
+        {"camera", "\"coordinatesystem\" [\"camera\"]", scale, "", false},
+        {"current", "\"coordinatesystem\" [\"current\"]", scale, "", false},
+        // Object space is the primitive's: unscaled here, though the shader's is.
+        {"object, shader scaled", "\"coordinatesystem\" [\"object\"]", scale, "", false},
+        {"object by default, shader scaled", "", scale, "", false},
+        // ... and scaled here, though the shader's is not.
+        {"object, primitive scaled", "\"coordinatesystem\" [\"object\"]", "", scale, true},
+        // A name CoordinateSystem gave under the scale, and PRMan's "null" (the CTM at the Attribute).
+        {"named", "\"coordinatesystem\" [\"big\"]", "", "", true},
+        {"null", "\"coordinatesystem\" [\"null\"]", scale, "", true},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.what);
+        const std::string named = "TransformBegin\nScale 8 8 8\nCoordinateSystem \"big\"\nTransformEnd\n";
+        // The primitive scaled by 8: the same plane is the square an eighth its size.
+        const bool primitiveScaled = !c.between.empty();
+        const test::RenderResult r = shifted(d, c.bound, named + c.before, c.between,
+                                             primitiveScaled ? test::square(0, 4, 0, 8, 1.25) : plane);
+        EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+        EXPECT_EQ(whole(r), c.whole);
+    }
+}
+
+TEST(DisplacementBound, AnotherRenderersSpaceIsWarnedAboutOnceAndTakenAsObjectSpace) {
+    test::ShaderDir d;
+    d.add("shiftx", kShiftX);
+    // Aqsis's repel.rib names "surface", which neither PRMan's list nor Aqsis's own knows.
+    const test::RenderResult r = shifted(d, "\"coordinatesystem\" [\"surface\"]", "", "Scale 8 8 8\n",
+                                         test::square(0, 4, 0, 8, 1.25));
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("coordinatesystem \"surface\""), std::string::npos) << r.warnings[0];
+    EXPECT_TRUE(whole(r));  // object space: the primitive's scale of 8
+}
+
+}  // namespace
+}  // namespace streyes
