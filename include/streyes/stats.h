@@ -62,6 +62,7 @@ namespace streyes {
     COUNT(samplesBehind, "samples_behind") /* not tested: the micropolygon lay behind their hit */    \
     COUNT(gridGroupsBehind, "grid_groups_behind") /* a moving grid's slices skipped: all of it behind */ \
     COUNT(patchGroupsBehind, "patch_groups_behind") /* the same for a patch of 4 x 4 of its quads */ \
+    COUNT(patchGroupsOutside, "patch_groups_outside") /* a patch of 4 x 4 quads outside the bucket over a group */ \
     COUNT(sampleFragments, "sample_fragments") /* see-through hits kept to composite (Oi < 1) */   \
     SHOWN("hit_efficiency", c.sampleTests ? double(c.sampleHits) / double(c.sampleTests) : 0.0)        \
     /* Ray tracing (--algorithm raytrace*, and shadow rays): the paper's Tables 1 and 2. */           \

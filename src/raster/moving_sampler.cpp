@@ -122,7 +122,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     const size_t group = slicesPerGroup(perSlice, S);
 
     double projected = std::numeric_limits<double>::quiet_NaN();  // the time rb_ holds
-    uint64_t tests = 0, hits = 0, firstHits = 0, behind = 0, fragments = 0, gridsBehind = 0, patchesBehind = 0;
+    uint64_t tests = 0, hits = 0, firstHits = 0, behind = 0, fragments = 0, gridsBehind = 0, patchesBehind = 0, patchesOutside = 0;
     for (size_t s0 = 0; s0 < slices_.size();) {
         size_t s1 = s0 + 1;  // the group: consecutive slices of one frame
         while (s1 < slices_.size() && s1 - s0 < group && slices_[s1].fi == slices_[s0].fi &&
@@ -200,7 +200,15 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             b.extend(Vec3f{ra_[v].x, ra_[v].y, ra_[v].z});
                             b.extend(Vec3f{rb_[v].x, rb_[v].y, rb_[v].z});
                         }
-                    if (boundBehind(block, fi, b)) {
+                    // A patch whose bound misses the block (the grid's test, above): none of its
+                    // quads' bounds reaches it (boundQuad would drop each). A grid a bucket shares
+                    // with its neighbours, as a piece swept over a chunk of frames is, lies
+                    // largely outside each of them in any one frame.
+                    if (!(b.hi.x >= float(R.x0) && b.lo.x < float(R.x1 + 1) && b.hi.y >= float(R.y0) &&
+                          b.lo.y < float(R.y1 + 1))) {
+                        patchHidden_[size_t(pj * patchesU + pc)] = 1;
+                        ++patchesOutside;
+                    } else if (boundBehind(block, fi, b)) {
                         patchHidden_[size_t(pj * patchesU + pc)] = 1;
                         ++patchesBehind;
                     }
@@ -379,6 +387,7 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
     counters.fragments += fragments;
     counters.gridGroupsBehind += gridsBehind;
     counters.patchGroupsBehind += patchesBehind;
+    counters.patchGroupsOutside += patchesOutside;
 }
 
 template void GridRasterizer::sampleMoving<false, false, false>(const Grid&, const Camera&, ImageBlock&, RasterCounters&);

@@ -51,6 +51,7 @@ struct RasterCounters {
     uint64_t fragments = 0;      // see-through hits kept for compositing (image_block.h)
     uint64_t gridGroupsBehind = 0;  // a moving grid's groups of slices not sampled: all of it lay behind
     uint64_t patchGroupsBehind = 0;  // the same for a patch of its quads (4 x 4) over a group
+    uint64_t patchGroupsOutside = 0;  // a patch whose bound over a group misses the block
 };
 
 class GridRasterizer {

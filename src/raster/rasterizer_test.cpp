@@ -366,5 +366,43 @@ TEST(GridRasterizer, HiddenPatchesOfAMovingGridAreSkipped) {
         }
 }
 
+// A moving grid that reaches past the block: its patches of 4 x 4 quads whose bound over a group
+// misses the block are skipped (counted), and the block's samples are those the same grid gives a
+// block over the whole frame. A 12 x 12 grid over x in [2, 14], moving 1 pixel right, on a
+// 16-pixel frame: the left block (x < 8) misses its right patches (x from 10 on).
+TEST(GridRasterizer, PatchesOfAMovingGridOutsideTheBlockAreSkipped) {
+    Material material;
+    auto run = [&](Fixture& f, int blockWidth) {
+        f.size = 16;
+        f.cam = pixelCamera(16);
+        f.reset({0.3f}, {0.5f, 0.5f});
+        f.block.reset({0, 0, blockWidth - 1, 15}, 0, 1, f.patterns, false);
+        Grid grid;
+        diceSquare(2, 2, 14, 14, 10, 1, 12, &material, 16, grid);
+        for (int k = 0; k < 2; ++k)
+            for (size_t i = 0; i < grid.Ci[k].size(); ++i) grid.Ci[k][i] = Color{float(i) / 169.0f, float(k), 0.5f};
+        grid.primitiveId = 2;
+        f.raster.rasterize(grid, f.cam, Shutter{0, 1}, f.block, f.counters);
+    };
+    Fixture whole, left;
+    run(whole, 16);
+    run(left, 8);
+    EXPECT_EQ(whole.counters.patchGroupsOutside, 0u);
+    EXPECT_EQ(left.counters.patchGroupsOutside, 3u);  // the right column of 3 x 3 patches, one group
+    uint64_t hitsLeft = 0;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 8; ++x) {
+            const SampleHit &a = whole.hit(x, y), &b = left.hit(x, y);
+            ASSERT_EQ(a.id, b.id) << x << "," << y;
+            ASSERT_EQ(a.z, b.z) << x << "," << y;
+            ASSERT_EQ(a.c.x, b.c.x) << x << "," << y;
+            ASSERT_EQ(a.c.y, b.c.y) << x << "," << y;
+            ASSERT_EQ(a.c.z, b.c.z) << x << "," << y;
+            hitsLeft += a.id == 2u;
+        }
+    EXPECT_EQ(left.counters.sampleHits, hitsLeft);
+    EXPECT_EQ(hitsLeft, 6u * 12u);  // at t = 0.3 the grid covers x in [2.3, 14.3]: columns 2-7, rows 2-13
+}
+
 }  // namespace
 }  // namespace streyes

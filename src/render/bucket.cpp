@@ -197,6 +197,7 @@ void BucketWorker::render(const BucketSpec& bucket, TiledFrames& frames) {
     counters.samplesBehind += rasterCounters_.samplesBehind;
     counters.gridGroupsBehind += rasterCounters_.gridGroupsBehind;
     counters.patchGroupsBehind += rasterCounters_.patchGroupsBehind;
+    counters.patchGroupsOutside += rasterCounters_.patchGroupsOutside;
     counters.sampleFragments += rasterCounters_.fragments;
     rasterCounters_ = {};
     shader_.takeCounters(counters);

@@ -4,6 +4,7 @@
 // split or an exposure cut makes are allocated one by one (docs/ARCHITECTURE.md, "The split loop").
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -172,6 +173,9 @@ class BucketWorker {
     bool shadesOnceForFrames(const Body& body, const Grid& diced) const;
     // Shades and samples `diced` as it is (once), or cut to each of the bucket's frames.
     void shadeSampleOnce(const Grid& diced, bool dicedHere);
+    // The vertices of grid_ (one frame's cut) whose quads this bucket's samples can reach over the
+    // frame's exposure, in seenHere_; false (and nothing marked) where that cannot be bounded.
+    bool markSeenHere(const Camera& cam);
     void shadeSampleFrames(const Body& body, const Grid& diced, bool dicedHere);
 
     const RenderScene& scene_;
@@ -215,6 +219,8 @@ class BucketWorker {
     ImageBlock block_;
     Grid grid_;
     Grid diced_;  // a still-in-world piece diced for several frames (diceShadeSampleFrames)
+    std::vector<uint8_t> seenHere_;  // its vertices a frame's grid shows in this bucket (markSeenHere)
+    std::vector<std::array<float, 4>> seenBox_;  // each vertex's raster box over the frame (x0 x1 y0 y1)
     GridRasterizer rasterizer_;
     RasterCounters rasterCounters_;
     std::vector<BodyPtr> stack_;

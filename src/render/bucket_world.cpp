@@ -173,6 +173,47 @@ void BucketWorker::shadeSampleOnce(const Grid& diced, bool dicedHere) {
     }
 }
 
+// A vertex moving linearly in camera space, in front of the eye plane throughout, stays on the
+// raster segment between its projections at the exposure's ends (a line projects to a line), and
+// so does a quad's sample-time corner (exact or raster-interpolated): a quad whose box over those
+// eight corners, grown by two pixels for rounding, misses the block is never sampled here
+// (GridRasterizer's boundQuad drops it). Without a lens, which widens what a quad reaches; a
+// non-finite corner (its quad's bound would be NaN) shades all.
+bool BucketWorker::markSeenHere(const Camera& cam) {
+    const Material* m = grid_.material;  // a shader or a displacement shades the whole grid anyway
+    if (cam.depthOfField() || !m || m->surface || m->displacement || m->atmosphere) return false;
+    const int nu = grid_.nu, nv = grid_.nv, stride = nu + 1;
+    const size_t n = size_t(grid_.vertexCount());
+    const bool moving = grid_.moving, persp = cam.perspective();
+    const float eye = cam.eyePlane();
+    seenBox_.resize(n);
+    for (size_t i = 0; i < n; ++i) {
+        const Vec3f p0 = grid_.P[0][i], p1 = moving ? grid_.P[1][i] : p0;
+        if (persp && !(p0.z >= eye && p1.z >= eye)) return false;  // NaN too
+        const Vec3f a = cam.toRaster(p0), b = cam.toRaster(p1);
+        if (!(std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(b.x) && std::isfinite(b.y))) return false;
+        seenBox_[i] = {std::min(a.x, b.x), std::max(a.x, b.x), std::min(a.y, b.y), std::max(a.y, b.y)};
+    }
+    const PixelRect& R = block_.rect();
+    constexpr float kMargin = 2;
+    const float x0 = float(R.x0) - kMargin, x1 = float(R.x1 + 1) + kMargin;
+    const float y0 = float(R.y0) - kMargin, y1 = float(R.y1 + 1) + kMargin;
+    seenHere_.assign(n, 0);
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            const size_t idx[4] = {size_t(j * stride + i), size_t(j * stride + i + 1), size_t((j + 1) * stride + i + 1),
+                                   size_t((j + 1) * stride + i)};
+            float lx = seenBox_[idx[0]][0], hx = seenBox_[idx[0]][1], ly = seenBox_[idx[0]][2], hy = seenBox_[idx[0]][3];
+            for (size_t c : idx) {
+                lx = std::min(lx, seenBox_[c][0]), hx = std::max(hx, seenBox_[c][1]);
+                ly = std::min(ly, seenBox_[c][2]), hy = std::max(hy, seenBox_[c][3]);
+            }
+            if (!(hx >= x0 && lx < x1 && hy >= y0 && ly < y1)) continue;
+            for (size_t c : idx) seenHere_[c] = 1;
+        }
+    return true;
+}
+
 void BucketWorker::shadeSampleFrames(const Body& body, const Grid& diced, bool dicedHere) {
     const TimeSpan& span = body.time();
     const double open = scene_.shutter.open, close = scene_.shutter.close, len = span.t1 - span.t0;
@@ -215,7 +256,10 @@ void BucketWorker::shadeSampleFrames(const Body& body, const Grid& diced, bool d
         }
         auto t1 = Clock::now();
         counters.timeDice += std::chrono::duration<double>(t1 - t).count();
-        shader_.shade(grid_);
+        // A swept piece reaches several buckets, and each shaded all of every frame's grid: the
+        // built-in surfaces (each vertex shaded on its own) shade only what this bucket samples.
+        if (!aovs_.count && markSeenHere(gridCamera(grid_))) shader_.shade(grid_, seenHere_.data());
+        else shader_.shade(grid_);
         if (aovs_.count) fillAovs(grid_, aovs_, cam);
         counters.timeShade += secondsSince(t1);
         sample(grid_);

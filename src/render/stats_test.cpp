@@ -112,6 +112,7 @@ TEST(RenderStats, JsonKeepsItsKeysAndLayout) {
     "samples_behind": 0,
     "grid_groups_behind": 0,
     "patch_groups_behind": 0,
+    "patch_groups_outside": 0,
     "sample_fragments": 0,
     "hit_efficiency": 0.75,
     "trace": {"bodies": 0, "bounding_volumes": 0, "eye_rays": 9, "shadow_rays": 0, "shadow_vertex_rays": 0, "shadow_folded_grids": 0, "shader_rays": 0, "ray_body_tests": 0, "ray_box_tests": 11}

@@ -1,5 +1,7 @@
 #include "shade/grid_shader.h"
 
+#include <algorithm>
+
 #include "bodies/material.h"
 #include "shade/shading.h"
 
@@ -57,6 +59,15 @@ Color GridShader::shadeHit(const Material& m, Color cs, Vec3f p, Vec3f n, double
 
 void GridShader::shade(Grid& grid) {
     for (int k = 0; k < (grid.moving ? 2 : 1); ++k) shadeSlot(grid, k, k == 0 ? grid.t0 : grid.t1);
+}
+
+void GridShader::shade(Grid& grid, const uint8_t* need) {
+    const Material& m = *grid.material;
+    if (m.surface || m.displacement || m.atmosphere || depthLayers_ || aovs_ || !need) {
+        shade(grid);
+        return;
+    }
+    for (int k = 0; k < (grid.moving ? 2 : 1); ++k) shadeSurface(grid, k, k == 0 ? grid.t0 : grid.t1, need);
 }
 
 Color GridShader::runVolume(const Material& m, const sl::ShaderInstance& shader, const MotionTransform* shaderToWorld,
@@ -160,14 +171,15 @@ void GridShader::displace(const Material& m, Grid& grid, int k, double time) {
     setIncident(grid, k);  // the shading grid's views are the grid's arrays: only I is derived
 }
 
-void GridShader::shadeSurface(Grid& grid, int k, double time) {
+void GridShader::shadeSurface(Grid& grid, int k, double time, const uint8_t* need) {
     const Material& m = *grid.material;
     if (aovs_ && grid.aovCount == aovs_->count) clearShaderOutputs(grid, k);
     const size_t n = size_t(grid.vertexCount());
     if (!m.surface) {
         if (depthOnly_) std::fill(grid.Ci[k].begin(), grid.Ci[k].end(), Color{0, 0, 0});
-        else shadeGridSlot(grid, k, time, lights_, !camera_.perspective(), lightScratch_);
-        builtinPoints_ += uint64_t(grid.vertexCount());
+        else shadeGridSlot(grid, k, time, lights_, !camera_.perspective(), lightScratch_, need);
+        builtinPoints_ += need ? uint64_t(std::count_if(need, need + n, [](uint8_t x) { return x != 0; }))
+                               : uint64_t(grid.vertexCount());
         if (!(m.Os.x >= 1 && m.Os.y >= 1 && m.Os.z >= 1)) grid.Oi[k].assign(n, clampOpacity(m.Os));
         else grid.Oi[k].clear();
     } else {

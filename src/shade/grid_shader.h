@@ -67,6 +67,10 @@ class GridShader {
     void shadeSlot(Grid& grid, int k, double time);
     // Both slots of a moving grid (t0 and t1), or the one of a still grid.
     void shade(Grid& grid);
+    // The same where only the vertices `need` marks are read: the built-in surfaces, which shade
+    // each vertex on its own, shade only those (the others keep what they held); a shader, whose
+    // derivatives read neighbours, shades all.
+    void shade(Grid& grid, const uint8_t* need);
     // A slot to shade (shadeSlots): slot k of `grid` at `time`.
     struct Slot {
         Grid* grid = nullptr;
@@ -120,7 +124,7 @@ class GridShader {
     bool programSafe(const sl::ShaderProgram& p);
 
     void displace(const Material& m, Grid& grid, int k, double time);
-    void shadeSurface(Grid& grid, int k, double time);
+    void shadeSurface(Grid& grid, int k, double time, const uint8_t* need = nullptr);
     void runSurface(const Material& m, Grid& grid, int k, double time);
     // The surface's shader, or each layer of a layered one, over sgrid_ with `lights`.
     void runSurfaceShaders(const Material& m, const std::vector<sl::LightRef>& lights);

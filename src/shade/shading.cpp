@@ -68,14 +68,15 @@ Color shadePoint(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthographi
 }
 
 void shadeGridSlot(Grid& grid, int k, double time, const LightSet& lights, bool orthographic,
-                   std::vector<CameraLight>& scratch) {
+                   std::vector<CameraLight>& scratch, const uint8_t* need) {
     const Material& m = *grid.material;
     const int n = grid.vertexCount();
     if (m.kind != SurfaceKind::Constant && m.kind != SurfaceKind::Default && !m.lights.empty()) lights.at(time, scratch);
     const int K = grid.shadowSlots;
     for (int i = 0; i < n; ++i)
-        grid.Ci[k][size_t(i)] = shadePoint(m, grid.Cs[size_t(i)], grid.P[k][size_t(i)], grid.N[k][size_t(i)],
-                                           orthographic, scratch, K ? &grid.Cl[k][size_t(i) * size_t(K)] : nullptr, K);
+        if (!need || need[i])
+            grid.Ci[k][size_t(i)] = shadePoint(m, grid.Cs[size_t(i)], grid.P[k][size_t(i)], grid.N[k][size_t(i)], orthographic,
+                                               scratch, K ? &grid.Cl[k][size_t(i) * size_t(K)] : nullptr, K);
 }
 
 void shadeGrid(Grid& grid, const LightSet& lights, bool orthographic, std::vector<CameraLight>& scratch) {

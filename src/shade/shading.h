@@ -10,6 +10,7 @@
 // so shadows blur with motion even on still geometry shaded once.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,9 @@ Color shadePoint(const Material& m, Color cs, Vec3f p, Vec3f n, bool orthographi
 // that cast shadows go to grid.Cl[k] instead.
 void shadeGrid(Grid& grid, const LightSet& lights, bool orthographic, std::vector<CameraLight>& scratch);
 // One end of a grid: Ci[k] (and Cl[k]) from P[k], N[k] at `time` (a grid diced at several keys is
-// shaded a key at a time).
+// shaded a key at a time). With `need`, only the vertices where it is non-zero: the others keep
+// what they held (each vertex is shaded on its own, so those shaded get the same colours).
 void shadeGridSlot(Grid& grid, int k, double time, const LightSet& lights, bool orthographic,
-                   std::vector<CameraLight>& scratch);
+                   std::vector<CameraLight>& scratch, const uint8_t* need = nullptr);
 
 }  // namespace streyes
