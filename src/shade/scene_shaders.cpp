@@ -231,6 +231,10 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
     for (const LightDesc& d : scene.lights) {
         builtinLight_.push_back(isBuiltinLight(d));
         lights_.push_back(instance(d.type, d.params, d.loc, sl::ShaderType::Light));
+        // What its code does decides whether it is a distant light, not its name.
+        solar_.push_back(lights_.back() && !d.area
+                             ? streyes::solarCone(*lights_.back(), d.lightToWorld.at(d.lightToWorld.times().front()))
+                             : std::nullopt);
         lightReadsMaps_.push_back(readsMaps(lights_.back().get()));
         lightTracesRays_.push_back(castsRays(lights_.back().get()));
         if (lightTracesRays_.back()) tracesRays_ = true;

@@ -11,10 +11,12 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bodies/material.h"
+#include "shade/light_direction.h"
 #include "shade/point_clouds.h"
 #include "shade/shadow_maps.h"
 #include "shade/scene_queries.h"
@@ -98,6 +100,8 @@ class SceneShaders final : public MaterialBinder {
 
     // Light `i` of the scene as a shader (null when its shader was not found).
     const sl::ShaderInstance* light(size_t i) const { return i < lights_.size() ? lights_[i].get() : nullptr; }
+    // Light `i`'s solar cone when its shader is a directional light (shade/light_direction.h).
+    const std::optional<SolarCone>& solarCone(size_t i) const { return solar_[i]; }
 
     // World -> current space at time t: the camera's, or in a merged frame sequence the camera of
     // the frame t falls in (shaders' "world" and "shader" spaces, shadow maps' lookups).
@@ -134,6 +138,7 @@ class SceneShaders final : public MaterialBinder {
     bool searchPathSet_ = false;
     std::vector<std::shared_ptr<sl::ShaderInstance>> lights_;
     std::vector<bool> builtinLight_;
+    std::vector<std::optional<SolarCone>> solar_;  // per light
     std::shared_ptr<sl::ShaderInstance> imager_;
     bool builtinShading_ = true;
     float specularExponent_ = 8;
