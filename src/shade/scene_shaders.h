@@ -18,6 +18,7 @@
 #include "bodies/material.h"
 #include "shade/light_direction.h"
 #include "shade/point_clouds.h"
+#include "shade/shader_environment.h"
 #include "shade/shadow_maps.h"
 #include "shade/scene_queries.h"
 #include "shade/sl/compiler.h"
@@ -53,9 +54,12 @@ class LazyTextureSource final : public sl::TextureSource {
     bool occlusionMap(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
                       const float* const* normal, float* out) override;
     bool textureInfo(const std::string& name, const std::string& field, sl::QueryValue& out) override;
+    // Environments that are shaders, looked up before any map of their name (null: none).
+    void setShaderEnvironments(const ShaderEnvironments* e) { environments_ = e; }
 
   private:
     sl::TextureSource* source();
+    const ShaderEnvironments* environments_ = nullptr;
     TextureSourceFactory factory_;
     std::vector<std::string> searchPath_;
     ShadowMaps* maps_;
@@ -128,6 +132,7 @@ class SceneShaders final : public MaterialBinder {
     const ShaderDesc* firstVolume() const { return firstVolume_.load(std::memory_order_relaxed); }
 
   private:
+    void addShaderEnvironments(const Scene& scene);
     std::shared_ptr<sl::ShaderInstance> instance(const std::string& name, const ParamList& params,
                                                  const SourceLoc& loc, sl::ShaderType type) const;
 
@@ -139,6 +144,7 @@ class SceneShaders final : public MaterialBinder {
     std::vector<std::shared_ptr<sl::ShaderInstance>> lights_;
     std::vector<bool> builtinLight_;
     std::vector<std::optional<SolarCone>> solar_;  // per light
+    ShaderEnvironments environments_;  // Option "environment:NAME" (shade/shader_environment.h)
     std::shared_ptr<sl::ShaderInstance> imager_;
     bool builtinShading_ = true;
     float specularExponent_ = 8;
