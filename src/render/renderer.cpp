@@ -331,6 +331,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
         shape.traceBytes = trace->bytes() - (traceFrames ? trace->hierarchyBytes() : 0);
         shape.traceBytesPerFrame = traceBytesPerFrame;
         shape.traceBytesPerWorker = trace->mailboxBytes();
+        shape.traceBuildBytes = trace->buildBytes();
     }
     const MemoryEstimate memory = planMemory(shape, block, threads, budget);
     block = memory.frameBlock;
