@@ -13,7 +13,8 @@
    "shader" space: the CTM at LightSource); up is the zenith (world +y unless given). With shadows
    on (Attribute "light" "shadows" "on", or shadowname "raytrace") its shadow rays are parallel to
    from - to; angle is the sun's angular radius in degrees (0.27; 0: hard shadows), over which
-   the renderer spreads them (docs/SCENE-FORMAT.md, "Sun and sky"). Another shadowname is a
+   the renderer spreads them: it reads solar()'s axis and angle, whatever the shader's name
+   (docs/SCENE-FORMAT.md, "Sun and sky"). Another shadowname is a
    shadow map's, read as shadowdistant reads it. */
 
 /* The paper's transmittance of the sun's light at wavelength lambda (micrometres) through
@@ -38,7 +39,7 @@ light sunlight(float intensity = 1; float turbidity = 3; float angle = 0.27;
         sun = color(preethamSunTransmittance(0.65, m, turbidity), preethamSunTransmittance(0.57, m, turbidity),
                     preethamSunTransmittance(0.475, m, turbidity));
     }
-    solar(to - from, 0) {
+    solar(to - from, radians(angle)) {
         Cl = intensity * sun;
         if (shadowname != "")
             Cl *= 1 - shadow(shadowname, Ps, "samples", samples, "blur", blur, "bias", bias);

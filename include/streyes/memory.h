@@ -28,6 +28,8 @@ struct MemoryShape {
     uint64_t traceBytes = 0;                    // ray tracing's bodies and spacetime hierarchy
     uint64_t traceBytesPerFrame = 0;            // raytrace-frames: one hierarchy per frame of the block
     uint64_t traceBytesPerWorker = 0;           // a tracing thread's scratch (its mailbox)
+    uint64_t traceBuildBytes = 0;               // a hierarchy build's own scratch, let go before the
+                                                // buckets start (raytrace-frames: during them)
     uint64_t sharedBytes = 0;                   // what bodies share beyond themselves: point clouds
     int aovFloats = 0;                          // output variables: floats per sample and per pixel
     uint64_t gridCacheBytes = 0;                // grids shared between buckets, at most (grid_cache.h)
@@ -43,9 +45,11 @@ struct MemoryEstimate {
     int workers = 1;
     uint64_t writer = 0;         // one frame being encoded and written
     uint64_t gridCache = 0;      // grids shared between buckets: the cache's capacity
+    uint64_t traceBuild = 0;     // building the ray tracer's hierarchies: gone before the buckets
     int frameBlock = 1;
     uint64_t total() const {
-        return baseline + scene + trace + frameImages + perWorker * uint64_t(workers) + writer + gridCache;
+        const uint64_t rendering = frameImages + perWorker * uint64_t(workers) + writer + gridCache;
+        return baseline + scene + trace + (traceBuild > rendering ? traceBuild : rendering);
     }
     // "2.3 GiB: frame images 1.5 GiB (64 frames of 1920x1080), samples 0.6 GiB (2 workers x ...), ..."
     std::string describe(const MemoryShape& shape) const;

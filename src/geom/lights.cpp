@@ -47,8 +47,6 @@ void sampleArea(const std::vector<std::array<Vec3d, 4>>& patches, Light& l) {
 
 }  // namespace
 
-bool isParallelLightShader(const std::string& type) { return type == "sunlight"; }
-
 int coneShadowSamples(const CameraLight& l) { return l.coneTan > 0 ? kConeShadowSamples : 1; }
 
 Vec3f coneShadowDirection(const CameraLight& l, int j) {
@@ -80,14 +78,6 @@ LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& 
                       ? Color{0, 0, 0}
                       : d.params.getColor("lightcolor", {1, 1, 1}) * float(d.params.getFloat("intensity", 1));
         l.lightToWorld = d.lightToWorld;
-        if (l.kind == LightKind::Shader && isParallelLightShader(d.type)) {
-            l.parallel = true;
-            // sunlight.sl's own defaults where RIB gives none: the sun up and towards -z.
-            if (!from) l.from = {0, 1, 1};
-            if (!to) l.to = {0, 0, 0};
-            const double angle = std::clamp(d.params.getFloat("angle", kSunAngleDegrees), 0.0, 10.0);
-            l.coneTan = float(std::tan(angle * M_PI / 180));
-        }
         if (d.area) {
             // Its shader runs at points of its shape, each with "shader" space moved there.
             l.kind = LightKind::Shader;
@@ -113,6 +103,21 @@ LightSet::LightSet(const std::vector<LightDesc>& lights, const MotionTransform& 
     if (static_) at(0, staticLights_);
 }
 
+void LightSet::setDirectional(size_t light, const Vec3d& axis, double angle) {
+    Light& l = lights_[light];
+    if (l.kind != LightKind::Shader || areaLight_[light] || !(length(axis) > 0)) return;
+    l.parallel = true;
+    // 0 - axis, not -axis: a component of 0 stays +0, as from - to gives it (a ray's -0 direction
+    // turns a slab test's 0 * inf the other way, and rays grazing a box face along it miss it).
+    l.towards = Vec3d{0, 0, 0} - axis;
+    const double cone = std::clamp(std::isfinite(angle) ? angle : 0.0, 0.0, kMaxConeDegrees * M_PI / 180);
+    l.coneTan = float(std::tan(cone));
+    if (static_) {
+        staticLights_.clear();  // else at() gives the cache back
+        at(0, staticLights_);
+    }
+}
+
 void LightSet::at(double t, std::vector<CameraLight>& out) const {
     if (static_ && staticLights_.size() == lights_.size()) {
         out = staticLights_;
@@ -126,7 +131,8 @@ void LightSet::at(double t, std::vector<CameraLight>& out) const {
         CameraLight c{l.kind, l.color, {}, {}, l.castsShadows ? slot++ : -1, l.parallel, l.coneTan};
         Vec3d from = m.point(l.from);
         if (l.kind == LightKind::Point || l.kind == LightKind::Shader) c.position = Vec3f(from);
-        if (l.kind == LightKind::Distant || l.parallel) c.direction = Vec3f(normalize(from - m.point(l.to)));
+        if (l.kind == LightKind::Distant) c.direction = Vec3f(normalize(from - m.point(l.to)));
+        if (l.parallel) c.direction = Vec3f(normalize(m.vector(l.towards)));
         out.push_back(c);
     }
 }

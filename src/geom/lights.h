@@ -11,15 +11,15 @@
 namespace streyes {
 
 // Shader: a Shading Language light (spotlight, a studio's own); only Shading Language surfaces
-// see it, and its shadow rays go to its "from" point (but the shipped sun's: parallel, below).
+// see it, and its shadow rays go to its "from" point (but a directional one's: parallel, below).
 enum class LightKind { Ambient, Distant, Point, Shader };
 
-// Light shaders that are distant lights (shaders/sunlight.sl): their shadow rays are parallel to
-// from - to, as distantlight's, spread over a cone of half-angle "angle" (degrees; the shader's
-// default 0.27, the sun's angular radius) by kConeShadowSamples directions.
-bool isParallelLightShader(const std::string& type);
-constexpr double kSunAngleDegrees = 0.27;  // sunlight.sl's default "angle"
+// Light shaders that are distant lights (their illumination is solar(axis, angle):
+// shade/light_direction.h finds them, LightSet::setDirectional marks them): their shadow rays
+// are parallel to the axis, as distantlight's, spread over the cone of half-angle `angle` (at most
+// kMaxConeDegrees) by kConeShadowSamples directions.
 constexpr int kConeShadowSamples = 16;
+constexpr double kMaxConeDegrees = 10;
 
 struct Light {
     LightKind kind = LightKind::Ambient;
@@ -27,7 +27,8 @@ struct Light {
     Vec3d from{0, 0, 0}, to{0, 0, 1};  // light space
     MotionTransform lightToWorld;
     bool castsShadows = false;
-    bool parallel = false;  // a Shader light whose shadow rays run along from - to (isParallelLightShader)
+    bool parallel = false;  // a Shader light whose shadow rays run along `towards` (setDirectional)
+    Vec3d towards{0, 0, 1};  // light space: towards the light (against its solar axis)
     float coneTan = 0;      // its cone: the tangent of the half-angle
     // An area light (AreaLightSource): its shader runs at these points of its shape, each with the
     // shape's unit normal there, every result weighted 1 / count; lightToWorld takes them to
@@ -45,7 +46,7 @@ struct CameraLight {
     Vec3f position;   // point and shader lights
     Vec3f direction;  // distant lights: unit vector from the surface towards the light
     int shadowSlot = -1;  // >= 0: the light casts shadows (its slot among those that do)
-    bool parallel = false;  // a Shader light with a direction (isParallelLightShader)
+    bool parallel = false;  // a Shader light with a direction (LightSet::setDirectional)
     float coneTan = 0;      // > 0: shadow rays spread over the cone of this tangent about direction
 };
 
@@ -65,6 +66,11 @@ class LightSet {
     LightSet() = default;
     LightSet(const std::vector<LightDesc>& lights, const MotionTransform& worldToCamera);
     bool empty() const { return lights_.empty(); }
+    // Light `light` (a light shader's, not an area light's) shines along `axis` (its own space:
+    // the direction light travels) from a cone of half-angle `angle` radians (clamped to
+    // [0, kMaxConeDegrees]): its shadow rays run parallel, against the axis, over the cone.
+    // Other lights are left as they are.
+    void setDirectional(size_t light, const Vec3d& axis, double angle);
     size_t size() const { return lights_.size(); }
     // Every light in camera space at time t (cached when nothing moves).
     void at(double t, std::vector<CameraLight>& out) const;

@@ -79,6 +79,10 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     e.baseline = kBaselineBytes;
     e.scene = s.bodyBytes + s.sharedBytes;
     e.trace = s.traceBytes + s.traceBytesPerFrame * uint64_t(e.frameBlock);
+    // A build's scratch: before the buckets (held with what they hold when each block builds its
+    // frames' hierarchies).
+    if (s.traceBytesPerFrame > 0) e.trace += s.traceBuildBytes;
+    else e.traceBuild = s.traceBuildBytes;
     const uint64_t aov = uint64_t(std::max(0, s.aovFloats)) * sizeof(float);
     e.frameImages = uint64_t(framesHeld(s, e.frameBlock)) * pixels * (kBytesPerPixel + aov);
     const uint64_t S = uint64_t(std::max(1, s.samplesPerPixel));

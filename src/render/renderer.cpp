@@ -174,6 +174,10 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
         shaders_ = std::make_unique<SceneShaders>(scene, log, options.textureSource, options.shadowMaps);
         scene_ = buildRenderScene(scene, settings_.shotFirst, settings_.shotLast, settings_.width, settings_.height, log,
                                   shaders_.get(), settings_.firstFrame, settings_.lastFrame);
+        // Light shaders that shine along an axis (solar): their shadow rays run parallel to it.
+        for (size_t i = 0; i < scene.lights.size(); ++i)
+            if (const std::optional<SolarCone>& c = shaders_->solarCone(i))
+                scene_->lights.setDirectional(i, c->axis, c->angle);
     });
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
@@ -327,6 +331,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
         shape.traceBytes = trace->bytes() - (traceFrames ? trace->hierarchyBytes() : 0);
         shape.traceBytesPerFrame = traceBytesPerFrame;
         shape.traceBytesPerWorker = trace->mailboxBytes();
+        shape.traceBuildBytes = trace->buildBytes();
     }
     const MemoryEstimate memory = planMemory(shape, block, threads, budget);
     block = memory.frameBlock;

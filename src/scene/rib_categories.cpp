@@ -36,6 +36,8 @@ double firstNumber(const Param& p, double fallback) { return p.nums.empty() ? fa
 
 void reviewOption(RibParser& reader, const std::string& category, const ParamList& params, const SourceLoc& loc) {
     if (kTuningOptions.count(category)) return;
+    // Option "environment:NAME": an environment that is a shader (shade/shader_environment.h).
+    if (category.compare(0, 12, "environment:") == 0 && category.size() > 12) return;
     (void)params;
     reader.log().lenient("option:" + category, loc,
                          "Option \"" + category + "\" is not read by streyes: ignored (docs/SCENE-FORMAT.md lists the options it reads)");

@@ -166,6 +166,7 @@ bool LazyTextureSource::texture(const std::string& name, const sl::TextureOption
 
 bool LazyTextureSource::environment(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
                                     float* const* out) {
+    if (environments_ && environments_->lookup(name, o.channels, q, out)) return true;
     sl::TextureSource* s = source();
     return s && s->environment(name, o, q, out);
 }
@@ -220,9 +221,15 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
         imager_ = instance(scene.settings.imager.name, scene.settings.imager.params, scene.settings.imager.loc,
                            sl::ShaderType::Imager);
     }
+    addShaderEnvironments(scene);
+    textures_->setShaderEnvironments(&environments_);
     for (const LightDesc& d : scene.lights) {
         builtinLight_.push_back(isBuiltinLight(d));
         lights_.push_back(instance(d.type, d.params, d.loc, sl::ShaderType::Light));
+        // What its code does decides whether it is a distant light, not its name.
+        solar_.push_back(lights_.back() && !d.area
+                             ? streyes::solarCone(*lights_.back(), d.lightToWorld.at(d.lightToWorld.times().front()))
+                             : std::nullopt);
         lightReadsMaps_.push_back(readsMaps(lights_.back().get()));
         lightTracesRays_.push_back(castsRays(lights_.back().get()));
         if (lightTracesRays_.back()) tracesRays_ = true;
@@ -231,6 +238,38 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
         // light still in world differs from frame to frame).
         lightStillInWorld_.push_back(d.lightToWorld.isStatic() && (!d.area || d.areaToWorld.isStatic()) &&
                                      !maps_->worldVaries());
+    }
+}
+
+// Option "environment:NAME" "string shader" [name] params...: the options keep each value as
+// "environment:NAME:param" (rib_options.cpp); the shader is a surface, its parameters the rest.
+void SceneShaders::addShaderEnvironments(const Scene& scene) {
+    const std::string prefix = "environment:";
+    std::vector<std::string> names;
+    for (const Param& p : scene.settings.options.params) {
+        if (p.name.compare(0, prefix.size(), prefix) != 0) continue;
+        const size_t colon = p.name.rfind(':');
+        const std::string name = p.name.substr(prefix.size(), colon - prefix.size());
+        if (colon > prefix.size() && std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    }
+    for (const std::string& name : names) {
+        const std::string category = prefix + name + ":";
+        ParamList params;
+        const Param* shaderName = nullptr;
+        for (const Param& p : scene.settings.options.params) {
+            if (p.name.compare(0, category.size(), category) != 0) continue;
+            Param q = p;
+            q.name = p.name.substr(category.size());
+            if (q.name == "shader") shaderName = &p;
+            else params.params.push_back(std::move(q));
+        }
+        if (!shaderName || shaderName->type != ParamType::String || shaderName->strings.size() != 1)
+            throw InputError(shaderName ? shaderName->loc : params.params.front().loc,
+                             "Option \"environment:" + name + "\" needs \"string shader\" [\"name\"]: the surface shader "
+                             "that gives the environment's colour along each direction (docs/SCENE-FORMAT.md, \"Sun and sky\")");
+        if (std::shared_ptr<sl::ShaderInstance> s =
+                instance(shaderName->strings[0], params, shaderName->loc, sl::ShaderType::Surface))
+            environments_.add(name, std::move(s));
     }
 }
 

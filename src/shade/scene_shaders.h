@@ -11,11 +11,14 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bodies/material.h"
+#include "shade/light_direction.h"
 #include "shade/point_clouds.h"
+#include "shade/shader_environment.h"
 #include "shade/shadow_maps.h"
 #include "shade/scene_queries.h"
 #include "shade/sl/compiler.h"
@@ -51,9 +54,12 @@ class LazyTextureSource final : public sl::TextureSource {
     bool occlusionMap(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
                       const float* const* normal, float* out) override;
     bool textureInfo(const std::string& name, const std::string& field, sl::QueryValue& out) override;
+    // Environments that are shaders, looked up before any map of their name (null: none).
+    void setShaderEnvironments(const ShaderEnvironments* e) { environments_ = e; }
 
   private:
     sl::TextureSource* source();
+    const ShaderEnvironments* environments_ = nullptr;
     TextureSourceFactory factory_;
     std::vector<std::string> searchPath_;
     ShadowMaps* maps_;
@@ -99,6 +105,8 @@ class SceneShaders final : public MaterialBinder {
 
     // Light `i` of the scene as a shader (null when its shader was not found).
     const sl::ShaderInstance* light(size_t i) const { return i < lights_.size() ? lights_[i].get() : nullptr; }
+    // Light `i`'s solar cone when its shader is a directional light (shade/light_direction.h).
+    const std::optional<SolarCone>& solarCone(size_t i) const { return solar_[i]; }
 
     // World -> current space at time t: the camera's, or in a merged frame sequence the camera of
     // the frame t falls in (shaders' "world" and "shader" spaces, shadow maps' lookups).
@@ -125,6 +133,7 @@ class SceneShaders final : public MaterialBinder {
     const ShaderDesc* firstVolume() const { return firstVolume_.load(std::memory_order_relaxed); }
 
   private:
+    void addShaderEnvironments(const Scene& scene);
     std::shared_ptr<sl::ShaderInstance> instance(const std::string& name, const ParamList& params,
                                                  const SourceLoc& loc, sl::ShaderType type) const;
     // A layered shader of `type` (ShaderLayer): each layer's instance, a layer whose shader is not
@@ -143,6 +152,8 @@ class SceneShaders final : public MaterialBinder {
     bool searchPathSet_ = false;
     std::vector<std::shared_ptr<sl::ShaderInstance>> lights_;
     std::vector<bool> builtinLight_;
+    std::vector<std::optional<SolarCone>> solar_;  // per light
+    ShaderEnvironments environments_;  // Option "environment:NAME" (shade/shader_environment.h)
     std::shared_ptr<const sl::ShaderInstance> imager_;       // the last layer of a layered one
     std::shared_ptr<const LayerNetwork> imagerLayers_;      // a layered imager (ShaderLayer "imager")
     bool builtinShading_ = true;

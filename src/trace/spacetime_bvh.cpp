@@ -162,6 +162,7 @@ struct Cut {
     std::vector<double> ta, tb;
     double cost = 0;        // expected ray/body tests: traversal plus, per child, its bodies
                             // times the chance that a ray through the cell's bound meets the child's
+    size_t held = 0;        // the children's lists' capacities, in items
 };
 
 class Builder {
@@ -181,12 +182,19 @@ class Builder {
         if (o_.splitTime && cb - ca > o_.minTimeCut && (o_.alwaysSplitTime || timeMatters(ca, cb, items))) {
             constexpr double kTimeCutGain = 0.8;
             Cut timeCut = cutCell(cell, ca, cb, items, 16);
-            if (o_.alwaysSplitTime || timeCut.cost < kTimeCutGain * cut.cost) cut = std::move(timeCut);
+            if (o_.alwaysSplitTime || timeCut.cost < kTimeCutGain * cut.cost) std::swap(cut, timeCut);
+            release(timeCut.held);  // the cut not taken
         }
         // Cut only when it pays against a leaf. Without that, cells keep splitting along the
         // faces of overlapping boxes (a sphere's pole, where thin patches meet) to the depth
         // limit; and where every body reaches every child, the children cost more than the cell.
-        if (cut.cost >= double(items.size())) return leaf(items);
+        if (cut.cost >= double(items.size())) {
+            release(cut.held);
+            return leaf(items);
+        }
+        // The cell's own list is not read again: let it go before the children's subtrees are
+        // built, or every level of a path down the tree holds its list and its children's at once.
+        std::vector<CellItem>().swap(items);
 
         // The children's subtrees are independent: near the root they are built in parallel
         // (the tree does not depend on the order they finish in).
@@ -195,8 +203,10 @@ class Builder {
         for (int c = 0; c < cut.n; ++c) occupied[size_t(c)] = !cut.items[size_t(c)].empty();
         auto buildChild = [&](int c) {
             std::vector<CellItem>& ci = cut.items[size_t(c)];
+            const size_t capacity = ci.capacity();
             children[size_t(c)] = build(cut.cells[size_t(c)], cut.ta[size_t(c)], cut.tb[size_t(c)], ci, depth + 1);
             std::vector<CellItem>().swap(ci);
+            release(capacity);
         };
         tbb::task_group group;
         for (int c = 0; c < cut.n; ++c) {
@@ -226,6 +236,9 @@ class Builder {
     }
 
     std::atomic<int> maxDepth{0};
+    // Items the cuts' lists held at once, at most (over every path in flight): part of what a
+    // build holds besides what it keeps.
+    mutable std::atomic<size_t> peakHeld{0};
 
   private:
     // Halving x, y and z (n = 8), and t (n = 16); each child asks the bodies for their bounds.
@@ -269,6 +282,10 @@ class Builder {
                                 cut.items[i].push_back(out);
                         }
         }
+        for (const std::vector<CellItem>& ci : cut.items) cut.held += ci.capacity();
+        const size_t now = held_ += cut.held;
+        for (size_t seen = peakHeld.load(); seen < now && !peakHeld.compare_exchange_weak(seen, now);) {
+        }
         const ItemsBound parent(items);
         cut.cost = kTraversalCost;
         for (const std::vector<CellItem>& ci : cut.items)
@@ -296,10 +313,20 @@ class Builder {
         return node;
     }
 
+    void release(size_t items) { held_ -= items; }
+
     const std::vector<BodyInfo>& bodies_;
     const HierarchyOptions& o_;
+    mutable std::atomic<size_t> held_{0};
 };
 
+
+// What a build tree holds below its root (vectors' capacities: what was allocated).
+size_t buildTreeBytes(const BuildNode& n) {
+    size_t b = n.bodies.capacity() * sizeof(SpacetimeBVH::Reference) + n.children.capacity() * sizeof(BuildNode);
+    for (const BuildNode& c : n.children) b += buildTreeBytes(c);
+    return b;
+}
 
 }  // namespace
 
@@ -309,6 +336,7 @@ void SpacetimeBVH::build(const std::vector<const TrilinearBody*>& all, double ta
     nodes_.clear();
     refs_.clear();
     depth_ = 0;
+    buildBytes_ = 0;
     // The root cell: every body over the window, the eye and the lights.
     Bounds3f root = include;
     for (const TrilinearBody* b : all) {
@@ -328,9 +356,11 @@ void SpacetimeBVH::build(const std::vector<const TrilinearBody*>& all, double ta
         if (clipToCell(info.back(), i, root, ta, tb, &it)) items.push_back(it);
     }
     if (items.empty()) return;
+    const size_t listBytes = info.capacity() * sizeof(BodyInfo) + items.capacity() * sizeof(CellItem);
     Builder builder(info, options);
     BuildNode tree = builder.build(root, ta, tb, items, 0);
     depth_ = builder.maxDepth.load();
+    buildBytes_ = listBytes + builder.peakHeld.load() * sizeof(CellItem) + sizeof(BuildNode) + buildTreeBytes(tree);
 
     // Flatten breadth first, so that each node's children are contiguous.
     std::deque<std::pair<const BuildNode*, uint32_t>> queue{{&tree, 0}};

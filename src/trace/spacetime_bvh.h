@@ -80,6 +80,10 @@ class SpacetimeBVH {
     // Bounding volumes built: the nodes of the final tree, leaves included.
     size_t nodeCount() const { return nodes_.size(); }
     size_t leafReferences() const { return refs_.size(); }  // body references held by leaves
+    // Bytes its last build held besides what it keeps (the build tree before flattening, the
+    // bodies' bounds and the root's list), let go when build returns: the memory estimate's
+    // build-time part (memory.h).
+    size_t buildBytes() const { return buildBytes_; }
     // Bytes the hierarchy holds (for the memory estimate, memory.h).
     size_t bytes() const {
         return bodies_.capacity() * sizeof(bodies_[0]) + nodes_.capacity() * sizeof(Node) +
@@ -120,6 +124,7 @@ class SpacetimeBVH {
     std::vector<Node> nodes_;   // nodes_[0] is the root (when there is one)
     std::vector<Reference> refs_;
     int depth_ = 0;
+    size_t buildBytes_ = 0;
 };
 
 }  // namespace streyes

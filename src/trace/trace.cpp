@@ -261,6 +261,12 @@ size_t TraceScene::hierarchyBytes() const {
     return b;
 }
 
+size_t TraceScene::buildBytes() const {
+    size_t b = std::max({spacetime_.buildBytes(), still_.buildBytes(), moving_.buildBytes()});
+    for (const SpacetimeBVH& h : frames_) b = std::max(b, h.buildBytes());
+    return b;
+}
+
 size_t TraceScene::bytes() const {
     return bodies_.capacity() * sizeof(bodies_[0]) + pieces_.size() * (sizeof(TrilinearBody) + 16) +
            micropolygonCount_ * sizeof(TrilinearBody) + hierarchyBytes();

@@ -94,6 +94,8 @@ class TraceScene {
     // ones are built again for every frame block), and each tracing thread's mailbox.
     size_t bytes() const;
     size_t hierarchyBytes() const;
+    // The most a hierarchy's build held at once besides what it keeps (SpacetimeBVH::buildBytes).
+    size_t buildBytes() const;
     size_t mailboxBytes() const { return bodies_.size() * sizeof(uint32_t); }
     // Shadow rays start this far (camera-space units) from a surface at depth z: one pixel.
     float shadowBias(float z, double time) const;

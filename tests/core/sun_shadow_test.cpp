@@ -6,8 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "geom/lights.h"
+#include "shader_test_util.h"
 #include "test_util.h"
 
 namespace streyes {
@@ -19,15 +22,20 @@ using test::renderRib;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The zenith ("up") is -z, so the sun stands 45 degrees high and lights the floor.
-std::string sunShadowScene(double angle, const std::string& options = "") {
+// The floor lit by `light` (a LightSource's name and parameters) with shadows on, under the sphere.
+std::string shadowScene(const std::string& light, const std::string& options = "") {
     return orthoHeader(96, 40, "PixelSamples 8 8\nShutter 0 1\n" + options) +
-           "Attribute \"light\" \"shadows\" \"on\"\n"
-           "LightSource \"sunlight\" 1 \"intensity\" [2] \"from\" [0 0 0] \"to\" [1 0 1] \"up\" [0 0 -1] \"angle\" [" +
-           std::to_string(angle) + "]\n"
+           "Attribute \"light\" \"shadows\" \"on\"\nLightSource " + light + "\n"
            "Surface \"matte\" \"Ka\" [0]\n" + test::square(0, 96, 0, 40, 40) +
            "AttributeBegin\nSurface \"constant\"\nColor [0.5 0.5 0.5]\n"
            "Translate 20 20 10\nSphere 8 -8 8 360\nAttributeEnd\nWorldEnd\n";
+}
+
+// The zenith ("up") is -z, so the sun stands 45 degrees high and lights the floor.
+std::string sunShadowScene(double angle, const std::string& options = "", const std::string& shader = "sunlight") {
+    return shadowScene("\"" + shader + "\" 1 \"intensity\" [2] \"from\" [0 0 0] \"to\" [1 0 1] \"up\" [0 0 -1] \"angle\" [" +
+                           std::to_string(angle) + "]",
+                       options);
 }
 
 // The floor's shadow (1 - light / the light where nothing is in the way), summed over pixels, and
@@ -74,26 +82,64 @@ TEST(SunShadow, ParallelToTheSunAndSoftOverItsDisc) {
     EXPECT_GT(soft.stats.counters.shadowVertexRays, 12 * hard.stats.counters.shadowVertexRays);
 }
 
-// The light set reads the sun as a directional light: its direction from - to in camera space,
-// its cone the tangent of "angle" (the shader's 0.27 degrees when not given), and every cone
+// What decides is what the shader does, not its name: a copy of sunlight.sl under another name
+// casts the sun's shadow, bit for bit.
+TEST(SunShadow, ARenamedCopyOfTheSunCastsTheSameShadow) {
+    test::ShaderDir shaders;
+    std::ifstream in(test::sourcePath("shaders/sunlight.sl"));
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string source = text.str();
+    const size_t at = source.find("light sunlight(");
+    ASSERT_NE(at, std::string::npos);
+    source.replace(at, 15, "light mysun(");
+    shaders.add("mysun", source);
+    const RenderResult sun = renderRib(sunShadowScene(3, shaders.option()));
+    const RenderResult copy = renderRib(sunShadowScene(3, shaders.option(), "mysun"));
+    EXPECT_EQ(copy.channel(0, 50, 20, 0), 0.0f);  // the parallel shadow's umbra
+    EXPECT_GT(measure(copy).partial, 130);         // and its penumbra
+    EXPECT_TRUE(test::identicalPixels(sun, copy));
+}
+
+// solar(axis, 0): hard shadows parallel to the axis (the distant light's ellipse, a one-pixel
+// edge); a light that illuminates from a point casts its shadow away from that point (off the
+// picture: the origin's shadow of the sphere falls about (80, 80)), not the parallel one.
+TEST(SunShadow, SolarLightsAreDirectionalAndIlluminateLightsAreNot) {
+    test::ShaderDir shaders;
+    shaders.add("hardsun", "light hardsun(float intensity = 1; point from = point \"shader\" (0, 0, 0);\n"
+                           "  point to = point \"shader\" (0, 0, 1);) {\n"
+                           "  solar(to - from, 0) { Cl = intensity; }\n}\n");
+    shaders.add("lamp", "light lamp(float intensity = 1; point from = point \"shader\" (0, 0, 0);\n"
+                        "  point to = point \"shader\" (0, 0, 1);) {\n"
+                        "  illuminate(from) { Cl = intensity; }\n}\n");
+    const std::string params = " 1 \"intensity\" [2] \"from\" [0 0 0] \"to\" [1 0 1]";
+    const RenderResult hard = renderRib(shadowScene("\"hardsun\"" + params, shaders.option()));
+    const ShadowMeasure h = measure(hard);
+    const double ellipse = 64 * kPi * std::sqrt(2.0);
+    EXPECT_NEAR(h.area, ellipse, 0.025 * ellipse);
+    EXPECT_LT(h.partial, 130);
+    EXPECT_EQ(hard.channel(0, 50, 20, 0), 0.0f);
+    const RenderResult lamp = renderRib(shadowScene("\"lamp\"" + params, shaders.option()));
+    EXPECT_GT(lamp.channel(0, 50, 20, 0), 0.1f);
+    EXPECT_GT(lamp.stats.counters.shadowVertexRays, 0u);  // it does trace shadows
+}
+
+// The light set takes a light shader marked directional as a distant light: its direction
+// against the solar axis in camera space, its cone the tangent of the solar angle, and every cone
 // direction within the cone, spread about its axis.
 TEST(SunShadow, TheLightSetTakesTheSunAsADirectionalLight) {
     LightDesc d;
-    d.type = "sunlight";
+    d.type = "anysun";
     d.castsShadows = true;
-    Param from;
-    from.name = "from";
-    from.type = ParamType::Point;
-    from.nums = {3, 4, 0};
-    d.params.params = {from};
-    const LightSet set({d}, MotionTransform());
+    LightSet set({d}, MotionTransform());
+    set.setDirectional(0, {-3, -4, 0}, 0.27 * kPi / 180);  // solar(to - from, radians(0.27))
     std::vector<CameraLight> ls;
     set.at(0, ls);
     ASSERT_EQ(ls.size(), 1u);
     const CameraLight& l = ls[0];
     EXPECT_TRUE(l.parallel);
     EXPECT_FALSE(shadowsTowardsPoint(l));
-    EXPECT_NEAR(l.direction.x, 0.6f, 1e-6f);  // from - to, to the shader's default (0 0 0)
+    EXPECT_NEAR(l.direction.x, 0.6f, 1e-6f);  // against the axis
     EXPECT_NEAR(l.direction.y, 0.8f, 1e-6f);
     EXPECT_NEAR(l.coneTan, std::tan(0.27 * kPi / 180), 1e-9);
     ASSERT_EQ(coneShadowSamples(l), kConeShadowSamples);

@@ -11,7 +11,17 @@
 #include "shade/vm/frame.h"
 #include "shade/vm/grid_kernels.h"
 #include "shade/vm/ops.h"
+#include "shade/vm/solar_seen.h"
 #include "shade/vm/vm.h"
+
+namespace streyes::sl {
+
+SolarSeen& lastSolarSeen() {
+    thread_local SolarSeen seen;
+    return seen;
+}
+
+}  // namespace streyes::sl
 
 namespace streyes::sl::ops {
 
@@ -178,6 +188,14 @@ void solar(Exec& x, const Instr& in) {
         store3(L, i, l);
         lit[i] = 1;
     }
+    if (hasAxis)
+        for (int i = 0; i < x.n; ++i)
+            if (m[i]) {
+                const V3 a = load3(axis, i);
+                lastSolarSeen() = {true, !x.varying(in.a[0]) && (in.a[1] < 0 || !x.varying(in.a[1])),
+                                   Vec3f{a.x, a.y, a.z}, in.a[1] >= 0 ? x.view(in.a[1]).at(0, i) : 0.0f};
+                break;
+            }
     x.vm.solarAxis = in.a[0];
     setLevel(x, d);
     if (x.active == 0) x.pc = in.a[2];
