@@ -437,7 +437,9 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
     }
     const uint32_t rayId = ctx.rayId;
     const float tf = float(time);
-    const Vec3f inv{1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z};
+    // + 0.0f makes a -0 component +0: 1/-0 = -inf turned a ray in a box face's plane into a miss
+    // (enterBox's 0 * inf NaN keeps the interval only for +inf).
+    const Vec3f inv{1.0f / (ray.d.x + 0.0f), 1.0f / (ray.d.y + 0.0f), 1.0f / (ray.d.z + 0.0f)};
     float best = tMax;
     bool found = false;
 

@@ -215,6 +215,27 @@ TEST(SpacetimeBVH, FastMotionIsBoundedPiecewiseInTime) {
     EXPECT_TRUE(bvh.intersect(Ray{{-25, 0, 0}, {0, 0, 1}}, 4.5, 0, 100, &h, ctx));
 }
 
+// A ray lying in a box face's plane with a zero direction component grazes the box whichever sign
+// the zero has: -0 made 1/d -inf, and the slab test's 0 * inf NaN then rejected the box (a lit row
+// through a hard sun's shadow, whose rays are built as 0 - axis to dodge it).
+TEST(SpacetimeBVH, ARayInAFacesPlaneHitsWhateverTheSignOfItsZeroDirection) {
+    const Corners quad{{{0, 0, 5}, {1, 0, 5}, {0, 1, 5}, {1, 1, 5}}};
+    TrilinearBody body({0, 1}, quad, quad, std::array<Color, 4>{}, nullptr);
+    SpacetimeBVH bvh;
+    bvh.build({&body}, 0, 1, Bounds3f{}, HierarchyOptions{});
+    TraceContext ctx;
+    for (const float zero : {0.0f, -0.0f}) {
+        for (const Vec3f o : {Vec3f{0, 0.5f, 0}, Vec3f{1, 0.5f, 0}}) {  // the box's lo and hi x faces
+            const Ray ray{o, Vec3f{zero, zero, 1}};
+            PatchHit ref;
+            ASSERT_TRUE(intersectBilinearPatch(quad, ray, 1e-3f, 1e30f, &ref)) << "x " << o.x;
+            TraceHit h;
+            EXPECT_TRUE(bvh.intersect(ray, 0.5, 1e-3f, 1e30f, &h, ctx)) << "x " << o.x << " zero " << zero;
+            EXPECT_TRUE(bvh.occluded(ray, 0.5, 1e-3f, 1e30f, ctx)) << "x " << o.x << " zero " << zero;
+        }
+    }
+}
+
 TEST(SpacetimeBVH, EmptySceneMissesEverything) {
     SpacetimeBVH bvh;
     bvh.build({}, 0, 1, Bounds3f{}, HierarchyOptions{});
