@@ -180,6 +180,16 @@ void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPenn
                 const Motion& motion = {}) {
     if (leaves.empty() || p.leafScale <= 0) return;
     const auto& shape = outline(p.leafShape);
+    // A degraded leaf (grown: the range thinned its neighbours) is a diamond, one bilinear patch
+    // instead of the outline's several, as wide as keeps the outline's area: (0,0) (0.5,w) (1,0)
+    // (0.5,-w) has area w, the outline's the shoelace sum (in units of length x half width).
+    double outlineArea = 0;
+    for (size_t k = 0; k < shape.size(); ++k) {
+        const auto& [u0, w0] = shape[k];
+        const auto& [u1, w1] = shape[(k + 1) % shape.size()];
+        outlineArea += 0.5 * (u0 * w1 - u1 * w0);
+    }
+    const std::pair<double, double> diamond[4] = {{0, 0}, {0.5, -std::fabs(outlineArea)}, {1, 0}, {0.5, std::fabs(outlineArea)}};
     PolygonMeshDesc m;
     m.request = "PointsPolygons";
     m.times = {0.0};
@@ -195,14 +205,18 @@ void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPenn
         Vec3d across = cross(l.direction, l.normal);
         across = length(across) > 1e-9 ? normalize(across) : Vec3d{1, 0, 0};
         std::vector<int> loop;
-        for (const auto& [u, w] : shape) {
+        // The paper's reduction for distant trees: fewer leaves (grown so), larger, the same area.
+        const double len = p.leafScale * l.grow, half = 0.5 * len * p.leafScaleX;
+        auto corner = [&](double u, double w) {
             loop.push_back(int(P.size()));
-            // The paper's reduction for distant trees: fewer leaves (grown so), larger, the same area.
-            const double len = p.leafScale * l.grow, half = 0.5 * len * p.leafScaleX;
             const Vec3d q = l.position + l.direction * (u * len) + across * (w * half);
             P.push_back(motion.moving() ? q : squash(q, zs));
             if (motion.moving()) leafOf.push_back(i);
-        }
+        };
+        if (l.grow > 1)
+            for (const auto& [u, w] : diamond) corner(u, w);
+        else
+            for (const auto& [u, w] : shape) corner(u, w);
         m.polygons.push_back({std::move(loop)});
         m.Cs.values.push_back(p.leafColor * (0.8f + 0.4f * r.nextFloat()));
     }

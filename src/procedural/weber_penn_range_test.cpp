@@ -279,6 +279,37 @@ TEST_P(WeberPennRangePresets, ThinStemsAreLinesAndThinnerOnesGone) {
     }
 }
 
+// Leaves as made: at full detail outlines of 10 or 12 points; thinned, diamonds (one bilinear
+// patch each) whose total area is the full tree's leaf area (within the 15% the counts allow).
+TEST_P(WeberPennRangePresets, ThinnedLeavesAreDiamondsWithTheFullArea) {
+    WeberPennParams p = *weberPennPreset(GetParam());
+    p.seed = 4;
+    auto leafArea = [](const std::vector<ProceduralOutput>& outs, size_t* points4, size_t* polygons) {
+        double area = 0;
+        for (const auto& o : outs)
+            for (const auto& m : o.scene.polygonMeshes)
+                for (const auto& poly : m.polygons) {
+                    const auto& loop = poly[0];
+                    ++*polygons;
+                    *points4 += loop.size() == 4;
+                    Vec3d sum{0, 0, 0};
+                    for (size_t k = 1; k + 1 < loop.size(); ++k)
+                        sum = sum + cross(m.P[0][size_t(loop[k])] - m.P[0][size_t(loop[0])],
+                                          m.P[0][size_t(loop[k + 1])] - m.P[0][size_t(loop[0])]);
+                    area += 0.5 * length(sum);
+                }
+        return area;
+    };
+    size_t fullDiamonds = 0, fullLeaves = 0, farDiamonds = 0, farLeaves = 0;
+    const double full = leafArea(expandAt(p, 1e4).subtrees, &fullDiamonds, &fullLeaves);
+    const double far = leafArea(expandAt(p, 3).subtrees, &farDiamonds, &farLeaves);
+    EXPECT_EQ(fullDiamonds, 0u);
+    ASSERT_GT(farLeaves, 0u);
+    EXPECT_EQ(farDiamonds, farLeaves);
+    EXPECT_LT(farLeaves * 5, fullLeaves);
+    EXPECT_NEAR(far / full, 1.0, 0.15);
+}
+
 INSTANTIATE_TEST_SUITE_P(Paper, WeberPennRangePresets, testing::ValuesIn(weberPennPresetNames()));
 
 }  // namespace
