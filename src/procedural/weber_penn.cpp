@@ -426,21 +426,39 @@ WeberPennStem weberPennTrunk(const WeberPennParams& p, double* scaleTree) {
     return s;
 }
 
+WeberPennReduction weberPennReduction(const WeberPennParams& p, double quality) {
+    WeberPennReduction r;
+    const double q = std::clamp(quality, kWeberPennLeastQuality, 1.0);
+    if (p.levels - 1 >= 2) r.stemStep = std::max(1, int(std::floor(1 / std::sqrt(q) + 1e-9)));
+    r.leafStep = std::max(1, int(std::lround(1 / (q * r.stemStep))));
+    return r;
+}
+
 void weberPennGrowBelow(const WeberPennParams& p, std::vector<WeberPennStem>& stems, size_t index, int lastLevel,
-                        std::vector<WeberPennLeaf>* leaves) {
+                        std::vector<WeberPennLeaf>* leaves, const WeberPennReduction& reduce) {
     const int level = stems[index].level;
     if (level >= lastLevel) return;
     if (level + 1 < p.levels) {
         double acc = 0;
         HashRng r(hashCombine(stems[index].key, 0x707a7e));
         const int n = stems[index].children;
+        // The last stem level (2 or deeper) keeps every stemStep-th stem; the rotation is drawn for
+        // every one, so that those kept are where the full tree has them.
+        const int step = level + 1 == p.levels - 1 && level + 1 >= 2 ? reduce.stemStep : 1;
+        const size_t leavesBefore = leaves ? leaves->size() : 0;
         for (int j = 0; j < n; ++j) {
             const WeberPennStem& s = stems[index];
             const double rot = nextRotate(column(p, level + 1), &acc, r);
+            if (j % step != 0) continue;
             WeberPennStem child = makeChild(p, s, childOffset(s, j, n), rot, j);
             child.parent = int(index);
             stems.push_back(std::move(child));
-            weberPennGrowBelow(p, stems, stems.size() - 1, lastLevel, leaves);
+            weberPennGrowBelow(p, stems, stems.size() - 1, lastLevel, leaves, reduce);
+        }
+        if (step > 1 && leaves) {
+            // The leaves of the kept stems stand for those of the stems left out: their area by n / kept.
+            const double share = double(n) / double((n + step - 1) / step);
+            for (size_t i = leavesBefore; i < leaves->size(); ++i) (*leaves)[i].grow *= std::sqrt(share);
         }
     } else if (leaves) {
         // Leaves along the last level's stems, turned and tilted by column Levels.
@@ -448,29 +466,33 @@ void weberPennGrowBelow(const WeberPennParams& p, std::vector<WeberPennStem>& st
         const WeberPennLevel& c = column(p, p.levels);
         HashRng r(hashCombine(s.key, 0x1eaf));
         double acc = 0;
+        const int step = reduce.leafStep;
+        const double grow = std::sqrt(double(s.leaves) / double(std::max(1, (s.leaves + step - 1) / step)));
         for (int j = 0; j < s.leaves; ++j) {
-            const double offset = childOffset(s, j, s.leaves);
+            const double rot = nextRotate(c, &acc, r);
+            const double down = c.downAngle + pm(r) * std::fabs(c.downAngleV);
+            if (j % step != 0) continue;  // after its draws: the next leaf is the full tree's
             Vec3d at;
             Frame pf;
             WeberPennLeaf l;
-            placeOn(s, offset, j, &at, &pf, &l.path, &l.segment);
-            const double rot = nextRotate(c, &acc, r);
-            const Frame f = childFrame(pf, rot, c.downAngle + pm(r) * std::fabs(c.downAngleV));
+            placeOn(s, childOffset(s, j, s.leaves), j, &at, &pf, &l.path, &l.segment);
+            const Frame f = childFrame(pf, rot, down);
             l.position = at;
             l.direction = f.z;
             l.normal = normalize(cross(f.z, f.x));
             if (p.leafBend != 0) weberPennBendLeaf(p.leafBend, &l);
             l.stem = int(index);
+            l.grow = grow;
             leaves->push_back(l);
         }
     }
 }
 
-WeberPennTree growWeberPenn(const WeberPennParams& p) {
+WeberPennTree growWeberPenn(const WeberPennParams& p, const WeberPennReduction& reduce) {
     WeberPennTree t;
     t.params = p;
     t.stems.push_back(weberPennTrunk(p, &t.scaleTree));
-    weberPennGrowBelow(p, t.stems, 0, p.levels, &t.leaves);
+    weberPennGrowBelow(p, t.stems, 0, p.levels, &t.leaves, reduce);
     return t;
 }
 

@@ -119,6 +119,10 @@ struct WeberPennLeaf {
     Vec3d position, direction, normal;  // base of the leaf, along its blade, its face
     int stem = 0;
     int path = 0, segment = 0;  // where on its stem it grows
+    // Degraded at range (WeberPennReduction): its size's factor, the inverse square root of the
+    // share of leaves kept where it grows (of its stem's, times that of its stem among its
+    // siblings), so that the leaves kept have the area of the leaves of the full tree there.
+    double grow = 1;
 };
 
 struct WeberPennTree {
@@ -138,14 +142,31 @@ void weberPennBendLeaf(double leafBend, WeberPennLeaf* leaf);
 // flare (with trunk = true).
 double weberPennRadiusAt(const WeberPennParams& p, const WeberPennStem& s, double z);
 
+// The paper's degradation at range: at quality q in (0, 1] (how large the tree is on screen) a
+// subtree keeps about q of its leaves, each larger by the inverse square root of the share kept
+// (WeberPennLeaf::grow) so that the crown keeps its leaf area, and about sqrt(q) of its last stem
+// level's stems (those that carry the leaves; a level of 2 or deeper: the first-level branches are
+// the tree's procedurals). What is kept is a subset of the full tree, each where the full tree has
+// it: child j of a stem when j % stemStep == 0 (ceil(n / stemStep) of n), leaf j of a stem when
+// j % leafStep == 0.
+struct WeberPennReduction {
+    int stemStep = 1;  // of the last stem level (when >= 2), every stemStep-th stem of each parent
+    int leafStep = 1;  // of each kept stem's leaves, every leafStep-th
+};
+// stemStep = floor(1 / sqrt(q)) (1 when the last stem level is the first or the trunk), leafStep =
+// max(1, round(1 / (q stemStep))): the share kept, 1 / (stemStep leafStep), is about q. q is taken
+// at least kWeberPennLeastQuality, so that a leaf grows at most sqrt(20) times (bounds count on it).
+constexpr double kWeberPennLeastQuality = 0.05;
+WeberPennReduction weberPennReduction(const WeberPennParams& p, double quality);
+
 // Grows a whole tree (for tests and tools): the same stems the procedural makes.
-WeberPennTree growWeberPenn(const WeberPennParams& p);
+WeberPennTree growWeberPenn(const WeberPennParams& p, const WeberPennReduction& reduce = {});
 // The steps the procedural takes lazily: the trunk (and scale_tree), then the stems below
 // stems[index] down to level lastLevel (appended to `stems`, depth first) with the leaves of those
-// of the last level.
+// of the last level; `reduce` leaves out stems and leaves (what it keeps is as in the full tree).
 WeberPennStem weberPennTrunk(const WeberPennParams& p, double* scaleTree);
 void weberPennGrowBelow(const WeberPennParams& p, std::vector<WeberPennStem>& stems, size_t index, int lastLevel,
-                        std::vector<WeberPennLeaf>* leaves);
+                        std::vector<WeberPennLeaf>* leaves, const WeberPennReduction& reduce = {});
 
 // Parses "model=weberpenn preset=NAME seed=N Shape=... 1DownAngle=... barkcolor=r,g,b ...";
 // unknown keys or bad values throw InputError at `loc`.

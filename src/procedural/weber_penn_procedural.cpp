@@ -176,13 +176,20 @@ const std::vector<std::pair<double, double>>& outline(int shape) {
 
 // All the leaves of an expansion as one PointsPolygons, a colour each (the leaf colour varied).
 void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennParams& p,
-                const std::vector<WeberPennLeaf>& leaves, double quality, uint64_t key, double zs,
+                const std::vector<WeberPennLeaf>& leaves, uint64_t key, double zs,
                 const Motion& motion = {}) {
     if (leaves.empty() || p.leafScale <= 0) return;
     const auto& shape = outline(p.leafShape);
-    // The paper's reduction for distant trees: fewer leaves, larger, the same area.
-    const double scale = p.leafScale / std::sqrt(quality);
-    const double len = scale, half = 0.5 * scale * p.leafScaleX;
+    // A degraded leaf (grown: the range thinned its neighbours) is a diamond, one bilinear patch
+    // instead of the outline's several, as wide as keeps the outline's area: (0,0) (0.5,w) (1,0)
+    // (0.5,-w) has area w, the outline's the shoelace sum (in units of length x half width).
+    double outlineArea = 0;
+    for (size_t k = 0; k < shape.size(); ++k) {
+        const auto& [u0, w0] = shape[k];
+        const auto& [u1, w1] = shape[(k + 1) % shape.size()];
+        outlineArea += 0.5 * (u0 * w1 - u1 * w0);
+    }
+    const std::pair<double, double> diamond[4] = {{0, 0}, {0.5, -std::fabs(outlineArea)}, {1, 0}, {0.5, std::fabs(outlineArea)}};
     PolygonMeshDesc m;
     m.request = "PointsPolygons";
     m.times = {0.0};
@@ -193,18 +200,23 @@ void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPenn
     std::vector<Vec3d> P;
     std::vector<size_t> leafOf;  // moving: the leaf each point belongs to
     HashRng r(hashCombine(key, 0x1ea7e5));
-    const size_t every = quality >= 1 ? 1 : size_t(std::lround(1 / quality));
-    for (size_t i = 0; i < leaves.size(); i += every) {
+    for (size_t i = 0; i < leaves.size(); ++i) {
         const WeberPennLeaf& l = leaves[i];
         Vec3d across = cross(l.direction, l.normal);
         across = length(across) > 1e-9 ? normalize(across) : Vec3d{1, 0, 0};
         std::vector<int> loop;
-        for (const auto& [u, w] : shape) {
+        // The paper's reduction for distant trees: fewer leaves (grown so), larger, the same area.
+        const double len = p.leafScale * l.grow, half = 0.5 * len * p.leafScaleX;
+        auto corner = [&](double u, double w) {
             loop.push_back(int(P.size()));
             const Vec3d q = l.position + l.direction * (u * len) + across * (w * half);
             P.push_back(motion.moving() ? q : squash(q, zs));
             if (motion.moving()) leafOf.push_back(i);
-        }
+        };
+        if (l.grow > 1)
+            for (const auto& [u, w] : diamond) corner(u, w);
+        else
+            for (const auto& [u, w] : shape) corner(u, w);
         m.polygons.push_back({std::move(loop)});
         m.Cs.values.push_back(p.leafColor * (0.8f + 0.4f * r.nextFloat()));
     }
@@ -247,7 +259,7 @@ double subtreeReach(const WeberPennParams& p, const WeberPennStem& s) {
         reach += l + helixReach(c, l);
     }
     const double flare = s.level == 0 ? (1 + p.flare) * (1 + p.lobeDepth) : 1;
-    return reach + p.leafScale * std::max(1.0, p.leafScaleX) * std::sqrt(20.0) + 2 * s.radius * flare + 0.1 * s.length;
+    return reach + p.leafScale * std::max(1.0, p.leafScaleX) * std::sqrt(1 / kWeberPennLeastQuality) + 2 * s.radius * flare + 0.1 * s.length;
 }
 
 Bounds3d subtreeBound(const WeberPennParams& p, const WeberPennStem& s, double zs) {
@@ -273,11 +285,55 @@ void emitProcedural(ProceduralOutput& out, const ExpandContext& ctx, std::shared
     out.procedurals.push_back(std::move(gp));
 }
 
-// The leaves' share kept at this size on screen (the paper's LeafQuality for distant trees):
-// all of them while the subtree is 300 pixels across or more (times detail=), fewer below.
+// The leaves' share kept at this size on screen (the paper's quality for distant trees): all of
+// them while the subtree is 300 pixels across or more (times detail=), below as its area: a
+// branch's leaves on screen follow the pixels it covers, not its width.
 double qualityAt(const WeberPennParams& p, const ExpandContext& ctx) {
-    const double size = std::sqrt(std::max(0.0, ctx.detail));
-    return std::clamp(size * p.detail / 300, 0.05, 1.0);
+    const double size = std::sqrt(std::max(0.0, ctx.detail)) * p.detail / 300;
+    return std::clamp(size * size, kWeberPennLeastQuality, 1.0);
+}
+
+// A stem as lines (the paper's stems drawn as lines at range): a linear curve along each path's
+// segment points, as wide as the stem there (ribbons facing the eye).
+void emitLines(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennParams& p, const WeberPennStem& s,
+               double zs, const Motion& motion, size_t stemIndex) {
+    const int res = int(s.paths[0].points.size()) - 1;
+    CurvesDesc c;
+    c.times = motion.times;
+    c.objectToWorld = ctx.objectToWorld;
+    c.attributes = ctx.attributes;
+    c.loc = ctx.loc;
+    c.widthClass = ParamClass::Varying;
+    c.width.clear();
+    c.Cs.cls = ParamClass::Constant;
+    c.Cs.values = {p.barkColor};
+    c.P.resize(motion.times.size());
+    for (size_t pathIndex = 0; pathIndex < s.paths.size(); ++pathIndex) {
+        const WeberPennStem::Path& path = s.paths[pathIndex];
+        if (path.points.size() < 2) continue;
+        c.nvertices.push_back(int(path.points.size()));
+        for (size_t i = 0; i < path.points.size(); ++i) {
+            const int segment = path.firstSegment + int(i);
+            c.width.push_back(2 * weberPennRadiusAt(p, s, double(segment) / std::max(1, res)));
+            for (size_t k = 0; k < motion.times.size(); ++k)
+                c.P[k].push_back(squash(motion.moving() ? motion.poses[k][stemIndex].of(int(pathIndex), segment)(path.points[i])
+                                                        : path.points[i],
+                                        zs));
+        }
+    }
+    if (!c.nvertices.empty()) out.scene.curves.push_back(std::move(c));
+}
+
+// A stem by its width on screen: a generalized cylinder; under a pixel / detail across, lines;
+// under a quarter of a pixel / detail, nothing (what grows on it stays). The trunk and the
+// first-level branches are never left out. Without a measure of the screen (ppu 0), cylinders.
+void emitStemAtRange(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennParams& p, const WeberPennStem& s,
+                     double zs, const Motion& motion, size_t stemIndex) {
+    if (s.length <= 0 || s.radius <= 0) return;
+    const double ppu = ctx.read.pixelsPerUnit;
+    const double across = 2 * s.radius * ppu * p.detail;  // pixels, scaled by detail=
+    if (ppu <= 0 || across >= 1) emitStem(out, ctx, p, s, sidesOf(s.level), zs, motion, stemIndex);
+    else if (s.level <= 1 || across >= 0.25) emitLines(out, ctx, p, s, zs, motion, stemIndex);
 }
 
 // In the wind a stem's subtree keeps its shape along its axes: every point of it stays within the
@@ -310,7 +366,8 @@ class SubtreeGenerator final : public ProceduralGenerator {
         const WeberPennParams& p = *p_;
         std::vector<WeberPennStem> stems{stem_};
         std::vector<WeberPennLeaf> leaves;
-        weberPennGrowBelow(p, stems, 0, p.levels, &leaves);
+        const WeberPennReduction reduce = weberPennReduction(p, qualityAt(p, ctx));
+        weberPennGrowBelow(p, stems, 0, p.levels, &leaves, reduce);
         Motion motion;
         if (weberPennWindy(p)) {
             // Each stem posed at each key after its parent where it grows; the branch after the trunk.
@@ -327,14 +384,8 @@ class SubtreeGenerator final : public ProceduralGenerator {
                 motion.poses.push_back(std::move(poses));
             }
         }
-        // Stems under a quarter of a pixel across are left out (their leaves stay).
-        const double ppu = ctx.read.pixelsPerUnit;
-        for (size_t i = 0; i < stems.size(); ++i) {
-            const WeberPennStem& s = stems[i];
-            if (s.level <= 1 || ppu <= 0 || 2 * s.radius * ppu >= 0.25 / p.detail)
-                emitStem(out, ctx, p, s, sidesOf(s.level), zs_, motion, i);
-        }
-        emitLeaves(out, ctx, p, leaves, qualityAt(p, ctx), stem_.key, zs_, motion);
+        for (size_t i = 0; i < stems.size(); ++i) emitStemAtRange(out, ctx, p, stems[i], zs_, motion, i);
+        emitLeaves(out, ctx, p, leaves, stem_.key, zs_, motion);
     }
 
   private:
@@ -343,6 +394,90 @@ class SubtreeGenerator final : public ProceduralGenerator {
     WeberPennStem stem_;
     double zs_;
 };
+
+// The bound of the still tree: its trunk's (with its own leaves when it has them) and its
+// first-level branches' subtrees'. `stems`: the trunk and its first-level branches.
+Bounds3d stillTreeBound(const WeberPennParams& p, const std::vector<WeberPennStem>& stems, double zs) {
+    WeberPennParams trunkOnly = p;
+    trunkOnly.levels = std::min(p.levels, 1);  // the trunk's own reach (its leaves when it has them)
+    Bounds3d b = subtreeBound(trunkOnly, stems[0], zs);
+    for (size_t i = 1; i < stems.size(); ++i) b.extend(subtreeBound(p, stems[i], zs));
+    return b;
+}
+
+// Under this many pixels / detail (the still tree's longest side on screen) a tree is the paper's
+// far tree: a simple volume. As the forest's own trees lose their branches under 40.
+constexpr double kVolumePixels = 40;
+
+// The tree's size on screen: its still bound's longest side in pixels (by the procedural's pixels
+// a unit), or, without that measure, the side of its bound's raster area.
+double treePixels(const WeberPennParams& p, const ExpandContext& ctx, const std::vector<WeberPennStem>& stems, double zs) {
+    if (!(ctx.read.pixelsPerUnit > 0)) return std::sqrt(std::max(0.0, ctx.detail));
+    const Vec3d d = stillTreeBound(p, stems, zs).diagonal();
+    return ctx.read.pixelsPerUnit * std::max({d.x, d.y, d.z});
+}
+
+// The paper's far tree as a simple volume: a surface of revolution about the trunk's foot, around
+// the first-level branches' axes (at each of kCrownRings heights as far out as those within a
+// band of it reach, and the leaves' size more), closed at the lowest and highest of their points,
+// in the leaves' colour; its points kept inside the still tree's bound.
+void emitCrownVolume(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennParams& p,
+                     const std::vector<WeberPennStem>& stems, double zs) {
+    constexpr int kCrownRings = 6, kAround = 8;
+    double lo = 1e300, hi = -1e300;
+    for (size_t i = 1; i < stems.size(); ++i)
+        for (const auto& path : stems[i].paths)
+            for (Vec3d q : path.points) lo = std::min(lo, q.y), hi = std::max(hi, q.y);
+    for (const auto& path : stems[0].paths)
+        for (Vec3d q : path.points) hi = std::max(hi, q.y);
+    if (!(hi > lo)) return;
+    const double band = (hi - lo) / (kCrownRings + 1);
+    std::vector<double> radius(kCrownRings, 0.0);
+    for (int k = 0; k < kCrownRings; ++k) {
+        const double y = lo + band * (k + 1);
+        for (size_t i = 1; i < stems.size(); ++i)
+            for (const auto& path : stems[i].paths)
+                for (Vec3d q : path.points)
+                    if (std::fabs(q.y - y) <= band) radius[size_t(k)] = std::max(radius[size_t(k)], std::hypot(q.x, q.z));
+        radius[size_t(k)] += p.leafScale;
+    }
+    const Bounds3d keep = stillTreeBound(p, stems, zs);
+    auto inside = [&](Vec3d q) {
+        q = squash(q, zs);
+        return Vec3d{std::clamp(q.x, keep.lo.x, keep.hi.x), std::clamp(q.y, keep.lo.y, keep.hi.y),
+                     std::clamp(q.z, keep.lo.z, keep.hi.z)};
+    };
+    PolygonMeshDesc m;
+    m.request = "PointsPolygons";
+    m.times = {0.0};
+    m.objectToWorld = ctx.objectToWorld;
+    m.attributes = ctx.attributes;
+    m.loc = ctx.loc;
+    m.Cs.cls = ParamClass::Uniform;
+    std::vector<Vec3d> P;
+    const int bottom = 0;
+    P.push_back(inside({0, lo, 0}));
+    for (int k = 0; k < kCrownRings; ++k)
+        for (int j = 0; j < kAround; ++j) {
+            const double a = 2 * M_PI * j / kAround;
+            P.push_back(inside({radius[size_t(k)] * std::cos(a), lo + band * (k + 1), radius[size_t(k)] * std::sin(a)}));
+        }
+    const int top = int(P.size());
+    P.push_back(inside({0, hi, 0}));
+    auto at = [&](int k, int j) { return 1 + k * kAround + (j % kAround); };
+    for (int j = 0; j < kAround; ++j) {
+        m.polygons.push_back({{bottom, at(0, j + 1), at(0, j)}});
+        m.Cs.values.push_back(p.leafColor * 0.7f);
+        for (int k = 0; k + 1 < kCrownRings; ++k) {
+            m.polygons.push_back({{at(k, j), at(k, j + 1), at(k + 1, j + 1), at(k + 1, j)}});
+            m.Cs.values.push_back(p.leafColor * (0.75f + 0.05f * float(k)));
+        }
+        m.polygons.push_back({{at(kCrownRings - 1, j), at(kCrownRings - 1, j + 1), top}});
+        m.Cs.values.push_back(p.leafColor);
+    }
+    m.P = {std::move(P)};
+    out.scene.polygonMeshes.push_back(std::move(m));
+}
 
 class WeberPennTreeGenerator final : public ProceduralGenerator {
   public:
@@ -358,11 +493,18 @@ class WeberPennTreeGenerator final : public ProceduralGenerator {
             motion.times = weberPennKeyTimes(p, ctx.windowStart, ctx.windowEnd);
             for (WeberPennPose& pose : trunkPoses(p, stems[0], motion.times)) motion.poses.push_back({std::move(pose)});
         }
-        emitStem(out, ctx, p, stems[0], sidesOf(0), zs, motion, 0);
+        if (p.levels > 1 && treePixels(p, ctx, stems, zs) < kVolumePixels / p.detail) {
+            // Far: the trunk (lines, most likely) and the crown as a still volume.
+            emitStemAtRange(out, ctx, p, stems[0], zs, {}, 0);
+            emitCrownVolume(out, ctx, p, stems, zs);
+            return;
+        }
+        emitStemAtRange(out, ctx, p, stems[0], zs, motion, 0);
         if (p.levels == 1) {
             std::vector<WeberPennLeaf> leaves;
-            weberPennGrowBelow(p, stems, 0, 1, &leaves);
-            emitLeaves(out, ctx, p, leaves, qualityAt(p, ctx), stems[0].key, zs, motion);
+            const WeberPennReduction reduce = weberPennReduction(p, qualityAt(p, ctx));
+            weberPennGrowBelow(p, stems, 0, 1, &leaves, reduce);
+            emitLeaves(out, ctx, p, leaves, stems[0].key, zs, motion);
             return;
         }
         const auto trunk = std::make_shared<const WeberPennStem>(stems[0]);
@@ -391,11 +533,10 @@ Bounds3d weberPennBound(const WeberPennParams& p) {
     const double zs = zScaleOf(p);
     std::vector<WeberPennStem> stems{weberPennTrunk(p, nullptr)};
     weberPennGrowBelow(p, stems, 0, 1, nullptr);
-    WeberPennParams trunkOnly = p;
-    trunkOnly.levels = std::min(p.levels, 1);  // the trunk's own reach (its leaves when it has them)
-    Bounds3d b = subtreeBound(trunkOnly, stems[0], zs);
-    for (size_t i = 1; i < stems.size(); ++i) b.extend(subtreeBound(p, stems[i], zs));
+    Bounds3d b = stillTreeBound(p, stems, zs);
     if (weberPennWindy(p)) {
+        WeberPennParams trunkOnly = p;
+        trunkOnly.levels = std::min(p.levels, 1);
         // Swaying, the tree stays within its trunk's length and reach and its longest branch's of
         // the trunk's foot, which never moves.
         double branch = 0;
@@ -425,7 +566,7 @@ Bounds3d weberPennFootBound(const WeberPennParams& p) {
     // weberPennBound's windy cube counts a branch's leaves, radius and spline allowance on top of
     // the trunk's: those are added here once more.
     const double branch = trunk.length * (p.level[1].length + std::fabs(p.level[1].lengthV));
-    const double d = trunk.length + subtreeReach(p, trunk) + p.leafScale * std::max(1.0, p.leafScaleX) * std::sqrt(20.0) +
+    const double d = trunk.length + subtreeReach(p, trunk) + p.leafScale * std::max(1.0, p.leafScaleX) * std::sqrt(1 / kWeberPennLeastQuality) +
                      2 * trunk.radius * (1 + p.flare) * (1 + p.lobeDepth) + 0.1 * branch;
     const double zs = std::max(1e-6, p.zScale + std::fabs(p.zScaleV));
     return Bounds3d({-d, -d * zs, -d}, {d, d * zs, d});
