@@ -24,6 +24,19 @@ double zScaleOf(const WeberPennParams& p) {
 
 Vec3d squash(Vec3d v, double zs) { return {v.x, v.y * zs, v.z}; }
 
+// A still PointsPolygons in the procedural's space with a colour a face (the crown volume, the
+// diamond leaves).
+PolygonMeshDesc uniformPolygonsOf(const ExpandContext& ctx) {
+    PolygonMeshDesc m;
+    m.request = "PointsPolygons";
+    m.times = {0.0};
+    m.objectToWorld = ctx.objectToWorld;
+    m.attributes = ctx.attributes;
+    m.loc = ctx.loc;
+    m.Cs.cls = ParamClass::Uniform;
+    return m;
+}
+
 PatchMeshDesc meshOf(const ExpandContext& ctx, Color cs) {
     PatchMeshDesc m;
     m.times = {0.0};
@@ -190,13 +203,7 @@ void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPenn
         outlineArea += 0.5 * (u0 * w1 - u1 * w0);
     }
     const std::pair<double, double> diamond[4] = {{0, 0}, {0.5, -std::fabs(outlineArea)}, {1, 0}, {0.5, std::fabs(outlineArea)}};
-    PolygonMeshDesc m;
-    m.request = "PointsPolygons";
-    m.times = {0.0};
-    m.objectToWorld = ctx.objectToWorld;
-    m.attributes = ctx.attributes;
-    m.loc = ctx.loc;
-    m.Cs.cls = ParamClass::Uniform;
+    PolygonMeshDesc m = uniformPolygonsOf(ctx);
     std::vector<Vec3d> P;
     std::vector<size_t> leafOf;  // moving: the leaf each point belongs to
     HashRng r(hashCombine(key, 0x1ea7e5));
@@ -447,13 +454,7 @@ void emitCrownVolume(ProceduralOutput& out, const ExpandContext& ctx, const Webe
         return Vec3d{std::clamp(q.x, keep.lo.x, keep.hi.x), std::clamp(q.y, keep.lo.y, keep.hi.y),
                      std::clamp(q.z, keep.lo.z, keep.hi.z)};
     };
-    PolygonMeshDesc m;
-    m.request = "PointsPolygons";
-    m.times = {0.0};
-    m.objectToWorld = ctx.objectToWorld;
-    m.attributes = ctx.attributes;
-    m.loc = ctx.loc;
-    m.Cs.cls = ParamClass::Uniform;
+    PolygonMeshDesc m = uniformPolygonsOf(ctx);
     std::vector<Vec3d> P;
     const int bottom = 0;
     P.push_back(inside({0, lo, 0}));
