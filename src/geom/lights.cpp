@@ -107,8 +107,8 @@ void LightSet::setDirectional(size_t light, const Vec3d& axis, double angle) {
     Light& l = lights_[light];
     if (l.kind != LightKind::Shader || areaLight_[light] || !(length(axis) > 0)) return;
     l.parallel = true;
-    // 0 - axis, not -axis: a component of 0 stays +0, as from - to gives it (a ray's -0 direction
-    // turns a slab test's 0 * inf the other way, and rays grazing a box face along it miss it).
+    // 0 - axis, not -axis: a component of 0 stays +0, as from - to gives it, so a solar() light's
+    // rays are bit for bit a distant light's (the hierarchy's slab test takes -0 as +0 anyway).
     l.towards = Vec3d{0, 0, 0} - axis;
     const double cone = std::clamp(std::isfinite(angle) ? angle : 0.0, 0.0, kMaxConeDegrees * M_PI / 180);
     l.coneTan = float(std::tan(cone));

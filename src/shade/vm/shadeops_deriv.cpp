@@ -77,19 +77,13 @@ void diffParts(const ShadingGrid& g, const float* f, float* out, bool alongU) {
 
 void diffU(const ShadingGrid& g, const float* f, float* out) {
     if (g.parts) return diffParts(g, f, out, true);
-    if (!hasShape(g) || g.nu < 1) {
-        std::memset(out, 0, sizeof(float) * size_t(g.n));
-        return;
-    }
+    if (!hasShape(g)) return void(std::memset(out, 0, sizeof(float) * size_t(g.n)));
     diffUShape(g.nu, g.nv, f, out);
 }
 
 void diffV(const ShadingGrid& g, const float* f, float* out) {
     if (g.parts) return diffParts(g, f, out, false);
-    if (!hasShape(g) || g.nv < 1) {
-        std::memset(out, 0, sizeof(float) * size_t(g.n));
-        return;
-    }
+    if (!hasShape(g)) return void(std::memset(out, 0, sizeof(float) * size_t(g.n)));
     diffVShape(g.nu, g.nv, f, out);
 }
 
