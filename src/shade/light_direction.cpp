@@ -4,7 +4,6 @@
 
 #include "shade/sl/compiler.h"
 #include "shade/vm/ops.h"
-#include "shade/vm/solar_seen.h"
 #include "shade/vm/vm.h"
 
 namespace streyes {
@@ -38,9 +37,8 @@ std::optional<SolarCone> solarCone(const sl::ShaderInstance& light, const Matrix
     std::vector<sl::LightRef> lights{{&light, Matrix4()}};
     sl::ShadingVM vm;
     vm.setPrintSink([](const std::string&) {});  // the light's printf prints in the render, not here
-    sl::lastSolarSeen() = {};
     vm.run(surface, g, lights);
-    const sl::SolarSeen s = sl::lastSolarSeen();
+    const sl::SolarSeen& s = vm.solarSeen;
     const Vec3d axis(s.axis);
     if (!s.seen || !s.uniform || !(length(axis) > 0) || !std::isfinite(s.angle)) return std::nullopt;
     return SolarCone{axis, double(s.angle)};

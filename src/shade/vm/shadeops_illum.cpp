@@ -11,17 +11,7 @@
 #include "shade/vm/frame.h"
 #include "shade/vm/grid_kernels.h"
 #include "shade/vm/ops.h"
-#include "shade/vm/solar_seen.h"
 #include "shade/vm/vm.h"
-
-namespace streyes::sl {
-
-SolarSeen& lastSolarSeen() {
-    thread_local SolarSeen seen;
-    return seen;
-}
-
-}  // namespace streyes::sl
 
 namespace streyes::sl::ops {
 
@@ -192,7 +182,7 @@ void solar(Exec& x, const Instr& in) {
         for (int i = 0; i < x.n; ++i)
             if (m[i]) {
                 const V3 a = load3(axis, i);
-                lastSolarSeen() = {true, !x.varying(in.a[0]) && (in.a[1] < 0 || !x.varying(in.a[1])),
+                x.vm.solarSeen = {true, !x.varying(in.a[0]) && (in.a[1] < 0 || !x.varying(in.a[1])),
                                    Vec3f{a.x, a.y, a.z}, in.a[1] >= 0 ? x.view(in.a[1]).at(0, i) : 0.0f};
                 break;
             }

@@ -1,6 +1,6 @@
-// What the last solar(axis, angle) statement a light ran on this thread saw: its axis and angle
-// at the first point it reached, and whether both were uniform. The probe that finds a light's
-// direction and cone for its shadow rays reads it after one run (shade/light_direction.h).
+// What the last solar(axis, angle) statement a light ran saw: its axis and angle at the first
+// point it reached, and whether both were uniform (ShadingVM::solarSeen). The probe that finds a
+// light's direction and cone for its shadow rays reads it after one run (shade/light_direction.h).
 #pragma once
 
 #include "streyes/vecmath.h"
@@ -13,6 +13,5 @@ struct SolarSeen {
     Vec3f axis{0, 0, 0};
     float angle = 0;
 };
-SolarSeen& lastSolarSeen();  // this thread's
 
 }  // namespace streyes::sl

@@ -33,6 +33,7 @@
 #include "shade/vm/ray_source.h"
 #include "shade/vm/shader_instance.h"
 #include "shade/vm/shading_grid.h"
+#include "shade/vm/solar_seen.h"
 #include "shade/vm/texture_source.h"
 
 namespace streyes::sl {
@@ -159,6 +160,7 @@ class ShadingVM {
     // Inside a light's illuminate(from ...): the light position register, for shadow().
     int illuminateFrom = -1;
     int solarAxis = -1;
+    SolarSeen solarSeen;  // the last solar(axis, angle) a light of this VM ran
     // The running light: the points its illuminate or solar statements reached.
     uint8_t* lit(int n) {
         if (lit_.size() < size_t(n)) lit_.resize(size_t(n), 0);
