@@ -27,8 +27,12 @@ w("Rotate -14 1 0 0\n")
 w("Translate 0 -4.5 16\n")
 w("WorldBegin\n")
 w('LightSource "ambientlight" 1 "intensity" [0.25]\n')
-w('LightSource "distantlight" 2 "intensity" [0.9] "from" [-4 10 -6] "to" [0 0 0]\n')
-w('LightSource "pointlight" 3 "intensity" [30] "lightcolor" [1 0.85 0.6] "from" [5 6 -3]\n')
+# The key and fill lights cast ray-traced shadows (per sample, at each sample's time: the ball's
+# shadow follows it and the sliding box's shadow blurs with it).
+w('LightSource "distantlight" 2 "intensity" [0.9] "from" [-10 9 6] "to" [0 0 0]'
+  ' "string shadowname" ["raytrace"]\n')
+w('LightSource "pointlight" 3 "intensity" [30] "lightcolor" [1 0.85 0.6] "from" [5 6 -3]'
+  ' "string shadowname" ["raytrace"]\n')
 
 # The sky: a still backdrop far beyond the floor, unlit (shaders/sky.sl: a gradient and clouds by
 # the direction looked along), shaded once for all 48 frames.
