@@ -396,23 +396,46 @@ class Polygonizer {
         return origin_ + Vec3d{double(i), double(j), double(k)} * h_;
     }
 
-    // The vertex where the level crosses the edge from grid point `in` (above it) to `out`.
+    // The vertex where the level crosses the edge from grid point `in` (above it) to `out`. A
+    // crossing at a grid point (exactly: 27/64 is a binary fraction and a blob's level sphere passes
+    // through grid points; or within a millionth of a cell, where the surface grazes the grid) is
+    // one vertex for every edge that meets the level there, keyed by the point: the triangles
+    // around it share it, those it collapses have two equal corners and are left out, and the mesh
+    // stays closed. Elsewhere each edge has its own vertex, found by bisection on the field.
     int vertex(size_t in, size_t out) {
-        const uint64_t key = uint64_t(std::min(in, out)) * values_.size() + uint64_t(std::max(in, out));
+        const uint64_t n = values_.size();
+        const uint64_t key = uint64_t(std::min(in, out)) * n + uint64_t(std::max(in, out));
         auto found = vertices_.find(key);
         if (found != vertices_.end()) return found->second;
-        Vec3d a = position(in), b = position(out);
-        if (values_[out] == kBlobbyLevel) {
-            a = b;  // on the level exactly
-        } else {
-            // Bisection keeps the vertex on the true surface to well below a cell's size.
+        const Vec3d inP = position(in), outP = position(out);
+        size_t at = values_[out] == kBlobbyLevel ? out : SIZE_MAX;
+        Vec3d p = outP;
+        if (at == SIZE_MAX) {
+            Vec3d a = inP, b = outP;
             for (int it = 0; it < 30; ++it) {
                 const Vec3d m = (a + b) * 0.5;
                 (eval_.value(m) > kBlobbyLevel ? a : b) = m;
             }
+            p = (a + b) * 0.5;
+            constexpr double kGraze = 1e-6;  // of a cell
+            if (length(p - outP) < kGraze * h_) at = out;
+            else if (length(p - inP) < kGraze * h_) at = in;
         }
-        const int v = int(mesh_.P.size());
-        mesh_.P.push_back((a + b) * 0.5);
+        int v;
+        if (at == SIZE_MAX) {
+            v = int(mesh_.P.size());
+            mesh_.P.push_back(p);
+        } else {
+            const uint64_t pointKey = uint64_t(at) * n + uint64_t(at);  // no edge has min == max
+            auto shared = vertices_.find(pointKey);
+            if (shared != vertices_.end()) {
+                v = shared->second;
+            } else {
+                v = int(mesh_.P.size());
+                mesh_.P.push_back(position(at));
+                vertices_.emplace(pointKey, v);
+            }
+        }
         vertices_.emplace(key, v);
         return v;
     }
@@ -420,7 +443,9 @@ class Polygonizer {
     void triangle(int a, int b, int c) {
         if (a == b || b == c || a == c) return;
         const Vec3d n = cross(mesh_.P[size_t(b)] - mesh_.P[size_t(a)], mesh_.P[size_t(c)] - mesh_.P[size_t(a)]);
-        if (dot(n, n) <= 1e-24 * h_ * h_ * h_ * h_) return;  // no area: nothing to draw, no crack left
+        // No area (rounding only: a vertex within a millionth of a cell of a grid point is that point):
+        // nothing to draw, no crack left.
+        if (dot(n, n) <= 1e-32 * h_ * h_ * h_ * h_) return;
         mesh_.triangles.push_back({a, b, c});
     }
 

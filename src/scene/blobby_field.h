@@ -3,8 +3,10 @@
 //
 // A leaf blob has the field (1 - r^2)^3 for r < 1 and 0 beyond, r the distance in the blob's own
 // space (ellipsoid: from the origin of the unit sphere its matrix places; segment blob: from the
-// segment, over its radius). The surface is where the last instruction's value is 1/2: a lone
-// blob's surface is the sphere r = sqrt(1 - 2^(-1/3)) = 0.4542 of its own space.
+// segment, over its radius). The surface is where the last instruction's value is 27/64 = (3/4)^3:
+// a lone blob's surface is the sphere r = 1/2 of its own space, half its field's reach: the radius
+// of Wyvill et al.'s soft objects (whose field is 1/2 at half its reach), the style PRMan's
+// application note on Blobby names, and the level and radius Aqsis draws (its geometry/blobby.cpp).
 //
 // The polygonizer samples the field on a grid of cubic cells over the leaves' bound, splits every
 // cell into six tetrahedra around its main diagonal (neighbouring cells split their shared faces
@@ -27,7 +29,7 @@
 
 namespace streyes {
 
-constexpr double kBlobbyLevel = 0.5;
+constexpr double kBlobbyLevel = 27.0 / 64.0;
 
 // The field of one leaf blob at squared distance r2 in its own space.
 double blobFalloff(double r2);

@@ -38,12 +38,11 @@ void expectClosedAndConsistent(const BlobbyMesh& m) {
     }
 }
 
-TEST(BlobbyField, FalloffIsOneAtTheCentreAndHalfAtTheLevelRadius) {
+TEST(BlobbyField, FalloffIsOneAtTheCentreAndAtTheLevelAtHalfItsReach) {
     EXPECT_EQ(blobFalloff(0), 1);
     EXPECT_EQ(blobFalloff(1), 0);
     EXPECT_EQ(blobFalloff(4), 0);
-    const double r = std::sqrt(1 - std::cbrt(0.5));
-    EXPECT_NEAR(blobFalloff(r * r), kBlobbyLevel, 1e-15);
+    EXPECT_EQ(blobFalloff(0.25), kBlobbyLevel);  // r = 1/2: (1 - 1/4)^3 = 27/64, exactly
 }
 
 TEST(BlobbyField, OneBlobIsAClosedSphereOfTheLevelRadius) {
@@ -53,7 +52,7 @@ TEST(BlobbyField, OneBlobIsAClosedSphereOfTheLevelRadius) {
     ASSERT_GT(m.triangles.size(), 500u);
     EXPECT_FALSE(m.openAtBound);
     expectClosedAndConsistent(m);
-    const double r = 2 * std::sqrt(1 - std::cbrt(0.5));
+    const double r = 2 * 0.5;  // half the reach
     std::vector<double> scratch;
     for (const Vec3d& p : m.P) {
         EXPECT_NEAR(length(p - Vec3d{1, 2, 3}), r, 1e-6);
@@ -72,8 +71,10 @@ TEST(BlobbyField, OneBlobIsAClosedSphereOfTheLevelRadius) {
 TEST(BlobbyField, MergedAndCarvedBlobsStayClosed) {
     BlobbyField merged;
     merged.ops = {sphere(1, {0, 0, 0}), sphere(1, {0.9, 0.2, 0}), combine(BlobbyOp::Kind::Add, {0, 1})};
+    SCOPED_TRACE("merged");
     expectClosedAndConsistent(polygonizeBlobby(merged, 40));
     BlobbyField carved;
+    SCOPED_TRACE("carved");
     carved.ops = {sphere(2, {0, 0, 0}), sphere(1, {0.6, 0, -0.5}), combine(BlobbyOp::Kind::Subtract, {0, 1})};
     expectClosedAndConsistent(polygonizeBlobby(carved, 40));
 }

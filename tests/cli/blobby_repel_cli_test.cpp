@@ -33,7 +33,7 @@ bool samePixels(const std::string& a, const std::string& b) {
            x.pixels == y.pixels;
 }
 
-// A blob of radius 1.5 at height 0.75 over the plane z = 0 (heights are -z), seen from the side
+// A blob of radius 1.5 at height 0.85 over the plane z = 0 (its bottom 0.1 above it; heights are -z), seen from the side
 // (up on screen is -z); `code` and `floats` after the blob's own.
 std::string blobScene(const std::string& out, const std::string& code, const std::string& floats,
                       const std::string& strings, int blobbies = 1) {
@@ -41,7 +41,7 @@ std::string blobScene(const std::string& out, const std::string& code, const std
                     "Display \"" + out + "\" \"openexr\" \"rgba\"\nTranslate 0 0.3 6\nRotate 90 1 0 0\nWorldBegin\n"
                     "Surface \"constant\"\n";
     for (int i = 0; i < blobbies; ++i)
-        s += "Blobby " + std::to_string(code.empty() ? 1 : 2) + " [1001 0 " + code + "] [1.5 0 0 0 0 1.5 0 0 0 0 1.5 0 0 0 -0.75 1 " +
+        s += "Blobby " + std::to_string(code.empty() ? 1 : 2) + " [1001 0 " + code + "] [1.5 0 0 0 0 1.5 0 0 0 0 1.5 0 0 0 -0.85 1 " +
              floats + "] [" + strings + "]\n";
     return s + "WorldEnd\n";
 }

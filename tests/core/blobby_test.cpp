@@ -1,4 +1,4 @@
-// Blobby: the level-1/2 surface of the (1 - r^2)^3 field, cut into triangles (scene/blobby_field.h),
+// Blobby: the level-27/64 surface of the (1 - r^2)^3 field, cut into triangles (scene/blobby_field.h),
 // against the analytic silhouettes of blobs seen from the front.
 #include <gtest/gtest.h>
 
@@ -14,8 +14,8 @@ namespace streyes {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// Where a lone blob's field (1 - r^2)^3 is 1/2, in its own space.
-const double kLevelRadius = std::sqrt(1 - std::cbrt(0.5));
+// Where a lone blob's field (1 - r^2)^3 is the level 27/64, in its own space: half its reach.
+const double kLevelRadius = 0.5;
 
 std::string n(double v) { return std::to_string(v); }
 
@@ -62,13 +62,26 @@ TEST(Blobby, SidesOneDrawsTheWholeBlobWithNoCracks) {
 }
 
 TEST(Blobby, TwoBlobsMergeWithABridge) {
-    // Apart, the discs (radius 9.08) do not touch; their fields do (reach 20), so the surface
-    // bridges them: more than the two discs, and the midpoint between them is covered.
+    // Apart, the discs (radius 10, centres 22 apart) do not touch; their fields do (reach 20,
+    // (1 - 0.55^2)^3 = 0.339 each at the midpoint, together over 27/64), so the surface bridges
+    // them: more than the two discs, and the midpoint between them is covered. Seen along z, a
+    // point (x, y) is covered where the sum of the fields passes the level at z = 0 (both fall off
+    // with |z|): the silhouette's area, integrated here on a fine grid.
     const double R = 20, r = R * kLevelRadius;
-    const std::string floats = sphereMatrix(R, 22, 32, 100) + "  " + sphereMatrix(R, 42, 32, 100);
+    const std::string floats = sphereMatrix(R, 21, 32, 100) + "  " + sphereMatrix(R, 43, 32, 100);
     const test::RenderResult merged =
         test::renderRib(test::orthoHeader(64, 64) + blobby(2, "1001 0 1001 16 0 2 0 1", floats) + "WorldEnd\n");
-    EXPECT_GT(test::alphaSum(merged), 2 * kPi * r * r * 1.1);
+    auto field = [&](double dx, double dy) {
+        const double s = 1 - (dx * dx + dy * dy) / (R * R);
+        return s > 0 ? s * s * s : 0.0;
+    };
+    double bridged = 0;
+    const double step = 1.0 / 32;
+    for (double y = 0.5 * step; y < 64; y += step)
+        for (double x = 0.5 * step; x < 64; x += step)
+            if (field(x - 21, y - 32) + field(x - 43, y - 32) > 27.0 / 64.0) bridged += step * step;
+    EXPECT_GT(bridged, 2 * kPi * r * r * 1.05);  // the bridge adds area
+    EXPECT_NEAR(test::alphaSum(merged), bridged, 0.01 * bridged);
     EXPECT_EQ(merged.alpha(0, 31, 31), 1.0f);
     EXPECT_EQ(merged.alpha(0, 32, 32), 1.0f);
     // The maximum of the two fields does not merge: two discs, apart.
@@ -87,7 +100,7 @@ TEST(Blobby, SubtractCarvesAndMinimumIntersects) {
               0.0);
     // A big blob (reach 60) minus an ellipsoid through it along the view (reach 20 across, 60
     // deep): a ring. A line of sight at distance rho from the axis is covered where the largest
-    // f60 - fB along it passes 1/2 (found here numerically); outside, the big blob's level radius.
+    // f60 - fB along it passes 27/64 (found here numerically); outside, the big blob's level radius.
     const double RA = 60, RB = 20;
     auto f = [](double r2) {
         const double s = 1 - r2;
@@ -97,7 +110,7 @@ TEST(Blobby, SubtractCarvesAndMinimumIntersects) {
         double best = -1;
         for (double z = -RA; z <= RA; z += 0.01)
             best = std::max(best, f((rho * rho + z * z) / (RA * RA)) - f(rho * rho / (RB * RB) + z * z / (RA * RA)));
-        return best > 0.5;
+        return best > 27.0 / 64.0;
     };
     double lo = 0, hi = RB;
     for (int i = 0; i < 30; ++i) {
@@ -124,7 +137,7 @@ TEST(Blobby, SubtractCarvesAndMinimumIntersects) {
 }
 
 TEST(Blobby, SegmentBlobIsACapsule) {
-    // A segment blob of radius 20 from x = 20 to x = 44: a stadium of half-width 20 * 0.4542.
+    // A segment blob of radius 20 from x = 20 to x = 44: a stadium of half-width 20 * 0.5.
     const double rad = 20, r = rad * kLevelRadius, len = 24;
     const std::string floats = "20 32 100  44 32 100  " + n(rad) + "  1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1";
     const double area = kPi * r * r + 2 * r * len;

@@ -132,14 +132,15 @@ TEST(BlobbyVars, ShadersReadTheBlend) {
         for (int row : {47, 48}) {
             // At A's and B's centres, the mesh's vertices within a cell (2 pixels) of the pixel are
             // at least R - 2.5 = 57.5 from the other leaf: its field there is at most
-            // (1 - (57.5/60)^2)^3 = 5.5e-4 against a sum of 1/2 on the surface, a share of at most 1.1e-3.
+            // (1 - (57.5/60)^2)^3 = 5.5e-4 against a sum of 27/64 on the surface, a share of at most 1.3e-3.
             for (int c = 0; c < 3; ++c) {
                 EXPECT_NEAR(r.channel(0, 66, row, c), c == 0 ? 1 : 0, 2e-3) << mode << " A " << c;
                 EXPECT_NEAR(r.channel(0, 126, row, c), c == 2 ? 1 : 0, 2e-3) << mode << " B " << c;
             }
             // The midpoint: equal fields, the mean. Its samples lie within half a pixel of it, where
-            // the share changes at |d/dx (fA / (fA + fB))| = 3 (1 - r^2)^2 (2 dx / R^2) / (1/2) with
-            // dx = R/2 and r^2 = 0.37 on the surface: 0.040 a pixel, so at most 0.020 either way.
+            // the share changes at |d/dx (fA / (fA + fB))| = 3 (1 - r^2)^2 (2 dx / R^2) / (27/64) with
+            // dx = R/2 and r^2 = 0.405 on the surface (each field 27/128): 0.042 a pixel, so at most
+            // 0.021 either way.
             EXPECT_NEAR(r.channel(0, 96, row, 0), 0.5, 0.025) << mode;
             // Green is 0 and red + blue is 1 but for float rounding of camera-space coordinates
             // near 100 (Pref - P: a unit in the last place is 7.6e-6 there).
