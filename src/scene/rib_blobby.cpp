@@ -4,6 +4,8 @@
 // weighted by each leaf's field there (RI Spec 3.2, 5.6), as "vertex" variables.
 #include <algorithm>
 #include <cmath>
+#include <atomic>
+#include <filesystem>
 #include <optional>
 
 #include "scene/blobby_field.h"
@@ -40,6 +42,8 @@ bool perLeafVariable(const Param& p) {
 // peers give) for a code with an opcode streyes does not know: how many operands follow it is
 // unknown, so the rest of the code cannot be read.
 std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
+    static std::atomic<int> blobbies{0};
+    const int blobbyId = blobbies++;  // the plug-ins' State
     BlobbyKey key;
     const RibValue* nleafValue = args.peek();
     key.nleaf = args.integer("nleaf");
@@ -73,6 +77,40 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
         if (pc >= code.size())
             bad("the code ends inside instruction " + std::to_string(at) + " (" + what + ")");
         return code[pc++];
+    };
+    auto stringAt = [&](size_t at, int index, const char* what) {
+        if (index < 0 || size_t(index) >= strings.size())
+            bad("instruction " + std::to_string(at) + " (" + what + ") names string " + std::to_string(index) +
+                " but there are " + plural(strings.size(), "string"));
+        return index;
+    };
+    // A field plug-in's arguments: nfloat floats from floatIndex, nstring strings from stringIndex.
+    auto pluginFloats = [&](size_t at, int n, int index) {
+        if (n < 0) bad("instruction " + std::to_string(at) + " (field plug-in) passes " + std::to_string(n) + " floats");
+        const double* f = n > 0 ? floatsAt(at, index, size_t(n), "field plug-in") : nullptr;
+        return std::vector<float>(f, f + n);
+    };
+    auto pluginStrings = [&](size_t at, int n, int index) {
+        if (n < 0 || (n > 0 && (index < 0 || size_t(index) + size_t(n) > strings.size())))
+            bad("instruction " + std::to_string(at) + " (field plug-in) passes " + std::to_string(n) +
+                " strings from index " + std::to_string(index) + " but there are " + plural(strings.size(), "string"));
+        return n > 0 ? std::vector<std::string>(strings.begin() + index, strings.begin() + index + n)
+                     : std::vector<std::string>();
+    };
+    // The plug-in's shared object, loaded once; null, with a warning, when there is none.
+    auto pluginLibrary = [&](size_t at, const std::string& name) {
+        const std::string directory =
+            args.loc().file ? std::filesystem::path(*args.loc().file).parent_path().string() : std::string();
+        std::string where;
+        std::shared_ptr<BlobbyPluginLibrary> lib =
+            loadBlobbyPlugin(name, reader.state().proceduralPath, directory, args.loc(), &where);
+        if (!lib)
+            reader.log().lenient("blobby:plugin:" + name, args.loc(),
+                                 "Blobby: instruction " + std::to_string(at) + ": no field plug-in '" + name +
+                                     "' (looked for '" + name + "' and '" + name + ".so' " + where +
+                                     "; add its folder with Option \"searchpath\" \"procedural\" [\"folder:&\"]): "
+                                     "its field is taken as 0");
+        return lib;
     };
     while (pc < code.size()) {
         const size_t at = key.field.ops.size();
@@ -112,17 +150,51 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
             key.planeMaps.push_back({at, strings[size_t(name)]});
             break;
         }
+        case 1004: {
+            // PRMan's field plug-in: 1004 name nfloat floatindex nstring stringindex.
+            op.kind = K::Plugin;
+            const int name = stringAt(at, operand(at, "field plug-in"), "field plug-in");
+            const int nfloat = operand(at, "field plug-in"), floatIndex = operand(at, "field plug-in");
+            const int nstring = operand(at, "field plug-in"), stringIndex = operand(at, "field plug-in");
+            std::vector<float> f = pluginFloats(at, nfloat, floatIndex);
+            std::vector<std::string> str = pluginStrings(at, nstring, stringIndex);
+            if (auto lib = pluginLibrary(at, strings[size_t(name)]))
+                op.plugin = BlobbyPluginLeaf::makePrman(std::move(lib), f, str, args.loc());
+            break;
+        }
         case 9000: {
-            // Aqsis's field plug-in: 9000 n, then n operands (the plug-in's name, transform, floats
-            // and strings). A leaf; plug-ins are not loaded, so its field is 0.
-            op.kind = K::Constant;
-            op.value = 0;
+            // AIR's field plug-in (Aqsis reads it too): 9000 n, then n operands: name, the matrix
+            // placing its space, and optionally nfloat floatindex, nstring stringindex, nint ints.
+            op.kind = K::Plugin;
             const int n = operand(at, "field plug-in");
-            if (n < 0) bad("instruction " + std::to_string(at) + " (field plug-in) has " + std::to_string(n) + " operands");
-            for (int i = 0; i < n; ++i) operand(at, "field plug-in");
+            if (n < 2 || n == 3 || n == 5)
+                bad("instruction " + std::to_string(at) + " (field plug-in, 9000) has " + std::to_string(n) +
+                    " operands: it takes 2 (name, matrix), 4 (and nfloat, floatindex), 6 (and nstring, "
+                    "stringindex) or 7 and more (and nint, then the ints)");
+            const int name = stringAt(at, operand(at, "field plug-in"), "field plug-in");
+            matrixAt(at, floatsAt(at, operand(at, "field plug-in"), 16, "field plug-in"), op, "field plug-in");
+            std::vector<float> f;
+            std::vector<std::string> str;
+            std::vector<int> ints;
+            if (n >= 4) {
+                const int nfloat = operand(at, "field plug-in"), floatIndex = operand(at, "field plug-in");
+                f = pluginFloats(at, nfloat, floatIndex);
+            }
+            if (n >= 6) {
+                const int nstring = operand(at, "field plug-in"), stringIndex = operand(at, "field plug-in");
+                str = pluginStrings(at, nstring, stringIndex);
+            }
+            if (n >= 7) {
+                const int nint = operand(at, "field plug-in");
+                if (nint != n - 7)
+                    bad("instruction " + std::to_string(at) + " (field plug-in, 9000) has " + std::to_string(n) +
+                        " operands but gives nint " + std::to_string(nint) + ": n must be 7 + nint");
+                for (int i = 0; i < nint; ++i) ints.push_back(operand(at, "field plug-in"));
+            }
             pluginLeaves.push_back(at);
-            reader.log().lenient("blobby:plugin", args.loc(),
-                                 "Blobby: field plug-ins (opcode 9000) are not supported: their field is taken as 0");
+            if (auto lib = pluginLibrary(at, strings[size_t(name)]))
+                op.plugin = BlobbyPluginLeaf::makeAir(std::move(lib), op.toObject, op.toBlob, std::move(f),
+                                                      std::move(str), std::move(ints), blobbyId, int(at), args.loc());
             break;
         }
         case 0: case 1: case 2: case 3: {
@@ -146,7 +218,7 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
             reader.log().lenient("blobby:opcode:" + std::to_string(opcode), args.loc(),
                                  "Blobby: instruction " + std::to_string(at) + " has unknown opcode " +
                                      std::to_string(opcode) +
-                                     " (leaves are 1000-1003, operators 0-7: add, multiply, maximum, minimum, "
+                                     " (leaves are 1000-1004 and 9000, operators 0-7: add, multiply, maximum, minimum, "
                                      "subtract, divide, negate, identity): the blobby is skipped");
             return std::nullopt;
         }
@@ -171,7 +243,7 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
                          key.leaves.end());
     if (key.leaves.size() != size_t(key.nleaf))
         args.fail(*nleafValue, "nleaf is " + std::to_string(key.nleaf) + " but the code has " +
-                                   plural(key.leaves.size(), "leaf") + " (opcodes 1000-1003 and 9000)");
+                                   plural(key.leaves.size(), "leaf") + " (opcodes 1000-1004 and 9000)");
     ParamList params = reader.readParams(args);
     ClassCounts counts{1, size_t(key.nleaf), size_t(key.nleaf), size_t(key.nleaf)};
     key.Cs = readColors(args, params, counts);
