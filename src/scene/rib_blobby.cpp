@@ -10,6 +10,7 @@
 
 #include "scene/blobby_field.h"
 #include "scene/rib_geometry.h"
+#include "streyes/scene_access.h"
 
 namespace streyes {
 
@@ -99,6 +100,14 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
     };
     // The plug-in's shared object, loaded once; null, with a warning, when there is none.
     auto pluginLibrary = [&](size_t at, const std::string& name) {
+        // A plug-in runs code, as a program does: allowed where programs are (not under --safe).
+        const SceneAccess access = sceneAccess();
+        if (!access.programs)
+            throw InputError(args.loc(), "Blobby: instruction " + std::to_string(at) + " names the field plug-in '" +
+                                             name + "'" +
+                                             (access.safe ? ", refused by --safe: it would load a plug-in, which runs "
+                                                            "code. Render without --safe only if you trust the scene"
+                                                          : ": plug-ins are not allowed here"));
         const std::string directory =
             args.loc().file ? std::filesystem::path(*args.loc().file).parent_path().string() : std::string();
         std::string where;

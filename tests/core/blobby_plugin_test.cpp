@@ -8,6 +8,7 @@
 #include <string>
 
 #include "streyes/rib.h"
+#include "streyes/scene_access.h"
 #include "test_util.h"
 
 namespace streyes {
@@ -105,6 +106,20 @@ TEST(BlobbyPlugin, PluginWithoutItsEntryPointIsAnErrorAtItsLine) {
     const std::string count = test::ribError(header(8, 8) + "Blobby 1 [9000 3 0 0 0] [" + m +
                                              "] [\"test_dbo_sphere\"]\nWorldEnd\n");
     EXPECT_NE(count.find("9000) has 3 operands"), std::string::npos) << count;
+}
+
+TEST(BlobbyPlugin, SafeRefusesFieldPlugins) {
+    // A plug-in runs code: --safe refuses it at the Blobby's line, as it does DynamicLoad's.
+    const SceneAccess before = sceneAccess();
+    SceneAccess safe = before;
+    safe.programs = false;
+    safe.safe = true;
+    setSceneAccess(safe);
+    const std::string e = test::ribError(header(8, 8) + "Blobby 1 [1004 0 4 0 0 0] [0 0 0 1] [\"test_implicit_sphere\"]\n"
+                                         "WorldEnd\n");
+    setSceneAccess(before);
+    EXPECT_NE(e.find("bad.rib:8"), std::string::npos) << e;
+    EXPECT_NE(e.find("refused by --safe"), std::string::npos) << e;
 }
 
 }  // namespace
