@@ -34,6 +34,10 @@ struct ReadDetail {
     // Where a Blobby's repelling planes find their depth maps (the image library lives above the
     // reader); none: every map is taken as missing.
     BlobbyDepthReader readDepthMap;
+    // A Blobby whose repelling planes read depth maps is kept uncut (PolygonMeshDesc::deferred) and
+    // cut when its pass renders (cutDeferredBlobbies, scene/blobby_cut.h), by what renders passes
+    // (streyes render): a map a depth pass of the same input writes is read after it is written.
+    bool deferRepellingMaps = false;
 };
 
 Scene parseRibFile(const std::string& path, Log& log);

@@ -469,6 +469,8 @@ struct NuPatchDesc : PrimitiveDesc {
 // loops of indices into the points, the outline first, then any holes. The bodies stage makes
 // them bilinear patches: a Polygon of 3 or 4 vertices as one (unless it is concave), any other
 // cut into triangles and convex quads.
+struct BlobbyDeferredCut;  // scene/blobby_cut.h
+
 struct PolygonMeshDesc : PrimitiveDesc {
     std::string request;                                  // "Polygon", "GeneralPolygon", ...
     std::vector<std::vector<Vec3d>> P;                    // object space, one set per key
@@ -477,6 +479,9 @@ struct PolygonMeshDesc : PrimitiveDesc {
     // How many bilinear patches (Scene::patches) were read before it: a Polygon made one patch
     // takes its primitive id among them there, as ids decide exact depth ties.
     size_t patchesBefore = 0;
+    // A Blobby cut when its pass renders (its repelling planes' depth maps are read then): no
+    // polygons until cutDeferredBlobbies (scene/blobby_cut.h) replaces it with its meshes.
+    std::shared_ptr<const BlobbyDeferredCut> deferred;
 };
 
 // Curves "linear" | "cubic" [nvertices] "nonperiodic" | "periodic": flat ribbons along each curve

@@ -3,8 +3,10 @@
 #include <cfloat>
 #include <climits>
 #include <filesystem>
+#include <map>
 
 #include "geom/camera.h"
+#include "scene/blobby_cut.h"
 #include "io/depth_map_file.h"
 #include "streyes/image_io.h"
 #include "streyes/scene_access.h"
@@ -99,6 +101,7 @@ RenderStats PassRunner::renderDepth(PassJob& job, const RenderOptions& opts) {
         auto it = frames.find(image.frame);
         if (it != frames.end()) keep(it->second, image, open);
     };
+    cutBlobbies(job);
     RenderStats stats = Renderer(scene, o, log_).render(sink);
     stats.framesSkipped = 0;  // the other passes' frames, not --resume's
     return stats;
@@ -154,6 +157,46 @@ std::shared_ptr<const ShadowMapBinding> PassRunner::binding(const PassJob& job) 
     b->readFile = readDepthMapFile;
     b->namedAt = job.namedAt;
     return b;
+}
+
+void PassRunner::cutBlobbies(PassJob& job) {
+    Scene& scene = job.sequence.scene;
+    const std::shared_ptr<const ShadowMapBinding> b = binding(job);
+    // One image per map object: frames that share a map share their cut.
+    std::map<const DepthMap*, std::shared_ptr<const BlobbyDepthImage>> images;
+    std::map<std::string, std::pair<std::shared_ptr<const DepthMap>, std::string>> files;
+    auto image = [&images](const std::shared_ptr<const DepthMap>& m) {
+        std::shared_ptr<const BlobbyDepthImage>& i = images[m.get()];
+        if (!i) {
+            auto made = std::make_shared<BlobbyDepthImage>();
+            made->width = m->width, made->height = m->height, made->z = m->z;
+            made->worldToCamera = m->worldToCamera, made->worldToScreen = m->worldToScreen;
+            i = std::move(made);
+        }
+        return i;
+    };
+    auto maps = [&](int frame, const std::string& name, std::string* error) -> std::shared_ptr<const BlobbyDepthImage> {
+        auto f = b->frames.find(frame);
+        if (f != b->frames.end()) {
+            auto m = f->second.find(name);
+            if (m != f->second.end() && m->second) return image(m->second);
+        }
+        auto [it, fresh] = files.try_emplace(name);
+        if (fresh) {
+            std::error_code ec;
+            auto map = std::make_shared<DepthMap>();
+            if (std::filesystem::is_regular_file(name, ec) && readDepthMapFile(name, map.get(), &it->second.second))
+                it->second.first = std::move(map);
+        }
+        *error = it->second.second;
+        return it->second.first ? image(it->second.first) : nullptr;
+    };
+    // The frames the job keeps (the others' pixels are not kept: the Blobby is not drawn there).
+    std::vector<int> frames;
+    for (const auto& [f, frame] : job.frames) frames.push_back(f);
+    if (frames.empty())
+        for (int f = scene.settings.firstFrame; f <= scene.settings.lastFrame; ++f) frames.push_back(f);
+    cutDeferredBlobbies(scene, frames, maps, log_);
 }
 
 void PassRunner::release(const std::vector<FileVersion>& versions) {

@@ -36,6 +36,9 @@ class PassRunner {
     // The maps each frame of a render job reads, and how others are read from disk.
     std::shared_ptr<const ShadowMapBinding> binding(const PassJob& job) const;
     void release(const std::vector<FileVersion>& versions);
+    // Cuts the job's Blobbies whose repelling planes read depth maps (ReadDetail::deferRepellingMaps):
+    // each frame's maps as binding() gives them, else the files (named from the working folder).
+    void cutBlobbies(PassJob& job);
 
     int mapsWritten() const { return mapsWritten_; }
 

@@ -533,6 +533,7 @@ int renderCommand(const std::vector<std::string>& args) {
                              blockOpts.aovs.front() + ", ...) from the displays, or render with lens samples");
         blockOpts.textureSource = openImageTextures;  // loads OpenImageIO only on a shader's first lookup
         blockOpts.shadowMaps = runner.binding(job);
+        runner.cutBlobbies(job);
         const double open = scene.settings.shutterOpen;
         // A crop (CropWindow): the pixels are the crop's, written where they lie in the frame.
         const FrameWindow window = rs.cropped() ? FrameWindow{rs.cropX0, rs.cropY0, rs.width, rs.height} : FrameWindow{};
@@ -597,6 +598,8 @@ int renderCommand(const std::vector<std::string>& args) {
         out->worldToCamera = map.worldToCamera, out->worldToScreen = map.worldToScreen;
         return true;
     };
+    // ...or, where their maps may be written by an earlier pass of this input, when their pass renders.
+    detail.deferRepellingMaps = true;
     PassRequest passes;
     passes.frames = wanted;
     passes.blockFrames = opts.maxFrameBlock;

@@ -174,42 +174,14 @@ Lineage lineageOf(const ProceduralDesc& desc) {
 }  // namespace
 
 std::string findPlugin(const std::string& name, const ProceduralDesc& desc) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    if (name.empty()) return "";
-    if (name.find('/') == std::string::npos) {
-        const std::string found = findOnSearchPath(name, desc.proceduralPath, desc.directory, {".so"});
-        if (!found.empty()) return found;
-        // Then STREYES_PROCEDURALPATH's folders.
-        for (const std::string& folder : environmentSearchPath(kProceduralPathVariable)) {
-            const std::string inEnv = findOnSearchPath(name, folder, "", {".so"});
-            if (!inEnv.empty()) return inEnv;
-        }
-        return "";
-    }
-    std::vector<std::string> candidates;
-    if (fs::path(name).is_relative() && !desc.directory.empty())
-        candidates.push_back((fs::path(desc.directory) / name).string());
-    candidates.push_back(name);
-    for (const std::string& c : candidates)
-        for (const std::string& p : {c, c + ".so"})
-            if (fs::is_regular_file(p, ec)) return p;
-    return "";
+    return findPluginFile(name, desc.proceduralPath, desc.directory);
 }
 
 std::shared_ptr<const ProceduralGenerator> makePluginGenerator(const ProceduralDesc& desc) {
     const std::string& name = desc.args.at(0);
     const std::string path = findPlugin(name, desc);
     if (path.empty()) {
-        std::string where;
-        if (name.find('/') != std::string::npos) {
-            where = "beside this file or from the current folder";
-        } else {
-            for (const std::string& f : searchPathFolders(desc.proceduralPath, desc.directory))
-                where += (where.empty() ? "in " : ", ") + f;
-            for (const std::string& f : environmentSearchPath(kProceduralPathVariable))
-                where += ", " + f + " (" + kProceduralPathVariable + ")";
-        }
+        const std::string where = pluginSearchDescription(name, desc.proceduralPath, desc.directory);
         throw InputError(desc.loc, "DynamicLoad: no plug-in '" + name + "' (looked for '" + name + "' and '" + name +
                                        ".so' " + where +
                                        "); give its path, or add its folder with Option \"searchpath\" \"procedural\" "

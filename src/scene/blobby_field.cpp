@@ -100,6 +100,7 @@ double BlobbyField::leafValue(size_t i, Vec3d p) const {
         const Vec3d q = op.toBlob.point(p);
         return blobFalloff(segmentDistance2(q, op.a, op.b) / (op.radius * op.radius));
     }
+    case BlobbyOp::Kind::Plugin: return op.plugin ? op.plugin->value(p) : 0;
     default: return 0;
     }
 }
@@ -113,7 +114,8 @@ double BlobbyField::value(Vec3d p, std::vector<double>& v) const {
         switch (op.kind) {
         case BlobbyOp::Kind::Constant: r = op.value; break;
         case BlobbyOp::Kind::Ellipsoid:
-        case BlobbyOp::Kind::Segment: r = leafValue(i, p); break;
+        case BlobbyOp::Kind::Segment:
+        case BlobbyOp::Kind::Plugin: r = leafValue(i, p); break;
         case BlobbyOp::Kind::Plane: r = planeValue(op, p); break;
         case BlobbyOp::Kind::Add:
             for (int k : o) r += v[size_t(k)];
@@ -161,6 +163,11 @@ bool BlobbyField::bound(Vec3d* lo, Vec3d* hi) const {
             bhi = {std::max(op.a.x, op.b.x), std::max(op.a.y, op.b.y), std::max(op.a.z, op.b.z)};
             blo = blo - r;
             bhi = bhi + r;
+        } else if (op.kind == BlobbyOp::Kind::Plugin && op.plugin) {
+            grow(op.plugin->lo(), lo, hi);  // already in object space
+            grow(op.plugin->hi(), lo, hi);
+            any = true;
+            continue;
         } else {
             continue;
         }
@@ -185,6 +192,10 @@ bool leafBox(const BlobbyOp& op, Vec3d* lo, Vec3d* hi) {
         const Vec3d r{op.radius, op.radius, op.radius};
         blo = Vec3d{std::min(op.a.x, op.b.x), std::min(op.a.y, op.b.y), std::min(op.a.z, op.b.z)} - r;
         bhi = Vec3d{std::max(op.a.x, op.b.x), std::max(op.a.y, op.b.y), std::max(op.a.z, op.b.z)} + r;
+    } else if (op.kind == BlobbyOp::Kind::Plugin && op.plugin) {
+        *lo = op.plugin->lo();
+        *hi = op.plugin->hi();
+        return true;
     } else {
         return false;
     }
@@ -204,7 +215,8 @@ double evaluateOp(const BlobbyField& field, size_t i, const std::vector<double>&
     switch (op.kind) {
     case BlobbyOp::Kind::Constant: r = op.value; break;
     case BlobbyOp::Kind::Ellipsoid:
-    case BlobbyOp::Kind::Segment: r = field.leafValue(i, p); break;
+    case BlobbyOp::Kind::Segment:
+    case BlobbyOp::Kind::Plugin: r = field.leafValue(i, p); break;
     case BlobbyOp::Kind::Plane: r = planeValue(op, p); break;
     case BlobbyOp::Kind::Add:
         for (int k : o) r += v[size_t(k)];
@@ -249,7 +261,7 @@ BlobbyEvaluator::BlobbyEvaluator(const BlobbyField& field) : field_(field) {
         // With no leaf present (every leaf's field 0), at a point where no support reaches.
         if (op.kind == BlobbyOp::Kind::Plane) planes_.push_back(i);
         base_[i] = op.kind == BlobbyOp::Kind::Ellipsoid || op.kind == BlobbyOp::Kind::Segment ||
-                           op.kind == BlobbyOp::Kind::Plane
+                           op.kind == BlobbyOp::Kind::Plane || op.kind == BlobbyOp::Kind::Plugin
                        ? 0
                        : evaluateOp(field, i, base_, {0, 0, 0});
         if (op.kind == BlobbyOp::Kind::Add)

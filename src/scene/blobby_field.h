@@ -24,6 +24,7 @@
 #include <memory>
 #include <vector>
 
+#include "scene/blobby_plugin.h"
 #include "streyes/rib.h"
 #include "streyes/transform.h"
 
@@ -54,9 +55,9 @@ struct BlobbyGround {
 };
 
 struct BlobbyOp {
-    // The RI Spec opcodes: leaves 1000-1003, operators 0-7.
+    // The RI Spec opcodes: leaves 1000-1003, operators 0-7; field plug-ins (1004, 9000).
     enum class Kind {
-        Constant, Ellipsoid, Segment, Plane,  // leaves
+        Constant, Ellipsoid, Segment, Plane, Plugin,  // leaves
         Add, Multiply, Max, Min, Subtract, Divide, Negate, Identity
     };
     Kind kind = Kind::Constant;
@@ -68,8 +69,10 @@ struct BlobbyOp {
     double radius = 1;
     double repel[4] = {0, 0, 0, 0};       // Plane: A, B, C, D
     std::shared_ptr<const BlobbyGround> ground;  // Plane: null: the plane z = 0 of object space (Aqsis)
+    std::shared_ptr<const BlobbyPluginLeaf> plugin;  // Plugin: null: not found, its field is 0
     bool leaf() const {
-        return kind == Kind::Constant || kind == Kind::Ellipsoid || kind == Kind::Segment || kind == Kind::Plane;
+        return kind == Kind::Constant || kind == Kind::Ellipsoid || kind == Kind::Segment || kind == Kind::Plane ||
+               kind == Kind::Plugin;
     }
 };
 
@@ -79,9 +82,10 @@ struct BlobbyField {
     // The field at an object-space point; scratch holds one value per instruction.
     double value(Vec3d p, std::vector<double>& scratch) const;
     // The field of leaf instruction i alone (0 for a constant or a repelling plane: the weights
-    // of per-leaf variables are the blobs' alone).
+    // of per-leaf variables are the blobs' and plug-ins' alone).
     double leafValue(size_t i, Vec3d p) const;
-    // Where the ellipsoids and segment blobs are not 0, in object space; false when there are none.
+    // Where the ellipsoids, segment blobs and plug-ins are not 0, in object space; false when there
+    // are none.
     bool bound(Vec3d* lo, Vec3d* hi) const;
 };
 

@@ -6,6 +6,7 @@
 #include <set>
 #include <vector>
 
+#include "scene/blobby_cut.h"
 #include "streyes/passes.h"
 
 namespace streyes {
@@ -40,6 +41,11 @@ void stringsOf(const Scene& s, std::map<std::string, SourceLoc>& out) {
     each(s.curves), each(s.points), each(s.nuPatches), each(s.procedurals);
     for (const ProceduralDesc& p : s.procedurals)
         if (p.object) stringsOf(*p.object, out);
+    // A Blobby cut when its pass renders reads its repelling planes' maps then.
+    for (const PolygonMeshDesc& m : s.polygonMeshes)
+        if (m.deferred)
+            for (const auto& [at, name] : m.deferred->key.planeMaps)
+                if (m.deferred->key.field.ops[at].repel[0] > 0) out.emplace(name, m.deferred->loc);
 }
 
 namespace {

@@ -4,10 +4,14 @@
 // weighted by each leaf's field there (RI Spec 3.2, 5.6), as "vertex" variables.
 #include <algorithm>
 #include <cmath>
+#include <atomic>
+#include <filesystem>
 #include <optional>
 
+#include "scene/blobby_cut.h"
 #include "scene/blobby_field.h"
 #include "scene/rib_geometry.h"
+#include "streyes/scene_access.h"
 
 namespace streyes {
 
@@ -16,16 +20,6 @@ namespace {
 constexpr double kPixelsPerCell = 2;  // without "blobbyresolution": a cell every 2 pixels on screen
 constexpr int kMinCells = 8;
 constexpr int kMaxCells = 256;  // at most 258^3 grid points: about 140 MB of field values
-
-struct BlobbyKey {
-    int nleaf = 0;
-    BlobbyField field;
-    std::vector<size_t> leaves;  // the leaf instructions, in order: "Cs" is given per leaf
-    ColorPrimvar Cs;
-    ParamList primvars;           // constant ones (otherParams)
-    std::vector<Param> leafVars;  // a value per leaf: float, color, point, vector, normal, mpoint
-    std::vector<std::pair<size_t, std::string>> planeMaps;  // repelling planes: instruction, depth map name
-};
 
 // A variable with a value per leaf that the mesh can carry per vertex: one float, colour, point,
 // vector or normal ("st" two floats), or PRMan's "mpoint" (a matrix: each leaf's reference frame).
@@ -40,6 +34,8 @@ bool perLeafVariable(const Param& p) {
 // peers give) for a code with an opcode streyes does not know: how many operands follow it is
 // unknown, so the rest of the code cannot be read.
 std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
+    static std::atomic<int> blobbies{0};
+    const int blobbyId = blobbies++;  // the plug-ins' State
     BlobbyKey key;
     const RibValue* nleafValue = args.peek();
     key.nleaf = args.integer("nleaf");
@@ -73,6 +69,48 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
         if (pc >= code.size())
             bad("the code ends inside instruction " + std::to_string(at) + " (" + what + ")");
         return code[pc++];
+    };
+    auto stringAt = [&](size_t at, int index, const char* what) {
+        if (index < 0 || size_t(index) >= strings.size())
+            bad("instruction " + std::to_string(at) + " (" + what + ") names string " + std::to_string(index) +
+                " but there are " + plural(strings.size(), "string"));
+        return index;
+    };
+    // A field plug-in's arguments: nfloat floats from floatIndex, nstring strings from stringIndex.
+    auto pluginFloats = [&](size_t at, int n, int index) {
+        if (n < 0) bad("instruction " + std::to_string(at) + " (field plug-in) passes " + std::to_string(n) + " floats");
+        const double* f = n > 0 ? floatsAt(at, index, size_t(n), "field plug-in") : nullptr;
+        return std::vector<float>(f, f + n);
+    };
+    auto pluginStrings = [&](size_t at, int n, int index) {
+        if (n < 0 || (n > 0 && (index < 0 || size_t(index) + size_t(n) > strings.size())))
+            bad("instruction " + std::to_string(at) + " (field plug-in) passes " + std::to_string(n) +
+                " strings from index " + std::to_string(index) + " but there are " + plural(strings.size(), "string"));
+        return n > 0 ? std::vector<std::string>(strings.begin() + index, strings.begin() + index + n)
+                     : std::vector<std::string>();
+    };
+    // The plug-in's shared object, loaded once; null, with a warning, when there is none.
+    auto pluginLibrary = [&](size_t at, const std::string& name) {
+        // A plug-in runs code, as a program does: allowed where programs are (not under --safe).
+        const SceneAccess access = sceneAccess();
+        if (!access.programs)
+            throw InputError(args.loc(), "Blobby: instruction " + std::to_string(at) + " names the field plug-in '" +
+                                             name + "'" +
+                                             (access.safe ? ", refused by --safe: it would load a plug-in, which runs "
+                                                            "code. Render without --safe only if you trust the scene"
+                                                          : ": plug-ins are not allowed here"));
+        const std::string directory =
+            args.loc().file ? std::filesystem::path(*args.loc().file).parent_path().string() : std::string();
+        std::string where;
+        std::shared_ptr<BlobbyPluginLibrary> lib =
+            loadBlobbyPlugin(name, reader.state().proceduralPath, directory, args.loc(), &where);
+        if (!lib)
+            reader.log().lenient("blobby:plugin:" + name, args.loc(),
+                                 "Blobby: instruction " + std::to_string(at) + ": no field plug-in '" + name +
+                                     "' (looked for '" + name + "' and '" + name + ".so' " + where +
+                                     "; add its folder with Option \"searchpath\" \"procedural\" [\"folder:&\"]): "
+                                     "its field is taken as 0");
+        return lib;
     };
     while (pc < code.size()) {
         const size_t at = key.field.ops.size();
@@ -112,17 +150,51 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
             key.planeMaps.push_back({at, strings[size_t(name)]});
             break;
         }
+        case 1004: {
+            // PRMan's field plug-in: 1004 name nfloat floatindex nstring stringindex.
+            op.kind = K::Plugin;
+            const int name = stringAt(at, operand(at, "field plug-in"), "field plug-in");
+            const int nfloat = operand(at, "field plug-in"), floatIndex = operand(at, "field plug-in");
+            const int nstring = operand(at, "field plug-in"), stringIndex = operand(at, "field plug-in");
+            std::vector<float> f = pluginFloats(at, nfloat, floatIndex);
+            std::vector<std::string> str = pluginStrings(at, nstring, stringIndex);
+            if (auto lib = pluginLibrary(at, strings[size_t(name)]))
+                op.plugin = BlobbyPluginLeaf::makePrman(std::move(lib), f, str, args.loc());
+            break;
+        }
         case 9000: {
-            // Aqsis's field plug-in: 9000 n, then n operands (the plug-in's name, transform, floats
-            // and strings). A leaf; plug-ins are not loaded, so its field is 0.
-            op.kind = K::Constant;
-            op.value = 0;
+            // AIR's field plug-in (Aqsis reads it too): 9000 n, then n operands: name, the matrix
+            // placing its space, and optionally nfloat floatindex, nstring stringindex, nint ints.
+            op.kind = K::Plugin;
             const int n = operand(at, "field plug-in");
-            if (n < 0) bad("instruction " + std::to_string(at) + " (field plug-in) has " + std::to_string(n) + " operands");
-            for (int i = 0; i < n; ++i) operand(at, "field plug-in");
+            if (n < 2 || n == 3 || n == 5)
+                bad("instruction " + std::to_string(at) + " (field plug-in, 9000) has " + std::to_string(n) +
+                    " operands: it takes 2 (name, matrix), 4 (and nfloat, floatindex), 6 (and nstring, "
+                    "stringindex) or 7 and more (and nint, then the ints)");
+            const int name = stringAt(at, operand(at, "field plug-in"), "field plug-in");
+            matrixAt(at, floatsAt(at, operand(at, "field plug-in"), 16, "field plug-in"), op, "field plug-in");
+            std::vector<float> f;
+            std::vector<std::string> str;
+            std::vector<int> ints;
+            if (n >= 4) {
+                const int nfloat = operand(at, "field plug-in"), floatIndex = operand(at, "field plug-in");
+                f = pluginFloats(at, nfloat, floatIndex);
+            }
+            if (n >= 6) {
+                const int nstring = operand(at, "field plug-in"), stringIndex = operand(at, "field plug-in");
+                str = pluginStrings(at, nstring, stringIndex);
+            }
+            if (n >= 7) {
+                const int nint = operand(at, "field plug-in");
+                if (nint != n - 7)
+                    bad("instruction " + std::to_string(at) + " (field plug-in, 9000) has " + std::to_string(n) +
+                        " operands but gives nint " + std::to_string(nint) + ": n must be 7 + nint");
+                for (int i = 0; i < nint; ++i) ints.push_back(operand(at, "field plug-in"));
+            }
             pluginLeaves.push_back(at);
-            reader.log().lenient("blobby:plugin", args.loc(),
-                                 "Blobby: field plug-ins (opcode 9000) are not supported: their field is taken as 0");
+            if (auto lib = pluginLibrary(at, strings[size_t(name)]))
+                op.plugin = BlobbyPluginLeaf::makeAir(std::move(lib), op.toObject, op.toBlob, std::move(f),
+                                                      std::move(str), std::move(ints), blobbyId, int(at), args.loc());
             break;
         }
         case 0: case 1: case 2: case 3: {
@@ -146,7 +218,7 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
             reader.log().lenient("blobby:opcode:" + std::to_string(opcode), args.loc(),
                                  "Blobby: instruction " + std::to_string(at) + " has unknown opcode " +
                                      std::to_string(opcode) +
-                                     " (leaves are 1000-1003, operators 0-7: add, multiply, maximum, minimum, "
+                                     " (leaves are 1000-1004 and 9000, operators 0-7: add, multiply, maximum, minimum, "
                                      "subtract, divide, negate, identity): the blobby is skipped");
             return std::nullopt;
         }
@@ -171,7 +243,7 @@ std::optional<BlobbyKey> readBlobbyKey(RibParser& reader, RibArgs& args) {
                          key.leaves.end());
     if (key.leaves.size() != size_t(key.nleaf))
         args.fail(*nleafValue, "nleaf is " + std::to_string(key.nleaf) + " but the code has " +
-                                   plural(key.leaves.size(), "leaf") + " (opcodes 1000-1003 and 9000)");
+                                   plural(key.leaves.size(), "leaf") + " (opcodes 1000-1004 and 9000)");
     ParamList params = reader.readParams(args);
     ClassCounts counts{1, size_t(key.nleaf), size_t(key.nleaf), size_t(key.nleaf)};
     key.Cs = readColors(args, params, counts);
@@ -242,112 +314,15 @@ int screenCells(RibParser& reader, const PrimitiveDesc& d, const BlobbyField& fi
     return cellsFor(std::max(x1 - x0, y1 - y0));
 }
 
-// One leaf's value of a per-leaf variable at object-space point p: as given, or for an "mpoint"
-// p carried from the leaf's blob space into its reference frame (a point that moves with the blob).
-void leafValueAt(const BlobbyKey& key, const Param& v, size_t leaf, Vec3d p, double* out) {
-    const size_t w = size_t(v.componentsPerItem());
-    const double* given = &v.nums[leaf * w];
-    if (v.type != ParamType::Matrix) {
-        std::copy(given, given + w, out);
-        return;
-    }
-    const Vec3d q = Matrix4::fromRowMajor(given).point(key.field.ops[key.leaves[leaf]].toBlob.point(p));
-    out[0] = q.x, out[1] = q.y, out[2] = q.z;
-}
-
-// The per-leaf "Cs" and variables at the mesh's vertices: the sum of the leaves' values weighted by
-// each leaf's field there, over the sum of those fields. Where no leaf's field reaches (a surface
-// made by constants alone), the mean of the leaves' values.
-void blendLeafValues(const BlobbyKey& key, const std::vector<Vec3d>& P, PolygonMeshDesc& d) {
-    const bool blendCs = key.Cs.given() && key.Cs.cls != ParamClass::Constant && key.Cs.cls != ParamClass::Uniform;
-    if (!blendCs && key.leafVars.empty()) return;
-    std::vector<Param> out;
-    for (const Param& v : key.leafVars) {
-        Param q = v;
-        q.cls = ParamClass::Vertex;
-        if (v.type == ParamType::Matrix) q.type = ParamType::Point;
-        q.nums.assign(P.size() * size_t(q.componentsPerItem()), 0.0);
-        out.push_back(std::move(q));
-    }
-    const size_t leaves = key.leaves.size();
-    Color meanCs{0, 0, 0};
-    if (blendCs) {
-        d.Cs.cls = ParamClass::Vertex;
-        for (size_t l = 0; l < leaves; ++l) meanCs = meanCs + key.Cs.values[l] * (1.0f / float(leaves));
-    }
-    std::vector<int> leafOf(key.field.ops.size(), -1);
-    for (size_t l = 0; l < leaves; ++l) leafOf[key.leaves[l]] = int(l);
-    // Each vertex reads the leaves near it (the others' fields are 0 there and add nothing).
-    BlobbyEvaluator near(key.field);
-    std::vector<std::pair<size_t, double>> weights;  // leaf, its field at the vertex
-    double value[3];
-    for (size_t i = 0; i < P.size(); ++i) {
-        weights.clear();
-        double total = 0;
-        for (size_t at : near.leavesNear(P[i])) {
-            if (leafOf[at] < 0) continue;
-            const double w = key.field.leafValue(at, P[i]);
-            if (w > 0) weights.push_back({size_t(leafOf[at]), w}), total += w;
-        }
-        if (blendCs) {
-            Color sum{0, 0, 0};
-            for (const auto& [l, w] : weights) sum = sum + key.Cs.values[l] * float(w);
-            d.Cs.values.push_back(total > 0 ? sum * float(1 / total) : meanCs);
-        }
-        if (!(total > 0)) {
-            weights.clear();
-            for (size_t l = 0; l < leaves; ++l) weights.push_back({l, 1.0});
-            total = double(leaves);
-        }
-        for (size_t k = 0; k < out.size(); ++k) {
-            const size_t n = size_t(out[k].componentsPerItem());
-            double* at = &out[k].nums[i * n];
-            for (const auto& [l, w] : weights) {
-                leafValueAt(key, key.leafVars[k], l, P[i], value);
-                for (size_t c = 0; c < n; ++c) at[c] += value[c] * (w / total);
-            }
-        }
-    }
-    for (Param& q : out) d.primvars.params.push_back(std::move(q));
-}
-
-// Each repelling plane's ground: its depth map seen from object space (the object's transform at
-// its first key, as the triangles are). A map that is not there leaves the plane z = 0 of object
-// space, as Aqsis takes it, with a warning; one that is there but is no depth map is an error.
-void readGrounds(RibParser& reader, BlobbyKey& key, const Matrix4& objectToWorld, const SourceLoc& loc) {
-    for (const auto& [at, name] : key.planeMaps) {
-        if (!(key.field.ops[at].repel[0] > 0)) continue;  // A = 0: no repulsion, no map needed
-        const BlobbyDepthReader& read = reader.readDetail().readDepthMap;
-        auto ground = std::make_shared<BlobbyGround>();
-        std::string error;
-        if (read && read(name, &ground->map, &error)) {
-            if (ground->map.width < 1 || ground->map.height < 1 ||
-                ground->map.z.size() != size_t(ground->map.width) * size_t(ground->map.height))
-                throw InputError(loc, "Blobby: the repelling plane's depth map \"" + name + "\" has no pixels");
-            ground->objectToCamera = objectToWorld * ground->map.worldToCamera;
-            ground->objectToScreen = objectToWorld * ground->map.worldToScreen;
-            key.field.ops[at].ground = std::move(ground);
-        } else if (!error.empty()) {
-            throw InputError(loc, "Blobby: the repelling plane's depth map \"" + name + "\": " + error +
-                                      ": give a depth map (Display \"zfile\" | \"shadow\" \"z\", or MakeShadow)");
-        } else {
-            reader.log().warnOnce("blobby:planemap:" + name, loc,
-                                  "Blobby: the repelling plane's depth map \"" + name + "\" " +
-                                      (read ? "is not a file" : "is not read in a procedural's output") +
-                                      ": the ground is taken as the plane z = 0 of the blobby's space, as Aqsis does");
-        }
-    }
-}
-
-// The polygon mesh of the first key, with the per-leaf values blended by each leaf's field.
-void addBlobby(RibParser& reader, BlobbyKey& key, const SourceLoc& loc) {
+// The polygon mesh of the first key, with the per-leaf values blended by each leaf's field. One
+// whose repelling planes read depth maps is cut when its pass renders, where the reader asks for it
+// (ReadDetail::deferRepellingMaps): a map an earlier pass of the input writes is there by then.
+void addBlobby(RibParser& reader, BlobbyKey& key, const SourceLoc& loc, std::string signature) {
     PolygonMeshDesc d;
     placePrimitive(reader, d, {0.0}, loc);
     const RibState& st = reader.state();  // in an object's definition, as if instanced where it is defined
-    readGrounds(reader, key,
-                st.defining ? d.objectToWorld.keys().front() * st.defining->ctm.keys().front()
-                            : d.objectToWorld.keys().front(),
-                loc);
+    const Matrix4 objectToWorld = st.defining ? d.objectToWorld.keys().front() * st.defining->ctm.keys().front()
+                                              : d.objectToWorld.keys().front();
     const Param* given = reader.state().attributes->user.find("streyes:blobbyresolution");
     int cells = given ? int(reader.state().attributes->user.getFloat("streyes:blobbyresolution", 0))
                       : screenCells(reader, d, key.field);
@@ -361,26 +336,46 @@ void addBlobby(RibParser& reader, BlobbyKey& key, const SourceLoc& loc) {
     Vec3d lo, hi;
     if (!key.field.bound(&lo, &hi)) {
         reader.log().warnOnce("blobby:empty", loc,
-                              "Blobby: no ellipsoid or segment blob, so no surface to bound: nothing is drawn");
+                              "Blobby: no ellipsoid, segment blob or field plug-in, so no surface to bound: "
+                              "nothing is drawn");
         return;
     }
-    BlobbyMesh mesh = polygonizeBlobby(key.field, cells);
-    if (mesh.openAtBound)
-        reader.log().warnOnce("blobby:open", loc,
-                              "Blobby: the field is above the level (1/2) beyond its blobs (a constant?): the "
-                              "surface is cut open at the blobs' bound");
-    if (mesh.triangles.empty()) return;
     d.request = "Blobby";
-    for (const std::array<int, 3>& t : mesh.triangles) d.polygons.push_back({{t[0], t[1], t[2]}});
-    d.primvars = key.primvars;
-    if (key.Cs.given() && (key.Cs.cls == ParamClass::Constant || key.Cs.cls == ParamClass::Uniform)) {
-        d.Cs.cls = ParamClass::Constant;
-        d.Cs.values = {key.Cs.values[0]};
-    }
-    blendLeafValues(key, mesh.P, d);
-    d.P = {std::move(mesh.P)};
     d.patchesBefore = reader.scene().patches.size();
-    reader.scene().polygonMeshes.push_back(std::move(d));
+    const ReadDetail& detail = reader.readDetail();
+    const bool mapped = std::any_of(key.planeMaps.begin(), key.planeMaps.end(),
+                                    [&](const auto& m) { return key.field.ops[m.first].repel[0] > 0; });
+    if (mapped && detail.deferRepellingMaps && detail.readDepthMap && !st.defining) {
+        auto cut = std::make_shared<BlobbyDeferredCut>();
+        cut->key = std::move(key);
+        cut->cells = cells;
+        cut->objectToWorld = objectToWorld;
+        cut->loc = loc;
+        cut->signature = std::move(signature);
+        d.deferred = std::move(cut);
+        reader.scene().polygonMeshes.push_back(std::move(d));
+        return;
+    }
+    BlobbyMapLookup lookup;
+    if (const BlobbyDepthReader& read = detail.readDepthMap)
+        lookup = [&read](const std::string& name, std::string* error) {
+            auto map = std::make_shared<BlobbyDepthImage>();
+            return read(name, map.get(), error) ? std::shared_ptr<const BlobbyDepthImage>(std::move(map)) : nullptr;
+        };
+    readBlobbyGrounds(key, objectToWorld, loc, reader.log(), lookup);
+    if (cutBlobby(key, cells, loc, reader.log(), d)) reader.scene().polygonMeshes.push_back(std::move(d));
+}
+
+// The request's arguments, exactly: two frames' equal requests are one primitive.
+std::string requestSignature(const RibRequest& request) {
+    std::string s;
+    for (const RibValue& a : request.args) {
+        s += std::to_string(int(a.kind)) + ":";
+        for (double v : a.nums) s.append(reinterpret_cast<const char*>(&v), sizeof v);
+        for (const std::string& t : a.strings) s += std::to_string(t.size()) + ":" + t;
+        s += ";";
+    }
+    return s;
 }
 
 // A motion block's keys are all read (and checked), but the surface would change its triangles
@@ -408,7 +403,7 @@ void blobbyKeys(RibParser& reader, const RibKeys& keys) {
                                   "the first key is drawn at every time");
             break;
         }
-    addBlobby(reader, read.front(), keys.requests.front().loc);
+    addBlobby(reader, read.front(), keys.requests.front().loc, requestSignature(keys.requests.front()));
 }
 
 }  // namespace

@@ -57,4 +57,35 @@ std::string findOnSearchPath(const std::string& name, const std::string& path, c
     return "";
 }
 
+std::string findPluginFile(const std::string& name, const std::string& path, const std::string& directory) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (name.empty()) return "";
+    if (name.find('/') == std::string::npos) {
+        const std::string found = findOnSearchPath(name, path, directory, {".so"});
+        if (!found.empty()) return found;
+        for (const std::string& folder : environmentSearchPath(kProceduralPathVariable)) {
+            const std::string inEnv = findOnSearchPath(name, folder, "", {".so"});
+            if (!inEnv.empty()) return inEnv;
+        }
+        return "";
+    }
+    std::vector<std::string> candidates;
+    if (fs::path(name).is_relative() && !directory.empty()) candidates.push_back((fs::path(directory) / name).string());
+    candidates.push_back(name);
+    for (const std::string& c : candidates)
+        for (const std::string& p : {c, c + ".so"})
+            if (fs::is_regular_file(p, ec)) return p;
+    return "";
+}
+
+std::string pluginSearchDescription(const std::string& name, const std::string& path, const std::string& directory) {
+    if (name.find('/') != std::string::npos) return "beside this file or from the current folder";
+    std::string where;
+    for (const std::string& f : searchPathFolders(path, directory)) where += (where.empty() ? "in " : ", ") + f;
+    for (const std::string& f : environmentSearchPath(kProceduralPathVariable))
+        where += ", " + f + " (" + kProceduralPathVariable + ")";
+    return where;
+}
+
 }  // namespace streyes

@@ -32,4 +32,12 @@ constexpr const char* kProceduralPathVariable = "STREYES_PROCEDURALPATH";
 std::string findOnSearchPath(const std::string& name, const std::string& path, const std::string& directory,
                              const std::vector<std::string>& suffixes = {});
 
+// The shared object a plug-in name names (Procedural "DynamicLoad", Blobby field plug-ins), or ""
+// when there is none. A name with a '/' is a path (a relative one beside the naming file's folder
+// `directory` first, then from the current folder); a bare name is looked up along `path` (Option
+// "searchpath" "procedural"), then STREYES_PROCEDURALPATH's folders; each as given and with ".so".
+std::string findPluginFile(const std::string& name, const std::string& path, const std::string& directory);
+// Where findPluginFile looked for a name, for messages: "in folder, folder, ...".
+std::string pluginSearchDescription(const std::string& name, const std::string& path, const std::string& directory);
+
 }  // namespace streyes

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "scene/blobby_cut.h"
+
 namespace streyes {
 
 namespace {
@@ -119,6 +121,7 @@ bool sameData(const QuadricDesc& a, const QuadricDesc& b) {
 
 bool sameData(const PolygonMeshDesc& a, const PolygonMeshDesc& b) {
     return a.request == b.request && a.polygons == b.polygons && a.P == b.P && sameColors(a.Cs, b.Cs) &&
+           (a.deferred == b.deferred || (a.deferred && b.deferred && *a.deferred == *b.deferred)) &&
            samePrimitive(a, b);
 }
 

@@ -93,5 +93,35 @@ TEST(BlobbyRepelCli, AFileThatIsNoDepthMapIsAnErrorAtTheBlobbysLine) {
     EXPECT_EQ(test::listDir(tmp.path()), (std::vector<std::string>{"bad.rib", "bad.zfile"}));
 }
 
+// A depth pass earlier in the same file writes the map: the Blobby is cut when its own pass
+// renders, after that map is written, and reads it as it reads a map made beforehand.
+TEST(BlobbyRepelCli, AMapAnEarlierFrameOfTheFileWritesIsReadWhenTheBlobbyRenders) {
+    // The ground 0.1 above z = 0 (z = -0.1, depth 9.9 from the map's camera): not the z = 0 ground a
+    // missing map gives, so a map read too early would show.
+    const std::string ground = "Format 32 32 1\nProjection \"orthographic\"\nScreenWindow -4 4 -4 4\nTranslate 0 0 10\n"
+                               "Display \"high.zfile\" \"zfile\" \"z\"\nWorldBegin\n"
+                               "Patch \"bilinear\" \"P\" [-6 -6 -.1  6 -6 -.1  -6 6 -.1  6 6 -.1]\nWorldEnd\n";
+    const std::string picture = "FrameBegin 2\n" + blobScene("out.exr", kPlane, kRepel, "\"high.zfile\"") + "FrameEnd\n";
+    // Beforehand: the map from its own file, then the picture.
+    test::TempDir before("blobby-repel-before");
+    test::writeFile(before.path(), "ground.rib", ground);
+    test::writeFile(before.path(), "picture.rib", picture);
+    test::writeFile(before.path(), "zero.rib", "FrameBegin 2\n" + blobScene("zero.exr", kPlane, kRepel, "\"none.zfile\"") +
+                                                   "FrameEnd\n");
+    for (const char* f : {"ground.rib", "picture.rib", "zero.rib"}) {
+        const test::CliRun r = renderIn(before.path(), f);
+        ASSERT_EQ(r.exitCode, 0) << f << "\n" << r.output;
+    }
+    // One file: frame 1 renders the map, frame 2 the Blobby repelled by it; no map there before.
+    test::TempDir one("blobby-repel-passes");
+    test::writeFile(one.path(), "passes.rib", "FrameBegin 1\n" + ground + "FrameEnd\n" + picture);
+    const test::CliRun r = renderIn(one.path(), "passes.rib");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+    EXPECT_TRUE(samePixels(one.path() + "/out.exr", before.path() + "/out.exr"));
+    // And that map did move the blob: not the picture of the z = 0 ground.
+    EXPECT_GT(alphaRmse(one.path() + "/out.exr", before.path() + "/zero.exr"), 0.02);
+}
+
 }  // namespace
 }  // namespace streyes
