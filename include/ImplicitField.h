@@ -13,7 +13,7 @@
  * The object it returns fills `bbox` (xmin xmax ymin ymax zmin zmax, object space) in its
  * constructor: the field is taken as 0 outside it. streyes calls Eval (the field at an object-space
  * point; it is added to the other leaves' through the Blobby's code, and the surface is where the
- * total is 1/2) and deletes the object when the Blobby is drawn; calls come from one thread at a
+ * total is 27/64) and deletes the object when the Blobby is drawn; calls come from one thread at a
  * time for one object. PRMan's own ImplicitField.h declares these first, in this order, and further
  * virtual functions after them (GradientEval, Range, Motion, ...): a plug-in built against
  * PRMan's header loads here too. streyes samples the field and finds the level by bisection, so it

@@ -4,8 +4,8 @@
 // PRMan's: ImplicitFieldNew(nfloat, float0, float1, nstring, strings) makes an object whose Eval
 // is the field at an object-space point and whose bbox bounds it. AIR's: C functions
 // ImplicitBound (the box, in the blob's own space, where the field may not be 0), ImplicitValue
-// (a distance d at a blob-space point: the field is 1 - d for d < 1, 0 beyond, so the surface of
-// a lone plug-in is at d = 1/2, as AIR documents) and, if exported, ImplicitFree; the blob's own
+// (a distance d at a blob-space point: the field is 1 - d for d < 1, 0 beyond, as Aqsis takes it,
+// so the surface of a lone plug-in is at d = 37/64, where 1 - d is the level 27/64) and, if exported, ImplicitFree; the blob's own
 // space is placed by a matrix (as an ellipsoid's is). Either field is 0 outside its box.
 //
 // A shared object is loaded once (per path) and stays loaded while the program runs. Lookup is

@@ -1,5 +1,5 @@
 /* A Blobby field plug-in in AIR's form (opcode 9000): the distance from the blob space's origin
-   over the float R, so the field 1 - r/R is 1/2 on the sphere of radius R/2. */
+   over the float R, so the field 1 - r/R is the level 27/64 on the sphere of radius 37/64 R. */
 #include <math.h>
 
 typedef struct {
