@@ -85,7 +85,7 @@ class GridShader {
     // output variables, whose programs (the surface's and its lights') batchProgramSafe() accepts.
     bool batchable(const Material* m, int points, int aovCount);
     // Each slot as shadeSlot(*grid, k, time) shades it, bit for bit; the slots of batchable grids
-    // whose runs would see the same uniform values (one material, shading time, du and dv, shadow
+    // whose runs would see the same uniform values (one material, shading time, shadow
     // slots) are shaded together, up to kBatchPoints a run, each grid differenced on its own.
     void shadeSlots(const Slot* slots, size_t count);
     // Off: shadeSlots shades one slot a run (for comparing).
@@ -171,6 +171,7 @@ class GridShader {
     std::vector<std::pair<const sl::ShaderProgram*, bool>> safePrograms_;  // batchProgramSafe, once a program
     Grid batch_;                                  // the batch's points, concatenated
     std::vector<sl::ShadingGridPart> parts_;      // its grids' shapes
+    std::vector<float> batchDu_, batchDv_;        // its grids' du and dv, point by point
     // Materials whose batched run refused (a grid-wide operation ran): shaded alone. Only speed
     // depends on it (a material freed and another made at its address is shaded alone too).
     std::vector<const Material*> refused_;
