@@ -140,7 +140,13 @@ void GridShader::shadeBatch(const Slot* const* slots, size_t count) {
     batch_.primvarCorners = nullptr;
     batch_.u0 = first.u0, batch_.u1 = first.u1, batch_.v0 = first.v0, batch_.v1 = first.v1;
     batch_.t0 = batch_.t1 = time;
-    batch_.resize(total - 1, 0, false);
+    // Its arrays only grow: every value a run reads is written below, so a shorter row needs no
+    // zero-filling (Grid::resize would fill what a longer one left).
+    if (batch_.P[0].size() < size_t(total) || batch_.Cl[0].size() < size_t(total) * size_t(first.shadowSlots))
+        batch_.resize(total - 1, 0, false);
+    batch_.nu = total - 1;
+    batch_.nv = 0;
+    batch_.moving = false;
     parts_.resize(count);
     int at = 0;
     for (size_t b = 0; b < count; ++b) {
