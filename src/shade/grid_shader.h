@@ -85,8 +85,9 @@ class GridShader {
     // output variables, whose programs (the surface's and its lights') batchProgramSafe() accepts.
     bool batchable(const Material* m, int points, int aovCount);
     // Each slot as shadeSlot(*grid, k, time) shades it, bit for bit; the slots of batchable grids
-    // whose runs would see the same uniform values (one material, shading time, du and dv, shadow
-    // slots) are shaded together, up to kBatchPoints a run, each grid differenced on its own.
+    // whose runs would see the same uniform values (one material, the same spaces at their
+    // shading times, shadow slots) are shaded together, up to kBatchPoints a run, each grid
+    // differenced on its own (du and dv bound point by point).
     void shadeSlots(const Slot* slots, size_t count);
     // Off: shadeSlots shades one slot a run (for comparing).
     void setBatching(bool on) { batching_ = on; }
@@ -121,6 +122,12 @@ class GridShader {
   private:
     // The batch's slots (all batchable, one key) in one run over their points together.
     void shadeBatch(const Slot* const* slots, size_t count);
+    // Appends to `out` every space a run of `m` at `time` is given (the camera's, "world",
+    // "shader", "object", the lights'): slots whose spaces are equal may share a run. False
+    // (nothing comparable) when a program reads `time` or a light is an area light.
+    bool spacesAt(const Material& m, double time, std::vector<double>& out) const;
+    // The class of (m, time) in this flush: equal for times at which m's runs see the same spaces.
+    int timeClass(const Material& m, double time);
     bool programSafe(const sl::ShaderProgram& p);
 
     void displace(const Material& m, Grid& grid, int k, double time);
@@ -171,11 +178,21 @@ class GridShader {
     std::vector<std::pair<const sl::ShaderProgram*, bool>> safePrograms_;  // batchProgramSafe, once a program
     Grid batch_;                                  // the batch's points, concatenated
     std::vector<sl::ShadingGridPart> parts_;      // its grids' shapes
+    std::vector<float> batchDu_, batchDv_;        // its grids' du and dv, point by point
     // Materials whose batched run refused (a grid-wide operation ran): shaded alone. Only speed
     // depends on it (a material freed and another made at its address is shaded alone too).
     std::vector<const Material*> refused_;
     std::vector<const Slot*> group_;              // slots of one key, in order
     std::vector<uint8_t> slotDone_;
+    std::vector<int> slotClass_;                  // each slot's timeClass (-1: not batchable)
+    struct TimeClass {
+        const Material* material;
+        double time;
+        int cls;
+        size_t signature, length;  // its spaces in signatures_ (length 0: none comparable)
+    };
+    std::vector<TimeClass> timeClasses_;
+    std::vector<double> signatures_;
     const AovLayout* aovs_ = nullptr;  // set when it names shader outputs
     void clearShaderOutputs(Grid& grid, int k) const;
     void copyShaderOutputs(Grid& grid, int k) const;

@@ -5,9 +5,14 @@
 //
 // Sound only where one run gives every point the value its grid alone gives it, bit for bit:
 // the uniform inputs of the run must be the same for all its grids (the key below: the material,
-// which fixes the shaders, their instances, lights, attributes and Os; the shading time, which
-// fixes every space, the lights' places and `time`; du and dv, uniform globals; the shadow
-// slots), and the programs must compute each point from its own grid (sl::batchProgramSafe).
+// which fixes the shaders, their instances, lights, attributes and Os; the spaces the shading
+// time gives, and the time itself where a program reads `time`; the shadow slots), and the
+// programs must compute each point from its own grid (sl::batchProgramSafe). du and dv, which
+// differ with each grid's dicing rate, are varying globals: bound point by point, each grid's
+// own. A swaying leaf's key grids (times 0, 4, 8 ...) under a still camera, lights and shader
+// space see the same spaces at each key: they share runs. (On the forest, keying runs by du
+// and dv and the exact time cut them to 4.7 grids.) What else a run reads of the time (rays,
+// maps) is a grid-wide operation, refused in a batch.
 #include <algorithm>
 #include <cstring>
 
@@ -28,15 +33,44 @@ Color clampOpacityOf(Color o) {
 float stepU(const Grid& g) { return g.nu > 0 ? (g.u1 - g.u0) / float(g.nu) : 0.0f; }
 float stepV(const Grid& g) { return g.nv > 0 ? (g.v1 - g.v0) / float(g.nv) : 0.0f; }
 
-bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-
-// Can slots a and b share a run?
-bool sameKey(const GridShader::Slot& a, const GridShader::Slot& b) {
-    return a.grid->material == b.grid->material && a.time == b.time && sameBits(stepU(*a.grid), stepU(*b.grid)) &&
-           sameBits(stepV(*a.grid), stepV(*b.grid)) && a.grid->shadowSlots == b.grid->shadowSlots;
-}
+void appendMatrix(const Matrix4& m, std::vector<double>& out) { out.insert(out.end(), m.m.begin(), m.m.end()); }
 
 }  // namespace
+
+bool GridShader::spacesAt(const Material& m, double time, std::vector<double>& out) const {
+    if (m.surface->program().globalReg[int(sl::Global::time)] >= 0) return false;
+    appendMatrix(shaders_->worldToCameraAt(time), out);
+    appendMatrix(camera_.worldToCamera().at(time), out);
+    if (m.attributes) appendMatrix(m.attributes->surface.shaderToWorld.at(time), out);
+    if (m.objectSpaceKnown) appendMatrix(m.objectToWorld.at(time), out);
+    for (int li : m.lights) {
+        const sl::ShaderInstance* s = shaders_->light(size_t(li));
+        if (!s) continue;
+        if (lights_.isArea(li) || s->program().globalReg[int(sl::Global::time)] >= 0) return false;
+        appendMatrix(lights_.lightToCamera(li, time), out);
+    }
+    return true;
+}
+
+int GridShader::timeClass(const Material& m, double time) {
+    for (const TimeClass& c : timeClasses_)
+        if (c.material == &m && c.time == time) return c.cls;
+    const size_t at = signatures_.size();
+    int cls = int(timeClasses_.size());
+    if (spacesAt(m, time, signatures_)) {
+        const size_t len = signatures_.size() - at;
+        for (const TimeClass& c : timeClasses_)
+            if (c.material == &m && c.length == len &&  // bit for bit (-0 is not 0 to a product's sign)
+                std::memcmp(signatures_.data() + at, signatures_.data() + c.signature, len * sizeof(double)) == 0) {
+                cls = c.cls;
+                break;
+            }
+    } else {
+        signatures_.resize(at);  // not comparable: a class of its own
+    }
+    timeClasses_.push_back({&m, time, cls, at, signatures_.size() - at});
+    return cls;
+}
 
 bool GridShader::programSafe(const sl::ShaderProgram& p) {
     for (const auto& [prog, safe] : safePrograms_)
@@ -61,10 +95,17 @@ bool GridShader::batchable(const Material* m, int points, int aovCount) {
 
 void GridShader::shadeSlots(const Slot* slots, size_t count) {
     slotDone_.assign(count, 0);
+    // The key of each batchable slot (-1: shaded alone): its material's, its time's class.
+    slotClass_.assign(count, -1);
+    timeClasses_.clear();
+    signatures_.clear();
+    for (size_t i = 0; i < count; ++i)
+        if (batchable(slots[i].grid->material, slots[i].grid->vertexCount(), slots[i].grid->aovCount))
+            slotClass_[i] = timeClass(*slots[i].grid->material, slots[i].time);
     for (size_t i = 0; i < count; ++i) {
         if (slotDone_[i]) continue;
         const Slot& s = slots[i];
-        if (!batchable(s.grid->material, s.grid->vertexCount(), s.grid->aovCount)) {
+        if (slotClass_[i] < 0) {
             shadeSlot(*s.grid, s.k, s.time);
             slotDone_[i] = 1;
             continue;
@@ -73,10 +114,9 @@ void GridShader::shadeSlots(const Slot* slots, size_t count) {
         group_.clear();
         int points = 0;
         for (size_t j = i; j < count; ++j) {
-            if (slotDone_[j] || !sameKey(s, slots[j])) continue;
+            if (slotDone_[j] || slotClass_[j] != slotClass_[i] || slots[j].grid->shadowSlots != s.grid->shadowSlots) continue;
             const int n = slots[j].grid->vertexCount();
             if (points + n > kBatchPoints) break;
-            if (j != i && !batchable(slots[j].grid->material, n, slots[j].grid->aovCount)) continue;
             group_.push_back(&slots[j]);
             slotDone_[j] = 1;
             points += n;
@@ -89,7 +129,7 @@ void GridShader::shadeSlots(const Slot* slots, size_t count) {
 void GridShader::shadeBatch(const Slot* const* slots, size_t count) {
     const Grid& first = *slots[0]->grid;
     const Material& m = *first.material;
-    const double time = slots[0]->time;
+    const double time = slots[0]->time;  // the others' give the same spaces (timeClass)
     int total = 0;
     for (size_t b = 0; b < count; ++b) total += slots[b]->grid->vertexCount();
     // One row of `total` points carrying the grids' inputs one after another.
@@ -100,7 +140,13 @@ void GridShader::shadeBatch(const Slot* const* slots, size_t count) {
     batch_.primvarCorners = nullptr;
     batch_.u0 = first.u0, batch_.u1 = first.u1, batch_.v0 = first.v0, batch_.v1 = first.v1;
     batch_.t0 = batch_.t1 = time;
-    batch_.resize(total - 1, 0, false);
+    // Its arrays only grow: every value a run reads is written below, so a shorter row needs no
+    // zero-filling (Grid::resize would fill what a longer one left).
+    if (batch_.P[0].size() < size_t(total) || batch_.Cl[0].size() < size_t(total) * size_t(first.shadowSlots))
+        batch_.resize(total - 1, 0, false);
+    batch_.nu = total - 1;
+    batch_.nv = 0;
+    batch_.moving = false;
     parts_.resize(count);
     int at = 0;
     for (size_t b = 0; b < count; ++b) {
@@ -114,20 +160,26 @@ void GridShader::shadeBatch(const Slot* const* slots, size_t count) {
     }
     prepare(m, batch_, 0, time);
     // What prepare made of the row as one grid, each grid's own: u and v over its piece (as
-    // prepare spreads them), du and dv (the key makes them the same for all), its shape.
+    // prepare spreads them), du and dv at each of its points (varying globals: the grids of a
+    // batch may be diced at other rates), its shape.
+    batchDu_.resize(size_t(total));
+    batchDv_.resize(size_t(total));
     for (size_t b = 0; b < count; ++b) {
         const Grid& g = *slots[b]->grid;
         const float du = stepU(g), dv = stepV(g);
-        float* u = u_.data() + parts_[b].offset;
-        float* v = v_.data() + parts_[b].offset;
+        const int o = parts_[b].offset, n = g.vertexCount();
+        float* u = u_.data() + o;
+        float* v = v_.data() + o;
         for (int j = 0; j <= g.nv; ++j)
             for (int i = 0; i <= g.nu; ++i) {
                 u[g.index(i, j)] = i == g.nu ? g.u1 : g.u0 + float(i) * du;
                 v[g.index(i, j)] = j == g.nv ? g.v1 : g.v0 + float(j) * dv;
             }
+        std::fill_n(batchDu_.begin() + o, n, du);
+        std::fill_n(batchDv_.begin() + o, n, dv);
     }
-    du_ = stepU(first);
-    dv_ = stepV(first);
+    sgrid_.set(sl::Global::du, sl::ValueRef::soa(batchDu_.data()));
+    sgrid_.set(sl::Global::dv, sl::ValueRef::soa(batchDv_.data()));
     sgrid_.nu = sgrid_.nv = 0;
     sgrid_.parts = parts_.data();
     sgrid_.partCount = int(count);

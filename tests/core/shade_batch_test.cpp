@@ -74,6 +74,75 @@ TEST(ShadeBatching, SmallGridsShareRunsAndGiveTheSamePixels) {
     }
 }
 
+// Grids diced at other rates (other du and dv) share a run: du and dv are bound point by point,
+// each grid's own. Six still patches of other sizes in one bucket under one material: one run
+// of all six, and the pixels of one run a grid, with a shader whose colour reads du and dv
+// themselves and through Du, Dv, area and calculatenormal (the first grid's du for all would
+// change them).
+const char* kRates = R"(surface rates() {
+    normal n = normalize(calculatenormal(P));
+    Ci = color(40 * du, 40 * dv, 0.5 + 0.5 * zcomp(n)) + color(abs(Du(s)) * 0.01, abs(Dv(t)) * 0.01, area(P) * 0.02);
+    Oi = color(1 - 0.1 * du, 1 - 0.1 * dv, 1);
+})";
+
+TEST(ShadeBatching, GridsOfOtherRatesShareARun) {
+    test::ShaderDir shaders;
+    shaders.add("rates", kRates);
+    std::string scene = "Surface \"rates\"\nColor [0.5 0.7 0.4]\n";
+    for (int g = 0; g < 6; ++g) {
+        const float x0 = 1 + 7.5f * float(g), w = 2 + float(g), h = 1 + 0.5f * float(g);
+        const std::string x = std::to_string(x0), x1 = std::to_string(x0 + w), y1 = std::to_string(2 + h);
+        scene += "Patch \"bilinear\" \"P\" [" + x + " 2 1  " + x1 + " 2 1  " + x + " " + y1 + " 1  " + x1 + " " + y1 + " 1]\n";
+    }
+    const std::string rib = shaders.option() + test::orthographicView(48, 12, "WorldBegin\n" + scene + "WorldEnd\n");
+    RenderOptions on = test::optionsFor(Algorithm::Spacetime), off = on;
+    on.threads = off.threads = 1;
+    off.shadeBatching = false;
+    const test::RenderResult batched = test::renderRib(rib, on), alone = test::renderRib(rib, off);
+    EXPECT_TRUE(test::identicalPixels(batched, alone));
+    EXPECT_GT(test::alphaSum(alone), 50.0);  // the patches are there (69.5 pixels)
+    EXPECT_EQ(batched.stats.counters.shadingBatchRuns, 1u);
+    EXPECT_EQ(batched.stats.counters.shadingBatchedGrids, 6u);
+    EXPECT_EQ(batched.stats.counters.pointsShadedSurface, alone.stats.counters.pointsShadedSurface);
+}
+
+// Slots at other times share a run where the runs see the same spaces (a still camera, lights
+// and shader space; only the patches move): the moving patches' two slots (shutter open and
+// close) in one run, the pixels those of one run a grid. A shader that reads `time` is run
+// once a time.
+TEST(ShadeBatching, SlotsAtOtherTimesShareARunUnlessTheShaderReadsTime) {
+    test::ShaderDir shaders;
+    shaders.add("rates", kRates);
+    shaders.add("clock", R"(surface clock() {
+    normal n = normalize(calculatenormal(P));
+    Ci = color(time, 40 * du, 0.5 + 0.5 * zcomp(n)) + color(0, 0, area(P) * 0.02);
+    Oi = 1;
+})");
+    for (const char* surface : {"rates", "clock"}) {
+        SCOPED_TRACE(surface);
+        std::string scene = "LightSource \"distantlight\" 1 \"from\" [0 0 -1] \"to\" [0 0 0]\n";
+        scene += std::string("Surface \"") + surface + "\"\nColor [0.5 0.7 0.4]\n";
+        for (int g = 0; g < 6; ++g) {
+            const float x0 = 1 + 7.5f * float(g), w = 2 + float(g), h = 1 + 0.5f * float(g);
+            const std::string x = std::to_string(x0), x1 = std::to_string(x0 + w), y1 = std::to_string(2 + h);
+            scene += "MotionBegin [0 1]\nTranslate 0 0 0\nTranslate 0.4 " + std::to_string(0.3 * g) +
+                     " 0\nMotionEnd\nPatch \"bilinear\" \"P\" [" + x + " 2 1  " + x1 + " 2 1  " + x + " " + y1 + " 1  " + x1 + " " +
+                     y1 + " 1]\nIdentity\n";
+        }
+        const std::string rib =
+            shaders.option() + test::orthographicView(48, 12, "Shutter 0 1\nWorldBegin\n" + scene + "WorldEnd\n");
+        RenderOptions on = test::optionsFor(Algorithm::Spacetime), off = on;
+        on.threads = off.threads = 1;
+        off.shadeBatching = false;
+        const test::RenderResult batched = test::renderRib(rib, on), alone = test::renderRib(rib, off);
+        EXPECT_TRUE(test::identicalPixels(batched, alone));
+        EXPECT_GT(test::alphaSum(alone), 50.0);
+        const bool readsTime = surface[0] == 'c';
+        EXPECT_EQ(batched.stats.counters.shadingBatchRuns, readsTime ? 2u : 1u);
+        EXPECT_EQ(batched.stats.counters.shadingBatchedGrids, 12u);  // six grids, two slots each
+    }
+}
+
 // With a tolerance, occlusion culling is not exact and a batch sampled later could move what is
 // culled: nothing is batched then.
 TEST(ShadeBatching, NotWithAnOcclusionTolerance) {

@@ -27,24 +27,37 @@ using VF = hn::Vec<decltype(kF)>;
 using VI = hn::Vec<decltype(kI)>;
 using VU = hn::Vec<decltype(kU)>;
 
-// noise.cpp's hashInts of D lattice coordinates, lane by lane.
+// noise.cpp's hashInts of the 2^D corners of each lane's cell (corner c takes hi[k] where bit k
+// of c is set, lo[k] elsewhere). A corner's state after k rounds depends on its first k
+// coordinates alone, so corners share their rounds: 2 + 4 + ... + 2^D instead of D 2^D, each
+// round the same integer operations as hashInts' (exact).
 template <int D>
-HWY_INLINE VU hashLanes(const VI* lattice, uint32_t seed) {
-    VU h = hn::Set(kU, 0x9e3779b9u ^ seed);
+HWY_INLINE void cornerHashes(const VI* lo, const VI* hi, uint32_t seed, VU* h) {
+    h[0] = hn::Set(kU, 0x9e3779b9u ^ seed);
     for (int k = 0; k < D; ++k) {
-        VU x = hn::Mul(hn::BitCast(kU, lattice[k]), hn::Set(kU, 0xcc9e2d51u));
-        x = hn::RotateRight<17>(x);  // (x << 15) | (x >> 17)
-        x = hn::Mul(x, hn::Set(kU, 0x1b873593u));
-        h = hn::Xor(h, x);
-        h = hn::RotateRight<19>(h);  // (h << 13) | (h >> 19)
-        h = hn::Add(hn::Mul(h, hn::Set(kU, 5u)), hn::Set(kU, 0xe6546b64u));
+        VU x[2];
+        for (int bit = 0; bit < 2; ++bit) {
+            VU v = hn::Mul(hn::BitCast(kU, bit ? hi[k] : lo[k]), hn::Set(kU, 0xcc9e2d51u));
+            v = hn::RotateRight<17>(v);  // (x << 15) | (x >> 17)
+            x[bit] = hn::Mul(v, hn::Set(kU, 0x1b873593u));
+        }
+        // h[0, 2^k) hold the states so far: corner c | (1 << k) continues c's with hi[k] (written
+        // first, past what is read), c itself with lo[k].
+        for (int c = 0; c < (1 << k); ++c)
+            for (int bit = 1; bit >= 0; --bit) {
+                VU t = hn::Xor(h[c], x[bit]);
+                t = hn::RotateRight<19>(t);  // (h << 13) | (h >> 19)
+                h[c | (bit << k)] = hn::Add(hn::Mul(t, hn::Set(kU, 5u)), hn::Set(kU, 0xe6546b64u));
+            }
     }
-    h = hn::Xor(h, hn::Set(kU, uint32_t(D)));
-    h = hn::Xor(h, hn::ShiftRight<16>(h));
-    h = hn::Mul(h, hn::Set(kU, 0x85ebca6bu));
-    h = hn::Xor(h, hn::ShiftRight<13>(h));
-    h = hn::Mul(h, hn::Set(kU, 0xc2b2ae35u));
-    return hn::Xor(h, hn::ShiftRight<16>(h));
+    for (int c = 0; c < (1 << D); ++c) {
+        VU t = hn::Xor(h[c], hn::Set(kU, uint32_t(D)));
+        t = hn::Xor(t, hn::ShiftRight<16>(t));
+        t = hn::Mul(t, hn::Set(kU, 0x85ebca6bu));
+        t = hn::Xor(t, hn::ShiftRight<13>(t));
+        t = hn::Mul(t, hn::Set(kU, 0xc2b2ae35u));
+        h[c] = hn::Xor(t, hn::ShiftRight<16>(t));
+    }
 }
 
 // noise.cpp's gradDot: the lattice point's gradient (components from the hash's bytes) dotted
@@ -125,17 +138,17 @@ void noiseLanes(const float* const* p, const int32_t* const* period, size_t n, u
                 hi[k] = hn::IfThenZeroElse(hn::Eq(next, hn::Load(kI, pers)), next);
             }
         }
+        VU hashes[1 << D];
+        cornerHashes<D>(lo, hi, seed, hashes);
         VF sum = zero;
         for (int corner = 0; corner < (1 << D); ++corner) {
-            VI lattice[D];
             VF d[D], weight = one;
             for (int k = 0; k < D; ++k) {
                 const int bit = (corner >> k) & 1;
-                lattice[k] = bit ? hi[k] : lo[k];
                 d[k] = hn::Sub(frac[k], hn::Set(kF, float(bit)));
                 weight = hn::Mul(weight, bit ? w[k] : hn::Sub(one, w[k]));
             }
-            sum = hn::Add(sum, hn::Mul(weight, gradDotLanes<D>(hashLanes<D>(lattice, seed), d)));
+            sum = hn::Add(sum, hn::Mul(weight, gradDotLanes<D>(hashes[corner], d)));
         }
         const VF v = hn::Add(hn::Set(kF, 0.5f), hn::Mul(hn::Set(kF, 0.5f * kScale[D]), sum));
         const VF atLeast0 = hn::IfThenElse(hn::Lt(zero, v), v, zero);  // std::max(0.0f, v)
