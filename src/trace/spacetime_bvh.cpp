@@ -540,6 +540,13 @@ bool SpacetimeBVH::intersect(const Ray& ray, double time, float tMin, float tMax
 
 bool SpacetimeBVH::occluded(const Ray& ray, double time, float tMin, float tMax, TraceContext& ctx) const {
     if (!solids_) return traverse<Mode::Any>(ray, time, tMin, tMax, nullptr, ctx);
+    return occludedThroughSolids(ray, time, tMin, tMax, ctx);
+}
+
+// Out of line: inlined into occluded, it cost the plain any-hit traversal 7.7% more instructions
+// (callgrind, scenes/atom.rib frames 1-2 at 160x90: 214.3 M -> 230.8 M in occluded).
+__attribute__((noinline)) bool SpacetimeBVH::occludedThroughSolids(const Ray& ray, double time, float tMin, float tMax,
+                                                                   TraceContext& ctx) const {
     std::vector<TraceContext::SolidCrossing>& cs = ctx.crossings;
     cs.clear();
     if (traverse<Mode::AnyThroughSolids>(ray, time, tMin, tMax, nullptr, ctx)) return true;  // a plain surface

@@ -132,6 +132,7 @@ class SpacetimeBVH {
     // Whether an eye ray's hit is on the inside of a one-sided surface (Sides 1): passed through.
     static bool facesAway(const TrilinearBody& b, double time, const PatchHit& h, const Ray& ray);
     enum class Mode { Nearest, Any, AnyThroughSolids };
+    bool occludedThroughSolids(const Ray& ray, double time, float tMin, float tMax, TraceContext& ctx) const;
     template <Mode M>
     bool traverse(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit, TraceContext& ctx) const;
 
