@@ -147,8 +147,11 @@ inline float pixelDepth(const ImageBlock& block, const FilterWeights& fw, const 
 
 // Depthfilter "midpoint": each sample's two nearest surfaces, its opaque hit and the fragments of
 // lists `own` and `shared` (per sample heads, null: none), averaged (+inf with fewer than two); the
-// pixel's depth the nearest of its samples'.
-inline float midpointDepth(const ImageBlock& block, const SampleHit* hits, const int32_t* own, const int32_t* shared) {
+// pixel's depth the nearest of its samples'. A solid's crossings count where they bound its result
+// (walked nearest first, as composite walks them) and are not clear (a see-through member's:
+// no surface of a depth map, as a see-through surface's fragment is none).
+inline float midpointDepth(const ImageBlock& block, const SampleHit* hits, const int32_t* own, const int32_t* shared,
+                           ResolveScratch& scratch) {
     const int S = block.samplesPerPixel();
     float best = kInf;
     for (int j = 0; j < S; ++j) {
@@ -158,9 +161,25 @@ inline float midpointDepth(const ImageBlock& block, const SampleHit* hits, const
             else if (z < z2) z2 = z;
         };
         if (hits[j].z < kInf) add(hits[j].z);
-        for (const int32_t* heads : {own, shared})
-            if (heads)
-                for (int32_t k = heads[j]; k >= 0; k = block.fragment(k).next) add(block.fragment(k).z);
+        if (!block.solids()) {
+            for (const int32_t* heads : {own, shared})
+                if (heads)
+                    for (int32_t k = heads[j]; k >= 0; k = block.fragment(k).next) add(block.fragment(k).z);
+        } else {
+            std::vector<SampleFragment>& frags = scratch.fragments;
+            frags.clear();
+            for (const int32_t* heads : {own, shared})
+                if (heads)
+                    for (int32_t k = heads[j]; k >= 0; k = block.fragment(k).next) frags.push_back(block.fragment(k));
+            std::sort(frags.begin(), frags.end(), [](const SampleFragment& x, const SampleFragment& y) { return x.before(y); });
+            scratch.solidWalk.reset(*block.solids());
+            for (const SampleFragment& f : frags) {
+                if (f.solid >= 0 && (!scratch.solidWalk.cross(solidLeafOf(f.solid), solidEnters(f.solid)) ||
+                                     f.t == Color{1, 1, 1}))
+                    continue;
+                add(f.z);
+            }
+        }
         if (z2 < kInf) best = std::min(best, 0.5f * (z1 + z2));
     }
     return best;
@@ -426,7 +445,7 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
         if (!midpoint && solidFragments)
             return pixelDepth(block, fw, solidDepths(block, block.still(i), block.stillFragments(i), nullptr, scratch));
         if (!midpoint) return pixelDepth(block, fw, block.still(i));
-        return midpointDepth(block, block.still(i), fragments ? block.stillFragments(i) : nullptr, nullptr);
+        return midpointDepth(block, block.still(i), fragments ? block.stillFragments(i) : nullptr, nullptr, scratch);
     };
     auto frameDepth = [&](int fi, size_t i) {
         const SampleHit* rec = block.record(fi, i);
@@ -437,7 +456,7 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
                                           scratch));
         if (!midpoint) return pixelDepth(block, fw, rec);
         return midpointDepth(block, rec, fragments ? block.recordFragments(fi, i) : nullptr,
-                             fragments && !dense ? block.stillFragments(i) : nullptr);
+                             fragments && !dense ? block.stillFragments(i) : nullptr, scratch);
     };
 
     // The still layer, resolved once for every frame that shows it.

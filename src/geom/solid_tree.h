@@ -54,6 +54,12 @@ class SolidWalk {
         for (int n : touched_) in_[size_t(n)] = 0;
         touched_.clear();
     }
+    // A line that does not start outside everything (a shadow ray leaves a surface, maybe inside
+    // a solid): leaf's state where it starts, set before the walk's crossings.
+    void start(int leaf, bool inside) {
+        in_[size_t(leaf)] = uint8_t(inside);
+        touched_.push_back(leaf);
+    }
     // The crossing of leaf `leaf`, entering it or leaving: whether it is a surface of the result
     // (the line goes in or out of the leaf's root there).
     bool cross(int leaf, bool entering) {

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "geom/body.h"
+#include "geom/solid_tree.h"
 #include "raster/image_block.h"
 #include "streyes/render_options.h"
 #include "trace/ray_patch.h"
@@ -60,6 +61,13 @@ struct TraceContext {
         size_t pixel = 0;
         int sample = 0;
     } dissolve;
+    // A shadow ray's crossings of solids' boundaries (t and solidTag), and the walk through them.
+    struct SolidCrossing {
+        float t;
+        int32_t tag;
+    };
+    std::vector<SolidCrossing> crossings;
+    SolidWalk solidWalk;
 };
 
 class SpacetimeBVH {
@@ -69,13 +77,19 @@ class SpacetimeBVH {
     // Builds over the bodies that exist during [ta, tb]. `include` widens the root cell (the eye
     // and the lights, as in the paper). The bodies must outlive the hierarchy; it keeps pointers
     // to those it holds, and TraceHit::body indexes them (bodies()).
+    // `solids`: the scene's solids' trees, where some of the bodies bound solids (Material::solid).
     void build(const std::vector<const TrilinearBody*>& bodies, double ta, double tb, const Bounds3f& include,
-               const HierarchyOptions& options);
+               const HierarchyOptions& options, const SolidTree* solids = nullptr);
 
     // Nearest hit with tMin < t < tMax at time `time`; false when none.
     bool intersect(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit, TraceContext& ctx) const;
-    // Whether anything is hit with tMin < t < tMax at time `time` (shadow rays).
+    // Whether anything is hit with tMin < t < tMax at time `time` (shadow rays). A solid's boundary
+    // blocks only where the ray goes in or out of the solid's result (geom/solid_tree.h): the ray
+    // is walked through every crossing of the solids it meets, beyond tMax too, since where it
+    // starts (on a surface, maybe inside a solid) each leaf's state is the opposite of what its
+    // nearest crossing after tMin sets (a solid is closed).
     bool occluded(const Ray& ray, double time, float tMin, float tMax, TraceContext& ctx) const;
+    bool holdsSolids() const { return solids_ != nullptr; }
 
     // Bounding volumes built: the nodes of the final tree, leaves included.
     size_t nodeCount() const { return nodes_.size(); }
@@ -117,7 +131,9 @@ class SpacetimeBVH {
   private:
     // Whether an eye ray's hit is on the inside of a one-sided surface (Sides 1): passed through.
     static bool facesAway(const TrilinearBody& b, double time, const PatchHit& h, const Ray& ray);
-    template <bool AnyHit>
+    enum class Mode { Nearest, Any, AnyThroughSolids };
+    bool occludedThroughSolids(const Ray& ray, double time, float tMin, float tMax, TraceContext& ctx) const;
+    template <Mode M>
     bool traverse(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit, TraceContext& ctx) const;
 
     std::vector<const TrilinearBody*> bodies_;
@@ -125,6 +141,7 @@ class SpacetimeBVH {
     std::vector<Reference> refs_;
     int depth_ = 0;
     size_t buildBytes_ = 0;
+    const SolidTree* solids_ = nullptr;  // set when a body it holds bounds a solid
 };
 
 }  // namespace streyes

@@ -171,7 +171,7 @@ bool TraceScene::displaced(const Body& body) const {
 void TraceScene::buildSpacetime(const HierarchyOptions& options) {
     const double cpu = processCpuSeconds();
     frames_.clear();
-    spacetime_.build(bodies_, scene_.renderedStart, scene_.renderedEnd, include_, options);
+    spacetime_.build(bodies_, scene_.renderedStart, scene_.renderedEnd, include_, options, &scene_.solids);
     boundingVolumes += spacetime_.nodeCount();
     buildSeconds += processCpuSeconds() - cpu;
 }
@@ -183,8 +183,10 @@ void TraceScene::buildShadowHierarchies(const HierarchyOptions& options) {
     // windowStart and windowEnd are the shot's (RenderScene): the parting is the same whatever
     // frames are rendered, and so is every still vertex's test.
     movingBound_ = Bounds3f{};
+    markMovingSolids();
     for (const TrilinearBody* b : bodies_) {
-        const bool still = !b->moving() && b->time().t0 <= scene_.windowStart && b->time().t1 >= scene_.windowEnd;
+        const bool still = !b->moving() && b->time().t0 <= scene_.windowStart && b->time().t1 >= scene_.windowEnd &&
+                           !inMovingSolid(*b);
         (still ? stillBodies_ : movingBodies_).push_back(b);
         if (!still && b->time().overlaps(scene_.renderedStart, scene_.renderedEnd))
             movingBound_.extend(b->boundDuring(std::max(scene_.renderedStart, b->time().t0),
@@ -192,11 +194,36 @@ void TraceScene::buildShadowHierarchies(const HierarchyOptions& options) {
     }
     collectShotMovers();
     // Shadow rays start on surfaces: the root cells need not hold the eye and the lights.
-    still_.build(stillBodies_, scene_.renderedStart, scene_.renderedEnd, Bounds3f{}, options);
-    moving_.build(movingBodies_, scene_.renderedStart, scene_.renderedEnd, Bounds3f{}, options);
+    still_.build(stillBodies_, scene_.renderedStart, scene_.renderedEnd, Bounds3f{}, options, &scene_.solids);
+    moving_.build(movingBodies_, scene_.renderedStart, scene_.renderedEnd, Bounds3f{}, options, &scene_.solids);
     shadowSplit_ = true;
     boundingVolumes += still_.nodeCount() + moving_.nodeCount();
     buildSeconds += processCpuSeconds() - cpu;
+}
+
+// A shadow ray resolves a solid from all the crossings of its tree, so a solid's members share
+// one hierarchy: the moving one when any of them does not stand still through the shot (judged
+// as collectShotMovers judges roots, and as buildShadowHierarchies judges the traced pieces).
+void TraceScene::markMovingSolids() {
+    movingSolids_.assign(scene_.solids.size(), 0);
+    if (scene_.solids.empty()) return;
+    auto mark = [&](const Body& b, bool still) {
+        if (!still && b.material() && b.material()->solid >= 0)
+            movingSolids_[size_t(scene_.solids.rootOf(b.material()->solid))] = 1;
+    };
+    for (const BodyPtr& root : scene_.roots) mark(*root, standsStillThroughShot(*root));
+    for (const TrilinearBody* b : bodies_)
+        mark(*b, !b->moving() && b->time().t0 <= scene_.windowStart && b->time().t1 >= scene_.windowEnd);
+}
+
+bool TraceScene::inMovingSolid(const Body& b) const {
+    const Material* m = b.material();
+    return m && m->solid >= 0 && !movingSolids_.empty() && movingSolids_[size_t(scene_.solids.rootOf(m->solid))];
+}
+
+bool TraceScene::standsStillThroughShot(const Body& b) const {
+    return !b.moving() && !b.expands() && !(b.material() && b.material()->displacement) &&
+           b.time().t0 <= scene_.windowStart && b.time().t1 >= scene_.windowEnd;
 }
 
 void TraceScene::collectShotMovers() {
@@ -207,8 +234,7 @@ void TraceScene::collectShotMovers() {
     std::vector<const Body*> movers;
     for (const BodyPtr& root : scene_.roots) {
         const Body& b = *root;
-        const bool still = !b.moving() && !b.expands() && !(b.material() && b.material()->displacement) &&
-                           b.time().t0 <= scene_.windowStart && b.time().t1 >= scene_.windowEnd;
+        const bool still = standsStillThroughShot(b) && !inMovingSolid(b);
         if (!still && b.time().overlaps(scene_.windowStart, scene_.windowEnd)) movers.push_back(&b);
     }
     shotMoverRoots_ = movers.size();
@@ -248,7 +274,7 @@ void TraceScene::buildFrames(int first, int count, const HierarchyOptions& optio
     const double cpu = processCpuSeconds();
     tbb::parallel_for(0, count, [&](int i) {
         const double e0 = first + i + scene_.shutter.open, e1 = first + i + scene_.shutter.close;
-        frames_[size_t(i)].build(bodies_, e0, e1, include_, o);
+        frames_[size_t(i)].build(bodies_, e0, e1, include_, o, &scene_.solids);
     });
     for (int i = 0; i < count; ++i) boundingVolumes += frames_[size_t(i)].nodeCount();
     buildSeconds += processCpuSeconds() - cpu;

@@ -110,6 +110,9 @@ class TraceScene {
   private:
     void collect(const Body& body, Log& log);
     void collectShotMovers();
+    void markMovingSolids();
+    bool inMovingSolid(const Body& b) const;
+    bool standsStillThroughShot(const Body& root) const;
     bool displaced(const Body& body) const;
 
     const RenderScene& scene_;
@@ -134,6 +137,7 @@ class TraceScene {
     SpacetimeBVH still_, moving_;
     Bounds3f movingBound_;
     std::vector<Bounds3f> shotMoverBoxes_;
+    std::vector<uint8_t> movingSolids_;  // per solid node: its tree has a member that does not stand still
     size_t shotMoverRoots_ = 0, shotMoverGroups_ = 0, shotMoverGroup_ = 1;
     long shotFirstFrame_ = 0;
     int framesFirst_ = 0;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "test_util.h"
 
@@ -106,6 +107,29 @@ TEST(Solids, TheSubtractedSolidsInsideIsTheCavitysWall) {
     // Plain surfaces would show B's front, green, there.
     const test::RenderResult plain = test::renderRib(scene(sphereA() + b));
     EXPECT_GT(plain.channel(0, cx + 19, cy, 1), 0.9);  // a sample of B's edge may miss
+}
+
+// Depthfilter "midpoint" of a depth pass: the mean of the two nearest surfaces of the result. On
+// the axis of TheSubtractedSolidsInsideIsTheCavitysWall's bite, the cavity's wall (B's back, 75)
+// and A's back (140), where plain surfaces would give B's front and A's front, 47.5; 19 pixels off
+// it the line crosses B's surfaces outside A, and then A's chord, centred on 100.
+TEST(Solids, MidpointDepthIsTheResultsTwoNearestSurfaces) {
+    const std::string midpointPass = "PixelSamples 4 4\nHider \"hidden\" \"depthfilter\" \"midpoint\"\n";
+    const std::string b = primitive(sphere(kAx, kAy, kZ - 45, 20, "0 1 0"));
+    const std::string rib = scene(solid("difference", sphereA() + b), midpointPass);
+    RenderOptions depth;
+    depth.depthPass = true;
+    const test::RenderResult r = test::renderRib(rib, depth);
+    const int cx = int(kAx), cy = kH - int(kAy);
+    // The pixel's depth is its samples' nearest: within sqrt 2 of the axis, 107.5 less up to 0.08.
+    EXPECT_NEAR(r.z(0, cx, cy), 107.5, 0.3);
+    EXPECT_NEAR(r.z(0, cx + 19, cy), 100, 0.3);
+    // Where the line meets A alone, its chord's middle; outside A nothing (one surface or none).
+    EXPECT_NEAR(r.z(0, cx - 30, cy), 100, 0.3);
+    EXPECT_EQ(r.z(0, cx, cy - 45), std::numeric_limits<float>::infinity());
+    // Without the solid: B's front and A's front.
+    const test::RenderResult plain = test::renderRib(scene(sphereA() + b, midpointPass), depth);
+    EXPECT_NEAR(plain.z(0, cx, cy), 47.5, 0.3);
 }
 
 // A half-transparent A less an opaque B: outside B's disc both of A's surfaces are seen (0.5 red
