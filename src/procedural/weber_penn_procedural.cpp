@@ -299,12 +299,22 @@ void emitProcedural(ProceduralOutput& out, const ExpandContext& ctx, std::shared
     out.procedurals.push_back(std::move(gp));
 }
 
-// The leaves' share kept at this size on screen (the paper's quality for distant trees): all of
-// them while the subtree is 300 pixels across or more (times detail=), below as its area: a
-// branch's leaves on screen follow the pixels it covers, not its width.
+// The leaves' share kept at this size on screen. The paper's quality for distant trees: all of them
+// while the subtree is 300 pixels across or more (times detail=), below as its area: a branch's
+// leaves on screen follow the pixels it covers, not its width. And a cap on detail per pixel: a
+// leaf under a pixel / detail= long (its length at the procedural's pixels a unit, which its level
+// sets, so that it is decided over the shot as the level is) keeps the share (its length in
+// pixels times detail=)², so that the leaves kept, grown by the share left out, are about a pixel
+// long and keep the leaves' area.
 double qualityAt(const WeberPennParams& p, const ExpandContext& ctx) {
     const double size = std::sqrt(std::max(0.0, ctx.detail)) * p.detail / 300;
-    return std::clamp(size * size, kWeberPennLeastQuality, 1.0);
+    double q = size * size;
+    const double ppu = ctx.read.pixelsPerUnit;
+    if (ppu > 0 && std::isfinite(ppu) && p.leaves > 0 && p.leafScale > 0) {
+        const double leafPixels = p.leafScale * std::max(1.0, p.leafScaleX) * ppu * p.detail;
+        q = std::min(q, leafPixels * leafPixels);
+    }
+    return std::clamp(q, kWeberPennLeastQuality, 1.0);
 }
 
 // A stem as lines (the paper's stems drawn as lines at range): a linear curve along each path's
