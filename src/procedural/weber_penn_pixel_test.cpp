@@ -93,5 +93,71 @@ TEST(WeberPennPixelCap, LeavesOverAPixelAreAllKept) {
     EXPECT_GT(near.leaves * 10, full.leaves * 9);  // only branches under 300 pixels thin
 }
 
+// What a tree at `ppu` makes: leaves (and those of 4 points), their area, stem meshes and curves.
+struct PixelCapMade {
+    size_t leaves = 0, diamonds = 0, meshes = 0, curves = 0;
+    double area = 0;
+};
+
+PixelCapMade pixelCapMade(const WeberPennParams& p, double ppu) {
+    PixelCapMade r;
+    ExpandContext ctx;
+    ctx.read.pixelsPerUnit = ppu;
+    ctx.detail = std::pow(ppu * pixelCapSide(weberPennBound(p)), 2);
+    ctx.windowStart = 1, ctx.windowEnd = 3.5;
+    ProceduralOutput top;
+    makeWeberPennGenerator(p)->expand(ctx, top);
+    for (const auto& g : top.procedurals) {
+        ExpandContext c = ctx;
+        c.detail = std::pow(ppu * pixelCapSide(g.desc.bound), 2);
+        ProceduralOutput o;
+        g.generator->expand(c, o);
+        r.meshes += o.scene.patchMeshes.size();
+        for (const auto& cv : o.scene.curves) r.curves += cv.nvertices.size();
+        for (const auto& m : o.scene.polygonMeshes)
+            for (const auto& poly : m.polygons) {
+                const auto& loop = poly[0];
+                ++r.leaves;
+                r.diamonds += loop.size() == 4;
+                Vec3d sum{0, 0, 0};
+                for (size_t k = 1; k + 1 < loop.size(); ++k)
+                    sum = sum + cross(m.P[0][size_t(loop[k])] - m.P[0][size_t(loop[0])],
+                                      m.P[0][size_t(loop[k + 1])] - m.P[0][size_t(loop[0])]);
+                r.area += 0.5 * length(sum);
+            }
+    }
+    return r;
+}
+
+// A leaf under 6 pixels long (times detail=) is a diamond of its outline's area (one bilinear
+// patch, 4 keyed points) even where every leaf is kept; from 6 pixels, its outline.
+TEST(WeberPennPixelCap, LeavesUnderSixPixelsAreDiamondsOfTheirArea) {
+    WeberPennParams p = *weberPennPreset("quaking_aspen");  // LeafScale 0.17
+    p.seed = 4;
+    const PixelCapMade small = pixelCapMade(p, 34);  // 5.8 pixels
+    const PixelCapMade large = pixelCapMade(p, 36);  // 6.1 pixels
+    const PixelCapMade full = pixelCapMade(p, 1e4);
+    ASSERT_GT(small.leaves, 1000u);
+    EXPECT_EQ(small.diamonds, small.leaves);
+    EXPECT_LT(large.diamonds * 2, large.leaves) << "the leaves every branch keeps are outlines";
+    EXPECT_EQ(full.diamonds, 0u);
+    EXPECT_NEAR(small.area / full.area, 1.0, 0.15);
+}
+
+// The wind widens a branch's bound, not its detail: its size on screen is its still subtree's,
+// so a windy tree grows the leaves and stems the still tree does.
+TEST(WeberPennPixelCap, TheWindDoesNotChangeTheDetail) {
+    const WeberPennParams still = parseWeberPennParams("model=weberpenn preset=black_tupelo seed=4", {});
+    const WeberPennParams windy = parseWeberPennParams("model=weberpenn preset=black_tupelo seed=4 WindSpeed=2 WindGust=1", {});
+    for (double ppu : {9.0, 18.0}) {
+        SCOPED_TRACE(ppu);
+        const PixelCapMade a = pixelCapMade(still, ppu), b = pixelCapMade(windy, ppu);
+        ASSERT_GT(a.leaves, 0u);
+        EXPECT_EQ(a.leaves, b.leaves);
+        EXPECT_EQ(a.meshes, b.meshes);
+        EXPECT_EQ(a.curves, b.curves);
+    }
+}
+
 }  // namespace
 }  // namespace streyes

@@ -187,13 +187,17 @@ const std::vector<std::pair<double, double>>& outline(int shape) {
     return shapes[std::clamp(shape, 0, 2)];
 }
 
+// Under this many pixels long (times detail=) a leaf's outline is a diamond of its area: one
+// bilinear patch instead of the outline's several, its motion keys on 4 points instead of 10-12.
+constexpr double kLeafOutlinePixels = 6;
+
 // All the leaves of an expansion as one PointsPolygons, a colour each (the leaf colour varied).
 void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennParams& p,
                 const std::vector<WeberPennLeaf>& leaves, uint64_t key, double zs,
                 const Motion& motion = {}) {
     if (leaves.empty() || p.leafScale <= 0) return;
     const auto& shape = outline(p.leafShape);
-    // A degraded leaf (grown: the range thinned its neighbours) is a diamond, one bilinear patch
+    // A degraded leaf (grown: the range thinned its neighbours) or a small one is a diamond, one bilinear patch
     // instead of the outline's several, as wide as keeps the outline's area: (0,0) (0.5,w) (1,0)
     // (0.5,-w) has area w, the outline's the shoelace sum (in units of length x half width).
     double outlineArea = 0;
@@ -203,6 +207,8 @@ void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPenn
         outlineArea += 0.5 * (u0 * w1 - u1 * w0);
     }
     const std::pair<double, double> diamond[4] = {{0, 0}, {0.5, -std::fabs(outlineArea)}, {1, 0}, {0.5, std::fabs(outlineArea)}};
+    const double ppu = ctx.read.pixelsPerUnit;
+    const bool small = ppu > 0 && p.leafScale * std::max(1.0, p.leafScaleX) * ppu * p.detail < kLeafOutlinePixels;
     PolygonMeshDesc m = uniformPolygonsOf(ctx);
     std::vector<Vec3d> P;
     std::vector<size_t> leafOf;  // moving: the leaf each point belongs to
@@ -220,7 +226,7 @@ void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPenn
             P.push_back(motion.moving() ? q : squash(q, zs));
             if (motion.moving()) leafOf.push_back(i);
         };
-        if (l.grow > 1)
+        if (l.grow > 1 || small)
             for (const auto& [u, w] : diamond) corner(u, w);
         else
             for (const auto& [u, w] : shape) corner(u, w);
@@ -306,10 +312,17 @@ void emitProcedural(ProceduralOutput& out, const ExpandContext& ctx, std::shared
 // sets, so that it is decided over the shot as the level is) keeps the share (its length in
 // pixels times detail=)², so that the leaves kept, grown by the share left out, are about a pixel
 // long and keep the leaves' area.
-double qualityAt(const WeberPennParams& p, const ExpandContext& ctx) {
-    const double size = std::sqrt(std::max(0.0, ctx.detail)) * p.detail / 300;
-    double q = size * size;
+// `still`: what is grown, still (object space): its size on screen is that box's longest side at
+// the procedural's pixels a unit, not its bound's, which the wind widens.
+double qualityAt(const WeberPennParams& p, const ExpandContext& ctx, const Bounds3d& still) {
     const double ppu = ctx.read.pixelsPerUnit;
+    double pixels = std::sqrt(std::max(0.0, ctx.detail));
+    if (ppu > 0 && std::isfinite(ppu) && !still.empty() && !ctx.objectToWorld.keys().empty()) {
+        const Vec3d d = ctx.objectToWorld.keys().front().box(still).diagonal();
+        pixels = std::min(pixels, ppu * std::max({d.x, d.y, d.z}));
+    }
+    const double size = pixels * p.detail / 300;
+    double q = size * size;
     if (ppu > 0 && std::isfinite(ppu) && p.leaves > 0 && p.leafScale > 0) {
         const double leafPixels = p.leafScale * std::max(1.0, p.leafScaleX) * ppu * p.detail;
         q = std::min(q, leafPixels * leafPixels);
@@ -458,7 +471,12 @@ Bounds3d swayingBound(const WeberPennParams& p, const WeberPennStem& trunk, cons
                       double zs) {
     const Bounds3d rest = restSubtreeBox(p, s);
     const double d = chainSway(p, trunk, s.parentPath, s.parentSegment, rest) + stemSway(p, s, subtreeReach(p, s));
-    return squashBox(clippedTo(grownBy(rest, d), cube), zs);
+    // Nor does it leave the ball about its base (moved by the trunk's joints) that holds it
+    // whatever its own angles: its length and reach.
+    const Vec3d base = s.paths[0].points[0];
+    const Bounds3d ball = grownBy(Bounds3d(base, base), s.length + subtreeReach(p, s) +
+                                                          chainSway(p, trunk, s.parentPath, s.parentSegment, Bounds3d(base, base)));
+    return squashBox(clippedTo(clippedTo(grownBy(rest, d), ball), cube), zs);
 }
 
 // The trunk itself in the wind (with its own leaves when it has them).
@@ -486,7 +504,7 @@ class SubtreeGenerator final : public ProceduralGenerator {
         const WeberPennParams& p = *p_;
         std::vector<WeberPennStem> stems{stem_};
         std::vector<WeberPennLeaf> leaves;
-        const WeberPennReduction reduce = weberPennReduction(p, qualityAt(p, ctx));
+        const WeberPennReduction reduce = weberPennReduction(p, qualityAt(p, ctx, subtreeBound(p, stem_, zs_)));
         weberPennGrowBelow(p, stems, 0, p.levels, &leaves, reduce);
         Motion motion;
         if (weberPennWindy(p)) {
@@ -616,7 +634,7 @@ class WeberPennTreeGenerator final : public ProceduralGenerator {
         emitStemAtRange(out, ctx, p, stems[0], zs, motion, 0);
         if (p.levels == 1) {
             std::vector<WeberPennLeaf> leaves;
-            const WeberPennReduction reduce = weberPennReduction(p, qualityAt(p, ctx));
+            const WeberPennReduction reduce = weberPennReduction(p, qualityAt(p, ctx, stillTreeBound(p, stems, zs)));
             weberPennGrowBelow(p, stems, 0, 1, &leaves, reduce);
             emitLeaves(out, ctx, p, leaves, stems[0].key, zs, motion);
             return;
