@@ -403,7 +403,8 @@ double chainSway(const WeberPennParams& p, const WeberPennStem& s, int path, int
     size_t i = size_t(std::clamp(path, 0, int(s.paths.size()) - 1));
     for (int guard = 0; guard <= int(s.paths.size()); ++guard) {
         const WeberPennStem::Path& ph = s.paths[i];
-        const int last = std::clamp(segment - ph.firstSegment, 0, int(ph.points.size()) - 2);
+        const int segments = int(ph.points.size()) - 1;  // (WeberPennPose::of clamps to them)
+        const int last = segments < 1 ? -1 : std::clamp(segment - ph.firstSegment, 0, segments - 1);
         for (int k = 0; k <= last; ++k) d += jointSway(p, s, ph.firstSegment + k, farthestIn(box, ph.points[size_t(k)]));
         if (i == 0 || ph.firstSegment == 0) break;
         segment = ph.firstSegment - 1;
