@@ -33,7 +33,8 @@ inline constexpr bool kAddressSanitizer = false;
 // The scenes whose whole-scene tests (the epsilon = 0 identity, frame-block invariance, the ray
 // tracer's checksum) take one to four minutes each under the sanitizers: procedural forests that
 // the ray tracer expands whole, blobs, and hundreds of trees or atoms whose shadows build a
-// ray-tracing hierarchy, and the four Weber-Penn trees (200 s of the sanitized suite's 1250). There
+// ray-tracing hierarchy, the four Weber-Penn trees (200 s of the sanitized suite's 1250) and the
+// Weber-Penn forest with sun shadows. There
 // they run only their checksum with the default algorithm, which
 // renders them through the same code; the release suite runs every test on every scene. It keeps
 // CI under its half hour (docs/ARCHITECTURE.md, "Hard cases, fuzzing and sanitizers").
@@ -41,7 +42,7 @@ inline bool slowUnderSanitizers(const std::string& sceneFile) {
     const size_t slash = sceneFile.find_last_of('/');
     const std::string name = sceneFile.substr(slash == std::string::npos ? 0 : slash + 1);
     for (const char* slow : {"atom.rib", "blobby.rib", "forest.rib", "forest-flyover.rib", "forest-small.rib",
-                             "grove.rib", "meadow-sky.rib", "split_budget.rib", "trees-presets.rib"})
+                             "forest-wp.rib", "grove.rib", "meadow-sky.rib", "split_budget.rib", "trees-presets.rib"})
         if (name == slow) return kAddressSanitizer;
     return false;
 }

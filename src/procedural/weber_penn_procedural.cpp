@@ -187,13 +187,17 @@ const std::vector<std::pair<double, double>>& outline(int shape) {
     return shapes[std::clamp(shape, 0, 2)];
 }
 
+// Under this many pixels long (times detail=) a leaf's outline is a diamond of its area: one
+// bilinear patch instead of the outline's several, its motion keys on 4 points instead of 10-12.
+constexpr double kLeafOutlinePixels = 6;
+
 // All the leaves of an expansion as one PointsPolygons, a colour each (the leaf colour varied).
 void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPennParams& p,
                 const std::vector<WeberPennLeaf>& leaves, uint64_t key, double zs,
                 const Motion& motion = {}) {
     if (leaves.empty() || p.leafScale <= 0) return;
     const auto& shape = outline(p.leafShape);
-    // A degraded leaf (grown: the range thinned its neighbours) is a diamond, one bilinear patch
+    // A degraded leaf (grown: the range thinned its neighbours) or a small one is a diamond, one bilinear patch
     // instead of the outline's several, as wide as keeps the outline's area: (0,0) (0.5,w) (1,0)
     // (0.5,-w) has area w, the outline's the shoelace sum (in units of length x half width).
     double outlineArea = 0;
@@ -203,6 +207,8 @@ void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPenn
         outlineArea += 0.5 * (u0 * w1 - u1 * w0);
     }
     const std::pair<double, double> diamond[4] = {{0, 0}, {0.5, -std::fabs(outlineArea)}, {1, 0}, {0.5, std::fabs(outlineArea)}};
+    const double ppu = ctx.read.pixelsPerUnit;
+    const bool small = ppu > 0 && p.leafScale * std::max(1.0, p.leafScaleX) * ppu * p.detail < kLeafOutlinePixels;
     PolygonMeshDesc m = uniformPolygonsOf(ctx);
     std::vector<Vec3d> P;
     std::vector<size_t> leafOf;  // moving: the leaf each point belongs to
@@ -220,7 +226,7 @@ void emitLeaves(ProceduralOutput& out, const ExpandContext& ctx, const WeberPenn
             P.push_back(motion.moving() ? q : squash(q, zs));
             if (motion.moving()) leafOf.push_back(i);
         };
-        if (l.grow > 1)
+        if (l.grow > 1 || small)
             for (const auto& [u, w] : diamond) corner(u, w);
         else
             for (const auto& [u, w] : shape) corner(u, w);
@@ -269,15 +275,22 @@ double subtreeReach(const WeberPennParams& p, const WeberPennStem& s) {
     return reach + p.leafScale * std::max(1.0, p.leafScaleX) * std::sqrt(1 / kWeberPennLeastQuality) + 2 * s.radius * flare + 0.1 * s.length;
 }
 
-Bounds3d subtreeBound(const WeberPennParams& p, const WeberPennStem& s, double zs) {
+// A stem's subtree before ZScale and wind: its axis (every path's points) grown by its reach.
+Bounds3d restSubtreeBox(const WeberPennParams& p, const WeberPennStem& s) {
     const double reach = subtreeReach(p, s);
     Bounds3d b;
     for (const auto& path : s.paths)
         for (Vec3d q : path.points) {
-            b.extend(squash(q - Vec3d{reach, reach, reach}, zs));
-            b.extend(squash(q + Vec3d{reach, reach, reach}, zs));
+            b.extend(q - Vec3d{reach, reach, reach});
+            b.extend(q + Vec3d{reach, reach, reach});
         }
     return b;
+}
+
+Bounds3d squashBox(const Bounds3d& b, double zs) { return b.empty() ? b : Bounds3d(squash(b.lo, zs), squash(b.hi, zs)); }
+
+Bounds3d subtreeBound(const WeberPennParams& p, const WeberPennStem& s, double zs) {
+    return squashBox(restSubtreeBox(p, s), zs);
 }
 
 void emitProcedural(ProceduralOutput& out, const ExpandContext& ctx, std::shared_ptr<const ProceduralGenerator> g,
@@ -292,12 +305,29 @@ void emitProcedural(ProceduralOutput& out, const ExpandContext& ctx, std::shared
     out.procedurals.push_back(std::move(gp));
 }
 
-// The leaves' share kept at this size on screen (the paper's quality for distant trees): all of
-// them while the subtree is 300 pixels across or more (times detail=), below as its area: a
-// branch's leaves on screen follow the pixels it covers, not its width.
-double qualityAt(const WeberPennParams& p, const ExpandContext& ctx) {
-    const double size = std::sqrt(std::max(0.0, ctx.detail)) * p.detail / 300;
-    return std::clamp(size * size, kWeberPennLeastQuality, 1.0);
+// The leaves' share kept at this size on screen. The paper's quality for distant trees: all of them
+// while the subtree is 300 pixels across or more (times detail=), below as its area: a branch's
+// leaves on screen follow the pixels it covers, not its width. And a cap on detail per pixel: a
+// leaf under a pixel / detail= long (its length at the procedural's pixels a unit, which its level
+// sets, so that it is decided over the shot as the level is) keeps the share (its length in
+// pixels times detail=)², so that the leaves kept, grown by the share left out, are about a pixel
+// long and keep the leaves' area.
+// `still`: what is grown, still (object space): its size on screen is that box's longest side at
+// the procedural's pixels a unit, not its bound's, which the wind widens.
+double qualityAt(const WeberPennParams& p, const ExpandContext& ctx, const Bounds3d& still) {
+    const double ppu = ctx.read.pixelsPerUnit;
+    double pixels = std::sqrt(std::max(0.0, ctx.detail));
+    if (ppu > 0 && std::isfinite(ppu) && !still.empty() && !ctx.objectToWorld.keys().empty()) {
+        const Vec3d d = ctx.objectToWorld.keys().front().box(still).diagonal();
+        pixels = std::min(pixels, ppu * std::max({d.x, d.y, d.z}));
+    }
+    const double size = pixels * p.detail / 300;
+    double q = size * size;
+    if (ppu > 0 && std::isfinite(ppu) && p.leaves > 0 && p.leafScale > 0) {
+        const double leafPixels = p.leafScale * std::max(1.0, p.leafScaleX) * ppu * p.detail;
+        q = std::min(q, leafPixels * leafPixels);
+    }
+    return std::clamp(q, kWeberPennLeastQuality, 1.0);
 }
 
 // A stem as lines (the paper's stems drawn as lines at range): a linear curve along each path's
@@ -343,17 +373,119 @@ void emitStemAtRange(ProceduralOutput& out, const ExpandContext& ctx, const Webe
     else if (s.level <= 1 || across >= 0.25) emitLines(out, ctx, p, s, zs, motion, stemIndex);
 }
 
-// In the wind a stem's subtree keeps its shape along its axes: every point of it stays within the
-// stem's length and its subtree's reach of the stem's base (moved by its parent's pose), whatever
-// the angles. The bound of each key's ball.
-Bounds3d swayingBound(const WeberPennParams& p, const WeberPennStem& s, double zs, const std::vector<Vec3d>& bases) {
-    const double r = s.length + subtreeReach(p, s);
-    Bounds3d b;
-    for (Vec3d q : bases) {
-        b.extend(squash(q - Vec3d{r, r, r}, zs));
-        b.extend(squash(q + Vec3d{r, r, r}, zs));
+// Bounds in the wind, from what the sway angles can reach (weberPennSwayAmplitude), whatever the
+// time: a pose composes turns about the rest joints (each segment's start c, by at most A about its x
+// axis, then about its y), so a rest point q moves by at most the sum over the joints carrying it
+// of |R q - q|. R, turns by a and b about perpendicular axes, is one turn by theta with
+// cos(theta / 2) = cos(a / 2) cos(b / 2) (the product of their quaternions), and moves q by at most
+// 2 sin(theta / 2) |q - c|: with |a|, |b| <= A, 2 sqrt(1 - cos^4(A / 2)) |q - c|.
+
+// The farthest a point of `box` lies from c.
+double farthestIn(const Bounds3d& box, Vec3d c) {
+    const double x = std::max(std::fabs(c.x - box.lo.x), std::fabs(box.hi.x - c.x));
+    const double y = std::max(std::fabs(c.y - box.lo.y), std::fabs(box.hi.y - c.y));
+    const double z = std::max(std::fabs(c.z - box.lo.z), std::fabs(box.hi.z - c.z));
+    return std::sqrt(x * x + y * y + z * z);
+}
+
+// How far a joint of s (the start of segment `segment`) moves a point at distance `d` from it.
+double jointSway(const WeberPennParams& p, const WeberPennStem& s, int segment, double d) {
+    const double a = std::min(weberPennSwayAmplitude(p, s, segment) * M_PI / 180, M_PI);
+    const double c = std::cos(a / 2);
+    return a > 0 ? 2 * std::sqrt(std::max(0.0, 1 - c * c * c * c)) * d : 0;
+}
+
+// The joints of s that move what grows on (path, segment), as WeberPennPose::of composes them: the
+// path's segments up to that one, then those of the path it split from up to the split; `box`
+// holds what they move.
+double chainSway(const WeberPennParams& p, const WeberPennStem& s, int path, int segment, const Bounds3d& box) {
+    double d = 0;
+    size_t i = size_t(std::clamp(path, 0, int(s.paths.size()) - 1));
+    for (int guard = 0; guard <= int(s.paths.size()); ++guard) {
+        const WeberPennStem::Path& ph = s.paths[i];
+        const int segments = int(ph.points.size()) - 1;  // (WeberPennPose::of clamps to them)
+        const int last = segments < 1 ? -1 : std::clamp(segment - ph.firstSegment, 0, segments - 1);
+        for (int k = 0; k <= last; ++k) d += jointSway(p, s, ph.firstSegment + k, farthestIn(box, ph.points[size_t(k)]));
+        if (i == 0 || ph.firstSegment == 0) break;
+        segment = ph.firstSegment - 1;
+        i = size_t(std::clamp(ph.from, 0, int(s.paths.size()) - 1));
     }
-    return b;
+    return d;
+}
+
+// The joints of s that carry a point (its path's and those of the paths it split from), each
+// moving it from as far as what lies beyond that joint reaches (the path's later points, or with
+// clones any point of the stem, grown by `reach`, what grows on them); the most over its paths.
+double stemSway(const WeberPennParams& p, const WeberPennStem& s, double reach) {
+    auto lever = [&](const WeberPennStem::Path& path, size_t k) {
+        double far = 0;
+        if (s.paths.size() == 1) {
+            for (size_t j = k + 1; j < path.points.size(); ++j) far = std::max(far, length(path.points[j] - path.points[k]));
+        } else {
+            for (const auto& other : s.paths)
+                for (Vec3d q : other.points) far = std::max(far, length(q - path.points[k]));
+        }
+        return far + reach;
+    };
+    double most = 0;
+    for (size_t end = 0; end < s.paths.size(); ++end) {
+        double d = 0;
+        size_t i = end;
+        int segment = s.paths[end].firstSegment + int(s.paths[end].points.size());  // all of the end path
+        for (int guard = 0; guard <= int(s.paths.size()); ++guard) {
+            const WeberPennStem::Path& ph = s.paths[i];
+            const int last = std::min(segment - ph.firstSegment, int(ph.points.size()) - 2);
+            for (int k = 0; k <= last; ++k) d += jointSway(p, s, ph.firstSegment + k, lever(ph, size_t(k)));
+            if (i == 0 || ph.firstSegment == 0) break;
+            segment = ph.firstSegment - 1;
+            i = size_t(std::clamp(ph.from, 0, int(s.paths.size()) - 1));
+        }
+        most = std::max(most, d);
+    }
+    // However far they turn, the stem and what grows on it stay within its length and reach of its
+    // base, which its own joints do not move: a point moves by at most twice that.
+    return std::min(most, 2 * (s.length + reach));
+}
+
+Bounds3d grownBy(const Bounds3d& b, double d) { return {b.lo - Vec3d{d, d, d}, b.hi + Vec3d{d, d, d}}; }
+
+Bounds3d clippedTo(const Bounds3d& b, const Bounds3d& keep) { return {vmax(b.lo, keep.lo), vmin(b.hi, keep.hi)}; }
+
+// The cube about the trunk's foot that holds the windy tree whatever the angles (its trunk's length
+// and reach, and its longest branch's: turns keep path lengths from the foot, which stays put),
+// before ZScale. The bounds below are clipped to it, so that they never exceed it.
+Bounds3d anyAngleCube(const WeberPennParams& p, const std::vector<WeberPennStem>& stems) {
+    WeberPennParams trunkOnly = p;
+    trunkOnly.levels = std::min(p.levels, 1);
+    double branch = 0;
+    for (size_t i = 1; i < stems.size(); ++i) branch = std::max(branch, stems[i].length + subtreeReach(p, stems[i]));
+    const double r = stems[0].length + subtreeReach(trunkOnly, stems[0]) + branch;
+    return {Vec3d{-r, -r, -r}, Vec3d{r, r, r}};
+}
+
+// A first-level branch's procedural in the wind. Its pose composes the trunk's joints below it (A),
+// its own (B) and those of the levels below (C): a point q moves to A B C q. C keeps a child's
+// subtree within its length and reach of its base, which lies on the branch's axis, so C q lies in
+// the branch's still box (its axis grown by its reach, which holds that); A and B then move it by
+// at most the sums of their joints' turns (chainSway, stemSway) at its distance from each.
+Bounds3d swayingBound(const WeberPennParams& p, const WeberPennStem& trunk, const WeberPennStem& s, const Bounds3d& cube,
+                      double zs) {
+    const Bounds3d rest = restSubtreeBox(p, s);
+    const double d = chainSway(p, trunk, s.parentPath, s.parentSegment, rest) + stemSway(p, s, subtreeReach(p, s));
+    // Nor does it leave the ball about its base (moved by the trunk's joints) that holds it
+    // whatever its own angles: its length and reach.
+    const Vec3d base = s.paths[0].points[0];
+    const Bounds3d ball = grownBy(Bounds3d(base, base), s.length + subtreeReach(p, s) +
+                                                          chainSway(p, trunk, s.parentPath, s.parentSegment, Bounds3d(base, base)));
+    return squashBox(clippedTo(clippedTo(grownBy(rest, d), ball), cube), zs);
+}
+
+// The trunk itself in the wind (with its own leaves when it has them).
+Bounds3d swayingTrunkBound(const WeberPennParams& p, const WeberPennStem& trunk, const Bounds3d& cube, double zs) {
+    WeberPennParams trunkOnly = p;
+    trunkOnly.levels = std::min(p.levels, 1);
+    const Bounds3d rest = restSubtreeBox(trunkOnly, trunk);
+    return squashBox(clippedTo(grownBy(rest, stemSway(p, trunk, subtreeReach(trunkOnly, trunk))), cube), zs);
 }
 
 // The trunk's poses at the key times (its foot stays put).
@@ -373,7 +505,7 @@ class SubtreeGenerator final : public ProceduralGenerator {
         const WeberPennParams& p = *p_;
         std::vector<WeberPennStem> stems{stem_};
         std::vector<WeberPennLeaf> leaves;
-        const WeberPennReduction reduce = weberPennReduction(p, qualityAt(p, ctx));
+        const WeberPennReduction reduce = weberPennReduction(p, qualityAt(p, ctx, subtreeBound(p, stem_, zs_)));
         weberPennGrowBelow(p, stems, 0, p.levels, &leaves, reduce);
         Motion motion;
         if (weberPennWindy(p)) {
@@ -503,22 +635,17 @@ class WeberPennTreeGenerator final : public ProceduralGenerator {
         emitStemAtRange(out, ctx, p, stems[0], zs, motion, 0);
         if (p.levels == 1) {
             std::vector<WeberPennLeaf> leaves;
-            const WeberPennReduction reduce = weberPennReduction(p, qualityAt(p, ctx));
+            const WeberPennReduction reduce = weberPennReduction(p, qualityAt(p, ctx, stillTreeBound(p, stems, zs)));
             weberPennGrowBelow(p, stems, 0, 1, &leaves, reduce);
             emitLeaves(out, ctx, p, leaves, stems[0].key, zs, motion);
             return;
         }
         const auto trunk = std::make_shared<const WeberPennStem>(stems[0]);
+        const Bounds3d cube = anyAngleCube(p, stems);
         for (size_t i = 1; i < stems.size(); ++i) {
             const WeberPennStem& s = stems[i];
             if (s.length <= 0) continue;
-            Bounds3d bound = subtreeBound(p, s, zs);
-            if (motion.moving()) {
-                std::vector<Vec3d> bases;
-                for (const auto& poses : motion.poses)
-                    bases.push_back(poses[0].of(s.parentPath, s.parentSegment)(s.paths[0].points[0]));
-                bound = swayingBound(p, s, zs, bases);
-            }
+            const Bounds3d bound = motion.moving() ? swayingBound(p, stems[0], s, cube, zs) : subtreeBound(p, s, zs);
             emitProcedural(out, ctx, std::make_shared<SubtreeGenerator>(p_, trunk, s, zs), bound);
         }
     }
@@ -529,22 +656,18 @@ class WeberPennTreeGenerator final : public ProceduralGenerator {
 
 }  // namespace
 
-// The bound of what the tree procedural makes: the trunk's and its branches' subtrees.
+// The bound of what the tree procedural makes: the trunk's and its branches' subtrees; in the wind
+// the union of the bounds its parts declare (swayingBound), which the keys never leave.
 Bounds3d weberPennBound(const WeberPennParams& p) {
     const double zs = zScaleOf(p);
     std::vector<WeberPennStem> stems{weberPennTrunk(p, nullptr)};
     weberPennGrowBelow(p, stems, 0, 1, nullptr);
     Bounds3d b = stillTreeBound(p, stems, zs);
     if (weberPennWindy(p)) {
-        WeberPennParams trunkOnly = p;
-        trunkOnly.levels = std::min(p.levels, 1);
-        // Swaying, the tree stays within its trunk's length and reach and its longest branch's of
-        // the trunk's foot, which never moves.
-        double branch = 0;
-        for (size_t i = 1; i < stems.size(); ++i) branch = std::max(branch, stems[i].length + subtreeReach(p, stems[i]));
-        const double r = stems[0].length + subtreeReach(trunkOnly, stems[0]) + branch;
-        b.extend(squash(Vec3d{-r, -r, -r}, zs));
-        b.extend(squash(Vec3d{r, r, r}, zs));
+        const Bounds3d cube = anyAngleCube(p, stems);
+        b.extend(swayingTrunkBound(p, stems[0], cube, zs));
+        for (size_t i = 1; i < stems.size(); ++i)
+            if (stems[i].length > 0) b.extend(swayingBound(p, stems[0], stems[i], cube, zs));
     }
     return b;
 }

@@ -49,16 +49,28 @@ void weberPennSwayOffsets(const WeberPennStem& s, double* x, double* y) {
     *y = 2 * M_PI * double(r.nextFloat());
 }
 
+namespace {
+
+// a1 and a2 of a segment (degrees before / nCurveRes); false when it does not sway.
+bool swayFactors(const WeberPennParams& p, const WeberPennStem& s, int segment, double* a1, double* a2, int* res) {
+    if (!weberPennWindy(p) || s.length <= 0 || s.radius <= 0) return false;
+    *res = std::max(1, int(s.paths[0].points.size()) - 1);
+    const double z = double(segment) / *res;
+    const double radiusZ = weberPennRadiusAt(p, s, z);
+    if (!(radiusZ > 0)) return false;
+    const double a0 = 4 * s.length * (1 - z) / radiusZ;
+    *a1 = p.windSpeed / 50 * a0;
+    *a2 = p.windGust / 50 * a0 + *a1 / 2;
+    return true;
+}
+
+}  // namespace
+
 WeberPennSwayAngles weberPennSwayAngles(const WeberPennParams& p, const WeberPennStem& s, int segment, double frame) {
     WeberPennSwayAngles a;
-    if (!weberPennWindy(p) || s.length <= 0 || s.radius <= 0) return a;
-    const int res = std::max(1, int(s.paths[0].points.size()) - 1);
-    const double z = double(segment) / res;
-    const double radiusZ = weberPennRadiusAt(p, s, z);
-    if (!(radiusZ > 0)) return a;
-    const double a0 = 4 * s.length * (1 - z) / radiusZ;
-    const double a1 = p.windSpeed / 50 * a0;
-    const double a2 = p.windGust / 50 * a0 + a1 / 2;
+    double a1, a2;
+    int res;
+    if (!swayFactors(p, s, segment, &a1, &a2, &res)) return a;
     double offsetX, offsetY;
     weberPennSwayOffsets(s, &offsetX, &offsetY);
     const double rate = s.radius / s.length * (frame * p.windTime) / 15;
@@ -66,6 +78,13 @@ WeberPennSwayAngles weberPennSwayAngles(const WeberPennParams& p, const WeberPen
     a.x = (a1 * std::sin(bx) + a2 * std::sin(0.7 * bx)) / res;
     a.y = (a1 * std::sin(by) + a2 * std::sin(0.7 * by)) / res;
     return a;
+}
+
+double weberPennSwayAmplitude(const WeberPennParams& p, const WeberPennStem& s, int segment) {
+    double a1, a2;
+    int res;
+    if (!swayFactors(p, s, segment, &a1, &a2, &res)) return 0;
+    return (std::fabs(a1) + std::fabs(a2)) / res;
 }
 
 WeberPennPose weberPennPoseStem(const WeberPennParams& p, const WeberPennStem& s, const WeberPennRigid& attach,

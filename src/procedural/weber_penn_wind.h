@@ -19,6 +19,10 @@ struct WeberPennSwayAngles {
     double x = 0, y = 0;
 };
 WeberPennSwayAngles weberPennSwayAngles(const WeberPennParams& p, const WeberPennStem& s, int segment, double frame);
+// The most a segment turns about either axis at any time (degrees): (a1 + a2) / nCurveRes, since
+// |a1 sin b + a2 sin 0.7 b| <= a1 + a2 whatever b. Bounds count on it (not on the shot's keys, so
+// that they do not depend on the frames rendered).
+double weberPennSwayAmplitude(const WeberPennParams& p, const WeberPennStem& s, int segment);
 // The stem's sway_offset_x and sway_offset_y (radians).
 void weberPennSwayOffsets(const WeberPennStem& s, double* x, double* y);
 // Whether the parameters move the tree (WindSpeed or WindGust above zero).

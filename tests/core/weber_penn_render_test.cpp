@@ -128,6 +128,26 @@ TEST(WeberPennRender, ADistantTreeIsThinnedNotLost) {
     EXPECT_NEAR(a, b, 0.35 * b) << "the thinned crown covers about what the full one does";
 }
 
+// The cap on detail per pixel is decided over the shot, as the level is: a near windy aspen whose
+// leaves are a sixth of a pixel long (0.006 m at about 29 pixels a metre), its branches 200-300
+// pixels across, keeps 5% of them, grown; a frame alone is still the frame in a block.
+TEST(WeberPennRender, ThePixelCapKeepsAFrameAloneTheFrameInABlock) {
+    std::string rib = aspen(12, "LeafScale=0.006 WindSpeed=4 WindGust=2 keystep=1 windtime=200");
+    rib.replace(rib.find("Format 96 96 1"), 14, "Format 256 256 1");
+    RenderOptions o;
+    o.hasShot = true;
+    o.shotFirst = 1;
+    o.shotLast = 3;
+    o.algorithm = Algorithm::SpacetimeOcclusion;
+    const test::ShotAndFrame r = test::renderShotAndFrame(rib, o, 1, 3, 2);
+    ASSERT_EQ(r.shot.frames.size(), 3u);
+    EXPECT_TRUE(r.samePixels(2));
+    EXPECT_TRUE(r.shot.warnings.empty()) << r.shot.warnings.front();
+    int leaf = 0, bark = 0;  // (the leaves' area is a few pixels' worth: what counts is the stems)
+    countColours(r.alone.frames.at(0), &leaf, &bark);
+    EXPECT_GT(bark, 300) << "the trunk and branches";
+}
+
 TEST(WeberPennRender, ABadParameterIsAnErrorAtTheProceduralsLine) {
     for (const char* bad : {"1Branchs=3", "preset=maple", "Levels=9", "model=oak"}) {
         const std::string rib = aspen(35, bad);
