@@ -479,7 +479,7 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
                         continue;
                     }
                     if (!intersectBilinearPatch(b.cornersAt(time), ray, tMin, best, &h)) continue;
-                    // Entering where its outside faces the ray, as an eye ray's crossing (trace.cpp).
+                    // Entering where its outside faces the ray, as an eye ray's crossing (sample_tracer.cpp).
                     const Vec3f n = bilinearNormal(b.cornersAt(time), h.u, h.v);
                     ctx.crossings.push_back({h.t, solidTag(m->solid, dot(m->flipNormals ? -n : n, ray.d) < 0)});
                 } else {
