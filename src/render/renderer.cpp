@@ -521,6 +521,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     }
     // What bake3d() and bake() gathered, once every frame is shaded (point_clouds.h).
     if (shaders_) shaders_->pointClouds()->write();
+    // Displacement that went past its bound (may have lost pieces): said once the moves are all seen.
+    if (shaders_) shaders_->displacementReach().report(log_);
     return stats;
 }
 

@@ -1,6 +1,7 @@
 #include "shade/grid_shader.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "bodies/material.h"
 #include "shade/shading.h"
@@ -162,10 +163,17 @@ void GridShader::displace(const Material& m, Grid& grid, int k, double time) {
     const int n = grid.vertexCount();
     // Read both before writing: a result the shader did not touch is the grid's own array.
     base_.resize(size_t(n) * 2);
+    // The largest move (camera space, squared) against the displacement bound, and the largest
+    // distance from the eye (what float rounding of a point is relative to).
+    float moved = 0, far = 0;
     for (int i = 0; i < n; ++i) {
         base_[size_t(i)] = P.valid() ? P.vec(i) : grid.P[k][size_t(i)];
         base_[size_t(n + i)] = N.valid() ? N.vec(i) : grid.N[k][size_t(i)];
+        const Vec3f was = grid.P[k][size_t(i)], d = base_[size_t(i)] - was;
+        moved = std::max(moved, dot(d, d));
+        far = std::max(far, dot(was, was));
     }
+    if (shaders_) shaders_->displacementReach().note(m, std::sqrt(moved), std::sqrt(far));
     std::copy(base_.begin(), base_.begin() + n, grid.P[k].begin());
     std::copy(base_.begin() + n, base_.begin() + 2 * n, grid.N[k].begin());
     setIncident(grid, k);  // the shading grid's views are the grid's arrays: only I is derived

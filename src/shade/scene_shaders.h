@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "bodies/material.h"
+#include "shade/displacement_reach.h"
 #include "shade/light_direction.h"
 #include "shade/point_clouds.h"
 #include "shade/shader_environment.h"
@@ -92,6 +93,8 @@ class SceneShaders final : public MaterialBinder {
     sl::TextureSource* textures() const { return textures_.get(); }
     // What bake3d(), texture3d() and bake() write and read (written when the render ends).
     PointClouds* pointClouds() const { return clouds_.get(); }
+    // How far displacement moved points against its bound (warned when the render ends).
+    DisplacementReach& displacementReach() const { return reach_; }
 
     // What option() and attribute() read on a grid whose primitive has `attributes` (may be null).
     SceneQueries queries(const Attributes* attributes) const { return SceneQueries(&options_, attributes); }
@@ -168,6 +171,7 @@ class SceneShaders final : public MaterialBinder {
     std::vector<bool> lightReadsMaps_;
     std::vector<bool> lightTracesRays_;
     std::vector<bool> lightStillInWorld_;  // Material::viewUse: a light moving in world reads the view
+    mutable DisplacementReach reach_;
     mutable std::atomic<bool> tracesRays_{false};
     mutable std::atomic<const ShaderDesc*> firstVolume_{nullptr};
 };

@@ -136,6 +136,38 @@ TEST(Blobby, SubtractCarvesAndMinimumIntersects) {
     EXPECT_NEAR(lens, lensArea, 0.015 * lensArea);
 }
 
+TEST(Blobby, DivideIsTheDivisorsReachWhereTheQuotientPassesTheLevel) {
+    // Aqsis's sub.rib, top left (its "5 0 1" is a division, as the RI Spec and Aqsis both read
+    // it), scaled by 40: blob A of reach 40, B of reach 20 centred 16 above A's centre. Inside B's
+    // reach A / B is at least 0.442 (its least, where B's field is largest against A's), over
+    // 27/64; outside it B's field is 0 and the quotient is 0 (a division by 0 gives 0). So the
+    // surface is B's reach, the sphere of radius 20, where the field jumps from 0.442 or more to 0:
+    // seen along z, the disc of radius 20 about B's centre, whole (no pits on the jump).
+    auto f = [](double r2) { return r2 < 1 ? std::pow(1 - r2, 3) : 0.0; };
+    double least = 1e9;  // A / B over B's reach, on a grid of its (x, y) half plane (symmetric about the axis)
+    for (double x = 0; x <= 20; x += 0.25)
+        for (double y = -20; y <= 20; y += 0.25)
+            if (x * x + y * y < 20 * 20) least = std::min(least, f((x * x + (y + 16) * (y + 16)) / 1600) / f((x * x + y * y) / 400));
+    EXPECT_GT(least, 0.44);
+    const std::string floats = sphereMatrix(40, 32, 16, 100) + "  " + sphereMatrix(20, 32, 32, 100);
+    const test::RenderResult quotient =
+        test::renderRib(test::orthoHeader(64, 64) + blobby(2, "1001 0 1001 16 5 0 1", floats) + "WorldEnd\n");
+    const double disc = kPi * 20 * 20;
+    EXPECT_NEAR(test::alphaSum(quotient), disc, 0.01 * disc);
+    for (int y = 14; y < 50; ++y)  // every pixel within 18 of B's centre is covered, none beyond 22
+        for (int x = 14; x < 50; ++x) {
+            const double d = std::hypot(x + 0.5 - 32, y + 0.5 - 32);
+            if (d < 18) {
+                EXPECT_EQ(quotient.alpha(0, x, y), 1.0f) << x << " " << y;
+            }
+        }
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            if (std::hypot(x + 0.5 - 32, y + 0.5 - 32) > 22) {
+                EXPECT_EQ(quotient.alpha(0, x, y), 0.0f) << x << " " << y;
+            }
+}
+
 TEST(Blobby, SegmentBlobIsACapsule) {
     // A segment blob of radius 20 from x = 20 to x = 44: a stadium of half-width 20 * 0.5.
     const double rad = 20, r = rad * kLevelRadius, len = 24;

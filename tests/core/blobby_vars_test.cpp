@@ -152,6 +152,59 @@ TEST(BlobbyVars, ShadersReadTheBlend) {
     }
 }
 
+// Without "s", "t" or "st", s and t are the object-space x and y of the point (as the RI Spec sets
+// them on polygons, and as Aqsis gives them on its Blobby's polygons), not each triangle's own
+// (u, v): a pattern in s (Aqsis's texture.rib, "stripes") runs across the blobby, not per triangle.
+TEST(BlobbyVars, SAndTAreObjectXAndY) {
+    for (const char* surface : {"Surface \"showst\"\n", "Surface \"plastic\"\n"}) {
+        Log log;
+        const Scene scene = parseRibString("WorldBegin\nAttribute \"streyes\" \"float blobbyresolution\" [40]\n" +
+                                               twoBlobs("", surface) + "WorldEnd\n",
+                                           "st.rib", log);
+        ASSERT_EQ(scene.polygonMeshes.size(), 1u);
+        const PolygonMeshDesc& mesh = scene.polygonMeshes[0];
+        const std::vector<Vec3d>& P = mesh.P[0];
+        const Param* s = mesh.primvars.find("s");
+        const Param* t = mesh.primvars.find("t");
+        if (std::string(surface).find("plastic") != std::string::npos) {
+            // The built-in surfaces read neither: none is added (the built-in shading still serves).
+            EXPECT_TRUE(s == nullptr && t == nullptr && mesh.primvars.params.empty());
+            continue;
+        }
+        ASSERT_TRUE(s && t);
+        EXPECT_EQ(s->cls, ParamClass::Vertex);
+        ASSERT_EQ(s->nums.size(), P.size());
+        ASSERT_EQ(t->nums.size(), P.size());
+        for (size_t i = 0; i < P.size(); ++i) {
+            ASSERT_EQ(s->nums[i], P[i].x) << i;
+            ASSERT_EQ(t->nums[i], P[i].y) << i;
+        }
+    }
+    // Given per leaf, "st" is blended as any variable is, and nothing replaces it.
+    Log log;
+    const Scene scene = parseRibString("WorldBegin\n" +
+                                           twoBlobs("\"varying float[2] st\" [1 2  3 4]", "Surface \"showst\"\n") +
+                                           "WorldEnd\n",
+                                       "st.rib", log);
+    ASSERT_EQ(scene.polygonMeshes.size(), 1u);
+    EXPECT_TRUE(scene.polygonMeshes[0].primvars.find("st") != nullptr);
+    EXPECT_TRUE(scene.polygonMeshes[0].primvars.find("s") == nullptr);
+
+    // Rendered: the shader sees s = x - 10 (object space is under Translate 10 0 0) and t = y.
+    test::ShaderDir shaders;
+    shaders.add("showst", "surface showst() { Oi = 1; Ci = color(s, t, 0) * 0.01; }");
+    const std::string rib = shaders.option() + test::orthographicView(192, 96, "") + "WorldBegin\n" +
+                            twoBlobs("", "Surface \"showst\"\n") + "WorldEnd\n";
+    const test::RenderResult r = test::renderRib(rib);
+    for (int column : {50, 66, 96, 126, 140})
+        for (int row : {40, 47, 55}) {
+            // A pixel's 2 x 2 jittered samples keep their mean within half a pixel of its centre.
+            EXPECT_NEAR(r.channel(0, column, row, 0), (column + 0.5 - kShift) * 0.01, 0.005) << column << " " << row;
+            EXPECT_NEAR(r.channel(0, column, row, 1), (96 - row - 0.5) * 0.01, 0.005) << column << " " << row;
+            EXPECT_EQ(r.alpha(0, column, row), 1.0f) << column << " " << row;
+        }
+}
+
 TEST(BlobbyVars, WrongValueCountNamesFileAndLine) {
     const std::string head = "WorldBegin Attribute \"streyes\" \"float blobbyresolution\" [8]\n";
     const std::string blob = "Blobby 2 [1001 0 1001 16 0 2 0 1] [" + sphereMatrix(1, 0, 0, 0) + " " +

@@ -67,8 +67,12 @@ TEST(DisplacementBound, TheRadiusIsMeasuredInTheSpaceNamed) {
         const bool primitiveScaled = !c.between.empty();
         const test::RenderResult r = shifted(d, c.bound, named + c.before, c.between,
                                              primitiveScaled ? test::square(0, 4, 0, 8, 1.25) : plane);
-        EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
         EXPECT_EQ(whole(r), c.whole);
+        // A bound too small is said (DisplacementBoundIsExceeded..., below): once, at the request.
+        ASSERT_EQ(r.warnings.size(), c.whole ? 0u : 1u) << (r.warnings.empty() ? "" : r.warnings.front());
+        if (!c.whole) {
+            EXPECT_NE(r.warnings[0].find("moved points up to 16 (camera space)"), std::string::npos) << r.warnings[0];
+        }
     }
 }
 
@@ -81,6 +85,39 @@ TEST(DisplacementBound, AnotherRenderersSpaceIsWarnedAboutOnceAndTakenAsObjectSp
     ASSERT_EQ(r.warnings.size(), 1u);
     EXPECT_NE(r.warnings[0].find("coordinatesystem \"surface\""), std::string::npos) << r.warnings[0];
     EXPECT_TRUE(whole(r));  // object space: the primitive's scale of 8
+}
+
+// A displacement that moves points farther than its bound may lose pieces (the case above): the
+// render says so once per Displacement request, at its line, with the bound, the largest move
+// and the bound to give; a displacement within its bound says nothing.
+TEST(DisplacementBound, DisplacementBoundIsExceededWarnsOnceAtTheRequest) {
+    test::ShaderDir d;
+    d.add("shiftx", kShiftX);
+    auto render = [&](double dx) {
+        // Two planes (many grids each) under one Displacement request, the bound 1 in camera space
+        // (a pixel: the view maps a unit to a pixel).
+        const std::string rib = test::orthographicView(64, 64, d.option()) + "WorldBegin\nSurface \"constant\"\n" +
+                                "Attribute \"displacementbound\" \"sphere\" [1] \"coordinatesystem\" [\"camera\"]\n" +
+                                "Displacement \"shiftx\" \"dx\" " + std::to_string(dx) + "\n" +
+                                test::square(0, 30, 0, 64, 10) + test::square(32, 62, 0, 64, 10) + "WorldEnd\n";
+        RenderOptions o;
+        o.bucketSize = 8;
+        return test::renderRib(rib, o);
+    };
+    const test::RenderResult over = render(2);
+    ASSERT_EQ(over.warnings.size(), 1u);
+    const std::string& w = over.warnings[0];
+    EXPECT_NE(w.find("test.rib:10: "), std::string::npos) << w;  // the Displacement request's line
+    EXPECT_NE(w.find("Displacement \"shiftx\" moved points up to 2 (camera space) but its bound is 1 "
+                     "(Attribute \"displacementbound\" \"sphere\" in \"camera\" space; 1 in camera space): parts "
+                     "of the surface moved past the bound may be missing from the picture; raise it to at least "
+                     "Attribute \"displacementbound\" \"sphere\" [2.02] \"coordinatesystem\" [\"camera\"]"),
+              std::string::npos)
+        << w;
+    const test::RenderResult within = render(0.75);
+    EXPECT_TRUE(within.warnings.empty()) << within.warnings.front();
+    // Exactly at the bound: no warning either (float rounding of the points is not a move).
+    EXPECT_TRUE(render(1).warnings.empty()) << render(1).warnings.front();
 }
 
 }  // namespace

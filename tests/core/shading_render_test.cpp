@@ -229,6 +229,16 @@ TEST(ShadingLanguage, BadShadersAndBindingsNameTheirPlace) {
     ASSERT_FALSE(lenient.warnings.empty());
     EXPECT_NE(lenient.warnings[0].find("is a light shader, not a surface shader: using defaultsurface"), std::string::npos)
         << lenient.warnings[0];
+    // A displacement shader named by Surface (Aqsis's repel.rib: "lumpy") is not run at all: it
+    // neither moves the surface (Aqsis runs it as the surface, so P moves and pieces past the
+    // bound are lost) nor colours it; the picture is defaultsurface's.
+    shaders.add("bumpy", "displacement bumpy() { P += 3 * normalize(N); N = calculatenormal(P); }\n");
+    const test::RenderResult bumpy = test::renderRib(head + "Surface \"bumpy\"\n" + patch);
+    ASSERT_FALSE(bumpy.warnings.empty());
+    EXPECT_NE(bumpy.warnings[0].find("is a displacement shader, not a surface shader: using defaultsurface"),
+              std::string::npos)
+        << bumpy.warnings[0];
+    EXPECT_TRUE(test::identicalPixels(bumpy, test::renderRib(head + "Surface \"defaultsurface\"\n" + patch)));
     const test::RenderResult without = test::renderRib(head + "Surface \"takes\" \"uniform float q\" 1\n" + patch);
     const test::RenderResult plain = test::renderRib(head + "Surface \"takes\"\n" + patch);
     ASSERT_FALSE(without.warnings.empty());
