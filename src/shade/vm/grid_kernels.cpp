@@ -63,6 +63,16 @@ inline float subOf(float a, float c) { return a - c; }
 inline float mulOf(float a, float c) { return a * c; }
 inline float minOf(float a, float c) { return std::min(a, c); }
 inline float maxOf(float a, float c) { return std::max(a, c); }
+inline float modOf(float a, float c) { return c == 0.0f ? 0.0f : a - c * std::floor(a / c); }
+inline float filterstepOf(float edge, float s, float su, float sv, float wscale) {
+    const float w = (std::fabs(su) + std::fabs(sv)) * wscale;
+    const float lo = s - 0.5f * w, hi = s + 0.5f * w;
+    return hi > lo ? std::min(1.0f, std::max(0.0f, (hi - edge) / (hi - lo))) : (s < edge ? 0.0f : 1.0f);
+}
+inline void filterstep(size_t b, size_t e, const float* edge, bool ev, const float* s, bool sv_, const float* su,
+                       const float* sv, float wscale, float* out) {
+    for (size_t i = b; i < e; ++i) out[i] = filterstepOf(edge[at(ev, i)], s[at(sv_, i)], su[i], sv[i], wscale);
+}
 inline float mixOf(float a, float c, float t) { return a * (1.0f - t) + c * t; }
 inline float smoothstepOf(float e0, float e1, float v) {
     if (v <= e0) return 0.0f;
@@ -237,6 +247,18 @@ struct MulOp {
 };
 // std::min(a, b) is b < a ? b : a, std::max(a, b) a < b ? b : a: a NaN in b gives a
 // (hn::Min and hn::Max do not promise that).
+// The divisor 0 replaced by 1 before dividing (no spurious infinities), then the 0 put.
+struct ModOp {
+    static HWY_INLINE VF f(VF a, VF b) {
+        const MF zero = hn::Eq(b, hn::Zero(kF));
+        const VF q = hn::IfThenElse(zero, hn::Set(kF, 1.0f), b);
+        // floor(x) has x's sign (-0 stays -0), which Highway's emulated Floor (SSSE3, scalar)
+        // loses: put it back.
+        const VF r = hn::Div(a, q);
+        return hn::IfThenZeroElse(zero, hn::Sub(a, hn::Mul(q, hn::CopySign(hn::Floor(r), r))));
+    }
+    static HWY_INLINE float ref(float a, float b) { return gridref::modOf(a, b); }
+};
 struct MinOp {
     static HWY_INLINE VF f(VF a, VF b) { return hn::IfThenElse(hn::Lt(b, a), b, a); }
     static HWY_INLINE float ref(float a, float b) { return gridref::minOf(a, b); }
@@ -256,6 +278,24 @@ void Binary(size_t n, const float* a, bool av, const float* b, bool bv, float* o
     // the wide registers' upper halves dirty for the SSE code after it (measured: the leaf
     // shader 1.4x slower).
     for (; i < n; ++i) out[i] = Op::ref(a[av ? i : 0], b[bv ? i : 0]);
+}
+
+void Filterstep(size_t n, const float* edge, bool ev, const float* s, bool sv_, const float* su, const float* sv,
+                float wscale, float* out) {
+    const size_t N = hn::Lanes(kF);
+    const VF ws = hn::Set(kF, wscale), half = hn::Set(kF, 0.5f), one = hn::Set(kF, 1.0f), zero = hn::Zero(kF);
+    size_t i = 0;
+    for (; i + N <= n; i += N) {
+        const VF e = load(edge, ev, i), x = load(s, sv_, i);
+        const VF w = hn::Mul(hn::Add(hn::Abs(hn::LoadU(kF, su + i)), hn::Abs(hn::LoadU(kF, sv + i))), ws);
+        const VF lo = hn::Sub(x, hn::Mul(half, w)), hi = hn::Add(x, hn::Mul(half, w));
+        const VF q = hn::Div(hn::Sub(hi, e), hn::Sub(hi, lo));
+        const VF m = hn::IfThenElseZero(hn::Lt(zero, q), q);     // std::max(0, q): 0 for NaN
+        const VF c = hn::IfThenElse(hn::Lt(m, one), m, one);      // std::min(1, m)
+        const VF step = hn::IfThenZeroElse(hn::Lt(x, e), one);
+        hn::StoreU(hn::IfThenElse(hn::Gt(hi, lo), c, step), kF, out + i);
+    }
+    for (; i < n; ++i) out[i] = gridref::filterstepOf(edge[ev ? i : 0], s[sv_ ? i : 0], su[i], sv[i], wscale);
 }
 
 void Mix(size_t n, const float* a, bool av, const float* b, bool bv, const float* t, bool tv, float* out) {
@@ -355,7 +395,7 @@ void Deinterleave3(size_t n, const float* xyz, float* const out[3]) {
 const GridKernels* Kernels() {
     static const GridKernels k{hwy::TargetName(HWY_TARGET), &Normalize, &Dot, &Faceforward, &Divide,
                                &Binary<AddOp>, &Binary<SubOp>, &Binary<MulOp>, &Binary<MinOp>, &Binary<MaxOp>,
-                               &Mix, &Smoothstep, &DiffuseLight, &SpecularBase, &AddLight, &Deinterleave3};
+                               &Binary<ModOp>, &Filterstep, &Mix, &Smoothstep, &DiffuseLight, &SpecularBase, &AddLight, &Deinterleave3};
     return &k;
 }
 
@@ -387,6 +427,10 @@ template <float (*F)(float, float, float)>
 void refTernary(size_t n, const float* a, bool av, const float* b, bool bv, const float* c, bool cv, float* out) {
     gridref::ternary<F>(0, n, a, av, b, bv, c, cv, out);
 }
+void refFilterstep(size_t n, const float* edge, bool ev, const float* s, bool sv_, const float* su, const float* sv,
+                   float wscale, float* out) {
+    gridref::filterstep(0, n, edge, ev, s, sv_, su, sv, wscale, out);
+}
 void refDiffuseLight(size_t n, const LightLanes& l, float cosHalf, const float* const u[3], const float* const N[3], bool nv,
                      float* const out[3]) {
     gridref::diffuseLight(0, n, l, cosHalf, u, N, nv, out);
@@ -408,7 +452,8 @@ const GridKernels& gridKernels() {
 const GridKernels& gridKernelsScalar() {
     static const GridKernels k{"SCALAR reference", &refNormalize, &refDot, &refFaceforward, &refDivide,
                                &refBinary<&gridref::addOf>, &refBinary<&gridref::subOf>, &refBinary<&gridref::mulOf>,
-                               &refBinary<&gridref::minOf>, &refBinary<&gridref::maxOf>, &refTernary<&gridref::mixOf>,
+                               &refBinary<&gridref::minOf>, &refBinary<&gridref::maxOf>, &refBinary<&gridref::modOf>,
+                               &refFilterstep, &refTernary<&gridref::mixOf>,
                                &refTernary<&gridref::smoothstepOf>, &refDiffuseLight, &refSpecularBase, &refAddLight, &refDeinterleave3};
     return k;
 }

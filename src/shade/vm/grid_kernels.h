@@ -44,6 +44,13 @@ struct GridKernels {
     void (*mul)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
     void (*min)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
     void (*max)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
+    // out = b == 0 ? 0 : a - b * floor(a / b)
+    void (*mod)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
+    // filterstep(edge, s) over a micropolygon (shadeops_deriv.cpp): su and sv are s's changes
+    // along u and v at each point (n floats each); w = (|su| + |sv|) * wscale, lo = s - w / 2,
+    // hi = s + w / 2, out = hi > lo ? min(1, max(0, (hi - edge) / (hi - lo))) : s < edge ? 0 : 1.
+    void (*filterstep)(size_t n, const float* edge, bool ev, const float* s, bool sv_, const float* su,
+                       const float* sv, float wscale, float* out);
     // out = a * (1 - t) + b * t
     void (*mix)(size_t n, const float* a, bool av, const float* b, bool bv, const float* t, bool tv, float* out);
     // out = v <= e0 ? 0 : v >= e1 ? 1 : s * s * (3 - 2 * s) with s = (v - e0) / (e1 - e0)

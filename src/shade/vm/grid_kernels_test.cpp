@@ -87,7 +87,7 @@ TEST(GridKernels, EveryTargetMatchesTheReferenceBitForBit) {
                 using Binary = void (*)(size_t, const float*, bool, const float*, bool, float*);
                 const std::pair<const char*, Binary GridKernels::*> binaries[] = {
                     {"add", &GridKernels::add}, {"sub", &GridKernels::sub}, {"mul", &GridKernels::mul},
-                    {"min", &GridKernels::min}, {"max", &GridKernels::max}};
+                    {"min", &GridKernels::min}, {"max", &GridKernels::max}, {"mod", &GridKernels::mod}};
                 for (const auto& [what, op] : binaries) {
                     (ref.*op)(n, a.in[0], av, b.in[1], bv, want.out[0]);
                     (k->*op)(n, a.in[0], av, b.in[1], bv, got.out[0]);
@@ -99,6 +99,9 @@ TEST(GridKernels, EveryTargetMatchesTheReferenceBitForBit) {
                 ref.smoothstep(n, a.in[0], av, b.in[1], bv, c.in[2], !bv, want.out[0]);
                 k->smoothstep(n, a.in[0], av, b.in[1], bv, c.in[2], !bv, got.out[0]);
                 expectSame(got.c[0], want.c[0], name + " smoothstep");
+                ref.filterstep(n, a.in[0], av, b.in[1], bv, c.in[0], c.in[1], 1.5f, want.out[0]);
+                k->filterstep(n, a.in[0], av, b.in[1], bv, c.in[0], c.in[1], 1.5f, got.out[0]);
+                expectSame(got.c[0], want.c[0], name + " filterstep");
                 // Accumulating kernels: from the same start.
                 Triple accWant(rng, n);
                 Triple accGot = accWant;
@@ -136,6 +139,9 @@ TEST(GridKernels, MapOperationsFollowTheScalarRules) {
         k->mix(n, a, true, b, true, &half, false, mixed.data());
         const float e0 = 0.0f, e1 = 4.0f;
         k->smoothstep(n, &e0, false, &e1, false, a, true, smooth.data());
+        std::vector<float> rem(n), fstep(n);
+        k->mod(n, a, true, b, true, rem.data());
+        k->filterstep(n, b, true, a, true, a, b, 1.0f, fstep.data());
         for (size_t i = 0; i < n; ++i) {
             const std::string at = name + " point " + std::to_string(i);
             EXPECT_TRUE(sameBits(lo[i], std::min(a[i], b[i]))) << at << " min " << lo[i];
@@ -149,6 +155,11 @@ TEST(GridKernels, MapOperationsFollowTheScalarRules) {
                 want = t * t * (3.0f - 2.0f * t);
             }
             EXPECT_TRUE(sameBits(smooth[i], want)) << at << " smoothstep " << smooth[i];
+            const float r = b[i] == 0.0f ? 0.0f : a[i] - b[i] * std::floor(a[i] / b[i]);
+            EXPECT_TRUE(sameBits(rem[i], r)) << at << " mod " << rem[i];
+            const float w = std::fabs(a[i]) + std::fabs(b[i]), lo = a[i] - 0.5f * w, hi = a[i] + 0.5f * w;
+            const float f = hi > lo ? std::min(1.0f, std::max(0.0f, (hi - b[i]) / (hi - lo))) : (a[i] < b[i] ? 0.0f : 1.0f);
+            EXPECT_TRUE(sameBits(fstep[i], f)) << at << " filterstep " << fstep[i];
         }
         EXPECT_EQ(lo[0], 1.0f) << name;  // std::min(1, NaN) is 1
         EXPECT_TRUE(std::isnan(lo[1])) << name;  // std::min(NaN, 1) is NaN
@@ -156,6 +167,10 @@ TEST(GridKernels, MapOperationsFollowTheScalarRules) {
         EXPECT_EQ(smooth[3], 0.0f) << name;
         EXPECT_EQ(smooth[10], 1.0f) << name;
         EXPECT_EQ(smooth[12], 0.15625f) << name;  // t = 1/4: 1/16 * 5/2
+        EXPECT_EQ(rem[14], 0.0f) << name;         // mod(0, 1)
+        EXPECT_EQ(rem[15], 0.0f) << name;         // mod(4, 0): 0, not NaN
+        EXPECT_EQ(rem[2], 2.0f) << name;          // mod(2, 3)
+        EXPECT_EQ(fstep[8], 0.5f) << name;        // s = edge = .5, w = 1: halfway
     }
 }
 
@@ -191,7 +206,8 @@ const char* const kShaders[] = {
         color c = mix(color(s, t, 1), Cs, a);
         c = mix(c, color(1, 0, 0), t);
         float m = max(s - .5, min(t, a)) * pow(s - .5, 1.5);
-        Ci = c * m + b - a * color(.1, .2, .3) + max(lo, .5) - min(hi, 1);
+        float r = mod(s * 3 - 1, t) + mod(s, t - t) + filterstep(.5, s * t) + filterstep(lo, t, "width", 2);
+        Ci = c * m + b - a * color(.1, .2, .3) + max(lo, .5) - min(hi, 1) + r;
         Oi = 1;
     })",
 };

@@ -235,7 +235,25 @@ void log2_(Exec& x, const Instr& in) {
                 [](float a, float b) { return !(a > 0.0f) || !(b > 0.0f) || b == 1.0f; });
 }
 void mod(Exec& x, const Instr& in) {
-    map2Checked(x, in, [](float a, float b) { return a - b * std::floor(a / b); }, [](float, float b) { return b == 0.0f; });
+    RegView d = x.view(in.a[0]);
+    if (!d.varying) {
+        map2Checked(x, in, [](float a, float b) { return a - b * std::floor(a / b); }, [](float, float b) { return b == 0.0f; });
+        return;
+    }
+    // Varying: the zeros counted (as div does), then each component through the grid kernel.
+    RegView b = x.view(in.a[2]);
+    const int nc = d.comps * d.elems;
+    int count = 0;
+    for (int c = 0; c < nc; ++c) {
+        const float* bp = b.comp(b.comps * b.elems > 1 ? c : 0);
+        count += countBad(x, d.w, [&](int i) { return bp[b.varying ? i : 0] == 0.0f; });
+    }
+    if (count) x.sanitised(count);
+    RegView a = x.view(in.a[1]);
+    const GridKernels& k = x.vm.kernels();
+    for (int c = 0; c < nc; ++c)
+        k.mod(size_t(d.w), a.comp(a.comps * a.elems > 1 ? c : 0), a.varying, b.comp(b.comps * b.elems > 1 ? c : 0),
+              b.varying, d.comp(c));
 }
 void abs_(Exec& x, const Instr& in) { map1(x, in, [](float a) { return std::fabs(a); }); }
 void sign(Exec& x, const Instr& in) {
