@@ -57,6 +57,41 @@ inline void divide(size_t b, size_t e, const float* a, bool av, const float* c, 
     }
 }
 
+// The map operations: f on each point, as shadeops_math.cpp's lambdas.
+inline float addOf(float a, float c) { return a + c; }
+inline float subOf(float a, float c) { return a - c; }
+inline float mulOf(float a, float c) { return a * c; }
+inline float minOf(float a, float c) { return std::min(a, c); }
+inline float maxOf(float a, float c) { return std::max(a, c); }
+inline float modOf(float a, float c) { return c == 0.0f ? 0.0f : a - c * std::floor(a / c); }
+inline float filterstepOf(float edge, float s, float su, float sv, float wscale) {
+    const float w = (std::fabs(su) + std::fabs(sv)) * wscale;
+    const float lo = s - 0.5f * w, hi = s + 0.5f * w;
+    return hi > lo ? std::min(1.0f, std::max(0.0f, (hi - edge) / (hi - lo))) : (s < edge ? 0.0f : 1.0f);
+}
+inline void filterstep(size_t b, size_t e, const float* edge, bool ev, const float* s, bool sv_, const float* su,
+                       const float* sv, float wscale, float* out) {
+    for (size_t i = b; i < e; ++i) out[i] = filterstepOf(edge[at(ev, i)], s[at(sv_, i)], su[i], sv[i], wscale);
+}
+inline float mixOf(float a, float c, float t) { return a * (1.0f - t) + c * t; }
+inline float smoothstepOf(float e0, float e1, float v) {
+    if (v <= e0) return 0.0f;
+    if (v >= e1) return 1.0f;
+    const float t = (v - e0) / (e1 - e0);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+template <float (*F)(float, float)>
+inline void binary(size_t b, size_t e, const float* a, bool av, const float* c, bool cv, float* out) {
+    for (size_t i = b; i < e; ++i) out[i] = F(a[at(av, i)], c[at(cv, i)]);
+}
+
+template <float (*F)(float, float, float)>
+inline void ternary(size_t b, size_t e, const float* a, bool av, const float* c, bool cv, const float* d, bool dv,
+                    float* out) {
+    for (size_t i = b; i < e; ++i) out[i] = F(a[at(av, i)], c[at(cv, i)], d[at(dv, i)]);
+}
+
 // Whether light l takes part at point i: lit, and within 90 degrees of the unit normal.
 inline bool facing(const LightLanes& l, float cosHalf, const float* const u[3], size_t i) {
     return l.lit[i] && !(l.Ln[0][i] * u[0][i] + l.Ln[1][i] * u[1][i] + l.Ln[2][i] * u[2][i] < cosHalf);
@@ -197,6 +232,98 @@ void Divide(size_t n, const float* a, bool av, const float* b, bool bv, float* o
     gridref::divide(i, n, a, av, b, bv, out);
 }
 
+// The map operations, lane by lane as gridref's: the same IEEE operations in the same order.
+struct AddOp {
+    static HWY_INLINE VF f(VF a, VF b) { return hn::Add(a, b); }
+    static HWY_INLINE float ref(float a, float b) { return gridref::addOf(a, b); }
+};
+struct SubOp {
+    static HWY_INLINE VF f(VF a, VF b) { return hn::Sub(a, b); }
+    static HWY_INLINE float ref(float a, float b) { return gridref::subOf(a, b); }
+};
+struct MulOp {
+    static HWY_INLINE VF f(VF a, VF b) { return hn::Mul(a, b); }
+    static HWY_INLINE float ref(float a, float b) { return gridref::mulOf(a, b); }
+};
+// std::min(a, b) is b < a ? b : a, std::max(a, b) a < b ? b : a: a NaN in b gives a
+// (hn::Min and hn::Max do not promise that).
+// The divisor 0 replaced by 1 before dividing (no spurious infinities), then the 0 put.
+struct ModOp {
+    static HWY_INLINE VF f(VF a, VF b) {
+        const MF zero = hn::Eq(b, hn::Zero(kF));
+        const VF q = hn::IfThenElse(zero, hn::Set(kF, 1.0f), b);
+        // floor(x) has x's sign (-0 stays -0), which Highway's emulated Floor (SSSE3, scalar)
+        // loses: put it back.
+        const VF r = hn::Div(a, q);
+        return hn::IfThenZeroElse(zero, hn::Sub(a, hn::Mul(q, hn::CopySign(hn::Floor(r), r))));
+    }
+    static HWY_INLINE float ref(float a, float b) { return gridref::modOf(a, b); }
+};
+struct MinOp {
+    static HWY_INLINE VF f(VF a, VF b) { return hn::IfThenElse(hn::Lt(b, a), b, a); }
+    static HWY_INLINE float ref(float a, float b) { return gridref::minOf(a, b); }
+};
+struct MaxOp {
+    static HWY_INLINE VF f(VF a, VF b) { return hn::IfThenElse(hn::Lt(a, b), b, a); }
+    static HWY_INLINE float ref(float a, float b) { return gridref::maxOf(a, b); }
+};
+
+template <class Op>
+void Binary(size_t n, const float* a, bool av, const float* b, bool bv, float* out) {
+    const size_t N = hn::Lanes(kF);
+    size_t i = 0;
+    for (; i + N <= n; i += N) hn::StoreU(Op::f(load(a, av, i), load(b, bv, i)), kF, out + i);
+    // The tail written here, not through gridref::binary<&Op::ref>: a call to this target's ref
+    // from the reference's code is not inlined, and GCC then returns without vzeroupper, leaving
+    // the wide registers' upper halves dirty for the SSE code after it (measured: the leaf
+    // shader 1.4x slower).
+    for (; i < n; ++i) out[i] = Op::ref(a[av ? i : 0], b[bv ? i : 0]);
+}
+
+void Filterstep(size_t n, const float* edge, bool ev, const float* s, bool sv_, const float* su, const float* sv,
+                float wscale, float* out) {
+    const size_t N = hn::Lanes(kF);
+    const VF ws = hn::Set(kF, wscale), half = hn::Set(kF, 0.5f), one = hn::Set(kF, 1.0f), zero = hn::Zero(kF);
+    size_t i = 0;
+    for (; i + N <= n; i += N) {
+        const VF e = load(edge, ev, i), x = load(s, sv_, i);
+        const VF w = hn::Mul(hn::Add(hn::Abs(hn::LoadU(kF, su + i)), hn::Abs(hn::LoadU(kF, sv + i))), ws);
+        const VF lo = hn::Sub(x, hn::Mul(half, w)), hi = hn::Add(x, hn::Mul(half, w));
+        const VF q = hn::Div(hn::Sub(hi, e), hn::Sub(hi, lo));
+        const VF m = hn::IfThenElseZero(hn::Lt(zero, q), q);     // std::max(0, q): 0 for NaN
+        const VF c = hn::IfThenElse(hn::Lt(m, one), m, one);      // std::min(1, m)
+        const VF step = hn::IfThenZeroElse(hn::Lt(x, e), one);
+        hn::StoreU(hn::IfThenElse(hn::Gt(hi, lo), c, step), kF, out + i);
+    }
+    for (; i < n; ++i) out[i] = gridref::filterstepOf(edge[ev ? i : 0], s[sv_ ? i : 0], su[i], sv[i], wscale);
+}
+
+void Mix(size_t n, const float* a, bool av, const float* b, bool bv, const float* t, bool tv, float* out) {
+    const size_t N = hn::Lanes(kF);
+    const VF one = hn::Set(kF, 1.0f);
+    size_t i = 0;
+    for (; i + N <= n; i += N) {
+        const VF tt = load(t, tv, i);
+        hn::StoreU(hn::Add(hn::Mul(load(a, av, i), hn::Sub(one, tt)), hn::Mul(load(b, bv, i), tt)), kF, out + i);
+    }
+    gridref::ternary<&gridref::mixOf>(i, n, a, av, b, bv, t, tv, out);
+}
+
+// The reference's branches as masks: v <= e0 gives 0, else v >= e1 gives 1, else the cubic (a
+// NaN v or edge falls through to the cubic in both).
+void Smoothstep(size_t n, const float* e0, bool e0v, const float* e1, bool e1v, const float* v, bool vv, float* out) {
+    const size_t N = hn::Lanes(kF);
+    const VF one = hn::Set(kF, 1.0f), two = hn::Set(kF, 2.0f), three = hn::Set(kF, 3.0f);
+    size_t i = 0;
+    for (; i + N <= n; i += N) {
+        const VF lo = load(e0, e0v, i), hi = load(e1, e1v, i), x = load(v, vv, i);
+        const VF t = hn::Div(hn::Sub(x, lo), hn::Sub(hi, lo));
+        const VF cubic = hn::Mul(hn::Mul(t, t), hn::Sub(three, hn::Mul(two, t)));
+        hn::StoreU(hn::IfThenZeroElse(hn::Le(x, lo), hn::IfThenElse(hn::Ge(x, hi), one, cubic)), kF, out + i);
+    }
+    gridref::ternary<&gridref::smoothstepOf>(i, n, e0, e0v, e1, e1v, v, vv, out);
+}
+
 void DiffuseLight(size_t n, const LightLanes& l, float cosHalf, const float* const u[3], const float* const Nn[3],
                   bool nv, float* const out[3]) {
     const size_t N = hn::Lanes(kF);
@@ -267,7 +394,8 @@ void Deinterleave3(size_t n, const float* xyz, float* const out[3]) {
 
 const GridKernels* Kernels() {
     static const GridKernels k{hwy::TargetName(HWY_TARGET), &Normalize, &Dot, &Faceforward, &Divide,
-                               &DiffuseLight, &SpecularBase, &AddLight, &Deinterleave3};
+                               &Binary<AddOp>, &Binary<SubOp>, &Binary<MulOp>, &Binary<MinOp>, &Binary<MaxOp>,
+                               &Binary<ModOp>, &Filterstep, &Mix, &Smoothstep, &DiffuseLight, &SpecularBase, &AddLight, &Deinterleave3};
     return &k;
 }
 
@@ -291,6 +419,18 @@ void refFaceforward(size_t n, const float* const N[3], bool nv, const float* con
     gridref::faceforward(0, n, N, nv, I, iv, ref, rv, out);
 }
 void refDivide(size_t n, const float* a, bool av, const float* b, bool bv, float* out) { gridref::divide(0, n, a, av, b, bv, out); }
+template <float (*F)(float, float)>
+void refBinary(size_t n, const float* a, bool av, const float* b, bool bv, float* out) {
+    gridref::binary<F>(0, n, a, av, b, bv, out);
+}
+template <float (*F)(float, float, float)>
+void refTernary(size_t n, const float* a, bool av, const float* b, bool bv, const float* c, bool cv, float* out) {
+    gridref::ternary<F>(0, n, a, av, b, bv, c, cv, out);
+}
+void refFilterstep(size_t n, const float* edge, bool ev, const float* s, bool sv_, const float* su, const float* sv,
+                   float wscale, float* out) {
+    gridref::filterstep(0, n, edge, ev, s, sv_, su, sv, wscale, out);
+}
 void refDiffuseLight(size_t n, const LightLanes& l, float cosHalf, const float* const u[3], const float* const N[3], bool nv,
                      float* const out[3]) {
     gridref::diffuseLight(0, n, l, cosHalf, u, N, nv, out);
@@ -311,7 +451,10 @@ const GridKernels& gridKernels() {
 
 const GridKernels& gridKernelsScalar() {
     static const GridKernels k{"SCALAR reference", &refNormalize, &refDot, &refFaceforward, &refDivide,
-                               &refDiffuseLight, &refSpecularBase, &refAddLight, &refDeinterleave3};
+                               &refBinary<&gridref::addOf>, &refBinary<&gridref::subOf>, &refBinary<&gridref::mulOf>,
+                               &refBinary<&gridref::minOf>, &refBinary<&gridref::maxOf>, &refBinary<&gridref::modOf>,
+                               &refFilterstep, &refTernary<&gridref::mixOf>,
+                               &refTernary<&gridref::smoothstepOf>, &refDiffuseLight, &refSpecularBase, &refAddLight, &refDeinterleave3};
     return k;
 }
 

@@ -37,6 +37,25 @@ struct GridKernels {
                         const float* const ref[3], bool rv, float* const out[3]);
     // out = b == 0 ? 0 : a / b
     void (*divide)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
+    // The map operations of shadeops_math.cpp, as its scalar lambdas write them:
+    // out = a + b, a - b, a * b, std::min(a, b), std::max(a, b).
+    void (*add)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
+    void (*sub)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
+    void (*mul)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
+    void (*min)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
+    void (*max)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
+    // out = b == 0 ? 0 : a - b * floor(a / b)
+    void (*mod)(size_t n, const float* a, bool av, const float* b, bool bv, float* out);
+    // filterstep(edge, s) over a micropolygon (shadeops_deriv.cpp): su and sv are s's changes
+    // along u and v at each point (n floats each); w = (|su| + |sv|) * wscale, lo = s - w / 2,
+    // hi = s + w / 2, out = hi > lo ? min(1, max(0, (hi - edge) / (hi - lo))) : s < edge ? 0 : 1.
+    void (*filterstep)(size_t n, const float* edge, bool ev, const float* s, bool sv_, const float* su,
+                       const float* sv, float wscale, float* out);
+    // out = a * (1 - t) + b * t
+    void (*mix)(size_t n, const float* a, bool av, const float* b, bool bv, const float* t, bool tv, float* out);
+    // out = v <= e0 ? 0 : v >= e1 ? 1 : s * s * (3 - 2 * s) with s = (v - e0) / (e1 - e0)
+    void (*smoothstep)(size_t n, const float* e0, bool e0v, const float* e1, bool e1v, const float* v, bool vv,
+                       float* out);
     // diffuse(): out += Cl * (Ln . N) where lit, not Ln . unitN < cosHalf and not Ln . N <= 0.
     void (*diffuseLight)(size_t n, const LightLanes& l, float cosHalf, const float* const unitN[3],
                          const float* const N[3], bool nv, float* const out[3]);

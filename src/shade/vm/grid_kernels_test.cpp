@@ -8,6 +8,9 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "shade/vm/grid_kernels.h"
 #include "shade/vm/vm_test_util.h"
@@ -81,6 +84,24 @@ TEST(GridKernels, EveryTargetMatchesTheReferenceBitForBit) {
                 ref.divide(n, a.in[0], av, b.in[1], bv, want.out[0]);
                 k->divide(n, a.in[0], av, b.in[1], bv, got.out[0]);
                 expectSame(got.c[0], want.c[0], name + " divide");
+                using Binary = void (*)(size_t, const float*, bool, const float*, bool, float*);
+                const std::pair<const char*, Binary GridKernels::*> binaries[] = {
+                    {"add", &GridKernels::add}, {"sub", &GridKernels::sub}, {"mul", &GridKernels::mul},
+                    {"min", &GridKernels::min}, {"max", &GridKernels::max}, {"mod", &GridKernels::mod}};
+                for (const auto& [what, op] : binaries) {
+                    (ref.*op)(n, a.in[0], av, b.in[1], bv, want.out[0]);
+                    (k->*op)(n, a.in[0], av, b.in[1], bv, got.out[0]);
+                    expectSame(got.c[0], want.c[0], name + " " + what);
+                }
+                ref.mix(n, a.in[0], av, b.in[1], bv, c.in[2], !av, want.out[0]);
+                k->mix(n, a.in[0], av, b.in[1], bv, c.in[2], !av, got.out[0]);
+                expectSame(got.c[0], want.c[0], name + " mix");
+                ref.smoothstep(n, a.in[0], av, b.in[1], bv, c.in[2], !bv, want.out[0]);
+                k->smoothstep(n, a.in[0], av, b.in[1], bv, c.in[2], !bv, got.out[0]);
+                expectSame(got.c[0], want.c[0], name + " smoothstep");
+                ref.filterstep(n, a.in[0], av, b.in[1], bv, c.in[0], c.in[1], 1.5f, want.out[0]);
+                k->filterstep(n, a.in[0], av, b.in[1], bv, c.in[0], c.in[1], 1.5f, got.out[0]);
+                expectSame(got.c[0], want.c[0], name + " filterstep");
                 // Accumulating kernels: from the same start.
                 Triple accWant(rng, n);
                 Triple accGot = accWant;
@@ -98,6 +119,59 @@ TEST(GridKernels, EveryTargetMatchesTheReferenceBitForBit) {
                 for (int q = 0; q < 3; ++q) expectSame(got.c[q], want.c[q], name + " deinterleave3");
             }
         }
+}
+
+// The reference's map operations are the interpreter's scalar ones, NaN and infinity included:
+// std::min/std::max keep a when b is NaN, smoothstep's edges are tested before the cubic.
+TEST(GridKernels, MapOperationsFollowTheScalarRules) {
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    const float a[] = {1.0f, nan, 2.0f, -inf, 0.25f, 3.0f, -0.0f, 5.0f, 0.5f, 0.5f, 7.0f, nan, 1.0f, 2.0f, 0.0f, 4.0f, 9.0f};
+    const float b[] = {nan, 1.0f, 3.0f, 1.0f, 0.75f, -1.0f, 0.0f, inf, 0.5f, nan, 1.0f, nan, 2.0f, 2.0f, 1.0f, 0.0f, -9.0f};
+    const size_t n = sizeof a / sizeof *a;
+    for (const GridKernels* k : gridKernelsOfEveryTarget()) {
+        const std::string name = k->target;
+        std::vector<float> lo(n), hi(n), sum(n), prod(n), mixed(n), smooth(n);
+        k->min(n, a, true, b, true, lo.data());
+        k->max(n, a, true, b, true, hi.data());
+        k->add(n, a, true, b, true, sum.data());
+        k->mul(n, a, true, b, true, prod.data());
+        const float half = 0.5f;
+        k->mix(n, a, true, b, true, &half, false, mixed.data());
+        const float e0 = 0.0f, e1 = 4.0f;
+        k->smoothstep(n, &e0, false, &e1, false, a, true, smooth.data());
+        std::vector<float> rem(n), fstep(n);
+        k->mod(n, a, true, b, true, rem.data());
+        k->filterstep(n, b, true, a, true, a, b, 1.0f, fstep.data());
+        for (size_t i = 0; i < n; ++i) {
+            const std::string at = name + " point " + std::to_string(i);
+            EXPECT_TRUE(sameBits(lo[i], std::min(a[i], b[i]))) << at << " min " << lo[i];
+            EXPECT_TRUE(sameBits(hi[i], std::max(a[i], b[i]))) << at << " max " << hi[i];
+            EXPECT_TRUE(sameBits(sum[i], a[i] + b[i])) << at << " add " << sum[i];
+            EXPECT_TRUE(sameBits(prod[i], a[i] * b[i])) << at << " mul " << prod[i];
+            EXPECT_TRUE(sameBits(mixed[i], a[i] * (1.0f - half) + b[i] * half)) << at << " mix " << mixed[i];
+            float want = a[i] <= e0 ? 0.0f : a[i] >= e1 ? 1.0f : 0.0f;
+            if (!(a[i] <= e0) && !(a[i] >= e1)) {
+                const float t = (a[i] - e0) / (e1 - e0);
+                want = t * t * (3.0f - 2.0f * t);
+            }
+            EXPECT_TRUE(sameBits(smooth[i], want)) << at << " smoothstep " << smooth[i];
+            const float r = b[i] == 0.0f ? 0.0f : a[i] - b[i] * std::floor(a[i] / b[i]);
+            EXPECT_TRUE(sameBits(rem[i], r)) << at << " mod " << rem[i];
+            const float w = std::fabs(a[i]) + std::fabs(b[i]), lo = a[i] - 0.5f * w, hi = a[i] + 0.5f * w;
+            const float f = hi > lo ? std::min(1.0f, std::max(0.0f, (hi - b[i]) / (hi - lo))) : (a[i] < b[i] ? 0.0f : 1.0f);
+            EXPECT_TRUE(sameBits(fstep[i], f)) << at << " filterstep " << fstep[i];
+        }
+        EXPECT_EQ(lo[0], 1.0f) << name;  // std::min(1, NaN) is 1
+        EXPECT_TRUE(std::isnan(lo[1])) << name;  // std::min(NaN, 1) is NaN
+        EXPECT_TRUE(std::isnan(smooth[1])) << name;
+        EXPECT_EQ(smooth[3], 0.0f) << name;
+        EXPECT_EQ(smooth[10], 1.0f) << name;
+        EXPECT_EQ(smooth[12], 0.15625f) << name;  // t = 1/4: 1/16 * 5/2
+        EXPECT_EQ(rem[14], 0.0f) << name;         // mod(0, 1)
+        EXPECT_EQ(rem[15], 0.0f) << name;         // mod(4, 0): 0, not NaN
+        EXPECT_EQ(rem[2], 2.0f) << name;          // mod(2, 3)
+        EXPECT_EQ(fstep[8], 0.5f) << name;        // s = edge = .5, w = 1: halfway
+    }
 }
 
 // ---- Whole shaders -------------------------------------------------------------------------
@@ -124,6 +198,16 @@ const char* const kShaders[] = {
         vector V = normalize(vector(v, t, 1)) / (t - .5);
         Ci = color(V . normalize(N), v, comp(diffuse(normalize(N)), 1));
         if (s > .5) { Ci /= (s - .75); }
+        Oi = 1;
+    })",
+    R"(surface mapops(float lo = .2; float hi = .7;) {
+        float a = smoothstep(lo, hi, s);
+        float b = smoothstep(t, hi, s);
+        color c = mix(color(s, t, 1), Cs, a);
+        c = mix(c, color(1, 0, 0), t);
+        float m = max(s - .5, min(t, a)) * pow(s - .5, 1.5);
+        float r = mod(s * 3 - 1, t) + mod(s, t - t) + filterstep(.5, s * t) + filterstep(lo, t, "width", 2);
+        Ci = c * m + b - a * color(.1, .2, .3) + max(lo, .5) - min(hi, 1) + r;
         Oi = 1;
     })",
 };
@@ -185,6 +269,9 @@ TEST(GridKernels, ShadersGiveThePlainPathsGridsBitForBit) {
         }
         if (p->name == "divergent") {
             EXPECT_GT(plain.stats().sanitised, 0u);  // x / 0 met
+        }
+        if (p->name == "mapops") {
+            EXPECT_GT(plain.stats().sanitised, 0u);  // pow of a negative met
         }
         if (p->name == "arrays") {
             EXPECT_GT(plain.stats().indicesClamped, 0u);

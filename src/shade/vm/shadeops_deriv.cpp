@@ -8,7 +8,9 @@
 #include <cstring>
 
 #include "shade/vm/deriv.h"
+#include "shade/vm/grid_kernels.h"
 #include "shade/vm/ops.h"
+#include "shade/vm/vm.h"
 
 namespace streyes::sl {
 
@@ -232,6 +234,10 @@ void filterstep(Exec& x, const Instr& in) {
             std::memset(su, 0, sizeof(float) * size_t(x.n));
             std::memset(sv, 0, sizeof(float) * size_t(x.n));
         }
+    }
+    if (!two && d.varying) {  // the one-argument form over the grid: the kernel, bit for bit
+        x.vm.kernels().filterstep(size_t(d.w), e.p, e.varying, s1.p, s1.varying, su, sv, wscale, d.p);
+        return;
     }
     for (int i = 0; i < d.w; ++i) {
         float lo, hi;

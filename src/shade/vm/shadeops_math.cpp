@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "shade/vm/frame.h"
+#include "shade/vm/grid_kernels.h"
 #include "shade/vm/ops.h"
 #include "shade/vm/vm.h"
 
@@ -58,12 +59,37 @@ void compare(Exec& x, const Instr& in, F f, bool all) {
     }
 }
 
+using BinaryKernel = void (*)(size_t, const float*, bool, const float*, bool, float*);
+using TernaryKernel = void (*)(size_t, const float*, bool, const float*, bool, const float*, bool, float*);
+
+// map2 and map3 through a grid kernel (grid_kernels.h: f's operations lane by lane, bit for bit)
+// when the destination is varying; a uniform one is one point, computed by f.
+template <class F>
+void map2Kernel(Exec& x, const Instr& in, BinaryKernel k, F f) {
+    RegView d = x.view(in.a[0]), a = x.view(in.a[1]), b = x.view(in.a[2]);
+    if (!d.varying) return map2(x, in, f);
+    const int nc = d.comps * d.elems;
+    for (int c = 0; c < nc; ++c)
+        k(size_t(d.w), a.comp(a.comps * a.elems > 1 ? c : 0), a.varying, b.comp(b.comps * b.elems > 1 ? c : 0),
+          b.varying, d.comp(c));
+}
+
+template <class F>
+void map3Kernel(Exec& x, const Instr& in, TernaryKernel k, F f) {
+    RegView d = x.view(in.a[0]), a = x.view(in.a[1]), b = x.view(in.a[2]), e = x.view(in.a[3]);
+    if (!d.varying) return map3(x, in, f);
+    const int nc = d.comps * d.elems;
+    for (int c = 0; c < nc; ++c)
+        k(size_t(d.w), a.comp(a.comps > 1 ? c : 0), a.varying, b.comp(b.comps > 1 ? c : 0), b.varying,
+          e.comp(e.comps > 1 ? c : 0), e.varying, d.comp(c));
+}
+
 }  // namespace
 
 void neg(Exec& x, const Instr& in) { map1(x, in, [](float a) { return -a; }); }
-void add(Exec& x, const Instr& in) { map2(x, in, [](float a, float b) { return a + b; }); }
-void sub(Exec& x, const Instr& in) { map2(x, in, [](float a, float b) { return a - b; }); }
-void mul(Exec& x, const Instr& in) { map2(x, in, [](float a, float b) { return a * b; }); }
+void add(Exec& x, const Instr& in) { map2Kernel(x, in, x.vm.kernels().add, [](float a, float b) { return a + b; }); }
+void sub(Exec& x, const Instr& in) { map2Kernel(x, in, x.vm.kernels().sub, [](float a, float b) { return a - b; }); }
+void mul(Exec& x, const Instr& in) { map2Kernel(x, in, x.vm.kernels().mul, [](float a, float b) { return a * b; }); }
 void div(Exec& x, const Instr& in) {
     RegView d = x.view(in.a[0]);
     if (!d.varying) {
@@ -179,9 +205,20 @@ void atan1(Exec& x, const Instr& in) { map1(x, in, [](float a) { return std::ata
 void atan2_(Exec& x, const Instr& in) { map2(x, in, [](float y, float xx) { return std::atan2(y, xx); }); }
 void radians(Exec& x, const Instr& in) { map1(x, in, [](float a) { return a * (kPi / 180.0f); }); }
 void degrees(Exec& x, const Instr& in) { map1(x, in, [](float a) { return a * (180.0f / kPi); }); }
+// std::pow once a point (not once to test and again to compute), then the results that are not
+// finite counted where points run and replaced by 0.
 void pow_(Exec& x, const Instr& in) {
-    map2Checked(x, in, [](float a, float b) { return std::pow(a, b); },
-                [](float a, float b) { return !std::isfinite(std::pow(a, b)); });
+    map2(x, in, [](float a, float b) { return std::pow(a, b); });
+    RegView d = x.view(in.a[0]);
+    const int nc = d.comps * d.elems;
+    int count = 0;
+    for (int c = 0; c < nc; ++c) {
+        float* p = d.comp(c);
+        count += countBad(x, d.w, [&](int i) { return !std::isfinite(p[i]); });
+        for (int i = 0; i < d.w; ++i)
+            if (!std::isfinite(p[i])) p[i] = 0.0f;
+    }
+    if (count) x.sanitised(count);
 }
 void exp_(Exec& x, const Instr& in) { map1(x, in, [](float a) { return std::exp(a); }); }
 void sqrt_(Exec& x, const Instr& in) {
@@ -198,7 +235,25 @@ void log2_(Exec& x, const Instr& in) {
                 [](float a, float b) { return !(a > 0.0f) || !(b > 0.0f) || b == 1.0f; });
 }
 void mod(Exec& x, const Instr& in) {
-    map2Checked(x, in, [](float a, float b) { return a - b * std::floor(a / b); }, [](float, float b) { return b == 0.0f; });
+    RegView d = x.view(in.a[0]);
+    if (!d.varying) {
+        map2Checked(x, in, [](float a, float b) { return a - b * std::floor(a / b); }, [](float, float b) { return b == 0.0f; });
+        return;
+    }
+    // Varying: the zeros counted (as div does), then each component through the grid kernel.
+    RegView b = x.view(in.a[2]);
+    const int nc = d.comps * d.elems;
+    int count = 0;
+    for (int c = 0; c < nc; ++c) {
+        const float* bp = b.comp(b.comps * b.elems > 1 ? c : 0);
+        count += countBad(x, d.w, [&](int i) { return bp[b.varying ? i : 0] == 0.0f; });
+    }
+    if (count) x.sanitised(count);
+    RegView a = x.view(in.a[1]);
+    const GridKernels& k = x.vm.kernels();
+    for (int c = 0; c < nc; ++c)
+        k.mod(size_t(d.w), a.comp(a.comps * a.elems > 1 ? c : 0), a.varying, b.comp(b.comps * b.elems > 1 ? c : 0),
+              b.varying, d.comp(c));
 }
 void abs_(Exec& x, const Instr& in) { map1(x, in, [](float a) { return std::fabs(a); }); }
 void sign(Exec& x, const Instr& in) {
@@ -207,17 +262,21 @@ void sign(Exec& x, const Instr& in) {
 void floor_(Exec& x, const Instr& in) { map1(x, in, [](float a) { return std::floor(a); }); }
 void ceil_(Exec& x, const Instr& in) { map1(x, in, [](float a) { return std::ceil(a); }); }
 void round_(Exec& x, const Instr& in) { map1(x, in, [](float a) { return std::round(a); }); }
-void min_(Exec& x, const Instr& in) { map2(x, in, [](float a, float b) { return std::min(a, b); }); }
-void max_(Exec& x, const Instr& in) { map2(x, in, [](float a, float b) { return std::max(a, b); }); }
+void min_(Exec& x, const Instr& in) {
+    map2Kernel(x, in, x.vm.kernels().min, [](float a, float b) { return std::min(a, b); });
+}
+void max_(Exec& x, const Instr& in) {
+    map2Kernel(x, in, x.vm.kernels().max, [](float a, float b) { return std::max(a, b); });
+}
 void clamp(Exec& x, const Instr& in) {
     map3(x, in, [](float a, float lo, float hi) { return std::min(std::max(a, lo), hi); });
 }
 void mix(Exec& x, const Instr& in) {
-    map3(x, in, [](float a, float b, float t) { return a * (1.0f - t) + b * t; });
+    map3Kernel(x, in, x.vm.kernels().mix, [](float a, float b, float t) { return a * (1.0f - t) + b * t; });
 }
 void step(Exec& x, const Instr& in) { map2(x, in, [](float e, float v) { return v < e ? 0.0f : 1.0f; }); }
 void smoothstep(Exec& x, const Instr& in) {
-    map3(x, in, [](float e0, float e1, float v) {
+    map3Kernel(x, in, x.vm.kernels().smoothstep, [](float e0, float e1, float v) {
         if (v <= e0) return 0.0f;
         if (v >= e1) return 1.0f;
         float t = (v - e0) / (e1 - e0);
