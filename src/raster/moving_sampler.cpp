@@ -296,6 +296,11 @@ void GridRasterizer::sampleMoving(const Grid& grid, const Camera& camera, ImageB
                             frag.solid = solidTag(grid.solid, entersSolid(at.x, at.y, h, grid.frontWinding));
                         }
                         const int32_t fk = keepFrameFragment(block, fi, pi, sj, frag, rec);
+                        if (solid && A)  // the surface the sample may show (film.cpp's solidSurfaces)
+                            writeAovs(block.fragmentAov(fk), A, h, [&](int c, int a) {
+                                const size_t v = size_t(idx[c]) * size_t(A) + size_t(a);
+                                return lerp(av0[v], av1[v], sg);
+                            });
                         ++fragments;
                         if (Shadowed)
                             writeShadowed(block.fragmentShadowed(fk), block.fragmentStillTested(fk), false, K, h, [&](int c, int k) {

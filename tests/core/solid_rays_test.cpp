@@ -2,7 +2,8 @@
 // a solid's boundary only where it bounds the solid's result, as eye rays and shadow rays do. A
 // floor whose shader casts its rays along one direction sees the solid as a parallel projection:
 // the solids of the shadow tests (solid_shadows_test.cpp), built about the axis along that
-// direction, show areas with closed forms.
+// direction, show areas with closed forms. And a solid's output variables are those of the
+// surface its colour comes from.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -265,6 +266,51 @@ TEST(SolidRays, ThreadCountDoesNotChangePixels) {
             const std::string rib = movingBite(s, shader, m.options);
             EXPECT_TRUE(test::identicalPixels(renderRib(rib, one), renderRib(rib, two))) << shader;
         }
+    }
+}
+
+// The value of channel `name` at pixel (x, y), or NaN when the frame has no such channel.
+float aovAt(const FrameImage& f, const std::string& name, int x, int y) {
+    for (size_t c = 0; c < f.aovNames.size(); ++c)
+        if (f.aovNames[c] == name) return f.aov[(size_t(y) * size_t(f.width) + size_t(x)) * f.aovNames.size() + c];
+    return std::nanf("");
+}
+
+// The camera looks into a bite taken out of A's front (B of radius 10, 12 in front of C): B's inside
+// (green) where the spheres meet, A (red) around it, a blue floor behind. Every pixel is covered,
+// the members are opaque and their Ci is their Cs: the output variable Cs of each pixel is its
+// colour, whether B stands still or moves across the exposure (the moving sampler).
+TEST(SolidRays, OutputVariablesComeFromTheSurfaceTheColourShows) {
+    for (const bool moving : {false, true}) {
+        SCOPED_TRACE(moving ? "moving" : "still");
+        const std::string b =
+            moving ? "SolidBegin \"primitive\"\nAttributeBegin\nColor [0 1 0]\nMotionBegin [0 1]\nTranslate 36 40 28\n"
+                     "Translate 42 40 28\nMotionEnd\nSphere 10 -10 10 360\nAttributeEnd\nSolidEnd\n"
+                   : sphereAt(kCx, kCy, kCz - 12, 10, kGreen);
+        const std::string rib =
+            test::orthoHeader(kW, kH,
+                              "PixelSamples 3 3\nShutter 0 1\nDisplay \"out.exr\" \"openexr\" \"rgba\"\n"
+                              "Display \"+aov.exr\" \"openexr\" \"Cs\"\n") +
+            "AttributeBegin\nColor [0 0 1]\n" + test::square(0, kW, 0, kH, kFloor) + "AttributeEnd\n" +
+            solid("difference", sphereA() + b) + "WorldEnd\n";
+        const RenderResult r = renderRib(rib);
+        const FrameImage& f = r.frame(0);
+        ASSERT_EQ(f.aovNames, (std::vector<std::string>{"Cs.R", "Cs.G", "Cs.B"}));
+        int red = 0, green = 0, mixed = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_NEAR(aovAt(f, std::string("Cs.") + "RGB"[c], x, y), r.channel(0, x, y, c), 1e-5f)
+                        << x << " " << y << " " << c;
+                red += r.channel(0, x, y, 0) == 1.0f;
+                green += r.channel(0, x, y, 1) == 1.0f;
+                mixed += r.channel(0, x, y, 1) > 0.1f && r.channel(0, x, y, 1) < 0.9f;
+            }
+        // The bite's wall: the disc where the spheres meet (z = 40 - 12.5), radius sqrt(256 - 12.5^2)
+        // = 9.99, 313 pixels; A's disc less it, 491 (less the pixels along the outlines).
+        EXPECT_GT(red, moving ? 300 : 400);  // the moving bite sweeps more of A
+        EXPECT_GT(green, moving ? 100 : 250);
+        EXPECT_GT(mixed, moving ? 20 : 0);
     }
 }
 
