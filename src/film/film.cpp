@@ -396,6 +396,18 @@ void solidSurfaces(const ImageBlock& block, const SampleHit* hits, const float* 
     }
 }
 
+// Frame fi's samples of pixel i for its output variables, with solids (solidSurfaces). Out of
+// line, so that resolveTile's code for scenes without solids stays as it was.
+__attribute__((noinline)) std::pair<const SampleHit*, const float*> frameSolidSurfaces(const ImageBlock& block, int fi,
+                                                                                      size_t i, ResolveScratch& scratch) {
+    const SampleHit* rec = block.record(fi, i);
+    const bool own = rec != nullptr;
+    solidSurfaces(block, own ? rec : block.still(i), own ? block.aovs(fi, i) : block.stillAov(i),
+                  own ? block.recordFragments(fi, i) : block.stillFragments(i),
+                  own && !block.dense() ? block.stillFragments(i) : nullptr, scratch);
+    return {scratch.solidHits.data(), scratch.solidAov.data()};
+}
+
 }  // namespace
 
 void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& frames, size_t tileIndex,
@@ -566,12 +578,8 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
                 gatherAovs(
                     block, fw, x, y,
                     [&](size_t i) -> Samples {
-                        const SampleHit* rec = block.record(fi, i);
-                        if (!rec) return stillSamples(i);
-                        if (!solidFragments) return {rec, block.aovs(fi, i)};
-                        solidSurfaces(block, rec, block.aovs(fi, i), block.recordFragments(fi, i),
-                                      dense ? nullptr : block.stillFragments(i), scratch);
-                        return {scratch.solidHits.data(), scratch.solidAov.data()};
+                        if (!solidFragments) return {block.hits(fi, i), block.aovs(fi, i)};
+                        return frameSolidSurfaces(block, fi, i, scratch);
                     },
                     scratch.aov.data(), px + 5);
             else
