@@ -33,6 +33,8 @@ std::string num(double v) { return std::to_string(v); }
 
 // The floor's shaders: red and green of what the ray meets (its members are red and green).
 const char* kMirror = "surface mirror() { Ci = trace(P, vector(-1, 0, -1)); Oi = 1; }\n";
+// The same through environment("raytrace").
+const char* kEnvMirror = "surface envmirror() { Ci = color environment(\"raytrace\", vector(-1, 0, -1)); Oi = 1; }\n";
 // One gather() ray along the axis: red 1 where it hits, green and blue the hit's red and green.
 const char* kGatherer = R"(
 surface gatherer() {
@@ -51,6 +53,7 @@ struct RayShaders {
     test::ShaderDir dir;
     RayShaders() {
         dir.add("mirror", kMirror);
+        dir.add("envmirror", kEnvMirror);
         dir.add("gatherer", kGatherer);
         dir.add("seethrough", kSeeThrough);
     }
@@ -115,20 +118,21 @@ TEST(SolidRays, TraceSeesTheCavityWallThroughTheBite) {
     const RayShaders s;
     const double want = capArea(24, 12);
     ASSERT_NEAR(want, 898.4, 0.5);
-    for (const Mode& m : kModes) {
-        SCOPED_TRACE(algorithmName(m.algorithm));
-        const RenderResult r = renderRib(s.header("mirror", m.options) +
-                                             solid("difference", sphereA() + biteFacingTheFloor(24, 12)) + "WorldEnd\n",
-                                         test::optionsFor(m.algorithm));
-        ASSERT_GT(r.stats.counters.shaderRays, 0u);
-        // Rays within the circle where the spheres meet enter the result through B's inside (green);
-        // outside it they cross A inside B, none of the result. A's cap towards the floor (red),
-        // what a ray meets first as plain surfaces, is removed.
-        EXPECT_NEAR(channelSum(r, 1), want, m.tolerance * want);
-        EXPECT_LT(channelSum(r, 0), 1e-3 * want);
-        // As plain surfaces B's whole disc would show (green), 2.6 times the cavity's.
-        EXPECT_GT(kPi * 24 * 24 * kRoot2, 2.5 * want);
-    }
+    for (const Mode& m : kModes)
+        for (const char* shader : {"mirror", "envmirror"}) {
+            SCOPED_TRACE(std::string(algorithmName(m.algorithm)) + " " + shader);
+            const RenderResult r = renderRib(s.header(shader, m.options) +
+                                                 solid("difference", sphereA() + biteFacingTheFloor(24, 12)) + "WorldEnd\n",
+                                             test::optionsFor(m.algorithm));
+            ASSERT_GT(r.stats.counters.shaderRays, 0u);
+            // Rays within the circle where the spheres meet enter the result through B's inside (green);
+            // outside it they cross A inside B, none of the result. A's cap towards the floor (red),
+            // what a ray meets first as plain surfaces, is removed.
+            EXPECT_NEAR(channelSum(r, 1), want, m.tolerance * want);
+            EXPECT_LT(channelSum(r, 0), 1e-3 * want);
+            // As plain surfaces B's whole disc would show (green), 2.6 times the cavity's.
+            EXPECT_GT(kPi * 24 * 24 * kRoot2, 2.5 * want);
+        }
 }
 
 TEST(SolidRays, TraceSeesTheCapFromOutside) {
