@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 namespace streyes {
 
@@ -268,10 +269,10 @@ void gatherTile(const ImageBlock& block, const FilterWeights& fw, const PixelRec
         }
 }
 
-// The output variables of tile pixel (x, y) from `hitsOf` and `aovsOf` (pixel index -> its S hits,
-// its S x A floats): the weighted mean over the samples that hit (coverage-aware: see film.h).
-template <typename HitsOf, typename AovsOf>
-void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int x, int y, HitsOf hitsOf, AovsOf aovsOf, float* acc,
+// The output variables of tile pixel (x, y) from `samplesOf` (pixel index -> its S hits and their
+// S x A floats): the weighted mean over the samples that hit (coverage-aware: see film.h).
+template <typename SamplesOf>
+void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int x, int y, SamplesOf samplesOf, float* acc,
                 float* out) {
     const PixelRect& R = block.rect();
     const int S = block.samplesPerPixel(), gx = fw.reachX(), gy = fw.reachY(), A = block.aovCount();
@@ -280,8 +281,7 @@ void gatherAovs(const ImageBlock& block, const FilterWeights& fw, int x, int y, 
     for (int py = std::max(R.y0, y - gy); py <= std::min(R.y1, y + gy); ++py)
         for (int px = std::max(R.x0, x - gx); px <= std::min(R.x1, x + gx); ++px) {
             const size_t i = block.pixelIndex(px, py);
-            const SampleHit* h = hitsOf(i);
-            const float* av = aovsOf(i);
+            const auto [h, av] = samplesOf(i);
             const float* w = fw.weights(block.patternOf(i), x - px, y - py);
             for (int j = 0; j < S; ++j) {
                 if (h[j].empty() || w[j] == 0) continue;
@@ -362,6 +362,50 @@ const SampleHit* solidDepths(const ImageBlock& block, const SampleHit* hits, con
             }
     }
     return scratch.solidHits.data();
+}
+
+// With solids and output variables: a sample whose nearest opaque surface is a solid's crossing
+// the walk keeps (solidDepths' surface) shows that crossing's variables, as its colour does, and
+// counts as a hit. The samples' hits and variables into scratch.solidHits and scratch.solidAov.
+void solidSurfaces(const ImageBlock& block, const SampleHit* hits, const float* aovs, const int32_t* own,
+                   const int32_t* shared, ResolveScratch& scratch) {
+    const int S = block.samplesPerPixel();
+    const size_t A = size_t(block.aovCount());
+    scratch.solidHits.assign(hits, hits + S);
+    scratch.solidAov.assign(aovs, aovs + size_t(S) * A);
+    std::vector<int32_t>& ks = scratch.fragmentIndices;
+    for (int j = 0; j < S; ++j) {
+        ks.clear();
+        for (const int32_t* heads : {own, shared})
+            if (heads)
+                for (int32_t k = heads[j]; k >= 0; k = block.fragment(k).next) {
+                    const SampleFragment& f = block.fragment(k);
+                    if (f.solid >= 0 && hits[j].beatenBy(f.z, f.id, f.c)) ks.push_back(k);
+                }
+        if (ks.empty()) continue;
+        std::sort(ks.begin(), ks.end(), [&](int32_t x, int32_t y) { return block.fragment(x).before(block.fragment(y)); });
+        scratch.solidWalk.reset(*block.solids());
+        for (const int32_t k : ks) {
+            const SampleFragment& f = block.fragment(k);
+            if (scratch.solidWalk.cross(solidLeafOf(f.solid), solidEnters(f.solid)) && f.t == Color{0, 0, 0}) {
+                scratch.solidHits[size_t(j)].z = f.z;
+                std::copy(block.fragmentAov(k), block.fragmentAov(k) + A, &scratch.solidAov[size_t(j) * A]);
+                break;
+            }
+        }
+    }
+}
+
+// Frame fi's samples of pixel i for its output variables, with solids (solidSurfaces). Out of
+// line, so that resolveTile's code for scenes without solids stays as it was.
+__attribute__((noinline)) std::pair<const SampleHit*, const float*> frameSolidSurfaces(const ImageBlock& block, int fi,
+                                                                                      size_t i, ResolveScratch& scratch) {
+    const SampleHit* rec = block.record(fi, i);
+    const bool own = rec != nullptr;
+    solidSurfaces(block, own ? rec : block.still(i), own ? block.aovs(fi, i) : block.stillAov(i),
+                  own ? block.recordFragments(fi, i) : block.stillFragments(i),
+                  own && !block.dense() ? block.stillFragments(i) : nullptr, scratch);
+    return {scratch.solidHits.data(), scratch.solidAov.data()};
 }
 
 }  // namespace
@@ -469,16 +513,22 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
 
     // Output variables likewise, weighed by the opaque hits: the still layer's once, a frame's own
     // where it has records near.
+    // A solid's crossing may be a sample's surface (solidSurfaces).
     const int A = block.aovCount();
     const size_t Az = size_t(A);
+    using Samples = std::pair<const SampleHit*, const float*>;
+    auto stillSamples = [&](size_t i) -> Samples {
+        if (!solidFragments) return {block.still(i), block.stillAov(i)};
+        solidSurfaces(block, block.still(i), block.stillAov(i), block.stillFragments(i), nullptr, scratch);
+        return {scratch.solidHits.data(), scratch.solidAov.data()};
+    };
     if (A > 0) {
         scratch.aov.resize(Az);
         if (!dense) {
             scratch.stillAov.resize(tilePixels * Az);
             for (int y = tile.y0; y <= tile.y1; ++y)
                 for (int x = tile.x0; x <= tile.x1; ++x)
-                    gatherAovs(block, fw, x, y, [&](size_t i) { return block.still(i); },
-                               [&](size_t i) { return block.stillAov(i); }, scratch.aov.data(),
+                    gatherAovs(block, fw, x, y, stillSamples, scratch.aov.data(),
                                &scratch.stillAov[(size_t(y - tile.y0) * size_t(tw) + size_t(x - tile.x0)) * Az]);
         }
     }
@@ -525,8 +575,13 @@ void resolveTile(const ImageBlock& block, const FilterWeights& fw, TiledFrames& 
             if (!scratch.gathered[t]) putStill(t, own + t * size_t(C));
         auto outputVariables = [&](int x, int y, float* px) {
             if (writeAov)
-                gatherAovs(block, fw, x, y, [&](size_t i) { return block.hits(fi, i); },
-                           [&](size_t i) { return block.aovs(fi, i); }, scratch.aov.data(), px + 5);
+                gatherAovs(
+                    block, fw, x, y,
+                    [&](size_t i) -> Samples {
+                        if (!solidFragments) return {block.hits(fi, i), block.aovs(fi, i)};
+                        return frameSolidSurfaces(block, fi, i, scratch);
+                    },
+                    scratch.aov.data(), px + 5);
             else
                 std::fill(px + 5, px + C, 0.0f);
         };

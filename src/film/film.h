@@ -132,6 +132,8 @@ struct ResolveScratch {
     std::vector<SampleFragment> fragments;  // one sample's, being sorted
     SolidWalk solidWalk;                    // one sample's crossings of solids (geom/solid_tree.h)
     std::vector<SampleHit> solidHits;       // one pixel's hits with solids' depths (film.cpp solidDepths)
+    std::vector<float> solidAov;            // and its output variables, a solid's where it shows one (solidSurfaces)
+    std::vector<int32_t> fragmentIndices;   // one sample's solids' fragments, being sorted
 };
 
 // Resolves the samples of every frame of the block into the pixels of tile `tileIndex` of `frames`

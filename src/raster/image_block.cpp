@@ -90,6 +90,7 @@ void ImageBlock::reset(const PixelRect& rect, int firstFrame, int frameCount, co
     fragments_.clear();
     fragmentShadowed_.clear();
     fragmentStillTested_.clear();
+    fragmentAov_.clear();
 }
 
 void ImageBlock::makeFragmentHeads() {
@@ -160,7 +161,8 @@ size_t ImageBlock::bytes() const {
            stillTested_.capacity() + fragmentStillTested_.capacity() +
            (stillAov_.capacity() + aovChunks_.size() * chunkSamples_ * size_t(aovs_)) * sizeof(float) +
            (stillHeads_.capacity() + recordHeads_.capacity()) * sizeof(int32_t) +
-           fragments_.capacity() * sizeof(SampleFragment) + fragmentShadowed_.capacity() * sizeof(Color);
+           fragments_.capacity() * sizeof(SampleFragment) + fragmentShadowed_.capacity() * sizeof(Color) +
+           fragmentAov_.capacity() * sizeof(float);
 }
 
 }  // namespace streyes

@@ -264,6 +264,8 @@ class ImageBlock {
             fragmentShadowed_.resize(fragments_.size() * size_t(shadowSlots_));
             fragmentStillTested_.resize(fragments_.size());
         }
+        // A solid's crossing may be the surface its sample shows: its output variables are kept.
+        if (aovs_ > 0 && f.solid >= 0) fragmentAov_.resize(fragments_.size() * size_t(aovs_));
         return *head;
     }
     // Makes the list heads (call before the first addFragment of a bucket; then a no-op).
@@ -275,6 +277,10 @@ class ImageBlock {
     // With shadows: the shadowed parts of fragment k, shadowSlots() colours.
     Color* fragmentShadowed(int32_t k) { return &fragmentShadowed_[size_t(k) * size_t(shadowSlots_)]; }
     uint8_t* fragmentStillTested(int32_t k) { return &fragmentStillTested_[size_t(k)]; }  // as stillTested()
+    // With output variables: those of fragment k, a solid's crossing (aovCount() floats; written by
+    // the samplers, read where the resolve's walk keeps it as the sample's surface).
+    float* fragmentAov(int32_t k) { return &fragmentAov_[size_t(k) * size_t(aovs_)]; }
+    const float* fragmentAov(int32_t k) const { return &fragmentAov_[size_t(k) * size_t(aovs_)]; }
 
     // The scene's solids, which fragments' tags (SampleFragment::solid) point into; null when the
     // scene has none. Set after reset, read when the block is resolved.
@@ -340,6 +346,7 @@ class ImageBlock {
     std::vector<SampleFragment> fragments_;
     std::vector<Color> fragmentShadowed_;  // fragments x shadowSlots
     std::vector<uint8_t> fragmentStillTested_;  // per fragment
+    std::vector<float> fragmentAov_;            // fragments x aovs_, up to the last solid's
 };
 
 }  // namespace streyes

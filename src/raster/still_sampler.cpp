@@ -138,7 +138,10 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         if (!fragmentBeats(cur, q.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) return;
                         if (solid) frag.solid = solidTag(grid.solid, entersSolid(q.x, q.y, h, grid.frontWinding));
                         block.startFragments();
-                        block.addFragment(block.stillFragments(pi) + sj, frag);
+                        const int32_t fk = block.addFragment(block.stillFragments(pi) + sj, frag);
+                        if (solid && A)  // the surface the sample may show (film.cpp's solidSurfaces)
+                            writeAovs(block.fragmentAov(fk), A, h,
+                                      [&](int c, int a) { return av[size_t(idx[c]) * size_t(A) + size_t(a)]; });
                         ++fragments;
                         return;
                     }
@@ -170,6 +173,9 @@ void GridRasterizer::sampleStill(const Grid& grid, const Camera& camera, ImageBl
                         if (!fragmentBeats(cur, q.z, h, nearZ, farZ, id, colorAt, opacityAt, &frag)) continue;
                         if (solid) frag.solid = solidTag(grid.solid, entersSolid(q.x, q.y, h, grid.frontWinding));
                         const int32_t fk = keepFrameFragment(block, fr.fi, pi, sj, frag, rec);
+                        if (solid && A)
+                            writeAovs(block.fragmentAov(fk), A, h,
+                                      [&](int c, int a) { return av[size_t(idx[c]) * size_t(A) + size_t(a)]; });
                         ++fragments;
                         if (Shadowed)
                             writeShadowed(block.fragmentShadowed(fk), block.fragmentStillTested(fk), stillTested, K, h,

@@ -263,7 +263,8 @@ bool ShaderRays::shadeAlong(const Ray& ray, double time, float tMin, float tMax,
     layers.swap(layers_);
     layers.clear();
     TraceHit h;
-    while (tMin < tMax && bvh.intersect(ray, time, tMin, tMax, &h, ctx_)) {
+    // Past the first hit, the walk through solids goes on from where the last call left it.
+    while (tMin < tMax && bvh.intersectResult(ray, time, tMin, tMax, &h, ctx_, any)) {
         any = true;
         Color o;
         const TrilinearBody& body = *bvh.bodies()[h.body];
@@ -404,7 +405,9 @@ void ShaderRays::transmission(const sl::RayOptions& o, const sl::RayQuery& q, fl
             // shader leaves of white (Ci 1, Oi 0 in): the part before each hit, and past the last.
             Vec3f from = p;
             Volume last;
-            while (tMin < tMax && bvh.intersect(ray, q.time, tMin, tMax, &h, ctx_)) {
+            bool resume = false;  // past the first hit (shadeAlong)
+            while (tMin < tMax && bvh.intersectResult(ray, q.time, tMin, tMax, &h, ctx_, resume)) {
+                resume = true;
                 const TrilinearBody& body = *bvh.bodies()[h.body];
                 const Vec3f at = ray.o + ray.d * h.t;
                 if (const Volume v = volumeAt(body, h, ray, q.time, false); v.shader) {
@@ -455,7 +458,7 @@ void ShaderRays::gather(const sl::RayOptions& o, const sl::RayQuery& q, int samp
         const Ray ray{p, d};
         TraceHit h;
         ++rays_;
-        if (!bvh.intersect(ray, q.time, biasAt(o, p, q.time), o.maxdist, &h, ctx_)) continue;
+        if (!bvh.intersectResult(ray, q.time, biasAt(o, p, q.time), o.maxdist, &h, ctx_)) continue;
         out.hit[i] = 1;
         const TrilinearBody& body = *bvh.bodies()[h.body];
         Color opacity;

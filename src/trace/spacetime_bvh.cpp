@@ -445,7 +445,11 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
     constexpr bool AnyHit = M != Mode::Nearest;
     // Through solids, boxes are culled at no distance: a solid's crossings beyond tMax tell
     // which of its leaves the ray starts in.
-    float best = M == Mode::AnyThroughSolids ? std::numeric_limits<float>::infinity() : tMax;
+    constexpr bool ThroughSolids = M == Mode::AnyThroughSolids || M == Mode::NearestThroughSolids;
+    float best = ThroughSolids ? std::numeric_limits<float>::infinity() : tMax;
+    // The nearest plain surface's distance so far: `best` itself but through solids.
+    float plainNearest = tMax;
+    float& nearest = M == Mode::NearestThroughSolids ? plainNearest : best;
     bool found = false;
 
     if (ctx.stack.size() < size_t(16 * (depth_ + 2))) ctx.stack.resize(size_t(16 * (depth_ + 2)));
@@ -481,21 +485,31 @@ bool SpacetimeBVH::traverse(const Ray& ray, double time, float tMin, float tMax,
                     if (!intersectBilinearPatch(b.cornersAt(time), ray, tMin, best, &h)) continue;
                     // Entering where its outside faces the ray, as an eye ray's crossing (sample_tracer.cpp).
                     const Vec3f n = bilinearNormal(b.cornersAt(time), h.u, h.v);
-                    ctx.crossings.push_back({h.t, solidTag(m->solid, dot(m->flipNormals ? -n : n, ray.d) < 0)});
+                    ctx.crossings.push_back({h.t, solidTag(m->solid, dot(m->flipNormals ? -n : n, ray.d) < 0), h.u, h.v, bi});
                 } else {
+                    if constexpr (M == Mode::NearestThroughSolids) {
+                        // A solid's crossing, at any distance (as a shadow ray's): the walk decides.
+                        if (const Material* m = b.material(); m && m->solid >= 0) {
+                            if (!intersectBilinearPatch(b.cornersAt(time), ray, tMin, best, &h)) continue;
+                            const Vec3f n = bilinearNormal(b.cornersAt(time), h.u, h.v);
+                            ctx.crossings.push_back(
+                                {h.t, solidTag(m->solid, dot(m->flipNormals ? -n : n, ray.d) < 0), h.u, h.v, bi});
+                            continue;
+                        }
+                    }
                     // At equal distance the primitive declared first wins, as in the rasterizer
                     // (SampleHit::beatenBy), and between pieces of one primitive (micropolygons
                     // meeting at a vertex a ray grazes) the first in the scene's body order: the
                     // result does not depend on traversal order, which depends on the hierarchy
                     // and so on the frames it was built over.
-                    if (!intersectBilinearPatch(b.cornersAt(time), ray, tMin, tieLimit(best), &h)) continue;
-                    if (found && h.t == best) {
+                    if (!intersectBilinearPatch(b.cornersAt(time), ray, tMin, tieLimit(nearest), &h)) continue;
+                    if (found && h.t == nearest) {
                         const uint64_t id = b.primitiveId(), bestId = bodies_[hit->body]->primitiveId();
                         if (id > bestId || (id == bestId && bi > hit->body)) continue;
                     }
                     if (facesAway(b, time, h, ray)) continue;  // Sides 1 (shadow rays still stop at it)
                     if (ctx.dissolve.block && dissolvedAway(b, ctx.dissolve)) continue;
-                    best = h.t;
+                    nearest = h.t;
                     *hit = {h.t, h.u, h.v, bi};
                     found = true;
                 }
@@ -551,21 +565,59 @@ __attribute__((noinline)) bool SpacetimeBVH::occludedThroughSolids(const Ray& ra
     cs.clear();
     if (traverse<Mode::AnyThroughSolids>(ray, time, tMin, tMax, nullptr, ctx)) return true;  // a plain surface
     if (cs.empty()) return false;
-    // Nearest first, ties by leaf and facing: the order, and so the answer, does not depend on the
-    // traversal's (which depends on the frames the hierarchy was built over).
+    startWalk(ctx, ctx.solidWalk, false);
+    for (const TraceContext::SolidCrossing& c : cs) {
+        if (!(c.t < tMax)) break;
+        if (ctx.solidWalk.cross(solidLeafOf(c.tag), solidEnters(c.tag))) return true;  // the result's surface
+    }
+    return false;
+}
+
+bool SpacetimeBVH::intersectResult(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit,
+                                   TraceContext& ctx, bool resume) const {
+    if (!solids_) return traverse<Mode::Nearest>(ray, time, tMin, tMax, hit, ctx);
+    return intersectThroughSolids(ray, time, tMin, tMax, hit, ctx, resume);
+}
+
+// Out of line, as occludedThroughSolids: the plain nearest-hit traversal keeps its code.
+__attribute__((noinline)) bool SpacetimeBVH::intersectThroughSolids(const Ray& ray, double time, float tMin,
+                                                                    float tMax, TraceHit* hit, TraceContext& ctx,
+                                                                    bool resume) const {
+    std::vector<TraceContext::SolidCrossing>& cs = ctx.crossings;
+    cs.clear();
+    const bool found = traverse<Mode::NearestThroughSolids>(ray, time, tMin, tMax, hit, ctx);  // plain surfaces
+    if (cs.empty()) return found;
+    startWalk(ctx, ctx.resultWalk, resume);
+    for (const TraceContext::SolidCrossing& c : cs) {
+        if (!(c.t < tMax)) break;
+        if (found) {  // past the nearest plain surface (at a tie, the order intersect gives them)
+            if (c.t > hit->t) break;
+            if (c.t == hit->t) {
+                const uint64_t id = bodies_[c.body]->primitiveId(), plainId = bodies_[hit->body]->primitiveId();
+                if (id > plainId || (id == plainId && c.body > hit->body)) break;
+            }
+        }
+        if (ctx.resultWalk.cross(solidLeafOf(c.tag), solidEnters(c.tag))) {  // the result's surface
+            *hit = {c.t, c.u, c.v, c.body};
+            return true;
+        }
+    }
+    return found;
+}
+
+void SpacetimeBVH::startWalk(TraceContext& ctx, SolidWalk& walk, bool resume) const {
+    std::vector<TraceContext::SolidCrossing>& cs = ctx.crossings;
+    // Nearest first, ties by leaf and facing, then body: the order, and so the answer, does not
+    // depend on the traversal's (which depends on the frames the hierarchy was built over; the
+    // bodies' order is the scene's in every hierarchy).
     std::sort(cs.begin(), cs.end(), [](const TraceContext::SolidCrossing& a, const TraceContext::SolidCrossing& b) {
-        return a.t < b.t || (a.t == b.t && a.tag < b.tag);
+        return a.t < b.t || (a.t == b.t && (a.tag < b.tag || (a.tag == b.tag && a.body < b.body)));
     });
-    SolidWalk& walk = ctx.solidWalk;
+    if (resume) return;  // each leaf is on the side the last call's walk left it
     walk.reset(*solids_);
     // Where the ray starts, each leaf it crosses is on the side its nearest crossing leaves
     // (set farthest first, so the nearest crossing's state stays).
     for (size_t i = cs.size(); i-- > 0;) walk.start(solidLeafOf(cs[i].tag), !solidEnters(cs[i].tag));
-    for (const TraceContext::SolidCrossing& c : cs) {
-        if (!(c.t < tMax)) break;
-        if (walk.cross(solidLeafOf(c.tag), solidEnters(c.tag))) return true;  // the result's surface
-    }
-    return false;
 }
 
 }  // namespace streyes

@@ -61,13 +61,19 @@ struct TraceContext {
         size_t pixel = 0;
         int sample = 0;
     } dissolve;
-    // A shadow ray's crossings of solids' boundaries (t and solidTag), and the walk through them.
+    // A ray's crossings of solids' boundaries (t and solidTag; where on which body, for nearest
+    // hits), and the walk through them.
     struct SolidCrossing {
         float t;
         int32_t tag;
+        float u, v;
+        uint32_t body;
     };
     std::vector<SolidCrossing> crossings;
     SolidWalk solidWalk;
+    // A nearest-hit ray's walk (intersectResult), kept apart: it goes on from where the last call
+    // left it, past shadow rays the hit's shading casts.
+    SolidWalk resultWalk;
 };
 
 class SpacetimeBVH {
@@ -81,8 +87,18 @@ class SpacetimeBVH {
     void build(const std::vector<const TrilinearBody*>& bodies, double ta, double tb, const Bounds3f& include,
                const HierarchyOptions& options, const SolidTree* solids = nullptr);
 
-    // Nearest hit with tMin < t < tMax at time `time`; false when none.
+    // Nearest hit with tMin < t < tMax at time `time`; false when none. A solid's members are hit
+    // as any surface: eye rays walk their crossings from the eye (SampleTracer::traceSamples).
     bool intersect(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit, TraceContext& ctx) const;
+    // The nearest hit that is a surface of what the scene shows (shaders' rays: trace(), gather(),
+    // transmission(), ...): as intersect, but a solid's boundary is hit only where the ray goes in
+    // or out of the solid's result, the leaves' states where the ray starts told by their crossings
+    // as occluded() tells them. Without solids, intersect. `resume`: the ray of the last call with
+    // ctx, gone on past its hit (tMin beyond it): the leaves are where that call left them, so
+    // that a second crossing of a surface it already crossed (a ray through an edge two
+    // micropolygons share) is not one of the result's again.
+    bool intersectResult(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit, TraceContext& ctx,
+                         bool resume = false) const;
     // Whether anything is hit with tMin < t < tMax at time `time` (shadow rays). A solid's boundary
     // blocks only where the ray goes in or out of the solid's result (geom/solid_tree.h): the ray
     // is walked through every crossing of the solids it meets, beyond tMax too, since where it
@@ -131,8 +147,13 @@ class SpacetimeBVH {
   private:
     // Whether an eye ray's hit is on the inside of a one-sided surface (Sides 1): passed through.
     static bool facesAway(const TrilinearBody& b, double time, const PatchHit& h, const Ray& ray);
-    enum class Mode { Nearest, Any, AnyThroughSolids };
+    enum class Mode { Nearest, Any, AnyThroughSolids, NearestThroughSolids };
     bool occludedThroughSolids(const Ray& ray, double time, float tMin, float tMax, TraceContext& ctx) const;
+    bool intersectThroughSolids(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit,
+                                TraceContext& ctx, bool resume) const;
+    // Sorts ctx.crossings (nearest first, ties by tag and body) and, unless resuming, sets `walk`
+    // to each leaf's state where the ray starts.
+    void startWalk(TraceContext& ctx, SolidWalk& walk, bool resume) const;
     template <Mode M>
     bool traverse(const Ray& ray, double time, float tMin, float tMax, TraceHit* hit, TraceContext& ctx) const;
 
