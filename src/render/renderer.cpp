@@ -286,7 +286,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     // cut in time, and holds less a frame than a block), and measured, so that the memory plan
     // chooses a block that fits before anything is built over it. Those two frames are then
     // rendered as a block of their own (a frame's pixels do not depend on its block).
-    const bool traceBlocks = !traceFrames && frames > 1;
+    bool traceBlocks = !traceFrames && frames > 1;  // and something traced moves (below)
     bool spacetimeHierarchy = false, shadowHierarchies = false;
     int builtFirst = s.firstFrame, builtCount = std::min({block, frames, 2});  // the frames they were last built over
     auto buildBlockHierarchies = [&] {
@@ -321,6 +321,9 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                 !raytraces(options_.algorithm) && scene_->lights.shadowSlots() > 0 && !options_.depthPass;
             if (!traceFrames) {
                 spacetimeHierarchy = !shadowHierarchies || (shaders_ && shaders_->tracesRays());
+                // Where nothing traced moves or comes and goes, the hierarchies are the same over
+                // any frames: built once, over them all.
+                traceBlocks = traceBlocks && trace->changesOverFrames();
                 if (traceBlocks) trace->setFrames(builtFirst, builtCount);
                 buildBlockHierarchies();
                 if (traceBlocks) {

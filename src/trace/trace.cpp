@@ -140,6 +140,12 @@ void TraceScene::setFrames(int first, int count) {
     windowEnd_ = std::min(scene_.renderedEnd, first + count - 1 + scene_.shutter.close);
 }
 
+bool TraceScene::changesOverFrames() const {
+    return std::any_of(bodies_.begin(), bodies_.end(), [&](const TrilinearBody* b) {
+        return b->moving() || b->time().t0 > scene_.renderedStart || b->time().t1 < scene_.renderedEnd;
+    });
+}
+
 void TraceScene::buildSpacetime(const HierarchyOptions& options) {
     const double cpu = processCpuSeconds();
     frames_.clear();

@@ -53,6 +53,9 @@ class TraceScene {
     // into every time cell) grow with the block, not with the frames rendered (docs/ARCHITECTURE.md,
     // "Shadows"). A ray's answer does not depend on the hierarchy it goes through.
     void setFrames(int first, int count);
+    // Whether a body it holds moves, or begins or ends, during the frames rendered: if not, its
+    // hierarchies are the same over any of those frames.
+    bool changesOverFrames() const;
     // One 4D hierarchy over the exposures of the frames set (setFrames).
     void buildSpacetime(const HierarchyOptions& options);
     // One 3D hierarchy per frame of [first, first + count) (over its exposure), replacing those
