@@ -148,7 +148,7 @@ std::string outOfMemoryMessage(int firstFrame, int lastFrame, int width, int hei
     return "out of memory rendering " + frames + " at " + std::to_string(width) + "x" + std::to_string(height) +
            " (an allocation failed: the machine or a limit on this process, ulimit or a container, gave less than "
            "the memory budget of " + formatBytes(budget) + " it planned for): render fewer frames together (" +
-           (together > 1 ? "--frame-block " + std::to_string(std::max(1, together / 2)) + " or less"
+           (together > 1 ? "--frame-block " + std::to_string(std::max(1, together / 2)) + ", or down to 1"
                          : "--frame-block 1, as now") +
            ": a block's images and samples, and with ray tracing its hierarchies of moving bodies, grow with its frames), lower --res or "
            "--samples, or give --max-memory the memory this render may have (frame blocks and workers shrink to "

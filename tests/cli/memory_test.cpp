@@ -81,7 +81,7 @@ TEST(CliMemory, RunningOutOfMemorySaysWhatToTry) {
     EXPECT_NE(r.output.find("streyes: render failed: out of memory rendering frames 1-32 at 4096x4096"), std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("the memory budget of 64.0 GiB it planned for"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("--frame-block 16 or less"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("--frame-block 16, or down to 1"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("lower --res or --samples, or give --max-memory"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("bad_alloc"), std::string::npos) << r.output;
     // Whatever frames were written before it ran out are whole; no temporary is left.
