@@ -275,7 +275,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     // casts shadows. Made first, in an arena of the threads asked for, because tracing expands
     // every procedural up front: the memory estimate must count it. The hierarchies are built
     // again with each frame block (raytrace-frames: a 3D one per frame; the others over the block's
-    // exposures); the first frame's are built here to measure one frame's.
+    // exposures); the first frames' are built here and measured (below).
     const int threads = options_.threads > 0 ? options_.threads : tbb::this_task_arena::max_concurrency();
     const uint64_t budget = options_.maxMemoryBytes ? options_.maxMemoryBytes : defaultMemoryBudget();
     const bool traceFrames = options_.algorithm == Algorithm::RaytraceFrames;
