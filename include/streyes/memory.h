@@ -26,7 +26,10 @@ struct MemoryShape {
     bool occlusion = false;                     // buckets keep coverage and a summed-volume table
     int shadowSlots = 0;                        // lights casting shadows: a colour per sample each
     uint64_t traceBytes = 0;                    // ray tracing's bodies and spacetime hierarchy
-    uint64_t traceBytesPerFrame = 0;            // raytrace-frames: one hierarchy per frame of the block
+    uint64_t traceBytesPerFrame = 0;            // hierarchies built for each frame block, per frame of it
+    uint64_t traceBuildBytesPerFrame = 0;       // their builds' scratch, per frame of the block
+    int traceMinFrames = 1;                     // ... counted as at least this many frames' (a hierarchy
+                                                // over one exposure is not cut in time, over two it is)
     uint64_t traceBytesPerWorker = 0;           // a tracing thread's scratch (its mailbox)
     uint64_t traceBuildBytes = 0;               // a hierarchy build's own scratch, let go before the
                                                 // buckets start (raytrace-frames: during them)
@@ -56,6 +59,11 @@ struct MemoryEstimate {
 };
 
 MemoryEstimate estimateMemory(const MemoryShape& shape, int frameBlock, int workers);
+
+// What a render that ran out of memory (an allocation failed: std::bad_alloc) is told instead:
+// what ran out, where, and what to try. `budget` is the one it planned for (--max-memory, or
+// the default), `frameBlock` the most frames it renders together (--frame-block).
+std::string outOfMemoryMessage(int firstFrame, int lastFrame, int width, int height, int frameBlock, uint64_t budget);
 
 // The largest frame block up to `maxBlock` with which one worker fits `budget`, and as many
 // workers (up to `maxWorkers`) as then fit. Throws InputError, with what a block of one frame would

@@ -1,6 +1,7 @@
 // The streyes command. Exit codes: 0 done, 1 the command failed, 2 bad input or usage.
 // Each command parses its own options with CLI11 (command_line.h) and prints its own --help.
 #include <cstdio>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,10 @@ int main(int argc, char** argv) {
         return 2;
     } catch (const RenderError& e) {
         std::fprintf(stderr, "\nstreyes: render failed: %s\n", e.what());
+        return 1;
+    } catch (const std::bad_alloc&) {  // where no command said more (render does: memory.h)
+        std::fprintf(stderr, "\nstreyes: failed: out of memory (an allocation failed): give it a smaller task, "
+                             "or run it where more memory is free\n");
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "\nstreyes: render failed: %s\n", e.what());

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <new>
 #include <set>
 #include <thread>
 
@@ -377,6 +378,7 @@ int renderCommand(const std::vector<std::string>& args) {
     // compresses each on as many threads as render (after the last block the writer is alone).
     setExrEncodeThreads(opts.threads > 0 ? opts.threads : int(std::max(1u, std::thread::hardware_concurrency())));
     FrameWriter writer;
+    std::string outOfMemory;  // what an allocation that fails while rendering (or writing) says
     RenderStats total;
     ResolvedSettings first;
     int frames = 0, blocks = 0;
@@ -551,9 +553,16 @@ int renderCommand(const std::vector<std::string>& args) {
         };
         ProgressBar bar(!quiet);
         auto progress = [&](uint64_t done, uint64_t all) { bar.update(done, all); };
-        RenderStats stats = blockOpts.dofPreviewLayers > 0
-                                ? renderDofPreview(scene, blockOpts, blockOpts.dofPreviewLayers, log, sink, progress)
-                                : Renderer(scene, blockOpts, log).render(sink, progress);
+        outOfMemory = outOfMemoryMessage(rs.firstFrame, rs.lastFrame, rs.width, rs.height, blockOpts.maxFrameBlock,
+                                         blockOpts.maxMemoryBytes ? blockOpts.maxMemoryBytes : defaultMemoryBudget());
+        RenderStats stats;
+        try {
+            stats = blockOpts.dofPreviewLayers > 0
+                        ? renderDofPreview(scene, blockOpts, blockOpts.dofPreviewLayers, log, sink, progress)
+                        : Renderer(scene, blockOpts, log).render(sink, progress);
+        } catch (const std::bad_alloc&) {
+            throw RenderError(outOfMemory);
+        }
         bar.finish();
         stats.framesSkipped -= (rs.lastFrame - rs.firstFrame + 1) - int(written.size());  // other passes' frames
         addStats(stats, false);
@@ -627,7 +636,12 @@ int renderCommand(const std::vector<std::string>& args) {
         }
     }
     const auto waited = std::chrono::steady_clock::now();
-    writer.finish();
+    try {
+        writer.finish();
+    } catch (const std::bad_alloc&) {  // encoding the last frames
+        if (outOfMemory.empty()) throw;
+        throw RenderError(outOfMemory);
+    }
     stats.timeWrite += std::chrono::duration<double>(std::chrono::steady_clock::now() - waited).count();
     stats.exrChunksCompressed = exrChunkCounts().compressed - chunksBefore.compressed;
     stats.exrChunksReused = exrChunkCounts().reused - chunksBefore.reused;

@@ -268,6 +268,8 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
         std::string why;
         try {
             if (exr) bytes = encodeExrChannels(image.width, image.height, channels, data, &window);
+        } catch (const std::bad_alloc&) {
+            throw;  // out of memory, not a file's fault: the command says so (memory.h)
         } catch (const std::exception& e) {
             throw RenderError("cannot write '" + path + "': " + e.what());
         }
@@ -278,6 +280,8 @@ std::vector<unsigned char> encodeFrame(const std::string& path, const FrameImage
     } else if (exr) {
         try {
             bytes = encodeExr(image, alpha, z, &window);
+        } catch (const std::bad_alloc&) {
+            throw;  // out of memory, not a file's fault: the command says so (memory.h)
         } catch (const std::exception& e) {
             throw RenderError("cannot write '" + path + "': " + e.what());
         }

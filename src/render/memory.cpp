@@ -78,11 +78,12 @@ MemoryEstimate estimateMemory(const MemoryShape& s, int frameBlock, int workers)
     const uint64_t framesPerBucket = s.spacetime ? uint64_t(e.frameBlock) : 1;
     e.baseline = kBaselineBytes;
     e.scene = s.bodyBytes + s.sharedBytes;
-    e.trace = s.traceBytes + s.traceBytesPerFrame * uint64_t(e.frameBlock);
-    // A build's scratch: before the buckets (held with what they hold when each block builds its
-    // frames' hierarchies).
-    if (s.traceBytesPerFrame > 0) e.trace += s.traceBuildBytes;
-    else e.traceBuild = s.traceBuildBytes;
+    const uint64_t traceFrames = uint64_t(std::max(e.frameBlock, s.traceMinFrames));
+    e.trace = s.traceBytes + s.traceBytesPerFrame * traceFrames;
+    // A build's scratch: before the buckets (raytrace-frames: held with what they hold when each
+    // block builds its frames' hierarchies).
+    if (s.traceBytesPerFrame > 0 && s.traceBuildBytesPerFrame == 0) e.trace += s.traceBuildBytes;
+    else e.traceBuild = std::max(s.traceBuildBytes, s.traceBuildBytesPerFrame * traceFrames);
     const uint64_t aov = uint64_t(std::max(0, s.aovFloats)) * sizeof(float);
     e.frameImages = uint64_t(framesHeld(s, e.frameBlock)) * pixels * (kBytesPerPixel + aov);
     const uint64_t S = uint64_t(std::max(1, s.samplesPerPixel));
@@ -137,6 +138,22 @@ MemoryEstimate planMemory(const MemoryShape& asked, int maxBlock, int maxWorkers
     e.workers = int(std::min<uint64_t>(uint64_t(std::max(1, maxWorkers)), 1 + room / std::max<uint64_t>(1, e.perWorker)));
     e.gridCache = std::min(asked.gridCacheBytes, budget - std::min(budget, e.total()));
     return e;
+}
+
+std::string outOfMemoryMessage(int firstFrame, int lastFrame, int width, int height, int frameBlock, uint64_t budget) {
+    const std::string frames = firstFrame == lastFrame ? "frame " + std::to_string(firstFrame)
+                                                       : "frames " + std::to_string(firstFrame) + "-" +
+                                                             std::to_string(lastFrame);
+    const int together = std::max(1, std::min(frameBlock, lastFrame - firstFrame + 1));
+    return "out of memory rendering " + frames + " at " + std::to_string(width) + "x" + std::to_string(height) +
+           " (an allocation failed: the machine or a limit on this process, ulimit or a container, gave less than "
+           "the memory budget of " + formatBytes(budget) + " it planned for): render fewer frames together (" +
+           (together > 1 ? "--frame-block " + std::to_string(std::max(1, together / 2)) + ", or down to 1"
+                         : "--frame-block 1, as now") +
+           ": a block's images and samples, and with ray tracing its hierarchies of moving bodies, grow with its frames), lower --res or "
+           "--samples, or give --max-memory the memory this render may have (frame blocks and workers shrink to "
+           "fit it; by default three quarters of this machine's " + formatBytes(physicalMemoryBytes()) +
+           "). Frames already written are complete; no other frame was written";
 }
 
 uint64_t physicalMemoryBytes() {

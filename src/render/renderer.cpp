@@ -273,13 +273,26 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
 
     // The ray tracer's bodies and hierarchies: for eye rays, and for shadow rays when a light
     // casts shadows. Made first, in an arena of the threads asked for, because tracing expands
-    // every procedural up front: the memory estimate must count it. raytrace-frames builds a 3D
-    // hierarchy per frame with each frame block; the first frame's is built here to measure one.
+    // every procedural up front: the memory estimate must count it. The hierarchies are built
+    // again with each frame block (raytrace-frames: a 3D one per frame; the others over the block's
+    // exposures); the first frames' are built here and measured (below).
     const int threads = options_.threads > 0 ? options_.threads : tbb::this_task_arena::max_concurrency();
     const uint64_t budget = options_.maxMemoryBytes ? options_.maxMemoryBytes : defaultMemoryBudget();
     const bool traceFrames = options_.algorithm == Algorithm::RaytraceFrames;
     std::unique_ptr<TraceScene> trace;
-    uint64_t traceBytesPerFrame = 0;
+    uint64_t traceBytesPerFrame = 0, traceBuildBytesPerFrame = 0;
+    // The other algorithms' hierarchies are built again for each frame block, over its frames
+    // (TraceScene::setFrames): built here over the first two frames (one exposure alone is not
+    // cut in time, and holds less a frame than a block), and measured, so that the memory plan
+    // chooses a block that fits before anything is built over it. Those two frames are then
+    // rendered as a block of their own (a frame's pixels do not depend on its block).
+    bool traceBlocks = !traceFrames && frames > 1;  // and something traced moves (below)
+    bool spacetimeHierarchy = false, shadowHierarchies = false;
+    int builtFirst = s.firstFrame, builtCount = std::min({block, frames, 2});  // the frames they were last built over
+    auto buildBlockHierarchies = [&] {
+        if (spacetimeHierarchy) trace->buildSpacetime(options_.hierarchy);
+        if (shadowHierarchies) trace->buildShadowHierarchies(options_.hierarchy);
+    };
     // (A depth pass runs no lights: it traces no shadows.)
     // Shaders that cast rays (occlusion(), trace(), ...) need it too.
     // Interior and Exterior run over shaders' rays only (what the camera sees through the air runs
@@ -304,11 +317,20 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
             scene_->factory->setBodyBudget(0, 0);
             // The rasterizer's shadows go through their own two hierarchies (trace.h); the one
             // over every body is for eye rays and the rays shaders cast.
-            const bool shadowHierarchies =
+            shadowHierarchies =
                 !raytraces(options_.algorithm) && scene_->lights.shadowSlots() > 0 && !options_.depthPass;
             if (!traceFrames) {
-                if (!shadowHierarchies || (shaders_ && shaders_->tracesRays())) trace->buildSpacetime(options_.hierarchy);
-                if (shadowHierarchies) trace->buildShadowHierarchies(options_.hierarchy);
+                spacetimeHierarchy = !shadowHierarchies || (shaders_ && shaders_->tracesRays());
+                // Where nothing traced moves or comes and goes, the hierarchies are the same over
+                // any frames: built once, over them all.
+                traceBlocks = traceBlocks && trace->changesOverFrames();
+                if (traceBlocks) trace->setFrames(builtFirst, builtCount);
+                buildBlockHierarchies();
+                if (traceBlocks) {
+                    const uint64_t n = uint64_t(builtCount);
+                    traceBytesPerFrame = (trace->blockHierarchyBytes() + n - 1) / n;
+                    traceBuildBytesPerFrame = std::max<uint64_t>(1, (trace->blockBuildBytes() + n - 1) / n);
+                }
             } else {
                 trace->buildFrames(s.firstFrame, 1, options_.hierarchy);
                 traceBytesPerFrame = trace->hierarchyBytes();
@@ -328,13 +350,22 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     shape.gridCacheBytes = raytraces(options_.algorithm) ? 0 : options_.gridCacheBytes;
     if (trace) {
         shape.shadowSlots = raytraces(options_.algorithm) ? 0 : scene_->lights.shadowSlots();
-        shape.traceBytes = trace->bytes() - (traceFrames ? trace->hierarchyBytes() : 0);
+        shape.traceBytes = trace->bytes() - (traceFrames   ? trace->hierarchyBytes()
+                                             : traceBlocks ? trace->blockHierarchyBytes()
+                                                           : 0);
         shape.traceBytesPerFrame = traceBytesPerFrame;
+        shape.traceBuildBytesPerFrame = traceBuildBytesPerFrame;
+        shape.traceMinFrames = traceBlocks && builtCount > 1 ? 2 : 1;
         shape.traceBytesPerWorker = trace->mailboxBytes();
         shape.traceBuildBytes = trace->buildBytes();
     }
     const MemoryEstimate memory = planMemory(shape, block, threads, budget);
     block = memory.frameBlock;
+    // The first block: the frames the hierarchies were measured over, when the plan allows as many.
+    const int firstBlock = trace && traceBlocks && builtCount <= block ? builtCount : block;
+    auto blockAt = [&](int first) { return std::min(first == s.firstFrame ? firstBlock : block, s.lastFrame - first + 1); };
+    int blocks = 0;
+    for (int f = s.firstFrame; f <= s.lastFrame; f += blockAt(f)) ++blocks;
 
     RenderStats stats;
     stats.algorithm = algorithmName(options_.algorithm);
@@ -378,7 +409,7 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     stats.threads = arena.max_concurrency();
     stats.simd = pixelTestTarget();
     tbb::enumerable_thread_specific<std::unique_ptr<BucketWorker>> workers;
-    const uint64_t totalBuckets = uint64_t(tiles.size()) * uint64_t(spacetime ? (frames + block - 1) / block : frames);
+    const uint64_t totalBuckets = uint64_t(tiles.size()) * uint64_t(spacetime ? blocks : frames);
     std::atomic<uint64_t> done{0};
     double renderSeconds = 0, writeSeconds = 0;
 
@@ -405,8 +436,8 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
     for (int pass = 1;; ++pass) {
         bool again = false;
         stats.framesSkipped = 0;
-        for (int first = s.firstFrame; first <= s.lastFrame && !again; first += block) {
-            const int count = std::min(block, s.lastFrame - first + 1);
+        for (int first = s.firstFrame, count = 0; first <= s.lastFrame && !again; first += count) {
+            count = blockAt(first);
             {  // --resume: skip a block whose frames are all written
                 int n = 0;
                 for (int f = first; f < first + count; ++f) n += alreadyWritten(f);
@@ -428,11 +459,18 @@ RenderStats Renderer::render(const FrameSink& sink, const Progress& progress) {
                 }
             using Free = RenderOptions::FreeExpansions;
             release.start(spacetime ? bucketRects : std::vector<PixelRect>{},
-                          spacetime && !trace && options_.freeExpansions != Free::Never && first + block > s.lastFrame,
+                          spacetime && !trace && options_.freeExpansions != Free::Never && first + count > s.lastFrame,
                           options_.freeExpansions == Free::Always ? 0 : budget / 4,
                           [this] { return scene_->factory->bodyBytes(); });
             auto t = Clock::now();
             if (traceFrames) arena.execute([&] { trace->buildFrames(first, count, options_.hierarchy); });
+            if (trace && traceBlocks && (first != builtFirst || count != builtCount)) {
+                arena.execute([&] {
+                    trace->setFrames(first, count);
+                    buildBlockHierarchies();
+                });
+                builtFirst = first, builtCount = count;
+            }
             // The workers take the buckets in scanline order, each the next one left: they sweep the
             // image together, so that the buckets at work are neighbours (what procedurals expand
             // into is let go behind them). Pixels do not depend on the order.

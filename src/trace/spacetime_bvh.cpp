@@ -222,6 +222,8 @@ class Builder {
         node.tb = -node.ta;
         node.timeCut = cut.n == 16;
         node.tSplit = 0.5 * (ca + cb);
+        // Exactly as many as there are (the whole build tree is held until it is flattened).
+        node.children.reserve(size_t(std::count(occupied.begin(), occupied.end(), char(1))));
         for (int c = 0; c < cut.n; ++c) {
             if (!occupied[size_t(c)]) continue;
             if (c < 8) ++node.before;  // children 0-7 hold the first half of the time
@@ -309,6 +311,7 @@ class Builder {
         node.box = bound.box;
         node.ta = bound.ta;
         node.tb = bound.tb;
+        node.bodies.reserve(items.size());
         for (const CellItem& it : items) node.bodies.push_back({it.body, roundDown(it.ta), roundUp(it.tb)});
         return node;
     }

@@ -29,7 +29,7 @@ double processCpuSeconds() {
 
 
 TraceScene::TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log, const SceneShaders* shaders)
-    : scene_(scene), shaders_(shaders) {
+    : scene_(scene), shaders_(shaders), windowStart_(scene.renderedStart), windowEnd_(scene.renderedEnd) {
     for (const BodyPtr& root : scene.roots) collect(*root, log);
     // Curved bodies are tessellated in parallel (splitting and dicing are const and thread-safe,
     // as the buckets use them), each into its own deque, then placed where collect met them: the
@@ -135,36 +135,52 @@ bool TraceScene::displaced(const Body& body) const {
     return shaders_ && body.material() && body.material()->displacement;
 }
 
+void TraceScene::setFrames(int first, int count) {
+    windowStart_ = std::max(scene_.renderedStart, first + scene_.shutter.open);
+    windowEnd_ = std::min(scene_.renderedEnd, first + count - 1 + scene_.shutter.close);
+}
+
+bool TraceScene::changesOverFrames() const {
+    return std::any_of(bodies_.begin(), bodies_.end(), [&](const TrilinearBody* b) {
+        return b->moving() || b->time().t0 > scene_.renderedStart || b->time().t1 < scene_.renderedEnd;
+    });
+}
+
 void TraceScene::buildSpacetime(const HierarchyOptions& options) {
     const double cpu = processCpuSeconds();
     frames_.clear();
-    spacetime_.build(bodies_, scene_.renderedStart, scene_.renderedEnd, include_, options, &scene_.solids);
+    spacetime_ = SpacetimeBVH{};  // the previous block's first
+    spacetime_.build(bodies_, windowStart_, windowEnd_, include_, options, &scene_.solids);
     boundingVolumes += spacetime_.nodeCount();
     buildSeconds += processCpuSeconds() - cpu;
 }
 
 void TraceScene::buildShadowHierarchies(const HierarchyOptions& options) {
     const double cpu = processCpuSeconds();
-    stillBodies_.clear();
-    movingBodies_.clear();
-    // windowStart and windowEnd are the shot's (RenderScene): the parting is the same whatever
-    // frames are rendered, and so is every still vertex's test.
-    movingBound_ = Bounds3f{};
-    markMovingSolids();
-    for (const TrilinearBody* b : bodies_) {
-        const bool still = !b->moving() && b->time().t0 <= scene_.windowStart && b->time().t1 >= scene_.windowEnd &&
-                           !inMovingSolid(*b);
-        (still ? stillBodies_ : movingBodies_).push_back(b);
-        if (!still && b->time().overlaps(scene_.renderedStart, scene_.renderedEnd))
-            movingBound_.extend(b->boundDuring(std::max(scene_.renderedStart, b->time().t0),
-                                               std::min(scene_.renderedEnd, b->time().t1)));
+    if (!shadowSplit_) {
+        // windowStart and windowEnd are the shot's (RenderScene): the parting is the same whatever
+        // frames are rendered, and so is every still vertex's test.
+        markMovingSolids();
+        for (const TrilinearBody* b : bodies_) {
+            const bool still = !b->moving() && b->time().t0 <= scene_.windowStart &&
+                               b->time().t1 >= scene_.windowEnd && !inMovingSolid(*b);
+            (still ? stillBodies_ : movingBodies_).push_back(b);
+        }
+        collectShotMovers();
+        // Shadow rays start on surfaces: the root cells need not hold the eye and the lights.
+        // Still bodies are never cut in time: their hierarchy is the same over any frames.
+        still_.build(stillBodies_, scene_.renderedStart, scene_.renderedEnd, Bounds3f{}, options, &scene_.solids);
+        boundingVolumes += still_.nodeCount();
+        shadowSplit_ = true;
     }
-    collectShotMovers();
-    // Shadow rays start on surfaces: the root cells need not hold the eye and the lights.
-    still_.build(stillBodies_, scene_.renderedStart, scene_.renderedEnd, Bounds3f{}, options, &scene_.solids);
-    moving_.build(movingBodies_, scene_.renderedStart, scene_.renderedEnd, Bounds3f{}, options, &scene_.solids);
-    shadowSplit_ = true;
-    boundingVolumes += still_.nodeCount() + moving_.nodeCount();
+    movingBound_ = Bounds3f{};
+    for (const TrilinearBody* b : movingBodies_)
+        if (b->time().overlaps(windowStart_, windowEnd_))
+            movingBound_.extend(
+                b->boundDuring(std::max(windowStart_, b->time().t0), std::min(windowEnd_, b->time().t1)));
+    moving_ = SpacetimeBVH{};  // the previous block's first
+    moving_.build(movingBodies_, windowStart_, windowEnd_, Bounds3f{}, options, &scene_.solids);
+    boundingVolumes += moving_.nodeCount();
     buildSeconds += processCpuSeconds() - cpu;
 }
 

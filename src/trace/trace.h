@@ -14,6 +14,7 @@
 // the rasterizer's hit lies on a micropolygon, a hair off the exact patch).
 #pragma once
 
+#include <algorithm>
 #include <deque>
 #include <memory>
 #include <vector>
@@ -45,7 +46,17 @@ class TraceScene {
     TraceScene(const RenderScene& scene, const RenderOptions& options, Log& log,
                const SceneShaders* shaders = nullptr);
 
-    // One 4D hierarchy over the exposures of the frames rendered.
+    // The frames the hierarchies built from now on cover (buildSpacetime, and the moving
+    // occluders' of buildShadowHierarchies): the exposures of [first, first + count) within those
+    // rendered; by default every frame rendered. A renderer sets each frame block's before
+    // building, so that the hierarchies of swaying leaves (cut in time, their references copied
+    // into every time cell) grow with the block, not with the frames rendered (docs/ARCHITECTURE.md,
+    // "Shadows"). A ray's answer does not depend on the hierarchy it goes through.
+    void setFrames(int first, int count);
+    // Whether a body it holds moves, or begins or ends, during the frames rendered: if not, its
+    // hierarchies are the same over any of those frames.
+    bool changesOverFrames() const;
+    // One 4D hierarchy over the exposures of the frames set (setFrames).
     void buildSpacetime(const HierarchyOptions& options);
     // One 3D hierarchy per frame of [first, first + count) (over its exposure), replacing those
     // built before: the frame-by-frame baseline. Frames are built in parallel (TBB).
@@ -55,6 +66,8 @@ class TraceScene {
     // exposure to its last: whether a body is one depends on the body alone, not on the frames
     // rendered) and the rest, one hierarchy over each. A still occluder blocks a ray the same at
     // every time, so it is tested once per vertex of a still grid; the moving ones per sample.
+    // The still ones' hierarchy is built once (over every frame rendered), the moving ones' again
+    // at each call, over the frames set (setFrames).
     void buildShadowHierarchies(const HierarchyOptions& options);
     bool hasShadowHierarchies() const { return shadowSplit_; }
     const SpacetimeBVH& stillOccluders() const { return still_; }
@@ -94,6 +107,10 @@ class TraceScene {
     // ones are built again for every frame block), and each tracing thread's mailbox.
     size_t bytes() const;
     size_t hierarchyBytes() const;
+    // What the hierarchies built again for each frame block (setFrames) hold, and the most their
+    // builds held besides: the memory estimate's part per frame of the block.
+    size_t blockHierarchyBytes() const { return spacetime_.bytes() + moving_.bytes(); }
+    size_t blockBuildBytes() const { return std::max(spacetime_.buildBytes(), moving_.buildBytes()); }
     // The most a hierarchy's build held at once besides what it keeps (SpacetimeBVH::buildBytes).
     size_t buildBytes() const;
     size_t mailboxBytes() const { return bodies_.size() * sizeof(uint32_t); }
@@ -141,6 +158,7 @@ class TraceScene {
     size_t shotMoverRoots_ = 0, shotMoverGroups_ = 0, shotMoverGroup_ = 1;
     long shotFirstFrame_ = 0;
     int framesFirst_ = 0;
+    double windowStart_ = 0, windowEnd_ = 0;  // setFrames
 };
 
 // One thread's ray tracer for buckets: its traversal scratch and light cache.
