@@ -84,19 +84,15 @@ void map3Kernel(Exec& x, const Instr& in, TernaryKernel k, F f) {
           e.comp(e.comps > 1 ? c : 0), e.varying, d.comp(c));
 }
 
-}  // namespace
-
-void neg(Exec& x, const Instr& in) { map1(x, in, [](float a) { return -a; }); }
-void add(Exec& x, const Instr& in) { map2Kernel(x, in, x.vm.kernels().add, [](float a, float b) { return a + b; }); }
-void sub(Exec& x, const Instr& in) { map2Kernel(x, in, x.vm.kernels().sub, [](float a, float b) { return a - b; }); }
-void mul(Exec& x, const Instr& in) { map2Kernel(x, in, x.vm.kernels().mul, [](float a, float b) { return a * b; }); }
-void div(Exec& x, const Instr& in) {
+// a / b and mod(a, b): a zero divisor gives 0 and is counted (sanitised). Uniform: the scalar map;
+// varying: the zeros counted, then each component through the grid kernel.
+template <class Kernel, class F>
+void divideLike(Exec& x, const Instr& in, Kernel kernel, F f) {
     RegView d = x.view(in.a[0]);
     if (!d.varying) {
-        map2Checked(x, in, [](float a, float b) { return a / b; }, [](float, float b) { return b == 0.0f; });
+        map2Checked(x, in, f, [](float, float b) { return b == 0.0f; });
         return;
     }
-    // Varying: the zeros counted, then each component through the grid kernel.
     RegView a = x.view(in.a[1]), b = x.view(in.a[2]);
     const int nc = d.comps * d.elems;
     int count = 0;
@@ -105,12 +101,20 @@ void div(Exec& x, const Instr& in) {
         count += countBad(x, d.w, [&](int i) { return bp[b.varying ? i : 0] == 0.0f; });
     }
     if (count) x.sanitised(count);
-    const GridKernels& k = x.vm.kernels();
     for (int c = 0; c < nc; ++c)
-        k.divide(size_t(d.w), a.comp(a.comps * a.elems > 1 ? c : 0), a.varying, b.comp(b.comps * b.elems > 1 ? c : 0),
-                 b.varying, d.comp(c));
+        kernel(size_t(d.w), a.comp(a.comps * a.elems > 1 ? c : 0), a.varying, b.comp(b.comps * b.elems > 1 ? c : 0),
+               b.varying, d.comp(c));
 }
 
+}  // namespace
+
+void neg(Exec& x, const Instr& in) { map1(x, in, [](float a) { return -a; }); }
+void add(Exec& x, const Instr& in) { map2Kernel(x, in, x.vm.kernels().add, [](float a, float b) { return a + b; }); }
+void sub(Exec& x, const Instr& in) { map2Kernel(x, in, x.vm.kernels().sub, [](float a, float b) { return a - b; }); }
+void mul(Exec& x, const Instr& in) { map2Kernel(x, in, x.vm.kernels().mul, [](float a, float b) { return a * b; }); }
+void div(Exec& x, const Instr& in) {
+    divideLike(x, in, x.vm.kernels().divide, [](float a, float b) { return a / b; });
+}
 void logNot(Exec& x, const Instr& in) { map1(x, in, [](float a) { return a == 0.0f ? 1.0f : 0.0f; }); }
 void logAnd(Exec& x, const Instr& in) {
     map2(x, in, [](float a, float b) { return (a != 0.0f && b != 0.0f) ? 1.0f : 0.0f; });
@@ -235,25 +239,7 @@ void log2_(Exec& x, const Instr& in) {
                 [](float a, float b) { return !(a > 0.0f) || !(b > 0.0f) || b == 1.0f; });
 }
 void mod(Exec& x, const Instr& in) {
-    RegView d = x.view(in.a[0]);
-    if (!d.varying) {
-        map2Checked(x, in, [](float a, float b) { return a - b * std::floor(a / b); }, [](float, float b) { return b == 0.0f; });
-        return;
-    }
-    // Varying: the zeros counted (as div does), then each component through the grid kernel.
-    RegView b = x.view(in.a[2]);
-    const int nc = d.comps * d.elems;
-    int count = 0;
-    for (int c = 0; c < nc; ++c) {
-        const float* bp = b.comp(b.comps * b.elems > 1 ? c : 0);
-        count += countBad(x, d.w, [&](int i) { return bp[b.varying ? i : 0] == 0.0f; });
-    }
-    if (count) x.sanitised(count);
-    RegView a = x.view(in.a[1]);
-    const GridKernels& k = x.vm.kernels();
-    for (int c = 0; c < nc; ++c)
-        k.mod(size_t(d.w), a.comp(a.comps * a.elems > 1 ? c : 0), a.varying, b.comp(b.comps * b.elems > 1 ? c : 0),
-              b.varying, d.comp(c));
+    divideLike(x, in, x.vm.kernels().mod, [](float a, float b) { return a - b * std::floor(a / b); });
 }
 void abs_(Exec& x, const Instr& in) { map1(x, in, [](float a) { return std::fabs(a); }); }
 void sign(Exec& x, const Instr& in) {
