@@ -205,6 +205,24 @@ TEST(BlobbyVars, SAndTAreObjectXAndY) {
         }
 }
 
+// A colour declared inline without a class ("color Cs") is uniform (RI Spec 3.2, RiDeclare: a
+// declaration without a class is uniform), and a Blobby has one uniform value: every blob and
+// bridge takes it. Aqsis's check.rib gives its Blobbies so; Aqsis 1.8.4 colours only the first
+// leaf's triangles with it and the rest black (its CqBlobby's class counts are marked "to do"):
+// docs/results/aqsis-corpus.md.
+TEST(BlobbyVars, AColourDeclaredWithoutAClassIsUniformOverEveryBlob) {
+    const std::string rib = test::orthographicView(192, 96, "") + "WorldBegin\n" +
+                            twoBlobs("\"color Cs\" [0.1 0.9 0.2]", "Surface \"constant\"\n") + "WorldEnd\n";
+    const test::RenderResult r = test::renderRib(rib);
+    const float want[3] = {0.1f, 0.9f, 0.2f};
+    for (int column : {66, 96, 126})
+        for (int row : {40, 48, 55}) {
+            // Equal to float rounding of the pixel filter's weights.
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(r.channel(0, column, row, c), want[c], 1e-6) << column << " " << row << " " << c;
+            EXPECT_NEAR(r.alpha(0, column, row), 1.0f, 1e-6) << column << " " << row;
+        }
+}
+
 TEST(BlobbyVars, WrongValueCountNamesFileAndLine) {
     const std::string head = "WorldBegin Attribute \"streyes\" \"float blobbyresolution\" [8]\n";
     const std::string blob = "Blobby 2 [1001 0 1001 16 0 2 0 1] [" + sphereMatrix(1, 0, 0, 0) + " " +
