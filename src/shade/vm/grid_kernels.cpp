@@ -94,17 +94,18 @@ inline void ternary(size_t b, size_t e, const float* a, bool av, const float* c,
 
 // Whether light l takes part at point i: lit, and within 90 degrees of the unit normal.
 inline bool facing(const LightLanes& l, float cosHalf, const float* const u[3], size_t i) {
-    return l.lit[i] && !(l.Ln[0][i] * u[0][i] + l.Ln[1][i] * u[1][i] + l.Ln[2][i] * u[2][i] < cosHalf);
+    const size_t j = at(l.varying, i);
+    return l.lit[j] && !(l.Ln[0][j] * u[0][i] + l.Ln[1][j] * u[1][i] + l.Ln[2][j] * u[2][i] < cosHalf);
 }
 
 inline void diffuseLight(size_t b, size_t e, const LightLanes& l, float cosHalf, const float* const u[3],
                          const float* const N[3], bool nv, float* const out[3]) {
     for (size_t i = b; i < e; ++i) {
         if (!facing(l, cosHalf, u, i)) continue;
-        const size_t k = at(nv, i);
-        const float t = l.Ln[0][i] * N[0][k] + l.Ln[1][i] * N[1][k] + l.Ln[2][i] * N[2][k];
+        const size_t k = at(nv, i), j = at(l.varying, i);
+        const float t = l.Ln[0][j] * N[0][k] + l.Ln[1][j] * N[1][k] + l.Ln[2][j] * N[2][k];
         if (t <= 0) continue;
-        for (int c = 0; c < 3; ++c) out[c][i] += l.Cl[c][i] * t;
+        for (int c = 0; c < 3; ++c) out[c][i] += l.Cl[c][j] * t;
     }
 }
 
@@ -115,8 +116,8 @@ inline void specularBase(size_t b, size_t e, const LightLanes& l, float cosHalf,
             base[i] = -1;
             continue;
         }
-        const size_t k = at(nv, i), q = at(vv, i);
-        float h[3] = {l.Ln[0][i] + V[0][q], l.Ln[1][i] + V[1][q], l.Ln[2][i] + V[2][q]};
+        const size_t k = at(nv, i), q = at(vv, i), j = at(l.varying, i);
+        float h[3] = {l.Ln[0][j] + V[0][q], l.Ln[1][j] + V[1][q], l.Ln[2][j] + V[2][q]};
         const float* hp[3] = {&h[0], &h[1], &h[2]};
         float* hq[3] = {&h[0], &h[1], &h[2]};
         normalize(0, 1, hp, false, hq);
@@ -124,10 +125,10 @@ inline void specularBase(size_t b, size_t e, const LightLanes& l, float cosHalf,
     }
 }
 
-inline void addLight(size_t b, size_t e, const float* const Cl[3], const float* t, float* const out[3]) {
+inline void addLight(size_t b, size_t e, const float* const Cl[3], bool clv, const float* t, float* const out[3]) {
     for (size_t i = b; i < e; ++i) {
         if (t[i] <= 0) continue;
-        for (int c = 0; c < 3; ++c) out[c][i] += Cl[c][i] * t[i];
+        for (int c = 0; c < 3; ++c) out[c][i] += Cl[c][at(clv, i)] * t[i];
     }
 }
 
@@ -173,11 +174,13 @@ HWY_INLINE void normalize3(VF* a) {
 // The light takes part: lit, and Ln . unitN not below cosHalf.
 HWY_INLINE MF facing(const LightLanes& l, VF cosHalf, const float* const u[3], size_t i, const VF* ln) {
     const VF un[3] = {hn::LoadU(kF, u[0] + i), hn::LoadU(kF, u[1] + i), hn::LoadU(kF, u[2] + i)};
+    const MF facingN = hn::Not(hn::Lt(dot3(ln, un), cosHalf));
+    if (!l.varying) return l.lit[0] ? facingN : hn::FirstN(kF, 0);
     const hn::Rebind<uint8_t, decltype(kF)> k8;
     const hn::RebindToUnsigned<decltype(kF)> k32;
     const auto lit = hn::PromoteTo(k32, hn::LoadU(k8, l.lit + i));
     const MF isLit = hn::RebindMask(kF, hn::Ne(lit, hn::Zero(k32)));
-    return hn::AndNot(hn::Lt(dot3(ln, un), cosHalf), isLit);
+    return hn::And(facingN, isLit);
 }
 
 void Normalize(size_t n, const float* const a[3], bool av, float* const out[3]) {
@@ -330,14 +333,14 @@ void DiffuseLight(size_t n, const LightLanes& l, float cosHalf, const float* con
     const VF ch = hn::Set(kF, cosHalf);
     size_t i = 0;
     for (; i + N <= n; i += N) {
-        const VF ln[3] = {hn::LoadU(kF, l.Ln[0] + i), hn::LoadU(kF, l.Ln[1] + i), hn::LoadU(kF, l.Ln[2] + i)};
+        const VF ln[3] = {load(l.Ln[0], l.varying, i), load(l.Ln[1], l.varying, i), load(l.Ln[2], l.varying, i)};
         const VF nn[3] = {load(Nn[0], nv, i), load(Nn[1], nv, i), load(Nn[2], nv, i)};
         const VF t = dot3(ln, nn);
         const MF on = hn::AndNot(hn::Le(t, hn::Zero(kF)), facing(l, ch, u, i, ln));  // NaN too, as the reference
         if (hn::AllFalse(kF, on)) continue;
         for (int c = 0; c < 3; ++c) {
             const VF o = hn::LoadU(kF, out[c] + i);
-            hn::StoreU(hn::IfThenElse(on, hn::Add(o, hn::Mul(hn::LoadU(kF, l.Cl[c] + i), t)), o), kF, out[c] + i);
+            hn::StoreU(hn::IfThenElse(on, hn::Add(o, hn::Mul(load(l.Cl[c], l.varying, i), t)), o), kF, out[c] + i);
         }
     }
     gridref::diffuseLight(i, n, l, cosHalf, u, Nn, nv, out);
@@ -349,7 +352,7 @@ void SpecularBase(size_t n, const LightLanes& l, float cosHalf, const float* con
     const VF ch = hn::Set(kF, cosHalf);
     size_t i = 0;
     for (; i + N <= n; i += N) {
-        const VF ln[3] = {hn::LoadU(kF, l.Ln[0] + i), hn::LoadU(kF, l.Ln[1] + i), hn::LoadU(kF, l.Ln[2] + i)};
+        const VF ln[3] = {load(l.Ln[0], l.varying, i), load(l.Ln[1], l.varying, i), load(l.Ln[2], l.varying, i)};
         const MF on = facing(l, ch, u, i, ln);
         VF h[3];
         for (int c = 0; c < 3; ++c) h[c] = hn::Add(ln[c], load(V[c], vv, i));
@@ -362,7 +365,7 @@ void SpecularBase(size_t n, const LightLanes& l, float cosHalf, const float* con
     gridref::specularBase(i, n, l, cosHalf, u, Nn, nv, V, vv, base);
 }
 
-void AddLight(size_t n, const float* const Cl[3], const float* t, float* const out[3]) {
+void AddLight(size_t n, const float* const Cl[3], bool clv, const float* t, float* const out[3]) {
     const size_t N = hn::Lanes(kF);
     size_t i = 0;
     for (; i + N <= n; i += N) {
@@ -371,10 +374,10 @@ void AddLight(size_t n, const float* const Cl[3], const float* t, float* const o
         if (hn::AllFalse(kF, on)) continue;
         for (int c = 0; c < 3; ++c) {
             const VF o = hn::LoadU(kF, out[c] + i);
-            hn::StoreU(hn::IfThenElse(on, hn::Add(o, hn::Mul(hn::LoadU(kF, Cl[c] + i), tv)), o), kF, out[c] + i);
+            hn::StoreU(hn::IfThenElse(on, hn::Add(o, hn::Mul(load(Cl[c], clv, i), tv)), o), kF, out[c] + i);
         }
     }
-    gridref::addLight(i, n, Cl, t, out);
+    gridref::addLight(i, n, Cl, clv, t, out);
 }
 
 void Deinterleave3(size_t n, const float* xyz, float* const out[3]) {
@@ -439,7 +442,9 @@ void refSpecularBase(size_t n, const LightLanes& l, float cosHalf, const float* 
                      const float* const V[3], bool vv, float* base) {
     gridref::specularBase(0, n, l, cosHalf, u, N, nv, V, vv, base);
 }
-void refAddLight(size_t n, const float* const Cl[3], const float* t, float* const out[3]) { gridref::addLight(0, n, Cl, t, out); }
+void refAddLight(size_t n, const float* const Cl[3], bool clv, const float* t, float* const out[3]) {
+    gridref::addLight(0, n, Cl, clv, t, out);
+}
 void refDeinterleave3(size_t n, const float* xyz, float* const out[3]) { gridref::deinterleave3(0, n, xyz, out); }
 
 }  // namespace

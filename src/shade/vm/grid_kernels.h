@@ -24,6 +24,7 @@ struct LightLanes {
     const float* Ln[3];   // L normalised
     const float* Cl[3];
     const uint8_t* lit;   // 1 where the light reached the point
+    bool varying = true;  // false: one value (Ln, Cl and lit at [0]) for every point
 };
 
 struct GridKernels {
@@ -64,7 +65,7 @@ struct GridKernels {
     void (*specularBase)(size_t n, const LightLanes& l, float cosHalf, const float* const unitN[3],
                          const float* const N[3], bool nv, const float* const V[3], bool vv, float* base);
     // out += Cl * t except where t <= 0 (a NaN t is added, as the interpreter always did).
-    void (*addLight)(size_t n, const float* const Cl[3], const float* t, float* const out[3]);
+    void (*addLight)(size_t n, const float* const Cl[3], bool clv, const float* t, float* const out[3]);
     // Three component arrays from n triples (x y z x y z ...).
     void (*deinterleave3)(size_t n, const float* xyz, float* const out[3]);
 };

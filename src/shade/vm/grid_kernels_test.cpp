@@ -108,8 +108,8 @@ TEST(GridKernels, EveryTargetMatchesTheReferenceBitForBit) {
                 for (int q = 0; q < 3; ++q) accGot.in[q] = accGot.out[q] = accGot.c[q].data();
                 ref.diffuseLight(n, lanes, cosHalf, unit.in, a.in, av, accWant.out);
                 k->diffuseLight(n, lanes, cosHalf, unit.in, a.in, av, accGot.out);
-                ref.addLight(n, cl.in, t.data(), accWant.out);
-                k->addLight(n, cl.in, t.data(), accGot.out);
+                ref.addLight(n, cl.in, true, t.data(), accWant.out);
+                k->addLight(n, cl.in, true, t.data(), accGot.out);
                 for (int q = 0; q < 3; ++q) expectSame(accGot.c[q], accWant.c[q], name + " diffuseLight, addLight");
                 ref.specularBase(n, lanes, cosHalf, unit.in, a.in, av, b.in, bv, want.out[1]);
                 k->specularBase(n, lanes, cosHalf, unit.in, a.in, av, b.in, bv, got.out[1]);
@@ -117,6 +117,57 @@ TEST(GridKernels, EveryTargetMatchesTheReferenceBitForBit) {
                 ref.deinterleave3(n, aos.data(), want.out);
                 k->deinterleave3(n, aos.data(), got.out);
                 for (int q = 0; q < 3; ++q) expectSame(got.c[q], want.c[q], name + " deinterleave3");
+            }
+        }
+}
+
+// A uniform light's lanes (one Ln, Cl and lit for every point: a point-free light kept uniform)
+// give, on every target, the results of the same values broadcast to every point, bit for bit.
+TEST(GridKernels, UniformLightLanesMatchTheBroadcastOnes) {
+    const float cosHalf = std::cos(3.14159265358979323846f / 2);
+    std::mt19937 rng(4747);
+    for (const size_t n : {size_t(1), size_t(9), size_t(16), size_t(45), size_t(289)})
+        for (int flags = 0; flags < 8; ++flags) {
+            const bool nv = flags & 1, vv = flags & 2;
+            const uint8_t lit = (flags & 4) ? 0 : 1;
+            Triple N(rng, n), V(rng, n), unit(n), ln(n), cl(n);
+            // Finite values: a light's Ln is normalised and its Cl sanitised.
+            std::uniform_real_distribution<float> near(-2, 2);
+            const float one[6] = {near(rng), near(rng), near(rng), std::fabs(near(rng)), std::fabs(near(rng)), 0.5f};
+            const float len = std::sqrt(one[0] * one[0] + one[1] * one[1] + one[2] * one[2]);
+            const float lnOne[3] = {one[0] / len, one[1] / len, one[2] / len}, clOne[3] = {one[3], one[4], one[5]};
+            for (int c = 0; c < 3; ++c) {
+                ln.c[c].assign(n, lnOne[c]);
+                cl.c[c].assign(n, clOne[c]);
+            }
+            gridKernelsScalar().normalize(n, N.in, nv, unit.out);
+            std::vector<uint8_t> litAll(n, lit);
+            const LightLanes broadcast{{ln.in[0], ln.in[1], ln.in[2]}, {cl.in[0], cl.in[1], cl.in[2]}, litAll.data()};
+            const float* const lnp[3] = {&lnOne[0], &lnOne[1], &lnOne[2]};
+            const float* const clp[3] = {&clOne[0], &clOne[1], &clOne[2]};
+            const LightLanes uniform{{lnp[0], lnp[1], lnp[2]}, {clp[0], clp[1], clp[2]}, &lit, false};
+            const std::vector<float> t = awkward(rng, n);
+            for (const GridKernels* k : gridKernelsOfEveryTarget()) {
+                const std::string name = std::string(k->target) + " n=" + std::to_string(n) + " flags=" + std::to_string(flags);
+                Triple want(rng, n);
+                Triple got = want;
+                for (int q = 0; q < 3; ++q) got.in[q] = got.out[q] = got.c[q].data();
+                k->diffuseLight(n, broadcast, cosHalf, unit.in, N.in, nv, want.out);
+                k->diffuseLight(n, uniform, cosHalf, unit.in, N.in, nv, got.out);
+                k->addLight(n, cl.in, true, t.data(), want.out);
+                k->addLight(n, clp, false, t.data(), got.out);
+                for (int q = 0; q < 3; ++q) expectSame(got.c[q], want.c[q], name + " diffuseLight, addLight");
+                std::vector<float> baseWant(n), baseGot(n);
+                k->specularBase(n, broadcast, cosHalf, unit.in, N.in, nv, V.in, vv, baseWant.data());
+                k->specularBase(n, uniform, cosHalf, unit.in, N.in, nv, V.in, vv, baseGot.data());
+                expectSame(baseGot, baseWant, name + " specularBase");
+                // Not blind: the light reaches some points when lit (varying N random about the
+                // sphere; one uniform N may face away).
+                if (lit && nv && n >= 16) {
+                    size_t reached = 0;
+                    for (float b : baseGot) reached += b >= 0;
+                    EXPECT_GT(reached, 0u) << name;
+                }
             }
         }
 }

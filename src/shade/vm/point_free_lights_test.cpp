@@ -87,6 +87,54 @@ TEST(VmPointFreeLights, ReusedResultsAreTheRunsBitForBit) {
     }
 }
 
+// Results given again are kept uniform (one value for all points, LightResult::uniform) through
+// every function that reads a light: illuminance loops with categories and cones (a uniform and a
+// varying axis), lightsource() outputs, ambient, diffuse, specular, phong and specularbrdf, a
+// light that reaches no point, beside a point light whose results are per point. Each grid's Ci
+// must be a fresh VM's (whose lights run, their results per point) bit for bit.
+TEST(VmPointFreeLights, UniformResultsReadByEveryLightingFunctionAreTheRunsBitForBit) {
+    ForestLights lights;
+    ShaderInstance key(test::compile(R"(
+        light key(float intensity = 0.8; color lightcolor = color(1, 0.9, 0.7);
+                  point from = point "shader" (0, 0, 0); point to = point "shader" (0.3, -0.2, 1);
+                  string __category = "key,rim"; output float tag = 0) {
+            tag = intensity * 2;
+            solar(to - from, 0) Cl = intensity * lightcolor;
+        })"));
+    ShaderInstance dark(test::compile(
+        "light dark(float on = 0) { if (on > 0.5) { solar(vector(0, 0, 1), 0) Cl = 1; } }"));
+    std::vector<LightRef> refs = lights.refs;
+    refs.push_back({&key, Matrix4::rotate(-20, {1, 0, 0})});
+    refs.push_back({&dark, Matrix4()});
+    ShaderInstance surface(test::compile(R"(
+        surface s(float Ks = 0.5; float roughness = 0.1) {
+            normal Nf = faceforward(normalize(N), I);
+            vector V = -normalize(I);
+            color c = ambient();
+            illuminance("key", P, Nf, PI / 2) {
+                float t = 0;
+                lightsource("tag", t);
+                c += Cl * (normalize(L) . Nf) * (1 + t) + specularbrdf(normalize(L), Nf, V, roughness);
+            }
+            illuminance(P, vector(0, 0, -1), PI / 4) { c += 0.5 * Cl; }
+            illuminance("-key", P) { c += 0.25 * Cl * (1 + xcomp(L)); }
+            Ci = Cs * (c + diffuse(Nf)) + Ks * specular(Nf, V, roughness) + phong(Nf, V, 20);
+        })"));
+    ShadingVM vm;
+    int grids = 0;
+    for (int nu : {1, 2, 5, 16})  // 4 to 289 points: SIMD bodies and tails
+        for (float tilt : {0.0f, 0.7f}) {
+            TestGrid g = sheet(nu, nu == 5 ? 3 : nu, 3.0f + tilt, tilt);
+            vm.run(surface, g.grid, refs);
+            expectSameBits(vm, g, fresh(surface, g, refs));
+            ++grids;
+        }
+    // The ambient, distant, key and dark lights ran for the first grid only (then uniform); the
+    // point light for every grid.
+    EXPECT_EQ(vm.stats().lightReuses, uint64_t(4 * (grids - 1)));
+    EXPECT_EQ(vm.stats().lightRuns, uint64_t(4 + grids));
+}
+
 TEST(VmPointFreeLights, ALightReadingThePointIsRunForEveryGrid) {
     // Cl from Ps (varying) inside a uniform branch, and L from a varying axis.
     ShaderInstance depth(test::compile("light depth() { solar(vector(0, 0, -1), 0) Cl = zcomp(Ps); }"));

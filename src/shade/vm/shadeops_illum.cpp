@@ -43,8 +43,10 @@ inline bool inCone(V3 l, V3 a, float angle) {
     return dot3(normalize3(l), normalize3(a)) >= std::cos(angle);
 }
 
-inline V3 lightVec(const std::vector<float>& v, size_t n, int i) {
-    return {v[size_t(i)], v[n + size_t(i)], v[2 * n + size_t(i)]};
+// Point i's value of a light's L, Cl or Ln (one value for all points when it is uniform).
+inline V3 lightVec(const LightResult& l, const std::vector<float>& v, size_t n, int i) {
+    const size_t s = l.stride(n), k = l.at(i);
+    return {v[k], v[s + k], v[2 * s + k]};
 }
 
 // Makes light k the one the illuminance level d runs for: its mask, L and Cl. False when it
@@ -61,10 +63,14 @@ bool enterLight(Exec& x, const Instr& in, const LightResult& l, int d) {
         axis = x.view(in.a[2]);
         angle = x.view(in.a[3]);
     }
+    if (l.uniform && !l.lit[0]) return false;
+    // A uniform light in a cone of uniform axis and angle: one test for all points.
+    const bool oneCone = cone && l.uniform && !axis.varying && !angle.varying;
+    const uint8_t inside = oneCone ? uint8_t(inCone(lightVec(l, l.L, n, 0), load3(axis, 0), angle.at(0, 0))) : 1;
     int any = 0;
     for (int i = 0; i < x.n; ++i) {
-        uint8_t on = below[i] & uint8_t(!broke[i]) & l.lit[size_t(i)];
-        if (on && cone) on = inCone(lightVec(l.L, n, i), load3(axis, i), angle.at(0, i)) ? 1 : 0;
+        uint8_t on = below[i] & uint8_t(!broke[i]) & l.lit[l.at(i)] & inside;
+        if (on && cone && !oneCone) on = inCone(lightVec(l, l.L, n, i), load3(axis, i), angle.at(0, i)) ? 1 : 0;
         m[i] = on;
         any |= on;
     }
@@ -73,8 +79,17 @@ bool enterLight(Exec& x, const Instr& in, const LightResult& l, int d) {
     for (int c = 0; c < 3; ++c) {
         float* lp = L.comp(c);
         float* cp = Cl.comp(c);
-        const float* ls = l.L.data() + size_t(c) * n;
-        const float* cs = l.Cl.data() + size_t(c) * n;
+        const float* ls = l.L.data() + size_t(c) * l.stride(n);
+        const float* cs = l.Cl.data() + size_t(c) * l.stride(n);
+        if (l.uniform) {
+            const float lv = ls[0], cv = cs[0];
+            for (int i = 0; i < x.n; ++i)
+                if (m[i]) {
+                    lp[i] = lv;
+                    cp[i] = cv;
+                }
+            continue;
+        }
         for (int i = 0; i < x.n; ++i)
             if (m[i]) {
                 lp[i] = ls[i];
@@ -203,7 +218,12 @@ void ambient(Exec& x, const Instr& in) {
         if (!l.ambient) continue;
         for (int c = 0; c < 3; ++c) {
             float* out = d.comp(c);
-            const float* cl = l.Cl.data() + size_t(c) * n;
+            const float* cl = l.Cl.data() + size_t(c) * l.stride(n);
+            if (l.uniform) {
+                const float v = cl[0];
+                for (int i = 0; i < d.w; ++i) out[i] += v;
+                continue;
+            }
             for (int i = 0; i < d.w; ++i) out[i] += cl[i];
         }
     }
@@ -238,9 +258,12 @@ void forLights(Exec& x, const RegView& d, const RegView& N, int Preg, bool specu
     for (size_t k = 0; k < x.vm.lightCount(); ++k) {
         const LightResult& l = lights[k];
         if (l.ambient || (specularOnes ? l.nonSpecular : l.nonDiffuse)) continue;
-        const LightLanes lanes{{l.Ln.data(), l.Ln.data() + n, l.Ln.data() + 2 * n},
-                               {l.Cl.data(), l.Cl.data() + n, l.Cl.data() + 2 * n},
-                               l.lit.data()};
+        if (l.uniform && !l.lit[0]) continue;  // reaches no point
+        const size_t s = l.stride(n);
+        const LightLanes lanes{{l.Ln.data(), l.Ln.data() + s, l.Ln.data() + 2 * s},
+                               {l.Cl.data(), l.Cl.data() + s, l.Cl.data() + 2 * s},
+                               l.lit.data(),
+                               !l.uniform};
         each(l, lanes, u);
     }
 }
@@ -254,14 +277,15 @@ void sumLights(Exec& x, const RegView& d, const RegView& N, int Preg, bool specu
     float* out2 = d.comp(2);
     forLights(x, d, N, Preg, specularOnes, [&](const LightResult&, const LightLanes& l, float* const* u) {
         for (int i = 0; i < d.w; ++i) {
-            if (!l.lit[i]) continue;
-            const V3 ln{l.Ln[0][i], l.Ln[1][i], l.Ln[2][i]};
+            const size_t j = l.varying ? size_t(i) : 0;
+            if (!l.lit[j]) continue;
+            const V3 ln{l.Ln[0][j], l.Ln[1][j], l.Ln[2][j]};
             if (ln.x * u[0][i] + ln.y * u[1][i] + ln.z * u[2][i] < kCosHalf) continue;
             const float t = term(ln, i);
             if (t <= 0) continue;
-            out0[i] += l.Cl[0][i] * t;
-            out1[i] += l.Cl[1][i] * t;
-            out2[i] += l.Cl[2][i] * t;
+            out0[i] += l.Cl[0][j] * t;
+            out1[i] += l.Cl[1][j] * t;
+            out2[i] += l.Cl[2][j] * t;
         }
     });
 }
@@ -316,7 +340,7 @@ void specular(Exec& x, const Instr& in) {
             const float e = r.varying ? k / std::max(r.p[i], 1e-4f) : e0;
             t[i] = t[i] < 0 ? 0.0f : std::pow(t[i], e);
         }
-        kern.addLight(n, l.Cl, t, out);
+        kern.addLight(n, l.Cl, l.varying, t, out);
     });
 }
 

@@ -498,6 +498,7 @@ const std::vector<LightResult>& ShadingVM::lightsAt(Exec& x, const RegView& P) {
     const size_t n = size_t(x.n);
     for (size_t k = 0; k < lights_->size(); ++k) {
         LightResult& r = lightResults_[k];
+        if (r.valid && r.uniform) continue;  // the same for any positions of this run
         bool same = r.valid && r.Ps.size() >= 3 * n;
         for (int c = 0; c < 3 && same; ++c) {
             const float* a = r.Ps.data() + size_t(c) * n;
@@ -517,31 +518,14 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
     LightResult& res = lightResults_[index];
     const ShaderProgram& lp = ref.shader->program();
     const size_t n = size_t(grid_->n);
-    // Its positions, kept to reuse the results while P stays the same.
-    res.Ps.resize(3 * n);
-    for (int c = 0; c < 3; ++c) {
-        float* o = res.Ps.data() + size_t(c) * n;
-        if (P.varying) std::memcpy(o, P.comp(c), sizeof(float) * n);
-        else std::fill(o, o + n, P.comp(c)[0]);
-    }
+    res.Ps.resize(3 * n);  // filled below unless the results are given again
     // The light runs over the surface's points: Ps the surface's, P its own origin.
     lightGrid_ = *grid_;
     lightGrid_.primvars = nullptr;
     for (Global g : {Global::L, Global::Cl, Global::Ol, Global::Ci, Global::Oi, Global::P})
         lightGrid_.globals[size_t(g)] = ValueRef{};
     lightGrid_.set(Global::Ps, ValueRef::soa(res.Ps.data(), res.Ps.data() + n, res.Ps.data() + 2 * n));
-    // Ns: the surface's normal at Ps, turned to face the eye (against I), as the standard
-    // surfaces' Nf is and as Aqsis's lights see it (its envlight example occludes a floor whose
-    // N points away from the teapot).
-    // (Only for a light that reads Ns.)
-    const ValueRef& sn = grid_->globals[size_t(Global::N)];
-    const ValueRef& si = grid_->globals[size_t(Global::I)];
-    ns_.resize(3 * n);
-    for (size_t i = 0; i < (lp.globalReg[int(Global::Ns)] >= 0 ? n : 0); ++i) {
-        const Vec3f v = sn.valid() ? sn.vec(int(i)) : Vec3f{0, 0, 0};
-        const float side = si.valid() ? dot(v, si.vec(int(i))) : 0.0f;
-        for (int c = 0; c < 3; ++c) ns_[size_t(c) * n + i] = side > 0 ? -v[c] : v[c];
-    }
+    ns_.resize(3 * n);  // filled below if the light runs and reads Ns
     lightGrid_.set(Global::Ns, ValueRef::soa(ns_.data(), ns_.data() + n, ns_.data() + 2 * n));
     Vec3d o = ref.toCurrent.point({0, 0, 0});
     lightOrigin_[0] = float(o.x);
@@ -564,13 +548,12 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
         for (const PointFreeLight& e : pointFree_) {
             if (!samePointFree(e, ref)) continue;
             res.ambient = e.ambient;
-            // Each component's stored value broadcast over the n points (component-major).
-            const std::pair<std::vector<float>*, const float*> broadcast[3] = {{&res.L, e.L}, {&res.Cl, e.Cl}, {&res.Ln, e.Ln}};
-            for (const auto& [to, value] : broadcast) {
-                to->resize(3 * n);
-                for (size_t c = 0; c < 3; ++c) std::fill_n(to->begin() + std::ptrdiff_t(c * n), n, value[c]);
-            }
-            res.lit.assign(n, e.lit);
+            // Kept uniform: one value a component, read for every point (LightResult::at).
+            res.uniform = true;
+            res.L.assign(e.L, e.L + 3);
+            res.Cl.assign(e.Cl, e.Cl + 3);
+            res.Ln.assign(e.Ln, e.Ln + 3);
+            res.lit.assign(1, e.lit);
             res.shader = ref.shader;
             res.nonDiffuse = e.nonDiffuse;
             res.nonSpecular = e.nonSpecular;
@@ -583,6 +566,23 @@ void ShadingVM::runLight(size_t index, const RegView& P) {
             ++stats_.lightReuses;
             return;
         }
+    // Its positions, kept to reuse the results while P stays the same.
+    res.uniform = false;
+    for (int c = 0; c < 3; ++c) {
+        float* o = res.Ps.data() + size_t(c) * n;
+        if (P.varying) std::memcpy(o, P.comp(c), sizeof(float) * n);
+        else std::fill(o, o + n, P.comp(c)[0]);
+    }
+    // Ns: the surface's normal at Ps, turned to face the eye (against I), as the standard
+    // surfaces' Nf is and as Aqsis's lights see it (its envlight example occludes a floor whose
+    // N points away from the teapot). (Only for a light that reads Ns.)
+    const ValueRef& sn = grid_->globals[size_t(Global::N)];
+    const ValueRef& si = grid_->globals[size_t(Global::I)];
+    for (size_t i = 0; i < (lp.globalReg[int(Global::Ns)] >= 0 ? n : 0); ++i) {
+        const Vec3f v = sn.valid() ? sn.vec(int(i)) : Vec3f{0, 0, 0};
+        const float side = si.valid() ? dot(v, si.vec(int(i))) : 0.0f;
+        for (int c = 0; c < 3; ++c) ns_[size_t(c) * n + i] = side > 0 ? -v[c] : v[c];
+    }
     lit_.assign(n, lp.illuminates ? 0 : 1);
     const LightResult* savedLight = currentLight_;
     currentLight_ = nullptr;

@@ -52,11 +52,18 @@ struct LightResult {
     bool valid = false;
     bool ambient = false;   // no illuminate or solar: only ambient() sees it
     bool nonDiffuse = false, nonSpecular = false;
+    // The same at every point (a point-free light given again, runLight): L, Cl and Ln hold one
+    // value each (3 floats) and lit one byte, read at [0] for every point, and the results hold
+    // for any positions of this run (Ps is not kept).
+    bool uniform = false;
     std::string category;   // __category
     std::vector<float> Ps;  // the positions it ran for (3 x n)
-    std::vector<float> L, Cl;  // 3 x n each
+    std::vector<float> L, Cl;  // 3 x n each (3 when uniform)
     std::vector<float> Ln;     // L normalised (3 x n): what diffuse, specular and phong use
     std::vector<uint8_t> lit;  // 1 where an illuminate or solar statement reached the point
+    // Point i's index into L, Cl, Ln (component c at c * stride(n) + at(i)) and lit.
+    size_t at(int i) const { return uniform ? 0 : size_t(i); }
+    size_t stride(size_t n) const { return uniform ? 1 : n; }
     const ShaderInstance* shader = nullptr;
     // Output parameters after the run, for lightsource(): floats (all points when varying)
     // and strings; offset of each parameter's values, -1 if not an output.
