@@ -1,7 +1,8 @@
 // Texture coordinates of polygons given none: the RI Spec (3.2, "Polygons") makes a polygon's
 // surface parameters its object-space (x, y) and its texture coordinates (s, t) those, unless
 // "s", "t" or "st" are given per vertex; Aqsis 1.8.4 does the same. Polygon, GeneralPolygon,
-// PointsPolygons, PointsGeneralPolygons and the Blobby (drawn as a polygon mesh) take them.
+// PointsPolygons, PointsGeneralPolygons and the Blobby (drawn as a polygon mesh) take them, as
+// read and, in an object's instances, under the instance's attributes.
 #pragma once
 
 #include <vector>

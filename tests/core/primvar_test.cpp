@@ -113,7 +113,8 @@ TEST(Primvars, StGivesTheShadersTextureCoordinates) {
 // (x, row) of the 32 x 16 view sees object (x + 0.5, 16 - row - 0.5) / 2, whatever the request
 // (a quad read as a patch, a two-quad mesh, a pentagon cut into faces) and the algorithm, within
 // 0.02 (a pixel's 16 samples average within ~0.03 pixel of its centre; a face's own (u, v) would
-// stay within [0, 1]). The built-in surfaces read neither: nothing is added to them.
+// stay within [0, 1]). The built-in surfaces read neither: nothing is added to them. An object's
+// instance takes them under its own shader.
 TEST(Primvars, APolygonsTextureCoordinatesAreItsObjectXAndY) {
     const Shaders sh;
     const std::vector<std::string> requests = {
@@ -136,6 +137,13 @@ TEST(Primvars, APolygonsTextureCoordinatesAreItsObjectXAndY) {
         const Scene plain = parseRibString("WorldBegin\nSurface \"plastic\"\n" + request + "WorldEnd\n", "p.rib", log);
         ASSERT_EQ(plain.polygonMeshes.size(), 1u);
         EXPECT_TRUE(plain.polygonMeshes[0].primvars.params.empty()) << request;
+    }
+    // An object's polygons, defined under no shader, instanced under one that reads s and t.
+    const test::RenderResult r = test::renderRib(sh.header(32, 16) + "ObjectBegin 1\n" + requests[1] +
+                                                 "ObjectEnd\nSurface \"st\"\nScale 2 2 1\nObjectInstance 1\nWorldEnd\n");
+    for (int x : {1, 15, 16, 30}) {
+        EXPECT_NEAR(r.channel(0, x, 8, 0), (float(x) + 0.5f) / 2, 0.02f) << "instance " << x;
+        EXPECT_NEAR(r.channel(0, x, 8, 1), (16 - 8.5f) / 2, 0.02f) << "instance " << x;
     }
 }
 
