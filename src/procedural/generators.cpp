@@ -11,6 +11,7 @@
 #include "procedural/grass.h"
 #include "procedural/run_program.h"
 #include "procedural/procedural.h"
+#include "scene/object_st.h"
 #include "scene/ri_stream.h"
 #include "scene/search_path.h"
 
@@ -90,6 +91,10 @@ class InstanceGenerator final : public ProceduralGenerator {
         place(s.subdivisionMeshes);
         place(s.quadrics);
         place(s.polygonMeshes);
+        // A polygon's s and t default to its object x and y where a shader may read them: the
+        // instance's shader, which the definition's primitives did not know.
+        for (PolygonMeshDesc& m : s.polygonMeshes)
+            if (!m.P.empty()) addObjectSt(m.P.front(), m);
         place(s.curves);
         place(s.points);
         place(s.nuPatches);

@@ -172,6 +172,7 @@ Renderer::Renderer(const Scene& scene, const RenderOptions& options, Log& log)
     tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
     arena.execute([&] {
         shaders_ = std::make_unique<SceneShaders>(scene, log, options.textureSource, options.shadowMaps);
+        shaders_->setResolution(settings_.width, settings_.height);
         scene_ = buildRenderScene(scene, settings_.shotFirst, settings_.shotLast, settings_.width, settings_.height, log,
                                   shaders_.get(), settings_.firstFrame, settings_.lastFrame);
         // Light shaders that shine along an axis (solar): their shadow rays run parallel to it.

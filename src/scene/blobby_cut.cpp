@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 
+#include "scene/object_st.h"
+
 namespace streyes {
 
 namespace {
@@ -78,33 +80,6 @@ void blendLeafValues(const BlobbyKey& key, const std::vector<Vec3d>& P, PolygonM
     for (Param& q : out) d.primvars.params.push_back(std::move(q));
 }
 
-// Texture coordinates where the Blobby gives none: s and t are the object-space x and y of the
-// point, as the RI Spec sets them on polygons (a Blobby is drawn as a polygon mesh) and as Aqsis
-// 1.8.4 gives them on its Blobby's polygons; without them each triangle would get its own (u, v)
-// and a pattern in s would break into noise. Only where a shader may read them: the built-in
-// surfaces read neither, and a primitive variable would take them off the built-in shading.
-void addObjectSt(const std::vector<Vec3d>& P, PolygonMeshDesc& d) {
-    for (const Param& p : d.primvars.params)
-        if (p.name == "s" || p.name == "t" || p.name == "st") return;
-    const Attributes* a = d.attributes.get();
-    if (!a) return;
-    const std::string& surface = a->surface.name;
-    const bool builtin = surface == "constant" || surface == "matte" || surface == "plastic" ||
-                         surface == "defaultsurface" || surface.empty();
-    if (builtin && a->surfaceLayers.layers.empty() && a->displacement.name.empty() &&
-        a->displacementLayers.layers.empty())
-        return;
-    for (int axis = 0; axis < 2; ++axis) {
-        Param q;
-        q.name = axis == 0 ? "s" : "t";
-        q.cls = ParamClass::Vertex;
-        q.type = ParamType::Float;
-        q.nums.reserve(P.size());
-        for (const Vec3d& p : P) q.nums.push_back(axis == 0 ? p.x : p.y);
-        d.primvars.params.push_back(std::move(q));
-    }
-}
-
 }  // namespace
 
 void readBlobbyGrounds(BlobbyKey& key, const Matrix4& objectToWorld, const SourceLoc& loc, Log& log,
@@ -150,7 +125,7 @@ bool cutBlobby(const BlobbyKey& key, int cells, const SourceLoc& loc, Log& log, 
         d.Cs.values = {key.Cs.values[0]};
     }
     blendLeafValues(key, mesh.P, d);
-    addObjectSt(mesh.P, d);
+    addObjectSt(mesh.P, d);  // a pattern in s runs across the blobby, not restarting on every triangle
     d.P = {std::move(mesh.P)};
     return true;
 }

@@ -85,22 +85,34 @@ void displacementBound(RibParser& reader, const ParamList& params) {
     std::string space = params.getString("coordinatesystem", a.displacementBoundSpace);
     const bool given = params.find("coordinatesystem") != nullptr;
     const RibState& s = reader.state();
-    // The standard spaces ("current" is camera space, as in PRMan) are placed when the render
-    // binds the displacement; a name CoordinateSystem gave, and PRMan's "null" (the CTM at this
-    // request), are placed now.
-    if (given && space != "object" && space != "shader" && space != "world" && space != "camera" && space != "current") {
+    // The standard spaces ("current" is camera space, as in PRMan; "surface" the surface
+    // shader's, as "shader" is the displacement's; the image's under an orthographic projection)
+    // are placed when the render binds the displacement; a name CoordinateSystem gave, and
+    // PRMan's "null" (the CTM at this request), are placed now.
+    static const std::set<std::string> bound = {"object", "shader", "surface", "world", "camera", "current"};
+    if (given && !bound.count(space)) {
         auto named = s.coordinateSystems.find(space);
+        const SourceLoc& loc = params.find("coordinatesystem")->loc;
         if (space == "null") {
             a.displacementBoundToWorld = s.ctm;
         } else if (named != s.coordinateSystems.end() && !s.cameraSpaces.count(space)) {
             a.displacementBoundToWorld = named->second;
+        } else if (space == "screen" || space == "NDC" || space == "raster") {
+            if (reader.camera().projection != ProjectionKind::Orthographic) {
+                reader.log().lenient("displacementbound:perspective-" + space, loc,
+                                     "Attribute \"displacementbound\": coordinatesystem \"" + space +
+                                         "\" under a perspective projection has no single size in camera space (it "
+                                         "grows with depth): the bound is taken in object space; give it in "
+                                         "\"camera\" or \"object\" space");
+                space = "object";
+            }
         } else {
-            // Another renderer's name ("surface", which Aqsis does not know either), or a name not
-            // given to CoordinateSystem (in the world): the bound is taken in object space.
-            reader.log().lenient("displacementbound:" + space, params.find("coordinatesystem")->loc,
+            // Another renderer's name ("eye"), or a name not given to CoordinateSystem (in the
+            // world): the bound is taken in object space.
+            reader.log().lenient("displacementbound:" + space, loc,
                                  "Attribute \"displacementbound\": coordinatesystem \"" + space +
-                                     "\" is none of object, shader, world, camera, current, null or a name "
-                                     "CoordinateSystem gave: the bound is taken in object space");
+                                     "\" is none of object, shader, surface, world, camera, current, screen, NDC, "
+                                     "raster, null or a name CoordinateSystem gave: the bound is taken in object space");
             space = "object";
         }
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "scene/object_st.h"
 #include "scene/rib_geometry.h"
 
 namespace streyes {
@@ -89,6 +90,7 @@ void polygonMeshKeys(RibParser& reader, const RibKeys& keys) {
     if (auto d = mergeKeys<PolygonMeshDesc>(reader, keys, readPolygonsKey, sameShape,
                                             "polygons and vertex indices (only \"P\" may change)", positions)) {
         d->patchesBefore = reader.scene().patches.size();
+        if (!d->P.empty()) addObjectSt(d->P.front(), *d);  // the first key's: texture does not swim
         reader.scene().polygonMeshes.push_back(std::move(*d));
     }
 }
@@ -106,6 +108,7 @@ void addPolygon(RibParser& reader, const std::vector<double>& times, const std::
     d.polygons = {{loop}};
     d.Cs = keys.front().Cs;
     d.primvars = keys.front().primvars;  // per vertex around the loop: polygonAsPatch puts them at the corners
+    addObjectSt(d.P.front(), d);
     d.patchesBefore = reader.scene().patches.size();
     const std::vector<Vec3d>& v = d.P.front();  // around the edge: corners in patch order
     shapeAreaLight(reader, {v.size() == 4 ? std::array<Vec3d, 4>{v[0], v[1], v[3], v[2]} : std::array<Vec3d, 4>{v[0], v[1], v[2], v[2]}},

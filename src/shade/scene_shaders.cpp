@@ -118,6 +118,27 @@ ViewUse fromProgram(const sl::ShaderInstance* s) {
     return ViewUse::Reads;
 }
 
+// The camera-space length of one unit of "screen", "NDC" and "raster" space across an
+// orthographic image (the larger of the x and y scales): screen x and y are camera x and y, NDC
+// spans the screen window, raster a pixel of it. (Under a perspective projection a length in
+// them grows with depth: the reader takes such bounds in object space.)
+void imageUnits(const CameraDesc& cam, int xres, int yres, double* screen, double* ndc, double* raster) {
+    xres = std::max(xres, 1), yres = std::max(yres, 1);
+    const double aspect = cam.frameAspect > 0 ? cam.frameAspect : cam.pixelAspect * xres / yres;
+    double w = 2, h = 2;  // RenderMan's default screen window: the shorter side spans [-1, 1]
+    if (cam.hasScreenWindow) {
+        w = std::fabs(cam.screenWindow[1] - cam.screenWindow[0]);
+        h = std::fabs(cam.screenWindow[3] - cam.screenWindow[2]);
+    } else if (aspect >= 1) {
+        w = 2 * aspect;
+    } else {
+        h = 2 / aspect;
+    }
+    *screen = std::max(*screen, 1.0);
+    *ndc = std::max({*ndc, w, h});
+    *raster = std::max({*raster, w / xres, h / yres});
+}
+
 }  // namespace
 
 std::string standardShaderDir() {
@@ -199,6 +220,9 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
     // The environment's folders after the scene's own (search_path.h).
     for (const std::string& f : environmentSearchPath(kTexturePathVariable)) texturePath.push_back(f);
     maps_ = std::make_unique<ShadowMaps>(std::move(maps), scene, texturePath, log);
+    imageCameras_.push_back(scene.camera);
+    for (const auto& frame : scene.frameCamera) imageCameras_.push_back(frame.second);
+    setResolution(scene.camera.xres, scene.camera.yres);
     cameraRigid_ = movesRigidly(scene.camera.worldToCamera);
     for (const auto& frame : scene.frameWorldToCamera) cameraRigid_ = cameraRigid_ && movesRigidly(frame.second);
     textures_ = std::make_unique<LazyTextureSource>(std::move(textures), std::move(texturePath), maps_.get(), log);
@@ -239,6 +263,11 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
         lightStillInWorld_.push_back(d.lightToWorld.isStatic() && (!d.area || d.areaToWorld.isStatic()) &&
                                      !maps_->worldVaries());
     }
+}
+
+void SceneShaders::setResolution(int width, int height) {
+    screenUnit_ = ndcUnit_ = rasterUnit_ = 0;
+    for (const CameraDesc& c : imageCameras_) imageUnits(c, width, height, &screenUnit_, &ndcUnit_, &rasterUnit_);
 }
 
 // Option "environment:NAME" "string shader" [name] params...: the options keep each value as
@@ -429,13 +458,22 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         m.displacementLayers = displacement.network;
         // The bound's radius in camera space: "camera" and "current" are camera space; "object"
         // is the primitive's (taken here as the shader's; the factory corrects a primitive whose
-        // transform stretches otherwise: Material::displacementBoundInObject).
+        // transform stretches otherwise: Material::displacementBoundInObject); "surface" the
+        // surface shader's (the CTM at Surface or its last layer's, else the displacement's); the image's spaces a
+        // length across an orthographic image (the reader takes them under no other projection).
         const std::string& space = a.displacementBoundSpace;
         double scale = 1;
         if (space == "object" || space == "shader")
             scale = largestStretch(a.displacement.shaderToWorld) * largestStretch(worldToCamera_);
+        else if (space == "surface")
+            scale = largestStretch(!a.surfaceLayers.layers.empty() ? a.surfaceLayers.layers.back().shaderToWorld
+                                   : !a.surface.name.empty()       ? a.surface.shaderToWorld
+                                                                   : a.displacement.shaderToWorld) *
+                    largestStretch(worldToCamera_);
         else if (space == "world")
             scale = largestStretch(worldToCamera_);
+        else if (space == "screen" || space == "NDC" || space == "raster")
+            scale = space == "screen" ? screenUnit_ : space == "NDC" ? ndcUnit_ : rasterUnit_;
         else if (space != "camera" && space != "current")  // a CoordinateSystem's, or PRMan's "null"
             scale = largestStretch(a.displacementBoundToWorld) * largestStretch(worldToCamera_);
         m.displacementBound = float(a.displacementBound * scale);

@@ -78,6 +78,9 @@ class SceneShaders final : public MaterialBinder {
     // `maps`: the depth maps shadow() reads (null: only files on disk... none without a reader).
     SceneShaders(const Scene& scene, Log& log, TextureSourceFactory textures = {},
                  std::shared_ptr<const ShadowMapBinding> maps = {});
+    // The render's resolution (Format's, or --res): what a pixel of a "raster" displacement bound
+    // is. Before materials are bound; Format's until then.
+    void setResolution(int width, int height);
 
     // Sets material.surface (and readsTime, readsMaps, tracesRays, viewUse) unless the built-in
     // shading serves it.
@@ -149,6 +152,11 @@ class SceneShaders final : public MaterialBinder {
     BoundLayers bindLayers(const ShaderNetwork& net, sl::ShaderType type) const;
 
     MotionTransform worldToCamera_;
+    // One unit of a displacement bound in "screen", "NDC" and "raster" space, in camera space
+    // (an orthographic projection's: the larger of its x and y scales across the image, the
+    // largest over a zoom's frames), and the projections they come from.
+    double screenUnit_ = 1, ndcUnit_ = 1, rasterUnit_ = 1;
+    std::vector<CameraDesc> imageCameras_;
     OptionValues options_;
     std::vector<sl::NamedSpace> coordinateSystems_;
     std::unique_ptr<sl::ShaderCache> cache_;  // thread-safe: materials are bound on worker threads too

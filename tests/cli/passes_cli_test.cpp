@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 
 #include "cli_run.h"
 #include "streyes/image_io.h"
@@ -302,6 +304,57 @@ TEST(PassesCli, ABadShadowMapFileIsAnErrorNamingTheLineThatNamesIt) {
     r = renderIn(tmp.path(), "good.rib");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+}
+
+// A TIFF's image size tags (ImageWidth, ImageLength) set to `width` x `height` in its first
+// directory: a file whose header claims another size than its pixels hold.
+std::string withTiffSize(std::string tiff, uint32_t width, uint32_t height) {
+    const bool little = tiff.compare(0, 2, "II") == 0;
+    auto get = [&](size_t at, int n) {
+        uint32_t v = 0;
+        for (int i = 0; i < n; ++i)
+            v |= uint32_t(uint8_t(tiff[at + size_t(little ? i : n - 1 - i)])) << (8 * i);
+        return v;
+    };
+    auto put = [&](size_t at, int n, uint32_t v) {
+        for (int i = 0; i < n; ++i) tiff[at + size_t(little ? i : n - 1 - i)] = char((v >> (8 * i)) & 0xff);
+    };
+    const size_t ifd = get(4, 4);
+    const uint32_t entries = get(ifd, 2);
+    int set = 0;
+    for (uint32_t e = 0; e < entries; ++e) {
+        const size_t at = ifd + 2 + 12 * size_t(e);
+        const uint32_t tag = get(at, 2), type = get(at + 2, 2);
+        if (tag != 256 && tag != 257) continue;
+        put(at + 8, type == 3 ? 2 : 4, tag == 256 ? width : height);  // SHORT or LONG
+        ++set;
+    }
+    EXPECT_EQ(set, 2) << "a TIFF's first directory has ImageWidth and ImageLength";
+    return tiff;
+}
+
+// A map whose header claims a larger size than its pixels hold: exit 2 naming the line that
+// names it, nothing written. (One that claims a smaller size reads as the smaller map its first
+// pixels make: OpenImageIO finds nothing wrong with it.)
+TEST(PassesCli, AShadowMapOfTheWrongSizeIsAnErrorNamingTheLineThatNamesIt) {
+    test::TempDir tmp("passes-size");
+    writeFile(
+        tmp.path(), "make.rib",
+        "FrameBegin 1\nDisplay \"good.z\" \"zfile\" \"z\"\nFormat 64 64 1\nProjection \"perspective\" \"fov\" [40]\n"
+        "Translate 0 0 5\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\nFrameEnd\nMakeShadow \"good.z\" \"good.shd\"\n");
+    ASSERT_EQ(renderIn(tmp.path(), "make.rib -q").exitCode, 0);
+    const std::string good = readFile(tmp.path() + "/good.shd");
+    ASSERT_EQ(good.compare(0, 2, good[0] == 'I' ? "II" : "MM"), 0) << "a TIFF";
+    for (const auto& [name, w, h] : {std::tuple{"wide", 4096u, 4096u}, std::tuple{"tall", 64u, 65u}}) {
+        SCOPED_TRACE(name);
+        const std::string map = std::string(name) + ".shd";
+        writeFile(tmp.path(), map, withTiffSize(good, w, h));
+        writeFile(tmp.path(), "pic.rib", pictureReading(map));
+        const test::CliRun r = renderIn(tmp.path(), "pic.rib");
+        EXPECT_EQ(r.exitCode, 2) << r.output;
+        EXPECT_NE(r.output.find("pic.rib:6: error: shadow map \"" + map + "\""), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(tmp.path() + "/pic.exr"));
+    }
 }
 
 // MakeShadow of a depth map that nothing makes, or of a file that is no depth map: exit 2 at its line.

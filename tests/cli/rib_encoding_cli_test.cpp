@@ -6,6 +6,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "cli_run.h"
 #include "scene/rib_gzip.h"
@@ -57,6 +60,42 @@ TEST(Catrib, ConvertsToBinaryAndGzipAndBackWithTheSamePixels) {
     ASSERT_EQ(x.pixels.size(), y.pixels.size());
     ASSERT_GT(x.pixels.size(), 0u);
     EXPECT_EQ(std::memcmp(x.pixels.data(), y.pixels.data(), x.pixels.size() * sizeof(float)), 0);
+}
+
+// The multi-pass scenes of scenes/shadows/ (depth frames, MakeShadow, pictures reading the maps,
+// a zoom; RibEncodings in tests/core covers scenes/ and scenes/hard/ through the library) render
+// bit for bit the same pictures from gzip, binary and gzip-compressed binary RIB as from the
+// ASCII file, each in a folder of its own (the maps are written beside the scene).
+TEST(Catrib, MultiPassScenesRenderTheSameFromGzipAndBinary) {
+    const test::TempDir dir("catrib-passes");
+    for (const char* scene : {"autoshadow", "lamps", "shot", "zoom"}) {
+        SCOPED_TRACE(scene);
+        const std::string source = test::sourcePath(std::string("scenes/shadows/") + scene + ".rib");
+        const std::vector<std::pair<std::string, std::string>> encodings = {
+            {"ascii", ""}, {"gzip", "--gzip"}, {"binary", "--binary"}, {"binary-gzip", "--binary --gzip"}};
+        std::vector<std::vector<std::string>> outputs;
+        for (const auto& [name, flags] : encodings) {
+            const std::string at = dir.path() + "/" + scene + "-" + name;
+            std::filesystem::create_directory(at);
+            const CliRun c = runStreyes("catrib " + flags + " " + source + " -o " + at + "/scene.rib");
+            ASSERT_EQ(c.exitCode, 0) << c.output;
+            EXPECT_EQ(isGzip(readFile(at + "/scene.rib")), name.find("gzip") != std::string::npos) << name;
+            const CliRun r = test::runStreyesWith("cd " + at + " && ",
+                                                  "render scene.rib --res 48x36 --samples 2 -q -o pic.####.exr");
+            ASSERT_EQ(r.exitCode, 0) << name << ": " << r.output;
+            std::vector<std::string> pictures;
+            for (const std::string& f : listDir(at))
+                if (f.size() > 4 && f.compare(f.size() - 4, 4, ".exr") == 0) pictures.push_back(f);
+            ASSERT_FALSE(pictures.empty()) << name;
+            outputs.push_back(pictures);
+            for (const std::string& f : pictures) {
+                const ImageData x = readImage(dir.path() + "/" + scene + "-ascii/" + f), y = readImage(at + "/" + f);
+                ASSERT_GT(x.pixels.size(), 0u);
+                EXPECT_TRUE(x.width == y.width && x.height == y.height && x.pixels == y.pixels) << name << " " << f;
+            }
+        }
+        for (const auto& o : outputs) EXPECT_EQ(o, outputs.front());
+    }
 }
 
 TEST(Catrib, BadUsageAndBadInput) {

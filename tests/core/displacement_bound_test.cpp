@@ -7,6 +7,8 @@
 // (which shows the test can fail).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "shader_test_util.h"
 #include "test_util.h"
 
@@ -26,6 +28,13 @@ test::RenderResult shifted(const test::ShaderDir& d, const std::string& bound, c
     RenderOptions o;
     o.bucketSize = 8;  // buckets right of x = 40 see the plane only through its bound
     return test::renderRib(rib, o);
+}
+
+// A number as the bound's warning writes it (3 significant digits).
+std::string boundText(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", v);
+    return text;
 }
 
 // Whether the displaced plane is drawn whole, and nothing else.
@@ -79,12 +88,103 @@ TEST(DisplacementBound, TheRadiusIsMeasuredInTheSpaceNamed) {
 TEST(DisplacementBound, AnotherRenderersSpaceIsWarnedAboutOnceAndTakenAsObjectSpace) {
     test::ShaderDir d;
     d.add("shiftx", kShiftX);
-    // Aqsis's repel.rib names "surface", which neither PRMan's list nor Aqsis's own knows.
-    const test::RenderResult r = shifted(d, "\"coordinatesystem\" [\"surface\"]", "", "Scale 8 8 8\n",
+    // "eye" is in neither PRMan's list nor Aqsis's (which takes a name it does not know as camera
+    // space, silently).
+    const test::RenderResult r = shifted(d, "\"coordinatesystem\" [\"eye\"]", "", "Scale 8 8 8\n",
                                          test::square(0, 4, 0, 8, 1.25));
     ASSERT_EQ(r.warnings.size(), 1u);
-    EXPECT_NE(r.warnings[0].find("coordinatesystem \"surface\""), std::string::npos) << r.warnings[0];
+    EXPECT_NE(r.warnings[0].find("coordinatesystem \"eye\""), std::string::npos) << r.warnings[0];
     EXPECT_TRUE(whole(r));  // object space: the primitive's scale of 8
+}
+
+// "surface" (Aqsis's repel.rib) is the surface shader's space, the CTM at Surface, as "shader" is
+// the displacement's: scaled by 8 there, 2.25 covers the 16-pixel move though neither the
+// displacement's space nor the primitive's is scaled; unscaled there, it does not, though the
+// displacement's space is scaled. No warning that the name is unknown.
+TEST(DisplacementBound, SurfaceIsTheSurfaceShadersSpace) {
+    test::ShaderDir d;
+    d.add("shiftx", kShiftX);
+    const std::string bound = "\"coordinatesystem\" [\"surface\"]";
+    const test::RenderResult scaled =
+        shifted(d, bound, "TransformBegin\nScale 8 8 8\nSurface \"constant\"\nTransformEnd\n", "");
+    EXPECT_TRUE(whole(scaled));
+    EXPECT_TRUE(scaled.warnings.empty()) << scaled.warnings.front();
+    const test::RenderResult unscaled = shifted(d, bound, "Scale 8 8 8\n", "");  // the Surface before it
+    EXPECT_FALSE(whole(unscaled));
+    ASSERT_EQ(unscaled.warnings.size(), 1u);
+    EXPECT_NE(unscaled.warnings[0].find("in \"surface\" space"), std::string::npos) << unscaled.warnings[0];
+}
+
+// The image's spaces under an orthographic projection: a bound measured across the image, one
+// unit of "screen" a unit of camera space, of "NDC" the screen window's larger side, of "raster"
+// a pixel's larger side. A 64 x 64 image of the screen window [0, 128]^2: a pixel is 2 units, NDC
+// 128. The plane moves 16 units (8 pixels): a bound just short of it is exceeded, and the warning
+// gives its size in camera space, the closed form; one just over it draws the plane whole.
+TEST(DisplacementBound, ImageSpacesMeasureTheBoundAcrossAnOrthographicImage) {
+    test::ShaderDir d;
+    d.add("shiftx", kShiftX);
+    auto render = [&](const std::string& space, double r, const std::string& view, const RenderOptions& o) {
+        const std::string rib = view + d.option() + "WorldBegin\nSurface \"constant\"\n" +
+                                "Attribute \"displacementbound\" \"sphere\" [" + boundText(r) +
+                                "] \"coordinatesystem\" [\"" + space + "\"]\nDisplacement \"shiftx\" \"dx\" 16\n" +
+                                test::square(0, 64, 0, 128, 10) + "WorldEnd\n";
+        return test::renderRib(rib, o);
+    };
+    const std::string view = "Format 64 64 1\nProjection \"orthographic\"\nScreenWindow 0 128 0 128\n"
+                             "PixelFilter \"box\" 1 1\nPixelSamples 2 2\n";
+    RenderOptions o;
+    o.bucketSize = 8;
+    struct Case {
+        std::string space;
+        double under, camera, over;  // a bound short of the move, it in camera space, one past it
+    };
+    for (const Case& c : {Case{"screen", 15, 15, 17}, Case{"NDC", 0.1, 12.8, 0.13}, Case{"raster", 7, 14, 9}}) {
+        SCOPED_TRACE(c.space);
+        const test::RenderResult short_ = render(c.space, c.under, view, o);
+        ASSERT_EQ(short_.warnings.size(), 1u);
+        EXPECT_NE(short_.warnings[0].find("moved points up to 16 (camera space) but its bound is " + boundText(c.under) +
+                                          " (Attribute \"displacementbound\" \"sphere\" in \"" + c.space + "\" space; " +
+                                          boundText(c.camera) + " in camera space)"),
+                  std::string::npos)
+            << short_.warnings[0];
+        const test::RenderResult enough = render(c.space, c.over, view, o);
+        EXPECT_TRUE(enough.warnings.empty()) << enough.warnings.front();
+        // The plane's pixels x in [8, 40) once moved, whole.
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) ASSERT_EQ(enough.alpha(0, x, y), x >= 8 && x < 40 ? 1.0f : 0.0f) << x << " " << y;
+    }
+    // The render's resolution, not Format's, makes a pixel: at 32 x 32 a pixel is 4 units.
+    RenderOptions half = o;
+    half.xres = half.yres = 32;
+    EXPECT_TRUE(render("raster", 7, view, half).warnings.empty());
+    // Without a ScreenWindow, RenderMan's default: the shorter side spans [-1, 1], here 4 x 2 at
+    // 64 x 32 pixels: NDC's unit 4, a pixel 1/16.
+    const std::string wide = "Format 64 32 1\nProjection \"orthographic\"\nPixelSamples 2 2\n";
+    for (const Case& c : {Case{"NDC", 2, 8, 0}, Case{"raster", 100, 6.25, 0}}) {
+        const test::RenderResult r = render(c.space, c.under, wide, o);
+        ASSERT_EQ(r.warnings.size(), 1u) << c.space;
+        EXPECT_NE(r.warnings[0].find("in \"" + c.space + "\" space; " + boundText(c.camera) + " in camera space)"),
+                  std::string::npos)
+            << r.warnings[0];
+    }
+}
+
+// Under a perspective projection a length in the image's spaces grows with depth: such a bound is
+// warned about once (file:line) and taken in object space, as an unknown name is.
+TEST(DisplacementBound, ImageSpacesUnderAPerspectiveProjectionAreWarnedAboutAndTakenAsObjectSpace) {
+    for (const char* space : {"screen", "NDC", "raster"}) {
+        const std::string rib = std::string("Format 16 16 1\nProjection \"perspective\" \"fov\" [40]\nWorldBegin\n") +
+                                "Attribute \"displacementbound\" \"sphere\" [1] \"coordinatesystem\" [\"" + space +
+                                "\"]\nAttribute \"displacementbound\" \"sphere\" [1] \"coordinatesystem\" [\"" +
+                                space + "\"]\nTranslate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n";
+        const test::RenderResult r = test::renderRib(rib);
+        ASSERT_EQ(r.warnings.size(), 1u) << space;
+        EXPECT_NE(r.warnings[0].find("test.rib:4: "), std::string::npos) << r.warnings[0];
+        EXPECT_NE(r.warnings[0].find("under a perspective projection has no single size in camera space"),
+                  std::string::npos)
+            << r.warnings[0];
+        EXPECT_NE(test::ribError(rib, true).find("perspective projection"), std::string::npos) << space;  // --strict
+    }
 }
 
 // A displacement that moves points farther than its bound may lose pieces (the case above): the

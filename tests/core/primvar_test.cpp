@@ -5,7 +5,10 @@
 
 #include <cmath>
 #include <fstream>
+#include <string>
+#include <vector>
 
+#include "streyes/rib.h"
 #include "test_util.h"
 
 namespace streyes {
@@ -103,6 +106,45 @@ TEST(Primvars, StGivesTheShadersTextureCoordinates) {
                                                  "Polygon \"P\" [0 0 5  32 0 5  32 32 5  0 32 5] \"varying float s\" [0 1 1 0]\n" +
                                                  "WorldEnd\n");
     for (int x : {3, 16, 29}) EXPECT_NEAR(p.channel(0, x, 10, 0), (float(x) + 0.5f) / 32, 1e-3f) << x;
+}
+
+// Without "s", "t" or "st" a polygon's texture coordinates are its object-space x and y (RI Spec
+// 3.2, "Polygons"; Aqsis 1.8.4 the same), not each face's own (u, v): under Scale 2 2 1, pixel
+// (x, row) of the 32 x 16 view sees object (x + 0.5, 16 - row - 0.5) / 2, whatever the request
+// (a quad read as a patch, a two-quad mesh, a pentagon cut into faces) and the algorithm, within
+// 0.02 (a pixel's 16 samples average within ~0.03 pixel of its centre; a face's own (u, v) would
+// stay within [0, 1]). The built-in surfaces read neither: nothing is added to them. An object's
+// instance takes them under its own shader.
+TEST(Primvars, APolygonsTextureCoordinatesAreItsObjectXAndY) {
+    const Shaders sh;
+    const std::vector<std::string> requests = {
+        "Polygon \"P\" [0 0 5  16 0 5  16 8 5  0 8 5]\n",
+        "PointsPolygons [4 4] [0 1 4 3  1 2 5 4] \"P\" [0 0 5  8 0 5  16 0 5  0 8 5  8 8 5  16 8 5]\n",
+        "GeneralPolygon [5] \"P\" [0 0 5  16 0 5  16 8 5  8 9 5  0 8 5]\n",
+    };
+    for (const std::string& request : requests) {
+        const std::string rib = sh.header(32, 16) + "Surface \"st\"\nScale 2 2 1\n" + request + "WorldEnd\n";
+        for (const Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Raytrace}) {
+            SCOPED_TRACE(request + algorithmName(a));
+            const test::RenderResult r = test::renderRib(rib, test::optionsFor(a));
+            for (int x : {1, 9, 15, 16, 23, 30})
+                for (int row : {1, 8, 14}) {
+                    EXPECT_NEAR(r.channel(0, x, row, 0), (float(x) + 0.5f) / 2, 0.02f) << x << " " << row;
+                    EXPECT_NEAR(r.channel(0, x, row, 1), (16 - float(row) - 0.5f) / 2, 0.02f) << x << " " << row;
+                }
+        }
+        Log log;
+        const Scene plain = parseRibString("WorldBegin\nSurface \"plastic\"\n" + request + "WorldEnd\n", "p.rib", log);
+        ASSERT_EQ(plain.polygonMeshes.size(), 1u);
+        EXPECT_TRUE(plain.polygonMeshes[0].primvars.params.empty()) << request;
+    }
+    // An object's polygons, defined under no shader, instanced under one that reads s and t.
+    const test::RenderResult r = test::renderRib(sh.header(32, 16) + "ObjectBegin 1\n" + requests[1] +
+                                                 "ObjectEnd\nSurface \"st\"\nScale 2 2 1\nObjectInstance 1\nWorldEnd\n");
+    for (int x : {1, 15, 16, 30}) {
+        EXPECT_NEAR(r.channel(0, x, 8, 0), (float(x) + 0.5f) / 2, 0.02f) << "instance " << x;
+        EXPECT_NEAR(r.channel(0, x, 8, 1), (16 - 8.5f) / 2, 0.02f) << "instance " << x;
+    }
 }
 
 // On a quadric the four values are the corners of its (u, v) domain: a disk's v runs from the rim

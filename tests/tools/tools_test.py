@@ -394,5 +394,15 @@ class AqsisComparePictures(unittest.TestCase):
             shutil.rmtree(work, ignore_errors=True)
 
 
+class ShadowBenchProvenanceTest(unittest.TestCase):
+    """tools/shadow-bench's table says when and at which commit it was measured."""
+
+    def test_provenance_names_the_day_and_the_commit(self):
+        tool = load_script("shadow-bench")
+        day, commit = tool.provenance()
+        self.assertRegex(day, r"^\d{4}-\d{2}-\d{2}$")
+        self.assertRegex(commit, r"^([0-9a-f]{7,}( with local changes)?|unknown)$")
+
+
 if __name__ == "__main__":
     unittest.main()
