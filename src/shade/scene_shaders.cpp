@@ -220,6 +220,7 @@ SceneShaders::SceneShaders(const Scene& scene, Log& log, TextureSourceFactory te
     // The environment's folders after the scene's own (search_path.h).
     for (const std::string& f : environmentSearchPath(kTexturePathVariable)) texturePath.push_back(f);
     maps_ = std::make_unique<ShadowMaps>(std::move(maps), scene, texturePath, log);
+    perspective_ = scene.camera.projection == ProjectionKind::Perspective;
     imageCameras_.push_back(scene.camera);
     for (const auto& frame : scene.frameCamera) imageCameras_.push_back(frame.second);
     setResolution(scene.camera.xres, scene.camera.yres);
@@ -461,7 +462,15 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         // transform stretches otherwise: Material::displacementBoundInObject); "surface" the
         // surface shader's (the CTM at Surface or its last layer's, else the displacement's); the image's spaces a
         // length across an orthographic image (the reader takes them under no other projection).
-        const std::string& space = a.displacementBoundSpace;
+        std::string space = a.displacementBoundSpace;
+        if ((space == "screen" || space == "NDC" || space == "raster") && perspective_) {
+            // Given before the Projection request: the reader took the projection as orthographic.
+            log_.warnOnce("displacementbound:perspective-" + space, a.displacement.loc,
+                          "Attribute \"displacementbound\": coordinatesystem \"" + space +
+                              "\" under a perspective projection has no single size in camera space (it grows "
+                              "with depth): the bound is taken in object space; give it in \"camera\" or \"object\" space");
+            space = "object";
+        }
         double scale = 1;
         if (space == "object" || space == "shader")
             scale = largestStretch(a.displacement.shaderToWorld) * largestStretch(worldToCamera_);

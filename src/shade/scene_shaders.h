@@ -157,6 +157,7 @@ class SceneShaders final : public MaterialBinder {
     // largest over a zoom's frames), and the projections they come from.
     double screenUnit_ = 1, ndcUnit_ = 1, rasterUnit_ = 1;
     std::vector<CameraDesc> imageCameras_;
+    bool perspective_ = false;  // then a bound in them has no single size (the reader warns when it knows)
     OptionValues options_;
     std::vector<sl::NamedSpace> coordinateSystems_;
     std::unique_ptr<sl::ShaderCache> cache_;  // thread-safe: materials are bound on worker threads too

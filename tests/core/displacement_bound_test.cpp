@@ -185,6 +185,19 @@ TEST(DisplacementBound, ImageSpacesUnderAPerspectiveProjectionAreWarnedAboutAndT
             << r.warnings[0];
         EXPECT_NE(test::ribError(rib, true).find("perspective projection"), std::string::npos) << space;  // --strict
     }
+    // Given before the Projection request (the reader did not know it yet): the render says so
+    // once, at the Displacement request, and takes the bound in object space.
+    test::ShaderDir d;
+    d.add("shiftx", kShiftX);
+    const std::string early = "Attribute \"displacementbound\" \"sphere\" [1] \"coordinatesystem\" [\"raster\"]\n"
+                              "Format 16 16 1\nProjection \"perspective\" \"fov\" [40]\n" +
+                              d.option() + "WorldBegin\nDisplacement \"shiftx\" \"dx\" 0.5\n"
+                              "Translate 0 0 5\nSphere 1 -1 1 360\nWorldEnd\n";
+    const test::RenderResult r = test::renderRib(early);
+    ASSERT_EQ(r.warnings.size(), 1u) << r.warnings.front();
+    EXPECT_NE(r.warnings[0].find("test.rib:6: "), std::string::npos) << r.warnings[0];  // the Displacement
+    EXPECT_NE(r.warnings[0].find("coordinatesystem \"raster\" under a perspective projection"), std::string::npos)
+        << r.warnings[0];
 }
 
 // A displacement that moves points farther than its bound may lose pieces (the case above): the
