@@ -47,6 +47,17 @@ inline bool slowUnderSanitizers(const std::string& sceneFile) {
     return false;
 }
 
+// Under the sanitizers, a test whose point holds at any resolution (renders that must agree bit for
+// bit: whatever the threads, the block, the cache) renders its scene of width x height at half of
+// each, a quarter of the pixels; the release suite renders the scene's own. It keeps the sanitized
+// suite's heaviest invariance tests near a quarter of their time.
+inline void halfResolutionUnderSanitizers(RenderOptions& o, int width, int height) {
+    if (kAddressSanitizer) {
+        o.xres = width / 2;
+        o.yres = height / 2;
+    }
+}
+
 // The ray tracer expands every procedural up front: the 100,000 trees of these scenes take
 // minutes, so the scene tests render them with the rasterizer only.
 inline bool tooLargeToRayTrace(const std::string& sceneFile) {

@@ -293,7 +293,8 @@ TEST(Procedural, ForestLetsGoOfWhatNoBucketLeftReachesWithTheSamePixels) {
     Log log;
     Scene scene = parseRibFile(test::sourcePath("scenes/forest-small.rib"), log);
     RenderOptions o = smallForestOptions();
-    o.bucketSize = 16;  // 24 buckets
+    o.bucketSize = 16;  // 24 buckets; 6 under the sanitizers, at 48 x 27
+    test::halfResolutionUnderSanitizers(o, 96, 54);
     o.freeExpansions = RenderOptions::FreeExpansions::Never;
     RenderResult kept = test::renderScene(scene, o);
     EXPECT_EQ(kept.stats.counters.proceduralsReleased, 0u);
@@ -337,6 +338,7 @@ TEST(Procedural, FlyoverLetsGoOfWhatNoBucketLeftReachesWithTheSamePixels) {
     Scene scene = parseRibFile(test::sourcePath("scenes/forest-flyover.rib"), log);
     RenderOptions o = smallForestOptions();
     o.bucketSize = 16;
+    test::halfResolutionUnderSanitizers(o, 96, 54);
     o.freeExpansions = RenderOptions::FreeExpansions::Never;
     RenderResult kept = test::renderScene(scene, o);
     ASSERT_GT(kept.stats.counters.proceduralsExpanded, 10u);

@@ -266,6 +266,8 @@ TEST(SolidRays, ThreadCountDoesNotChangePixels) {
         one.hasFrames = two.hasFrames = true;  // frames 1 and 2
         one.firstFrame = two.firstFrame = 1;
         one.lastFrame = two.lastFrame = 2;
+        test::halfResolutionUnderSanitizers(one, kW, kH);
+        test::halfResolutionUnderSanitizers(two, kW, kH);
         for (const char* shader : {"mirror", "gatherer"}) {
             const std::string rib = movingBite(s, shader, m.options);
             EXPECT_TRUE(test::identicalPixels(renderRib(rib, one), renderRib(rib, two))) << shader;
