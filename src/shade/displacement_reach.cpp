@@ -36,7 +36,10 @@ void DisplacementReach::report(Log& log) const {
     for (const auto& [key, o] : over_) {
         // The bound that would hold the largest move, in the space the bound was given in (its
         // scale to camera space is the given bound's; with none given, camera space itself).
-        const bool scaled = o.bound > 0 && o.cameraBound > 0;
+        // Image spaces ("screen", "NDC", "raster") fall back to object space under a perspective
+        // projection: the hint is then given in camera space, right under either projection.
+        const bool imageSpace = o.space == "screen" || o.space == "NDC" || o.space == "raster";
+        const bool scaled = o.bound > 0 && o.cameraBound > 0 && !imageSpace;
         const double need = scaled ? o.largest * o.bound / o.cameraBound : o.largest;
         const std::string space = scaled ? o.space : std::string("camera");
         const std::string given =

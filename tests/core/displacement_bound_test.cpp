@@ -147,6 +147,11 @@ TEST(DisplacementBound, ImageSpacesMeasureTheBoundAcrossAnOrthographicImage) {
                                           boundText(c.camera) + " in camera space)"),
                   std::string::npos)
             << short_.warnings[0];
+        // The bound to give is named in camera space: an image space's size is the projection's.
+        EXPECT_NE(short_.warnings[0].find("raise it to at least Attribute \"displacementbound\" \"sphere\" [16.2] "
+                                          "\"coordinatesystem\" [\"camera\"]"),
+                  std::string::npos)
+            << short_.warnings[0];
         const test::RenderResult enough = render(c.space, c.over, view, o);
         EXPECT_TRUE(enough.warnings.empty()) << enough.warnings.front();
         // The plane's pixels x in [8, 40) once moved, whole.
