@@ -249,6 +249,17 @@ TEST(PassesCli, AutoshadowsRenderTheMapOnTheFly) {
     EXPECT_GT(darkened(tmp.path() + "/autoshadow.exr", tmp.path() + "/lit.exr"), 0.02);  // 3.6% when written
 }
 
+// A good shadow map of a sphere, made in `dir` by a depth frame and MakeShadow (good.shd): its bytes.
+std::string goodShadowMap(const std::string& dir) {
+    writeFile(
+        dir, "make.rib",
+        "FrameBegin 1\nDisplay \"good.z\" \"zfile\" \"z\"\nFormat 64 64 1\nProjection \"perspective\" \"fov\" [40]\n"
+        "Translate 0 0 5\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\nFrameEnd\nMakeShadow \"good.z\" \"good.shd\"\n");
+    const test::CliRun r = renderIn(dir, "make.rib -q");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return readFile(dir + "/good.shd");
+}
+
 // A picture reading maps: the light's RIB line gives the name.
 std::string pictureReading(const std::string& map) {
     return "Display \"pic.exr\" \"file\" \"rgba\"\nFormat 40 30 1\nProjection \"perspective\" \"fov\" [40]\n"
@@ -275,14 +286,8 @@ TEST(PassesCli, AShadowMapNoPassWritesAndNoFileHoldsWarnsOnceAndLeavesSurfacesLi
 // line that gives its name, nothing written.
 TEST(PassesCli, ABadShadowMapFileIsAnErrorNamingTheLineThatNamesIt) {
     test::TempDir tmp("passes-bad");
-    // A good map first, made by a depth frame and MakeShadow.
-    writeFile(
-        tmp.path(), "make.rib",
-        "FrameBegin 1\nDisplay \"good.z\" \"zfile\" \"z\"\nFormat 64 64 1\nProjection \"perspective\" \"fov\" [40]\n"
-        "Translate 0 0 5\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\nFrameEnd\nMakeShadow \"good.z\" \"good.shd\"\n");
-    test::CliRun r = renderIn(tmp.path(), "make.rib -q");
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    const std::string good = readFile(tmp.path() + "/good.shd");
+    const std::string good = goodShadowMap(tmp.path());
+    test::CliRun r;
     ASSERT_GT(good.size(), 1000u);
     writeFile(tmp.path(), "cut.shd", good.substr(0, good.size() / 2));
     writeFile(tmp.path(), "cut.rib", pictureReading("cut.shd"));
@@ -338,12 +343,7 @@ std::string withTiffSize(std::string tiff, uint32_t width, uint32_t height) {
 // pixels make: OpenImageIO finds nothing wrong with it.)
 TEST(PassesCli, AShadowMapOfTheWrongSizeIsAnErrorNamingTheLineThatNamesIt) {
     test::TempDir tmp("passes-size");
-    writeFile(
-        tmp.path(), "make.rib",
-        "FrameBegin 1\nDisplay \"good.z\" \"zfile\" \"z\"\nFormat 64 64 1\nProjection \"perspective\" \"fov\" [40]\n"
-        "Translate 0 0 5\nWorldBegin\nSphere 1 -1 1 360\nWorldEnd\nFrameEnd\nMakeShadow \"good.z\" \"good.shd\"\n");
-    ASSERT_EQ(renderIn(tmp.path(), "make.rib -q").exitCode, 0);
-    const std::string good = readFile(tmp.path() + "/good.shd");
+    const std::string good = goodShadowMap(tmp.path());
     ASSERT_EQ(good.compare(0, 2, good[0] == 'I' ? "II" : "MM"), 0) << "a TIFF";
     for (const auto& [name, w, h] : {std::tuple{"wide", 4096u, 4096u}, std::tuple{"tall", 64u, 65u}}) {
         SCOPED_TRACE(name);
