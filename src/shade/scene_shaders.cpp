@@ -465,7 +465,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         std::string space = a.displacementBoundSpace;
         if ((space == "screen" || space == "NDC" || space == "raster") && perspective_) {
             // Given before the Projection request: the reader took the projection as orthographic.
-            log_.warnOnce("displacementbound:perspective-" + space, a.displacement.loc,
+            log_.lenient("displacementbound:perspective-" + space, a.displacement.loc,
                           "Attribute \"displacementbound\": coordinatesystem \"" + space +
                               "\" under a perspective projection has no single size in camera space (it grows "
                               "with depth): the bound is taken in object space; give it in \"camera\" or \"object\" space");

@@ -203,6 +203,15 @@ TEST(DisplacementBound, ImageSpacesUnderAPerspectiveProjectionAreWarnedAboutAndT
     EXPECT_NE(r.warnings[0].find("test.rib:6: "), std::string::npos) << r.warnings[0];  // the Displacement
     EXPECT_NE(r.warnings[0].find("coordinatesystem \"raster\" under a perspective projection"), std::string::npos)
         << r.warnings[0];
+    // Under --strict, an error at the same line, as the reader's.
+    try {
+        test::renderRib(early, RenderOptions{}, true);
+        ADD_FAILURE() << "--strict rendered";
+    } catch (const InputError& e) {
+        const std::string strict = e.what();
+        EXPECT_NE(strict.find("test.rib:6: "), std::string::npos) << strict;
+        EXPECT_NE(strict.find("under a perspective projection"), std::string::npos) << strict;
+    }
 }
 
 // A displacement that moves points farther than its bound may lose pieces (the case above): the
