@@ -128,10 +128,10 @@ struct Attributes {
     // and the others) inside and outside the surface. No name: none.
     ShaderDesc interior, exterior;
     // Attribute "displacementbound" "sphere" r: how far displacement may move a point, in the
-    // "coordinatesystem" named there: "object" (the primitive's CTM), "shader" (the displacement
-    // shader's), "world", "camera" or "current" (camera), or a name CoordinateSystem gave, whose
-    // transform the reader keeps in displacementBoundToWorld (also for PRMan's "null": the CTM at
-    // the Attribute request).
+    // "coordinatesystem" named there: "object" (the primitive's CTM), "shader" / "surface" (the
+    // displacement / surface shader's), "world", "camera" or "current" (camera), an image space
+    // (scene/bound_spaces.h), or a name CoordinateSystem gave, whose transform the reader keeps in
+    // displacementBoundToWorld (also for PRMan's "null": the CTM at the Attribute request).
     double displacementBound = 0;
     std::string displacementBoundSpace = "object";
     MotionTransform displacementBoundToWorld;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "scene/bound_spaces.h"
 #include "scene/rib_categories.h"
 #include "scene/rib_requests.h"
 
@@ -97,13 +98,9 @@ void displacementBound(RibParser& reader, const ParamList& params) {
             a.displacementBoundToWorld = s.ctm;
         } else if (named != s.coordinateSystems.end() && !s.cameraSpaces.count(space)) {
             a.displacementBoundToWorld = named->second;
-        } else if (space == "screen" || space == "NDC" || space == "raster") {
+        } else if (isImageBoundSpace(space)) {
             if (reader.camera().projection != ProjectionKind::Orthographic) {
-                reader.log().lenient("displacementbound:perspective-" + space, loc,
-                                     "Attribute \"displacementbound\": coordinatesystem \"" + space +
-                                         "\" under a perspective projection has no single size in camera space (it "
-                                         "grows with depth): the bound is taken in object space; give it in "
-                                         "\"camera\" or \"object\" space");
+                reader.log().lenient("displacementbound:perspective-" + space, loc, perspectiveImageBoundMessage(space));
                 space = "object";
             }
         } else {

@@ -3,6 +3,8 @@
 
 #include <cstdio>
 
+#include "scene/bound_spaces.h"
+
 namespace streyes {
 
 namespace {
@@ -38,8 +40,7 @@ void DisplacementReach::report(Log& log) const {
         // scale to camera space is the given bound's; with none given, camera space itself).
         // Image spaces ("screen", "NDC", "raster") fall back to object space under a perspective
         // projection: the hint is then given in camera space, right under either projection.
-        const bool imageSpace = o.space == "screen" || o.space == "NDC" || o.space == "raster";
-        const bool scaled = o.bound > 0 && o.cameraBound > 0 && !imageSpace;
+        const bool scaled = o.bound > 0 && o.cameraBound > 0 && !isImageBoundSpace(o.space);
         const double need = scaled ? o.largest * o.bound / o.cameraBound : o.largest;
         const std::string space = scaled ? o.space : std::string("camera");
         const std::string given =

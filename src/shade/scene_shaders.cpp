@@ -6,6 +6,7 @@
 
 #include "shade/layer_network.h"
 #include "shade/vm/ops.h"
+#include "scene/bound_spaces.h"
 #include "scene/search_path.h"
 #include "shade/vm/vm.h"
 
@@ -463,12 +464,9 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
         // surface shader's (the CTM at Surface or its last layer's, else the displacement's); the image's spaces a
         // length across an orthographic image (the reader takes them under no other projection).
         std::string space = a.displacementBoundSpace;
-        if ((space == "screen" || space == "NDC" || space == "raster") && perspective_) {
+        if (isImageBoundSpace(space) && perspective_) {
             // Given before the Projection request: the reader took the projection as orthographic.
-            log_.lenient("displacementbound:perspective-" + space, a.displacement.loc,
-                          "Attribute \"displacementbound\": coordinatesystem \"" + space +
-                              "\" under a perspective projection has no single size in camera space (it grows "
-                              "with depth): the bound is taken in object space; give it in \"camera\" or \"object\" space");
+            log_.lenient("displacementbound:perspective-" + space, a.displacement.loc, perspectiveImageBoundMessage(space));
             space = "object";
         }
         double scale = 1;
@@ -481,7 +479,7 @@ void SceneShaders::bind(Material& m, const Attributes& a) const {
                     largestStretch(worldToCamera_);
         else if (space == "world")
             scale = largestStretch(worldToCamera_);
-        else if (space == "screen" || space == "NDC" || space == "raster")
+        else if (isImageBoundSpace(space))
             scale = space == "screen" ? screenUnit_ : space == "NDC" ? ndcUnit_ : rasterUnit_;
         else if (space != "camera" && space != "current")  // a CoordinateSystem's, or PRMan's "null"
             scale = largestStretch(a.displacementBoundToWorld) * largestStretch(worldToCamera_);
