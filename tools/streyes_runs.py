@@ -29,11 +29,25 @@ SCENE_SETTINGS = {
     "scenes/forest.rib": {"frames": "1-8", "ref_samples": 36,
                           "why": "8 of its 64 frames and a 36-sample reference (9 times its 4 samples per pixel) keep "
                                  "the sweep within an hour on two cores"},
+    # A multi-pass file (per frame a depth frame from the sun, MakeShadow, the picture): --frames
+    # picks pictures and brings the depth frames they read; --res and --samples change the pictures.
+    "scenes/forest-wp-maps.rib": {"frames": "1-8", "ref_samples": 36, "report": "forest-wp",
+                                  "why": "8 of its 64 pictures and a 36-sample reference (9 times its 4 samples "
+                                         "per pixel), as for scenes/forest.rib; every run also renders the sun's "
+                                         "depth frames its pictures read (2048×1076, 1 sample per pixel, not changed "
+                                         "by --res or --samples, jittered by the seed), and their time counts; the "
+                                         "depth maps themselves are not compared"},
 }
 
 
 def scene_settings(path):
     return SCENE_SETTINGS.get(scene_label(path), {})
+
+
+def report_stem(path):
+    """The name of a scene's report files (OUT/STEM.md, .png, .json): the scene's file name, or
+    its SCENE_SETTINGS "report"."""
+    return scene_settings(path).get("report") or os.path.splitext(os.path.basename(path))[0]
 
 # Every algorithm the tools know; one is used when `streyes render --help` lists it.
 ALGORITHMS = ["spacetime", "frames", "spacetime-occlusion", "frames-occlusion"]
@@ -89,6 +103,15 @@ class Capabilities:
         return option in self.options
 
 
+# The pictures' files in a render's folder (-o); compare and sheet read only these.
+PICTURES = "f.####.exr"
+
+
+def picture_files(out_dir):
+    """The pictures render wrote in out_dir (not the maps a multi-pass scene writes beside them)."""
+    return sorted(f for f in os.listdir(out_dir) if re.fullmatch(r"f\.\d+\.exr", f))
+
+
 class Streyes:
     """The streyes executable."""
 
@@ -105,18 +128,21 @@ class Streyes:
         return Capabilities(out.stdout)
 
     def render(self, scene, args, out_dir):
-        """One render into out_dir (emptied first). Returns (wall seconds, CPU seconds, stats dict):
-        wall time is what a user waits for; CPU time (user + system of the process) is less
-        disturbed by other work on the machine."""
+        """One render into out_dir (emptied first), run in out_dir: what the scene writes besides
+        the pictures -o names (a multi-pass file's depth and shadow maps, named from the working
+        folder) goes there too, not into the caller's folder. Returns (wall seconds, CPU seconds,
+        stats dict): wall time is what a user waits for; CPU time (user + system of the process)
+        is less disturbed by other work on the machine."""
+        out_dir = os.path.abspath(out_dir)
         if os.path.isdir(out_dir):
             shutil.rmtree(out_dir)
         os.makedirs(out_dir)
         stats_path = os.path.join(out_dir, "stats.json")
-        cmd = [self.exe, "render", scene, "-o", os.path.join(out_dir, "f.####.exr"), "--stats", stats_path,
-               "--quiet"] + list(args)
+        cmd = [self.exe, "render", os.path.abspath(scene), "-o", os.path.join(out_dir, PICTURES), "--stats",
+               stats_path, "--quiet"] + list(args)
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         start = time.perf_counter()
-        out = subprocess.run(cmd, capture_output=True, text=True)
+        out = subprocess.run(cmd, capture_output=True, text=True, cwd=out_dir)
         wall = time.perf_counter() - start
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
@@ -128,7 +154,7 @@ class Streyes:
 
     def compare(self, reference_dir, test_dir, resize=False):
         """`streyes compare --json` of every frame in test_dir against reference_dir."""
-        cmd = [self.exe, "compare", os.path.join(reference_dir, "f.####.exr"), os.path.join(test_dir, "f.####.exr"),
+        cmd = [self.exe, "compare", os.path.join(reference_dir, PICTURES), os.path.join(test_dir, PICTURES),
                "--json"] + (["--resize"] if resize else [])
         out = subprocess.run(cmd, capture_output=True, text=True)
         if out.returncode not in (0, 1):
@@ -139,7 +165,7 @@ class Streyes:
 
     def sheet(self, frames_dir, out_png, every=1, columns=0, cell_width=0):
         """`streyes sheet` of the frames in frames_dir (as written by render)."""
-        cmd = [self.exe, "sheet", os.path.join(frames_dir, "f.####.exr"), "-o", out_png, "--every", str(every)] + \
+        cmd = [self.exe, "sheet", os.path.join(frames_dir, PICTURES), "-o", out_png, "--every", str(every)] + \
             (["--columns", str(columns)] if columns else []) + (["--cell-width", str(cell_width)] if cell_width else [])
         out = subprocess.run(cmd, capture_output=True, text=True)
         if out.returncode != 0:
