@@ -198,8 +198,45 @@ class BenchReport(unittest.TestCase):
         self.assertNotIn("### The sampling kernels on AVX2", md)
 
 
-def run(args):
-    return subprocess.run([sys.executable] + args, capture_output=True, text=True)
+def run(args, cwd=None):
+    return subprocess.run([sys.executable] + args, capture_output=True, text=True, cwd=cwd)
+
+
+# A multi-pass file as exporters write a shadow-mapped light: per frame a depth frame from the
+# light (32x32, 1 sample), MakeShadow, the picture (32x18, 4 samples); a ball moving in front of
+# a wall, its shadow on the wall.
+MULTIPASS_FRAME = """FrameBegin {n}
+Display "key.z" "zfile" "z"
+Format 32 32 1
+PixelSamples 1 1
+PixelFilter "box" 1 1
+Projection "orthographic"
+ScreenWindow -3 3 -3 3
+Clipping 1 20
+Translate 0 0 10
+WorldBegin
+Translate {x} 0 0
+Sphere 0.7 -0.7 0.7 360
+WorldEnd
+FrameEnd
+MakeShadow "key.z" "key.shd"
+FrameBegin {n}
+Display "pic.####.exr" "openexr" "rgba"
+Format 32 18 1
+PixelSamples 2 2
+Projection "perspective" "fov" [60]
+Translate 0 0 5
+WorldBegin
+LightSource "shadowdistant" 1 "from" [0 0 -10] "to" [0 0 0] "shadowname" ["key.shd"]
+Surface "matte"
+AttributeBegin
+Translate {x} 0 0
+Sphere 0.7 -0.7 0.7 360
+AttributeEnd
+Patch "bilinear" "P" [-4 3 2  4 3 2  -4 -3 2  4 -3 2]
+WorldEnd
+FrameEnd
+"""
 
 
 class CommandLines(unittest.TestCase):
@@ -273,6 +310,33 @@ class EndToEnd(unittest.TestCase):
         self.assertEqual(r.returncode, 0, r.stderr)
         with open(os.path.join(self.dir, "ramp.md")) as f:
             self.assertEqual(f.read(), md)
+
+    def test_speed_vs_error_on_a_multi_pass_file(self):
+        # --frames picks pictures and brings the depth frames they read; the base setting is the
+        # pictures' (32x18, 4 samples), not the depth frames'; the maps land in each render's
+        # folder, not in the folder the tool runs from.
+        scene = os.path.join(self.dir, "maps.rib")
+        with open(scene, "w") as f:
+            f.write("".join(MULTIPASS_FRAME.format(n=n, x=0.5 * (n - 2)) for n in (1, 2, 3)))
+        caller = os.path.join(self.dir, "caller")
+        os.makedirs(caller)
+        r = run([os.path.join(TOOLS, "speed-vs-error"), scene, "--frames", "2-3", "--knobs", "samples", "--runs", "1",
+                 "--ref-samples", "64", "--exe", EXE, "--out", self.dir, "--work", os.path.join(self.dir, "work"),
+                 "--quiet"], cwd=caller)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(os.listdir(caller), [])
+        ref = os.path.join(self.dir, "work", "maps", "reference")
+        self.assertEqual(sr.picture_files(ref), ["f.0002.exr", "f.0003.exr"])
+        self.assertTrue(os.path.exists(os.path.join(ref, "key.shd")))
+        with open(os.path.join(self.dir, "maps.json")) as f:
+            data = json.load(f)
+        self.assertEqual(data["frames"], [2, 3])
+        self.assertEqual((data["base"]["width"], data["base"]["height"], data["base"]["samples"]), (32, 18, 4))
+        err = {p["setting"]: p["error"] for p in data["points"]}
+        self.assertEqual(set(err), {"base", "1 spp", "2 spp"})
+        self.assertGreater(err["1 spp"]["rmse_rgb"], err["base"]["rmse_rgb"])
+        self.assertGreater(err["base"]["rmse_rgb"], 0)
+        self.assertEqual(err["base"]["pixels_skipped"], 0)
 
     def test_block_curve_on_the_ramp(self):
         out = os.path.join(self.dir, "curve.json")
