@@ -24,11 +24,14 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # The benchmark scenes, in report order; those not in the tree yet are skipped with a note.
 BENCHMARK_SCENES = ["scenes/demo.rib", "scenes/occluded.rib", "scenes/forest.rib"]
 # Settings a benchmark scene needs to keep a sweep within an hour on two cores; the command
-# line's --frames and --ref-samples win. "why" is quoted in the reports.
+# line's --frames and --ref-samples win. "why" is quoted in the reports; "report" names them (else
+# the scene's file name); "see_also" is a line under a report's head.
 SCENE_SETTINGS = {
     "scenes/forest.rib": {"frames": "1-8", "ref_samples": 36,
                           "why": "8 of its 64 frames and a 36-sample reference (9 times its 4 samples per pixel) keep "
-                                 "the sweep within an hour on two cores"},
+                                 "the sweep within an hour on two cores",
+                          "see_also": "The same sweep on the Weber–Penn forest with the sun's shadow maps "
+                                      "(scenes/forest-wp-maps.rib, issue 51): [forest-wp.md](forest-wp.md)."},
     # A multi-pass file (per frame a depth frame from the sun, MakeShadow, the picture): --frames
     # picks pictures and brings the depth frames they read; --res and --samples change the pictures.
     "scenes/forest-wp-maps.rib": {"frames": "1-8", "ref_samples": 36, "report": "forest-wp",
@@ -36,7 +39,9 @@ SCENE_SETTINGS = {
                                          "per pixel), as for scenes/forest.rib; every run also renders the sun's "
                                          "depth frames its pictures read (2048×1076, 1 sample per pixel, not changed "
                                          "by --res or --samples, jittered by the seed), and their time counts; the "
-                                         "depth maps themselves are not compared"},
+                                         "depth maps themselves are not compared",
+                                  "see_also": "The same sweep on scenes/forest.rib (100,000 of the older trees, no "
+                                              "shadows): [forest.md](forest.md)."},
 }
 
 

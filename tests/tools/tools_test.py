@@ -298,6 +298,8 @@ class EndToEnd(unittest.TestCase):
             md = f.read()
         self.assertIn("![time against error](ramp.png)", md)
         self.assertIn("| samples | 1 spp |", md)
+        self.assertIn("Not swept here (`--knobs`): resolution", md)  # the knobs --knobs left out are said
+        self.assertNotIn("| resolution |", md)
         with open(os.path.join(self.dir, "ramp.png"), "rb") as f:
             self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
         self.assertIn("![frames of the base render](ramp-sheet.png)", md)
