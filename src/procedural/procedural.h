@@ -31,6 +31,8 @@ struct ExpandContext {
                                        // screen (pixelsPerUnit: sqrt(detail) over the bound's
                                        // longest side in world units)
     MotionTransform objectToWorld;     // the procedural's transform
+    Matrix4 sceneToWorld;              // the world its frame was written in (ChildBodyMaker::sceneToWorld),
+                                       // where sizes in world units are measured (read.pixelsPerUnit)
     AttributesPtr attributes;          // its attribute state, inherited by the children
     SourceLoc loc;                     // where it was declared
     double windowStart = 0, windowEnd = 0;  // the render's time window, frames (for animated children)

@@ -180,8 +180,8 @@ void ProceduralBody::expand(ProceduralChildren& out, int level, ChildBodyMaker& 
                             bool count) const {
     ExpandContext ctx;
     ctx.detail = detailOfLevel(level);
-    ctx.read.pixelsPerUnit =
-        pixelsPerUnit(desc_, ctx.detail, maker.sceneToWorld(desc_.life, desc_.objectToWorld.times().front()));
+    ctx.sceneToWorld = maker.sceneToWorld(desc_.life, desc_.objectToWorld.times().front());
+    ctx.read.pixelsPerUnit = pixelsPerUnit(desc_, ctx.detail, ctx.sceneToWorld);
     ctx.objectToWorld = desc_.objectToWorld;
     ctx.attributes = desc_.attributes;
     ctx.loc = desc_.loc;
