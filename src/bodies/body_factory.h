@@ -147,6 +147,13 @@ class BodyFactory final : public ChildBodyMaker {
         return shapes_.size();
     }
     std::vector<uint64_t> proceduralsMadeByDepth() const;
+    // A frame sequence's cameras (Scene::frameWorldToCamera, its frames' exposures opening at
+    // frame + open): the worlds its procedurals were written in (level_of_detail.cpp).
+    void setFrameWorlds(std::map<int, MotionTransform> frames, double open) {
+        frameWorlds_ = std::move(frames);
+        frameOpen_ = open;
+    }
+    Matrix4 sceneToWorld(const Lifetime& life, double t) const override;
 
   private:
     // The part of the render's window a primitive exists in (its Lifetime), and whether it ends
@@ -211,6 +218,8 @@ class BodyFactory final : public ChildBodyMaker {
     std::vector<std::shared_ptr<const void>> clouds_;    // point bodies point at these (under mutex_)
     const Camera* camera_ = nullptr;
     const FrameCameras* cameras_ = nullptr;
+    std::map<int, MotionTransform> frameWorlds_;  // setFrameWorlds
+    double frameOpen_ = 0;
     // The camera a primitive living during `life` is measured under (a zoom's frame's).
     const Camera* cameraOf(const Lifetime& life) const {
         return camera_ && cameras_ ? &cameras_->during(life.t0, life.t1) : camera_;

@@ -66,6 +66,16 @@ Lifetime runLifetime(const Lifetime& life, int a, int b, const Shutter& shutter)
     return out;
 }
 
+// A sequence's procedural lives over the exposures of the frames it was matched across (its
+// children too), whose cameras are its frame's: the first frame's, its camera at time t, inverted.
+Matrix4 BodyFactory::sceneToWorld(const Lifetime& life, double t) const {
+    if (frameWorlds_.empty() || !std::isfinite(life.t0)) return {};
+    auto it = frameWorlds_.upper_bound(int(std::floor(life.t0 - frameOpen_ + 1e-6)));  // the frame's, else the one before
+    if (it != frameWorlds_.begin()) --it;
+    Matrix4 cameraToWorld;
+    return invert(it->second.at(t), &cameraToWorld) ? cameraToWorld : Matrix4{};
+}
+
 // A copy of an attribute state whose material a share of each frame's samples sees
 // (BodyFactory::material reads dissolveOf_), made once per state and share.
 AttributesPtr BodyFactory::dissolving(const AttributesPtr& attributes, float lo, float hi) {

@@ -36,6 +36,7 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     rs->factory->setMaterialBinder(binder);
     rs->factory->setWanted(rs->renderedStart, rs->renderedEnd);
     rs->factory->setDetailFrames(firstFrame, lastFrame, rs->shutter, scene.settings.relativeDetail);
+    rs->factory->setFrameWorlds(scene.frameWorldToCamera, rs->shutter.open);
     // Primitive ids from 1, in the order BodyFactory::addPrimitives takes them.
     uint64_t id = 0;
     rs->factory->addPrimitives(scene, {}, 0, [&id] { return ++id; }, rs->roots);

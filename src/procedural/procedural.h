@@ -31,6 +31,8 @@ struct ExpandContext {
                                        // screen (pixelsPerUnit: sqrt(detail) over the bound's
                                        // longest side in world units)
     MotionTransform objectToWorld;     // the procedural's transform
+    Matrix4 sceneToWorld;              // the world its frame was written in (ChildBodyMaker::sceneToWorld),
+                                       // where sizes in world units are measured (read.pixelsPerUnit)
     AttributesPtr attributes;          // its attribute state, inherited by the children
     SourceLoc loc;                     // where it was declared
     double windowStart = 0, windowEnd = 0;  // the render's time window, frames (for animated children)
@@ -96,6 +98,11 @@ class ChildBodyMaker {
                              std::vector<std::shared_ptr<const void>>* keep = nullptr, bool count = true) = 0;
     // A procedural whose children reached outside its declared bound (rendered again).
     virtual void reportOutgrown(ProceduralBody* procedural) = 0;
+    // The world a procedural living over `life` was written in, from the scene's space at time t:
+    // identity, but in a frame sequence, whose frames are baked into the render camera's space
+    // (scene/sequence.cpp), its frame's camera-to-world. What its output measures in world units
+    // (ReadDetail::pixelsPerUnit) is measured there, as the frame written as one world measures it.
+    virtual Matrix4 sceneToWorld(const Lifetime& /*life*/, double /*t*/) const { return {}; }
     // The camera-space box of an object-space box during [a, b].
     virtual Bounds3f cameraBound(const Bounds3d& objectBound, const MotionTransform& objectToWorld, double a,
                                  double b) const = 0;

@@ -20,10 +20,12 @@ double detailOfLevel(int level) {
 }
 
 // How many pixels a world unit spans near a procedural seen at `detail`: the side of a square
-// of its raster area over its bound's longest side in world space (its transform's first key),
-// for what its output decides while it is read (a Blobby's cells). Block-invariant, as the level is.
-static double pixelsPerUnit(const ProceduralDesc& d, double detail) {
-    const Vec3d size = d.objectToWorld.keys().front().box(d.bound).diagonal();
+// of its raster area over its bound's longest side in world space (its transform's first key; the
+// world its frame was written in, `sceneToWorld` from the scene's space), for what its output
+// decides while it is read (a Blobby's cells, a Weber-Penn tree's range). Block-invariant, as the
+// level is, and the same for a frame of a sequence as for that frame written as one world.
+static double pixelsPerUnit(const ProceduralDesc& d, double detail, const Matrix4& sceneToWorld) {
+    const Vec3d size = (d.objectToWorld.keys().front() * sceneToWorld).box(d.bound).diagonal();
     const double side = std::max({size.x, size.y, size.z});
     if (!(detail < std::numeric_limits<double>::infinity())) return detail;  // reaches the eye plane: the most
     return side > 0 && std::isfinite(side) ? std::sqrt(detail) / side : std::sqrt(detail);  // a point: per unit
@@ -178,7 +180,8 @@ void ProceduralBody::expand(ProceduralChildren& out, int level, ChildBodyMaker& 
                             bool count) const {
     ExpandContext ctx;
     ctx.detail = detailOfLevel(level);
-    ctx.read.pixelsPerUnit = pixelsPerUnit(desc_, ctx.detail);
+    ctx.sceneToWorld = maker.sceneToWorld(desc_.life, desc_.objectToWorld.times().front());
+    ctx.read.pixelsPerUnit = pixelsPerUnit(desc_, ctx.detail, ctx.sceneToWorld);
     ctx.objectToWorld = desc_.objectToWorld;
     ctx.attributes = desc_.attributes;
     ctx.loc = desc_.loc;

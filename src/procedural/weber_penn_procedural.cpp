@@ -318,7 +318,7 @@ double qualityAt(const WeberPennParams& p, const ExpandContext& ctx, const Bound
     const double ppu = ctx.read.pixelsPerUnit;
     double pixels = std::sqrt(std::max(0.0, ctx.detail));
     if (ppu > 0 && std::isfinite(ppu) && !still.empty() && !ctx.objectToWorld.keys().empty()) {
-        const Vec3d d = ctx.objectToWorld.keys().front().box(still).diagonal();
+        const Vec3d d = (ctx.objectToWorld.keys().front() * ctx.sceneToWorld).box(still).diagonal();  // as ppu's
         pixels = std::min(pixels, ppu * std::max({d.x, d.y, d.z}));
     }
     const double size = pixels * p.detail / 300;
