@@ -3,12 +3,15 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 
 #include "streyes/rib.h"
@@ -16,6 +19,67 @@
 namespace streyes::test {
 
 std::string sourcePath(const std::string& relative) { return std::string(STREYES_SOURCE_DIR) + "/" + relative; }
+
+bool multiPassScene(const std::string& path) {
+    std::ifstream in(path);
+    std::string line;
+    int worlds = 0;
+    while (std::getline(in, line)) {
+        const size_t at = line.find_first_not_of(" \t");
+        if (at != std::string::npos && line.compare(at, 10, "WorldBegin") == 0 &&
+            (line.size() == at + 10 || std::isspace(static_cast<unsigned char>(line[at + 10]))) && ++worlds > 1)
+            return true;
+    }
+    return false;
+}
+
+const char* const kChecksumFile = "tests/data/scene_checksums.txt";
+
+uint64_t pixelChecksum(const RenderResult& r) {
+    uint64_t h = 1469598103934665603ull;
+    auto add = [&](const std::vector<float>& v) {
+        for (float f : v) {
+            uint32_t bits;
+            std::memcpy(&bits, &f, sizeof bits);
+            for (int i = 0; i < 4; ++i) {
+                h ^= (bits >> (8 * i)) & 0xffu;
+                h *= 1099511628211ull;
+            }
+        }
+    };
+    std::vector<const FrameImage*> frames;
+    for (const FrameImage& f : r.frames) frames.push_back(&f);
+    std::sort(frames.begin(), frames.end(), [](const FrameImage* a, const FrameImage* b) { return a->frame < b->frame; });
+    for (const FrameImage* f : frames) {
+        add(f->rgba);
+        add(f->z);
+    }
+    return h;
+}
+
+std::map<std::string, std::string> recordedChecksums() {
+    std::map<std::string, std::string> m;
+    std::ifstream in(sourcePath(kChecksumFile));
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream s(line);
+        std::string key, value;
+        if (s >> key >> value) m[key] = value;
+    }
+    return m;
+}
+
+void recordChecksum(const std::string& key, const std::string& value) {
+    static std::mutex mutex;
+    std::lock_guard<std::mutex> lock(mutex);
+    std::map<std::string, std::string> m = recordedChecksums();
+    m[key] = value;
+    std::ofstream out(sourcePath(kChecksumFile));
+    out << "# Pixel checksums of every scene, rendered small and short by tests/core/scene_checksum_test.cpp.\n"
+           "# Record again (STREYES_RECORD_CHECKSUMS=1) only when a change alters pixels on purpose.\n";
+    for (const auto& [k, v] : m) out << k << " " << v << "\n";
+}
 
 std::string ribError(const std::string& rib, bool strict) {
     Log log;

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,15 +36,17 @@ inline constexpr bool kAddressSanitizer = false;
 // tracer's checksum) take one to four minutes each under the sanitizers: procedural forests that
 // the ray tracer expands whole, blobs, and hundreds of trees or atoms whose shadows build a
 // ray-tracing hierarchy, the four Weber-Penn trees (200 s of the sanitized suite's 1250) and the
-// Weber-Penn forest with sun shadows. There
-// they run only their checksum with the default algorithm, which
-// renders them through the same code; the release suite runs every test on every scene. It keeps
-// CI under its half hour (docs/ARCHITECTURE.md, "Hard cases, fuzzing and sanitizers").
+// Weber-Penn forest with sun shadows, ray-traced or from depth maps (2048 x 1076 depth frames,
+// rendered at their own Format whatever the picture's size). There they run only their checksum
+// with the default algorithm, which renders them through the same code; the release suite runs
+// every test on every scene. It keeps CI under its half hour (docs/ARCHITECTURE.md, "Hard cases,
+// fuzzing and sanitizers").
 inline bool slowUnderSanitizers(const std::string& sceneFile) {
     const size_t slash = sceneFile.find_last_of('/');
     const std::string name = sceneFile.substr(slash == std::string::npos ? 0 : slash + 1);
     for (const char* slow : {"atom.rib", "blobby.rib", "forest.rib", "forest-flyover.rib", "forest-small.rib",
-                             "forest-wp.rib", "grove.rib", "meadow-sky.rib", "split_budget.rib", "trees-presets.rib"})
+                             "forest-wp.rib", "forest-wp-maps.rib", "grove.rib", "meadow-sky.rib", "split_budget.rib",
+                             "trees-presets.rib"})
         if (name == slow) return kAddressSanitizer;
     return false;
 }
@@ -66,6 +70,12 @@ inline bool tooLargeToRayTrace(const std::string& sceneFile) {
 
 // Absolute path of a file in the source tree, e.g. sourcePath("scenes/ramp.rib").
 std::string sourcePath(const std::string& relative);
+
+// A scene file holding several worlds (FrameBegin blocks: depth frames rendered from a light,
+// MakeShadow, pictures reading the maps): the command renders it as passes (streyes/passes.h), and
+// the scene-wide tests of tests/core, which read a file as one world, leave it to
+// tests/cli/multipass_scenes_test.cpp, which renders it as the command does.
+bool multiPassScene(const std::string& path);
 
 // A fresh, empty temporary folder for one test, /tmp/streyes-TAG-XXXXXX, removed with all it holds
 // when the TempDir goes (at the end of the test that holds it), so that test runs leave nothing
@@ -118,6 +128,15 @@ ShotAndFrame renderShotAndFrame(const std::string& rib, RenderOptions options, i
 std::string ribError(const std::string& rib, bool strict = false);
 RenderResult renderScene(const Scene& scene, const RenderOptions& options = {});
 RenderResult renderFile(const std::string& path, const RenderOptions& options = {});
+
+// The pixel checksums of tests/data/scene_checksums.txt (tests/core/scene_checksum_test.cpp):
+// FNV-1a over the bits of every RGBA and Z value of every frame, in frame order; the recorded
+// checksums by key ("scenes/ramp.rib:spacetime-occlusion"); and recording one (several test
+// processes may record at once: each rewrites the file with what it read plus its own entry).
+uint64_t pixelChecksum(const RenderResult& r);
+std::map<std::string, std::string> recordedChecksums();
+void recordChecksum(const std::string& key, const std::string& value);
+extern const char* const kChecksumFile;
 
 // The sum of frame `frame`'s alpha over its pixels: the covered area in pixels.
 double alphaSum(const RenderResult& r, int frame = 0);
