@@ -16,7 +16,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(__file__))
-from ribgen import fmt  # noqa: E402
+from ribgen import camera_transform, cross, dot, fmt, unit  # noqa: E402
 
 OUT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "forest-wp-maps.rib")
 
@@ -26,19 +26,6 @@ FOREST = ('Procedural "DynamicLoad" ["forest" "count=250 seed=11 area=300,300 mo
           '[-235 235 -58 58 -235 235]\n')
 # What may cast a shadow: the trees' area grown by their crowns' reach, up to their tallest top.
 CASTERS = ((-190.0, 190.0), (0.0, 45.0), (-190.0, 190.0))
-
-
-def unit(a):
-    n = math.sqrt(sum(x * x for x in a))
-    return tuple(x / n for x in a)
-
-
-def cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def dot(a, b):
-    return sum(x * y for x, y in zip(a, b))
 
 
 def sun_view():
@@ -52,9 +39,7 @@ def sun_view():
     cam = [tuple(dot(tuple(p[i] - eye[i] for i in range(3)), axis) for axis in (x, y, z)) for p in corners]
     lo = [min(c[i] for c in cam) for i in range(3)]
     hi = [max(c[i] for c in cam) for i in range(3)]
-    m = [x[0], y[0], z[0], 0, x[1], y[1], z[1], 0, x[2], y[2], z[2], 0, -dot(eye, x), -dot(eye, y), -dot(eye, z), 1]
-    transform = "Transform [%s]\n" % " ".join(fmt(round(v, 9)) for v in m)
-    return transform, (lo[0], hi[0], lo[1], hi[1]), (lo[2] - 1, hi[2] + 1)
+    return camera_transform(eye, x, y, z), (lo[0], hi[0], lo[1], hi[1]), (lo[2] - 1, hi[2] + 1)
 
 
 def main():

@@ -64,3 +64,26 @@ def write_scene(name, text):
     import os
     with open(os.path.join(os.path.dirname(__file__), "..", name), "w") as f:
         f.write(text)
+
+
+def sub(a, b):
+    return tuple(x - y for x, y in zip(a, b))
+
+
+def dot(a, b):
+    return sum(x * y for x, y in zip(a, b))
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def unit(a):
+    n = math.sqrt(dot(a, a))
+    return tuple(x / n for x in a)
+
+
+def camera_transform(eye, x, y, z):
+    """Transform: world -> the camera at `eye` with axes x, y, z (row vectors, left-handed)."""
+    m = [x[0], y[0], z[0], 0, x[1], y[1], z[1], 0, x[2], y[2], z[2], 0, -dot(eye, x), -dot(eye, y), -dot(eye, z), 1]
+    return "Transform [%s]\n" % " ".join(fmt(round(v, 9)) for v in m)

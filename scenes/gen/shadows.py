@@ -16,31 +16,16 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(__file__))
-from ribgen import box, fmt, patch  # noqa: E402
+from ribgen import box, camera_transform, cross, fmt, patch, sub, unit  # noqa: E402
 
 OUT = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "shadows")
 
 
 def look_at(eye, target, up=(0, 1, 0)):
     """Transform: world -> the camera at `eye` looking at `target` (row vectors, left-handed)."""
-    def sub(a, b):
-        return tuple(x - y for x, y in zip(a, b))
-
-    def unit(a):
-        n = math.sqrt(sum(x * x for x in a))
-        return tuple(x / n for x in a)
-
-    def cross(a, b):
-        return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-    def dot(a, b):
-        return sum(x * y for x, y in zip(a, b))
-
     z = unit(sub(target, eye))
     x = unit(cross(up, z))
-    y = cross(z, x)
-    m = [x[0], y[0], z[0], 0, x[1], y[1], z[1], 0, x[2], y[2], z[2], 0, -dot(eye, x), -dot(eye, y), -dot(eye, z), 1]
-    return "Transform [%s]\n" % " ".join(fmt(round(v, 9)) for v in m)
+    return camera_transform(eye, x, cross(z, x), z)
 
 
 def floor_and_crate():
