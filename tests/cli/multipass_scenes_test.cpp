@@ -212,6 +212,9 @@ TEST_P(MultiPassScenes, RendersWhatTheCommandRenders) {
 // As FrameBlockInvariance in tests/core: the second frame rendered alone (with the depth frame it
 // reads), in a block of the first two (--frame-block 2) and in blocks of one: the same pictures,
 // bit for bit, with the rasterizers and with the ray tracer (whose depth frames are rasterized).
+// Known gap, not covered here: at 320x180 and up forest-wp-maps.rib's frames differ in last bits
+// alone and in a block (its windy forest's keys are clipped at the block's ends: docs/ARCHITECTURE.md,
+// frame sequences); at 64 pixels wide they agree, so this test guards the passes, not that gap.
 TEST_P(MultiPassScenes, AFramesPixelsDoNotDependOnItsBlock) {
     if (test::slowUnderSanitizers(GetParam())) GTEST_SKIP() << "minutes under the sanitizers: the release suite runs it";
     const std::string path = test::sourcePath(GetParam());
