@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -79,6 +81,29 @@ void recordChecksum(const std::string& key, const std::string& value) {
     out << "# Pixel checksums of every scene, rendered small and short by tests/core/scene_checksum_test.cpp.\n"
            "# Record again (STREYES_RECORD_CHECKSUMS=1) only when a change alters pixels on purpose.\n";
     for (const auto& [k, v] : m) out << k << " " << v << "\n";
+}
+
+std::string checkRecordedChecksum(const std::string& key, uint64_t checksum) {
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)checksum);
+    if (std::getenv("STREYES_RECORD_CHECKSUMS")) {
+        recordChecksum(key, hex);
+        return "";
+    }
+    const std::map<std::string, std::string> recorded = recordedChecksums();
+    auto it = recorded.find(key);
+    if (it == recorded.end()) return key + " has no recorded checksum in " + kChecksumFile;
+    return it->second == hex ? "" : key + ": the pixels changed (recorded " + it->second + ", now " + hex + ")";
+}
+
+std::vector<std::string> sceneFiles(bool multiPass) {
+    std::vector<std::string> files;
+    for (const char* dir : {"scenes", "scenes/hard"})
+        for (const auto& entry : std::filesystem::directory_iterator(sourcePath(dir)))
+            if (entry.path().extension() == ".rib" && multiPassScene(entry.path().string()) == multiPass)
+                files.push_back(std::string(dir) + "/" + entry.path().filename().string());
+    std::sort(files.begin(), files.end());
+    return files;
 }
 
 std::string ribError(const std::string& rib, bool strict) {

@@ -76,6 +76,9 @@ std::string sourcePath(const std::string& relative);
 // the scene-wide tests of tests/core, which read a file as one world, leave it to
 // tests/cli/multipass_scenes_test.cpp, which renders it as the command does.
 bool multiPassScene(const std::string& path);
+// The scene files of scenes/ and scenes/hard ("scenes/ramp.rib"), sorted: the multi-pass ones
+// (multiPassScene) or all the others.
+std::vector<std::string> sceneFiles(bool multiPass);
 
 // A fresh, empty temporary folder for one test, /tmp/streyes-TAG-XXXXXX, removed with all it holds
 // when the TempDir goes (at the end of the test that holds it), so that test runs leave nothing
@@ -137,6 +140,9 @@ uint64_t pixelChecksum(const RenderResult& r);
 std::map<std::string, std::string> recordedChecksums();
 void recordChecksum(const std::string& key, const std::string& value);
 extern const char* const kChecksumFile;
+// `checksum` against the one recorded for `key`: "" when they agree, else what is wrong (none
+// recorded, or the pixels changed); with STREYES_RECORD_CHECKSUMS set it records it and gives "".
+std::string checkRecordedChecksum(const std::string& key, uint64_t checksum);
 
 // The sum of frame `frame`'s alpha over its pixels: the covered area in pixels.
 double alphaSum(const RenderResult& r, int frame = 0);

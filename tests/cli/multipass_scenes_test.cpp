@@ -32,15 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> multiPassScenes() {
-    std::vector<std::string> files;
-    for (const char* dir : {"scenes", "scenes/hard"})
-        for (const auto& entry : fs::directory_iterator(test::sourcePath(dir)))
-            if (entry.path().extension() == ".rib" && test::multiPassScene(entry.path().string()))
-                files.push_back(std::string(dir) + "/" + entry.path().filename().string());
-    std::sort(files.begin(), files.end());
-    return files;
-}
+std::vector<std::string> multiPassScenes() { return test::sceneFiles(true); }
 
 // The maps a file's depth frames write go to the working folder (their Display names), as the
 // command's do: a test renders in a folder of its own.
@@ -332,24 +324,13 @@ TEST_P(MultiPassScenes, PixelsMatchTheRecordedChecksums) {
     const int first = firstFrameOf(path);
     RenderOptions o;
     o.samples = 4;
-    const bool record = std::getenv("STREYES_RECORD_CHECKSUMS") != nullptr;
-    const std::map<std::string, std::string> recorded = record ? std::map<std::string, std::string>{} : test::recordedChecksums();
     for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Raytrace}) {
         if (a == Algorithm::Raytrace && test::tooLargeToRayTrace(GetParam())) continue;
         if (a == Algorithm::Raytrace && test::slowUnderSanitizers(GetParam())) continue;  // minutes there
         o.algorithm = a;
         const PassRender r = renderPasses(path, o, first, first + 1, 64);
         ASSERT_EQ(r.pictures.frames.size(), 2u);
-        char hex[17];
-        std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)test::pixelChecksum(r.pictures));
-        const std::string key = GetParam() + ":" + algorithmName(a);
-        if (record) {
-            test::recordChecksum(key, hex);
-            continue;
-        }
-        auto it = recorded.find(key);
-        ASSERT_NE(it, recorded.end()) << key << " has no recorded checksum in " << test::kChecksumFile;
-        EXPECT_EQ(it->second, hex) << key << ": the pixels changed";
+        EXPECT_EQ(test::checkRecordedChecksum(GetParam() + ":" + algorithmName(a), test::pixelChecksum(r.pictures)), "");
     }
 }
 

@@ -15,16 +15,7 @@
 namespace streyes {
 namespace {
 
-std::vector<std::string> everyScene() {
-    namespace fs = std::filesystem;
-    std::vector<std::string> files;
-    for (const char* dir : {"scenes", "scenes/hard"})
-        for (const auto& entry : fs::directory_iterator(test::sourcePath(dir)))
-            if (entry.path().extension() == ".rib" && !test::multiPassScene(entry.path().string()))
-                files.push_back(std::string(dir) + "/" + entry.path().filename().string());
-    std::sort(files.begin(), files.end());
-    return files;
-}
+std::vector<std::string> everyScene() { return test::sceneFiles(false); }
 
 const FrameImage* findFrame(const test::RenderResult& r, int frame) {
     for (const FrameImage& f : r.frames)

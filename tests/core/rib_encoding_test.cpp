@@ -20,17 +20,7 @@
 namespace streyes {
 namespace {
 
-namespace fs = std::filesystem;
-
-std::vector<std::string> everyScene() {
-    std::vector<std::string> files;
-    for (const char* dir : {"scenes", "scenes/hard"})
-        for (const auto& entry : fs::directory_iterator(test::sourcePath(dir)))
-            if (entry.path().extension() == ".rib" && !test::multiPassScene(entry.path().string()))
-                files.push_back(std::string(dir) + "/" + entry.path().filename().string());
-    std::sort(files.begin(), files.end());
-    return files;
-}
+std::vector<std::string> everyScene() { return test::sceneFiles(false); }
 
 std::string readBytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);

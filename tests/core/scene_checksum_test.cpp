@@ -19,16 +19,7 @@
 namespace streyes {
 namespace {
 
-std::vector<std::string> everyScene() {
-    namespace fs = std::filesystem;
-    std::vector<std::string> files;
-    for (const char* dir : {"scenes", "scenes/hard"})
-        for (const auto& entry : fs::directory_iterator(test::sourcePath(dir)))
-            if (entry.path().extension() == ".rib" && !test::multiPassScene(entry.path().string()))
-                files.push_back(std::string(dir) + "/" + entry.path().filename().string());
-    std::sort(files.begin(), files.end());
-    return files;
-}
+std::vector<std::string> everyScene() { return test::sceneFiles(false); }
 
 class SceneChecksums : public testing::TestWithParam<std::string> {};
 
@@ -43,22 +34,11 @@ TEST_P(SceneChecksums, PixelsMatchTheRecordedChecksums) {
     o.firstFrame = scene.settings.hasFrames ? scene.settings.firstFrame : 0;
     o.lastFrame = o.firstFrame + 1;
     o.samples = 4;
-    const bool record = std::getenv("STREYES_RECORD_CHECKSUMS") != nullptr;
-    const std::map<std::string, std::string> recorded = record ? std::map<std::string, std::string>{} : test::recordedChecksums();
     for (Algorithm a : {Algorithm::SpacetimeOcclusion, Algorithm::Raytrace}) {
         if (a == Algorithm::Raytrace && test::tooLargeToRayTrace(GetParam())) continue;
         if (a == Algorithm::Raytrace && test::slowUnderSanitizers(GetParam())) continue;  // minutes there
         o.algorithm = a;
-        char hex[17];
-        std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)test::pixelChecksum(test::renderScene(scene, o)));
-        const std::string key = GetParam() + ":" + algorithmName(a);
-        if (record) {
-            test::recordChecksum(key, hex);
-            continue;
-        }
-        auto it = recorded.find(key);
-        ASSERT_NE(it, recorded.end()) << key << " has no recorded checksum in " << test::kChecksumFile;
-        EXPECT_EQ(it->second, hex) << key << ": the pixels changed";
+        EXPECT_EQ(test::checkRecordedChecksum(GetParam() + ":" + algorithmName(a), test::pixelChecksum(test::renderScene(scene, o))), "");
     }
 }
 
