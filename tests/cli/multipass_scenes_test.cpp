@@ -267,17 +267,6 @@ TEST_P(MultiPassScenes, ToleranceZeroIsBitIdentical) {
     }
 }
 
-std::string readBytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void writeBytes(const std::string& path, const std::string& bytes) {
-    std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
-}
-
 // As RibEncodings in tests/core: the file gzip-compressed and in binary RIB (64-bit reals) renders
 // the ASCII file's pictures; in binary with 32-bit floats, what its ASCII form written with those
 // floats' values renders. The first frame at 48 pixels wide, 2 samples, each encoding in a folder
@@ -285,7 +274,7 @@ void writeBytes(const std::string& path, const std::string& bytes) {
 TEST_P(MultiPassScenes, GzipAndBinaryRenderAsTheAsciiDoes) {
     if (test::slowUnderSanitizers(GetParam())) GTEST_SKIP() << "minutes under the sanitizers: the release suite runs it";
     const std::string source = test::sourcePath(GetParam());
-    const std::string ascii = readBytes(source);
+    const std::string ascii = test::readFile(source);
     const test::TempDir dir("multipass-encodings");
     const int first = firstFrameOf(source);
     RenderOptions o;
@@ -293,7 +282,7 @@ TEST_P(MultiPassScenes, GzipAndBinaryRenderAsTheAsciiDoes) {
     auto render = [&](const std::string& name, const std::string& bytes) {
         const std::string at = dir.path() + "/" + name;
         fs::create_directory(at);
-        writeBytes(at + "/scene.rib", bytes);
+        test::writeFile(at, "scene.rib", bytes);
         const InFolder in(at);
         return renderPasses(at + "/scene.rib", o, first, first, 48).pictures;
     };
