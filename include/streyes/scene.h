@@ -256,6 +256,10 @@ struct RenderSettings {
     FilterDesc filter;
     bool hasFrames = false;                    // Option "streyes" "int frames" [first last]
     int firstFrame = 0, lastFrame = 0;
+    // A sequence block (streyes/sequence.h): its still runs live over frames the block does not
+    // render (their runs in the input, within their epochs): the shot the renderer builds over.
+    bool hasShot = false;
+    int shotFirst = 0, shotLast = 0;
     std::vector<DisplayDesc> displays;
     // Option "searchpath" "shader": folders separated by ':' ('&' the path before, '@' the
     // standard shaders); empty: the RIB file's folder, then the standard shaders.

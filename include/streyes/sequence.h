@@ -55,31 +55,65 @@ struct Sequence {
     SequenceStats stats;
 };
 
+// A pass's still runs over the whole input, found by reading it once before its blocks are built
+// (readPasses). A block's runs then live over their frames in the input, not the block's alone, cut
+// only at epochs (kRunEpochFrames frames from frame 1, whatever the block): a frame's bodies (the
+// ends of their motion segments, their pieces) and so its pixels are the same in every block.
+struct RunTable {
+    // By primitive (kind, place among its identifier's, identifier): its runs of more than one
+    // frame, in order.
+    std::unordered_map<std::string, std::vector<std::pair<int, int>>> runs;
+    int lastFrame = 0;  // the pass's last frame in the input
+};
+
+constexpr int kRunEpochFrames = 64;
+// The epoch of frame f: frames 1-64 are epoch 0, 65-128 epoch 1, 0 and -63..0 epoch -1.
+inline int runEpoch(int frame) {
+    const int f = frame - 1;
+    return f >= 0 ? f / kRunEpochFrames : -((-f + kRunEpochFrames - 1) / kRunEpochFrames);
+}
+
 // Builds the merged scene from the frames of one pass (streyes/passes.h: the same settings) in
 // increasing frame order. Frames may be missing between them (another pass's): a still run goes
 // on over them, and they render what the runs hold (the passes do not write them).
 class SequenceBuilder {
   public:
-    explicit SequenceBuilder(Log& log) : log_(log) {}
+    // scan: only finds the still runs (runTable), keeping no more than the last frame's primitives.
+    explicit SequenceBuilder(Log& log, bool scan = false) : log_(log), scan_(scan) {}
+    // The pass's runs over the whole input (made by a scanning builder): runs live over their frames
+    // there, within their epochs; the merged scene's settings carry the shot they span.
+    void setRuns(std::shared_ptr<const RunTable> runs) { table_ = std::move(runs); }
     // One frame (Scene::frameNumber, Scene::frameLoc). InputError when it cannot join the others:
     // out of order, another shutter, or exposures that overlap (close - open > 1).
     void add(Scene&& frame);
     int frames() const { return out_.stats.frames; }  // in the block being built
     // The frames added since the last finish, merged; the next frame starts a new block.
     Sequence finish();
+    // A scanning builder's runs, once every frame of its pass is added.
+    RunTable runTable();
 
   private:
     struct Track {
         size_t run = 0;  // index into the merged vector of its kind, and into runs_
-        int lastFrame = 0;
+        int firstFrame = 0, lastFrame = 0;
         size_t runIndex = 0;
     };
     template <typename Desc>
     void addPrimitive(char kind, Desc&& p, std::vector<Desc>& merged, std::map<std::string, int>& seen, int frame,
                       int previous);
     AttributesPtr remap(const AttributesPtr& a);
+    const std::pair<int, int>* tableRun(const std::string& key, int frame) const;
+    Lifetime lifeOf(const std::string& key, int frame);
+    void closeRun(const std::string& key, const Track& t);
+    void dropEnded(int frame);
+    template <typename Desc>
+    static void keepAlive(std::vector<Desc>& v, std::vector<std::pair<size_t, Track*>>& alive);
 
     Log& log_;
+    const bool scan_;
+    std::shared_ptr<const RunTable> table_;  // setRuns
+    RunTable found_;                         // a scan's
+    int shotFirst_ = 0, shotLast_ = 0;       // the frames the block's runs live over
     Sequence out_;
     int lastFrame_ = 0, blockFirst_ = 0;
     std::unordered_map<std::string, Track> tracks_;

@@ -30,6 +30,7 @@ std::unique_ptr<RenderScene> buildRenderScene(const Scene& scene, int firstFrame
     rs->windowEnd = lastFrame + rs->shutter.close;
     rs->renderedStart = std::max(firstFrame, renderedFirst) + rs->shutter.open;
     rs->renderedEnd = std::min(lastFrame, renderedLast) + rs->shutter.close;
+    rs->cameras.setRendered(std::max(firstFrame, renderedFirst), std::min(lastFrame, renderedLast));
     rs->factory = std::make_unique<BodyFactory>(cam.worldToCamera, rs->windowStart, rs->windowEnd, log);
     rs->factory->setCamera(&rs->camera, &rs->cameras);
     rs->factory->setExposure(rs->shutter.close - rs->shutter.open);

@@ -116,16 +116,19 @@ class FrameCameras {
     void add(int frame, const CameraDesc& desc) { frames_.insert_or_assign(frame, Camera(desc)); }
     bool zooms() const { return !frames_.empty(); }
     const Camera& common() const { return *common_; }
+    // The frames rendered: a sequence block's runs may live over frames around them, whose
+    // cameras the block does not have; a run's frames share one projection, so the nearest
+    // frame rendered answers for them.
+    void setRendered(int first, int last) { first_ = first, last_ = last; }
     // The camera of the frame whose exposure holds the middle of [t0, t1].
     const Camera& during(double t0, double t1) const {
         const double mid = 0.5 * (t0 + t1) - centre_;
         if (frames_.empty() || !(std::fabs(mid) < 1e9)) return *common_;  // an ordinary scene's bodies live always
-        const auto it = frames_.find(int(std::lround(mid)));
-        return it == frames_.end() ? *common_ : it->second;
+        return ofFrame(int(std::lround(mid)));
     }
     const Camera& ofFrame(int frame) const {
         if (frames_.empty()) return *common_;
-        const auto it = frames_.find(frame);
+        const auto it = frames_.find(first_ <= last_ ? std::clamp(frame, first_, last_) : frame);
         return it == frames_.end() ? *common_ : it->second;
     }
 
@@ -133,6 +136,7 @@ class FrameCameras {
     const Camera* common_;
     std::map<int, Camera> frames_;
     double centre_ = 0;
+    int first_ = 0, last_ = -1;  // setRendered; none: every frame its own
 };
 
 }  // namespace streyes

@@ -73,6 +73,10 @@ ResolvedSettings resolveSettings(const Scene& scene, const RenderOptions& o) {
     } else {
         r.shotFirst = scene.settings.hasFrames ? std::min(r.firstFrame, scene.settings.firstFrame) : r.firstFrame;
         r.shotLast = scene.settings.hasFrames ? std::max(r.lastFrame, scene.settings.lastFrame) : r.lastFrame;
+        if (scene.settings.hasShot) {  // a sequence block: its runs' frames around the block's
+            r.shotFirst = std::min(r.shotFirst, scene.settings.shotFirst);
+            r.shotLast = std::max(r.shotLast, scene.settings.shotLast);
+        }
     }
     r.width = o.xres > 0 ? o.xres : scene.camera.xres;
     r.height = o.yres > 0 ? o.yres : scene.camera.yres;

@@ -23,20 +23,6 @@ bool isDepthDisplay(const DisplayDesc& d) { return d.type == "zfile" || d.type =
 
 namespace {
 
-bool isPictureDisplay(const DisplayDesc& d) {
-    return d.type == "openexr" || d.type == "file" || d.type == "tiff" || d.type == "exr";
-}
-
-// Every display that writes a file writes a depth map (and one does).
-bool depthFrame(const Scene& s) {
-    bool depth = false;
-    for (const DisplayDesc& d : s.settings.displays) {
-        if (isPictureDisplay(d)) return false;
-        depth = depth || isDepthDisplay(d);
-    }
-    return depth;
-}
-
 void put(std::string& k, double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.17g,", v);
@@ -103,8 +89,9 @@ namespace {
 
 class Planner {
   public:
-    Planner(const PassRequest& req, Log& log, const std::function<void(PassJob&&)>& emit)
-        : req_(req), log_(log), emit_(emit), block_(std::max(1, req.blockFrames)) {}
+    Planner(const PassRequest& req, Log& log, const std::function<void(PassJob&&)>& emit,
+            std::map<std::string, std::shared_ptr<const RunTable>> runs)
+        : req_(req), log_(log), emit_(emit), block_(std::max(1, req.blockFrames)), runs_(std::move(runs)) {}
 
     void beginFile() { serials_.clear(); }
 
@@ -522,6 +509,8 @@ class Planner {
             n.pass = c.ordinary ? nextPass_++ : p != passOfKey_.end() ? p->second : (passOfKey_[key] = nextPass_++);
             if (!c.ordinary) {
                 n.builder = std::make_unique<SequenceBuilder>(log_);
+                auto runs = runs_.find(key);
+                if (runs != runs_.end()) n.builder->setRuns(runs->second);
                 openJob_[key] = id;
             }
         }
@@ -619,6 +608,7 @@ class Planner {
     Log& log_;
     const std::function<void(PassJob&&)>& emit_;
     const int block_;
+    const std::map<std::string, std::shared_ptr<const RunTable>> runs_;  // each pass's runs over the input
     std::set<int> serials_;  // the current file's make requests handed over
     std::set<int> numbers_;  // frame numbers read
     int order_ = 0, nextNode_ = 0, nextPass_ = 0, pendingFrames_ = 0;
@@ -635,65 +625,11 @@ class Planner {
     std::deque<int> pictureCandidates_;  // candidates kept for their pictures alone, oldest first
 };
 
-// ---- Reading ----------------------------------------------------------------------------------
-// The frame numbers of the files a pattern matches, in order.
-std::vector<int> framesOnDisk(const std::string& pattern) {
-    const std::filesystem::path p(pattern);
-    const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-    const std::string name = p.filename().string();
-    const size_t a = name.find('#');
-    size_t b = a;
-    while (b < name.size() && name[b] == '#') ++b;
-    const std::string prefix = name.substr(0, a), suffix = name.substr(b);
-    std::vector<int> frames;
-    std::error_code ec;
-    for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
-        const std::string n = entry.path().filename().string();
-        if (n.size() < prefix.size() + suffix.size() + (b - a) || n.compare(0, prefix.size(), prefix) != 0 ||
-            n.compare(n.size() - suffix.size(), suffix.size(), suffix) != 0)
-            continue;
-        const std::string digits = n.substr(prefix.size(), n.size() - prefix.size() - suffix.size());
-        if (digits.empty() || digits.size() > 9 ||
-            !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
-            continue;
-        const int f = std::stoi(digits);
-        if (frameFileName(pattern, f) == (dir / n).string() || frameFileName(pattern, f) == n) frames.push_back(f);
-    }
-    std::sort(frames.begin(), frames.end());
-    return frames;
-}
-
-// One frame's file: a scene, or FrameBegin blocks (the passes of that frame: each takes the file's
-// number), and what follows its last block.
-struct FrameFile {
-    std::vector<Scene> scenes;
-    Scene after;
-};
-
-FrameFile readFrameFile(const std::string& file, int f, Log& log, const ReadDetail& detail,
-                        const RibDefaults& defaults) {
-    FrameFile out;
-    parseRibFrames(
-        file, log,
-        [&](Scene&& s) {
-            const bool block = s.frameLoc.line > 0;
-            if (block && s.frameNumber != f)
-                log.warnOnce("sequence-number:" + file, s.frameLoc,
-                             "FrameBegin " + std::to_string(s.frameNumber) + " in the file of frame " +
-                                 std::to_string(f) + ": the file name's number is used");
-            if (!block) s.frameLoc = SourceLoc{std::make_shared<const std::string>(file), 1, 0};
-            s.frameNumber = f;
-            out.scenes.push_back(std::move(s));
-        },
-        detail, [&](Scene&& s) { out.after = std::move(s); }, defaults);
-    return out;
-}
-
 }  // namespace
 
 void readPasses(const std::string& path, const PassRequest& req, Log& log, const std::function<void(PassJob&&)>& job,
                 const ReadDetail& detail) {
-    Planner planner(req, log, job);
+    Planner planner(req, log, job, scanRuns(path, req, detail));
     if (isFramePattern(path)) {
         std::vector<int> frames;
         if (req.frames.given) {

@@ -82,23 +82,101 @@ void SequenceBuilder::addPrimitive(char kind, Desc&& p, std::vector<Desc>& merge
     auto it = tracks_.find(key);
     if (it != tracks_.end() && it->second.lastFrame == previous && !zoomed_) {
         Desc& run = merged[it->second.run];
-        if (stillWithinFrame(p) && stillWithinFrame(run) && sameData(run, p)) {
-            run.life.t1 = frame + close_;
-            SequenceRun& r = out_.runs[it->second.runIndex];
-            if (r.lastFrame == r.firstFrame) ++out_.stats.stillRuns;
-            r.lastFrame = frame;
+        // With the input's runs known, a block's run goes on only within its run there and its
+        // epoch (its life is theirs already).
+        const std::pair<int, int>* inInput = table_ ? tableRun(key, frame) : nullptr;
+        const bool sameRun = !table_ || (inInput && inInput->first <= it->second.firstFrame &&
+                                         runEpoch(frame) == runEpoch(it->second.firstFrame));
+        if (sameRun && stillWithinFrame(p) && stillWithinFrame(run) && sameData(run, p)) {
+            if (!table_) run.life.t1 = frame + close_;
+            if (!scan_) {
+                SequenceRun& r = out_.runs[it->second.runIndex];
+                if (r.lastFrame == r.firstFrame) ++out_.stats.stillRuns;
+                r.lastFrame = frame;
+            }
             it->second.lastFrame = frame;
             return;
         }
+        if (scan_) closeRun(key, it->second);
     }
-    p.life = Lifetime{frame + open_, frame + close_, false};
+    p.life = lifeOf(key, frame);
     Track t;
     t.run = merged.size();
-    t.lastFrame = frame;
+    t.firstFrame = t.lastFrame = frame;
     t.runIndex = out_.runs.size();
-    out_.runs.push_back({name, frame, frame});
+    if (!scan_) out_.runs.push_back({name, frame, frame});
     merged.push_back(std::move(p));
     tracks_[key] = t;
+}
+
+// ---- Runs over the whole input ----------------------------------------------------------------------------
+// The input's run of `key` that holds `frame`, or null (a run of that frame alone).
+const std::pair<int, int>* SequenceBuilder::tableRun(const std::string& key, int frame) const {
+    auto it = table_->runs.find(key);
+    if (it == table_->runs.end()) return nullptr;
+    const std::vector<std::pair<int, int>>& runs = it->second;
+    auto r = std::upper_bound(runs.begin(), runs.end(), frame, [](int f, const auto& run) { return f < run.first; });
+    if (r == runs.begin()) return nullptr;
+    --r;
+    return frame <= r->second ? &*r : nullptr;
+}
+
+// A run starting at `frame` in the block lives over its frames in the input within the frame's
+// epoch (the block's own frames when the input's runs are not known).
+Lifetime SequenceBuilder::lifeOf(const std::string& key, int frame) {
+    int a = frame, b = frame;
+    if (table_) {
+        if (const std::pair<int, int>* run = tableRun(key, frame)) {
+            const int epoch = runEpoch(frame);
+            a = std::max(run->first, epoch * kRunEpochFrames + 1);
+            b = std::min(run->second, (epoch + 1) * kRunEpochFrames);
+        }
+        shotFirst_ = std::min(shotFirst_, a);
+        shotLast_ = std::max(shotLast_, b);
+    }
+    return Lifetime{a + open_, b + close_, false};
+}
+
+void SequenceBuilder::closeRun(const std::string& key, const Track& t) {
+    if (t.lastFrame > t.firstFrame) found_.runs[key].emplace_back(t.firstFrame, t.lastFrame);
+}
+
+template <typename Desc>
+void SequenceBuilder::keepAlive(std::vector<Desc>& v, std::vector<std::pair<size_t, Track*>>& alive) {
+    std::vector<Desc> kept;
+    kept.reserve(alive.size());
+    for (auto& [i, t] : alive) {
+        t->run = kept.size();
+        kept.push_back(std::move(v[i]));
+    }
+    v = std::move(kept);
+}
+
+// A scan keeps the primitives of runs that reached this frame only: a run that did not can never
+// go on (a run goes on from the frame before).
+void SequenceBuilder::dropEnded(int frame) {
+    std::map<char, std::vector<std::pair<size_t, Track*>>> alive;
+    for (auto it = tracks_.begin(); it != tracks_.end();) {
+        if (it->second.lastFrame != frame) {
+            closeRun(it->first, it->second);
+            it = tracks_.erase(it);
+        } else {
+            alive[it->first[0]].emplace_back(it->second.run, &it->second);
+            ++it;
+        }
+    }
+    Scene& m = out_.scene;
+    keepAlive(m.patches, alive['b']), keepAlive(m.procedurals, alive['r']), keepAlive(m.patchMeshes, alive['p']);
+    keepAlive(m.subdivisionMeshes, alive['s']), keepAlive(m.quadrics, alive['q']), keepAlive(m.curves, alive['c']);
+    keepAlive(m.points, alive['o']), keepAlive(m.polygonMeshes, alive['g']), keepAlive(m.nuPatches, alive['n']);
+}
+
+RunTable SequenceBuilder::runTable() {
+    for (const auto& [key, t] : tracks_) closeRun(key, t);
+    tracks_.clear();
+    for (auto& [key, runs] : found_.runs) std::sort(runs.begin(), runs.end());
+    found_.lastFrame = lastFrame_;
+    return std::move(found_);
 }
 
 namespace {
@@ -128,6 +206,7 @@ void SequenceBuilder::add(Scene&& frame) {
     }
     if (out_.stats.frames == 0) {  // the block's first frame
         blockFirst_ = f;
+        shotFirst_ = shotLast_ = f;
         open_ = frame.settings.shutterOpen;
         close_ = frame.settings.shutterClose;
         out_.scene.camera = frame.camera;
@@ -202,6 +281,7 @@ void SequenceBuilder::add(Scene&& frame) {
     }
     seen.clear();
     for (NuPatchDesc& p : frame.nuPatches) addPrimitive('n', std::move(p), m.nuPatches, seen, f, previous);
+    if (scan_) dropEnded(f);
 }
 
 Sequence SequenceBuilder::finish() {
@@ -211,9 +291,15 @@ Sequence SequenceBuilder::finish() {
     s.firstFrame = blockFirst_;
     s.lastFrame = lastFrame_;
     s.displays.clear();
-    // Exposures that touch (close - open == 1): a run that ends before the last frame ends open,
-    // so that the instant the next frame's exposure begins is the next frame's.
-    const double end = lastFrame_ + close_;
+    // Exposures that touch (close - open == 1): a run that ends before the last frame (of the
+    // input, when its runs are known) ends open, so that the instant the next frame's exposure
+    // begins is the next frame's.
+    const double end = (table_ ? std::max(table_->lastFrame, lastFrame_) : lastFrame_) + close_;
+    if (table_) {
+        s.hasShot = true;
+        s.shotFirst = std::min(shotFirst_, blockFirst_);
+        s.shotLast = std::max(shotLast_, lastFrame_);
+    }
     const bool touching = close_ - open_ >= 1;
     auto close = [&](auto& v) {
         for (auto& p : v) p.life.openEnd = touching && p.life.t1 < end;
