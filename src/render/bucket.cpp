@@ -241,8 +241,13 @@ void BucketWorker::pushRoot(const Body& root, int fa, int fb, FrameRun run) {
     }
 }
 
-// Frames a moving root's pieces span (geom/root_chunks.h).
-int BucketWorker::chunkFrames(const Body& root) const { return rootChunkFrames(root, cameraOf(root), worldChunks(root)); }
+// Frames a moving root's pieces span (geom/root_chunks.h); one where it reads maps made frame by
+// frame, so that each frame is shaded with its own maps in every block (docs/ARCHITECTURE.md, Passes).
+int BucketWorker::chunkFrames(const Body& root) const {
+    const Material* m = root.material();
+    if (m && m->readsMaps && shaders_ && shaders_->mapsPerFrame()) return 1;
+    return rootChunkFrames(root, cameraOf(root), worldChunks(root));
+}
 
 // A moving root's pieces for the bucket's frames [fa, fb]: one a chunk of `chunk` frames aligned
 // to multiples of `chunk` (absolute frame numbers), cut from the root, and within `run` (the

@@ -52,9 +52,9 @@ bool BucketWorker::worldChunks(const Body& root) const {
     if (!root.stillInWorld || !root.moving() || !root.diceableInTime() || root.dicesAtKeys() || root.expands())
         return false;
     const Material* m = root.material();
-    // What reads maps that differ between frames, or casts rays, is shaded at each exposure's
-    // start, unlike a moving grid (BucketWorker::shadingVaries): kept to the chunks of every mover.
-    return m && !(m->readsMaps && shaders_ && shaders_->mapsVary()) && !m->tracesRays && m->dissolveLo == 0 &&
+    // What reads maps made frame by frame, or casts rays, is shaded at each exposure's start,
+    // unlike a moving grid (BucketWorker::shadingVaries, chunkFrames): kept to the chunks of every mover.
+    return m && !(m->readsMaps && shaders_ && shaders_->mapsPerFrame()) && !m->tracesRays && m->dissolveLo == 0 &&
            m->dissolveHi == 1;
 }
 

@@ -131,6 +131,8 @@ class SceneShaders final : public MaterialBinder {
     bool worldMovesAt(double t) const { return maps_->worldMovesAt(t); }
     // Do frames read different depth maps under one name (what reads maps then varies)?
     bool mapsVary() const { return maps_->varies(); }
+    // Are there depth maps made frame by frame by the input's passes (ShadowMaps::perFrame)?
+    bool mapsPerFrame() const { return maps_->perFrame(); }
     // Has a light, or a material bound so far, a shader that casts rays (the renderer then builds
     // the ray tracer's scene)?
     bool tracesRays() const { return tracesRays_.load(std::memory_order_relaxed); }

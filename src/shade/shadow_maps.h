@@ -52,6 +52,9 @@ class ShadowMaps {
     bool occlusion(const std::string& name, const sl::TextureOptions& o, const sl::DirectionQuery& q,
                    const float* const* normal, float* out);
     bool varies() const { return varies_; }
+    // Are there maps the input's passes made frame by frame (whether or not they differ)? A
+    // property of the input, not of the frames a job renders, unlike varies().
+    bool perFrame() const { return binding_ && !binding_->frames.empty(); }
     // World -> the current (camera) space of the frame that time t falls in.
     Matrix4 worldToCameraAt(double t) const;
     // Do the frames' cameras differ (so "world" space moves against current space between them)?
