@@ -20,6 +20,7 @@
 #include <memory>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "streyes/rib.h"
@@ -71,6 +72,11 @@ constexpr int kRunEpochFrames = 64;
 inline int runEpoch(int frame) {
     const int f = frame - 1;
     return f >= 0 ? f / kRunEpochFrames : -((-f + kRunEpochFrames - 1) / kRunEpochFrames);
+}
+// The first and last frames of frame f's epoch.
+inline std::pair<int, int> runEpochFrames(int frame) {
+    const int first = runEpoch(frame) * kRunEpochFrames + 1;
+    return {first, first + kRunEpochFrames - 1};
 }
 
 // Builds the merged scene from the frames of one pass (streyes/passes.h: the same settings) in

@@ -183,8 +183,8 @@ std::map<std::string, std::shared_ptr<const RunTable>> scanRuns(const std::strin
             std::vector<int> files = framesOnDisk(path);
             if (req.frames.given) {
                 // The wanted frames' epochs, and the first frame after them.
-                const int first = runEpoch(req.frames.first) * kRunEpochFrames + 1;
-                const int last = (runEpoch(req.frames.last) + 1) * kRunEpochFrames;
+                const int first = runEpochFrames(req.frames.first).first;
+                const int last = runEpochFrames(req.frames.last).second;
                 auto after = std::upper_bound(files.begin(), files.end(), last);
                 files.erase(after == files.end() ? after : after + 1, files.end());
                 files.erase(files.begin(), std::lower_bound(files.begin(), files.end(), first));

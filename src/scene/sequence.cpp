@@ -127,9 +127,9 @@ Lifetime SequenceBuilder::lifeOf(const std::string& key, int frame) {
     int a = frame, b = frame;
     if (table_) {
         if (const std::pair<int, int>* run = tableRun(key, frame)) {
-            const int epoch = runEpoch(frame);
-            a = std::max(run->first, epoch * kRunEpochFrames + 1);
-            b = std::min(run->second, (epoch + 1) * kRunEpochFrames);
+            const auto [first, last] = runEpochFrames(frame);
+            a = std::max(run->first, first);
+            b = std::min(run->second, last);
         }
         shotFirst_ = std::min(shotFirst_, a);
         shotLast_ = std::max(shotLast_, b);
@@ -217,13 +217,15 @@ void SequenceBuilder::add(Scene&& frame) {
     const int previous = out_.stats.frames == 0 ? f - 1 : lastFrame_;
     lastFrame_ = f;
     ++out_.stats.frames;
-    out_.displays[f] = frame.settings.displays;
-    out_.scene.frameWorldToCamera[f] = frame.camera.worldToCamera;
+    if (!scan_) {  // a scan keeps nothing per frame: its memory is the last frame's, however long the input
+        out_.displays[f] = frame.settings.displays;
+        out_.scene.frameWorldToCamera[f] = frame.camera.worldToCamera;
+    }
     // A zoom: frames of one pass may differ in projection (streyes/passes.h). A still primitive's
     // run ends where it changes, so that each body lives under one projection and is split and
     // diced as its frames alone would (docs/ARCHITECTURE.md, "Zooms").
     zoomed_ = out_.stats.frames > 1 && !sameZoom(frame.camera, previousCamera_);
-    if (!sameZoom(frame.camera, out_.scene.camera)) {
+    if (!scan_ && !sameZoom(frame.camera, out_.scene.camera)) {
         CameraDesc& c = out_.scene.frameCamera[f] = out_.scene.camera;  // camera space: the merged one
         c.fov = frame.camera.fov;
         c.hasScreenWindow = frame.camera.hasScreenWindow;
@@ -297,7 +299,7 @@ Sequence SequenceBuilder::finish() {
     const double end = (table_ ? std::max(table_->lastFrame, lastFrame_) : lastFrame_) + close_;
     if (table_) {
         s.hasShot = true;
-        s.shotFirst = std::min(shotFirst_, blockFirst_);
+        s.shotFirst = shotFirst_;  // from the block's first frame on, lowered by its runs
         s.shotLast = std::max(shotLast_, lastFrame_);
     }
     const bool touching = close_ - open_ >= 1;

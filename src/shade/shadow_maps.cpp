@@ -56,13 +56,12 @@ const DepthMap* ShadowMaps::map(double time, const std::string& name) {
     static const DepthMap kGap;  // a frame of the render no pass gave this map: nothing to read
     bool anyFrame = false;
     if (binding_ && !binding_->frames.empty()) {
-        int f = int(std::floor(time - open_ + 1e-6));
         // A time before or after the frames rendered (a body living over frames around them, a
         // sequence's run): no sample is there, but its shading is, once for a still body (when
         // the maps do not vary, any frame's map is every frame's) or at a piece's ends. The
         // nearest frame rendered answers.
-        f = std::clamp(f, binding_->frames.begin()->first, binding_->frames.rbegin()->first);
-        if (!varies_) f = binding_->frames.begin()->first;
+        const int first = binding_->frames.begin()->first, last = binding_->frames.rbegin()->first;
+        const int f = varies_ ? std::clamp(int(std::floor(time - open_ + 1e-6)), first, last) : first;
         auto frame = binding_->frames.find(f);
         if (frame != binding_->frames.end()) {
             auto it = frame->second.find(name);
